@@ -1,0 +1,128 @@
+/* lv_model.h - what a simulation model is: named variables, a right-hand side, events.
+ *
+ * A model is data plus pure functions. It knows nothing about phases, files or
+ * integrators. lv_simulate() (lv_sim.h) integrates it.
+ *
+ * Variables. Every model variable has a name, a unit and a description:
+ *   - states x[i]            (integrated; `start` is the default start value,
+ *                             `nominal` scales the absolute tolerance)
+ *   - derivatives der(x[i])  (named automatically "der(<state>)", unit "<unit>/s")
+ *   - parameters p[j]        (constant during a run; `start` is the default value)
+ *   - outputs y[k]           (computed from t, x, p and the discrete mode)
+ * Names are resolved to indices once, outside the hot path; the callbacks see
+ * plain arrays indexed by the model's own enums.
+ *
+ * Discrete modes (engine on/off, connected/separated) live in the model's
+ * instance data `inst`, which lv_simulate() passes to every callback. They
+ * change only in event handlers, never by `if (t > t_sep)` inside rhs().
+ *
+ * Callback return convention (as SUNDIALS): 0 ok; > 0 the state is not
+ * acceptable, retry with a smaller step; < 0 unrecoverable, stop the run.
+ */
+#ifndef LVSIM_LV_MODEL_H
+#define LVSIM_LV_MODEL_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One named variable. Strings are static (or outlive the model). */
+typedef struct lv_var {
+    const char *name;        /* e.g. "h", "body1.m", "start_lat" */
+    const char *unit;        /* SI unit string, "" for dimensionless */
+    const char *description; /* one line */
+    double start;            /* default start (state) or value (parameter) */
+    double nominal;          /* states: typical magnitude, > 0 (atol = rtol * nominal) */
+} lv_var;
+
+typedef enum lv_var_kind {
+    LV_VAR_STATE,
+    LV_VAR_DERIVATIVE,
+    LV_VAR_PARAMETER,
+    LV_VAR_OUTPUT
+} lv_var_kind;
+
+/* Direction of a zero crossing that counts as an event. */
+typedef enum lv_dir {
+    LV_DIR_BOTH = 0,
+    LV_DIR_RISING = 1,  /* g goes from negative to positive */
+    LV_DIR_FALLING = -1 /* g goes from positive to negative */
+} lv_dir;
+
+/* A state event: a zero crossing of g_i(t, x). */
+typedef struct lv_event_def {
+    const char *name;        /* "burnout", "impact" */
+    const char *description; /* one line */
+    lv_dir direction;
+} lv_event_def;
+
+/* What an event handler asks lv_simulate() to do next. */
+typedef enum lv_event_action {
+    LV_EVENT_CONTINUE = 0, /* nothing changed: continue without restarting */
+    LV_EVENT_RESTART = 1,  /* mode or state changed: re-initialise the integrator */
+    LV_EVENT_STOP = 2      /* end the run at this instant (a phase end) */
+} lv_event_action;
+
+typedef struct lv_model_def lv_model_def;
+
+struct lv_model_def {
+    const char *name;        /* "vertical_ascent" */
+    const char *description; /* one line */
+
+    size_t n_states, n_params, n_outputs, n_events;
+    const lv_var *states;        /* [n_states] */
+    const lv_var *params;        /* [n_params] */
+    const lv_var *outputs;       /* [n_outputs] */
+    const lv_event_def *events;  /* [n_events] */
+
+    /* Optional. Compute state start values from the parameters (e.g. position
+     * from start_lat/start_lon/start_h). Default: each state's `start`. Called
+     * after parameters named in initialNames are set and before states named
+     * there override the result. */
+    int (*start)(const double *p, double *x, void *inst);
+
+    /* Optional. Set discrete modes consistent with the initial (t0, x, p), e.g.
+     * engine on iff propellant remains. Called once, just before integration. */
+    int (*init)(double t0, const double *x, const double *p, void *inst);
+
+    /* Required. dx/dt = f(t, x, p, mode). The hot path: allocate nothing. */
+    int (*rhs)(double t, const double *x, const double *p, double *xdot, void *inst);
+
+    /* Optional (required when n_events > 0). g[i] for every event function. */
+    int (*event_g)(double t, const double *x, const double *p, double *g, void *inst);
+
+    /* Optional. Handle the state events that fired at `t`: fired[i] is +1
+     * (rising), -1 (falling) or 0. May change the mode in `inst` and the state
+     * `x` in place. NULL means: stop at the first event. */
+    lv_event_action (*on_event)(double t, double *x, const double *p, const int *fired,
+                                void *inst);
+
+    /* Optional. Earliest scheduled time event strictly after `t` (table
+     * breakpoints, commanded actions), or INFINITY when none remain. */
+    double (*next_time_event)(double t, const double *p, void *inst);
+
+    /* Optional. Handle the time event(s) scheduled at exactly `t`. */
+    lv_event_action (*on_time_event)(double t, double *x, const double *p, void *inst);
+
+    /* Optional (required when n_outputs > 0). Outputs at (t, x). Not hot. */
+    int (*outputs_fn)(double t, const double *x, const double *p, double *y, void *inst);
+};
+
+/* Look a variable up by name. Returns LV_OK and sets *kind and *index, or
+ * LV_ERR_NOTFOUND with a message that suggests the nearest names. "time" is
+ * not a model variable. */
+LV_API lv_status lv_model_find(const lv_model_def *def, const char *name, lv_var_kind *kind,
+                               size_t *index, lv_err *err);
+
+/* Checks a model definition for consistency (counts, names unique, nominal > 0,
+ * required callbacks present). */
+LV_API lv_status lv_model_validate(const lv_model_def *def, lv_err *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Install the Debian packages lvsim needs, only those missing. Idempotent.
+#   scripts/install-deps.sh          build + test dependencies
+# Uses sudo when not root. Debian 12 (bookworm) package names.
+set -euo pipefail
+
+pkgs=(
+  cmake make gcc pkg-config            # build
+  libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
+  libmatio-dev                         # MAT v4/v5/v7 result and table files
+  libyaml-dev                          # mission files
+  libcjson-dev                         # summary.json, exports
+  python3-scipy python3-numpy          # independent .mat reader in the tests
+)
+
+missing=()
+for p in "${pkgs[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,25 @@
+/* names.h - nearest-name suggestions for "unknown name" errors (not exported). */
+#ifndef LV_CORE_NAMES_H
+#define LV_CORE_NAMES_H
+
+#include <stddef.h>
+
+/* Levenshtein edit distance, case-sensitive; strings longer than 255 bytes are
+ * compared on their first 255 bytes. */
+size_t lv_edit_distance(const char *a, const char *b);
+
+/* Collects candidates and keeps the `LV_SUGGEST_MAX` nearest to `query`. */
+#define LV_SUGGEST_MAX 3
+typedef struct lv_suggest {
+    const char *query;
+    const char *best[LV_SUGGEST_MAX];
+    size_t dist[LV_SUGGEST_MAX];
+    size_t n;
+} lv_suggest;
+
+void lv_suggest_init(lv_suggest *s, const char *query);
+void lv_suggest_add(lv_suggest *s, const char *candidate);
+/* Writes "; did you mean 'a', 'b' or 'c'?" (or "" when nothing is close) into buf. */
+void lv_suggest_text(const lv_suggest *s, char *buf, size_t cap);
+
+#endif

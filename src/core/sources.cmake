@@ -1,0 +1,4 @@
+list(APPEND LV_SOURCES
+  src/core/status.c
+  src/core/names.c)
+include(src/core/tables.cmake OPTIONAL)

@@ -1,0 +1,47 @@
+/* status.c - status strings and error-record formatting. */
+#include "core/status.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+const char *lv_status_str(lv_status st)
+{
+#define LV_STATUS_CASE_(name, value, text) \
+    case name:                             \
+        return text;
+    switch (st) {
+        LV_STATUS_LIST(LV_STATUS_CASE_)
+    }
+#undef LV_STATUS_CASE_
+    return "unknown status";
+}
+
+lv_status lv_fail(lv_err *err, lv_status code, const char *fmt, ...)
+{
+    if (err == NULL)
+        return code;
+    err->code = code;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+lv_status lv_fail_prefix(lv_err *err, lv_status code, const char *fmt, ...)
+{
+    if (err == NULL)
+        return code;
+    char old[LV_ERR_MSG_MAX];
+    memcpy(old, err->msg, sizeof old);
+    old[sizeof old - 1] = '\0';
+    char prefix[LV_ERR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(prefix, sizeof prefix, fmt, ap);
+    va_end(ap);
+    err->code = code;
+    snprintf(err->msg, sizeof err->msg, "%s: %s", prefix, old);
+    return code;
+}
