@@ -1,3 +1,320 @@
-/* main.c - the lvsim command line (placeholder until the CLI lands in this session). */
+/* main.c - the lvsim command line: arguments, messages and exit codes; no physics.
+ *
+ * Exit codes: 0 ok, 1 internal error, 2 bad input (arguments, files, names),
+ * 3 simulation failure. See docs/cli.md.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
-int main(void) { return 0; }
+#include <stdlib.h>
+#include <string.h>
+
+#include "lvsim/lvsim.h"
+
+enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3 };
+
+static int exit_code_for(lv_status st)
+{
+    switch (st) {
+    case LV_OK: return EXIT_OK;
+    case LV_ERR_SOLVER: return EXIT_SIM;
+    case LV_ERR_NOMEM: return EXIT_INTERNAL;
+    default: return EXIT_INPUT;
+    }
+}
+
+static int usage_error(const char *what, const char *arg)
+{
+    fprintf(stderr, "lvsim: %s%s%s%s\n(see 'lvsim help')\n", what, arg ? " '" : "",
+            arg ? arg : "", arg ? "'" : "");
+    return EXIT_INPUT;
+}
+
+/* Parses a whole argument as a finite double. */
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static int parse_int(const char *s, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 0 || v > 100000000)
+        return 0;
+    *out = (int)v;
+    return 1;
+}
+
+static void print_help(FILE *f)
+{
+    fprintf(f,
+            "lvsim %s - mission-dependent sequential simulation of launch vehicles\n"
+            "\n"
+            "usage:\n"
+            "  lvsim models                      list the built-in models\n"
+            "  lvsim vars MODEL                  list a model's variables (name, unit, start)\n"
+            "  lvsim simulate MODEL [options]    one run, as Dymola's simulateExtendedModel\n"
+            "      --start T  --stop T           start and stop time [s] (0, 1)\n"
+            "      --intervals N | --interval DT output grid (500 intervals)\n"
+            "      --method M                    dassl | cvode-adams | dopri5 | rk4 | euler\n"
+            "      --tolerance TOL               relative tolerance (1e-4)\n"
+            "      --fixed-step H                step of rk4/euler [s] (the output interval)\n"
+            "      --set NAME=VALUE              start value of a state or parameter (repeat)\n"
+            "      --final NAME                  print this variable's final value (repeat)\n"
+            "      -o PATH                       result file path without extension (dsres)\n"
+            "      --format mat,csv              result formats (both)\n"
+            "      --json                        print the report as JSON\n"
+            "  lvsim help | --help               this text\n"
+            "  lvsim version\n"
+            "\n"
+            "exit codes: 0 ok, 2 bad input, 3 simulation failure\n",
+            LVSIM_VERSION);
+}
+
+static const lv_model_def *find_model(const char *name)
+{
+    const lv_model_def *m = lv_models_find(name);
+    if (m == NULL) {
+        fprintf(stderr, "lvsim: unknown model '%s'; built-in models:", name);
+        for (const lv_model_def *const *all = lv_models_all(); *all; all++)
+            fprintf(stderr, " %s", (*all)->name);
+        fprintf(stderr, "\n");
+    }
+    return m;
+}
+
+static int cmd_models(void)
+{
+    for (const lv_model_def *const *all = lv_models_all(); *all; all++)
+        printf("%-18s %s\n", (*all)->name, (*all)->description);
+    return EXIT_OK;
+}
+
+static void print_vars(const char *kind, const lv_var *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        printf("%-10s %-16s %-8s %12g  %s\n", kind, v[i].name, v[i].unit[0] ? v[i].unit : "-",
+               v[i].start, v[i].description);
+}
+
+static int cmd_vars(int argc, char **argv)
+{
+    if (argc != 1)
+        return usage_error("vars takes one model name", NULL);
+    const lv_model_def *m = find_model(argv[0]);
+    if (m == NULL)
+        return EXIT_INPUT;
+    printf("# model %s: %s\n# %-8s %-16s %-8s %12s  %s\n", m->name, m->description, "kind",
+           "name", "unit", "start", "description");
+    print_vars("state", m->states, m->n_states);
+    for (size_t i = 0; i < m->n_states; i++) {
+        char der[128];
+        snprintf(der, sizeof der, "der(%s)", m->states[i].name);
+        printf("%-10s %-16s %-8s %12s  Time derivative of %s\n", "derivative", der, "-", "",
+               m->states[i].name);
+    }
+    print_vars("parameter", m->params, m->n_params);
+    print_vars("output", m->outputs, m->n_outputs);
+    for (size_t i = 0; i < m->n_events; i++)
+        printf("%-10s %-16s %-8s %12s  %s\n", "event", m->events[i].name,
+               m->events[i].direction > 0 ? "rising" : m->events[i].direction < 0 ? "falling" : "both",
+               "", m->events[i].description);
+    return EXIT_OK;
+}
+
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            printf("\\%c", *s);
+        else if ((unsigned char)*s < 0x20)
+            printf("\\u%04x", *s);
+        else
+            putchar(*s);
+    }
+    putchar('"');
+}
+
+static int cmd_simulate(int argc, char **argv)
+{
+    if (argc < 1)
+        return usage_error("simulate needs a model name", NULL);
+    const lv_model_def *m = find_model(argv[0]);
+    if (m == NULL)
+        return EXIT_INPUT;
+
+    lv_sim_settings s;
+    lv_sim_settings_default(&s);
+    int json = 0;
+    int rc = EXIT_OK;
+    size_t cap = (size_t)argc;
+    char **set_names = calloc(cap, sizeof *set_names);
+    double *set_values = calloc(cap, sizeof *set_values);
+    const char **final_names = calloc(cap, sizeof *final_names);
+    double *finals = calloc(cap, sizeof *finals);
+    if (!set_names || !set_values || !final_names || !finals) {
+        fprintf(stderr, "lvsim: out of memory\n");
+        rc = EXIT_INTERNAL;
+        goto out;
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        static const char *const with_value[] = {
+            "--start", "--stop", "--interval", "--tolerance", "--fixed-step", "--intervals",
+            "--method", "-o", "--format", "--set", "--final", NULL};
+        int known = 0;
+        for (size_t k = 0; with_value[k] != NULL; k++)
+            known |= strcmp(a, with_value[k]) == 0;
+        if (strcmp(a, "--json") == 0) {
+            json = 1;
+            takes = 0;
+        } else if (!known) {
+            rc = usage_error("unknown option", a);
+            goto out;
+        } else if (val == NULL) {
+            rc = usage_error("missing value for option", a);
+            goto out;
+        } else if (strcmp(a, "--start") == 0 || strcmp(a, "--stop") == 0 ||
+                   strcmp(a, "--interval") == 0 || strcmp(a, "--tolerance") == 0 ||
+                   strcmp(a, "--fixed-step") == 0) {
+            double v;
+            if (!parse_double(val, &v)) {
+                fprintf(stderr, "lvsim: %s: '%s' is not a finite number\n", a, val);
+                rc = EXIT_INPUT;
+                goto out;
+            }
+            if (strcmp(a, "--start") == 0) s.start_time = v;
+            else if (strcmp(a, "--stop") == 0) s.stop_time = v;
+            else if (strcmp(a, "--interval") == 0) s.output_interval = v;
+            else if (strcmp(a, "--tolerance") == 0) s.tolerance = v;
+            else s.fixed_step = v;
+        } else if (strcmp(a, "--intervals") == 0) {
+            if (!parse_int(val, &s.number_of_intervals)) {
+                fprintf(stderr, "lvsim: --intervals: '%s' is not a count\n", val);
+                rc = EXIT_INPUT;
+                goto out;
+            }
+        } else if (strcmp(a, "--method") == 0) {
+            s.method = val;
+        } else if (strcmp(a, "-o") == 0) {
+            s.result_file = val;
+        } else if (strcmp(a, "--format") == 0) {
+            s.result_formats = 0;
+            if (strstr(val, "mat")) s.result_formats |= LV_RESULT_MAT;
+            if (strstr(val, "csv")) s.result_formats |= LV_RESULT_CSV;
+            if (strcmp(val, "none") == 0)
+                s.result_file = NULL;
+            else if (s.result_formats == 0) {
+                fprintf(stderr, "lvsim: --format: '%s': use mat, csv, mat,csv or none\n", val);
+                rc = EXIT_INPUT;
+                goto out;
+            }
+        } else if (strcmp(a, "--set") == 0) {
+            const char *eq = strchr(val, '=');
+            double v;
+            if (eq == NULL || eq == val || !parse_double(eq + 1, &v)) {
+                fprintf(stderr, "lvsim: --set '%s': expected NAME=NUMBER\n", val);
+                rc = EXIT_INPUT;
+                goto out;
+            }
+            set_names[s.n_initial] = strndup(val, (size_t)(eq - val));
+            set_values[s.n_initial++] = v;
+        } else { /* --final */
+            final_names[s.n_final++] = val;
+        }
+        i += takes;
+    }
+    s.initial_names = (const char *const *)set_names;
+    s.initial_values = set_values;
+    s.final_names = final_names;
+
+    lv_sim_report rep;
+    lv_err err;
+    lv_status st = lv_simulate(m, NULL, &s, finals, &rep, &err);
+    if (st != LV_OK)
+        fprintf(stderr, "lvsim: %s\n", err.msg);
+    if (json) {
+        printf("{\"model\": ");
+        json_string(m->name);
+        printf(", \"ok\": %s, \"method\": ", st == LV_OK ? "true" : "false");
+        json_string(s.method);
+        printf(", \"tolerance\": %.17g, \"end_time\": %.17g, \"stop\": ", s.tolerance, rep.end_time);
+        json_string(rep.stop_name);
+        if (st != LV_OK) {
+            printf(", \"error\": ");
+            json_string(err.msg);
+        }
+        printf(",\n \"stats\": {\"states\": %zu, \"steps\": %ld, \"rhs_evals\": %ld, "
+               "\"jac_evals\": %ld, \"state_events\": %ld, \"time_events\": %ld, "
+               "\"restarts\": %ld, \"rows\": %ld, \"cpu_time\": %.6g},\n \"final\": {",
+               rep.n_states, rep.stats.steps, rep.stats.rhs_evals, rep.stats.jac_evals,
+               rep.stats.state_events, rep.stats.time_events, rep.stats.restarts,
+               rep.stats.output_rows, rep.stats.cpu_time);
+        for (size_t i = 0; st == LV_OK && i < s.n_final; i++) {
+            printf("%s", i ? ", " : "");
+            json_string(final_names[i]);
+            printf(": %.17g", finals[i]);
+        }
+        printf("}}\n");
+    } else {
+        printf("model %s, method %s, tolerance %g: %s at t = %.9g s (%s)\n", m->name, s.method,
+               s.tolerance, st == LV_OK ? "ok" : "FAILED", rep.end_time, rep.stop_name);
+        printf("  states %zu, steps %ld, rhs evals %ld, jacobians %ld, state events %ld, "
+               "time events %ld, cpu %.3f ms\n",
+               rep.n_states, rep.stats.steps, rep.stats.rhs_evals, rep.stats.jac_evals,
+               rep.stats.state_events, rep.stats.time_events, 1e3 * rep.stats.cpu_time);
+        for (size_t i = 0; st == LV_OK && i < s.n_final; i++)
+            printf("  %-16s = %.12g\n", final_names[i], finals[i]);
+        if (s.result_file != NULL && rep.stats.output_rows > 0)
+            printf("  result: %s%s%s%s\n", s.result_file, st == LV_OK ? "" : ".failed",
+                   (s.result_formats & LV_RESULT_MAT) ? ".mat " : "",
+                   (s.result_formats & LV_RESULT_CSV) ? ".csv" : "");
+    }
+    lv_sim_report_clear(&rep);
+    rc = exit_code_for(st);
+out:
+    for (size_t i = 0; set_names && i < cap; i++)
+        free(set_names[i]);
+    free(set_names);
+    free(set_values);
+    free(final_names);
+    free(finals);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        print_help(stderr);
+        return EXIT_INPUT;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        print_help(stdout);
+        return EXIT_OK;
+    }
+    if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
+        printf("lvsim %s\n", LVSIM_VERSION);
+        return EXIT_OK;
+    }
+    if (strcmp(cmd, "models") == 0)
+        return cmd_models();
+    if (strcmp(cmd, "vars") == 0)
+        return cmd_vars(argc - 2, argv + 2);
+    if (strcmp(cmd, "simulate") == 0)
+        return cmd_simulate(argc - 2, argv + 2);
+    return usage_error("unknown command", cmd);
+}

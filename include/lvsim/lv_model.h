@@ -78,6 +78,8 @@ struct lv_model_def {
     const lv_var *params;        /* [n_params] */
     const lv_var *outputs;       /* [n_outputs] */
     const lv_event_def *events;  /* [n_events] */
+    size_t inst_size;            /* bytes of instance data (modes); lv_simulate() allocates
+                                    a zeroed block of this size when called with inst == NULL */
 
     /* Optional. Compute state start values from the parameters (e.g. position
      * from start_lat/start_lon/start_h). Default: each state's `start`. Called

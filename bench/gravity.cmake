@@ -1,0 +1,4 @@
+# Gravity evaluation cost (ns per call) by model and degree.
+add_executable(bench_gravity bench_gravity.c)
+target_link_libraries(bench_gravity PRIVATE lvsim_static)
+lv_set_warnings(bench_gravity)

@@ -1,0 +1,92 @@
+/* lv_atmosphere.h - atmosphere models: U.S. Standard Atmosphere 1976 and an exponential model.
+ *
+ * Contract: the input is geometric altitude above the reference surface in m; the output
+ * is an lv_atmo_state in SI units. Models are looked up by name ("us76", "exp"); each has
+ * its own parameter block, created and freed through the model (or through an lv_atmo
+ * handle, which pairs a model with its parameters). Evaluation allocates nothing and is
+ * safe to call from several threads on the same parameters.
+ *
+ * Valid range: -5 km to 1000 km for both models (the range of the 1976 tables). An
+ * altitude outside it, or NaN, gives LV_ERR_INPUT naming the altitude and the range.
+ *
+ * Above 86 km the 1976 document defines T, p, rho and M but not the speed of sound or the
+ * viscosity; "us76" then returns its 86 km formulas applied to the local state (see
+ * docs/atmosphere.md): a = sqrt(gamma R* T / M), mu = beta T^1.5 / (T + S).
+ */
+#ifndef LVSIM_LV_ATMOSPHERE_H
+#define LVSIM_LV_ATMOSPHERE_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LV_ATMO_ALT_MIN (-5000.0)  /* m, lowest altitude of every model */
+#define LV_ATMO_ALT_MAX 1000000.0  /* m, highest altitude of every model */
+
+/* Atmospheric state at one altitude. */
+typedef struct lv_atmo_state {
+    double T;   /* K, kinetic temperature */
+    double p;   /* Pa, pressure */
+    double rho; /* kg/m^3, mass density */
+    double a;   /* m/s, speed of sound */
+    double mu;  /* Pa s, dynamic viscosity */
+    double M;   /* kg/kmol, mean molecular weight */
+} lv_atmo_state;
+
+/* A model: name and functions; its parameters live apart, in a block it creates.
+ * `eval` is the hot path: no allocation, no lookup by name. */
+typedef struct lv_atmo_model {
+    const char *name;        /* key used in mission files: "us76", "exp" */
+    const char *description; /* one line */
+    /* Creates the parameter block with default values (for "us76": integrates the
+     * upper-atmosphere number densities once, about 10 ms). */
+    lv_status (*par_create)(void **par, lv_err *err);
+    void (*par_free)(void *par); /* accepts NULL */
+    /* Sets one parameter by key; unknown keys give LV_ERR_NOTFOUND with suggestions. */
+    lv_status (*par_set)(void *par, const char *key, double value, lv_err *err);
+    lv_status (*eval)(const void *par, double alt_m, lv_atmo_state *out, lv_err *err);
+} lv_atmo_model;
+
+/* U.S. Standard Atmosphere 1976, -5 km to 1000 km; no settable parameters. */
+LV_API extern const lv_atmo_model lv_atmo_us76;
+
+/* Exponential density rho = rho0 exp(-h / H), constant temperature T; p = rho R* T / M0,
+ * a and mu from T with the US76 constants. Keys: "rho0" (kg/m^3, default 1.225),
+ * "H" (m, default 7200), "T" (K, default 288.15). */
+LV_API extern const lv_atmo_model lv_atmo_exp;
+
+/* Parameters of lv_atmo_exp (the block its par_create allocates). */
+typedef struct lv_atmo_exp_par {
+    double rho0; /* kg/m^3, density at h = 0 */
+    double H;    /* m, density scale height */
+    double T;    /* K, temperature */
+} lv_atmo_exp_par;
+
+/* Registry. Finds a model by name; LV_ERR_NOTFOUND with "did you mean" otherwise. */
+LV_API lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err *err);
+LV_API size_t lv_atmo_model_count(void);
+LV_API const lv_atmo_model *lv_atmo_model_at(size_t i); /* NULL when i >= count */
+
+/* A model with its parameters. Whoever calls _create calls _free. */
+typedef struct lv_atmo lv_atmo;
+LV_API lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err);
+LV_API void lv_atmo_free(lv_atmo *atm);
+LV_API lv_status lv_atmo_set(lv_atmo *atm, const char *key, double value, lv_err *err);
+LV_API const lv_atmo_model *lv_atmo_model_of(const lv_atmo *atm);
+LV_API const void *lv_atmo_par(const lv_atmo *atm); /* for direct model->eval calls */
+LV_API lv_status lv_atmo_eval(const lv_atmo *atm, double alt_m, lv_atmo_state *out,
+                              lv_err *err);
+
+/* Convenience for the CLI: default parameters of model `name`, evaluated at n altitudes
+ * alt_m[0..n-1] into out[0..n-1]. Stops at the first failing altitude. */
+LV_API lv_status lv_atmo_eval_by_name(const char *name, const double *alt_m, size_t n,
+                                      lv_atmo_state *out, lv_err *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,14 @@
+/* lvsim.h - umbrella header of liblvsim: mission-dependent sequential simulation of
+ * launch vehicles. Include this, or the single headers it lists. */
+#ifndef LVSIM_LVSIM_H
+#define LVSIM_LVSIM_H
+
+#define LVSIM_VERSION "0.1.0"
+
+#include "lvsim/lv_status.h"
+#include "lvsim/lv_model.h"
+#include "lvsim/lv_io.h"
+#include "lvsim/lv_sim.h"
+#include "lvsim/lv_models.h"
+
+#endif

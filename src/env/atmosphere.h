@@ -1,0 +1,55 @@
+/* atmosphere.h - internals of the atmosphere models (not exported).
+ * U.S. Standard Atmosphere 1976 (NOAA-S/T 76-1562, NASA-TM-X-74335): constants of its
+ * Tables 2-6 and the precomputed upper-atmosphere table (86 km to 1000 km). */
+#ifndef LV_ENV_ATMOSPHERE_H
+#define LV_ENV_ATMOSPHERE_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_atmosphere.h"
+
+/* Category I constants, Table 2 of the 1976 document (kmol-based, as printed). */
+#define LV_US76_RSTAR 8314.32     /* N m / (kmol K), gas constant */
+#define LV_US76_M0 28.9644        /* kg/kmol, sea-level mean molecular weight */
+#define LV_US76_G0 9.80665        /* m/s^2 */
+#define LV_US76_R0 6356766.0      /* m, effective Earth radius for H(Z), eq. (18) */
+#define LV_US76_NA 6.022169e26    /* 1/kmol, Avogadro constant */
+#define LV_US76_K 1.380622e-23    /* N m / K, Boltzmann constant */
+#define LV_US76_GAMMA 1.40        /* ratio of specific heats, eq. (50) */
+#define LV_US76_BETA 1.458e-6     /* kg / (s m K^0.5), Sutherland, eq. (51) */
+#define LV_US76_S 110.4           /* K, Sutherland's constant, eq. (51) */
+
+#define LV_US76_Z7 86000.0        /* m, lower edge of the upper atmosphere */
+#define LV_US76_NSPECIES 6        /* N2, O, O2, Ar, He, H */
+
+enum lv_us76_species { LV_US76_N2, LV_US76_O, LV_US76_O2, LV_US76_AR, LV_US76_HE, LV_US76_H };
+
+/* Kinetic temperature above 86 km (eqs. 25-31 of the document's Section 1.2.5, the four
+ * segments of Table 5) and its gradient dT/dZ in K/m. Z in m, 86 km <= Z <= 1000 km. */
+double lv_us76_upper_T(double z, double *dT_dz);
+
+/* Upper-atmosphere table: per interval of `dz` metres a cubic in t = (z - z_k)/dz for
+ * ln(N T) (N: total number density, 1/m^3; T in K) and ln(rho T) (rho in kg/m^3).
+ * Built once, read-only after. */
+typedef struct lv_us76_upper {
+    double z0;  /* m, 86 km */
+    double dz;  /* m, interval length */
+    size_t n;   /* number of intervals */
+    double *c;  /* [n][8]: ln(N T) coefficients c0..c3, then ln(rho T) c0..c3 */
+} lv_us76_upper;
+
+/* Integrates the species equations on a grid of `h` metres (Simpson's rule) and fits
+ * Hermite cubics on intervals of `node_dz` metres (a multiple of 2 h dividing 1000 m).
+ * The default model uses h = 50 m and node_dz = 500 m (interpolation error < 5e-7). */
+lv_status lv_us76_upper_build(lv_us76_upper *up, double h, double node_dz, lv_err *err);
+void lv_us76_upper_release(lv_us76_upper *up);
+
+/* ln(N T) and ln(rho T) at z (86 km <= z <= 1000 km). No allocation. */
+void lv_us76_upper_lookup(const lv_us76_upper *up, double z, double *ln_NT, double *ln_rhoT);
+
+/* Number densities n[i][species] (1/m^3) at grid-aligned altitudes z[i] (multiples of
+ * 2 h above 86 km), integrated with step h. For tests and documentation. */
+lv_status lv_us76_number_densities(const double *z, size_t count, double h,
+                                   double (*n)[LV_US76_NSPECIES], lv_err *err);
+
+#endif

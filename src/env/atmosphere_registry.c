@@ -1,0 +1,107 @@
+/* atmosphere_registry.c - atmosphere models by name, and the lv_atmo handle that pairs a
+ * model with its parameter block. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/names.h"
+#include "core/status.h"
+#include "env/atmosphere.h"
+
+static const lv_atmo_model *const MODELS[] = { &lv_atmo_us76, &lv_atmo_exp };
+#define NMODELS (sizeof MODELS / sizeof MODELS[0])
+
+struct lv_atmo {
+    const lv_atmo_model *model;
+    void *par; /* owned; created and freed by the model */
+};
+
+size_t lv_atmo_model_count(void)
+{
+    return NMODELS;
+}
+
+const lv_atmo_model *lv_atmo_model_at(size_t i)
+{
+    return i < NMODELS ? MODELS[i] : NULL;
+}
+
+lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err *err)
+{
+    *out = NULL;
+    if (name == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "atmosphere model name is NULL");
+    for (size_t i = 0; i < NMODELS; i++)
+        if (strcmp(MODELS[i]->name, name) == 0) {
+            *out = MODELS[i];
+            return LV_OK;
+        }
+    lv_suggest sg;
+    char hint[160];
+    lv_suggest_init(&sg, name);
+    for (size_t i = 0; i < NMODELS; i++)
+        lv_suggest_add(&sg, MODELS[i]->name);
+    lv_suggest_text(&sg, hint, sizeof hint);
+    return lv_fail(err, LV_ERR_NOTFOUND, "unknown atmosphere model '%s'%s (models: us76, exp)",
+                   name, hint);
+}
+
+lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err)
+{
+    *out = NULL;
+    const lv_atmo_model *m = NULL;
+    lv_status st = lv_atmo_model_find(name, &m, err);
+    if (st != LV_OK)
+        return st;
+    lv_atmo *atm = calloc(1, sizeof *atm);
+    if (atm == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "atmosphere model '%s': out of memory", name);
+    atm->model = m;
+    st = m->par_create(&atm->par, err);
+    if (st != LV_OK) {
+        free(atm);
+        return st;
+    }
+    *out = atm;
+    return LV_OK;
+}
+
+void lv_atmo_free(lv_atmo *atm)
+{
+    if (atm == NULL)
+        return;
+    atm->model->par_free(atm->par);
+    free(atm);
+}
+
+lv_status lv_atmo_set(lv_atmo *atm, const char *key, double value, lv_err *err)
+{
+    return atm->model->par_set(atm->par, key, value, err);
+}
+
+const lv_atmo_model *lv_atmo_model_of(const lv_atmo *atm)
+{
+    return atm->model;
+}
+
+const void *lv_atmo_par(const lv_atmo *atm)
+{
+    return atm->par;
+}
+
+lv_status lv_atmo_eval(const lv_atmo *atm, double alt_m, lv_atmo_state *out, lv_err *err)
+{
+    return atm->model->eval(atm->par, alt_m, out, err);
+}
+
+lv_status lv_atmo_eval_by_name(const char *name, const double *alt_m, size_t n,
+                               lv_atmo_state *out, lv_err *err)
+{
+    lv_atmo *atm = NULL;
+    lv_status st = lv_atmo_create(name, &atm, err);
+    if (st != LV_OK)
+        return st;
+    for (size_t i = 0; i < n && st == LV_OK; i++)
+        st = lv_atmo_eval(atm, alt_m[i], &out[i], err);
+    lv_atmo_free(atm);
+    return st;
+}

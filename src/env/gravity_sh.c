@@ -1,0 +1,374 @@
+/* gravity_sh.c - spherical-harmonic gravity from fully normalised coefficients,
+ * by the Cunningham (1970) recursion of V_nm, W_nm in Cartesian coordinates
+ * (Montenbruck & Gill, Satellite Orbits, 2000, sec. 3.2.4-3.2.5), normalised as
+ * in docs/gravity.md: no division by cos(latitude), finite at the poles. Also
+ * the reader of ICGEM .gfc coefficient files. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "env/gravity_impl.h"
+
+lv_status lv_gravity_sh_alloc(lv_gravity *g, int degree, int order, lv_err *err)
+{
+    if (degree < 0 || order < 0 || order > degree)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "gravity 'sh': degree %d, order %d: need 0 <= order <= degree", degree,
+                       order);
+    const size_t nc = lv_gravity_tri_count(degree), nr = lv_gravity_tri_count(degree + 1);
+    const size_t total = 11 * nc + 2 * nr + (size_t)degree + 2;
+    double *block = calloc(total, sizeof *block);
+    if (block == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "gravity 'sh': out of memory for degree %d", degree);
+    free(g->block);
+    g->block = block;
+    g->degree = degree;
+    g->order = order;
+    g->cnm = block;
+    g->snm = g->cnm + nc;
+    g->f1 = g->snm + nc;
+    g->f2 = g->f1 + nc;
+    g->f3 = g->f2 + nc;
+    g->k6 = g->f3 + nc;
+    g->alpha = g->k6 + 6 * nc;
+    g->beta = g->alpha + nr;
+    g->diag = g->beta + nr;
+    g->cnm[0] = 1.0;
+
+    /* Column recursion of the normalised V_nm (docs/gravity.md eq. G5):
+     * alpha = sqrt((2n-1)(2n+1) / ((n-m)(n+m))),
+     * beta = sqrt((2n+1)(n+m-1)(n-m-1) / ((2n-3)(n+m)(n-m))). */
+    for (int n = 1; n <= degree + 1; n++) {
+        for (int m = 0; m < n; m++) {
+            const double dn = n, dm = m;
+            const size_t k = lv_gravity_tri(n, m);
+            g->alpha[k] = sqrt((2 * dn - 1) * (2 * dn + 1) / ((dn - dm) * (dn + dm)));
+            if (n >= m + 2)
+                g->beta[k] = sqrt((2 * dn + 1) * (dn + dm - 1) * (dn - dm - 1) /
+                                  ((2 * dn - 3) * (dn + dm) * (dn - dm)));
+        }
+    }
+    /* Sectoral step (eq. G4): sqrt(3) for m = 1, sqrt((2m+1)/(2m)) after. */
+    for (int m = 1; m <= degree + 1; m++)
+        g->diag[m] = m == 1 ? sqrt(3.0) : sqrt((2.0 * m + 1.0) / (2.0 * m));
+    /* Acceleration factors (eq. G7): ratios of normalisation constants N_nm. */
+    for (int n = 0; n <= degree; n++) {
+        const double dn = n, q = (2 * dn + 1) / (2 * dn + 3);
+        for (int m = 0; m <= n; m++) {
+            const double dm = m;
+            const size_t k = lv_gravity_tri(n, m);
+            g->f1[k] = sqrt((m == 0 ? 0.5 : 1.0) * q * (dn + dm + 1) * (dn + dm + 2));
+            if (m > 0)
+                g->f2[k] = sqrt((m == 1 ? 2.0 : 1.0) * q * (dn - dm + 2) * (dn - dm + 1));
+            g->f3[k] = sqrt(q * (dn + dm + 1) * (dn - dm + 1));
+        }
+    }
+    lv_gravity_sh_finish(g);
+    return LV_OK;
+}
+
+void lv_gravity_sh_finish(lv_gravity *g)
+{
+    for (int n = 0; n <= g->degree; n++) {
+        for (int m = 0; m <= n; m++) {
+            const size_t k = lv_gravity_tri(n, m);
+            const double c = g->cnm[k], s = g->snm[k], h = m == 0 ? 1.0 : 0.5;
+            double *q = g->k6 + 6 * k;
+            q[0] = h * g->f1[k] * c;
+            q[1] = h * g->f1[k] * s;
+            q[2] = 0.5 * g->f2[k] * c;
+            q[3] = 0.5 * g->f2[k] * s;
+            q[4] = g->f3[k] * c;
+            q[5] = g->f3[k] * s;
+        }
+    }
+}
+
+void lv_gravity_sh_eval(const lv_gravity *g, double *ws, const double r[3], double a[3],
+                        double *U)
+{
+    const int N = g->degree, M = g->order;
+    const double R = g->r_ref;
+    const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    const double rho = R / r2;
+    const double xs = r[0] * rho, ys = r[1] * rho, zs = r[2] * rho, rr = R * rho;
+    double *V = ws, *W = ws + lv_gravity_tri_count(N + 1);
+
+    /* V_nm, W_nm for n <= N + 1, m <= min(n, M + 1) (eqs. G3-G5) */
+    V[0] = R / sqrt(r2);
+    W[0] = 0.0;
+    for (int m = 0; m <= M + 1; m++) {
+        const size_t kmm = lv_gravity_tri(m, m);
+        if (m > 0) {
+            const size_t kp = lv_gravity_tri(m - 1, m - 1);
+            V[kmm] = g->diag[m] * (xs * V[kp] - ys * W[kp]);
+            W[kmm] = g->diag[m] * (xs * W[kp] + ys * V[kp]);
+        }
+        if (m + 1 <= N + 1) {
+            const size_t k = lv_gravity_tri(m + 1, m);
+            V[k] = g->alpha[k] * zs * V[kmm];
+            W[k] = g->alpha[k] * zs * W[kmm];
+        }
+        for (int n = m + 2; n <= N + 1; n++) {
+            const size_t k = lv_gravity_tri(n, m), k1 = lv_gravity_tri(n - 1, m),
+                         k2 = lv_gravity_tri(n - 2, m);
+            V[k] = g->alpha[k] * zs * V[k1] - g->beta[k] * rr * V[k2];
+            W[k] = g->alpha[k] * zs * W[k1] - g->beta[k] * rr * W[k2];
+        }
+    }
+
+    /* Sum from the highest degree down: the small terms first (eq. G6-G7). */
+    double ax = 0.0, ay = 0.0, az = 0.0, u = 0.0;
+    for (int n = N; n >= 0; n--) {
+        const int mtop = n < M ? n : M;
+        const size_t kn = lv_gravity_tri(n, 0), kn1 = lv_gravity_tri(n + 1, 0);
+        for (int m = mtop; m >= 1; m--) {
+            const double *q = g->k6 + 6 * (kn + m);
+            const double *vp = V + kn1 + m + 1, *wp = W + kn1 + m + 1;
+            const double *vm = V + kn1 + m - 1, *wm = W + kn1 + m - 1;
+            const double v0 = V[kn1 + m], w0 = W[kn1 + m];
+            ax += -q[0] * *vp - q[1] * *wp + q[2] * *vm + q[3] * *wm;
+            ay += -q[0] * *wp + q[1] * *vp - q[2] * *wm + q[3] * *vm;
+            az += -q[4] * v0 - q[5] * w0;
+            u += g->cnm[kn + m] * V[kn + m] + g->snm[kn + m] * W[kn + m];
+        }
+        const double *q = g->k6 + 6 * kn; /* m = 0: S(n,0) plays no part */
+        ax -= q[0] * V[kn1 + 1];
+        ay -= q[0] * W[kn1 + 1];
+        az -= q[4] * V[kn1] + q[5] * W[kn1];
+        u += g->cnm[kn] * V[kn] + g->snm[kn] * W[kn];
+    }
+    const double scale = g->gm / (R * R);
+    a[0] = scale * ax;
+    a[1] = scale * ay;
+    a[2] = scale * az;
+    if (U != NULL)
+        *U = g->gm / R * u;
+}
+
+/* ------------------------------------------------------------ .gfc reader -- */
+
+#define GFC_LINE_MAX 1024
+
+static int next_token(char **cur, char **tok)
+{
+    char *p = *cur;
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
+        p++;
+    if (*p == '\0')
+        return 0;
+    *tok = p;
+    while (*p != '\0' && *p != ' ' && *p != '\t' && *p != '\r' && *p != '\n')
+        p++;
+    if (*p != '\0')
+        *p++ = '\0';
+    *cur = p;
+    return 1;
+}
+
+/* A real number, Fortran 'D' exponents accepted; finite only. */
+static int parse_real(const char *tok, double *out)
+{
+    char buf[64];
+    size_t n = strlen(tok);
+    if (n == 0 || n >= sizeof buf)
+        return 0;
+    for (size_t i = 0; i <= n; i++)
+        buf[i] = (tok[i] == 'D' || tok[i] == 'd') ? 'e' : tok[i];
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(buf, &end);
+    if (end == buf || *end != '\0' || !isfinite(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static int parse_int(const char *tok, int *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(tok, &end, 10);
+    if (end == tok || *end != '\0' || errno != 0 || v < -1000000 || v > 1000000)
+        return 0;
+    *out = (int)v;
+    return 1;
+}
+
+/* Reads one line; 0 at end of file, -1 if it does not fit the buffer. */
+static int read_line(FILE *fp, char *buf, size_t cap)
+{
+    if (fgets(buf, (int)cap, fp) == NULL)
+        return 0;
+    size_t n = strlen(buf);
+    if (n + 1 == cap && buf[n - 1] != '\n' && !feof(fp)) {
+        int ch;
+        while ((ch = fgetc(fp)) != EOF && ch != '\n') {
+        }
+        return -1;
+    }
+    return 1;
+}
+
+lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, int order,
+                                 lv_err *err)
+{
+    lv_status st = LV_OK;
+    unsigned char *seen = NULL;
+    char line[GFC_LINE_MAX];
+    int lineno = 0, rc, file_max = -1, in_head = 1;
+    double gm = NAN, radius = NAN;
+    FILE *fp = fopen(path, "r");
+    if (fp == NULL)
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
+                       strerror(errno));
+
+    /* Header (ICGEM format 2.0 section 3): "key value" lines up to end_of_head. */
+    while (in_head && (rc = read_line(fp, line, sizeof line)) != 0) {
+        lineno++;
+        char *cur = line, *key = NULL, *val = NULL;
+        if (rc < 0 || !next_token(&cur, &key))
+            continue;
+        if (strcmp(key, "end_of_head") == 0) {
+            in_head = 0;
+            break;
+        }
+        if (!next_token(&cur, &val))
+            continue;
+        if (strcmp(key, "earth_gravity_constant") == 0 || strcmp(key, "gravity_constant") == 0) {
+            if (!parse_real(val, &gm) || gm <= 0.0) {
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%d: bad %s '%s'", path, lineno, key, val);
+                goto fail;
+            }
+        } else if (strcmp(key, "radius") == 0) {
+            if (!parse_real(val, &radius) || radius <= 0.0) {
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%d: bad radius '%s'", path, lineno, val);
+                goto fail;
+            }
+        } else if (strcmp(key, "max_degree") == 0) {
+            if (!parse_int(val, &file_max) || file_max < 0) {
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%d: bad max_degree '%s'", path, lineno, val);
+                goto fail;
+            }
+        } else if (strcmp(key, "norm") == 0) {
+            if (strcmp(val, "fully_normalized") != 0) {
+                st = lv_fail(err, LV_ERR_INPUT,
+                             "%s:%d: norm '%s' not supported (need fully_normalized)", path,
+                             lineno, val);
+                goto fail;
+            }
+        }
+    }
+    if (in_head) {
+        st = lv_fail(err, LV_ERR_INPUT, "%s:%d: no end_of_head line: not an ICGEM .gfc file",
+                     path, lineno);
+        goto fail;
+    }
+    if (isnan(gm) || isnan(radius) || file_max < 0) {
+        st = lv_fail(err, LV_ERR_INPUT,
+                     "%s:%d: header lacks %s (earth_gravity_constant, radius and max_degree "
+                     "are required)",
+                     path, lineno,
+                     isnan(gm) ? "earth_gravity_constant" : isnan(radius) ? "radius" : "max_degree");
+        goto fail;
+    }
+    if (degree == 0)
+        degree = file_max;
+    if (order < 0)
+        order = degree;
+    if (degree < 0 || degree > file_max || order > degree) {
+        st = lv_fail(err, LV_ERR_INPUT,
+                     "%s: requested degree %d, order %d: need order <= degree <= max_degree %d",
+                     path, degree, order, file_max);
+        goto fail;
+    }
+    st = lv_gravity_sh_alloc(g, degree, order, err);
+    if (st != LV_OK)
+        goto fail;
+    g->gm = gm;
+    g->r_ref = radius;
+    seen = calloc(lv_gravity_tri_count(degree), 1);
+    if (seen == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+        goto fail;
+    }
+
+    /* Data: "gfc n m C S [sigma_C sigma_S]" */
+    while ((rc = read_line(fp, line, sizeof line)) != 0) {
+        lineno++;
+        char *cur = line, *key = NULL, *tn = NULL, *tm = NULL, *tc = NULL, *ts = NULL;
+        if (rc < 0) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d: line longer than %d characters", path, lineno,
+                         GFC_LINE_MAX - 2);
+            goto fail;
+        }
+        if (!next_token(&cur, &key))
+            continue;
+        if (strcmp(key, "gfc") != 0) {
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "%s:%d: key '%s' not supported (only static 'gfc' lines)", path, lineno,
+                         key);
+            goto fail;
+        }
+        int n = 0, m = 0;
+        double c = 0.0, s = 0.0;
+        if (!next_token(&cur, &tn) || !next_token(&cur, &tm) || !next_token(&cur, &tc) ||
+            !next_token(&cur, &ts)) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d: expected 'gfc n m C S'", path, lineno);
+            goto fail;
+        }
+        if (!parse_int(tn, &n) || !parse_int(tm, &m)) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d: degree/order '%s %s' not integers", path,
+                         lineno, tn, tm);
+            goto fail;
+        }
+        if (n < 0 || m < 0 || m > n || n > file_max) {
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "%s:%d: degree/order (%d, %d) invalid: need 0 <= m <= n <= max_degree %d",
+                         path, lineno, n, m, file_max);
+            goto fail;
+        }
+        if (!parse_real(tc, &c) || !parse_real(ts, &s)) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d: coefficient (%d, %d): bad value '%s' or '%s'",
+                         path, lineno, n, m, tc, ts);
+            goto fail;
+        }
+        if (n > degree || m > order)
+            continue; /* truncated away */
+        const size_t k = lv_gravity_tri(n, m);
+        if (seen[k]) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d: coefficient (%d, %d) given twice", path,
+                         lineno, n, m);
+            goto fail;
+        }
+        seen[k] = 1;
+        g->cnm[k] = c;
+        g->snm[k] = s;
+    }
+    if (ferror(fp)) {
+        st = lv_fail(err, LV_ERR_IO, "%s:%d: read error", path, lineno);
+        goto fail;
+    }
+    /* Degrees 0 and 1 may be left out (C00 = 1, degree 1 = 0 in a geocentric
+     * frame); every other (n, m) up to the requested degree/order must be there. */
+    for (int n = 2; n <= degree; n++) {
+        for (int m = 0; m <= n && m <= order; m++) {
+            if (!seen[lv_gravity_tri(n, m)]) {
+                st = lv_fail(err, LV_ERR_INPUT,
+                             "%s:%d: end of file: coefficient (%d, %d) missing "
+                             "(requested degree %d, order %d)",
+                             path, lineno, n, m, degree, order);
+                goto fail;
+            }
+        }
+    }
+    lv_gravity_sh_finish(g);
+
+fail:
+    free(seen);
+    fclose(fp);
+    return st;
+}

@@ -1,0 +1,2 @@
+include(src/env/atmosphere.cmake OPTIONAL)
+include(src/env/planet.cmake OPTIONAL)

@@ -1,0 +1,450 @@
+/* integrator.c - SUNDIALS 6.x (SUNContext API) behind lv_integ: CVODE for BDF and
+ * Adams, ARKODE ERKStep for Dormand-Prince 5(4), classical RK4 and explicit Euler.
+ * Root finding and stop times are SUNDIALS' own (CVodeRootInit, CVodeSetStopTime).
+ */
+#include "integrate/integrator.h"
+
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include "core/status.h"
+
+struct lv_integ {
+    lv_integ_problem p;
+    double *atol;
+    int *g_dir;
+    SUNContext ctx;
+    N_Vector y;
+    N_Vector atol_v;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    SUNNonlinearSolver NLS;
+    ARKodeButcherTable table; /* rk4/euler: our own tableau */
+    void *mem;                /* CVODE or ARKODE memory */
+    int is_cvode;
+    double t;                 /* time reached */
+    double tstop;             /* current stop time, or NAN */
+    lv_integ_stats acc;       /* CVODE counters from before the last CVodeReInit */
+    char sun_msg[256];        /* last message from SUNDIALS' error handler */
+};
+
+/* ---- methods ------------------------------------------------------------------ */
+
+static const struct {
+    const char *name;
+    lv_method m;
+} method_names[] = {
+    {"dassl", LV_METHOD_BDF},        {"bdf", LV_METHOD_BDF},       {"cvode-bdf", LV_METHOD_BDF},
+    {"cvode-adams", LV_METHOD_ADAMS}, {"adams", LV_METHOD_ADAMS},  {"dopri5", LV_METHOD_DOPRI5},
+    {"dopri45", LV_METHOD_DOPRI5},   {"rk4", LV_METHOD_RK4},       {"rungekutta", LV_METHOD_RK4},
+    {"euler", LV_METHOD_EULER},
+};
+
+lv_status lv_method_parse(const char *name, lv_method *out, lv_err *err)
+{
+    if (name == NULL || name[0] == '\0')
+        return lv_fail(err, LV_ERR_INPUT, "integration method is empty; use one of dassl, "
+                                          "cvode-adams, dopri5, rk4, euler");
+    for (size_t i = 0; i < sizeof method_names / sizeof method_names[0]; i++) {
+        if (strcasecmp(name, method_names[i].name) == 0) {
+            *out = method_names[i].m;
+            return LV_OK;
+        }
+    }
+    return lv_fail(err, LV_ERR_INPUT,
+                   "unknown integration method '%s'; use one of dassl, cvode-adams, dopri5, rk4, "
+                   "euler",
+                   name);
+}
+
+const char *lv_method_name(lv_method m)
+{
+    static const char *const names[LV_METHOD_COUNT] = {"dassl", "cvode-adams", "dopri5", "rk4",
+                                                       "euler"};
+    return (m >= 0 && m < LV_METHOD_COUNT) ? names[m] : "?";
+}
+
+int lv_method_is_fixed_step(lv_method m) { return m == LV_METHOD_RK4 || m == LV_METHOD_EULER; }
+
+/* ---- SUNDIALS callbacks ---------------------------------------------------------- */
+
+static int sun_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+{
+    lv_integ *ig = user;
+    return ig->p.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), ig->p.user);
+}
+
+static int sun_g(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
+{
+    lv_integ *ig = user;
+    return ig->p.g(t, N_VGetArrayPointer(y), g, ig->p.user);
+}
+
+/* SUNDIALS would print to stderr; the library never prints, so keep the text. */
+static void sun_err_handler(int code, const char *module, const char *function, char *msg,
+                            void *user)
+{
+    (void)code;
+    lv_integ *ig = user;
+    snprintf(ig->sun_msg, sizeof ig->sun_msg, "%s/%s: %s", module, function, msg);
+}
+
+/* ---- creation ------------------------------------------------------------------ */
+
+/* Classical RK4 and explicit Euler as Butcher tableaux: SUNDIALS 6.4 ships neither
+ * among its named ERK tables, so they are given here and run by ERKStep.
+ *
+ * RK4 carries a fifth stage at c = 1 whose row equals b (weight 0). The result is
+ * exactly classical RK4, and the method is then truly "first same as last": ARKODE
+ * 6.4 treats every table with c[s-1] = 1 as FSAL and would otherwise reuse stage 4,
+ * f(t + h, y + h k3), as if it were f(t + h, y_{n+1}) (fixed upstream in SUNDIALS
+ * 6.5). The extra stage costs nothing: it is the next step's first stage. */
+static ARKodeButcherTable make_fixed_table(lv_method m)
+{
+    if (m == LV_METHOD_RK4) {
+        const sunrealtype w1 = 1.0 / 6.0, w2 = 1.0 / 3.0;
+        sunrealtype c[5] = {0.0, 0.5, 0.5, 1.0, 1.0};
+        sunrealtype A[25] = {0,   0,   0,   0,   0,   /* k1 = f(t, y)             */
+                             0.5, 0,   0,   0,   0,   /* k2 = f(t+h/2, y+h/2 k1)  */
+                             0,   0.5, 0,   0,   0,   /* k3 = f(t+h/2, y+h/2 k2)  */
+                             0,   0,   1.0, 0,   0,   /* k4 = f(t+h, y+h k3)      */
+                             w1,  w2,  w2,  w1,  0};  /* k5 = f(t+h, y_{n+1})     */
+        sunrealtype b[5] = {w1, w2, w2, w1, 0.0};
+        return ARKodeButcherTable_Create(5, 4, 0, c, A, b, NULL);
+    }
+    sunrealtype c[1] = {0.0}, A[1] = {0.0}, b[1] = {1.0};
+    return ARKodeButcherTable_Create(1, 1, 0, c, A, b, NULL);
+}
+
+#define SUNCHK(call, what)                                                                  \
+    do {                                                                                    \
+        int flag_ = (call);                                                                 \
+        if (flag_ < 0) {                                                                    \
+            st = lv_fail(err, LV_ERR_SOLVER, "setting up %s: %s (%s)", (what),              \
+                         ig->is_cvode ? CVodeGetReturnFlagName(flag_)                       \
+                                      : ERKStepGetReturnFlagName(flag_),                    \
+                         ig->sun_msg);                                                      \
+            goto fail;                                                                      \
+        }                                                                                   \
+    } while (0)
+
+lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0, lv_integ **out,
+                          lv_err *err)
+{
+    lv_status st = LV_OK;
+    *out = NULL;
+    if (p->n == 0)
+        return lv_fail(err, LV_ERR_INPUT, "integrator: a model needs at least one state");
+    if (!(p->rtol > 0.0) || !isfinite(p->rtol))
+        return lv_fail(err, LV_ERR_INPUT, "integrator: tolerance must be > 0 (got %g)", p->rtol);
+    if (lv_method_is_fixed_step(p->method) && !(p->fixed_step > 0.0 && isfinite(p->fixed_step)))
+        return lv_fail(err, LV_ERR_INPUT, "integrator: method %s needs a fixed step > 0 (got %g)",
+                       lv_method_name(p->method), p->fixed_step);
+    if (p->n_g > 0 && p->g == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "integrator: %zu event functions but no g()", p->n_g);
+
+    lv_integ *ig = calloc(1, sizeof *ig);
+    if (ig == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+    ig->p = *p;
+    ig->t = t0;
+    ig->tstop = NAN;
+    ig->is_cvode = (p->method == LV_METHOD_BDF || p->method == LV_METHOD_ADAMS);
+    ig->atol = malloc(p->n * sizeof *ig->atol);
+    ig->g_dir = calloc(p->n_g ? p->n_g : 1, sizeof *ig->g_dir);
+    if (ig->atol == NULL || ig->g_dir == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+        goto fail;
+    }
+    memcpy(ig->atol, p->atol, p->n * sizeof *ig->atol);
+    if (p->g_dir != NULL)
+        memcpy(ig->g_dir, p->g_dir, p->n_g * sizeof *ig->g_dir);
+    ig->p.atol = ig->atol;
+    ig->p.g_dir = ig->g_dir;
+
+    if (SUNContext_Create(NULL, &ig->ctx) != 0) {
+        st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create SUNDIALS context");
+        goto fail;
+    }
+    sunindextype n = (sunindextype)p->n;
+    ig->y = N_VNew_Serial(n, ig->ctx);
+    ig->atol_v = N_VNew_Serial(n, ig->ctx);
+    if (ig->y == NULL || ig->atol_v == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+        goto fail;
+    }
+    memcpy(N_VGetArrayPointer(ig->y), x0, p->n * sizeof(double));
+    memcpy(N_VGetArrayPointer(ig->atol_v), ig->atol, p->n * sizeof(double));
+
+    if (ig->is_cvode) {
+        ig->mem = CVodeCreate(p->method == LV_METHOD_BDF ? CV_BDF : CV_ADAMS, ig->ctx);
+        if (ig->mem == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "integrator: CVodeCreate failed");
+            goto fail;
+        }
+        SUNCHK(CVodeSetErrHandlerFn(ig->mem, sun_err_handler, ig), "CVODE error handler");
+        SUNCHK(CVodeInit(ig->mem, sun_rhs, t0, ig->y), "CVODE");
+        SUNCHK(CVodeSetUserData(ig->mem, ig), "CVODE user data");
+        SUNCHK(CVodeSVtolerances(ig->mem, p->rtol, ig->atol_v), "CVODE tolerances");
+        if (p->method == LV_METHOD_BDF) {
+            ig->A = SUNDenseMatrix(n, n, ig->ctx);
+            ig->LS = ig->A ? SUNLinSol_Dense(ig->y, ig->A, ig->ctx) : NULL;
+            if (ig->LS == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create dense linear solver");
+                goto fail;
+            }
+            SUNCHK(CVodeSetLinearSolver(ig->mem, ig->LS, ig->A), "CVODE linear solver");
+        } else {
+            ig->NLS = SUNNonlinSol_FixedPoint(ig->y, 0, ig->ctx);
+            if (ig->NLS == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create fixed-point solver");
+                goto fail;
+            }
+            SUNCHK(CVodeSetNonlinearSolver(ig->mem, ig->NLS), "CVODE nonlinear solver");
+        }
+        if (p->max_step > 0.0)
+            SUNCHK(CVodeSetMaxStep(ig->mem, p->max_step), "CVODE max step");
+        if (p->n_g > 0) {
+            SUNCHK(CVodeRootInit(ig->mem, (int)p->n_g, sun_g), "CVODE root finding");
+            SUNCHK(CVodeSetRootDirection(ig->mem, ig->g_dir), "CVODE root directions");
+            SUNCHK(CVodeSetNoInactiveRootWarn(ig->mem), "CVODE root warnings");
+        }
+    } else {
+        ig->mem = ERKStepCreate(sun_rhs, t0, ig->y, ig->ctx);
+        if (ig->mem == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "integrator: ERKStepCreate failed");
+            goto fail;
+        }
+        SUNCHK(ERKStepSetErrHandlerFn(ig->mem, sun_err_handler, ig), "ARKODE error handler");
+        SUNCHK(ERKStepSetUserData(ig->mem, ig), "ARKODE user data");
+        SUNCHK(ERKStepSVtolerances(ig->mem, p->rtol, ig->atol_v), "ARKODE tolerances");
+        if (p->method == LV_METHOD_DOPRI5) {
+            SUNCHK(ERKStepSetTableNum(ig->mem, ARKODE_DORMAND_PRINCE_7_4_5), "ARKODE table");
+        } else {
+            ig->table = make_fixed_table(p->method);
+            if (ig->table == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create Butcher table");
+                goto fail;
+            }
+            SUNCHK(ERKStepSetTable(ig->mem, ig->table), "ARKODE table");
+            SUNCHK(ERKStepSetFixedStep(ig->mem, p->fixed_step), "ARKODE fixed step");
+            /* ARKODE returns values at stop times and output times from its dense
+             * output. For the one-stage Euler table, 6.4's Hermite interpolant does not
+             * reproduce the step's own end point (it returned (y_n + y_{n+1})/2 at
+             * t_{n+1}); the Lagrange interpolant through the stored steps does. */
+            if (p->method == LV_METHOD_EULER)
+                SUNCHK(ERKStepSetInterpolantType(ig->mem, ARK_INTERP_LAGRANGE),
+                       "ARKODE interpolant");
+        }
+        if (p->max_step > 0.0)
+            SUNCHK(ERKStepSetMaxStep(ig->mem, p->max_step), "ARKODE max step");
+        if (p->n_g > 0) {
+            SUNCHK(ERKStepRootInit(ig->mem, (int)p->n_g, sun_g), "ARKODE root finding");
+            SUNCHK(ERKStepSetRootDirection(ig->mem, ig->g_dir), "ARKODE root directions");
+            SUNCHK(ERKStepSetNoInactiveRootWarn(ig->mem), "ARKODE root warnings");
+        }
+    }
+    *out = ig;
+    return LV_OK;
+
+fail:
+    lv_integ_free(ig);
+    return st;
+}
+
+void lv_integ_free(lv_integ *ig)
+{
+    if (ig == NULL)
+        return;
+    if (ig->mem != NULL) {
+        if (ig->is_cvode)
+            CVodeFree(&ig->mem);
+        else
+            ERKStepFree(&ig->mem);
+    }
+    if (ig->table != NULL)
+        ARKodeButcherTable_Free(ig->table);
+    if (ig->LS != NULL)
+        SUNLinSolFree(ig->LS);
+    if (ig->NLS != NULL)
+        SUNNonlinSolFree(ig->NLS);
+    if (ig->A != NULL)
+        SUNMatDestroy(ig->A);
+    if (ig->y != NULL)
+        N_VDestroy(ig->y);
+    if (ig->atol_v != NULL)
+        N_VDestroy(ig->atol_v);
+    if (ig->ctx != NULL)
+        SUNContext_Free(&ig->ctx);
+    free(ig->atol);
+    free(ig->g_dir);
+    free(ig);
+}
+
+/* ---- stepping ------------------------------------------------------------------ */
+
+static void raw_stats(const lv_integ *ig, lv_integ_stats *s)
+{
+    memset(s, 0, sizeof *s);
+    if (ig->is_cvode) {
+        long nfe_ls = 0;
+        CVodeGetNumSteps(ig->mem, &s->steps);
+        CVodeGetNumRhsEvals(ig->mem, &s->rhs_evals);
+        CVodeGetNumErrTestFails(ig->mem, &s->err_test_fails);
+        CVodeGetNumNonlinSolvConvFails(ig->mem, &s->nonlin_fails);
+        if (ig->p.n_g > 0)
+            CVodeGetNumGEvals(ig->mem, &s->g_evals);
+        if (ig->p.method == LV_METHOD_BDF) {
+            CVodeGetNumJacEvals(ig->mem, &s->jac_evals);
+            CVodeGetNumLinRhsEvals(ig->mem, &nfe_ls); /* f calls for DQ Jacobians */
+        }
+        s->rhs_evals += nfe_ls;
+    } else {
+        long nfe = 0;
+        ERKStepGetNumSteps(ig->mem, &s->steps);
+        ERKStepGetNumRhsEvals(ig->mem, &nfe);
+        s->rhs_evals = nfe;
+        ERKStepGetNumErrTestFails(ig->mem, &s->err_test_fails);
+        if (ig->p.n_g > 0)
+            ERKStepGetNumGEvals(ig->mem, &s->g_evals);
+    }
+}
+
+void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st)
+{
+    lv_integ_stats cur;
+    raw_stats(ig, &cur);
+    st->steps = ig->acc.steps + cur.steps;
+    st->rhs_evals = ig->acc.rhs_evals + cur.rhs_evals;
+    st->jac_evals = ig->acc.jac_evals + cur.jac_evals;
+    st->err_test_fails = ig->acc.err_test_fails + cur.err_test_fails;
+    st->nonlin_fails = ig->acc.nonlin_fails + cur.nonlin_fails;
+    st->g_evals = ig->acc.g_evals + cur.g_evals;
+    st->restarts = ig->acc.restarts;
+}
+
+lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err)
+{
+    if (!(tstop > ig->t))
+        return lv_fail(err, LV_ERR_SOLVER, "integrator: stop time %.17g is not after t = %.17g",
+                       tstop, ig->t);
+    int flag = ig->is_cvode ? CVodeSetStopTime(ig->mem, tstop) : ERKStepSetStopTime(ig->mem, tstop);
+    if (flag < 0)
+        return lv_fail(err, LV_ERR_SOLVER, "integrator: cannot set stop time %.17g: %s", tstop,
+                       ig->sun_msg);
+    ig->tstop = tstop;
+    return LV_OK;
+}
+
+/* Translate SUNDIALS failure flags into what an engineer reads. */
+static const char *flag_meaning(int flag)
+{
+    switch (flag) {
+    case CV_TOO_MUCH_WORK:
+        return "too much work (step limit reached)";
+    case CV_TOO_MUCH_ACC:
+        return "tolerance too small for machine precision";
+    case CV_ERR_FAILURE:
+        return "error test failed repeatedly or step size underflow";
+    case CV_CONV_FAILURE:
+        return "nonlinear solver failed to converge repeatedly or step size underflow";
+    case CV_RHSFUNC_FAIL:
+        return "right-hand side failed unrecoverably";
+    case CV_FIRST_RHSFUNC_ERR:
+        return "right-hand side failed at the first call";
+    case CV_REPTD_RHSFUNC_ERR:
+        return "right-hand side failed repeatedly (state not acceptable)";
+    case CV_UNREC_RHSFUNC_ERR:
+        return "right-hand side failed and could not recover";
+    case CV_RTFUNC_FAIL:
+        return "event function failed";
+    default:
+        return "integrator failure";
+    }
+}
+
+static long current_steps(const lv_integ *ig)
+{
+    long n = 0;
+    if (ig->is_cvode)
+        CVodeGetNumSteps(ig->mem, &n);
+    else
+        ERKStepGetNumSteps(ig->mem, &n);
+    return ig->acc.steps + n;
+}
+
+lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_integ_result *res,
+                           int *roots, lv_err *err)
+{
+    /* SUNDIALS limits steps per call; ours is a total for the run. */
+    long remaining = ig->p.max_steps - current_steps(ig);
+    if (remaining <= 0)
+        return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: too much work (%ld steps allowed)",
+                       ig->t, ig->p.max_steps);
+    if (ig->is_cvode)
+        CVodeSetMaxNumSteps(ig->mem, remaining);
+    else
+        ERKStepSetMaxNumSteps(ig->mem, remaining);
+
+    sunrealtype tret = ig->t;
+    ig->sun_msg[0] = '\0';
+    int flag = ig->is_cvode ? CVode(ig->mem, tout, ig->y, &tret, CV_NORMAL)
+                            : ERKStepEvolve(ig->mem, tout, ig->y, &tret, ARK_NORMAL);
+    ig->t = tret;
+    memcpy(x, N_VGetArrayPointer(ig->y), ig->p.n * sizeof(double));
+    *t = tret;
+    if (flag < 0) {
+        /* ARKODE's flags share CVODE's values for these failures (ARK_TOO_MUCH_WORK = -1 ...). */
+        return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: %s [%s] %s", tret, flag_meaning(flag),
+                       ig->is_cvode ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag),
+                       ig->sun_msg);
+    }
+    /* CV_ROOT_RETURN == ARK_ROOT_RETURN == 2 */
+    if (flag == CV_ROOT_RETURN) {
+        *res = LV_INTEG_ROOT;
+        if (ig->is_cvode)
+            CVodeGetRootInfo(ig->mem, roots);
+        else
+            ERKStepGetRootInfo(ig->mem, roots);
+    } else {
+        *res = LV_INTEG_REACHED;
+    }
+    return LV_OK;
+}
+
+lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
+{
+    memcpy(N_VGetArrayPointer(ig->y), x, ig->p.n * sizeof(double));
+    int flag;
+    if (ig->is_cvode) {
+        /* CVodeReInit zeroes the counters: bank them first. */
+        lv_integ_stats cur;
+        raw_stats(ig, &cur);
+        ig->acc.steps += cur.steps;
+        ig->acc.rhs_evals += cur.rhs_evals;
+        ig->acc.jac_evals += cur.jac_evals;
+        ig->acc.err_test_fails += cur.err_test_fails;
+        ig->acc.nonlin_fails += cur.nonlin_fails;
+        ig->acc.g_evals += cur.g_evals;
+        flag = CVodeReInit(ig->mem, t, ig->y);
+    } else {
+        flag = ERKStepReset(ig->mem, t, ig->y); /* keeps counters and options */
+    }
+    if (flag < 0)
+        return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: integrator restart failed: %s", t,
+                       ig->sun_msg);
+    ig->acc.restarts++;
+    ig->t = t;
+    ig->tstop = NAN;
+    return LV_OK;
+}

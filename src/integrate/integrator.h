@@ -1,0 +1,81 @@
+/* integrator.h - one interface over SUNDIALS CVODE (BDF, Adams) and ARKODE ERKStep
+ * (Dormand-Prince, RK4, Euler) with root finding and stop times.
+ *
+ * This is the only module that includes SUNDIALS headers. It knows nothing
+ * about models, names or files: a plain ODE x' = f(t, x) with event functions.
+ */
+#ifndef LV_INTEGRATE_INTEGRATOR_H
+#define LV_INTEGRATE_INTEGRATOR_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_status.h"
+
+typedef enum lv_method {
+    LV_METHOD_BDF = 0,   /* "dassl": CVODE BDF, Newton + dense LU, DQ Jacobian */
+    LV_METHOD_ADAMS,     /* "cvode-adams": CVODE Adams-Moulton, fixed-point iteration */
+    LV_METHOD_DOPRI5,    /* "dopri5": ARKODE ERK Dormand-Prince 5(4), adaptive */
+    LV_METHOD_RK4,       /* "rk4": ARKODE ERK classical RK4, fixed step */
+    LV_METHOD_EULER,     /* "euler": ARKODE ERK explicit Euler, fixed step */
+    LV_METHOD_COUNT
+} lv_method;
+
+/* Parses a method name (case-insensitive; "dassl", "bdf", "cvode-bdf" are one
+ * method). Unknown names fail with the list of known ones. */
+lv_status lv_method_parse(const char *name, lv_method *out, lv_err *err);
+const char *lv_method_name(lv_method m);
+int lv_method_is_fixed_step(lv_method m);
+
+/* Right-hand side and event functions, SUNDIALS return convention:
+ * 0 ok, > 0 recoverable (retry smaller step), < 0 unrecoverable. */
+typedef int (*lv_integ_rhs_fn)(double t, const double *x, double *xdot, void *user);
+typedef int (*lv_integ_g_fn)(double t, const double *x, double *g, void *user);
+
+typedef struct lv_integ_problem {
+    size_t n;              /* states */
+    size_t n_g;            /* event functions (may be 0) */
+    const int *g_dir;      /* [n_g] +1 rising, -1 falling, 0 both; NULL: both */
+    lv_integ_rhs_fn rhs;
+    lv_integ_g_fn g;       /* required when n_g > 0 */
+    void *user;            /* passed to rhs and g */
+    lv_method method;
+    double rtol;           /* > 0 */
+    const double *atol;    /* [n] > 0 */
+    double fixed_step;     /* rk4/euler: > 0 */
+    double max_step;       /* 0: unlimited */
+    long max_steps;        /* total internal steps allowed, > 0 */
+} lv_integ_problem;
+
+typedef struct lv_integ lv_integ;
+
+typedef enum lv_integ_result {
+    LV_INTEG_REACHED = 0, /* reached tout (or the stop time, when tout == stop time) */
+    LV_INTEG_ROOT = 1     /* an event function crossed zero at *t (before tout) */
+} lv_integ_result;
+
+typedef struct lv_integ_stats {
+    long steps, rhs_evals, jac_evals, err_test_fails, nonlin_fails, g_evals, restarts;
+} lv_integ_stats;
+
+/* Copies the problem; `atol` and `g_dir` are copied too. */
+lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0, lv_integ **out,
+                          lv_err *err);
+void lv_integ_free(lv_integ *ig);
+
+/* The integrator never steps past `tstop` (> current time). */
+lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err);
+
+/* Advance towards `tout`; on return *t is tout, or the root time, and x the
+ * state there (length n). On LV_INTEG_ROOT, roots[i] (length n_g) is +1/-1 for
+ * the functions that crossed (rising/falling), 0 otherwise. On failure the
+ * message holds the time and SUNDIALS' reason; *t is the time reached. */
+lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_integ_result *res,
+                           int *roots, lv_err *err);
+
+/* Restart at (t, x) after a discontinuity: history discarded, order 1. */
+lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err);
+
+/* Cumulative over restarts. */
+void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st);
+
+#endif

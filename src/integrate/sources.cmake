@@ -1,0 +1,1 @@
+list(APPEND LV_SOURCES src/integrate/integrator.c)

@@ -1,0 +1,180 @@
+/* result_csv.c - CSV result sink: one header line "name [unit]", one line per row.
+ *
+ * Fields follow RFC 4180 (a field with a comma, quote or line break is quoted,
+ * quotes doubled); values are printed with %.17g, which reads back to the same
+ * double. Rows are streamed to "<path>.tmp". Parameters are not in the CSV
+ * (they are in the .mat file). See docs/result-files.md.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "io/sink.h"
+
+typedef struct csv_sink {
+    lv_sink_paths paths;
+    FILE *fp;        /* open between open() and close() */
+    size_t n_signals;
+    size_t rows;
+    double t_prev;   /* s */
+    int state;       /* 0 created, 1 open, 2 closed */
+} csv_sink;
+
+static lv_status io_error(const csv_sink *s, const char *what, int e, lv_err *err)
+{
+    char why[128];
+    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.tmp_path, what,
+                   lv_sink_strerror(e, why, sizeof why));
+}
+
+/* Writes `text` as one CSV field, quoted when it holds a comma, quote or line break. */
+static int put_field(FILE *fp, const char *text)
+{
+    if (strpbrk(text, ",\"\r\n") == NULL)
+        return fputs(text, fp) < 0 ? -1 : 0;
+    if (fputc('"', fp) == EOF)
+        return -1;
+    for (const char *c = text; *c != '\0'; c++) {
+        if (*c == '"' && fputc('"', fp) == EOF)
+            return -1;
+        if (fputc(*c, fp) == EOF)
+            return -1;
+    }
+    return fputc('"', fp) == EOF ? -1 : 0;
+}
+
+static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
+{
+    csv_sink *s = self;
+    if (s->state != 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.final_path);
+    lv_status st = lv_sink_check_info(info, s->paths.final_path, err);
+    if (st != LV_OK)
+        return st;
+
+    errno = 0;
+    s->fp = fopen(s->paths.tmp_path, "w");
+    if (s->fp == NULL)
+        return io_error(s, "cannot create", errno, err);
+    for (size_t i = 0; i < info->n_signals; i++) {
+        const lv_var *v = &info->signals[i];
+        /* "name [unit]": the unit part of lv_sink_describe() with the name as text */
+        char *head = lv_sink_describe(v->name, i == 0 && (v->unit == NULL || v->unit[0] == '\0')
+                                                   ? "s"
+                                                   : v->unit);
+        if (head == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.final_path);
+            goto fail;
+        }
+        errno = 0;
+        const int bad = (i > 0 && fputc(',', s->fp) == EOF) || put_field(s->fp, head) != 0;
+        free(head);
+        if (bad) {
+            st = io_error(s, "cannot write", errno, err);
+            goto fail;
+        }
+    }
+    errno = 0;
+    if (fputc('\n', s->fp) == EOF) {
+        st = io_error(s, "cannot write", errno, err);
+        goto fail;
+    }
+    s->n_signals = info->n_signals;
+    s->state = 1;
+    return LV_OK;
+fail:
+    fclose(s->fp);
+    s->fp = NULL;
+    remove(s->paths.tmp_path);
+    return st;
+}
+
+static lv_status csv_row(void *self, const double *values, lv_err *err)
+{
+    csv_sink *s = self;
+    if (s->state != 1)
+        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.final_path,
+                       s->state == 0 ? "before open()" : "after close()");
+    lv_status st = lv_sink_check_row(s->paths.final_path, s->rows, values[0], s->t_prev, err);
+    if (st != LV_OK)
+        return st;
+    errno = 0;
+    for (size_t i = 0; i < s->n_signals; i++)
+        if (fprintf(s->fp, i == 0 ? "%.17g" : ",%.17g", values[i]) < 0)
+            return io_error(s, "cannot write", errno, err);
+    if (fputc('\n', s->fp) == EOF)
+        return io_error(s, "cannot write", errno, err);
+    s->t_prev = values[0];
+    s->rows++;
+    return LV_OK;
+}
+
+static lv_status csv_close(void *self, const char *failure, lv_err *err)
+{
+    csv_sink *s = self;
+    if (s->state != 1)
+        return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.final_path,
+                       s->state == 0 ? "before open()" : "twice");
+    s->state = 2;
+    lv_status st = LV_OK;
+    errno = 0;
+    if (failure != NULL) {
+        /* A comment line, on one line whatever the reason's text. */
+        int bad = fputs("# run failed: ", s->fp) < 0;
+        for (const char *c = failure; !bad && *c != '\0'; c++)
+            bad = fputc(*c == '\n' || *c == '\r' ? ' ' : *c, s->fp) == EOF;
+        if (!bad && failure[0] == '\0')
+            bad = fputs("(no reason given)", s->fp) < 0;
+        if (!bad)
+            bad = fputc('\n', s->fp) == EOF;
+        if (bad)
+            st = io_error(s, "cannot write", errno, err);
+    }
+    /* fclose() flushes: a full disk shows here at the latest. */
+    const int e_flush = fflush(s->fp) != 0 || ferror(s->fp) ? (errno != 0 ? errno : EIO) : 0;
+    const int closed = fclose(s->fp);
+    const int e_close = errno;
+    s->fp = NULL;
+    if (st != LV_OK)
+        return st;
+    if (e_flush != 0)
+        return io_error(s, "cannot write", e_flush, err);
+    if (closed != 0)
+        return io_error(s, "cannot close", e_close, err);
+    return lv_sink_paths_commit(&s->paths, failure, err);
+}
+
+/* Closes the stream of a sink destroyed while open; its .tmp file stays. */
+static void csv_destroy(void *self)
+{
+    csv_sink *s = self;
+    if (s == NULL)
+        return;
+    if (s->fp != NULL)
+        fclose(s->fp);
+    lv_sink_paths_free(&s->paths);
+    free(s);
+}
+
+static const lv_sink_vtbl csv_vtbl = {"csv", csv_open, csv_row, csv_close, csv_destroy};
+
+lv_status lv_sink_csv_create(const char *path, lv_sink *out, lv_err *err)
+{
+    if (out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "csv result: NULL output argument");
+    out->vt = NULL;
+    out->self = NULL;
+    csv_sink *s = calloc(1, sizeof *s);
+    if (s == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path != NULL ? path : "csv");
+    lv_status st = lv_sink_paths_init(&s->paths, path, err);
+    if (st != LV_OK) {
+        free(s);
+        return st;
+    }
+    out->vt = &csv_vtbl;
+    out->self = s;
+    return LV_OK;
+}

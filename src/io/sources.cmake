@@ -1,0 +1,5 @@
+list(APPEND LV_SOURCES
+  src/io/sink.c
+  src/io/result_memory.c
+  src/io/result_csv.c
+  src/io/result_mat.c)

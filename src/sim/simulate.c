@@ -1,0 +1,720 @@
+/* simulate.c - lv_simulate(): one model, one run, as Dymola's simulateExtendedModel
+ * (paper, Code 1): start values by name, integration with events, result rows on an
+ * output grid plus every event instant twice, final values by name, statistics.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/status.h"
+#include "integrate/integrator.h"
+#include "lvsim/lv_sim.h"
+
+#define LV_DEFAULT_INTERVALS 500
+#define LV_DEFAULT_MAX_STEPS 1000000L
+
+void lv_sim_settings_default(lv_sim_settings *s)
+{
+    memset(s, 0, sizeof *s);
+    s->start_time = 0.0;
+    s->stop_time = 1.0;
+    s->method = "dassl";
+    s->tolerance = 1e-4;
+    s->result_file = "dsres";
+    s->result_formats = LV_RESULT_MAT | LV_RESULT_CSV;
+}
+
+const char *const *lv_sim_methods(void)
+{
+    static const char *const names[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler", NULL};
+    return names;
+}
+
+void lv_sim_report_clear(lv_sim_report *rep)
+{
+    if (rep == NULL)
+        return;
+    free(rep->event_log);
+    memset(rep, 0, sizeof *rep);
+}
+
+/* ---- run context ------------------------------------------------------------- */
+
+typedef struct sim_run {
+    const lv_model_def *def;
+    void *inst;
+    size_t nx, np, ny, ng;
+    double *p;    /* [np] parameter values */
+    double *x;    /* [nx] state */
+    double *xdot; /* [nx] scratch for output rows */
+    double *y;    /* [ny] outputs */
+    double *row;  /* [n_signals] */
+    int *roots;   /* [ng] */
+    int *g_dir;   /* [ng] */
+    double *atol; /* [nx] */
+    size_t bad_index; /* first non-finite derivative seen by the RHS guard */
+    double bad_t;
+    int bad_seen;
+    int rhs_rc;       /* last nonzero return of the model's rhs, and when */
+    double rhs_rc_t;
+
+    /* result layout */
+    size_t n_signals;
+    lv_var *signals;
+    lv_var_kind *kinds;
+    char **owned; /* strings made for der(x) names and units */
+    size_t n_owned;
+
+    lv_sink own_sinks[2];
+    size_t n_own_sinks;
+    lv_sink **sinks; /* own + borrowed */
+    size_t n_sinks;
+    int sinks_open;
+
+    lv_sim_report *rep;
+    size_t log_cap;
+} sim_run;
+
+/* The integrator's RHS: the model's, plus a guard that turns a NaN or Inf
+ * derivative into "retry with a smaller step" and remembers which one it was. */
+static int sim_rhs(double t, const double *x, double *xdot, void *user)
+{
+    sim_run *r = user;
+    int rc = r->def->rhs(t, x, r->p, xdot, r->inst);
+    if (rc != 0) {
+        r->rhs_rc = rc;
+        r->rhs_rc_t = t;
+        return rc;
+    }
+    double probe = 0.0;
+    for (size_t i = 0; i < r->nx; i++)
+        probe += xdot[i] * 0.0; /* NaN iff some xdot[i] is NaN or Inf */
+    if (probe == 0.0)
+        return 0;
+    for (size_t i = 0; i < r->nx; i++) {
+        if (!isfinite(xdot[i])) {
+            r->bad_index = i;
+            r->bad_t = t;
+            r->bad_seen = 1;
+            break;
+        }
+    }
+    return 1;
+}
+
+static int sim_g(double t, const double *x, double *g, void *user)
+{
+    sim_run *r = user;
+    return r->def->event_g(t, x, r->p, g, r->inst);
+}
+
+static double thread_cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static char *own_string(sim_run *r, const char *a, const char *b, const char *c)
+{
+    size_t len = strlen(a) + strlen(b) + strlen(c) + 1;
+    char *s = malloc(len);
+    if (s == NULL)
+        return NULL;
+    snprintf(s, len, "%s%s%s", a, b, c);
+    r->owned[r->n_owned++] = s;
+    return s;
+}
+
+/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s". */
+static char *derivative_unit(sim_run *r, const char *unit)
+{
+    if (unit[0] == '\0')
+        return own_string(r, "1/s", "", "");
+    size_t len = strlen(unit);
+    if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
+        return own_string(r, unit, "2", "");
+    if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
+        unit[len - 1] < '9') {
+        char buf[64];
+        snprintf(buf, sizeof buf, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
+        return own_string(r, buf, "", "");
+    }
+    return own_string(r, unit, "/s", "");
+}
+
+static lv_status build_layout(sim_run *r, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    r->n_signals = 1 + 2 * r->nx + r->ny;
+    r->signals = calloc(r->n_signals, sizeof *r->signals);
+    r->kinds = calloc(r->n_signals, sizeof *r->kinds);
+    r->owned = calloc(3 * r->nx + 1, sizeof *r->owned);
+    r->row = calloc(r->n_signals, sizeof *r->row);
+    if (!r->signals || !r->kinds || !r->owned || !r->row)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    r->signals[0] = (lv_var){"time", "s", "Simulation time", 0.0, 1.0};
+    r->kinds[0] = LV_VAR_OUTPUT;
+    for (size_t i = 0; i < r->nx; i++) {
+        const lv_var *v = &d->states[i];
+        r->signals[1 + i] = *v;
+        r->kinds[1 + i] = LV_VAR_STATE;
+        char *name = own_string(r, "der(", v->name, ")");
+        char *unit = name ? derivative_unit(r, v->unit) : NULL;
+        char *desc = unit ? own_string(r, "Time derivative of ", v->name, "") : NULL;
+        if (desc == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        r->signals[1 + r->nx + i] = (lv_var){name, unit, desc, 0.0, 1.0};
+        r->kinds[1 + r->nx + i] = LV_VAR_DERIVATIVE;
+    }
+    for (size_t i = 0; i < r->ny; i++) {
+        r->signals[1 + 2 * r->nx + i] = d->outputs[i];
+        r->kinds[1 + 2 * r->nx + i] = LV_VAR_OUTPUT;
+    }
+    return LV_OK;
+}
+
+/* One result row at (t, x): time, states, derivatives, outputs. A derivative or
+ * output the model cannot evaluate there is written as NaN. */
+static lv_status emit_row(sim_run *r, double t, lv_err *err)
+{
+    r->row[0] = t;
+    memcpy(r->row + 1, r->x, r->nx * sizeof(double));
+    if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
+        for (size_t i = 0; i < r->nx; i++)
+            r->xdot[i] = NAN;
+    memcpy(r->row + 1 + r->nx, r->xdot, r->nx * sizeof(double));
+    if (r->ny > 0) {
+        if (r->def->outputs_fn(t, r->x, r->p, r->y, r->inst) != 0)
+            for (size_t i = 0; i < r->ny; i++)
+                r->y[i] = NAN;
+        memcpy(r->row + 1 + 2 * r->nx, r->y, r->ny * sizeof(double));
+    }
+    for (size_t k = 0; k < r->n_sinks; k++) {
+        lv_sink *s = r->sinks[k];
+        lv_status st = s->vt->row(s->self, r->row, err);
+        if (st != LV_OK)
+            return st;
+    }
+    r->rep->stats.output_rows++;
+    return LV_OK;
+}
+
+static lv_status log_event(sim_run *r, double t, int is_state, int index, int direction)
+{
+    lv_sim_report *rep = r->rep;
+    if (rep->n_event_log == r->log_cap) {
+        size_t cap = r->log_cap ? 2 * r->log_cap : 16;
+        lv_event_record *grown = realloc(rep->event_log, cap * sizeof *grown);
+        if (grown == NULL)
+            return LV_ERR_NOMEM;
+        rep->event_log = grown;
+        r->log_cap = cap;
+    }
+    rep->event_log[rep->n_event_log++] = (lv_event_record){t, is_state, index, direction};
+    return LV_OK;
+}
+
+/* ---- settings and names -------------------------------------------------------- */
+
+static lv_status check_settings(const lv_model_def *d, const lv_sim_settings *s, lv_method *m,
+                                lv_err *err)
+{
+    const char *mn = d->name;
+    if (!isfinite(s->start_time) || !isfinite(s->stop_time))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': startTime and stopTime must be finite "
+                                          "(got %g, %g)", mn, s->start_time, s->stop_time);
+    if (s->stop_time < s->start_time)
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': stopTime %g s is before startTime %g s", mn,
+                       s->stop_time, s->start_time);
+    if (!(s->tolerance > 0.0) || !isfinite(s->tolerance))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': tolerance must be > 0 (got %g)", mn,
+                       s->tolerance);
+    if (s->number_of_intervals < 0)
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': numberOfIntervals must be >= 0 (got %d)",
+                       mn, s->number_of_intervals);
+    if (!(s->output_interval >= 0.0) || !isfinite(s->output_interval))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': outputInterval must be >= 0 (got %g)", mn,
+                       s->output_interval);
+    if (!(s->fixed_step >= 0.0) || !isfinite(s->fixed_step))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': fixedstepsize must be >= 0 (got %g)", mn,
+                       s->fixed_step);
+    if (!(s->max_step_size >= 0.0) || !isfinite(s->max_step_size))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': max step size must be >= 0 (got %g)", mn,
+                       s->max_step_size);
+    if (s->max_steps < 0)
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': max steps must be >= 0 (got %ld)", mn,
+                       s->max_steps);
+    if ((s->n_initial > 0 && (s->initial_names == NULL || s->initial_values == NULL)) ||
+        (s->n_final > 0 && s->final_names == NULL) || (s->n_sinks > 0 && s->sinks == NULL))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': name/value arrays are NULL", mn);
+    lv_status st = lv_method_parse(s->method ? s->method : "dassl", m, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "model '%s'", mn);
+    return LV_OK;
+}
+
+/* Parameters first (start values may derive from them), then the model's
+ * start(), then state overrides. */
+static lv_status apply_initial(sim_run *r, const lv_sim_settings *s, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    for (size_t j = 0; j < r->np; j++)
+        r->p[j] = d->params[j].start;
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t i = 0; i < s->n_initial; i++) {
+            lv_var_kind kind;
+            size_t idx;
+            const char *name = s->initial_names[i];
+            lv_status st = lv_model_find(d, name, &kind, &idx, err);
+            if (st != LV_OK)
+                return lv_fail_prefix(err, st, "initialNames[%zu]", i);
+            double v = s->initial_values[i];
+            if (pass == 0 && !isfinite(v))
+                return lv_fail(err, LV_ERR_INPUT,
+                               "model '%s': initialValues[%zu] for '%s' is %g (must be finite)",
+                               d->name, i, name, v);
+            if (kind == LV_VAR_DERIVATIVE || kind == LV_VAR_OUTPUT)
+                return lv_fail(err, LV_ERR_INPUT,
+                               "model '%s': '%s' is %s; only states and parameters can be set",
+                               d->name, name,
+                               kind == LV_VAR_OUTPUT ? "an output" : "a derivative");
+            if (pass == 0 && kind == LV_VAR_PARAMETER)
+                r->p[idx] = v;
+            if (pass == 1 && kind == LV_VAR_STATE)
+                r->x[idx] = v;
+        }
+        if (pass == 0) {
+            for (size_t i = 0; i < r->nx; i++)
+                r->x[i] = d->states[i].start;
+            if (d->start != NULL && d->start(r->p, r->x, r->inst) != 0)
+                return lv_fail(err, LV_ERR_INPUT,
+                               "model '%s': start values cannot be computed from the parameters",
+                               d->name);
+        }
+    }
+    for (size_t i = 0; i < r->nx; i++)
+        if (!isfinite(r->x[i]))
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': start value of '%s' is %g", d->name,
+                           d->states[i].name, r->x[i]);
+    return LV_OK;
+}
+
+typedef struct final_ref {
+    lv_var_kind kind;
+    size_t index;
+    int is_time;
+} final_ref;
+
+static lv_status resolve_finals(const lv_model_def *d, const lv_sim_settings *s, final_ref *refs,
+                                lv_err *err)
+{
+    for (size_t i = 0; i < s->n_final; i++) {
+        refs[i].is_time = s->final_names[i] != NULL && strcmp(s->final_names[i], "time") == 0;
+        if (refs[i].is_time)
+            continue;
+        lv_status st = lv_model_find(d, s->final_names[i], &refs[i].kind, &refs[i].index, err);
+        if (st != LV_OK)
+            return lv_fail_prefix(err, st, "finalNames[%zu]", i);
+    }
+    return LV_OK;
+}
+
+/* ---- sinks ------------------------------------------------------------------------ */
+
+static lv_status open_sinks(sim_run *r, const lv_sim_settings *s, lv_err *err)
+{
+    size_t n = s->n_sinks + 2;
+    r->sinks = calloc(n, sizeof *r->sinks);
+    if (r->sinks == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    if (s->result_file != NULL && s->result_file[0] != '\0') {
+        static const struct {
+            unsigned flag;
+            const char *ext;
+            lv_status (*create)(const char *, lv_sink *, lv_err *);
+        } kinds[] = {{LV_RESULT_MAT, ".mat", lv_sink_mat_create},
+                     {LV_RESULT_CSV, ".csv", lv_sink_csv_create}};
+        for (size_t k = 0; k < 2; k++) {
+            if (!(s->result_formats & kinds[k].flag))
+                continue;
+            size_t len = strlen(s->result_file) + 5;
+            char *path = malloc(len);
+            if (path == NULL)
+                return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            snprintf(path, len, "%s%s", s->result_file, kinds[k].ext);
+            lv_status st = kinds[k].create(path, &r->own_sinks[r->n_own_sinks], err);
+            free(path);
+            if (st != LV_OK)
+                return st;
+            r->sinks[r->n_sinks++] = &r->own_sinks[r->n_own_sinks++];
+        }
+    }
+    for (size_t k = 0; k < s->n_sinks; k++)
+        r->sinks[r->n_sinks++] = &s->sinks[k];
+
+    lv_result_info info = {r->def->name,  r->def->description ? r->def->description : "",
+                           r->np,         r->def->params,
+                           r->p,          r->n_signals,
+                           r->signals,    r->kinds};
+    for (size_t k = 0; k < r->n_sinks; k++) {
+        lv_status st = r->sinks[k]->vt->open(r->sinks[k]->self, &info, err);
+        if (st != LV_OK) {
+            /* Close the ones already open as failed, so no temp file stays behind. */
+            for (size_t j = 0; j < k; j++)
+                r->sinks[j]->vt->close(r->sinks[j]->self, "could not open all result sinks", NULL);
+            return st;
+        }
+    }
+    r->sinks_open = 1;
+    return LV_OK;
+}
+
+static lv_status close_sinks(sim_run *r, const char *failure, lv_err *err)
+{
+    lv_status first = LV_OK;
+    if (!r->sinks_open)
+        return LV_OK;
+    for (size_t k = 0; k < r->n_sinks; k++) {
+        lv_err tmp;
+        lv_status st = r->sinks[k]->vt->close(r->sinks[k]->self, failure, &tmp);
+        if (st != LV_OK && first == LV_OK) {
+            first = st;
+            if (err != NULL)
+                *err = tmp;
+        }
+    }
+    r->sinks_open = 0;
+    return first;
+}
+
+static void free_run(sim_run *r)
+{
+    for (size_t k = 0; k < r->n_own_sinks; k++)
+        lv_sink_destroy(&r->own_sinks[k]);
+    free(r->sinks);
+    for (size_t i = 0; i < r->n_owned; i++)
+        free(r->owned[i]);
+    free(r->owned);
+    free(r->signals);
+    free(r->kinds);
+    free(r->p);
+    free(r->x);
+    free(r->xdot);
+    free(r->y);
+    free(r->row);
+    free(r->roots);
+    free(r->g_dir);
+    free(r->atol);
+}
+
+/* ---- the run ---------------------------------------------------------------------- */
+
+/* Output grid: k = 0..K; the last point is exactly stop_time. */
+typedef struct out_grid {
+    double t0, tf, dt;
+    long K;
+} out_grid;
+
+static out_grid make_grid(const lv_sim_settings *s)
+{
+    out_grid g = {s->start_time, s->stop_time, 0.0, 1};
+    double span = s->stop_time - s->start_time;
+    if (s->output_interval > 0.0) {
+        g.dt = s->output_interval;
+        double n = span / g.dt;
+        g.K = n > 1e15 ? (long)1e15 : (long)ceil(n - 1e-9);
+    } else {
+        g.K = s->number_of_intervals > 0 ? s->number_of_intervals : LV_DEFAULT_INTERVALS;
+        g.dt = span / (double)g.K;
+    }
+    if (g.K < 1)
+        g.K = 1;
+    return g;
+}
+
+static double grid_time(const out_grid *g, long k)
+{
+    return k >= g->K ? g->tf : g->t0 + (double)k * g->dt;
+}
+
+static double next_time_event(sim_run *r, double t)
+{
+    if (r->def->next_time_event == NULL)
+        return INFINITY;
+    return r->def->next_time_event(t, r->p, r->inst);
+}
+
+static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    lv_sim_report *rep = r->rep;
+    out_grid grid = make_grid(s);
+    double t = s->start_time, tf = s->stop_time;
+    double tstop_set = NAN;
+    long k = 1;
+    lv_status st;
+
+    double t_te = next_time_event(r, t);
+    if (!(t_te > t))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': next time event %g is not after t = %g",
+                       d->name, t_te, t);
+    for (;;) {
+        double target = t_te < tf ? t_te : tf;
+        if (target != tstop_set) {
+            if ((st = lv_integ_set_stop_time(ig, target, err)) != LV_OK)
+                return st;
+            tstop_set = target;
+        }
+        double t_grid = grid_time(&grid, k);
+        double tout = t_grid < target ? t_grid : target;
+        lv_integ_result res;
+        st = lv_integ_advance(ig, tout, &t, r->x, &res, r->roots, err);
+        rep->end_time = t;
+        if (st != LV_OK) {
+            /* Keep the last accepted state as the result's final row. */
+            lv_err row_err;
+            if (t > r->row[0])
+                emit_row(r, t, &row_err);
+            if (r->bad_seen)
+                return lv_fail_prefix(err, st, "model '%s': der(%s) is not finite at t = %.9g s",
+                                      d->name, d->states[r->bad_index].name, r->bad_t);
+            if (r->rhs_rc < 0)
+                return lv_fail_prefix(err, st,
+                                      "model '%s': right-hand side returned %d at t = %.9g s",
+                                      d->name, r->rhs_rc, r->rhs_rc_t);
+            return lv_fail_prefix(err, st, "model '%s'", d->name);
+        }
+        int state_event = (res == LV_INTEG_ROOT);
+        int time_event = (t >= t_te);
+        if (state_event || time_event) {
+            if ((st = emit_row(r, t, err)) != LV_OK) /* just before the event */
+                return st;
+            lv_event_action action = LV_EVENT_CONTINUE;
+            if (state_event) {
+                int first = -1;
+                for (size_t i = 0; i < r->ng; i++) {
+                    if (r->roots[i] == 0)
+                        continue;
+                    if (first < 0)
+                        first = (int)i;
+                    rep->stats.state_events++;
+                    if (log_event(r, t, 1, (int)i, r->roots[i]) != LV_OK)
+                        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                }
+                lv_event_action a = d->on_event ? d->on_event(t, r->x, r->p, r->roots, r->inst)
+                                                : LV_EVENT_STOP;
+                if (a == LV_EVENT_STOP && action != LV_EVENT_STOP) {
+                    rep->stop_event = first;
+                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
+                             first >= 0 ? d->events[first].name : "event");
+                }
+                if (a > action)
+                    action = a;
+            }
+            if (time_event) {
+                rep->stats.time_events++;
+                if (log_event(r, t, 0, -1, 0) != LV_OK)
+                    return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                /* Without a handler a time event is a kink: restart the integrator. */
+                lv_event_action a =
+                    d->on_time_event ? d->on_time_event(t, r->x, r->p, r->inst) : LV_EVENT_RESTART;
+                if (a == LV_EVENT_STOP && action != LV_EVENT_STOP)
+                    snprintf(rep->stop_name, sizeof rep->stop_name, "time event");
+                if (a > action)
+                    action = a;
+            }
+            for (size_t i = 0; i < r->nx; i++)
+                if (!isfinite(r->x[i]))
+                    return lv_fail(err, LV_ERR_SOLVER,
+                                   "model '%s': event handler at t = %.9g s made '%s' = %g",
+                                   d->name, t, d->states[i].name, r->x[i]);
+            if (action == LV_EVENT_RESTART) {
+                if ((st = lv_integ_restart(ig, t, r->x, err)) != LV_OK)
+                    return lv_fail_prefix(err, st, "model '%s'", d->name);
+                tstop_set = NAN;
+            }
+            if ((st = emit_row(r, t, err)) != LV_OK) /* just after the event */
+                return st;
+            if (t == t_grid)
+                k++; /* the event rows stand for this grid point */
+            if (action == LV_EVENT_STOP) {
+                rep->reason = LV_STOP_EVENT;
+                return LV_OK;
+            }
+            double next = next_time_event(r, t);
+            if (!(next > t))
+                return lv_fail(err, LV_ERR_INPUT,
+                               "model '%s': next time event %g is not after t = %g", d->name, next,
+                               t);
+            t_te = next;
+        } else if (t == t_grid) {
+            if ((st = emit_row(r, t, err)) != LV_OK)
+                return st;
+            k++;
+        }
+        if (t >= tf) {
+            rep->reason = LV_STOP_TIME;
+            snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+            return LV_OK;
+        }
+    }
+}
+
+static void read_finals(sim_run *r, const lv_sim_settings *s, const final_ref *refs, double t,
+                        double *out)
+{
+    if (s->n_final == 0 || out == NULL)
+        return;
+    if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
+        for (size_t i = 0; i < r->nx; i++)
+            r->xdot[i] = NAN;
+    if (r->ny > 0 && r->def->outputs_fn(t, r->x, r->p, r->y, r->inst) != 0)
+        for (size_t i = 0; i < r->ny; i++)
+            r->y[i] = NAN;
+    for (size_t i = 0; i < s->n_final; i++) {
+        const final_ref *f = &refs[i];
+        if (f->is_time) {
+            out[i] = t;
+            continue;
+        }
+        switch (f->kind) {
+        case LV_VAR_STATE: out[i] = r->x[f->index]; break;
+        case LV_VAR_DERIVATIVE: out[i] = r->xdot[f->index]; break;
+        case LV_VAR_PARAMETER: out[i] = r->p[f->index]; break;
+        case LV_VAR_OUTPUT: out[i] = r->y[f->index]; break;
+        }
+    }
+}
+
+lv_status lv_simulate(const lv_model_def *d, void *inst, const lv_sim_settings *s,
+                      double *final_values, lv_sim_report *rep_out, lv_err *err)
+{
+    double cpu0 = thread_cpu_seconds();
+    lv_err local_err;
+    if (err == NULL)
+        err = &local_err;
+    void *own_inst = NULL;
+    lv_sim_report local;
+    lv_sim_report *rep = rep_out ? rep_out : &local;
+    memset(rep, 0, sizeof *rep);
+    rep->stop_event = -1;
+    rep->reason = LV_STOP_FAILED;
+    snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
+
+    sim_run r = {0};
+    final_ref *refs = NULL;
+    lv_integ *ig = NULL;
+    lv_method method;
+    lv_status st = lv_model_validate(d, err);
+    if (st != LV_OK)
+        goto done;
+    if ((st = check_settings(d, s, &method, err)) != LV_OK)
+        goto done;
+    if (inst == NULL && d->inst_size > 0) {
+        inst = own_inst = calloc(1, d->inst_size);
+        if (inst == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+    }
+    rep->end_time = s->start_time;
+    r.def = d;
+    r.inst = inst;
+    r.rep = rep;
+    r.nx = d->n_states;
+    r.np = d->n_params;
+    r.ny = d->n_outputs;
+    r.ng = d->n_events;
+    rep->n_states = r.nx;
+    r.p = calloc(r.np + 1, sizeof *r.p);
+    r.x = calloc(r.nx, sizeof *r.x);
+    r.xdot = calloc(r.nx, sizeof *r.xdot);
+    r.y = calloc(r.ny + 1, sizeof *r.y);
+    r.roots = calloc(r.ng + 1, sizeof *r.roots);
+    r.g_dir = calloc(r.ng + 1, sizeof *r.g_dir);
+    r.atol = calloc(r.nx, sizeof *r.atol);
+    refs = calloc(s->n_final + 1, sizeof *refs);
+    if (!r.p || !r.x || !r.xdot || !r.y || !r.roots || !r.g_dir || !r.atol || !refs) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    if ((st = resolve_finals(d, s, refs, err)) != LV_OK)
+        goto done;
+    if ((st = apply_initial(&r, s, err)) != LV_OK)
+        goto done;
+    if (d->init != NULL && d->init(s->start_time, r.x, r.p, inst) != 0) {
+        st = lv_fail(err, LV_ERR_INPUT, "model '%s': initialisation failed at t = %g s", d->name,
+                     s->start_time);
+        goto done;
+    }
+    if ((st = build_layout(&r, err)) != LV_OK)
+        goto done;
+    if ((st = open_sinks(&r, s, err)) != LV_OK)
+        goto done;
+    if ((st = emit_row(&r, s->start_time, err)) != LV_OK)
+        goto done;
+
+    if (s->stop_time > s->start_time) {
+        out_grid grid = make_grid(s);
+        for (size_t i = 0; i < r.nx; i++)
+            r.atol[i] = s->tolerance * d->states[i].nominal;
+        for (size_t i = 0; i < r.ng; i++)
+            r.g_dir[i] = (int)d->events[i].direction;
+        lv_integ_problem prob = {
+            .n = r.nx,
+            .n_g = r.ng,
+            .g_dir = r.g_dir,
+            .rhs = sim_rhs,
+            .g = sim_g,
+            .user = &r,
+            .method = method,
+            .rtol = s->tolerance,
+            .atol = r.atol,
+            .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : grid.dt,
+            .max_step = s->max_step_size,
+            .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
+        };
+        if ((st = lv_integ_create(&prob, s->start_time, r.x, &ig, err)) != LV_OK) {
+            lv_fail_prefix(err, st, "model '%s'", d->name);
+            goto done;
+        }
+        st = run_loop(&r, s, ig, err);
+        lv_integ_stats is;
+        lv_integ_get_stats(ig, &is);
+        rep->stats.steps = is.steps;
+        rep->stats.rhs_evals = is.rhs_evals;
+        rep->stats.jac_evals = is.jac_evals;
+        rep->stats.err_test_fails = is.err_test_fails;
+        rep->stats.nonlin_fails = is.nonlin_fails;
+        rep->stats.g_evals = is.g_evals;
+        rep->stats.restarts = is.restarts;
+        if (st != LV_OK)
+            goto done;
+    } else {
+        rep->reason = LV_STOP_TIME;
+        snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+    }
+    read_finals(&r, s, refs, rep->end_time, final_values);
+
+done:
+    if (st != LV_OK) {
+        rep->reason = LV_STOP_FAILED;
+        snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
+        close_sinks(&r, err->msg, NULL);
+    } else {
+        st = close_sinks(&r, NULL, err);
+    }
+    lv_integ_free(ig);
+    free_run(&r);
+    free(refs);
+    free(own_inst);
+    rep->stats.cpu_time = thread_cpu_seconds() - cpu0;
+    if (rep == &local)
+        lv_sim_report_clear(&local);
+    return st;
+}

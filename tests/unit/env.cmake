@@ -1,0 +1,2 @@
+include(${CMAKE_CURRENT_LIST_DIR}/env_atmosphere.cmake OPTIONAL)
+include(${CMAKE_CURRENT_LIST_DIR}/env_planet.cmake OPTIONAL)

@@ -1,0 +1,1 @@
+lv_add_unit_test(test_simulate unit/test_simulate.c)

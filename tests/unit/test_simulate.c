@@ -1,0 +1,542 @@
+/* test_simulate.c - lv_simulate against closed-form solutions, event semantics and
+ * bad input. Every reference value is derived in the comment next to it. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lvsim/lv_io.h"
+#include "lvsim/lv_models.h"
+#include "lvsim/lv_sim.h"
+
+static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler"};
+#define N_METHODS 5
+
+/* ---- (1) vertical ascent: Tsiolkovsky with gravity loss --------------------------- */
+/* Constant thrust F and mass flow q in uniform gravity g, no drag, from rest:
+ *   m(t) = m0 - q t,  ve = F / q,
+ *   v(t) = ve ln(m0/m) - g t                          (rocket equation + gravity loss)
+ *   h(t) = ve [t - (m/q) ln(m0/m)] - g t^2 / 2        (integral of v(t))
+ * burnout at tb = (m0 - mf)/q; apogee after a coast of vb/g, at hb + vb^2/(2g). */
+static void test_vertical_ascent(void)
+{
+    const double F = 30000.0, q = 10.0, g = 9.81, m0 = 1000.0, mf = 400.0;
+    const double ve = F / q, tb = (m0 - mf) / q;
+    const double vb = ve * log(m0 / mf) - g * tb;
+    const double hb = ve * (tb - (mf / q) * log(m0 / mf)) - 0.5 * g * tb * tb;
+    const double t_apo = tb + vb / g, h_apo = hb + vb * vb / (2.0 * g);
+
+    for (int k = 0; k < 4; k++) { /* adaptive and rk4; euler is checked on the oscillator */
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.tolerance = 1e-10;
+        s.stop_time = 500.0;
+        s.number_of_intervals = 1000;
+        if (strcmp(s.method, "rk4") == 0)
+            s.fixed_step = 0.01;
+        const char *in[] = {"thrust", "mdot", "g", "m0", "m_final", "stop_at_apogee"};
+        const double iv[] = {F, q, g, m0, mf, 1.0};
+        const char *fin[] = {"time", "h", "v", "m", "engine_on", "F"};
+        double out[6];
+        s.n_initial = 6;
+        s.initial_names = in;
+        s.initial_values = iv;
+        s.n_final = 6;
+        s.final_names = fin;
+        lv_result *res = NULL;
+        lv_sink mem;
+        lv_err err;
+        CHECK_OK(lv_sink_memory_create(&res, &mem, &err), &err);
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        lv_sim_report rep;
+        CHECK_OK(lv_simulate(&lv_model_vertical_ascent, NULL, &s, out, &rep, &err), &err);
+
+        /* Burnout: first logged event, located within 1e-9 s of (m0 - mf)/q. */
+        CHECK(rep.n_event_log >= 2);
+        CHECK(rep.event_log[0].is_state && rep.event_log[0].index == LV_ASC_EV_BURNOUT);
+        CHECK_CLOSE(rep.event_log[0].t, tb, 1e-9);
+        CHECK(rep.reason == LV_STOP_EVENT && strcmp(rep.stop_name, "apogee") == 0);
+        /* Variable-step global error: a few thousand times the local tolerance here. */
+        CHECK_CLOSE(out[0], t_apo, 1e-5);
+        CHECK_REL(out[1], h_apo, 1e-7);
+        CHECK_CLOSE(out[2], 0.0, 1e-6);
+        CHECK_CLOSE(out[3], mf, 1e-6);
+        CHECK(out[4] == 0.0 && out[5] == 0.0); /* engine off after burnout */
+        CHECK(rep.stats.state_events == 2 && rep.stats.time_events == 0);
+        CHECK(rep.stats.steps > 0 && rep.stats.rhs_evals >= rep.stats.steps);
+
+        /* Every output row during the burn against v(t), h(t). */
+        size_t ct, ch, cv;
+        CHECK_OK(lv_result_column(res, "time", &ct, &err), &err);
+        CHECK_OK(lv_result_column(res, "h", &ch, &err), &err);
+        CHECK_OK(lv_result_column(res, "v", &cv, &err), &err);
+        double worst_v = 0.0, worst_h = 0.0;
+        int pre = 0, post = 0;
+        for (size_t i = 0; i < lv_result_rows(res); i++) {
+            double t = lv_result_value(res, i, ct);
+            if (t == rep.event_log[0].t) {
+                /* the burnout instant appears twice: before and after */
+                if (pre == 0)
+                    pre = 1;
+                else
+                    post++;
+            }
+            if (t > tb)
+                continue;
+            double m = m0 - q * t;
+            double v = ve * log(m0 / m) - g * t;
+            double h = ve * (t - (m / q) * log(m0 / m)) - 0.5 * g * t * t;
+            /* error relative to max(|value|, nominal): the tolerance's own scale */
+            worst_v = fmax(worst_v, fabs(lv_result_value(res, i, cv) - v) / fmax(1e3, fabs(v)));
+            worst_h = fmax(worst_h, fabs(lv_result_value(res, i, ch) - h) / fmax(1e4, fabs(h)));
+        }
+        CHECK(pre == 1 && post == 1);
+        CHECK(worst_v < 1e-7);
+        CHECK(worst_h < 1e-7);
+        printf("ascent %-12s steps %6ld rhs %7ld jac %4ld  burnout err %.2e s  max rel err v %.2e "
+               "h %.2e\n",
+               s.method, rep.stats.steps, rep.stats.rhs_evals, rep.stats.jac_evals,
+               fabs(rep.event_log[0].t - tb), worst_v, worst_h);
+        lv_sim_report_clear(&rep);
+        lv_sink_destroy(&mem);
+        lv_result_free(res);
+    }
+}
+
+/* ---- (2) free fall: impact at sqrt(2 h0 / g) ------------------------------------------- */
+static void test_free_fall(void)
+{
+    const double g = 9.81, h0 = 100.0;
+    const double t_ref = sqrt(2.0 * h0 / g);
+    for (int k = 0; k < N_METHODS; k++) {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.tolerance = 1e-8;
+        s.stop_time = 10.0;
+        s.fixed_step = 1e-3;
+        const char *fin[] = {"time", "h", "v"};
+        double out[3];
+        s.n_final = 3;
+        s.final_names = fin;
+        lv_sim_report rep;
+        lv_err err;
+        CHECK_OK(lv_simulate(&lv_model_free_fall, NULL, &s, out, &rep, &err), &err);
+        CHECK(rep.reason == LV_STOP_EVENT && strcmp(rep.stop_name, "impact") == 0);
+        /* h(t) is quadratic: DOPRI5 and RK4 (order >= 2 in every step, with exact
+         * interpolants) reproduce it to rounding, so the root is as good as the root
+         * finder. BDF and Adams start at order 1 after the start, so they carry an error
+         * of the order of the tolerance. Euler's h has an O(dt) error:
+         * h_N = h0 - g dt^2 N(N-1)/2, so impact is later by about dt/2. */
+        double tol = 1e-9;
+        if (strcmp(s.method, "euler") == 0)
+            tol = 1e-3;
+        else if (strcmp(s.method, "dassl") == 0 || strcmp(s.method, "cvode-adams") == 0)
+            tol = 100.0 * s.tolerance;
+        CHECK_CLOSE(out[0], t_ref, tol);
+        CHECK_CLOSE(out[1], 0.0, tol * g * t_ref);
+        CHECK_CLOSE(out[2], -g * t_ref, tol * g);
+        lv_sim_report_clear(&rep);
+    }
+}
+
+/* ---- (3) harmonic oscillator over 100 periods ---------------------------------------- */
+/* x(t) = cos(w t) from x0 = 1, v0 = 0. After 100 periods x = 1, v = 0.
+ * Adaptive methods: the local tolerance does not bound the global error; phase errors
+ * add up along the orbit. We accept 500 * tol per period (measured at 1e-9: BDF 150,
+ * Adams 110, DOPRI5 0.2 * tol per period).
+ * Fixed-step methods on y' = A y have the exact per-step amplification R(i w h):
+ *   Euler: |R|^2 = 1 + (w h)^2;  RK4: |R|^2 = (1 - q^2/2 + q^4/24)^2 + (q - q^3/6)^2, q = w h,
+ * so the energy after N steps is E0 |R|^(2N) exactly (Hairer, Norsett, Wanner I, IV.2). */
+static void test_oscillator(void)
+{
+    const double w = 2.0, T = 2.0 * M_PI / w, periods = 100.0;
+    for (int k = 0; k < N_METHODS; k++) {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.stop_time = periods * T;
+        s.number_of_intervals = 100;
+        int fixed = strcmp(s.method, "rk4") == 0 || strcmp(s.method, "euler") == 0;
+        s.tolerance = 1e-9;
+        s.fixed_step = T / (strcmp(s.method, "euler") == 0 ? 2000.0 : 200.0);
+        const char *in[] = {"omega"};
+        const double iv[] = {w};
+        s.n_initial = 1;
+        s.initial_names = in;
+        s.initial_values = iv;
+        const char *fin[] = {"x", "v", "energy"};
+        double out[3];
+        s.n_final = 3;
+        s.final_names = fin;
+        lv_sim_report rep;
+        lv_err err;
+        CHECK_OK(lv_simulate(&lv_model_oscillator, NULL, &s, out, &rep, &err), &err);
+        const double E0 = 0.5 * w * w;
+        if (!fixed) {
+            double bound = periods * 500.0 * s.tolerance;
+            CHECK_CLOSE(out[0], 1.0, bound);
+            CHECK_CLOSE(out[1] / w, 0.0, bound);
+            printf("oscillator %-12s tol %.0e steps %6ld rhs %7ld |x err| %.2e (bound %.1e)\n",
+                   s.method, s.tolerance, rep.stats.steps, rep.stats.rhs_evals, fabs(out[0] - 1.0),
+                   bound);
+        } else {
+            double q = w * s.fixed_step, R2;
+            if (strcmp(s.method, "euler") == 0)
+                R2 = 1.0 + q * q;
+            else
+                R2 = pow(1.0 - q * q / 2.0 + q * q * q * q / 24.0, 2) + pow(q - q * q * q / 6.0, 2);
+            /* ARKODE may shorten the last step to land on stop_time; steps is N. */
+            double N = (double)rep.stats.steps;
+            CHECK(fabs(N - s.stop_time / s.fixed_step) <= 1.0);
+            double expect = E0 * pow(R2, s.stop_time / s.fixed_step);
+            CHECK_REL(out[2], expect, 1e-6);
+            printf("oscillator %-12s h = T/%.0f steps %6ld energy ratio %.9f (theory %.9f)\n",
+                   s.method, T / s.fixed_step, rep.stats.steps, out[2] / E0, expect / E0);
+        }
+        lv_sim_report_clear(&rep);
+    }
+}
+
+/* ---- (4) Kepler orbit over 10 revolutions --------------------------------------------- */
+/* Energy -mu/(2a) and angular momentum sqrt(mu a (1 - e^2)) are conserved; the period
+ * is 2 pi sqrt(a^3/mu) (Kepler's third law); periapsis passages come once a period. */
+static void test_kepler(void)
+{
+    const double mu = 3.986004418e14, a = 7.0e6, e = 0.1;
+    const double T = 2.0 * M_PI * sqrt(a * a * a / mu);
+    const double E = -mu / (2.0 * a), H = sqrt(mu * a * (1.0 - e * e));
+    for (int k = 0; k < 3; k++) {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.tolerance = 1e-10;
+        s.stop_time = 10.0 * T + 0.5 * T; /* ten periapsis passages after the start */
+        s.number_of_intervals = 200;
+        const char *fin[] = {"energy", "h"};
+        double out[2];
+        s.n_final = 2;
+        s.final_names = fin;
+        lv_sim_report rep;
+        lv_err err;
+        CHECK_OK(lv_simulate(&lv_model_kepler, NULL, &s, out, &rep, &err), &err);
+        CHECK(rep.stats.state_events == 10);
+        double worst_T = 0.0;
+        for (size_t i = 0; i < rep.n_event_log; i++)
+            worst_T = fmax(worst_T, fabs(rep.event_log[i].t - (double)(i + 1) * T));
+        /* Drift per revolution within C * tol: C = 1e3 for BDF (which is dissipative on
+         * orbits; measured 350), 1e2 for Adams and DOPRI5 (measured 13 and 2). The k-th
+         * periapsis time drifts with the energy error: dT/T = 3/2 dE/E. */
+        const double C = k == 0 ? 1e3 : 1e2, revs = 10.0;
+        double dE = fabs(out[0] - E) / fabs(E), dH = fabs(out[1] - H) / H;
+        CHECK(dE < C * revs * s.tolerance);
+        CHECK(dH < C * revs * s.tolerance);
+        CHECK(worst_T < 1.5 * C * revs * s.tolerance * revs * T);
+        printf("kepler %-12s steps %6ld rhs %7ld dE/E %.2e dH/H %.2e max |t_peri - kT| %.2e s "
+               "(T = %.3f s)\n",
+               s.method, rep.stats.steps, rep.stats.rhs_evals, dE, dH, worst_T, T);
+        lv_sim_report_clear(&rep);
+    }
+}
+
+/* ---- event semantics ---------------------------------------------------------------- */
+/* x' = 1 from 0. g0 = t - 1 and g1 = 2t - 2 both cross at exactly t = 1, where a
+ * time event is scheduled too (and another at t = 2). The handlers record the order
+ * in which they run. (With g = x - 1 the integrated x reaches 1 only within rounding,
+ * a few 1e-14 s after the time event: then they are two instants, not one.) */
+typedef struct order_inst {
+    char log[64];
+    int n;
+} order_inst;
+
+static const lv_var ord_states[] = {{"x", "m", "Ramp", 0.0, 1.0}};
+static const lv_event_def ord_events[] = {{"g0", "t = 1", LV_DIR_RISING},
+                                          {"g1", "2t = 2", LV_DIR_BOTH}};
+static int ord_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)t, (void)x, (void)p, (void)inst;
+    xd[0] = 1.0;
+    return 0;
+}
+static int ord_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    (void)x, (void)p, (void)inst;
+    g[0] = t - 1.0;
+    g[1] = 2.0 * t - 2.0;
+    return 0;
+}
+static lv_event_action ord_event(double t, double *x, const double *p, const int *fired,
+                                 void *inst)
+{
+    (void)t, (void)x, (void)p;
+    order_inst *o = inst;
+    o->n += snprintf(o->log + o->n, sizeof o->log - (size_t)o->n, "S%d%d;", fired[0] != 0,
+                     fired[1] != 0);
+    return LV_EVENT_RESTART; /* restart at the root: must not report it again */
+}
+static double ord_next(double t, const double *p, void *inst)
+{
+    (void)p, (void)inst;
+    return t < 1.0 ? 1.0 : (t < 2.0 ? 2.0 : INFINITY);
+}
+static lv_event_action ord_time(double t, double *x, const double *p, void *inst)
+{
+    (void)x, (void)p;
+    order_inst *o = inst;
+    o->n += snprintf(o->log + o->n, sizeof o->log - (size_t)o->n, "T%g;", t);
+    return LV_EVENT_CONTINUE;
+}
+static const lv_model_def order_model = {
+    .name = "order", .description = "event order probe", .n_states = 1, .n_events = 2,
+    .states = ord_states, .events = ord_events, .rhs = ord_rhs, .event_g = ord_g,
+    .on_event = ord_event, .next_time_event = ord_next, .on_time_event = ord_time,
+};
+
+static void test_event_order(void)
+{
+    for (int k = 0; k < N_METHODS; k++) {
+        order_inst o = {{0}, 0};
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.stop_time = 3.0;
+        s.number_of_intervals = 3; /* grid 0,1,2,3: coincides with the events */
+        s.fixed_step = 0.01;
+        lv_result *res;
+        lv_sink mem;
+        lv_err err;
+        CHECK_OK(lv_sink_memory_create(&res, &mem, &err), &err);
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        lv_sim_report rep;
+        CHECK_OK(lv_simulate(&order_model, &o, &s, NULL, &rep, &err), &err);
+        /* One call with both state events, then the time event at the same instant;
+         * the crossing is not reported again after the restart; then t = 2. */
+        CHECK(strcmp(o.log, "S11;T1;T2;") == 0);
+        if (strcmp(o.log, "S11;T1;T2;") != 0)
+            fprintf(stderr, "  %s: order log %s\n", s.method, o.log);
+        CHECK(rep.stats.state_events == 2 && rep.stats.time_events == 2);
+        CHECK(rep.reason == LV_STOP_TIME && rep.end_time == 3.0);
+        /* Rows: t = 0, 1 (before), 1 (after), 2 (before), 2 (after), 3. */
+        CHECK(lv_result_rows(res) == 6);
+        size_t ct;
+        CHECK_OK(lv_result_column(res, "time", &ct, &err), &err);
+        const double want[] = {0, 1, 1, 2, 2, 3};
+        for (size_t i = 0; i < 6 && i < lv_result_rows(res); i++)
+            CHECK(lv_result_value(res, i, ct) == want[i]); /* time events are hit exactly */
+        lv_sim_report_clear(&rep);
+        lv_sink_destroy(&mem);
+        lv_result_free(res);
+    }
+}
+
+/* ---- bad input ------------------------------------------------------------------------ */
+static void base_settings(lv_sim_settings *s)
+{
+    lv_sim_settings_default(s);
+    s->result_file = NULL;
+    s->stop_time = 1.0;
+}
+
+static void test_bad_input(void)
+{
+    lv_sim_settings s;
+    lv_err err;
+    const lv_model_def *m = &lv_model_free_fall;
+
+    base_settings(&s);
+    s.stop_time = -1.0;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "stopTime -1 s is before startTime 0 s");
+    base_settings(&s);
+    s.tolerance = 0.0;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "tolerance must be > 0");
+    s.tolerance = -1e-6;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "tolerance must be > 0");
+    base_settings(&s);
+    s.method = "rk45";
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "unknown integration method 'rk45'");
+    base_settings(&s);
+    s.start_time = NAN;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT, "must be finite");
+
+    /* NaN / Inf start values, named. */
+    const char *in[] = {"h0"};
+    double nan_v[] = {NAN}, inf_v[] = {INFINITY};
+    base_settings(&s);
+    s.n_initial = 1;
+    s.initial_names = in;
+    s.initial_values = nan_v;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "initialValues[0] for 'h0' is nan");
+    s.initial_values = inf_v;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "initialValues[0] for 'h0' is inf");
+
+    /* Unknown names suggest the nearest ones. */
+    const char *typo[] = {"hh0"};
+    double one[] = {1.0};
+    s.initial_names = typo;
+    s.initial_values = one;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_NOTFOUND,
+                "has no variable 'hh0'; did you mean 'h0'");
+    base_settings(&s);
+    const char *fin[] = {"der(hx)"};
+    double out[1];
+    s.n_final = 1;
+    s.final_names = fin;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, out, NULL, &err), &err, LV_ERR_NOTFOUND,
+                "finalNames[0]: model 'free_fall' has no variable 'der(hx)'");
+    /* Outputs and derivatives cannot be set. */
+    base_settings(&s);
+    const char *der[] = {"der(h)"};
+    s.n_initial = 1;
+    s.initial_names = der;
+    s.initial_values = one;
+    CHECK_FAILS(lv_simulate(m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                "only states and parameters can be set");
+
+    /* Too much work: the step limit, reported with the model and the time. */
+    base_settings(&s);
+    s.stop_time = 1000.0;
+    s.max_steps = 5;
+    s.method = "dopri5";
+    const char *osc_in[] = {"omega"};
+    double w[] = {10.0};
+    s.n_initial = 1;
+    s.initial_names = osc_in;
+    s.initial_values = w;
+    CHECK_FAILS(lv_simulate(&lv_model_oscillator, NULL, &s, NULL, NULL, &err), &err,
+                LV_ERR_SOLVER, "model 'oscillator'");
+    CHECK(strstr(err.msg, "too much work") != NULL);
+}
+
+/* x' = x^2 from x = 1 blows up at t = 1 (x = 1/(1 - t)): the step size underflows or the
+ * error test fails near t = 1, never a crash. */
+static const lv_var blow_states[] = {{"x", "", "Blows up at t = 1", 1.0, 1.0}};
+static int blow_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)t, (void)p, (void)inst;
+    xd[0] = x[0] * x[0];
+    return 0;
+}
+static const lv_model_def blow_model = {.name = "blowup", .description = "x' = x^2",
+                                        .n_states = 1, .states = blow_states, .rhs = blow_rhs};
+
+/* RHS that fails unrecoverably at t > 0.5 (a model error such as a table miss). */
+static int fail_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)x, (void)p, (void)inst;
+    xd[0] = 1.0;
+    return t > 0.5 ? -1 : 0;
+}
+static const lv_model_def fail_model = {.name = "failing", .description = "RHS fails at 0.5",
+                                        .n_states = 1, .states = blow_states, .rhs = fail_rhs};
+/* RHS that returns NaN at t > 0.25 */
+static int nan_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)x, (void)p, (void)inst;
+    xd[0] = t > 0.25 ? NAN : 1.0;
+    return 0;
+}
+static const lv_model_def nan_model = {.name = "nanrhs", .description = "RHS NaN after 0.25",
+                                       .n_states = 1, .states = blow_states, .rhs = nan_rhs};
+
+static int count_lines(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return -1;
+    int n = 0, c;
+    while ((c = fgetc(f)) != EOF)
+        n += (c == '\n');
+    fclose(f);
+    return n;
+}
+
+static void test_integrator_failures(void)
+{
+    lv_sim_settings s;
+    lv_err err;
+    for (int k = 0; k < 3; k++) {
+        base_settings(&s);
+        s.method = methods[k];
+        s.stop_time = 2.0;
+        s.tolerance = 1e-6;
+        lv_status st = lv_simulate(&blow_model, NULL, &s, NULL, NULL, &err);
+        CHECK(st == LV_ERR_SOLVER);
+        CHECK(strstr(err.msg, "model 'blowup'") != NULL && strstr(err.msg, "at t = ") != NULL);
+        printf("blowup %-12s -> %s\n", s.method, err.msg);
+    }
+
+    /* Unrecoverable RHS failure: reported, and the result keeps the rows before it,
+     * under the failed name, never under the final name. */
+    base_settings(&s);
+    s.stop_time = 1.0;
+    s.number_of_intervals = 10;
+    s.result_file = "failing_run";
+    s.result_formats = LV_RESULT_CSV | LV_RESULT_MAT;
+    unlink("failing_run.csv");
+    unlink("failing_run.mat");
+    lv_sim_report rep;
+    CHECK_FAILS(lv_simulate(&fail_model, NULL, &s, NULL, &rep, &err), &err, LV_ERR_SOLVER,
+                "model 'failing': right-hand side returned -1 at t = ");
+    CHECK(strstr(err.msg, "right-hand side") != NULL);
+    printf("failing run: end_time %.6f, %d csv lines: %s\n", rep.end_time,
+           count_lines("failing_run.failed.csv"), err.msg);
+    CHECK(rep.reason == LV_STOP_FAILED && rep.end_time >= 0.3 && rep.end_time <= 0.5);
+    CHECK(access("failing_run.csv", F_OK) != 0 && access("failing_run.mat", F_OK) != 0);
+    CHECK(access("failing_run.failed.mat", F_OK) == 0);
+    /* header + rows at t = 0, 0.1, ..., 0.5 (6) + the failure note */
+    int lines = count_lines("failing_run.failed.csv");
+    CHECK(lines >= 7 && lines <= 9);
+    lv_sim_report_clear(&rep);
+
+    /* A NaN derivative names the state and the time. */
+    base_settings(&s);
+    CHECK_FAILS(lv_simulate(&nan_model, NULL, &s, NULL, NULL, &err), &err, LV_ERR_SOLVER,
+                "der(x) is not finite at t = ");
+}
+
+/* ---- result file through the public path -------------------------------------------------- */
+static void test_result_files(void)
+{
+    lv_sim_settings s;
+    lv_err err;
+    lv_sim_settings_default(&s);
+    s.result_file = "free_fall_run";
+    s.stop_time = 10.0;
+    s.number_of_intervals = 10;
+    unlink("free_fall_run.mat");
+    unlink("free_fall_run.csv");
+    CHECK_OK(lv_simulate(&lv_model_free_fall, NULL, &s, NULL, NULL, &err), &err);
+    CHECK(access("free_fall_run.mat", F_OK) == 0 && access("free_fall_run.csv", F_OK) == 0);
+    CHECK(access("free_fall_run.mat.tmp", F_OK) != 0);
+    /* Grid 0..4 s (5 rows) + impact at 4.515 s (2 rows) + header */
+    CHECK(count_lines("free_fall_run.csv") == 8);
+}
+
+int main(void)
+{
+    test_vertical_ascent();
+    test_free_fall();
+    test_oscillator();
+    test_kepler();
+    test_event_order();
+    test_bad_input();
+    test_integrator_failures();
+    test_result_files();
+    return check_report("test_simulate");
+}
