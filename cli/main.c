@@ -69,11 +69,17 @@ static void print_help(FILE *f)
             "      --method M                    dassl | cvode-adams | dopri5 | rk4 | euler\n"
             "      --tolerance TOL               relative tolerance (1e-4)\n"
             "      --fixed-step H                step of rk4/euler [s] (the output interval)\n"
+            "      --max-steps N                 internal steps allowed in total (1e6)\n"
             "      --set NAME=VALUE              start value of a state or parameter (repeat)\n"
             "      --final NAME                  print this variable's final value (repeat)\n"
             "      -o PATH                       result file path without extension (dsres)\n"
             "      --format mat,csv              result formats (both)\n"
             "      --json                        print the report as JSON\n"
+            "  lvsim atmosphere ALT_M... [--model us76|exp]\n"
+            "                                    T, p, rho, a, mu at geometric altitudes\n"
+            "  lvsim gravity LAT_DEG LON_DEG ALT_M [--model sh|sh:N|zonal|j2|pointmass]\n"
+            "                [--planet earth|moon|mars] [--effective]\n"
+            "                                    gravity vector in NED [m/s2] (default sh)\n"
             "  lvsim help | --help               this text\n"
             "  lvsim version\n"
             "\n"
@@ -174,7 +180,7 @@ static int cmd_simulate(int argc, char **argv)
         int takes = 1;
         static const char *const with_value[] = {
             "--start", "--stop", "--interval", "--tolerance", "--fixed-step", "--intervals",
-            "--method", "-o", "--format", "--set", "--final", NULL};
+            "--method", "-o", "--format", "--set", "--final", "--max-steps", NULL};
         int known = 0;
         for (size_t k = 0; with_value[k] != NULL; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -207,6 +213,14 @@ static int cmd_simulate(int argc, char **argv)
                 rc = EXIT_INPUT;
                 goto out;
             }
+        } else if (strcmp(a, "--max-steps") == 0) {
+            int n;
+            if (!parse_int(val, &n) || n == 0) {
+                fprintf(stderr, "lvsim: --max-steps: '%s' is not a positive count\n", val);
+                rc = EXIT_INPUT;
+                goto out;
+            }
+            s.max_steps = n;
         } else if (strcmp(a, "--method") == 0) {
             s.method = val;
         } else if (strcmp(a, "-o") == 0) {
@@ -295,6 +309,117 @@ out:
     return rc;
 }
 
+/* lvsim atmosphere ALT_M... [--model NAME]: one line per altitude. */
+static int cmd_atmosphere(int argc, char **argv)
+{
+    const char *model = "us76";
+    double *alt = calloc((size_t)argc + 1, sizeof *alt);
+    lv_atmo_state *out = calloc((size_t)argc + 1, sizeof *out);
+    size_t n = 0;
+    int rc = EXIT_OK;
+    if (alt == NULL || out == NULL) {
+        rc = EXIT_INTERNAL;
+        goto done;
+    }
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--model") == 0) {
+            if (i + 1 >= argc) {
+                rc = usage_error("missing value for option", "--model");
+                goto done;
+            }
+            model = argv[++i];
+        } else if (!parse_double(argv[i], &alt[n++])) {
+            fprintf(stderr, "lvsim atmosphere: '%s' is not an altitude in m\n", argv[i]);
+            rc = EXIT_INPUT;
+            goto done;
+        }
+    }
+    if (n == 0) {
+        rc = usage_error("atmosphere needs at least one altitude in m", NULL);
+        goto done;
+    }
+    lv_err err;
+    lv_status st = lv_atmo_eval_by_name(model, alt, n, out, &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "lvsim atmosphere: %s\n", err.msg);
+        rc = exit_code_for(st) == EXIT_SIM ? EXIT_INPUT : exit_code_for(st);
+        goto done;
+    }
+    printf("# %s: altitude [m]  T [K]  p [Pa]  rho [kg/m3]  a [m/s]  mu [Pa s]\n", model);
+    for (size_t i = 0; i < n; i++)
+        printf("%.9g %.9g %.9g %.9g %.9g %.9g\n", alt[i], out[i].T, out[i].p, out[i].rho,
+               out[i].a, out[i].mu);
+done:
+    free(alt);
+    free(out);
+    return rc;
+}
+
+/* lvsim gravity LAT_DEG LON_DEG ALT_M [--model SPEC] [--planet NAME] [--effective] */
+static int cmd_gravity(int argc, char **argv)
+{
+    const char *spec = "sh", *planet_name = "earth";
+    int effective = 0;
+    double v[3];
+    int npos = 0;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--model") == 0 || strcmp(argv[i], "--planet") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("missing value for option", argv[i]);
+            if (argv[i][2] == 'm')
+                spec = argv[++i];
+            else
+                planet_name = argv[++i];
+        } else if (strcmp(argv[i], "--effective") == 0) {
+            effective = 1;
+        } else if (npos < 3 && parse_double(argv[i], &v[npos])) {
+            npos++;
+        } else {
+            fprintf(stderr, "lvsim gravity: unexpected argument '%s' (expected LAT_DEG LON_DEG "
+                            "ALT_M as numbers)\n", argv[i]);
+            return EXIT_INPUT;
+        }
+    }
+    if (npos != 3)
+        return usage_error("gravity needs LAT_DEG LON_DEG ALT_M", NULL);
+    const double lat_deg = v[0], lon_deg = v[1], alt_m = v[2];
+    if (fabs(lat_deg) > 90.0 || fabs(lon_deg) > 360.0) {
+        fprintf(stderr, "lvsim gravity: latitude %g deg must be within [-90, 90] and longitude "
+                        "%g deg within [-360, 360]\n", lat_deg, lon_deg);
+        return EXIT_INPUT;
+    }
+    lv_err err;
+    lv_planet planet;
+    lv_gravity_config cfg;
+    lv_gravity *g = NULL;
+    lv_gravity_local loc;
+    lv_status st = lv_planet_by_name(planet_name, &planet, &err);
+    if (st == LV_OK && !(alt_m > -0.5 * planet.a)) {
+        fprintf(stderr, "lvsim gravity: altitude %g m is below half the planet's radius\n", alt_m);
+        return EXIT_INPUT;
+    }
+    if (st == LV_OK)
+        st = lv_gravity_parse_spec(spec, &cfg, &err);
+    if (st == LV_OK)
+        st = lv_gravity_create(&planet, &cfg, &g, &err);
+    const double deg = 3.14159265358979323846 / 180.0; /* user interface: degrees */
+    if (st == LV_OK)
+        st = lv_gravity_at_geodetic(g, &planet, lat_deg * deg, lon_deg * deg, alt_m, &loc, &err);
+    lv_gravity_free(g);
+    if (st != LV_OK) {
+        fprintf(stderr, "lvsim gravity: %s\n", err.msg);
+        return st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
+    }
+    const double *gv = effective ? loc.g_eff_ned : loc.g_ned;
+    printf("# %s, model %s, planet %s, lat %g deg, lon %g deg, alt %g m\n",
+           effective ? "gravity (gravitation + centrifugal)" : "gravitation",
+           spec, planet.name, lat_deg, lon_deg, alt_m);
+    printf("# g_north [m/s2]  g_east [m/s2]  g_down [m/s2]  |g| [m/s2]\n");
+    printf("%.10g %.10g %.10g %.10g\n", gv[0], gv[1], gv[2],
+           sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]));
+    return EXIT_OK;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -316,5 +441,9 @@ int main(int argc, char **argv)
         return cmd_vars(argc - 2, argv + 2);
     if (strcmp(cmd, "simulate") == 0)
         return cmd_simulate(argc - 2, argv + 2);
+    if (strcmp(cmd, "atmosphere") == 0)
+        return cmd_atmosphere(argc - 2, argv + 2);
+    if (strcmp(cmd, "gravity") == 0)
+        return cmd_gravity(argc - 2, argv + 2);
     return usage_error("unknown command", cmd);
 }

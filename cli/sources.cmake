@@ -1,4 +1,4 @@
 add_executable(lvsim_cli cli/main.c)
 set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
-target_link_libraries(lvsim_cli PRIVATE lvsim)
+target_link_libraries(lvsim_cli PRIVATE lvsim m)
 lv_set_warnings(lvsim_cli)

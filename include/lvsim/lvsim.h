@@ -10,5 +10,7 @@
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_sim.h"
 #include "lvsim/lv_models.h"
+#include "lvsim/lv_planet.h"
+#include "lvsim/lv_atmosphere.h"
 
 #endif

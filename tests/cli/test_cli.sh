@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# test_cli.sh LVSIM - the command line: outputs, exit codes (0 ok, 2 bad input, 3 simulation
+# failure) and messages. Reference values are cited where they appear.
+set -u
+lvsim="$1"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+pass=0
+
+expect() { # expect CODE PATTERN -- command...
+  local code="$1" pat="$2"; shift 3
+  local out rc
+  out=$("$@" 2>&1); rc=$?
+  if [ "$rc" -ne "$code" ] || ! grep -qE -- "$pat" <<<"$out"; then
+    echo "FAIL: $* -> exit $rc (want $code), output:"; echo "$out" | head -5
+    echo "      expected pattern: $pat"
+    fails=$((fails + 1))
+  else
+    pass=$((pass + 1))
+  fi
+}
+
+expect 0 "vertical_ascent" -- "$lvsim" models
+expect 0 "^parameter +thrust +N" -- "$lvsim" vars vertical_ascent
+expect 2 "unknown model 'nope'" -- "$lvsim" vars nope
+expect 2 "unknown command 'fly'" -- "$lvsim" fly
+# Free fall from 100 m: impact at sqrt(2 h / g) = 4.51523641 s (g = 9.81)
+expect 0 "time += 4.515236" -- "$lvsim" simulate free_fall --stop 10 --tolerance 1e-10 --method dopri5 --final time -o "$work/ff"
+[ -f "$work/ff.mat" ] && [ -f "$work/ff.csv" ] && pass=$((pass + 1)) || { echo "FAIL: result files"; fails=$((fails + 1)); }
+expect 0 '"ok": true' -- "$lvsim" simulate oscillator --json --format none --final x
+expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
+expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
+expect 2 "unknown integration method 'rk45'" -- "$lvsim" simulate oscillator --method rk45 --format none
+expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator --stop -1 --format none
+expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
+# A run that fails in the integrator exits 3 and names model, time and reason.
+expect 3 "model 'oscillator': at t = .* too much work" -- "$lvsim" simulate oscillator --stop 1000 --max-steps 50 --format none
+# US Standard Atmosphere 1976: sea level 288.15 K, 101325 Pa, 1.2250 kg/m3, 340.294 m/s
+expect 0 "^0 288.15 101325 1.22499[0-9]* 340.294" -- "$lvsim" atmosphere 0
+expect 0 "^# us76: altitude \[m\]" -- "$lvsim" atmosphere 0 1000
+expect 2 "outside the valid range" -- "$lvsim" atmosphere 2e6
+expect 2 "'abc' is not an altitude" -- "$lvsim" atmosphere abc
+expect 2 "did you mean 'exp'" -- "$lvsim" atmosphere 0 --model exq
+# WGS-84 normal gravity at the equator (Somigliana): 9.7803253359 m/s2; the J2 model with
+# centrifugal acceleration gives 9.78028 (J4 and higher are missing)
+expect 0 "^0 0 9.7802" -- "$lvsim" gravity 0 0 0 --model j2 --effective
+expect 2 "did you mean 'zonal'" -- "$lvsim" gravity 45 10 400e3 --model zonl
+expect 2 "latitude 95 deg" -- "$lvsim" gravity 95 0 0
+expect 2 "expected LAT_DEG LON_DEG ALT_M" -- "$lvsim" gravity 45 x 0
+
+echo "$pass passed, $fails failed"
+[ "$fails" -eq 0 ]
