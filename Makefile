@@ -34,5 +34,12 @@ test-asan: deps
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done
 
+# The mission-parser fuzzer (libFuzzer, clang) for FUZZ_TIME seconds (default 60).
+.PHONY: fuzz
+fuzz: deps
+	cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLV_BUILD_BENCH=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_mission
+	fuzz/run.sh build-fuzz/fuzz/fuzz_mission $(or $(FUZZ_TIME),60)
+
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

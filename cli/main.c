@@ -75,6 +75,11 @@ static void print_help(FILE *f)
             "      -o PATH                       result file path without extension (dsres)\n"
             "      --format mat,csv              result formats (both)\n"
             "      --json                        print the report as JSON\n"
+            "  lvsim run MISSION.yaml [-o OUTDIR] [--threads N] [--json]\n"
+            "                                    run every phase; results, summary.json (lvsim-out)\n"
+            "  lvsim check MISSION.yaml          validate only\n"
+            "  lvsim compare MISSION.yaml [--method M] [--tolerance TOL] [--interval DT] [--json]\n"
+            "                                    sequential vs end-to-end (the paper's Table 2)\n"
             "  lvsim atmosphere ALT_M... [--model us76|exp]\n"
             "                                    T, p, rho, a, mu at geometric altitudes\n"
             "  lvsim gravity LAT_DEG LON_DEG ALT_M [--model sh|sh:N|zonal|j2|pointmass]\n"
@@ -309,6 +314,196 @@ out:
     return rc;
 }
 
+/* ---- missions ------------------------------------------------------------------------ */
+
+static const char *phase_state_name(lv_phase_state st)
+{
+    switch (st) {
+    case LV_PHASE_DONE: return "ok";
+    case LV_PHASE_FAILED: return "FAILED";
+    case LV_PHASE_SKIPPED: return "skipped";
+    default: return "pending";
+    }
+}
+
+static void print_phase_row(const lv_mission *m, size_t k, const lv_phase_result *r, void *user)
+{
+    (void)user;
+    int parent = lv_mission_phase_parent(m, k);
+    const lv_sim_report *rep = &r->report;
+    if (r->state == LV_PHASE_SKIPPED) {
+        printf("%-3zu %-12s %-10s %s\n", k + 1, r->name, "skipped", r->error);
+    } else {
+        printf("%-3zu %-12s %-10s %9.3f %9.3f  %-10s %7ld %8ld %4ld %4ld %9.2f  %s\n", k + 1,
+               r->name, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", r->t_start,
+               r->t_end, r->state == LV_PHASE_DONE ? rep->stop_name : "-", rep->stats.steps,
+               rep->stats.rhs_evals, rep->stats.state_events, rep->stats.time_events,
+               1e3 * rep->stats.cpu_time, phase_state_name(r->state));
+        if (r->state == LV_PHASE_FAILED)
+            fprintf(stderr, "lvsim: %s\n", r->error);
+    }
+    fflush(stdout);
+}
+
+static int cmd_check(int argc, char **argv)
+{
+    if (argc != 1)
+        return usage_error("check takes one mission file", NULL);
+    lv_mission *m;
+    lv_err err;
+    lv_status st = lv_mission_load(argv[0], &m, &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return exit_code_for(st) == EXIT_SIM ? EXIT_INPUT : exit_code_for(st);
+    }
+    printf("%s: mission '%s' is valid: %zu phases\n", argv[0], lv_mission_name(m),
+           lv_mission_phase_count(m));
+    lv_mission_free(m);
+    return EXIT_OK;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    const char *path = NULL, *outdir = "lvsim-out";
+    int json = 0, threads = 2;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--threads") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("missing value for option", argv[i]);
+            if (argv[i][1] == 'o')
+                outdir = argv[++i];
+            else if (!parse_int(argv[++i], &threads) || threads < 1)
+                return usage_error("--threads needs a count >= 1, got", argv[i]);
+        } else if (strcmp(argv[i], "--json") == 0) {
+            json = 1;
+        } else if (argv[i][0] == '-' || path != NULL) {
+            return usage_error("unexpected argument", argv[i]);
+        } else {
+            path = argv[i];
+        }
+    }
+    if (path == NULL)
+        return usage_error("run needs a mission file", NULL);
+    lv_mission *m;
+    lv_err err;
+    lv_status st = lv_mission_load(path, &m, &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return exit_code_for(st) == EXIT_SIM ? EXIT_INPUT : exit_code_for(st);
+    }
+    if (!json) {
+        printf("mission '%s': %zu phases -> %s/\n", lv_mission_name(m), lv_mission_phase_count(m),
+               outdir);
+        printf("%-3s %-12s %-10s %9s %9s  %-10s %7s %8s %4s %4s %9s  %s\n", "#", "phase", "from",
+               "t0 [s]", "t1 [s]", "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
+    }
+    lv_run_options opt = {outdir, threads, json ? NULL : print_phase_row, NULL, 0.0};
+    lv_status run_st = lv_mission_run(m, &opt, &err);
+    lv_err serr;
+    lv_status sum_st = lv_mission_write_summary(m, outdir, &serr);
+    if (sum_st != LV_OK)
+        fprintf(stderr, "lvsim: %s\n", serr.msg);
+    if (json) {
+        char path_json[4200];
+        snprintf(path_json, sizeof path_json, "%s/summary.json", outdir);
+        FILE *f = fopen(path_json, "r");
+        int c;
+        while (f != NULL && (c = fgetc(f)) != EOF)
+            putchar(c);
+        if (f != NULL)
+            fclose(f);
+    } else {
+        printf("results: %s/ (phase_<k>_<name>.mat/.csv, body_<stage>.csv, summary.json)\n",
+               outdir);
+    }
+    if (run_st != LV_OK)
+        fprintf(stderr, "lvsim: %s\n", err.msg);
+    lv_mission_free(m);
+    if (run_st != LV_OK)
+        return exit_code_for(run_st);
+    return sum_st == LV_OK ? EXIT_OK : EXIT_INPUT;
+}
+
+static int cmd_compare(int argc, char **argv)
+{
+    const char *path = NULL, *method = NULL;
+    double tol = 0.0, dt = 1.0;
+    int json = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--json") == 0) {
+            json = 1;
+        } else if (strcmp(a, "--method") == 0 || strcmp(a, "--tolerance") == 0 ||
+                   strcmp(a, "--interval") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("missing value for option", a);
+            const char *v = argv[++i];
+            if (a[2] == 'm')
+                method = v;
+            else if (!parse_double(v, a[2] == 't' ? &tol : &dt))
+                return usage_error("not a finite number:", v);
+        } else if (a[0] == '-' || path != NULL) {
+            return usage_error("unexpected argument", a);
+        } else {
+            path = a;
+        }
+    }
+    if (path == NULL)
+        return usage_error("compare needs a mission file", NULL);
+    if (!(dt > 0.0))
+        return usage_error("--interval must be > 0", NULL);
+    lv_compare_report rep;
+    lv_err err;
+    lv_status st = lv_mission_compare(path, method, tol, dt, &rep, &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return exit_code_for(st);
+    }
+    const lv_compare_side *sd[2] = {&rep.e2e, &rep.seq};
+    if (json) {
+        printf("{\"mission\": ");
+        json_string(path);
+        printf(", \"output_interval\": %.17g", dt);
+        const char *nm[2] = {"end_to_end", "sequential"};
+        for (int i = 0; i < 2; i++)
+            printf(",\n \"%s\": {\"method\": \"%s\", \"tolerance\": %.17g, \"states\": %zu, "
+                   "\"state_events\": %ld, \"time_events\": %ld, \"steps\": %ld, "
+                   "\"rhs_evals\": %ld, \"jac_evals\": %ld, \"cpu_time\": %.9g}",
+                   nm[i], sd[i]->method, sd[i]->tolerance, sd[i]->n_states, sd[i]->state_events,
+                   sd[i]->time_events, sd[i]->steps, sd[i]->rhs_evals, sd[i]->jac_evals,
+                   sd[i]->cpu_time);
+        printf(",\n \"bodies\": [");
+        for (size_t b = 0; b < rep.n_bodies; b++)
+            printf("%s\n  {\"name\": \"%s\", \"common_times\": %zu, \"max_dpos\": %.9g, "
+                   "\"max_dvel\": %.9g, \"max_dmass\": %.9g}",
+                   b ? "," : "", rep.bodies[b].name, rep.bodies[b].n_common,
+                   rep.bodies[b].max_dpos, rep.bodies[b].max_dvel, rep.bodies[b].max_dmass);
+        printf("]}\n");
+        return EXIT_OK;
+    }
+    printf("%s: end-to-end versus sequential (the paper's Table 2)\n\n", path);
+    printf("%-28s %14s %14s\n", "", "end-to-end", "sequential");
+    printf("%-28s %14s %14s\n", "integration method", rep.e2e.method, rep.seq.method);
+    printf("%-28s %14g %14g\n", "integration tolerance", rep.e2e.tolerance, rep.seq.tolerance);
+    printf("%-28s %14zu %14zu\n", "number of states", rep.e2e.n_states, rep.seq.n_states);
+    printf("%-28s %14ld %14ld\n", "state events (total)", rep.e2e.state_events,
+           rep.seq.state_events);
+    printf("%-28s %14ld %14ld\n", "time events (total)", rep.e2e.time_events,
+           rep.seq.time_events);
+    printf("%-28s %14ld %14ld\n", "steps", rep.e2e.steps, rep.seq.steps);
+    printf("%-28s %14ld %14ld\n", "RHS evaluations", rep.e2e.rhs_evals, rep.seq.rhs_evals);
+    printf("%-28s %14ld %14ld\n", "Jacobian evaluations", rep.e2e.jac_evals, rep.seq.jac_evals);
+    printf("%-28s %14.3f %14.3f\n", "CPU time [ms]", 1e3 * rep.e2e.cpu_time,
+           1e3 * rep.seq.cpu_time);
+    printf("\nlargest difference at %g s output times common to both:\n", dt);
+    printf("%-12s %8s %14s %14s %14s\n", "body", "times", "position [m]", "velocity [m/s]",
+           "mass [kg]");
+    for (size_t b = 0; b < rep.n_bodies; b++)
+        printf("%-12s %8zu %14.3e %14.3e %14.3e\n", rep.bodies[b].name, rep.bodies[b].n_common,
+               rep.bodies[b].max_dpos, rep.bodies[b].max_dvel, rep.bodies[b].max_dmass);
+    return EXIT_OK;
+}
+
 /* lvsim atmosphere ALT_M... [--model NAME]: one line per altitude. */
 static int cmd_atmosphere(int argc, char **argv)
 {
@@ -441,6 +636,12 @@ int main(int argc, char **argv)
         return cmd_vars(argc - 2, argv + 2);
     if (strcmp(cmd, "simulate") == 0)
         return cmd_simulate(argc - 2, argv + 2);
+    if (strcmp(cmd, "run") == 0)
+        return cmd_run(argc - 2, argv + 2);
+    if (strcmp(cmd, "check") == 0)
+        return cmd_check(argc - 2, argv + 2);
+    if (strcmp(cmd, "compare") == 0)
+        return cmd_compare(argc - 2, argv + 2);
     if (strcmp(cmd, "atmosphere") == 0)
         return cmd_atmosphere(argc - 2, argv + 2);
     if (strcmp(cmd, "gravity") == 0)

@@ -11,6 +11,7 @@ pkgs=(
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
   python3-scipy python3-numpy          # independent .mat reader in the tests
+  clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
 )
 
 missing=()

@@ -112,6 +112,10 @@ struct lv_model_def {
 
     /* Optional (required when n_outputs > 0). Outputs at (t, x). Not hot. */
     int (*outputs_fn)(double t, const double *x, const double *p, double *y, void *inst);
+
+    /* Optional. Why the last callback failed ("table 'stage1' : t = 130 is outside
+     * [0, 120]"), or NULL; lv_simulate() adds it to its failure message. */
+    const char *(*last_error)(const void *inst);
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -12,5 +12,10 @@
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_table.h"
+#include "lvsim/lv_flat.h"
+#include "lvsim/lv_mission.h"
+#include "lvsim/lv_vehicle.h"
+#include "lvsim/lv_dof3.h"
 
 #endif

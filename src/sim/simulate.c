@@ -483,10 +483,12 @@ static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv
             if (r->bad_seen)
                 return lv_fail_prefix(err, st, "model '%s': der(%s) is not finite at t = %.9g s",
                                       d->name, d->states[r->bad_index].name, r->bad_t);
+            const char *why = d->last_error ? d->last_error(r->inst) : NULL;
             if (r->rhs_rc < 0)
                 return lv_fail_prefix(err, st,
-                                      "model '%s': right-hand side returned %d at t = %.9g s",
-                                      d->name, r->rhs_rc, r->rhs_rc_t);
+                                      "model '%s': right-hand side returned %d at t = %.9g s%s%s",
+                                      d->name, r->rhs_rc, r->rhs_rc_t, why ? ": " : "",
+                                      why ? why : "");
             return lv_fail_prefix(err, st, "model '%s'", d->name);
         }
         int state_event = (res == LV_INTEG_ROOT);

@@ -1,0 +1,4 @@
+# 3-DoF model: ns per right-hand side of the full model, and of its pieces.
+add_executable(bench_dof3 ${CMAKE_CURRENT_LIST_DIR}/bench_dof3.c)
+target_link_libraries(bench_dof3 PRIVATE lvsim_static)
+lv_set_warnings(bench_dof3)

@@ -1,0 +1,51 @@
+# libFuzzer target for the mission parser (fuzz/fuzz_mission.c), built with clang whatever
+# compiler the project uses, and a bounded run registered as ctest `fuzz_mission` (labels
+# fuzz and no-asan: the ASan suite, built with gcc, skips it). Only when clang's libFuzzer
+# runtime is available (Debian: clang, libclang-rt-14-dev). `make fuzz` runs it longer.
+# Included from tests/unit/mission.cmake.
+find_program(LV_CLANG NAMES clang-14 clang)
+if(LV_CLANG AND NOT DEFINED LV_HAVE_LIBFUZZER)
+  set(_probe ${CMAKE_BINARY_DIR}/fuzz_probe)
+  file(WRITE ${_probe}.c
+    "#include <stddef.h>\n#include <stdint.h>\n"
+    "int LLVMFuzzerTestOneInput(const uint8_t *d, size_t n);\n"
+    "int LLVMFuzzerTestOneInput(const uint8_t *d, size_t n) { (void)d; (void)n; return 0; }\n")
+  execute_process(COMMAND ${LV_CLANG} -fsanitize=fuzzer,address,undefined ${_probe}.c -o ${_probe}
+                  RESULT_VARIABLE _rc OUTPUT_QUIET ERROR_QUIET)
+  if(_rc EQUAL 0)
+    set(LV_HAVE_LIBFUZZER ON CACHE BOOL "clang can link libFuzzer")
+  else()
+    set(LV_HAVE_LIBFUZZER OFF CACHE BOOL "clang can link libFuzzer")
+  endif()
+  message(STATUS "libFuzzer (${LV_CLANG}): ${LV_HAVE_LIBFUZZER}")
+endif()
+
+if(LV_HAVE_LIBFUZZER)
+  set(_src fuzz/fuzz_mission.c src/mission/yaml_tree.c src/mission/parse.c
+      src/core/status.c src/core/names.c src/core/table.c src/core/table_load.c)
+  set(_hdr src/mission/mission.h src/mission/yaml_tree.h src/core/status.h src/core/names.h
+      src/core/units.h include/lvsim/lv_table.h include/lvsim/lv_status.h
+      include/lvsim/lv_model.h)
+  list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/)
+  list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
+  set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)
+  foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS})
+    list(APPEND _inc -I${_d})
+  endforeach()
+  set(LV_FUZZ_BIN ${CMAKE_BINARY_DIR}/fuzz/fuzz_mission)
+  file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
+  add_custom_command(OUTPUT ${LV_FUZZ_BIN}
+    COMMAND ${LV_CLANG} -std=c11 -g -O1 -fno-omit-frame-pointer
+            -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
+            -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes
+            -Wmissing-prototypes -Wformat=2 -ffp-contract=off
+            -DLV_FUZZ_DIR="${PROJECT_SOURCE_DIR}/tests/missions" ${_inc} ${_src}
+            -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES} -lm
+    DEPENDS ${_src} ${_hdr}
+    COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
+    COMMAND_EXPAND_LISTS VERBATIM)
+  add_custom_target(fuzz_mission ALL DEPENDS ${LV_FUZZ_BIN})
+  add_test(NAME fuzz_mission
+    COMMAND ${PROJECT_SOURCE_DIR}/fuzz/run.sh ${LV_FUZZ_BIN} 20)
+  set_tests_properties(fuzz_mission PROPERTIES LABELS "fuzz;no-asan" TIMEOUT 180)
+endif()

@@ -1,0 +1,122 @@
+/* lv_dof3.h - 3-DoF variable-mass point over a rotating planet (the paper's sec. 2.2-2.3).
+ *
+ * States are ECI Cartesian position and velocity plus mass (7 states, singularity-free);
+ * the paper's eq. (1) variables (geocentric latitude, longitude, radius and north/east/
+ * down velocity relative to the rotating planet) are outputs. Inputs: angle of attack
+ * alpha, sideslip beta, bank mu, throttle c_s - constant parameters or a time table.
+ * Forces: gravity (lv_planet.h), thrust of several engines and aerodynamics from
+ * coefficient tables (lv_vehicle.h), with an optional wind. Equations, frames, variable
+ * names and units: docs/models.md.
+ *
+ * Usage: fill an lv_dof3_config (start from lv_dof3_config_default), lv_dof3_create(),
+ * then lv_simulate(lv_dof3_def(m), lv_dof3_inst(m), &settings, ...). The model
+ * definition is built per configuration (its events are the configured end
+ * conditions); `inst` must be lv_dof3_inst(m) - lv_simulate's own zeroed block makes
+ * start() fail. One lv_dof3 serves one simulation at a time; create one per thread.
+ */
+#ifndef LVSIM_LV_DOF3_H
+#define LVSIM_LV_DOF3_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_model.h"
+#include "lvsim/lv_planet.h"
+#include "lvsim/lv_status.h"
+#include "lvsim/lv_table.h"
+#include "lvsim/lv_vehicle.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* State indices: "r_eci_x" .. "v_eci_z", "m". */
+enum lv_x3 {
+    LV_X3_RX, LV_X3_RY, LV_X3_RZ, /* position, ECI, m   */
+    LV_X3_VX, LV_X3_VY, LV_X3_VZ, /* velocity, ECI, m/s */
+    LV_X3_M, LV_X3_N              /* mass, kg; count    */
+};
+
+/* End conditions (state events) besides burnout. */
+typedef enum lv_dof3_end_kind {
+    LV_DOF3_END_ALTITUDE = 1,     /* geodetic altitude crosses `value` [m] (`direction`) */
+    LV_DOF3_END_SPEED_REL = 2,    /* speed relative to the rotating planet crosses `value` [m/s] */
+    LV_DOF3_END_SPEED_INERTIAL = 3, /* inertial speed crosses `value` [m/s] */
+    LV_DOF3_END_APOGEE = 4,       /* radial velocity falls through 0 (`value`, `direction`
+                                     ignored) */
+    LV_DOF3_END_IMPACT = 5        /* geodetic altitude falls through `value` [m] (0: the
+                                     ellipsoid; `direction` ignored) */
+} lv_dof3_end_kind;
+
+typedef struct lv_dof3_end {
+    const char *name;     /* event name in reports ("meco", "impact"); copied; NULL: the kind's
+                             name ("altitude", "speed_rel", "speed_inertial", "apogee", "impact") */
+    lv_dof3_end_kind kind;
+    double value;         /* m or m/s, see the kind */
+    lv_dir direction;     /* altitude and speed crossings */
+    int stop;             /* 1: end the run (a phase end); 0: log the event and continue */
+} lv_dof3_end;
+
+typedef struct lv_dof3_config {
+    const char *name;          /* model name in reports; copied; NULL: "dof3" */
+    lv_planet planet;          /* copied: ellipsoid, rotation (default lv_planet_earth()) */
+    const lv_gravity *gravity; /* borrowed, required; evaluated at ECEF positions */
+    const lv_atmo *atmo;       /* borrowed; NULL: vacuum (no aerodynamics, p_amb = 0) */
+    lv_wind_fn wind;           /* NULL: no wind */
+    void *wind_user;           /* passed to `wind` */
+
+    double m0;                 /* kg, start mass (default of state "m"), > 0 */
+    double m_burnout;          /* kg, mass at propellant depletion (default of parameter
+                                  "m_burnout"), 0 <= m_burnout */
+    size_t n_engines;          /* 0: unpowered */
+    const lv_engine_config *engines; /* [n_engines], copied (their tables borrowed) */
+    const lv_aero_config *aero; /* copied (tables borrowed); NULL: no aerodynamic force */
+
+    /* Default values of the parameters of the same name (the paper's userPar). */
+    double start_lat, start_lon; /* rad, geodetic */
+    double start_h;              /* m, geodetic altitude */
+    double start_vel;            /* m/s, speed relative to the rotating planet, >= 0 */
+    double start_fpa, start_chi; /* rad, flight-path angle (up +) and heading (from north to
+                                    east) of the relative velocity */
+    double start_time;           /* s, mission time at which the start_* values hold (sets
+                                    the ECI <-> ECEF angle); should equal the run's start */
+    double alpha, beta, mu;      /* rad, constant inputs */
+    double throttle;             /* -, constant input c_s, within every engine's limits */
+
+    /* Optional control history: a 1-axis table over "time" (or "t") [s] whose outputs
+     * named "alpha", "beta", "mu" [rad], "throttle" [-] replace the parameters of the
+     * same name (others stay parameters). Throttle values are clamped into each engine's
+     * limits. Its breakpoints are time events. Borrowed. */
+    const lv_table *inputs;
+
+    int stop_at_burnout;       /* 1: burnout ends the run; 0: engines off, continue */
+    size_t n_ends;
+    const lv_dof3_end *ends;   /* [n_ends], copied */
+} lv_dof3_config;
+
+/* Earth (lv_planet_earth), no gravity (must be set), no atmosphere, m0 = 1000 kg,
+ * m_burnout 0, no engines, no aero, all start values and inputs 0 except throttle 1,
+ * stop_at_burnout 0, no ends. */
+LV_API void lv_dof3_config_default(lv_dof3_config *cfg);
+
+typedef struct lv_dof3 lv_dof3;
+
+/* Checks `cfg` and builds the model. LV_ERR_INPUT names the offending field and value
+ * (negative mass, throttle outside an engine's limits, a table without the axis or
+ * output it needs, ...). lv_dof3_free() when done. */
+LV_API lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err);
+LV_API void lv_dof3_free(lv_dof3 *m); /* accepts NULL */
+
+/* The model definition to pass to lv_simulate (owned by m). */
+LV_API const lv_model_def *lv_dof3_def(const lv_dof3 *m);
+/* The instance to pass to lv_simulate with it (owned by m). */
+LV_API void *lv_dof3_inst(lv_dof3 *m);
+
+/* Why the last callback failed (atmosphere or table out of range, wind, bad start
+ * parameters), "" if none; valid until the next run. */
+LV_API const char *lv_dof3_last_error(const lv_dof3 *m);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,931 @@
+/* dof3.c - 3-DoF variable-mass point over a rotating planet, integrated in ECI Cartesian
+ * coordinates (the paper's sec. 2.2: dm = mdot, forces G + A + T). Rotating-frame
+ * kinematics as in Stevens, Lewis & Johnson, Aircraft Control and Simulation, 3rd ed.,
+ * sec. 1.6; wind/body axes as in sec. 2.3 there. Equations: docs/models.md. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "core/vec3.h"
+#include "dynamics/orbit.h"
+#include "lvsim/lv_dof3.h"
+#include "vehicle/vehicle.h"
+
+#define LV_PI 3.14159265358979323846
+#define V_AIR_MIN 1e-6   /* m/s: below, the wind frame takes the start direction */
+#define VERTICAL_TOL 1e-9 /* sin of the angle from the vertical below which chi is undefined */
+
+/* ---- variables ------------------------------------------------------------------- */
+
+enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_MBO, P_N };
+enum { U_ALPHA, U_BETA, U_MU, U_THR, U_N }; /* inputs, in the order of P_ALPHA.. */
+
+enum {
+    O_H, O_LAT, O_LON, O_LAT_GC, O_RADIUS, O_VN, O_VE, O_VD, O_VREL, O_VINR,
+    O_FPA, O_CHI, O_FPA_I, O_CHI_I, O_MACH, O_Q, O_RHO, O_PAMB,
+    O_NAX, O_NNORM, O_NLAT, O_ACC, O_ACC_SENSED,
+    O_THRUST, O_DRAG, O_LIFT, O_SIDE, O_MDOT, O_ENGINE_ON,
+    O_ALPHA, O_BETA, O_MU, O_THR, O_DOWNRANGE,
+    O_SMA, O_ECC, O_INC, O_RAAN, O_ARGP, O_APO, O_PERI, O_N
+};
+
+static const lv_var state_tpl[LV_X3_N] = {
+    {"r_eci_x", "m", "Position, ECI x", 0.0, 1e7},
+    {"r_eci_y", "m", "Position, ECI y", 0.0, 1e7},
+    {"r_eci_z", "m", "Position, ECI z", 0.0, 1e7},
+    {"v_eci_x", "m/s", "Inertial velocity, ECI x", 0.0, 1e3},
+    {"v_eci_y", "m/s", "Inertial velocity, ECI y", 0.0, 1e3},
+    {"v_eci_z", "m/s", "Inertial velocity, ECI z", 0.0, 1e3},
+    {"m", "kg", "Vehicle mass", 1000.0, 1e3},
+};
+
+static const lv_var param_tpl[P_N] = {
+    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
+    {"start_lon", "rad", "Initial longitude", 0, 0},
+    {"start_h", "m", "Initial geodetic altitude", 0, 0},
+    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
+    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
+    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
+    {"start_time", "s", "Mission time at which the start_* values hold", 0, 0},
+    {"alpha", "rad", "Angle of attack (constant input)", 0, 0},
+    {"beta", "rad", "Sideslip angle (constant input)", 0, 0},
+    {"mu", "rad", "Bank angle about the air-relative velocity (constant input)", 0, 0},
+    {"throttle", "", "Throttle c_s (constant input)", 1, 0},
+    {"m_burnout", "kg", "Mass at propellant depletion: burnout event", 0, 0},
+};
+
+static const lv_var output_vars[O_N] = {
+    {"h", "m", "Geodetic altitude", 0, 0},
+    {"lat", "rad", "Geodetic latitude", 0, 0},
+    {"lon", "rad", "Longitude (eq. 1)", 0, 0},
+    {"lat_gc", "rad", "Geocentric latitude (eq. 1)", 0, 0},
+    {"radius", "m", "Distance from the planet's centre (eq. 1)", 0, 0},
+    {"v_north", "m/s", "Velocity relative to the planet, north (NED; eq. 1)", 0, 0},
+    {"v_east", "m/s", "Velocity relative to the planet, east (NED; eq. 1)", 0, 0},
+    {"v_down", "m/s", "Velocity relative to the planet, down (NED; eq. 1)", 0, 0},
+    {"v_rel", "m/s", "Speed relative to the rotating planet", 0, 0},
+    {"v_inertial", "m/s", "Inertial speed", 0, 0},
+    {"fpa", "rad", "Flight-path angle of the relative velocity, up positive", 0, 0},
+    {"heading", "rad", "Heading of the relative velocity, from north to east", 0, 0},
+    {"fpa_inertial", "rad", "Flight-path angle of the inertial velocity", 0, 0},
+    {"heading_inertial", "rad", "Heading of the inertial velocity", 0, 0},
+    {"mach", "", "Mach number of the air-relative velocity", 0, 0},
+    {"q_dyn", "Pa", "Dynamic pressure rho V_air^2 / 2", 0, 0},
+    {"rho", "kg/m3", "Air density", 0, 0},
+    {"p_amb", "Pa", "Ambient pressure", 0, 0},
+    {"n_axial", "", "Axial load factor: specific force along body x / g0", 0, 0},
+    {"n_normal", "", "Normal load factor: specific force along body -z / g0", 0, 0},
+    {"n_lateral", "", "Lateral load factor: specific force along body y / g0", 0, 0},
+    {"accel", "m/s2", "Magnitude of the inertial acceleration (gravity included)", 0, 0},
+    {"accel_sensed", "m/s2", "Magnitude of the specific force (thrust + aero) / m", 0, 0},
+    {"thrust", "N", "Net thrust of all engines", 0, 0},
+    {"drag", "N", "Drag: aerodynamic force opposite the air-relative velocity", 0, 0},
+    {"lift", "N", "Lift: aerodynamic force along wind -z", 0, 0},
+    {"side_force", "N", "Aerodynamic force along wind +y", 0, 0},
+    {"mdot", "kg/s", "Propellant mass flow of all engines (-dm/dt)", 0, 0},
+    {"engine_on", "", "1 while the engines burn", 0, 0},
+    {"alpha_in", "rad", "Angle of attack in effect (parameter or table)", 0, 0},
+    {"beta_in", "rad", "Sideslip angle in effect", 0, 0},
+    {"mu_in", "rad", "Bank angle in effect", 0, 0},
+    {"throttle_in", "", "Commanded throttle in effect (before engine limits)", 0, 0},
+    {"downrange", "m", "Great-circle distance from the start point on the sphere of radius a", 0,
+     0},
+    {"sma", "m", "Osculating semi-major axis", 0, 0},
+    {"ecc", "", "Osculating eccentricity", 0, 0},
+    {"inc", "rad", "Osculating inclination", 0, 0},
+    {"raan", "rad", "Osculating right ascension of the ascending node (ECI)", 0, 0},
+    {"argp", "rad", "Osculating argument of periapsis", 0, 0},
+    {"apo_alt", "m", "Apoapsis radius minus the equatorial radius a", 0, 0},
+    {"peri_alt", "m", "Periapsis radius minus the equatorial radius a", 0, 0},
+};
+
+static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
+
+static const struct {
+    const char *name, *description;
+} end_info[] = {
+    {"", ""},
+    {"altitude", "Geodetic altitude crosses the configured value"},
+    {"speed_rel", "Speed relative to the rotating planet crosses the configured value"},
+    {"speed_inertial", "Inertial speed crosses the configured value"},
+    {"apogee", "Radial velocity falls through zero"},
+    {"impact", "Geodetic altitude falls through the configured ground level"},
+};
+
+/* ---- model data -------------------------------------------------------------------- */
+
+#define EVENT_NAME_MAX 48
+
+typedef struct dof3_inst {
+    lv_dof3 *m;           /* NULL in a block lv_simulate zeroed itself */
+    int engines_on;       /* mode: 1 while propellant remains */
+    lv_table_cursor in_cur;
+    double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
+    double ang[3];        /* alpha, beta, mu of the cached cosines and sines (NaN: none) */
+    double ang_cs[3][2];  /* cos, sin of ang[] */
+    char msg[LV_ERR_MSG_MAX];
+} dof3_inst;
+
+struct lv_dof3 {
+    lv_model_def def;
+    char name[64];
+    lv_var states[LV_X3_N];
+    lv_var params[P_N];
+    size_t n_ends;
+    lv_dof3_end *ends;           /* [n_ends], names point into event_names */
+    lv_event_def *events;        /* [1 + n_ends] */
+    char (*event_names)[EVENT_NAME_MAX];
+
+    lv_planet planet;
+    const lv_gravity *grav;
+    double *grav_ws;
+    double gm;                   /* m^3/s^2, of the gravity model (osculating elements) */
+    double e2;                   /* first eccentricity squared of the ellipsoid */
+    double b;                    /* m, polar radius */
+    const lv_atmo_model *atmo_model; /* NULL: vacuum */
+    const void *atmo_par;
+    lv_wind_fn wind;
+    void *wind_user;
+
+    size_t n_eng;
+    lv_engine *eng;
+    double *eng_buf;             /* scratch for engine tables */
+    int has_aero;
+    lv_aero aero;
+    const lv_table *inputs;
+    int in_k[U_N];               /* output index in `inputs`, or -1: parameter */
+    double *in_buf;
+    int stop_at_burnout;
+
+    dof3_inst inst;
+};
+
+/* Everything the right-hand side and the outputs derive from (t, x, p). */
+typedef struct dof3_point {
+    double c_th, s_th;           /* ECI -> ECEF rotation angle */
+    lv_vec3 r_ecef, v_rel;       /* ECEF position and velocity relative to the planet */
+    double lat, lon, h;          /* geodetic */
+    lv_vec3 n_ax, e_ax, d_ax;    /* NED axes, ECEF components */
+    double u[U_N];               /* alpha, beta, mu, throttle in effect */
+    double cs[3][2];             /* cos, sin of alpha, beta, mu */
+    double rho, p_amb, a_sound;  /* kg/m^3, Pa, m/s */
+    lv_vec3 v_air;               /* air-relative velocity, ECEF */
+    double v_air_n, mach, q;     /* m/s, -, Pa */
+    lv_vec3 xw, yw, zw;          /* wind axes, ECEF components */
+    lv_vec3 xb, yb, zb;          /* body axes, ECEF components */
+    double coef[3];
+    double thrust, mdot;         /* N, kg/s */
+    lv_vec3 f_aero, f_sum;       /* N, ECEF */
+    lv_vec3 g_ecef;              /* m/s^2 */
+    lv_vec3 a_eci;               /* m/s^2 */
+} dof3_point;
+
+/* ---- kinematics ------------------------------------------------------------------- */
+
+/* ECI -> ECEF: r_ecef = R3(theta) r_eci; v_rel = R3(theta) (v_eci - w x r_eci). */
+static void to_ecef(const lv_dof3 *m, double t, const double *x, dof3_point *pt)
+{
+    const double th = m->planet.theta0 + m->planet.omega * t, w = m->planet.omega;
+    const double c = cos(th), s = sin(th);
+    const double rx = x[LV_X3_RX], ry = x[LV_X3_RY], rz = x[LV_X3_RZ];
+    const double vx = x[LV_X3_VX] + w * ry, vy = x[LV_X3_VY] - w * rx, vz = x[LV_X3_VZ];
+    pt->c_th = c;
+    pt->s_th = s;
+    pt->r_ecef = lv_v3(c * rx + s * ry, -s * rx + c * ry, rz);
+    pt->v_rel = lv_v3(c * vx + s * vy, -s * vx + c * vy, vz);
+}
+
+/* Geodetic altitude and the NED axes at pt->r_ecef (latitude and longitude too if
+ * `exact` or `angles`). The right-hand side and the event functions use one step of Bowring's
+ * iteration from the parametric latitude (Bowring, "Transformation from spatial to
+ * geographical coordinates", Survey Review 23 (1976) 323-327), without trigonometric
+ * calls: against the exact lv_frames_ecef_to_geodetic, h is within 2.5e-9 m and the
+ * latitude (NED axes) within 1.3e-9 rad from -5 km to 1250 km on the Earth, within
+ * 1.5e-8 m and 8.4e-9 rad up to geostationary altitude (checked on a 181 x 60 grid).
+ * The outputs (`exact`) use lv_frames_ecef_to_geodetic itself. */
+static void geodetic(const lv_dof3 *m, dof3_point *pt, int exact, int angles)
+{
+    const double a = m->planet.a, b = m->b, e2 = m->e2, ep2 = e2 / (1.0 - e2);
+    const double x = pt->r_ecef.x, y = pt->r_ecef.y, z = pt->r_ecef.z;
+    const double w = sqrt(x * x + y * y);
+    const double co = w > 0.0 ? x / w : 1.0, so = w > 0.0 ? y / w : 0.0;
+    const double hb = sqrt(b * w * b * w + a * z * a * z);
+    double cl, sl;
+    if (exact || !(hb > 0.0)) {
+        const double r[3] = {x, y, z};
+        lv_frames_ecef_to_geodetic(&m->planet, r, &pt->lat, &pt->lon, &pt->h);
+        cl = cos(pt->lat);
+        sl = sin(pt->lat);
+    } else {
+        const double cb = b * w / hb, sb = a * z / hb; /* parametric latitude */
+        const double num = z + ep2 * b * sb * sb * sb, den = w - e2 * a * cb * cb * cb;
+        const double hy = sqrt(num * num + den * den);
+        sl = num / hy;
+        cl = den / hy;
+        pt->h = w * cl + z * sl - a * sqrt(1.0 - e2 * sl * sl); /* along the normal */
+        pt->lat = angles ? atan2(sl, cl) : NAN; /* for the wind only */
+        pt->lon = angles ? atan2(y, x) : NAN;
+    }
+    pt->n_ax = lv_v3(-sl * co, -sl * so, cl);
+    pt->e_ax = lv_v3(-so, co, 0.0);
+    pt->d_ax = lv_v3(-cl * co, -cl * so, -sl);
+}
+
+static lv_vec3 from_ned(const dof3_point *pt, double n, double e, double d)
+{
+    return lv_v3_add(lv_v3_add(lv_v3_scale(pt->n_ax, n), lv_v3_scale(pt->e_ax, e)),
+                     lv_v3_scale(pt->d_ax, d));
+}
+
+/* Wind axes: x_w along the air-relative velocity; z_w in the vertical plane through it,
+ * downwards, for mu = 0, i.e. C_wind_ned = R1(mu) R2(gamma_a) R3(chi_a); then the bank mu
+ * about x_w. Degenerate cases take the start direction (docs/models.md). */
+static void wind_axes(const double *p, dof3_point *pt)
+{
+    if (pt->v_air_n > V_AIR_MIN) {
+        pt->xw = lv_v3_scale(pt->v_air, 1.0 / pt->v_air_n);
+    } else {
+        const double cg = cos(p[P_FPA]), sg = sin(p[P_FPA]);
+        pt->xw = from_ned(pt, cg * cos(p[P_CHI]), cg * sin(p[P_CHI]), -sg);
+    }
+    const double dx = lv_v3_dot(pt->d_ax, pt->xw);
+    lv_vec3 z0 = lv_v3_sub(pt->d_ax, lv_v3_scale(pt->xw, dx));
+    const double zn = lv_v3_norm(z0);
+    if (zn > VERTICAL_TOL)
+        z0 = lv_v3_scale(z0, 1.0 / zn);
+    else /* straight up or down: the heading of the start direction gives the vertical plane */
+        z0 = lv_v3_scale(from_ned(pt, cos(p[P_CHI]), sin(p[P_CHI]), 0.0), -dx);
+    const lv_vec3 y0 = lv_v3_cross(z0, pt->xw);
+    const double cm = pt->cs[U_MU][0], sm = pt->cs[U_MU][1];
+    pt->yw = lv_v3_add(lv_v3_scale(y0, cm), lv_v3_scale(z0, sm));
+    pt->zw = lv_v3_sub(lv_v3_scale(z0, cm), lv_v3_scale(y0, sm));
+}
+
+/* Body axes from wind axes: C_body_wind = R2(alpha) R3(-beta). */
+static void body_axes(dof3_point *pt, double ca, double sa, double cb, double sb)
+{
+    pt->xb = lv_v3_add(lv_v3_scale(pt->xw, ca * cb),
+                       lv_v3_sub(lv_v3_scale(pt->yw, -ca * sb), lv_v3_scale(pt->zw, sa)));
+    pt->yb = lv_v3_add(lv_v3_scale(pt->xw, sb), lv_v3_scale(pt->yw, cb));
+    pt->zb = lv_v3_add(lv_v3_scale(pt->xw, sa * cb),
+                       lv_v3_add(lv_v3_scale(pt->yw, -sa * sb), lv_v3_scale(pt->zw, ca)));
+}
+
+/* ---- the point model ----------------------------------------------------------------- */
+
+/* Fills *pt from (t, x, p); `full` (outputs): the exact geodetic conversion. Returns 0, > 0 (state not acceptable) or < 0 (stop); err
+ * (may be NULL, as in the hot path) receives the reason. */
+static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const double *p,
+                      int full, dof3_point *pt, lv_err *err)
+{
+    const double mass = x[LV_X3_M];
+    if (!(mass > 0.0)) {
+        if (err)
+            lv_fail(err, LV_ERR_INPUT, "mass %g kg is not positive at t = %.9g s", mass, t);
+        return 1;
+    }
+    to_ecef(m, t, x, pt);
+    geodetic(m, pt, full, m->wind != NULL);
+
+    /* inputs: parameters, replaced by the control table's columns */
+    for (int k = 0; k < U_N; k++)
+        pt->u[k] = p[P_ALPHA + k];
+    if (m->inputs != NULL) {
+        if (lv_table_eval1(m->inputs, &s->in_cur, t, m->in_buf, err) != LV_OK) {
+            if (err)
+                lv_fail_prefix(err, LV_ERR_INPUT, "inputs");
+            return 1;
+        }
+        for (int k = 0; k < U_N; k++)
+            if (m->in_k[k] >= 0)
+                pt->u[k] = m->in_buf[m->in_k[k]];
+    }
+
+    /* atmosphere (above its range: vacuum with the top layer's speed of sound) */
+    pt->rho = pt->p_amb = 0.0;
+    pt->a_sound = 1.0;
+    if (m->atmo_model != NULL) {
+        if (!(pt->h >= LV_ATMO_ALT_MIN)) {
+            if (err)
+                lv_fail(err, LV_ERR_INPUT, "altitude %g m below the atmosphere (%g m) at t = %.9g s",
+                        pt->h, LV_ATMO_ALT_MIN, t);
+            return 1;
+        }
+        const double ha = pt->h < LV_ATMO_ALT_MAX ? pt->h : LV_ATMO_ALT_MAX;
+        lv_atmo_state as;
+        if (m->atmo_model->eval(m->atmo_par, ha, &as, err) != LV_OK)
+            return 1;
+        pt->a_sound = as.a;
+        if (pt->h <= LV_ATMO_ALT_MAX) {
+            pt->rho = as.rho;
+            pt->p_amb = as.p;
+        }
+    }
+
+    /* air-relative velocity */
+    pt->v_air = pt->v_rel;
+    if (m->wind != NULL) {
+        double w_ned[3] = {0.0, 0.0, 0.0};
+        int rc = m->wind(t, pt->h, pt->lat, pt->lon, w_ned, m->wind_user);
+        if (rc != 0) {
+            if (err)
+                lv_fail(err, LV_ERR_INPUT, "wind function returned %d at t = %.9g s", rc, t);
+            return rc;
+        }
+        pt->v_air = lv_v3_sub(pt->v_rel, from_ned(pt, w_ned[0], w_ned[1], w_ned[2]));
+    }
+    pt->v_air_n = lv_v3_norm(pt->v_air);
+    pt->mach = pt->v_air_n / pt->a_sound;
+    pt->q = 0.5 * pt->rho * pt->v_air_n * pt->v_air_n;
+
+    /* the angles change only with a control table: keep their cosines and sines */
+    for (int k = 0; k < 3; k++) {
+        if (pt->u[k] != s->ang[k]) {
+            s->ang[k] = pt->u[k];
+            s->ang_cs[k][0] = cos(pt->u[k]);
+            s->ang_cs[k][1] = sin(pt->u[k]);
+        }
+        pt->cs[k][0] = s->ang_cs[k][0];
+        pt->cs[k][1] = s->ang_cs[k][1];
+    }
+    wind_axes(p, pt);
+    const double ca = pt->cs[U_ALPHA][0], sa = pt->cs[U_ALPHA][1];
+    const double cb = pt->cs[U_BETA][0], sb = pt->cs[U_BETA][1];
+    body_axes(pt, ca, sa, cb, sb);
+
+    /* engines: thrust along body x */
+    pt->thrust = pt->mdot = 0.0;
+    if (s->engines_on) {
+        for (size_t i = 0; i < m->n_eng; i++) {
+            double f, md;
+            if (lv_engine_eval(&m->eng[i], t, pt->u[U_THR], pt->p_amb, m->eng_buf, &f, &md, err) !=
+                LV_OK)
+                return 1;
+            pt->thrust += f;
+            pt->mdot += md;
+        }
+    }
+
+    /* aerodynamics: F = q S C, only where there is air to push (q > 0) */
+    pt->coef[0] = pt->coef[1] = pt->coef[2] = 0.0;
+    pt->f_aero = lv_v3(0.0, 0.0, 0.0);
+    if (m->has_aero && pt->q > 0.0) {
+        if (lv_aero_coefs(&m->aero, pt->mach, pt->u[U_ALPHA], pt->u[U_BETA], pt->h, pt->coef,
+                          err) != LV_OK)
+            return 1;
+        double fw[3];
+        lv_aero_force_wind(&m->aero, pt->coef, pt->q * m->aero.s_ref, ca, sa, cb, sb, fw);
+        pt->f_aero = lv_v3_add(lv_v3_add(lv_v3_scale(pt->xw, fw[0]), lv_v3_scale(pt->yw, fw[1])),
+                               lv_v3_scale(pt->zw, fw[2]));
+    }
+    pt->f_sum = lv_v3_add(lv_v3_scale(pt->xb, pt->thrust), pt->f_aero);
+
+    /* gravity at the ECEF position; a = g + F/m, rotated back to ECI */
+    double r[3] = {pt->r_ecef.x, pt->r_ecef.y, pt->r_ecef.z}, g[3];
+    lv_gravity_eval(m->grav, m->grav_ws, r, g, NULL);
+    pt->g_ecef = lv_v3(g[0], g[1], g[2]);
+    const lv_vec3 a = lv_v3_add(pt->g_ecef, lv_v3_scale(pt->f_sum, 1.0 / mass));
+    pt->a_eci = lv_v3(pt->c_th * a.x - pt->s_th * a.y, pt->s_th * a.x + pt->c_th * a.y, a.z);
+    return 0;
+}
+
+/* ---- callbacks ------------------------------------------------------------------------ */
+
+static void note(dof3_inst *s, const lv_err *e)
+{
+    snprintf(s->msg, sizeof s->msg, "%s", e->msg);
+}
+
+static int dof3_rhs(double t, const double *x, const double *p, double *xdot, void *inst)
+{
+    dof3_inst *s = inst;
+    dof3_point pt;
+    int rc = point_eval(s->m, s, t, x, p, 0, &pt, NULL);
+    if (rc != 0) { /* failure path only: evaluate again to keep the reason */
+        lv_err e = {LV_OK, ""};
+        point_eval(s->m, s, t, x, p, 0, &pt, &e);
+        note(s, &e);
+        return rc;
+    }
+    xdot[LV_X3_RX] = x[LV_X3_VX];
+    xdot[LV_X3_RY] = x[LV_X3_VY];
+    xdot[LV_X3_RZ] = x[LV_X3_VZ];
+    xdot[LV_X3_VX] = pt.a_eci.x;
+    xdot[LV_X3_VY] = pt.a_eci.y;
+    xdot[LV_X3_VZ] = pt.a_eci.z;
+    xdot[LV_X3_M] = -pt.mdot; /* the paper's dm = mdot, mdot < 0 while burning */
+    return 0;
+}
+
+static int fail_inst(dof3_inst *s, const char *fmt, ...) LV_PRINTF(2, 3);
+static int fail_inst(dof3_inst *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->msg, sizeof s->msg, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* Checks the parameters a run can change by name. */
+static int check_params(dof3_inst *s, const double *p)
+{
+    const lv_dof3 *m = s->m;
+    if (!(fabs(p[P_LAT]) <= 0.5 * LV_PI))
+        return fail_inst(s, "start_lat = %g rad is outside [-pi/2, pi/2]", p[P_LAT]);
+    if (!(p[P_VEL] >= 0.0))
+        return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
+    if (!(p[P_MBO] >= 0.0))
+        return fail_inst(s, "m_burnout = %g kg is negative", p[P_MBO]);
+    if (m->in_k[U_THR] < 0)
+        for (size_t i = 0; i < m->n_eng; i++)
+            if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max)) {
+                return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
+                                 p[P_THR], m->eng[i].thr_min, m->eng[i].thr_max, m->eng[i].name);
+            }
+    return 0;
+}
+
+/* Position and velocity from the geodetic start values (the paper's userPar). */
+static int dof3_start(const double *p, double *x, void *inst)
+{
+    dof3_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1; /* not an lv_dof3 instance */
+    s->msg[0] = '\0';
+    if (check_params(s, p) != 0)
+        return -1;
+    const lv_planet *pl = &s->m->planet;
+    double r_ecef[3], v_ned[3], C[3][3], v_ecef[3], r_eci[3], v_eci[3];
+    lv_frames_geodetic_to_ecef(pl, p[P_LAT], p[P_LON], p[P_H], r_ecef);
+    lv_frames_ned_from_fpa(p[P_VEL], p[P_FPA], p[P_CHI], v_ned);
+    lv_frames_C_ned_ecef(p[P_LAT], p[P_LON], C);
+    for (int i = 0; i < 3; i++) /* v_ecef = C_ned_ecef^T v_ned */
+        v_ecef[i] = C[0][i] * v_ned[0] + C[1][i] * v_ned[1] + C[2][i] * v_ned[2];
+    lv_frames_ecef_to_eci(pl, p[P_T0], r_ecef, v_ecef, r_eci, v_eci);
+    for (int i = 0; i < 3; i++) {
+        x[LV_X3_RX + i] = r_eci[i];
+        x[LV_X3_VX + i] = v_eci[i];
+    }
+    return 0; /* the mass keeps the start value of state "m" */
+}
+
+static int dof3_init(double t0, const double *x, const double *p, void *inst)
+{
+    dof3_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    s->msg[0] = '\0';
+    if (check_params(s, p) != 0)
+        return -1;
+    if (!(x[LV_X3_M] > 0.0))
+        return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X3_M]);
+    s->engines_on = s->m->n_eng > 0 && x[LV_X3_M] > p[P_MBO];
+    for (int k = 0; k < 3; k++)
+        s->ang[k] = NAN;
+    dof3_point pt;
+    to_ecef(s->m, t0, x, &pt);
+    const double rn = lv_v3_norm(pt.r_ecef);
+    if (!(rn > 0.0))
+        return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
+    s->r0_unit[0] = pt.r_ecef.x / rn;
+    s->r0_unit[1] = pt.r_ecef.y / rn;
+    s->r0_unit[2] = pt.r_ecef.z / rn;
+    return 0;
+}
+
+static int dof3_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    const dof3_inst *s = inst;
+    const lv_dof3 *m = s->m;
+    /* burnout: disarmed (a constant) once the engines are off */
+    g[0] = s->engines_on ? x[LV_X3_M] - p[P_MBO] : 1.0;
+    if (m->n_ends == 0)
+        return 0;
+    dof3_point pt;
+    to_ecef(m, t, x, &pt);
+    int have_h = 0;
+    for (size_t i = 0; i < m->n_ends; i++) {
+        const lv_dof3_end *e = &m->ends[i];
+        double gi = 0.0;
+        switch (e->kind) {
+        case LV_DOF3_END_ALTITUDE:
+        case LV_DOF3_END_IMPACT:
+            if (!have_h) {
+                geodetic(m, &pt, 0, 0);
+                have_h = 1;
+            }
+            gi = pt.h - e->value;
+            break;
+        case LV_DOF3_END_SPEED_REL:
+            gi = lv_v3_norm(pt.v_rel) - e->value;
+            break;
+        case LV_DOF3_END_SPEED_INERTIAL:
+            gi = hypot(hypot(x[LV_X3_VX], x[LV_X3_VY]), x[LV_X3_VZ]) - e->value;
+            break;
+        case LV_DOF3_END_APOGEE: /* d|r|/dt = r.v / |r| (w x r is normal to r) */
+            gi = (x[LV_X3_RX] * x[LV_X3_VX] + x[LV_X3_RY] * x[LV_X3_VY] +
+                  x[LV_X3_RZ] * x[LV_X3_VZ]) /
+                 hypot(hypot(x[LV_X3_RX], x[LV_X3_RY]), x[LV_X3_RZ]);
+            break;
+        }
+        g[1 + i] = gi;
+    }
+    return 0;
+}
+
+static lv_event_action dof3_on_event(double t, double *x, const double *p, const int *fired,
+                                     void *inst)
+{
+    (void)t, (void)x, (void)p;
+    dof3_inst *s = inst;
+    const lv_dof3 *m = s->m;
+    lv_event_action act = LV_EVENT_CONTINUE;
+    if (fired[0]) { /* propellant gone: engines off, a new initial value problem */
+        s->engines_on = 0;
+        act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
+    }
+    for (size_t i = 0; i < m->n_ends; i++)
+        if (fired[1 + i] && m->ends[i].stop)
+            act = LV_EVENT_STOP;
+    return act;
+}
+
+static double min_d(double a, double b) { return b < a ? b : a; }
+
+static double dof3_next_time_event(double t, const double *p, void *inst)
+{
+    (void)p;
+    const lv_dof3 *m = ((const dof3_inst *)inst)->m;
+    double tn = INFINITY;
+    if (m->inputs != NULL)
+        tn = min_d(tn, lv_table_next_breakpoint(m->inputs, 0, t));
+    for (size_t i = 0; i < m->n_eng; i++)
+        if (m->eng[i].table != NULL)
+            tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
+    return tn;
+}
+
+/* Flight-path angle and heading of an ECEF vector in the local NED frame. */
+static void fpa_chi(const dof3_point *pt, lv_vec3 v, double *gamma, double *chi)
+{
+    const double ned[3] = {lv_v3_dot(v, pt->n_ax), lv_v3_dot(v, pt->e_ax),
+                           lv_v3_dot(v, pt->d_ax)};
+    lv_frames_fpa_from_ned(ned, NULL, gamma, chi);
+}
+
+static int dof3_outputs(double t, const double *x, const double *p, double *y, void *inst)
+{
+    dof3_inst *s = inst;
+    lv_dof3 *m = s->m;
+    dof3_point pt;
+    lv_err e = {LV_OK, ""};
+    int rc = point_eval(m, s, t, x, p, 1, &pt, &e);
+    if (rc != 0) {
+        note(s, &e);
+        return rc;
+    }
+    const double mass = x[LV_X3_M];
+    const lv_vec3 v_eci = {x[LV_X3_VX], x[LV_X3_VY], x[LV_X3_VZ]};
+    const lv_vec3 r_eci = {x[LV_X3_RX], x[LV_X3_RY], x[LV_X3_RZ]};
+    /* inertial velocity in ECEF axes (no w x r): for the inertial angles */
+    const lv_vec3 v_i_ecef = {pt.c_th * v_eci.x + pt.s_th * v_eci.y,
+                              -pt.s_th * v_eci.x + pt.c_th * v_eci.y, v_eci.z};
+    const lv_vec3 f_spec = lv_v3_scale(pt.f_sum, 1.0 / mass);
+
+    y[O_H] = pt.h;
+    y[O_LAT] = pt.lat;
+    y[O_LON] = pt.lon;
+    const double r[3] = {pt.r_ecef.x, pt.r_ecef.y, pt.r_ecef.z};
+    lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, &y[O_RADIUS]);
+    y[O_VN] = lv_v3_dot(pt.v_rel, pt.n_ax);
+    y[O_VE] = lv_v3_dot(pt.v_rel, pt.e_ax);
+    y[O_VD] = lv_v3_dot(pt.v_rel, pt.d_ax);
+    y[O_VREL] = lv_v3_norm(pt.v_rel);
+    y[O_VINR] = lv_v3_norm(v_eci);
+    fpa_chi(&pt, pt.v_rel, &y[O_FPA], &y[O_CHI]);
+    fpa_chi(&pt, v_i_ecef, &y[O_FPA_I], &y[O_CHI_I]);
+    y[O_MACH] = pt.mach;
+    y[O_Q] = pt.q;
+    y[O_RHO] = pt.rho;
+    y[O_PAMB] = pt.p_amb;
+    y[O_NAX] = lv_v3_dot(f_spec, pt.xb) / LV_G0;
+    y[O_NNORM] = -lv_v3_dot(f_spec, pt.zb) / LV_G0;
+    y[O_NLAT] = lv_v3_dot(f_spec, pt.yb) / LV_G0;
+    y[O_ACC] = lv_v3_norm(pt.a_eci);
+    y[O_ACC_SENSED] = lv_v3_norm(f_spec);
+    y[O_THRUST] = pt.thrust;
+    y[O_DRAG] = -lv_v3_dot(pt.f_aero, pt.xw);
+    y[O_LIFT] = -lv_v3_dot(pt.f_aero, pt.zw);
+    y[O_SIDE] = lv_v3_dot(pt.f_aero, pt.yw);
+    y[O_MDOT] = pt.mdot;
+    y[O_ENGINE_ON] = s->engines_on;
+    for (int k = 0; k < U_N; k++)
+        y[O_ALPHA + k] = pt.u[k];
+    const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
+    const double rn = lv_v3_norm(pt.r_ecef);
+    const lv_vec3 u1 = lv_v3_scale(pt.r_ecef, 1.0 / rn);
+    y[O_DOWNRANGE] = m->planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
+
+    lv_orbit_elem el;
+    const double rv[3] = {r_eci.x, r_eci.y, r_eci.z}, vv[3] = {v_eci.x, v_eci.y, v_eci.z};
+    lv_orbit_elements(m->gm, rv, vv, &el);
+    y[O_SMA] = el.a;
+    y[O_ECC] = el.e;
+    y[O_INC] = el.i;
+    y[O_RAAN] = el.raan;
+    y[O_ARGP] = el.argp;
+    y[O_APO] = el.r_apo - m->planet.a;
+    y[O_PERI] = el.r_peri - m->planet.a;
+    return 0;
+}
+
+/* ---- construction ---------------------------------------------------------------------- */
+
+void lv_dof3_config_default(lv_dof3_config *cfg)
+{
+    memset(cfg, 0, sizeof *cfg);
+    cfg->planet = lv_planet_earth();
+    cfg->m0 = 1000.0;
+    cfg->throttle = 1.0;
+}
+
+static int is_time_axis(const char *name)
+{
+    return strcmp(name, "time") == 0 || strcmp(name, "t") == 0;
+}
+
+static lv_status check_finite(const char *what, double v, const char *unit, lv_err *err)
+{
+    if (!isfinite(v))
+        return lv_fail(err, LV_ERR_INPUT, "dof3: %s = %g %s (must be finite)", what, v, unit);
+    return LV_OK;
+}
+
+static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
+{
+    for (int k = 0; k < U_N; k++)
+        m->in_k[k] = -1;
+    if (tab == NULL)
+        return LV_OK;
+    if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
+        return lv_fail(err, LV_ERR_INPUT,
+                       "dof3: input table '%s' must have exactly one axis named 'time' (has %zu, "
+                       "the first named '%s')",
+                       lv_table_name(tab), lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
+    int any = 0;
+    for (int k = 0; k < U_N; k++) {
+        size_t idx;
+        if (lv_table_out_index(tab, input_names[k], &idx, NULL) == LV_OK) {
+            m->in_k[k] = (int)idx;
+            any = 1;
+        }
+    }
+    if (!any)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "dof3: input table '%s' has none of the outputs 'alpha', 'beta', 'mu', "
+                       "'throttle' (its first output is '%s')",
+                       lv_table_name(tab), lv_table_out_name(tab, 0));
+    m->in_buf = malloc(lv_table_n_out(tab) * sizeof *m->in_buf);
+    if (m->in_buf == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    m->inputs = tab;
+    return LV_OK;
+}
+
+static lv_status setup_ends(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
+{
+    const size_t n = cfg->n_ends;
+    if (n > 0 && cfg->ends == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "dof3: n_ends = %zu but ends is NULL", n);
+    m->events = calloc(n + 1, sizeof *m->events);
+    m->event_names = calloc(n + 1, sizeof *m->event_names);
+    m->ends = calloc(n + 1, sizeof *m->ends);
+    if (!m->events || !m->event_names || !m->ends)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
+    m->events[0] = (lv_event_def){m->event_names[0],
+                                  "Propellant exhausted: m falls through m_burnout",
+                                  LV_DIR_FALLING};
+    for (size_t i = 0; i < n; i++) {
+        const lv_dof3_end *e = &cfg->ends[i];
+        if (e->kind < LV_DOF3_END_ALTITUDE || e->kind > LV_DOF3_END_IMPACT)
+            return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: unknown kind %d", i, (int)e->kind);
+        const char *nm = e->name != NULL ? e->name : end_info[e->kind].name;
+        if (nm[0] == '\0' || strlen(nm) >= EVENT_NAME_MAX)
+            return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: name '%s' is empty or longer "
+                           "than %d characters", i, nm, EVENT_NAME_MAX - 1);
+        for (size_t j = 0; j <= i; j++)
+            if (strcmp(m->event_names[j], nm) == 0)
+                return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: event name '%s' is used twice",
+                               i, nm);
+        if (!isfinite(e->value))
+            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': value %g is not finite", nm,
+                           e->value);
+        if ((e->kind == LV_DOF3_END_SPEED_REL || e->kind == LV_DOF3_END_SPEED_INERTIAL) &&
+            e->value < 0.0)
+            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': speed %g m/s is negative", nm,
+                           e->value);
+        if (e->direction < LV_DIR_FALLING || e->direction > LV_DIR_RISING)
+            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': direction %d", nm,
+                           (int)e->direction);
+        snprintf(m->event_names[i + 1], EVENT_NAME_MAX, "%s", nm);
+        m->ends[i] = *e;
+        m->ends[i].name = m->event_names[i + 1];
+        lv_dir dir = e->direction;
+        if (e->kind == LV_DOF3_END_APOGEE || e->kind == LV_DOF3_END_IMPACT)
+            dir = LV_DIR_FALLING;
+        m->events[i + 1] =
+            (lv_event_def){m->event_names[i + 1], end_info[e->kind].description, dir};
+    }
+    m->n_ends = n;
+    return LV_OK;
+}
+
+lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
+{
+    *out = NULL;
+    lv_status st;
+    lv_dof3 *m = calloc(1, sizeof *m);
+    if (m == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "dof3");
+
+    /* masses and start values */
+    if (!isfinite(cfg->m0) || !(cfg->m0 > 0.0)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: start mass m0 = %g kg (must be > 0)", cfg->m0);
+        goto fail;
+    }
+    if (!isfinite(cfg->m_burnout) || cfg->m_burnout < 0.0) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: m_burnout = %g kg (must be >= 0)", cfg->m_burnout);
+        goto fail;
+    }
+    if ((st = check_finite("start_lon", cfg->start_lon, "rad", err)) != LV_OK ||
+        (st = check_finite("start_h", cfg->start_h, "m", err)) != LV_OK ||
+        (st = check_finite("start_fpa", cfg->start_fpa, "rad", err)) != LV_OK ||
+        (st = check_finite("start_chi", cfg->start_chi, "rad", err)) != LV_OK ||
+        (st = check_finite("start_time", cfg->start_time, "s", err)) != LV_OK ||
+        (st = check_finite("alpha", cfg->alpha, "rad", err)) != LV_OK ||
+        (st = check_finite("beta", cfg->beta, "rad", err)) != LV_OK ||
+        (st = check_finite("mu", cfg->mu, "rad", err)) != LV_OK)
+        goto fail;
+    if (!(fabs(cfg->start_lat) <= 0.5 * LV_PI)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: start_lat = %g rad (must be in [-pi/2, pi/2])",
+                     cfg->start_lat);
+        goto fail;
+    }
+    if (!isfinite(cfg->start_vel) || cfg->start_vel < 0.0) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: start_vel = %g m/s (must be >= 0)",
+                     cfg->start_vel);
+        goto fail;
+    }
+
+    /* environment */
+    if ((st = lv_planet_check(&cfg->planet, err)) != LV_OK) {
+        lv_fail_prefix(err, st, "dof3");
+        goto fail;
+    }
+    m->planet = cfg->planet;
+    m->e2 = lv_planet_e2(&m->planet);
+    m->b = lv_planet_b(&m->planet);
+    if (cfg->gravity == NULL) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: no gravity model (gravity is NULL)");
+        goto fail;
+    }
+    m->grav = cfg->gravity;
+    lv_gravity_info gi;
+    lv_gravity_info_get(m->grav, &gi);
+    m->gm = gi.gm;
+    const size_t nws = lv_gravity_ws_size(m->grav);
+    m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
+    if (m->grav_ws == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    if (cfg->atmo != NULL) {
+        m->atmo_model = lv_atmo_model_of(cfg->atmo);
+        m->atmo_par = lv_atmo_par(cfg->atmo);
+    }
+    m->wind = cfg->wind;
+    m->wind_user = cfg->wind_user;
+
+    /* vehicle */
+    if (cfg->n_engines > 0) {
+        if (cfg->engines == NULL) {
+            st = lv_fail(err, LV_ERR_INPUT, "dof3: n_engines = %zu but engines is NULL",
+                         cfg->n_engines);
+            goto fail;
+        }
+        m->eng = calloc(cfg->n_engines, sizeof *m->eng);
+        if (m->eng == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+        size_t nbuf = 1;
+        for (size_t i = 0; i < cfg->n_engines; i++) {
+            if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
+                goto fail;
+            m->n_eng = i + 1;
+            if (m->eng[i].n_out > nbuf)
+                nbuf = m->eng[i].n_out;
+        }
+        m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
+        if (m->eng_buf == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+    }
+    if (cfg->aero != NULL) {
+        if ((st = lv_aero_init(&m->aero, cfg->aero, err)) != LV_OK) {
+            lv_fail_prefix(err, st, "dof3");
+            goto fail;
+        }
+        m->has_aero = 1;
+    }
+    if ((st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
+        goto fail;
+    if (m->in_k[U_THR] < 0) { /* a constant throttle must lie within every engine's limits */
+        for (size_t i = 0; i < m->n_eng; i++) {
+            if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
+                st = lv_fail(err, LV_ERR_INPUT,
+                             "dof3: throttle = %g is outside the limits [%g, %g] of engine '%s'",
+                             cfg->throttle, m->eng[i].thr_min, m->eng[i].thr_max,
+                             m->eng[i].name);
+                goto fail;
+            }
+        }
+    }
+    if (!isfinite(cfg->throttle)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: throttle = %g (must be finite)", cfg->throttle);
+        goto fail;
+    }
+    m->stop_at_burnout = cfg->stop_at_burnout != 0;
+    if ((st = setup_ends(m, cfg, err)) != LV_OK)
+        goto fail;
+
+    /* variables with this configuration's defaults */
+    memcpy(m->states, state_tpl, sizeof m->states);
+    m->states[LV_X3_M].start = cfg->m0;
+    m->states[LV_X3_M].nominal = cfg->m0;
+    memcpy(m->params, param_tpl, sizeof m->params);
+    const double pv[P_N] = {cfg->start_lat, cfg->start_lon, cfg->start_h, cfg->start_vel,
+                            cfg->start_fpa, cfg->start_chi, cfg->start_time, cfg->alpha,
+                            cfg->beta,      cfg->mu,        cfg->throttle, cfg->m_burnout};
+    for (int i = 0; i < P_N; i++)
+        m->params[i].start = pv[i];
+
+    m->def = (lv_model_def){
+        .name = m->name,
+        .description = "3-DoF variable-mass point over a rotating planet, ECI states",
+        .n_states = LV_X3_N,
+        .n_params = P_N,
+        .n_outputs = O_N,
+        .n_events = 1 + m->n_ends,
+        .states = m->states,
+        .params = m->params,
+        .outputs = output_vars,
+        .events = m->events,
+        .inst_size = sizeof(dof3_inst),
+        .start = dof3_start,
+        .init = dof3_init,
+        .rhs = dof3_rhs,
+        .event_g = dof3_g,
+        .on_event = dof3_on_event,
+        .next_time_event = dof3_next_time_event,
+        .outputs_fn = dof3_outputs,
+    };
+    m->inst.m = m;
+    for (int k = 0; k < 3; k++)
+        m->inst.ang[k] = NAN;
+    if ((st = lv_model_validate(&m->def, err)) != LV_OK)
+        goto fail;
+    *out = m;
+    return LV_OK;
+fail:
+    lv_dof3_free(m);
+    return st;
+}
+
+void lv_dof3_free(lv_dof3 *m)
+{
+    if (m == NULL)
+        return;
+    lv_aero_clear(&m->aero);
+    free(m->eng);
+    free(m->eng_buf);
+    free(m->in_buf);
+    free(m->grav_ws);
+    free(m->events);
+    free(m->event_names);
+    free(m->ends);
+    free(m);
+}
+
+const lv_model_def *lv_dof3_def(const lv_dof3 *m) { return &m->def; }
+
+void *lv_dof3_inst(lv_dof3 *m) { return &m->inst; }
+
+const char *lv_dof3_last_error(const lv_dof3 *m) { return m->inst.msg; }

@@ -1,0 +1,3 @@
+list(APPEND LV_SOURCES
+  src/dynamics/dof3.c
+  src/dynamics/orbit.c)

@@ -1,0 +1,1356 @@
+/* parse.c - mission files (YAML) to lv_mission_def. Keys, types, units, names, references,
+ * tables and the phase tree are validated before anything runs; every error reads
+ * "file:line:column: message". Format: docs/mission-format.md. The shared parameter set is
+ * the paper's userPar (sec. 2.1), the phase tree its sequential simulation (sec. 3). */
+#define _POSIX_C_SOURCE 200809L /* stat() */
+
+#include "mission/mission.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/names.h"
+#include "core/status.h"
+#include "core/units.h"
+#include "mission/yaml_tree.h"
+
+#define LV_NAME_MAX 64 /* stage, engine and phase names: [A-Za-z0-9_-], engines also '.' */
+#define LV_WHAT_MAX 160
+
+typedef struct pctx {
+    const char *file; /* the mission file, for messages */
+    lv_err *err;
+    lv_mission_def *m;
+} pctx;
+
+/* ---- messages ------------------------------------------------------------------------- */
+
+static lv_status perr(const pctx *c, const lv_ynode *at, const char *fmt, ...) LV_PRINTF(3, 4);
+static lv_status perr(const pctx *c, const lv_ynode *at, const char *fmt, ...)
+{
+    char msg[LV_ERR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: %s", c->file, at->line, at->col, msg);
+}
+
+static lv_status nomem(const pctx *c)
+{
+    return lv_fail(c->err, LV_ERR_NOMEM, "%s: out of memory", c->file);
+}
+
+/* "a mapping", "a list", "nothing", "'text'" or "the string \"text\"" for messages. */
+static const char *describe(const lv_ynode *n, char *buf, size_t cap)
+{
+    if (n->kind == LV_YNODE_MAP)
+        return "a mapping";
+    if (n->kind == LV_YNODE_SEQ)
+        return "a list";
+    if (lv_yaml_is_null(n))
+        return "nothing";
+    snprintf(buf, cap, n->plain ? "'%.40s'" : "the string \"%.40s\"", n->text);
+    return buf;
+}
+
+static char *dup_text(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d != NULL)
+        memcpy(d, s, n);
+    return d;
+}
+
+/* ---- mappings ------------------------------------------------------------------------- */
+
+static const lv_ynode *map_key(const lv_ynode *map, const char *key)
+{
+    if (map == NULL || map->kind != LV_YNODE_MAP)
+        return NULL;
+    for (size_t i = 0; i + 1 < map->n; i += 2)
+        if (strcmp(map->kids[i]->text, key) == 0)
+            return map->kids[i];
+    return NULL;
+}
+
+static const lv_ynode *map_get(const lv_ynode *map, const char *key)
+{
+    if (map == NULL || map->kind != LV_YNODE_MAP)
+        return NULL;
+    for (size_t i = 0; i + 1 < map->n; i += 2)
+        if (strcmp(map->kids[i]->text, key) == 0)
+            return map->kids[i + 1];
+    return NULL;
+}
+
+/* `n` must be a mapping without duplicate keys; with `known` (NULL-terminated), only those
+ * keys. `what` names the object ("stage 'stage1'"). */
+static lv_status check_map(const pctx *c, const lv_ynode *n, const char *what,
+                           const char *const *known)
+{
+    char buf[64];
+    if (n->kind != LV_YNODE_MAP)
+        return perr(c, n, "%s: a mapping (key: value) expected, found %s", what,
+                    describe(n, buf, sizeof buf));
+    for (size_t i = 0; i + 1 < n->n; i += 2) {
+        const lv_ynode *k = n->kids[i];
+        if (strlen(k->text) != k->len)
+            return perr(c, k, "%s: key contains a NUL character", what);
+        if (known != NULL) {
+            size_t j = 0;
+            while (known[j] != NULL && strcmp(known[j], k->text) != 0)
+                j++;
+            if (known[j] == NULL) {
+                lv_suggest s;
+                char hint[192];
+                lv_suggest_init(&s, k->text);
+                for (j = 0; known[j] != NULL; j++)
+                    lv_suggest_add(&s, known[j]);
+                lv_suggest_text(&s, hint, sizeof hint);
+                return perr(c, k, "%s: unknown key '%.60s'%s", what, k->text, hint);
+            }
+        }
+        for (size_t j = 0; j < i; j += 2)
+            if (strcmp(n->kids[j]->text, k->text) == 0)
+                return perr(c, k, "%s: duplicate key '%.60s' (first at line %d)", what, k->text,
+                            n->kids[j]->line);
+    }
+    return LV_OK;
+}
+
+/* The value of a required key: present and not empty. */
+static lv_status need(const pctx *c, const lv_ynode *map, const char *what, const char *key,
+                      const lv_ynode **out)
+{
+    const lv_ynode *v = map_get(map, key);
+    *out = v;
+    if (v == NULL)
+        return perr(c, map, "%s: missing required key '%s'", what, key);
+    if (lv_yaml_is_null(v))
+        return perr(c, v, "%s: '%s' has no value", what, key);
+    return LV_OK;
+}
+
+/* ---- scalars -------------------------------------------------------------------------- */
+
+static int is_nonfinite_word(const char *s)
+{
+    static const char *const words[] = { ".inf", ".Inf", ".INF", ".nan", ".NaN", ".NAN" };
+    if (*s == '+' || *s == '-')
+        s++;
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+        if (strcmp(s, words[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* A finite number written as a plain scalar. */
+static lv_status get_num(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+                         double *out)
+{
+    char buf[64];
+    if (v->kind != LV_YNODE_SCALAR || !v->plain || lv_yaml_is_null(v))
+        return perr(c, v, "%s: %s: number expected, found %s", what, key,
+                    describe(v, buf, sizeof buf));
+    if (is_nonfinite_word(v->text))
+        return perr(c, v, "%s: %s: non-finite number '%s'", what, key, v->text);
+    char *end = NULL;
+    errno = 0;
+    const double x = strtod(v->text, &end);
+    if (end == v->text || *end != '\0' || end != v->text + v->len)
+        return perr(c, v, "%s: %s: number expected, found %s", what, key,
+                    describe(v, buf, sizeof buf));
+    if (!isfinite(x) || (errno == ERANGE && fabs(x) > 1.0))
+        return perr(c, v, "%s: %s: non-finite number '%.40s'", what, key, v->text);
+    *out = x;
+    return LV_OK;
+}
+
+static lv_status get_int(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+                         int min, int *out)
+{
+    double x;
+    lv_status st = get_num(c, v, what, key, &x);
+    if (st != LV_OK)
+        return st;
+    if (x != floor(x) || x < (double)min || x > (double)INT_MAX)
+        return perr(c, v, "%s: %s: an integer >= %d expected, found %.40s", what, key, min,
+                    v->text);
+    *out = (int)x;
+    return LV_OK;
+}
+
+/* A non-empty string (plain or quoted scalar) without NUL characters; *out borrows v. */
+static lv_status get_text(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+                          const char **out)
+{
+    char buf[64];
+    if (v->kind != LV_YNODE_SCALAR || lv_yaml_is_null(v) || v->len == 0)
+        return perr(c, v, "%s: %s: a name or text expected, found %s", what, key,
+                    describe(v, buf, sizeof buf));
+    if (strlen(v->text) != v->len)
+        return perr(c, v, "%s: %s: contains a NUL character", what, key);
+    *out = v->text;
+    return LV_OK;
+}
+
+static lv_status get_str(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+                         char **out)
+{
+    const char *s;
+    lv_status st = get_text(c, v, what, key, &s);
+    if (st != LV_OK)
+        return st;
+    *out = dup_text(s);
+    return *out != NULL ? LV_OK : nomem(c);
+}
+
+/* One of `allowed` (NULL-terminated); *idx is its index. */
+static lv_status get_enum(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+                          const char *const *allowed, size_t *idx)
+{
+    const char *s;
+    lv_status st = get_text(c, v, what, key, &s);
+    if (st != LV_OK)
+        return st;
+    char list[160] = "";
+    size_t used = 0;
+    lv_suggest sug;
+    lv_suggest_init(&sug, s);
+    for (size_t i = 0; allowed[i] != NULL; i++) {
+        if (strcmp(s, allowed[i]) == 0) {
+            *idx = i;
+            return LV_OK;
+        }
+        lv_suggest_add(&sug, allowed[i]);
+        if (used < sizeof list)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
+                                     allowed[i]);
+    }
+    char hint[192];
+    lv_suggest_text(&sug, hint, sizeof hint);
+    return perr(c, v, "%s: %s: unknown value '%.40s'%s (expected one of: %s)", what, key, s,
+                hint, list);
+}
+
+static int valid_name(const char *s, int allow_dot)
+{
+    size_t n = 0;
+    for (; s[n] != '\0'; n++) {
+        const char ch = s[n];
+        const int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                       (ch >= '0' && ch <= '9') || ch == '_' || ch == '-' ||
+                       (allow_dot && ch == '.');
+        if (!ok)
+            return 0;
+    }
+    return n > 0 && n <= LV_NAME_MAX;
+}
+
+static lv_status get_name(const pctx *c, const lv_ynode *v, const char *what, int allow_dot,
+                          char **out)
+{
+    const char *s;
+    lv_status st = get_text(c, v, what, "name", &s);
+    if (st != LV_OK)
+        return st;
+    if (!valid_name(s, allow_dot))
+        return perr(c, v, "%s: name '%.40s' must be 1 to %d letters, digits, '_' or '-'%s", what,
+                    s, LV_NAME_MAX, allow_dot ? " or '.'" : "");
+    *out = dup_text(s);
+    return *out != NULL ? LV_OK : nomem(c);
+}
+
+/* "stage 'stage1'" when the item has a usable name, else "stage #2" (1-based). */
+static void label(const lv_ynode *item, const char *kind, size_t k, char *buf, size_t cap)
+{
+    const lv_ynode *nm = map_get(item, "name");
+    if (nm != NULL && nm->kind == LV_YNODE_SCALAR && nm->len > 0 && !lv_yaml_is_null(nm) &&
+        strlen(nm->text) == nm->len && nm->len <= LV_NAME_MAX)
+        snprintf(buf, cap, "%s '%s'", kind, nm->text);
+    else
+        snprintf(buf, cap, "%s #%zu", kind, k + 1);
+}
+
+static lv_src_loc loc_of(const lv_ynode *n)
+{
+    lv_src_loc l = { n->line, n->col };
+    return l;
+}
+
+/* ---- environment ---------------------------------------------------------------------- */
+
+static lv_status parse_env(const pctx *c, const lv_ynode *n)
+{
+    static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere", NULL };
+    static const char *const worlds[] = { "flat", "planet", NULL };
+    static const char *const planets[] = { "earth", "moon", "mars", NULL };
+    static const char *const atmos[] = { "us76", "exp", "none", NULL };
+    const char *what = "environment";
+    lv_env_def *e = &c->m->env;
+    const lv_ynode *v;
+    size_t i = 0;
+    lv_status st;
+
+    e->world = LV_WORLD_FLAT;
+    if (n != NULL && !lv_yaml_is_null(n)) {
+        st = check_map(c, n, what, keys);
+        if (st != LV_OK)
+            return st;
+        e->loc = loc_of(n);
+        if ((v = map_get(n, "world")) != NULL) {
+            st = get_enum(c, v, what, "world", worlds, &i);
+            if (st != LV_OK)
+                return st;
+            e->world = i == 0 ? LV_WORLD_FLAT : LV_WORLD_PLANET;
+        }
+    } else {
+        n = NULL;
+    }
+    const int flat = e->world == LV_WORLD_FLAT;
+
+    e->g = flat ? 9.81 : 0.0;
+    if ((v = map_get(n, "g")) != NULL) {
+        if (!flat)
+            return perr(c, map_key(n, "g"), "%s: 'g' applies to world: flat only (a planet "
+                        "world takes its gravity from 'planet' and 'gravity')", what);
+        st = get_num(c, v, what, "g", &e->g);
+        if (st != LV_OK)
+            return st;
+        if (!(e->g > 0.0))
+            return perr(c, v, "%s: g must be > 0 m/s^2, found %g", what, e->g);
+    }
+    const char *pkeys[] = { "planet", "gravity" };
+    for (size_t k = 0; k < 2; k++)
+        if (flat && map_get(n, pkeys[k]) != NULL)
+            return perr(c, map_key(n, pkeys[k]), "%s: '%s' applies to world: planet only",
+                        what, pkeys[k]);
+
+    if (!flat) {
+        i = 0;
+        if ((v = map_get(n, "planet")) != NULL && (st = get_enum(c, v, what, "planet", planets,
+                                                                 &i)) != LV_OK)
+            return st;
+        e->planet = dup_text(planets[i]);
+        if ((v = map_get(n, "gravity")) != NULL) {
+            if ((st = get_str(c, v, what, "gravity", &e->gravity)) != LV_OK)
+                return st;
+        } else {
+            e->gravity = dup_text("j2");
+        }
+        if (e->planet == NULL || e->gravity == NULL)
+            return nomem(c);
+    }
+    /* US76 is an Earth atmosphere: other planets have none unless the file asks. */
+    i = (!flat && strcmp(e->planet, "earth") == 0) ? 0 : 2;
+    if ((v = map_get(n, "atmosphere")) != NULL &&
+        (st = get_enum(c, v, what, "atmosphere", atmos, &i)) != LV_OK)
+        return st;
+    e->atmosphere = dup_text(atmos[i]);
+    return e->atmosphere != NULL ? LV_OK : nomem(c);
+}
+
+/* ---- engine tables -------------------------------------------------------------------- */
+
+static int ends_with_mat(const char *s)
+{
+    const size_t n = strlen(s);
+    return n > 4 && (strcmp(s + n - 4, ".mat") == 0 || strcmp(s + n - 4, ".MAT") == 0);
+}
+
+/* `rel` against the mission's directory, unless absolute. */
+static char *resolve_path(const char *dir, const char *rel)
+{
+    if (rel[0] == '/' || dir == NULL || dir[0] == '\0')
+        return dup_text(rel);
+    const size_t nd = strlen(dir), nr = strlen(rel);
+    char *p = malloc(nd + nr + 2);
+    if (p == NULL)
+        return NULL;
+    memcpy(p, dir, nd);
+    p[nd] = '/';
+    memcpy(p + nd + 1, rel, nr + 1);
+    return p;
+}
+
+/* The file name without directory and extension: the default .mat variable. */
+static char *file_stem(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    b = b != NULL ? b + 1 : path;
+    const char *dot = strrchr(b, '.');
+    const size_t n = dot != NULL && dot != b ? (size_t)(dot - b) : strlen(b);
+    char *s = malloc(n + 1);
+    if (s != NULL) {
+        memcpy(s, b, n);
+        s[n] = '\0';
+    }
+    return s;
+}
+
+/* Outputs "thrust" and "mdot" by name, or a .mat matrix [t, thrust, mdot] (col2, col3). */
+static lv_status table_outputs(const pctx *c, const lv_ynode *key, const char *what,
+                               lv_engine_def *e)
+{
+    const lv_table *t = e->table;
+    if (lv_table_n_dims(t) != 1)
+        return perr(c, key, "%s: table '%s' has %zu axes; an engine table has one (time, s)",
+                    what, e->table_file, lv_table_n_dims(t));
+    const size_t no = lv_table_n_out(t);
+    if (lv_table_out_index(t, "thrust", &e->thrust_out, NULL) == LV_OK &&
+        lv_table_out_index(t, "mdot", &e->mdot_out, NULL) == LV_OK)
+        return LV_OK;
+    if (no == 2 && strcmp(lv_table_out_name(t, 0), "col2") == 0 &&
+        strcmp(lv_table_out_name(t, 1), "col3") == 0) {
+        e->thrust_out = 0;
+        e->mdot_out = 1;
+        return LV_OK;
+    }
+    char have[192] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < no && used < sizeof have; k++)
+        used += (size_t)snprintf(have + used, sizeof have - used, "%s'%.30s'", k ? ", " : "",
+                                 lv_table_out_name(t, k));
+    return perr(c, key, "%s: table '%s' needs outputs 'thrust' [N] and 'mdot' [kg/s] (a .mat "
+                "matrix: columns t, thrust, mdot); it has %s", what, e->table_file, have);
+}
+
+static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode *v,
+                             const char *what, lv_engine_def *e)
+{
+    static const char *const keys[] = { "file", "var", "interp", "extrap", NULL };
+    static const char *const interps[] = { "linear", "pchip", NULL };
+    static const char *const extraps[] = { "clamp", "error", "linear", NULL };
+    static const lv_extrap extrap_of[] = { LV_EXTRAP_CLAMP, LV_EXTRAP_ERROR, LV_EXTRAP_LINEAR };
+    lv_table_opts opts = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
+    const lv_ynode *file = v, *at = v;
+    const char *rel = NULL;
+    lv_status st;
+
+    if (v->kind == LV_YNODE_MAP) {
+        st = check_map(c, v, what, keys);
+        if (st == LV_OK)
+            st = need(c, v, what, "file", &file);
+        if (st != LV_OK)
+            return st;
+        const lv_ynode *o;
+        size_t i;
+        if ((o = map_get(v, "var")) != NULL &&
+            (st = get_str(c, o, what, "var", &e->table_var)) != LV_OK)
+            return st;
+        if ((o = map_get(v, "interp")) != NULL) {
+            if ((st = get_enum(c, o, what, "interp", interps, &i)) != LV_OK)
+                return st;
+            opts.interp = i == 0 ? LV_INTERP_LINEAR : LV_INTERP_PCHIP;
+        }
+        if ((o = map_get(v, "extrap")) != NULL) {
+            if ((st = get_enum(c, o, what, "extrap", extraps, &i)) != LV_OK)
+                return st;
+            opts.extrap = extrap_of[i];
+        }
+        at = file;
+    }
+    st = get_text(c, file, what, "table", &rel);
+    if (st != LV_OK)
+        return st;
+    e->table_file = resolve_path(c->m->dir, rel);
+    if (e->table_var == NULL && ends_with_mat(rel))
+        e->table_var = file_stem(rel);
+    if (e->table_file == NULL || (ends_with_mat(rel) && e->table_var == NULL))
+        return nomem(c);
+
+    /* Only regular files: a device or a FIFO could block the parser forever. */
+    struct stat sb;
+    if (stat(e->table_file, &sb) != 0)
+        return perr(c, at, "%s: table: cannot read '%s': %s", what, e->table_file,
+                    errno == ENOENT ? "no such file" : "cannot access the file");
+    if (!S_ISREG(sb.st_mode))
+        return perr(c, at, "%s: table: '%s' is not a regular file", what, e->table_file);
+
+    if (e->table_var != NULL)
+        st = lv_table_load_mat(e->table_file, e->table_var, &opts, &e->table, c->err);
+    else
+        st = lv_table_load_csv(e->table_file, &opts, &e->table, c->err);
+    if (st != LV_OK)
+        return lv_fail_prefix(c->err, st == LV_ERR_NOMEM ? st : LV_ERR_INPUT, "%s:%d:%d: %s: table",
+                              c->file, key->line, key->col, what);
+    return table_outputs(c, key, what, e);
+}
+
+/* ---- stages and engines --------------------------------------------------------------- */
+
+static lv_status parse_engine(const pctx *c, const lv_ynode *n, const char *stage, size_t k,
+                              lv_engine_def *e)
+{
+    static const char *const keys[] = { "name", "table", "thrust_vac", "isp_vac", "mdot",
+                                        "exit_area", "count", NULL };
+    static const char *const constant[] = { "thrust_vac", "isp_vac", "mdot" };
+    char what[LV_WHAT_MAX], eng[96];
+    const lv_ynode *v;
+    lv_status st;
+
+    label(n, "engine", k, eng, sizeof eng);
+    snprintf(what, sizeof what, "stage '%s', %s", stage, eng);
+    st = check_map(c, n, what, keys);
+    if (st != LV_OK)
+        return st;
+    e->loc = loc_of(n);
+    e->count = 1;
+    if ((v = map_get(n, "name")) != NULL) {
+        st = get_name(c, v, what, 1, &e->name);
+    } else {
+        char def[LV_NAME_MAX + 32];
+        snprintf(def, sizeof def, "%s.e%zu", stage, k + 1);
+        e->name = dup_text(def);
+        st = e->name != NULL ? LV_OK : nomem(c);
+    }
+    if (st != LV_OK)
+        return st;
+
+    const lv_ynode *table = map_get(n, "table");
+    for (size_t i = 0; i < 3; i++)
+        if (table != NULL && map_get(n, constant[i]) != NULL)
+            return perr(c, map_key(n, constant[i]), "%s: give either 'table' or constant data "
+                        "(thrust_vac with isp_vac or mdot), not both", what);
+    if (table == NULL && map_get(n, "thrust_vac") == NULL && map_get(n, "isp_vac") == NULL &&
+        map_get(n, "mdot") == NULL)
+        return perr(c, n, "%s: needs either 'table' or 'thrust_vac' with 'isp_vac' or 'mdot'",
+                    what);
+    if (table == NULL) {
+        if ((st = need(c, n, what, "thrust_vac", &v)) != LV_OK ||
+            (st = get_num(c, v, what, "thrust_vac", &e->thrust_vac)) != LV_OK)
+            return st;
+        if (!(e->thrust_vac > 0.0))
+            return perr(c, v, "%s: thrust_vac must be > 0 N, found %g", what, e->thrust_vac);
+        const lv_ynode *isp = map_get(n, "isp_vac"), *mdot = map_get(n, "mdot");
+        if (isp != NULL && mdot != NULL)
+            return perr(c, map_key(n, isp->line > mdot->line ||
+                                           (isp->line == mdot->line && isp->col > mdot->col)
+                                       ? "isp_vac" : "mdot"),
+                        "%s: give exactly one of 'isp_vac' and 'mdot', not both", what);
+        if (isp == NULL && mdot == NULL)
+            return perr(c, n, "%s: a constant engine needs 'isp_vac' [s] or 'mdot' [kg/s]",
+                        what);
+        if (isp != NULL) {
+            if ((st = get_num(c, isp, what, "isp_vac", &e->isp_vac)) != LV_OK)
+                return st;
+            if (!(e->isp_vac > 0.0))
+                return perr(c, isp, "%s: isp_vac must be > 0 s, found %g", what, e->isp_vac);
+        } else {
+            if ((st = get_num(c, mdot, what, "mdot", &e->mdot)) != LV_OK)
+                return st;
+            if (!(e->mdot > 0.0))
+                return perr(c, mdot, "%s: mdot must be > 0 kg/s, found %g", what, e->mdot);
+        }
+    }
+    if ((v = map_get(n, "exit_area")) != NULL) {
+        if ((st = get_num(c, v, what, "exit_area", &e->exit_area)) != LV_OK)
+            return st;
+        if (e->exit_area < 0.0)
+            return perr(c, v, "%s: exit_area must be >= 0 m^2, found %g", what, e->exit_area);
+    }
+    if ((v = map_get(n, "count")) != NULL && (st = get_int(c, v, what, "count", 1, &e->count))
+                                                 != LV_OK)
+        return st;
+    if (table != NULL)
+        return parse_table(c, map_key(n, "table"), table, what, e);
+    return LV_OK;
+}
+
+static lv_status parse_stage(const pctx *c, const lv_ynode *n, size_t k, lv_stage_def *s)
+{
+    static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines", NULL };
+    char what[LV_WHAT_MAX], buf[64];
+    const lv_ynode *v;
+    lv_status st;
+
+    label(n, "stage", k, what, sizeof what);
+    if ((st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    s->loc = loc_of(n);
+    if ((st = need(c, n, what, "name", &v)) != LV_OK ||
+        (st = get_name(c, v, what, 0, &s->name)) != LV_OK)
+        return st;
+    if ((st = need(c, n, what, "dry_mass", &v)) != LV_OK ||
+        (st = get_num(c, v, what, "dry_mass", &s->dry_mass)) != LV_OK)
+        return st;
+    if (s->dry_mass < 0.0)
+        return perr(c, v, "%s: dry_mass must be >= 0 kg, found %g", what, s->dry_mass);
+    if ((st = need(c, n, what, "propellant_mass", &v)) != LV_OK ||
+        (st = get_num(c, v, what, "propellant_mass", &s->propellant_mass)) != LV_OK)
+        return st;
+    if (s->propellant_mass < 0.0)
+        return perr(c, v, "%s: propellant_mass must be >= 0 kg, found %g", what,
+                    s->propellant_mass);
+
+    v = map_get(n, "engines");
+    if (v == NULL || lv_yaml_is_null(v))
+        return LV_OK;
+    if (v->kind != LV_YNODE_SEQ)
+        return perr(c, v, "%s: engines: a list expected, found %s", what,
+                    describe(v, buf, sizeof buf));
+    if (v->n == 0)
+        return LV_OK;
+    s->engines = calloc(v->n, sizeof *s->engines);
+    if (s->engines == NULL)
+        return nomem(c);
+    s->n_engines = v->n;
+    for (size_t i = 0; i < v->n; i++)
+        if ((st = parse_engine(c, v->kids[i], s->name, i, &s->engines[i])) != LV_OK)
+            return st;
+    return LV_OK;
+}
+
+static lv_status parse_stages(const pctx *c, const lv_ynode *n)
+{
+    lv_mission_def *m = c->m;
+    char buf[64];
+    lv_status st;
+
+    if (n->kind != LV_YNODE_SEQ || n->n == 0)
+        return perr(c, n, "stages: a list of at least one stage expected, found %s",
+                    n->kind == LV_YNODE_SEQ ? "an empty list" : describe(n, buf, sizeof buf));
+    m->stages = calloc(n->n, sizeof *m->stages);
+    if (m->stages == NULL)
+        return nomem(c);
+    m->n_stages = n->n;
+    for (size_t i = 0; i < n->n; i++) {
+        if ((st = parse_stage(c, n->kids[i], i, &m->stages[i])) != LV_OK)
+            return st;
+        for (size_t j = 0; j < i; j++)
+            if (strcmp(m->stages[j].name, m->stages[i].name) == 0)
+                return perr(c, map_get(n->kids[i], "name"), "stage '%s': duplicate stage name "
+                            "(first at line %d)", m->stages[i].name, m->stages[j].loc.line);
+    }
+    /* Engine names are unique in the whole mission: outputs are named after them. */
+    for (size_t i = 0; i < m->n_stages; i++)
+        for (size_t a = 0; a < m->stages[i].n_engines; a++)
+            for (size_t j = 0; j <= i; j++)
+                for (size_t b = 0; b < (j == i ? a : m->stages[j].n_engines); b++)
+                    if (strcmp(m->stages[i].engines[a].name, m->stages[j].engines[b].name) == 0) {
+                        const lv_ynode *en = n->kids[i];
+                        const lv_ynode *at = map_get(map_get(en, "engines")->kids[a], "name");
+                        return perr(c, at != NULL ? at : map_get(en, "engines")->kids[a],
+                                    "stage '%s': duplicate engine name '%s' (first at line %d)",
+                                    m->stages[i].name, m->stages[i].engines[a].name,
+                                    m->stages[j].engines[b].loc.line);
+                    }
+    return LV_OK;
+}
+
+/* ---- the parameter set (userPar) ------------------------------------------------------ */
+
+static const char *const param_known[] = {
+    "start_lat", "start_lon", "start_h", "start_vel", "start_fpa", "start_chi", "start_psi",
+    "start_theta", "start_phi", "start_p", "start_q", "start_r", "start_x", "start_y",
+    "start_z", NULL
+};
+/* Angles (rad) and angular rates (rad/s): these alone may be written as *_deg. */
+static const char *const param_angular[] = {
+    "start_lat", "start_lon", "start_fpa", "start_chi", "start_psi", "start_theta",
+    "start_phi", "start_p", "start_q", "start_r", NULL
+};
+
+static int in_list(const char *const *list, const char *s)
+{
+    for (size_t i = 0; list[i] != NULL; i++)
+        if (strcmp(list[i], s) == 0)
+            return 1;
+    return 0;
+}
+
+/* Copies `key` without a trailing "_deg" into buf; returns 1 if it had one. */
+static int strip_deg(const char *key, char *buf, size_t cap)
+{
+    size_t n = strlen(key);
+    const int deg = n > 4 && strcmp(key + n - 4, "_deg") == 0;
+    if (deg)
+        n -= 4;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(buf, key, n);
+    buf[n] = '\0';
+    return deg;
+}
+
+static lv_status parse_params(const pctx *c, const lv_ynode *n)
+{
+    lv_mission_def *m = c->m;
+    const char *what = "parameters";
+    lv_status st;
+
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = check_map(c, n, what, NULL)) != LV_OK)
+        return st;
+    const size_t np = n->n / 2;
+    if (np == 0)
+        return LV_OK;
+    m->param_names = calloc(np, sizeof *m->param_names);
+    m->param_values = calloc(np, sizeof *m->param_values);
+    if (m->param_names == NULL || m->param_values == NULL)
+        return nomem(c);
+    m->n_params = np;
+    for (size_t i = 0; i < np; i++) {
+        const lv_ynode *k = n->kids[2 * i], *v = n->kids[2 * i + 1];
+        char base[LV_NAME_MAX + 1];
+        const int deg = strip_deg(k->text, base, sizeof base);
+        if (k->len > LV_NAME_MAX || !in_list(param_known, base)) {
+            lv_suggest s;
+            char hint[192];
+            lv_suggest_init(&s, k->text);
+            for (size_t j = 0; param_known[j] != NULL; j++)
+                lv_suggest_add(&s, param_known[j]);
+            char degs[sizeof param_angular / sizeof param_angular[0]][24];
+            for (size_t j = 0; param_angular[j] != NULL; j++) {
+                snprintf(degs[j], sizeof degs[j], "%s_deg", param_angular[j]);
+                lv_suggest_add(&s, degs[j]);
+            }
+            lv_suggest_text(&s, hint, sizeof hint);
+            return perr(c, k, "%s: unknown parameter '%.60s'%s", what, k->text, hint);
+        }
+        if (deg && !in_list(param_angular, base))
+            return perr(c, k, "%s: '%s' is not an angle: write '%s' in SI units (m, m/s) "
+                        "without _deg", what, k->text, base);
+        for (size_t j = 0; j < i; j++)
+            if (strcmp(m->param_names[j], base) == 0)
+                return perr(c, k, "%s: '%s' given twice (as '%s' at line %d)", what, base,
+                            n->kids[2 * j]->text, n->kids[2 * j]->line);
+        if ((st = get_num(c, v, what, k->text, &m->param_values[i])) != LV_OK)
+            return st;
+        if (deg)
+            m->param_values[i] *= LV_DEG;
+        if ((m->param_names[i] = dup_text(base)) == NULL)
+            return nomem(c);
+    }
+    return LV_OK;
+}
+
+/* ---- phases --------------------------------------------------------------------------- */
+
+static lv_status parse_end(const pctx *c, const lv_ynode *n, const char *phase, size_t k,
+                           lv_end_def *e)
+{
+    static const char *const words[] = { "burnout", "apogee", "impact", "altitude", "speed",
+                                         NULL };
+    static const char *const keys[] = { "altitude", "speed", "impact", "burnout", "apogee",
+                                        "direction", NULL };
+    static const char *const dirs[] = { "rising", "falling", "both", NULL };
+    static const lv_dir dir_of[] = { LV_DIR_RISING, LV_DIR_FALLING, LV_DIR_BOTH };
+    char what[LV_WHAT_MAX], buf[64];
+    const lv_ynode *v;
+    size_t i;
+    lv_status st;
+
+    snprintf(what, sizeof what, "phase '%s', end event #%zu", phase, k + 1);
+    e->loc = loc_of(n);
+    e->direction = LV_DIR_FALLING; /* burnout, apogee and impact: always falling */
+    if (n->kind == LV_YNODE_SCALAR) {
+        if ((st = get_enum(c, n, what, "end", words, &i)) != LV_OK)
+            return st;
+        if (i >= 3)
+            return perr(c, n, "%s: '%s' needs a value: write {%s: <%s>}", what, n->text, n->text,
+                        i == 3 ? "m" : "m/s");
+        e->kind = i == 0 ? LV_END_BURNOUT : i == 1 ? LV_END_APOGEE : LV_END_IMPACT;
+        return LV_OK;
+    }
+    if (n->kind != LV_YNODE_MAP)
+        return perr(c, n, "%s: an event name (burnout, apogee, impact) or a mapping such as "
+                    "{altitude: 100000} expected, found %s", what, describe(n, buf, sizeof buf));
+    if ((st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    const lv_ynode *kind = NULL;
+    for (size_t j = 0; j + 1 < n->n; j += 2) {
+        if (strcmp(n->kids[j]->text, "direction") == 0)
+            continue;
+        if (kind != NULL)
+            return perr(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
+                        "as two entries", what, kind->text, n->kids[j]->text);
+        kind = n->kids[j];
+    }
+    if (kind == NULL)
+        return perr(c, n, "%s: which event? add altitude, speed or impact", what);
+    v = map_get(n, kind->text);
+    if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0)
+        return perr(c, kind, "%s: '%s' takes no value: write it as a plain list entry", what,
+                    kind->text);
+    if ((st = get_num(c, v, what, kind->text, &e->value)) != LV_OK)
+        return st;
+    if (strcmp(kind->text, "impact") == 0) {
+        e->kind = LV_END_IMPACT;
+    } else if (strcmp(kind->text, "speed") == 0) {
+        e->kind = LV_END_SPEED;
+        if (e->value < 0.0)
+            return perr(c, v, "%s: speed must be >= 0 m/s, found %g", what, e->value);
+    } else {
+        e->kind = LV_END_ALTITUDE;
+    }
+    if ((v = map_get(n, "direction")) != NULL) {
+        if ((st = get_enum(c, v, what, "direction", dirs, &i)) != LV_OK)
+            return st;
+        if (e->kind == LV_END_IMPACT && dir_of[i] != LV_DIR_FALLING)
+            return perr(c, v, "%s: impact is always falling (altitude decreasing through %g m)",
+                        what, e->value);
+        e->direction = dir_of[i];
+    } else if (e->kind != LV_END_IMPACT) {
+        e->direction = LV_DIR_BOTH;
+    }
+    return LV_OK;
+}
+
+static lv_status parse_integrator(const pctx *c, const lv_ynode *n, const char *phase,
+                                  lv_phase_def *ph)
+{
+    static const char *const keys[] = { "method", "tolerance", "intervals", "output_interval",
+                                        "fixed_step", NULL };
+    static const char *const methods[] = { "dassl", "cvode-adams", "dopri5", "rk4", "euler",
+                                           NULL };
+    char what[LV_WHAT_MAX];
+    const lv_ynode *v;
+    size_t i = 0;
+    lv_status st;
+
+    snprintf(what, sizeof what, "phase '%s', integrator", phase);
+    ph->tolerance = 1e-6;
+    ph->intervals = 500;
+    if (n != NULL && lv_yaml_is_null(n))
+        n = NULL;
+    if (n != NULL && (st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    if ((v = map_get(n, "method")) != NULL &&
+        (st = get_enum(c, v, what, "method", methods, &i)) != LV_OK)
+        return st;
+    if ((ph->method = dup_text(methods[i])) == NULL)
+        return nomem(c);
+    if ((v = map_get(n, "tolerance")) != NULL) {
+        if ((st = get_num(c, v, what, "tolerance", &ph->tolerance)) != LV_OK)
+            return st;
+        if (!(ph->tolerance > 0.0))
+            return perr(c, v, "%s: tolerance must be > 0, found %g", what, ph->tolerance);
+    }
+    if ((v = map_get(n, "output_interval")) != NULL) {
+        if ((st = get_num(c, v, what, "output_interval", &ph->output_interval)) != LV_OK)
+            return st;
+        if (ph->output_interval < 0.0)
+            return perr(c, v, "%s: output_interval must be >= 0 s, found %g", what,
+                        ph->output_interval);
+        if (ph->output_interval > 0.0)
+            ph->intervals = 0;
+    }
+    if ((v = map_get(n, "intervals")) != NULL) {
+        if ((st = get_int(c, v, what, "intervals", 0, &ph->intervals)) != LV_OK)
+            return st;
+        if (ph->intervals > 0 && ph->output_interval > 0.0)
+            return perr(c, map_key(n, "intervals"), "%s: give either 'intervals' or "
+                        "'output_interval', not both", what);
+    }
+    if ((v = map_get(n, "fixed_step")) != NULL) {
+        if ((st = get_num(c, v, what, "fixed_step", &ph->fixed_step)) != LV_OK)
+            return st;
+        if (ph->fixed_step < 0.0)
+            return perr(c, v, "%s: fixed_step must be >= 0 s, found %g", what, ph->fixed_step);
+    }
+    return LV_OK;
+}
+
+static lv_status parse_set(const pctx *c, const lv_ynode *n, const char *phase,
+                           lv_phase_def *ph)
+{
+    char what[LV_WHAT_MAX];
+    lv_status st;
+
+    snprintf(what, sizeof what, "phase '%s', set", phase);
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = check_map(c, n, what, NULL)) != LV_OK)
+        return st;
+    const size_t ns = n->n / 2;
+    if (ns == 0)
+        return LV_OK;
+    ph->set_names = calloc(ns, sizeof *ph->set_names);
+    ph->set_values = calloc(ns, sizeof *ph->set_values);
+    ph->set_locs = calloc(ns, sizeof *ph->set_locs);
+    if (ph->set_names == NULL || ph->set_values == NULL || ph->set_locs == NULL)
+        return nomem(c);
+    ph->n_set = ns;
+    for (size_t i = 0; i < ns; i++) {
+        const lv_ynode *k = n->kids[2 * i], *v = n->kids[2 * i + 1];
+        if (k->len == 0 || k->len > 255)
+            return perr(c, k, "%s: a variable name of 1 to 255 characters expected", what);
+        char base[256];
+        const int deg = strip_deg(k->text, base, sizeof base);
+        for (size_t j = 0; j < i; j++)
+            if (strcmp(ph->set_names[j], base) == 0)
+                return perr(c, k, "%s: '%s' set twice (line %d)", what, base,
+                            ph->set_locs[j].line);
+        if ((st = get_num(c, v, what, k->text, &ph->set_values[i])) != LV_OK)
+            return st;
+        if (deg)
+            ph->set_values[i] *= LV_DEG;
+        ph->set_locs[i] = loc_of(k);
+        if ((ph->set_names[i] = dup_text(base)) == NULL)
+            return nomem(c);
+    }
+    return LV_OK;
+}
+
+static lv_status find_stage(const pctx *c, const lv_ynode *v, const char *what, size_t *idx)
+{
+    const lv_mission_def *m = c->m;
+    const char *s;
+    lv_status st = get_text(c, v, what, "stages", &s);
+    if (st != LV_OK)
+        return st;
+    lv_suggest sug;
+    lv_suggest_init(&sug, s);
+    for (size_t i = 0; i < m->n_stages; i++) {
+        if (strcmp(m->stages[i].name, s) == 0) {
+            *idx = i;
+            return LV_OK;
+        }
+        lv_suggest_add(&sug, m->stages[i].name);
+    }
+    char hint[192];
+    lv_suggest_text(&sug, hint, sizeof hint);
+    return perr(c, v, "%s: stages: no stage named '%.60s'%s", what, s, hint);
+}
+
+/* Everything but `from`, which needs all names: its node goes to *from. */
+static lv_status parse_phase(const pctx *c, const lv_ynode *n, size_t k, lv_phase_def *ph,
+                             const lv_ynode **from)
+{
+    static const char *const keys[] = { "name", "model", "stages", "from", "start_time",
+                                        "stop_time", "end", "integrator", "set", NULL };
+    static const char *const models[] = { "flat6", "dof3", NULL };
+    const int flat = c->m->env.world == LV_WORLD_FLAT;
+    char what[LV_WHAT_MAX], buf[64];
+    const lv_ynode *v;
+    size_t i;
+    lv_status st;
+
+    label(n, "phase", k, what, sizeof what);
+    ph->parent = -1;
+    ph->t_start = NAN;
+    if ((st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    ph->loc = loc_of(n);
+    if ((st = need(c, n, what, "name", &v)) != LV_OK ||
+        (st = get_name(c, v, what, 0, &ph->name)) != LV_OK)
+        return st;
+
+    if ((st = need(c, n, what, "model", &v)) != LV_OK ||
+        (st = get_enum(c, v, what, "model", models, &i)) != LV_OK)
+        return st;
+    if ((i == 0) != flat)
+        return perr(c, v, "%s: model %s needs environment world: %s (this mission's world is "
+                    "%s)", what, models[i], flat ? "planet" : "flat", flat ? "flat" : "planet");
+    if ((ph->model = dup_text(models[i])) == NULL)
+        return nomem(c);
+
+    if ((st = need(c, n, what, "stages", &v)) != LV_OK)
+        return st;
+    if (v->kind != LV_YNODE_SEQ || v->n == 0)
+        return perr(c, v, "%s: stages: a list of stage names (bottom first) expected, found %s",
+                    what, v->kind == LV_YNODE_SEQ ? "an empty list" : describe(v, buf, sizeof buf));
+    if ((ph->stages = calloc(v->n, sizeof *ph->stages)) == NULL)
+        return nomem(c);
+    for (size_t j = 0; j < v->n; j++) {
+        if ((st = find_stage(c, v->kids[j], what, &ph->stages[j])) != LV_OK)
+            return st;
+        ph->n_stages = j + 1;
+        for (size_t q = 0; q < j; q++)
+            if (ph->stages[q] == ph->stages[j])
+                return perr(c, v->kids[j], "%s: stages: '%s' listed twice", what,
+                            v->kids[j]->text);
+    }
+
+    const char *parent_name;
+    *from = map_get(n, "from");
+    if (*from != NULL && (st = get_text(c, *from, what, "from", &parent_name)) != LV_OK)
+        return st;
+    if ((v = map_get(n, "start_time")) != NULL &&
+        (st = get_num(c, v, what, "start_time", &ph->t_start)) != LV_OK)
+        return st;
+    if ((st = need(c, n, what, "stop_time", &v)) != LV_OK ||
+        (st = get_num(c, v, what, "stop_time", &ph->t_stop)) != LV_OK)
+        return st;
+    /* Without `from` and start_time the phase starts at 0; with `from` at the parent's end,
+     * known only when the parent has run. */
+    const double t0 = isnan(ph->t_start) ? (*from == NULL ? 0.0 : -INFINITY) : ph->t_start;
+    if (!(ph->t_stop > t0))
+        return perr(c, v, "%s: stop_time %g s must be greater than the start time %g s", what,
+                    ph->t_stop, t0);
+
+    v = map_get(n, "end");
+    if (v != NULL && !lv_yaml_is_null(v)) {
+        if (v->kind != LV_YNODE_SEQ)
+            return perr(c, v, "%s: end: a list of events expected, e.g. [burnout, apogee], "
+                        "found %s", what, describe(v, buf, sizeof buf));
+        if (v->n > 0) {
+            if ((ph->ends = calloc(v->n, sizeof *ph->ends)) == NULL)
+                return nomem(c);
+            ph->n_ends = v->n;
+            for (size_t j = 0; j < v->n; j++)
+                if ((st = parse_end(c, v->kids[j], ph->name, j, &ph->ends[j])) != LV_OK)
+                    return st;
+        }
+    }
+    if ((st = parse_integrator(c, map_get(n, "integrator"), ph->name, ph)) != LV_OK)
+        return st;
+    return parse_set(c, map_get(n, "set"), ph->name, ph);
+}
+
+/* A `from` chain that comes back: "P2 -> P3 -> P2", from the first member in file order. */
+static lv_status check_cycles(const pctx *c, const lv_ynode *const *from)
+{
+    const lv_mission_def *m = c->m;
+    const size_t n = m->n_phases;
+    size_t *seen = calloc(n, sizeof *seen); /* walk number + 1 that reached the phase */
+    unsigned char *done = calloc(n, 1);
+    lv_status st = LV_OK;
+    if (seen == NULL || done == NULL) {
+        st = nomem(c);
+        goto fail;
+    }
+    for (size_t i = 0; i < n; i++) {
+        long j = (long)i;
+        while (j >= 0 && !done[j] && seen[j] != i + 1) {
+            seen[j] = i + 1;
+            j = m->phases[j].parent;
+        }
+        if (j >= 0 && !done[j]) { /* back on this walk: a cycle through j */
+            size_t first = (size_t)j;
+            for (long q = m->phases[j].parent; q != j; q = m->phases[q].parent)
+                if ((size_t)q < first)
+                    first = (size_t)q;
+            char path[320];
+            size_t used = (size_t)snprintf(path, sizeof path, "%s", m->phases[first].name);
+            long q = (long)first;
+            do {
+                q = m->phases[q].parent;
+                if (used < sizeof path)
+                    used += (size_t)snprintf(path + used, sizeof path - used, " -> %s",
+                                             m->phases[q].name);
+            } while ((size_t)q != first);
+            st = perr(c, from[first], "phase '%s': from: cycle %s (each phase starts from the "
+                      "next); a root phase has no 'from'", m->phases[first].name, path);
+            goto fail;
+        }
+        for (j = (long)i; j >= 0 && !done[j]; j = m->phases[j].parent)
+            done[j] = 1;
+    }
+fail:
+    free(seen);
+    free(done);
+    return st;
+}
+
+/* Parents before children; otherwise file order: repeatedly take the lowest file index
+ * whose parent has been taken (a binary min-heap of ready phases). */
+static lv_status order_phases(const pctx *c)
+{
+    lv_mission_def *m = c->m;
+    const size_t n = m->n_phases;
+    size_t *heap = malloc(n * sizeof *heap), *pos = malloc(n * sizeof *pos);
+    size_t *kid_first = malloc(n * sizeof *kid_first), *kid_next = malloc(n * sizeof *kid_next);
+    lv_phase_def *out = malloc(n * sizeof *out);
+    size_t nh = 0, taken = 0;
+    lv_status st = LV_OK;
+    if (heap == NULL || pos == NULL || kid_first == NULL || kid_next == NULL || out == NULL) {
+        st = nomem(c);
+        goto fail;
+    }
+    for (size_t i = 0; i < n; i++)
+        kid_first[i] = SIZE_MAX;
+    for (size_t i = n; i-- > 0;) { /* children lists in file order */
+        if (m->phases[i].parent >= 0) {
+            const size_t p = (size_t)m->phases[i].parent;
+            kid_next[i] = kid_first[p];
+            kid_first[p] = i;
+        } else {
+            heap[nh++] = i; /* ascending: already a heap */
+        }
+    }
+    while (nh > 0) {
+        const size_t top = heap[0];
+        heap[0] = heap[--nh];
+        for (size_t a = 0;;) { /* sift down */
+            size_t b = 2 * a + 1;
+            if (b >= nh)
+                break;
+            if (b + 1 < nh && heap[b + 1] < heap[b])
+                b++;
+            if (heap[a] <= heap[b])
+                break;
+            const size_t t = heap[a];
+            heap[a] = heap[b];
+            heap[b] = t;
+            a = b;
+        }
+        pos[top] = taken++;
+        for (size_t k = kid_first[top]; k != SIZE_MAX; k = kid_next[k]) {
+            size_t a = nh++; /* sift up */
+            heap[a] = k;
+            while (a > 0 && heap[(a - 1) / 2] > heap[a]) {
+                const size_t t = heap[a];
+                heap[a] = heap[(a - 1) / 2];
+                heap[(a - 1) / 2] = t;
+                a = (a - 1) / 2;
+            }
+        }
+    }
+    /* taken == n: check_cycles() ran first, every phase reaches a root */
+    for (size_t i = 0; i < n; i++) {
+        out[pos[i]] = m->phases[i];
+        const int p = m->phases[i].parent;
+        out[pos[i]].parent = p >= 0 ? (int)pos[p] : -1;
+    }
+    free(m->phases);
+    m->phases = out;
+    out = NULL;
+fail:
+    free(heap);
+    free(pos);
+    free(kid_first);
+    free(kid_next);
+    free(out);
+    return st;
+}
+
+static lv_status parse_phases(const pctx *c, const lv_ynode *n)
+{
+    lv_mission_def *m = c->m;
+    const lv_ynode **from = NULL;
+    char buf[64];
+    lv_status st;
+
+    if (n->kind != LV_YNODE_SEQ || n->n == 0)
+        return perr(c, n, "phases: a list of at least one phase expected, found %s",
+                    n->kind == LV_YNODE_SEQ ? "an empty list" : describe(n, buf, sizeof buf));
+    if (n->n > (size_t)INT_MAX)
+        return perr(c, n, "phases: too many phases");
+    m->phases = calloc(n->n, sizeof *m->phases);
+    from = calloc(n->n, sizeof *from);
+    if (m->phases == NULL || from == NULL) {
+        st = nomem(c);
+        goto fail;
+    }
+    m->n_phases = n->n;
+    for (size_t i = 0; i < n->n; i++) {
+        if ((st = parse_phase(c, n->kids[i], i, &m->phases[i], &from[i])) != LV_OK)
+            goto fail;
+        for (size_t j = 0; j < i; j++)
+            if (strcmp(m->phases[j].name, m->phases[i].name) == 0) {
+                st = perr(c, map_get(n->kids[i], "name"), "phase '%s': duplicate phase name "
+                          "(first at line %d)", m->phases[i].name, m->phases[j].loc.line);
+                goto fail;
+            }
+    }
+    for (size_t i = 0; i < n->n; i++) {
+        if (from[i] == NULL)
+            continue;
+        lv_suggest sug;
+        lv_suggest_init(&sug, from[i]->text);
+        for (size_t j = 0; j < n->n && m->phases[i].parent < 0; j++) {
+            if (strcmp(m->phases[j].name, from[i]->text) == 0)
+                m->phases[i].parent = (int)j;
+            lv_suggest_add(&sug, m->phases[j].name);
+        }
+        if (m->phases[i].parent == (int)i) {
+            st = perr(c, from[i], "phase '%s': from: a phase cannot start from itself",
+                      m->phases[i].name);
+            goto fail;
+        }
+        if (m->phases[i].parent < 0) {
+            char hint[192];
+            lv_suggest_text(&sug, hint, sizeof hint);
+            st = perr(c, from[i], "phase '%s': from: no phase named '%.60s'%s",
+                      m->phases[i].name, from[i]->text, hint);
+            goto fail;
+        }
+    }
+    if ((st = check_cycles(c, from)) == LV_OK)
+        st = order_phases(c);
+fail:
+    free(from);
+    return st;
+}
+
+/* ---- the file ------------------------------------------------------------------------- */
+
+static lv_status parse_root(const pctx *c, const lv_ynode *root)
+{
+    static const char *const keys[] = { "mission", "environment", "parameters", "stages",
+                                        "phases", NULL };
+    static const char *const mkeys[] = { "name", "description", NULL };
+    lv_mission_def *m = c->m;
+    const lv_ynode *v, *info;
+    char buf[64];
+    lv_status st;
+
+    if (root->kind != LV_YNODE_MAP)
+        return perr(c, root, "the top level must be a mapping with 'mission', 'stages' and "
+                    "'phases', found %s", describe(root, buf, sizeof buf));
+    if ((st = check_map(c, root, "top level", keys)) != LV_OK ||
+        (st = need(c, root, "top level", "mission", &info)) != LV_OK ||
+        (st = check_map(c, info, "mission", mkeys)) != LV_OK ||
+        (st = need(c, info, "mission", "name", &v)) != LV_OK ||
+        (st = get_str(c, v, "mission", "name", &m->name)) != LV_OK)
+        return st;
+    if ((v = map_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
+        (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK)
+        return st;
+    if ((st = parse_env(c, map_get(root, "environment"))) != LV_OK ||
+        (st = parse_params(c, map_get(root, "parameters"))) != LV_OK)
+        return st;
+    if ((st = need(c, root, "top level", "stages", &v)) != LV_OK ||
+        (st = parse_stages(c, v)) != LV_OK)
+        return st;
+    if ((st = need(c, root, "top level", "phases", &v)) != LV_OK)
+        return st;
+    return parse_phases(c, v);
+}
+
+lv_status lv_mission_def_parse(const char *text, size_t len, const char *name, const char *dir,
+                               lv_mission_def **out, lv_err *err)
+{
+    lv_ynode *root = NULL;
+    lv_status st;
+
+    if (out == NULL || (text == NULL && len > 0))
+        return lv_fail(err, LV_ERR_INPUT, "lv_mission_def_parse: NULL argument");
+    *out = NULL;
+    lv_mission_def *m = calloc(1, sizeof *m);
+    if (m == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", name ? name : "mission");
+    m->path = dup_text(name != NULL ? name : "<mission>");
+    m->dir = dup_text(dir != NULL ? dir : ".");
+    if (m->path == NULL || m->dir == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", name ? name : "mission");
+        goto fail;
+    }
+    const pctx c = { m->path, err, m };
+    if ((st = lv_yaml_load(text != NULL ? text : "", len, m->path, &root, err)) != LV_OK ||
+        (st = parse_root(&c, root)) != LV_OK)
+        goto fail;
+    lv_yaml_free(root);
+    *out = m;
+    return LV_OK;
+fail:
+    lv_yaml_free(root);
+    lv_mission_def_free(m);
+    return st;
+}
+
+lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *err)
+{
+    char *text = NULL, *dir = NULL;
+    size_t len = 0, cap = 0;
+    FILE *f = NULL;
+    lv_status st;
+
+    if (out == NULL || path == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_mission_def_load: NULL argument");
+    *out = NULL;
+    f = fopen(path, "rb");
+    if (f == NULL)
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file%s", path,
+                       errno == ENOENT ? ": no such file" : "");
+    for (;;) {
+        if (len == cap) {
+            cap = cap ? 2 * cap : 4096;
+            char *t = realloc(text, cap);
+            if (t == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+                goto fail;
+            }
+            text = t;
+        }
+        const size_t got = fread(text + len, 1, cap - len, f);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    if (ferror(f)) {
+        st = lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        goto fail;
+    }
+    const char *slash = strrchr(path, '/');
+    const size_t nd = slash == NULL ? 1 : (slash == path ? 1 : (size_t)(slash - path));
+    if ((dir = malloc(nd + 1)) == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+        goto fail;
+    }
+    memcpy(dir, slash == NULL ? "." : path, nd);
+    dir[nd] = '\0';
+    st = lv_mission_def_parse(text, len, path, dir, out, err);
+fail:
+    if (f != NULL)
+        fclose(f);
+    free(text);
+    free(dir);
+    return st;
+}
+
+void lv_mission_def_free(lv_mission_def *m)
+{
+    if (m == NULL)
+        return;
+    free(m->name);
+    free(m->description);
+    free(m->path);
+    free(m->dir);
+    free(m->env.planet);
+    free(m->env.gravity);
+    free(m->env.atmosphere);
+    for (size_t i = 0; i < m->n_params; i++)
+        free(m->param_names[i]);
+    free(m->param_names);
+    free(m->param_values);
+    for (size_t i = 0; i < m->n_stages; i++) {
+        lv_stage_def *s = &m->stages[i];
+        for (size_t k = 0; k < s->n_engines; k++) {
+            free(s->engines[k].name);
+            free(s->engines[k].table_file);
+            free(s->engines[k].table_var);
+            lv_table_free(s->engines[k].table);
+        }
+        free(s->engines);
+        free(s->name);
+    }
+    free(m->stages);
+    for (size_t i = 0; i < m->n_phases; i++) {
+        lv_phase_def *ph = &m->phases[i];
+        free(ph->name);
+        free(ph->model);
+        free(ph->stages);
+        free(ph->ends);
+        free(ph->method);
+        for (size_t k = 0; k < ph->n_set; k++)
+            free(ph->set_names[k]);
+        free(ph->set_names);
+        free(ph->set_values);
+        free(ph->set_locs);
+    }
+    free(m->phases);
+    free(m);
+}
+
+double lv_mission_def_param(const lv_mission_def *m, const char *name, double fallback)
+{
+    if (m == NULL || name == NULL)
+        return fallback;
+    for (size_t i = 0; i < m->n_params; i++)
+        if (strcmp(m->param_names[i], name) == 0)
+            return m->param_values[i];
+    return fallback;
+}
