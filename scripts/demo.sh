@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
-# make demo: run the default demonstration and say where the results are.
+# make demo: run the default mission (the paper's test case) and say where the results are.
 # Usage: scripts/demo.sh BUILD_DIR
 set -euo pipefail
 build="${1:-build}"
 out="$build/demo"
-mkdir -p "$out"
 lvsim="$build/lvsim"
+mission=examples/paper-test-case/mission.yaml
 
-echo "== lvsim demo: vertical ascent to apogee (burnout found as a state event) =="
-"$lvsim" simulate vertical_ascent --stop 600 --intervals 600 --tolerance 1e-7 \
-  --set thrust=30000 --set mdot=10 --set m0=1000 --set m_final=400 --set stop_at_apogee=1 \
-  --final time --final h --final v --final m -o "$out/ascent"
+echo "== lvsim demo: the paper's three-stage test case, five phases with two branches =="
+"$lvsim" run "$mission" -o "$out"
 echo
-echo "results: $out/ascent.mat (Dymola/OpenModelica dsres layout) and $out/ascent.csv"
-echo "layout:  docs/result-files.md"
+echo "== the same mission as one end-to-end model (the paper's Table 2) =="
+"$lvsim" compare "$mission"
+echo
+echo "results:  $out/phase_<k>_<name>.mat (Dymola/OpenModelica dsres) and .csv, one per phase"
+echo "          $out/body_<stage>.csv (each stage's trajectory across its phases)"
+echo "          $out/summary.json (phase table, events, hand-offs, final states)"
+echo "layout:   docs/result-files.md, docs/mission-format.md"
+echo "viewer:   not built yet (3D globe view and plots are the visualization issue)"

@@ -4,3 +4,4 @@ lv_add_unit_test(test_mission_parse unit/test_mission_parse.c)
 target_compile_definitions(test_mission_parse PRIVATE
   LV_MISSION_DIR="${PROJECT_SOURCE_DIR}/tests/missions")
 include(${PROJECT_SOURCE_DIR}/fuzz/fuzz.cmake OPTIONAL)
+lv_add_unit_test(test_runner unit/test_runner.c)

@@ -1,0 +1,322 @@
+/* test_runner.c - the mission runner on the paper's test case (tests/missions/paper_tight.yaml,
+ * tables from examples/paper-test-case): phase end states against closed-form values, the
+ * branch, the hand-off, result files and summary, a failing branch that leaves its sibling
+ * intact, validation of set: names, and the end-to-end comparison.
+ *
+ * Closed form. Every engine table has ve = F/mdot = 3000 m/s in every row, so with thrust
+ * along +z in uniform gravity the rocket equation holds through ramps and throttling:
+ *     vz(t1) = vz(t0) + ve ln(m(t0)/m(t1)) - g (t1 - t0)
+ * and z(t1) = z(t0) + integral of vz, evaluated here by composite Simpson quadrature of that
+ * closed-form vz(t) (independent of the ODE solver). Mass flows are piecewise linear in time,
+ * so m(t) and the burnout times are closed-form too. Ballistic phases: z = z0 + v0 t - g t^2/2.
+ */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lvsim/lv_mission.h"
+
+#define G 9.81
+#define VE 3000.0
+
+static char path_buf[4096];
+static const char *src_path(const char *rel)
+{
+    const char *root = getenv("LV_SOURCE_DIR");
+    snprintf(path_buf, sizeof path_buf, "%s/%s", root ? root : "..", rel);
+    return path_buf;
+}
+
+/* Propellant mass flow of the three stages over mission time (examples/paper-test-case). */
+static double mdot_stage(int s, double t)
+{
+    if (s == 1)
+        return t < 60.0 ? 200.0 : 200.0 - (t - 60.0) * 100.0 / 940.0;
+    double t_ign = s == 2 ? 140.0 : 280.0, full = s == 2 ? 50.0 : 13.5;
+    if (t < t_ign)
+        return 0.0;
+    return t < t_ign + 2.0 ? full * (t - t_ign) / 2.0 : full;
+}
+
+/* Burnout: the time at which the stage's propellant is used up (closed form). */
+static double burnout(int s)
+{
+    if (s == 1) { /* 12000 kg by 60 s, then 200 tau - 100 tau^2 / 1880 = 15000 */
+        double a = 100.0 / 1880.0, b = -200.0, c = 15000.0;
+        return 60.0 + (-b - sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
+    }
+    if (s == 2) /* 50 kg in the ramp, then 5950 kg at 50 kg/s */
+        return 142.0 + 5950.0 / 50.0;
+    return 282.0 + (2700.0 - 13.5) / 13.5; /* 13.5 kg in the ramp */
+}
+
+/* Integral of g over [a, b] by composite Simpson (n even intervals). */
+static double simpson(double (*g)(int, double), int s, double a, double b, int n)
+{
+    double h = (b - a) / n, sum = g(s, a) + g(s, b);
+    for (int i = 1; i < n; i++)
+        sum += (i % 2 ? 4.0 : 2.0) * g(s, a + i * h);
+    return sum * h / 3.0;
+}
+
+/* Mass of the burning body at t: m0 minus the integral of the bottom stage's flow up to
+ * burnout. The flow is linear between the table's breakpoints, where Simpson is exact. */
+static double mass_at(int s, double m0, double t0, double t)
+{
+    const double kinks[3][2] = {{60.0, 60.0}, {140.0, 142.0}, {280.0, 282.0}};
+    double t1 = fmin(t, burnout(s)), pts[4] = {t0, kinks[s - 1][0], kinks[s - 1][1], t1};
+    double used = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double a = fmax(pts[i], t0), b = fmin(pts[i + 1], t1);
+        if (b > a)
+            used += simpson(mdot_stage, s, a, b, 2);
+    }
+    return m0 - used;
+}
+
+/* z(t1) - z(t0) for the burning body: Simpson quadrature of the closed-form vz(t), split
+ * where vz' jumps (table breakpoints, burnout) so that every piece is smooth. */
+static double climb(int s, double m0, double v0, double t0, double t1)
+{
+    const double kinks[3][2] = {{60.0, 60.0}, {140.0, 142.0}, {280.0, 282.0}};
+    double pts[5] = {t0, kinks[s - 1][0], kinks[s - 1][1], burnout(s), t1};
+    double z = 0.0;
+    for (int i = 0; i < 4; i++) {
+        double a = fmax(pts[i], t0), b = fmin(fmax(pts[i + 1], a), t1);
+        if (!(b > a))
+            continue;
+        const int n = 2000;
+        double h = (b - a) / n, sum = 0.0;
+        for (int j = 0; j <= n; j++) {
+            double t = a + j * h;
+            double v = v0 + VE * log(m0 / mass_at(s, m0, t0, t)) - G * (t - t0);
+            sum += (j == 0 || j == n ? 1.0 : (j % 2 ? 4.0 : 2.0)) * v;
+        }
+        z += sum * h / 3.0;
+    }
+    return z;
+}
+
+static double final(const lv_mission *m, const char *phase, const char *name)
+{
+    size_t k;
+    double v = NAN;
+    lv_err err;
+    CHECK_OK(lv_mission_phase_find(m, phase, &k, &err), &err);
+    CHECK_OK(lv_mission_final(m, k, name, &v, &err), &err);
+    return v;
+}
+
+static void test_paper_case(void)
+{
+    lv_mission *m;
+    lv_err err;
+    CHECK_OK(lv_mission_load(src_path("tests/missions/paper_tight.yaml"), &m, &err), &err);
+    lv_run_options opt = {"runner_out", 2, NULL, NULL, 0.0};
+    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
+
+    /* P1: all three stages, 40000 kg at liftoff, stage 1 burns out, separation at 140 s. */
+    const double m0 = 40000.0, tb1 = burnout(1);
+    size_t k1;
+    CHECK_OK(lv_mission_phase_find(m, "P1", &k1, &err), &err);
+    const lv_phase_result *r1 = lv_mission_result(m, k1);
+    CHECK(r1->report.stats.state_events == 1 && r1->report.stats.time_events == 1);
+    CHECK(r1->report.n_event_log == 2);
+    CHECK(r1->report.event_log[0].t == 60.0);              /* table breakpoint, hit exactly */
+    CHECK_CLOSE(r1->report.event_log[1].t, tb1, 1e-6);      /* burnout, state event */
+    double mb1 = mass_at(1, m0, 0.0, 140.0);
+    CHECK_CLOSE(mb1, 13000.0, 1e-6);
+    double v140 = VE * log(m0 / 13000.0) - G * 140.0;
+    double z140 = climb(1, m0, 0.0, 0.0, 140.0);
+    CHECK_CLOSE(final(m, "P1", "m"), 13000.0, 1e-6);
+    CHECK_REL(final(m, "P1", "vz"), v140, 1e-9);
+    CHECK_REL(final(m, "P1", "z"), z140, 1e-8);
+    printf("P1: burnout %.9f s (closed form %.9f), z %.6f m (quadrature %.6f), vz %.9f (%.9f)\n",
+           r1->report.event_log[1].t, tb1, final(m, "P1", "z"), z140, final(m, "P1", "vz"), v140);
+
+    /* P2: stages 2+3 from P1's end: 7000 + 3000 kg (the stage bookkeeping), to 280 s. */
+    double v280 = final(m, "P1", "vz") + VE * log(10000.0 / 4000.0) - G * 140.0;
+    double z280 = final(m, "P1", "z") + climb(2, 10000.0, final(m, "P1", "vz"), 140.0, 280.0);
+    CHECK_CLOSE(final(m, "P2", "m"), 4000.0, 1e-6);
+    CHECK_REL(final(m, "P2", "vz"), v280, 1e-9);
+    CHECK_REL(final(m, "P2", "z"), z280, 1e-8);
+    size_t k2;
+    CHECK_OK(lv_mission_phase_find(m, "P2", &k2, &err), &err);
+    const lv_phase_result *r2 = lv_mission_result(m, k2);
+    CHECK(r2->report.n_event_log == 2 && r2->report.event_log[0].t == 142.0);
+    CHECK_CLOSE(r2->report.event_log[1].t, burnout(2), 1e-6);
+
+    /* P3: stage 3 alone from P2's end, 3000 kg, burns to 300 kg, coasts to 600 s. */
+    double v600 = final(m, "P2", "vz") + VE * log(3000.0 / 300.0) - G * 320.0;
+    CHECK_CLOSE(final(m, "P3", "m"), 300.0, 1e-6);
+    CHECK_REL(final(m, "P3", "vz"), v600, 1e-9);
+    CHECK_REL(final(m, "P3", "z"),
+              final(m, "P2", "z") + climb(3, 3000.0, final(m, "P2", "vz"), 280.0, 600.0), 1e-8);
+
+    /* P4 and P5: spent stages fall back from the separations: impact at
+     * t0 + (v0 + sqrt(v0^2 + 2 g z0)) / g, with the dry mass. */
+    const char *ph[2] = {"P4", "P5"}, *par[2] = {"P1", "P2"};
+    const double dry[2] = {3000.0, 1000.0};
+    for (int i = 0; i < 2; i++) {
+        double z0 = final(m, par[i], "z"), v0 = final(m, par[i], "vz"), t0 = final(m, par[i], "time");
+        double t_imp = t0 + (v0 + sqrt(v0 * v0 + 2.0 * G * z0)) / G;
+        CHECK_REL(final(m, ph[i], "time"), t_imp, 1e-9);
+        CHECK_CLOSE(final(m, ph[i], "z"), 0.0, 1e-4);
+        CHECK_REL(final(m, ph[i], "vz"), -sqrt(v0 * v0 + 2.0 * G * z0), 1e-9);
+        CHECK_CLOSE(final(m, ph[i], "m"), dry[i], 1e-6);
+        printf("%s: impact %.6f s (closed form %.6f)\n", ph[i], final(m, ph[i], "time"), t_imp);
+    }
+
+    /* The branch: P1 seeds P2 and P4; P2 seeds P3 and P5; children start where parents end. */
+    for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
+        const lv_phase_result *r = lv_mission_result(m, k);
+        CHECK(r->state == LV_PHASE_DONE);
+        int p = lv_mission_phase_parent(m, k);
+        if (p >= 0)
+            CHECK(r->t_start == lv_mission_result(m, (size_t)p)->t_end);
+    }
+
+    /* Files: every phase's .mat and .csv, the merged bodies, the summary. */
+    CHECK_OK(lv_mission_write_summary(m, "runner_out", &err), &err);
+    char path[512];
+    for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
+        snprintf(path, sizeof path, "runner_out/phase_%zu_%s.mat", k + 1, lv_mission_phase_name(m, k));
+        CHECK(access(path, F_OK) == 0);
+        snprintf(path, sizeof path, "runner_out/phase_%zu_%s.csv", k + 1, lv_mission_phase_name(m, k));
+        CHECK(access(path, F_OK) == 0);
+    }
+    CHECK(access("runner_out/body_stage1.csv", F_OK) == 0);
+    FILE *f = fopen("runner_out/summary.json", "r");
+    CHECK(f != NULL);
+    if (f != NULL) {
+        static char text[1 << 20];
+        size_t n = fread(text, 1, sizeof text - 1, f);
+        text[n] = '\0';
+        fclose(f);
+        cJSON *j = cJSON_Parse(text);
+        CHECK(j != NULL);
+        cJSON *phases = cJSON_GetObjectItem(j, "phases");
+        CHECK(cJSON_GetArraySize(phases) == 5);
+        cJSON *p2 = cJSON_GetArrayItem(phases, (int)k2);
+        cJSON *h = cJSON_GetObjectItem(p2, "handoff");
+        CHECK(cJSON_GetNumberValue(cJSON_GetObjectItem(h, "mass_from_stages")) == 10000.0);
+        CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(h, "from")), "P1") == 0);
+        cJSON *bodies = cJSON_GetObjectItem(j, "bodies");
+        CHECK(cJSON_GetArraySize(bodies) == 3);
+        /* stage 2 flies in P1, P2, P5 */
+        cJSON *b2 = cJSON_GetArrayItem(bodies, 1);
+        CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(b2, "phases")) == 3);
+        cJSON_Delete(j);
+    }
+    lv_mission_free(m);
+}
+
+/* One branch fails (its engine table ends before its burn does, and the table says "error"
+ * outside its range); the sibling and its files are complete, the failing phase's child is
+ * not run, and the message names phase, time and reason. */
+static void test_failing_branch(void)
+{
+    FILE *f = fopen("short.csv", "w");
+    fprintf(f, "t [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n");
+    fclose(f);
+    f = fopen("failing.yaml", "w");
+    fprintf(f,
+            "mission: {name: failing-branch}\n"
+            "stages:\n"
+            "  - {name: a, dry_mass: 100, propellant_mass: 900,\n"
+            "     engines: [{table: {file: short.csv, extrap: error}}]}\n"
+            "  - {name: b, dry_mass: 100, propellant_mass: 0}\n"
+            "phases:\n"
+            "  - {name: root, model: flat6, stages: [a, b], start_time: 0, stop_time: 10}\n"
+            "  - {name: bad, model: flat6, stages: [a], from: root, stop_time: 200}\n"
+            "  - {name: after, model: flat6, stages: [a], from: bad, stop_time: 300}\n"
+            "  - {name: good, model: flat6, stages: [b], from: root, stop_time: 20}\n");
+    fclose(f);
+    lv_mission *m;
+    lv_err err;
+    CHECK_OK(lv_mission_load("failing.yaml", &m, &err), &err);
+    lv_run_options opt = {"failing_out", 2, NULL, NULL, 0.0};
+    CHECK_FAILS(lv_mission_run(m, &opt, &err), &err, LV_ERR_SOLVER, "1 phase(s) failed, 1 not run");
+    size_t kb, ka, kg;
+    CHECK_OK(lv_mission_phase_find(m, "bad", &kb, &err), &err);
+    CHECK_OK(lv_mission_phase_find(m, "after", &ka, &err), &err);
+    CHECK_OK(lv_mission_phase_find(m, "good", &kg, &err), &err);
+    const lv_phase_result *rb = lv_mission_result(m, kb);
+    CHECK(rb->state == LV_PHASE_FAILED);
+    CHECK(strstr(rb->error, "phase 'bad'") != NULL && strstr(rb->error, "at t = ") != NULL);
+    CHECK(strstr(rb->error, "outside") != NULL); /* the table's own reason */
+    printf("failing branch: %s\n", rb->error);
+    CHECK(lv_mission_result(m, ka)->state == LV_PHASE_SKIPPED);
+    CHECK(strstr(lv_mission_result(m, ka)->error, "parent 'bad' failed") != NULL);
+    CHECK(lv_mission_result(m, kg)->state == LV_PHASE_DONE);
+    char path[256];
+    snprintf(path, sizeof path, "failing_out/phase_%zu_good.csv", kg + 1);
+    CHECK(access(path, F_OK) == 0);
+    snprintf(path, sizeof path, "failing_out/phase_%zu_bad.failed.csv", kb + 1);
+    CHECK(access(path, F_OK) == 0);
+    /* the root's final state is intact and readable */
+    double z;
+    CHECK_OK(lv_mission_final(m, 0, "z", &z, &err), &err);
+    CHECK(z > 0.0);
+    CHECK_OK(lv_mission_write_summary(m, "failing_out", &err), &err);
+    lv_mission_free(m);
+}
+
+/* A phase whose initial state cannot be built: set: names a variable the model lacks. */
+static void test_bad_set(void)
+{
+    FILE *f = fopen("badset.yaml", "w");
+    fprintf(f,
+            "mission: {name: bad-set}\n"
+            "stages: [{name: a, dry_mass: 100, propellant_mass: 0}]\n"
+            "phases:\n"
+            "  - name: p\n"
+            "    model: flat6\n"
+            "    stages: [a]\n"
+            "    stop_time: 10\n"
+            "    set: {vzz: 3}\n");
+    fclose(f);
+    lv_mission *m = NULL;
+    lv_err err;
+    CHECK_FAILS(lv_mission_load("badset.yaml", &m, &err), &err, LV_ERR_INPUT,
+                "badset.yaml:8:11: phase 'p': set: model 'p' has no variable 'vzz'; did you mean 'vz'");
+    CHECK(m == NULL);
+}
+
+/* Sequential against end-to-end on the paper's case (the paper's Table 2 and Figure 8). */
+static void test_compare(void)
+{
+    lv_compare_report rep;
+    lv_err err;
+    CHECK_OK(lv_mission_compare(src_path("tests/missions/paper_tight.yaml"), "dopri5", 1e-11, 1.0,
+                                &rep, &err),
+             &err);
+    CHECK(rep.e2e.n_states == 39 && rep.seq.n_states == 13);
+    /* time events: e2e 60, 140 (separation = stage-2 table start), 142, 280, 282 s;
+     * sequential: 60 (P1), 142 (P2), 282 (P3), as the paper's 5 and 3 */
+    CHECK(rep.e2e.time_events == 5 && rep.seq.time_events == 3);
+    CHECK(rep.n_bodies == 3);
+    for (size_t b = 0; b < rep.n_bodies; b++) {
+        printf("compare %s: %zu times, |dr| %.3e m, |dv| %.3e m/s, |dm| %.3e kg\n",
+               rep.bodies[b].name, rep.bodies[b].n_common, rep.bodies[b].max_dpos,
+               rep.bodies[b].max_dvel, rep.bodies[b].max_dmass);
+        CHECK(rep.bodies[b].n_common > 500);
+        /* altitudes reach 4e6 m: 1e-4 m is 2.5e-11 relative, at tolerance 1e-11 */
+        CHECK(rep.bodies[b].max_dpos < 1e-3);
+        CHECK(rep.bodies[b].max_dvel < 1e-5);
+        CHECK(rep.bodies[b].max_dmass < 1e-6);
+    }
+}
+
+int main(void)
+{
+    test_paper_case();
+    test_failing_branch();
+    test_bad_set();
+    test_compare();
+    return check_report("test_runner");
+}
