@@ -126,14 +126,23 @@ static ARKodeButcherTable make_fixed_table(lv_method m)
     return ARKodeButcherTable_Create(1, 1, 0, c, A, b, NULL);
 }
 
+/* SUNDIALS' name of a return flag ("CV_TOO_MUCH_WORK"), copied: the library allocates the
+ * string it returns and leaves freeing it to the caller. */
+static const char *flag_name(const lv_integ *ig, int flag, char *buf, size_t cap)
+{
+    char *name = ig->is_cvode ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag);
+    snprintf(buf, cap, "%s", name ? name : "?");
+    free(name);
+    return buf;
+}
+
 #define SUNCHK(call, what)                                                                  \
     do {                                                                                    \
         int flag_ = (call);                                                                 \
         if (flag_ < 0) {                                                                    \
+            char fname_[64];                                                                \
             st = lv_fail(err, LV_ERR_SOLVER, "setting up %s: %s (%s)", (what),              \
-                         ig->is_cvode ? CVodeGetReturnFlagName(flag_)                       \
-                                      : ERKStepGetReturnFlagName(flag_),                    \
-                         ig->sun_msg);                                                      \
+                         flag_name(ig, flag_, fname_, sizeof fname_), ig->sun_msg);         \
             goto fail;                                                                      \
         }                                                                                   \
     } while (0)
@@ -407,9 +416,10 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
     memcpy(x, N_VGetArrayPointer(ig->y), ig->p.n * sizeof(double));
     *t = tret;
     if (flag < 0) {
+        char fname[64];
         /* ARKODE's flags share CVODE's values for these failures (ARK_TOO_MUCH_WORK = -1 ...). */
         return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: %s [%s] %s", tret, flag_meaning(flag),
-                       ig->is_cvode ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag),
+                       flag_name(ig, flag, fname, sizeof fname),
                        ig->sun_msg);
     }
     /* CV_ROOT_RETURN == ARK_ROOT_RETURN == 2 */
