@@ -312,11 +312,60 @@ static void test_compare(void)
     }
 }
 
+/* A 3-DoF mission over the rotating Earth with a branch (examples/dof3-branch): the
+ * hand-off carries the ECI state across unchanged, the mass from the stage bookkeeping, and
+ * the booster branch ends on the ground. */
+static void test_dof3_branch(void)
+{
+    lv_mission *m;
+    lv_err err;
+    CHECK_OK(lv_mission_load(src_path("examples/dof3-branch/mission.yaml"), &m, &err), &err);
+    lv_run_options opt = {"dof3_out", 2, NULL, NULL, 0.0};
+    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
+    size_t ka, ku, kb;
+    CHECK_OK(lv_mission_phase_find(m, "ascent", &ka, &err), &err);
+    CHECK_OK(lv_mission_phase_find(m, "upper-burn", &ku, &err), &err);
+    CHECK_OK(lv_mission_phase_find(m, "booster", &kb, &err), &err);
+    /* burnout of the core: 150 t at F / (Isp g0) = 3.2e6 / (300 * 9.80665) kg/s */
+    double t_b = 150000.0 / (3.2e6 / (300.0 * 9.80665));
+    CHECK_CLOSE(final(m, "ascent", "time"), t_b, 1e-6);
+    CHECK_CLOSE(final(m, "ascent", "m"), 37000.0, 1e-6);
+    CHECK_CLOSE(final(m, "booster", "m"), 15000.0, 1e-9); /* dry core */
+    CHECK_CLOSE(final(m, "upper-burn", "m"), 2000.0, 1e-6);
+    CHECK_CLOSE(final(m, "booster", "h"), 0.0, 1e-3);      /* impact ends the branch */
+    CHECK(lv_mission_result(m, kb)->t_start == lv_mission_result(m, ka)->t_end);
+    CHECK(lv_mission_result(m, ku)->t_start == lv_mission_result(m, ka)->t_end);
+    /* the first row of the booster's result file is the ascent's final ECI state */
+    const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z"};
+    char path[256], line[1 << 14];
+    snprintf(path, sizeof path, "dof3_out/phase_%zu_booster.csv", kb + 1);
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL);
+    if (f != NULL) {
+        int col[6] = {-1, -1, -1, -1, -1, -1}, c = 0;
+        CHECK(fgets(line, sizeof line, f) != NULL);
+        for (char *tok = strtok(line, ","); tok; tok = strtok(NULL, ","), c++)
+            for (int i = 0; i < 6; i++)
+                if (strncmp(tok, st[i], strlen(st[i])) == 0 && tok[strlen(st[i])] == ' ')
+                    col[i] = c;
+        CHECK(fgets(line, sizeof line, f) != NULL);
+        double v[64];
+        c = 0;
+        for (char *tok = strtok(line, ","); tok && c < 64; tok = strtok(NULL, ","))
+            v[c++] = strtod(tok, NULL);
+        for (int i = 0; i < 6; i++)
+            CHECK(col[i] >= 0 && col[i] < c && v[col[i]] == final(m, "ascent", st[i]));
+        fclose(f);
+    }
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_paper_case();
     test_failing_branch();
     test_bad_set();
     test_compare();
+    test_dof3_branch();
     return check_report("test_runner");
 }

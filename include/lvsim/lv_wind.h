@@ -1,0 +1,65 @@
+/* lv_wind.h - wind as a table over altitude: north, east and optionally down components.
+ *
+ * Contract: the wind is the velocity of the air relative to the rotating planet, in the
+ * local NED frame (docs/frames.md), m/s, as a function of geodetic altitude h [m]. The
+ * 3-DoF model subtracts it from the planet-relative velocity: v_air = v_rel - v_wind.
+ * Outside the table's altitude range the wind is clamped: above the top it keeps the top
+ * row's value, below the bottom the bottom row's. Linear interpolation in between.
+ * File format and conventions: docs/wind.md.
+ *
+ * Threads: an lv_wind is immutable after creation and may be shared read-only between
+ * threads and simulations; the only mutable state is the caller's lv_table_cursor (one
+ * per simulation, e.g. inside an lv_wind_user).
+ */
+#ifndef LVSIM_LV_WIND_H
+#define LVSIM_LV_WIND_H
+
+#include "lvsim/lv_status.h"
+#include "lvsim/lv_table.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct lv_wind lv_wind; /* opaque, immutable once created */
+
+/* Loads a wind table. `path` ending in ".mat": MAT file, `var` the matrix
+ * [h, north, east(, down)] (Modelica CombiTable1D layout, columns by position); otherwise
+ * CSV with `var` NULL and the header "h [m], north [m/s], east [m/s][, down [m/s]]"
+ * (also "v_north", "v_east", "v_down"; units optional, SI only; any column order).
+ * Errors: LV_ERR_IO (unreadable), LV_ERR_INPUT (missing or unknown column, wrong unit,
+ * non-increasing altitudes - path:line:column from the table loader), LV_ERR_NOTFOUND
+ * (no variable `var` in the MAT file). lv_wind_free(*out) when done. */
+LV_API lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out,
+                                      lv_err *err);
+LV_API void lv_wind_free(lv_wind *w); /* accepts NULL */
+
+/* Altitude range of the table [m] (outside it the wind is clamped). */
+LV_API void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi);
+
+/* v_ned = wind at geodetic altitude h [m]: north, east, down in m/s (down 0 when the
+ * table has no down column). `cur` may be NULL. Hot path: no allocation. Fails only for a
+ * NaN altitude (LV_ERR_INPUT; v_ned unchanged). */
+LV_API lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h,
+                              double v_ned[3], lv_err *err);
+
+/* The `user` block of lv_wind_fn_table: the (borrowed) wind and one cursor. One per
+ * simulation; zero-initialise the cursor (LV_WIND_USER_INIT(w)). */
+typedef struct lv_wind_user {
+    const lv_wind *w;    /* borrowed; must outlive the simulation */
+    lv_table_cursor cur; /* interval last used */
+} lv_wind_user;
+#define LV_WIND_USER_INIT(w) { (w), LV_TABLE_CURSOR_INIT }
+
+/* An lv_wind_fn (lv_vehicle.h) for the 3-DoF model:
+ *     lv_wind_user wu = LV_WIND_USER_INIT(wind);
+ *     cfg.wind = lv_wind_fn_table;  cfg.wind_user = &wu;
+ * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0, or 1 (state not
+ * acceptable) for a NaN altitude. */
+LV_API int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_ned[3],
+                            void *user);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
