@@ -5,7 +5,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= 2
 CMAKE_FLAGS ?=
 
-.PHONY: all build deps demo test test-asan bench clean
+.PHONY: all build deps demo test test-asan test-valgrind bench clean
 
 all: build
 
@@ -30,6 +30,10 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE no-asan
+
+# Every unit test under valgrind memcheck (slow: a few minutes).
+test-valgrind: deps build
+	scripts/valgrind-tests.sh $(BUILD)
 
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done

@@ -1,13 +1,15 @@
-/* lv_atmosphere.h - atmosphere models: U.S. Standard Atmosphere 1976 and an exponential model.
+/* lv_atmosphere.h - atmosphere models: U.S. Standard Atmosphere 1976, an exponential model
+ * and a table read from a file.
  *
  * Contract: the input is geometric altitude above the reference surface in m; the output
- * is an lv_atmo_state in SI units. Models are looked up by name ("us76", "exp"); each has
- * its own parameter block, created and freed through the model (or through an lv_atmo
- * handle, which pairs a model with its parameters). Evaluation allocates nothing and is
+ * is an lv_atmo_state in SI units. Models are looked up by name ("us76", "exp", "table");
+ * each has its own parameter block, created and freed through the model (or through an
+ * lv_atmo handle, which pairs a model with its parameters). Evaluation allocates nothing and is
  * safe to call from several threads on the same parameters.
  *
- * Valid range: -5 km to 1000 km for both models (the range of the 1976 tables). An
- * altitude outside it, or NaN, gives LV_ERR_INPUT naming the altitude and the range.
+ * Valid range: -5 km to 1000 km for "us76" and "exp" (the range of the 1976 tables); for
+ * "table", the altitudes of its file. An altitude outside it, or NaN, gives LV_ERR_INPUT
+ * naming the altitude and the range.
  *
  * Above 86 km the 1976 document defines T, p, rho and M but not the speed of sound or the
  * viscosity; "us76" then returns its 86 km formulas applied to the local state (see
@@ -40,7 +42,7 @@ typedef struct lv_atmo_state {
 /* A model: name and functions; its parameters live apart, in a block it creates.
  * `eval` is the hot path: no allocation, no lookup by name. */
 typedef struct lv_atmo_model {
-    const char *name;        /* key used in mission files: "us76", "exp" */
+    const char *name;        /* key used in mission files: "us76", "exp", "table" */
     const char *description; /* one line */
     /* Creates the parameter block with default values (for "us76": integrates the
      * upper-atmosphere number densities once, about 10 ms). */
@@ -66,6 +68,24 @@ typedef struct lv_atmo_exp_par {
     double T;    /* K, temperature */
 } lv_atmo_exp_par;
 
+/* A table over geometric altitude from a file (docs/atmosphere.md, "Table atmosphere"):
+ * T [K] interpolated linearly, p [Pa] and rho [kg/m^3] log-linearly; a [m/s] and mu [Pa s]
+ * from the file if it has them, else from T as in "exp" (eqs. 50, 51 with M0); M = M0.
+ * No extrapolation: outside the file's altitudes, LV_ERR_INPUT. No settable parameters:
+ * its par_create fails (the data come from a file); use lv_atmo_create_table. */
+LV_API extern const lv_atmo_model lv_atmo_table;
+
+/* Loads the parameter block of lv_atmo_table (*par; free it with lv_atmo_table.par_free)
+ * from `path`: ".mat" - MAT file, `var` the matrix [h, T, p, rho(, a(, mu))] (Modelica
+ * CombiTable1D layout, columns by position); otherwise CSV with `var` NULL and a header
+ * "h [m], T [K], p [Pa], rho [kg/m3]" plus optional "a [m/s]", "mu [Pa s]" (any order;
+ * units optional, SI only). Errors: LV_ERR_IO (unreadable); LV_ERR_INPUT naming the file:
+ * a missing column (with the nearest names), an unknown column or unit, a non-positive
+ * T, p, rho, a or mu (path:line for CSV, the row for MAT), non-increasing altitudes
+ * (path:line:column, from the table loader); LV_ERR_NOTFOUND: no variable `var`. */
+LV_API lv_status lv_atmo_table_load(const char *path, const char *var, void **par,
+                                    lv_err *err);
+
 /* Registry. Finds a model by name; LV_ERR_NOTFOUND with "did you mean" otherwise. */
 LV_API lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err *err);
 LV_API size_t lv_atmo_model_count(void);
@@ -74,6 +94,10 @@ LV_API const lv_atmo_model *lv_atmo_model_at(size_t i); /* NULL when i >= count 
 /* A model with its parameters. Whoever calls _create calls _free. */
 typedef struct lv_atmo lv_atmo;
 LV_API lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err);
+/* The "table" model with the data of `path` (`var`: MAT variable, or NULL for CSV); see
+ * lv_atmo_table_load. The handle works like any other (lv_atmo_eval, lv_dof3_config.atmo). */
+LV_API lv_status lv_atmo_create_table(const char *path, const char *var, lv_atmo **out,
+                                      lv_err *err);
 LV_API void lv_atmo_free(lv_atmo *atm);
 LV_API lv_status lv_atmo_set(lv_atmo *atm, const char *key, double value, lv_err *err);
 LV_API const lv_atmo_model *lv_atmo_model_of(const lv_atmo *atm);

@@ -41,8 +41,8 @@ lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err
     for (size_t i = 0; i < NMODELS; i++)
         lv_suggest_add(&sg, MODELS[i]->name);
     lv_suggest_text(&sg, hint, sizeof hint);
-    return lv_fail(err, LV_ERR_NOTFOUND, "unknown atmosphere model '%s'%s (models: us76, exp, table)",
-                   name, hint);
+    return lv_fail(err, LV_ERR_NOTFOUND,
+                   "unknown atmosphere model '%s'%s (models: us76, exp, table)", name, hint);
 }
 
 lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err)

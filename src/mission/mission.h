@@ -99,6 +99,18 @@ typedef struct lv_phase_def {
     char **set_names;
     double *set_values;
     lv_src_loc *set_locs; /* [n_set] where each override was written, for later messages */
+    /* dof3 only: inputs (NAN: the model's default) and a control history over time */
+    double alpha, beta, mu; /* rad */
+    double throttle;        /* - */
+    char *inputs_file, *inputs_var;
+    lv_table *inputs;       /* outputs alpha, beta, mu [rad], throttle; owned */
+    /* dof3 only: the phase's aerodynamic dataset */
+    int has_aero;
+    int aero_body_axes;     /* 0: CD, CL, CY (wind axes); 1: CA, CN, CY (body axes) */
+    double aero_s_ref;      /* m^2 */
+    double aero_coef[3];    /* constant coefficients, NAN: from the table (or 0) */
+    char *aero_file, *aero_var;
+    lv_table *aero_table;   /* outputs named as the coefficients; owned */
     lv_src_loc loc;
 } lv_phase_def;
 

@@ -424,14 +424,17 @@ static lv_status table_outputs(const pctx *c, const lv_ynode *key, const char *w
                 "matrix: columns t, thrust, mdot); it has %s", what, e->table_file, have);
 }
 
-static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode *v,
-                             const char *what, lv_engine_def *e)
+/* A table given as `path` or {file, var, interp, extrap}: loaded into *tab; the resolved
+ * path and .mat variable go to *file and *var. `extrap_default` applies when not given. */
+static lv_status parse_table_ref(const pctx *c, const lv_ynode *key, const lv_ynode *v,
+                                 const char *what, lv_extrap extrap_default, char **file_out,
+                                 char **var_out, lv_table **tab)
 {
     static const char *const keys[] = { "file", "var", "interp", "extrap", NULL };
     static const char *const interps[] = { "linear", "pchip", NULL };
     static const char *const extraps[] = { "clamp", "error", "linear", NULL };
     static const lv_extrap extrap_of[] = { LV_EXTRAP_CLAMP, LV_EXTRAP_ERROR, LV_EXTRAP_LINEAR };
-    lv_table_opts opts = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
+    lv_table_opts opts = { LV_INTERP_LINEAR, extrap_default };
     const lv_ynode *file = v, *at = v;
     const char *rel = NULL;
     lv_status st;
@@ -445,7 +448,7 @@ static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode 
         const lv_ynode *o;
         size_t i;
         if ((o = map_get(v, "var")) != NULL &&
-            (st = get_str(c, o, what, "var", &e->table_var)) != LV_OK)
+            (st = get_str(c, o, what, "var", var_out)) != LV_OK)
             return st;
         if ((o = map_get(v, "interp")) != NULL) {
             if ((st = get_enum(c, o, what, "interp", interps, &i)) != LV_OK)
@@ -462,28 +465,36 @@ static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode 
     st = get_text(c, file, what, "table", &rel);
     if (st != LV_OK)
         return st;
-    e->table_file = resolve_path(c->m->dir, rel);
-    if (e->table_var == NULL && ends_with_mat(rel))
-        e->table_var = file_stem(rel);
-    if (e->table_file == NULL || (ends_with_mat(rel) && e->table_var == NULL))
+    *file_out = resolve_path(c->m->dir, rel);
+    if (*var_out == NULL && ends_with_mat(rel))
+        *var_out = file_stem(rel);
+    if (*file_out == NULL || (ends_with_mat(rel) && *var_out == NULL))
         return nomem(c);
 
     /* Only regular files: a device or a FIFO could block the parser forever. */
     struct stat sb;
-    if (stat(e->table_file, &sb) != 0)
-        return perr(c, at, "%s: table: cannot read '%s': %s", what, e->table_file,
+    if (stat(*file_out, &sb) != 0)
+        return perr(c, at, "%s: table: cannot read '%s': %s", what, *file_out,
                     errno == ENOENT ? "no such file" : "cannot access the file");
     if (!S_ISREG(sb.st_mode))
-        return perr(c, at, "%s: table: '%s' is not a regular file", what, e->table_file);
+        return perr(c, at, "%s: table: '%s' is not a regular file", what, *file_out);
 
-    if (e->table_var != NULL)
-        st = lv_table_load_mat(e->table_file, e->table_var, &opts, &e->table, c->err);
+    if (*var_out != NULL)
+        st = lv_table_load_mat(*file_out, *var_out, &opts, tab, c->err);
     else
-        st = lv_table_load_csv(e->table_file, &opts, &e->table, c->err);
+        st = lv_table_load_csv(*file_out, &opts, tab, c->err);
     if (st != LV_OK)
         return lv_fail_prefix(c->err, st == LV_ERR_NOMEM ? st : LV_ERR_INPUT, "%s:%d:%d: %s: table",
                               c->file, key->line, key->col, what);
-    return table_outputs(c, key, what, e);
+    return LV_OK;
+}
+
+static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode *v,
+                             const char *what, lv_engine_def *e)
+{
+    lv_status st = parse_table_ref(c, key, v, what, LV_EXTRAP_CLAMP, &e->table_file,
+                                   &e->table_var, &e->table);
+    return st != LV_OK ? st : table_outputs(c, key, what, e);
 }
 
 /* ---- stages and engines --------------------------------------------------------------- */
@@ -862,6 +873,89 @@ static lv_status parse_integrator(const pctx *c, const lv_ynode *n, const char *
     return LV_OK;
 }
 
+/* inputs: {alpha_deg, beta_deg, mu_deg, throttle, table}: the 3-DoF model's inputs, constant
+ * or from a control history over mission time (outputs alpha, beta, mu [rad], throttle). */
+static lv_status parse_inputs(const pctx *c, const lv_ynode *n, const char *phase,
+                              lv_phase_def *ph)
+{
+    static const char *const keys[] = { "alpha", "beta", "mu", "throttle", "alpha_deg",
+                                        "beta_deg", "mu_deg", "table", NULL };
+    char what[LV_WHAT_MAX];
+    lv_status st;
+    double *slot[4] = { &ph->alpha, &ph->beta, &ph->mu, &ph->throttle };
+    for (int k = 0; k < 4; k++)
+        *slot[k] = NAN;
+    snprintf(what, sizeof what, "phase '%s', inputs", phase);
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    static const char *const names[4] = { "alpha", "beta", "mu", "throttle" };
+    for (int k = 0; k < 4; k++) {
+        char deg[16];
+        snprintf(deg, sizeof deg, "%s_deg", names[k]);
+        const lv_ynode *v = map_get(n, names[k]), *vd = k < 3 ? map_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return perr(c, map_key(n, deg), "%s: '%s' and '%s' given both", what, names[k], deg);
+        if ((v || vd) && (st = get_num(c, v ? v : vd, what, v ? names[k] : deg, slot[k])) != LV_OK)
+            return st;
+        if (vd)
+            *slot[k] *= LV_DEG;
+    }
+    if (!isnan(ph->throttle) && !(ph->throttle >= 0.0))
+        return perr(c, map_get(n, "throttle"), "%s: throttle must be >= 0, found %g", what,
+                    ph->throttle);
+    const lv_ynode *v = map_get(n, "table");
+    if (v != NULL)
+        return parse_table_ref(c, map_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
+                               &ph->inputs_file, &ph->inputs_var, &ph->inputs);
+    return LV_OK;
+}
+
+/* aero: {s_ref, axes: wind|body, table, CD, CL, CY | CA, CN, CY}: the phase's aerodynamic
+ * dataset (tables over mach, alpha [, beta, altitude], outputs named as the coefficients). */
+static lv_status parse_aero(const pctx *c, const lv_ynode *n, const char *phase, lv_phase_def *ph)
+{
+    static const char *const keys[] = { "s_ref", "axes", "table", "CD", "CL", "CY", "CA", "CN",
+                                        NULL };
+    static const char *const axes[] = { "wind", "body", NULL };
+    char what[LV_WHAT_MAX];
+    const lv_ynode *v;
+    lv_status st;
+    size_t i = 0;
+    for (int k = 0; k < 3; k++)
+        ph->aero_coef[k] = NAN;
+    snprintf(what, sizeof what, "phase '%s', aero", phase);
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    ph->has_aero = 1;
+    if ((st = need(c, n, what, "s_ref", &v)) != LV_OK ||
+        (st = get_num(c, v, what, "s_ref", &ph->aero_s_ref)) != LV_OK)
+        return st;
+    if (!(ph->aero_s_ref > 0.0))
+        return perr(c, v, "%s: s_ref must be > 0 m^2, found %g", what, ph->aero_s_ref);
+    if ((v = map_get(n, "axes")) != NULL && (st = get_enum(c, v, what, "axes", axes, &i)) != LV_OK)
+        return st;
+    ph->aero_body_axes = i == 1;
+    const char *const names[2][3] = { { "CD", "CL", "CY" }, { "CA", "CN", "CY" } };
+    const char *const other[2][2] = { { "CA", "CN" }, { "CD", "CL" } };
+    for (int k = 0; k < 2; k++)
+        if (map_get(n, other[i][k]) != NULL)
+            return perr(c, map_key(n, other[i][k]), "%s: '%s' belongs to axes: %s", what,
+                        other[i][k], i == 0 ? "body" : "wind");
+    for (int k = 0; k < 3; k++)
+        if ((v = map_get(n, names[i][k])) != NULL &&
+            (st = get_num(c, v, what, names[i][k], &ph->aero_coef[k])) != LV_OK)
+            return st;
+    if ((v = map_get(n, "table")) != NULL &&
+        (st = parse_table_ref(c, map_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &ph->aero_file,
+                              &ph->aero_var, &ph->aero_table)) != LV_OK)
+        return st;
+    return LV_OK;
+}
+
 static lv_status parse_set(const pctx *c, const lv_ynode *n, const char *phase,
                            lv_phase_def *ph)
 {
@@ -929,7 +1023,8 @@ static lv_status parse_phase(const pctx *c, const lv_ynode *n, size_t k, lv_phas
                              const lv_ynode **from)
 {
     static const char *const keys[] = { "name", "model", "stages", "from", "start_time",
-                                        "stop_time", "end", "integrator", "set", NULL };
+                                        "stop_time", "end", "integrator", "set", "inputs",
+                                        "aero", NULL };
     static const char *const models[] = { "flat6", "dof3", NULL };
     const int flat = c->m->env.world == LV_WORLD_FLAT;
     char what[LV_WHAT_MAX], buf[64];
@@ -1005,6 +1100,15 @@ static lv_status parse_phase(const pctx *c, const lv_ynode *n, size_t k, lv_phas
         }
     }
     if ((st = parse_integrator(c, map_get(n, "integrator"), ph->name, ph)) != LV_OK)
+        return st;
+    for (int j = 0; j < 2; j++) {
+        const char *key = j == 0 ? "inputs" : "aero";
+        if ((v = map_get(n, key)) != NULL && flat)
+            return perr(c, map_key(n, key), "%s: '%s' applies to the dof3 model only (flat6 "
+                        "flies along +z without aerodynamics)", what, key);
+    }
+    if ((st = parse_inputs(c, map_get(n, "inputs"), ph->name, ph)) != LV_OK ||
+        (st = parse_aero(c, map_get(n, "aero"), ph->name, ph)) != LV_OK)
         return st;
     return parse_set(c, map_get(n, "set"), ph->name, ph);
 }
@@ -1338,6 +1442,12 @@ void lv_mission_def_free(lv_mission_def *m)
         for (size_t k = 0; k < ph->n_set; k++)
             free(ph->set_names[k]);
         free(ph->set_names);
+        free(ph->inputs_file);
+        free(ph->inputs_var);
+        lv_table_free(ph->inputs);
+        free(ph->aero_file);
+        free(ph->aero_var);
+        lv_table_free(ph->aero_table);
         free(ph->set_values);
         free(ph->set_locs);
     }

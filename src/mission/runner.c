@@ -30,6 +30,7 @@
 struct lv_phase_model {
     lv_flat6 *flat;
     lv_dof3 *dof3;
+    lv_aero_config aero;
     lv_flat_stage *stages;
     lv_flat_engine *engines;
     lv_flat_end *ends;
@@ -149,6 +150,33 @@ static lv_status build_dof3(const lv_mission_def *d, const lv_runner_env *env, s
     }
     cfg.n_ends = n_ends;
     cfg.ends = pm->ends3;
+    /* inputs: constants from the phase (else the model's defaults), or a control history */
+    if (!isnan(ph->alpha))
+        cfg.alpha = ph->alpha;
+    if (!isnan(ph->beta))
+        cfg.beta = ph->beta;
+    if (!isnan(ph->mu))
+        cfg.mu = ph->mu;
+    if (!isnan(ph->throttle))
+        cfg.throttle = ph->throttle;
+    cfg.inputs = ph->inputs;
+    /* the phase's aerodynamic dataset: a coefficient is a constant, else the table's output
+     * of its name, else 0 */
+    if (ph->has_aero) {
+        static const char *const names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
+        lv_aero_config_default(&pm->aero);
+        pm->aero.axes = ph->aero_body_axes ? LV_AERO_BODY : LV_AERO_WIND;
+        pm->aero.s_ref = ph->aero_s_ref;
+        for (int c = 0; c < 3; c++) {
+            const char *nm = names[ph->aero_body_axes][c];
+            size_t idx;
+            if (!isnan(ph->aero_coef[c]))
+                pm->aero.coef[c] = (lv_aero_coef){NULL, NULL, ph->aero_coef[c]};
+            else if (ph->aero_table && lv_table_out_index(ph->aero_table, nm, &idx, NULL) == LV_OK)
+                pm->aero.coef[c] = (lv_aero_coef){ph->aero_table, nm, 0.0};
+        }
+        cfg.aero = &pm->aero;
+    }
     return lv_dof3_create(&cfg, &pm->dof3, err);
 }
 

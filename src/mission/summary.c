@@ -93,13 +93,24 @@ static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_er
         free(ks);
         return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
     }
-    /* Columns: the first phase's states (the body law is the same in every phase). */
+    /* Columns: the states of the phases' model (every phase of a body has the same model:
+     * the world decides it), plus, for the 3-DoF model, where the body is over the planet. */
     const lv_result *r0 = n ? lv_runner_rows(m, ks[0]) : NULL;
-    static const char *const cols[] = {"x", "y", "z", "vx", "vy", "vz", "psi", "theta", "phi",
-                                       "p", "q", "r", "m"};
-    static const char *const units[] = {"m", "m", "m", "m/s", "m/s", "m/s", "rad", "rad", "rad",
-                                        "rad/s", "rad/s", "rad/s", "kg"};
-    const size_t nc = sizeof cols / sizeof cols[0];
+    static const char *const flat_cols[] = {"x", "y", "z", "vx", "vy", "vz", "psi", "theta",
+                                            "phi", "p", "q", "r", "m", NULL};
+    static const char *const flat_units[] = {"m", "m", "m", "m/s", "m/s", "m/s", "rad", "rad",
+                                             "rad", "rad/s", "rad/s", "rad/s", "kg"};
+    static const char *const dof3_cols[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x",
+                                            "v_eci_y", "v_eci_z", "m", "lat", "lon", "h",
+                                            "v_rel", "mach", "q_dyn", NULL};
+    static const char *const dof3_units[] = {"m", "m", "m", "m/s", "m/s", "m/s", "kg", "rad",
+                                             "rad", "m", "m/s", "1", "Pa"};
+    const int flat = d->env.world == LV_WORLD_FLAT;
+    const char *const *cols = flat ? flat_cols : dof3_cols;
+    const char *const *units = flat ? flat_units : dof3_units;
+    size_t nc = 0;
+    while (cols[nc] != NULL)
+        nc++;
     fprintf(f, "time [s],phase");
     for (size_t c = 0; c < nc; c++)
         fprintf(f, ",%s [%s]", strcmp(cols[c], "m") == 0 ? "body_mass" : cols[c], units[c]);

@@ -218,6 +218,7 @@ struct lv_flat6 {
     lv_model_def def;
     char *name;
     lv_var states[LV_FLAT_N];
+    lv_var params[PF_N];      /* g defaults to the configuration's */
     lv_event_def *events; /* [1 + n_ends] */
     lv_flat_end *ends;
     size_t n_ends;
@@ -387,6 +388,8 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
     }
     memcpy(m->states, body_states, sizeof body_states);
     m->states[LV_FLAT_M].start = mass;
+    memcpy(m->params, flat_params, sizeof flat_params);
+    m->params[PF_G].start = cfg->g;
     m->events[0] = (lv_event_def){"burnout", "Bottom stage's propellant exhausted: engines stop",
                                   LV_DIR_FALLING};
     m->n_ends = cfg->n_ends;
@@ -410,7 +413,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .n_outputs = OF_N,
         .n_events = 1 + cfg->n_ends,
         .states = m->states,
-        .params = flat_params,
+        .params = m->params,
         .outputs = flat6_outputs,
         .events = m->events,
         .start = flat6_start,
@@ -422,7 +425,6 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .outputs_fn = flat6_outputs_fn,
         .last_error = flat6_last_error,
     };
-    /* g is a parameter so that initialNames can set it; its default is the config's */
     *out = m;
     return LV_OK;
 fail:

@@ -335,6 +335,14 @@ static void test_dof3_branch(void)
     CHECK_CLOSE(final(m, "booster", "h"), 0.0, 1e-3);      /* impact ends the branch */
     CHECK(lv_mission_result(m, kb)->t_start == lv_mission_result(m, ka)->t_end);
     CHECK(lv_mission_result(m, ku)->t_start == lv_mission_result(m, ka)->t_end);
+    /* each phase flies its own aerodynamic dataset: at the booster's end, drag = q S CD with
+     * S = 12 m^2 and CD interpolated linearly in Mach from aero_descent.csv (values copied) */
+    const double mach_tab[] = {0.0, 1.0, 2.0, 5.0, 20.0}, cd_tab[] = {0.80, 1.05, 0.95, 0.85, 0.80};
+    double mach = final(m, "booster", "mach"), cd = NAN;
+    for (int i = 0; i < 4; i++)
+        if (mach >= mach_tab[i] && mach <= mach_tab[i + 1])
+            cd = cd_tab[i] + (cd_tab[i + 1] - cd_tab[i]) * (mach - mach_tab[i]) / (mach_tab[i + 1] - mach_tab[i]);
+    CHECK_REL(final(m, "booster", "drag"), final(m, "booster", "q_dyn") * 12.0 * cd, 1e-12);
     /* the first row of the booster's result file is the ascent's final ECI state */
     const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z"};
     char path[256], line[1 << 14];
@@ -360,6 +368,22 @@ static void test_dof3_branch(void)
     lv_mission_free(m);
 }
 
+/* inputs: and aero: belong to the 3-DoF model: on a flat world they are an error. */
+static void test_bad_aero(void)
+{
+    FILE *f = fopen("badaero.yaml", "w");
+    fprintf(f,
+            "mission: {name: bad-aero}\n"
+            "stages: [{name: a, dry_mass: 100, propellant_mass: 0}]\n"
+            "phases:\n"
+            "  - {name: p, model: flat6, stages: [a], stop_time: 10, aero: {s_ref: 1, CD: 0.3}}\n");
+    fclose(f);
+    lv_mission *m = NULL;
+    lv_err err;
+    CHECK_FAILS(lv_mission_load("badaero.yaml", &m, &err), &err, LV_ERR_INPUT,
+                "badaero.yaml:4:57: phase 'p': 'aero' applies to the dof3 model only");
+}
+
 int main(void)
 {
     test_paper_case();
@@ -367,5 +391,6 @@ int main(void)
     test_bad_set();
     test_compare();
     test_dof3_branch();
+    test_bad_aero();
     return check_report("test_runner");
 }
