@@ -12,6 +12,7 @@
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_wind.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"

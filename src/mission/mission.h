@@ -32,6 +32,10 @@ typedef struct lv_env_def {
     char *gravity;        /* planet world: gravity spec, e.g. "j2", "sh:8" (default "j2");
                              NULL on a flat world */
     char *atmosphere;     /* "us76" (default for earth), "exp", "none" */
+    double site_lat, site_lon; /* rad: flat world: geodetic position of the origin (WGS-84) */
+    char *atmo_file, *atmo_var; /* atmosphere "table": the file (resolved) and .mat variable */
+    char *wind_file, *wind_var; /* wind table over altitude, or NULL: no wind */
+    lv_src_loc wind_loc;
     lv_src_loc loc;
 } lv_env_def;
 
@@ -119,6 +123,7 @@ typedef struct lv_phase_def {
 typedef struct lv_mission_def {
     char *name;
     char *description;
+    char *epoch;   /* ISO 8601 UTC of mission time 0, or NULL (exports use 2000-01-01T12:00:00Z) */
     char *path;    /* the mission file */
     char *dir;     /* its directory: relative table paths resolve against it */
     lv_env_def env;

@@ -289,9 +289,29 @@ static lv_src_loc loc_of(const lv_ynode *n)
 
 /* ---- environment ---------------------------------------------------------------------- */
 
+static char *resolve_path(const char *dir, const char *rel);
+
+/* {<file_key>: path, var: name} of a table read later by its model (atmosphere, wind). */
+static lv_status table_file(const pctx *c, const lv_ynode *n, const char *what,
+                            const char *file_key, char **file, char **var)
+{
+    const lv_ynode *v;
+    const char *rel;
+    lv_status st;
+    if ((st = need(c, n, what, file_key, &v)) != LV_OK ||
+        (st = get_text(c, v, what, file_key, &rel)) != LV_OK)
+        return st;
+    if ((*file = resolve_path(c->m->dir, rel)) == NULL)
+        return nomem(c);
+    if ((v = map_get(n, "var")) != NULL && (st = get_str(c, v, what, "var", var)) != LV_OK)
+        return st;
+    return LV_OK;
+}
+
 static lv_status parse_env(const pctx *c, const lv_ynode *n)
 {
-    static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere", NULL };
+    static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere",
+                                        "wind", "site_lat_deg", "site_lon_deg", NULL };
     static const char *const worlds[] = { "flat", "planet", NULL };
     static const char *const planets[] = { "earth", "moon", "mars", NULL };
     static const char *const atmos[] = { "us76", "exp", "none", NULL };
@@ -329,6 +349,22 @@ static lv_status parse_env(const pctx *c, const lv_ynode *n)
         if (!(e->g > 0.0))
             return perr(c, v, "%s: g must be > 0 m/s^2, found %g", what, e->g);
     }
+    /* Where the flat world's origin lies on the Earth, for maps and the globe view. */
+    const char *skeys[] = { "site_lat_deg", "site_lon_deg" };
+    double *sval[] = { &e->site_lat, &e->site_lon };
+    for (size_t k = 0; k < 2; k++) {
+        if ((v = map_get(n, skeys[k])) == NULL)
+            continue;
+        if (!flat)
+            return perr(c, map_key(n, skeys[k]), "%s: '%s' applies to world: flat only (a "
+                        "planet world starts at the parameters start_lat, start_lon)", what,
+                        skeys[k]);
+        if ((st = get_num(c, v, what, skeys[k], sval[k])) != LV_OK)
+            return st;
+        if (fabs(*sval[k]) > (k == 0 ? 90.0 : 360.0))
+            return perr(c, v, "%s: %s = %g is out of range", what, skeys[k], *sval[k]);
+        *sval[k] *= LV_DEG;
+    }
     const char *pkeys[] = { "planet", "gravity" };
     for (size_t k = 0; k < 2; k++)
         if (flat && map_get(n, pkeys[k]) != NULL)
@@ -352,11 +388,41 @@ static lv_status parse_env(const pctx *c, const lv_ynode *n)
     }
     /* US76 is an Earth atmosphere: other planets have none unless the file asks. */
     i = (!flat && strcmp(e->planet, "earth") == 0) ? 0 : 2;
-    if ((v = map_get(n, "atmosphere")) != NULL &&
-        (st = get_enum(c, v, what, "atmosphere", atmos, &i)) != LV_OK)
-        return st;
-    e->atmosphere = dup_text(atmos[i]);
-    return e->atmosphere != NULL ? LV_OK : nomem(c);
+    v = map_get(n, "atmosphere");
+    if (v != NULL && v->kind == LV_YNODE_MAP) { /* {table: path, var: name}: from a file */
+        static const char *const tkeys[] = { "table", "var", NULL };
+        if ((st = check_map(c, v, "environment, atmosphere", tkeys)) != LV_OK ||
+            (st = table_file(c, v, "environment, atmosphere", "table", &e->atmo_file,
+                             &e->atmo_var)) != LV_OK)
+            return st;
+        e->atmosphere = dup_text("table");
+    } else {
+        if (v != NULL && (st = get_enum(c, v, what, "atmosphere", atmos, &i)) != LV_OK)
+            return st;
+        e->atmosphere = dup_text(atmos[i]);
+    }
+    if (e->atmosphere == NULL)
+        return nomem(c);
+    /* wind: a table of north/east(/down) components over altitude (docs/wind.md) */
+    if ((v = map_get(n, "wind")) != NULL) {
+        if (flat)
+            return perr(c, map_key(n, "wind"), "%s: 'wind' applies to world: planet only", what);
+        if (v->kind == LV_YNODE_MAP) {
+            static const char *const wkeys[] = { "file", "var", NULL };
+            if ((st = check_map(c, v, "environment, wind", wkeys)) != LV_OK ||
+                (st = table_file(c, v, "environment, wind", "file", &e->wind_file,
+                                 &e->wind_var)) != LV_OK)
+                return st;
+        } else {
+            const char *rel;
+            if ((st = get_text(c, v, what, "wind", &rel)) != LV_OK)
+                return st;
+            if ((e->wind_file = resolve_path(c->m->dir, rel)) == NULL)
+                return nomem(c);
+        }
+        e->wind_loc = loc_of(v);
+    }
+    return LV_OK;
 }
 
 /* ---- engine tables -------------------------------------------------------------------- */
@@ -1295,7 +1361,7 @@ static lv_status parse_root(const pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
                                         "phases", NULL };
-    static const char *const mkeys[] = { "name", "description", NULL };
+    static const char *const mkeys[] = { "name", "description", "epoch", NULL };
     lv_mission_def *m = c->m;
     const lv_ynode *v, *info;
     char buf[64];
@@ -1310,6 +1376,22 @@ static lv_status parse_root(const pctx *c, const lv_ynode *root)
         (st = need(c, info, "mission", "name", &v)) != LV_OK ||
         (st = get_str(c, v, "mission", "name", &m->name)) != LV_OK)
         return st;
+    if ((v = map_get(info, "epoch")) != NULL) {
+        const char *ep;
+        int y, mo, d, h, mi;
+        double sec;
+        char z;
+        if ((st = get_text(c, v, "mission", "epoch", &ep)) != LV_OK)
+            return st;
+        /* ISO 8601 UTC, as CZML and CCSDS OEM want it: 2026-03-01T12:00:00Z */
+        if (sscanf(ep, "%4d-%2d-%2dT%2d:%2d:%lf%c", &y, &mo, &d, &h, &mi, &sec, &z) != 7 ||
+            z != 'Z' || mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 ||
+            !(sec >= 0.0 && sec < 61.0))
+            return perr(c, v, "mission: epoch: an ISO 8601 UTC time like 2026-03-01T12:00:00Z "
+                        "expected, found '%.40s'", ep);
+        if ((m->epoch = dup_text(ep)) == NULL)
+            return nomem(c);
+    }
     if ((v = map_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
         (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK)
         return st;
@@ -1411,6 +1493,11 @@ void lv_mission_def_free(lv_mission_def *m)
         return;
     free(m->name);
     free(m->description);
+    free(m->epoch);
+    free(m->env.atmo_file);
+    free(m->env.atmo_var);
+    free(m->env.wind_file);
+    free(m->env.wind_var);
     free(m->path);
     free(m->dir);
     free(m->env.planet);

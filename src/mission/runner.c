@@ -16,6 +16,7 @@
 #include "core/status.h"
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_flat.h"
+#include "lvsim/lv_wind.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
 #include "mission/mission.h"
@@ -31,6 +32,7 @@ struct lv_phase_model {
     lv_flat6 *flat;
     lv_dof3 *dof3;
     lv_aero_config aero;
+    lv_wind_user wind;  /* the wind table and this simulation's cursor */
     lv_flat_stage *stages;
     lv_flat_engine *engines;
     lv_flat_end *ends;
@@ -102,6 +104,11 @@ static lv_status build_dof3(const lv_mission_def *d, const lv_runner_env *env, s
     cfg.planet = env->planet;
     cfg.gravity = env->gravity;
     cfg.atmo = env->atmo;
+    if (env->wind != NULL) {
+        pm->wind = (lv_wind_user)LV_WIND_USER_INIT(env->wind);
+        cfg.wind = lv_wind_fn_table;
+        cfg.wind_user = &pm->wind;
+    }
     double m0 = 0.0;
     for (size_t i = 0; i < ph->n_stages; i++) {
         const size_t si = ph->stages[i];
@@ -284,6 +291,7 @@ void lv_mission_free(lv_mission *m)
     free(m->ph);
     lv_gravity_free(m->env.gravity);
     lv_atmo_free(m->env.atmo);
+    lv_wind_free(m->env.wind);
     lv_mission_def_free(m->def);
     pthread_mutex_destroy(&m->lock);
     pthread_cond_destroy(&m->cv);
@@ -351,8 +359,14 @@ static lv_status make_env(const lv_mission_def *d, lv_runner_env *env, lv_err *e
     if (st == LV_OK)
         st = lv_gravity_create(&env->planet, &gc, &env->gravity, err);
     const char *atm = d->env.atmosphere;
-    if (st == LV_OK && atm != NULL && strcmp(atm, "none") != 0)
+    if (st == LV_OK && atm != NULL && strcmp(atm, "table") == 0)
+        st = lv_atmo_create_table(d->env.atmo_file, d->env.atmo_var, &env->atmo, err);
+    else if (st == LV_OK && atm != NULL && strcmp(atm, "none") != 0)
         st = lv_atmo_create(atm, &env->atmo, err);
+    if (st == LV_OK && d->env.wind_file != NULL) {
+        loc = &d->env.wind_loc;
+        st = lv_wind_create_table(d->env.wind_file, d->env.wind_var, &env->wind, err);
+    }
     if (st != LV_OK)
         return lv_fail_prefix(err, LV_ERR_INPUT, "%s:%d:%d: environment", d->path, loc->line,
                               loc->column);
@@ -377,6 +391,7 @@ lv_status lv_mission_load(const char *path, lv_mission **out, lv_err *err)
         free(m->ph);
         lv_gravity_free(m->env.gravity);
         lv_atmo_free(m->env.atmo);
+        lv_wind_free(m->env.wind);
         lv_mission_def_free(d);
         free(m);
         return st;

@@ -6,6 +6,7 @@
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_planet.h"
+#include "lvsim/lv_wind.h"
 #include "lvsim/lv_mission.h"
 #include "mission/mission.h"
 
@@ -14,6 +15,7 @@ typedef struct lv_runner_env {
     lv_planet planet;
     lv_gravity *gravity; /* NULL on a flat world */
     lv_atmo *atmo;       /* NULL: vacuum */
+    lv_wind *wind;       /* NULL: no wind */
 } lv_runner_env;
 
 /* Phase k's model with `prop_all[s]` kg of propellant left in mission stage s (NULL: liftoff). */

@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_planet.h"
 #include "lvsim/lvsim.h"
 #include "mission/runner.h"
 
@@ -114,7 +115,13 @@ static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_er
     fprintf(f, "time [s],phase");
     for (size_t c = 0; c < nc; c++)
         fprintf(f, ",%s [%s]", strcmp(cols[c], "m") == 0 ? "body_mass" : cols[c], units[c]);
-    fprintf(f, ",stage_mass [kg]\n");
+    fprintf(f, ",stage_mass [kg]%s\n", flat ? ",lat [rad],lon [rad],h [m]" : "");
+    /* The flat world's origin sits at the mission's site (WGS-84) with x east, y north, z up:
+     * geodetic coordinates for maps and the globe. */
+    const lv_planet earth = lv_planet_earth();
+    double r_site[3], C_ned_ecef[3][3];
+    lv_frames_geodetic_to_ecef(&earth, d->env.site_lat, d->env.site_lon, 0.0, r_site);
+    lv_frames_C_ned_ecef(d->env.site_lat, d->env.site_lon, C_ned_ecef);
     for (size_t i = 0; i < n && r0; i++) {
         const lv_result *r = lv_runner_rows(m, ks[i]);
         size_t idx[16], ct, cm = 0;
@@ -132,7 +139,19 @@ static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_er
             fprintf(f, "%.17g,%s", lv_result_value(r, row, ct), d->phases[ks[i]].name);
             for (size_t c = 0; c < nc; c++)
                 fprintf(f, ",%.17g", lv_result_value(r, row, idx[c]));
-            fprintf(f, ",%.17g\n", lv_runner_stage_mass(m, ks[i], s, lv_result_value(r, row, cm)));
+            fprintf(f, ",%.17g", lv_runner_stage_mass(m, ks[i], s, lv_result_value(r, row, cm)));
+            if (flat) {
+                const double ned[3] = {lv_result_value(r, row, idx[1]),
+                                       lv_result_value(r, row, idx[0]),
+                                       -lv_result_value(r, row, idx[2])};
+                double r_ecef[3], lat, lon, h;
+                for (int a = 0; a < 3; a++)
+                    r_ecef[a] = r_site[a] + C_ned_ecef[0][a] * ned[0] +
+                                C_ned_ecef[1][a] * ned[1] + C_ned_ecef[2][a] * ned[2];
+                lv_frames_ecef_to_geodetic(&earth, r_ecef, &lat, &lon, &h);
+                fprintf(f, ",%.17g,%.17g,%.17g", lat, lon, h);
+            }
+            fputc('\n', f);
         }
     }
     int bad = ferror(f);
@@ -242,6 +261,13 @@ lv_status lv_mission_write_summary(const lv_mission *m, const char *outdir, lv_e
     cJSON_AddStringToObject(root, "mission", d->name);
     cJSON_AddStringToObject(root, "file", d->path);
     cJSON_AddStringToObject(root, "lvsim", LVSIM_VERSION);
+    cJSON_AddStringToObject(root, "epoch", d->epoch ? d->epoch : "2000-01-01T12:00:00Z");
+    cJSON_AddStringToObject(root, "world", d->env.world == LV_WORLD_FLAT ? "flat" : "planet");
+    if (d->env.world == LV_WORLD_FLAT) {
+        cJSON *site = cJSON_AddObjectToObject(root, "site");
+        cJSON_AddNumberToObject(site, "lat", d->env.site_lat);
+        cJSON_AddNumberToObject(site, "lon", d->env.site_lon);
+    }
     cJSON *phases = cJSON_AddArrayToObject(root, "phases");
     for (size_t k = 0; k < d->n_phases; k++)
         cJSON_AddItemToArray(phases, phase_json(m, k));

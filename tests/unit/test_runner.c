@@ -10,6 +10,8 @@
  * closed-form vz(t) (independent of the ODE solver). Mass flows are piecewise linear in time,
  * so m(t) and the burnout times are closed-form too. Ballistic phases: z = z0 + v0 t - g t^2/2.
  */
+#define _POSIX_C_SOURCE 200809L
+
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -99,6 +101,39 @@ static double climb(int s, double m0, double v0, double t0, double t1)
         z += sum * h / 3.0;
     }
     return z;
+}
+
+/* The first data row of a result CSV, the columns named in `want` (names without units). */
+static int read_first_row(const char *path, const char *const *want, int n, double *out)
+{
+    static char head[1 << 14], row[1 << 14];
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return -1;
+    int ok = fgets(head, sizeof head, f) != NULL && fgets(row, sizeof row, f) != NULL;
+    fclose(f);
+    if (!ok)
+        return -1;
+    int col[16], found = 0;
+    for (int i = 0; i < n; i++)
+        col[i] = -1;
+    int c = 0;
+    for (char *save = NULL, *tok = strtok_r(head, ",", &save); tok; tok = strtok_r(NULL, ",", &save), c++)
+        for (int i = 0; i < n; i++)
+            if (strncmp(tok, want[i], strlen(want[i])) == 0 &&
+                (tok[strlen(want[i])] == ' ' || tok[strlen(want[i])] == '\0' ||
+                 tok[strlen(want[i])] == '\n'))
+                col[i] = c, found++;
+    double v[512];
+    c = 0;
+    for (char *save = NULL, *tok = strtok_r(row, ",", &save); tok && c < 512; tok = strtok_r(NULL, ",", &save))
+        v[c++] = strtod(tok, NULL);
+    for (int i = 0; i < n; i++) {
+        if (col[i] < 0 || col[i] >= c)
+            return -1;
+        out[i] = v[col[i]];
+    }
+    return found == n ? 0 : -1;
 }
 
 static double final(const lv_mission *m, const char *phase, const char *name)
@@ -343,6 +378,19 @@ static void test_dof3_branch(void)
         if (mach >= mach_tab[i] && mach <= mach_tab[i + 1])
             cd = cd_tab[i] + (cd_tab[i + 1] - cd_tab[i]) * (mach - mach_tab[i]) / (mach_tab[i + 1] - mach_tab[i]);
     CHECK_REL(final(m, "booster", "drag"), final(m, "booster", "q_dyn") * 12.0 * cd, 1e-12);
+    /* the wind table enters the air-relative velocity: on the ascent's first row (h = 100 m,
+     * wind from wind.csv: north 0.05, east -5.15 m/s by linear interpolation),
+     * q = rho |v_rel - v_wind|^2 / 2 with the NED components of v_rel */
+    {
+        char path[256];
+        snprintf(path, sizeof path, "dof3_out/phase_%zu_ascent.csv", ka + 1);
+        const char *want[] = {"rho", "v_north", "v_east", "v_down", "q_dyn", "h"};
+        double val[6];
+        CHECK(read_first_row(path, want, 6, val) == 0);
+        double wn = 0.0 + (1.0 - 0.0) * val[5] / 2000.0, we = -5.0 + (-8.0 + 5.0) * val[5] / 2000.0;
+        double dn = val[1] - wn, de = val[2] - we, dd = val[3];
+        CHECK_REL(val[4], 0.5 * val[0] * (dn * dn + de * de + dd * dd), 1e-12);
+    }
     /* the first row of the booster's result file is the ascent's final ECI state */
     const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z"};
     char path[256], line[1 << 14];
