@@ -62,6 +62,8 @@ typedef struct lv_phase_result {
     const char *const *final_names;
     const double *final_values;
     const char *result_stem;     /* "OUTDIR/phase_<k>_<name>" when files were written */
+    size_t n_event_names;        /* the phase model's state-event functions, by index: */
+    const char *const *event_names; /*   report.event_log[i].index names one of them */
 } lv_phase_result;
 
 typedef struct lv_run_options {

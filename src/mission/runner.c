@@ -249,6 +249,7 @@ typedef struct phase_rt {
     char **fnames;
     double *fvalues;
     size_t nf;
+    char **evnames; /* [n_event_names] */
     double *prop_end;    /* [n_stages of the mission]: propellant left after this phase */
     double m_start;      /* kg, the phase's initial mass (after overrides) */
     double mass_handoff; /* kg, the mass the stage bookkeeping gave (NAN for roots) */
@@ -277,6 +278,9 @@ static void phase_rt_clear(phase_rt *p)
         free(p->fnames[i]);
     free(p->fnames);
     free(p->fvalues);
+    for (size_t i = 0; i < p->res.n_event_names; i++)
+        free(p->evnames[i]);
+    free(p->evnames);
     free(p->prop_end);
     lv_result_free(p->rows);
     memset(p, 0, sizeof *p);
@@ -574,10 +578,19 @@ static size_t handoff(lv_mission *m, size_t k, const lv_model_def *md, const dou
     return n;
 }
 
-static lv_status keep_finals(phase_rt *p, const lv_model_def *md, const lv_sim_settings *s,
-                             lv_err *err)
+/* Names of the final values (time, states, outputs) and of the model's events, kept with
+ * the result: the model itself is gone when the summary is written. */
+static lv_status keep_names(phase_rt *p, const lv_model_def *md, lv_err *err)
 {
-    (void)s;
+    p->evnames = calloc(md->n_events + 1, sizeof *p->evnames);
+    if (p->evnames == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < md->n_events; i++) {
+        if ((p->evnames[i] = strdup(md->events[i].name)) == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        p->res.n_event_names = i + 1;
+    }
+    p->res.event_names = (const char *const *)p->evnames;
     size_t nf = 1 + md->n_states + md->n_outputs;
     p->fnames = calloc(nf, sizeof *p->fnames);
     p->fvalues = calloc(nf, sizeof *p->fvalues);
@@ -649,7 +662,7 @@ static lv_status run_one(lv_mission *m, size_t k, const lv_run_options *opt, lv_
         s.result_file = p->stem;
         p->res.result_stem = p->stem;
     }
-    if ((st = keep_finals(p, md, &s, err)) != LV_OK)
+    if ((st = keep_names(p, md, err)) != LV_OK)
         goto done;
     if ((st = lv_sink_memory_create(&p->rows, &mem, err)) != LV_OK)
         goto done;

@@ -71,13 +71,20 @@ static const char *state_name(lv_phase_state st)
 
 static const char *const end_kind_names[] = {"burnout", "altitude", "speed", "apogee", "impact"};
 
-/* Name of state event `index` of a phase model: 0 is the stage cut-off, 1 + j its end j. */
-static const char *event_name(const lv_phase_def *ph, int index)
+/* Name of state event `index` of a phase's model (recorded when the phase ran). */
+static const char *event_name(const lv_phase_result *r, int index)
 {
-    if (index <= 0)
-        return "burnout";
-    size_t j = (size_t)index - 1;
-    return j < ph->n_ends ? end_kind_names[ph->ends[j].kind] : "event";
+    return index >= 0 && (size_t)index < r->n_event_names ? r->event_names[index] : "event";
+}
+
+/* The value of the end condition an event stands for ("altitude" -> 100000), or NAN. */
+static double end_value(const lv_phase_def *ph, const char *event)
+{
+    for (size_t j = 0; j < ph->n_ends; j++)
+        if (strncmp(event, end_kind_names[ph->ends[j].kind], strlen(end_kind_names[ph->ends[j].kind])) == 0 &&
+            ph->ends[j].kind != LV_END_BURNOUT && ph->ends[j].kind != LV_END_APOGEE)
+            return ph->ends[j].value;
+    return NAN;
 }
 
 static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_err *err)
@@ -192,9 +199,11 @@ static cJSON *phase_json(const lv_mission *m, size_t k)
                                            : rep->reason == LV_STOP_EVENT ? "event"
                                                                           : "failed");
     if (rep->reason == LV_STOP_EVENT && rep->stop_event >= 0) {
-        cJSON_AddStringToObject(end, "event", event_name(ph, rep->stop_event));
-        if (rep->stop_event > 0 && (size_t)rep->stop_event <= ph->n_ends)
-            cJSON_AddNumberToObject(end, "value", ph->ends[rep->stop_event - 1].value);
+        const char *ev = event_name(r, rep->stop_event);
+        cJSON_AddStringToObject(end, "event", ev);
+        double v = end_value(ph, ev);
+        if (!isnan(v))
+            cJSON_AddNumberToObject(end, "value", v);
     } else if (rep->reason == LV_STOP_TIME) {
         cJSON_AddNumberToObject(end, "value", ph->t_stop);
     }
@@ -205,7 +214,7 @@ static cJSON *phase_json(const lv_mission *m, size_t k)
         cJSON_AddNumberToObject(j, "t", e->t);
         cJSON_AddStringToObject(j, "kind", e->is_state ? "state" : "time");
         if (e->is_state) {
-            cJSON_AddStringToObject(j, "name", event_name(ph, e->index));
+            cJSON_AddStringToObject(j, "name", event_name(r, e->index));
             cJSON_AddNumberToObject(j, "direction", e->direction);
         }
         cJSON_AddItemToArray(ev, j);
