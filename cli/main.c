@@ -78,6 +78,8 @@ static void print_help(FILE *f)
             "  lvsim run MISSION.yaml [-o OUTDIR] [--threads N] [--json]\n"
             "                                    run every phase; results, summary.json (lvsim-out)\n"
             "  lvsim check MISSION.yaml          validate only\n"
+            "  lvsim export OUTDIR [--format czml,kml,oem]\n"
+            "                                    trajectory exports from a results folder\n"
             "  lvsim compare MISSION.yaml [--method M] [--tolerance TOL] [--interval DT] [--json]\n"
             "                                    sequential vs end-to-end (the paper's Table 2)\n"
             "  lvsim atmosphere ALT_M... [--model us76|exp]\n"
@@ -401,6 +403,8 @@ static int cmd_run(int argc, char **argv)
     lv_status run_st = lv_mission_run(m, &opt, &err);
     lv_err serr;
     lv_status sum_st = lv_mission_write_summary(m, outdir, &serr);
+    if (sum_st == LV_OK) /* post-processing reads the results folder, as `lvsim export` does */
+        sum_st = lv_export_run(outdir, LV_EXPORT_ALL, &serr);
     if (sum_st != LV_OK)
         fprintf(stderr, "lvsim: %s\n", serr.msg);
     if (json) {
@@ -413,7 +417,8 @@ static int cmd_run(int argc, char **argv)
         if (f != NULL)
             fclose(f);
     } else {
-        printf("results: %s/ (phase_<k>_<name>.mat/.csv, body_<stage>.csv, summary.json)\n",
+        printf("results: %s/ (phase_<k>_<name>.mat/.csv, body_<stage>.csv, summary.json, "
+               "mission.czml, mission.kml, <stage>.oem)\n",
                outdir);
     }
     if (run_st != LV_OK)
@@ -501,6 +506,40 @@ static int cmd_compare(int argc, char **argv)
     for (size_t b = 0; b < rep.n_bodies; b++)
         printf("%-12s %8zu %14.3e %14.3e %14.3e\n", rep.bodies[b].name, rep.bodies[b].n_common,
                rep.bodies[b].max_dpos, rep.bodies[b].max_dvel, rep.bodies[b].max_dmass);
+    return EXIT_OK;
+}
+
+/* lvsim export OUTDIR [--format czml,kml,oem] */
+static int cmd_export(int argc, char **argv)
+{
+    const char *dir = NULL;
+    unsigned formats = 0;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--format") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("missing value for option", "--format");
+            const char *f = argv[++i];
+            if (strstr(f, "czml")) formats |= LV_EXPORT_CZML;
+            if (strstr(f, "kml")) formats |= LV_EXPORT_KML;
+            if (strstr(f, "oem")) formats |= LV_EXPORT_OEM;
+            if (formats == 0)
+                return usage_error("--format takes czml, kml, oem (comma-separated), got", f);
+        } else if (argv[i][0] == '-' || dir != NULL) {
+            return usage_error("unexpected argument", argv[i]);
+        } else {
+            dir = argv[i];
+        }
+    }
+    if (dir == NULL)
+        return usage_error("export needs a results folder (lvsim run -o OUTDIR)", NULL);
+    lv_err err;
+    lv_status st = lv_export_run(dir, formats ? formats : LV_EXPORT_ALL, &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "lvsim export: %s\n", err.msg);
+        return st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
+    }
+    printf("exports written to %s/ (mission.czml, mission.kml, <stage>.oem for orbital "
+           "portions)\n", dir);
     return EXIT_OK;
 }
 
@@ -642,6 +681,8 @@ int main(int argc, char **argv)
         return cmd_check(argc - 2, argv + 2);
     if (strcmp(cmd, "compare") == 0)
         return cmd_compare(argc - 2, argv + 2);
+    if (strcmp(cmd, "export") == 0)
+        return cmd_export(argc - 2, argv + 2);
     if (strcmp(cmd, "atmosphere") == 0)
         return cmd_atmosphere(argc - 2, argv + 2);
     if (strcmp(cmd, "gravity") == 0)

@@ -3,3 +3,4 @@ list(APPEND LV_SOURCES
   src/io/result_memory.c
   src/io/result_csv.c
   src/io/result_mat.c)
+include(src/io/export.cmake)

@@ -272,6 +272,8 @@ lv_status lv_mission_write_summary(const lv_mission *m, const char *outdir, lv_e
     cJSON_AddStringToObject(root, "lvsim", LVSIM_VERSION);
     cJSON_AddStringToObject(root, "epoch", d->epoch ? d->epoch : "2000-01-01T12:00:00Z");
     cJSON_AddStringToObject(root, "world", d->env.world == LV_WORLD_FLAT ? "flat" : "planet");
+    if (d->env.world == LV_WORLD_PLANET)
+        cJSON_AddStringToObject(root, "planet", d->env.planet ? d->env.planet : "earth");
     if (d->env.world == LV_WORLD_FLAT) {
         cJSON *site = cJSON_AddObjectToObject(root, "site");
         cJSON_AddNumberToObject(site, "lat", d->env.site_lat);

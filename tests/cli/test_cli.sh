@@ -49,5 +49,24 @@ expect 2 "did you mean 'zonal'" -- "$lvsim" gravity 45 10 400e3 --model zonl
 expect 2 "latitude 95 deg" -- "$lvsim" gravity 95 0 0
 expect 2 "expected LAT_DEG LON_DEG ALT_M" -- "$lvsim" gravity 45 x 0
 
+# Missions: run, check, compare, export; exit codes 0 / 2 / 3 (docs/cli.md)
+src="$(cd "$(dirname "$0")/../.." && pwd)"
+expect 0 "is valid: 5 phases" -- "$lvsim" check "$src/examples/paper-test-case/mission.yaml"
+expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" check "$src/tests/missions/bad_cycle.yaml"
+expect 0 "P5 +P2 .* ok" -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run"
+[ -f "$work/run/summary.json" ] && [ -f "$work/run/mission.czml" ] && [ -f "$work/run/mission.kml" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: run outputs"; fails=$((fails + 1)); }
+expect 0 '"mission":' -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run2" --json
+expect 0 "number of states +39 +13" -- "$lvsim" compare "$src/examples/paper-test-case/mission.yaml"
+expect 0 "exports written" -- "$lvsim" export "$work/run" --format czml
+expect 2 "summary.json: cannot read" -- "$lvsim" export "$work/nothing"
+cat > "$work/fail.yaml" <<YAML
+mission: {name: fails}
+stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]
+phases: [{name: p, model: flat6, stages: [a], stop_time: 200}]
+YAML
+printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
+expect 3 "phase 'p'.*outside" -- "$lvsim" run "$work/fail.yaml" -o "$work/failrun"
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

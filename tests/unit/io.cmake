@@ -9,3 +9,4 @@ add_test(NAME test_io_dsres
           ${CMAKE_CURRENT_BINARY_DIR}/io_out/sine_fail.failed.mat
           ${CMAKE_CURRENT_BINARY_DIR}/io_out/empty.failed.mat)
 set_tests_properties(test_io_dsres PROPERTIES FIXTURES_REQUIRED io_result_files)
+include(${CMAKE_CURRENT_LIST_DIR}/io_export.cmake)

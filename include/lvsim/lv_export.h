@@ -1,0 +1,35 @@
+/* lv_export.h - trajectory exports of a finished run: CZML (Cesium), KML 2.2 (Google Earth)
+ * and CCSDS OEM 2.0 (KVN) ephemerides.
+ *
+ * Post-processing only: the exports read a results folder (summary.json and the merged
+ * body_<stage>.csv files the runner writes) and never rerun anything; the mission file is not
+ * needed. What each file holds, frames, units and the rules: docs/exports.md.
+ */
+#ifndef LVSIM_LV_EXPORT_H
+#define LVSIM_LV_EXPORT_H
+
+#include "lvsim/lv_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LV_EXPORT_CZML 1u /* OUTDIR/mission.czml */
+#define LV_EXPORT_KML 2u  /* OUTDIR/mission.kml */
+#define LV_EXPORT_OEM 4u  /* OUTDIR/<stage>.oem per body with an orbital portion (Earth only) */
+#define LV_EXPORT_ALL (LV_EXPORT_CZML | LV_EXPORT_KML | LV_EXPORT_OEM)
+
+/* Reads OUTDIR/summary.json and the body CSVs it lists, then writes the formats selected by
+ * `formats` (an OR of LV_EXPORT_* flags) into OUTDIR. Each file is written under
+ * "<name>.tmp" and renamed when complete. OEM files are written only for planet-world
+ * missions over the Earth and only for bodies that have rows above 100 km; a flat-world
+ * mission gets none (not an error).
+ * Errors: LV_ERR_IO when a file cannot be read or written (names the path and the system's
+ * reason); LV_ERR_INPUT for a malformed summary.json ("path:line: ...") or body CSV
+ * ("path:line: ..."), or a summary and CSV that disagree; LV_ERR_NOMEM. */
+LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,92 @@
+/* export_int.h - internal: a results folder (summary.json + body CSVs) read back for the
+ * trajectory exports, and the helpers the CZML, KML and OEM writers share (not exported).
+ * Contract of the files: docs/exports.md. */
+#ifndef LV_IO_EXPORT_INT_H
+#define LV_IO_EXPORT_INT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "lvsim/lv_status.h"
+
+typedef struct lv_ex_row {
+    double t;                  /* s, mission time */
+    double lat, lon, h;        /* rad, rad, m: WGS-84 geodetic */
+    double r_eci[3], v_eci[3]; /* m, m/s: lvsim's ECI (docs/frames.md); planet world only */
+    size_t line;               /* line of the body CSV, for messages */
+} lv_ex_row;
+
+typedef struct lv_ex_event {
+    double t;    /* s */
+    char *name;  /* state event name ("burnout", "impact", ...); NULL for a time event */
+} lv_ex_event;
+
+typedef struct lv_ex_phase {
+    char *name;
+    int index;            /* 1-based, as in summary.json (run order) */
+    int parent;           /* position in lv_ex_run.phases; -1: a root phase */
+    int done;             /* state "done": it has times, events and rows */
+    double t_start, t_end; /* s */
+    lv_ex_event *events;
+    size_t n_events;
+    int body;             /* a body flying in this phase (its rows give event positions); -1 */
+} lv_ex_phase;
+
+/* The rows of one body in one phase: rows[first .. first + n) of the body. */
+typedef struct lv_ex_track {
+    size_t phase; /* position in lv_ex_run.phases */
+    size_t first, n;
+} lv_ex_track;
+
+typedef struct lv_ex_body {
+    char *name;
+    char *path;          /* OUTDIR/body_<stage>.csv */
+    lv_ex_row *rows;     /* CSV order; of rows with the same phase and time only the last */
+    size_t n_rows;
+    lv_ex_track *tracks; /* in the order of the CSV (phase start times) */
+    size_t n_tracks;
+    int has_eci;         /* r_eci_x .. v_eci_z columns present */
+} lv_ex_body;
+
+typedef struct lv_ex_run {
+    const char *outdir;
+    char *mission;       /* summary "mission" */
+    long long epoch_us;  /* summary "epoch": UTC microseconds since 1970-01-01T00:00:00Z */
+    int flat;            /* world "flat" (no OEM) */
+    char *planet;        /* summary "planet" when given, else NULL (Earth assumed, checked) */
+    lv_ex_phase *phases;
+    size_t n_phases;
+    lv_ex_body *bodies;
+    size_t n_bodies;
+    double t0, t1;       /* s: first start and last end of the done phases */
+} lv_ex_run;
+
+/* Time t (s since the epoch) as whole microseconds since 1970 (the resolution of every
+ * written time) and as ISO 8601 UTC text "YYYY-MM-DDThh:mm:ss[.ffffff]" + suffix ("Z" or ""),
+ * fraction only when not zero. buf: at least 48 bytes. */
+long long lv_ex_ticks(const lv_ex_run *r, double t);
+void lv_ex_iso(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap);
+
+/* Geodetic position of body b at time t inside track k (linear between rows; clamped). */
+void lv_ex_locate(const lv_ex_body *b, const lv_ex_track *k, double t, double *lat, double *lon,
+                  double *h);
+/* Track of body b for phase p, or NULL. */
+const lv_ex_track *lv_ex_track_of(const lv_ex_body *b, size_t p);
+
+/* Colour of phase p (palette by summary index): r, g, b in 0..255. */
+void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3]);
+
+/* Label of event e of phase p ("burnout", "time event"). */
+const char *lv_ex_event_label(const lv_ex_event *e);
+
+/* Open "<path>.tmp" for writing / finish it: close, check, rename to path (on failure the
+ * .tmp file is removed). Errors: LV_ERR_IO naming the path. */
+lv_status lv_ex_open(const char *path, char *tmp, size_t cap, FILE **out, lv_err *err);
+lv_status lv_ex_commit(FILE *f, const char *tmp, const char *path, lv_err *err);
+
+lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);
+lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err);
+/* Writes OUTDIR/<body>.oem for the bodies with orbital portions (docs/exports.md). */
+lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err);
+
+#endif

@@ -1,0 +1,141 @@
+/* export_kml.c - mission.kml (OGC KML 2.2 with the Google gx: extension, for Google Earth): one
+ * Folder per body, a gx:Track per phase (when/gx:coord, altitudeMode absolute), a Style per
+ * phase colour, Placemarks for phase starts and events. Text from the mission is escaped. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "core/units.h"
+#include "io/export_int.h"
+
+#define RAD2DEG (180.0 / LV_PI) /* deg per rad */
+
+/* XML character data / attribute value: the five predefined entities; control characters
+ * that XML 1.0 forbids become a space. */
+static void put_text(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        const unsigned char c = (unsigned char)*s;
+        switch (c) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&apos;", f); break;
+        default: fputc(c < 0x20 && c != '\t' && c != '\n' && c != '\r' ? ' ' : c, f);
+        }
+    }
+}
+
+static void put_style(FILE *f, const lv_ex_run *r, size_t p)
+{
+    int rgb[3];
+    lv_ex_colour(r, p, rgb);
+    char colour[16]; /* KML colours are aabbggrr */
+    snprintf(colour, sizeof colour, "ff%02x%02x%02x", rgb[2], rgb[1], rgb[0]);
+    fprintf(f,
+            "  <Style id=\"phase-%d\">\n"
+            "    <IconStyle><color>%s</color><scale>0.8</scale><Icon><href>"
+            "http://maps.google.com/mapfiles/kml/shapes/placemark_circle.png</href></Icon>"
+            "</IconStyle>\n"
+            "    <LabelStyle><scale>0.8</scale></LabelStyle>\n"
+            "    <LineStyle><color>%s</color><width>2</width></LineStyle>\n"
+            "  </Style>\n",
+            r->phases[p].index, colour, colour);
+}
+
+static void put_track(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv_ex_track *k)
+{
+    const lv_ex_phase *ph = &r->phases[k->phase];
+    char when[48];
+    fputs("    <Placemark>\n      <name>", f);
+    put_text(f, b->name);
+    fputs(": ", f);
+    put_text(f, ph->name);
+    fprintf(f, "</name>\n      <styleUrl>#phase-%d</styleUrl>\n      <gx:Track>\n"
+               "        <altitudeMode>absolute</altitudeMode>\n", ph->index);
+    /* The schema wants every <when> before the first <gx:coord>. Rows that fall on the same
+     * microsecond (the resolution of the written times) are written once. */
+    for (int pass = 0; pass < 2; pass++) {
+        long long last = 0;
+        for (size_t i = 0; i < k->n; i++) {
+            const lv_ex_row *row = &b->rows[k->first + i];
+            const long long tick = lv_ex_ticks(r, row->t);
+            if (i > 0 && tick == last)
+                continue;
+            last = tick;
+            if (pass == 0) {
+                lv_ex_iso(r, row->t, "Z", when, sizeof when);
+                fprintf(f, "        <when>%s</when>\n", when);
+            } else {
+                fprintf(f, "        <gx:coord>%.10f %.10f %.4f</gx:coord>\n", row->lon * RAD2DEG,
+                        row->lat * RAD2DEG, row->h);
+            }
+        }
+    }
+    fputs("      </gx:Track>\n    </Placemark>\n", f);
+}
+
+static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv_ex_track *k,
+                       double t, const char *text)
+{
+    const lv_ex_phase *ph = &r->phases[k->phase];
+    double lat, lon, h;
+    char t_a[48], t_b[48];
+    lv_ex_locate(b, k, t, &lat, &lon, &h);
+    lv_ex_iso(r, t, "Z", t_a, sizeof t_a);
+    lv_ex_iso(r, r->t1, "Z", t_b, sizeof t_b);
+    fputs("    <Placemark>\n      <name>", f);
+    put_text(f, text);
+    fputs("</name>\n      <description>", f);
+    put_text(f, ph->name);
+    fprintf(f, ": t = %.6f s, h = %.3f km</description>\n", t, h / 1000.0);
+    fprintf(f, "      <TimeSpan><begin>%s</begin><end>%s</end></TimeSpan>\n", t_a, t_b);
+    fprintf(f, "      <styleUrl>#phase-%d</styleUrl>\n"
+               "      <Point><altitudeMode>absolute</altitudeMode>"
+               "<coordinates>%.10f,%.10f,%.4f</coordinates></Point>\n    </Placemark>\n",
+            ph->index, lon * RAD2DEG, lat * RAD2DEG, h);
+}
+
+lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
+{
+    char tmp[4400], epoch[48];
+    FILE *f;
+    lv_status st = lv_ex_open(path, tmp, sizeof tmp, &f, err);
+    if (st != LV_OK)
+        return st;
+    lv_ex_iso(r, 0.0, "Z", epoch, sizeof epoch);
+    fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+          "<kml xmlns=\"http://www.opengis.net/kml/2.2\" "
+          "xmlns:gx=\"http://www.google.com/kml/ext/2.2\">\n<Document>\n  <name>", f);
+    put_text(f, r->mission);
+    fprintf(f, "</name>\n  <open>1</open>\n  <description>lvsim trajectories, mission epoch %s "
+               "(UTC); one folder per body, one track per phase</description>\n", epoch);
+    for (size_t p = 0; p < r->n_phases; p++)
+        if (r->phases[p].done)
+            put_style(f, r, p);
+    for (size_t bi = 0; bi < r->n_bodies; bi++) {
+        const lv_ex_body *b = &r->bodies[bi];
+        fputs("  <Folder>\n    <name>", f);
+        put_text(f, b->name);
+        fputs("</name>\n", f);
+        for (size_t i = 0; i < b->n_tracks; i++)
+            put_track(f, r, b, &b->tracks[i]);
+        /* The markers of this body's phases: start, then the events (as in the CZML). */
+        for (size_t i = 0; i < b->n_tracks; i++) {
+            const lv_ex_track *k = &b->tracks[i];
+            const lv_ex_phase *ph = &r->phases[k->phase];
+            char text[300];
+            snprintf(text, sizeof text, "%s start", ph->name);
+            put_marker(f, r, b, k, ph->t_start, text);
+            for (size_t j = 0; j < ph->n_events; j++)
+                put_marker(f, r, b, k, ph->events[j].t, lv_ex_event_label(&ph->events[j]));
+        }
+        fputs("  </Folder>\n", f);
+    }
+    fputs("</Document>\n</kml>\n", f);
+    return lv_ex_commit(f, tmp, path, err);
+}

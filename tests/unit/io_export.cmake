@@ -1,0 +1,12 @@
+# Trajectory exports. test_export runs two example missions into export_out/{paper,dof3} in
+# the test directory, exports them, and exports export_out/names (a copy of the paper folder
+# with XML and CSV metacharacters in its names); test_export_formats checks the documents
+# with Python (fixture: running test_export_formats alone runs test_export first).
+lv_add_unit_test(test_export ${PROJECT_SOURCE_DIR}/tests/unit/test_export.c)
+set_tests_properties(test_export PROPERTIES FIXTURES_SETUP export_files)
+add_test(NAME test_export_formats
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_exports.py
+          ${CMAKE_CURRENT_BINARY_DIR}/export_out/paper
+          ${CMAKE_CURRENT_BINARY_DIR}/export_out/dof3
+          ${CMAKE_CURRENT_BINARY_DIR}/export_out/names)
+set_tests_properties(test_export_formats PROPERTIES FIXTURES_REQUIRED export_files)

@@ -1,0 +1,301 @@
+/* test_export.c - trajectory exports (CZML, KML, CCSDS OEM) from results folders: runs the
+ * paper's test case (flat world) and the dof3 branch mission (rotating Earth) into
+ * export_out/{paper,dof3}, exports them, checks what C can (files, document structure, the
+ * clock interval against the phase times, error cases). tests/python/check_exports.py then
+ * checks the documents against the formats' rules (ctest fixture "export_files"). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lvsim/lv_export.h"
+#include "lvsim/lv_mission.h"
+
+static char path_buf[4096];
+static const char *src_path(const char *rel)
+{
+    const char *root = getenv("LV_SOURCE_DIR");
+    snprintf(path_buf, sizeof path_buf, "%s/%s", root ? root : "..", rel);
+    return path_buf;
+}
+
+static int exists(const char *dir, const char *file)
+{
+    char p[4096];
+    struct stat sb;
+    snprintf(p, sizeof p, "%s/%s", dir, file);
+    return stat(p, &sb) == 0 && sb.st_size > 0;
+}
+
+static char *slurp(const char *dir, const char *file)
+{
+    char p[4096];
+    snprintf(p, sizeof p, "%s/%s", dir, file);
+    FILE *f = fopen(p, "rb");
+    if (f == NULL)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    if (s != NULL) {
+        size_t got = fread(s, 1, (size_t)n, f);
+        s[got] = '\0';
+    }
+    fclose(f);
+    return s;
+}
+
+static void copy_file(const char *from_dir, const char *to_dir, const char *file)
+{
+    char *s = slurp(from_dir, file);
+    char p[4096];
+    snprintf(p, sizeof p, "%s/%s", to_dir, file);
+    FILE *f = fopen(p, "wb");
+    CHECK(s != NULL && f != NULL);
+    if (s != NULL && f != NULL)
+        fputs(s, f);
+    if (f != NULL)
+        fclose(f);
+    free(s);
+}
+
+/* Runs a mission into outdir and writes its summary; returns 0 on success. */
+static int run_mission(const char *rel, const char *outdir)
+{
+    lv_err err = {0};
+    lv_mission *m = NULL;
+    CHECK_OK(lv_mission_load(src_path(rel), &m, &err), &err);
+    if (m == NULL)
+        return -1;
+    lv_run_options opt = {0};
+    opt.outdir = outdir;
+    opt.threads = 1;
+    lv_status st = lv_mission_run(m, &opt, &err);
+    CHECK_OK(st, &err);
+    if (st == LV_OK) {
+        st = lv_mission_write_summary(m, outdir, &err);
+        CHECK_OK(st, &err);
+    }
+    lv_mission_free(m);
+    return st == LV_OK ? 0 : -1;
+}
+
+/* Latest t_end of the summary's done phases (s). */
+static double mission_end(const char *dir)
+{
+    char *text = slurp(dir, "summary.json");
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    double t1 = -1.0;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, cJSON_GetObjectItem(root, "phases"))
+    {
+        const cJSON *te = cJSON_GetObjectItem(p, "t_end");
+        if (cJSON_IsNumber(te) && te->valuedouble > t1)
+            t1 = te->valuedouble;
+    }
+    cJSON_Delete(root);
+    return t1;
+}
+
+/* "2026-03-01T12:00:00Z/<epoch + t1>": both missions start at 12:00:00 and last < 1 h. */
+static void mission_interval(double t1, char *buf, size_t cap)
+{
+    const long long us = llround(t1 * 1e6);
+    snprintf(buf, cap, "2026-03-01T12:00:00Z/2026-03-01T12:%02lld:%02lld.%06lldZ",
+             us / 60000000LL, us / 1000000LL % 60, us % 1000000LL);
+}
+
+/* The CZML: document packet first, then one track per (body, phase) of the summary, then
+ * markers; the clock interval spans the done phases. */
+static void check_czml(const char *dir, int n_tracks, const char *interval)
+{
+    char *text = slurp(dir, "mission.czml");
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    CHECK(cJSON_IsArray(doc));
+    if (!cJSON_IsArray(doc))
+        return;
+    const cJSON *d = cJSON_GetArrayItem(doc, 0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(d, "id")), "document") == 0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(d, "version")), "1.0") == 0);
+    const cJSON *clock = cJSON_GetObjectItem(d, "clock");
+    const char *iv = cJSON_GetStringValue(cJSON_GetObjectItem(clock, "interval"));
+    CHECK(iv != NULL && strcmp(iv, interval) == 0);
+    if (iv != NULL && strcmp(iv, interval) != 0)
+        fprintf(stderr, "  interval %s, expected %s\n", iv, interval);
+    int tracks = 0, events = 0;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, doc)
+    {
+        const char *id = cJSON_GetStringValue(cJSON_GetObjectItem(p, "id"));
+        tracks += id != NULL && strncmp(id, "track/", 6) == 0;
+        events += id != NULL && strncmp(id, "event/", 6) == 0;
+        if (id != NULL && strncmp(id, "track/", 6) == 0) {
+            const cJSON *av = cJSON_GetObjectItem(p, "availability");
+            CHECK(cJSON_IsString(av) && strcmp(av->valuestring, interval) == 0);
+        }
+    }
+    CHECK(tracks == n_tracks);
+    CHECK(events > 0);
+    cJSON_Delete(doc);
+}
+
+/* Replaces every occurrence of `from` in dir/file by `to`. */
+static void replace_in(const char *dir, const char *file, const char *from, const char *to)
+{
+    char *s = slurp(dir, file), p[4096];
+    snprintf(p, sizeof p, "%s/%s", dir, file);
+    FILE *f = fopen(p, "wb");
+    CHECK(s != NULL && f != NULL);
+    for (const char *c = s; c != NULL && f != NULL && *c;) {
+        const char *hit = strstr(c, from);
+        size_t n = hit ? (size_t)(hit - c) : strlen(c);
+        fwrite(c, 1, n, f);
+        if (hit == NULL)
+            break;
+        fputs(to, f);
+        c = hit + strlen(from);
+    }
+    if (f != NULL)
+        fclose(f);
+    free(s);
+}
+
+/* A copy of the paper folder whose mission and phase P4 carry XML and CSV metacharacters:
+ * the phase name `P4, <&> "q" 's'` is a quoted CSV field. check_exports.py parses the KML. */
+static void names_folder(const char *paper)
+{
+    const char *dir = "export_out/names";
+    const char *files[] = {"summary.json", "body_stage1.csv", "body_stage2.csv",
+                           "body_stage3.csv"};
+    mkdir(dir, 0777);
+    for (int i = 0; i < 4; i++)
+        copy_file(paper, dir, files[i]);
+    replace_in(dir, "body_stage1.csv", ",P4,", ",\"P4, <&> \"\"q\"\" 's'\",");
+    replace_in(dir, "summary.json", "\"P4\"", "\"P4, <&> \\\"q\\\" 's'\"");
+    replace_in(dir, "summary.json", "\"paper-test-case\"",
+               "\"paper & <test> \\\"case\\\" 'x'\"");
+    lv_err err = {0};
+    CHECK_OK(lv_export_run(dir, LV_EXPORT_ALL, &err), &err);
+    char *kml = slurp(dir, "mission.kml");
+    CHECK(kml != NULL && strstr(kml, "<name>paper &amp; &lt;test&gt; &quot;case&quot; "
+                                     "&apos;x&apos;</name>") != NULL);
+    CHECK(kml != NULL && strstr(kml, "<name>stage1: P4, &lt;&amp;&gt; &quot;q&quot; "
+                                     "&apos;s&apos;</name>") != NULL);
+    free(kml);
+}
+
+int main(void)
+{
+    lv_err err = {0};
+    mkdir("export_out", 0777);
+
+    /* Paper test case: flat world, 3 bodies over 5 phases; no OEM (not orbital). */
+    const char *paper = "export_out/paper";
+    if (run_mission("examples/paper-test-case/mission.yaml", paper) == 0) {
+        CHECK_OK(lv_export_run(paper, LV_EXPORT_ALL, &err), &err);
+        CHECK(exists(paper, "mission.czml"));
+        CHECK(exists(paper, "mission.kml"));
+        CHECK(!exists(paper, "stage1.oem") && !exists(paper, "stage3.oem"));
+        CHECK(!exists(paper, "mission.czml.tmp") && !exists(paper, "mission.kml.tmp"));
+        /* stage1: P1 P4, stage2: P1 P2 P5, stage3: P1 P2 P3; P5 ends by impact at the latest
+         * time: 12:18:09.078 */
+        char iv[100];
+        const double t1 = mission_end(paper);
+        CHECK_CLOSE(t1, 1089.0782, 0.01);
+        mission_interval(t1, iv, sizeof iv);
+        check_czml(paper, 8, iv);
+        names_folder(paper);
+    }
+
+    /* dof3 branch: rotating Earth; the upper stage and the core (apogee ~230 km) both fly
+     * above 100 km: one OEM each. The booster's impact at 663.9018142 s ends the mission. */
+    const char *dof3 = "export_out/dof3";
+    if (run_mission("examples/dof3-branch/mission.yaml", dof3) == 0) {
+        CHECK_OK(lv_export_run(dof3, LV_EXPORT_ALL, &err), &err);
+        CHECK(exists(dof3, "mission.czml"));
+        CHECK(exists(dof3, "mission.kml"));
+        CHECK(exists(dof3, "upper.oem"));
+        CHECK(exists(dof3, "core.oem"));
+        char iv[100];
+        const double t1 = mission_end(dof3);
+        CHECK_CLOSE(t1, 663.9018, 0.01);
+        mission_interval(t1, iv, sizeof iv);
+        check_czml(dof3, 4, iv);
+        /* One format alone, rewritten in place. */
+        CHECK_OK(lv_export_run(dof3, LV_EXPORT_OEM, &err), &err);
+        CHECK(!exists(dof3, "upper.oem.tmp"));
+    }
+
+    /* Errors: no summary.json (the path is named); unknown flags. */
+    mkdir("export_out/empty", 0777);
+    CHECK_FAILS(lv_export_run("export_out/empty", LV_EXPORT_ALL, &err), &err, LV_ERR_IO,
+                "export_out/empty/summary.json");
+    CHECK_FAILS(lv_export_run(paper, 64u, &err), &err, LV_ERR_INPUT, "flag");
+    CHECK(lv_export_run("export_out/empty", LV_EXPORT_CZML, NULL) == LV_ERR_IO);
+
+    /* A copy of the paper folder with broken files: the CSV error names file:line. */
+    const char *bad = "export_out/bad";
+    mkdir(bad, 0777);
+    const char *files[] = {"summary.json", "body_stage1.csv", "body_stage2.csv",
+                           "body_stage3.csv"};
+    for (int i = 0; i < 4; i++)
+        copy_file(paper, bad, files[i]);
+    {
+        char *csv = slurp(bad, "body_stage2.csv"); /* line 5: its time becomes "1.5x" */
+        char *p = csv;
+        for (int line = 1; p != NULL && line < 5; line++)
+            p = strchr(p, '\n') ? strchr(p, '\n') + 1 : NULL;
+        CHECK(p != NULL);
+        if (p != NULL) {
+            char *comma = strchr(p, ',');
+            FILE *f = fopen("export_out/bad/body_stage2.csv", "wb");
+            fwrite(csv, 1, (size_t)(p - csv), f);
+            fputs("1.5x", f);
+            fputs(comma, f);
+            fclose(f);
+        }
+        free(csv);
+    }
+    CHECK_FAILS(lv_export_run(bad, LV_EXPORT_KML, &err), &err, LV_ERR_INPUT,
+                "export_out/bad/body_stage2.csv:5:");
+    CHECK(!exists(bad, "mission.kml"));
+    /* Too few fields on line 3 of stage 3's CSV. */
+    {
+        FILE *f = fopen("export_out/bad/body_stage2.csv", "wb");
+        fclose(f);
+        copy_file(paper, bad, "body_stage2.csv");
+        char *csv = slurp(bad, "body_stage3.csv");
+        char *l3 = strchr(strchr(csv, '\n') + 1, '\n') + 1;
+        *strchr(l3, ',') = '\n'; /* "t\nphase,...": line 3 has one field */
+        f = fopen("export_out/bad/body_stage3.csv", "wb");
+        fputs(csv, f);
+        fclose(f);
+        free(csv);
+    }
+    CHECK_FAILS(lv_export_run(bad, LV_EXPORT_CZML, &err), &err, LV_ERR_INPUT,
+                "export_out/bad/body_stage3.csv:3: 1 fields");
+    /* A summary that is not JSON: file and line. */
+    {
+        copy_file(paper, bad, "body_stage3.csv");
+        FILE *f = fopen("export_out/bad/summary.json", "wb");
+        fputs("{\n  \"mission\": \"x\",\n  \"epoch\": oops\n}\n", f);
+        fclose(f);
+    }
+    CHECK_FAILS(lv_export_run(bad, LV_EXPORT_CZML, &err), &err, LV_ERR_INPUT,
+                "export_out/bad/summary.json:3: malformed JSON");
+    /* A missing body CSV: LV_ERR_IO naming it. */
+    copy_file(paper, bad, "summary.json");
+    remove("export_out/bad/body_stage1.csv");
+    CHECK_FAILS(lv_export_run(bad, LV_EXPORT_CZML, &err), &err, LV_ERR_IO,
+                "export_out/bad/body_stage1.csv");
+
+    return check_report("test_export");
+}
