@@ -75,8 +75,10 @@ static void print_help(FILE *f)
             "      -o PATH                       result file path without extension (dsres)\n"
             "      --format mat,csv              result formats (both)\n"
             "      --json                        print the report as JSON\n"
-            "  lvsim run MISSION.yaml [-o OUTDIR] [--threads N] [--json]\n"
-            "                                    run every phase; results, summary.json (lvsim-out)\n"
+            "  lvsim run MISSION.yaml [-o OUTDIR] [--threads N] [--json] [--no-plots]\n"
+            "                                    run every phase; results, exports, plots,\n"
+            "                                    summary.json, index.html (OUTDIR: lvsim-out)\n"
+            "  lvsim plot OUTDIR                 plots and index.html from a results folder\n"
             "  lvsim check MISSION.yaml          validate only\n"
             "  lvsim export OUTDIR [--format czml,kml,oem]\n"
             "                                    trajectory exports from a results folder\n"
@@ -367,7 +369,7 @@ static int cmd_check(int argc, char **argv)
 static int cmd_run(int argc, char **argv)
 {
     const char *path = NULL, *outdir = "lvsim-out";
-    int json = 0, threads = 2;
+    int json = 0, threads = 2, plots = 1;
     for (int i = 0; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--threads") == 0) {
             if (i + 1 >= argc)
@@ -378,6 +380,8 @@ static int cmd_run(int argc, char **argv)
                 return usage_error("--threads needs a count >= 1, got", argv[i]);
         } else if (strcmp(argv[i], "--json") == 0) {
             json = 1;
+        } else if (strcmp(argv[i], "--no-plots") == 0) {
+            plots = 0;
         } else if (argv[i][0] == '-' || path != NULL) {
             return usage_error("unexpected argument", argv[i]);
         } else {
@@ -403,8 +407,11 @@ static int cmd_run(int argc, char **argv)
     lv_status run_st = lv_mission_run(m, &opt, &err);
     lv_err serr;
     lv_status sum_st = lv_mission_write_summary(m, outdir, &serr);
-    if (sum_st == LV_OK) /* post-processing reads the results folder, as `lvsim export` does */
+    /* post-processing reads the results folder, as `lvsim export` and `lvsim plot` do */
+    if (sum_st == LV_OK)
         sum_st = lv_export_run(outdir, LV_EXPORT_ALL, &serr);
+    if (sum_st == LV_OK && plots)
+        sum_st = lv_plot_run(outdir, &serr);
     if (sum_st != LV_OK)
         fprintf(stderr, "lvsim: %s\n", serr.msg);
     if (json) {
@@ -418,8 +425,8 @@ static int cmd_run(int argc, char **argv)
             fclose(f);
     } else {
         printf("results: %s/ (phase_<k>_<name>.mat/.csv, body_<stage>.csv, summary.json, "
-               "mission.czml, mission.kml, <stage>.oem)\n",
-               outdir);
+               "mission.czml, mission.kml, <stage>.oem%s)\n",
+               outdir, plots ? ", plots/, index.html" : "");
     }
     if (run_st != LV_OK)
         fprintf(stderr, "lvsim: %s\n", err.msg);
@@ -506,6 +513,21 @@ static int cmd_compare(int argc, char **argv)
     for (size_t b = 0; b < rep.n_bodies; b++)
         printf("%-12s %8zu %14.3e %14.3e %14.3e\n", rep.bodies[b].name, rep.bodies[b].n_common,
                rep.bodies[b].max_dpos, rep.bodies[b].max_dvel, rep.bodies[b].max_dmass);
+    return EXIT_OK;
+}
+
+/* lvsim plot OUTDIR */
+static int cmd_plot(int argc, char **argv)
+{
+    if (argc != 1 || argv[0][0] == '-')
+        return usage_error("plot takes one results folder (lvsim run -o OUTDIR)", NULL);
+    lv_err err;
+    lv_status st = lv_plot_run(argv[0], &err);
+    if (st != LV_OK) {
+        fprintf(stderr, "lvsim plot: %s\n", err.msg);
+        return st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
+    }
+    printf("plots in %s/plots/, report %s/index.html\n", argv[0], argv[0]);
     return EXIT_OK;
 }
 
@@ -683,6 +705,8 @@ int main(int argc, char **argv)
         return cmd_compare(argc - 2, argv + 2);
     if (strcmp(cmd, "export") == 0)
         return cmd_export(argc - 2, argv + 2);
+    if (strcmp(cmd, "plot") == 0)
+        return cmd_plot(argc - 2, argv + 2);
     if (strcmp(cmd, "atmosphere") == 0)
         return cmd_atmosphere(argc - 2, argv + 2);
     if (strcmp(cmd, "gravity") == 0)

@@ -11,7 +11,9 @@ pkgs=(
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
   python3-scipy python3-numpy          # independent .mat reader in the tests
+  libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
+  chromium                             # headless browser for the viewer test (ctest test_viewer)
 )
 
 missing=()

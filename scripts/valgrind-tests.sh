@@ -8,7 +8,9 @@ cd "$build/tests"
 fail=0
 for t in ./test_*; do
   [ -x "$t" ] && [ -f "$t" ] || continue
+  # tests/valgrind.supp: caches of fontconfig/pango/glib that PLplot's cairo driver keeps
   if valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
+       --suppressions="$LV_SOURCE_DIR/tests/valgrind.supp" \
        "$t" > "/tmp/valgrind_$(basename "$t").log" 2>&1; then
     echo "valgrind ok:     $t"
   else

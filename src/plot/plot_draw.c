@@ -1,0 +1,692 @@
+/* plot_draw.c - the figures of a run, drawn with PLplot's cairo drivers (pngcairo, svgcairo):
+ * quantities against time with every body's phases joined and the phase starts marked, the
+ * ground track over PLplot's coastlines, and the paper's Figure 10 (speed and mass normalised).
+ *
+ * PLplot keeps global state (a table of streams and the current one): each figure makes its
+ * own stream (plmkstrm), reports errors into it (plsError) instead of stderr, and ends it
+ * (plend1); the caller's current stream is restored. Not thread-safe; never used by a run. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <plplot.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/status.h"
+#include "plot/plot.h"
+
+#define PAGE_W 1000 /* px (PNG) or pt (SVG) */
+#define PAGE_H 700
+#define RAD2DEG (180.0 / 3.14159265358979323846)
+#define VP_X0 0.11 /* plot area, as a fraction of the page width; the legend goes right */
+#define VP_X1 0.76
+
+enum { COL_BG, COL_FG, COL_GRID, COL_PHASE, COL_LAND, COL_BODY0, N_COLS = COL_BODY0 + 8 };
+
+/* white, black, grid grey, phase-line grey, coastline brown; bodies: Tableau-10 colours */
+static const PLINT palette[N_COLS][3] = {
+    {255, 255, 255}, {0, 0, 0},       {225, 225, 225}, {120, 120, 120}, {150, 125, 95},
+    {31, 119, 180},  {255, 127, 14},  {44, 160, 44},   {214, 39, 40},   {148, 103, 189},
+    {140, 86, 75},   {227, 119, 194}, {23, 190, 207}};
+
+typedef struct curve {
+    double *x, *y; /* owned */
+    size_t n;
+    char label[128];
+    PLINT color, style; /* cmap0 index; PLplot line style 1 (solid) .. 8 */
+    PLFLT width;
+    size_t body;        /* index into lv_plot_data.bodies */
+} curve;
+
+#define MAX_CURVES 32
+
+typedef struct panel {
+    char ylabel[96];
+    curve c[MAX_CURVES];
+    size_t n_c;
+    double ylo, yhi; /* NAN: from the data */
+} panel;
+
+typedef struct figure {
+    char title[128], subtitle[256]; /* what is plotted; the mission */
+    const char *xlabel;
+    panel p[2];
+    size_t n_p;
+    int map;           /* ground track: x longitude, y latitude [deg], coastlines */
+    int boundaries;    /* phase starts as vertical lines */
+    double xlo, xhi;   /* x range */
+    double mlo, mhi;   /* map: latitude range */
+} figure;
+
+static void figure_free(figure *f)
+{
+    for (size_t i = 0; i < f->n_p; i++)
+        for (size_t j = 0; j < f->p[i].n_c; j++) {
+            free(f->p[i].c[j].x);
+            free(f->p[i].c[j].y);
+        }
+    memset(f, 0, sizeof *f);
+}
+
+/* ---- data: one body's value across its phases ------------------------------------------ */
+
+/* First of `cols` that phase file `c` has, or -1. */
+static long find_col(const lv_csv *c, const char *const *cols)
+{
+    for (size_t i = 0; cols[i] != NULL; i++) {
+        long k = lv_plot_csv_col(c, cols[i]);
+        if (k >= 0)
+            return k;
+    }
+    return -1;
+}
+
+/* Time and value (times `scale`) of body b across its phases, joined in time order (an event
+ * instant appears twice: the step shows). Returns the number of points; 0 when no phase of
+ * the body has any of `cols`; (size_t)-1 when out of memory. */
+static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const char *const *cols,
+                          double scale, curve *c)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < b->n; i++) {
+        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        if (csv != NULL && find_col(csv, cols) >= 0)
+            n += csv->n_rows;
+    }
+    if (n == 0)
+        return 0;
+    c->x = malloc(n * sizeof *c->x);
+    c->y = malloc(n * sizeof *c->y);
+    if (c->x == NULL || c->y == NULL)
+        return (size_t)-1;
+    c->n = 0;
+    for (size_t i = 0; i < b->n; i++) {
+        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        long k = csv ? find_col(csv, cols) : -1;
+        for (size_t r = 0; k >= 0 && r < csv->n_rows; r++) {
+            c->x[c->n] = csv->v[r * csv->n_cols];
+            c->y[c->n] = csv->v[r * csv->n_cols + (size_t)k] * scale;
+            c->n++;
+        }
+    }
+    return c->n;
+}
+
+/* ---- drawing ----------------------------------------------------------------------------- */
+
+static void range_of(const panel *p, int want_x, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t j = 0; j < p->n_c; j++)
+        for (size_t i = 0; i < p->c[j].n; i++) {
+            double v = want_x ? p->c[j].x[i] : p->c[j].y[i];
+            if (isfinite(v)) {
+                *lo = fmin(*lo, v);
+                *hi = fmax(*hi, v);
+            }
+        }
+    if (!(*lo <= *hi)) {
+        *lo = 0.0;
+        *hi = 1.0;
+    }
+}
+
+static void pad_range(double *lo, double *hi, double frac)
+{
+    double span = *hi - *lo;
+    if (span <= 1e-12 * fmax(fabs(*lo), fabs(*hi)) || span == 0.0) {
+        double h = fabs(*lo) > 0.0 ? 0.1 * fabs(*lo) : 1.0;
+        *lo -= h;
+        *hi += h;
+        return;
+    }
+    *lo -= frac * span;
+    *hi += frac * span;
+}
+
+/* Mission text for PLplot, which reads '#' as the start of an escape ("#u": superscript): a
+ * '#' becomes the escape for its code point, "#[0x23]". */
+static void pl_text(char *dst, size_t cap, const char *src)
+{
+    size_t n = 0;
+    for (; *src && n + 8 < cap; src++) {
+        if (*src == '#') {
+            memcpy(dst + n, "#[0x23]", 7);
+            n += 7;
+        } else {
+            dst[n++] = *src;
+        }
+    }
+    dst[n] = '\0';
+}
+
+/* plline() over the finite runs of a curve: a NAN breaks the line. */
+static void draw_curve(const curve *c)
+{
+    plcol0(c->color);
+    pllsty(c->style);
+    plwidth(c->width);
+    size_t i = 0;
+    while (i < c->n) {
+        while (i < c->n && !(isfinite(c->x[i]) && isfinite(c->y[i])))
+            i++;
+        size_t j = i;
+        while (j < c->n && isfinite(c->x[j]) && isfinite(c->y[j]))
+            j++;
+        if (j - i == 1)
+            plpoin(1, &c->x[i], &c->y[i], 1);
+        else if (j > i)
+            plline((PLINT)(j - i), &c->x[i], &c->y[i]);
+        i = j;
+    }
+    pllsty(1);
+    plwidth(1.0);
+}
+
+/* Dashed vertical lines at the phase starts, labelled with the phases that start there. */
+static void draw_boundaries(const lv_plot_data *d, double xlo, double xhi, double ylo, double yhi)
+{
+    plschr(0.0, 0.75);
+    for (size_t k = 0; k < d->n_phases; k++) {
+        const double t = d->phases[k].t0;
+        if (!isfinite(t) || t < xlo || t > xhi)
+            continue;
+        int seen = 0; /* an earlier phase starting at the same instant drew it */
+        for (size_t j = 0; j < k && !seen; j++)
+            seen = d->phases[j].t0 == t;
+        if (seen)
+            continue;
+        char label[512] = "", name[256];
+        size_t len = 0;
+        for (size_t j = k; j < d->n_phases; j++)
+            if (d->phases[j].t0 == t) {
+                pl_text(name, sizeof name, d->phases[j].name);
+                if (len + strlen(name) + 4 < sizeof label)
+                    len += (size_t)snprintf(label + len, sizeof label - len, "%s%s",
+                                            len ? " | " : "", name);
+            }
+        PLFLT x[2] = {t, t}, y[2] = {ylo, yhi};
+        plcol0(COL_PHASE);
+        pllsty(3);
+        plline(2, x, y);
+        pllsty(1);
+        /* Text reads upwards along the line's right side and ends near the top. */
+        plptex(t + 0.008 * (xhi - xlo), yhi - 0.02 * (yhi - ylo), 0.0, 1.0, 1.0, label);
+    }
+    plschr(0.0, 1.0);
+}
+
+static void draw_legend(const panel *p)
+{
+    PLINT opt[MAX_CURVES], tcol[MAX_CURVES], lcol[MAX_CURVES], lsty[MAX_CURVES];
+    PLFLT lw[MAX_CURVES];
+    const char *text[MAX_CURVES];
+    PLINT n = 0;
+    for (size_t j = 0; j < p->n_c; j++) {
+        if (p->c[j].label[0] == '\0')
+            continue;
+        opt[n] = PL_LEGEND_LINE;
+        tcol[n] = COL_FG;
+        lcol[n] = p->c[j].color;
+        lsty[n] = p->c[j].style;
+        lw[n] = p->c[j].width;
+        text[n] = p->c[j].label;
+        n++;
+    }
+    if (n == 0)
+        return;
+    PLFLT w, h;
+    plschr(0.0, 0.75);
+    pllegend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
+             PL_POSITION_RIGHT | PL_POSITION_OUTSIDE, 0.012, 0.0, 0.05, COL_BG,
+             COL_FG, 1, 0, 1, n, opt, 0.8, 0.9, 2.0, 0.0, tcol, text, NULL, NULL, NULL, NULL,
+             lcol, lsty, lw, NULL, NULL, NULL, NULL);
+    plschr(0.0, 1.0);
+}
+
+typedef void (*mapform_fn)(PLINT n, PLFLT *x, PLFLT *y);
+
+static void draw_panel(const lv_plot_data *d, const figure *f, size_t ip, PLFLT y0, PLFLT y1,
+                       int *map_ok, PLINT *code, char *msg)
+{
+    const panel *p = &f->p[ip];
+    double ylo = p->ylo, yhi = p->yhi;
+    if (!(isfinite(ylo) && isfinite(yhi))) {
+        range_of(p, 0, &ylo, &yhi);
+        pad_range(&ylo, &yhi, 0.05);
+    }
+    if (f->map) {
+        ylo = f->mlo;
+        yhi = f->mhi;
+    }
+    plvpor(VP_X0, VP_X1, y0, y1);
+    plsxax(7, 0); /* plain numbers: no "(x10^4)" factor */
+    plsyax(7, 0);
+    plwind(f->xlo, f->xhi, ylo, yhi);
+    plcol0(COL_GRID);
+    plbox("g", 0.0, 0, "g", 0.0, 0);
+    if (f->map) {
+        plcol0(COL_LAND);
+        plwidth(1.2);
+        plmap((mapform_fn)NULL, "globe", f->xlo, f->xhi, ylo, yhi);
+        plwidth(1.0);
+        if (*code != 0) { /* no shapefile: a graticule only */
+            *map_ok = 0;
+            *code = 0;
+            msg[0] = '\0';
+        }
+    }
+    if (f->boundaries)
+        draw_boundaries(d, f->xlo, f->xhi, ylo, yhi);
+    for (size_t j = 0; j < p->n_c; j++)
+        draw_curve(&p->c[j]);
+    if (f->map) /* start and end of each track */
+        for (size_t j = 0; j < p->n_c; j++) {
+            const curve *c = &p->c[j];
+            if (c->n == 0)
+                continue;
+            plcol0(c->color);
+            plschr(0.0, 1.3);
+            plpoin(1, &c->x[0], &c->y[0], 4);
+            plpoin(1, &c->x[c->n - 1], &c->y[c->n - 1], 5);
+            plschr(0.0, 1.0);
+        }
+    plcol0(COL_FG);
+    plbox(ip + 1 == f->n_p ? "bcnst" : "bcst", 0.0, 0, "bcnstv", 0.0, 0);
+    plmtex("l", 4.6, 0.5, 0.5, p->ylabel);
+    if (ip + 1 == f->n_p)
+        plmtex("b", 3.0, 0.5, 0.5, f->xlabel);
+    if (ip == 0) { /* title, and the mission's name under it at the right */
+        plschr(0.0, 1.15);
+        plmtex("t", 1.9, 0.5, 0.5, f->title);
+        plschr(0.0, 0.8);
+        plmtex("t", 0.6, 1.0, 1.0, f->subtitle);
+        plschr(0.0, 1.0);
+    }
+    if (ip == 0 || f->p[ip].n_c != f->p[0].n_c)
+        draw_legend(p);
+}
+
+static int device_available(const char *dev)
+{
+    const char *menu[128], *names[128];
+    const char **pm = menu, **pn = names;
+    int n = 128;
+    plgDevs(&pm, &pn, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(names[i], dev) == 0)
+            return 1;
+    return 0;
+}
+
+/* Draws `f` with PLplot device `dev` into `path` (through `path`.tmp). */
+static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
+                        int *map_ok, lv_err *err)
+{
+    char tmp[4400];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    /* PLplot exits the process when it cannot open its file: make sure it can. */
+    FILE *probe = fopen(tmp, "wb");
+    if (probe == NULL)
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+    fclose(probe);
+    PLINT old = 0, strm = -1, code = 0;
+    char msg[1024] = "";
+    plgstrm(&old);
+    plmkstrm(&strm);
+    if (strm < 0) {
+        remove(tmp);
+        return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
+    }
+    plsError(&code, msg);
+    plsdev(dev);
+    plsfnam(tmp);
+    plspage(0.0, 0.0, PAGE_W, PAGE_H, 0, 0);
+    plscmap0n(N_COLS);
+    for (PLINT i = 0; i < N_COLS; i++)
+        plscol0(i, palette[i][0], palette[i][1], palette[i][2]);
+    plinit();
+    if (code == 0) {
+        pladv(0);
+        if (f->n_p == 1)
+            draw_panel(d, f, 0, 0.11, 0.89, map_ok, &code, msg);
+        else {
+            draw_panel(d, f, 0, 0.52, 0.89, map_ok, &code, msg);
+            draw_panel(d, f, 1, 0.11, 0.49, map_ok, &code, msg);
+        }
+    }
+    plend1();
+    plsstrm(old);
+    struct stat sb;
+    if (code != 0) {
+        remove(tmp);
+        return lv_fail(err, LV_ERR_IO, "%s: PLplot: %s", path, msg);
+    }
+    if (stat(tmp, &sb) != 0 || sb.st_size == 0) {
+        remove(tmp);
+        return lv_fail(err, LV_ERR_IO, "%s: PLplot (%s) wrote nothing", path, dev);
+    }
+    if (rename(tmp, path) != 0)
+        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
+                       strerror(errno));
+    return LV_OK;
+}
+
+static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
+                             const char *stem, lv_plot_list *list, int *map_ok, lv_err *err)
+{
+    char path[4400];
+    const char *svg = device_available("svgcairo") ? "svgcairo" : "svg";
+    if (!device_available("pngcairo"))
+        return lv_fail(err, LV_ERR_IO,
+                       "%s/%s.png: PLplot has no 'pngcairo' driver (Debian: plplot-driver-cairo)",
+                       plotdir, stem);
+    snprintf(path, sizeof path, "%s/%s.png", plotdir, stem);
+    lv_status st = render(d, f, "pngcairo", path, map_ok, err);
+    snprintf(path, sizeof path, "%s/%s.svg", plotdir, stem);
+    if (st == LV_OK)
+        st = render(d, f, svg, path, map_ok, err);
+    if (st == LV_OK && list->n_made < LV_PLOT_MAX_FIGS) {
+        snprintf(list->made[list->n_made].stem, sizeof list->made[0].stem, "%s", stem);
+        snprintf(list->made[list->n_made].title, sizeof list->made[0].title, "%s", f->title);
+        list->n_made++;
+    }
+    return st;
+}
+
+static void add_skip(lv_plot_list *l, const char *what, const char *why)
+{
+    if (l->n_skipped >= LV_PLOT_MAX_FIGS)
+        return;
+    snprintf(l->skipped[l->n_skipped].what, sizeof l->skipped[0].what, "%s", what);
+    snprintf(l->skipped[l->n_skipped].why, sizeof l->skipped[0].why, "%s", why);
+    l->n_skipped++;
+}
+
+static void add_note(lv_plot_list *l, const char *note)
+{
+    if (l->n_notes < LV_PLOT_MAX_FIGS)
+        snprintf(l->notes[l->n_notes++], sizeof l->notes[0], "%s", note);
+}
+
+/* ---- the figures --------------------------------------------------------------------------- */
+
+typedef struct quantity {
+    const char *stem, *title, *ylabel;
+    const char *a[3];  /* columns of the main curve, first found wins (planet, flat world) */
+    const char *b[2];  /* a second, dashed curve, when the phases have it */
+    const char *a_label, *b_label;
+    double scale;      /* SI -> the unit of ylabel */
+} quantity;
+
+static const quantity quantities[] = {
+    {"altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
+    {"speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
+     "relative", "inertial", 1.0},
+    {"mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
+    {"mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
+    {"dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL}, {NULL},
+     "", "", 1e-3},
+    {"load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
+     {"n_normal", NULL}, "axial", "normal", 1.0},
+    {"flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
+     {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG},
+    {"acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL}, "",
+     "", 1.0},
+    {"thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
+};
+
+/* "mission <name>", for a figure's subtitle. */
+static void mission_line(const lv_plot_data *d, char *dst, size_t cap)
+{
+    const cJSON *m = cJSON_GetObjectItemCaseSensitive(d->summary, "mission");
+    char name[200];
+    pl_text(name, sizeof name, cJSON_IsString(m) ? m->valuestring : "?");
+    snprintf(dst, cap, "mission %s", name);
+}
+
+/* A body's name for a legend. */
+static const char *body_label(const lv_plot_data *d, size_t i, char *buf, size_t cap)
+{
+    pl_text(buf, cap, d->bodies[i].name);
+    return buf;
+}
+
+static void time_range(const lv_plot_data *d, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        const lv_csv *c = d->phases[k].csv;
+        for (size_t r = 0; c != NULL && r < c->n_rows; r++) {
+            *lo = fmin(*lo, c->v[r * c->n_cols]);
+            *hi = fmax(*hi, c->v[r * c->n_cols]);
+        }
+    }
+    if (!(*lo < *hi)) {
+        *lo = isfinite(*lo) ? *lo : 0.0;
+        *hi = *lo + 1.0;
+    }
+}
+
+static PLFLT body_width(size_t i)
+{
+    return fmax(1.2, 3.2 - 0.7 * (double)i); /* later bodies thinner: shared phases show all */
+}
+
+/* One figure of quantity q: a curve per body (two when q has a second column); a quantity no
+ * phase file has is added to the list's skipped ones. */
+static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const char *plotdir,
+                                 lv_plot_list *list, lv_err *err)
+{
+    figure f;
+    memset(&f, 0, sizeof f);
+    snprintf(f.title, sizeof f.title, "%s", q->title);
+    mission_line(d, f.subtitle, sizeof f.subtitle);
+    f.xlabel = "time [s]";
+    f.n_p = 1;
+    f.boundaries = 1;
+    f.p[0].ylo = f.p[0].yhi = NAN;
+    snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "%s", q->ylabel);
+    time_range(d, &f.xlo, &f.xhi);
+    size_t n_a = 0, n_b = 0;
+    lv_status st = LV_OK;
+    for (int pass = 0; pass < 2 && st == LV_OK; pass++) {
+        const char *const *cols = pass == 0 ? q->a : q->b;
+        if (cols[0] == NULL)
+            continue;
+        for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
+            curve *c = &f.p[0].c[f.p[0].n_c];
+            size_t n = body_series(d, &d->bodies[i], cols, q->scale, c);
+            if (n == (size_t)-1) {
+                st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                f.p[0].n_c++; /* freed below */
+                break;
+            }
+            if (n == 0)
+                continue;
+            c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
+            c->style = pass == 0 ? 1 : 2;
+            c->body = i;
+            c->width = body_width(i);
+            f.p[0].n_c++;
+            *(pass == 0 ? &n_a : &n_b) += 1;
+        }
+    }
+    char why[200];
+    if (st == LV_OK && n_a == 0) {
+        snprintf(why, sizeof why, "no phase file has the output '%s' (%s world)", q->a[0],
+                 d->flat ? "flat" : "planet");
+        add_skip(list, q->stem, why);
+    }
+    if (st == LV_OK && n_a > 0) {
+        char name[96];
+        for (size_t j = 0; j < f.p[0].n_c; j++) { /* labels: body, and which curve if two */
+            curve *c = &f.p[0].c[j];
+            if (n_b > 0)
+                snprintf(c->label, sizeof c->label, "%.96s, %.16s",
+                         body_label(d, c->body, name, sizeof name),
+                         c->style == 1 ? q->a_label : q->b_label);
+            else
+                body_label(d, c->body, c->label, sizeof c->label);
+        }
+        if (q->b[0] != NULL && n_b == 0) {
+            snprintf(why, sizeof why, "%s: %s curve not drawn: no phase file has '%s' (%s)",
+                     q->stem, q->b_label, q->b[0],
+                     d->flat ? "flat world: its frame is inertial" : "not an output");
+            add_note(list, why);
+        }
+        int map_ok = 1;
+        st = render_both(d, &f, plotdir, q->stem, list, &map_ok, err);
+    }
+    figure_free(&f);
+    return st;
+}
+
+/* The paper's Figure 10: per body, speed over its maximum and mass over its initial value
+ * (the whole vehicle the body is part of: the steps are the separations). */
+static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                       lv_err *err)
+{
+    static const char *const v_cols[] = {"v_rel", "speed", NULL};
+    static const char *const m_cols[] = {"m", NULL};
+    figure f;
+    memset(&f, 0, sizeof f);
+    snprintf(f.title, sizeof f.title, "Normalised speed and mass (as the paper's Figure 10)");
+    mission_line(d, f.subtitle, sizeof f.subtitle);
+    f.xlabel = "time [s]";
+    f.n_p = 2;
+    f.boundaries = 1;
+    time_range(d, &f.xlo, &f.xhi);
+    snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "speed / max speed [-]");
+    snprintf(f.p[1].ylabel, sizeof f.p[1].ylabel, "mass / initial mass [-]");
+    lv_status st = LV_OK;
+    for (size_t ip = 0; ip < 2 && st == LV_OK; ip++) {
+        panel *p = &f.p[ip];
+        p->ylo = 0.0;
+        p->yhi = 1.08;
+        for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
+            curve *c = &p->c[p->n_c];
+            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, c);
+            if (n == (size_t)-1) {
+                p->n_c++;
+                st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                break;
+            }
+            if (n == 0)
+                continue;
+            double ref = 0.0; /* speed: its maximum; mass: the first value */
+            for (size_t k = 0; k < n; k++)
+                if (isfinite(c->y[k]) && (ip == 0 ? fabs(c->y[k]) > ref : ref == 0.0))
+                    ref = fabs(c->y[k]);
+            for (size_t k = 0; k < n; k++)
+                c->y[k] = ref > 0.0 ? c->y[k] / ref : NAN;
+            c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
+            c->style = 1;
+            c->width = body_width(i);
+            body_label(d, i, c->label, sizeof c->label);
+            p->n_c++;
+        }
+    }
+    if (st == LV_OK && (f.p[0].n_c == 0 || f.p[1].n_c == 0))
+        add_skip(list, "fig10_normalised", "no phase file has a speed and the mass 'm'");
+    else if (st == LV_OK) {
+        int map_ok = 1;
+        st = render_both(d, &f, plotdir, "fig10_normalised", list, &map_ok, err);
+    }
+    figure_free(&f);
+    return st;
+}
+
+static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                              lv_err *err)
+{
+    figure f;
+    memset(&f, 0, sizeof f);
+    snprintf(f.title, sizeof f.title, "Ground track");
+    mission_line(d, f.subtitle, sizeof f.subtitle);
+    f.xlabel = "longitude [deg]";
+    f.n_p = 1;
+    f.map = 1;
+    snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "latitude [deg]");
+    panel *p = &f.p[0];
+    lv_status st = LV_OK;
+    for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
+        const lv_csv *t = d->bodies[i].traj;
+        long klat = lv_plot_csv_col(t, "lat"), klon = lv_plot_csv_col(t, "lon");
+        if (klat < 0 || klon < 0 || t->n_rows == 0)
+            continue;
+        curve *c = &p->c[p->n_c++];
+        c->x = malloc(t->n_rows * sizeof *c->x);
+        c->y = malloc(t->n_rows * sizeof *c->y);
+        if (c->x == NULL || c->y == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            break;
+        }
+        for (size_t r = 0; r < t->n_rows; r++) {
+            double lon = t->v[r * t->n_cols + (size_t)klon] * RAD2DEG;
+            if (c->n > 0 && isfinite(c->x[c->n - 1])) /* continuous across +-180 deg */
+                lon += 360.0 * round((c->x[c->n - 1] - lon) / 360.0);
+            c->x[c->n] = lon;
+            c->y[c->n] = t->v[r * t->n_cols + (size_t)klat] * RAD2DEG;
+            c->n++;
+        }
+        c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
+        c->style = 1;
+        c->width = body_width(i);
+        body_label(d, i, c->label, sizeof c->label);
+    }
+    if (st == LV_OK && p->n_c == 0) {
+        add_skip(list, "ground_track", "no body trajectory has 'lat' and 'lon'");
+        figure_free(&f);
+        return LV_OK;
+    }
+    if (st == LV_OK) {
+        /* The tracks with a margin, at least 4 deg, widened so that a degree of longitude
+         * (times cos latitude) and of latitude take about the same length on the page. */
+        double xlo, xhi, ylo, yhi;
+        range_of(p, 1, &xlo, &xhi);
+        range_of(p, 0, &ylo, &yhi);
+        double lon_span = fmax(xhi - xlo, 4.0), lat_span = fmax(yhi - ylo, 4.0);
+        double coslat = fmax(cos(0.5 * (ylo + yhi) / RAD2DEG), 0.2);
+        const double aspect = ((VP_X1 - VP_X0) * PAGE_W) / (0.78 * PAGE_H); /* viewport width / height */
+        lon_span *= 1.3;
+        lat_span *= 1.3;
+        if (lon_span * coslat < aspect * lat_span)
+            lon_span = aspect * lat_span / coslat;
+        else
+            lat_span = lon_span * coslat / aspect;
+        double xm = 0.5 * (xlo + xhi), ym = 0.5 * (ylo + yhi);
+        f.xlo = xm - 0.5 * lon_span;
+        f.xhi = xm + 0.5 * lon_span;
+        f.mlo = fmax(ym - 0.5 * lat_span, -90.0);
+        f.mhi = fmin(ym + 0.5 * lat_span, 90.0);
+        int map_ok = 1;
+        st = render_both(d, &f, plotdir, "ground_track", list, &map_ok, err);
+        if (st == LV_OK && !map_ok)
+            add_note(list, "ground_track: PLplot's coastline data ('globe' shapefile, Debian "
+                           "package libplplot-data) not found: latitude/longitude grid only");
+        else if (st == LV_OK)
+            add_note(list, "ground_track: coastlines from PLplot's 'globe' shapefile; "
+                           "o marks the start, x the end of each body's track");
+    }
+    figure_free(&f);
+    return st;
+}
+
+lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                               lv_err *err)
+{
+    lv_status st = LV_OK;
+    for (size_t i = 0; i < sizeof quantities / sizeof quantities[0] && st == LV_OK; i++)
+        st = quantity_figure(d, &quantities[i], plotdir, list, err);
+    if (st == LV_OK)
+        st = ground_track(d, plotdir, list, err);
+    if (st == LV_OK)
+        st = fig10(d, plotdir, list, err);
+    return st;
+}

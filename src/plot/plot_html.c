@@ -1,0 +1,364 @@
+/* plot_html.c - OUTDIR/index.html: the run at a glance (mission, phase table, events, bodies,
+ * the figures, the result files, the 3D view). Every text that comes from the mission file is
+ * HTML-escaped; every link is percent-encoded. Plain HTML, no script. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "plot/plot.h"
+
+static void esc(FILE *f, const char *s)
+{
+    for (; s != NULL && *s; s++)
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&#39;", f); break;
+        default: fputc(*s, f);
+        }
+}
+
+/* A relative link: bytes outside the URL's unreserved set (and '/') as %XX. */
+static void url(FILE *f, const char *s)
+{
+    for (; s != NULL && *s; s++) {
+        const unsigned char c = (unsigned char)*s;
+        if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+            strchr("-._~/", c) != NULL)
+            fputc(c, f);
+        else
+            fprintf(f, "%%%02X", c);
+    }
+}
+
+static void link_to(FILE *f, const char *href, const char *text)
+{
+    fputs("<a href=\"", f);
+    url(f, href);
+    fputs("\">", f);
+    esc(f, text);
+    fputs("</a>", f);
+}
+
+static const char *str(const cJSON *o, const char *key)
+{
+    const cJSON *j = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsString(j) ? j->valuestring : NULL;
+}
+
+static double num(const cJSON *o, const char *key)
+{
+    const cJSON *j = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsNumber(j) ? j->valuedouble : NAN;
+}
+
+/* A number with `prec` decimals (sign > 0: always signed). */
+static void td_num(FILE *f, double v, int prec, int sign)
+{
+    fputs("<td>", f);
+    if (isfinite(v))
+        fprintf(f, sign > 0 ? "%+.*f" : "%.*f", prec, v);
+    else
+        fputs("&ndash;", f);
+    fputs("</td>", f);
+}
+
+static void td_text(FILE *f, const char *s)
+{
+    fputs("<td class=\"l\">", f);
+    if (s != NULL)
+        esc(f, s);
+    else
+        fputs("&ndash;", f);
+    fputs("</td>", f);
+}
+
+static const char style[] =
+    "body{font-family:sans-serif;max-width:1150px;margin:1em auto;padding:0 1em;color:#222}\n"
+    "table{border-collapse:collapse;font-size:.9em;margin:.5em 0}\n"
+    "th,td{border:1px solid #ccc;padding:2px 6px;text-align:right;vertical-align:top}\n"
+    "th{background:#eee}td.l{text-align:left}tr.bad td{color:#a00}\n"
+    "figure{margin:1.5em 0}img{max-width:100%;border:1px solid #ddd}\n"
+    "figcaption{font-size:.9em}code{background:#f4f4f4;padding:0 3px}\n";
+
+static void phase_table(FILE *f, const cJSON *phases)
+{
+    fputs("<h2 id=\"phases\">Phases</h2>\n<table>\n<tr><th>#</th><th>phase</th><th>from</th>"
+          "<th>stages</th><th>model</th><th>t0 [s]</th><th>t1 [s]</th><th>end</th>"
+          "<th>steps</th><th>RHS evals</th><th>state events</th><th>time events</th>"
+          "<th>CPU [ms]</th><th>status</th></tr>\n",
+          f);
+    const cJSON *ph;
+    cJSON_ArrayForEach(ph, phases)
+    {
+        const char *state = str(ph, "state");
+        const int ok = state != NULL && strcmp(state, "done") == 0;
+        fputs(ok ? "<tr>" : "<tr class=\"bad\">", f);
+        td_num(f, num(ph, "index"), 0, 0);
+        td_text(f, str(ph, "name"));
+        td_text(f, str(ph, "from") ? str(ph, "from") : "(parameters)");
+        fputs("<td class=\"l\">", f);
+        const cJSON *s;
+        int first = 1;
+        cJSON_ArrayForEach(s, cJSON_GetObjectItemCaseSensitive(ph, "stages"))
+        {
+            if (cJSON_IsString(s)) {
+                fputs(first ? "" : ", ", f);
+                esc(f, s->valuestring);
+                first = 0;
+            }
+        }
+        fputs("</td>", f);
+        td_text(f, str(ph, "model"));
+        td_num(f, num(ph, "t_start"), 3, 0);
+        td_num(f, num(ph, "t_end"), 3, 0);
+        const cJSON *end = cJSON_GetObjectItemCaseSensitive(ph, "end");
+        fputs("<td class=\"l\">", f);
+        if (end != NULL) {
+            esc(f, str(end, "reason"));
+            if (str(end, "event") != NULL) {
+                fputs(": ", f);
+                esc(f, str(end, "event"));
+            }
+            if (isfinite(num(end, "value")))
+                fprintf(f, " (%g)", num(end, "value"));
+        } else {
+            fputs("&ndash;", f);
+        }
+        fputs("</td>", f);
+        const cJSON *st = cJSON_GetObjectItemCaseSensitive(ph, "stats");
+        td_num(f, num(st, "steps"), 0, 0);
+        td_num(f, num(st, "rhs_evals"), 0, 0);
+        td_num(f, num(st, "state_events"), 0, 0);
+        td_num(f, num(st, "time_events"), 0, 0);
+        td_num(f, 1e3 * num(st, "cpu_time"), 2, 0);
+        fputs("<td class=\"l\">", f);
+        esc(f, state ? state : "?");
+        if (str(ph, "error") != NULL) {
+            fputs(": ", f);
+            esc(f, str(ph, "error"));
+        }
+        fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n", f);
+}
+
+typedef struct event_ref {
+    double t;
+    size_t order; /* position in summary.json: ties keep it */
+    const cJSON *phase, *event;
+} event_ref;
+
+static int by_time(const void *a, const void *b)
+{
+    const event_ref *x = a, *y = b;
+    if (x->t != y->t)
+        return x->t < y->t ? -1 : 1;
+    return x->order < y->order ? -1 : x->order > y->order;
+}
+
+/* Every logged event of every phase, in time order. */
+static void event_list(FILE *f, const cJSON *phases)
+{
+    fputs("<h2 id=\"events\">Events</h2>\n", f);
+    size_t n = 0;
+    const cJSON *ph, *ev;
+    cJSON_ArrayForEach(ph, phases)
+    {
+        n += (size_t)cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(ph, "events"));
+    }
+    event_ref *refs = calloc(n + 1, sizeof *refs);
+    n = 0;
+    cJSON_ArrayForEach(ph, phases)
+    {
+        cJSON_ArrayForEach(ev, cJSON_GetObjectItemCaseSensitive(ph, "events"))
+        {
+            if (refs != NULL)
+                refs[n] = (event_ref){isfinite(num(ev, "t")) ? num(ev, "t") : INFINITY, n, ph, ev};
+            n++;
+        }
+    }
+    if (refs != NULL)
+        qsort(refs, n, sizeof *refs, by_time);
+    if (n > 0)
+        fputs("<table>\n<tr><th>t [s]</th><th>phase</th><th>kind</th><th>event</th>"
+              "<th>direction</th></tr>\n",
+              f);
+    for (size_t i = 0; i < n && refs != NULL; i++) {
+        fputs("<tr>", f);
+        td_num(f, refs[i].t, 6, 0);
+        td_text(f, str(refs[i].phase, "name"));
+        td_text(f, str(refs[i].event, "kind"));
+        td_text(f, str(refs[i].event, "name"));
+        td_num(f, num(refs[i].event, "direction"), 0, 1);
+        fputs("</tr>\n", f);
+    }
+    fputs(n ? "</table>\n" : "<p>No events were logged.</p>\n", f);
+    free(refs);
+}
+
+static void body_list(FILE *f, const cJSON *bodies)
+{
+    fputs("<h2 id=\"bodies\">Bodies</h2>\n<ul>\n", f);
+    const cJSON *b, *p;
+    cJSON_ArrayForEach(b, bodies)
+    {
+        fputs("<li><b>", f);
+        esc(f, str(b, "name"));
+        fputs("</b>: ", f);
+        int first = 1;
+        cJSON_ArrayForEach(p, cJSON_GetObjectItemCaseSensitive(b, "phases"))
+        {
+            if (cJSON_IsString(p)) {
+                fputs(first ? "" : " &rarr; ", f);
+                esc(f, p->valuestring);
+                first = 0;
+            }
+        }
+        if (str(b, "trajectory") != NULL) {
+            fputs(" (", f);
+            link_to(f, str(b, "trajectory"), str(b, "trajectory"));
+            fputs(")", f);
+        }
+        fputs("</li>\n", f);
+    }
+    fputs("</ul>\n", f);
+}
+
+static void plot_section(FILE *f, const lv_plot_list *l)
+{
+    fputs("<h2 id=\"plots\">Plots</h2>\n<p>Every body is one curve across all the phases it "
+          "flies in; dashed grey lines mark where phases start. Each figure is also an SVG "
+          "file.</p>\n",
+          f);
+    char href[128];
+    for (size_t i = 0; i < l->n_made; i++) {
+        fputs("<figure>\n<img src=\"", f);
+        snprintf(href, sizeof href, "plots/%s.png", l->made[i].stem);
+        url(f, href);
+        fputs("\" alt=\"", f);
+        esc(f, l->made[i].title);
+        fputs("\">\n<figcaption>", f);
+        esc(f, l->made[i].title);
+        fputs(" &mdash; ", f);
+        link_to(f, href, "PNG");
+        fputs(", ", f);
+        snprintf(href, sizeof href, "plots/%s.svg", l->made[i].stem);
+        link_to(f, href, "SVG");
+        fputs("</figcaption>\n</figure>\n", f);
+    }
+    if (l->n_skipped > 0) {
+        fputs("<h3>Skipped</h3>\n<ul>\n", f);
+        for (size_t i = 0; i < l->n_skipped; i++) {
+            fputs("<li><code>", f);
+            esc(f, l->skipped[i].what);
+            fputs("</code>: ", f);
+            esc(f, l->skipped[i].why);
+            fputs("</li>\n", f);
+        }
+        fputs("</ul>\n", f);
+    }
+    if (l->n_notes > 0) {
+        fputs("<h3>Notes</h3>\n<ul>\n", f);
+        for (size_t i = 0; i < l->n_notes; i++) {
+            fputs("<li>", f);
+            esc(f, l->notes[i]);
+            fputs("</li>\n", f);
+        }
+        fputs("</ul>\n", f);
+    }
+}
+
+static void file_list(FILE *f, const cJSON *phases, const cJSON *bodies)
+{
+    fputs("<h2 id=\"files\">Result files</h2>\n<ul>\n<li>", f);
+    link_to(f, "summary.json", "summary.json");
+    fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n", f);
+    const cJSON *o;
+    cJSON_ArrayForEach(o, bodies)
+    {
+        if (str(o, "trajectory") == NULL)
+            continue;
+        fputs("<li>", f);
+        link_to(f, str(o, "trajectory"), str(o, "trajectory"));
+        fputs(": body ", f);
+        esc(f, str(o, "name"));
+        fputs(", all its phases</li>\n", f);
+    }
+    cJSON_ArrayForEach(o, phases)
+    {
+        const cJSON *files = cJSON_GetObjectItemCaseSensitive(o, "files");
+        if (files == NULL)
+            continue;
+        fputs("<li>phase ", f);
+        esc(f, str(o, "name"));
+        fputs(": ", f);
+        if (str(files, "mat") != NULL)
+            link_to(f, str(files, "mat"), str(files, "mat"));
+        fputs(", ", f);
+        if (str(files, "csv") != NULL)
+            link_to(f, str(files, "csv"), str(files, "csv"));
+        fputs("</li>\n", f);
+    }
+    fputs("</ul>\n", f);
+}
+
+lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_err *err)
+{
+    char path[4200], tmp[4300];
+    snprintf(path, sizeof path, "%s/index.html", d->outdir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (f == NULL)
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+    const cJSON *s = d->summary;
+    const cJSON *phases = cJSON_GetObjectItemCaseSensitive(s, "phases");
+    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(s, "bodies");
+    const char *name = str(s, "mission") ? str(s, "mission") : "mission";
+    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>", f);
+    esc(f, name);
+    fprintf(f, " &mdash; lvsim</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", style);
+    esc(f, name);
+    fputs("</h1>\n<p>Mission file <code>", f);
+    esc(f, str(s, "file") ? str(s, "file") : "?");
+    fputs("</code>; epoch ", f);
+    esc(f, str(s, "epoch") ? str(s, "epoch") : "?");
+    fputs("; world ", f);
+    esc(f, str(s, "world") ? str(s, "world") : "?");
+    fputs("; lvsim ", f);
+    esc(f, str(s, "lvsim") ? str(s, "lvsim") : "?");
+    fprintf(f, "; %zu phases, %zu bodies.</p>\n", d->n_phases, d->n_bodies);
+    fputs("<p><a href=\"#phases\">Phases</a> &middot; <a href=\"#events\">Events</a> &middot; "
+          "<a href=\"#bodies\">Bodies</a> &middot; <a href=\"#plots\">Plots</a> &middot; "
+          "<a href=\"#files\">Result files</a> &middot; <a href=\"viewer/index.html\">3D "
+          "view</a></p>\n",
+          f);
+    fputs("<p><b><a href=\"viewer/index.html\">3D view</a></b> of the trajectories "
+          "(<code>viewer/</code>). Open it with <code>lvsim view ",
+          f);
+    esc(f, d->outdir);
+    fputs("</code>.</p>\n", f);
+    phase_table(f, phases);
+    event_list(f, phases);
+    body_list(f, bodies);
+    plot_section(f, l);
+    file_list(f, phases, bodies);
+    fputs("</body>\n</html>\n", f);
+    int bad = ferror(f);
+    bad |= fclose(f) != 0;
+    if (bad) {
+        remove(tmp);
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s'", tmp);
+    }
+    if (rename(tmp, path) != 0)
+        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
+                       strerror(errno));
+    return LV_OK;
+}

@@ -1,0 +1,300 @@
+/* test_plot.c - lv_plot_run() on two example runs (the paper's flat-world test case and the
+ * 3-DoF branch over the Earth): every expected figure exists as a PNG (signature, IHDR size, not
+ * a blank page by size) and an SVG, quantities a world lacks are skipped and said so, index.html
+ * names every phase and figure and escapes mission text, nothing is printed, PLplot's current
+ * stream is left as it was; errors name the file (and line). The PNGs' pixels are checked by
+ * tests/unit/plot_png_check.py (ctest test_plot_png). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <plplot.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lvsim/lv_mission.h"
+#include "lvsim/lv_plot.h"
+
+static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dynamic_pressure",
+                                       "load_factor", "flight_path_angle", "acceleration",
+                                       "thrust", "ground_track", "fig10_normalised", NULL};
+/* Not in a flat world's phase files (no atmosphere model outputs, no planet). */
+static const char *const planet_only[] = {"mach", "dynamic_pressure", "load_factor",
+                                          "flight_path_angle", NULL};
+
+static int in_list(const char *const *l, const char *s)
+{
+    for (; *l; l++)
+        if (strcmp(*l, s) == 0)
+            return 1;
+    return 0;
+}
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    if (buf != NULL) {
+        size_t got = fread(buf, 1, (size_t)n, f);
+        buf[got] = '\0';
+        if (len)
+            *len = got;
+    }
+    fclose(f);
+    return buf;
+}
+
+static int write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (f == NULL)
+        return 0;
+    fputs(text, f);
+    return fclose(f) == 0;
+}
+
+static unsigned be32(const unsigned char *p)
+{
+    return (unsigned)p[0] << 24 | (unsigned)p[1] << 16 | (unsigned)p[2] << 8 | p[3];
+}
+
+/* A PNG: signature, IHDR first with the page size, at least `min_bytes` long. */
+static void check_png(const char *path, size_t min_bytes)
+{
+    size_t n = 0;
+    unsigned char *b = (unsigned char *)slurp(path, &n);
+    CHECK(b != NULL);
+    if (b == NULL) {
+        fprintf(stderr, "missing %s\n", path);
+        return;
+    }
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    CHECK(n > 33 && memcmp(b, sig, 8) == 0);
+    CHECK(n > 33 && memcmp(b + 12, "IHDR", 4) == 0 && be32(b + 8) == 13);
+    CHECK(n > 33 && be32(b + 16) == 1000 && be32(b + 20) == 700);
+    CHECK(n >= min_bytes);
+    if (n < min_bytes)
+        fprintf(stderr, "%s: only %zu bytes\n", path, n);
+    free(b);
+}
+
+static void check_svg(const char *path)
+{
+    char *s = slurp(path, NULL);
+    CHECK(s != NULL);
+    if (s == NULL) {
+        fprintf(stderr, "missing %s\n", path);
+        return;
+    }
+    CHECK(strncmp(s, "<?xml", 5) == 0 || strncmp(s, "<svg", 4) == 0);
+    const char *open = strstr(s, "<svg");
+    CHECK(open != NULL && strstr(open, "</svg>") != NULL);
+    CHECK(strlen(s) > 2000);
+    free(s);
+}
+
+/* Removes what an earlier run of this test left in `dir`. */
+static void clean(const char *dir)
+{
+    char path[512];
+    for (size_t i = 0; all_figs[i]; i++) {
+        snprintf(path, sizeof path, "%s/plots/%s.png", dir, all_figs[i]);
+        remove(path);
+        snprintf(path, sizeof path, "%s/plots/%s.svg", dir, all_figs[i]);
+        remove(path);
+    }
+    snprintf(path, sizeof path, "%s/plots", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    remove(path);
+}
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+/* Runs `mission` into `outdir`, plots it, checks the files; returns the plotting time in ms. */
+static double run_and_plot(const char *mission, const char *outdir, int flat)
+{
+    char path[4096];
+    const char *root = getenv("LV_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/%s", root ? root : "..", mission);
+    lv_err err = {0};
+    lv_mission *m = NULL;
+    CHECK_OK(lv_mission_load(path, &m, &err), &err);
+    if (m == NULL)
+        return 0.0;
+    lv_run_options opt = {.outdir = outdir, .threads = 1};
+    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
+    CHECK_OK(lv_mission_write_summary(m, outdir, &err), &err);
+
+    /* The library prints nothing: stdout and stderr go to a file while plotting. */
+    char quiet[4200];
+    snprintf(quiet, sizeof quiet, "%s.stdio", outdir);
+    fflush(stdout);
+    fflush(stderr);
+    int out_fd = dup(1), err_fd = dup(2);
+    FILE *q = fopen(quiet, "w");
+    CHECK(q != NULL && out_fd >= 0 && err_fd >= 0);
+    if (q != NULL) {
+        dup2(fileno(q), 1);
+        dup2(fileno(q), 2);
+    }
+    PLINT strm_before = -1, strm_after = -2;
+    plgstrm(&strm_before);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    lv_status st = lv_plot_run(outdir, &err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    plgstrm(&strm_after);
+    fflush(stdout);
+    fflush(stderr);
+    dup2(out_fd, 1);
+    dup2(err_fd, 2);
+    close(out_fd);
+    close(err_fd);
+    if (q != NULL)
+        fclose(q);
+    CHECK_OK(st, &err);
+    CHECK(strm_before == strm_after);
+    size_t said = 0;
+    char *text = slurp(quiet, &said);
+    CHECK(text != NULL && said == 0);
+    if (said > 0)
+        fprintf(stderr, "printed while plotting: %s\n", text);
+    free(text);
+    remove(quiet);
+
+    for (size_t i = 0; all_figs[i]; i++) {
+        const int expect = !(flat && in_list(planet_only, all_figs[i]));
+        snprintf(path, sizeof path, "%s/plots/%s.png", outdir, all_figs[i]);
+        CHECK(exists(path) == expect);
+        if (exists(path) != expect)
+            fprintf(stderr, "%s: expected %s\n", path, expect ? "a file" : "no file");
+        if (expect)
+            check_png(path, 12000);
+        snprintf(path, sizeof path, "%s/plots/%s.svg", outdir, all_figs[i]);
+        CHECK(exists(path) == expect);
+        if (expect)
+            check_svg(path);
+        snprintf(path, sizeof path, "%s/plots/%s.png.tmp", outdir, all_figs[i]);
+        CHECK(!exists(path));
+    }
+
+    snprintf(path, sizeof path, "%s/index.html", outdir);
+    char *html = slurp(path, NULL);
+    CHECK(html != NULL);
+    if (html != NULL) {
+        CHECK(strncmp(html, "<!DOCTYPE html>", 15) == 0 && strstr(html, "</html>") != NULL);
+        CHECK(strstr(html, lv_mission_name(m)) != NULL);
+        for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
+            char cell[256];
+            snprintf(cell, sizeof cell, "<td class=\"l\">%s</td>", lv_mission_phase_name(m, k));
+            CHECK(strstr(html, cell) != NULL);
+        }
+        for (size_t i = 0; all_figs[i]; i++) {
+            const int expect = !(flat && in_list(planet_only, all_figs[i]));
+            char img[128], svg[128], skip[128];
+            snprintf(img, sizeof img, "<img src=\"plots/%s.png\"", all_figs[i]);
+            snprintf(svg, sizeof svg, "href=\"plots/%s.svg\"", all_figs[i]);
+            snprintf(skip, sizeof skip, "<li><code>%s</code>: ", all_figs[i]);
+            CHECK((strstr(html, img) != NULL) == expect);
+            CHECK((strstr(html, svg) != NULL) == expect);
+            CHECK((strstr(html, skip) != NULL) == !expect);
+        }
+        CHECK(strstr(html, "href=\"viewer/index.html\"") != NULL);
+        CHECK(strstr(html, "lvsim view") != NULL);
+        CHECK(strstr(html, "href=\"summary.json\"") != NULL);
+        CHECK(strstr(html, ".mat\"") != NULL && strstr(html, "href=\"body_") != NULL);
+        CHECK(strstr(html, "burnout") != NULL); /* end reasons and the event list */
+        if (flat) /* the flat world has no inertial speed: the report says why */
+            CHECK(strstr(html, "inertial curve not drawn") != NULL);
+    }
+    free(html);
+    lv_mission_free(m);
+    return 1e3 * ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+}
+
+/* A hand-made output directory: hostile names are escaped, bad files give file and line. */
+static void test_errors_and_escaping(void)
+{
+    const char *dir = "plot_hand";
+    char path[512];
+    lv_err err = {0};
+    mkdir(dir, 0777);
+    remove("plot_hand/summary.json");
+    CHECK_FAILS(lv_plot_run(dir, &err), &err, LV_ERR_IO, "plot_hand/summary.json");
+    CHECK_FAILS(lv_plot_run("plot_no_such_dir", &err), &err, LV_ERR_IO,
+                "plot_no_such_dir/summary.json");
+    CHECK_FAILS(lv_plot_run("", &err), &err, LV_ERR_INPUT, "no output directory");
+
+    CHECK(write_text("plot_hand/summary.json", "{\n  \"mission\": \"x\",\n  \"phases\": [\n"
+                                               "    {\"name\": \"a\",}\n  ]\n}\n"));
+    CHECK_FAILS(lv_plot_run(dir, &err), &err, LV_ERR_INPUT, "plot_hand/summary.json:4");
+
+    static const char summary[] =
+        "{\"mission\": \"<script>alert('x')</script> & co #u1\", \"epoch\": \"2026-01-01T00:00:00Z\","
+        " \"world\": \"flat\", \"file\": \"m.yaml\", \"lvsim\": \"0\",\n"
+        " \"phases\": [{\"index\": 1, \"name\": \"up<&>\", \"model\": \"flat6\","
+        " \"stages\": [\"s\\\"1\"], \"from\": null, \"state\": \"done\", \"t_start\": 0,"
+        " \"t_end\": 2, \"end\": {\"reason\": \"stop_time\", \"value\": 2}, \"events\": [],"
+        " \"stats\": {\"steps\": 3, \"rhs_evals\": 9, \"state_events\": 0, \"time_events\": 0,"
+        " \"cpu_time\": 0.001}, \"files\": {\"csv\": \"p 1.csv\", \"mat\": \"p 1.mat\"}}],\n"
+        " \"bodies\": [{\"name\": \"s\\\"1\", \"phases\": [\"up<&>\"],"
+        " \"trajectory\": \"b.csv\"}]}\n";
+    CHECK(write_text("plot_hand/summary.json", summary));
+    CHECK_FAILS(lv_plot_run(dir, &err), &err, LV_ERR_IO, "plot_hand/p 1.csv");
+    CHECK(write_text("plot_hand/p 1.csv", "time [s],z [m],speed [m/s],m [kg]\n"
+                                          "0,0,0,100\n1,5,10,90\n2,20,20\n"));
+    CHECK_FAILS(lv_plot_run(dir, &err), &err, LV_ERR_INPUT, "plot_hand/p 1.csv:4");
+    CHECK(write_text("plot_hand/p 1.csv", "time [s],z [m],speed [m/s],m [kg]\n"
+                                          "0,0,0,100\n1,5,10,90\n1,5,10,80\n2,20,20,70\n"));
+    CHECK(write_text("plot_hand/b.csv", "time [s],phase,lat [rad],lon [rad]\n"
+                                        "0,up,0.1,0.2\n2,up,0.1001,0.2001\n"));
+    CHECK_OK(lv_plot_run(dir, &err), &err);
+    char *html = slurp("plot_hand/index.html", NULL);
+    CHECK(html != NULL);
+    if (html != NULL) {
+        CHECK(strstr(html, "<script>") == NULL);
+        CHECK(strstr(html, "&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt; &amp; co #u1") != NULL);
+        CHECK(strstr(html, "up&lt;&amp;&gt;") != NULL && strstr(html, "up<&>") == NULL);
+        CHECK(strstr(html, "s&quot;1") != NULL);
+        CHECK(strstr(html, "href=\"p%201.csv\"") != NULL);
+        CHECK(strstr(html, "<img src=\"plots/altitude.png\"") != NULL);
+    }
+    free(html);
+    snprintf(path, sizeof path, "%s/plots/altitude.png", dir);
+    check_png(path, 5000);
+
+    /* An unwritable plots/ (a file of that name): LV_ERR_IO naming it, nothing printed. */
+    CHECK(write_text("plot_hand/summary.json", summary));
+    clean(dir);
+    CHECK(write_text("plot_hand/plots", "not a directory"));
+    CHECK_FAILS(lv_plot_run(dir, &err), &err, LV_ERR_IO, "plot_hand/plots");
+    remove("plot_hand/plots");
+}
+
+int main(void)
+{
+    clean("plot_paper");
+    clean("plot_dof3");
+    clean("plot_hand");
+    remove("plot_hand/p 1.csv");
+    remove("plot_hand/b.csv");
+    double ms_paper = run_and_plot("examples/paper-test-case/mission.yaml", "plot_paper", 1);
+    double ms_dof3 = run_and_plot("examples/dof3-branch/mission.yaml", "plot_dof3", 0);
+    printf("lv_plot_run: paper-test-case %.0f ms, dof3-branch %.0f ms\n", ms_paper, ms_dof3);
+    test_errors_and_escaping();
+    return check_report("test_plot");
+}
