@@ -18,7 +18,7 @@ $(BUILD)/CMakeCache.txt:
 build: $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: deps build
+demo: deps build viewer
 	@scripts/demo.sh $(BUILD)
 
 test: deps build
@@ -47,3 +47,8 @@ fuzz: deps
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)
+
+# The 3-D viewer's npm packages (CesiumJS, playwright-core for its test) from viewer/package-lock.json.
+.PHONY: viewer
+viewer:
+	@viewer/install.sh

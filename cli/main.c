@@ -6,6 +6,9 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -79,6 +82,8 @@ static void print_help(FILE *f)
             "                                    run every phase; results, exports, plots,\n"
             "                                    summary.json, index.html (OUTDIR: lvsim-out)\n"
             "  lvsim plot OUTDIR                 plots and index.html from a results folder\n"
+            "  lvsim view OUTDIR [--port N] [--stage-only]\n"
+            "                                    3-D globe view (CesiumJS, offline) on 127.0.0.1\n"
             "  lvsim check MISSION.yaml          validate only\n"
             "  lvsim export OUTDIR [--format czml,kml,oem]\n"
             "                                    trajectory exports from a results folder\n"
@@ -516,6 +521,86 @@ static int cmd_compare(int argc, char **argv)
     return EXIT_OK;
 }
 
+/* Runs argv[0] with argv and waits; returns its exit status, or -1. */
+static int run_program(char *const *args)
+{
+    pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        execv(args[0], args);
+        _exit(127);
+    }
+    int status;
+    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status))
+        return -1;
+    return WEXITSTATUS(status);
+}
+
+static int file_exists(const char *dir, const char *name)
+{
+    char path[4200];
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return stat(path, &sb) == 0;
+}
+
+/* lvsim view OUTDIR [--port N] [--stage-only]: the results folder becomes a static site
+ * (OUTDIR/viewer/ with the CesiumJS page and its assets, ~14 MB) served on 127.0.0.1. */
+static int cmd_view(int argc, char **argv)
+{
+    const char *dir = NULL;
+    int port = 8765, stage_only = 0;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--port") == 0) {
+            if (i + 1 >= argc || !parse_int(argv[i + 1], &port) || port < 1 || port > 65535)
+                return usage_error("--port needs a number from 1 to 65535", NULL);
+            i++;
+        } else if (strcmp(argv[i], "--stage-only") == 0) {
+            stage_only = 1;
+        } else if (argv[i][0] == '-' || dir != NULL) {
+            return usage_error("unexpected argument", argv[i]);
+        } else {
+            dir = argv[i];
+        }
+    }
+    if (dir == NULL)
+        return usage_error("view needs a results folder (lvsim run -o OUTDIR)", NULL);
+    if (!file_exists(dir, "summary.json")) {
+        fprintf(stderr, "lvsim view: %s/summary.json not found: run a mission first "
+                        "(lvsim run MISSION.yaml -o %s)\n", dir, dir);
+        return EXIT_INPUT;
+    }
+    lv_err err;
+    if (!file_exists(dir, "mission.czml") && lv_export_run(dir, LV_EXPORT_CZML, &err) != LV_OK) {
+        fprintf(stderr, "lvsim view: %s\n", err.msg);
+        return EXIT_INPUT;
+    }
+    if (!file_exists(dir, "viewer/VERSION")) {
+        char script[4200];
+        snprintf(script, sizeof script, "%s/stage.sh", LVSIM_VIEWER_DIR);
+        char *args[] = {script, (char *)dir, NULL}; /* executable, with its own #! */
+        if (run_program(args) != 0) {
+            fprintf(stderr, "lvsim view: staging the viewer with %s failed (needs node/npm: "
+                            "make viewer)\n", script);
+            return EXIT_INTERNAL;
+        }
+    }
+    if (stage_only) {
+        printf("viewer staged in %s/viewer/ (open with: lvsim view %s)\n", dir, dir);
+        return EXIT_OK;
+    }
+    char port_s[16];
+    snprintf(port_s, sizeof port_s, "%d", port);
+    printf("lvsim view: http://127.0.0.1:%d/viewer/  (serving %s; Ctrl-C to stop)\n", port, dir);
+    fflush(stdout);
+    char *args[] = {"/usr/bin/python3", "-m", "http.server", "--bind", "127.0.0.1", port_s,
+                    "--directory", (char *)dir, NULL};
+    execv(args[0], args);
+    fprintf(stderr, "lvsim view: cannot start %s: %s\n", args[0], strerror(errno));
+    return EXIT_INTERNAL;
+}
+
 /* lvsim plot OUTDIR */
 static int cmd_plot(int argc, char **argv)
 {
@@ -707,6 +792,8 @@ int main(int argc, char **argv)
         return cmd_export(argc - 2, argv + 2);
     if (strcmp(cmd, "plot") == 0)
         return cmd_plot(argc - 2, argv + 2);
+    if (strcmp(cmd, "view") == 0)
+        return cmd_view(argc - 2, argv + 2);
     if (strcmp(cmd, "atmosphere") == 0)
         return cmd_atmosphere(argc - 2, argv + 2);
     if (strcmp(cmd, "gravity") == 0)

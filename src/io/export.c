@@ -138,7 +138,27 @@ void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3])
 
 const char *lv_ex_event_label(const lv_ex_event *e)
 {
-    return e->name != NULL ? e->name : "time event";
+    if (e->name == NULL)
+        return "time event";
+    if (strcmp(e->name, "burnout") == 0)
+        return "MECO"; /* main engine cut-off: the burning stage's propellant is gone */
+    if (strcmp(e->name, "impact") == 0)
+        return "landing";
+    return e->name;
+}
+
+void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap)
+{
+    const lv_ex_phase *ph = &r->phases[p];
+    if (k > 0) {
+        snprintf(buf, cap, "%s", lv_ex_event_label(&ph->events[k - 1]));
+        return;
+    }
+    const int sep = ph->parent >= 0 && ph->n_stages < r->phases[ph->parent].n_stages;
+    if (sep)
+        snprintf(buf, cap, "separation (%s)", ph->name);
+    else
+        snprintf(buf, cap, "%s start", ph->name);
 }
 
 lv_status lv_ex_open(const char *path, char *tmp, size_t cap, FILE **out, lv_err *err)
@@ -351,8 +371,10 @@ static lv_status read_summary(lv_ex_run *r, lv_err *err)
     r->t0 = INFINITY;
     r->t1 = -INFINITY;
     for (size_t i = 0; i < np; i++) {
-        const char *from = json_str(cJSON_GetArrayItem(phases, (int)i), "from");
+        const cJSON *pj = cJSON_GetArrayItem(phases, (int)i);
+        const char *from = json_str(pj, "from");
         r->phases[i].parent = from != NULL ? phase_find(r, from) : -1;
+        r->phases[i].n_stages = (size_t)cJSON_GetArraySize(cJSON_GetObjectItem(pj, "stages"));
         if (r->phases[i].done) {
             r->t0 = fmin(r->t0, r->phases[i].t_start);
             r->t1 = fmax(r->t1, r->phases[i].t_end);

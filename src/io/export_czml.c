@@ -174,11 +174,12 @@ lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
         if (!ph->done || ph->body < 0)
             continue;
         char text[300];
-        snprintf(text, sizeof text, "%s start", ph->name);
+        lv_ex_marker_label(r, p, 0, text, sizeof text);
         cJSON_AddItemToArray(doc, marker_packet(r, p, 0, ph->t_start, text));
-        for (size_t j = 0; j < ph->n_events; j++)
-            cJSON_AddItemToArray(doc, marker_packet(r, p, j + 1, ph->events[j].t,
-                                                    lv_ex_event_label(&ph->events[j])));
+        for (size_t j = 0; j < ph->n_events; j++) {
+            lv_ex_marker_label(r, p, j + 1, text, sizeof text);
+            cJSON_AddItemToArray(doc, marker_packet(r, p, j + 1, ph->events[j].t, text));
+        }
     }
     char *text = cJSON_Print(doc);
     cJSON_Delete(doc);

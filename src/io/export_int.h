@@ -30,6 +30,7 @@ typedef struct lv_ex_phase {
     lv_ex_event *events;
     size_t n_events;
     int body;             /* a body flying in this phase (its rows give event positions); -1 */
+    size_t n_stages;      /* stages the phase carries: fewer than its parent's = a separation */
 } lv_ex_phase;
 
 /* The rows of one body in one phase: rows[first .. first + n) of the body. */
@@ -78,6 +79,9 @@ void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3]);
 
 /* Label of event e of phase p ("burnout", "time event"). */
 const char *lv_ex_event_label(const lv_ex_event *e);
+/* Label of marker k of phase p: k = 0 its start ("separation (P2)" where the stack splits,
+ * else "P2 start"), k >= 1 its events in launcher words (MECO, apogee, landing, ...). */
+void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
 /* Open "<path>.tmp" for writing / finish it: close, check, rename to path (on failure the
  * .tmp file is removed). Errors: LV_ERR_IO naming the path. */

@@ -129,10 +129,12 @@ lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
             const lv_ex_track *k = &b->tracks[i];
             const lv_ex_phase *ph = &r->phases[k->phase];
             char text[300];
-            snprintf(text, sizeof text, "%s start", ph->name);
+            lv_ex_marker_label(r, k->phase, 0, text, sizeof text);
             put_marker(f, r, b, k, ph->t_start, text);
-            for (size_t j = 0; j < ph->n_events; j++)
-                put_marker(f, r, b, k, ph->events[j].t, lv_ex_event_label(&ph->events[j]));
+            for (size_t j = 0; j < ph->n_events; j++) {
+                lv_ex_marker_label(r, k->phase, j + 1, text, sizeof text);
+                put_marker(f, r, b, k, ph->events[j].t, text);
+            }
         }
         fputs("  </Folder>\n", f);
     }

@@ -41,6 +41,20 @@ KML = "{http://www.opengis.net/kml/2.2}"
 GX = "{http://www.google.com/kml/ext/2.2}"
 
 
+
+# Marker labels, in launcher words (docs/exports.md): a phase that carries fewer stages than
+# its parent starts at a separation; burnout is MECO, impact is landing.
+def event_label(e):
+    name = e.get("name")
+    return {"burnout": "MECO", "impact": "landing"}.get(name, name) if name else "time event"
+
+
+def start_label(summary, ph):
+    parent = next((p for p in summary["phases"] if p["name"] == ph.get("from")), None)
+    if parent is not None and len(ph["stages"]) < len(parent["stages"]):
+        return "separation (%s)" % ph["name"]
+    return ph["name"] + " start"
+
 def check(cond, what):
     if not cond:
         FAILURES.append(what)
@@ -199,8 +213,8 @@ def check_czml(fo):
     for ph in fo.summary["phases"]:
         if ph["state"] != "done":
             continue
-        marks = [(ph["t_start"], ph["name"] + " start")]
-        marks += [(e["t"], e.get("name") or "time event") for e in ph.get("events", [])]
+        marks = [(ph["t_start"], start_label(fo.summary, ph))]
+        marks += [(e["t"], event_label(e)) for e in ph.get("events", [])]
         body = next(b for b, (phs, _) in fo.bodies.items() if ph["name"] in phs)
         rows = fo.phase_rows(body, ph["name"])
         for k, (t, text) in enumerate(marks):
@@ -293,9 +307,11 @@ def check_kml(fo):
         for ph in phs:
             p = fo.phases[ph]
             for e in p.get("events", []):
-                check((e.get("name") or "time event") in labels,
+                check(event_label(e) in labels,
                       "%s: folder %s: no event placemark %s" % (name, body, e.get("name")))
-            check(ph + " start" in labels, "%s: folder %s: no '%s start'" % (name, body, ph))
+            phj = next(p for p in fo.summary["phases"] if p["name"] == ph)
+            check(start_label(fo.summary, phj) in labels,
+                  "%s: folder %s: no start marker of %s" % (name, body, ph))
 
 
 # -------------------------------------------------------------------------------- OEM --

@@ -1,0 +1,299 @@
+#!/usr/bin/env node
+// test_viewer.js - end-to-end test of the 3-D viewer in headless Chromium (Debian's chromium,
+// driven by playwright-core; no browser download). Stages the fixture run (and, when LVSIM is
+// the CLI and it has `export`, a real run of examples/dof3-branch) with viewer/stage.sh, serves
+// it from 127.0.0.1 with Node's http module, and checks: no console error, no failed or
+// outside request, a track per body, the phase table, the event list, a moving clock and a
+// screenshot that is not blank. Exit 0 pass, 1 fail, 77 skip (only when chromium cannot start).
+// Env: LV_SOURCE_DIR, LVSIM, CHROMIUM (default /usr/bin/chromium), LV_VIEWER_OUT (default
+// ./viewer), LV_DOCS_IMG (also write the screenshot there, e.g. docs/img/viewer.png).
+'use strict';
+const fs = require('fs');
+const http = require('http');
+const path = require('path');
+const zlib = require('zlib');
+const { execFileSync, spawnSync } = require('child_process');
+
+const SRC = path.resolve(process.env.LV_SOURCE_DIR || path.join(__dirname, '..', '..'));
+const OUT = path.resolve(process.env.LV_VIEWER_OUT || 'viewer');
+const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
+const ARGS = ['--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+              '--disable-gpu', '--no-first-run', '--disable-background-networking',
+              '--disable-component-update', '--disable-sync'];
+const T_START = Date.now();
+let fails = 0;
+let passes = 0;
+
+function log(msg) { console.log(`[${((Date.now() - T_START) / 1000).toFixed(1)} s] ${msg}`); }
+function check(ok, what, detail) {
+  if (ok) { passes++; return; }
+  fails++;
+  console.log(`FAIL: ${what}${detail ? `\n      ${detail}` : ''}`);
+}
+
+// ---- a static HTTP server on 127.0.0.1, random port ------------------------------------------
+const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css',
+               '.json': 'application/json', '.czml': 'application/json', '.png': 'image/png',
+               '.jpg': 'image/jpeg', '.svg': 'image/svg+xml', '.wasm': 'application/wasm',
+               '.xml': 'application/xml', '.glb': 'model/gltf-binary', '.ktx2': 'image/ktx2' };
+
+function serve(root) {
+  const server = http.createServer((req, res) => {
+    const rel = decodeURIComponent(new URL(req.url, 'http://127.0.0.1').pathname);
+    const file = path.join(root, path.normalize(rel));
+    let f = file;
+    if (!f.startsWith(root)) { res.writeHead(403); res.end(); return; }
+    try {
+      if (fs.statSync(f).isDirectory()) f = path.join(f, 'index.html');
+      const body = fs.readFileSync(f);
+      res.writeHead(200, { 'Content-Type': MIME[path.extname(f)] || 'application/octet-stream' });
+      res.end(body);
+    } catch (e) {
+      res.writeHead(404); res.end('not found');
+    }
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+}
+
+// ---- PNG decoding (8-bit RGB/RGBA, non-interlaced: what Chromium writes) ----------------------
+function decodePng(buf) {
+  const sig = Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]);
+  if (!buf.subarray(0, 8).equals(sig)) throw new Error('not a PNG');
+  let off = 8, w = 0, h = 0, depth = 0, type = 0, interlace = 0;
+  const idat = [];
+  while (off < buf.length) {
+    const len = buf.readUInt32BE(off);
+    const kind = buf.toString('ascii', off + 4, off + 8);
+    const data = buf.subarray(off + 8, off + 8 + len);
+    if (kind === 'IHDR') {
+      w = data.readUInt32BE(0); h = data.readUInt32BE(4);
+      depth = data[8]; type = data[9]; interlace = data[12];
+    } else if (kind === 'IDAT') idat.push(data);
+    else if (kind === 'IEND') break;
+    off += 12 + len;
+  }
+  if (depth !== 8 || (type !== 2 && type !== 6) || interlace !== 0)
+    throw new Error(`unsupported PNG: depth ${depth}, colour type ${type}, interlace ${interlace}`);
+  const bpp = type === 6 ? 4 : 3;
+  const raw = zlib.inflateSync(Buffer.concat(idat));
+  const stride = w * bpp;
+  const px = Buffer.alloc(h * stride);
+  for (let y = 0; y < h; y++) {
+    const f = raw[y * (stride + 1)];
+    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    for (let x = 0; x < stride; x++) {
+      const a = x >= bpp ? px[y * stride + x - bpp] : 0;
+      const b = y > 0 ? px[(y - 1) * stride + x] : 0;
+      const c = x >= bpp && y > 0 ? px[(y - 1) * stride + x - bpp] : 0;
+      let v = line[x];
+      if (f === 1) v += a;
+      else if (f === 2) v += b;
+      else if (f === 3) v += (a + b) >> 1;
+      else if (f === 4) {
+        const p = a + b - c, pa = Math.abs(p - a), pb = Math.abs(p - b), pc = Math.abs(p - c);
+        v += pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+      }
+      px[y * stride + x] = v & 255;
+    }
+  }
+  return { w, h, bpp, px };
+}
+
+// Colour count (5 bits per channel), luminance mean and standard deviation, and the share of
+// blue or green pixels (sea and land of the globe imagery) in the region [x0, x1) x [0, y1).
+function imageStats(img, x0, x1, y1) {
+  const colours = new Set();
+  let n = 0, sum = 0, sum2 = 0, earth = 0;
+  for (let y = 0; y < y1; y++) {
+    for (let x = x0; x < x1; x++) {
+      const i = (y * img.w + x) * img.bpp;
+      const r = img.px[i], g = img.px[i + 1], b = img.px[i + 2];
+      colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
+      if (Math.max(r, g, b) > 40 && (b > r + 10 || g > r + 10)) earth++;
+      const l = 0.299 * r + 0.587 * g + 0.114 * b;
+      n++; sum += l; sum2 += l * l;
+    }
+  }
+  const mean = sum / n;
+  return { colours: colours.size, stddev: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), mean,
+           earth: earth / n };
+}
+
+// ---- the sites to test -----------------------------------------------------------------------
+function stage(dir) {
+  execFileSync(path.join(SRC, 'viewer', 'stage.sh'), [dir], { stdio: ['ignore', 'ignore', 'inherit'] });
+}
+
+function sites() {
+  const list = [];
+  const fix = path.join(OUT, 'site-fixture');
+  fs.rmSync(fix, { recursive: true, force: true });
+  fs.cpSync(path.join(SRC, 'tests', 'viewer', 'fixture'), fix, { recursive: true });
+  stage(fix);
+  list.push({ name: 'fixture', dir: fix,
+              labels: ['MECO', 'separation', 'apogee', 'landing'] });
+  const lvsim = process.env.LVSIM;
+  if (!lvsim) { log('LVSIM not set: the fixture only'); return list; }
+  const run = path.join(OUT, 'site-run');
+  fs.rmSync(run, { recursive: true, force: true });
+  const mission = path.join(SRC, 'examples', 'dof3-branch', 'mission.yaml');
+  const r1 = spawnSync(lvsim, ['run', mission, '-o', run], { encoding: 'utf8' });
+  check(r1.status === 0, `lvsim run ${mission}`, (r1.stderr || '').trim());
+  if (r1.status !== 0) return list;
+  const r2 = spawnSync(lvsim, ['export', run], { encoding: 'utf8' });
+  if (r2.status !== 0 && /unknown command/.test(r2.stderr + r2.stdout)) {
+    log(`${lvsim} has no 'export' command yet: the fixture only`);
+    return list;
+  }
+  check(r2.status === 0 && fs.existsSync(path.join(run, 'mission.czml')),
+        `lvsim export ${run} writes mission.czml`, (r2.stderr || '').trim());
+  if (!fs.existsSync(path.join(run, 'mission.czml'))) return list;
+  stage(run);
+  list.push({ name: 'dof3-branch', dir: run, labels: [] });
+  return list;
+}
+
+// ---- one site in the browser -----------------------------------------------------------------
+async function testSite(browser, site) {
+  const summary = JSON.parse(fs.readFileSync(path.join(site.dir, 'summary.json'), 'utf8'));
+  const czml = JSON.parse(fs.readFileSync(path.join(site.dir, 'mission.czml'), 'utf8'));
+  const server = await serve(site.dir);
+  const origin = `http://127.0.0.1:${server.address().port}`;
+  const problems = { console: [], failed: [], outside: [], count: 0 };
+  const context = await browser.newContext({ viewport: { width: 1280, height: 720 } });
+  // Anything not for our server is recorded and aborted: the test makes no outside traffic.
+  await context.route('**/*', (route) => {
+    const url = route.request().url();
+    if (url.startsWith(origin + '/') || url.startsWith('data:') || url.startsWith('blob:'))
+      return route.continue();
+    problems.outside.push(url);
+    return route.abort();
+  });
+  const page = await context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') problems.console.push(m.text()); });
+  page.on('pageerror', (e) => problems.console.push(`page error: ${e.message}`));
+  page.on('request', () => { problems.count++; });
+  page.on('requestfailed', (r) => {
+    if (!problems.outside.includes(r.url())) problems.failed.push(`${r.url()}: ${r.failure() && r.failure().errorText}`);
+  });
+  page.on('response', (r) => { if (r.status() >= 400) problems.failed.push(`${r.url()}: HTTP ${r.status()}`); });
+
+  const t0 = Date.now();
+  await page.goto(`${origin}/viewer/index.html`);
+  try {
+    await page.waitForFunction(() => window.lvsim && (window.lvsim.error ||
+      (window.lvsim.ready && window.viewer.scene.globe.tilesLoaded)), null, { timeout: 90000 });
+  } catch (e) {
+    check(false, `${site.name}: viewer ready within 90 s`, e.message.split('\n')[0]);
+  }
+  const error = await page.evaluate(() => window.lvsim && window.lvsim.error);
+  check(!error, `${site.name}: viewer loads the mission`, error);
+  log(`${site.name}: ready in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+
+  // Every body has a track entity in the viewer's data sources.
+  const ids = await page.evaluate(() => {
+    const out = [];
+    const dss = window.viewer.dataSources;
+    for (let i = 0; i < dss.length; i++) for (const e of dss.get(i).entities.values) out.push(e.id);
+    return out;
+  });
+  for (const b of summary.bodies)
+    check(ids.some((id) => id.startsWith(`track/${b.name}/`)), `${site.name}: track of body '${b.name}'`,
+          `entities: ${ids.join(' ')}`);
+  const czmlEvents = czml.filter((p) => String(p.id).startsWith('event/')).map((p) => p.id);
+  for (const id of czmlEvents) check(ids.includes(id), `${site.name}: event marker ${id}`);
+
+  // The phase table lists every phase; the event list has the expected labels.
+  const rows = await page.$$eval('#phases tbody tr', (trs) => trs.map((tr) => tr.dataset.phase));
+  for (const p of summary.phases) check(rows.includes(p.name), `${site.name}: phase table row '${p.name}'`, `rows: ${rows}`);
+  const evs = await page.evaluate(() => window.lvsim.events || []);
+  check(evs.length >= czmlEvents.length && evs.length > 0, `${site.name}: events listed`, JSON.stringify(evs));
+  for (const l of site.labels) check(evs.some((e) => e.text === l), `${site.name}: event '${l}' listed`, JSON.stringify(evs));
+
+  // The clock moves after Play.
+  const clockNow = () => page.evaluate(() =>
+    Cesium.JulianDate.secondsDifference(window.viewer.clock.currentTime, window.viewer.clock.startTime));
+  log(`${site.name}: entities, table, events checked`);
+  const before = await clockNow();
+  // DOM clicks (dispatchEvent): the handlers run without Playwright waiting for stable
+  // frames, which software WebGL draws slowly while the clock plays.
+  const click = (sel) => page.locator(sel).dispatchEvent('click');
+  await click('#play');
+  await page.waitForTimeout(1500);
+  const after = await clockNow();
+  await click('#play');               // pause
+  check(after > before, `${site.name}: clock advances after play`, `${before} -> ${after} s`);
+
+  // Click an event (the separation if there is one): the clock jumps to it.
+  const target = evs.find((e) => e.text === 'separation') || evs[0];
+  if (target) {
+    const idx = evs.indexOf(target);
+    await click(`#events li:nth-child(${idx + 1})`);
+    const epochOff = await page.evaluate(() => {
+      const ep = Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch);
+      return Cesium.JulianDate.secondsDifference(window.viewer.clock.currentTime, ep);
+    });
+    check(Math.abs(epochOff - target.t) < 1e-3, `${site.name}: event click sets the clock`,
+          `${epochOff} vs ${target.t}`);
+  }
+  // The picture at the mission's end: every track, marker and body where it ended.
+  await page.evaluate(() => {
+    window.viewer.clock.currentTime = window.viewer.clock.stopTime.clone();
+    window.viewer.selectedEntity = undefined;
+  });
+  log(`${site.name}: checks done`);
+  await page.waitForFunction(() => window.viewer.scene.globe.tilesLoaded, null, { timeout: 30000 }).catch(() => {});
+  await page.waitForTimeout(3000);    // the page draws for 2 s after a change (label glyphs)
+  log(`${site.name}: tiles loaded`);
+
+  const shot = path.join(OUT, `viewer-${site.name}.png`);
+  await page.screenshot({ path: shot });
+  const img = decodePng(fs.readFileSync(shot));
+  const globeW = Math.max(1, img.w - 440);        // the globe, left of the side panel
+  const st = imageStats(img, 0, globeW, img.h - 60);   // above the clock widgets
+  log(`${site.name}: screenshot ${shot} ${img.w}x${img.h}: ${st.colours} colours, ` +
+      `luminance sd ${st.stddev.toFixed(1)}, mean ${st.mean.toFixed(1)}, globe ${(100 * st.earth).toFixed(0)} %`);
+  check(st.colours >= 200 && st.stddev >= 8 && st.mean >= 5, `${site.name}: screenshot not blank`,
+        JSON.stringify(st));
+  check(st.earth >= 0.1, `${site.name}: the globe is drawn (sea/land pixels)`, JSON.stringify(st));
+
+  check(problems.console.length === 0, `${site.name}: no console errors`, problems.console.join('\n      '));
+  check(problems.failed.length === 0, `${site.name}: no failed requests`, problems.failed.join('\n      '));
+  check(problems.outside.length === 0, `${site.name}: no request outside ${origin}`, problems.outside.join('\n      '));
+  log(`${site.name}: ${problems.count} requests, all to ${origin}`);
+  await context.close();
+  server.close();
+  return shot;
+}
+
+async function main() {
+  fs.mkdirSync(OUT, { recursive: true });
+  const inst = spawnSync(path.join(SRC, 'viewer', 'install.sh'), { stdio: 'inherit' });
+  if (inst.status !== 0) { console.log('FAIL: viewer/install.sh'); process.exit(1); }
+  const { chromium } = require(path.join(SRC, 'viewer', 'node_modules', 'playwright-core'));
+  const list = sites();
+  let browser;
+  try {
+    if (!fs.existsSync(CHROMIUM)) throw new Error(`${CHROMIUM} not found (apt-get install chromium)`);
+    browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, timeout: 60000 });
+  } catch (e) {
+    console.log(`SKIP: chromium cannot start: ${e.message.split('\n')[0]}`);
+    process.exit(77);
+  }
+  log(`chromium ${browser.version()} started`);
+  const shots = [];
+  try {
+    for (const s of list) shots.push(await testSite(browser, s));
+  } finally {
+    await browser.close();
+  }
+  if (process.env.LV_DOCS_IMG && fails === 0 && shots.length > 0) {
+    fs.copyFileSync(shots[shots.length - 1], process.env.LV_DOCS_IMG);
+    log(`screenshot copied to ${process.env.LV_DOCS_IMG}`);
+  }
+  if (fails === 0) for (const s of list) fs.rmSync(path.join(s.dir, 'viewer'), { recursive: true, force: true });
+  console.log(`test_viewer: ${passes} passed, ${fails} failed (${((Date.now() - T_START) / 1000).toFixed(1)} s)`);
+  process.exit(fails === 0 ? 0 : 1);
+}
+
+main().catch((e) => { console.log(`FAIL: ${e.stack || e}`); process.exit(1); });
