@@ -134,6 +134,12 @@ LV_API lv_status lv_table_load_csv(const char *path, const lv_table_opts *opts,
 LV_API lv_status lv_table_load_mat(const char *path, const char *var, const lv_table_opts *opts,
                                    lv_table **out, lv_err *err);
 
+/* A table file by its name: "*.mat" (any case) is read by lv_table_load_mat() and needs
+ * `var`; anything else is CSV (lv_table_load_csv()) and `var` must be NULL. */
+LV_API int lv_table_path_is_mat(const char *path);
+LV_API lv_status lv_table_load(const char *path, const char *var, const lv_table_opts *opts,
+                               lv_table **out, lv_err *err);
+
 #ifdef __cplusplus
 }
 #endif

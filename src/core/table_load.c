@@ -692,3 +692,24 @@ fail:
     Mat_Close(mat);
     return st;
 }
+
+int lv_table_path_is_mat(const char *path)
+{
+    const size_t n = strlen(path);
+    return n >= 4 && (strcmp(path + n - 4, ".mat") == 0 || strcmp(path + n - 4, ".MAT") == 0);
+}
+
+lv_status lv_table_load(const char *path, const char *var, const lv_table_opts *opts,
+                        lv_table **out, lv_err *err)
+{
+    const int mat = lv_table_path_is_mat(path);
+    if (mat && var == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: a MAT file needs the name of its variable",
+                       path);
+    if (!mat && var != NULL)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "%s: variable '%s' given, but the file is read as CSV (not '.mat')",
+                       path, var);
+    return mat ? lv_table_load_mat(path, var, opts, out, err)
+               : lv_table_load_csv(path, opts, out, err);
+}

@@ -98,12 +98,6 @@ const lv_atmo_model lv_atmo_table = {
 
 /* ---- loading ---------------------------------------------------------------------------- */
 
-static int ends_with_mat(const char *path)
-{
-    const size_t n = strlen(path);
-    return n >= 4 && (strcmp(path + n - 4, ".mat") == 0 || strcmp(path + n - 4, ".MAT") == 0);
-}
-
 /* Line number of data row `row` (0-based) of a 1-D CSV file: the (row + 2)-th line that is
  * neither blank nor a comment, as lv_table_load_csv counts them. 0 if not found. */
 static size_t csv_data_line(const char *path, size_t row)
@@ -227,16 +221,8 @@ lv_status lv_atmo_table_load(const char *path, const char *var, void **par, lv_e
     if (par == NULL || path == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_atmo_table_load: NULL argument");
     *par = NULL;
-    const int mat = ends_with_mat(path);
-    if (mat && var == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "%s: a MAT file needs the name of its variable",
-                       path);
-    if (!mat && var != NULL)
-        return lv_fail(err, LV_ERR_INPUT,
-                       "%s: variable '%s' given, but the file is read as CSV (not '.mat')",
-                       path, var);
-    st = mat ? lv_table_load_mat(path, var, NULL, &raw, err)
-             : lv_table_load_csv(path, NULL, &raw, err);
+    const int mat = lv_table_path_is_mat(path);
+    st = lv_table_load(path, var, NULL, &raw, err);
     if (st != LV_OK)
         return st;
     if (lv_table_n_dims(raw) != 1) {

@@ -28,12 +28,6 @@ void lv_wind_free(lv_wind *w)
     free(w);
 }
 
-static int ends_with_mat(const char *path)
-{
-    const size_t n = strlen(path);
-    return n >= 4 && (strcmp(path + n - 4, ".mat") == 0 || strcmp(path + n - 4, ".MAT") == 0);
-}
-
 /* Output index of each component in `raw`: by name (or alias) for CSV, by position
  * (Modelica CombiTable1D columns) for MAT. Down may be absent. */
 static lv_status resolve_columns(const lv_table *raw, const char *path, int mat, size_t *k,
@@ -114,17 +108,9 @@ lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out,
     if (out == NULL || path == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_table: NULL argument");
     *out = NULL;
-    const int mat = ends_with_mat(path);
-    if (mat && var == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "%s: a MAT file needs the name of its variable",
-                       path);
-    if (!mat && var != NULL)
-        return lv_fail(err, LV_ERR_INPUT,
-                       "%s: variable '%s' given, but the file is read as CSV (not '.mat')",
-                       path, var);
+    const int mat = lv_table_path_is_mat(path);
     const lv_table_opts opts = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
-    st = mat ? lv_table_load_mat(path, var, &opts, &raw, err)
-             : lv_table_load_csv(path, &opts, &raw, err);
+    st = lv_table_load(path, var, &opts, &raw, err);
     if (st != LV_OK)
         return st;
     if (lv_table_n_dims(raw) != 1) {

@@ -427,12 +427,6 @@ static lv_status parse_env(const pctx *c, const lv_ynode *n)
 
 /* ---- engine tables -------------------------------------------------------------------- */
 
-static int ends_with_mat(const char *s)
-{
-    const size_t n = strlen(s);
-    return n > 4 && (strcmp(s + n - 4, ".mat") == 0 || strcmp(s + n - 4, ".MAT") == 0);
-}
-
 /* `rel` against the mission's directory, unless absolute. */
 static char *resolve_path(const char *dir, const char *rel)
 {
@@ -532,9 +526,9 @@ static lv_status parse_table_ref(const pctx *c, const lv_ynode *key, const lv_yn
     if (st != LV_OK)
         return st;
     *file_out = resolve_path(c->m->dir, rel);
-    if (*var_out == NULL && ends_with_mat(rel))
+    if (*var_out == NULL && lv_table_path_is_mat(rel))
         *var_out = file_stem(rel);
-    if (*file_out == NULL || (ends_with_mat(rel) && *var_out == NULL))
+    if (*file_out == NULL || (lv_table_path_is_mat(rel) && *var_out == NULL))
         return nomem(c);
 
     /* Only regular files: a device or a FIFO could block the parser forever. */
