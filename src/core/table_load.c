@@ -237,6 +237,35 @@ static lv_status push_breakpoint(const csv_ctx *c, const csv_field *f, dvec *x, 
     return dvec_push(x, v) == 0 ? LV_OK : lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", c->path);
 }
 
+/* The data rows of both CSV layouts: each row a breakpoint of axis 0, then ncol - 1 values
+ * (appended to y), until the end of the file. `ref` names what fixed ncol in messages. */
+static lv_status read_rows(csv_ctx *c, const char **pos, const char *end, csv_field *f,
+                           size_t ncol, const char *ref, dvec *x0, dvec *y, lv_err *err)
+{
+    for (;;) {
+        size_t nf = 0;
+        lv_status st = next_line(c, pos, end, f, &nf, err);
+        if (st != LV_OK || nf == 0)
+            return st;
+        if (nf != ncol) {
+            const csv_field *at = nf > ncol ? &f[ncol] : &f[nf - 1];
+            return lv_fail(err, LV_ERR_INPUT, "%s:%zu:%zu: %zu columns, %s has %zu", c->path,
+                           c->line, nf > ncol ? at->col : at->col + at->len, nf, ref, ncol);
+        }
+        for (size_t j = 0; j < ncol; j++) {
+            double v;
+            if (parse_number(&f[j], &v) != 0)
+                return csv_fail_field(c, &f[j], "expected a finite number", err);
+            if (j == 0)
+                st = push_breakpoint(c, &f[j], x0, v, err);
+            else if (dvec_push(y, v) != 0)
+                st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", c->path);
+            if (st != LV_OK)
+                return st;
+        }
+    }
+}
+
 lv_status lv_table_load_csv(const char *path, const lv_table_opts *opts, lv_table **out,
                             lv_err *err)
 {
@@ -306,31 +335,9 @@ lv_status lv_table_load_csv(const char *path, const lv_table_opts *opts, lv_tabl
             np[j] = names[j];
             up[j] = units[j];
         }
-        for (;;) {
-            st = next_line(&c, &pos, end, f, &nf, err);
-            if (st != LV_OK)
-                goto fail;
-            if (nf == 0)
-                break;
-            if (nf != ncol) {
-                const csv_field *at = nf > ncol ? &f[ncol] : &f[nf - 1];
-                st = lv_fail(err, LV_ERR_INPUT, "%s:%zu:%zu: %zu columns, the header has %zu",
-                             path, c.line, nf > ncol ? at->col : at->col + at->len, nf, ncol);
-                goto fail;
-            }
-            for (size_t j = 0; j < ncol; j++) {
-                double v;
-                if (parse_number(&f[j], &v) != 0) {
-                    st = csv_fail_field(&c, &f[j], "expected a finite number", err);
-                    goto fail;
-                }
-                st = j == 0 ? push_breakpoint(&c, &f[j], &x0, v, err)
-                            : (dvec_push(&y, v) == 0 ? LV_OK
-                                                     : lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path));
-                if (st != LV_OK)
-                    goto fail;
-            }
-        }
+        st = read_rows(&c, &pos, end, f, ncol, "the header", &x0, &y, err);
+        if (st != LV_OK)
+            goto fail;
         spec.n_dims = 1;
         spec.n[0] = x0.n;
         spec.x[0] = x0.v;
@@ -380,31 +387,9 @@ lv_status lv_table_load_csv(const char *path, const lv_table_opts *opts, lv_tabl
             if (st != LV_OK)
                 goto fail;
         }
-        for (;;) {
-            st = next_line(&c, &pos, end, f, &nf, err);
-            if (st != LV_OK)
-                goto fail;
-            if (nf == 0)
-                break;
-            if (nf != ncol) {
-                const csv_field *at = nf > ncol ? &f[ncol] : &f[nf - 1];
-                st = lv_fail(err, LV_ERR_INPUT, "%s:%zu:%zu: %zu columns, the first row has %zu",
-                             path, c.line, nf > ncol ? at->col : at->col + at->len, nf, ncol);
-                goto fail;
-            }
-            for (size_t j = 0; j < ncol; j++) {
-                double v;
-                if (parse_number(&f[j], &v) != 0) {
-                    st = csv_fail_field(&c, &f[j], "expected a finite number", err);
-                    goto fail;
-                }
-                st = j == 0 ? push_breakpoint(&c, &f[j], &x0, v, err)
-                            : (dvec_push(&y, v) == 0 ? LV_OK
-                                                     : lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path));
-                if (st != LV_OK)
-                    goto fail;
-            }
-        }
+        st = read_rows(&c, &pos, end, f, ncol, "the first row", &x0, &y, err);
+        if (st != LV_OK)
+            goto fail;
         spec.n_dims = 2;
         spec.n[0] = x0.n;
         spec.x[0] = x0.v;
