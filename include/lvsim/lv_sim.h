@@ -58,6 +58,12 @@ typedef struct lv_sim_settings {
     double max_step_size; /* s (default 0: no limit) */
     size_t n_sinks;       /* extra sinks (memory, ...), borrowed */
     lv_sink *sinks;
+
+    /* Optional: called after every output row of the grid with the time reached [s];
+     * return nonzero to cancel the run (it then fails with LV_ERR_CANCELLED). Called from
+     * the thread that runs the simulation. */
+    int (*progress)(double t, void *user);
+    void *progress_user;
 } lv_sim_settings;
 
 /* Dymola's defaults: start 0, stop 1, 500 intervals, dassl, 1e-4, "dsres". */
@@ -106,9 +112,62 @@ LV_API void lv_sim_report_clear(lv_sim_report *rep);
 /* Run one simulation. `final_values` receives n_final values (may be NULL when
  * n_final is 0). `rep` may be NULL. `inst` is the model's instance data.
  * Returns LV_OK (the ok flag) or an error naming the model, the time and the
- * reason; result files then keep the rows computed before the failure. */
+ * reason; result files then keep the rows computed before the failure.
+ * The same as lv_sim_create, lv_sim_advance(stop_time), lv_sim_finish, lv_sim_free. */
 LV_API lv_status lv_simulate(const lv_model_def *model, void *inst, const lv_sim_settings *s,
                              double *final_values, lv_sim_report *rep, lv_err *err);
+
+/* ---- a simulation in steps ------------------------------------------------------------
+ *
+ * The run of lv_simulate, advanced by the caller (a co-simulation master, a loop that
+ * watches or changes variables):
+ *
+ *     lv_sim *sim;
+ *     lv_sim_create(model, inst, &settings, &sim, &err);  start values, first row
+ *     while (!lv_sim_done(sim) && lv_sim_time(sim) < t_end)
+ *         lv_sim_advance(sim, lv_sim_time(sim) + h, &err);  rows and events on the way
+ *     lv_sim_finish(sim, finals, &report, &err);  final values, sinks closed
+ *     lv_sim_free(sim);
+ *
+ * Advancing to the output grid points reproduces lv_simulate bit for bit; any other target
+ * only adds an interpolated stop of the integrator there (same steps, same rows; a state
+ * event inside the step that contains the target may be located differently by round-off).
+ * An event that ends the run, or stop_time, ends it: lv_sim_done() is then 1 and the time
+ * is the end time. A borrowed `inst`, the settings' arrays and sinks must live until
+ * lv_sim_finish (or lv_sim_free). One simulation is used by one thread at a time. */
+typedef struct lv_sim lv_sim;
+
+/* Sets the start values and writes the first row. On failure *out is NULL and the sinks
+ * that were opened are closed as failed. */
+LV_API lv_status lv_sim_create(const lv_model_def *model, void *inst, const lv_sim_settings *s,
+                               lv_sim **out, lv_err *err);
+/* Integrates to time t [s] (no further than stop_time or an ending event). t at or before
+ * the current time does nothing. A failure ends the simulation: later calls return it. */
+LV_API lv_status lv_sim_advance(lv_sim *sim, double t, lv_err *err);
+LV_API double lv_sim_time(const lv_sim *sim); /* s */
+LV_API int lv_sim_done(const lv_sim *sim);    /* 1: ended (stop time, event or failure) */
+/* Statistics and events so far (steps are counted by lv_sim_finish). */
+LV_API const lv_sim_report *lv_sim_report_get(const lv_sim *sim);
+
+/* A variable's value reference: names resolved once (as FMI's value references are), the
+ * same for every simulation of the model. Order: states, derivatives, parameters, outputs. */
+typedef unsigned lv_vref;
+LV_API lv_status lv_model_vref(const lv_model_def *model, const char *name, lv_vref *ref,
+                               lv_err *err);
+/* Values at the current time: states and parameters as they are, derivatives and outputs
+ * evaluated at (t, x) (NaN where the model cannot evaluate them). */
+LV_API lv_status lv_sim_get(lv_sim *sim, const lv_vref *refs, size_t n, double *values,
+                            lv_err *err);
+/* Sets states and parameters at the current time (finite values only). The integrator
+ * restarts there, as after an event; the model's discrete modes are left as they are. */
+LV_API lv_status lv_sim_set(lv_sim *sim, const lv_vref *refs, size_t n, const double *values,
+                            lv_err *err);
+/* Ends the run: final values (as lv_simulate), the report (its event log then belongs to the
+ * caller: lv_sim_report_clear), the sinks closed - complete, or marked failed when the run
+ * failed or had not reached its end. Returns the run's status. */
+LV_API lv_status lv_sim_finish(lv_sim *sim, double *final_values, lv_sim_report *rep,
+                               lv_err *err);
+LV_API void lv_sim_free(lv_sim *sim); /* accepts NULL; closes unfinished sinks as failed */
 
 /* Canonical method names, NULL-terminated (for help texts). */
 LV_API const char *const *lv_sim_methods(void);

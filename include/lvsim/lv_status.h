@@ -23,7 +23,8 @@ extern "C" {
     X(LV_ERR_INPUT, -2, "invalid input")                  \
     X(LV_ERR_SOLVER, -3, "integration failed")            \
     X(LV_ERR_IO, -4, "input/output error")                \
-    X(LV_ERR_NOTFOUND, -5, "name not found")
+    X(LV_ERR_NOTFOUND, -5, "name not found")             \
+    X(LV_ERR_CANCELLED, -6, "cancelled")
 
 #define LV_STATUS_ENUM_(name, value, text) name = value,
 typedef enum lv_status { LV_STATUS_LIST(LV_STATUS_ENUM_) } lv_status;

@@ -449,31 +449,67 @@ static double next_time_event(sim_run *r, double t)
     return r->def->next_time_event(t, r->p, r->inst);
 }
 
-static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv_err *err)
+/* A simulation in progress: what lv_simulate() did in one call, in steps. */
+typedef enum sim_phase { SIM_RUNNING = 0, SIM_FINISHED, SIM_FAILED } sim_phase;
+
+struct lv_sim {
+    sim_run r;
+    lv_sim_settings s;  /* copy; arrays and sinks borrowed until lv_sim_finish */
+    lv_sim_report rep;  /* owned until lv_sim_finish hands it over */
+    final_ref *refs;    /* [n_final] */
+    void *own_inst;     /* inst allocated here when the caller passed NULL */
+    lv_integ *ig;       /* NULL when stop_time == start_time */
+    out_grid grid;
+    double t;           /* current time */
+    double t_te;        /* next scheduled time event */
+    double tstop_set;   /* stop time given to the integrator, or NAN */
+    long k;             /* next output grid index */
+    sim_phase state;
+    lv_status fail_st;  /* SIM_FAILED: the status and message of the failure */
+    lv_err fail;
+    double cpu;         /* s, thread CPU spent inside this simulation's calls */
+};
+
+/* Ends the run as failed: keeps the message for lv_sim_finish and the caller. */
+static lv_status sim_failed(lv_sim *S, lv_status st, lv_err *err)
 {
+    S->state = SIM_FAILED;
+    S->fail_st = st;
+    if (err != NULL)
+        S->fail = *err;
+    return st;
+}
+
+/* Integrates until t_adv, an event that stops the run, or stop_time. Writes the rows of
+ * the output grid and of every event instant on the way. With t_adv >= stop_time this is
+ * exactly the loop of a whole run: an earlier t_adv only adds an interpolated return of
+ * the integrator at t_adv (its steps are the same; a root located inside the step that
+ * contains t_adv may move by round-off, as the root search interval is split there). */
+static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
+{
+    sim_run *r = &S->r;
     const lv_model_def *d = r->def;
     lv_sim_report *rep = r->rep;
-    out_grid grid = make_grid(s);
-    double t = s->start_time, tf = s->stop_time;
-    double tstop_set = NAN;
-    long k = 1;
+    const lv_sim_settings *s = &S->s;
+    lv_integ *ig = S->ig;
+    const double tf = s->stop_time;
     lv_status st;
 
-    double t_te = next_time_event(r, t);
-    if (!(t_te > t))
-        return lv_fail(err, LV_ERR_INPUT, "model '%s': next time event %g is not after t = %g",
-                       d->name, t_te, t);
     for (;;) {
-        double target = t_te < tf ? t_te : tf;
-        if (target != tstop_set) {
+        double target = S->t_te < tf ? S->t_te : tf;
+        if (target != S->tstop_set) {
             if ((st = lv_integ_set_stop_time(ig, target, err)) != LV_OK)
                 return st;
-            tstop_set = target;
+            S->tstop_set = target;
         }
-        double t_grid = grid_time(&grid, k);
+        double t_grid = grid_time(&S->grid, S->k);
         double tout = t_grid < target ? t_grid : target;
+        if (t_adv < tout)
+            tout = t_adv;
         lv_integ_result res;
+        double t = S->t;
         st = lv_integ_advance(ig, tout, &t, r->x, &res, r->roots, err);
+        S->t = t;
         rep->end_time = t;
         if (st != LV_OK) {
             /* Keep the last accepted state as the result's final row. */
@@ -492,7 +528,7 @@ static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv
             return lv_fail_prefix(err, st, "model '%s'", d->name);
         }
         int state_event = (res == LV_INTEG_ROOT);
-        int time_event = (t >= t_te);
+        int time_event = (t >= S->t_te);
         if (state_event || time_event) {
             if ((st = emit_row(r, t, err)) != LV_OK) /* just before the event */
                 return st;
@@ -538,14 +574,15 @@ static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv
             if (action == LV_EVENT_RESTART) {
                 if ((st = lv_integ_restart(ig, t, r->x, err)) != LV_OK)
                     return lv_fail_prefix(err, st, "model '%s'", d->name);
-                tstop_set = NAN;
+                S->tstop_set = NAN;
             }
             if ((st = emit_row(r, t, err)) != LV_OK) /* just after the event */
                 return st;
             if (t == t_grid)
-                k++; /* the event rows stand for this grid point */
+                S->k++; /* the event rows stand for this grid point */
             if (action == LV_EVENT_STOP) {
                 rep->reason = LV_STOP_EVENT;
+                S->state = SIM_FINISHED;
                 return LV_OK;
             }
             double next = next_time_event(r, t);
@@ -553,18 +590,35 @@ static lv_status run_loop(sim_run *r, const lv_sim_settings *s, lv_integ *ig, lv
                 return lv_fail(err, LV_ERR_INPUT,
                                "model '%s': next time event %g is not after t = %g", d->name, next,
                                t);
-            t_te = next;
+            S->t_te = next;
         } else if (t == t_grid) {
             if ((st = emit_row(r, t, err)) != LV_OK)
                 return st;
-            k++;
+            S->k++;
+            if (s->progress != NULL && s->progress(t, s->progress_user) != 0)
+                return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s",
+                               d->name, t);
         }
         if (t >= tf) {
             rep->reason = LV_STOP_TIME;
             snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+            S->state = SIM_FINISHED;
             return LV_OK;
         }
+        if (t >= t_adv)
+            return LV_OK;
     }
+}
+
+/* Every variable's value at the current (t, x): derivatives and outputs are computed. */
+static void eval_all(sim_run *r, double t)
+{
+    if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
+        for (size_t i = 0; i < r->nx; i++)
+            r->xdot[i] = NAN;
+    if (r->ny > 0 && r->def->outputs_fn(t, r->x, r->p, r->y, r->inst) != 0)
+        for (size_t i = 0; i < r->ny; i++)
+            r->y[i] = NAN;
 }
 
 static void read_finals(sim_run *r, const lv_sim_settings *s, const final_ref *refs, double t,
@@ -572,12 +626,7 @@ static void read_finals(sim_run *r, const lv_sim_settings *s, const final_ref *r
 {
     if (s->n_final == 0 || out == NULL)
         return;
-    if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
-        for (size_t i = 0; i < r->nx; i++)
-            r->xdot[i] = NAN;
-    if (r->ny > 0 && r->def->outputs_fn(t, r->x, r->p, r->y, r->inst) != 0)
-        for (size_t i = 0; i < r->ny; i++)
-            r->y[i] = NAN;
+    eval_all(r, t);
     for (size_t i = 0; i < s->n_final; i++) {
         const final_ref *f = &refs[i];
         if (f->is_time) {
@@ -593,101 +642,291 @@ static void read_finals(sim_run *r, const lv_sim_settings *s, const final_ref *r
     }
 }
 
-lv_status lv_simulate(const lv_model_def *d, void *inst, const lv_sim_settings *s,
-                      double *final_values, lv_sim_report *rep_out, lv_err *err)
+lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings *s,
+                        lv_sim **out, lv_err *err)
 {
     double cpu0 = thread_cpu_seconds();
     lv_err local_err;
     if (err == NULL)
         err = &local_err;
-    void *own_inst = NULL;
-    lv_sim_report local;
-    lv_sim_report *rep = rep_out ? rep_out : &local;
-    memset(rep, 0, sizeof *rep);
+    if (out == NULL || s == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_create: NULL argument");
+    *out = NULL;
+    lv_sim *S = calloc(1, sizeof *S);
+    if (S == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    S->s = *s;
+    lv_sim_report *rep = &S->rep;
     rep->stop_event = -1;
     rep->reason = LV_STOP_FAILED;
     snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
+    rep->end_time = s->start_time;
+    S->t = s->start_time;
+    S->tstop_set = NAN;
+    S->k = 1;
 
-    sim_run r = {0};
-    final_ref *refs = NULL;
-    lv_integ *ig = NULL;
+    sim_run *r = &S->r;
     lv_method method;
     lv_status st = lv_model_validate(d, err);
     if (st != LV_OK)
-        goto done;
+        goto fail;
     if ((st = check_settings(d, s, &method, err)) != LV_OK)
-        goto done;
+        goto fail;
     if (inst == NULL && d->inst_size > 0) {
-        inst = own_inst = calloc(1, d->inst_size);
+        inst = S->own_inst = calloc(1, d->inst_size);
         if (inst == NULL) {
             st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto done;
+            goto fail;
         }
     }
-    rep->end_time = s->start_time;
-    r.def = d;
-    r.inst = inst;
-    r.rep = rep;
-    r.nx = d->n_states;
-    r.np = d->n_params;
-    r.ny = d->n_outputs;
-    r.ng = d->n_events;
-    rep->n_states = r.nx;
-    r.p = calloc(r.np + 1, sizeof *r.p);
-    r.x = calloc(r.nx, sizeof *r.x);
-    r.xdot = calloc(r.nx, sizeof *r.xdot);
-    r.y = calloc(r.ny + 1, sizeof *r.y);
-    r.roots = calloc(r.ng + 1, sizeof *r.roots);
-    r.g_dir = calloc(r.ng + 1, sizeof *r.g_dir);
-    r.atol = calloc(r.nx, sizeof *r.atol);
-    refs = calloc(s->n_final + 1, sizeof *refs);
-    if (!r.p || !r.x || !r.xdot || !r.y || !r.roots || !r.g_dir || !r.atol || !refs) {
+    r->def = d;
+    r->inst = inst;
+    r->rep = rep;
+    r->nx = d->n_states;
+    r->np = d->n_params;
+    r->ny = d->n_outputs;
+    r->ng = d->n_events;
+    rep->n_states = r->nx;
+    r->p = calloc(r->np + 1, sizeof *r->p);
+    r->x = calloc(r->nx, sizeof *r->x);
+    r->xdot = calloc(r->nx, sizeof *r->xdot);
+    r->y = calloc(r->ny + 1, sizeof *r->y);
+    r->roots = calloc(r->ng + 1, sizeof *r->roots);
+    r->g_dir = calloc(r->ng + 1, sizeof *r->g_dir);
+    r->atol = calloc(r->nx, sizeof *r->atol);
+    S->refs = calloc(s->n_final + 1, sizeof *S->refs);
+    if (!r->p || !r->x || !r->xdot || !r->y || !r->roots || !r->g_dir || !r->atol || !S->refs) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto done;
+        goto fail;
     }
-    if ((st = resolve_finals(d, s, refs, err)) != LV_OK)
-        goto done;
-    if ((st = apply_initial(&r, s, err)) != LV_OK)
-        goto done;
-    if (d->init != NULL && d->init(s->start_time, r.x, r.p, inst) != 0) {
+    if ((st = resolve_finals(d, s, S->refs, err)) != LV_OK)
+        goto fail;
+    if ((st = apply_initial(r, s, err)) != LV_OK)
+        goto fail;
+    if (d->init != NULL && d->init(s->start_time, r->x, r->p, inst) != 0) {
         st = lv_fail(err, LV_ERR_INPUT, "model '%s': initialisation failed at t = %g s", d->name,
                      s->start_time);
-        goto done;
+        goto fail;
     }
-    if ((st = build_layout(&r, err)) != LV_OK)
-        goto done;
-    if ((st = open_sinks(&r, s, err)) != LV_OK)
-        goto done;
-    if ((st = emit_row(&r, s->start_time, err)) != LV_OK)
-        goto done;
+    if ((st = build_layout(r, err)) != LV_OK)
+        goto fail;
+    if ((st = open_sinks(r, s, err)) != LV_OK)
+        goto fail;
+    if ((st = emit_row(r, s->start_time, err)) != LV_OK)
+        goto fail;
 
     if (s->stop_time > s->start_time) {
-        out_grid grid = make_grid(s);
-        for (size_t i = 0; i < r.nx; i++)
-            r.atol[i] = s->tolerance * d->states[i].nominal;
-        for (size_t i = 0; i < r.ng; i++)
-            r.g_dir[i] = (int)d->events[i].direction;
+        S->grid = make_grid(s);
+        for (size_t i = 0; i < r->nx; i++)
+            r->atol[i] = s->tolerance * d->states[i].nominal;
+        for (size_t i = 0; i < r->ng; i++)
+            r->g_dir[i] = (int)d->events[i].direction;
         lv_integ_problem prob = {
-            .n = r.nx,
-            .n_g = r.ng,
-            .g_dir = r.g_dir,
+            .n = r->nx,
+            .n_g = r->ng,
+            .g_dir = r->g_dir,
             .rhs = sim_rhs,
             .g = sim_g,
-            .user = &r,
+            .user = r,
             .method = method,
             .rtol = s->tolerance,
-            .atol = r.atol,
-            .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : grid.dt,
+            .atol = r->atol,
+            .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : S->grid.dt,
             .max_step = s->max_step_size,
             .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
         };
-        if ((st = lv_integ_create(&prob, s->start_time, r.x, &ig, err)) != LV_OK) {
+        if ((st = lv_integ_create(&prob, s->start_time, r->x, &S->ig, err)) != LV_OK) {
             lv_fail_prefix(err, st, "model '%s'", d->name);
-            goto done;
+            goto fail;
         }
-        st = run_loop(&r, s, ig, err);
+        S->t_te = next_time_event(r, S->t);
+        if (!(S->t_te > S->t)) {
+            st = lv_fail(err, LV_ERR_INPUT, "model '%s': next time event %g is not after t = %g",
+                         d->name, S->t_te, S->t);
+            goto fail;
+        }
+    } else {
+        rep->reason = LV_STOP_TIME;
+        snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+        S->state = SIM_FINISHED;
+    }
+    S->cpu = thread_cpu_seconds() - cpu0;
+    *out = S;
+    return LV_OK;
+fail:
+    /* A simulation that never started: the sinks already open are closed as failed. */
+    close_sinks(r, err->msg, NULL);
+    lv_sim_free(S);
+    return st;
+}
+
+lv_status lv_sim_advance(lv_sim *S, double t, lv_err *err)
+{
+    if (S == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_advance: NULL simulation");
+    if (S->state == SIM_FAILED) {
+        if (err != NULL)
+            *err = S->fail;
+        return S->fail_st;
+    }
+    if (S->state == SIM_FINISHED)
+        return LV_OK;
+    if (isnan(t))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': advance to NaN", S->r.def->name);
+    if (t <= S->t)
+        return LV_OK;
+    double cpu0 = thread_cpu_seconds();
+    lv_err local_err;
+    if (err == NULL)
+        err = &local_err;
+    lv_status st = run_loop(S, t, err);
+    S->cpu += thread_cpu_seconds() - cpu0;
+    if (st != LV_OK)
+        return sim_failed(S, st, err);
+    return LV_OK;
+}
+
+double lv_sim_time(const lv_sim *S) { return S->t; }
+
+int lv_sim_done(const lv_sim *S) { return S->state != SIM_RUNNING; }
+
+const lv_sim_report *lv_sim_report_get(const lv_sim *S) { return &S->rep; }
+
+/* ---- variables by reference ------------------------------------------------------------ */
+
+lv_status lv_model_vref(const lv_model_def *d, const char *name, lv_vref *ref, lv_err *err)
+{
+    lv_var_kind kind;
+    size_t idx;
+    lv_status st = lv_model_find(d, name, &kind, &idx, err);
+    if (st != LV_OK)
+        return st;
+    switch (kind) {
+    case LV_VAR_STATE: *ref = (lv_vref)idx; break;
+    case LV_VAR_DERIVATIVE: *ref = (lv_vref)(d->n_states + idx); break;
+    case LV_VAR_PARAMETER: *ref = (lv_vref)(2 * d->n_states + idx); break;
+    case LV_VAR_OUTPUT: *ref = (lv_vref)(2 * d->n_states + d->n_params + idx); break;
+    }
+    return LV_OK;
+}
+
+/* The kind and index a reference stands for, or -1. */
+static int vref_split(const sim_run *r, lv_vref ref, lv_var_kind *kind, size_t *idx)
+{
+    size_t v = (size_t)ref;
+    if (v < r->nx) {
+        *kind = LV_VAR_STATE;
+        *idx = v;
+    } else if (v < 2 * r->nx) {
+        *kind = LV_VAR_DERIVATIVE;
+        *idx = v - r->nx;
+    } else if (v < 2 * r->nx + r->np) {
+        *kind = LV_VAR_PARAMETER;
+        *idx = v - 2 * r->nx;
+    } else if (v < 2 * r->nx + r->np + r->ny) {
+        *kind = LV_VAR_OUTPUT;
+        *idx = v - 2 * r->nx - r->np;
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
+lv_status lv_sim_get(lv_sim *S, const lv_vref *refs, size_t n, double *values, lv_err *err)
+{
+    sim_run *r = &S->r;
+    if (r->def == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_get: the simulation was not set up");
+    int need_eval = 0;
+    for (size_t i = 0; i < n; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        if (vref_split(r, refs[i], &kind, &idx) != 0)
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': value reference %u out of range",
+                           r->def->name, refs[i]);
+        need_eval |= kind == LV_VAR_DERIVATIVE || kind == LV_VAR_OUTPUT;
+    }
+    if (need_eval)
+        eval_all(r, S->t);
+    for (size_t i = 0; i < n; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        vref_split(r, refs[i], &kind, &idx);
+        switch (kind) {
+        case LV_VAR_STATE: values[i] = r->x[idx]; break;
+        case LV_VAR_DERIVATIVE: values[i] = r->xdot[idx]; break;
+        case LV_VAR_PARAMETER: values[i] = r->p[idx]; break;
+        case LV_VAR_OUTPUT: values[i] = r->y[idx]; break;
+        }
+    }
+    return LV_OK;
+}
+
+lv_status lv_sim_set(lv_sim *S, const lv_vref *refs, size_t n, const double *values, lv_err *err)
+{
+    lv_err local_err;
+    if (err == NULL)
+        err = &local_err;
+    sim_run *r = &S->r;
+    if (r->def == NULL || S->state == SIM_FAILED)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_set: the simulation %s",
+                       r->def == NULL ? "was not set up" : "has failed");
+    const char *mn = r->def->name;
+    for (size_t i = 0; i < n; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        if (vref_split(r, refs[i], &kind, &idx) != 0)
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': value reference %u out of range", mn,
+                           refs[i]);
+        if (kind != LV_VAR_STATE && kind != LV_VAR_PARAMETER)
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': '%s' is %s; only states and "
+                           "parameters can be set", mn,
+                           kind == LV_VAR_OUTPUT ? r->def->outputs[idx].name
+                                                 : r->def->states[idx].name,
+                           kind == LV_VAR_OUTPUT ? "an output" : "a derivative");
+        if (!isfinite(values[i]))
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': value %g for '%s' is not finite", mn,
+                           values[i],
+                           kind == LV_VAR_STATE ? r->def->states[idx].name
+                                                : r->def->params[idx].name);
+    }
+    for (size_t i = 0; i < n; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        vref_split(r, refs[i], &kind, &idx);
+        if (kind == LV_VAR_STATE)
+            r->x[idx] = values[i];
+        else
+            r->p[idx] = values[i];
+    }
+    /* A changed state or parameter is a discontinuity: the integrator starts afresh here. */
+    if (S->ig != NULL && S->state == SIM_RUNNING && n > 0) {
+        lv_status st = lv_integ_restart(S->ig, S->t, r->x, err);
+        if (st != LV_OK)
+            return sim_failed(S, lv_fail_prefix(err, st, "model '%s'", mn), err);
+        S->tstop_set = NAN;
+    }
+    return LV_OK;
+}
+
+/* ---- the end -------------------------------------------------------------------------------- */
+
+lv_status lv_sim_finish(lv_sim *S, double *final_values, lv_sim_report *rep_out, lv_err *err)
+{
+    double cpu0 = thread_cpu_seconds();
+    lv_err local_err;
+    if (err == NULL)
+        err = &local_err;
+    sim_run *r = &S->r;
+    lv_sim_report *rep = &S->rep;
+    lv_status st;
+    if (S->state == SIM_RUNNING) /* finishing early: the run ends where it is */
+        st = sim_failed(S, lv_fail(err, LV_ERR_INPUT, "model '%s': finished at t = %.9g s "
+                                   "before its end (stop time %.9g s)",
+                                   r->def->name, S->t, S->s.stop_time), err);
+    if (S->ig != NULL) {
         lv_integ_stats is;
-        lv_integ_get_stats(ig, &is);
+        lv_integ_get_stats(S->ig, &is);
         rep->stats.steps = is.steps;
         rep->stats.rhs_evals = is.rhs_evals;
         rep->stats.jac_evals = is.jac_evals;
@@ -695,28 +934,58 @@ lv_status lv_simulate(const lv_model_def *d, void *inst, const lv_sim_settings *
         rep->stats.nonlin_fails = is.nonlin_fails;
         rep->stats.g_evals = is.g_evals;
         rep->stats.restarts = is.restarts;
-        if (st != LV_OK)
-            goto done;
-    } else {
-        rep->reason = LV_STOP_TIME;
-        snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
     }
-    read_finals(&r, s, refs, rep->end_time, final_values);
-
-done:
-    if (st != LV_OK) {
+    if (S->state == SIM_FINISHED) {
+        read_finals(r, &S->s, S->refs, rep->end_time, final_values);
+        st = close_sinks(r, NULL, err);
+    } else {
+        st = S->fail_st;
+        *err = S->fail;
         rep->reason = LV_STOP_FAILED;
         snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
-        close_sinks(&r, err->msg, NULL);
-    } else {
-        st = close_sinks(&r, NULL, err);
+        close_sinks(r, err->msg, NULL);
     }
-    lv_integ_free(ig);
-    free_run(&r);
-    free(refs);
-    free(own_inst);
-    rep->stats.cpu_time = thread_cpu_seconds() - cpu0;
-    if (rep == &local)
-        lv_sim_report_clear(&local);
+    S->cpu += thread_cpu_seconds() - cpu0;
+    rep->stats.cpu_time = S->cpu;
+    if (rep_out != NULL) {
+        *rep_out = *rep;
+        memset(rep, 0, sizeof *rep); /* the event log now belongs to the caller */
+    }
+    return st;
+}
+
+void lv_sim_free(lv_sim *S)
+{
+    if (S == NULL)
+        return;
+    close_sinks(&S->r, "simulation abandoned before it finished", NULL);
+    lv_integ_free(S->ig);
+    free_run(&S->r);
+    free(S->refs);
+    free(S->own_inst);
+    lv_sim_report_clear(&S->rep);
+    free(S);
+}
+
+lv_status lv_simulate(const lv_model_def *d, void *inst, const lv_sim_settings *s,
+                      double *final_values, lv_sim_report *rep_out, lv_err *err)
+{
+    double cpu0 = thread_cpu_seconds();
+    lv_sim *S = NULL;
+    lv_status st = lv_sim_create(d, inst, s, &S, err);
+    if (st != LV_OK) {
+        if (rep_out != NULL) {
+            memset(rep_out, 0, sizeof *rep_out);
+            rep_out->stop_event = -1;
+            rep_out->reason = LV_STOP_FAILED;
+            snprintf(rep_out->stop_name, sizeof rep_out->stop_name, "failed");
+            rep_out->end_time = s != NULL ? s->start_time : 0.0;
+            rep_out->stats.cpu_time = thread_cpu_seconds() - cpu0;
+        }
+        return st;
+    }
+    lv_sim_advance(S, s->stop_time, err);
+    st = lv_sim_finish(S, final_values, rep_out, err);
+    lv_sim_free(S);
     return st;
 }

@@ -646,6 +646,215 @@ static void test_result_files(void)
     CHECK(count_lines("free_fall_run.csv") == 8);
 }
 
+/* ---- (11) a simulation in steps --------------------------------------------------------- */
+
+/* The ascent of test (1) as one run, into a memory sink. */
+static void ascent_settings(lv_sim_settings *s, const char *method, lv_sink *mem)
+{
+    static const char *in[] = {"thrust", "mdot", "g", "m0", "m_final", "stop_at_apogee"};
+    static const double iv[] = {30000.0, 10.0, 9.81, 1000.0, 400.0, 1.0};
+    static const char *fin[] = {"time", "h", "v", "m", "der(v)", "F"};
+    lv_sim_settings_default(s);
+    s->result_file = NULL;
+    s->method = method;
+    s->tolerance = 1e-8;
+    s->stop_time = 500.0;
+    s->number_of_intervals = 1000; /* grid step 0.5 s */
+    if (strcmp(method, "rk4") == 0 || strcmp(method, "euler") == 0)
+        s->fixed_step = 0.01;
+    s->n_initial = 6;
+    s->initial_names = in;
+    s->initial_values = iv;
+    s->n_final = 6;
+    s->final_names = fin;
+    s->n_sinks = 1;
+    s->sinks = mem;
+}
+
+/* 1 if the two results hold the same rows, bit for bit. */
+static int same_rows(const lv_result *a, const lv_result *b)
+{
+    if (lv_result_rows(a) != lv_result_rows(b) || lv_result_signals(a) != lv_result_signals(b))
+        return 0;
+    for (size_t i = 0; i < lv_result_rows(a); i++)
+        for (size_t j = 0; j < lv_result_signals(a); j++)
+            if (memcmp(&(double){lv_result_value(a, i, j)}, &(double){lv_result_value(b, i, j)},
+                       sizeof(double)) != 0)
+                return 0;
+    return 1;
+}
+
+/* Advancing in ten calls to output grid points is the same computation as one lv_simulate:
+ * the same rows, final values, events and statistics, bit for bit, for every method. With
+ * targets between grid points the steps are the same too; only the integrator's extra
+ * interpolated stops differ, so rows agree to round-off. */
+static int cancel_after(double t, void *user)
+{
+    return t >= *(const double *)user;
+}
+
+static void test_stepping(void)
+{
+    for (int k = 0; k < N_METHODS; k++) {
+        lv_err err;
+        lv_result *one = NULL, *ten = NULL, *odd = NULL;
+        lv_sink m1, m2, m3;
+        CHECK_OK(lv_sink_memory_create(&one, &m1, &err), &err);
+        CHECK_OK(lv_sink_memory_create(&ten, &m2, &err), &err);
+        CHECK_OK(lv_sink_memory_create(&odd, &m3, &err), &err);
+        lv_sim_settings s1, s2, s3;
+        ascent_settings(&s1, methods[k], &m1);
+        ascent_settings(&s2, methods[k], &m2);
+        ascent_settings(&s3, methods[k], &m3);
+        double f1[6], f2[6], f3[6];
+        lv_sim_report r1, r2, r3;
+        CHECK_OK(lv_simulate(&lv_model_vertical_ascent, NULL, &s1, f1, &r1, &err), &err);
+
+        lv_sim *sim = NULL;
+        CHECK_OK(lv_sim_create(&lv_model_vertical_ascent, NULL, &s2, &sim, &err), &err);
+        int calls = 0;
+        for (int i = 1; i <= 10 && !lv_sim_done(sim); i++, calls++) /* grid points: 25 s apart */
+            CHECK_OK(lv_sim_advance(sim, 25.0 * i, &err), &err);
+        while (!lv_sim_done(sim)) { /* apogee comes at ~375 s: the rest in one call */
+            CHECK_OK(lv_sim_advance(sim, s2.stop_time, &err), &err);
+            calls++;
+        }
+        CHECK(calls == 11);
+        CHECK_OK(lv_sim_finish(sim, f2, &r2, &err), &err);
+        lv_sim_free(sim);
+        CHECK(same_rows(one, ten));
+        CHECK(memcmp(f1, f2, sizeof f1) == 0);
+        CHECK(r1.stats.steps == r2.stats.steps && r1.stats.rhs_evals == r2.stats.rhs_evals &&
+              r1.stats.state_events == r2.stats.state_events &&
+              r1.stats.output_rows == r2.stats.output_rows);
+        CHECK(r1.n_event_log == r2.n_event_log && r1.reason == r2.reason &&
+              strcmp(r1.stop_name, r2.stop_name) == 0 && r1.end_time == r2.end_time);
+
+        /* Targets off the grid (every 7.3 s): same steps and rows, values to round-off. */
+        CHECK_OK(lv_sim_create(&lv_model_vertical_ascent, NULL, &s3, &sim, &err), &err);
+        lv_vref rh;
+        CHECK_OK(lv_model_vref(&lv_model_vertical_ascent, "h", &rh, &err), &err);
+        double t_prev = 0.0;
+        while (!lv_sim_done(sim)) {
+            CHECK_OK(lv_sim_advance(sim, lv_sim_time(sim) + 7.3, &err), &err);
+            CHECK(lv_sim_time(sim) > t_prev);
+            t_prev = lv_sim_time(sim);
+        }
+        CHECK_OK(lv_sim_finish(sim, f3, &r3, &err), &err);
+        lv_sim_free(sim);
+        CHECK(lv_result_rows(odd) == lv_result_rows(one));
+        CHECK(r3.stats.steps == r1.stats.steps);
+        CHECK_REL(f3[0], f1[0], 1e-12);
+        CHECK_REL(f3[1], f1[1], 1e-12);
+        lv_sim_report_clear(&r1);
+        lv_sim_report_clear(&r2);
+        lv_sim_report_clear(&r3);
+        lv_sink_destroy(&m1);
+        lv_sink_destroy(&m2);
+        lv_sink_destroy(&m3);
+        lv_result_free(one);
+        lv_result_free(ten);
+        lv_result_free(odd);
+    }
+
+    /* get and set by value reference: free fall from 100 m; at t = 2 s the velocity is set
+     * to +20 m/s. Then h(t) = h2 + 20 (t - 2) - g (t - 2)^2 / 2 with h2 = 100 - g 2^2 / 2,
+     * and the impact comes at the positive root of that parabola. */
+    {
+        const double g = 9.81, h2 = 100.0 - 0.5 * g * 4.0;
+        const double t_imp = 2.0 + (20.0 + sqrt(400.0 + 2.0 * g * h2)) / g;
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = "dopri5";
+        s.tolerance = 1e-11;
+        s.stop_time = 20.0;
+        s.output_interval = 0.1;
+        const char *fin[] = {"time", "h"};
+        double out[2];
+        s.n_final = 2;
+        s.final_names = fin;
+        lv_sim *sim;
+        lv_err err;
+        lv_vref rh, rv, rdv, rg;
+        CHECK_OK(lv_model_vref(&lv_model_free_fall, "h", &rh, &err), &err);
+        CHECK_OK(lv_model_vref(&lv_model_free_fall, "v", &rv, &err), &err);
+        CHECK_OK(lv_model_vref(&lv_model_free_fall, "der(v)", &rdv, &err), &err);
+        CHECK_OK(lv_model_vref(&lv_model_free_fall, "g", &rg, &err), &err);
+        CHECK(lv_model_vref(&lv_model_free_fall, "hh", &rh, &err) == LV_ERR_NOTFOUND);
+        CHECK(strstr(err.msg, "did you mean 'h'") != NULL);
+        CHECK_OK(lv_sim_create(&lv_model_free_fall, NULL, &s, &sim, &err), &err);
+        CHECK_OK(lv_sim_advance(sim, 2.0, &err), &err);
+        CHECK(lv_sim_time(sim) == 2.0);
+        double v[3];
+        const lv_vref refs[3] = {rh, rv, rdv};
+        CHECK_OK(lv_sim_get(sim, refs, 3, v, &err), &err);
+        CHECK_CLOSE(v[0], h2, 1e-9);
+        CHECK_CLOSE(v[1], -2.0 * g, 1e-9);
+        CHECK(v[2] == -g); /* der(v) = -g, evaluated at the current state */
+        const double up = 20.0;
+        CHECK_OK(lv_sim_set(sim, &rv, 1, &up, &err), &err);
+        CHECK(lv_sim_set(sim, &rdv, 1, &up, &err) == LV_ERR_INPUT); /* not settable */
+        const double inf = INFINITY;
+        CHECK(lv_sim_set(sim, &rg, 1, &inf, &err) == LV_ERR_INPUT);
+        const lv_vref bad = 99;
+        CHECK(lv_sim_get(sim, &bad, 1, v, &err) == LV_ERR_INPUT);
+        CHECK_OK(lv_sim_advance(sim, 100.0, &err), &err);
+        CHECK(lv_sim_done(sim));
+        CHECK_OK(lv_sim_finish(sim, out, NULL, &err), &err);
+        lv_sim_free(sim);
+        CHECK_CLOSE(out[0], t_imp, 1e-9);
+        CHECK_CLOSE(out[1], 0.0, 1e-8);
+    }
+
+    /* Cancelling through the progress callback: the run fails with LV_ERR_CANCELLED at the
+     * first grid row at or after 1 s, and its result is kept, marked failed. */
+    {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.stop_time = 10.0;
+        s.output_interval = 0.25;
+        const double t_cancel = 1.0;
+        s.progress = cancel_after;
+        s.progress_user = (void *)&t_cancel;
+        lv_result *res = NULL;
+        lv_sink mem;
+        lv_err err;
+        CHECK_OK(lv_sink_memory_create(&res, &mem, &err), &err);
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        lv_sim_report rep;
+        CHECK(lv_simulate(&lv_model_free_fall, NULL, &s, NULL, &rep, &err) == LV_ERR_CANCELLED);
+        CHECK(strstr(err.msg, "cancelled at t = 1 s") != NULL);
+        CHECK(rep.reason == LV_STOP_FAILED);
+        CHECK(lv_result_rows(res) == 5); /* 0, 0.25, 0.5, 0.75, 1 */
+        CHECK(lv_result_failure(res) != NULL);
+        lv_sim_report_clear(&rep);
+        lv_sink_destroy(&mem);
+        lv_result_free(res);
+    }
+
+    /* Finishing before the end marks the result failed and says where it stopped. */
+    {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.stop_time = 10.0;
+        lv_sim *sim;
+        lv_err err;
+        CHECK_OK(lv_sim_create(&lv_model_free_fall, NULL, &s, &sim, &err), &err);
+        CHECK_OK(lv_sim_advance(sim, 1.0, &err), &err);
+        CHECK(!lv_sim_done(sim));
+        CHECK(lv_sim_finish(sim, NULL, NULL, &err) == LV_ERR_INPUT);
+        CHECK(strstr(err.msg, "before its end") != NULL);
+        lv_sim_free(sim);
+        /* and free without finish closes the sinks (valgrind/ASan see no leak) */
+        CHECK_OK(lv_sim_create(&lv_model_free_fall, NULL, &s, &sim, &err), &err);
+        lv_sim_free(sim);
+    }
+}
+
 int main(void)
 {
     test_vertical_ascent();
@@ -658,5 +867,6 @@ int main(void)
     test_bad_input();
     test_integrator_failures();
     test_result_files();
+    test_stepping();
     return check_report("test_simulate");
 }
