@@ -743,7 +743,7 @@ static int cmd_gravity(int argc, char **argv)
         st = lv_gravity_parse_spec(spec, &cfg, &err);
     if (st == LV_OK)
         st = lv_gravity_create(&planet, &cfg, &g, &err);
-    const double deg = 3.14159265358979323846 / 180.0; /* user interface: degrees */
+    const double deg = LV_DEG; /* user interface: degrees */
     if (st == LV_OK)
         st = lv_gravity_at_geodetic(g, &planet, lat_deg * deg, lon_deg * deg, alt_m, &loc, &err);
     lv_gravity_free(g);

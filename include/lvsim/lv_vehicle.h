@@ -11,13 +11,12 @@
 
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
+#include "lvsim/lv_units.h" /* LV_G0 of the Isp definition mdot = F_vac / (Isp g0) */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Standard gravity of the Isp definition mdot = F_vac / (Isp g0), m/s^2. */
-#define LV_G0 9.80665
 
 /* ------------------------------------------------------------------ engines -- */
 

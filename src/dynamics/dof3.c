@@ -9,19 +9,19 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "core/units.h"
 #include "core/vec3.h"
+#include "dynamics/flight.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof3.h"
 #include "vehicle/vehicle.h"
 
-#define LV_PI 3.14159265358979323846
-#define V_AIR_MIN 1e-6   /* m/s: below, the wind frame takes the start direction */
-#define VERTICAL_TOL 1e-9 /* sin of the angle from the vertical below which chi is undefined */
-
 /* ---- variables ------------------------------------------------------------------- */
 
 enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_MBO, P_N };
-enum { U_ALPHA, U_BETA, U_MU, U_THR, U_N }; /* inputs, in the order of P_ALPHA.. */
+/* inputs: the controls lv_flight_controls knows, in the order of P_ALPHA.. */
+enum { U_ALPHA = LV_CTRL_ALPHA, U_BETA = LV_CTRL_BETA, U_MU = LV_CTRL_MU,
+       U_THR = LV_CTRL_THROTTLE, U_N = LV_CTRL_N };
 
 enum {
     O_H, O_LAT, O_LON, O_LAT_GC, O_RADIUS, O_VN, O_VE, O_VD, O_VREL, O_VINR,
@@ -124,8 +124,7 @@ typedef struct dof3_inst {
     int engines_on;       /* mode: 1 while propellant remains */
     lv_table_cursor in_cur;
     double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
-    double ang[3];        /* alpha, beta, mu of the cached cosines and sines (NaN: none) */
-    double ang_cs[3][2];  /* cos, sin of ang[] */
+    lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
     char msg[LV_ERR_MSG_MAX];
 } dof3_inst;
 
@@ -139,145 +138,43 @@ struct lv_dof3 {
     lv_event_def *events;        /* [1 + n_ends] */
     char (*event_names)[EVENT_NAME_MAX];
 
-    lv_planet planet;
-    const lv_gravity *grav;
+    lv_flight_world world;       /* planet, gravity, atmosphere, wind */
     double *grav_ws;
     double gm;                   /* m^3/s^2, of the gravity model (osculating elements) */
-    double e2;                   /* first eccentricity squared of the ellipsoid */
-    double b;                    /* m, polar radius */
-    const lv_atmo_model *atmo_model; /* NULL: vacuum */
-    const void *atmo_par;
-    lv_wind_fn wind;
-    void *wind_user;
 
     size_t n_eng;
     lv_engine *eng;
     double *eng_buf;             /* scratch for engine tables */
     int has_aero;
     lv_aero aero;
-    const lv_table *inputs;
-    int in_k[U_N];               /* output index in `inputs`, or -1: parameter */
-    double *in_buf;
+    lv_flight_schedule inputs;   /* control history (table NULL: constants only) */
     int stop_at_burnout;
 
     dof3_inst inst;
 };
 
-/* Everything the right-hand side and the outputs derive from (t, x, p). */
+/* Everything the right-hand side and the outputs derive from (t, x, p): the pieces of
+ * flight.h, in the order they are computed. */
 typedef struct dof3_point {
-    double c_th, s_th;           /* ECI -> ECEF rotation angle */
-    lv_vec3 r_ecef, v_rel;       /* ECEF position and velocity relative to the planet */
-    double lat, lon, h;          /* geodetic */
-    lv_vec3 n_ax, e_ax, d_ax;    /* NED axes, ECEF components */
-    double u[U_N];               /* alpha, beta, mu, throttle in effect */
-    double cs[3][2];             /* cos, sin of alpha, beta, mu */
-    double rho, p_amb, a_sound;  /* kg/m^3, Pa, m/s */
-    lv_vec3 v_air;               /* air-relative velocity, ECEF */
-    double v_air_n, mach, q;     /* m/s, -, Pa */
-    lv_vec3 xw, yw, zw;          /* wind axes, ECEF components */
-    lv_vec3 xb, yb, zb;          /* body axes, ECEF components */
-    double coef[3];
-    double thrust, mdot;         /* N, kg/s */
-    lv_vec3 f_aero, f_sum;       /* N, ECEF */
-    lv_vec3 g_ecef;              /* m/s^2 */
-    lv_vec3 a_eci;               /* m/s^2 */
+    lv_flight_kin kin;           /* 1. kinematics */
+    lv_flight_air air;           /* 2. flight condition */
+    lv_flight_controls ctl;      /* 3. controls */
+    lv_flight_axes ax;           /* 4. wind and body axes, */
+    double thrust, mdot;         /*    engines: N, kg/s */
+    double coef[3];              /*    aerodynamic coefficients */
+    lv_vec3 f_aero, f_sum;       /*    N, ECEF */
+    lv_vec3 g_ecef;              /* 5. gravity, m/s^2, ECEF */
+    lv_vec3 a_eci;               /*    acceleration, m/s^2 */
 } dof3_point;
 
-/* ---- kinematics ------------------------------------------------------------------- */
-
-/* ECI -> ECEF: r_ecef = R3(theta) r_eci; v_rel = R3(theta) (v_eci - w x r_eci). */
-static void to_ecef(const lv_dof3 *m, double t, const double *x, dof3_point *pt)
-{
-    const double th = m->planet.theta0 + m->planet.omega * t, w = m->planet.omega;
-    const double c = cos(th), s = sin(th);
-    const double rx = x[LV_X3_RX], ry = x[LV_X3_RY], rz = x[LV_X3_RZ];
-    const double vx = x[LV_X3_VX] + w * ry, vy = x[LV_X3_VY] - w * rx, vz = x[LV_X3_VZ];
-    pt->c_th = c;
-    pt->s_th = s;
-    pt->r_ecef = lv_v3(c * rx + s * ry, -s * rx + c * ry, rz);
-    pt->v_rel = lv_v3(c * vx + s * vy, -s * vx + c * vy, vz);
-}
-
-/* Geodetic altitude and the NED axes at pt->r_ecef (latitude and longitude too if
- * `exact` or `angles`). The right-hand side and the event functions use one step of Bowring's
- * iteration from the parametric latitude (Bowring, "Transformation from spatial to
- * geographical coordinates", Survey Review 23 (1976) 323-327), without trigonometric
- * calls: against the exact lv_frames_ecef_to_geodetic, h is within 2.5e-9 m and the
- * latitude (NED axes) within 1.3e-9 rad from -5 km to 1250 km on the Earth, within
- * 1.5e-8 m and 8.4e-9 rad up to geostationary altitude (checked on a 181 x 60 grid).
- * The outputs (`exact`) use lv_frames_ecef_to_geodetic itself. */
-static void geodetic(const lv_dof3 *m, dof3_point *pt, int exact, int angles)
-{
-    const double a = m->planet.a, b = m->b, e2 = m->e2, ep2 = e2 / (1.0 - e2);
-    const double x = pt->r_ecef.x, y = pt->r_ecef.y, z = pt->r_ecef.z;
-    const double w = sqrt(x * x + y * y);
-    const double co = w > 0.0 ? x / w : 1.0, so = w > 0.0 ? y / w : 0.0;
-    const double hb = sqrt(b * w * b * w + a * z * a * z);
-    double cl, sl;
-    if (exact || !(hb > 0.0)) {
-        const double r[3] = {x, y, z};
-        lv_frames_ecef_to_geodetic(&m->planet, r, &pt->lat, &pt->lon, &pt->h);
-        cl = cos(pt->lat);
-        sl = sin(pt->lat);
-    } else {
-        const double cb = b * w / hb, sb = a * z / hb; /* parametric latitude */
-        const double num = z + ep2 * b * sb * sb * sb, den = w - e2 * a * cb * cb * cb;
-        const double hy = sqrt(num * num + den * den);
-        sl = num / hy;
-        cl = den / hy;
-        pt->h = w * cl + z * sl - a * sqrt(1.0 - e2 * sl * sl); /* along the normal */
-        pt->lat = angles ? atan2(sl, cl) : NAN; /* for the wind only */
-        pt->lon = angles ? atan2(y, x) : NAN;
-    }
-    pt->n_ax = lv_v3(-sl * co, -sl * so, cl);
-    pt->e_ax = lv_v3(-so, co, 0.0);
-    pt->d_ax = lv_v3(-cl * co, -cl * so, -sl);
-}
-
-static lv_vec3 from_ned(const dof3_point *pt, double n, double e, double d)
-{
-    return lv_v3_add(lv_v3_add(lv_v3_scale(pt->n_ax, n), lv_v3_scale(pt->e_ax, e)),
-                     lv_v3_scale(pt->d_ax, d));
-}
-
-/* Wind axes: x_w along the air-relative velocity; z_w in the vertical plane through it,
- * downwards, for mu = 0, i.e. C_wind_ned = R1(mu) R2(gamma_a) R3(chi_a); then the bank mu
- * about x_w. Degenerate cases take the start direction (docs/models.md). */
-static void wind_axes(const double *p, dof3_point *pt)
-{
-    if (pt->v_air_n > V_AIR_MIN) {
-        pt->xw = lv_v3_scale(pt->v_air, 1.0 / pt->v_air_n);
-    } else {
-        const double cg = cos(p[P_FPA]), sg = sin(p[P_FPA]);
-        pt->xw = from_ned(pt, cg * cos(p[P_CHI]), cg * sin(p[P_CHI]), -sg);
-    }
-    const double dx = lv_v3_dot(pt->d_ax, pt->xw);
-    lv_vec3 z0 = lv_v3_sub(pt->d_ax, lv_v3_scale(pt->xw, dx));
-    const double zn = lv_v3_norm(z0);
-    if (zn > VERTICAL_TOL)
-        z0 = lv_v3_scale(z0, 1.0 / zn);
-    else /* straight up or down: the heading of the start direction gives the vertical plane */
-        z0 = lv_v3_scale(from_ned(pt, cos(p[P_CHI]), sin(p[P_CHI]), 0.0), -dx);
-    const lv_vec3 y0 = lv_v3_cross(z0, pt->xw);
-    const double cm = pt->cs[U_MU][0], sm = pt->cs[U_MU][1];
-    pt->yw = lv_v3_add(lv_v3_scale(y0, cm), lv_v3_scale(z0, sm));
-    pt->zw = lv_v3_sub(lv_v3_scale(z0, cm), lv_v3_scale(y0, sm));
-}
-
-/* Body axes from wind axes: C_body_wind = R2(alpha) R3(-beta). */
-static void body_axes(dof3_point *pt, double ca, double sa, double cb, double sb)
-{
-    pt->xb = lv_v3_add(lv_v3_scale(pt->xw, ca * cb),
-                       lv_v3_sub(lv_v3_scale(pt->yw, -ca * sb), lv_v3_scale(pt->zw, sa)));
-    pt->yb = lv_v3_add(lv_v3_scale(pt->xw, sb), lv_v3_scale(pt->yw, cb));
-    pt->zb = lv_v3_add(lv_v3_scale(pt->xw, sa * cb),
-                       lv_v3_add(lv_v3_scale(pt->yw, -sa * sb), lv_v3_scale(pt->zw, ca)));
-}
+static const double *r_of(const double *x) { return x + LV_X3_RX; }
+static const double *v_of(const double *x) { return x + LV_X3_VX; }
 
 /* ---- the point model ----------------------------------------------------------------- */
 
-/* Fills *pt from (t, x, p); `full` (outputs): the exact geodetic conversion. Returns 0, > 0 (state not acceptable) or < 0 (stop); err
- * (may be NULL, as in the hot path) receives the reason. */
+/* Fills *pt from (t, x, p): kinematics, flight condition, controls, forces, equations of
+ * motion. `full` (outputs): the exact geodetic conversion. Returns 0, > 0 (state not
+ * acceptable) or < 0 (stop); err (may be NULL, as in the hot path) receives the reason. */
 static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const double *p,
                       int full, dof3_point *pt, lv_err *err)
 {
@@ -287,108 +184,22 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
             lv_fail(err, LV_ERR_INPUT, "mass %g kg is not positive at t = %.9g s", mass, t);
         return 1;
     }
-    to_ecef(m, t, x, pt);
-    geodetic(m, pt, full, m->wind != NULL);
-
-    /* inputs: parameters, replaced by the control table's columns */
-    for (int k = 0; k < U_N; k++)
-        pt->u[k] = p[P_ALPHA + k];
-    if (m->inputs != NULL) {
-        if (lv_table_eval1(m->inputs, &s->in_cur, t, m->in_buf, err) != LV_OK) {
-            if (err)
-                lv_fail_prefix(err, LV_ERR_INPUT, "inputs");
-            return 1;
-        }
-        for (int k = 0; k < U_N; k++)
-            if (m->in_k[k] >= 0)
-                pt->u[k] = m->in_buf[m->in_k[k]];
-    }
-
-    /* atmosphere (above its range: vacuum with the top layer's speed of sound) */
-    pt->rho = pt->p_amb = 0.0;
-    pt->a_sound = 1.0;
-    if (m->atmo_model != NULL) {
-        if (!(pt->h >= LV_ATMO_ALT_MIN)) {
-            if (err)
-                lv_fail(err, LV_ERR_INPUT, "altitude %g m below the atmosphere (%g m) at t = %.9g s",
-                        pt->h, LV_ATMO_ALT_MIN, t);
-            return 1;
-        }
-        const double ha = pt->h < LV_ATMO_ALT_MAX ? pt->h : LV_ATMO_ALT_MAX;
-        lv_atmo_state as;
-        if (m->atmo_model->eval(m->atmo_par, ha, &as, err) != LV_OK)
-            return 1;
-        pt->a_sound = as.a;
-        if (pt->h <= LV_ATMO_ALT_MAX) {
-            pt->rho = as.rho;
-            pt->p_amb = as.p;
-        }
-    }
-
-    /* air-relative velocity */
-    pt->v_air = pt->v_rel;
-    if (m->wind != NULL) {
-        double w_ned[3] = {0.0, 0.0, 0.0};
-        int rc = m->wind(t, pt->h, pt->lat, pt->lon, w_ned, m->wind_user);
-        if (rc != 0) {
-            if (err)
-                lv_fail(err, LV_ERR_INPUT, "wind function returned %d at t = %.9g s", rc, t);
-            return rc;
-        }
-        pt->v_air = lv_v3_sub(pt->v_rel, from_ned(pt, w_ned[0], w_ned[1], w_ned[2]));
-    }
-    pt->v_air_n = lv_v3_norm(pt->v_air);
-    pt->mach = pt->v_air_n / pt->a_sound;
-    pt->q = 0.5 * pt->rho * pt->v_air_n * pt->v_air_n;
-
-    /* the angles change only with a control table: keep their cosines and sines */
-    for (int k = 0; k < 3; k++) {
-        if (pt->u[k] != s->ang[k]) {
-            s->ang[k] = pt->u[k];
-            s->ang_cs[k][0] = cos(pt->u[k]);
-            s->ang_cs[k][1] = sin(pt->u[k]);
-        }
-        pt->cs[k][0] = s->ang_cs[k][0];
-        pt->cs[k][1] = s->ang_cs[k][1];
-    }
-    wind_axes(p, pt);
-    const double ca = pt->cs[U_ALPHA][0], sa = pt->cs[U_ALPHA][1];
-    const double cb = pt->cs[U_BETA][0], sb = pt->cs[U_BETA][1];
-    body_axes(pt, ca, sa, cb, sb);
-
-    /* engines: thrust along body x */
-    pt->thrust = pt->mdot = 0.0;
-    if (s->engines_on) {
-        for (size_t i = 0; i < m->n_eng; i++) {
-            double f, md;
-            if (lv_engine_eval(&m->eng[i], t, pt->u[U_THR], pt->p_amb, m->eng_buf, &f, &md, err) !=
-                LV_OK)
-                return 1;
-            pt->thrust += f;
-            pt->mdot += md;
-        }
-    }
-
-    /* aerodynamics: F = q S C, only where there is air to push (q > 0) */
-    pt->coef[0] = pt->coef[1] = pt->coef[2] = 0.0;
-    pt->f_aero = lv_v3(0.0, 0.0, 0.0);
-    if (m->has_aero && pt->q > 0.0) {
-        if (lv_aero_coefs(&m->aero, pt->mach, pt->u[U_ALPHA], pt->u[U_BETA], pt->h, pt->coef,
-                          err) != LV_OK)
-            return 1;
-        double fw[3];
-        lv_aero_force_wind(&m->aero, pt->coef, pt->q * m->aero.s_ref, ca, sa, cb, sb, fw);
-        pt->f_aero = lv_v3_add(lv_v3_add(lv_v3_scale(pt->xw, fw[0]), lv_v3_scale(pt->yw, fw[1])),
-                               lv_v3_scale(pt->zw, fw[2]));
-    }
-    pt->f_sum = lv_v3_add(lv_v3_scale(pt->xb, pt->thrust), pt->f_aero);
-
-    /* gravity at the ECEF position; a = g + F/m, rotated back to ECI */
-    double r[3] = {pt->r_ecef.x, pt->r_ecef.y, pt->r_ecef.z}, g[3];
-    lv_gravity_eval(m->grav, m->grav_ws, r, g, NULL);
-    pt->g_ecef = lv_v3(g[0], g[1], g[2]);
-    const lv_vec3 a = lv_v3_add(pt->g_ecef, lv_v3_scale(pt->f_sum, 1.0 / mass));
-    pt->a_eci = lv_v3(pt->c_th * a.x - pt->s_th * a.y, pt->s_th * a.x + pt->c_th * a.y, a.z);
+    const lv_flight_world *w = &m->world;
+    lv_flight_kinematics(w, t, r_of(x), v_of(x), full, &pt->kin);
+    int rc = lv_flight_air_eval(w, t, &pt->kin, &pt->air, err);
+    if (rc != 0)
+        return rc;
+    if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
+                                err) != 0)
+        return 1;
+    lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
+    if (lv_flight_thrust(m->eng, m->n_eng, s->engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
+                         &pt->thrust, &pt->mdot, err) != 0 ||
+        lv_flight_aero(m->has_aero ? &m->aero : NULL, &pt->kin, &pt->air, &pt->ctl, &pt->ax,
+                       pt->coef, &pt->f_aero, err) != 0)
+        return 1;
+    pt->f_sum = lv_v3_add(lv_v3_scale(pt->ax.xb, pt->thrust), pt->f_aero);
+    pt->a_eci = lv_flight_accel_eci(w, m->grav_ws, &pt->kin, pt->f_sum, mass, &pt->g_ecef);
     return 0;
 }
 
@@ -440,7 +251,7 @@ static int check_params(dof3_inst *s, const double *p)
         return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
     if (!(p[P_MBO] >= 0.0))
         return fail_inst(s, "m_burnout = %g kg is negative", p[P_MBO]);
-    if (m->in_k[U_THR] < 0)
+    if (m->inputs.k[U_THR] < 0)
         for (size_t i = 0; i < m->n_eng; i++)
             if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max)) {
                 return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
@@ -458,7 +269,7 @@ static int dof3_start(const double *p, double *x, void *inst)
     s->msg[0] = '\0';
     if (check_params(s, p) != 0)
         return -1;
-    const lv_planet *pl = &s->m->planet;
+    const lv_planet *pl = &s->m->world.planet;
     double r_ecef[3], v_ned[3], C[3][3], v_ecef[3], r_eci[3], v_eci[3];
     lv_frames_geodetic_to_ecef(pl, p[P_LAT], p[P_LON], p[P_H], r_ecef);
     lv_frames_ned_from_fpa(p[P_VEL], p[P_FPA], p[P_CHI], v_ned);
@@ -485,15 +296,15 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
         return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X3_M]);
     s->engines_on = s->m->n_eng > 0 && x[LV_X3_M] > p[P_MBO];
     for (int k = 0; k < 3; k++)
-        s->ang[k] = NAN;
-    dof3_point pt;
-    to_ecef(s->m, t0, x, &pt);
-    const double rn = lv_v3_norm(pt.r_ecef);
+        s->trig.ang[k] = NAN;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&s->m->world, t0, r_of(x), v_of(x), &kin);
+    const double rn = lv_v3_norm(kin.r_ecef);
     if (!(rn > 0.0))
         return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
-    s->r0_unit[0] = pt.r_ecef.x / rn;
-    s->r0_unit[1] = pt.r_ecef.y / rn;
-    s->r0_unit[2] = pt.r_ecef.z / rn;
+    s->r0_unit[0] = kin.r_ecef.x / rn;
+    s->r0_unit[1] = kin.r_ecef.y / rn;
+    s->r0_unit[2] = kin.r_ecef.z / rn;
     return 0;
 }
 
@@ -505,8 +316,8 @@ static int dof3_g(double t, const double *x, const double *p, double *g, void *i
     g[0] = s->engines_on ? x[LV_X3_M] - p[P_MBO] : 1.0;
     if (m->n_ends == 0)
         return 0;
-    dof3_point pt;
-    to_ecef(m, t, x, &pt);
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&m->world, t, r_of(x), v_of(x), &kin);
     int have_h = 0;
     for (size_t i = 0; i < m->n_ends; i++) {
         const lv_dof3_end *e = &m->ends[i];
@@ -515,13 +326,13 @@ static int dof3_g(double t, const double *x, const double *p, double *g, void *i
         case LV_DOF3_END_ALTITUDE:
         case LV_DOF3_END_IMPACT:
             if (!have_h) {
-                geodetic(m, &pt, 0, 0);
+                lv_flight_geodetic(&m->world, &kin, 0, 0);
                 have_h = 1;
             }
-            gi = pt.h - e->value;
+            gi = kin.h - e->value;
             break;
         case LV_DOF3_END_SPEED_REL:
-            gi = lv_v3_norm(pt.v_rel) - e->value;
+            gi = lv_v3_norm(kin.v_rel) - e->value;
             break;
         case LV_DOF3_END_SPEED_INERTIAL:
             gi = hypot(hypot(x[LV_X3_VX], x[LV_X3_VY]), x[LV_X3_VZ]) - e->value;
@@ -561,8 +372,8 @@ static double dof3_next_time_event(double t, const double *p, void *inst)
     (void)p;
     const lv_dof3 *m = ((const dof3_inst *)inst)->m;
     double tn = INFINITY;
-    if (m->inputs != NULL)
-        tn = min_d(tn, lv_table_next_breakpoint(m->inputs, 0, t));
+    if (m->inputs.table != NULL)
+        tn = min_d(tn, lv_table_next_breakpoint(m->inputs.table, 0, t));
     for (size_t i = 0; i < m->n_eng; i++)
         if (m->eng[i].table != NULL)
             tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
@@ -570,10 +381,9 @@ static double dof3_next_time_event(double t, const double *p, void *inst)
 }
 
 /* Flight-path angle and heading of an ECEF vector in the local NED frame. */
-static void fpa_chi(const dof3_point *pt, lv_vec3 v, double *gamma, double *chi)
+static void fpa_chi(const lv_flight_kin *k, lv_vec3 v, double *gamma, double *chi)
 {
-    const double ned[3] = {lv_v3_dot(v, pt->n_ax), lv_v3_dot(v, pt->e_ax),
-                           lv_v3_dot(v, pt->d_ax)};
+    const double ned[3] = {lv_v3_dot(v, k->n_ax), lv_v3_dot(v, k->e_ax), lv_v3_dot(v, k->d_ax)};
     lv_frames_fpa_from_ned(ned, NULL, gamma, chi);
 }
 
@@ -588,47 +398,51 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
         note(s, &e);
         return rc;
     }
+    const lv_flight_kin *k = &pt.kin;
+    const lv_flight_air *air = &pt.air;
+    const lv_flight_axes *ax = &pt.ax;
     const double mass = x[LV_X3_M];
     const lv_vec3 v_eci = {x[LV_X3_VX], x[LV_X3_VY], x[LV_X3_VZ]};
     const lv_vec3 r_eci = {x[LV_X3_RX], x[LV_X3_RY], x[LV_X3_RZ]};
     /* inertial velocity in ECEF axes (no w x r): for the inertial angles */
-    const lv_vec3 v_i_ecef = {pt.c_th * v_eci.x + pt.s_th * v_eci.y,
-                              -pt.s_th * v_eci.x + pt.c_th * v_eci.y, v_eci.z};
+    const lv_vec3 v_i_ecef = {k->c_th * v_eci.x + k->s_th * v_eci.y,
+                              -k->s_th * v_eci.x + k->c_th * v_eci.y, v_eci.z};
     const lv_vec3 f_spec = lv_v3_scale(pt.f_sum, 1.0 / mass);
 
-    y[O_H] = pt.h;
-    y[O_LAT] = pt.lat;
-    y[O_LON] = pt.lon;
-    const double r[3] = {pt.r_ecef.x, pt.r_ecef.y, pt.r_ecef.z};
+    y[O_H] = k->h;
+    y[O_LAT] = k->lat;
+    y[O_LON] = k->lon;
+    const double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
     lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, &y[O_RADIUS]);
-    y[O_VN] = lv_v3_dot(pt.v_rel, pt.n_ax);
-    y[O_VE] = lv_v3_dot(pt.v_rel, pt.e_ax);
-    y[O_VD] = lv_v3_dot(pt.v_rel, pt.d_ax);
-    y[O_VREL] = lv_v3_norm(pt.v_rel);
+    y[O_VN] = lv_v3_dot(k->v_rel, k->n_ax);
+    y[O_VE] = lv_v3_dot(k->v_rel, k->e_ax);
+    y[O_VD] = lv_v3_dot(k->v_rel, k->d_ax);
+    y[O_VREL] = lv_v3_norm(k->v_rel);
     y[O_VINR] = lv_v3_norm(v_eci);
-    fpa_chi(&pt, pt.v_rel, &y[O_FPA], &y[O_CHI]);
-    fpa_chi(&pt, v_i_ecef, &y[O_FPA_I], &y[O_CHI_I]);
-    y[O_MACH] = pt.mach;
-    y[O_Q] = pt.q;
-    y[O_RHO] = pt.rho;
-    y[O_PAMB] = pt.p_amb;
-    y[O_NAX] = lv_v3_dot(f_spec, pt.xb) / LV_G0;
-    y[O_NNORM] = -lv_v3_dot(f_spec, pt.zb) / LV_G0;
-    y[O_NLAT] = lv_v3_dot(f_spec, pt.yb) / LV_G0;
+    fpa_chi(k, k->v_rel, &y[O_FPA], &y[O_CHI]);
+    fpa_chi(k, v_i_ecef, &y[O_FPA_I], &y[O_CHI_I]);
+    y[O_MACH] = air->mach;
+    y[O_Q] = air->q;
+    y[O_RHO] = air->rho;
+    y[O_PAMB] = air->p_amb;
+    y[O_NAX] = lv_v3_dot(f_spec, ax->xb) / LV_G0;
+    y[O_NNORM] = -lv_v3_dot(f_spec, ax->zb) / LV_G0;
+    y[O_NLAT] = lv_v3_dot(f_spec, ax->yb) / LV_G0;
     y[O_ACC] = lv_v3_norm(pt.a_eci);
     y[O_ACC_SENSED] = lv_v3_norm(f_spec);
     y[O_THRUST] = pt.thrust;
-    y[O_DRAG] = -lv_v3_dot(pt.f_aero, pt.xw);
-    y[O_LIFT] = -lv_v3_dot(pt.f_aero, pt.zw);
-    y[O_SIDE] = lv_v3_dot(pt.f_aero, pt.yw);
+    y[O_DRAG] = -lv_v3_dot(pt.f_aero, ax->xw);
+    y[O_LIFT] = -lv_v3_dot(pt.f_aero, ax->zw);
+    y[O_SIDE] = lv_v3_dot(pt.f_aero, ax->yw);
     y[O_MDOT] = pt.mdot;
     y[O_ENGINE_ON] = s->engines_on;
-    for (int k = 0; k < U_N; k++)
-        y[O_ALPHA + k] = pt.u[k];
+    for (int i = 0; i < U_N; i++)
+        y[O_ALPHA + i] = pt.ctl.u[i];
     const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
-    const double rn = lv_v3_norm(pt.r_ecef);
-    const lv_vec3 u1 = lv_v3_scale(pt.r_ecef, 1.0 / rn);
-    y[O_DOWNRANGE] = m->planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
+    const double rn = lv_v3_norm(k->r_ecef);
+    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / rn);
+    y[O_DOWNRANGE] =
+        m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
 
     lv_orbit_elem el;
     const double rv[3] = {r_eci.x, r_eci.y, r_eci.z}, vv[3] = {v_eci.x, v_eci.y, v_eci.z};
@@ -638,8 +452,8 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_INC] = el.i;
     y[O_RAAN] = el.raan;
     y[O_ARGP] = el.argp;
-    y[O_APO] = el.r_apo - m->planet.a;
-    y[O_PERI] = el.r_peri - m->planet.a;
+    y[O_APO] = el.r_apo - m->world.planet.a;
+    y[O_PERI] = el.r_peri - m->world.planet.a;
     return 0;
 }
 
@@ -668,7 +482,7 @@ static lv_status check_finite(const char *what, double v, const char *unit, lv_e
 static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
 {
     for (int k = 0; k < U_N; k++)
-        m->in_k[k] = -1;
+        m->inputs.k[k] = -1;
     if (tab == NULL)
         return LV_OK;
     if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
@@ -680,7 +494,7 @@ static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
     for (int k = 0; k < U_N; k++) {
         size_t idx;
         if (lv_table_out_index(tab, input_names[k], &idx, NULL) == LV_OK) {
-            m->in_k[k] = (int)idx;
+            m->inputs.k[k] = (int)idx;
             any = 1;
         }
     }
@@ -689,10 +503,10 @@ static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
                        "dof3: input table '%s' has none of the outputs 'alpha', 'beta', 'mu', "
                        "'throttle' (its first output is '%s')",
                        lv_table_name(tab), lv_table_out_name(tab, 0));
-    m->in_buf = malloc(lv_table_n_out(tab) * sizeof *m->in_buf);
-    if (m->in_buf == NULL)
+    m->inputs.buf = malloc(lv_table_n_out(tab) * sizeof *m->inputs.buf);
+    if (m->inputs.buf == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    m->inputs = tab;
+    m->inputs.table = tab;
     return LV_OK;
 }
 
@@ -788,29 +602,28 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         lv_fail_prefix(err, st, "dof3");
         goto fail;
     }
-    m->planet = cfg->planet;
-    m->e2 = lv_planet_e2(&m->planet);
-    m->b = lv_planet_b(&m->planet);
+    m->world.planet = cfg->planet;
+    lv_flight_world_init(&m->world);
     if (cfg->gravity == NULL) {
         st = lv_fail(err, LV_ERR_INPUT, "dof3: no gravity model (gravity is NULL)");
         goto fail;
     }
-    m->grav = cfg->gravity;
+    m->world.grav = cfg->gravity;
     lv_gravity_info gi;
-    lv_gravity_info_get(m->grav, &gi);
+    lv_gravity_info_get(m->world.grav, &gi);
     m->gm = gi.gm;
-    const size_t nws = lv_gravity_ws_size(m->grav);
+    const size_t nws = lv_gravity_ws_size(m->world.grav);
     m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
     if (m->grav_ws == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
     if (cfg->atmo != NULL) {
-        m->atmo_model = lv_atmo_model_of(cfg->atmo);
-        m->atmo_par = lv_atmo_par(cfg->atmo);
+        m->world.atmo_model = lv_atmo_model_of(cfg->atmo);
+        m->world.atmo_par = lv_atmo_par(cfg->atmo);
     }
-    m->wind = cfg->wind;
-    m->wind_user = cfg->wind_user;
+    m->world.wind = cfg->wind;
+    m->world.wind_user = cfg->wind_user;
 
     /* vehicle */
     if (cfg->n_engines > 0) {
@@ -847,7 +660,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     }
     if ((st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
         goto fail;
-    if (m->in_k[U_THR] < 0) { /* a constant throttle must lie within every engine's limits */
+    if (m->inputs.k[U_THR] < 0) { /* a constant throttle must lie within every engine's limits */
         for (size_t i = 0; i < m->n_eng; i++) {
             if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
                 st = lv_fail(err, LV_ERR_INPUT,
@@ -899,7 +712,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     };
     m->inst.m = m;
     for (int k = 0; k < 3; k++)
-        m->inst.ang[k] = NAN;
+        m->inst.trig.ang[k] = NAN;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
         goto fail;
     *out = m;
@@ -916,7 +729,7 @@ void lv_dof3_free(lv_dof3 *m)
     lv_aero_clear(&m->aero);
     free(m->eng);
     free(m->eng_buf);
-    free(m->in_buf);
+    free(m->inputs.buf);
     free(m->grav_ws);
     free(m->events);
     free(m->event_names);

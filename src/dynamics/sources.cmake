@@ -1,3 +1,4 @@
 list(APPEND LV_SOURCES
+  src/dynamics/flight.c
   src/dynamics/dof3.c
   src/dynamics/orbit.c)

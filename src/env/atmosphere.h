@@ -7,11 +7,12 @@
 #include <stddef.h>
 
 #include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_units.h"
 
 /* Category I constants, Table 2 of the 1976 document (kmol-based, as printed). */
 #define LV_US76_RSTAR 8314.32     /* N m / (kmol K), gas constant */
 #define LV_US76_M0 28.9644        /* kg/kmol, sea-level mean molecular weight */
-#define LV_US76_G0 9.80665        /* m/s^2 */
+#define LV_US76_G0 LV_G0          /* m/s^2: the standard gravity (lv_units.h) */
 #define LV_US76_R0 6356766.0      /* m, effective Earth radius for H(Z), eq. (18) */
 #define LV_US76_NA 6.022169e26    /* 1/kmol, Avogadro constant */
 #define LV_US76_K 1.380622e-23    /* N m / K, Boltzmann constant */

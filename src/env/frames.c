@@ -7,7 +7,7 @@
 
 #include "lvsim/lv_planet.h"
 
-#define LV_PI 3.14159265358979323846
+#include "core/units.h"
 
 double lv_frames_theta(const lv_planet *p, double t) { return p->theta0 + p->omega * t; }
 

@@ -11,7 +11,7 @@
 #include "core/names.h"
 #include "core/status.h"
 
-#define LV_PI 3.14159265358979323846
+#include "core/units.h"
 
 static lv_planet make_planet(const char *name, double a, double f, double gm, double omega,
                              double r_ref, double j2, double j3, double j4)

@@ -12,6 +12,7 @@
 #include "core/status.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_units.h"
 #include "mission/runner.h"
 
 /* Separation time of body k from body k+1: the end of the phase that carries both and whose
@@ -130,7 +131,7 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
             const lv_engine_def *ed = &sd->engines[e];
             double mdot = ed->mdot;
             if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac > 0.0)
-                mdot = ed->thrust_vac / (ed->isp_vac * 9.80665);
+                mdot = ed->thrust_vac / (ed->isp_vac * LV_G0);
             engines[e0 + e] = (lv_flat_engine){ed->table, ed->thrust_out, ed->mdot_out,
                                                ed->thrust_vac, mdot, ed->count};
         }

@@ -15,6 +15,7 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_vehicle.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_wind.h"
 #include "lvsim/lv_io.h"
@@ -22,7 +23,6 @@
 #include "mission/mission.h"
 #include "mission/runner.h"
 
-#define LV_G0 9.80665 /* m/s^2, standard gravity: Isp [s] to exhaust velocity */
 
 /* ---- phase models ------------------------------------------------------------------------- */
 
