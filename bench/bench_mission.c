@@ -18,13 +18,20 @@ int main(int argc, char **argv)
     printf("%-12s %6s %6s %5s %5s %5s %5s %7s %7s %7s %7s %5s %5s %9s %9s %7s %7s\n", "method",
            "n_e2e", "n_seq", "sev_e", "sev_s", "tev_e", "tev_s", "stp_e", "stp_s", "rhs_e",
            "rhs_s", "jac_e", "jac_s", "cpu_e[ms]", "cpu_s[ms]", "cpu s/e", "rhs s/e");
+    lv_mission *m = NULL;
+    lv_err lerr;
+    if (lv_mission_load(path, &m, &lerr) != LV_OK) {
+        fprintf(stderr, "bench_mission: %s\n", lerr.msg);
+        return 1;
+    }
     for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
         lv_compare_report best, rep;
         double cpu_e = INFINITY, cpu_s = INFINITY;
         for (int r = 0; r < reps; r++) {
             lv_err err;
-            if (lv_mission_compare(path, methods[i], 1e-7, 1.0, &rep, &err) != LV_OK) {
+            if (lv_mission_compare(m, methods[i], 1e-7, 1.0, &rep, &err) != LV_OK) {
                 fprintf(stderr, "bench_mission: %s\n", err.msg);
+                lv_mission_free(m);
                 return 1;
             }
             cpu_e = fmin(cpu_e, rep.e2e.cpu_time);
@@ -40,5 +47,6 @@ int main(int argc, char **argv)
                (double)best.seq.rhs_evals / (double)best.e2e.rhs_evals);
     }
     printf("# goal (paper): sequential cheaper; with dassl at 1e-7, cpu s/e <= 0.5\n");
+    lv_mission_free(m);
     return 0;
 }

@@ -335,9 +335,10 @@ static const char *phase_state_name(lv_phase_state st)
     }
 }
 
-static void print_phase_row(const lv_mission *m, size_t k, const lv_phase_result *r, void *user)
+static void print_phase_row(const lv_run *run, size_t k, const lv_phase_result *r, void *user)
 {
     (void)user;
+    const lv_mission *m = lv_run_mission(run);
     int parent = lv_mission_phase_parent(m, k);
     const lv_sim_report *rep = &r->report;
     if (r->state == LV_PHASE_SKIPPED) {
@@ -408,10 +409,18 @@ static int cmd_run(int argc, char **argv)
         printf("%-3s %-12s %-10s %9s %9s  %-10s %7s %8s %4s %4s %9s  %s\n", "#", "phase", "from",
                "t0 [s]", "t1 [s]", "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
     }
-    lv_run_options opt = {outdir, threads, json ? NULL : print_phase_row, NULL, 0.0};
-    lv_status run_st = lv_mission_run(m, &opt, &err);
+    lv_run *run = NULL;
+    lv_status run_st = lv_run_create(m, &run, &err);
+    if (run_st != LV_OK) {
+        fprintf(stderr, "lvsim: %s\n", err.msg);
+        lv_mission_free(m);
+        return exit_code_for(run_st);
+    }
+    lv_run_options opt = {.outdir = outdir, .threads = threads,
+                          .on_phase = json ? NULL : print_phase_row};
+    run_st = lv_run_execute(run, &opt, &err);
     lv_err serr;
-    lv_status sum_st = lv_mission_write_summary(m, outdir, &serr);
+    lv_status sum_st = lv_run_write_summary(run, outdir, &serr);
     /* post-processing reads the results folder, as `lvsim export` and `lvsim plot` do */
     if (sum_st == LV_OK)
         sum_st = lv_export_run(outdir, LV_EXPORT_ALL, &serr);
@@ -435,6 +444,7 @@ static int cmd_run(int argc, char **argv)
     }
     if (run_st != LV_OK)
         fprintf(stderr, "lvsim: %s\n", err.msg);
+    lv_run_free(run);
     lv_mission_free(m);
     if (run_st != LV_OK)
         return exit_code_for(run_st);
@@ -471,7 +481,11 @@ static int cmd_compare(int argc, char **argv)
         return usage_error("--interval must be > 0", NULL);
     lv_compare_report rep;
     lv_err err;
-    lv_status st = lv_mission_compare(path, method, tol, dt, &rep, &err);
+    lv_mission *m = NULL;
+    lv_status st = lv_mission_load(path, &m, &err);
+    if (st == LV_OK)
+        st = lv_mission_compare(m, method, tol, dt, &rep, &err);
+    lv_mission_free(m);
     if (st != LV_OK) {
         fprintf(stderr, "%s\n", err.msg);
         return exit_code_for(st);

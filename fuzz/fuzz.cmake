@@ -21,11 +21,14 @@ if(LV_CLANG AND NOT DEFINED LV_HAVE_LIBFUZZER)
 endif()
 
 if(LV_HAVE_LIBFUZZER)
-  set(_src fuzz/fuzz_mission.c src/mission/yaml_tree.c src/mission/parse.c
-      src/core/status.c src/core/names.c src/core/table.c src/core/table_load.c)
-  set(_hdr src/mission/mission.h src/mission/yaml_tree.h src/core/status.h src/core/names.h
-      src/core/units.h include/lvsim/lv_table.h include/lvsim/lv_status.h
-      include/lvsim/lv_model.h)
+  # The library's sources that loading a mission uses: everything but the integrator, the
+  # simulation, runs, results and post-processing (no SUNDIALS, no cJSON, no PLplot).
+  set(_src ${LV_SOURCES})
+  list(FILTER _src EXCLUDE REGEX
+       "^src/(integrate/|sim/simulate|mission/(run|compare|summary)\\.c|io/(export|sink|result_|atomic)|plot/|post/)")
+  list(PREPEND _src fuzz/fuzz_mission.c)
+  file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
+       ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)
   list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/)
   list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
   set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)

@@ -1,17 +1,33 @@
-/* lv_mission.h - missions: the phase tree read from a YAML file, run phase by phase.
+/* lv_mission.h - missions: one immutable definition read from a YAML file, and any number of
+ * runs of it.
  *
- * A mission holds one parameter set (the paper's userPar) and phases. Each phase is one
- * lv_simulate() of its own small model, started from the parameters or from the final state
- * of an earlier phase (the hand-off: states copied by name, the mass of the stages it carries,
- * then the phase's `set:` overrides). Phases form a tree: one final state may seed several.
- * The file format: docs/mission-format.md.
+ * A mission holds one parameter set (the paper's userPar) and a tree of phases. Each phase is
+ * one lv_simulate() of its own small model, started from the parameters or from the final
+ * state of an earlier phase (the hand-off: states copied by name, the mass of the stages it
+ * carries, then the phase's `set:` overrides). One final state may seed several phases.
+ * The file format: docs/mission-format.md; the design: docs/architecture.md.
  *
- * Two ways to run:
- *   - lv_mission_run(): every phase in dependency order (independent branches in parallel
- *     threads); a failing phase stops only its descendants.
- *   - the paper's Code 2 loop, by hand: lv_mission_phase_model() gives phase k's model; call
- *     lv_simulate() with the start values you choose and read the finals you need
- *     (examples/code2_loop.c).
+ *   lv_mission  the parsed, validated definition with its environment (planet, gravity,
+ *               atmosphere, tables) and a plan per phase resolved once. Never changes after
+ *               lv_mission_load; any number of threads may use one mission at once.
+ *   lv_run      what varies and what results: a value for every number of the mission a run
+ *               may vary (its PARAMETERS: "start_h", "stage2.propellant_mass",
+ *               "P2.set.theta", "P2.stop_time", ...; `lvsim params MISSION` lists them),
+ *               and each phase's result. lv_run_execute() simulates only the phases whose
+ *               inputs changed since they last ran, and their descendants. One run is used
+ *               by one thread at a time (its execute may use several worker threads).
+ *
+ *     lv_mission *m;   lv_mission_load("mission.yaml", &m, &err);
+ *     lv_run *r;       lv_run_create(m, &r, &err);
+ *     lv_run_execute(r, NULL, &err);                           every phase
+ *     lv_run_set(r, "stage2.propellant_mass", 5200.0, &err);
+ *     lv_run_execute(r, NULL, &err);                           the phases stage2 flies in
+ *     lv_run_final(r, k, "h", &h, &err);
+ *     lv_run_free(r);  lv_mission_free(m);
+ *
+ * The paper's Code 2 loop by hand: lv_run_prepare() gives phase k's model, instance and
+ * settings with the start values of the hand-off filled in; call lv_simulate() yourself and
+ * hand the outcome back with lv_run_complete() (examples/code2_loop.c).
  */
 #ifndef LVSIM_LV_MISSION_H
 #define LVSIM_LV_MISSION_H
@@ -28,21 +44,81 @@ extern "C" {
 
 typedef struct lv_mission lv_mission;
 
-/* Reads and validates a mission file: YAML syntax, keys, types, references, cycles, masses,
- * tables, and that every phase's initial state can be built. Errors are
- * "file:line:column: message" with LV_ERR_INPUT; nothing runs. */
+/* Reads and validates a mission file: YAML syntax, keys, types, ranges, references, cycles,
+ * masses, tables, and that every phase's model and initial state can be built. Errors are
+ * "file:line:column: message" with LV_ERR_INPUT (LV_ERR_IO: the file cannot be read);
+ * nothing runs. */
 LV_API lv_status lv_mission_load(const char *path, lv_mission **out, lv_err *err);
-LV_API void lv_mission_free(lv_mission *m);
+LV_API void lv_mission_free(lv_mission *m); /* accepts NULL; no run of it may be left */
+
+typedef struct lv_mission_info {
+    const char *name;
+    const char *description; /* NULL when the file has none */
+    const char *path;        /* the mission file */
+    const char *epoch;       /* ISO 8601 UTC of mission time 0, or NULL */
+    int flat_world;          /* 1: flat world (the paper's test case), 0: planet */
+    const char *planet;      /* "earth", "moon", "mars"; NULL on a flat world */
+    double site_lat, site_lon; /* rad: a flat world's origin on the WGS-84 Earth */
+    size_t n_phases, n_stages, n_params;
+} lv_mission_info;
+LV_API void lv_mission_get_info(const lv_mission *m, lv_mission_info *out);
 
 LV_API const char *lv_mission_name(const lv_mission *m);
 LV_API size_t lv_mission_phase_count(const lv_mission *m);
-/* Phases are numbered in run order (every parent before its children). */
+/* Phases are numbered in run order: parents before children, file order otherwise. */
 LV_API const char *lv_mission_phase_name(const lv_mission *m, size_t k);
 LV_API int lv_mission_phase_parent(const lv_mission *m, size_t k); /* -1: from parameters */
 LV_API lv_status lv_mission_phase_find(const lv_mission *m, const char *name, size_t *k,
                                        lv_err *err);
+LV_API size_t lv_mission_stage_count(const lv_mission *m);
+LV_API const char *lv_mission_stage_name(const lv_mission *m, size_t s);
 
-/* ---- running ------------------------------------------------------------------------- */
+typedef struct lv_phase_info {
+    const char *name;
+    const char *model;      /* its model type ("dof3", "flat6") */
+    int parent;             /* -1: starts from the parameter set */
+    size_t n_stages;        /* the stages it carries, bottom first */
+    const size_t *stages;   /* [n_stages] stage indices */
+    const char *method;     /* its integration method */
+} lv_phase_info;
+LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out);
+
+/* ---- parameters: the numbers a run may vary -------------------------------------------- */
+
+typedef struct lv_param_info {
+    const char *name;  /* "start_h", "stage2.propellant_mass", "P2.set.theta" */
+    const char *unit;  /* SI; "" dimensionless */
+    double value;      /* the mission file's value (or the default when the file has none) */
+    int line;          /* where the file writes it; 0: not written (a default) */
+    const char *rule;  /* allowed values: "finite", ">= 0", "> 0" ... */
+} lv_param_info;
+
+LV_API size_t lv_mission_param_count(const lv_mission *m);
+LV_API void lv_mission_param_info(const lv_mission *m, size_t i, lv_param_info *out);
+/* Index of a parameter by name; "NAME_deg" finds an angle NAME (the value is then in
+ * degrees: *deg = 1). LV_ERR_NOTFOUND suggests the nearest names. */
+LV_API lv_status lv_mission_param_find(const lv_mission *m, const char *name, size_t *i,
+                                       int *deg, lv_err *err);
+
+/* ---- runs ----------------------------------------------------------------------------- */
+
+typedef struct lv_run lv_run;
+
+LV_API lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err);
+LV_API void lv_run_free(lv_run *r); /* accepts NULL */
+LV_API const lv_mission *lv_run_mission(const lv_run *r);
+
+/* Sets a parameter by name (SI; "NAME_deg" takes degrees for an angle). The value must lie
+ * in the parameter's range (LV_ERR_INPUT naming it and the rule); an unknown name is
+ * LV_ERR_NOTFOUND with "did you mean". The phases that use it, and their descendants, run
+ * again at the next lv_run_execute. Setting the value it already has changes nothing. */
+LV_API lv_status lv_run_set(lv_run *r, const char *name, double value, lv_err *err);
+LV_API lv_status lv_run_get(const lv_run *r, const char *name, double *value, lv_err *err);
+/* The same by index (lv_mission_param_find: names resolved once). */
+LV_API lv_status lv_run_set_index(lv_run *r, size_t i, double value, lv_err *err);
+LV_API double lv_run_get_index(const lv_run *r, size_t i);
+/* Every parameter back to the mission file's value. */
+LV_API void lv_run_reset(lv_run *r);
 
 typedef enum lv_phase_state {
     LV_PHASE_PENDING = 0,
@@ -51,62 +127,109 @@ typedef enum lv_phase_state {
     LV_PHASE_SKIPPED  /* an ancestor failed */
 } lv_phase_state;
 
-/* What one phase did. Owned by the mission; valid until lv_mission_free(). */
+/* What one phase did in a run. Owned by the run; valid until the phase runs again or
+ * lv_run_free(). */
 typedef struct lv_phase_result {
     const char *name;
     lv_phase_state state;
     char error[LV_ERR_MSG_MAX];  /* FAILED / SKIPPED: phase, time and reason */
     double t_start, t_end;       /* s */
+    double t_stop;               /* s, its stop time (time limit) in this run */
+    const char *method;          /* integration method and tolerance used */
+    double tolerance;
     lv_sim_report report;        /* statistics, stop reason, event log */
-    size_t n_final;              /* the final state: every state and output, by name */
+    int end_index;               /* the phase's end condition (0-based, in file order) that
+                                    ended it, or -1 (stop time, failure) */
+    double end_value;            /* that condition's value (m, m/s) in this run, or NAN */
+    size_t n_final;              /* the final state: time, every state and output, by name */
     const char *const *final_names;
     const double *final_values;
     const char *result_stem;     /* "OUTDIR/phase_<k>_<name>" when files were written */
     size_t n_event_names;        /* the phase model's state-event functions, by index: */
     const char *const *event_names; /*   report.event_log[i].index names one of them */
+    /* the hand-off */
+    size_t n_copied;             /* states copied from the parent */
+    double mass_from_stages;     /* kg, the mass the stage book gave (NAN for a root) */
+    double mass_start;           /* kg, the initial mass after overrides */
+    size_t n_set;                /* the `set:` overrides with this run's values */
+    const char *const *set_names;
+    const double *set_values;
+    const double *propellant_end; /* [n_stages of the mission], kg left after the phase */
 } lv_phase_result;
 
 typedef struct lv_run_options {
     const char *outdir;   /* result files go here (created); NULL: no files */
     int threads;          /* worker threads for independent branches (0: 2) */
-    /* Called after each phase, from the thread that ran it, under the mission's lock. */
-    void (*on_phase)(const lv_mission *m, size_t k, const lv_phase_result *r, void *user);
-    void *user;
+    /* Called after each phase, from the thread that ran it, under the run's lock. */
+    void (*on_phase)(const lv_run *r, size_t k, const lv_phase_result *res, void *user);
+    void *user;           /* passed to on_phase and progress */
     double output_interval; /* > 0: overrides every phase's output grid (s), e.g. to compare */
+    const char *method;   /* non-NULL: every phase integrates with this method */
+    double tolerance;     /* > 0: every phase uses this tolerance */
+    /* Called with the mission time reached in phase k at every output row, from the thread
+     * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
+    int (*progress)(const lv_run *r, size_t k, double t, void *user);
+    int no_rows;          /* 1: keep no rows in memory (no merged trajectories): faster */
 } lv_run_options;
 
-/* Runs every phase not yet run. Returns LV_OK when all succeeded, LV_ERR_SOLVER when some
- * failed (their results say why; the others are complete), LV_ERR_IO when a file could not
- * be written. */
-LV_API lv_status lv_mission_run(lv_mission *m, const lv_run_options *opt, lv_err *err);
+/* Simulates every phase whose inputs changed since it last ran (or that never ran, or
+ * failed), and its descendants; the others keep their results. Independent branches run in
+ * parallel threads; a failing phase stops only its descendants. Returns LV_OK when all
+ * succeeded, LV_ERR_SOLVER when some failed (their results say why; the others are
+ * complete), LV_ERR_CANCELLED, LV_ERR_IO when the output folder cannot be made. */
+LV_API lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err);
+/* How many phases the last lv_run_execute simulated. */
+LV_API size_t lv_run_simulated(const lv_run *r);
 
-/* Runs phase k alone; its parent must be done. */
-LV_API lv_status lv_mission_run_phase(lv_mission *m, size_t k, const lv_run_options *opt,
-                                      lv_err *err);
-
-LV_API const lv_phase_result *lv_mission_result(const lv_mission *m, size_t k);
+LV_API const lv_phase_result *lv_run_result(const lv_run *r, size_t k);
 /* A final value of a done phase by name ("time", "z", "m", ...). */
-LV_API lv_status lv_mission_final(const lv_mission *m, size_t k, const char *name, double *value,
-                                  lv_err *err);
+LV_API lv_status lv_run_final(const lv_run *r, size_t k, const char *name, double *value,
+                              lv_err *err);
+/* Phase k's rows in memory (every output row and event instant), or NULL. */
+LV_API const lv_result *lv_run_rows(const lv_run *r, size_t k);
 
-/* summary.json: per phase start/end time, why it ended, final state, events, statistics,
- * the hand-off; per body the phases it flies in and its merged trajectory file. */
-LV_API lv_status lv_mission_write_summary(const lv_mission *m, const char *outdir, lv_err *err);
+/* ---- the bodies: each stage's trajectory across the phases it flies in ------------------ */
 
-/* ---- the Code 2 loop by hand -------------------------------------------------------------- */
+/* The phases stage `s` flies in, done, in time order; returns the count written to `out`
+ * (capacity: the mission's phase count). */
+LV_API size_t lv_run_body_phases(const lv_run *r, size_t s, size_t *out);
 
-/* Phase k's model, built from the mission (stages, engines, ends, world). `prop` gives the
- * propellant left in each of the phase's stages [kg], bottom first (NULL: the mission's
- * liftoff values). The caller frees it. */
-typedef struct lv_phase_model lv_phase_model;
-LV_API lv_status lv_mission_phase_model(const lv_mission *m, size_t k, const double *prop,
-                                        lv_phase_model **out, lv_err *err);
-LV_API const lv_model_def *lv_phase_model_def(const lv_phase_model *pm);
-LV_API void *lv_phase_model_inst(lv_phase_model *pm);
-LV_API void lv_phase_model_free(lv_phase_model *pm);
-/* Phase k's settings as the mission gives them (start/stop time, method, tolerance, grid).
- * start_time is NAN when it comes from the parent's end. */
-LV_API void lv_mission_phase_settings(const lv_mission *m, size_t k, lv_sim_settings *s);
+typedef struct lv_body_traj {
+    const char *stage;             /* the stage's name */
+    size_t n_rows, n_cols;
+    const char *const *names;      /* [n_cols]: "time", the model's columns, "stage_mass" ... */
+    const char *const *units;      /* [n_cols] */
+    const double *values;          /* [n_rows * n_cols], row-major */
+    const size_t *phase;           /* [n_rows]: the phase each row comes from */
+} lv_body_traj;
+
+/* Stage s's merged trajectory: every row of every done phase it flies in, in time order,
+ * with the stage's own mass (the bottom stage: the body's mass minus the stages above it).
+ * Needs the rows (lv_run_options.no_rows = 0). lv_body_traj_free when done. */
+LV_API lv_status lv_run_body_trajectory(const lv_run *r, size_t s, lv_body_traj **out,
+                                        lv_err *err);
+LV_API void lv_body_traj_free(lv_body_traj *b);
+
+/* ---- the paper's Code 2 loop by hand ------------------------------------------------------ */
+
+typedef struct lv_phase_call lv_phase_call;
+
+/* Phase k of run r, ready to simulate: its model built from the run's values and the stage
+ * book, and settings with its start and stop time, grid, method and tolerance, the hand-off
+ * as initial names and values (the parameter set for a root phase; the parent's final states,
+ * the carried stages' mass and the overrides otherwise), every state and output as final
+ * names, and a memory sink for the run's rows. The parent must be done in this run. */
+LV_API lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err);
+LV_API const lv_model_def *lv_phase_call_model(const lv_phase_call *c);
+LV_API void *lv_phase_call_inst(lv_phase_call *c);
+/* Yours to adjust before simulating (e.g. result_file); keep its sinks, add none. */
+LV_API lv_sim_settings *lv_phase_call_settings(lv_phase_call *c);
+LV_API double *lv_phase_call_finals(lv_phase_call *c); /* [settings->n_final] */
+/* Records what lv_simulate returned (st, its err and report, whose event log moves into the
+ * result) as phase k's result: its children can then be prepared. Frees the call. */
+LV_API lv_status lv_run_complete(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_err,
+                                 lv_sim_report *rep, lv_err *err);
+LV_API void lv_phase_call_free(lv_phase_call *c); /* a call not completed; accepts NULL */
 
 /* ---- sequential versus end-to-end (the paper's Table 2) ------------------------------------- */
 
@@ -133,7 +256,7 @@ typedef struct lv_compare_report {
 /* Runs the mission sequentially and as one end-to-end model (flat6 missions whose phases
  * split the stack at their ends), both with `method`/`tolerance` (NULL/0: each phase's own)
  * and the output interval `dt` (s), and compares every body at common output times. */
-LV_API lv_status lv_mission_compare(const char *path, const char *method, double tolerance,
+LV_API lv_status lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
                                     double dt, lv_compare_report *rep, lv_err *err);
 
 #ifdef __cplusplus

@@ -13,14 +13,14 @@
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_units.h"
-#include "mission/runner.h"
+#include "mission/mission_rt.h"
 
 /* Separation time of body k from body k+1: the end of the phase that carries both and whose
  * children split them. */
-static lv_status separation_time(const lv_mission *m, size_t sk, size_t sk1, double *t,
+static lv_status separation_time(const lv_run *run, size_t sk, size_t sk1, double *t,
                                  lv_err *err)
 {
-    const lv_mission_def *d = lv_runner_def(m);
+    const lv_mission_def *d = lv_run_mission(run)->def;
     for (size_t p = 0; p < d->n_phases; p++) {
         const lv_phase_def *ph = &d->phases[p];
         int a = 0, b = 0;
@@ -40,7 +40,7 @@ static lv_status separation_time(const lv_mission *m, size_t sk, size_t sk1, dou
                 cb |= ch->stages[i] == sk1;
             }
             if (ca != cb) {
-                *t = lv_mission_result(m, p)->t_end;
+                *t = lv_run_result(run, p)->t_end;
                 return LV_OK;
             }
         }
@@ -66,44 +66,32 @@ static long row_at(const lv_result *r, size_t ct, double t, size_t *hint)
     return (long)i;
 }
 
-lv_status lv_mission_compare(const char *path, const char *method, double tolerance, double dt,
-                             lv_compare_report *rep, lv_err *err)
+lv_status lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
+                             double dt, lv_compare_report *rep, lv_err *err)
 {
     memset(rep, 0, sizeof *rep);
-    lv_mission *m = NULL;
-    lv_status st = lv_mission_load(path, &m, err);
-    if (st != LV_OK)
-        return st;
-    lv_mission_def *d = (lv_mission_def *)lv_runner_def(m);
+    const lv_mission_def *d = m->def;
+    lv_run *run = NULL;
     lv_flat_e2e *e2e = NULL;
     lv_result *rows = NULL;
     lv_sink mem = {0};
     lv_flat_stage *bodies = NULL;
     lv_flat_engine *engines = NULL;
     double *t_sep = NULL;
-    /* Same integrator settings on both sides. */
-    for (size_t k = 0; k < d->n_phases; k++) {
-        if (method != NULL) {
-            char *mm = strdup(method);
-            if (mm == NULL) {
-                st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-                goto done;
-            }
-            free(d->phases[k].method);
-            d->phases[k].method = mm;
-        }
-        if (tolerance > 0.0)
-            d->phases[k].tolerance = tolerance;
-    }
+    lv_status st;
     const lv_phase_def *root = &d->phases[0];
-    if (d->env.world != LV_WORLD_FLAT || strcmp(root->model, "flat6") != 0 || root->parent >= 0) {
+    if (d->env.world != LV_WORLD_FLAT || strcmp(root->type->name, "flat6") != 0 ||
+        root->parent >= 0) {
         st = lv_fail(err, LV_ERR_INPUT, "compare: '%s' is not a flat-world (flat6) mission",
-                     path);
+                     d->path);
         goto done;
     }
-    lv_run_options opt = {NULL, 1, NULL, NULL, dt};
-    if ((st = lv_mission_run(m, &opt, err)) != LV_OK)
+    /* Same integrator settings on both sides. */
+    lv_run_options opt = {.threads = 1, .output_interval = dt, .method = method,
+                          .tolerance = tolerance};
+    if ((st = lv_run_create(m, &run, err)) != LV_OK || (st = lv_run_execute(run, &opt, err)) != LV_OK)
         goto done;
+    const double *v = lv_run_vals(run);
 
     /* The end-to-end model: the root phase's stages as bodies, stacked. */
     const size_t nb = root->n_stages;
@@ -124,31 +112,38 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
     size_t e0 = 0;
     double t_end = 0.0;
     for (size_t k = 0; k < d->n_phases; k++)
-        t_end = fmax(t_end, lv_mission_result(m, k)->t_end);
+        t_end = fmax(t_end, lv_run_result(run, k)->t_end);
     for (size_t i = 0; i < nb; i++) {
         const lv_stage_def *sd = &d->stages[root->stages[i]];
         for (size_t e = 0; e < sd->n_engines; e++) {
             const lv_engine_def *ed = &sd->engines[e];
-            double mdot = ed->mdot;
-            if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac > 0.0)
-                mdot = ed->thrust_vac / (ed->isp_vac * LV_G0);
-            engines[e0 + e] = (lv_flat_engine){ed->table, ed->thrust_out, ed->mdot_out,
-                                               ed->thrust_vac, mdot, ed->count};
+            const double thrust = ed->thrust_vac != LV_NO_SLOT ? v[ed->thrust_vac] : 0.0;
+            double mdot = ed->mdot != LV_NO_SLOT ? v[ed->mdot] : 0.0;
+            if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac != LV_NO_SLOT)
+                mdot = thrust / (v[ed->isp_vac] * LV_G0);
+            engines[e0 + e] = (lv_flat_engine){ed->table, ed->thrust_out, ed->mdot_out, thrust,
+                                               mdot, ed->count};
         }
-        bodies[i] = (lv_flat_stage){sd->name, sd->dry_mass, sd->propellant_mass, sd->n_engines,
-                                    engines + e0};
+        bodies[i] = (lv_flat_stage){sd->name, v[sd->dry_mass], v[sd->propellant_mass],
+                                    sd->n_engines, engines + e0};
         e0 += sd->n_engines;
         if (i + 1 < nb &&
-            (st = separation_time(m, root->stages[i], root->stages[i + 1], &t_sep[i], err)) !=
+            (st = separation_time(run, root->stages[i], root->stages[i + 1], &t_sep[i], err)) !=
                 LV_OK)
             goto done;
     }
-    lv_flat_e2e_config cfg = {"end_to_end", d->env.g, nb, bodies, t_sep};
+    lv_flat_e2e_config cfg = {"end_to_end", v[d->env.g], nb, bodies, t_sep};
     if ((st = lv_flat_e2e_create(&cfg, &e2e, err)) != LV_OK)
         goto done;
+    /* the root phase's settings (the same method and tolerance as the sequential runs) */
+    const lv_phase_result *r0 = lv_run_result(run, 0);
     lv_sim_settings s;
-    lv_mission_phase_settings(m, 0, &s);
-    s.start_time = isnan(root->t_start) ? 0.0 : root->t_start;
+    lv_sim_settings_default(&s);
+    s.result_file = NULL;
+    s.method = r0->method;
+    s.tolerance = r0->tolerance;
+    s.fixed_step = v[root->fixed_step];
+    s.start_time = r0->t_start;
     s.stop_time = t_end;
     s.output_interval = dt;
     s.number_of_intervals = 0;
@@ -164,13 +159,13 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
     }
     size_t n = 0;
     names[n] = "g";
-    values[n++] = d->env.g;
+    values[n++] = v[d->env.g];
     for (size_t j = 0; j < d->n_params; j++) {
         lv_var_kind kind;
         size_t idx;
         if (lv_model_find(md, d->param_names[j], &kind, &idx, NULL) == LV_OK) {
             names[n] = d->param_names[j];
-            values[n++] = d->param_values[j];
+            values[n++] = v[d->param_values[j]];
         }
     }
     s.n_initial = n;
@@ -199,10 +194,10 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
         goto done;
 
     /* Sequential totals. */
-    snprintf(rep->seq.method, sizeof rep->seq.method, "%s", root->method ? root->method : "dassl");
-    rep->seq.tolerance = root->tolerance;
+    snprintf(rep->seq.method, sizeof rep->seq.method, "%s", r0->method);
+    rep->seq.tolerance = r0->tolerance;
     for (size_t k = 0; k < d->n_phases; k++) {
-        const lv_sim_report *r = &lv_mission_result(m, k)->report;
+        const lv_sim_report *r = &lv_run_result(run, k)->report;
         if (r->n_states > rep->seq.n_states)
             rep->seq.n_states = r->n_states;
         rep->seq.state_events += r->stats.state_events;
@@ -237,12 +232,19 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
         }
         snprintf(nm, sizeof nm, "%s.m", d->stages[si].name);
         lv_result_column(rows, nm, &em, NULL);
-        size_t nk = lv_runner_body_phases(m, si, ks);
+        lv_body_traj *bt = NULL;
+        if ((st = lv_run_body_trajectory(run, si, &bt, err)) != LV_OK)
+            break;
+        size_t bm = 0;
+        for (size_t c = 0; c < bt->n_cols; c++)
+            if (strcmp(bt->names[c], "stage_mass") == 0)
+                bm = c;
+        size_t row_at_phase = 0; /* the body trajectory's rows follow the phases' rows */
+        size_t nk = lv_run_body_phases(run, si, ks);
         for (size_t i = 0; i < nk; i++) {
-            const lv_result *r = lv_runner_rows(m, ks[i]);
-            size_t ct, cp[3], cv[3], cm;
+            const lv_result *r = lv_run_rows(run, ks[i]);
+            size_t ct, cp[3], cv[3];
             lv_result_column(r, "time", &ct, NULL);
-            lv_result_column(r, "m", &cm, NULL);
             for (int c = 0; c < 3; c++) {
                 lv_result_column(r, pos[c], &cp[c], NULL);
                 lv_result_column(r, vel[c], &cv[c], NULL);
@@ -260,18 +262,20 @@ lv_status lv_mission_compare(const char *path, const char *method, double tolera
                 double dp = 0.0, dv = 0.0;
                 for (int c = 0; c < 3; c++) {
                     double a = lv_result_value(r, row, cp[c]) - lv_result_value(rows, (size_t)er, ep[c]);
-                    double v = lv_result_value(r, row, cv[c]) - lv_result_value(rows, (size_t)er, ev[c]);
+                    double w = lv_result_value(r, row, cv[c]) - lv_result_value(rows, (size_t)er, ev[c]);
                     dp += a * a;
-                    dv += v * v;
+                    dv += w * w;
                 }
-                double ms = lv_runner_stage_mass(m, ks[i], si, lv_result_value(r, row, cm));
+                double ms = bt->values[(row_at_phase + row) * bt->n_cols + bm];
                 double dm = fabs(ms - lv_result_value(rows, (size_t)er, em));
                 cb->max_dpos = fmax(cb->max_dpos, sqrt(dp));
                 cb->max_dvel = fmax(cb->max_dvel, sqrt(dv));
                 cb->max_dmass = fmax(cb->max_dmass, dm);
                 cb->n_common++;
             }
+            row_at_phase += lv_result_rows(r);
         }
+        lv_body_traj_free(bt);
     }
     free(ks);
 done:
@@ -281,6 +285,6 @@ done:
     free(bodies);
     free(engines);
     free(t_sep);
-    lv_mission_free(m);
+    lv_run_free(run);
     return st;
 }

@@ -1,12 +1,19 @@
 /* mission.h - the mission as data: environment, stages, the shared parameter set (the
- * paper's userPar) and the phase tree. Built by the YAML parser (parse.c), validated
- * before anything runs, read by the runner (runner.c). Immutable during a run.
+ * paper's userPar) and the phase tree. Built by the YAML parser (parse.c), validated before
+ * anything runs, never changed afterwards: runs (run.c) only read it.
  *
- * Units: everything here is SI and radians; the parser converts "*_deg" keys.
+ * Numbers a run may vary are SLOTS: every numeric key of the file a user would want to vary
+ * (a parameter, a stage's masses, an engine's thrust, a phase's stop time, end values,
+ * overrides, the model's inputs...) is registered under a name ("start_h",
+ * "stage2.propellant_mass", "P2.set.theta", "P2.inputs.alpha") with its unit, its allowed
+ * range, the file position and the value the file gives. The definition keeps slot indices,
+ * never the numbers themselves: a run holds one value per slot, and every model is built from
+ * the run's values. Units: everything SI and radians; the parser converts "*_deg" keys.
  */
 #ifndef LV_MISSION_MISSION_H
 #define LV_MISSION_MISSION_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "lvsim/lv_model.h"
@@ -18,6 +25,35 @@ typedef struct lv_src_loc {
     int line, column; /* 1-based; 0 when not from a file */
 } lv_src_loc;
 
+/* ---- slots: the numbers a run may vary ------------------------------------------------- */
+
+typedef size_t lv_slot;
+#define LV_NO_SLOT ((lv_slot)-1)
+
+/* Allowed values: lo < v (lo_open) or lo <= v, and v < hi / v <= hi; always finite. */
+typedef struct lv_range {
+    double lo, hi;
+    unsigned char lo_open, hi_open;
+} lv_range;
+
+/* Who owns a slot: which phases use its value directly (their descendants follow). */
+typedef enum lv_slot_owner {
+    LV_OWN_ENV = 0,   /* the environment: every phase */
+    LV_OWN_PARAM,     /* the shared parameter set: the phases whose model has the parameter */
+    LV_OWN_STAGE,     /* stage `owner_index` (and its engines): the phases that carry it */
+    LV_OWN_PHASE      /* phase `owner_index` */
+} lv_slot_owner;
+
+typedef struct lv_slot_def {
+    char *name;        /* unique in the mission */
+    char *unit;        /* SI ("m", "kg", "rad", "" for dimensionless) */
+    double value;      /* the value the file gives (or the default when not written) */
+    lv_range range;
+    lv_slot_owner owner;
+    size_t owner_index;
+    lv_src_loc loc;    /* where the value is written; 0 when defaulted */
+} lv_slot_def;
+
 /* ---- environment ---------------------------------------------------------------------- */
 
 typedef enum lv_world_kind {
@@ -27,7 +63,7 @@ typedef enum lv_world_kind {
 
 typedef struct lv_env_def {
     lv_world_kind world;
-    double g;             /* m/s^2, flat world: uniform gravity magnitude (default 9.81) */
+    lv_slot g;            /* m/s^2, flat world: uniform gravity magnitude (default 9.81) */
     char *planet;         /* planet world: "earth" (WGS-84, default), "moon", "mars"; NULL: flat */
     char *gravity;        /* planet world: gravity spec, e.g. "j2", "sh:8" (default "j2");
                              NULL on a flat world */
@@ -45,23 +81,23 @@ typedef struct lv_env_def {
  * outputs "thrust" [N] and "mdot" [kg/s] (table time is mission time, s). */
 typedef struct lv_engine_def {
     char *name;
-    double thrust_vac; /* N, vacuum thrust (constant engines) */
-    double isp_vac;    /* s, vacuum specific impulse (0: use mdot) */
-    double mdot;       /* kg/s, mass flow (0: from isp) */
-    double exit_area;  /* m^2, nozzle exit area (thrust loss p_amb * A_exit) */
-    int count;         /* identical engines (default 1) */
-    char *table_file;  /* thrust/mdot time table: CSV or .mat path (resolved) */
-    char *table_var;   /* variable name inside a .mat file */
-    lv_table *table;   /* loaded by the parser; owned */
-    size_t thrust_out; /* table: index of the thrust output [N] (resolved by the parser) */
-    size_t mdot_out;   /* table: index of the mass-flow output [kg/s] */
+    lv_slot thrust_vac; /* N, vacuum thrust (constant engines; LV_NO_SLOT for tables) */
+    lv_slot isp_vac;    /* s, vacuum specific impulse (LV_NO_SLOT: mdot given) */
+    lv_slot mdot;       /* kg/s, mass flow (LV_NO_SLOT: from isp) */
+    lv_slot exit_area;  /* m^2, nozzle exit area (thrust loss p_amb * A_exit), default 0 */
+    int count;          /* identical engines (default 1) */
+    char *table_file;   /* thrust/mdot time table: CSV or .mat path (resolved) */
+    char *table_var;    /* variable name inside a .mat file */
+    lv_table *table;    /* loaded by the parser; owned */
+    size_t thrust_out;  /* table: index of the thrust output [N] (resolved by the parser) */
+    size_t mdot_out;    /* table: index of the mass-flow output [kg/s] */
     lv_src_loc loc;
 } lv_engine_def;
 
 typedef struct lv_stage_def {
     char *name;
-    double dry_mass;        /* kg */
-    double propellant_mass; /* kg, at liftoff */
+    lv_slot dry_mass;        /* kg */
+    lv_slot propellant_mass; /* kg, at liftoff */
     size_t n_engines;
     lv_engine_def *engines;
     lv_src_loc loc;
@@ -77,44 +113,38 @@ typedef enum lv_end_kind {
     LV_END_IMPACT       /* altitude falls through `value` (m, default 0) */
 } lv_end_kind;
 
+/* "burnout", "altitude", "speed", "apogee", "impact". */
+const char *lv_end_kind_name(lv_end_kind k);
+
 typedef struct lv_end_def {
     lv_end_kind kind;
-    double value;
+    lv_slot value;      /* altitude, speed and impact; LV_NO_SLOT for burnout and apogee */
     lv_dir direction;
     lv_src_loc loc;
 } lv_end_def;
 
+typedef struct lv_phase_type lv_phase_type; /* phase_type.h */
+
 typedef struct lv_phase_def {
     char *name;
-    char *model;          /* "flat6" (6-DoF point mass, flat world) or "dof3" */
+    const lv_phase_type *type; /* the phase's model type (phase_type.h registry) */
+    void *type_cfg;       /* what the type parsed from the phase's own keys; owned by the type */
     size_t n_stages;      /* the bodies this phase carries, bottom first */
     size_t *stages;       /* indices into lv_mission_def.stages */
     int parent;           /* index of the phase whose final state seeds this one; -1: parameters */
-    double t_start;       /* s; NAN: the parent's end time (or 0 without parent) */
-    double t_stop;        /* s; the fixed stop time or the time limit of the phase */
+    lv_slot t_start;      /* s; LV_NO_SLOT: the parent's end time (or 0 without parent) */
+    lv_slot t_stop;       /* s; the fixed stop time or the time limit of the phase */
     size_t n_ends;        /* events that end the phase before t_stop */
     lv_end_def *ends;
     char *method;         /* integrator, default "dassl" */
-    double tolerance;     /* default 1e-6 */
+    lv_slot tolerance;    /* default 1e-6 */
     int intervals;        /* numberOfIntervals (0: use output_interval or 500) */
-    double output_interval; /* s */
-    double fixed_step;    /* s */
+    lv_slot output_interval; /* s, default 0 */
+    lv_slot fixed_step;   /* s, default 0 */
     size_t n_set;         /* overrides applied after the hand-off: name = value (SI) */
     char **set_names;
-    double *set_values;
+    lv_slot *set_values;
     lv_src_loc *set_locs; /* [n_set] where each override was written, for later messages */
-    /* dof3 only: inputs (NAN: the model's default) and a control history over time */
-    double alpha, beta, mu; /* rad */
-    double throttle;        /* - */
-    char *inputs_file, *inputs_var;
-    lv_table *inputs;       /* outputs alpha, beta, mu [rad], throttle; owned */
-    /* dof3 only: the phase's aerodynamic dataset */
-    int has_aero;
-    int aero_body_axes;     /* 0: CD, CL, CY (wind axes); 1: CA, CN, CY (body axes) */
-    double aero_s_ref;      /* m^2 */
-    double aero_coef[3];    /* constant coefficients, NAN: from the table (or 0) */
-    char *aero_file, *aero_var;
-    lv_table *aero_table;   /* outputs named as the coefficients; owned */
     lv_src_loc loc;
 } lv_phase_def;
 
@@ -127,13 +157,16 @@ typedef struct lv_mission_def {
     char *path;    /* the mission file */
     char *dir;     /* its directory: relative table paths resolve against it */
     lv_env_def env;
-    size_t n_params; /* the shared parameter set, SI (start_lat, start_h, ...) */
+    size_t n_params; /* the shared parameter set written in the file (start_lat, start_h, ...) */
     char **param_names;
-    double *param_values;
+    lv_slot *param_values;
     size_t n_stages;
     lv_stage_def *stages;
-    size_t n_phases; /* in file order; parents always precede children after validation */
+    size_t n_phases; /* in run order: parents before children, file order otherwise */
     lv_phase_def *phases;
+    size_t n_slots;  /* every number a run may vary */
+    lv_slot_def *slots;
+    size_t cap_slots;
 } lv_mission_def;
 
 /* Parse and validate a mission file. Errors are "file:line:column: message". */
@@ -143,7 +176,25 @@ lv_status lv_mission_def_parse(const char *text, size_t len, const char *name, c
                                lv_mission_def **out, lv_err *err);
 void lv_mission_def_free(lv_mission_def *m);
 
+/* The file's value of a slot (NAN for LV_NO_SLOT). */
+double lv_mission_def_value(const lv_mission_def *m, lv_slot s);
 /* Parameter value by name, or `fallback` when the mission does not set it. */
 double lv_mission_def_param(const lv_mission_def *m, const char *name, double fallback);
+/* Slot by exact name, or LV_NO_SLOT. */
+lv_slot lv_mission_def_slot(const lv_mission_def *m, const char *name);
+
+/* Adds a slot (used by the parser and the model types). Names must be unique: a duplicate
+ * is LV_ERR_INPUT naming both. */
+lv_status lv_mission_def_add_slot(lv_mission_def *m, const char *name, const char *unit,
+                                  double value, lv_range range, lv_slot_owner owner,
+                                  size_t owner_index, lv_src_loc loc, lv_slot *out, lv_err *err);
+/* 1 if v lies in r; `text` (may be NULL) receives "> 0", ">= 0 and <= 1", "finite"... */
+int lv_range_holds(lv_range r, double v);
+void lv_range_text(lv_range r, char *text, size_t cap);
+
+/* Common ranges. */
+#define LV_RANGE_ANY ((lv_range){-HUGE_VAL, HUGE_VAL, 0, 0})
+#define LV_RANGE_POS ((lv_range){0.0, HUGE_VAL, 1, 0})      /* > 0 */
+#define LV_RANGE_NONNEG ((lv_range){0.0, HUGE_VAL, 0, 0})   /* >= 0 */
 
 #endif

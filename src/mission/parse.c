@@ -19,21 +19,14 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "core/units.h"
+#include "mission/parse_kit.h"
+#include "mission/phase_type.h"
 #include "mission/yaml_tree.h"
 
-#define LV_NAME_MAX 64 /* stage, engine and phase names: [A-Za-z0-9_-], engines also '.' */
-#define LV_WHAT_MAX 160
-
-typedef struct pctx {
-    const char *file; /* the mission file, for messages */
-    lv_err *err;
-    lv_mission_def *m;
-} pctx;
 
 /* ---- messages ------------------------------------------------------------------------- */
 
-static lv_status perr(const pctx *c, const lv_ynode *at, const char *fmt, ...) LV_PRINTF(3, 4);
-static lv_status perr(const pctx *c, const lv_ynode *at, const char *fmt, ...)
+lv_status lv_pk_fail(const lv_pctx *c, const lv_ynode *at, const char *fmt, ...)
 {
     char msg[LV_ERR_MSG_MAX];
     va_list ap;
@@ -43,9 +36,133 @@ static lv_status perr(const pctx *c, const lv_ynode *at, const char *fmt, ...)
     return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: %s", c->file, at->line, at->col, msg);
 }
 
-static lv_status nomem(const pctx *c)
+lv_status lv_pk_nomem(const lv_pctx *c)
 {
     return lv_fail(c->err, LV_ERR_NOMEM, "%s: out of memory", c->file);
+}
+
+static char *dup_text(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d != NULL)
+        memcpy(d, s, n);
+    return d;
+}
+
+/* ---- slots -------------------------------------------------------------------------------- */
+
+int lv_range_holds(lv_range r, double v)
+{
+    if (!isfinite(v))
+        return 0;
+    if (r.lo_open ? !(v > r.lo) : !(v >= r.lo))
+        return 0;
+    if (r.hi_open ? !(v < r.hi) : !(v <= r.hi))
+        return 0;
+    return 1;
+}
+
+void lv_range_text(lv_range r, char *text, size_t cap)
+{
+    const int lo = isfinite(r.lo), hi = isfinite(r.hi);
+    if (!lo && !hi)
+        snprintf(text, cap, "finite");
+    else if (lo && !hi)
+        snprintf(text, cap, "%s %g", r.lo_open ? ">" : ">=", r.lo);
+    else if (!lo)
+        snprintf(text, cap, "%s %g", r.hi_open ? "<" : "<=", r.hi);
+    else
+        snprintf(text, cap, "%s %g and %s %g", r.lo_open ? ">" : ">=", r.lo,
+                 r.hi_open ? "<" : "<=", r.hi);
+}
+
+/* Slot names are unique: two stages, engines or phases whose names make the same parameter
+ * name ("a.b" + "c" and "a" + "b.c") are refused, after the structural checks. */
+static int slot_cmp(const void *a, const void *b)
+{
+    const lv_slot_def *const *x = a, *const *y = b;
+    return strcmp((*x)->name, (*y)->name);
+}
+
+static lv_status check_slot_names(const lv_pctx *c)
+{
+    lv_mission_def *m = c->m;
+    if (m->n_slots < 2)
+        return LV_OK;
+    const lv_slot_def **v = malloc(m->n_slots * sizeof *v);
+    if (v == NULL)
+        return lv_pk_nomem(c);
+    for (size_t i = 0; i < m->n_slots; i++)
+        v[i] = &m->slots[i];
+    qsort(v, m->n_slots, sizeof *v, slot_cmp);
+    lv_status st = LV_OK;
+    for (size_t i = 1; i < m->n_slots && st == LV_OK; i++)
+        if (strcmp(v[i - 1]->name, v[i]->name) == 0) {
+            const lv_slot_def *a = v[i - 1], *b = v[i];
+            if (a->loc.line > b->loc.line || (a->loc.line == b->loc.line && a->loc.column > b->loc.column)) {
+                const lv_slot_def *t = a;
+                a = b;
+                b = t;
+            }
+            st = lv_fail(c->err, LV_ERR_INPUT,
+                         "%s:%d:%d: the parameter name '%s' comes out twice (first at line %d): "
+                         "rename a stage, engine or phase",
+                         m->path, b->loc.line, b->loc.column, b->name, a->loc.line);
+        }
+    free(v);
+    return st;
+}
+
+lv_status lv_mission_def_add_slot(lv_mission_def *m, const char *name, const char *unit,
+                                  double value, lv_range range, lv_slot_owner owner,
+                                  size_t owner_index, lv_src_loc loc, lv_slot *out, lv_err *err)
+{
+    if (m->n_slots == m->cap_slots) {
+        size_t cap = m->cap_slots ? 2 * m->cap_slots : 32;
+        lv_slot_def *grown = realloc(m->slots, cap * sizeof *grown);
+        if (grown == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", m->path);
+        m->slots = grown;
+        m->cap_slots = cap;
+    }
+    lv_slot_def *sd = &m->slots[m->n_slots];
+    *sd = (lv_slot_def){dup_text(name), dup_text(unit), value, range, owner, owner_index, loc};
+    if (sd->name == NULL || sd->unit == NULL) {
+        free(sd->name);
+        free(sd->unit);
+        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", m->path);
+    }
+    *out = m->n_slots++;
+    return LV_OK;
+}
+
+lv_status lv_pk_slot(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                     const char *name, const char *unit, lv_range range, int deg, lv_slot *out)
+{
+    double x;
+    lv_status st = lv_pk_num(c, v, what, key, &x);
+    if (st != LV_OK)
+        return st;
+    if (deg)
+        x *= LV_DEG;
+    if (!lv_range_holds(range, x)) {
+        char rule[96];
+        lv_range_text(range, rule, sizeof rule);
+        return lv_pk_fail(c, v, "%s: %s must be %s%s%s, found %g", what, key, rule,
+                          unit[0] ? " " : "", unit, deg ? x / LV_DEG : x);
+    }
+    lv_src_loc loc = {v->line, v->col};
+    return lv_mission_def_add_slot(c->m, name, unit, x, range, c->owner, c->owner_index, loc,
+                                   out, c->err);
+}
+
+lv_status lv_pk_slot_default(const lv_pctx *c, const char *name, const char *unit, double value,
+                             lv_range range, lv_slot *out)
+{
+    lv_src_loc none = {0, 0};
+    return lv_mission_def_add_slot(c->m, name, unit, value, range, c->owner, c->owner_index,
+                                   none, out, c->err);
 }
 
 /* "a mapping", "a list", "nothing", "'text'" or "the string \"text\"" for messages. */
@@ -61,18 +178,9 @@ static const char *describe(const lv_ynode *n, char *buf, size_t cap)
     return buf;
 }
 
-static char *dup_text(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d != NULL)
-        memcpy(d, s, n);
-    return d;
-}
-
 /* ---- mappings ------------------------------------------------------------------------- */
 
-static const lv_ynode *map_key(const lv_ynode *map, const char *key)
+const lv_ynode *lv_pk_key(const lv_ynode *map, const char *key)
 {
     if (map == NULL || map->kind != LV_YNODE_MAP)
         return NULL;
@@ -82,7 +190,7 @@ static const lv_ynode *map_key(const lv_ynode *map, const char *key)
     return NULL;
 }
 
-static const lv_ynode *map_get(const lv_ynode *map, const char *key)
+const lv_ynode *lv_pk_get(const lv_ynode *map, const char *key)
 {
     if (map == NULL || map->kind != LV_YNODE_MAP)
         return NULL;
@@ -94,17 +202,17 @@ static const lv_ynode *map_get(const lv_ynode *map, const char *key)
 
 /* `n` must be a mapping without duplicate keys; with `known` (NULL-terminated), only those
  * keys. `what` names the object ("stage 'stage1'"). */
-static lv_status check_map(const pctx *c, const lv_ynode *n, const char *what,
+lv_status lv_pk_check_map(const lv_pctx *c, const lv_ynode *n, const char *what,
                            const char *const *known)
 {
     char buf[64];
     if (n->kind != LV_YNODE_MAP)
-        return perr(c, n, "%s: a mapping (key: value) expected, found %s", what,
+        return lv_pk_fail(c, n, "%s: a mapping (key: value) expected, found %s", what,
                     describe(n, buf, sizeof buf));
     for (size_t i = 0; i + 1 < n->n; i += 2) {
         const lv_ynode *k = n->kids[i];
         if (strlen(k->text) != k->len)
-            return perr(c, k, "%s: key contains a NUL character", what);
+            return lv_pk_fail(c, k, "%s: key contains a NUL character", what);
         if (known != NULL) {
             size_t j = 0;
             while (known[j] != NULL && strcmp(known[j], k->text) != 0)
@@ -116,27 +224,27 @@ static lv_status check_map(const pctx *c, const lv_ynode *n, const char *what,
                 for (j = 0; known[j] != NULL; j++)
                     lv_suggest_add(&s, known[j]);
                 lv_suggest_text(&s, hint, sizeof hint);
-                return perr(c, k, "%s: unknown key '%.60s'%s", what, k->text, hint);
+                return lv_pk_fail(c, k, "%s: unknown key '%.60s'%s", what, k->text, hint);
             }
         }
         for (size_t j = 0; j < i; j += 2)
             if (strcmp(n->kids[j]->text, k->text) == 0)
-                return perr(c, k, "%s: duplicate key '%.60s' (first at line %d)", what, k->text,
+                return lv_pk_fail(c, k, "%s: duplicate key '%.60s' (first at line %d)", what, k->text,
                             n->kids[j]->line);
     }
     return LV_OK;
 }
 
 /* The value of a required key: present and not empty. */
-static lv_status need(const pctx *c, const lv_ynode *map, const char *what, const char *key,
+lv_status lv_pk_need(const lv_pctx *c, const lv_ynode *map, const char *what, const char *key,
                       const lv_ynode **out)
 {
-    const lv_ynode *v = map_get(map, key);
+    const lv_ynode *v = lv_pk_get(map, key);
     *out = v;
     if (v == NULL)
-        return perr(c, map, "%s: missing required key '%s'", what, key);
+        return lv_pk_fail(c, map, "%s: missing required key '%s'", what, key);
     if (lv_yaml_is_null(v))
-        return perr(c, v, "%s: '%s' has no value", what, key);
+        return lv_pk_fail(c, v, "%s: '%s' has no value", what, key);
     return LV_OK;
 }
 
@@ -154,72 +262,72 @@ static int is_nonfinite_word(const char *s)
 }
 
 /* A finite number written as a plain scalar. */
-static lv_status get_num(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+lv_status lv_pk_num(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                          double *out)
 {
     char buf[64];
     if (v->kind != LV_YNODE_SCALAR || !v->plain || lv_yaml_is_null(v))
-        return perr(c, v, "%s: %s: number expected, found %s", what, key,
+        return lv_pk_fail(c, v, "%s: %s: number expected, found %s", what, key,
                     describe(v, buf, sizeof buf));
     if (is_nonfinite_word(v->text))
-        return perr(c, v, "%s: %s: non-finite number '%s'", what, key, v->text);
+        return lv_pk_fail(c, v, "%s: %s: non-finite number '%s'", what, key, v->text);
     char *end = NULL;
     errno = 0;
     const double x = strtod(v->text, &end);
     if (end == v->text || *end != '\0' || end != v->text + v->len)
-        return perr(c, v, "%s: %s: number expected, found %s", what, key,
+        return lv_pk_fail(c, v, "%s: %s: number expected, found %s", what, key,
                     describe(v, buf, sizeof buf));
     if (!isfinite(x) || (errno == ERANGE && fabs(x) > 1.0))
-        return perr(c, v, "%s: %s: non-finite number '%.40s'", what, key, v->text);
+        return lv_pk_fail(c, v, "%s: %s: non-finite number '%.40s'", what, key, v->text);
     *out = x;
     return LV_OK;
 }
 
-static lv_status get_int(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+static lv_status get_int(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                          int min, int *out)
 {
     double x;
-    lv_status st = get_num(c, v, what, key, &x);
+    lv_status st = lv_pk_num(c, v, what, key, &x);
     if (st != LV_OK)
         return st;
     if (x != floor(x) || x < (double)min || x > (double)INT_MAX)
-        return perr(c, v, "%s: %s: an integer >= %d expected, found %.40s", what, key, min,
+        return lv_pk_fail(c, v, "%s: %s: an integer >= %d expected, found %.40s", what, key, min,
                     v->text);
     *out = (int)x;
     return LV_OK;
 }
 
 /* A non-empty string (plain or quoted scalar) without NUL characters; *out borrows v. */
-static lv_status get_text(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+lv_status lv_pk_text(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                           const char **out)
 {
     char buf[64];
     if (v->kind != LV_YNODE_SCALAR || lv_yaml_is_null(v) || v->len == 0)
-        return perr(c, v, "%s: %s: a name or text expected, found %s", what, key,
+        return lv_pk_fail(c, v, "%s: %s: a name or text expected, found %s", what, key,
                     describe(v, buf, sizeof buf));
     if (strlen(v->text) != v->len)
-        return perr(c, v, "%s: %s: contains a NUL character", what, key);
+        return lv_pk_fail(c, v, "%s: %s: contains a NUL character", what, key);
     *out = v->text;
     return LV_OK;
 }
 
-static lv_status get_str(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+static lv_status get_str(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                          char **out)
 {
     const char *s;
-    lv_status st = get_text(c, v, what, key, &s);
+    lv_status st = lv_pk_text(c, v, what, key, &s);
     if (st != LV_OK)
         return st;
     *out = dup_text(s);
-    return *out != NULL ? LV_OK : nomem(c);
+    return *out != NULL ? LV_OK : lv_pk_nomem(c);
 }
 
 /* One of `allowed` (NULL-terminated); *idx is its index. */
-static lv_status get_enum(const pctx *c, const lv_ynode *v, const char *what, const char *key,
+lv_status lv_pk_enum(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                           const char *const *allowed, size_t *idx)
 {
     const char *s;
-    lv_status st = get_text(c, v, what, key, &s);
+    lv_status st = lv_pk_text(c, v, what, key, &s);
     if (st != LV_OK)
         return st;
     char list[160] = "";
@@ -238,7 +346,7 @@ static lv_status get_enum(const pctx *c, const lv_ynode *v, const char *what, co
     }
     char hint[192];
     lv_suggest_text(&sug, hint, sizeof hint);
-    return perr(c, v, "%s: %s: unknown value '%.40s'%s (expected one of: %s)", what, key, s,
+    return lv_pk_fail(c, v, "%s: %s: unknown value '%.40s'%s (expected one of: %s)", what, key, s,
                 hint, list);
 }
 
@@ -256,24 +364,24 @@ static int valid_name(const char *s, int allow_dot)
     return n > 0 && n <= LV_NAME_MAX;
 }
 
-static lv_status get_name(const pctx *c, const lv_ynode *v, const char *what, int allow_dot,
+static lv_status get_name(const lv_pctx *c, const lv_ynode *v, const char *what, int allow_dot,
                           char **out)
 {
     const char *s;
-    lv_status st = get_text(c, v, what, "name", &s);
+    lv_status st = lv_pk_text(c, v, what, "name", &s);
     if (st != LV_OK)
         return st;
     if (!valid_name(s, allow_dot))
-        return perr(c, v, "%s: name '%.40s' must be 1 to %d letters, digits, '_' or '-'%s", what,
+        return lv_pk_fail(c, v, "%s: name '%.40s' must be 1 to %d letters, digits, '_' or '-'%s", what,
                     s, LV_NAME_MAX, allow_dot ? " or '.'" : "");
     *out = dup_text(s);
-    return *out != NULL ? LV_OK : nomem(c);
+    return *out != NULL ? LV_OK : lv_pk_nomem(c);
 }
 
 /* "stage 'stage1'" when the item has a usable name, else "stage #2" (1-based). */
 static void label(const lv_ynode *item, const char *kind, size_t k, char *buf, size_t cap)
 {
-    const lv_ynode *nm = map_get(item, "name");
+    const lv_ynode *nm = lv_pk_get(item, "name");
     if (nm != NULL && nm->kind == LV_YNODE_SCALAR && nm->len > 0 && !lv_yaml_is_null(nm) &&
         strlen(nm->text) == nm->len && nm->len <= LV_NAME_MAX)
         snprintf(buf, cap, "%s '%s'", kind, nm->text);
@@ -292,23 +400,23 @@ static lv_src_loc loc_of(const lv_ynode *n)
 static char *resolve_path(const char *dir, const char *rel);
 
 /* {<file_key>: path, var: name} of a table read later by its model (atmosphere, wind). */
-static lv_status table_file(const pctx *c, const lv_ynode *n, const char *what,
+static lv_status table_file(const lv_pctx *c, const lv_ynode *n, const char *what,
                             const char *file_key, char **file, char **var)
 {
     const lv_ynode *v;
     const char *rel;
     lv_status st;
-    if ((st = need(c, n, what, file_key, &v)) != LV_OK ||
-        (st = get_text(c, v, what, file_key, &rel)) != LV_OK)
+    if ((st = lv_pk_need(c, n, what, file_key, &v)) != LV_OK ||
+        (st = lv_pk_text(c, v, what, file_key, &rel)) != LV_OK)
         return st;
     if ((*file = resolve_path(c->m->dir, rel)) == NULL)
-        return nomem(c);
-    if ((v = map_get(n, "var")) != NULL && (st = get_str(c, v, what, "var", var)) != LV_OK)
+        return lv_pk_nomem(c);
+    if ((v = lv_pk_get(n, "var")) != NULL && (st = get_str(c, v, what, "var", var)) != LV_OK)
         return st;
     return LV_OK;
 }
 
-static lv_status parse_env(const pctx *c, const lv_ynode *n)
+static lv_status parse_env(const lv_pctx *c, const lv_ynode *n)
 {
     static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere",
                                         "wind", "site_lat_deg", "site_lon_deg", NULL };
@@ -323,12 +431,12 @@ static lv_status parse_env(const pctx *c, const lv_ynode *n)
 
     e->world = LV_WORLD_FLAT;
     if (n != NULL && !lv_yaml_is_null(n)) {
-        st = check_map(c, n, what, keys);
+        st = lv_pk_check_map(c, n, what, keys);
         if (st != LV_OK)
             return st;
         e->loc = loc_of(n);
-        if ((v = map_get(n, "world")) != NULL) {
-            st = get_enum(c, v, what, "world", worlds, &i);
+        if ((v = lv_pk_get(n, "world")) != NULL) {
+            st = lv_pk_enum(c, v, what, "world", worlds, &i);
             if (st != LV_OK)
                 return st;
             e->world = i == 0 ? LV_WORLD_FLAT : LV_WORLD_PLANET;
@@ -338,87 +446,88 @@ static lv_status parse_env(const pctx *c, const lv_ynode *n)
     }
     const int flat = e->world == LV_WORLD_FLAT;
 
-    e->g = flat ? 9.81 : 0.0;
-    if ((v = map_get(n, "g")) != NULL) {
+    e->g = LV_NO_SLOT;
+    if ((v = lv_pk_get(n, "g")) != NULL) {
         if (!flat)
-            return perr(c, map_key(n, "g"), "%s: 'g' applies to world: flat only (a planet "
+            return lv_pk_fail(c, lv_pk_key(n, "g"), "%s: 'g' applies to world: flat only (a planet "
                         "world takes its gravity from 'planet' and 'gravity')", what);
-        st = get_num(c, v, what, "g", &e->g);
-        if (st != LV_OK)
+        if ((st = lv_pk_slot(c, v, what, "g", "environment.g", "m/s^2", LV_RANGE_POS, 0,
+                             &e->g)) != LV_OK)
             return st;
-        if (!(e->g > 0.0))
-            return perr(c, v, "%s: g must be > 0 m/s^2, found %g", what, e->g);
+    } else if (flat && (st = lv_pk_slot_default(c, "environment.g", "m/s^2", 9.81, LV_RANGE_POS,
+                                                &e->g)) != LV_OK) {
+        return st;
     }
     /* Where the flat world's origin lies on the Earth, for maps and the globe view. */
     const char *skeys[] = { "site_lat_deg", "site_lon_deg" };
     double *sval[] = { &e->site_lat, &e->site_lon };
     for (size_t k = 0; k < 2; k++) {
-        if ((v = map_get(n, skeys[k])) == NULL)
+        if ((v = lv_pk_get(n, skeys[k])) == NULL)
             continue;
         if (!flat)
-            return perr(c, map_key(n, skeys[k]), "%s: '%s' applies to world: flat only (a "
+            return lv_pk_fail(c, lv_pk_key(n, skeys[k]), "%s: '%s' applies to world: flat only (a "
                         "planet world starts at the parameters start_lat, start_lon)", what,
                         skeys[k]);
-        if ((st = get_num(c, v, what, skeys[k], sval[k])) != LV_OK)
+        if ((st = lv_pk_num(c, v, what, skeys[k], sval[k])) != LV_OK)
             return st;
         if (fabs(*sval[k]) > (k == 0 ? 90.0 : 360.0))
-            return perr(c, v, "%s: %s = %g is out of range", what, skeys[k], *sval[k]);
+            return lv_pk_fail(c, v, "%s: %s = %g is out of range", what, skeys[k], *sval[k]);
         *sval[k] *= LV_DEG;
     }
     const char *pkeys[] = { "planet", "gravity" };
     for (size_t k = 0; k < 2; k++)
-        if (flat && map_get(n, pkeys[k]) != NULL)
-            return perr(c, map_key(n, pkeys[k]), "%s: '%s' applies to world: planet only",
+        if (flat && lv_pk_get(n, pkeys[k]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, pkeys[k]), "%s: '%s' applies to world: planet only",
                         what, pkeys[k]);
 
     if (!flat) {
         i = 0;
-        if ((v = map_get(n, "planet")) != NULL && (st = get_enum(c, v, what, "planet", planets,
+        if ((v = lv_pk_get(n, "planet")) != NULL && (st = lv_pk_enum(c, v, what, "planet", planets,
                                                                  &i)) != LV_OK)
             return st;
         e->planet = dup_text(planets[i]);
-        if ((v = map_get(n, "gravity")) != NULL) {
+        if ((v = lv_pk_get(n, "gravity")) != NULL) {
             if ((st = get_str(c, v, what, "gravity", &e->gravity)) != LV_OK)
                 return st;
         } else {
             e->gravity = dup_text("j2");
         }
         if (e->planet == NULL || e->gravity == NULL)
-            return nomem(c);
+            return lv_pk_nomem(c);
     }
     /* US76 is an Earth atmosphere: other planets have none unless the file asks. */
     i = (!flat && strcmp(e->planet, "earth") == 0) ? 0 : 2;
-    v = map_get(n, "atmosphere");
+    v = lv_pk_get(n, "atmosphere");
     if (v != NULL && v->kind == LV_YNODE_MAP) { /* {table: path, var: name}: from a file */
         static const char *const tkeys[] = { "table", "var", NULL };
-        if ((st = check_map(c, v, "environment, atmosphere", tkeys)) != LV_OK ||
+        if ((st = lv_pk_check_map(c, v, "environment, atmosphere", tkeys)) != LV_OK ||
             (st = table_file(c, v, "environment, atmosphere", "table", &e->atmo_file,
                              &e->atmo_var)) != LV_OK)
             return st;
         e->atmosphere = dup_text("table");
     } else {
-        if (v != NULL && (st = get_enum(c, v, what, "atmosphere", atmos, &i)) != LV_OK)
+        if (v != NULL && (st = lv_pk_enum(c, v, what, "atmosphere", atmos, &i)) != LV_OK)
             return st;
         e->atmosphere = dup_text(atmos[i]);
     }
     if (e->atmosphere == NULL)
-        return nomem(c);
+        return lv_pk_nomem(c);
     /* wind: a table of north/east(/down) components over altitude (docs/wind.md) */
-    if ((v = map_get(n, "wind")) != NULL) {
+    if ((v = lv_pk_get(n, "wind")) != NULL) {
         if (flat)
-            return perr(c, map_key(n, "wind"), "%s: 'wind' applies to world: planet only", what);
+            return lv_pk_fail(c, lv_pk_key(n, "wind"), "%s: 'wind' applies to world: planet only", what);
         if (v->kind == LV_YNODE_MAP) {
             static const char *const wkeys[] = { "file", "var", NULL };
-            if ((st = check_map(c, v, "environment, wind", wkeys)) != LV_OK ||
+            if ((st = lv_pk_check_map(c, v, "environment, wind", wkeys)) != LV_OK ||
                 (st = table_file(c, v, "environment, wind", "file", &e->wind_file,
                                  &e->wind_var)) != LV_OK)
                 return st;
         } else {
             const char *rel;
-            if ((st = get_text(c, v, what, "wind", &rel)) != LV_OK)
+            if ((st = lv_pk_text(c, v, what, "wind", &rel)) != LV_OK)
                 return st;
             if ((e->wind_file = resolve_path(c->m->dir, rel)) == NULL)
-                return nomem(c);
+                return lv_pk_nomem(c);
         }
         e->wind_loc = loc_of(v);
     }
@@ -458,12 +567,12 @@ static char *file_stem(const char *path)
 }
 
 /* Outputs "thrust" and "mdot" by name, or a .mat matrix [t, thrust, mdot] (col2, col3). */
-static lv_status table_outputs(const pctx *c, const lv_ynode *key, const char *what,
+static lv_status table_outputs(const lv_pctx *c, const lv_ynode *key, const char *what,
                                lv_engine_def *e)
 {
     const lv_table *t = e->table;
     if (lv_table_n_dims(t) != 1)
-        return perr(c, key, "%s: table '%s' has %zu axes; an engine table has one (time, s)",
+        return lv_pk_fail(c, key, "%s: table '%s' has %zu axes; an engine table has one (time, s)",
                     what, e->table_file, lv_table_n_dims(t));
     const size_t no = lv_table_n_out(t);
     if (lv_table_out_index(t, "thrust", &e->thrust_out, NULL) == LV_OK &&
@@ -480,13 +589,13 @@ static lv_status table_outputs(const pctx *c, const lv_ynode *key, const char *w
     for (size_t k = 0; k < no && used < sizeof have; k++)
         used += (size_t)snprintf(have + used, sizeof have - used, "%s'%.30s'", k ? ", " : "",
                                  lv_table_out_name(t, k));
-    return perr(c, key, "%s: table '%s' needs outputs 'thrust' [N] and 'mdot' [kg/s] (a .mat "
+    return lv_pk_fail(c, key, "%s: table '%s' needs outputs 'thrust' [N] and 'mdot' [kg/s] (a .mat "
                 "matrix: columns t, thrust, mdot); it has %s", what, e->table_file, have);
 }
 
 /* A table given as `path` or {file, var, interp, extrap}: loaded into *tab; the resolved
  * path and .mat variable go to *file and *var. `extrap_default` applies when not given. */
-static lv_status parse_table_ref(const pctx *c, const lv_ynode *key, const lv_ynode *v,
+lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                                  const char *what, lv_extrap extrap_default, char **file_out,
                                  char **var_out, lv_table **tab)
 {
@@ -500,44 +609,44 @@ static lv_status parse_table_ref(const pctx *c, const lv_ynode *key, const lv_yn
     lv_status st;
 
     if (v->kind == LV_YNODE_MAP) {
-        st = check_map(c, v, what, keys);
+        st = lv_pk_check_map(c, v, what, keys);
         if (st == LV_OK)
-            st = need(c, v, what, "file", &file);
+            st = lv_pk_need(c, v, what, "file", &file);
         if (st != LV_OK)
             return st;
         const lv_ynode *o;
         size_t i;
-        if ((o = map_get(v, "var")) != NULL &&
+        if ((o = lv_pk_get(v, "var")) != NULL &&
             (st = get_str(c, o, what, "var", var_out)) != LV_OK)
             return st;
-        if ((o = map_get(v, "interp")) != NULL) {
-            if ((st = get_enum(c, o, what, "interp", interps, &i)) != LV_OK)
+        if ((o = lv_pk_get(v, "interp")) != NULL) {
+            if ((st = lv_pk_enum(c, o, what, "interp", interps, &i)) != LV_OK)
                 return st;
             opts.interp = i == 0 ? LV_INTERP_LINEAR : LV_INTERP_PCHIP;
         }
-        if ((o = map_get(v, "extrap")) != NULL) {
-            if ((st = get_enum(c, o, what, "extrap", extraps, &i)) != LV_OK)
+        if ((o = lv_pk_get(v, "extrap")) != NULL) {
+            if ((st = lv_pk_enum(c, o, what, "extrap", extraps, &i)) != LV_OK)
                 return st;
             opts.extrap = extrap_of[i];
         }
         at = file;
     }
-    st = get_text(c, file, what, "table", &rel);
+    st = lv_pk_text(c, file, what, "table", &rel);
     if (st != LV_OK)
         return st;
     *file_out = resolve_path(c->m->dir, rel);
     if (*var_out == NULL && lv_table_path_is_mat(rel))
         *var_out = file_stem(rel);
     if (*file_out == NULL || (lv_table_path_is_mat(rel) && *var_out == NULL))
-        return nomem(c);
+        return lv_pk_nomem(c);
 
     /* Only regular files: a device or a FIFO could block the parser forever. */
     struct stat sb;
     if (stat(*file_out, &sb) != 0)
-        return perr(c, at, "%s: table: cannot read '%s': %s", what, *file_out,
+        return lv_pk_fail(c, at, "%s: table: cannot read '%s': %s", what, *file_out,
                     errno == ENOENT ? "no such file" : "cannot access the file");
     if (!S_ISREG(sb.st_mode))
-        return perr(c, at, "%s: table: '%s' is not a regular file", what, *file_out);
+        return lv_pk_fail(c, at, "%s: table: '%s' is not a regular file", what, *file_out);
 
     if (*var_out != NULL)
         st = lv_table_load_mat(*file_out, *var_out, &opts, tab, c->err);
@@ -549,17 +658,17 @@ static lv_status parse_table_ref(const pctx *c, const lv_ynode *key, const lv_yn
     return LV_OK;
 }
 
-static lv_status parse_table(const pctx *c, const lv_ynode *key, const lv_ynode *v,
+static lv_status parse_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                              const char *what, lv_engine_def *e)
 {
-    lv_status st = parse_table_ref(c, key, v, what, LV_EXTRAP_CLAMP, &e->table_file,
+    lv_status st = lv_pk_table(c, key, v, what, LV_EXTRAP_CLAMP, &e->table_file,
                                    &e->table_var, &e->table);
     return st != LV_OK ? st : table_outputs(c, key, what, e);
 }
 
 /* ---- stages and engines --------------------------------------------------------------- */
 
-static lv_status parse_engine(const pctx *c, const lv_ynode *n, const char *stage, size_t k,
+static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *stage, size_t k,
                               lv_engine_def *e)
 {
     static const char *const keys[] = { "name", "table", "thrust_vac", "isp_vac", "mdot",
@@ -571,109 +680,111 @@ static lv_status parse_engine(const pctx *c, const lv_ynode *n, const char *stag
 
     label(n, "engine", k, eng, sizeof eng);
     snprintf(what, sizeof what, "stage '%s', %s", stage, eng);
-    st = check_map(c, n, what, keys);
+    st = lv_pk_check_map(c, n, what, keys);
     if (st != LV_OK)
         return st;
     e->loc = loc_of(n);
     e->count = 1;
-    if ((v = map_get(n, "name")) != NULL) {
+    if ((v = lv_pk_get(n, "name")) != NULL) {
         st = get_name(c, v, what, 1, &e->name);
     } else {
         char def[LV_NAME_MAX + 32];
         snprintf(def, sizeof def, "%s.e%zu", stage, k + 1);
         e->name = dup_text(def);
-        st = e->name != NULL ? LV_OK : nomem(c);
+        st = e->name != NULL ? LV_OK : lv_pk_nomem(c);
     }
     if (st != LV_OK)
         return st;
 
-    const lv_ynode *table = map_get(n, "table");
+    const lv_ynode *table = lv_pk_get(n, "table");
     for (size_t i = 0; i < 3; i++)
-        if (table != NULL && map_get(n, constant[i]) != NULL)
-            return perr(c, map_key(n, constant[i]), "%s: give either 'table' or constant data "
+        if (table != NULL && lv_pk_get(n, constant[i]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, constant[i]), "%s: give either 'table' or constant data "
                         "(thrust_vac with isp_vac or mdot), not both", what);
-    if (table == NULL && map_get(n, "thrust_vac") == NULL && map_get(n, "isp_vac") == NULL &&
-        map_get(n, "mdot") == NULL)
-        return perr(c, n, "%s: needs either 'table' or 'thrust_vac' with 'isp_vac' or 'mdot'",
+    if (table == NULL && lv_pk_get(n, "thrust_vac") == NULL && lv_pk_get(n, "isp_vac") == NULL &&
+        lv_pk_get(n, "mdot") == NULL)
+        return lv_pk_fail(c, n, "%s: needs either 'table' or 'thrust_vac' with 'isp_vac' or 'mdot'",
                     what);
+    char slot[2 * LV_NAME_MAX + 32];
+    e->thrust_vac = e->isp_vac = e->mdot = LV_NO_SLOT;
     if (table == NULL) {
-        if ((st = need(c, n, what, "thrust_vac", &v)) != LV_OK ||
-            (st = get_num(c, v, what, "thrust_vac", &e->thrust_vac)) != LV_OK)
+        snprintf(slot, sizeof slot, "%s.thrust_vac", e->name);
+        if ((st = lv_pk_need(c, n, what, "thrust_vac", &v)) != LV_OK ||
+            (st = lv_pk_slot(c, v, what, "thrust_vac", slot, "N", LV_RANGE_POS, 0,
+                             &e->thrust_vac)) != LV_OK)
             return st;
-        if (!(e->thrust_vac > 0.0))
-            return perr(c, v, "%s: thrust_vac must be > 0 N, found %g", what, e->thrust_vac);
-        const lv_ynode *isp = map_get(n, "isp_vac"), *mdot = map_get(n, "mdot");
+        const lv_ynode *isp = lv_pk_get(n, "isp_vac"), *mdot = lv_pk_get(n, "mdot");
         if (isp != NULL && mdot != NULL)
-            return perr(c, map_key(n, isp->line > mdot->line ||
+            return lv_pk_fail(c, lv_pk_key(n, isp->line > mdot->line ||
                                            (isp->line == mdot->line && isp->col > mdot->col)
                                        ? "isp_vac" : "mdot"),
                         "%s: give exactly one of 'isp_vac' and 'mdot', not both", what);
         if (isp == NULL && mdot == NULL)
-            return perr(c, n, "%s: a constant engine needs 'isp_vac' [s] or 'mdot' [kg/s]",
+            return lv_pk_fail(c, n, "%s: a constant engine needs 'isp_vac' [s] or 'mdot' [kg/s]",
                         what);
-        if (isp != NULL) {
-            if ((st = get_num(c, isp, what, "isp_vac", &e->isp_vac)) != LV_OK)
-                return st;
-            if (!(e->isp_vac > 0.0))
-                return perr(c, isp, "%s: isp_vac must be > 0 s, found %g", what, e->isp_vac);
-        } else {
-            if ((st = get_num(c, mdot, what, "mdot", &e->mdot)) != LV_OK)
-                return st;
-            if (!(e->mdot > 0.0))
-                return perr(c, mdot, "%s: mdot must be > 0 kg/s, found %g", what, e->mdot);
-        }
-    }
-    if ((v = map_get(n, "exit_area")) != NULL) {
-        if ((st = get_num(c, v, what, "exit_area", &e->exit_area)) != LV_OK)
+        snprintf(slot, sizeof slot, "%s.%s", e->name, isp != NULL ? "isp_vac" : "mdot");
+        if (isp != NULL)
+            st = lv_pk_slot(c, isp, what, "isp_vac", slot, "s", LV_RANGE_POS, 0, &e->isp_vac);
+        else
+            st = lv_pk_slot(c, mdot, what, "mdot", slot, "kg/s", LV_RANGE_POS, 0, &e->mdot);
+        if (st != LV_OK)
             return st;
-        if (e->exit_area < 0.0)
-            return perr(c, v, "%s: exit_area must be >= 0 m^2, found %g", what, e->exit_area);
     }
-    if ((v = map_get(n, "count")) != NULL && (st = get_int(c, v, what, "count", 1, &e->count))
+    snprintf(slot, sizeof slot, "%s.exit_area", e->name);
+    if ((v = lv_pk_get(n, "exit_area")) != NULL)
+        st = lv_pk_slot(c, v, what, "exit_area", slot, "m^2", LV_RANGE_NONNEG, 0, &e->exit_area);
+    else
+        st = lv_pk_slot_default(c, slot, "m^2", 0.0, LV_RANGE_NONNEG, &e->exit_area);
+    if (st != LV_OK)
+        return st;
+    if ((v = lv_pk_get(n, "count")) != NULL && (st = get_int(c, v, what, "count", 1, &e->count))
                                                  != LV_OK)
         return st;
     if (table != NULL)
-        return parse_table(c, map_key(n, "table"), table, what, e);
+        return parse_table(c, lv_pk_key(n, "table"), table, what, e);
     return LV_OK;
 }
 
-static lv_status parse_stage(const pctx *c, const lv_ynode *n, size_t k, lv_stage_def *s)
+static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)
 {
     static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines", NULL };
-    char what[LV_WHAT_MAX], buf[64];
+    char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
     lv_status st;
+    lv_pctx sc = *pc; /* the stage owns its slots and its engines' */
+    sc.owner = LV_OWN_STAGE;
+    sc.owner_index = k;
+    const lv_pctx *c = &sc;
 
     label(n, "stage", k, what, sizeof what);
-    if ((st = check_map(c, n, what, keys)) != LV_OK)
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
         return st;
     s->loc = loc_of(n);
-    if ((st = need(c, n, what, "name", &v)) != LV_OK ||
+    if ((st = lv_pk_need(c, n, what, "name", &v)) != LV_OK ||
         (st = get_name(c, v, what, 0, &s->name)) != LV_OK)
         return st;
-    if ((st = need(c, n, what, "dry_mass", &v)) != LV_OK ||
-        (st = get_num(c, v, what, "dry_mass", &s->dry_mass)) != LV_OK)
+    snprintf(slot, sizeof slot, "%s.dry_mass", s->name);
+    if ((st = lv_pk_need(c, n, what, "dry_mass", &v)) != LV_OK ||
+        (st = lv_pk_slot(c, v, what, "dry_mass", slot, "kg", LV_RANGE_NONNEG, 0, &s->dry_mass)) !=
+            LV_OK)
         return st;
-    if (s->dry_mass < 0.0)
-        return perr(c, v, "%s: dry_mass must be >= 0 kg, found %g", what, s->dry_mass);
-    if ((st = need(c, n, what, "propellant_mass", &v)) != LV_OK ||
-        (st = get_num(c, v, what, "propellant_mass", &s->propellant_mass)) != LV_OK)
+    snprintf(slot, sizeof slot, "%s.propellant_mass", s->name);
+    if ((st = lv_pk_need(c, n, what, "propellant_mass", &v)) != LV_OK ||
+        (st = lv_pk_slot(c, v, what, "propellant_mass", slot, "kg", LV_RANGE_NONNEG, 0,
+                         &s->propellant_mass)) != LV_OK)
         return st;
-    if (s->propellant_mass < 0.0)
-        return perr(c, v, "%s: propellant_mass must be >= 0 kg, found %g", what,
-                    s->propellant_mass);
 
-    v = map_get(n, "engines");
+    v = lv_pk_get(n, "engines");
     if (v == NULL || lv_yaml_is_null(v))
         return LV_OK;
     if (v->kind != LV_YNODE_SEQ)
-        return perr(c, v, "%s: engines: a list expected, found %s", what,
+        return lv_pk_fail(c, v, "%s: engines: a list expected, found %s", what,
                     describe(v, buf, sizeof buf));
     if (v->n == 0)
         return LV_OK;
     s->engines = calloc(v->n, sizeof *s->engines);
     if (s->engines == NULL)
-        return nomem(c);
+        return lv_pk_nomem(c);
     s->n_engines = v->n;
     for (size_t i = 0; i < v->n; i++)
         if ((st = parse_engine(c, v->kids[i], s->name, i, &s->engines[i])) != LV_OK)
@@ -681,25 +792,25 @@ static lv_status parse_stage(const pctx *c, const lv_ynode *n, size_t k, lv_stag
     return LV_OK;
 }
 
-static lv_status parse_stages(const pctx *c, const lv_ynode *n)
+static lv_status parse_stages(const lv_pctx *c, const lv_ynode *n)
 {
     lv_mission_def *m = c->m;
     char buf[64];
     lv_status st;
 
     if (n->kind != LV_YNODE_SEQ || n->n == 0)
-        return perr(c, n, "stages: a list of at least one stage expected, found %s",
+        return lv_pk_fail(c, n, "stages: a list of at least one stage expected, found %s",
                     n->kind == LV_YNODE_SEQ ? "an empty list" : describe(n, buf, sizeof buf));
     m->stages = calloc(n->n, sizeof *m->stages);
     if (m->stages == NULL)
-        return nomem(c);
+        return lv_pk_nomem(c);
     m->n_stages = n->n;
     for (size_t i = 0; i < n->n; i++) {
         if ((st = parse_stage(c, n->kids[i], i, &m->stages[i])) != LV_OK)
             return st;
         for (size_t j = 0; j < i; j++)
             if (strcmp(m->stages[j].name, m->stages[i].name) == 0)
-                return perr(c, map_get(n->kids[i], "name"), "stage '%s': duplicate stage name "
+                return lv_pk_fail(c, lv_pk_get(n->kids[i], "name"), "stage '%s': duplicate stage name "
                             "(first at line %d)", m->stages[i].name, m->stages[j].loc.line);
     }
     /* Engine names are unique in the whole mission: outputs are named after them. */
@@ -709,8 +820,8 @@ static lv_status parse_stages(const pctx *c, const lv_ynode *n)
                 for (size_t b = 0; b < (j == i ? a : m->stages[j].n_engines); b++)
                     if (strcmp(m->stages[i].engines[a].name, m->stages[j].engines[b].name) == 0) {
                         const lv_ynode *en = n->kids[i];
-                        const lv_ynode *at = map_get(map_get(en, "engines")->kids[a], "name");
-                        return perr(c, at != NULL ? at : map_get(en, "engines")->kids[a],
+                        const lv_ynode *at = lv_pk_get(lv_pk_get(en, "engines")->kids[a], "name");
+                        return lv_pk_fail(c, at != NULL ? at : lv_pk_get(en, "engines")->kids[a],
                                     "stage '%s': duplicate engine name '%s' (first at line %d)",
                                     m->stages[i].name, m->stages[i].engines[a].name,
                                     m->stages[j].engines[b].loc.line);
@@ -720,23 +831,21 @@ static lv_status parse_stages(const pctx *c, const lv_ynode *n)
 
 /* ---- the parameter set (userPar) ------------------------------------------------------ */
 
-static const char *const param_known[] = {
-    "start_lat", "start_lon", "start_h", "start_vel", "start_fpa", "start_chi", "start_psi",
-    "start_theta", "start_phi", "start_p", "start_q", "start_r", "start_x", "start_y",
-    "start_z", NULL
-};
-/* Angles (rad) and angular rates (rad/s): these alone may be written as *_deg. */
-static const char *const param_angular[] = {
-    "start_lat", "start_lon", "start_fpa", "start_chi", "start_psi", "start_theta",
-    "start_phi", "start_p", "start_q", "start_r", NULL
-};
-
-static int in_list(const char *const *list, const char *s)
+/* The shared parameter set: the parameters of the registered model types that a root phase
+ * takes from the mission (phase_type.h), e.g. start_lat [rad], start_h [m]. */
+static const lv_var *mission_param(const char *name)
 {
-    for (size_t i = 0; list[i] != NULL; i++)
-        if (strcmp(list[i], s) == 0)
-            return 1;
-    return 0;
+    for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++)
+        for (size_t i = 0; i < (*t)->n_mission_params; i++)
+            if (strcmp((*t)->mission_params[i].name, name) == 0)
+                return &(*t)->mission_params[i];
+    return NULL;
+}
+
+/* Angles (rad) and angular rates (rad/s): these alone may be written as *_deg. */
+static int is_angular(const char *unit)
+{
+    return strcmp(unit, "rad") == 0 || strcmp(unit, "rad/s") == 0;
 }
 
 /* Copies `key` without a trailing "_deg" into buf; returns 1 if it had one. */
@@ -753,15 +862,18 @@ static int strip_deg(const char *key, char *buf, size_t cap)
     return deg;
 }
 
-static lv_status parse_params(const pctx *c, const lv_ynode *n)
+static lv_status parse_params(const lv_pctx *pc, const lv_ynode *n)
 {
-    lv_mission_def *m = c->m;
+    lv_mission_def *m = pc->m;
     const char *what = "parameters";
     lv_status st;
+    lv_pctx sc = *pc;
+    sc.owner = LV_OWN_PARAM;
+    const lv_pctx *c = &sc;
 
     if (n == NULL || lv_yaml_is_null(n))
         return LV_OK;
-    if ((st = check_map(c, n, what, NULL)) != LV_OK)
+    if ((st = lv_pk_check_map(c, n, what, NULL)) != LV_OK)
         return st;
     const size_t np = n->n / 2;
     if (np == 0)
@@ -769,47 +881,84 @@ static lv_status parse_params(const pctx *c, const lv_ynode *n)
     m->param_names = calloc(np, sizeof *m->param_names);
     m->param_values = calloc(np, sizeof *m->param_values);
     if (m->param_names == NULL || m->param_values == NULL)
-        return nomem(c);
-    m->n_params = np;
+        return lv_pk_nomem(c);
     for (size_t i = 0; i < np; i++) {
         const lv_ynode *k = n->kids[2 * i], *v = n->kids[2 * i + 1];
         char base[LV_NAME_MAX + 1];
         const int deg = strip_deg(k->text, base, sizeof base);
-        if (k->len > LV_NAME_MAX || !in_list(param_known, base)) {
+        const lv_var *pv = k->len > LV_NAME_MAX ? NULL : mission_param(base);
+        if (pv == NULL) {
             lv_suggest s;
-            char hint[192];
+            char hint[192], degs[64][LV_NAME_MAX + 8];
+            size_t nd = 0;
             lv_suggest_init(&s, k->text);
-            for (size_t j = 0; param_known[j] != NULL; j++)
-                lv_suggest_add(&s, param_known[j]);
-            char degs[sizeof param_angular / sizeof param_angular[0]][24];
-            for (size_t j = 0; param_angular[j] != NULL; j++) {
-                snprintf(degs[j], sizeof degs[j], "%s_deg", param_angular[j]);
-                lv_suggest_add(&s, degs[j]);
-            }
+            for (int pass = 0; pass < 2; pass++) /* the names, then the angles' _deg forms */
+                for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++)
+                    for (size_t j = 0; j < (*t)->n_mission_params; j++) {
+                        const lv_var *q = &(*t)->mission_params[j];
+                        if (mission_param(q->name) != q)
+                            continue; /* named by an earlier type already */
+                        if (pass == 0)
+                            lv_suggest_add(&s, q->name);
+                        else if (is_angular(q->unit) && nd < 64) {
+                            snprintf(degs[nd], sizeof degs[nd], "%s_deg", q->name);
+                            lv_suggest_add(&s, degs[nd++]);
+                        }
+                    }
             lv_suggest_text(&s, hint, sizeof hint);
-            return perr(c, k, "%s: unknown parameter '%.60s'%s", what, k->text, hint);
+            return lv_pk_fail(c, k, "%s: unknown parameter '%.60s'%s", what, k->text, hint);
         }
-        if (deg && !in_list(param_angular, base))
-            return perr(c, k, "%s: '%s' is not an angle: write '%s' in SI units (m, m/s) "
+        if (deg && !is_angular(pv->unit))
+            return lv_pk_fail(c, k, "%s: '%s' is not an angle: write '%s' in SI units (m, m/s) "
                         "without _deg", what, k->text, base);
         for (size_t j = 0; j < i; j++)
             if (strcmp(m->param_names[j], base) == 0)
-                return perr(c, k, "%s: '%s' given twice (as '%s' at line %d)", what, base,
+                return lv_pk_fail(c, k, "%s: '%s' given twice (as '%s' at line %d)", what, base,
                             n->kids[2 * j]->text, n->kids[2 * j]->line);
-        if ((st = get_num(c, v, what, k->text, &m->param_values[i])) != LV_OK)
+        if ((st = lv_pk_slot(c, v, what, k->text, base, pv->unit, LV_RANGE_ANY, deg,
+                             &m->param_values[i])) != LV_OK)
             return st;
-        if (deg)
-            m->param_values[i] *= LV_DEG;
         if ((m->param_names[i] = dup_text(base)) == NULL)
-            return nomem(c);
+            return lv_pk_nomem(c);
+        m->n_params = i + 1;
     }
     return LV_OK;
 }
 
 /* ---- phases --------------------------------------------------------------------------- */
 
-static lv_status parse_end(const pctx *c, const lv_ynode *n, const char *phase, size_t k,
-                           lv_end_def *e)
+static const char *const end_kind_names[] = { "burnout", "altitude", "speed", "apogee",
+                                               "impact" };
+
+const char *lv_end_kind_name(lv_end_kind k)
+{
+    return (unsigned)k < 5 ? end_kind_names[k] : "?";
+}
+
+/* The value of end event #k of phase `phase` (of kind e->kind) at `v` (NULL: the ground, 0 m)
+ * as slot "<phase>.end.<kind>", "_2", "_3" for the second and third of a kind. */
+static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
+                          const char *key, const char *phase, size_t k, const lv_end_def *prev,
+                          lv_end_def *e)
+{
+    char slot[LV_NAME_MAX + 48];
+    size_t same = 0; /* earlier ends of this kind */
+    for (size_t j = 0; j < k; j++)
+        same += prev[j].kind == e->kind;
+    int len = snprintf(slot, sizeof slot, "%s.end.%s", phase, end_kind_names[e->kind]);
+    if (same > 0)
+        snprintf(slot + len, sizeof slot - (size_t)len, "_%zu", same + 1);
+    const char *unit = e->kind == LV_END_SPEED ? "m/s" : "m";
+    if (v == NULL)
+        return lv_pk_slot_default(c, slot, unit, 0.0, LV_RANGE_ANY, &e->value);
+    return lv_pk_slot(c, v, what, key, slot, unit,
+                      e->kind == LV_END_SPEED ? LV_RANGE_NONNEG : LV_RANGE_ANY, 0, &e->value);
+}
+
+/* End event #k of phase `phase`; its value is slot "<phase>.end.<kind>" ("_2", "_3" for the
+ * second and third of a kind). */
+static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phase, size_t k,
+                           const lv_end_def *prev, lv_end_def *e)
 {
     static const char *const words[] = { "burnout", "apogee", "impact", "altitude", "speed",
                                          NULL };
@@ -824,53 +973,50 @@ static lv_status parse_end(const pctx *c, const lv_ynode *n, const char *phase, 
 
     snprintf(what, sizeof what, "phase '%s', end event #%zu", phase, k + 1);
     e->loc = loc_of(n);
+    e->value = LV_NO_SLOT;
     e->direction = LV_DIR_FALLING; /* burnout, apogee and impact: always falling */
     if (n->kind == LV_YNODE_SCALAR) {
-        if ((st = get_enum(c, n, what, "end", words, &i)) != LV_OK)
+        if ((st = lv_pk_enum(c, n, what, "end", words, &i)) != LV_OK)
             return st;
         if (i >= 3)
-            return perr(c, n, "%s: '%s' needs a value: write {%s: <%s>}", what, n->text, n->text,
+            return lv_pk_fail(c, n, "%s: '%s' needs a value: write {%s: <%s>}", what, n->text, n->text,
                         i == 3 ? "m" : "m/s");
         e->kind = i == 0 ? LV_END_BURNOUT : i == 1 ? LV_END_APOGEE : LV_END_IMPACT;
+        if (e->kind == LV_END_IMPACT) /* ground level 0 m */
+            return end_slot(c, NULL, what, NULL, phase, k, prev, e);
         return LV_OK;
     }
     if (n->kind != LV_YNODE_MAP)
-        return perr(c, n, "%s: an event name (burnout, apogee, impact) or a mapping such as "
+        return lv_pk_fail(c, n, "%s: an event name (burnout, apogee, impact) or a mapping such as "
                     "{altitude: 100000} expected, found %s", what, describe(n, buf, sizeof buf));
-    if ((st = check_map(c, n, what, keys)) != LV_OK)
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
         return st;
     const lv_ynode *kind = NULL;
     for (size_t j = 0; j + 1 < n->n; j += 2) {
         if (strcmp(n->kids[j]->text, "direction") == 0)
             continue;
         if (kind != NULL)
-            return perr(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
+            return lv_pk_fail(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
                         "as two entries", what, kind->text, n->kids[j]->text);
         kind = n->kids[j];
     }
     if (kind == NULL)
-        return perr(c, n, "%s: which event? add altitude, speed or impact", what);
-    v = map_get(n, kind->text);
+        return lv_pk_fail(c, n, "%s: which event? add altitude, speed or impact", what);
+    v = lv_pk_get(n, kind->text);
     if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0)
-        return perr(c, kind, "%s: '%s' takes no value: write it as a plain list entry", what,
+        return lv_pk_fail(c, kind, "%s: '%s' takes no value: write it as a plain list entry", what,
                     kind->text);
-    if ((st = get_num(c, v, what, kind->text, &e->value)) != LV_OK)
+    e->kind = strcmp(kind->text, "impact") == 0  ? LV_END_IMPACT
+              : strcmp(kind->text, "speed") == 0 ? LV_END_SPEED
+                                                 : LV_END_ALTITUDE;
+    if ((st = end_slot(c, v, what, kind->text, phase, k, prev, e)) != LV_OK)
         return st;
-    if (strcmp(kind->text, "impact") == 0) {
-        e->kind = LV_END_IMPACT;
-    } else if (strcmp(kind->text, "speed") == 0) {
-        e->kind = LV_END_SPEED;
-        if (e->value < 0.0)
-            return perr(c, v, "%s: speed must be >= 0 m/s, found %g", what, e->value);
-    } else {
-        e->kind = LV_END_ALTITUDE;
-    }
-    if ((v = map_get(n, "direction")) != NULL) {
-        if ((st = get_enum(c, v, what, "direction", dirs, &i)) != LV_OK)
+    if ((v = lv_pk_get(n, "direction")) != NULL) {
+        if ((st = lv_pk_enum(c, v, what, "direction", dirs, &i)) != LV_OK)
             return st;
         if (e->kind == LV_END_IMPACT && dir_of[i] != LV_DIR_FALLING)
-            return perr(c, v, "%s: impact is always falling (altitude decreasing through %g m)",
-                        what, e->value);
+            return lv_pk_fail(c, v, "%s: impact is always falling (altitude decreasing through "
+                              "%g m)", what, lv_mission_def_value(c->m, e->value));
         e->direction = dir_of[i];
     } else if (e->kind != LV_END_IMPACT) {
         e->direction = LV_DIR_BOTH;
@@ -878,145 +1024,59 @@ static lv_status parse_end(const pctx *c, const lv_ynode *n, const char *phase, 
     return LV_OK;
 }
 
-static lv_status parse_integrator(const pctx *c, const lv_ynode *n, const char *phase,
+static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const char *phase,
                                   lv_phase_def *ph)
 {
     static const char *const keys[] = { "method", "tolerance", "intervals", "output_interval",
                                         "fixed_step", NULL };
     static const char *const methods[] = { "dassl", "cvode-adams", "dopri5", "rk4", "euler",
                                            NULL };
-    char what[LV_WHAT_MAX];
+    static const char *const nkeys[3] = { "tolerance", "output_interval", "fixed_step" };
+    static const char *const units[3] = { "", "s", "s" };
+    static const double defaults[3] = { 1e-6, 0.0, 0.0 };
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 48];
     const lv_ynode *v;
     size_t i = 0;
     lv_status st;
 
     snprintf(what, sizeof what, "phase '%s', integrator", phase);
-    ph->tolerance = 1e-6;
     ph->intervals = 500;
     if (n != NULL && lv_yaml_is_null(n))
         n = NULL;
-    if (n != NULL && (st = check_map(c, n, what, keys)) != LV_OK)
+    if (n != NULL && (st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
         return st;
-    if ((v = map_get(n, "method")) != NULL &&
-        (st = get_enum(c, v, what, "method", methods, &i)) != LV_OK)
+    if ((v = lv_pk_get(n, "method")) != NULL &&
+        (st = lv_pk_enum(c, v, what, "method", methods, &i)) != LV_OK)
         return st;
     if ((ph->method = dup_text(methods[i])) == NULL)
-        return nomem(c);
-    if ((v = map_get(n, "tolerance")) != NULL) {
-        if ((st = get_num(c, v, what, "tolerance", &ph->tolerance)) != LV_OK)
+        return lv_pk_nomem(c);
+    lv_slot *out[3] = { &ph->tolerance, &ph->output_interval, &ph->fixed_step };
+    for (int j = 0; j < 3; j++) {
+        snprintf(slot, sizeof slot, "%s.integrator.%s", phase, nkeys[j]);
+        const lv_range r = j == 0 ? LV_RANGE_POS : LV_RANGE_NONNEG;
+        if ((v = lv_pk_get(n, nkeys[j])) != NULL)
+            st = lv_pk_slot(c, v, what, nkeys[j], slot, units[j], r, 0, out[j]);
+        else
+            st = lv_pk_slot_default(c, slot, units[j], defaults[j], r, out[j]);
+        if (st != LV_OK)
             return st;
-        if (!(ph->tolerance > 0.0))
-            return perr(c, v, "%s: tolerance must be > 0, found %g", what, ph->tolerance);
     }
-    if ((v = map_get(n, "output_interval")) != NULL) {
-        if ((st = get_num(c, v, what, "output_interval", &ph->output_interval)) != LV_OK)
-            return st;
-        if (ph->output_interval < 0.0)
-            return perr(c, v, "%s: output_interval must be >= 0 s, found %g", what,
-                        ph->output_interval);
-        if (ph->output_interval > 0.0)
-            ph->intervals = 0;
-    }
-    if ((v = map_get(n, "intervals")) != NULL) {
+    if (lv_pk_get(n, "output_interval") != NULL &&
+        lv_mission_def_value(c->m, ph->output_interval) > 0.0)
+        ph->intervals = 0;
+    if ((v = lv_pk_get(n, "intervals")) != NULL) {
         if ((st = get_int(c, v, what, "intervals", 0, &ph->intervals)) != LV_OK)
             return st;
-        if (ph->intervals > 0 && ph->output_interval > 0.0)
-            return perr(c, map_key(n, "intervals"), "%s: give either 'intervals' or "
+        if (ph->intervals > 0 && lv_mission_def_value(c->m, ph->output_interval) > 0.0)
+            return lv_pk_fail(c, lv_pk_key(n, "intervals"), "%s: give either 'intervals' or "
                         "'output_interval', not both", what);
     }
-    if ((v = map_get(n, "fixed_step")) != NULL) {
-        if ((st = get_num(c, v, what, "fixed_step", &ph->fixed_step)) != LV_OK)
-            return st;
-        if (ph->fixed_step < 0.0)
-            return perr(c, v, "%s: fixed_step must be >= 0 s, found %g", what, ph->fixed_step);
-    }
     return LV_OK;
 }
 
-/* inputs: {alpha_deg, beta_deg, mu_deg, throttle, table}: the 3-DoF model's inputs, constant
- * or from a control history over mission time (outputs alpha, beta, mu [rad], throttle). */
-static lv_status parse_inputs(const pctx *c, const lv_ynode *n, const char *phase,
-                              lv_phase_def *ph)
-{
-    static const char *const keys[] = { "alpha", "beta", "mu", "throttle", "alpha_deg",
-                                        "beta_deg", "mu_deg", "table", NULL };
-    char what[LV_WHAT_MAX];
-    lv_status st;
-    double *slot[4] = { &ph->alpha, &ph->beta, &ph->mu, &ph->throttle };
-    for (int k = 0; k < 4; k++)
-        *slot[k] = NAN;
-    snprintf(what, sizeof what, "phase '%s', inputs", phase);
-    if (n == NULL || lv_yaml_is_null(n))
-        return LV_OK;
-    if ((st = check_map(c, n, what, keys)) != LV_OK)
-        return st;
-    static const char *const names[4] = { "alpha", "beta", "mu", "throttle" };
-    for (int k = 0; k < 4; k++) {
-        char deg[16];
-        snprintf(deg, sizeof deg, "%s_deg", names[k]);
-        const lv_ynode *v = map_get(n, names[k]), *vd = k < 3 ? map_get(n, deg) : NULL;
-        if (v != NULL && vd != NULL)
-            return perr(c, map_key(n, deg), "%s: '%s' and '%s' given both", what, names[k], deg);
-        if ((v || vd) && (st = get_num(c, v ? v : vd, what, v ? names[k] : deg, slot[k])) != LV_OK)
-            return st;
-        if (vd)
-            *slot[k] *= LV_DEG;
-    }
-    if (!isnan(ph->throttle) && !(ph->throttle >= 0.0))
-        return perr(c, map_get(n, "throttle"), "%s: throttle must be >= 0, found %g", what,
-                    ph->throttle);
-    const lv_ynode *v = map_get(n, "table");
-    if (v != NULL)
-        return parse_table_ref(c, map_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
-                               &ph->inputs_file, &ph->inputs_var, &ph->inputs);
-    return LV_OK;
-}
-
-/* aero: {s_ref, axes: wind|body, table, CD, CL, CY | CA, CN, CY}: the phase's aerodynamic
- * dataset (tables over mach, alpha [, beta, altitude], outputs named as the coefficients). */
-static lv_status parse_aero(const pctx *c, const lv_ynode *n, const char *phase, lv_phase_def *ph)
-{
-    static const char *const keys[] = { "s_ref", "axes", "table", "CD", "CL", "CY", "CA", "CN",
-                                        NULL };
-    static const char *const axes[] = { "wind", "body", NULL };
-    char what[LV_WHAT_MAX];
-    const lv_ynode *v;
-    lv_status st;
-    size_t i = 0;
-    for (int k = 0; k < 3; k++)
-        ph->aero_coef[k] = NAN;
-    snprintf(what, sizeof what, "phase '%s', aero", phase);
-    if (n == NULL || lv_yaml_is_null(n))
-        return LV_OK;
-    if ((st = check_map(c, n, what, keys)) != LV_OK)
-        return st;
-    ph->has_aero = 1;
-    if ((st = need(c, n, what, "s_ref", &v)) != LV_OK ||
-        (st = get_num(c, v, what, "s_ref", &ph->aero_s_ref)) != LV_OK)
-        return st;
-    if (!(ph->aero_s_ref > 0.0))
-        return perr(c, v, "%s: s_ref must be > 0 m^2, found %g", what, ph->aero_s_ref);
-    if ((v = map_get(n, "axes")) != NULL && (st = get_enum(c, v, what, "axes", axes, &i)) != LV_OK)
-        return st;
-    ph->aero_body_axes = i == 1;
-    const char *const names[2][3] = { { "CD", "CL", "CY" }, { "CA", "CN", "CY" } };
-    const char *const other[2][2] = { { "CA", "CN" }, { "CD", "CL" } };
-    for (int k = 0; k < 2; k++)
-        if (map_get(n, other[i][k]) != NULL)
-            return perr(c, map_key(n, other[i][k]), "%s: '%s' belongs to axes: %s", what,
-                        other[i][k], i == 0 ? "body" : "wind");
-    for (int k = 0; k < 3; k++)
-        if ((v = map_get(n, names[i][k])) != NULL &&
-            (st = get_num(c, v, what, names[i][k], &ph->aero_coef[k])) != LV_OK)
-            return st;
-    if ((v = map_get(n, "table")) != NULL &&
-        (st = parse_table_ref(c, map_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &ph->aero_file,
-                              &ph->aero_var, &ph->aero_table)) != LV_OK)
-        return st;
-    return LV_OK;
-}
-
-static lv_status parse_set(const pctx *c, const lv_ynode *n, const char *phase,
+/* set: {name: value}: overrides of the phase model's states and parameters after the
+ * hand-off, slots "<phase>.set.<name>" (units known once the model is built: mission.c). */
+static lv_status parse_set(const lv_pctx *c, const lv_ynode *n, const char *phase,
                            lv_phase_def *ph)
 {
     char what[LV_WHAT_MAX];
@@ -1025,7 +1085,7 @@ static lv_status parse_set(const pctx *c, const lv_ynode *n, const char *phase,
     snprintf(what, sizeof what, "phase '%s', set", phase);
     if (n == NULL || lv_yaml_is_null(n))
         return LV_OK;
-    if ((st = check_map(c, n, what, NULL)) != LV_OK)
+    if ((st = lv_pk_check_map(c, n, what, NULL)) != LV_OK)
         return st;
     const size_t ns = n->n / 2;
     if (ns == 0)
@@ -1034,34 +1094,34 @@ static lv_status parse_set(const pctx *c, const lv_ynode *n, const char *phase,
     ph->set_values = calloc(ns, sizeof *ph->set_values);
     ph->set_locs = calloc(ns, sizeof *ph->set_locs);
     if (ph->set_names == NULL || ph->set_values == NULL || ph->set_locs == NULL)
-        return nomem(c);
-    ph->n_set = ns;
+        return lv_pk_nomem(c);
     for (size_t i = 0; i < ns; i++) {
         const lv_ynode *k = n->kids[2 * i], *v = n->kids[2 * i + 1];
         if (k->len == 0 || k->len > 255)
-            return perr(c, k, "%s: a variable name of 1 to 255 characters expected", what);
-        char base[256];
+            return lv_pk_fail(c, k, "%s: a variable name of 1 to 255 characters expected", what);
+        char base[256], slot[LV_NAME_MAX + 270];
         const int deg = strip_deg(k->text, base, sizeof base);
         for (size_t j = 0; j < i; j++)
             if (strcmp(ph->set_names[j], base) == 0)
-                return perr(c, k, "%s: '%s' set twice (line %d)", what, base,
+                return lv_pk_fail(c, k, "%s: '%s' set twice (line %d)", what, base,
                             ph->set_locs[j].line);
-        if ((st = get_num(c, v, what, k->text, &ph->set_values[i])) != LV_OK)
+        snprintf(slot, sizeof slot, "%s.set.%s", phase, base);
+        if ((st = lv_pk_slot(c, v, what, k->text, slot, "", LV_RANGE_ANY, deg,
+                             &ph->set_values[i])) != LV_OK)
             return st;
-        if (deg)
-            ph->set_values[i] *= LV_DEG;
         ph->set_locs[i] = loc_of(k);
         if ((ph->set_names[i] = dup_text(base)) == NULL)
-            return nomem(c);
+            return lv_pk_nomem(c);
+        ph->n_set = i + 1;
     }
     return LV_OK;
 }
 
-static lv_status find_stage(const pctx *c, const lv_ynode *v, const char *what, size_t *idx)
+static lv_status find_stage(const lv_pctx *c, const lv_ynode *v, const char *what, size_t *idx)
 {
     const lv_mission_def *m = c->m;
     const char *s;
-    lv_status st = get_text(c, v, what, "stages", &s);
+    lv_status st = lv_pk_text(c, v, what, "stages", &s);
     if (st != LV_OK)
         return st;
     lv_suggest sug;
@@ -1075,106 +1135,153 @@ static lv_status find_stage(const pctx *c, const lv_ynode *v, const char *what, 
     }
     char hint[192];
     lv_suggest_text(&sug, hint, sizeof hint);
-    return perr(c, v, "%s: stages: no stage named '%.60s'%s", what, s, hint);
+    return lv_pk_fail(c, v, "%s: stages: no stage named '%.60s'%s", what, s, hint);
+}
+
+/* The keys every phase has; a model type adds its own (phase_type.h). */
+static const char *const phase_keys[] = { "name", "model", "stages", "from", "start_time",
+                                          "stop_time", "end", "integrator", "set", NULL };
+
+/* Checks the phase's keys: the common ones and its type's. A key that belongs to another
+ * model type says which. */
+static lv_status check_phase_keys(const lv_pctx *c, const lv_ynode *n, const char *what,
+                                  const lv_phase_type *type)
+{
+    const char *known[64];
+    size_t nk = 0;
+    for (size_t i = 0; phase_keys[i] != NULL; i++)
+        known[nk++] = phase_keys[i];
+    for (size_t i = 0; type->keys != NULL && type->keys[i] != NULL && nk < 63; i++)
+        known[nk++] = type->keys[i];
+    known[nk] = NULL;
+    for (size_t i = 0; i + 1 < n->n; i += 2) {
+        const char *key = n->kids[i]->text;
+        int mine = 0;
+        for (size_t j = 0; j < nk && !mine; j++)
+            mine = strcmp(known[j], key) == 0;
+        if (mine)
+            continue;
+        char owners[160] = "";
+        size_t used = 0;
+        for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++)
+            for (size_t j = 0; (*t)->keys != NULL && (*t)->keys[j] != NULL; j++)
+                if (strcmp((*t)->keys[j], key) == 0 && used < sizeof owners)
+                    used += (size_t)snprintf(owners + used, sizeof owners - used, "%s%s",
+                                             used ? ", " : "", (*t)->name);
+        if (used > 0)
+            return lv_pk_fail(c, n->kids[i], "%s: '%s' applies to the %s model only (this "
+                              "phase's model is %s)", what, key, owners, type->name);
+    }
+    return lv_pk_check_map(c, n, what, known);
 }
 
 /* Everything but `from`, which needs all names: its node goes to *from. */
-static lv_status parse_phase(const pctx *c, const lv_ynode *n, size_t k, lv_phase_def *ph,
+static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_phase_def *ph,
                              const lv_ynode **from)
 {
-    static const char *const keys[] = { "name", "model", "stages", "from", "start_time",
-                                        "stop_time", "end", "integrator", "set", "inputs",
-                                        "aero", NULL };
-    static const char *const models[] = { "flat6", "dof3", NULL };
-    const int flat = c->m->env.world == LV_WORLD_FLAT;
-    char what[LV_WHAT_MAX], buf[64];
+    char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
-    size_t i;
     lv_status st;
+    lv_pctx sc = *pc; /* the phase owns its slots (file index; reordered with the phases) */
+    sc.owner = LV_OWN_PHASE;
+    sc.owner_index = k;
+    const lv_pctx *c = &sc;
+    const lv_world_kind world = c->m->env.world;
 
     label(n, "phase", k, what, sizeof what);
     ph->parent = -1;
-    ph->t_start = NAN;
-    if ((st = check_map(c, n, what, keys)) != LV_OK)
-        return st;
+    ph->t_start = LV_NO_SLOT;
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_check_map(c, n, what, phase_keys);
     ph->loc = loc_of(n);
-    if ((st = need(c, n, what, "name", &v)) != LV_OK ||
+
+    /* the model first: it decides which keys the phase may have */
+    const char *models[16];
+    size_t nm = 0, i;
+    for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL && nm < 15; t++)
+        models[nm++] = (*t)->name;
+    models[nm] = NULL;
+    if ((st = lv_pk_need(c, n, what, "model", &v)) != LV_OK ||
+        (st = lv_pk_enum(c, v, what, "model", models, &i)) != LV_OK)
+        return st;
+    ph->type = lv_phase_types()[i];
+    if (ph->type->world != world)
+        return lv_pk_fail(c, v, "%s: model %s needs environment world: %s (this mission's world is "
+                    "%s)", what, models[i], world == LV_WORLD_FLAT ? "planet" : "flat",
+                    world == LV_WORLD_FLAT ? "flat" : "planet");
+    if ((st = check_phase_keys(c, n, what, ph->type)) != LV_OK)
+        return st;
+    if ((st = lv_pk_need(c, n, what, "name", &v)) != LV_OK ||
         (st = get_name(c, v, what, 0, &ph->name)) != LV_OK)
         return st;
+    label(n, "phase", k, what, sizeof what);
 
-    if ((st = need(c, n, what, "model", &v)) != LV_OK ||
-        (st = get_enum(c, v, what, "model", models, &i)) != LV_OK)
-        return st;
-    if ((i == 0) != flat)
-        return perr(c, v, "%s: model %s needs environment world: %s (this mission's world is "
-                    "%s)", what, models[i], flat ? "planet" : "flat", flat ? "flat" : "planet");
-    if ((ph->model = dup_text(models[i])) == NULL)
-        return nomem(c);
-
-    if ((st = need(c, n, what, "stages", &v)) != LV_OK)
+    if ((st = lv_pk_need(c, n, what, "stages", &v)) != LV_OK)
         return st;
     if (v->kind != LV_YNODE_SEQ || v->n == 0)
-        return perr(c, v, "%s: stages: a list of stage names (bottom first) expected, found %s",
+        return lv_pk_fail(c, v, "%s: stages: a list of stage names (bottom first) expected, found %s",
                     what, v->kind == LV_YNODE_SEQ ? "an empty list" : describe(v, buf, sizeof buf));
     if ((ph->stages = calloc(v->n, sizeof *ph->stages)) == NULL)
-        return nomem(c);
+        return lv_pk_nomem(c);
     for (size_t j = 0; j < v->n; j++) {
         if ((st = find_stage(c, v->kids[j], what, &ph->stages[j])) != LV_OK)
             return st;
         ph->n_stages = j + 1;
         for (size_t q = 0; q < j; q++)
             if (ph->stages[q] == ph->stages[j])
-                return perr(c, v->kids[j], "%s: stages: '%s' listed twice", what,
+                return lv_pk_fail(c, v->kids[j], "%s: stages: '%s' listed twice", what,
                             v->kids[j]->text);
     }
 
     const char *parent_name;
-    *from = map_get(n, "from");
-    if (*from != NULL && (st = get_text(c, *from, what, "from", &parent_name)) != LV_OK)
+    *from = lv_pk_get(n, "from");
+    if (*from != NULL && (st = lv_pk_text(c, *from, what, "from", &parent_name)) != LV_OK)
         return st;
-    if ((v = map_get(n, "start_time")) != NULL &&
-        (st = get_num(c, v, what, "start_time", &ph->t_start)) != LV_OK)
-        return st;
-    if ((st = need(c, n, what, "stop_time", &v)) != LV_OK ||
-        (st = get_num(c, v, what, "stop_time", &ph->t_stop)) != LV_OK)
-        return st;
+    double t0 = *from == NULL ? 0.0 : -INFINITY, t_stop;
+    if ((v = lv_pk_get(n, "start_time")) != NULL) {
+        snprintf(slot, sizeof slot, "%s.start_time", ph->name);
+        if ((st = lv_pk_slot(c, v, what, "start_time", slot, "s", LV_RANGE_ANY, 0,
+                             &ph->t_start)) != LV_OK)
+            return st;
+        t0 = lv_mission_def_value(c->m, ph->t_start);
+    }
     /* Without `from` and start_time the phase starts at 0; with `from` at the parent's end,
      * known only when the parent has run. */
-    const double t0 = isnan(ph->t_start) ? (*from == NULL ? 0.0 : -INFINITY) : ph->t_start;
-    if (!(ph->t_stop > t0))
-        return perr(c, v, "%s: stop_time %g s must be greater than the start time %g s", what,
-                    ph->t_stop, t0);
+    if ((st = lv_pk_need(c, n, what, "stop_time", &v)) != LV_OK ||
+        (st = lv_pk_num(c, v, what, "stop_time", &t_stop)) != LV_OK)
+        return st;
+    if (!(t_stop > t0))
+        return lv_pk_fail(c, v, "%s: stop_time %g s must be greater than the start time %g s", what,
+                    t_stop, t0);
+    snprintf(slot, sizeof slot, "%s.stop_time", ph->name);
+    if ((st = lv_pk_slot(c, v, what, "stop_time", slot, "s", LV_RANGE_ANY, 0, &ph->t_stop)) !=
+        LV_OK)
+        return st;
 
-    v = map_get(n, "end");
+    v = lv_pk_get(n, "end");
     if (v != NULL && !lv_yaml_is_null(v)) {
         if (v->kind != LV_YNODE_SEQ)
-            return perr(c, v, "%s: end: a list of events expected, e.g. [burnout, apogee], "
+            return lv_pk_fail(c, v, "%s: end: a list of events expected, e.g. [burnout, apogee], "
                         "found %s", what, describe(v, buf, sizeof buf));
         if (v->n > 0) {
             if ((ph->ends = calloc(v->n, sizeof *ph->ends)) == NULL)
-                return nomem(c);
-            ph->n_ends = v->n;
-            for (size_t j = 0; j < v->n; j++)
-                if ((st = parse_end(c, v->kids[j], ph->name, j, &ph->ends[j])) != LV_OK)
+                return lv_pk_nomem(c);
+            for (size_t j = 0; j < v->n; j++) {
+                if ((st = parse_end(c, v->kids[j], ph->name, j, ph->ends, &ph->ends[j])) != LV_OK)
                     return st;
+                ph->n_ends = j + 1;
+            }
         }
     }
-    if ((st = parse_integrator(c, map_get(n, "integrator"), ph->name, ph)) != LV_OK)
+    if ((st = parse_integrator(c, lv_pk_get(n, "integrator"), ph->name, ph)) != LV_OK)
         return st;
-    for (int j = 0; j < 2; j++) {
-        const char *key = j == 0 ? "inputs" : "aero";
-        if ((v = map_get(n, key)) != NULL && flat)
-            return perr(c, map_key(n, key), "%s: '%s' applies to the dof3 model only (flat6 "
-                        "flies along +z without aerodynamics)", what, key);
-    }
-    if ((st = parse_inputs(c, map_get(n, "inputs"), ph->name, ph)) != LV_OK ||
-        (st = parse_aero(c, map_get(n, "aero"), ph->name, ph)) != LV_OK)
+    if (ph->type->parse != NULL && (st = ph->type->parse(c, n, ph)) != LV_OK)
         return st;
-    return parse_set(c, map_get(n, "set"), ph->name, ph);
+    return parse_set(c, lv_pk_get(n, "set"), ph->name, ph);
 }
 
 /* A `from` chain that comes back: "P2 -> P3 -> P2", from the first member in file order. */
-static lv_status check_cycles(const pctx *c, const lv_ynode *const *from)
+static lv_status check_cycles(const lv_pctx *c, const lv_ynode *const *from)
 {
     const lv_mission_def *m = c->m;
     const size_t n = m->n_phases;
@@ -1182,7 +1289,7 @@ static lv_status check_cycles(const pctx *c, const lv_ynode *const *from)
     unsigned char *done = calloc(n, 1);
     lv_status st = LV_OK;
     if (seen == NULL || done == NULL) {
-        st = nomem(c);
+        st = lv_pk_nomem(c);
         goto fail;
     }
     for (size_t i = 0; i < n; i++) {
@@ -1205,7 +1312,7 @@ static lv_status check_cycles(const pctx *c, const lv_ynode *const *from)
                     used += (size_t)snprintf(path + used, sizeof path - used, " -> %s",
                                              m->phases[q].name);
             } while ((size_t)q != first);
-            st = perr(c, from[first], "phase '%s': from: cycle %s (each phase starts from the "
+            st = lv_pk_fail(c, from[first], "phase '%s': from: cycle %s (each phase starts from the "
                       "next); a root phase has no 'from'", m->phases[first].name, path);
             goto fail;
         }
@@ -1220,7 +1327,7 @@ fail:
 
 /* Parents before children; otherwise file order: repeatedly take the lowest file index
  * whose parent has been taken (a binary min-heap of ready phases). */
-static lv_status order_phases(const pctx *c)
+static lv_status order_phases(const lv_pctx *c)
 {
     lv_mission_def *m = c->m;
     const size_t n = m->n_phases;
@@ -1230,7 +1337,7 @@ static lv_status order_phases(const pctx *c)
     size_t nh = 0, taken = 0;
     lv_status st = LV_OK;
     if (heap == NULL || pos == NULL || kid_first == NULL || kid_next == NULL || out == NULL) {
-        st = nomem(c);
+        st = lv_pk_nomem(c);
         goto fail;
     }
     for (size_t i = 0; i < n; i++)
@@ -1281,6 +1388,9 @@ static lv_status order_phases(const pctx *c)
     free(m->phases);
     m->phases = out;
     out = NULL;
+    for (size_t i = 0; i < m->n_slots; i++) /* the phases' slots follow them */
+        if (m->slots[i].owner == LV_OWN_PHASE)
+            m->slots[i].owner_index = pos[m->slots[i].owner_index];
 fail:
     free(heap);
     free(pos);
@@ -1290,7 +1400,7 @@ fail:
     return st;
 }
 
-static lv_status parse_phases(const pctx *c, const lv_ynode *n)
+static lv_status parse_phases(const lv_pctx *c, const lv_ynode *n)
 {
     lv_mission_def *m = c->m;
     const lv_ynode **from = NULL;
@@ -1298,14 +1408,14 @@ static lv_status parse_phases(const pctx *c, const lv_ynode *n)
     lv_status st;
 
     if (n->kind != LV_YNODE_SEQ || n->n == 0)
-        return perr(c, n, "phases: a list of at least one phase expected, found %s",
+        return lv_pk_fail(c, n, "phases: a list of at least one phase expected, found %s",
                     n->kind == LV_YNODE_SEQ ? "an empty list" : describe(n, buf, sizeof buf));
     if (n->n > (size_t)INT_MAX)
-        return perr(c, n, "phases: too many phases");
+        return lv_pk_fail(c, n, "phases: too many phases");
     m->phases = calloc(n->n, sizeof *m->phases);
     from = calloc(n->n, sizeof *from);
     if (m->phases == NULL || from == NULL) {
-        st = nomem(c);
+        st = lv_pk_nomem(c);
         goto fail;
     }
     m->n_phases = n->n;
@@ -1314,7 +1424,7 @@ static lv_status parse_phases(const pctx *c, const lv_ynode *n)
             goto fail;
         for (size_t j = 0; j < i; j++)
             if (strcmp(m->phases[j].name, m->phases[i].name) == 0) {
-                st = perr(c, map_get(n->kids[i], "name"), "phase '%s': duplicate phase name "
+                st = lv_pk_fail(c, lv_pk_get(n->kids[i], "name"), "phase '%s': duplicate phase name "
                           "(first at line %d)", m->phases[i].name, m->phases[j].loc.line);
                 goto fail;
             }
@@ -1330,14 +1440,14 @@ static lv_status parse_phases(const pctx *c, const lv_ynode *n)
             lv_suggest_add(&sug, m->phases[j].name);
         }
         if (m->phases[i].parent == (int)i) {
-            st = perr(c, from[i], "phase '%s': from: a phase cannot start from itself",
+            st = lv_pk_fail(c, from[i], "phase '%s': from: a phase cannot start from itself",
                       m->phases[i].name);
             goto fail;
         }
         if (m->phases[i].parent < 0) {
             char hint[192];
             lv_suggest_text(&sug, hint, sizeof hint);
-            st = perr(c, from[i], "phase '%s': from: no phase named '%.60s'%s",
+            st = lv_pk_fail(c, from[i], "phase '%s': from: no phase named '%.60s'%s",
                       m->phases[i].name, from[i]->text, hint);
             goto fail;
         }
@@ -1351,7 +1461,7 @@ fail:
 
 /* ---- the file ------------------------------------------------------------------------- */
 
-static lv_status parse_root(const pctx *c, const lv_ynode *root)
+static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
                                         "phases", NULL };
@@ -1362,42 +1472,43 @@ static lv_status parse_root(const pctx *c, const lv_ynode *root)
     lv_status st;
 
     if (root->kind != LV_YNODE_MAP)
-        return perr(c, root, "the top level must be a mapping with 'mission', 'stages' and "
+        return lv_pk_fail(c, root, "the top level must be a mapping with 'mission', 'stages' and "
                     "'phases', found %s", describe(root, buf, sizeof buf));
-    if ((st = check_map(c, root, "top level", keys)) != LV_OK ||
-        (st = need(c, root, "top level", "mission", &info)) != LV_OK ||
-        (st = check_map(c, info, "mission", mkeys)) != LV_OK ||
-        (st = need(c, info, "mission", "name", &v)) != LV_OK ||
+    if ((st = lv_pk_check_map(c, root, "top level", keys)) != LV_OK ||
+        (st = lv_pk_need(c, root, "top level", "mission", &info)) != LV_OK ||
+        (st = lv_pk_check_map(c, info, "mission", mkeys)) != LV_OK ||
+        (st = lv_pk_need(c, info, "mission", "name", &v)) != LV_OK ||
         (st = get_str(c, v, "mission", "name", &m->name)) != LV_OK)
         return st;
-    if ((v = map_get(info, "epoch")) != NULL) {
+    if ((v = lv_pk_get(info, "epoch")) != NULL) {
         const char *ep;
         int y, mo, d, h, mi;
         double sec;
         char z;
-        if ((st = get_text(c, v, "mission", "epoch", &ep)) != LV_OK)
+        if ((st = lv_pk_text(c, v, "mission", "epoch", &ep)) != LV_OK)
             return st;
         /* ISO 8601 UTC, as CZML and CCSDS OEM want it: 2026-03-01T12:00:00Z */
         if (sscanf(ep, "%4d-%2d-%2dT%2d:%2d:%lf%c", &y, &mo, &d, &h, &mi, &sec, &z) != 7 ||
             z != 'Z' || mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 ||
             !(sec >= 0.0 && sec < 61.0))
-            return perr(c, v, "mission: epoch: an ISO 8601 UTC time like 2026-03-01T12:00:00Z "
+            return lv_pk_fail(c, v, "mission: epoch: an ISO 8601 UTC time like 2026-03-01T12:00:00Z "
                         "expected, found '%.40s'", ep);
         if ((m->epoch = dup_text(ep)) == NULL)
-            return nomem(c);
+            return lv_pk_nomem(c);
     }
-    if ((v = map_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
+    if ((v = lv_pk_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
         (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK)
         return st;
-    if ((st = parse_env(c, map_get(root, "environment"))) != LV_OK ||
-        (st = parse_params(c, map_get(root, "parameters"))) != LV_OK)
+    if ((st = parse_env(c, lv_pk_get(root, "environment"))) != LV_OK ||
+        (st = parse_params(c, lv_pk_get(root, "parameters"))) != LV_OK)
         return st;
-    if ((st = need(c, root, "top level", "stages", &v)) != LV_OK ||
+    if ((st = lv_pk_need(c, root, "top level", "stages", &v)) != LV_OK ||
         (st = parse_stages(c, v)) != LV_OK)
         return st;
-    if ((st = need(c, root, "top level", "phases", &v)) != LV_OK)
+    if ((st = lv_pk_need(c, root, "top level", "phases", &v)) != LV_OK ||
+        (st = parse_phases(c, v)) != LV_OK)
         return st;
-    return parse_phases(c, v);
+    return check_slot_names(c);
 }
 
 lv_status lv_mission_def_parse(const char *text, size_t len, const char *name, const char *dir,
@@ -1418,7 +1529,7 @@ lv_status lv_mission_def_parse(const char *text, size_t len, const char *name, c
         st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", name ? name : "mission");
         goto fail;
     }
-    const pctx c = { m->path, err, m };
+    const lv_pctx c = { m->path, err, m, LV_OWN_ENV, 0 };
     if ((st = lv_yaml_load(text != NULL ? text : "", len, m->path, &root, err)) != LV_OK ||
         (st = parse_root(&c, root)) != LV_OK)
         goto fail;
@@ -1501,6 +1612,11 @@ void lv_mission_def_free(lv_mission_def *m)
         free(m->param_names[i]);
     free(m->param_names);
     free(m->param_values);
+    for (size_t i = 0; i < m->n_slots; i++) {
+        free(m->slots[i].name);
+        free(m->slots[i].unit);
+    }
+    free(m->slots);
     for (size_t i = 0; i < m->n_stages; i++) {
         lv_stage_def *s = &m->stages[i];
         for (size_t k = 0; k < s->n_engines; k++) {
@@ -1516,19 +1632,14 @@ void lv_mission_def_free(lv_mission_def *m)
     for (size_t i = 0; i < m->n_phases; i++) {
         lv_phase_def *ph = &m->phases[i];
         free(ph->name);
-        free(ph->model);
+        if (ph->type != NULL && ph->type->cfg_free != NULL)
+            ph->type->cfg_free(ph->type_cfg);
         free(ph->stages);
         free(ph->ends);
         free(ph->method);
         for (size_t k = 0; k < ph->n_set; k++)
             free(ph->set_names[k]);
         free(ph->set_names);
-        free(ph->inputs_file);
-        free(ph->inputs_var);
-        lv_table_free(ph->inputs);
-        free(ph->aero_file);
-        free(ph->aero_var);
-        lv_table_free(ph->aero_table);
         free(ph->set_values);
         free(ph->set_locs);
     }
@@ -1542,6 +1653,19 @@ double lv_mission_def_param(const lv_mission_def *m, const char *name, double fa
         return fallback;
     for (size_t i = 0; i < m->n_params; i++)
         if (strcmp(m->param_names[i], name) == 0)
-            return m->param_values[i];
+            return m->slots[m->param_values[i]].value;
     return fallback;
+}
+
+double lv_mission_def_value(const lv_mission_def *m, lv_slot s)
+{
+    return s < m->n_slots ? m->slots[s].value : NAN;
+}
+
+lv_slot lv_mission_def_slot(const lv_mission_def *m, const char *name)
+{
+    for (size_t i = 0; i < m->n_slots; i++)
+        if (strcmp(m->slots[i].name, name) == 0)
+            return i;
+    return LV_NO_SLOT;
 }

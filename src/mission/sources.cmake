@@ -1,6 +1,12 @@
+# Missions: the YAML parser, the phase-model types and their registry, the loaded mission
+# (immutable), runs of it, the summary, sequential versus end-to-end.
 list(APPEND LV_SOURCES
   src/mission/yaml_tree.c
   src/mission/parse.c
-  src/mission/runner.c
+  src/mission/phase_types.c
+  src/mission/phase_flat6.c
+  src/mission/phase_dof3.c
+  src/mission/mission.c
+  src/mission/run.c
   src/mission/summary.c
   src/mission/compare.c)

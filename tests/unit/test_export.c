@@ -15,6 +15,7 @@
 #include "check.h"
 #include "lvsim/lv_export.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_summary.h"
 
 static char path_buf[4096];
 static const char *src_path(const char *rel)
@@ -76,12 +77,16 @@ static int run_mission(const char *rel, const char *outdir)
     lv_run_options opt = {0};
     opt.outdir = outdir;
     opt.threads = 1;
-    lv_status st = lv_mission_run(m, &opt, &err);
+    lv_run *run = NULL;
+    lv_status st = lv_run_create(m, &run, &err);
+    if (st == LV_OK)
+        st = lv_run_execute(run, &opt, &err);
     CHECK_OK(st, &err);
     if (st == LV_OK) {
-        st = lv_mission_write_summary(m, outdir, &err);
+        st = lv_run_write_summary(run, outdir, &err);
         CHECK_OK(st, &err);
     }
+    lv_run_free(run);
     lv_mission_free(m);
     return st == LV_OK ? 0 : -1;
 }

@@ -8,6 +8,7 @@
 #include "check.h"
 #include "lvsim/lv_table.h"
 #include "mission/mission.h"
+#include "mission/phase_type.h"
 
 #define DEG (M_PI / 180.0)
 
@@ -46,6 +47,13 @@ static void bad_file_(const char *file, const char *want, int line)
     lv_mission_def_free(m);
 }
 
+/* The file's value of a slot; 0 for a key the file does not give (LV_NO_SLOT). */
+static double slot_value(const lv_mission_def *m, lv_slot s)
+{
+    return s == LV_NO_SLOT ? 0.0 : lv_mission_def_value(m, s);
+}
+#define V(slot) slot_value(m, (slot))
+
 static const lv_phase_def *phase(const lv_mission_def *m, const char *name)
 {
     for (size_t i = 0; i < m->n_phases; i++)
@@ -71,7 +79,7 @@ static void test_paper_branch(void)
     CHECK(m->description != NULL && strncmp(m->description, "vertical ascent", 15) == 0);
     CHECK(strcmp(m->dir, LV_MISSION_DIR) == 0);
     CHECK(m->env.world == LV_WORLD_FLAT);
-    CHECK_CLOSE(m->env.g, 9.81, 0.0);
+    CHECK_CLOSE(V(m->env.g), 9.81, 0.0);
     CHECK(m->env.planet == NULL && m->env.gravity == NULL);
     CHECK(strcmp(m->env.atmosphere, "none") == 0);
 
@@ -87,8 +95,8 @@ static void test_paper_branch(void)
     CHECK(m->n_stages == 3);
     const lv_stage_def *s1 = &m->stages[0], *s2 = &m->stages[1], *s3 = &m->stages[2];
     CHECK(strcmp(s1->name, "stage1") == 0 && strcmp(s3->name, "stage3") == 0);
-    CHECK_CLOSE(s1->dry_mass, 1500.0, 0.0);
-    CHECK_CLOSE(s1->propellant_mass, 8500.0, 0.0);
+    CHECK_CLOSE(V(s1->dry_mass), 1500.0, 0.0);
+    CHECK_CLOSE(V(s1->propellant_mass), 8500.0, 0.0);
     CHECK(s1->loc.line == 19 && s1->loc.column == 5);
     CHECK(s1->n_engines == 1 && s2->n_engines == 1 && s3->n_engines == 1);
 
@@ -96,7 +104,7 @@ static void test_paper_branch(void)
     CHECK(strcmp(e1->name, "s1e") == 0);
     CHECK(e1->table != NULL && e1->table_var == NULL);
     CHECK(strcmp(e1->table_file, LV_MISSION_DIR "/data/stage1.csv") == 0);
-    CHECK(e1->count == 1 && e1->exit_area == 0.0);
+    CHECK(e1->count == 1 && V(e1->exit_area) == 0.0);
     if (e1->table != NULL) {
         double y[2];
         CHECK_OK(lv_table_eval1(e1->table, NULL, 50.0, y, &err), &err);
@@ -121,10 +129,10 @@ static void test_paper_branch(void)
     }
     const lv_engine_def *e3 = &s3->engines[0];
     CHECK(e3->table == NULL && e3->table_file == NULL);
-    CHECK_CLOSE(e3->thrust_vac, 3.0e4, 0.0);
-    CHECK_CLOSE(e3->isp_vac, 310.0, 0.0);
-    CHECK_CLOSE(e3->mdot, 0.0, 0.0);
-    CHECK_CLOSE(e3->exit_area, 0.1, 0.0);
+    CHECK_CLOSE(V(e3->thrust_vac), 3.0e4, 0.0);
+    CHECK_CLOSE(V(e3->isp_vac), 310.0, 0.0);
+    CHECK_CLOSE(V(e3->mdot), 0.0, 0.0);
+    CHECK_CLOSE(V(e3->exit_area), 0.1, 0.0);
     CHECK(e3->count == 2);
 
     /* phases: file order P4 P1 P2 P3 P5; parents first, file order otherwise */
@@ -134,7 +142,7 @@ static void test_paper_branch(void)
     for (size_t i = 0; i < 5 && i < m->n_phases; i++) {
         CHECK(strcmp(m->phases[i].name, order[i]) == 0);
         CHECK(m->phases[i].parent == parent[i]);
-        CHECK(strcmp(m->phases[i].model, "flat6") == 0);
+        CHECK(strcmp(m->phases[i].type->name, "flat6") == 0);
     }
     const lv_phase_def *p1 = phase(m, "P1"), *p2 = phase(m, "P2"), *p3 = phase(m, "P3");
     const lv_phase_def *p4 = phase(m, "P4"), *p5 = phase(m, "P5");
@@ -146,43 +154,43 @@ static void test_paper_branch(void)
     CHECK(p1->loc.line == 46 && p1->loc.column == 5);
     CHECK(p1->n_stages == 3 && p1->stages[0] == 0 && p1->stages[1] == 1 && p1->stages[2] == 2);
     CHECK(p2->n_stages == 2 && p2->stages[0] == 1 && p2->stages[1] == 2);
-    CHECK_CLOSE(p1->t_start, 0.0, 0.0);
-    CHECK_CLOSE(p1->t_stop, 150.0, 0.0);
-    CHECK(isnan(p2->t_start));
-    CHECK_CLOSE(p2->t_stop, 400.0, 0.0);
+    CHECK_CLOSE(V(p1->t_start), 0.0, 0.0);
+    CHECK_CLOSE(V(p1->t_stop), 150.0, 0.0);
+    CHECK(p2->t_start == LV_NO_SLOT);
+    CHECK_CLOSE(V(p2->t_stop), 400.0, 0.0);
     CHECK(p1->n_ends == 2);
     if (p1->n_ends == 2) {
         CHECK(p1->ends[0].kind == LV_END_BURNOUT && p1->ends[0].direction == LV_DIR_FALLING);
         CHECK(p1->ends[1].kind == LV_END_ALTITUDE && p1->ends[1].direction == LV_DIR_RISING);
-        CHECK_CLOSE(p1->ends[1].value, 1e5, 0.0);
+        CHECK_CLOSE(V(p1->ends[1].value), 1e5, 0.0);
         CHECK(p1->ends[1].loc.line == 51 && p1->ends[1].loc.column == 20);
     }
     CHECK(strcmp(p1->method, "dassl") == 0);
-    CHECK_CLOSE(p1->tolerance, 1e-8, 0.0);
-    CHECK_CLOSE(p1->output_interval, 0.5, 0.0);
+    CHECK_CLOSE(V(p1->tolerance), 1e-8, 0.0);
+    CHECK_CLOSE(V(p1->output_interval), 0.5, 0.0);
     CHECK(p1->intervals == 0); /* output_interval given: no default interval count */
     CHECK(strcmp(p2->method, "dassl") == 0 && p2->intervals == 500);
-    CHECK_CLOSE(p2->tolerance, 1e-6, 0.0);
+    CHECK_CLOSE(V(p2->tolerance), 1e-6, 0.0);
     CHECK(p2->n_set == 2);
     if (p2->n_set == 2) {
         CHECK(strcmp(p2->set_names[0], "stage1.m") == 0);
-        CHECK_CLOSE(p2->set_values[0], 0.0, 0.0);
+        CHECK_CLOSE(V(p2->set_values[0]), 0.0, 0.0);
         CHECK(strcmp(p2->set_names[1], "theta") == 0);
-        CHECK_CLOSE(p2->set_values[1], 89.5 * DEG, 1e-15);
+        CHECK_CLOSE(V(p2->set_values[1]), 89.5 * DEG, 1e-15);
         CHECK(p2->set_locs[1].line == 59 && p2->set_locs[1].column == 24);
     }
     CHECK(strcmp(p3->method, "rk4") == 0 && p3->intervals == 1000);
-    CHECK_CLOSE(p3->fixed_step, 0.01, 0.0);
+    CHECK_CLOSE(V(p3->fixed_step), 0.01, 0.0);
     CHECK(p3->n_ends == 2);
     if (p3->n_ends == 2) {
         CHECK(p3->ends[0].kind == LV_END_APOGEE && p3->ends[0].direction == LV_DIR_FALLING);
         CHECK(p3->ends[1].kind == LV_END_SPEED && p3->ends[1].direction == LV_DIR_FALLING);
-        CHECK_CLOSE(p3->ends[1].value, 2000.0, 0.0);
+        CHECK_CLOSE(V(p3->ends[1].value), 2000.0, 0.0);
     }
-    CHECK(p4->n_ends == 1 && p4->ends[0].kind == LV_END_IMPACT && p4->ends[0].value == 0.0);
+    CHECK(p4->n_ends == 1 && p4->ends[0].kind == LV_END_IMPACT && V(p4->ends[0].value) == 0.0);
     CHECK(p5->n_ends == 1 && p5->ends[0].kind == LV_END_IMPACT);
     if (p5->n_ends == 1) {
-        CHECK_CLOSE(p5->ends[0].value, 50.0, 0.0);
+        CHECK_CLOSE(V(p5->ends[0].value), 50.0, 0.0);
         CHECK(p5->ends[0].direction == LV_DIR_FALLING);
     }
     lv_mission_def_free(m);
@@ -199,12 +207,12 @@ static void test_planet_and_defaults(void)
         CHECK(strcmp(m->env.atmosphere, "us76") == 0);
         CHECK(m->description == NULL);
         CHECK_CLOSE(lv_mission_def_param(m, "start_lon", 0.0), -52.775 * DEG, 1e-15);
-        CHECK_CLOSE(m->stages[0].engines[0].mdot, 400.0, 0.0);
-        CHECK_CLOSE(m->stages[0].engines[0].isp_vac, 0.0, 0.0);
-        CHECK_CLOSE(m->stages[1].engines[0].isp_vac, 340.0, 0.0);
+        CHECK_CLOSE(V(m->stages[0].engines[0].mdot), 400.0, 0.0);
+        CHECK_CLOSE(V(m->stages[0].engines[0].isp_vac), 0.0, 0.0);
+        CHECK_CLOSE(V(m->stages[1].engines[0].isp_vac), 340.0, 0.0);
         CHECK(strcmp(m->stages[1].engines[0].name, "upper.e1") == 0);
         CHECK(m->n_phases == 2 && m->phases[1].parent == 0);
-        CHECK(strcmp(m->phases[1].model, "dof3") == 0);
+        CHECK(strcmp(m->phases[1].type->name, "dof3") == 0);
         CHECK(strcmp(m->phases[1].method, "cvode-adams") == 0);
         CHECK(m->phases[1].ends[1].direction == LV_DIR_BOTH);
         CHECK(m->phases[1].intervals == 500);
@@ -214,15 +222,15 @@ static void test_planet_and_defaults(void)
     m = NULL;
     CHECK_OK(lv_mission_def_load(LV_MISSION_DIR "/minimal.yaml", &m, &err), &err);
     if (m != NULL) {
-        CHECK(m->env.world == LV_WORLD_FLAT && m->env.g == 9.81);
+        CHECK(m->env.world == LV_WORLD_FLAT && V(m->env.g) == 9.81);
         CHECK(strcmp(m->env.atmosphere, "none") == 0);
         CHECK(m->n_params == 0 && m->n_stages == 1 && m->n_phases == 1);
         CHECK(m->stages[0].n_engines == 0 && m->stages[0].engines == NULL);
         const lv_phase_def *p = &m->phases[0];
-        CHECK(p->parent == -1 && isnan(p->t_start) && p->t_stop == 10.0);
+        CHECK(p->parent == -1 && p->t_start == LV_NO_SLOT && V(p->t_stop) == 10.0);
         CHECK(p->n_ends == 0 && p->n_set == 0);
-        CHECK(strcmp(p->method, "dassl") == 0 && p->tolerance == 1e-6 && p->intervals == 500);
-        CHECK(p->output_interval == 0.0 && p->fixed_step == 0.0);
+        CHECK(strcmp(p->method, "dassl") == 0 && V(p->tolerance) == 1e-6 && p->intervals == 500);
+        CHECK(V(p->output_interval) == 0.0 && V(p->fixed_step) == 0.0);
     }
     lv_mission_def_free(m);
 

@@ -17,6 +17,7 @@
 
 #include "check.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_summary.h"
 #include "lvsim/lv_plot.h"
 
 static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dynamic_pressure",
@@ -136,8 +137,11 @@ static double run_and_plot(const char *mission, const char *outdir, int flat)
     if (m == NULL)
         return 0.0;
     lv_run_options opt = {.outdir = outdir, .threads = 1};
-    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
-    CHECK_OK(lv_mission_write_summary(m, outdir, &err), &err);
+    lv_run *run = NULL;
+    CHECK_OK(lv_run_create(m, &run, &err), &err);
+    CHECK_OK(lv_run_execute(run, &opt, &err), &err);
+    CHECK_OK(lv_run_write_summary(run, outdir, &err), &err);
+    lv_run_free(run);
 
     /* The library prints nothing: stdout and stderr go to a file while plotting. */
     char quiet[4200];

@@ -21,6 +21,7 @@
 
 #include "check.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_summary.h"
 
 #define G 9.81
 #define VE 3000.0
@@ -136,13 +137,13 @@ static int read_first_row(const char *path, const char *const *want, int n, doub
     return found == n ? 0 : -1;
 }
 
-static double final(const lv_mission *m, const char *phase, const char *name)
+static double final(const lv_run *r, const char *phase, const char *name)
 {
     size_t k;
     double v = NAN;
     lv_err err;
-    CHECK_OK(lv_mission_phase_find(m, phase, &k, &err), &err);
-    CHECK_OK(lv_mission_final(m, k, name, &v, &err), &err);
+    CHECK_OK(lv_mission_phase_find(lv_run_mission(r), phase, &k, &err), &err);
+    CHECK_OK(lv_run_final(r, k, name, &v, &err), &err);
     return v;
 }
 
@@ -151,14 +152,16 @@ static void test_paper_case(void)
     lv_mission *m;
     lv_err err;
     CHECK_OK(lv_mission_load(src_path("tests/missions/paper_tight.yaml"), &m, &err), &err);
-    lv_run_options opt = {"runner_out", 2, NULL, NULL, 0.0};
-    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
+    lv_run *r;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    lv_run_options opt = {.outdir = "runner_out", .threads = 2};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
 
     /* P1: all three stages, 40000 kg at liftoff, stage 1 burns out, separation at 140 s. */
     const double m0 = 40000.0, tb1 = burnout(1);
     size_t k1;
     CHECK_OK(lv_mission_phase_find(m, "P1", &k1, &err), &err);
-    const lv_phase_result *r1 = lv_mission_result(m, k1);
+    const lv_phase_result *r1 = lv_run_result(r, k1);
     CHECK(r1->report.stats.state_events == 1 && r1->report.stats.time_events == 1);
     CHECK(r1->report.n_event_log == 2);
     CHECK(r1->report.event_log[0].t == 60.0);              /* table breakpoint, hit exactly */
@@ -167,56 +170,56 @@ static void test_paper_case(void)
     CHECK_CLOSE(mb1, 13000.0, 1e-6);
     double v140 = VE * log(m0 / 13000.0) - G * 140.0;
     double z140 = climb(1, m0, 0.0, 0.0, 140.0);
-    CHECK_CLOSE(final(m, "P1", "m"), 13000.0, 1e-6);
-    CHECK_REL(final(m, "P1", "vz"), v140, 1e-9);
-    CHECK_REL(final(m, "P1", "z"), z140, 1e-8);
+    CHECK_CLOSE(final(r, "P1", "m"), 13000.0, 1e-6);
+    CHECK_REL(final(r, "P1", "vz"), v140, 1e-9);
+    CHECK_REL(final(r, "P1", "z"), z140, 1e-8);
     printf("P1: burnout %.9f s (closed form %.9f), z %.6f m (quadrature %.6f), vz %.9f (%.9f)\n",
-           r1->report.event_log[1].t, tb1, final(m, "P1", "z"), z140, final(m, "P1", "vz"), v140);
+           r1->report.event_log[1].t, tb1, final(r, "P1", "z"), z140, final(r, "P1", "vz"), v140);
 
     /* P2: stages 2+3 from P1's end: 7000 + 3000 kg (the stage bookkeeping), to 280 s. */
-    double v280 = final(m, "P1", "vz") + VE * log(10000.0 / 4000.0) - G * 140.0;
-    double z280 = final(m, "P1", "z") + climb(2, 10000.0, final(m, "P1", "vz"), 140.0, 280.0);
-    CHECK_CLOSE(final(m, "P2", "m"), 4000.0, 1e-6);
-    CHECK_REL(final(m, "P2", "vz"), v280, 1e-9);
-    CHECK_REL(final(m, "P2", "z"), z280, 1e-8);
+    double v280 = final(r, "P1", "vz") + VE * log(10000.0 / 4000.0) - G * 140.0;
+    double z280 = final(r, "P1", "z") + climb(2, 10000.0, final(r, "P1", "vz"), 140.0, 280.0);
+    CHECK_CLOSE(final(r, "P2", "m"), 4000.0, 1e-6);
+    CHECK_REL(final(r, "P2", "vz"), v280, 1e-9);
+    CHECK_REL(final(r, "P2", "z"), z280, 1e-8);
     size_t k2;
     CHECK_OK(lv_mission_phase_find(m, "P2", &k2, &err), &err);
-    const lv_phase_result *r2 = lv_mission_result(m, k2);
+    const lv_phase_result *r2 = lv_run_result(r, k2);
     CHECK(r2->report.n_event_log == 2 && r2->report.event_log[0].t == 142.0);
     CHECK_CLOSE(r2->report.event_log[1].t, burnout(2), 1e-6);
 
     /* P3: stage 3 alone from P2's end, 3000 kg, burns to 300 kg, coasts to 600 s. */
-    double v600 = final(m, "P2", "vz") + VE * log(3000.0 / 300.0) - G * 320.0;
-    CHECK_CLOSE(final(m, "P3", "m"), 300.0, 1e-6);
-    CHECK_REL(final(m, "P3", "vz"), v600, 1e-9);
-    CHECK_REL(final(m, "P3", "z"),
-              final(m, "P2", "z") + climb(3, 3000.0, final(m, "P2", "vz"), 280.0, 600.0), 1e-8);
+    double v600 = final(r, "P2", "vz") + VE * log(3000.0 / 300.0) - G * 320.0;
+    CHECK_CLOSE(final(r, "P3", "m"), 300.0, 1e-6);
+    CHECK_REL(final(r, "P3", "vz"), v600, 1e-9);
+    CHECK_REL(final(r, "P3", "z"),
+              final(r, "P2", "z") + climb(3, 3000.0, final(r, "P2", "vz"), 280.0, 600.0), 1e-8);
 
     /* P4 and P5: spent stages fall back from the separations: impact at
      * t0 + (v0 + sqrt(v0^2 + 2 g z0)) / g, with the dry mass. */
     const char *ph[2] = {"P4", "P5"}, *par[2] = {"P1", "P2"};
     const double dry[2] = {3000.0, 1000.0};
     for (int i = 0; i < 2; i++) {
-        double z0 = final(m, par[i], "z"), v0 = final(m, par[i], "vz"), t0 = final(m, par[i], "time");
+        double z0 = final(r, par[i], "z"), v0 = final(r, par[i], "vz"), t0 = final(r, par[i], "time");
         double t_imp = t0 + (v0 + sqrt(v0 * v0 + 2.0 * G * z0)) / G;
-        CHECK_REL(final(m, ph[i], "time"), t_imp, 1e-9);
-        CHECK_CLOSE(final(m, ph[i], "z"), 0.0, 1e-4);
-        CHECK_REL(final(m, ph[i], "vz"), -sqrt(v0 * v0 + 2.0 * G * z0), 1e-9);
-        CHECK_CLOSE(final(m, ph[i], "m"), dry[i], 1e-6);
-        printf("%s: impact %.6f s (closed form %.6f)\n", ph[i], final(m, ph[i], "time"), t_imp);
+        CHECK_REL(final(r, ph[i], "time"), t_imp, 1e-9);
+        CHECK_CLOSE(final(r, ph[i], "z"), 0.0, 1e-4);
+        CHECK_REL(final(r, ph[i], "vz"), -sqrt(v0 * v0 + 2.0 * G * z0), 1e-9);
+        CHECK_CLOSE(final(r, ph[i], "m"), dry[i], 1e-6);
+        printf("%s: impact %.6f s (closed form %.6f)\n", ph[i], final(r, ph[i], "time"), t_imp);
     }
 
     /* The branch: P1 seeds P2 and P4; P2 seeds P3 and P5; children start where parents end. */
     for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
-        const lv_phase_result *r = lv_mission_result(m, k);
-        CHECK(r->state == LV_PHASE_DONE);
+        const lv_phase_result *res = lv_run_result(r, k);
+        CHECK(res->state == LV_PHASE_DONE);
         int p = lv_mission_phase_parent(m, k);
         if (p >= 0)
-            CHECK(r->t_start == lv_mission_result(m, (size_t)p)->t_end);
+            CHECK(res->t_start == lv_run_result(r, (size_t)p)->t_end);
     }
 
     /* Files: every phase's .mat and .csv, the merged bodies, the summary. */
-    CHECK_OK(lv_mission_write_summary(m, "runner_out", &err), &err);
+    CHECK_OK(lv_run_write_summary(r, "runner_out", &err), &err);
     char path[512];
     for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
         snprintf(path, sizeof path, "runner_out/phase_%zu_%s.mat", k + 1, lv_mission_phase_name(m, k));
@@ -247,6 +250,7 @@ static void test_paper_case(void)
         CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(b2, "phases")) == 3);
         cJSON_Delete(j);
     }
+    lv_run_free(r);
     lv_mission_free(m);
 }
 
@@ -274,20 +278,22 @@ static void test_failing_branch(void)
     lv_mission *m;
     lv_err err;
     CHECK_OK(lv_mission_load("failing.yaml", &m, &err), &err);
-    lv_run_options opt = {"failing_out", 2, NULL, NULL, 0.0};
-    CHECK_FAILS(lv_mission_run(m, &opt, &err), &err, LV_ERR_SOLVER, "1 phase(s) failed, 1 not run");
+    lv_run *r;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    lv_run_options opt = {.outdir = "failing_out", .threads = 2};
+    CHECK_FAILS(lv_run_execute(r, &opt, &err), &err, LV_ERR_SOLVER, "1 phase(s) failed, 1 not run");
     size_t kb, ka, kg;
     CHECK_OK(lv_mission_phase_find(m, "bad", &kb, &err), &err);
     CHECK_OK(lv_mission_phase_find(m, "after", &ka, &err), &err);
     CHECK_OK(lv_mission_phase_find(m, "good", &kg, &err), &err);
-    const lv_phase_result *rb = lv_mission_result(m, kb);
+    const lv_phase_result *rb = lv_run_result(r, kb);
     CHECK(rb->state == LV_PHASE_FAILED);
     CHECK(strstr(rb->error, "phase 'bad'") != NULL && strstr(rb->error, "at t = ") != NULL);
     CHECK(strstr(rb->error, "outside") != NULL); /* the table's own reason */
     printf("failing branch: %s\n", rb->error);
-    CHECK(lv_mission_result(m, ka)->state == LV_PHASE_SKIPPED);
-    CHECK(strstr(lv_mission_result(m, ka)->error, "parent 'bad' failed") != NULL);
-    CHECK(lv_mission_result(m, kg)->state == LV_PHASE_DONE);
+    CHECK(lv_run_result(r, ka)->state == LV_PHASE_SKIPPED);
+    CHECK(strstr(lv_run_result(r, ka)->error, "parent 'bad' failed") != NULL);
+    CHECK(lv_run_result(r, kg)->state == LV_PHASE_DONE);
     char path[256];
     snprintf(path, sizeof path, "failing_out/phase_%zu_good.csv", kg + 1);
     CHECK(access(path, F_OK) == 0);
@@ -295,9 +301,10 @@ static void test_failing_branch(void)
     CHECK(access(path, F_OK) == 0);
     /* the root's final state is intact and readable */
     double z;
-    CHECK_OK(lv_mission_final(m, 0, "z", &z, &err), &err);
+    CHECK_OK(lv_run_final(r, 0, "z", &z, &err), &err);
     CHECK(z > 0.0);
-    CHECK_OK(lv_mission_write_summary(m, "failing_out", &err), &err);
+    CHECK_OK(lv_run_write_summary(r, "failing_out", &err), &err);
+    lv_run_free(r);
     lv_mission_free(m);
 }
 
@@ -327,9 +334,10 @@ static void test_compare(void)
 {
     lv_compare_report rep;
     lv_err err;
-    CHECK_OK(lv_mission_compare(src_path("tests/missions/paper_tight.yaml"), "dopri5", 1e-11, 1.0,
-                                &rep, &err),
-             &err);
+    lv_mission *m;
+    CHECK_OK(lv_mission_load(src_path("tests/missions/paper_tight.yaml"), &m, &err), &err);
+    CHECK_OK(lv_mission_compare(m, "dopri5", 1e-11, 1.0, &rep, &err), &err);
+    lv_mission_free(m);
     CHECK(rep.e2e.n_states == 39 && rep.seq.n_states == 13);
     /* time events: e2e 60, 140 (separation = stage-2 table start), 142, 280, 282 s;
      * sequential: 60 (P1), 142 (P2), 282 (P3), as the paper's 5 and 3 */
@@ -355,29 +363,31 @@ static void test_dof3_branch(void)
     lv_mission *m;
     lv_err err;
     CHECK_OK(lv_mission_load(src_path("examples/dof3-branch/mission.yaml"), &m, &err), &err);
-    lv_run_options opt = {"dof3_out", 2, NULL, NULL, 0.0};
-    CHECK_OK(lv_mission_run(m, &opt, &err), &err);
+    lv_run *r;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    lv_run_options opt = {.outdir = "dof3_out", .threads = 2};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
     size_t ka, ku, kb;
     CHECK_OK(lv_mission_phase_find(m, "ascent", &ka, &err), &err);
     CHECK_OK(lv_mission_phase_find(m, "upper-burn", &ku, &err), &err);
     CHECK_OK(lv_mission_phase_find(m, "booster", &kb, &err), &err);
     /* burnout of the core: 150 t at F / (Isp g0) = 3.2e6 / (300 * 9.80665) kg/s */
     double t_b = 150000.0 / (3.2e6 / (300.0 * 9.80665));
-    CHECK_CLOSE(final(m, "ascent", "time"), t_b, 1e-6);
-    CHECK_CLOSE(final(m, "ascent", "m"), 37000.0, 1e-6);
-    CHECK_CLOSE(final(m, "booster", "m"), 15000.0, 1e-9); /* dry core */
-    CHECK_CLOSE(final(m, "upper-burn", "m"), 2000.0, 1e-6);
-    CHECK_CLOSE(final(m, "booster", "h"), 0.0, 1e-3);      /* impact ends the branch */
-    CHECK(lv_mission_result(m, kb)->t_start == lv_mission_result(m, ka)->t_end);
-    CHECK(lv_mission_result(m, ku)->t_start == lv_mission_result(m, ka)->t_end);
+    CHECK_CLOSE(final(r, "ascent", "time"), t_b, 1e-6);
+    CHECK_CLOSE(final(r, "ascent", "m"), 37000.0, 1e-6);
+    CHECK_CLOSE(final(r, "booster", "m"), 15000.0, 1e-9); /* dry core */
+    CHECK_CLOSE(final(r, "upper-burn", "m"), 2000.0, 1e-6);
+    CHECK_CLOSE(final(r, "booster", "h"), 0.0, 1e-3);      /* impact ends the branch */
+    CHECK(lv_run_result(r, kb)->t_start == lv_run_result(r, ka)->t_end);
+    CHECK(lv_run_result(r, ku)->t_start == lv_run_result(r, ka)->t_end);
     /* each phase flies its own aerodynamic dataset: at the booster's end, drag = q S CD with
      * S = 12 m^2 and CD interpolated linearly in Mach from aero_descent.csv (values copied) */
     const double mach_tab[] = {0.0, 1.0, 2.0, 5.0, 20.0}, cd_tab[] = {0.80, 1.05, 0.95, 0.85, 0.80};
-    double mach = final(m, "booster", "mach"), cd = NAN;
+    double mach = final(r, "booster", "mach"), cd = NAN;
     for (int i = 0; i < 4; i++)
         if (mach >= mach_tab[i] && mach <= mach_tab[i + 1])
             cd = cd_tab[i] + (cd_tab[i + 1] - cd_tab[i]) * (mach - mach_tab[i]) / (mach_tab[i + 1] - mach_tab[i]);
-    CHECK_REL(final(m, "booster", "drag"), final(m, "booster", "q_dyn") * 12.0 * cd, 1e-12);
+    CHECK_REL(final(r, "booster", "drag"), final(r, "booster", "q_dyn") * 12.0 * cd, 1e-12);
     /* the wind table enters the air-relative velocity: on the ascent's first row (h = 100 m,
      * wind from wind.csv: north 0.05, east -5.15 m/s by linear interpolation),
      * q = rho |v_rel - v_wind|^2 / 2 with the NED components of v_rel */
@@ -410,9 +420,10 @@ static void test_dof3_branch(void)
         for (char *tok = strtok(line, ","); tok && c < 64; tok = strtok(NULL, ","))
             v[c++] = strtod(tok, NULL);
         for (int i = 0; i < 6; i++)
-            CHECK(col[i] >= 0 && col[i] < c && v[col[i]] == final(m, "ascent", st[i]));
+            CHECK(col[i] >= 0 && col[i] < c && v[col[i]] == final(r, "ascent", st[i]));
         fclose(f);
     }
+    lv_run_free(r);
     lv_mission_free(m);
 }
 

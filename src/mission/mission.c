@@ -1,0 +1,441 @@
+/* mission.c - lv_mission: a mission file loaded once, immutable afterwards. Parses and validates
+ * the definition (parse.c), builds the environment every phase shares (planet, gravity,
+ * atmosphere, wind), builds each phase's model once with the file's values to check it and to
+ * resolve its plan (the hand-off's names to indices, the names of its finals and events), and
+ * answers questions about the mission and its parameters (slots, mission.h). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/names.h"
+#include "core/status.h"
+#include "mission/mission_rt.h"
+
+/* ---- the environment --------------------------------------------------------------------- */
+
+static void env_clear(lv_mission_env *env)
+{
+    lv_gravity_free(env->gravity);
+    lv_atmo_free(env->atmo);
+    lv_wind_free(env->wind);
+    memset(env, 0, sizeof *env);
+}
+
+/* Planet, gravity and atmosphere of a planet world, shared read-only by all phases. */
+static lv_status make_env(const lv_mission_def *d, lv_mission_env *env, lv_err *err)
+{
+    if (d->env.world != LV_WORLD_PLANET)
+        return LV_OK;
+    const lv_src_loc *loc = &d->env.loc;
+    lv_gravity_config gc;
+    lv_status st = lv_planet_by_name(d->env.planet ? d->env.planet : "earth", &env->planet, err);
+    if (st == LV_OK)
+        st = lv_gravity_parse_spec(d->env.gravity ? d->env.gravity : "j2", &gc, err);
+    if (st == LV_OK)
+        st = lv_gravity_create(&env->planet, &gc, &env->gravity, err);
+    const char *atm = d->env.atmosphere;
+    if (st == LV_OK && atm != NULL && strcmp(atm, "table") == 0)
+        st = lv_atmo_create_table(d->env.atmo_file, d->env.atmo_var, &env->atmo, err);
+    else if (st == LV_OK && atm != NULL && strcmp(atm, "none") != 0)
+        st = lv_atmo_create(atm, &env->atmo, err);
+    if (st == LV_OK && d->env.wind_file != NULL) {
+        loc = &d->env.wind_loc;
+        st = lv_wind_create_table(d->env.wind_file, d->env.wind_var, &env->wind, err);
+    }
+    if (st != LV_OK)
+        return lv_fail_prefix(err, LV_ERR_INPUT, "%s:%d:%d: environment", d->path, loc->line,
+                              loc->column);
+    return LV_OK;
+}
+
+/* ---- plans ------------------------------------------------------------------------------- */
+
+int lv_mission_phase_has_stage(const lv_mission_def *d, size_t k, size_t s)
+{
+    const lv_phase_def *ph = &d->phases[k];
+    for (size_t i = 0; i < ph->n_stages; i++)
+        if (ph->stages[i] == s)
+            return 1;
+    return 0;
+}
+
+static void plan_clear(lv_phase_plan *p)
+{
+    for (size_t i = 0; i < p->n_final; i++)
+        free(p->final_names[i]);
+    free(p->final_names);
+    for (size_t i = 0; i < p->n_events; i++)
+        free(p->event_names[i]);
+    free(p->event_names);
+    free(p->init_names);
+    free(p->init);
+    memset(p, 0, sizeof *p);
+}
+
+static int model_has(const lv_model_def *md, const char *name)
+{
+    lv_var_kind kind;
+    size_t idx;
+    return lv_model_find(md, name, &kind, &idx, NULL) == LV_OK;
+}
+
+/* Phase k's plan from its model `md` (built with the file's values) and its parent's plan. */
+static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md,
+                           lv_phase_plan *p, lv_err *err)
+{
+    const lv_mission_def *d = m->def;
+    const lv_phase_def *ph = &d->phases[k];
+    p->n_states = md->n_states;
+    p->n_final = 1 + md->n_states + md->n_outputs;
+    p->n_events = md->n_events;
+    p->final_names = calloc(p->n_final, sizeof *p->final_names);
+    p->event_names = calloc(p->n_events + 1, sizeof *p->event_names);
+    const size_t cap = 2 + d->n_params + md->n_states + ph->n_set;
+    p->init_names = calloc(cap, sizeof *p->init_names);
+    p->init = calloc(cap, sizeof *p->init);
+    if (!p->final_names || !p->event_names || !p->init_names || !p->init)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    p->final_names[0] = strdup("time");
+    for (size_t i = 0; i < md->n_states; i++)
+        p->final_names[1 + i] = strdup(md->states[i].name);
+    for (size_t i = 0; i < md->n_outputs; i++)
+        p->final_names[1 + md->n_states + i] = strdup(md->outputs[i].name);
+    for (size_t i = 0; i < md->n_events; i++)
+        p->event_names[i] = strdup(md->events[i].name);
+    for (size_t i = 0; i < p->n_final; i++)
+        if (p->final_names[i] == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < p->n_events; i++)
+        if (p->event_names[i] == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    const char *mass = ph->type->mass_state;
+    p->mass_final = (size_t)-1;
+    for (size_t i = 0; i < md->n_states; i++)
+        if (strcmp(md->states[i].name, mass) == 0)
+            p->mass_final = 1 + i;
+
+    /* The hand-off, in this order (later entries win): the world's g; a root phase's
+     * parameters, or the parent's final states by name and the carried stages' mass; the
+     * start time; the overrides. */
+    size_t n = 0;
+    if (d->env.g != LV_NO_SLOT && model_has(md, "g")) {
+        p->init_names[n] = "g";
+        p->init[n++] = (lv_init_src){LV_INIT_SLOT, d->env.g};
+    }
+    if (ph->parent < 0) {
+        for (size_t j = 0; j < d->n_params; j++)
+            if (model_has(md, d->param_names[j])) {
+                p->init_names[n] = d->param_names[j];
+                p->init[n++] = (lv_init_src){LV_INIT_SLOT, d->param_values[j]};
+            }
+    } else {
+        const lv_phase_plan *par = &m->plan[ph->parent];
+        const lv_phase_def *pph = &d->phases[ph->parent];
+        if (pph->type != ph->type)
+            return lv_fail(err, LV_ERR_INPUT,
+                           "model %s cannot start from phase '%s' (model %s): no conversion "
+                           "between the two models",
+                           ph->type->name, pph->name, pph->type->name);
+        for (size_t i = 0; i < md->n_states; i++) {
+            const char *sn = md->states[i].name;
+            if (strcmp(sn, mass) == 0) {
+                p->init_names[n] = p->final_names[1 + i];
+                p->init[n++] = (lv_init_src){LV_INIT_MASS, 0};
+                continue;
+            }
+            for (size_t j = 0; j < par->n_final; j++)
+                if (strcmp(par->final_names[j], sn) == 0) {
+                    p->init_names[n] = p->final_names[1 + i];
+                    p->init[n++] = (lv_init_src){LV_INIT_PARENT, j};
+                    p->n_copied++;
+                    break;
+                }
+        }
+    }
+    if (model_has(md, "start_time")) {
+        p->init_names[n] = "start_time";
+        p->init[n++] = (lv_init_src){LV_INIT_START_TIME, 0};
+    }
+    for (size_t i = 0; i < ph->n_set; i++) {
+        p->init_names[n] = ph->set_names[i];
+        p->init[n++] = (lv_init_src){LV_INIT_SLOT, ph->set_values[i]};
+    }
+    p->n_init = n;
+    return LV_OK;
+}
+
+/* Every phase's model can be built with the file's values, every `set:` name is a state or
+ * parameter of it (its slot takes that variable's unit), every parameter is used by some
+ * phase's model; the plans are made on the way. */
+static lv_status check_and_plan(lv_mission *m, lv_err *err)
+{
+    lv_mission_def *d = m->def;
+    int *param_used = calloc(d->n_params + 1, sizeof *param_used);
+    double *prop = calloc(d->n_stages + 1, sizeof *prop);
+    if (param_used == NULL || prop == NULL) {
+        free(param_used);
+        free(prop);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    for (size_t s = 0; s < d->n_stages; s++)
+        prop[s] = m->defaults[d->stages[s].propellant_mass];
+    lv_status st = LV_OK;
+    for (size_t k = 0; k < d->n_phases && st == LV_OK; k++) {
+        const lv_phase_def *ph = &d->phases[k];
+        lv_phase_model *pm = NULL;
+        const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop};
+        if ((st = lv_phase_model_build(&bc, &pm, err)) != LV_OK) {
+            st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
+                                ph->loc.column, ph->name);
+            break;
+        }
+        const lv_model_def *md = pm->def;
+        for (size_t i = 0; i < ph->n_set && st == LV_OK; i++) {
+            lv_var_kind kind;
+            size_t idx;
+            st = lv_model_find(md, ph->set_names[i], &kind, &idx, err);
+            if (st == LV_OK && kind != LV_VAR_STATE && kind != LV_VAR_PARAMETER)
+                st = lv_fail(err, LV_ERR_INPUT, "'%s' is not a state or parameter",
+                             ph->set_names[i]);
+            if (st != LV_OK) {
+                lv_src_loc loc = ph->set_locs ? ph->set_locs[i] : ph->loc;
+                st = lv_fail_prefix(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set", d->path,
+                                    loc.line, loc.column, ph->name);
+                break;
+            }
+            const lv_var *var = kind == LV_VAR_STATE ? &md->states[idx] : &md->params[idx];
+            lv_slot_def *sd = &d->slots[ph->set_values[i]];
+            char *unit = strdup(var->unit);
+            if (unit == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                break;
+            }
+            free(sd->unit);
+            sd->unit = unit;
+        }
+        for (size_t j = 0; j < d->n_params; j++) {
+            lv_var_kind kind;
+            size_t idx;
+            if (lv_model_find(md, d->param_names[j], &kind, &idx, NULL) == LV_OK &&
+                kind == LV_VAR_PARAMETER)
+                param_used[j] = 1;
+        }
+        if (st == LV_OK && (st = make_plan(m, k, md, &m->plan[k], err)) != LV_OK)
+            st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
+                                ph->loc.column, ph->name);
+        lv_phase_model_free(pm);
+    }
+    for (size_t j = 0; j < d->n_params && st == LV_OK; j++) {
+        if (param_used[j])
+            continue;
+        char known[640] = "";
+        size_t used = 0;
+        for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++) {
+            if ((*t)->n_mission_params == 0 || used >= sizeof known)
+                continue;
+            used += (size_t)snprintf(known + used, sizeof known - used, "%s%s knows",
+                                     used ? "; " : "", (*t)->name);
+            for (size_t i = 0; i < (*t)->n_mission_params && used < sizeof known; i++)
+                used += (size_t)snprintf(known + used, sizeof known - used, "%s %s",
+                                         i ? "," : "", (*t)->mission_params[i].name);
+        }
+        st = lv_fail(err, LV_ERR_INPUT,
+                     "%s: parameter '%s' is not used by any phase's model (%s)", d->path,
+                     d->param_names[j], known);
+    }
+    free(param_used);
+    free(prop);
+    return st;
+}
+
+/* ---- load and free -------------------------------------------------------------------------- */
+
+void lv_mission_free(lv_mission *m)
+{
+    if (m == NULL)
+        return;
+    for (size_t k = 0; m->plan != NULL && k < m->def->n_phases; k++)
+        plan_clear(&m->plan[k]);
+    free(m->plan);
+    free(m->rules);
+    free(m->defaults);
+    env_clear(&m->env);
+    lv_mission_def_free(m->def);
+    free(m);
+}
+
+lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err)
+{
+    *out = NULL;
+    lv_mission *m = calloc(1, sizeof *m);
+    if (m == NULL) {
+        lv_mission_def_free(d);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    m->def = d;
+    m->plan = calloc(d->n_phases, sizeof *m->plan);
+    m->rules = calloc(d->n_slots + 1, sizeof *m->rules);
+    m->defaults = calloc(d->n_slots + 1, sizeof *m->defaults);
+    if (m->plan == NULL || m->rules == NULL || m->defaults == NULL) {
+        lv_mission_free(m);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    for (size_t i = 0; i < d->n_slots; i++) {
+        m->defaults[i] = d->slots[i].value;
+        lv_range_text(d->slots[i].range, m->rules[i], sizeof m->rules[i]);
+    }
+    lv_status st;
+    if ((st = make_env(d, &m->env, err)) != LV_OK || (st = check_and_plan(m, err)) != LV_OK) {
+        lv_mission_free(m);
+        return st;
+    }
+    *out = m;
+    return LV_OK;
+}
+
+lv_status lv_mission_load(const char *path, lv_mission **out, lv_err *err)
+{
+    if (out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_mission_load: NULL argument");
+    *out = NULL;
+    lv_mission_def *d = NULL;
+    lv_status st = lv_mission_def_load(path, &d, err);
+    if (st != LV_OK)
+        return st;
+    return lv_mission_from_def(d, out, err);
+}
+
+/* ---- questions ------------------------------------------------------------------------------ */
+
+void lv_mission_get_info(const lv_mission *m, lv_mission_info *out)
+{
+    const lv_mission_def *d = m->def;
+    *out = (lv_mission_info){d->name,
+                             d->description,
+                             d->path,
+                             d->epoch,
+                             d->env.world == LV_WORLD_FLAT,
+                             d->env.world == LV_WORLD_FLAT ? NULL
+                                                           : (d->env.planet ? d->env.planet
+                                                                            : "earth"),
+                             d->env.site_lat,
+                             d->env.site_lon,
+                             d->n_phases,
+                             d->n_stages,
+                             d->n_slots};
+}
+
+const char *lv_mission_name(const lv_mission *m) { return m->def->name; }
+size_t lv_mission_phase_count(const lv_mission *m) { return m->def->n_phases; }
+const char *lv_mission_phase_name(const lv_mission *m, size_t k)
+{
+    return k < m->def->n_phases ? m->def->phases[k].name : NULL;
+}
+int lv_mission_phase_parent(const lv_mission *m, size_t k)
+{
+    return k < m->def->n_phases ? m->def->phases[k].parent : -1;
+}
+size_t lv_mission_stage_count(const lv_mission *m) { return m->def->n_stages; }
+const char *lv_mission_stage_name(const lv_mission *m, size_t s)
+{
+    return s < m->def->n_stages ? m->def->stages[s].name : NULL;
+}
+
+lv_status lv_mission_phase_find(const lv_mission *m, const char *name, size_t *k, lv_err *err)
+{
+    lv_suggest sg;
+    lv_suggest_init(&sg, name);
+    for (size_t i = 0; i < m->def->n_phases; i++) {
+        if (strcmp(m->def->phases[i].name, name) == 0) {
+            *k = i;
+            return LV_OK;
+        }
+        lv_suggest_add(&sg, m->def->phases[i].name);
+    }
+    char hint[160];
+    lv_suggest_text(&sg, hint, sizeof hint);
+    return lv_fail(err, LV_ERR_NOTFOUND, "mission '%s' has no phase '%s'%s", m->def->name, name,
+                   hint);
+}
+
+void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out)
+{
+    const lv_phase_def *ph = &m->def->phases[k];
+    *out = (lv_phase_info){ph->name,     ph->type->name, ph->parent,
+                           ph->n_stages, ph->stages,     ph->method ? ph->method : "dassl"};
+}
+
+size_t lv_mission_param_count(const lv_mission *m) { return m->def->n_slots; }
+
+void lv_mission_param_info(const lv_mission *m, size_t i, lv_param_info *out)
+{
+    const lv_slot_def *sd = &m->def->slots[i];
+    *out = (lv_param_info){sd->name, sd->unit, m->defaults[i], sd->loc.line, m->rules[i]};
+}
+
+lv_status lv_mission_param_find(const lv_mission *m, const char *name, size_t *i, int *deg,
+                                lv_err *err)
+{
+    const lv_mission_def *d = m->def;
+    if (name == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': parameter name is NULL", d->name);
+    const size_t n = strlen(name);
+    if (deg != NULL)
+        *deg = 0;
+    lv_suggest sg;
+    lv_suggest_init(&sg, name);
+    for (size_t s = 0; s < d->n_slots; s++) {
+        const char *sn = d->slots[s].name;
+        if (strcmp(sn, name) == 0) {
+            *i = s;
+            return LV_OK;
+        }
+        /* NAME_deg: an angle in degrees */
+        const size_t ns = strlen(sn);
+        if (deg != NULL && n == ns + 4 && strncmp(name, sn, ns) == 0 &&
+            strcmp(name + ns, "_deg") == 0 &&
+            (strcmp(d->slots[s].unit, "rad") == 0 || strcmp(d->slots[s].unit, "rad/s") == 0)) {
+            *i = s;
+            *deg = 1;
+            return LV_OK;
+        }
+        lv_suggest_add(&sg, sn);
+    }
+    char hint[200];
+    lv_suggest_text(&sg, hint, sizeof hint);
+    return lv_fail(err, LV_ERR_NOTFOUND,
+                   "mission '%s' has no parameter '%s'%s (the numbers a run may vary are "
+                   "those written in the mission file: lvsim params lists them)",
+                   d->name, name, hint);
+}
+
+size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out)
+{
+    const lv_mission_def *d = m->def;
+    const lv_slot_def *sd = &d->slots[s];
+    size_t n = 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        int uses = 0;
+        switch (sd->owner) {
+        case LV_OWN_ENV:
+            uses = 1;
+            break;
+        case LV_OWN_PHASE:
+            uses = sd->owner_index == k;
+            break;
+        case LV_OWN_STAGE:
+            uses = lv_mission_phase_has_stage(d, k, sd->owner_index);
+            break;
+        case LV_OWN_PARAM: /* a model type that takes the parameter set reads it */
+            for (size_t i = 0; i < d->phases[k].type->n_mission_params && !uses; i++)
+                uses = strcmp(d->phases[k].type->mission_params[i].name, sd->name) == 0;
+            break;
+        }
+        if (uses)
+            out[n++] = k;
+    }
+    return n;
+}

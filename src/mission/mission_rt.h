@@ -1,0 +1,61 @@
+/* mission_rt.h - internal: a loaded mission (its definition, the environment every phase
+ * shares, and each phase's plan resolved once), as run.c and compare.c read it. */
+#ifndef LV_MISSION_MISSION_RT_H
+#define LV_MISSION_MISSION_RT_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_mission.h"
+#include "mission/mission.h"
+#include "mission/phase_type.h"
+
+/* Where an initial value of the hand-off comes from. */
+typedef enum lv_init_kind {
+    LV_INIT_SLOT = 0,   /* the run's value of slot `index` (parameters, g, overrides) */
+    LV_INIT_PARENT,     /* the parent's final value `index` (a state copied by name) */
+    LV_INIT_MASS,       /* the carried stages' mass from the stage book */
+    LV_INIT_START_TIME  /* the phase's start time (the ECI <-> ECEF angle of dof3) */
+} lv_init_kind;
+
+typedef struct lv_init_src {
+    lv_init_kind kind;
+    size_t index;
+} lv_init_src;
+
+/* Phase k's plan: names resolved once, when the mission is loaded. */
+typedef struct lv_phase_plan {
+    size_t n_init;            /* the hand-off, in the order lv_simulate applies it */
+    const char **init_names;  /* [n_init], pointing into the plan's or the definition's names */
+    lv_init_src *init;        /* [n_init] */
+    size_t n_copied;          /* states copied from the parent */
+    size_t n_final;           /* "time", the model's states, its outputs */
+    char **final_names;       /* [n_final] */
+    size_t mass_final;        /* the mass state's index in final_names, or (size_t)-1 */
+    size_t n_events;          /* the model's state events */
+    char **event_names;       /* [n_events] */
+    size_t n_states;
+} lv_phase_plan;
+
+struct lv_mission {
+    lv_mission_def *def;
+    lv_mission_env env;
+    lv_phase_plan *plan;      /* [n_phases] */
+    char (*rules)[48];        /* [n_slots]: each slot's allowed values as text */
+    double *defaults;         /* [n_slots]: the file's values */
+};
+
+/* The mission from a parsed definition (taken over, also on failure): the environment, every
+ * phase's model built once with the file's values, the plans. lv_mission_load = parse + this. */
+lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err);
+
+/* The phases (indices) whose models read slot s directly; returns the count written to out
+ * (capacity: n_phases). */
+size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out);
+
+/* The run's value of every slot [n_slots] (run.c). */
+const double *lv_run_vals(const lv_run *r);
+
+/* 1 if phase k carries stage s. */
+int lv_mission_phase_has_stage(const lv_mission_def *d, size_t k, size_t s);
+
+#endif

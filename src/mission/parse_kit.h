@@ -1,0 +1,64 @@
+/* parse_kit.h - the mission parser's tools, shared with the phase-model types that parse
+ * their own phase keys (phase_type.h): typed values with "file:line:column: message" errors,
+ * key checks with suggestions, table references, and slot registration (not exported).
+ *
+ * `what` names the object in messages ("phase 'P2', inputs"); `key` the offending key.
+ * Every function returns LV_OK or LV_ERR_INPUT / LV_ERR_NOMEM with the message in c->err.
+ */
+#ifndef LV_MISSION_PARSE_KIT_H
+#define LV_MISSION_PARSE_KIT_H
+
+#include "core/status.h"
+#include "lvsim/lv_table.h"
+#include "mission/mission.h"
+#include "mission/yaml_tree.h"
+
+#define LV_NAME_MAX 64 /* stage, engine and phase names: [A-Za-z0-9_-], engines also '.' */
+#define LV_WHAT_MAX 160 /* "phase 'P2', inputs" */
+
+typedef struct lv_pctx {
+    const char *file;  /* the mission file, for messages */
+    lv_err *err;
+    lv_mission_def *m;
+    lv_slot_owner owner; /* owner of the slots registered now */
+    size_t owner_index;
+} lv_pctx;
+
+lv_status lv_pk_fail(const lv_pctx *c, const lv_ynode *at, const char *fmt, ...) LV_PRINTF(3, 4);
+lv_status lv_pk_nomem(const lv_pctx *c);
+
+const lv_ynode *lv_pk_get(const lv_ynode *map, const char *key); /* value of key, or NULL */
+const lv_ynode *lv_pk_key(const lv_ynode *map, const char *key); /* the key node, or NULL */
+
+/* `n` must be a mapping without duplicate keys; with `known` (NULL-terminated), only those. */
+lv_status lv_pk_check_map(const lv_pctx *c, const lv_ynode *n, const char *what,
+                          const char *const *known);
+/* The value of a required key: present and not empty. */
+lv_status lv_pk_need(const lv_pctx *c, const lv_ynode *map, const char *what, const char *key,
+                     const lv_ynode **out);
+/* A finite number written as a plain scalar. */
+lv_status lv_pk_num(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                    double *out);
+/* A non-empty string; *out borrows v. */
+lv_status lv_pk_text(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                     const char **out);
+/* One of `allowed` (NULL-terminated); *idx is its index. */
+lv_status lv_pk_enum(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                     const char *const *allowed, size_t *idx);
+/* A table given as `path` or {file, var, interp, extrap}: loaded into *tab; the resolved
+ * path and .mat variable go to *file and *var (owned by the caller). */
+lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                      const char *what, lv_extrap extrap_default, char **file, char **var,
+                      lv_table **tab);
+
+/* The number at `v` (key `key` of `what`) registered as slot `name` with its unit and range,
+ * owned by c->owner; out of range is an error at v naming the rule. `deg`: the value is in
+ * degrees (converted to rad; the range applies to the radians). */
+lv_status lv_pk_slot(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                     const char *name, const char *unit, lv_range range, int deg,
+                     lv_slot *out);
+/* A slot that the file does not write: its default value. */
+lv_status lv_pk_slot_default(const lv_pctx *c, const char *name, const char *unit, double value,
+                             lv_range range, lv_slot *out);
+
+#endif

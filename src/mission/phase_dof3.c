@@ -1,0 +1,333 @@
+/* phase_dof3.c - the phase-model type "dof3": the 3-DoF variable-mass point over the rotating
+ * planet (lv_dof3.h; the paper's sec. 2.2-2.3). The phase's stages fly as one mass point and
+ * the bottom stage's engines burn. Its own phase keys: inputs (alpha, beta, mu, throttle,
+ * constant or a control table) and aero (the phase's aerodynamic dataset). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "lvsim/lv_dof3.h"
+#include "lvsim/lv_wind.h"
+#include "mission/phase_type.h"
+
+static const char *const keys[] = {"inputs", "aero", NULL};
+
+/* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
+static const lv_var mission_params[] = {
+    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
+    {"start_lon", "rad", "Initial longitude", 0, 0},
+    {"start_h", "m", "Initial geodetic altitude", 0, 0},
+    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
+    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
+    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
+};
+
+static const lv_traj_col traj[] = {
+    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
+    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
+    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
+    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
+    {"q_dyn", "Pa", "q_dyn"},
+};
+
+/* ---- the phase's own keys ------------------------------------------------------------ */
+
+typedef struct dof3_cfg {
+    lv_slot u[4];        /* alpha, beta, mu [rad], throttle [-]: constant inputs */
+    char *inputs_file, *inputs_var;
+    lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
+    int has_aero;
+    int body_axes;       /* 0: CD, CL, CY (wind axes); 1: CA, CN, CY (body axes) */
+    lv_slot s_ref;       /* m^2 */
+    lv_slot coef[3];     /* constant coefficients; LV_NO_SLOT: from the table (or 0) */
+    char *aero_file, *aero_var;
+    lv_table *aero_table;
+} dof3_cfg;
+
+static void dof3_cfg_free(void *p)
+{
+    dof3_cfg *c = p;
+    if (c == NULL)
+        return;
+    free(c->inputs_file);
+    free(c->inputs_var);
+    lv_table_free(c->inputs);
+    free(c->aero_file);
+    free(c->aero_var);
+    lv_table_free(c->aero_table);
+    free(c);
+}
+
+/* inputs: {alpha_deg, beta_deg, mu_deg, throttle, table}: constant, or from a control history
+ * over mission time (outputs alpha, beta, mu [rad], throttle). Slots "<phase>.inputs.alpha"
+ * ... always exist (defaults 0, 0, 0 rad and throttle 1). */
+static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *phase,
+                              dof3_cfg *cfg)
+{
+    static const char *const ikeys[] = {"alpha", "beta", "mu", "throttle", "alpha_deg",
+                                        "beta_deg", "mu_deg", "table", NULL};
+    static const char *const names[4] = {"alpha", "beta", "mu", "throttle"};
+    static const char *const units[4] = {"rad", "rad", "rad", ""};
+    static const double defaults[4] = {0.0, 0.0, 0.0, 1.0};
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
+    lv_status st;
+    snprintf(what, sizeof what, "phase '%s', inputs", phase);
+    if (n != NULL && lv_yaml_is_null(n))
+        n = NULL;
+    if (n != NULL && (st = lv_pk_check_map(c, n, what, ikeys)) != LV_OK)
+        return st;
+    for (int k = 0; k < 4; k++) {
+        char deg[16];
+        snprintf(deg, sizeof deg, "%s_deg", names[k]);
+        snprintf(slot, sizeof slot, "%s.inputs.%s", phase, names[k]);
+        const lv_ynode *v = lv_pk_get(n, names[k]), *vd = k < 3 ? lv_pk_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
+                              names[k], deg);
+        const lv_range r = k == 3 ? LV_RANGE_NONNEG : LV_RANGE_ANY;
+        if (v != NULL || vd != NULL)
+            st = lv_pk_slot(c, v ? v : vd, what, v ? names[k] : deg, slot, units[k], r, vd != NULL,
+                            &cfg->u[k]);
+        else
+            st = lv_pk_slot_default(c, slot, units[k], defaults[k], r, &cfg->u[k]);
+        if (st != LV_OK)
+            return st;
+    }
+    const lv_ynode *v = lv_pk_get(n, "table");
+    if (v != NULL)
+        return lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->inputs_file,
+                           &cfg->inputs_var, &cfg->inputs);
+    return LV_OK;
+}
+
+/* aero: {s_ref, axes: wind|body, table, CD, CL, CY | CA, CN, CY}: the phase's aerodynamic
+ * dataset (tables over mach, alpha [, beta, altitude], outputs named as the coefficients). */
+static lv_status parse_aero(const lv_pctx *c, const lv_ynode *n, const char *phase,
+                            dof3_cfg *cfg)
+{
+    static const char *const akeys[] = {"s_ref", "axes", "table", "CD", "CL", "CY", "CA", "CN",
+                                        NULL};
+    static const char *const axes[] = {"wind", "body", NULL};
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
+    const lv_ynode *v;
+    lv_status st;
+    size_t i = 0;
+    for (int k = 0; k < 3; k++)
+        cfg->coef[k] = LV_NO_SLOT;
+    cfg->s_ref = LV_NO_SLOT;
+    snprintf(what, sizeof what, "phase '%s', aero", phase);
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = lv_pk_check_map(c, n, what, akeys)) != LV_OK)
+        return st;
+    cfg->has_aero = 1;
+    snprintf(slot, sizeof slot, "%s.aero.s_ref", phase);
+    if ((st = lv_pk_need(c, n, what, "s_ref", &v)) != LV_OK ||
+        (st = lv_pk_slot(c, v, what, "s_ref", slot, "m^2", LV_RANGE_POS, 0, &cfg->s_ref)) !=
+            LV_OK)
+        return st;
+    if ((v = lv_pk_get(n, "axes")) != NULL &&
+        (st = lv_pk_enum(c, v, what, "axes", axes, &i)) != LV_OK)
+        return st;
+    cfg->body_axes = i == 1;
+    const char *const names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
+    const char *const other[2][2] = {{"CA", "CN"}, {"CD", "CL"}};
+    for (int k = 0; k < 2; k++)
+        if (lv_pk_get(n, other[i][k]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, other[i][k]), "%s: '%s' belongs to axes: %s", what,
+                              other[i][k], i == 0 ? "body" : "wind");
+    for (int k = 0; k < 3; k++) {
+        snprintf(slot, sizeof slot, "%s.aero.%s", phase, names[i][k]);
+        if ((v = lv_pk_get(n, names[i][k])) != NULL &&
+            (st = lv_pk_slot(c, v, what, names[i][k], slot, "", LV_RANGE_ANY, 0, &cfg->coef[k])) !=
+                LV_OK)
+            return st;
+    }
+    if ((v = lv_pk_get(n, "table")) != NULL &&
+        (st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->aero_file,
+                          &cfg->aero_var, &cfg->aero_table)) != LV_OK)
+        return st;
+    return LV_OK;
+}
+
+static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    dof3_cfg *cfg = calloc(1, sizeof *cfg);
+    if (cfg == NULL)
+        return lv_pk_nomem(c);
+    ph->type_cfg = cfg;
+    lv_status st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
+    return st != LV_OK ? st : parse_aero(c, lv_pk_get(n, "aero"), ph->name, cfg);
+}
+
+/* ---- the model ---------------------------------------------------------------------------- */
+
+typedef struct dof3_self {
+    lv_phase_model pm;
+    lv_dof3 *model;
+    lv_aero_config aero;
+    lv_wind_user wind;  /* the wind table and this simulation's cursor */
+    lv_engine_config *engines;
+    lv_dof3_end *ends;
+    int *event_end;
+} dof3_self;
+
+static void dof3_free_self(void *p)
+{
+    dof3_self *s = p;
+    if (s == NULL)
+        return;
+    lv_dof3_free(s->model);
+    free(s->engines);
+    free(s->ends);
+    free(s->event_end);
+    free(s);
+}
+
+static const lv_dof3_end_kind dof3_end_of[] = {
+    [LV_END_ALTITUDE] = LV_DOF3_END_ALTITUDE, [LV_END_SPEED] = LV_DOF3_END_SPEED_REL,
+    [LV_END_APOGEE] = LV_DOF3_END_APOGEE, [LV_END_IMPACT] = LV_DOF3_END_IMPACT};
+
+static double val(const lv_build_ctx *bc, lv_slot s) { return s == LV_NO_SLOT ? 0.0 : bc->vals[s]; }
+
+/* The run's value of the mission parameter `name`, or `fallback` when the file has none. */
+static double param(const lv_build_ctx *bc, const char *name, double fallback)
+{
+    const lv_mission_def *d = bc->def;
+    for (size_t i = 0; i < d->n_params; i++)
+        if (strcmp(d->param_names[i], name) == 0)
+            return bc->vals[d->param_values[i]];
+    return fallback;
+}
+
+/* The stages are one mass point; the bottom stage's engines burn. */
+static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
+{
+    const lv_mission_def *d = bc->def;
+    const lv_phase_def *ph = &d->phases[bc->k];
+    const dof3_cfg *pc = ph->type_cfg;
+    const lv_stage_def *bottom = &d->stages[ph->stages[0]];
+    *out = NULL;
+    if (bc->env == NULL || bc->env->gravity == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "model 'dof3' needs a planet world");
+    size_t n_all = 0; /* `count` identical engines are `count` engine configurations */
+    for (size_t e = 0; e < bottom->n_engines; e++)
+        n_all += (size_t)(bottom->engines[e].count > 0 ? bottom->engines[e].count : 1);
+    dof3_self *s = calloc(1, sizeof *s);
+    if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
+        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
+        (s->event_end = calloc(ph->n_ends + 1, sizeof *s->event_end)) == NULL) {
+        dof3_free_self(s);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    lv_dof3_config cfg;
+    lv_dof3_config_default(&cfg);
+    cfg.name = ph->name;
+    cfg.planet = bc->env->planet;
+    cfg.gravity = bc->env->gravity;
+    cfg.atmo = bc->env->atmo;
+    if (bc->env->wind != NULL) {
+        s->wind = (lv_wind_user)LV_WIND_USER_INIT(bc->env->wind);
+        cfg.wind = lv_wind_fn_table;
+        cfg.wind_user = &s->wind;
+    }
+    double m0 = 0.0;
+    for (size_t i = 0; i < ph->n_stages; i++) {
+        const size_t si = ph->stages[i];
+        m0 += val(bc, d->stages[si].dry_mass) + bc->prop[si];
+    }
+    const double prop0 = bc->prop[ph->stages[0]];
+    cfg.m0 = m0;
+    cfg.m_burnout = m0 - prop0;
+    size_t ne = 0;
+    for (size_t e = 0; prop0 > 0.0 && e < bottom->n_engines; e++) {
+        const lv_engine_def *ed = &bottom->engines[e];
+        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
+            lv_engine_config *ec = &s->engines[ne++];
+            lv_engine_config_default(ec);
+            ec->name = ed->name;
+            ec->thrust_vac = val(bc, ed->thrust_vac);
+            ec->isp_vac = val(bc, ed->isp_vac);
+            ec->mdot = val(bc, ed->mdot);
+            ec->exit_area = val(bc, ed->exit_area);
+            ec->table = ed->table;
+        }
+    }
+    cfg.n_engines = ne;
+    cfg.engines = s->engines;
+    cfg.start_lat = param(bc, "start_lat", 0.0);
+    cfg.start_lon = param(bc, "start_lon", 0.0);
+    cfg.start_h = param(bc, "start_h", 0.0);
+    cfg.start_vel = param(bc, "start_vel", 0.0);
+    cfg.start_fpa = param(bc, "start_fpa", 0.0);
+    cfg.start_chi = param(bc, "start_chi", 0.0);
+    size_t n_ends = 0;
+    s->event_end[0] = -1; /* event 0: burnout (a phase end when the phase lists it) */
+    for (size_t j = 0; j < ph->n_ends; j++) {
+        const lv_end_def *e = &ph->ends[j];
+        if (e->kind == LV_END_BURNOUT) {
+            cfg.stop_at_burnout = 1;
+            s->event_end[0] = (int)j;
+            continue;
+        }
+        s->event_end[1 + n_ends] = (int)j;
+        s->ends[n_ends++] =
+            (lv_dof3_end){NULL, dof3_end_of[e->kind], val(bc, e->value), e->direction, 1};
+    }
+    cfg.n_ends = n_ends;
+    cfg.ends = s->ends;
+    cfg.alpha = bc->vals[pc->u[0]];
+    cfg.beta = bc->vals[pc->u[1]];
+    cfg.mu = bc->vals[pc->u[2]];
+    cfg.throttle = bc->vals[pc->u[3]];
+    cfg.inputs = pc->inputs;
+    /* the phase's aerodynamic dataset: a coefficient is a constant, else the table's output
+     * of its name, else 0 */
+    if (pc->has_aero) {
+        static const char *const names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
+        lv_aero_config_default(&s->aero);
+        s->aero.axes = pc->body_axes ? LV_AERO_BODY : LV_AERO_WIND;
+        s->aero.s_ref = val(bc, pc->s_ref);
+        for (int c = 0; c < 3; c++) {
+            const char *nm = names[pc->body_axes][c];
+            size_t idx;
+            if (pc->coef[c] != LV_NO_SLOT)
+                s->aero.coef[c] = (lv_aero_coef){NULL, NULL, val(bc, pc->coef[c])};
+            else if (pc->aero_table &&
+                     lv_table_out_index(pc->aero_table, nm, &idx, NULL) == LV_OK)
+                s->aero.coef[c] = (lv_aero_coef){pc->aero_table, nm, 0.0};
+        }
+        cfg.aero = &s->aero;
+    }
+    lv_status st = lv_dof3_create(&cfg, &s->model, err);
+    if (st != LV_OK) {
+        dof3_free_self(s);
+        return st;
+    }
+    s->pm.def = lv_dof3_def(s->model);
+    s->pm.inst = lv_dof3_inst(s->model);
+    s->pm.event_end = s->event_end;
+    s->pm.self = s;
+    *out = &s->pm;
+    return LV_OK;
+}
+
+const lv_phase_type lv_phase_type_dof3 = {
+    .name = "dof3",
+    .description = "3-DoF variable-mass point over the rotating planet: engines, aerodynamics, "
+                   "inputs alpha, beta, mu, throttle",
+    .world = LV_WORLD_PLANET,
+    .keys = keys,
+    .n_mission_params = sizeof mission_params / sizeof mission_params[0],
+    .mission_params = mission_params,
+    .mass_state = "m",
+    .parse = dof3_parse,
+    .cfg_free = dof3_cfg_free,
+    .build = dof3_build,
+    .free_self = dof3_free_self,
+    .n_traj = sizeof traj / sizeof traj[0],
+    .traj = traj,
+    .traj_extra = NULL,
+};

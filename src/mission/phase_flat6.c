@@ -1,0 +1,155 @@
+/* phase_flat6.c - the phase-model type "flat6": the paper's test-case body (lv_flat.h), a
+ * stack of stages as one 6-DoF point mass over a flat, non-rotating world with uniform
+ * gravity; the bottom stage's engines burn (paper, section 4.1). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "core/status.h"
+#include "lvsim/lv_flat.h"
+#include "lvsim/lv_planet.h"
+#include "lvsim/lv_units.h"
+#include "mission/phase_type.h"
+
+/* The model's parameters that are the mission's shared parameter set (lv_flat.h). */
+static const lv_var mission_params[] = {
+    {"start_x", "m", "Initial position east", 0, 0},
+    {"start_y", "m", "Initial position north", 0, 0},
+    {"start_z", "m", "Initial altitude", 0, 0},
+    {"start_vel", "m/s", "Initial speed", 0, 0},
+    {"start_fpa", "rad", "Initial flight-path angle above the x-y plane", 0, 0},
+    {"start_chi", "rad", "Initial heading, from north (+y) towards east (+x)", 0, 0},
+    {"start_psi", "rad", "Initial heading angle (yaw)", 0, 0},
+    {"start_theta", "rad", "Initial pitch angle", 0, 0},
+    {"start_phi", "rad", "Initial bank angle", 0, 0},
+    {"start_p", "rad/s", "Initial roll rate", 0, 0},
+    {"start_q", "rad/s", "Initial pitch rate", 0, 0},
+    {"start_r", "rad/s", "Initial yaw rate", 0, 0},
+};
+
+/* Merged trajectories: the states, the stage mass (written by the summary), and where the
+ * point is over the Earth with the flat world's origin at the mission's site. */
+static const lv_traj_col traj[] = {
+    {"x", "m", "x"},           {"y", "m", "y"},           {"z", "m", "z"},
+    {"vx", "m/s", "vx"},       {"vy", "m/s", "vy"},       {"vz", "m/s", "vz"},
+    {"psi", "rad", "psi"},     {"theta", "rad", "theta"}, {"phi", "rad", "phi"},
+    {"p", "rad/s", "p"},       {"q", "rad/s", "q"},       {"r", "rad/s", "r"},
+    {"body_mass", "kg", "m"},  {"lat", "rad", NULL},      {"lon", "rad", NULL},
+    {"h", "m", NULL},
+};
+enum { TC_X = 0, TC_Y = 1, TC_Z = 2, TC_LAT = 13, TC_LON = 14, TC_H = 15 };
+
+/* The flat world's origin sits at the mission's site (WGS-84) with x east, y north, z up. */
+static void flat6_traj_extra(const lv_mission_def *d, double *row)
+{
+    const lv_planet earth = lv_planet_earth();
+    double r_site[3], C_ned_ecef[3][3], r_ecef[3];
+    lv_frames_geodetic_to_ecef(&earth, d->env.site_lat, d->env.site_lon, 0.0, r_site);
+    lv_frames_C_ned_ecef(d->env.site_lat, d->env.site_lon, C_ned_ecef);
+    const double ned[3] = {row[TC_Y], row[TC_X], -row[TC_Z]};
+    for (int a = 0; a < 3; a++)
+        r_ecef[a] = r_site[a] + C_ned_ecef[0][a] * ned[0] + C_ned_ecef[1][a] * ned[1] +
+                    C_ned_ecef[2][a] * ned[2];
+    lv_frames_ecef_to_geodetic(&earth, r_ecef, &row[TC_LAT], &row[TC_LON], &row[TC_H]);
+}
+
+static const lv_flat_end_kind flat_end_of[] = {
+    [LV_END_BURNOUT] = LV_FLAT_END_BURNOUT, [LV_END_ALTITUDE] = LV_FLAT_END_ALTITUDE,
+    [LV_END_SPEED] = LV_FLAT_END_SPEED,     [LV_END_APOGEE] = LV_FLAT_END_APOGEE,
+    [LV_END_IMPACT] = LV_FLAT_END_IMPACT};
+
+/* What one built model owns. */
+typedef struct flat6_self {
+    lv_phase_model pm;
+    lv_flat6 *model;
+    lv_flat_stage *stages;
+    lv_flat_engine *engines;
+    lv_flat_end *ends;
+    int *event_end;
+} flat6_self;
+
+static void flat6_free_self(void *p)
+{
+    flat6_self *s = p;
+    if (s == NULL)
+        return;
+    lv_flat6_free(s->model);
+    free(s->stages);
+    free(s->engines);
+    free(s->ends);
+    free(s->event_end);
+    free(s);
+}
+
+static double val(const lv_build_ctx *bc, lv_slot s) { return s == LV_NO_SLOT ? 0.0 : bc->vals[s]; }
+
+/* The stages carried, each with its engines; the bottom stage burns. */
+static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
+{
+    const lv_mission_def *d = bc->def;
+    const lv_phase_def *ph = &d->phases[bc->k];
+    *out = NULL;
+    flat6_self *s = calloc(1, sizeof *s);
+    size_t n_eng = 0;
+    for (size_t i = 0; i < ph->n_stages; i++)
+        n_eng += d->stages[ph->stages[i]].n_engines;
+    if (s == NULL || (s->stages = calloc(ph->n_stages, sizeof *s->stages)) == NULL ||
+        (s->engines = calloc(n_eng + 1, sizeof *s->engines)) == NULL ||
+        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
+        (s->event_end = calloc(ph->n_ends + 1, sizeof *s->event_end)) == NULL) {
+        flat6_free_self(s);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    size_t e0 = 0;
+    for (size_t i = 0; i < ph->n_stages; i++) {
+        const size_t si = ph->stages[i];
+        const lv_stage_def *sd = &d->stages[si];
+        for (size_t e = 0; e < sd->n_engines; e++) {
+            const lv_engine_def *ed = &sd->engines[e];
+            double thrust = val(bc, ed->thrust_vac), mdot = val(bc, ed->mdot);
+            if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac != LV_NO_SLOT)
+                mdot = thrust / (val(bc, ed->isp_vac) * LV_G0);
+            s->engines[e0 + e] = (lv_flat_engine){ed->table, ed->thrust_out, ed->mdot_out, thrust,
+                                                  mdot, ed->count};
+        }
+        s->stages[i] = (lv_flat_stage){sd->name, val(bc, sd->dry_mass), bc->prop[si],
+                                       sd->n_engines, s->engines + e0};
+        e0 += sd->n_engines;
+    }
+    s->event_end[0] = -1; /* event 0: the bottom stage's burnout stops the engines */
+    for (size_t j = 0; j < ph->n_ends; j++) {
+        s->ends[j] = (lv_flat_end){flat_end_of[ph->ends[j].kind], val(bc, ph->ends[j].value),
+                                   ph->ends[j].direction};
+        s->event_end[1 + j] = (int)j; /* events 1..: the ends in order */
+    }
+    lv_flat6_config cfg = {ph->name,    val(bc, d->env.g), ph->n_stages, s->stages,
+                           ph->n_ends, s->ends};
+    lv_status st = lv_flat6_create(&cfg, &s->model, err);
+    if (st != LV_OK) {
+        flat6_free_self(s);
+        return st;
+    }
+    s->pm.def = lv_flat6_def(s->model);
+    s->pm.inst = lv_flat6_inst(s->model);
+    s->pm.event_end = s->event_end;
+    s->pm.self = s;
+    *out = &s->pm;
+    return LV_OK;
+}
+
+const lv_phase_type lv_phase_type_flat6 = {
+    .name = "flat6",
+    .description = "6-DoF point mass carrying a stack of stages over a flat world (the paper's "
+                   "test case; thrust along +z, no aerodynamics)",
+    .world = LV_WORLD_FLAT,
+    .keys = NULL,
+    .n_mission_params = sizeof mission_params / sizeof mission_params[0],
+    .mission_params = mission_params,
+    .mass_state = "m",
+    .parse = NULL,
+    .cfg_free = NULL,
+    .build = flat6_build,
+    .free_self = flat6_free_self,
+    .n_traj = sizeof traj / sizeof traj[0],
+    .traj = traj,
+    .traj_extra = flat6_traj_extra,
+};

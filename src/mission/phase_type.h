@@ -1,0 +1,95 @@
+/* phase_type.h - the registry of phase-model types: what a phase's `model:` names (not
+ * exported). The parser, the mission, the run and the summary know no model by name: they
+ * ask the phase's type to parse its own keys, to build its model from a run's values, and
+ * to name the columns of the bodies' merged trajectories. A new model type is one file that
+ * defines an lv_phase_type and one line in phase_types.c (docs/architecture.md).
+ */
+#ifndef LV_MISSION_PHASE_TYPE_H
+#define LV_MISSION_PHASE_TYPE_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_mission.h"
+#include "lvsim/lv_model.h"
+#include "lvsim/lv_planet.h"
+#include "lvsim/lv_wind.h"
+#include "mission/mission.h"
+#include "mission/parse_kit.h"
+#include "mission/yaml_tree.h"
+
+/* The environment every phase shares, built once when the mission is loaded (read-only
+ * afterwards; the wind table's cursor lives in each model instance). */
+typedef struct lv_mission_env {
+    lv_planet planet;
+    lv_gravity *gravity; /* NULL on a flat world */
+    lv_atmo *atmo;       /* NULL: vacuum */
+    lv_wind *wind;       /* NULL: no wind */
+} lv_mission_env;
+
+/* What a type needs to build phase k's model for one run. */
+typedef struct lv_build_ctx {
+    const lv_mission_def *def;
+    const lv_mission_env *env;
+    size_t k;           /* the phase */
+    const double *vals; /* [def->n_slots]: the run's value of every slot */
+    const double *prop; /* [def->n_stages]: kg of propellant left in each stage at the start */
+} lv_build_ctx;
+
+/* A built phase model: what one simulation of the phase gets. */
+typedef struct lv_phase_model lv_phase_model;
+struct lv_phase_model {
+    const lv_phase_type *type;
+    const lv_model_def *def;
+    void *inst;
+    const int *event_end; /* [def->n_events]: the phase end (index into ph->ends) each state
+                             event stands for, or -1 */
+    void *self;           /* the type's own object (freed by type->free_self) */
+};
+
+/* One column of a body's merged trajectory (body_<stage>.csv). */
+typedef struct lv_traj_col {
+    const char *name;   /* column name ("r_eci_x", "lat") */
+    const char *unit;
+    const char *source; /* the phase result's column it copies, or NULL: computed by
+                           traj_extra */
+} lv_traj_col;
+
+struct lv_phase_type {
+    const char *name;        /* the `model:` value: "dof3" */
+    const char *description; /* one line */
+    lv_world_kind world;     /* the world it flies in */
+    const char *const *keys; /* phase keys it parses itself besides the common ones (name,
+                                model, stages, from, start_time, stop_time, end, integrator,
+                                set), NULL-terminated; may be NULL */
+    /* The model parameters a root phase takes from the mission's shared parameter set
+     * (name, SI unit, description; `start` unused). */
+    size_t n_mission_params;
+    const lv_var *mission_params;
+    const char *mass_state;  /* the state that holds the vehicle's mass: "m" */
+
+    /* Parses the type's own keys of phase `ph` (`n`: its mapping, keys already checked),
+     * registers their numbers as slots (c->owner is the phase) and stores what it read in
+     * ph->type_cfg. NULL: the type has no keys of its own. */
+    lv_status (*parse)(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph);
+    void (*cfg_free)(void *cfg); /* accepts NULL */
+
+    /* Builds phase bc->k's model from the run's values. Errors name the field and value. */
+    lv_status (*build)(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err);
+    void (*free_self)(void *self);
+
+    /* The columns of a body's merged trajectory, and the function that computes those with
+     * source NULL from the sourced ones (row[] in column order; `def` for the world). */
+    size_t n_traj;
+    const lv_traj_col *traj;
+    void (*traj_extra)(const lv_mission_def *def, double *row);
+};
+
+/* The registered types, NULL-terminated (phase_types.c). */
+const lv_phase_type *const *lv_phase_types(void);
+
+/* Builds phase bc->k's model with its type's build; lv_phase_model_free releases it. */
+lv_status lv_phase_model_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err);
+void lv_phase_model_free(lv_phase_model *pm); /* accepts NULL */
+
+#endif

@@ -1,0 +1,27 @@
+/* phase_types.c - the registered phase-model types (phase_type.h): a mission phase's
+ * `model:` names one of them. */
+#include "mission/phase_type.h"
+
+#include "core/status.h"
+
+extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
+extern const lv_phase_type lv_phase_type_dof3;  /* phase_dof3.c */
+
+static const lv_phase_type *const types[] = {&lv_phase_type_flat6, &lv_phase_type_dof3, NULL};
+
+const lv_phase_type *const *lv_phase_types(void) { return types; }
+
+lv_status lv_phase_model_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
+{
+    const lv_phase_type *t = bc->def->phases[bc->k].type;
+    lv_status st = t->build(bc, out, err);
+    if (st == LV_OK)
+        (*out)->type = t;
+    return st;
+}
+
+void lv_phase_model_free(lv_phase_model *pm)
+{
+    if (pm != NULL)
+        pm->type->free_self(pm->self);
+}

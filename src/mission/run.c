@@ -1,0 +1,767 @@
+/* run.c - lv_run: one set of values for a mission's parameters and the phases' results.
+ *
+ * A phase runs as prepare (its model built from the run's values and the stage book, the
+ * hand-off from its plan: parameters or the parent's finals, the carried stages' mass, the
+ * overrides), lv_simulate, complete (the result, the stage book after the phase). Setting a
+ * parameter marks the phases that read it; lv_run_execute simulates those, the phases that
+ * never ran or failed, and all their descendants. Independent branches run in parallel
+ * threads; a failing phase stops only its descendants. The mission is only read. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/names.h"
+#include "core/status.h"
+#include "core/units.h"
+#include "lvsim/lv_io.h"
+#include "mission/mission_rt.h"
+
+/* ---- the run object ---------------------------------------------------------------------- */
+
+typedef struct run_phase {
+    lv_phase_result res;  /* the public view; arrays below */
+    double *fvalues;      /* [plan n_final] */
+    double *prop_end;     /* [n_stages]: propellant left after the phase, kg */
+    double *set_values;   /* [n_set]: this run's overrides */
+    lv_result *rows;      /* in-memory rows, or NULL */
+    char *stem;
+    char method[32];      /* the integration method it ran with */
+    int dirty;            /* an input changed since the phase last ran */
+    int todo;             /* in the current execute: to run */
+    int claimed;          /* in the current execute: taken by a worker */
+} run_phase;
+
+struct lv_run {
+    const lv_mission *m;
+    double *vals;         /* [n_slots] */
+    run_phase *ph;        /* [n_phases] */
+    size_t simulated;     /* phases simulated by the last execute */
+    pthread_mutex_t lock;
+    pthread_cond_t cv;
+};
+
+static void phase_clear(run_phase *p)
+{
+    lv_sim_report_clear(&p->res.report);
+    lv_result_free(p->rows);
+    free(p->stem);
+    p->rows = NULL;
+    p->stem = NULL;
+    p->res.result_stem = NULL;
+    p->res.state = LV_PHASE_PENDING;
+    p->res.error[0] = '\0';
+    p->res.t_start = p->res.t_end = NAN;
+    p->res.end_index = -1;
+    p->res.end_value = NAN;
+    p->res.n_copied = 0;
+    p->res.mass_from_stages = p->res.mass_start = NAN;
+}
+
+void lv_run_free(lv_run *r)
+{
+    if (r == NULL)
+        return;
+    for (size_t k = 0; r->ph != NULL && k < r->m->def->n_phases; k++) {
+        run_phase *p = &r->ph[k];
+        phase_clear(p);
+        free(p->fvalues);
+        free(p->prop_end);
+        free(p->set_values);
+    }
+    free(r->ph);
+    free(r->vals);
+    pthread_mutex_destroy(&r->lock);
+    pthread_cond_destroy(&r->cv);
+    free(r);
+}
+
+lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
+{
+    if (m == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_run_create: NULL argument");
+    *out = NULL;
+    const lv_mission_def *d = m->def;
+    lv_run *r = calloc(1, sizeof *r);
+    if (r == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    pthread_mutex_init(&r->lock, NULL);
+    pthread_cond_init(&r->cv, NULL);
+    r->m = m;
+    r->vals = malloc((d->n_slots + 1) * sizeof *r->vals);
+    r->ph = calloc(d->n_phases, sizeof *r->ph);
+    if (r->vals == NULL || r->ph == NULL) {
+        lv_run_free(r);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    memcpy(r->vals, m->defaults, d->n_slots * sizeof *r->vals);
+    for (size_t k = 0; k < d->n_phases; k++) {
+        run_phase *p = &r->ph[k];
+        const lv_phase_def *ph = &d->phases[k];
+        const lv_phase_plan *pl = &m->plan[k];
+        p->fvalues = calloc(pl->n_final, sizeof *p->fvalues);
+        p->prop_end = calloc(d->n_stages + 1, sizeof *p->prop_end);
+        p->set_values = calloc(ph->n_set + 1, sizeof *p->set_values);
+        if (!p->fvalues || !p->prop_end || !p->set_values) {
+            lv_run_free(r);
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        }
+        p->res.name = ph->name;
+        snprintf(p->method, sizeof p->method, "%s", ph->method ? ph->method : "dassl");
+        p->res.method = p->method;
+        p->res.n_final = pl->n_final;
+        p->res.final_names = (const char *const *)pl->final_names;
+        p->res.final_values = p->fvalues;
+        p->res.n_event_names = pl->n_events;
+        p->res.event_names = (const char *const *)pl->event_names;
+        p->res.n_set = ph->n_set;
+        p->res.set_names = (const char *const *)ph->set_names;
+        p->res.set_values = p->set_values;
+        p->res.propellant_end = p->prop_end;
+        phase_clear(p);
+        p->dirty = 1;
+    }
+    *out = r;
+    return LV_OK;
+}
+
+const lv_mission *lv_run_mission(const lv_run *r) { return r->m; }
+const double *lv_run_vals(const lv_run *r) { return r->vals; }
+
+/* ---- parameters ----------------------------------------------------------------------------- */
+
+static lv_status set_slot(lv_run *r, size_t i, double v, int deg, lv_err *err)
+{
+    const lv_mission_def *d = r->m->def;
+    const lv_slot_def *sd = &d->slots[i];
+    const double x = deg ? v * LV_DEG : v;
+    if (!lv_range_holds(sd->range, x))
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': %s%s = %g %s: must be %s%s%s", d->name,
+                       sd->name, deg ? "_deg" : "", v, deg ? "deg" : sd->unit,
+                       r->m->rules[i], sd->unit[0] && !deg ? " " : "", deg ? "" : sd->unit);
+    if (memcmp(&x, &r->vals[i], sizeof x) == 0)
+        return LV_OK; /* unchanged: nothing to run again */
+    r->vals[i] = x;
+    size_t *ks = malloc((d->n_phases + 1) * sizeof *ks);
+    if (ks == NULL) {
+        for (size_t k = 0; k < d->n_phases; k++) /* conservative: everything again */
+            r->ph[k].dirty = 1;
+        return LV_OK;
+    }
+    size_t n = lv_mission_slot_phases(r->m, i, ks);
+    for (size_t j = 0; j < n; j++)
+        r->ph[ks[j]].dirty = 1;
+    free(ks);
+    return LV_OK;
+}
+
+lv_status lv_run_set(lv_run *r, const char *name, double value, lv_err *err)
+{
+    size_t i;
+    int deg;
+    lv_status st = lv_mission_param_find(r->m, name, &i, &deg, err);
+    return st != LV_OK ? st : set_slot(r, i, value, deg, err);
+}
+
+lv_status lv_run_get(const lv_run *r, const char *name, double *value, lv_err *err)
+{
+    size_t i;
+    int deg;
+    lv_status st = lv_mission_param_find(r->m, name, &i, &deg, err);
+    if (st == LV_OK)
+        *value = deg ? r->vals[i] / LV_DEG : r->vals[i];
+    return st;
+}
+
+lv_status lv_run_set_index(lv_run *r, size_t i, double value, lv_err *err)
+{
+    if (i >= r->m->def->n_slots)
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': parameter index %zu out of range",
+                       r->m->def->name, i);
+    return set_slot(r, i, value, 0, err);
+}
+
+double lv_run_get_index(const lv_run *r, size_t i)
+{
+    return i < r->m->def->n_slots ? r->vals[i] : NAN;
+}
+
+void lv_run_reset(lv_run *r)
+{
+    for (size_t i = 0; i < r->m->def->n_slots; i++)
+        set_slot(r, i, r->m->defaults[i], 0, NULL);
+}
+
+/* ---- one phase: prepare, simulate, complete -------------------------------------------------- */
+
+struct lv_phase_call {
+    lv_run *r;
+    size_t k;
+    lv_phase_model *pm;
+    lv_sim_settings s;
+    const char **names;  /* hand-off [n_init] */
+    double *values;
+    double *finals;      /* [n_final] */
+    double *prop;        /* [n_stages] the stage book at the phase start */
+    double mass_book;    /* kg, the carried stages' mass from the book (NAN for a root) */
+    lv_result *rows;
+    lv_sink mem;
+};
+
+void lv_phase_call_free(lv_phase_call *c)
+{
+    if (c == NULL)
+        return;
+    lv_phase_model_free(c->pm);
+    free(c->names);
+    free(c->values);
+    free(c->finals);
+    free(c->prop);
+    lv_sink_destroy(&c->mem);
+    lv_result_free(c->rows);
+    free(c);
+}
+
+const lv_model_def *lv_phase_call_model(const lv_phase_call *c) { return c->pm->def; }
+void *lv_phase_call_inst(lv_phase_call *c) { return c->pm->inst; }
+lv_sim_settings *lv_phase_call_settings(lv_phase_call *c) { return &c->s; }
+double *lv_phase_call_finals(lv_phase_call *c) { return c->finals; }
+
+/* Prepares phase k with the run's method/tolerance/grid overrides and rows kept or not. */
+static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phase_call **out,
+                         lv_err *err)
+{
+    const lv_mission *m = r->m;
+    const lv_mission_def *d = m->def;
+    const lv_phase_def *ph = &d->phases[k];
+    const lv_phase_plan *pl = &m->plan[k];
+    const run_phase *par = ph->parent >= 0 ? &r->ph[ph->parent] : NULL;
+    const double *v = r->vals;
+    *out = NULL;
+    if (par != NULL && par->res.state != LV_PHASE_DONE)
+        return lv_fail(err, LV_ERR_INPUT, "phase '%s' needs its parent '%s' to have run", ph->name,
+                       d->phases[ph->parent].name);
+    lv_phase_call *c = calloc(1, sizeof *c);
+    if (c == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    c->r = r;
+    c->k = k;
+    c->names = calloc(pl->n_init + 1, sizeof *c->names);
+    c->values = calloc(pl->n_init + 1, sizeof *c->values);
+    c->finals = calloc(pl->n_final, sizeof *c->finals);
+    c->prop = calloc(d->n_stages + 1, sizeof *c->prop);
+    if (!c->names || !c->values || !c->finals || !c->prop) {
+        lv_phase_call_free(c);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    /* the stage book: what the parent left, or the run's propellant loads */
+    for (size_t s = 0; s < d->n_stages; s++)
+        c->prop[s] = par ? par->prop_end[s] : v[d->stages[s].propellant_mass];
+    const lv_build_ctx bc = {d, &m->env, k, v, c->prop};
+    lv_status st = lv_phase_model_build(&bc, &c->pm, err);
+    if (st != LV_OK) {
+        lv_phase_call_free(c);
+        return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
+                              ph->loc.column, ph->name);
+    }
+
+    lv_sim_settings *s = &c->s;
+    lv_sim_settings_default(s);
+    s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
+    s->stop_time = v[ph->t_stop];
+    s->method = opt && opt->method ? opt->method : (ph->method ? ph->method : "dassl");
+    s->tolerance = opt && opt->tolerance > 0.0 ? opt->tolerance : v[ph->tolerance];
+    s->number_of_intervals = ph->intervals;
+    s->output_interval = v[ph->output_interval];
+    s->fixed_step = v[ph->fixed_step];
+    if (opt && opt->output_interval > 0.0) {
+        s->output_interval = opt->output_interval;
+        s->number_of_intervals = 0;
+    }
+    s->result_file = NULL;
+    c->mass_book = NAN;
+    if (par != NULL) {
+        c->mass_book = 0.0;
+        for (size_t i = 0; i < ph->n_stages; i++)
+            c->mass_book += v[d->stages[ph->stages[i]].dry_mass] + c->prop[ph->stages[i]];
+    }
+    for (size_t i = 0; i < pl->n_init; i++) {
+        const lv_init_src *src = &pl->init[i];
+        c->names[i] = pl->init_names[i];
+        switch (src->kind) {
+        case LV_INIT_SLOT: c->values[i] = v[src->index]; break;
+        case LV_INIT_PARENT: c->values[i] = par->fvalues[src->index]; break;
+        case LV_INIT_MASS: c->values[i] = c->mass_book; break;
+        case LV_INIT_START_TIME: c->values[i] = s->start_time; break;
+        }
+    }
+    s->n_initial = pl->n_init;
+    s->initial_names = c->names;
+    s->initial_values = c->values;
+    s->n_final = pl->n_final;
+    s->final_names = (const char *const *)pl->final_names;
+    if (!(opt && opt->no_rows)) {
+        if ((st = lv_sink_memory_create(&c->rows, &c->mem, err)) != LV_OK) {
+            lv_phase_call_free(c);
+            return st;
+        }
+        s->n_sinks = 1;
+        s->sinks = &c->mem;
+    }
+    if (!(s->stop_time > s->start_time)) {
+        st = lv_fail(err, LV_ERR_INPUT,
+                     "%s:%d:%d: phase '%s': stop_time %g s is not after its start %g s (the "
+                     "parent '%s' ended then)",
+                     d->path, ph->loc.line, ph->loc.column, ph->name, s->stop_time,
+                     s->start_time, par ? par->res.name : "-");
+        lv_phase_call_free(c);
+        return st;
+    }
+    *out = c;
+    return LV_OK;
+}
+
+lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
+{
+    if (k >= r->m->def->n_phases)
+        return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
+    return prepare(r, k, NULL, out, err);
+}
+
+/* The phase's result from a finished call (the run's lock is held when workers run). */
+static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_err,
+                   lv_sim_report *rep)
+{
+    const lv_mission_def *d = r->m->def;
+    const lv_phase_def *ph = &d->phases[c->k];
+    const lv_phase_plan *pl = &r->m->plan[c->k];
+    run_phase *p = &r->ph[c->k];
+    phase_clear(p);
+    p->res.state = st == LV_OK ? LV_PHASE_DONE : LV_PHASE_FAILED;
+    if (st != LV_OK)
+        snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': %.430s", ph->name,
+                 sim_err ? sim_err->msg : lv_status_str(st));
+    if (rep != NULL) {
+        p->res.report = *rep;
+        memset(rep, 0, sizeof *rep); /* the event log moves into the result */
+    }
+    p->res.t_start = c->s.start_time;
+    p->res.t_end = p->res.report.end_time;
+    p->res.t_stop = c->s.stop_time;
+    snprintf(p->method, sizeof p->method, "%s", c->s.method);
+    p->res.method = p->method;
+    p->res.tolerance = c->s.tolerance;
+    p->res.n_copied = pl->n_copied;
+    p->res.mass_from_stages = c->mass_book;
+    for (size_t i = 0; i < ph->n_set; i++)
+        p->set_values[i] = r->vals[ph->set_values[i]];
+    if (p->res.report.reason == LV_STOP_EVENT && p->res.report.stop_event >= 0 &&
+        (size_t)p->res.report.stop_event < pl->n_events) {
+        int j = c->pm->event_end[p->res.report.stop_event];
+        p->res.end_index = j;
+        if (j >= 0 && ph->ends[j].value != LV_NO_SLOT)
+            p->res.end_value = r->vals[ph->ends[j].value];
+    }
+    memcpy(p->fvalues, c->finals, pl->n_final * sizeof *p->fvalues);
+    p->rows = c->rows;
+    c->rows = NULL;
+    p->stem = c->s.result_file ? strdup(c->s.result_file) : NULL;
+    p->res.result_stem = p->stem;
+    /* the mass at the start: the hand-off's last word on the mass state */
+    double m0 = NAN;
+    for (size_t i = 0; i < c->s.n_initial; i++)
+        if (strcmp(c->names[i], ph->type->mass_state) == 0)
+            m0 = c->values[i];
+    for (size_t i = 0; isnan(m0) && i < c->pm->def->n_states; i++)
+        if (strcmp(c->pm->def->states[i].name, ph->type->mass_state) == 0)
+            m0 = c->pm->def->states[i].start;
+    p->res.mass_start = m0;
+    /* the stage book: what the phase burned came out of its bottom stage */
+    memcpy(p->prop_end, c->prop, d->n_stages * sizeof *p->prop_end);
+    if (st == LV_OK && pl->mass_final != (size_t)-1) {
+        const size_t bottom = ph->stages[0];
+        const double burned = m0 - c->finals[pl->mass_final];
+        if (burned > 0.0)
+            p->prop_end[bottom] = fmax(0.0, p->prop_end[bottom] - burned);
+    }
+    p->dirty = 0;
+}
+
+lv_status lv_run_complete(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_err,
+                          lv_sim_report *rep, lv_err *err)
+{
+    if (c == NULL || c->r != r)
+        return lv_fail(err, LV_ERR_INPUT, "lv_run_complete: the call is not this run's");
+    record(r, c, st, sim_err, rep);
+    lv_phase_call_free(c);
+    return LV_OK;
+}
+
+/* ---- executing the tree ------------------------------------------------------------------------ */
+
+static int mkdir_p(const char *dir)
+{
+    char buf[4096];
+    size_t n = strlen(dir);
+    if (n == 0 || n >= sizeof buf)
+        return -1;
+    memcpy(buf, dir, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char ch = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return -1;
+            buf[i] = ch;
+        }
+    }
+    return 0;
+}
+
+typedef struct progress_ctx {
+    const lv_run *r;
+    size_t k;
+    const lv_run_options *opt;
+} progress_ctx;
+
+static int progress_thunk(double t, void *user)
+{
+    const progress_ctx *pc = user;
+    return pc->opt->progress(pc->r, pc->k, t, pc->opt->user);
+}
+
+/* Runs phase k: prepare, simulate, then (under the lock) record. Called without the lock. */
+static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err *err)
+{
+    const lv_phase_def *ph = &r->m->def->phases[k];
+    lv_phase_call *c = NULL;
+    lv_status st = prepare(r, k, opt, &c, err);
+    if (st != LV_OK) {
+        pthread_mutex_lock(&r->lock);
+        run_phase *p = &r->ph[k];
+        phase_clear(p);
+        p->res.state = LV_PHASE_FAILED;
+        snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': %.430s", ph->name, err->msg);
+        p->dirty = 0;
+        pthread_mutex_unlock(&r->lock);
+        return st;
+    }
+    char stem[4096];
+    if (opt && opt->outdir) {
+        snprintf(stem, sizeof stem, "%s/phase_%zu_%s", opt->outdir, k + 1, ph->name);
+        c->s.result_file = stem;
+    }
+    progress_ctx pc = {r, k, opt};
+    if (opt && opt->progress) {
+        c->s.progress = progress_thunk;
+        c->s.progress_user = &pc;
+    }
+    lv_sim_report rep;
+    st = lv_simulate(c->pm->def, c->pm->inst, &c->s, c->finals, &rep, err);
+    pthread_mutex_lock(&r->lock);
+    record(r, c, st, err, &rep);
+    pthread_mutex_unlock(&r->lock);
+    lv_phase_call_free(c);
+    if (st != LV_OK)
+        lv_fail_prefix(err, st, "phase '%s'", ph->name);
+    return st;
+}
+
+typedef struct worker_ctx {
+    lv_run *r;
+    const lv_run_options *opt;
+    int any_failed, cancelled;
+} worker_ctx;
+
+/* With the lock held: the next phase that can run, marking skipped ones on the way; -1 when
+ * none is ready now. Phases are taken in run order among those ready. */
+static long next_ready(lv_run *r, int *pending)
+{
+    const lv_mission_def *d = r->m->def;
+    *pending = 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        run_phase *p = &r->ph[k];
+        if (!p->todo || p->claimed || p->res.state != LV_PHASE_PENDING)
+            continue;
+        int par = d->phases[k].parent;
+        lv_phase_state ps = par < 0 ? LV_PHASE_DONE : r->ph[par].res.state;
+        if (ps == LV_PHASE_FAILED || ps == LV_PHASE_SKIPPED) {
+            p->res.state = LV_PHASE_SKIPPED;
+            p->dirty = 0;
+            snprintf(p->res.error, sizeof p->res.error, "phase '%s' not run: its parent '%s' %s",
+                     p->res.name, d->phases[par].name,
+                     ps == LV_PHASE_FAILED ? "failed" : "was not run");
+            k = (size_t)-1; /* a new skip can skip more: rescan */
+            continue;
+        }
+        if (ps == LV_PHASE_DONE) /* a parent to run is PENDING until it is done */
+            return (long)k;
+        *pending = 1;
+    }
+    return -1;
+}
+
+static void *worker(void *arg)
+{
+    worker_ctx *w = arg;
+    lv_run *r = w->r;
+    pthread_mutex_lock(&r->lock);
+    for (;;) {
+        int pending;
+        long k = next_ready(r, &pending);
+        if (k < 0) {
+            if (!pending)
+                break; /* nothing left that this worker could ever run */
+            pthread_cond_wait(&r->cv, &r->lock); /* a running parent will wake us */
+            continue;
+        }
+        r->ph[k].claimed = 1;
+        r->simulated++;
+        pthread_mutex_unlock(&r->lock);
+        lv_err err;
+        lv_status st = run_one(r, (size_t)k, w->opt, &err);
+        pthread_mutex_lock(&r->lock);
+        if (st != LV_OK) {
+            w->any_failed = 1;
+            w->cancelled |= st == LV_ERR_CANCELLED;
+        }
+        if (w->opt && w->opt->on_phase)
+            w->opt->on_phase(r, (size_t)k, &r->ph[k].res, w->opt->user);
+        pthread_cond_broadcast(&r->cv);
+    }
+    pthread_cond_broadcast(&r->cv);
+    pthread_mutex_unlock(&r->lock);
+    return NULL;
+}
+
+lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
+{
+    const lv_mission_def *d = r->m->def;
+    if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
+        return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
+                       strerror(errno));
+    /* what runs: changed, never run, failed, skipped, and every descendant of those */
+    r->simulated = 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        run_phase *p = &r->ph[k];
+        const int par = d->phases[k].parent;
+        p->claimed = 0;
+        p->todo = p->dirty || p->res.state != LV_PHASE_DONE || (par >= 0 && r->ph[par].todo);
+        if (p->todo)
+            phase_clear(p);
+    }
+    int threads = opt && opt->threads > 0 ? opt->threads : 2;
+    if (threads > 16)
+        threads = 16;
+    worker_ctx w = {r, opt, 0, 0};
+    pthread_t tid[16];
+    int started = 0;
+    for (int i = 1; i < threads; i++)
+        if (pthread_create(&tid[started], NULL, worker, &w) == 0)
+            started++;
+    worker(&w);
+    for (int i = 0; i < started; i++)
+        pthread_join(tid[i], NULL);
+    size_t failed = 0, skipped = 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        failed += r->ph[k].res.state == LV_PHASE_FAILED;
+        skipped += r->ph[k].res.state == LV_PHASE_SKIPPED;
+        r->ph[k].todo = 0;
+    }
+    if (failed > 0)
+        return lv_fail(err, w.cancelled ? LV_ERR_CANCELLED : LV_ERR_SOLVER,
+                       "mission '%s': %zu phase(s) %s, %zu not run", d->name, failed,
+                       w.cancelled ? "cancelled or failed" : "failed", skipped);
+    return LV_OK;
+}
+
+size_t lv_run_simulated(const lv_run *r) { return r->simulated; }
+
+/* ---- results ------------------------------------------------------------------------------------- */
+
+const lv_phase_result *lv_run_result(const lv_run *r, size_t k)
+{
+    return k < r->m->def->n_phases ? &r->ph[k].res : NULL;
+}
+
+const lv_result *lv_run_rows(const lv_run *r, size_t k)
+{
+    return k < r->m->def->n_phases ? r->ph[k].rows : NULL;
+}
+
+lv_status lv_run_final(const lv_run *r, size_t k, const char *name, double *value, lv_err *err)
+{
+    if (k >= r->m->def->n_phases)
+        return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
+    const run_phase *p = &r->ph[k];
+    if (p->res.state != LV_PHASE_DONE)
+        return lv_fail(err, LV_ERR_INPUT, "phase '%s' has not run successfully", p->res.name);
+    for (size_t i = 0; i < p->res.n_final; i++)
+        if (strcmp(p->res.final_names[i], name) == 0) {
+            *value = p->fvalues[i];
+            return LV_OK;
+        }
+    lv_suggest sg;
+    lv_suggest_init(&sg, name);
+    for (size_t i = 0; i < p->res.n_final; i++)
+        lv_suggest_add(&sg, p->res.final_names[i]);
+    char hint[160];
+    lv_suggest_text(&sg, hint, sizeof hint);
+    return lv_fail(err, LV_ERR_NOTFOUND, "phase '%s' has no final value '%s'%s", p->res.name,
+                   name, hint);
+}
+
+/* ---- bodies ---------------------------------------------------------------------------------------- */
+
+size_t lv_run_body_phases(const lv_run *r, size_t s, size_t *out)
+{
+    const lv_mission_def *d = r->m->def;
+    size_t n = 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        const lv_phase_result *res = &r->ph[k].res;
+        if (res->state != LV_PHASE_DONE || !lv_mission_phase_has_stage(d, k, s))
+            continue;
+        size_t pos = n++; /* insertion by start time: the path is short */
+        while (pos > 0 && r->ph[out[pos - 1]].res.t_start > res->t_start) {
+            out[pos] = out[pos - 1];
+            pos--;
+        }
+        out[pos] = k;
+    }
+    return n;
+}
+
+/* Mass of stage s in phase k when the body's mass is m_body: the bottom stage is the body's
+ * mass minus the stages above it; an upper stage keeps its dry mass plus its propellant at the
+ * phase start. */
+static double stage_mass(const lv_run *r, size_t k, size_t s, double m_body)
+{
+    const lv_mission_def *d = r->m->def;
+    const lv_phase_def *ph = &d->phases[k];
+    const double *prop0 = ph->parent >= 0 ? r->ph[ph->parent].prop_end : NULL;
+    double upper = 0.0, own = NAN;
+    for (size_t i = 0; i < ph->n_stages; i++) {
+        size_t si = ph->stages[i];
+        double mi = r->vals[d->stages[si].dry_mass] +
+                    (prop0 ? prop0[si] : r->vals[d->stages[si].propellant_mass]);
+        if (i > 0)
+            upper += mi;
+        if (si == s)
+            own = mi;
+    }
+    return ph->stages[0] == s ? m_body - upper : own;
+}
+
+/* One block: the struct, then names, units, values and phase indices. */
+typedef struct body_block {
+    lv_body_traj pub;
+    const char *names[64];
+    const char *units[64];
+} body_block;
+
+void lv_body_traj_free(lv_body_traj *b)
+{
+    if (b == NULL)
+        return;
+    free((void *)b->values);
+    free((void *)b->phase);
+    free(b);
+}
+
+lv_status lv_run_body_trajectory(const lv_run *r, size_t s, lv_body_traj **out, lv_err *err)
+{
+    const lv_mission_def *d = r->m->def;
+    *out = NULL;
+    if (s >= d->n_stages)
+        return lv_fail(err, LV_ERR_INPUT, "stage index %zu out of range", s);
+    size_t *ks = calloc(d->n_phases + 1, sizeof *ks);
+    body_block *b = calloc(1, sizeof *b);
+    if (ks == NULL || b == NULL) {
+        free(ks);
+        free(b);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    const size_t n = lv_run_body_phases(r, s, ks);
+    /* columns: time, the first phase's type's sourced columns, stage_mass, the computed ones */
+    const lv_phase_type *type = n > 0 ? d->phases[ks[0]].type : NULL;
+    size_t nc = 0, n_src = 0;
+    b->names[nc] = "time";
+    b->units[nc++] = "s";
+    for (size_t c = 0; type && c < type->n_traj && nc < 62; c++)
+        if (type->traj[c].source != NULL) {
+            b->names[nc] = type->traj[c].name;
+            b->units[nc++] = type->traj[c].unit;
+            n_src++;
+        }
+    const size_t c_stage = nc;
+    b->names[nc] = "stage_mass";
+    b->units[nc++] = "kg";
+    for (size_t c = 0; type && c < type->n_traj && nc < 63; c++)
+        if (type->traj[c].source == NULL) {
+            b->names[nc] = type->traj[c].name;
+            b->units[nc++] = type->traj[c].unit;
+        }
+    size_t rows = 0;
+    for (size_t i = 0; i < n; i++)
+        rows += r->ph[ks[i]].rows ? lv_result_rows(r->ph[ks[i]].rows) : 0;
+    double *v = malloc((rows * nc + 1) * sizeof *v);
+    size_t *phase = malloc((rows + 1) * sizeof *phase);
+    double row[64];
+    if (v == NULL || phase == NULL) {
+        free(v);
+        free(phase);
+        free(ks);
+        free(b);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    size_t at = 0;
+    for (size_t i = 0; i < n; i++) {
+        const size_t k = ks[i];
+        const lv_result *res = r->ph[k].rows;
+        if (res == NULL)
+            continue;
+        const lv_phase_type *t = d->phases[k].type;
+        size_t idx[64], ct = 0, cm = (size_t)-1;
+        int have[64];
+        lv_result_column(res, "time", &ct, NULL);
+        size_t q = 0;
+        for (size_t c = 0; c < type->n_traj; c++) {
+            if (type->traj[c].source == NULL)
+                continue;
+            have[q] = lv_result_column(res, type->traj[c].source, &idx[q], NULL) == LV_OK;
+            if (strcmp(type->traj[c].source, t->mass_state) == 0 && have[q])
+                cm = idx[q];
+            q++;
+        }
+        for (size_t j = 0; j < lv_result_rows(res); j++) {
+            row[0] = lv_result_value(res, j, ct);
+            for (size_t c = 0; c < n_src; c++)
+                row[1 + c] = have[c] ? lv_result_value(res, j, idx[c]) : NAN;
+            row[c_stage] = cm != (size_t)-1 ? stage_mass(r, k, s, lv_result_value(res, j, cm))
+                                            : NAN;
+            if (nc > c_stage + 1) {
+                /* the type's extras read its full traj row: sourced columns in its order */
+                double trow[64];
+                size_t sc = 0, ec = 0;
+                for (size_t c = 0; c < type->n_traj; c++)
+                    trow[c] = type->traj[c].source ? row[1 + sc++] : NAN;
+                if (t == type && type->traj_extra != NULL)
+                    type->traj_extra(d, trow);
+                for (size_t c = 0; c < type->n_traj; c++)
+                    if (type->traj[c].source == NULL)
+                        row[c_stage + 1 + ec++] = t == type ? trow[c] : NAN;
+            }
+            memcpy(v + at * nc, row, nc * sizeof *v);
+            phase[at++] = k;
+        }
+    }
+    free(ks);
+    b->pub = (lv_body_traj){d->stages[s].name, at, nc, b->names, b->units, v, phase};
+    *out = &b->pub;
+    return LV_OK;
+}
