@@ -6,6 +6,7 @@
 #define LVSIM_VERSION "0.1.0"
 
 #include "lvsim/lv_status.h"
+#include "lvsim/lv_data.h"
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_sim.h"
