@@ -109,3 +109,11 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/lvsimConfigVersion.cmake
 install(FILES ${PROJECT_BINARY_DIR}/lvsimConfig.cmake ${PROJECT_BINARY_DIR}/lvsimConfigVersion.cmake
   DESTINATION ${LV_CMAKE_DIR})
 
+# The install test: a copy of the source tree configured, built and installed, then deleted;
+# a consumer built with find_package(lvsim) runs a mission from the prefix (~1 min).
+if(LV_BUILD_TESTS)
+  add_test(NAME test_install
+           COMMAND ${PROJECT_SOURCE_DIR}/tests/install/test_install.sh ${PROJECT_SOURCE_DIR}
+                   ${PROJECT_BINARY_DIR} ${CMAKE_COMMAND})
+  set_tests_properties(test_install PROPERTIES LABELS "install;no-asan" TIMEOUT 600)
+endif()
