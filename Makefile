@@ -18,7 +18,9 @@ $(BUILD)/CMakeCache.txt:
 build: $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: deps build viewer
+# viewer before build: the build copies CesiumJS from viewer/node_modules to build/share/lvsim
+demo: deps viewer
+	@$(MAKE) --no-print-directory build
 	@scripts/demo.sh $(BUILD)
 
 test: deps build

@@ -97,7 +97,9 @@ static void print_help(FILE *f)
             "  lvsim help | --help               this text\n"
             "  lvsim version\n"
             "\n"
-            "exit codes: 0 ok, 2 bad input, 3 simulation failure\n",
+            "exit codes: 0 ok, 2 bad input, 3 simulation failure\n"
+            "data files (gravity coefficients, the viewer): $LVSIM_DATA, else share/lvsim\n"
+            "next to the library, else the install prefix\n",
             LVSIM_VERSION);
 }
 
@@ -591,12 +593,15 @@ static int cmd_view(int argc, char **argv)
         return EXIT_INPUT;
     }
     if (!file_exists(dir, "viewer/VERSION")) {
+        /* the installed (or build tree's) share/lvsim/viewer; stage.sh copies from its folder */
         char script[4200];
-        snprintf(script, sizeof script, "%s/stage.sh", LVSIM_VIEWER_DIR);
+        if (lv_data_find(NULL, "viewer/stage.sh", script, sizeof script, &err) != LV_OK) {
+            fprintf(stderr, "lvsim view: %s\n", err.msg);
+            return EXIT_INTERNAL;
+        }
         char *args[] = {script, (char *)dir, NULL}; /* executable, with its own #! */
         if (run_program(args) != 0) {
-            fprintf(stderr, "lvsim view: staging the viewer with %s failed (needs node/npm: "
-                            "make viewer)\n", script);
+            fprintf(stderr, "lvsim view: staging the viewer with %s failed\n", script);
             return EXIT_INTERNAL;
         }
     }

@@ -145,8 +145,12 @@ typedef struct lv_gravity_info {
                            * for "sh" -sqrt(2n+1) C(n,0) of the file */
 } lv_gravity_info;
 
-/* The shipped coefficient file (EGM2008 to degree and order 20), absolute path. */
-LV_API const char *lv_gravity_default_file(void);
+/* The shipped coefficient file (EGM2008 to degree and order 20), data file
+ * gravity/egm2008_n20.gfc, found at run time by lv_data_find() (lvsim/lv_data.h:
+ * $LVSIM_DATA, next to the library, the install prefix). Writes its path to path[size].
+ * Not found: LV_ERR_NOTFOUND, the message lists the folders searched. */
+#define LV_GRAVITY_DEFAULT_FILE "gravity/egm2008_n20.gfc"
+LV_API lv_status lv_gravity_default_file(char *path, size_t size, lv_err *err);
 
 /* Parses "pointmass", "j2", "zonal", "sh", "sh:N" or "sh:NxM" into cfg ("sh:Nx0"
  * gives order LV_GRAVITY_ORDER_ZONAL; degree and order 0, coef_path NULL unless

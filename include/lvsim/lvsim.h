@@ -7,6 +7,7 @@
 
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_units.h"
+#include "lvsim/lv_data.h"
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_sim.h"

@@ -6,13 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/data.h"
 #include "core/names.h"
 #include "core/status.h"
 #include "env/gravity_impl.h"
-
-#ifndef LV_GRAVITY_DATA_DIR
-#define LV_GRAVITY_DATA_DIR "data/gravity"
-#endif
 
 typedef struct gravity_entry {
     const char *name;
@@ -28,7 +25,10 @@ static const gravity_entry registry[] = {
 };
 #define N_REGISTRY (sizeof registry / sizeof registry[0])
 
-const char *lv_gravity_default_file(void) { return LV_GRAVITY_DATA_DIR "/egm2008_n20.gfc"; }
+lv_status lv_gravity_default_file(char *path, size_t size, lv_err *err)
+{
+    return lv_data_find(NULL, LV_GRAVITY_DEFAULT_FILE, path, size, err);
+}
 
 static const gravity_entry *find_model(const char *name, size_t len)
 {
@@ -123,7 +123,6 @@ lv_status lv_gravity_create(const lv_planet *planet, const lv_gravity_config *cf
     g->degree = e->nz;
     g->order = 0;
     if (e->kind == LV_GRAVITY_SH) {
-        const char *path = cfg->coef_path != NULL ? cfg->coef_path : lv_gravity_default_file();
         if (cfg->degree < 0) {
             st = lv_fail(err, LV_ERR_INPUT, "gravity 'sh': degree %d must be >= 0 (0: the file's)",
                          cfg->degree);
@@ -137,6 +136,16 @@ lv_status lv_gravity_create(const lv_planet *planet, const lv_gravity_config *cf
         const int order = cfg->order == 0                        ? -1
                           : cfg->order == LV_GRAVITY_ORDER_ZONAL ? 0
                                                                  : cfg->order;
+        char shipped[LV_DATA_PATH_MAX];
+        const char *path = cfg->coef_path;
+        if (path == NULL) {
+            st = lv_gravity_default_file(shipped, sizeof shipped, err);
+            if (st != LV_OK) {
+                lv_fail_prefix(err, st, "gravity 'sh'");
+                goto fail;
+            }
+            path = shipped;
+        }
         st = lv_gravity_sh_read_gfc(g, path, cfg->degree, order, err);
         if (st != LV_OK)
             goto fail;

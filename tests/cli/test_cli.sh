@@ -48,6 +48,13 @@ expect 0 "^0 0 9.7802" -- "$lvsim" gravity 0 0 0 --model j2 --effective
 expect 2 "did you mean 'zonal'" -- "$lvsim" gravity 45 10 400e3 --model zonl
 expect 2 "latitude 95 deg" -- "$lvsim" gravity 95 0 0
 expect 2 "expected LAT_DEG LON_DEG ALT_M" -- "$lvsim" gravity 45 x 0
+# "sh" reads gravity/egm2008_n20.gfc, found at run time next to the library (build/share/lvsim);
+# EGM2008 to degree 4 at 400 km: |g| = 8.69737 m/s2. $LVSIM_DATA comes first.
+expect 0 " 8\.69736" -- "$lvsim" gravity 45 10 400e3 --model sh:4
+mkdir -p "$work/data/gravity"
+printf 'modelname empty\n' > "$work/data/gravity/egm2008_n20.gfc"
+expect 2 "$work/data/gravity/egm2008_n20.gfc:1: no end_of_head" -- \
+  env LVSIM_DATA="$work/data" "$lvsim" gravity 45 10 400e3 --model sh:4
 
 # Missions: run, check, compare, export; exit codes 0 / 2 / 3 (docs/cli.md)
 src="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -60,6 +67,20 @@ expect 0 '"mission":' -- "$lvsim" run "$src/examples/paper-test-case/mission.yam
 expect 0 "number of states +39 +13" -- "$lvsim" compare "$src/examples/paper-test-case/mission.yaml"
 expect 0 "exports written" -- "$lvsim" export "$work/run" --format czml
 expect 2 "summary.json: cannot read" -- "$lvsim" export "$work/nothing"
+# lvsim view stages with viewer/stage.sh found like any data file ($LVSIM_DATA here), which
+# copies from its own folder: web/ and cesium/ (a stand-in for the CesiumJS build)
+mkdir -p "$work/data/viewer"
+cp -R "$src/viewer/stage.sh" "$src/viewer/web" "$work/data/viewer/"
+expect 1 "CesiumJS is missing: no $work/data/viewer/cesium/Cesium.js" -- \
+  env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" --stage-only
+mkdir -p "$work/data/viewer/cesium/"{Assets,Workers,ThirdParty,Widgets}
+echo '// stand-in' > "$work/data/viewer/cesium/Cesium.js"
+printf '{\n  "name": "cesium",\n  "version": "0.0.7"\n}\n' > "$work/data/viewer/cesium/package.json"
+expect 0 "viewer staged in $work/run/viewer/" -- \
+  env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" --stage-only
+grep -qx "lvsim viewer, CesiumJS 0.0.7" "$work/run/viewer/VERSION" && [ -f "$work/run/viewer/app.js" ] \
+  && [ -f "$work/run/viewer/cesium/Cesium.js" ] && pass=$((pass + 1)) \
+  || { echo "FAIL: staged viewer in $work/run/viewer"; fails=$((fails + 1)); }
 cat > "$work/fail.yaml" <<YAML
 mission: {name: fails}
 stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]

@@ -3,10 +3,12 @@
  * ch. 3: gamma_e = 9.7803253359, gamma_p = 9.8321849378 m/s^2); the normal
  * field's J2..J8 (Heiskanen & Moritz 1967, ch. 2); the identities
  * a = grad U and C(2,0) = -J2 / sqrt(5); EGM2008 (Pavlis et al. 2008) values. */
+#define _POSIX_C_SOURCE 200809L /* setenv, unsetenv, mkdir */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "check.h"
 #include "env/planet.h"
@@ -208,8 +210,13 @@ static void test_poles(void)
 static double potential_spherical(const lv_planet *e, const double r[3], int nmax)
 {
     (void)e;
-    /* coefficients from the shipped file */
-    FILE *fp = fopen(lv_gravity_default_file(), "r");
+    /* coefficients from the shipped file, found like the library finds it */
+    char file[4096];
+    lv_err err;
+    const lv_status st = lv_gravity_default_file(file, sizeof file, &err);
+    CHECK(st == LV_OK);
+    FILE *fp = st == LV_OK ? fopen(file, "r") : NULL;
+    CHECK(fp != NULL);
     static double C[21][21], S[21][21];
     double gm = 0.0, R = 0.0;
     char line[512];
@@ -409,6 +416,56 @@ static void test_errors(void)
     lv_gravity_free(NULL);
 }
 
+/* "sh" without a file reads gravity/egm2008_n20.gfc, looked up at run time: $LVSIM_DATA
+ * comes before the build tree's copy (lvsim/lv_data.h). */
+static void test_default_file(void)
+{
+    const lv_planet e = lv_planet_earth();
+    lv_gravity_config cfg;
+    lv_gravity *g = NULL;
+    lv_gravity_info info;
+    lv_err err;
+    char path[4096];
+
+    unsetenv("LVSIM_DATA");
+    CHECK_OK(lv_gravity_default_file(path, sizeof path, &err), &err);
+    const size_t n = strlen(path), tail = strlen("/share/lvsim/" LV_GRAVITY_DEFAULT_FILE);
+    CHECK(n > tail && strcmp(path + n - tail, "/share/lvsim/" LV_GRAVITY_DEFAULT_FILE) == 0);
+    CHECK_OK(lv_gravity_parse_spec("sh", &cfg, &err), &err);
+    CHECK_OK(lv_gravity_create(&e, &cfg, &g, &err), &err);
+    lv_gravity_info_get(g, &info);
+    CHECK(info.degree == 20 && info.gm == 3.986004415e14);
+    lv_gravity_free(g);
+
+    /* a planted file of degree 3 with another GM wins */
+    mkdir("test_gravity_data", 0755);
+    mkdir("test_gravity_data/gravity", 0755);
+    FILE *fp = fopen("test_gravity_data/" LV_GRAVITY_DEFAULT_FILE, "w");
+    CHECK(fp != NULL);
+    if (fp == NULL)
+        return;
+    fputs("earth_gravity_constant 4.0e14\nradius 6378136.3\nmax_degree 3\n"
+          "norm fully_normalized\nend_of_head ====\ngfc 0 0 1.0 0.0\n", fp);
+    for (int k = 1; k <= 3; k++)
+        for (int m = 0; m <= k; m++)
+            fprintf(fp, "gfc %d %d 0.0 0.0\n", k, m);
+    fclose(fp);
+    setenv("LVSIM_DATA", "test_gravity_data", 1);
+    CHECK_OK(lv_gravity_default_file(path, sizeof path, &err), &err);
+    CHECK(strcmp(path, "test_gravity_data/" LV_GRAVITY_DEFAULT_FILE) == 0);
+    CHECK_OK(lv_gravity_parse_spec("sh:2", &cfg, &err), &err);
+    CHECK_OK(lv_gravity_create(&e, &cfg, &g, &err), &err);
+    lv_gravity_info_get(g, &info);
+    CHECK(info.degree == 2 && info.gm == 4.0e14);
+    lv_gravity_free(g);
+    /* errors name the file found */
+    CHECK_OK(lv_gravity_parse_spec("sh:4", &cfg, &err), &err);
+    CHECK_FAILS(lv_gravity_create(&e, &cfg, &g, &err), &err, LV_ERR_INPUT,
+                "test_gravity_data/gravity/egm2008_n20.gfc: requested degree 4");
+    unsetenv("LVSIM_DATA");
+    remove("test_gravity_data/" LV_GRAVITY_DEFAULT_FILE);
+}
+
 /* The internal ECI adapter rotates into ECEF and back (docs/frames.md eq. F2). */
 static void test_eci_adapter(void)
 {
@@ -444,5 +501,6 @@ int main(void)
     test_poles();
     test_sh_file();
     test_errors();
+    test_default_file();
     return check_report("test_gravity");
 }
