@@ -22,7 +22,7 @@ endif()
 
 if(LV_HAVE_LIBFUZZER)
   set(_src fuzz/fuzz_mission.c src/mission/yaml_tree.c src/mission/parse.c
-      src/core/status.c src/core/names.c src/core/table.c src/core/table_load.c)
+      src/core/status.c src/core/names.c src/core/table.c src/io/table_load.c)
   set(_hdr src/mission/mission.h src/mission/yaml_tree.h src/core/status.h src/core/names.h
       src/core/units.h include/lvsim/lv_table.h include/lvsim/lv_status.h
       include/lvsim/lv_model.h)
