@@ -161,33 +161,6 @@ void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_
         snprintf(buf, cap, "%s start", ph->name);
 }
 
-lv_status lv_ex_open(const char *path, char *tmp, size_t cap, FILE **out, lv_err *err)
-{
-    snprintf(tmp, cap, "%s.tmp", path);
-    *out = fopen(tmp, "w");
-    if (*out == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot create: %s", tmp, strerror(errno));
-    return LV_OK;
-}
-
-lv_status lv_ex_commit(FILE *f, const char *tmp, const char *path, lv_err *err)
-{
-    int bad = ferror(f);
-    const int e1 = errno;
-    bad |= fclose(f) != 0;
-    if (bad) {
-        const int e = errno ? errno : e1;
-        remove(tmp);
-        return lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", tmp, strerror(e));
-    }
-    if (rename(tmp, path) != 0) {
-        const int e = errno;
-        remove(tmp);
-        return lv_fail(err, LV_ERR_IO, "%s: cannot rename to '%s': %s", tmp, path, strerror(e));
-    }
-    return LV_OK;
-}
-
 static char *dup_str(const char *s)
 {
     size_t n = strlen(s) + 1;

@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "core/units.h"
+#include "io/atomic.h"
 #include "io/export_int.h"
 
 #define RAD2DEG (180.0 / LV_PI) /* deg per rad */
@@ -185,13 +186,12 @@ lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
     cJSON_Delete(doc);
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char tmp[4400];
-    FILE *f;
-    lv_status st = lv_ex_open(path, tmp, sizeof tmp, &f, err);
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
     if (st == LV_OK) {
-        fputs(text, f);
-        fputc('\n', f);
-        st = lv_ex_commit(f, tmp, path, err);
+        fputs(text, out.fp);
+        fputc('\n', out.fp);
+        st = lv_atomic_commit(&out, err);
     }
     cJSON_free(text);
     return st;

@@ -83,11 +83,6 @@ const char *lv_ex_event_label(const lv_ex_event *e);
  * else "P2 start"), k >= 1 its events in launcher words (MECO, apogee, landing, ...). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
-/* Open "<path>.tmp" for writing / finish it: close, check, rename to path (on failure the
- * .tmp file is removed). Errors: LV_ERR_IO naming the path. */
-lv_status lv_ex_open(const char *path, char *tmp, size_t cap, FILE **out, lv_err *err);
-lv_status lv_ex_commit(FILE *f, const char *tmp, const char *path, lv_err *err);
-
 lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);
 lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err);
 /* Writes OUTDIR/<body>.oem for the bodies with orbital portions (docs/exports.md). */

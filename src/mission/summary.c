@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "io/atomic.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lvsim.h"
@@ -94,13 +95,13 @@ static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_er
     if (ks == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     size_t n = lv_runner_body_phases(m, s, ks);
-    char tmp[4800];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL) {
+    lv_atomic out;
+    lv_status ost = lv_atomic_open(&out, path, err);
+    if (ost != LV_OK) {
         free(ks);
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+        return ost;
     }
+    FILE *f = out.fp;
     /* Columns: the states of the phases' model (every phase of a body has the same model:
      * the world decides it), plus, for the 3-DoF model, where the body is over the planet. */
     const lv_result *r0 = n ? lv_runner_rows(m, ks[0]) : NULL;
@@ -161,12 +162,8 @@ static int write_body_csv(const lv_mission *m, size_t s, const char *path, lv_er
             fputc('\n', f);
         }
     }
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
     free(ks);
-    if (bad || rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }
 
 static cJSON *phase_json(const lv_mission *m, size_t k)
@@ -308,17 +305,15 @@ lv_status lv_mission_write_summary(const lv_mission *m, const char *outdir, lv_e
         return st;
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char path[4200], tmp[4300];
+    char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", outdir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    int bad = f == NULL;
-    if (f != NULL) {
-        bad |= fputs(text, f) == EOF || fputc('\n', f) == EOF;
-        bad |= fclose(f) != 0;
+    lv_atomic out;
+    st = lv_atomic_open(&out, path, err);
+    if (st == LV_OK) {
+        fputs(text, out.fp);
+        fputc('\n', out.fp);
+        st = lv_atomic_commit(&out, err); /* checks the writes */
     }
     cJSON_free(text);
-    if (bad || rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    return LV_OK;
+    return st;
 }

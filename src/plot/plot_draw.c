@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 
 #include "core/status.h"
+#include "io/atomic.h"
 #include "plot/plot.h"
 
 #define PAGE_W 1000 /* px (PNG) or pt (SVG) */
@@ -327,24 +328,25 @@ static int device_available(const char *dev)
 static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
                         int *map_ok, lv_err *err)
 {
-    char tmp[4400];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    /* PLplot exits the process when it cannot open its file: make sure it can. */
-    FILE *probe = fopen(tmp, "wb");
-    if (probe == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-    fclose(probe);
+    /* PLplot writes the temporary file by name, and exits the process when it cannot open
+     * it: make sure it can. */
+    lv_atomic out;
+    lv_status st = lv_atomic_init(&out, path, err);
+    if (st == LV_OK)
+        st = lv_atomic_reserve(&out, err);
+    if (st != LV_OK)
+        return st;
     PLINT old = 0, strm = -1, code = 0;
     char msg[1024] = "";
     plgstrm(&old);
     plmkstrm(&strm);
     if (strm < 0) {
-        remove(tmp);
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
     }
     plsError(&code, msg);
     plsdev(dev);
-    plsfnam(tmp);
+    plsfnam(out.tmp);
     plspage(0.0, 0.0, PAGE_W, PAGE_H, 0, 0);
     plscmap0n(N_COLS);
     for (PLINT i = 0; i < N_COLS; i++)
@@ -363,17 +365,14 @@ static lv_status render(const lv_plot_data *d, const figure *f, const char *dev,
     plsstrm(old);
     struct stat sb;
     if (code != 0) {
-        remove(tmp);
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot: %s", path, msg);
     }
-    if (stat(tmp, &sb) != 0 || sb.st_size == 0) {
-        remove(tmp);
+    if (stat(out.tmp, &sb) != 0 || sb.st_size == 0) {
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot (%s) wrote nothing", path, dev);
     }
-    if (rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
-                       strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }
 
 static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "io/atomic.h"
 #include "plot/plot.h"
 
 static void esc(FILE *f, const char *s)
@@ -312,12 +313,13 @@ static void file_list(FILE *f, const cJSON *phases, const cJSON *bodies)
 
 lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_err *err)
 {
-    char path[4200], tmp[4300];
+    char path[4200];
     snprintf(path, sizeof path, "%s/index.html", d->outdir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
+    if (st != LV_OK)
+        return st;
+    FILE *f = out.fp;
     const cJSON *s = d->summary;
     const cJSON *phases = cJSON_GetObjectItemCaseSensitive(s, "phases");
     const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(s, "bodies");
@@ -351,14 +353,5 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_er
     plot_section(f, l);
     file_list(f, phases, bodies);
     fputs("</body>\n</html>\n", f);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad) {
-        remove(tmp);
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s'", tmp);
-    }
-    if (rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
-                       strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }
