@@ -5,4 +5,3 @@ list(APPEND LV_SOURCES
   src/io/result_mat.c
   src/io/table_load.c
   src/io/atomic.c)
-include(src/io/export.cmake)

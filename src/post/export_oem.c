@@ -11,7 +11,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
-#include "io/export_int.h"
+#include "post/export_int.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lvsim.h"
 

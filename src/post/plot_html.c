@@ -11,7 +11,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
-#include "plot/plot.h"
+#include "post/plot.h"
 
 static void esc(FILE *f, const char *s)
 {

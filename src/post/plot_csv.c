@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "core/status.h"
-#include "plot/plot.h"
+#include "post/plot.h"
 
 void lv_plot_csv_free(lv_csv *c)
 {

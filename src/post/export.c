@@ -13,7 +13,7 @@
 
 #include "core/status.h"
 #include "core/units.h"
-#include "io/export_int.h"
+#include "post/export_int.h"
 #include "lvsim/lv_export.h"
 
 #define PATH_CAP 4352

@@ -12,7 +12,7 @@
 
 #include "core/status.h"
 #include "lvsim/lv_plot.h"
-#include "plot/plot.h"
+#include "post/plot.h"
 
 static void data_free(lv_plot_data *d)
 {

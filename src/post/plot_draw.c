@@ -17,7 +17,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
-#include "plot/plot.h"
+#include "post/plot.h"
 
 #define PAGE_W 1000 /* px (PNG) or pt (SVG) */
 #define PAGE_H 700

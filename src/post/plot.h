@@ -1,7 +1,7 @@
 /* plot.h - internals of lv_plot_run(): the run's files as read back (summary.json, CSVs), the
  * figures (PLplot: the only code that includes plplot.h) and the HTML report. */
-#ifndef LV_PLOT_PLOT_H
-#define LV_PLOT_PLOT_H
+#ifndef LV_POST_PLOT_H
+#define LV_POST_PLOT_H
 
 #include <cjson/cJSON.h>
 #include <stddef.h>

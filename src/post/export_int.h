@@ -1,8 +1,8 @@
 /* export_int.h - internal: a results folder (summary.json + body CSVs) read back for the
  * trajectory exports, and the helpers the CZML, KML and OEM writers share (not exported).
  * Contract of the files: docs/exports.md. */
-#ifndef LV_IO_EXPORT_INT_H
-#define LV_IO_EXPORT_INT_H
+#ifndef LV_POST_EXPORT_INT_H
+#define LV_POST_EXPORT_INT_H
 
 #include <stddef.h>
 #include <stdio.h>

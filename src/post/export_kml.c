@@ -10,7 +10,7 @@
 #include "core/status.h"
 #include "core/units.h"
 #include "io/atomic.h"
-#include "io/export_int.h"
+#include "post/export_int.h"
 
 #define RAD2DEG (180.0 / LV_PI) /* deg per rad */
 

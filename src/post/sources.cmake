@@ -1,0 +1,5 @@
+# Post-processing (liblvsim_post): reads a results folder back, never reruns anything. Exports
+# (CZML, KML, CCSDS OEM), figures (PLplot) and the HTML report. Links cJSON and PLplot; the
+# core library links neither of them for it.
+include(src/post/export.cmake)
+include(src/post/plot.cmake)

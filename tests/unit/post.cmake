@@ -1,0 +1,4 @@
+# Post-processing (src/post, liblvsim_post): the exports and the plots/report. Their tests link
+# the static twin lvsim_post_static (internal headers visible) on top of lvsim_static.
+include(${CMAKE_CURRENT_LIST_DIR}/post_export.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/post_plot.cmake)
