@@ -1,10 +1,9 @@
-/* export.c - trajectory exports from a results folder: reads summary.json (cJSON) and the merged
- * body_<stage>.csv files back, then hands them to the CZML, KML and CCSDS OEM writers
- * (export_czml.c, export_kml.c, export_oem.c). Post-processing only: nothing is rerun.
+/* export.c - trajectory exports from a results folder: reads summary.json and the merged
+ * body_<stage>.csv files back (post/results.h), then hands them to the CZML, KML and CCSDS OEM
+ * writers (export_czml.c, export_kml.c, export_oem.c). Post-processing only: nothing is rerun.
  * Civil-date arithmetic: H. Hinnant, "chrono-Compatible Low-Level Date Algorithms". */
 #define _POSIX_C_SOURCE 200809L
 
-#include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -161,28 +160,10 @@ void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_
         snprintf(buf, cap, "%s start", ph->name);
 }
 
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d != NULL)
-        memcpy(d, s, n);
-    return d;
-}
-
 static void run_free(lv_ex_run *r)
 {
-    free(r->mission);
-    free(r->planet);
-    for (size_t i = 0; i < r->n_phases; i++) {
-        free(r->phases[i].name);
-        for (size_t j = 0; j < r->phases[i].n_events; j++)
-            free(r->phases[i].events[j].name);
-        free(r->phases[i].events);
-    }
-    free(r->phases);
-    for (size_t i = 0; i < r->n_bodies; i++) {
-        free(r->bodies[i].name);
+    free(r->phase_body);
+    for (size_t i = 0; r->bodies != NULL && i < r->n_bodies; i++) {
         free(r->bodies[i].path);
         free(r->bodies[i].rows);
         free(r->bodies[i].tracks);
@@ -190,350 +171,119 @@ static void run_free(lv_ex_run *r)
     free(r->bodies);
 }
 
-/* Whole file into a NUL-terminated buffer. */
-static lv_status slurp(const char *path, char **out, lv_err *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (n < cap - 1)
-            break;
-        char *nb = realloc(buf, cap * 2);
-        if (nb == NULL) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    const int bad = ferror(f);
-    fclose(f);
-    if (buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
-    if (bad) {
-        free(buf);
-        return lv_fail(err, LV_ERR_IO, "%s: read error", path);
-    }
-    buf[n] = '\0';
-    *out = buf;
-    return LV_OK;
-}
-
 /* -------------------------------------------------------------- summary -- */
 
-static const char *json_str(const cJSON *o, const char *key)
+/* What the exports need of the summary beyond what the reader checks: the mission's name,
+ * epoch and world; every phase's index and state; times and event times of the done phases
+ * (at least one); a trajectory file for every body. */
+static lv_status check_summary(lv_ex_run *r, const lv_results *res, lv_err *err)
 {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-    return cJSON_IsString(v) ? v->valuestring : NULL;
-}
-
-static int json_num(const cJSON *o, const char *key, double *x)
-{
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble))
-        return -1;
-    *x = v->valuedouble;
-    return 0;
-}
-
-static int phase_find(const lv_ex_run *r, const char *name)
-{
-    for (size_t i = 0; i < r->n_phases; i++)
-        if (strcmp(r->phases[i].name, name) == 0)
-            return (int)i;
-    return -1;
-}
-
-static lv_status read_phase(lv_ex_run *r, const char *path, const cJSON *pj, size_t i,
-                            lv_err *err)
-{
-    lv_ex_phase *p = &r->phases[i];
-    const char *name = json_str(pj, "name"), *state = json_str(pj, "state");
-    double index;
-    p->parent = -1;
-    p->body = -1;
-    if (name == NULL || state == NULL || json_num(pj, "index", &index) != 0)
-        return lv_fail(err, LV_ERR_INPUT, "%s: phases[%zu]: 'name', 'index' or 'state' missing",
-                       path, i);
-    if ((p->name = dup_str(name)) == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    if (!(index >= 1.0 && index <= 1e6))
-        return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': index %g out of range", path, name,
-                       index);
-    p->index = (int)index;
-    p->done = strcmp(state, "done") == 0;
-    if (!p->done)
-        return LV_OK;
-    if (json_num(pj, "t_start", &p->t_start) != 0 || json_num(pj, "t_end", &p->t_end) != 0 ||
-        p->t_end < p->t_start)
-        return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': 't_start'/'t_end' missing or wrong",
-                       path, name);
-    const cJSON *ev = cJSON_GetObjectItemCaseSensitive(pj, "events");
-    const int n = cJSON_IsArray(ev) ? cJSON_GetArraySize(ev) : 0;
-    if (n > 0 && (p->events = calloc((size_t)n, sizeof *p->events)) == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    for (int j = 0; j < n; j++) {
-        const cJSON *e = cJSON_GetArrayItem(ev, j);
-        lv_ex_event *x = &p->events[p->n_events++];
-        if (json_num(e, "t", &x->t) != 0)
-            return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': events[%d]: 't' missing", path,
-                           name, j);
-        const char *en = json_str(e, "name");
-        if (en != NULL && (x->name = dup_str(en)) == NULL)
-            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    }
-    return LV_OK;
-}
-
-static lv_status read_summary(lv_ex_run *r, lv_err *err)
-{
-    char path[PATH_CAP];
-    snprintf(path, sizeof path, "%s/summary.json", r->outdir);
-    char *text = NULL;
-    lv_status st = slurp(path, &text, err);
-    if (st != LV_OK)
-        return st;
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithOpts(text, &end, 0);
-    if (root == NULL) {
-        int line = 1;
-        for (const char *c = text; end != NULL && c < end && *c; c++)
-            line += *c == '\n';
-        free(text);
-        return lv_fail(err, LV_ERR_INPUT, "%s:%d: malformed JSON", path, line);
-    }
-    free(text);
-    const char *mission = json_str(root, "mission"), *epoch = json_str(root, "epoch");
-    const char *world = json_str(root, "world"), *planet = json_str(root, "planet");
-    const cJSON *phases = cJSON_GetObjectItemCaseSensitive(root, "phases");
-    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(root, "bodies");
-    if (mission == NULL || epoch == NULL || world == NULL || !cJSON_IsArray(phases) ||
-        !cJSON_IsArray(bodies)) {
-        st = lv_fail(err, LV_ERR_INPUT,
-                     "%s: not an lvsim summary: 'mission', 'epoch', 'world', 'phases' or "
-                     "'bodies' missing", path);
-        goto fail;
-    }
-    if (parse_epoch(epoch, &r->epoch_us) != 0) {
-        st = lv_fail(err, LV_ERR_INPUT, "%s: epoch '%.40s': ISO 8601 UTC time like "
-                     "2026-03-01T12:00:00Z expected", path, epoch);
-        goto fail;
-    }
-    r->flat = strcmp(world, "flat") == 0;
-    if ((r->mission = dup_str(mission)) == NULL ||
-        (planet != NULL && (r->planet = dup_str(planet)) == NULL))
-        goto nomem;
-
-    const size_t np = (size_t)cJSON_GetArraySize(phases);
-    if (np == 0 || (r->phases = calloc(np, sizeof *r->phases)) == NULL) {
-        st = np == 0 ? lv_fail(err, LV_ERR_INPUT, "%s: no phases", path) : LV_ERR_NOMEM;
-        if (st == LV_ERR_NOMEM)
-            goto nomem;
-        goto fail;
-    }
-    for (size_t i = 0; i < np; i++) {
-        r->n_phases = i + 1;
-        if ((st = read_phase(r, path, cJSON_GetArrayItem(phases, (int)i), i, err)) != LV_OK)
-            goto fail;
-    }
+    const char *path = res->summary_path;
+    if (res->mission == NULL || res->epoch == NULL || res->world == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: not an lvsim summary: 'mission', 'epoch', "
+                       "'world', 'phases' or 'bodies' missing", path);
+    if (parse_epoch(res->epoch, &r->epoch_us) != 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: epoch '%.40s': ISO 8601 UTC time like "
+                       "2026-03-01T12:00:00Z expected", path, res->epoch);
+    if (res->n_phases == 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: no phases", path);
     r->t0 = INFINITY;
     r->t1 = -INFINITY;
-    for (size_t i = 0; i < np; i++) {
-        const cJSON *pj = cJSON_GetArrayItem(phases, (int)i);
-        const char *from = json_str(pj, "from");
-        r->phases[i].parent = from != NULL ? phase_find(r, from) : -1;
-        r->phases[i].n_stages = (size_t)cJSON_GetArraySize(cJSON_GetObjectItem(pj, "stages"));
-        if (r->phases[i].done) {
-            r->t0 = fmin(r->t0, r->phases[i].t_start);
-            r->t1 = fmax(r->t1, r->phases[i].t_end);
-        }
+    for (size_t i = 0; i < res->n_phases; i++) {
+        const lv_ex_phase *p = &res->phases[i];
+        if (p->index < 1 || p->state == NULL)
+            return lv_fail(err, LV_ERR_INPUT, "%s: phases[%zu]: 'name', 'index' or 'state' "
+                           "missing", path, i);
+        if (!p->done)
+            continue;
+        if (!isfinite(p->t_start) || !isfinite(p->t_end) || p->t_end < p->t_start)
+            return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': 't_start'/'t_end' missing or "
+                           "wrong", path, p->name);
+        for (size_t j = 0; j < p->n_events; j++)
+            if (!isfinite(p->events[j].t))
+                return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': events[%zu]: 't' missing",
+                               path, p->name, j);
+        r->t0 = fmin(r->t0, p->t_start);
+        r->t1 = fmax(r->t1, p->t_end);
     }
-    if (!(r->t0 <= r->t1)) {
-        st = lv_fail(err, LV_ERR_INPUT, "%s: no phase is done: nothing to export", path);
-        goto fail;
-    }
-
-    const size_t nb = (size_t)cJSON_GetArraySize(bodies);
-    if (nb > 0 && (r->bodies = calloc(nb, sizeof *r->bodies)) == NULL)
-        goto nomem;
-    for (size_t i = 0; i < nb; i++) {
-        const cJSON *bj = cJSON_GetArrayItem(bodies, (int)i);
-        const char *name = json_str(bj, "name"), *file = json_str(bj, "trajectory");
-        lv_ex_body *b = &r->bodies[r->n_bodies++];
-        if (name == NULL || file == NULL || strchr(file, '/') != NULL) {
-            st = lv_fail(err, LV_ERR_INPUT, "%s: bodies[%zu]: 'name' or 'trajectory' (a file "
-                         "name in the folder) missing", path, i);
-            goto fail;
-        }
-        char bp[PATH_CAP];
-        snprintf(bp, sizeof bp, "%s/%s", r->outdir, file);
-        if ((b->name = dup_str(name)) == NULL || (b->path = dup_str(bp)) == NULL)
-            goto nomem;
-        /* A body flying in a phase gives that phase's event positions. */
-        const cJSON *pl = cJSON_GetObjectItemCaseSensitive(bj, "phases");
-        for (int j = 0; cJSON_IsArray(pl) && j < cJSON_GetArraySize(pl); j++) {
-            const cJSON *pn = cJSON_GetArrayItem(pl, j);
-            const int k = cJSON_IsString(pn) ? phase_find(r, pn->valuestring) : -1;
-            if (k < 0) {
-                st = lv_fail(err, LV_ERR_INPUT, "%s: body '%s': phases[%d] is not a phase",
-                             path, name, j);
-                goto fail;
-            }
-            if (r->phases[k].body < 0)
-                r->phases[k].body = (int)i;
-        }
-    }
-    cJSON_Delete(root);
+    if (!(r->t0 <= r->t1))
+        return lv_fail(err, LV_ERR_INPUT, "%s: no phase is done: nothing to export", path);
+    for (size_t i = 0; i < res->n_bodies; i++)
+        if (res->bodies[i].trajectory == NULL)
+            return lv_fail(err, LV_ERR_INPUT, "%s: bodies[%zu]: 'name' or 'trajectory' (a file "
+                           "name in the folder) missing", path, i);
     return LV_OK;
-nomem:
-    st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-fail:
-    cJSON_Delete(root);
-    return st;
 }
 
 /* ------------------------------------------------------------- body CSV -- */
 
-/* Splits one CSV line in place (RFC 4180 quoting). Returns the field count, -1 on an
- * unterminated quote, or max + 1 when there are more than max fields. */
-static int split_csv(char *s, char **fields, int max)
-{
-    int n = 0;
-    for (;;) {
-        if (n == max)
-            return max + 1;
-        char *out = s;
-        fields[n++] = s;
-        if (*s == '"') {
-            char *in = s + 1;
-            for (;;) {
-                if (*in == '\0')
-                    return -1;
-                if (*in == '"' && in[1] == '"') {
-                    *out++ = '"';
-                    in += 2;
-                } else if (*in == '"') {
-                    in++;
-                    break;
-                } else {
-                    *out++ = *in++;
-                }
-            }
-            if (*in != ',' && *in != '\0')
-                return -1;
-            const char c = *in;
-            *out = '\0';
-            if (c == '\0')
-                return n;
-            s = in + 1;
-        } else {
-            while (*s != ',' && *s != '\0')
-                s++;
-            if (*s == '\0')
-                return n;
-            *s++ = '\0';
-        }
-    }
-}
-
 enum { C_TIME, C_PHASE, C_LAT, C_LON, C_H, C_RX, C_RY, C_RZ, C_VX, C_VY, C_VZ, C_N };
-static const char *const col_names[C_N] = {"time", "phase", "lat", "lon", "h", "r_eci_x",
-                                           "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y",
-                                           "v_eci_z"};
+static const char *const col_names[C_N + 1] = {"time", "phase", "lat", "lon", "h", "r_eci_x",
+                                               "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y",
+                                               "v_eci_z", NULL};
+static const char *const text_cols[] = {"phase", NULL};
+/* Every column but `phase` must be a finite number where present. */
+static const char *const finite_cols[] = {"time", "lat", "lon", "h", "r_eci_x", "r_eci_y",
+                                          "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", NULL};
 
-/* Column name without its " [unit]". */
-static int col_is(const char *field, const char *name)
+/* Body b's trajectory as rows and per-phase tracks: rows in CSV order, one block per phase (a
+ * done phase of the summary), time not going back; of rows at the same instant (an event)
+ * only the last. */
+static lv_status read_body(lv_ex_run *r, const lv_results *res, size_t bi, lv_err *err)
 {
-    const size_t n = strlen(name);
-    return strncmp(field, name, n) == 0 && (field[n] == '\0' || field[n] == ' ');
-}
-
-static int parse_num(const char *s, double *x)
-{
-    char *end;
-    errno = 0;
-    *x = strtod(s, &end);
-    return end != s && *end == '\0' && isfinite(*x) ? 0 : -1;
-}
-
-#define MAX_COLS 64
-
-static lv_status read_body(lv_ex_run *r, lv_ex_body *b, lv_err *err)
-{
-    FILE *f = fopen(b->path, "r");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", b->path, strerror(errno));
-    char *line = NULL, *fields[MAX_COLS + 1];
-    size_t cap = 0, lineno = 0, rows_cap = 0, tracks_cap = 0;
-    int col[C_N], n_cols = 0, cur = -1; /* cur: phase of the current track */
-    lv_status st = LV_OK;
+    lv_ex_body *b = &r->bodies[bi];
+    const lv_results_csv_spec spec = {text_cols, finite_cols};
+    lv_results_table *t = NULL;
+    lv_status st = lv_results_load(res, res->bodies[bi].trajectory, &spec, &t, err);
+    if (st != LV_OK)
+        return st;
+    b->name = res->bodies[bi].name;
+    if ((b->path = malloc(strlen(t->path) + 1)) == NULL)
+        goto nomem;
+    memcpy(b->path, t->path, strlen(t->path) + 1);
+    long col[C_N];
     for (int c = 0; c < C_N; c++)
-        col[c] = -1;
-    while (getline(&line, &cap, f) >= 0) {
-        lineno++;
-        size_t len = strlen(line);
-        while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
-            line[--len] = '\0';
-        if (len == 0 || line[0] == '#')
-            continue;
-        const int n = split_csv(line, fields, MAX_COLS);
-        if (n < 0 || n > MAX_COLS) {
-            st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: %s", b->path, lineno,
-                         n < 0 ? "unterminated quote" : "too many columns");
+        col[c] = lv_results_table_col(t, col_names[c]);
+    for (int c = 0; c <= C_H; c++)
+        if (col[c] < 0) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no column '%s' in the header", t->path,
+                         t->header_line, col_names[c]);
             goto fail;
         }
-        if (n_cols == 0) { /* the header */
-            n_cols = n;
-            for (int i = 0; i < n; i++)
-                for (int c = 0; c < C_N; c++)
-                    if (col[c] < 0 && col_is(fields[i], col_names[c]))
-                        col[c] = i;
-            for (int c = 0; c <= C_H; c++)
-                if (col[c] < 0) {
-                    st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no column '%s' in the header",
-                                 b->path, lineno, col_names[c]);
-                    goto fail;
-                }
-            b->has_eci = 1;
-            for (int c = C_RX; c < C_N; c++)
-                b->has_eci &= col[c] >= 0;
-            continue;
-        }
-        if (n != n_cols) {
-            st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: %d fields, the header has %d", b->path,
-                         lineno, n, n_cols);
-            goto fail;
-        }
+    b->has_eci = 1;
+    for (int c = C_RX; c < C_N; c++)
+        b->has_eci &= col[c] >= 0;
+    if (t->n_rows == 0) {
+        st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no rows", t->path, t->n_lines);
+        goto fail;
+    }
+    if ((b->rows = malloc(t->n_rows * sizeof *b->rows)) == NULL)
+        goto nomem;
+    size_t tracks_cap = 0;
+    int cur = -1; /* phase of the current track */
+    for (size_t i = 0; i < t->n_rows; i++) {
+        const double *v = t->v + i * t->n_cols;
+        const size_t line = t->line[i];
         lv_ex_row row;
         memset(&row, 0, sizeof row);
-        row.line = lineno;
-        double *dst[C_N] = {&row.t,        NULL,         &row.lat,     &row.lon,
+        row.line = line;
+        double *dst[C_N] = {&row.t,        NULL,          &row.lat,      &row.lon,
                             &row.h,        &row.r_eci[0], &row.r_eci[1], &row.r_eci[2],
                             &row.v_eci[0], &row.v_eci[1], &row.v_eci[2]};
-        for (int c = 0; c < C_N; c++) {
-            if (dst[c] == NULL || col[c] < 0)
-                continue;
-            if (parse_num(fields[col[c]], dst[c]) != 0) {
-                st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: column '%s': '%.40s' is not a finite "
-                             "number", b->path, lineno, col_names[c], fields[col[c]]);
-                goto fail;
-            }
-        }
-        const int k = phase_find(r, fields[col[C_PHASE]]);
+        for (int c = 0; c < C_N; c++)
+            if (dst[c] != NULL && col[c] >= 0)
+                *dst[c] = v[col[c]];
+        const char *phase = lv_results_table_text(t, i, (size_t)col[C_PHASE]);
+        const int k = lv_results_phase_find(res, phase);
         if (k < 0 || !r->phases[k].done) {
             st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: phase '%.60s' is not a done phase of "
-                         "summary.json", b->path, lineno, fields[col[C_PHASE]]);
+                         "summary.json", t->path, line, phase);
             goto fail;
         }
         if (k != cur) { /* a new track */
             if (lv_ex_track_of(b, (size_t)k) != NULL) {
                 st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: phase '%s' appears twice, not in one "
-                             "block", b->path, lineno, r->phases[k].name);
+                             "block", t->path, line, r->phases[k].name);
                 goto fail;
             }
             if (b->n_tracks == tracks_cap) {
@@ -551,7 +301,7 @@ static lv_status read_body(lv_ex_run *r, lv_ex_body *b, lv_err *err)
             const double t_prev = b->rows[b->n_rows - 1].t;
             if (row.t < t_prev) {
                 st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: time %.17g goes back (previous row "
-                             "%.17g)", b->path, lineno, row.t, t_prev);
+                             "%.17g)", t->path, line, row.t, t_prev);
                 goto fail;
             }
             if (row.t == t_prev) { /* an event instant: keep the row after it */
@@ -559,33 +309,15 @@ static lv_status read_body(lv_ex_run *r, lv_ex_body *b, lv_err *err)
                 continue;
             }
         }
-        if (b->n_rows == rows_cap) {
-            rows_cap = rows_cap ? 2 * rows_cap : 1024;
-            lv_ex_row *nr = realloc(b->rows, rows_cap * sizeof *nr);
-            if (nr == NULL)
-                goto nomem;
-            b->rows = nr;
-        }
         b->rows[b->n_rows++] = row;
         tr->n++;
     }
-    if (ferror(f)) {
-        st = lv_fail(err, LV_ERR_IO, "%s: read error", b->path);
-        goto fail;
-    }
-    if (n_cols == 0 || b->n_rows == 0) {
-        st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no %s", b->path, lineno,
-                     n_cols == 0 ? "header" : "rows");
-        goto fail;
-    }
-    free(line);
-    fclose(f);
+    lv_results_table_free(t);
     return LV_OK;
 nomem:
     st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
 fail:
-    free(line);
-    fclose(f);
+    lv_results_table_free(t);
     return st;
 }
 
@@ -596,15 +328,41 @@ LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err
     if (outdir == NULL || (formats & ~(unsigned)LV_EXPORT_ALL) != 0)
         return lv_fail(err, LV_ERR_INPUT, "lv_export_run: %s",
                        outdir == NULL ? "no folder" : "unknown format flag");
+    lv_results *res = NULL;
+    lv_status st = lv_results_open(outdir, &res, err);
+    if (st != LV_OK)
+        return st;
     lv_ex_run r;
     memset(&r, 0, sizeof r);
     r.outdir = outdir;
-    lv_status st = read_summary(&r, err);
-    for (size_t i = 0; i < r.n_bodies && st == LV_OK; i++)
-        st = read_body(&r, &r.bodies[i], err);
+    r.mission = res->mission;
+    r.flat = res->flat;
+    r.planet = res->planet;
+    r.phases = res->phases;
+    r.n_phases = res->n_phases;
+    st = check_summary(&r, res, err);
+    if (st == LV_OK) {
+        r.phase_body = malloc((res->n_phases + 1) * sizeof *r.phase_body);
+        r.bodies = calloc(res->n_bodies + 1, sizeof *r.bodies);
+        if (r.phase_body == NULL || r.bodies == NULL)
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    if (st == LV_OK) {
+        /* A body flying in a phase gives that phase's event positions: the first one listed. */
+        for (size_t i = 0; i < res->n_phases; i++)
+            r.phase_body[i] = -1;
+        for (size_t i = 0; i < res->n_bodies; i++)
+            for (size_t j = 0; j < res->bodies[i].n_phases; j++)
+                if (r.phase_body[res->bodies[i].phases[j]] < 0)
+                    r.phase_body[res->bodies[i].phases[j]] = (int)i;
+    }
+    for (size_t i = 0; i < res->n_bodies && st == LV_OK; i++) {
+        r.n_bodies = i + 1;
+        st = read_body(&r, res, i, err);
+    }
     /* Every done phase a body lists must have rows in its CSV. */
     for (size_t i = 0; i < r.n_phases && st == LV_OK; i++) {
-        const int b = r.phases[i].body;
+        const int b = r.phase_body[i];
         if (r.phases[i].done && b >= 0 && lv_ex_track_of(&r.bodies[b], i) == NULL)
             st = lv_fail(err, LV_ERR_INPUT, "%s: no rows of phase '%s'", r.bodies[b].path,
                          r.phases[i].name);
@@ -621,5 +379,6 @@ LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err
     if (st == LV_OK && (formats & LV_EXPORT_OEM) && !r.flat)
         st = lv_ex_write_oem(&r, err);
     run_free(&r);
+    lv_results_free(res);
     return st;
 }
