@@ -1,6 +1,6 @@
-/* plot.c - lv_plot_run(): reads a run's output directory back (summary.json, the phase and body
- * CSVs) and hands it to the figure and report writers. Post-processing only: nothing here is
- * used while simulating. */
+/* plot.c - lv_plot_run(): reads a run's output directory back (post/results.h: summary.json, the
+ * phase and body CSVs) and hands it to the figure and report writers. Post-processing only:
+ * nothing here is used while simulating. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -16,149 +16,50 @@
 
 static void data_free(lv_plot_data *d)
 {
-    for (size_t k = 0; k < d->n_phases; k++)
-        lv_plot_csv_free(d->phases[k].csv);
-    for (size_t b = 0; b < d->n_bodies; b++) {
-        free(d->bodies[b].phase);
-        lv_plot_csv_free(d->bodies[b].traj);
-    }
+    for (size_t k = 0; d->phases != NULL && k < d->n_phases; k++)
+        lv_results_table_free(d->phases[k].csv);
+    for (size_t b = 0; d->bodies != NULL && b < d->n_bodies; b++)
+        lv_results_table_free(d->bodies[b].traj);
     free(d->phases);
     free(d->bodies);
-    cJSON_Delete(d->summary);
 }
 
-static lv_status read_summary(const char *path, cJSON **out, lv_err *err)
+/* The phase CSVs (a failed phase may have left none) and the body trajectories. */
+static lv_status load(lv_plot_data *d, lv_err *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap + 1);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap)
-            break;
-        char *bigger = realloc(buf, 2 * cap + 1);
-        if (bigger == NULL)
-            free(buf);
-        buf = bigger;
-        cap *= 2;
-    }
-    fclose(f);
-    if (buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory reading '%s'", path);
-    buf[n] = '\0';
-    const char *stop = NULL;
-    *out = cJSON_ParseWithOpts(buf, &stop, 0);
-    if (*out == NULL) {
-        int line = 1;
-        for (const char *p = buf; stop != NULL && p < stop && *p; p++)
-            line += *p == '\n';
-        free(buf);
-        return lv_fail(err, LV_ERR_INPUT, "%s:%d: not valid JSON", path, line);
-    }
-    free(buf);
-    return LV_OK;
-}
-
-static double num_or_nan(const cJSON *o, const char *key)
-{
-    const cJSON *j = cJSON_GetObjectItemCaseSensitive(o, key);
-    return cJSON_IsNumber(j) ? j->valuedouble : NAN;
-}
-
-/* A file named in summary.json, relative to OUTDIR: a bare name, nothing that climbs out. */
-static int safe_name(const char *s)
-{
-    return s != NULL && s[0] != '\0' && s[0] != '/' && strstr(s, "..") == NULL;
-}
-
-static lv_status load_phases(lv_plot_data *d, const char *spath, lv_err *err)
-{
-    const cJSON *phases = cJSON_GetObjectItemCaseSensitive(d->summary, "phases");
-    if (!cJSON_IsArray(phases))
-        return lv_fail(err, LV_ERR_INPUT, "%s: no 'phases' array", spath);
-    d->n_phases = (size_t)cJSON_GetArraySize(phases);
-    d->phases = calloc(d->n_phases + 1, sizeof *d->phases);
-    if (d->phases == NULL)
+    const lv_results *res = d->res;
+    d->flat = res->flat;
+    d->phases = calloc(res->n_phases + 1, sizeof *d->phases);
+    d->bodies = calloc(res->n_bodies + 1, sizeof *d->bodies);
+    if (d->phases == NULL || d->bodies == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char path[4300];
-    size_t k = 0;
-    const cJSON *ph;
-    cJSON_ArrayForEach(ph, phases)
-    {
-        lv_plot_phase *p = &d->phases[k++];
-        const cJSON *name = cJSON_GetObjectItemCaseSensitive(ph, "name");
-        const cJSON *state = cJSON_GetObjectItemCaseSensitive(ph, "state");
-        if (!cJSON_IsString(name))
-            return lv_fail(err, LV_ERR_INPUT, "%s: phase %zu has no name", spath, k);
-        p->name = name->valuestring;
-        p->done = cJSON_IsString(state) && strcmp(state->valuestring, "done") == 0;
-        p->t0 = num_or_nan(ph, "t_start");
-        p->t1 = num_or_nan(ph, "t_end");
-        const cJSON *files = cJSON_GetObjectItemCaseSensitive(ph, "files");
-        const cJSON *csv = cJSON_GetObjectItemCaseSensitive(files, "csv");
-        if (!cJSON_IsString(csv))
+    d->n_phases = res->n_phases;
+    d->n_bodies = res->n_bodies;
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        lv_plot_phase *p = &d->phases[k];
+        p->name = ph->name;
+        p->done = ph->done;
+        p->t0 = ph->t_start;
+        p->t1 = ph->t_end;
+        if (ph->csv == NULL || (!p->done && !lv_results_exists(res, ph->csv)))
             continue;
-        if (!safe_name(csv->valuestring))
-            return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': bad file name '%s'", spath,
-                           p->name, csv->valuestring);
-        snprintf(path, sizeof path, "%s/%s", d->outdir, csv->valuestring);
-        struct stat sb;
-        if (!p->done && stat(path, &sb) != 0)
-            continue; /* a failed phase may have left no rows */
-        lv_status st = lv_plot_csv_read(path, &p->csv, err);
+        lv_status st = lv_results_load(res, ph->csv, NULL, &p->csv, err);
         if (st != LV_OK)
             return st;
-        if (lv_plot_csv_col(p->csv, "time") != 0)
-            return lv_fail(err, LV_ERR_INPUT, "%s:1: the first column is not 'time'", path);
+        if (lv_results_table_col(p->csv, "time") != 0)
+            return lv_fail(err, LV_ERR_INPUT, "%s:%zu: the first column is not 'time'",
+                           p->csv->path, p->csv->header_line);
     }
-    return LV_OK;
-}
-
-static lv_status load_bodies(lv_plot_data *d, const char *spath, lv_err *err)
-{
-    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(d->summary, "bodies");
-    if (!cJSON_IsArray(bodies))
-        return lv_fail(err, LV_ERR_INPUT, "%s: no 'bodies' array", spath);
-    d->n_bodies = (size_t)cJSON_GetArraySize(bodies);
-    d->bodies = calloc(d->n_bodies + 1, sizeof *d->bodies);
-    if (d->bodies == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char path[4300];
-    size_t i = 0;
-    const cJSON *bj;
-    cJSON_ArrayForEach(bj, bodies)
-    {
-        lv_plot_body *b = &d->bodies[i++];
-        const cJSON *name = cJSON_GetObjectItemCaseSensitive(bj, "name");
-        const cJSON *pl = cJSON_GetObjectItemCaseSensitive(bj, "phases");
-        const cJSON *traj = cJSON_GetObjectItemCaseSensitive(bj, "trajectory");
-        if (!cJSON_IsString(name) || !cJSON_IsArray(pl))
-            return lv_fail(err, LV_ERR_INPUT, "%s: body %zu has no name or no phases", spath, i);
-        b->name = name->valuestring;
-        b->phase = calloc((size_t)cJSON_GetArraySize(pl) + 1, sizeof *b->phase);
-        if (b->phase == NULL)
-            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        const cJSON *pn;
-        cJSON_ArrayForEach(pn, pl)
-        {
-            size_t k = 0;
-            while (k < d->n_phases &&
-                   !(cJSON_IsString(pn) && strcmp(d->phases[k].name, pn->valuestring) == 0))
-                k++;
-            if (k == d->n_phases)
-                return lv_fail(err, LV_ERR_INPUT, "%s: body '%s': unknown phase '%s'", spath,
-                               b->name, cJSON_IsString(pn) ? pn->valuestring : "?");
-            b->phase[b->n++] = k;
-        }
-        if (!cJSON_IsString(traj))
+    for (size_t i = 0; i < res->n_bodies; i++) {
+        const lv_results_body *rb = &res->bodies[i];
+        lv_plot_body *b = &d->bodies[i];
+        b->name = rb->name;
+        b->n = rb->n_phases;
+        b->phase = rb->phases;
+        if (rb->trajectory == NULL)
             continue;
-        if (!safe_name(traj->valuestring))
-            return lv_fail(err, LV_ERR_INPUT, "%s: body '%s': bad file name '%s'", spath,
-                           b->name, traj->valuestring);
-        snprintf(path, sizeof path, "%s/%s", d->outdir, traj->valuestring);
-        lv_status st = lv_plot_csv_read(path, &b->traj, err);
+        lv_status st = lv_results_load(res, rb->trajectory, NULL, &b->traj, err);
         if (st != LV_OK)
             return st;
     }
@@ -184,20 +85,16 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     if (strlen(outdir) > 4000)
         return lv_fail(err, LV_ERR_INPUT, "lv_plot_run: output directory name too long");
     lv_plot_data d = {.outdir = outdir};
+    lv_results *res = NULL;
     lv_plot_list *list = calloc(1, sizeof *list);
     if (list == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char spath[4100], pdir[4100];
-    snprintf(spath, sizeof spath, "%s/summary.json", outdir);
+    char pdir[4100];
     snprintf(pdir, sizeof pdir, "%s/plots", outdir);
-    lv_status st = read_summary(spath, &d.summary, err);
-    if (st == LV_OK) {
-        const cJSON *world = cJSON_GetObjectItemCaseSensitive(d.summary, "world");
-        d.flat = cJSON_IsString(world) && strcmp(world->valuestring, "flat") == 0;
-        st = load_phases(&d, spath, err);
-    }
+    lv_status st = lv_results_open(outdir, &res, err);
+    d.res = res;
     if (st == LV_OK)
-        st = load_bodies(&d, spath, err);
+        st = load(&d, err);
     if (st == LV_OK)
         st = make_dir(pdir, err);
     if (st == LV_OK)
@@ -205,6 +102,7 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     if (st == LV_OK)
         st = lv_plot_html_write(&d, list, err);
     data_free(&d);
+    lv_results_free(res);
     free(list);
     return st;
 }

@@ -1,47 +1,32 @@
-/* plot.h - internals of lv_plot_run(): the run's files as read back (summary.json, CSVs), the
- * figures (PLplot: the only code that includes plplot.h) and the HTML report. */
+/* plot.h - internals of lv_plot_run(): the run's files as read back (post/results.h: summary.json,
+ * the phase and body CSVs), the figures (PLplot: the only code that includes plplot.h) and the
+ * HTML report. */
 #ifndef LV_POST_PLOT_H
 #define LV_POST_PLOT_H
 
-#include <cjson/cJSON.h>
 #include <stddef.h>
 
 #include "lvsim/lv_status.h"
-
-/* A CSV result file read back: header `name [unit]` (lvsim's layout), numbers row-major.
- * A field that is not a number (the body files' `phase` column) reads as NAN; lines that start
- * with '#' (a failed run's last line) and empty lines are skipped. */
-typedef struct lv_csv {
-    size_t n_cols, n_rows;
-    char **names; /* without the unit */
-    char **units; /* "" when the header has none */
-    double *v;    /* v[row * n_cols + col] */
-} lv_csv;
-
-/* Errors: LV_ERR_IO (cannot open/read, with the path), LV_ERR_INPUT ("path:line: ..."). */
-lv_status lv_plot_csv_read(const char *path, lv_csv **out, lv_err *err);
-void lv_plot_csv_free(lv_csv *c);
-/* Column index of `name`, or -1. */
-long lv_plot_csv_col(const lv_csv *c, const char *name);
+#include "post/results.h"
 
 typedef struct lv_plot_phase {
-    const char *name; /* borrowed from the summary's cJSON tree */
-    double t0, t1;    /* s; NAN when the phase did not run */
-    int done;         /* state "done" */
-    lv_csv *csv;      /* its rows; NULL when the phase has no CSV file */
+    const char *name;       /* borrowed from the results */
+    double t0, t1;          /* s; NAN when the phase did not run */
+    int done;               /* state "done" */
+    lv_results_table *csv;  /* its rows (first column "time"); NULL when it has no CSV file */
 } lv_plot_phase;
 
 typedef struct lv_plot_body {
     const char *name;
-    size_t n;       /* phases it flies in, in time order */
-    size_t *phase;  /* indices into lv_plot_data.phases */
-    lv_csv *traj;   /* body_<name>.csv: lat, lon [rad] for the ground track */
+    size_t n;                /* phases it flies in, in time order */
+    const size_t *phase;     /* indices into lv_plot_data.phases (the results' list) */
+    lv_results_table *traj;  /* body_<name>.csv: lat, lon [rad] for the ground track; or NULL */
 } lv_plot_body;
 
 typedef struct lv_plot_data {
+    const lv_results *res;  /* summary.json as read back: mission, phases, events, files */
     const char *outdir;
-    cJSON *summary; /* owned */
-    int flat;       /* world "flat" */
+    int flat;               /* world "flat" */
     size_t n_phases, n_bodies;
     lv_plot_phase *phases;
     lv_plot_body *bodies;

@@ -75,10 +75,10 @@ static void figure_free(figure *f)
 /* ---- data: one body's value across its phases ------------------------------------------ */
 
 /* First of `cols` that phase file `c` has, or -1. */
-static long find_col(const lv_csv *c, const char *const *cols)
+static long find_col(const lv_results_table *c, const char *const *cols)
 {
     for (size_t i = 0; cols[i] != NULL; i++) {
-        long k = lv_plot_csv_col(c, cols[i]);
+        long k = lv_results_table_col(c, cols[i]);
         if (k >= 0)
             return k;
     }
@@ -93,7 +93,7 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
 {
     size_t n = 0;
     for (size_t i = 0; i < b->n; i++) {
-        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        const lv_results_table *csv = d->phases[b->phase[i]].csv;
         if (csv != NULL && find_col(csv, cols) >= 0)
             n += csv->n_rows;
     }
@@ -105,7 +105,7 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
         return (size_t)-1;
     c->n = 0;
     for (size_t i = 0; i < b->n; i++) {
-        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        const lv_results_table *csv = d->phases[b->phase[i]].csv;
         long k = csv ? find_col(csv, cols) : -1;
         for (size_t r = 0; k >= 0 && r < csv->n_rows; r++) {
             c->x[c->n] = csv->v[r * csv->n_cols];
@@ -442,9 +442,8 @@ static const quantity quantities[] = {
 /* "mission <name>", for a figure's subtitle. */
 static void mission_line(const lv_plot_data *d, char *dst, size_t cap)
 {
-    const cJSON *m = cJSON_GetObjectItemCaseSensitive(d->summary, "mission");
     char name[200];
-    pl_text(name, sizeof name, cJSON_IsString(m) ? m->valuestring : "?");
+    pl_text(name, sizeof name, d->res->mission != NULL ? d->res->mission : "?");
     snprintf(dst, cap, "mission %s", name);
 }
 
@@ -460,7 +459,7 @@ static void time_range(const lv_plot_data *d, double *lo, double *hi)
     *lo = INFINITY;
     *hi = -INFINITY;
     for (size_t k = 0; k < d->n_phases; k++) {
-        const lv_csv *c = d->phases[k].csv;
+        const lv_results_table *c = d->phases[k].csv;
         for (size_t r = 0; c != NULL && r < c->n_rows; r++) {
             *lo = fmin(*lo, c->v[r * c->n_cols]);
             *hi = fmax(*hi, c->v[r * c->n_cols]);
@@ -615,8 +614,8 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
     panel *p = &f.p[0];
     lv_status st = LV_OK;
     for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
-        const lv_csv *t = d->bodies[i].traj;
-        long klat = lv_plot_csv_col(t, "lat"), klon = lv_plot_csv_col(t, "lon");
+        const lv_results_table *t = d->bodies[i].traj;
+        long klat = lv_results_table_col(t, "lat"), klon = lv_results_table_col(t, "lon");
         if (klat < 0 || klon < 0 || t->n_rows == 0)
             continue;
         curve *c = &p->c[p->n_c++];
