@@ -1,4 +1,3 @@
-# N-D lookup tables: evaluation (table.c) and CSV/MAT loaders (table_load.c, libmatio).
+# N-D lookup tables: evaluation (table.c). Their CSV/MAT loaders are I/O: src/io/table_load.c.
 list(APPEND LV_SOURCES
-  src/core/table.c
-  src/core/table_load.c)
+  src/core/table.c)

@@ -14,8 +14,7 @@
 #include "io/sink.h"
 
 typedef struct csv_sink {
-    lv_sink_paths paths;
-    FILE *fp;        /* open between open() and close() */
+    lv_sink_paths paths; /* paths.file.fp: the stream, open between open() and close() */
     size_t n_signals;
     size_t rows;
     double t_prev;   /* s */
@@ -25,7 +24,7 @@ typedef struct csv_sink {
 static lv_status io_error(const csv_sink *s, const char *what, int e, lv_err *err)
 {
     char why[128];
-    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.tmp_path, what,
+    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.file.tmp, what,
                    lv_sink_strerror(e, why, sizeof why));
 }
 
@@ -49,15 +48,15 @@ static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
 {
     csv_sink *s = self;
     if (s->state != 0)
-        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.final_path);
-    lv_status st = lv_sink_check_info(info, s->paths.final_path, err);
+        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.file.path);
+    lv_status st = lv_sink_check_info(info, s->paths.file.path, err);
     if (st != LV_OK)
         return st;
 
-    errno = 0;
-    s->fp = fopen(s->paths.tmp_path, "w");
-    if (s->fp == NULL)
-        return io_error(s, "cannot create", errno, err);
+    st = lv_atomic_open(&s->paths.file, NULL, err);
+    if (st != LV_OK)
+        return st;
+    FILE *fp = s->paths.file.fp;
     for (size_t i = 0; i < info->n_signals; i++) {
         const lv_var *v = &info->signals[i];
         /* "name [unit]": the unit part of lv_sink_describe() with the name as text */
@@ -65,11 +64,11 @@ static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
                                                    ? "s"
                                                    : v->unit);
         if (head == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.final_path);
+            st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.file.path);
             goto fail;
         }
         errno = 0;
-        const int bad = (i > 0 && fputc(',', s->fp) == EOF) || put_field(s->fp, head) != 0;
+        const int bad = (i > 0 && fputc(',', fp) == EOF) || put_field(fp, head) != 0;
         free(head);
         if (bad) {
             st = io_error(s, "cannot write", errno, err);
@@ -77,7 +76,7 @@ static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
         }
     }
     errno = 0;
-    if (fputc('\n', s->fp) == EOF) {
+    if (fputc('\n', fp) == EOF) {
         st = io_error(s, "cannot write", errno, err);
         goto fail;
     }
@@ -85,9 +84,7 @@ static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
     s->state = 1;
     return LV_OK;
 fail:
-    fclose(s->fp);
-    s->fp = NULL;
-    remove(s->paths.tmp_path);
+    lv_atomic_abort(&s->paths.file);
     return st;
 }
 
@@ -95,16 +92,17 @@ static lv_status csv_row(void *self, const double *values, lv_err *err)
 {
     csv_sink *s = self;
     if (s->state != 1)
-        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.final_path,
+        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.file.path,
                        s->state == 0 ? "before open()" : "after close()");
-    lv_status st = lv_sink_check_row(s->paths.final_path, s->rows, values[0], s->t_prev, err);
+    lv_status st = lv_sink_check_row(s->paths.file.path, s->rows, values[0], s->t_prev, err);
     if (st != LV_OK)
         return st;
+    FILE *fp = s->paths.file.fp;
     errno = 0;
     for (size_t i = 0; i < s->n_signals; i++)
-        if (fprintf(s->fp, i == 0 ? "%.17g" : ",%.17g", values[i]) < 0)
+        if (fprintf(fp, i == 0 ? "%.17g" : ",%.17g", values[i]) < 0)
             return io_error(s, "cannot write", errno, err);
-    if (fputc('\n', s->fp) == EOF)
+    if (fputc('\n', fp) == EOF)
         return io_error(s, "cannot write", errno, err);
     s->t_prev = values[0];
     s->rows++;
@@ -115,34 +113,27 @@ static lv_status csv_close(void *self, const char *failure, lv_err *err)
 {
     csv_sink *s = self;
     if (s->state != 1)
-        return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.final_path,
+        return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.file.path,
                        s->state == 0 ? "before open()" : "twice");
     s->state = 2;
-    lv_status st = LV_OK;
     errno = 0;
     if (failure != NULL) {
         /* A comment line, on one line whatever the reason's text. */
-        int bad = fputs("# run failed: ", s->fp) < 0;
+        FILE *fp = s->paths.file.fp;
+        int bad = fputs("# run failed: ", fp) < 0;
         for (const char *c = failure; !bad && *c != '\0'; c++)
-            bad = fputc(*c == '\n' || *c == '\r' ? ' ' : *c, s->fp) == EOF;
+            bad = fputc(*c == '\n' || *c == '\r' ? ' ' : *c, fp) == EOF;
         if (!bad && failure[0] == '\0')
-            bad = fputs("(no reason given)", s->fp) < 0;
+            bad = fputs("(no reason given)", fp) < 0;
         if (!bad)
-            bad = fputc('\n', s->fp) == EOF;
-        if (bad)
-            st = io_error(s, "cannot write", errno, err);
+            bad = fputc('\n', fp) == EOF;
+        if (bad) {
+            lv_status st = io_error(s, "cannot write", errno, err);
+            lv_atomic_release(&s->paths.file); /* the .tmp file stays, with the rows written */
+            return st;
+        }
     }
-    /* fclose() flushes: a full disk shows here at the latest. */
-    const int e_flush = fflush(s->fp) != 0 || ferror(s->fp) ? (errno != 0 ? errno : EIO) : 0;
-    const int closed = fclose(s->fp);
-    const int e_close = errno;
-    s->fp = NULL;
-    if (st != LV_OK)
-        return st;
-    if (e_flush != 0)
-        return io_error(s, "cannot write", e_flush, err);
-    if (closed != 0)
-        return io_error(s, "cannot close", e_close, err);
+    /* Flush, close, check, rename: a full disk shows here at the latest. */
     return lv_sink_paths_commit(&s->paths, failure, err);
 }
 
@@ -152,9 +143,7 @@ static void csv_destroy(void *self)
     csv_sink *s = self;
     if (s == NULL)
         return;
-    if (s->fp != NULL)
-        fclose(s->fp);
-    lv_sink_paths_free(&s->paths);
+    lv_sink_paths_free(&s->paths); /* closes the stream */
     free(s);
 }
 

@@ -41,22 +41,19 @@ static lv_status mat_open(void *self, const lv_result_info *info, lv_err *err)
 {
     mat_sink *s = self;
     if (s->state != 0)
-        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.final_path);
-    lv_status st = lv_sink_check_info(info, s->paths.final_path, err);
+        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.file.path);
+    lv_status st = lv_sink_check_info(info, s->paths.file.path, err);
     if (st != LV_OK)
         return st;
     /* Rows are buffered and the file is written at close(); create the
      * temporary file now so that an unwritable directory fails before the run. */
-    errno = 0;
-    FILE *fp = fopen(s->paths.tmp_path, "wb");
-    if (fp == NULL)
-        return io_error(s->paths.tmp_path, "cannot create", errno, err);
-    if (fclose(fp) != 0)
-        return io_error(s->paths.tmp_path, "cannot close", errno, err);
+    st = lv_atomic_reserve(&s->paths.file, err);
+    if (st != LV_OK)
+        return st;
     if (info->n_params > 0) {
         s->param_values = malloc(info->n_params * sizeof *s->param_values);
         if (s->param_values == NULL)
-            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.final_path);
+            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.file.path);
         memcpy(s->param_values, info->param_values, info->n_params * sizeof *s->param_values);
     }
     s->info = *info;
@@ -70,16 +67,16 @@ static lv_status mat_row(void *self, const double *values, lv_err *err)
 {
     mat_sink *s = self;
     if (s->state != 1)
-        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.final_path,
+        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.file.path,
                        s->state == 0 ? "before open()" : "after close()");
     const size_t n = s->rows.rows;
     const double t_prev = n > 0 ? s->rows.v[(n - 1) * s->rows.width] : 0.0;
-    lv_status st = lv_sink_check_row(s->paths.final_path, n, values[0], t_prev, err);
+    lv_status st = lv_sink_check_row(s->paths.file.path, n, values[0], t_prev, err);
     if (st != LV_OK)
         return st;
     st = lv_rowbuf_push(&s->rows, values, err);
     if (st != LV_OK)
-        return lv_fail_prefix(err, st, "%s", s->paths.final_path);
+        return lv_fail_prefix(err, st, "%s", s->paths.file.path);
     return LV_OK;
 }
 
@@ -128,7 +125,7 @@ static char *char_columns(const char *const *text, size_t n, size_t width)
 static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err)
 {
     const lv_result_info *in = &s->info;
-    const char *path = s->paths.tmp_path;
+    const char *path = s->paths.file.tmp; /* libmatio writes the temporary file by name */
     const size_t ns = in->n_signals, np = in->n_params, nv = ns + np;
     const size_t nrows = s->rows.rows;
     if (nv > INT32_MAX - 2)
@@ -274,14 +271,14 @@ static lv_status mat_close(void *self, const char *failure, lv_err *err)
 {
     mat_sink *s = self;
     if (s->state != 1)
-        return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.final_path,
+        return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.file.path,
                        s->state == 0 ? "before open()" : "twice");
     s->state = 2;
     lv_status st = write_dsres(s, failure, err);
     if (st == LV_OK)
         st = lv_sink_paths_commit(&s->paths, failure, err);
     else
-        remove(s->paths.tmp_path); /* incomplete; the rows are lost with it */
+        lv_atomic_abort(&s->paths.file); /* incomplete; the rows are lost with it */
     lv_rowbuf_free(&s->rows);
     free(s->param_values);
     s->param_values = NULL;

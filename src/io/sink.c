@@ -1,5 +1,5 @@
 /* sink.c - what all result sinks share: lv_sink_destroy(), the failed-file
- * name, the temporary-file protocol (write "<path>.tmp", rename when closed),
+ * name, the temporary-file protocol (write "<path>.tmp", rename when closed: io/atomic.c),
  * checks of the result description and rows. See docs/result-files.md.
  */
 #define _POSIX_C_SOURCE 200809L /* strerror_r (XSI) */
@@ -62,34 +62,20 @@ const char *lv_sink_strerror(int e, char *buf, size_t cap)
     return buf;
 }
 
-static char *dup_str(const char *s)
-{
-    const size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d != NULL)
-        memcpy(d, s, n);
-    return d;
-}
-
 lv_status lv_sink_paths_init(lv_sink_paths *p, const char *path, lv_err *err)
 {
-    static const char tmp_ext[] = ".tmp";
     memset(p, 0, sizeof *p);
     if (path == NULL || path[0] == '\0')
         return lv_fail(err, LV_ERR_INPUT, "result file: empty path");
-    const size_t len = strlen(path);
-    const size_t failed_cap = len + sizeof ".failed";
-
-    p->final_path = dup_str(path);
-    p->tmp_path = malloc(len + sizeof tmp_ext);
+    lv_status st = lv_atomic_init(&p->file, path, err);
+    if (st != LV_OK)
+        return st;
+    p->file.keep = 1; /* a failed commit leaves the rows written so far */
+    const size_t failed_cap = strlen(path) + sizeof ".failed";
     p->failed_path = malloc(failed_cap);
-    if (p->final_path == NULL || p->tmp_path == NULL || p->failed_path == NULL) {
-        lv_sink_paths_free(p);
+    if (p->failed_path == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
-    }
-    memcpy(p->tmp_path, path, len);
-    memcpy(p->tmp_path + len, tmp_ext, sizeof tmp_ext);
-    lv_status st = lv_result_failed_path(path, p->failed_path, failed_cap, err);
+    st = lv_result_failed_path(path, p->failed_path, failed_cap, err);
     if (st != LV_OK)
         lv_sink_paths_free(p);
     return st;
@@ -99,22 +85,14 @@ void lv_sink_paths_free(lv_sink_paths *p)
 {
     if (p == NULL)
         return;
-    free(p->final_path);
-    free(p->tmp_path);
+    lv_atomic_release(&p->file);
     free(p->failed_path);
-    p->final_path = p->tmp_path = p->failed_path = NULL;
+    p->failed_path = NULL;
 }
 
-lv_status lv_sink_paths_commit(const lv_sink_paths *p, const char *failure, lv_err *err)
+lv_status lv_sink_paths_commit(lv_sink_paths *p, const char *failure, lv_err *err)
 {
-    const char *target = failure == NULL ? p->final_path : p->failed_path;
-    if (rename(p->tmp_path, target) != 0) {
-        char why[128];
-        const int e = errno;
-        return lv_fail(err, LV_ERR_IO, "%s: cannot rename to '%s': %s", p->tmp_path, target,
-                       lv_sink_strerror(e, why, sizeof why));
-    }
-    return LV_OK;
+    return lv_atomic_commit_as(&p->file, failure == NULL ? p->file.path : p->failed_path, err);
 }
 
 static int cmp_name(const void *a, const void *b)

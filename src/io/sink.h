@@ -1,7 +1,7 @@
 /* sink.h - helpers shared by the result sinks (not exported).
  *
- * Checks of lv_result_info, the temporary/final/failed file names, the final
- * rename, and the "description [unit]" text of a variable (Dymola's way of
+ * Checks of lv_result_info, the final/failed file names and the final rename
+ * (through io/atomic.h), and the "description [unit]" text of a variable (Dymola's way of
  * carrying units in dsres descriptions). See docs/result-files.md.
  */
 #ifndef LV_IO_SINK_H
@@ -9,23 +9,26 @@
 
 #include <stddef.h>
 
+#include "io/atomic.h"
 #include "lvsim/lv_io.h"
 
-/* The three names of one result file. Strings are owned (malloc). */
+/* The names of one result file: the final one and its temporary "<path>.tmp" (io/atomic.h:
+ * file.path, file.tmp, and for a streamed sink file.fp), and the failed one. The sinks keep
+ * their .tmp file when a commit fails (file.keep, docs/result-files.md). */
 typedef struct lv_sink_paths {
-    char *final_path;  /* "dir/stem.ext" as given */
-    char *tmp_path;    /* "dir/stem.ext.tmp": written while the run goes on */
-    char *failed_path; /* "dir/stem.failed.ext": kept when the run failed */
+    lv_atomic file;    /* file.path "dir/stem.ext" as given; file.tmp "dir/stem.ext.tmp" */
+    char *failed_path; /* "dir/stem.failed.ext": kept when the run failed (owned, malloc) */
 } lv_sink_paths;
 
 /* Fills `p` from `path` (non-empty). On failure `p` holds nothing to free. */
 lv_status lv_sink_paths_init(lv_sink_paths *p, const char *path, lv_err *err);
 void lv_sink_paths_free(lv_sink_paths *p);
 
-/* Renames the complete temporary file to the final name (failure == NULL) or
- * to the failed name. Overwrites a file of the target name; never touches the
- * other name. LV_ERR_IO names both paths and the system's reason. */
-lv_status lv_sink_paths_commit(const lv_sink_paths *p, const char *failure, lv_err *err);
+/* Completes the temporary file (lv_atomic_commit_as: closes file.fp when open, checks the
+ * writes) and renames it to the final name (failure == NULL) or to the failed name. Overwrites
+ * a file of the target name; never touches the other name. LV_ERR_IO names the temporary
+ * file, the target and the system's reason; the temporary file then stays. */
+lv_status lv_sink_paths_commit(lv_sink_paths *p, const char *failure, lv_err *err);
 
 /* Checks what every sink relies on: at least one signal, signals[0] named
  * "time", every name non-empty, names of signals and parameters unique, and

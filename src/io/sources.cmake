@@ -2,5 +2,6 @@ list(APPEND LV_SOURCES
   src/io/sink.c
   src/io/result_memory.c
   src/io/result_csv.c
-  src/io/result_mat.c)
-include(src/io/export.cmake)
+  src/io/result_mat.c
+  src/io/table_load.c
+  src/io/atomic.c)

@@ -1,5 +1,5 @@
 # Missions: the YAML parser, the phase-model types and their registry, the loaded mission
-# (immutable), runs of it, the summary, sequential versus end-to-end.
+# (immutable), runs of it, sequential versus end-to-end.
 list(APPEND LV_SOURCES
   src/mission/yaml_tree.c
   src/mission/parse.c
@@ -8,5 +8,4 @@ list(APPEND LV_SOURCES
   src/mission/phase_dof3.c
   src/mission/mission.c
   src/mission/run.c
-  src/mission/summary.c
   src/mission/compare.c)

@@ -10,7 +10,8 @@
 #include <time.h>
 
 #include "core/status.h"
-#include "io/export_int.h"
+#include "io/atomic.h"
+#include "post/export_int.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lvsim.h"
 
@@ -101,12 +102,13 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
     if (n_seg == 0)
         return LV_OK;
 
-    char path[4400], tmp[4500], created[32];
+    char path[4400], created[32];
     snprintf(path, sizeof path, "%s/%s.oem", r->outdir, b->name);
-    FILE *f;
-    lv_status st = lv_ex_open(path, tmp, sizeof tmp, &f, err);
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
     if (st != LV_OK)
         return st;
+    FILE *f = out.fp;
     const time_t now = time(NULL);
     struct tm tm;
     gmtime_r(&now, &tm);
@@ -125,7 +127,7 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
             put_segment(f, r, b, pts + i, j - i, ++seg, n_seg);
         i = j > i ? j : i + 1;
     }
-    return lv_ex_commit(f, tmp, path, err);
+    return lv_atomic_commit(&out, err);
 }
 
 lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err)

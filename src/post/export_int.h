@@ -1,13 +1,14 @@
-/* export_int.h - internal: a results folder (summary.json + body CSVs) read back for the
- * trajectory exports, and the helpers the CZML, KML and OEM writers share (not exported).
- * Contract of the files: docs/exports.md. */
-#ifndef LV_IO_EXPORT_INT_H
-#define LV_IO_EXPORT_INT_H
+/* export_int.h - internal: a results folder (summary.json + body CSVs, read by post/results.h)
+ * as the trajectory exports see it, and the helpers the CZML, KML and OEM writers share (not
+ * exported). Contract of the files: docs/exports.md. */
+#ifndef LV_POST_EXPORT_INT_H
+#define LV_POST_EXPORT_INT_H
 
 #include <stddef.h>
 #include <stdio.h>
 
 #include "lvsim/lv_status.h"
+#include "post/results.h"
 
 typedef struct lv_ex_row {
     double t;                  /* s, mission time */
@@ -16,22 +17,9 @@ typedef struct lv_ex_row {
     size_t line;               /* line of the body CSV, for messages */
 } lv_ex_row;
 
-typedef struct lv_ex_event {
-    double t;    /* s */
-    char *name;  /* state event name ("burnout", "impact", ...); NULL for a time event */
-} lv_ex_event;
-
-typedef struct lv_ex_phase {
-    char *name;
-    int index;            /* 1-based, as in summary.json (run order) */
-    int parent;           /* position in lv_ex_run.phases; -1: a root phase */
-    int done;             /* state "done": it has times, events and rows */
-    double t_start, t_end; /* s */
-    lv_ex_event *events;
-    size_t n_events;
-    int body;             /* a body flying in this phase (its rows give event positions); -1 */
-    size_t n_stages;      /* stages the phase carries: fewer than its parent's = a separation */
-} lv_ex_phase;
+/* Phases and events as the results reader gives them (post/results.h). */
+typedef lv_results_event lv_ex_event;
+typedef lv_results_phase lv_ex_phase;
 
 /* The rows of one body in one phase: rows[first .. first + n) of the body. */
 typedef struct lv_ex_track {
@@ -40,7 +28,7 @@ typedef struct lv_ex_track {
 } lv_ex_track;
 
 typedef struct lv_ex_body {
-    char *name;
+    const char *name;    /* borrowed from the results */
     char *path;          /* OUTDIR/body_<stage>.csv */
     lv_ex_row *rows;     /* CSV order; of rows with the same phase and time only the last */
     size_t n_rows;
@@ -51,12 +39,13 @@ typedef struct lv_ex_body {
 
 typedef struct lv_ex_run {
     const char *outdir;
-    char *mission;       /* summary "mission" */
+    const char *mission; /* summary "mission" */
     long long epoch_us;  /* summary "epoch": UTC microseconds since 1970-01-01T00:00:00Z */
     int flat;            /* world "flat" (no OEM) */
-    char *planet;        /* summary "planet" when given, else NULL (Earth assumed, checked) */
-    lv_ex_phase *phases;
+    const char *planet;  /* summary "planet" when given, else NULL (Earth assumed, checked) */
+    const lv_ex_phase *phases; /* the results' phases; every done one has finite times */
     size_t n_phases;
+    int *phase_body;     /* per phase: a body flying in it (its rows give event positions); -1 */
     lv_ex_body *bodies;
     size_t n_bodies;
     double t0, t1;       /* s: first start and last end of the done phases */
@@ -82,11 +71,6 @@ const char *lv_ex_event_label(const lv_ex_event *e);
 /* Label of marker k of phase p: k = 0 its start ("separation (P2)" where the stack splits,
  * else "P2 start"), k >= 1 its events in launcher words (MECO, apogee, landing, ...). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
-
-/* Open "<path>.tmp" for writing / finish it: close, check, rename to path (on failure the
- * .tmp file is removed). Errors: LV_ERR_IO naming the path. */
-lv_status lv_ex_open(const char *path, char *tmp, size_t cap, FILE **out, lv_err *err);
-lv_status lv_ex_commit(FILE *f, const char *tmp, const char *path, lv_err *err);
 
 lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);
 lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err);

@@ -3,6 +3,7 @@
 # with XML and CSV metacharacters in its names); test_export_formats checks the documents
 # with Python (fixture: running test_export_formats alone runs test_export first).
 lv_add_unit_test(test_export ${PROJECT_SOURCE_DIR}/tests/unit/test_export.c)
+target_link_libraries(test_export PRIVATE lvsim_post_static)
 set_tests_properties(test_export PROPERTIES FIXTURES_SETUP export_files)
 add_test(NAME test_export_formats
   COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_exports.py

@@ -10,7 +10,8 @@
 #include <string.h>
 
 #include "core/status.h"
-#include "plot/plot.h"
+#include "io/atomic.h"
+#include "post/plot.h"
 
 static void esc(FILE *f, const char *s)
 {
@@ -47,18 +48,6 @@ static void link_to(FILE *f, const char *href, const char *text)
     fputs("</a>", f);
 }
 
-static const char *str(const cJSON *o, const char *key)
-{
-    const cJSON *j = cJSON_GetObjectItemCaseSensitive(o, key);
-    return cJSON_IsString(j) ? j->valuestring : NULL;
-}
-
-static double num(const cJSON *o, const char *key)
-{
-    const cJSON *j = cJSON_GetObjectItemCaseSensitive(o, key);
-    return cJSON_IsNumber(j) ? j->valuedouble : NAN;
-}
-
 /* A number with `prec` decimals (sign > 0: always signed). */
 static void td_num(FILE *f, double v, int prec, int sign)
 {
@@ -88,62 +77,51 @@ static const char style[] =
     "figure{margin:1.5em 0}img{max-width:100%;border:1px solid #ddd}\n"
     "figcaption{font-size:.9em}code{background:#f4f4f4;padding:0 3px}\n";
 
-static void phase_table(FILE *f, const cJSON *phases)
+static void phase_table(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"phases\">Phases</h2>\n<table>\n<tr><th>#</th><th>phase</th><th>from</th>"
           "<th>stages</th><th>model</th><th>t0 [s]</th><th>t1 [s]</th><th>end</th>"
           "<th>steps</th><th>RHS evals</th><th>state events</th><th>time events</th>"
           "<th>CPU [ms]</th><th>status</th></tr>\n",
           f);
-    const cJSON *ph;
-    cJSON_ArrayForEach(ph, phases)
-    {
-        const char *state = str(ph, "state");
-        const int ok = state != NULL && strcmp(state, "done") == 0;
-        fputs(ok ? "<tr>" : "<tr class=\"bad\">", f);
-        td_num(f, num(ph, "index"), 0, 0);
-        td_text(f, str(ph, "name"));
-        td_text(f, str(ph, "from") ? str(ph, "from") : "(parameters)");
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        fputs(ph->done ? "<tr>" : "<tr class=\"bad\">", f);
+        td_num(f, ph->index > 0 ? (double)ph->index : NAN, 0, 0);
+        td_text(f, ph->name);
+        td_text(f, ph->from ? ph->from : "(parameters)");
         fputs("<td class=\"l\">", f);
-        const cJSON *s;
-        int first = 1;
-        cJSON_ArrayForEach(s, cJSON_GetObjectItemCaseSensitive(ph, "stages"))
-        {
-            if (cJSON_IsString(s)) {
-                fputs(first ? "" : ", ", f);
-                esc(f, s->valuestring);
-                first = 0;
-            }
+        for (size_t i = 0; i < ph->n_stages; i++) {
+            fputs(i == 0 ? "" : ", ", f);
+            esc(f, ph->stages[i]);
         }
         fputs("</td>", f);
-        td_text(f, str(ph, "model"));
-        td_num(f, num(ph, "t_start"), 3, 0);
-        td_num(f, num(ph, "t_end"), 3, 0);
-        const cJSON *end = cJSON_GetObjectItemCaseSensitive(ph, "end");
+        td_text(f, ph->model);
+        td_num(f, ph->t_start, 3, 0);
+        td_num(f, ph->t_end, 3, 0);
         fputs("<td class=\"l\">", f);
-        if (end != NULL) {
-            esc(f, str(end, "reason"));
-            if (str(end, "event") != NULL) {
+        if (ph->end_reason != NULL || ph->end_event != NULL || isfinite(ph->end_value)) {
+            esc(f, ph->end_reason);
+            if (ph->end_event != NULL) {
                 fputs(": ", f);
-                esc(f, str(end, "event"));
+                esc(f, ph->end_event);
             }
-            if (isfinite(num(end, "value")))
-                fprintf(f, " (%g)", num(end, "value"));
+            if (isfinite(ph->end_value))
+                fprintf(f, " (%g)", ph->end_value);
         } else {
             fputs("&ndash;", f);
         }
         fputs("</td>", f);
-        const cJSON *st = cJSON_GetObjectItemCaseSensitive(ph, "stats");
-        td_num(f, num(st, "steps"), 0, 0);
-        td_num(f, num(st, "rhs_evals"), 0, 0);
-        td_num(f, num(st, "state_events"), 0, 0);
-        td_num(f, num(st, "time_events"), 0, 0);
-        td_num(f, 1e3 * num(st, "cpu_time"), 2, 0);
+        td_num(f, ph->steps, 0, 0);
+        td_num(f, ph->rhs_evals, 0, 0);
+        td_num(f, ph->state_events, 0, 0);
+        td_num(f, ph->time_events, 0, 0);
+        td_num(f, 1e3 * ph->cpu_time, 2, 0);
         fputs("<td class=\"l\">", f);
-        esc(f, state ? state : "?");
-        if (str(ph, "error") != NULL) {
+        esc(f, ph->state ? ph->state : "?");
+        if (ph->error != NULL) {
             fputs(": ", f);
-            esc(f, str(ph, "error"));
+            esc(f, ph->error);
         }
         fputs("</td></tr>\n", f);
     }
@@ -153,7 +131,8 @@ static void phase_table(FILE *f, const cJSON *phases)
 typedef struct event_ref {
     double t;
     size_t order; /* position in summary.json: ties keep it */
-    const cJSON *phase, *event;
+    const lv_results_phase *phase;
+    const lv_results_event *event;
 } event_ref;
 
 static int by_time(const void *a, const void *b)
@@ -165,23 +144,20 @@ static int by_time(const void *a, const void *b)
 }
 
 /* Every logged event of every phase, in time order. */
-static void event_list(FILE *f, const cJSON *phases)
+static void event_list(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"events\">Events</h2>\n", f);
     size_t n = 0;
-    const cJSON *ph, *ev;
-    cJSON_ArrayForEach(ph, phases)
-    {
-        n += (size_t)cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(ph, "events"));
-    }
+    for (size_t k = 0; k < res->n_phases; k++)
+        n += res->phases[k].n_events;
     event_ref *refs = calloc(n + 1, sizeof *refs);
     n = 0;
-    cJSON_ArrayForEach(ph, phases)
-    {
-        cJSON_ArrayForEach(ev, cJSON_GetObjectItemCaseSensitive(ph, "events"))
-        {
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        for (size_t j = 0; j < ph->n_events; j++) {
+            const lv_results_event *ev = &ph->events[j];
             if (refs != NULL)
-                refs[n] = (event_ref){isfinite(num(ev, "t")) ? num(ev, "t") : INFINITY, n, ph, ev};
+                refs[n] = (event_ref){isfinite(ev->t) ? ev->t : INFINITY, n, ph, ev};
             n++;
         }
     }
@@ -194,37 +170,31 @@ static void event_list(FILE *f, const cJSON *phases)
     for (size_t i = 0; i < n && refs != NULL; i++) {
         fputs("<tr>", f);
         td_num(f, refs[i].t, 6, 0);
-        td_text(f, str(refs[i].phase, "name"));
-        td_text(f, str(refs[i].event, "kind"));
-        td_text(f, str(refs[i].event, "name"));
-        td_num(f, num(refs[i].event, "direction"), 0, 1);
+        td_text(f, refs[i].phase->name);
+        td_text(f, refs[i].event->kind);
+        td_text(f, refs[i].event->name);
+        td_num(f, refs[i].event->direction, 0, 1);
         fputs("</tr>\n", f);
     }
     fputs(n ? "</table>\n" : "<p>No events were logged.</p>\n", f);
     free(refs);
 }
 
-static void body_list(FILE *f, const cJSON *bodies)
+static void body_list(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"bodies\">Bodies</h2>\n<ul>\n", f);
-    const cJSON *b, *p;
-    cJSON_ArrayForEach(b, bodies)
-    {
+    for (size_t i = 0; i < res->n_bodies; i++) {
+        const lv_results_body *b = &res->bodies[i];
         fputs("<li><b>", f);
-        esc(f, str(b, "name"));
+        esc(f, b->name);
         fputs("</b>: ", f);
-        int first = 1;
-        cJSON_ArrayForEach(p, cJSON_GetObjectItemCaseSensitive(b, "phases"))
-        {
-            if (cJSON_IsString(p)) {
-                fputs(first ? "" : " &rarr; ", f);
-                esc(f, p->valuestring);
-                first = 0;
-            }
+        for (size_t j = 0; j < b->n_phases; j++) {
+            fputs(j == 0 ? "" : " &rarr; ", f);
+            esc(f, res->phases[b->phases[j]].name);
         }
-        if (str(b, "trajectory") != NULL) {
+        if (b->trajectory != NULL) {
             fputs(" (", f);
-            link_to(f, str(b, "trajectory"), str(b, "trajectory"));
+            link_to(f, b->trajectory, b->trajectory);
             fputs(")", f);
         }
         fputs("</li>\n", f);
@@ -276,35 +246,33 @@ static void plot_section(FILE *f, const lv_plot_list *l)
     }
 }
 
-static void file_list(FILE *f, const cJSON *phases, const cJSON *bodies)
+static void file_list(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"files\">Result files</h2>\n<ul>\n<li>", f);
     link_to(f, "summary.json", "summary.json");
     fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n", f);
-    const cJSON *o;
-    cJSON_ArrayForEach(o, bodies)
-    {
-        if (str(o, "trajectory") == NULL)
+    for (size_t i = 0; i < res->n_bodies; i++) {
+        const lv_results_body *b = &res->bodies[i];
+        if (b->trajectory == NULL)
             continue;
         fputs("<li>", f);
-        link_to(f, str(o, "trajectory"), str(o, "trajectory"));
+        link_to(f, b->trajectory, b->trajectory);
         fputs(": body ", f);
-        esc(f, str(o, "name"));
+        esc(f, b->name);
         fputs(", all its phases</li>\n", f);
     }
-    cJSON_ArrayForEach(o, phases)
-    {
-        const cJSON *files = cJSON_GetObjectItemCaseSensitive(o, "files");
-        if (files == NULL)
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        if (ph->mat == NULL && ph->csv == NULL)
             continue;
         fputs("<li>phase ", f);
-        esc(f, str(o, "name"));
+        esc(f, ph->name);
         fputs(": ", f);
-        if (str(files, "mat") != NULL)
-            link_to(f, str(files, "mat"), str(files, "mat"));
+        if (ph->mat != NULL)
+            link_to(f, ph->mat, ph->mat);
         fputs(", ", f);
-        if (str(files, "csv") != NULL)
-            link_to(f, str(files, "csv"), str(files, "csv"));
+        if (ph->csv != NULL)
+            link_to(f, ph->csv, ph->csv);
         fputs("</li>\n", f);
     }
     fputs("</ul>\n", f);
@@ -312,28 +280,27 @@ static void file_list(FILE *f, const cJSON *phases, const cJSON *bodies)
 
 lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_err *err)
 {
-    char path[4200], tmp[4300];
+    char path[4200];
     snprintf(path, sizeof path, "%s/index.html", d->outdir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-    const cJSON *s = d->summary;
-    const cJSON *phases = cJSON_GetObjectItemCaseSensitive(s, "phases");
-    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(s, "bodies");
-    const char *name = str(s, "mission") ? str(s, "mission") : "mission";
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
+    if (st != LV_OK)
+        return st;
+    FILE *f = out.fp;
+    const lv_results *s = d->res;
+    const char *name = s->mission ? s->mission : "mission";
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>", f);
     esc(f, name);
     fprintf(f, " &mdash; lvsim</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", style);
     esc(f, name);
     fputs("</h1>\n<p>Mission file <code>", f);
-    esc(f, str(s, "file") ? str(s, "file") : "?");
+    esc(f, s->file ? s->file : "?");
     fputs("</code>; epoch ", f);
-    esc(f, str(s, "epoch") ? str(s, "epoch") : "?");
+    esc(f, s->epoch ? s->epoch : "?");
     fputs("; world ", f);
-    esc(f, str(s, "world") ? str(s, "world") : "?");
+    esc(f, s->world ? s->world : "?");
     fputs("; lvsim ", f);
-    esc(f, str(s, "lvsim") ? str(s, "lvsim") : "?");
+    esc(f, s->lvsim ? s->lvsim : "?");
     fprintf(f, "; %zu phases, %zu bodies.</p>\n", d->n_phases, d->n_bodies);
     fputs("<p><a href=\"#phases\">Phases</a> &middot; <a href=\"#events\">Events</a> &middot; "
           "<a href=\"#bodies\">Bodies</a> &middot; <a href=\"#plots\">Plots</a> &middot; "
@@ -345,20 +312,11 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_er
           f);
     esc(f, d->outdir);
     fputs("</code>.</p>\n", f);
-    phase_table(f, phases);
-    event_list(f, phases);
-    body_list(f, bodies);
+    phase_table(f, s);
+    event_list(f, s);
+    body_list(f, s);
     plot_section(f, l);
-    file_list(f, phases, bodies);
+    file_list(f, s);
     fputs("</body>\n</html>\n", f);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad) {
-        remove(tmp);
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s'", tmp);
-    }
-    if (rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
-                       strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }

@@ -12,7 +12,8 @@
 
 #include "core/status.h"
 #include "core/units.h"
-#include "io/export_int.h"
+#include "io/atomic.h"
+#include "post/export_int.h"
 
 #define RAD2DEG (180.0 / LV_PI) /* deg per rad */
 
@@ -133,7 +134,7 @@ static cJSON *track_packet(const lv_ex_run *r, size_t bi, const lv_ex_track *k, 
 static cJSON *marker_packet(const lv_ex_run *r, size_t p, size_t j, double t, const char *text)
 {
     const lv_ex_phase *ph = &r->phases[p];
-    const lv_ex_body *b = &r->bodies[ph->body];
+    const lv_ex_body *b = &r->bodies[r->phase_body[p]];
     const lv_ex_track *k = lv_ex_track_of(b, p);
     double lat, lon, h;
     lv_ex_locate(b, k, t, &lat, &lon, &h);
@@ -171,7 +172,7 @@ lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
     /* Markers per done phase: 0 its start ("P2 start"), 1..n its events in summary order. */
     for (size_t p = 0; p < r->n_phases; p++) {
         const lv_ex_phase *ph = &r->phases[p];
-        if (!ph->done || ph->body < 0)
+        if (!ph->done || r->phase_body[p] < 0)
             continue;
         char text[300];
         lv_ex_marker_label(r, p, 0, text, sizeof text);
@@ -185,13 +186,12 @@ lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
     cJSON_Delete(doc);
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char tmp[4400];
-    FILE *f;
-    lv_status st = lv_ex_open(path, tmp, sizeof tmp, &f, err);
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
     if (st == LV_OK) {
-        fputs(text, f);
-        fputc('\n', f);
-        st = lv_ex_commit(f, tmp, path, err);
+        fputs(text, out.fp);
+        fputc('\n', out.fp);
+        st = lv_atomic_commit(&out, err);
     }
     cJSON_free(text);
     return st;

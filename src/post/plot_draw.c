@@ -16,7 +16,8 @@
 #include <sys/stat.h>
 
 #include "core/status.h"
-#include "plot/plot.h"
+#include "io/atomic.h"
+#include "post/plot.h"
 
 #define PAGE_W 1000 /* px (PNG) or pt (SVG) */
 #define PAGE_H 700
@@ -74,10 +75,10 @@ static void figure_free(figure *f)
 /* ---- data: one body's value across its phases ------------------------------------------ */
 
 /* First of `cols` that phase file `c` has, or -1. */
-static long find_col(const lv_csv *c, const char *const *cols)
+static long find_col(const lv_results_table *c, const char *const *cols)
 {
     for (size_t i = 0; cols[i] != NULL; i++) {
-        long k = lv_plot_csv_col(c, cols[i]);
+        long k = lv_results_table_col(c, cols[i]);
         if (k >= 0)
             return k;
     }
@@ -92,7 +93,7 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
 {
     size_t n = 0;
     for (size_t i = 0; i < b->n; i++) {
-        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        const lv_results_table *csv = d->phases[b->phase[i]].csv;
         if (csv != NULL && find_col(csv, cols) >= 0)
             n += csv->n_rows;
     }
@@ -104,7 +105,7 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
         return (size_t)-1;
     c->n = 0;
     for (size_t i = 0; i < b->n; i++) {
-        const lv_csv *csv = d->phases[b->phase[i]].csv;
+        const lv_results_table *csv = d->phases[b->phase[i]].csv;
         long k = csv ? find_col(csv, cols) : -1;
         for (size_t r = 0; k >= 0 && r < csv->n_rows; r++) {
             c->x[c->n] = csv->v[r * csv->n_cols];
@@ -327,24 +328,25 @@ static int device_available(const char *dev)
 static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
                         int *map_ok, lv_err *err)
 {
-    char tmp[4400];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    /* PLplot exits the process when it cannot open its file: make sure it can. */
-    FILE *probe = fopen(tmp, "wb");
-    if (probe == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-    fclose(probe);
+    /* PLplot writes the temporary file by name, and exits the process when it cannot open
+     * it: make sure it can. */
+    lv_atomic out;
+    lv_status st = lv_atomic_init(&out, path, err);
+    if (st == LV_OK)
+        st = lv_atomic_reserve(&out, err);
+    if (st != LV_OK)
+        return st;
     PLINT old = 0, strm = -1, code = 0;
     char msg[1024] = "";
     plgstrm(&old);
     plmkstrm(&strm);
     if (strm < 0) {
-        remove(tmp);
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
     }
     plsError(&code, msg);
     plsdev(dev);
-    plsfnam(tmp);
+    plsfnam(out.tmp);
     plspage(0.0, 0.0, PAGE_W, PAGE_H, 0, 0);
     plscmap0n(N_COLS);
     for (PLINT i = 0; i < N_COLS; i++)
@@ -363,17 +365,14 @@ static lv_status render(const lv_plot_data *d, const figure *f, const char *dev,
     plsstrm(old);
     struct stat sb;
     if (code != 0) {
-        remove(tmp);
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot: %s", path, msg);
     }
-    if (stat(tmp, &sb) != 0 || sb.st_size == 0) {
-        remove(tmp);
+    if (stat(out.tmp, &sb) != 0 || sb.st_size == 0) {
+        lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot (%s) wrote nothing", path, dev);
     }
-    if (rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path,
-                       strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }
 
 static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
@@ -443,9 +442,8 @@ static const quantity quantities[] = {
 /* "mission <name>", for a figure's subtitle. */
 static void mission_line(const lv_plot_data *d, char *dst, size_t cap)
 {
-    const cJSON *m = cJSON_GetObjectItemCaseSensitive(d->summary, "mission");
     char name[200];
-    pl_text(name, sizeof name, cJSON_IsString(m) ? m->valuestring : "?");
+    pl_text(name, sizeof name, d->res->mission != NULL ? d->res->mission : "?");
     snprintf(dst, cap, "mission %s", name);
 }
 
@@ -461,7 +459,7 @@ static void time_range(const lv_plot_data *d, double *lo, double *hi)
     *lo = INFINITY;
     *hi = -INFINITY;
     for (size_t k = 0; k < d->n_phases; k++) {
-        const lv_csv *c = d->phases[k].csv;
+        const lv_results_table *c = d->phases[k].csv;
         for (size_t r = 0; c != NULL && r < c->n_rows; r++) {
             *lo = fmin(*lo, c->v[r * c->n_cols]);
             *hi = fmax(*hi, c->v[r * c->n_cols]);
@@ -616,8 +614,8 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
     panel *p = &f.p[0];
     lv_status st = LV_OK;
     for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
-        const lv_csv *t = d->bodies[i].traj;
-        long klat = lv_plot_csv_col(t, "lat"), klon = lv_plot_csv_col(t, "lon");
+        const lv_results_table *t = d->bodies[i].traj;
+        long klat = lv_results_table_col(t, "lat"), klon = lv_results_table_col(t, "lon");
         if (klat < 0 || klon < 0 || t->n_rows == 0)
             continue;
         curve *c = &p->c[p->n_c++];

@@ -1,17 +1,17 @@
-/* summary.c - after a run: summary.json (per phase: times, why it ended, events, statistics,
+/* summary.c - after a run (post-processing, liblvsim_post): summary.json (per phase: times, why it ended, events, statistics,
  * the hand-off, final state; per body: its phases and merged trajectory) and one merged CSV
  * trajectory per body across the phases it flies in. Written from the public API of a run
  * (lv_mission.h) only; JSON is built with cJSON. docs/result-files.md. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/status.h"
+#include "io/atomic.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lvsim.h"
@@ -40,13 +40,12 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
     lv_status st = lv_run_body_trajectory(run, s, &b, err);
     if (st != LV_OK)
         return st;
-    char tmp[4800];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL) {
+    lv_atomic out;
+    if ((st = lv_atomic_open(&out, path, err)) != LV_OK) {
         lv_body_traj_free(b);
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+        return st;
     }
+    FILE *f = out.fp;
     fprintf(f, "time [s],phase");
     for (size_t c = 1; c < b->n_cols; c++)
         fprintf(f, ",%s [%s]", b->names[c], b->units[c]);
@@ -59,11 +58,7 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
         fputc('\n', f);
     }
     lv_body_traj_free(b);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    return LV_OK;
+    return lv_atomic_commit(&out, err);
 }
 
 static cJSON *phase_json(const lv_run *run, size_t k)
@@ -208,17 +203,14 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
         return st;
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    char path[4200], tmp[4300];
+    char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", outdir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    int bad = f == NULL;
-    if (f != NULL) {
-        bad |= fputs(text, f) == EOF || fputc('\n', f) == EOF;
-        bad |= fclose(f) != 0;
+    lv_atomic out;
+    if ((st = lv_atomic_open(&out, path, err)) == LV_OK) {
+        fputs(text, out.fp);
+        fputc('\n', out.fp);
+        st = lv_atomic_commit(&out, err); /* checks that every write reached the file */
     }
     cJSON_free(text);
-    if (bad || rename(tmp, path) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    return LV_OK;
+    return st;
 }

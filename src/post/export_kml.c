@@ -9,7 +9,8 @@
 
 #include "core/status.h"
 #include "core/units.h"
-#include "io/export_int.h"
+#include "io/atomic.h"
+#include "post/export_int.h"
 
 #define RAD2DEG (180.0 / LV_PI) /* deg per rad */
 
@@ -102,11 +103,12 @@ static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const l
 
 lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
 {
-    char tmp[4400], epoch[48];
-    FILE *f;
-    lv_status st = lv_ex_open(path, tmp, sizeof tmp, &f, err);
+    char epoch[48];
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
     if (st != LV_OK)
         return st;
+    FILE *f = out.fp;
     lv_ex_iso(r, 0.0, "Z", epoch, sizeof epoch);
     fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
           "<kml xmlns=\"http://www.opengis.net/kml/2.2\" "
@@ -139,5 +141,5 @@ lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
         fputs("  </Folder>\n", f);
     }
     fputs("</Document>\n</kml>\n", f);
-    return lv_ex_commit(f, tmp, path, err);
+    return lv_atomic_commit(&out, err);
 }

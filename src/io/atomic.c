@@ -1,0 +1,120 @@
+/* atomic.c - write "<path>.tmp", then rename it to "<path>": the one place where lvsim's
+ * writers finish a file (atomic.h). rename(2) replaces the target in one step on POSIX file
+ * systems, so a reader sees the old complete file or the new complete one. */
+#define _POSIX_C_SOURCE 200809L /* strerror_r (XSI) */
+
+#include "io/atomic.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/status.h"
+
+/* The system's text for errno value e (strerror_r: no shared buffer between threads). */
+static const char *why(int e, char *buf, size_t cap)
+{
+    if (strerror_r(e, buf, cap) != 0)
+        snprintf(buf, cap, "error %d", e);
+    return buf;
+}
+
+static lv_status io_fail(const lv_atomic *a, const char *what, int e, lv_err *err)
+{
+    char text[128];
+    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", a->tmp, what, why(e, text, sizeof text));
+}
+
+lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err)
+{
+    a->path[0] = a->tmp[0] = '\0';
+    a->fp = NULL;
+    a->keep = 0;
+    if (path == NULL || path[0] == '\0')
+        return lv_fail(err, LV_ERR_INPUT, "output file: empty path");
+    const size_t n = strlen(path);
+    if (n >= sizeof a->path)
+        return lv_fail(err, LV_ERR_INPUT, "%.200s...: file name of %zu bytes is too long", path,
+                       n);
+    memcpy(a->path, path, n + 1);
+    memcpy(a->tmp, path, n);
+    memcpy(a->tmp + n, ".tmp", sizeof ".tmp");
+    return LV_OK;
+}
+
+lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err)
+{
+    if (path != NULL) {
+        lv_status st = lv_atomic_init(a, path, err);
+        if (st != LV_OK)
+            return st;
+    }
+    errno = 0;
+    a->fp = fopen(a->tmp, "w");
+    if (a->fp == NULL)
+        return io_fail(a, "cannot create", errno, err);
+    return LV_OK;
+}
+
+lv_status lv_atomic_reserve(lv_atomic *a, lv_err *err)
+{
+    errno = 0;
+    FILE *fp = fopen(a->tmp, "w");
+    if (fp == NULL)
+        return io_fail(a, "cannot create", errno, err);
+    if (fclose(fp) != 0) {
+        const int e = errno;
+        remove(a->tmp);
+        return io_fail(a, "cannot close", e, err);
+    }
+    return LV_OK;
+}
+
+lv_status lv_atomic_commit_as(lv_atomic *a, const char *target, lv_err *err)
+{
+    lv_status st = LV_OK;
+    if (a->fp != NULL) {
+        /* fclose() flushes: a full disk shows here at the latest. */
+        errno = 0;
+        const int e_write = fflush(a->fp) != 0 || ferror(a->fp) ? (errno != 0 ? errno : EIO) : 0;
+        errno = 0;
+        const int closed = fclose(a->fp);
+        const int e_close = errno != 0 ? errno : EIO;
+        a->fp = NULL;
+        if (e_write != 0)
+            st = io_fail(a, "cannot write", e_write, err);
+        else if (closed != 0)
+            st = io_fail(a, "cannot close", e_close, err);
+    }
+    if (st == LV_OK && rename(a->tmp, target) != 0) {
+        char text[128];
+        const int e = errno;
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot rename to '%s': %s", a->tmp, target,
+                     why(e, text, sizeof text));
+    }
+    if (st != LV_OK && !a->keep)
+        remove(a->tmp);
+    return st;
+}
+
+lv_status lv_atomic_commit(lv_atomic *a, lv_err *err)
+{
+    return lv_atomic_commit_as(a, a->path, err);
+}
+
+void lv_atomic_abort(lv_atomic *a)
+{
+    if (a == NULL)
+        return;
+    lv_atomic_release(a);
+    if (a->tmp[0] != '\0')
+        remove(a->tmp);
+}
+
+void lv_atomic_release(lv_atomic *a)
+{
+    if (a != NULL && a->fp != NULL) {
+        fclose(a->fp);
+        a->fp = NULL;
+    }
+}

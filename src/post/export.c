@@ -1,0 +1,384 @@
+/* export.c - trajectory exports from a results folder: reads summary.json and the merged
+ * body_<stage>.csv files back (post/results.h), then hands them to the CZML, KML and CCSDS OEM
+ * writers (export_czml.c, export_kml.c, export_oem.c). Post-processing only: nothing is rerun.
+ * Civil-date arithmetic: H. Hinnant, "chrono-Compatible Low-Level Date Algorithms". */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "core/units.h"
+#include "post/export_int.h"
+#include "lvsim/lv_export.h"
+
+#define PATH_CAP 4352
+
+/* ------------------------------------------------------------------ time -- */
+
+/* Days since 1970-01-01 of a proleptic Gregorian date. */
+static long long days_from_civil(long long y, int m, int d)
+{
+    y -= m <= 2;
+    const long long era = (y >= 0 ? y : y - 399) / 400;
+    const long long yoe = y - era * 400;
+    const long long doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
+    const long long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    return era * 146097 + doe - 719468;
+}
+
+static void civil_from_days(long long z, long long *y, int *m, int *d)
+{
+    z += 719468;
+    const long long era = (z >= 0 ? z : z - 146096) / 146097;
+    const long long doe = z - era * 146097;
+    const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    const long long mp = (5 * doy + 2) / 153;
+    *d = (int)(doy - (153 * mp + 2) / 5 + 1);
+    *m = (int)(mp < 10 ? mp + 3 : mp - 9);
+    *y = yoe + era * 400 + (*m <= 2);
+}
+
+/* "YYYY-MM-DDThh:mm:ss[.f...]Z" (the mission parser's rule) -> microseconds since 1970. */
+static int parse_epoch(const char *s, long long *us)
+{
+    int y, mo, d, h, mi, n = 0;
+    if (sscanf(s, "%4d-%2d-%2dT%2d:%2d:%n", &y, &mo, &d, &h, &mi, &n) != 5 || n == 0)
+        return -1;
+    char *end;
+    const double sec = strtod(s + n, &end);
+    if (end == s + n || strcmp(end, "Z") != 0 || mo < 1 || mo > 12 || d < 1 || d > 31 ||
+        h < 0 || h > 23 || mi < 0 || mi > 59 || !(sec >= 0.0 && sec < 61.0))
+        return -1;
+    const long long whole = days_from_civil(y, mo, d) * 86400LL + h * 3600LL + mi * 60LL;
+    *us = whole * 1000000LL + llround(sec * 1e6);
+    return 0;
+}
+
+long long lv_ex_ticks(const lv_ex_run *r, double t)
+{
+    return r->epoch_us + llround(t * 1e6);
+}
+
+void lv_ex_iso(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap)
+{
+    const long long us = lv_ex_ticks(r, t);
+    long long s = us / 1000000LL, frac = us % 1000000LL;
+    if (frac < 0) {
+        frac += 1000000LL;
+        s -= 1;
+    }
+    long long days = s / 86400LL, sod = s % 86400LL;
+    if (sod < 0) {
+        sod += 86400LL;
+        days -= 1;
+    }
+    long long y;
+    int mo, d;
+    civil_from_days(days, &y, &mo, &d);
+    const int h = (int)(sod / 3600), mi = (int)(sod / 60 % 60), sec = (int)(sod % 60);
+    if (frac == 0)
+        snprintf(buf, cap, "%04lld-%02d-%02dT%02d:%02d:%02d%s", y, mo, d, h, mi, sec, suffix);
+    else
+        snprintf(buf, cap, "%04lld-%02d-%02dT%02d:%02d:%02d.%06lld%s", y, mo, d, h, mi, sec, frac,
+                 suffix);
+}
+
+/* --------------------------------------------------------------- helpers -- */
+
+const lv_ex_track *lv_ex_track_of(const lv_ex_body *b, size_t p)
+{
+    for (size_t i = 0; i < b->n_tracks; i++)
+        if (b->tracks[i].phase == p)
+            return &b->tracks[i];
+    return NULL;
+}
+
+void lv_ex_locate(const lv_ex_body *b, const lv_ex_track *k, double t, double *lat, double *lon,
+                  double *h)
+{
+    const lv_ex_row *row = b->rows + k->first;
+    size_t i = 0;
+    while (i + 1 < k->n && row[i + 1].t <= t)
+        i++;
+    if (i + 1 >= k->n || t <= row[i].t) { /* at or outside an end, or on a row */
+        *lat = row[i].lat;
+        *lon = row[i].lon;
+        *h = row[i].h;
+        return;
+    }
+    const double w = (t - row[i].t) / (row[i + 1].t - row[i].t);
+    double dlon = row[i + 1].lon - row[i].lon; /* across the antimeridian: the short way */
+    if (dlon > LV_PI)
+        dlon -= 2.0 * LV_PI;
+    else if (dlon < -LV_PI)
+        dlon += 2.0 * LV_PI;
+    *lat = row[i].lat + w * (row[i + 1].lat - row[i].lat);
+    *lon = remainder(row[i].lon + w * dlon, 2.0 * LV_PI);
+    *h = row[i].h + w * (row[i + 1].h - row[i].h);
+}
+
+void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3])
+{
+    /* Distinct on a dark globe and in Google Earth; repeats after eight phases. */
+    static const int palette[8][3] = {{255, 165, 0},   {0, 200, 255},   {120, 230, 60},
+                                      {255, 70, 70},   {190, 120, 255}, {255, 240, 80},
+                                      {255, 120, 200}, {170, 170, 170}};
+    const int i = (r->phases[p].index - 1) % 8;
+    const int k = i < 0 ? 0 : i;
+    rgb[0] = palette[k][0];
+    rgb[1] = palette[k][1];
+    rgb[2] = palette[k][2];
+}
+
+const char *lv_ex_event_label(const lv_ex_event *e)
+{
+    if (e->name == NULL)
+        return "time event";
+    if (strcmp(e->name, "burnout") == 0)
+        return "MECO"; /* main engine cut-off: the burning stage's propellant is gone */
+    if (strcmp(e->name, "impact") == 0)
+        return "landing";
+    return e->name;
+}
+
+void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap)
+{
+    const lv_ex_phase *ph = &r->phases[p];
+    if (k > 0) {
+        snprintf(buf, cap, "%s", lv_ex_event_label(&ph->events[k - 1]));
+        return;
+    }
+    const int sep = ph->parent >= 0 && ph->n_stages < r->phases[ph->parent].n_stages;
+    if (sep)
+        snprintf(buf, cap, "separation (%s)", ph->name);
+    else
+        snprintf(buf, cap, "%s start", ph->name);
+}
+
+static void run_free(lv_ex_run *r)
+{
+    free(r->phase_body);
+    for (size_t i = 0; r->bodies != NULL && i < r->n_bodies; i++) {
+        free(r->bodies[i].path);
+        free(r->bodies[i].rows);
+        free(r->bodies[i].tracks);
+    }
+    free(r->bodies);
+}
+
+/* -------------------------------------------------------------- summary -- */
+
+/* What the exports need of the summary beyond what the reader checks: the mission's name,
+ * epoch and world; every phase's index and state; times and event times of the done phases
+ * (at least one); a trajectory file for every body. */
+static lv_status check_summary(lv_ex_run *r, const lv_results *res, lv_err *err)
+{
+    const char *path = res->summary_path;
+    if (res->mission == NULL || res->epoch == NULL || res->world == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: not an lvsim summary: 'mission', 'epoch', "
+                       "'world', 'phases' or 'bodies' missing", path);
+    if (parse_epoch(res->epoch, &r->epoch_us) != 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: epoch '%.40s': ISO 8601 UTC time like "
+                       "2026-03-01T12:00:00Z expected", path, res->epoch);
+    if (res->n_phases == 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: no phases", path);
+    r->t0 = INFINITY;
+    r->t1 = -INFINITY;
+    for (size_t i = 0; i < res->n_phases; i++) {
+        const lv_ex_phase *p = &res->phases[i];
+        if (p->index < 1 || p->state == NULL)
+            return lv_fail(err, LV_ERR_INPUT, "%s: phases[%zu]: 'name', 'index' or 'state' "
+                           "missing", path, i);
+        if (!p->done)
+            continue;
+        if (!isfinite(p->t_start) || !isfinite(p->t_end) || p->t_end < p->t_start)
+            return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': 't_start'/'t_end' missing or "
+                           "wrong", path, p->name);
+        for (size_t j = 0; j < p->n_events; j++)
+            if (!isfinite(p->events[j].t))
+                return lv_fail(err, LV_ERR_INPUT, "%s: phase '%s': events[%zu]: 't' missing",
+                               path, p->name, j);
+        r->t0 = fmin(r->t0, p->t_start);
+        r->t1 = fmax(r->t1, p->t_end);
+    }
+    if (!(r->t0 <= r->t1))
+        return lv_fail(err, LV_ERR_INPUT, "%s: no phase is done: nothing to export", path);
+    for (size_t i = 0; i < res->n_bodies; i++)
+        if (res->bodies[i].trajectory == NULL)
+            return lv_fail(err, LV_ERR_INPUT, "%s: bodies[%zu]: 'name' or 'trajectory' (a file "
+                           "name in the folder) missing", path, i);
+    return LV_OK;
+}
+
+/* ------------------------------------------------------------- body CSV -- */
+
+enum { C_TIME, C_PHASE, C_LAT, C_LON, C_H, C_RX, C_RY, C_RZ, C_VX, C_VY, C_VZ, C_N };
+static const char *const col_names[C_N + 1] = {"time", "phase", "lat", "lon", "h", "r_eci_x",
+                                               "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y",
+                                               "v_eci_z", NULL};
+static const char *const text_cols[] = {"phase", NULL};
+/* Every column but `phase` must be a finite number where present. */
+static const char *const finite_cols[] = {"time", "lat", "lon", "h", "r_eci_x", "r_eci_y",
+                                          "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", NULL};
+
+/* Body b's trajectory as rows and per-phase tracks: rows in CSV order, one block per phase (a
+ * done phase of the summary), time not going back; of rows at the same instant (an event)
+ * only the last. */
+static lv_status read_body(lv_ex_run *r, const lv_results *res, size_t bi, lv_err *err)
+{
+    lv_ex_body *b = &r->bodies[bi];
+    const lv_results_csv_spec spec = {text_cols, finite_cols};
+    lv_results_table *t = NULL;
+    lv_status st = lv_results_load(res, res->bodies[bi].trajectory, &spec, &t, err);
+    if (st != LV_OK)
+        return st;
+    b->name = res->bodies[bi].name;
+    if ((b->path = malloc(strlen(t->path) + 1)) == NULL)
+        goto nomem;
+    memcpy(b->path, t->path, strlen(t->path) + 1);
+    long col[C_N];
+    for (int c = 0; c < C_N; c++)
+        col[c] = lv_results_table_col(t, col_names[c]);
+    for (int c = 0; c <= C_H; c++)
+        if (col[c] < 0) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no column '%s' in the header", t->path,
+                         t->header_line, col_names[c]);
+            goto fail;
+        }
+    b->has_eci = 1;
+    for (int c = C_RX; c < C_N; c++)
+        b->has_eci &= col[c] >= 0;
+    if (t->n_rows == 0) {
+        st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no rows", t->path, t->n_lines);
+        goto fail;
+    }
+    if ((b->rows = malloc(t->n_rows * sizeof *b->rows)) == NULL)
+        goto nomem;
+    size_t tracks_cap = 0;
+    int cur = -1; /* phase of the current track */
+    for (size_t i = 0; i < t->n_rows; i++) {
+        const double *v = t->v + i * t->n_cols;
+        const size_t line = t->line[i];
+        lv_ex_row row;
+        memset(&row, 0, sizeof row);
+        row.line = line;
+        double *dst[C_N] = {&row.t,        NULL,          &row.lat,      &row.lon,
+                            &row.h,        &row.r_eci[0], &row.r_eci[1], &row.r_eci[2],
+                            &row.v_eci[0], &row.v_eci[1], &row.v_eci[2]};
+        for (int c = 0; c < C_N; c++)
+            if (dst[c] != NULL && col[c] >= 0)
+                *dst[c] = v[col[c]];
+        const char *phase = lv_results_table_text(t, i, (size_t)col[C_PHASE]);
+        const int k = lv_results_phase_find(res, phase);
+        if (k < 0 || !r->phases[k].done) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: phase '%.60s' is not a done phase of "
+                         "summary.json", t->path, line, phase);
+            goto fail;
+        }
+        if (k != cur) { /* a new track */
+            if (lv_ex_track_of(b, (size_t)k) != NULL) {
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: phase '%s' appears twice, not in one "
+                             "block", t->path, line, r->phases[k].name);
+                goto fail;
+            }
+            if (b->n_tracks == tracks_cap) {
+                tracks_cap = tracks_cap ? 2 * tracks_cap : 8;
+                lv_ex_track *nt = realloc(b->tracks, tracks_cap * sizeof *nt);
+                if (nt == NULL)
+                    goto nomem;
+                b->tracks = nt;
+            }
+            b->tracks[b->n_tracks++] = (lv_ex_track){(size_t)k, b->n_rows, 0};
+            cur = k;
+        }
+        lv_ex_track *tr = &b->tracks[b->n_tracks - 1];
+        if (tr->n > 0) {
+            const double t_prev = b->rows[b->n_rows - 1].t;
+            if (row.t < t_prev) {
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: time %.17g goes back (previous row "
+                             "%.17g)", t->path, line, row.t, t_prev);
+                goto fail;
+            }
+            if (row.t == t_prev) { /* an event instant: keep the row after it */
+                b->rows[b->n_rows - 1] = row;
+                continue;
+            }
+        }
+        b->rows[b->n_rows++] = row;
+        tr->n++;
+    }
+    lv_results_table_free(t);
+    return LV_OK;
+nomem:
+    st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+fail:
+    lv_results_table_free(t);
+    return st;
+}
+
+/* ------------------------------------------------------------------- run -- */
+
+LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err)
+{
+    if (outdir == NULL || (formats & ~(unsigned)LV_EXPORT_ALL) != 0)
+        return lv_fail(err, LV_ERR_INPUT, "lv_export_run: %s",
+                       outdir == NULL ? "no folder" : "unknown format flag");
+    lv_results *res = NULL;
+    lv_status st = lv_results_open(outdir, &res, err);
+    if (st != LV_OK)
+        return st;
+    lv_ex_run r;
+    memset(&r, 0, sizeof r);
+    r.outdir = outdir;
+    r.mission = res->mission;
+    r.flat = res->flat;
+    r.planet = res->planet;
+    r.phases = res->phases;
+    r.n_phases = res->n_phases;
+    st = check_summary(&r, res, err);
+    if (st == LV_OK) {
+        r.phase_body = malloc((res->n_phases + 1) * sizeof *r.phase_body);
+        r.bodies = calloc(res->n_bodies + 1, sizeof *r.bodies);
+        if (r.phase_body == NULL || r.bodies == NULL)
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    if (st == LV_OK) {
+        /* A body flying in a phase gives that phase's event positions: the first one listed. */
+        for (size_t i = 0; i < res->n_phases; i++)
+            r.phase_body[i] = -1;
+        for (size_t i = 0; i < res->n_bodies; i++)
+            for (size_t j = 0; j < res->bodies[i].n_phases; j++)
+                if (r.phase_body[res->bodies[i].phases[j]] < 0)
+                    r.phase_body[res->bodies[i].phases[j]] = (int)i;
+    }
+    for (size_t i = 0; i < res->n_bodies && st == LV_OK; i++) {
+        r.n_bodies = i + 1;
+        st = read_body(&r, res, i, err);
+    }
+    /* Every done phase a body lists must have rows in its CSV. */
+    for (size_t i = 0; i < r.n_phases && st == LV_OK; i++) {
+        const int b = r.phase_body[i];
+        if (r.phases[i].done && b >= 0 && lv_ex_track_of(&r.bodies[b], i) == NULL)
+            st = lv_fail(err, LV_ERR_INPUT, "%s: no rows of phase '%s'", r.bodies[b].path,
+                         r.phases[i].name);
+    }
+    char path[PATH_CAP];
+    if (st == LV_OK && (formats & LV_EXPORT_CZML)) {
+        snprintf(path, sizeof path, "%s/mission.czml", outdir);
+        st = lv_ex_write_czml(&r, path, err);
+    }
+    if (st == LV_OK && (formats & LV_EXPORT_KML)) {
+        snprintf(path, sizeof path, "%s/mission.kml", outdir);
+        st = lv_ex_write_kml(&r, path, err);
+    }
+    if (st == LV_OK && (formats & LV_EXPORT_OEM) && !r.flat)
+        st = lv_ex_write_oem(&r, err);
+    run_free(&r);
+    lv_results_free(res);
+    return st;
+}

@@ -1,0 +1,7 @@
+# Post-processing (src/post, liblvsim_post): the exports and the plots/report. Their tests link
+# the static twin lvsim_post_static (internal headers visible) on top of lvsim_static.
+include(${CMAKE_CURRENT_LIST_DIR}/post_export.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/post_plot.cmake)
+# The one reader of a results folder (src/post/results.c), on hand-made folders.
+lv_add_unit_test(test_results unit/test_results.c)
+target_link_libraries(test_results PRIVATE lvsim_post_static)
