@@ -5,7 +5,7 @@
  * Thread safety: PLplot keeps global state (its table of streams, the current stream). Each
  * figure gets its own PLplot stream, made and ended inside the call, and the caller's current
  * stream is restored, but two lv_plot_run() calls (or other PLplot users) must not run at the
- * same time in one process. Run it after lv_mission_run() has returned, from one thread.
+ * same time in one process. Run it after lv_run_execute() has returned, from one thread.
  */
 #ifndef LVSIM_LV_PLOT_H
 #define LVSIM_LV_PLOT_H
@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-/* Reads OUTDIR/summary.json (lv_mission_write_summary), the body trajectories and the phase
+/* Reads OUTDIR/summary.json (lv_run_write_summary), the body trajectories and the phase
  * CSVs it names, and writes
  *   OUTDIR/plots/<quantity>.png and .svg   one figure per quantity, every body a curve over
  *                                          all its phases, phase starts as labelled lines:

@@ -407,8 +407,8 @@ lv_status lv_mission_param_find(const lv_mission *m, const char *name, size_t *i
     char hint[200];
     lv_suggest_text(&sg, hint, sizeof hint);
     return lv_fail(err, LV_ERR_NOTFOUND,
-                   "mission '%s' has no parameter '%s'%s (the numbers a run may vary are "
-                   "those written in the mission file: lvsim params lists them)",
+                   "mission '%s' has no parameter '%s'%s (lvsim params MISSION.yaml lists "
+                   "them)",
                    d->name, name, hint);
 }
 

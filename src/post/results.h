@@ -1,6 +1,6 @@
 /* results.h - internal: the one reader of a results folder, used by the exports, the figures
  * and the report (liblvsim_post; not exported). OUTDIR/summary.json (docs/result-files.md,
- * written by lv_mission_write_summary) becomes plain structures; the CSV files it names (the
+ * written by lv_run_write_summary) becomes plain structures; the CSV files it names (the
  * per-phase results and the merged body trajectories) load as tables addressed by column name.
  * Post-processing only: nothing here reruns anything. */
 #ifndef LV_POST_RESULTS_H

@@ -7,3 +7,10 @@ include(${PROJECT_SOURCE_DIR}/fuzz/fuzz.cmake OPTIONAL)
 # The runner's test writes summary.json too (liblvsim_post) and reads it with cJSON.
 lv_add_unit_test(test_runner unit/test_runner.c)
 target_link_libraries(test_runner PRIVATE lvsim_post_static)
+# One mission, many runs: parameters by name, dirty phases, threads against fresh loads.
+lv_add_unit_test(test_run unit/test_run.c)
+# The parser, the mission, the runs and the summary know no model type by name: the phase-model
+# registry does (src/mission/phase_types.c and the types' own files).
+add_test(NAME test_no_model_names
+  COMMAND sh -c "! grep -nE '\"(dof3|flat6)\"' src/mission/parse.c src/mission/mission.c src/mission/run.c src/post/summary.c"
+  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
