@@ -17,11 +17,12 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "lvsim/lv_units.h"
 #include "post/plot.h"
 
 #define PAGE_W 1000 /* px (PNG) or pt (SVG) */
 #define PAGE_H 700
-#define RAD2DEG (180.0 / 3.14159265358979323846)
+#define RAD2DEG (1.0 / LV_DEG) /* degrees per rad, for the axes */
 #define VP_X0 0.11 /* plot area, as a fraction of the page width; the legend goes right */
 #define VP_X1 0.76
 
