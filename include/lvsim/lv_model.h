@@ -113,6 +113,14 @@ struct lv_model_def {
     /* Optional (required when n_outputs > 0). Outputs at (t, x). Not hot. */
     int (*outputs_fn)(double t, const double *x, const double *p, double *y, void *inst);
 
+    /* Optional: [n_states], 1 where a state's error is controlled absolutely, to
+     * tolerance * nominal, without the relative part tolerance * |x| (a coordinate measured
+     * from a distant origin: for an ECI position, |r| = 6.4e6 m would turn a relative
+     * tolerance of 1e-6 into 6 m; docs/integration.md). Its relative tolerance is 1e-14 (or
+     * the tolerance, when smaller): no accuracy below the coordinate's own resolution is
+     * asked for. NULL: every state both. */
+    const unsigned char *abs_error;
+
     /* Optional. Why the last callback failed ("table 'stage1' : t = 130 is outside
      * [0, 120]"), or NULL; lv_simulate() adds it to its failure message. */
     const char *(*last_error)(const void *inst);

@@ -22,6 +22,7 @@
 struct lv_integ {
     lv_integ_problem p;
     double *atol;
+    double *rtol_v;           /* [n] per-state relative tolerances, or NULL */
     int *g_dir;
     SUNContext ctx;
     N_Vector y;
@@ -82,6 +83,23 @@ static int sun_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
     lv_integ *ig = user;
     return ig->p.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), ig->p.user);
+}
+
+/* Error weights with a relative tolerance per state: w_i = 1 / (rtol_i |y_i| + atol_i), the
+ * weights CVODE and ARKODE form from scalar tolerances, with rtol_i = 0 for a state whose
+ * error is controlled absolutely (a coordinate measured from a distant origin). */
+static int sun_ewt(N_Vector y, N_Vector w, void *user)
+{
+    const lv_integ *ig = user;
+    const double *yv = N_VGetArrayPointer(y);
+    double *wv = N_VGetArrayPointer(w);
+    for (size_t i = 0; i < ig->p.n; i++) {
+        const double d = ig->rtol_v[i] * fabs(yv[i]) + ig->atol[i];
+        if (!(d > 0.0))
+            return -1;
+        wv[i] = 1.0 / d;
+    }
+    return 0;
 }
 
 static int sun_g(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
@@ -176,6 +194,14 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         goto fail;
     }
     memcpy(ig->atol, p->atol, p->n * sizeof *ig->atol);
+    if (p->rtol_v != NULL) {
+        if ((ig->rtol_v = malloc(p->n * sizeof *ig->rtol_v)) == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+            goto fail;
+        }
+        memcpy(ig->rtol_v, p->rtol_v, p->n * sizeof *ig->rtol_v);
+        ig->p.rtol_v = ig->rtol_v;
+    }
     if (p->g_dir != NULL)
         memcpy(ig->g_dir, p->g_dir, p->n_g * sizeof *ig->g_dir);
     ig->p.atol = ig->atol;
@@ -204,7 +230,10 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         SUNCHK(CVodeSetErrHandlerFn(ig->mem, sun_err_handler, ig), "CVODE error handler");
         SUNCHK(CVodeInit(ig->mem, sun_rhs, t0, ig->y), "CVODE");
         SUNCHK(CVodeSetUserData(ig->mem, ig), "CVODE user data");
-        SUNCHK(CVodeSVtolerances(ig->mem, p->rtol, ig->atol_v), "CVODE tolerances");
+        if (ig->rtol_v != NULL)
+            SUNCHK(CVodeWFtolerances(ig->mem, sun_ewt), "CVODE tolerances");
+        else
+            SUNCHK(CVodeSVtolerances(ig->mem, p->rtol, ig->atol_v), "CVODE tolerances");
         if (p->method == LV_METHOD_BDF) {
             ig->A = SUNDenseMatrix(n, n, ig->ctx);
             ig->LS = ig->A ? SUNLinSol_Dense(ig->y, ig->A, ig->ctx) : NULL;
@@ -236,7 +265,10 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         }
         SUNCHK(ERKStepSetErrHandlerFn(ig->mem, sun_err_handler, ig), "ARKODE error handler");
         SUNCHK(ERKStepSetUserData(ig->mem, ig), "ARKODE user data");
-        SUNCHK(ERKStepSVtolerances(ig->mem, p->rtol, ig->atol_v), "ARKODE tolerances");
+        if (ig->rtol_v != NULL)
+            SUNCHK(ERKStepWFtolerances(ig->mem, sun_ewt), "ARKODE tolerances");
+        else
+            SUNCHK(ERKStepSVtolerances(ig->mem, p->rtol, ig->atol_v), "ARKODE tolerances");
         if (p->method == LV_METHOD_DOPRI5) {
             SUNCHK(ERKStepSetTableNum(ig->mem, ARKODE_DORMAND_PRINCE_7_4_5), "ARKODE table");
             /* ARKODE's default dense output here is a degree-4 Hermite polynomial: one
@@ -299,6 +331,7 @@ void lv_integ_free(lv_integ *ig)
     if (ig->ctx != NULL)
         SUNContext_Free(&ig->ctx);
     free(ig->atol);
+    free(ig->rtol_v);
     free(ig->g_dir);
     free(ig);
 }

@@ -41,6 +41,8 @@ typedef struct lv_integ_problem {
     lv_method method;
     double rtol;           /* > 0 */
     const double *atol;    /* [n] > 0 */
+    const double *rtol_v;  /* [n] >= 0: each state's relative tolerance (0: absolute error
+                              control only); NULL: rtol for every state */
     double fixed_step;     /* rk4/euler: > 0 */
     double max_step;       /* 0: unlimited */
     long max_steps;        /* total internal steps allowed, > 0 */

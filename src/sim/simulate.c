@@ -16,6 +16,7 @@
 
 #define LV_DEFAULT_INTERVALS 500
 #define LV_DEFAULT_MAX_STEPS 1000000L
+#define LV_ABS_RTOL_FLOOR 1e-14 /* relative tolerance of a state under absolute error control */
 
 void lv_sim_settings_default(lv_sim_settings *s)
 {
@@ -56,6 +57,7 @@ typedef struct sim_run {
     int *roots;   /* [ng] */
     int *g_dir;   /* [ng] */
     double *atol; /* [nx] */
+    double *rtol_v; /* [nx] per-state relative tolerance (models with abs_error), or NULL */
     size_t bad_index; /* first non-finite derivative seen by the RHS guard */
     double bad_t;
     int bad_seen;
@@ -410,6 +412,7 @@ static void free_run(sim_run *r)
     free(r->roots);
     free(r->g_dir);
     free(r->atol);
+    free(r->rtol_v);
 }
 
 /* ---- the run ---------------------------------------------------------------------- */
@@ -719,6 +722,17 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
         S->grid = make_grid(s);
         for (size_t i = 0; i < r->nx; i++)
             r->atol[i] = s->tolerance * d->states[i].nominal;
+        if (d->abs_error != NULL) {
+            if ((r->rtol_v = malloc(r->nx * sizeof *r->rtol_v)) == NULL) {
+                st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                goto fail;
+            }
+            /* an absolute state keeps a relative floor of 1e-14 (50 ulps): accuracy below the
+             * coordinate's own resolution cannot be asked for (CVODE: "too much accuracy") */
+            for (size_t i = 0; i < r->nx; i++)
+                r->rtol_v[i] = d->abs_error[i] ? fmin(LV_ABS_RTOL_FLOOR, s->tolerance)
+                                               : s->tolerance;
+        }
         for (size_t i = 0; i < r->ng; i++)
             r->g_dir[i] = (int)d->events[i].direction;
         lv_integ_problem prob = {
@@ -731,6 +745,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             .method = method,
             .rtol = s->tolerance,
             .atol = r->atol,
+            .rtol_v = r->rtol_v,
             .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : S->grid.dt,
             .max_step = s->max_step_size,
             .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
