@@ -8,8 +8,10 @@
 
 static int models_run(const cli_cmd *self, int argc, char **argv)
 {
-    if (argc != 0)
-        return usage_error(self, "models takes no arguments; got", argv[0]);
+    if (argc != 0) {
+        const char *what = is_option(argv[0]) ? "unknown option" : "models takes no arguments; got";
+        return usage_error(self, what, argv[0]);
+    }
     for (const lv_model_def *const *all = lv_models_all(); *all; all++)
         printf("%-18s %s\n", (*all)->name, (*all)->description);
     return EXIT_OK;

@@ -129,8 +129,11 @@ static int help_run(const cli_cmd *self, int argc, char **argv)
 
 static int version_run(const cli_cmd *self, int argc, char **argv)
 {
-    if (argc != 0)
-        return usage_error(self, "version takes no arguments; got", argv[0]);
+    if (argc != 0) {
+        const char *what =
+            is_option(argv[0]) ? "unknown option" : "version takes no arguments; got";
+        return usage_error(self, what, argv[0]);
+    }
     printf("lvsim %s\n", LVSIM_VERSION);
     return EXIT_OK;
 }
