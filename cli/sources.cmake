@@ -1,5 +1,21 @@
-add_executable(lvsim_cli cli/main.c)
+# The lvsim command line: main.c dispatches through the command table (cli.h); one file per
+# command; common.c holds the helpers they share.
+add_executable(lvsim_cli
+  cli/main.c
+  cli/common.c
+  cli/cmd_models.c
+  cli/cmd_simulate.c
+  cli/cmd_run.c
+  cli/cmd_check.c
+  cli/cmd_params.c
+  cli/cmd_compare.c
+  cli/cmd_export.c
+  cli/cmd_plot.c
+  cli/cmd_view.c
+  cli/cmd_atmosphere.c
+  cli/cmd_gravity.c)
 set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
-# The core library (run) and the post-processing one (export, plot, report).
-target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim m)
+# The core library (run), the post-processing one (export, plot, report) and cJSON for the
+# --json documents of simulate, compare and params.
+target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON m)
 lv_set_warnings(lvsim_cli)

@@ -89,5 +89,109 @@ YAML
 printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
 expect 3 "phase 'p'.*outside" -- "$lvsim" run "$work/fail.yaml" -o "$work/failrun"
 
+
+# Usage and help come from the command table (cli/cli.h): every command, including those that
+# take no arguments, answers --help, -h and `lvsim help CMD` with exit 0 and its own usage line,
+# on stdout; `lvsim help` lists every command with its one-line summary.
+mission="$src/examples/paper-test-case/mission.yaml"
+commands="models vars simulate run check params compare export plot view atmosphere gravity help version"
+for c in $commands; do
+  expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" --help
+  expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" -h
+  expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" help "$c"
+  expect 0 "^  $c +[^ ]" -- "$lvsim" help
+  expect 0 "^  $c +[^ ]" -- "$lvsim" --help
+done
+"$lvsim" run --help 2> /dev/null | grep -q "^  -o OUTDIR .*(default lvsim-out)" && pass=$((pass + 1)) \
+  || { echo "FAIL: run --help on stdout lists -o with its default"; fails=$((fails + 1)); }
+# --help anywhere among the arguments wins: nothing is checked, run or written
+expect 0 "^usage: lvsim check MISSION.yaml" -- "$lvsim" check "$src/tests/missions/bad_cycle.yaml" --help
+expect 0 "^usage: lvsim run MISSION.yaml" -- "$lvsim" run "$mission" -o "$work/helprun" --help
+[ ! -e "$work/helprun" ] && pass=$((pass + 1)) || { echo "FAIL: run --help wrote $work/helprun"; fails=$((fails + 1)); }
+expect 0 "^usage: lvsim simulate MODEL" -- "$lvsim" simulate oscillator --stop 1 --help
+expect 2 "unknown command 'nope'" -- "$lvsim" help nope
+expect 2 "help takes at most one command name" -- "$lvsim" help run check
+expect 2 "usage: lvsim COMMAND" -- "$lvsim"
+expect 0 "^lvsim [0-9]+\.[0-9]+\.[0-9]+$" -- "$lvsim" version
+expect 0 "^lvsim [0-9]+\.[0-9]+\.[0-9]+$" -- "$lvsim" --version
+# unknown commands: did you mean, among the command names (typos and abbreviations)
+expect 2 "unknown command 'simulat'; did you mean 'simulate'\?" -- "$lvsim" simulat
+expect 2 "unknown command 'plto'; did you mean 'plot'\?" -- "$lvsim" plto
+expect 2 "unknown command 'param'; did you mean 'params'\?" -- "$lvsim" param
+expect 2 "did you mean 'atmosphere'" -- "$lvsim" atmo
+# an unknown option is named, with the command's help to see
+for c in models vars run check params compare export plot view atmosphere gravity version; do
+  expect 2 "unknown option '--bogus'" -- "$lvsim" "$c" --bogus
+  expect 2 "^\(see 'lvsim help $c'\)" -- "$lvsim" "$c" --bogus
+done
+expect 2 "^\(see 'lvsim help simulate'\)" -- "$lvsim" simulate oscillator --bogus
+expect 2 "unexpected argument 'extra'" -- "$lvsim" run "$mission" extra
+expect 2 "models takes no arguments; got 'extra'" -- "$lvsim" models extra
+
+# lvsim params: the run parameters, with their values and lines in the mission file; angles
+# in rad (start_fpa_deg: 90 -> pi/2); per-phase defaults the file does not write.
+line_prop=$(grep -n "propellant_mass: 27000" "$mission" | head -1 | cut -d: -f1)
+line_stop=$(grep -n "stop_time: 140 " "$mission" | head -1 | cut -d: -f1)
+expect 0 "^stage1\.propellant_mass +27000 +kg +>= 0 +$line_prop\$" -- "$lvsim" params "$mission"
+expect 0 "^P1\.stop_time +140 +s +[^ ].* $line_stop\$" -- "$lvsim" params "$mission"
+expect 0 "^start_fpa +1\.570796327 +rad " -- "$lvsim" params "$mission"
+expect 0 "^environment\.g +9\.81 +m/s\^2 +> 0 " -- "$lvsim" params "$mission"
+expect 0 "^P[0-9]\.[a-z_.]+ +[-0-9.e+]+ +[^ ]+ +.* default\$" -- "$lvsim" params "$mission"
+expect 0 "^# mission 'paper-test-case' .*: [0-9]+ parameters" -- "$lvsim" params "$mission"
+expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" params "$src/tests/missions/bad_cycle.yaml"
+expect 2 "nothing.yaml: cannot open" -- "$lvsim" params "$work/nothing.yaml"
+expect 2 "params needs a mission file" -- "$lvsim" params
+# check, run and params read a mission with the same call: the same file, the same answer
+expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" run "$src/tests/missions/bad_cycle.yaml" -o "$work/cyc"
+[ ! -e "$work/cyc" ] && pass=$((pass + 1)) || { echo "FAIL: run of a bad mission wrote $work/cyc"; fails=$((fails + 1)); }
+
+# JSON documents (built with cJSON) parse, with their keys and value types
+json_ok() { # json_ok WHAT FILE PYTHON-ASSERTIONS (d: the document)
+  if python3 -c "import json,sys; d=json.load(open(sys.argv[1])); $3" "$2" 2> "$work/json.err"; then
+    pass=$((pass + 1))
+  else
+    echo "FAIL: $1: $(tail -1 "$work/json.err")"; head -c 400 "$2"; echo; fails=$((fails + 1))
+  fi
+}
+num='lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)'
+"$lvsim" simulate oscillator --json --format none --final x --final time > "$work/sim.json"; rc=$?
+[ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: simulate --json exit $rc"; fails=$((fails + 1)); }
+json_ok "simulate --json" "$work/sim.json" "n=$num
+assert list(d) == ['model', 'ok', 'method', 'tolerance', 'end_time', 'stop', 'stats', 'final'], list(d)
+assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stopTime'
+assert n(d['tolerance']) and n(d['end_time']) and abs(d['end_time'] - 1) < 1e-12
+assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert all(n(v) for v in d['stats'].values()) and d['stats']['states'] == 2 and d['stats']['rows'] == 501
+assert list(d['final']) == ['x', 'time'] and n(d['final']['x']) and d['final']['time'] == 1"
+"$lvsim" simulate oscillator --json --stop 1000 --max-steps 50 --format none > "$work/simfail.json" 2> /dev/null; rc=$?
+[ "$rc" -eq 3 ] && pass=$((pass + 1)) || { echo "FAIL: failed simulate --json exit $rc (want 3)"; fails=$((fails + 1)); }
+json_ok "failed simulate --json" "$work/simfail.json" "
+assert d['ok'] is False and 'too much work' in d['error'] and d['stop'] == 'failed' and d['final'] == {}
+assert d['stats']['steps'] == 50"
+"$lvsim" compare "$mission" --json > "$work/cmp.json"; rc=$?
+[ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: compare --json exit $rc"; fails=$((fails + 1)); }
+json_ok "compare --json" "$work/cmp.json" "n=$num
+assert list(d) == ['mission', 'output_interval', 'end_to_end', 'sequential', 'bodies'], list(d)
+assert d['mission'].endswith('mission.yaml') and d['output_interval'] == 1
+for s in ('end_to_end', 'sequential'):
+    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'jac_evals', 'cpu_time'], list(d[s])
+    assert d[s]['method'] == 'dassl' and abs(d[s]['tolerance'] - 1e-7) < 1e-20
+    assert all(n(v) for k, v in d[s].items() if k != 'method')
+assert d['end_to_end']['states'] == 39 and d['sequential']['states'] == 13
+assert [b['name'] for b in d['bodies']] == ['stage1', 'stage2', 'stage3']
+for b in d['bodies']:
+    assert list(b) == ['name', 'common_times', 'max_dpos', 'max_dvel', 'max_dmass'] and all(n(b[k]) for k in list(b)[1:])
+    assert b['common_times'] > 100 and 0 <= b['max_dpos'] < 100"
+"$lvsim" params "$mission" --json > "$work/params.json"; rc=$?
+[ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: params --json exit $rc"; fails=$((fails + 1)); }
+n_text=$("$lvsim" params "$mission" | grep -vc '^#')
+json_ok "params --json" "$work/params.json" "n=$num
+assert isinstance(d, list) and len(d) == $n_text, len(d)
+assert all(list(p) == ['name', 'value', 'unit', 'rule', 'line'] and n(p['value']) for p in d)
+p = {q['name']: q for q in d}
+assert p['stage1.propellant_mass'] == {'name': 'stage1.propellant_mass', 'value': 27000, 'unit': 'kg', 'rule': '>= 0', 'line': $line_prop}, p['stage1.propellant_mass']
+assert p['P1.stop_time']['value'] == 140 and p['P1.stop_time']['unit'] == 's' and p['P1.stop_time']['line'] == $line_stop
+assert any(q['line'] is None for q in d) and all(q['line'] is None or q['line'] > 0 for q in d)"
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

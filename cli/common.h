@@ -1,0 +1,47 @@
+/* common.h - helpers shared by the lvsim commands: exit codes, usage errors, number
+ * parsing, library errors, model lookup and JSON output. Only the CLI uses them.
+ */
+#ifndef LVSIM_CLI_COMMON_H
+#define LVSIM_CLI_COMMON_H
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+
+#include "cli.h"
+#include "lvsim/lvsim.h"
+
+enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3 };
+
+/* The exit code of a library status: LV_ERR_SOLVER 3, LV_ERR_NOMEM 1, any other error 2. */
+int exit_code_for(lv_status st);
+/* The same for a step that only reads input (a mission file, a results folder): a failure
+ * there is bad input (2), or 1 when out of memory. */
+int exit_code_for_input(lv_status st);
+
+/* "usage: lvsim NAME USAGE" from the table entry. */
+void print_usage_line(FILE *f, const cli_cmd *cmd);
+/* Prints "lvsim: WHAT 'ARG'" (ARG may be NULL), then cmd's usage line and "(see 'lvsim help
+ * CMD')" (cmd NULL: "(see 'lvsim help')"), to stderr. Returns 2. */
+int usage_error(const cli_cmd *cmd, const char *what, const char *arg);
+/* A word that looks like an option: "-x", "--x", but not "-" or a negative number. */
+int is_option(const char *arg);
+/* The value of the option at argv[*i] (argv[*i + 1], and *i advances), or NULL when it is
+ * the last argument. */
+const char *option_value(int argc, char **argv, int *i);
+
+/* A whole argument as a finite double / a count 0..1e8; 1 on success, 0 otherwise. */
+int parse_double(const char *s, double *out);
+int parse_int(const char *s, int *out);
+
+/* Prints err's message to stderr ("WHO: message"; who NULL: the message alone, which
+ * already starts with file:line) and returns `code`. */
+int print_err(const char *who, const lv_err *err, int code);
+
+/* A built-in model by name; when unknown, says so on stderr listing the models: NULL. */
+const lv_model_def *find_model(const char *name);
+
+/* Prints a document built with cJSON (cJSON_Print, indented with spaces) to stdout and
+ * deletes it. Returns 0, or 1 when doc is NULL or printing runs out of memory. */
+int print_json(cJSON *doc);
+
+#endif
