@@ -105,16 +105,7 @@ int print_json(cJSON *doc)
         fprintf(stderr, "lvsim: out of memory writing JSON\n");
         return EXIT_INTERNAL;
     }
-    /* cJSON_Print indents with tabs and writes "key":<tab>value. cJSON escapes a tab inside
-     * a string as \t, so every raw tab is layout: "key": value, and two spaces a level. */
-    for (const char *p = text; *p != '\0'; p++) {
-        if (*p != '\t')
-            putchar(*p);
-        else if (p > text && p[-1] == ':')
-            putchar(' ');
-        else
-            fputs("  ", stdout);
-    }
+    fputs(text, stdout);
     putchar('\n');
     cJSON_free(text);
     return EXIT_OK;
