@@ -140,8 +140,13 @@ static ARKodeButcherTable make_fixed_table(lv_method m)
         sunrealtype b[5] = {w1, w2, w2, w1, 0.0};
         return ARKodeButcherTable_Create(5, 4, 0, c, A, b, NULL);
     }
+    /* Explicit Euler, declared of order 2: ARKODE caps the degree of its dense output (used
+     * for output times, stop times and located events) at the declared order minus one, and
+     * degree 0 - a constant - reported an event located inside a step with the step's end
+     * state. The order has no other use for a fixed-step table without an embedding; with
+     * it, the Lagrange interpolant of degree 1 is Euler's own straight line (test_simulate). */
     sunrealtype c[1] = {0.0}, A[1] = {0.0}, b[1] = {1.0};
-    return ARKodeButcherTable_Create(1, 1, 0, c, A, b, NULL);
+    return ARKodeButcherTable_Create(1, 2, 0, c, A, b, NULL);
 }
 
 /* SUNDIALS' name of a return flag ("CV_TOO_MUCH_WORK"), copied: the library allocates the
@@ -282,13 +287,18 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
             }
             SUNCHK(ERKStepSetTable(ig->mem, ig->table), "ARKODE table");
             SUNCHK(ERKStepSetFixedStep(ig->mem, p->fixed_step), "ARKODE fixed step");
-            /* ARKODE returns values at stop times and output times from its dense
-             * output. For the one-stage Euler table, 6.4's Hermite interpolant does not
-             * reproduce the step's own end point (it returned (y_n + y_{n+1})/2 at
-             * t_{n+1}); the Lagrange interpolant through the stored steps does. */
-            if (p->method == LV_METHOD_EULER)
+            /* ARKODE returns values at stop times, output times and located roots from its
+             * dense output, whose degree it caps at the method's order minus one: for the
+             * one-stage Euler table, degree 0 - a constant, so an event located inside a
+             * step reported the step's end state (an altitude end at 5000 m gave 5510 m).
+             * Euler's own interpolant is the straight line through y_n and y_{n+1}: the
+             * Lagrange interpolant of degree 1 (6.4's Hermite one did not reproduce the
+             * step's end point: it returned (y_n + y_{n+1})/2 at t_{n+1}). */
+            if (p->method == LV_METHOD_EULER) {
                 SUNCHK(ERKStepSetInterpolantType(ig->mem, ARK_INTERP_LAGRANGE),
                        "ARKODE interpolant");
+                SUNCHK(ERKStepSetInterpolantDegree(ig->mem, 1), "ARKODE interpolant degree");
+            }
         }
         if (p->max_step > 0.0)
             SUNCHK(ERKStepSetMaxStep(ig->mem, p->max_step), "ARKODE max step");

@@ -855,6 +855,65 @@ static void test_stepping(void)
     }
 }
 
+/* ---- (12) the state at a located event, for every method ----------------------------------- */
+/* Every method reports the state at the located instant from its own interpolant, not the
+ * state at the end of the step that contains it: at apogee v = 0, and at burnout the mass is
+ * m_final (the mass falls linearly, so every method - Euler included - integrates it exactly
+ * and locates burnout at (m0 - mf)/q on its interpolant). Fixed steps of 0.7 s put both events
+ * inside steps. */
+static void test_event_state(void)
+{
+    const double F = 30000.0, q = 10.0, g = 9.81, m0 = 1000.0, mf = 400.0;
+    for (int k = 0; k < N_METHODS; k++) {
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = methods[k];
+        s.tolerance = 1e-8;
+        s.stop_time = 500.0;
+        s.output_interval = 5.0;
+        s.fixed_step = 0.7;
+        const char *in[] = {"thrust", "mdot", "g", "m0", "m_final", "stop_at_apogee"};
+        const double iv[] = {F, q, g, m0, mf, 1.0};
+        const char *fin[] = {"time", "v", "m"};
+        double out[3];
+        s.n_initial = 6;
+        s.initial_names = in;
+        s.initial_values = iv;
+        s.n_final = 3;
+        s.final_names = fin;
+        lv_result *res = NULL;
+        lv_sink mem;
+        lv_err err;
+        CHECK_OK(lv_sink_memory_create(&res, &mem, &err), &err);
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        lv_sim_report rep;
+        CHECK_OK(lv_simulate(&lv_model_vertical_ascent, NULL, &s, out, &rep, &err), &err);
+        CHECK(strcmp(rep.stop_name, "apogee") == 0);
+        CHECK_CLOSE(out[1], 0.0, 1e-6);        /* v at apogee */
+        CHECK_CLOSE(out[2], mf, 1e-9 * mf);    /* the mass stays at m_final after burnout */
+        CHECK(rep.n_event_log >= 1 && rep.event_log[0].index == LV_ASC_EV_BURNOUT);
+        CHECK_CLOSE(rep.event_log[0].t, (m0 - mf) / q, 1e-9);
+        /* the rows written at burnout (before and after the event) hold m_final */
+        size_t ct, cm;
+        CHECK_OK(lv_result_column(res, "time", &ct, &err), &err);
+        CHECK_OK(lv_result_column(res, "m", &cm, &err), &err);
+        int seen = 0;
+        for (size_t i = 0; i < lv_result_rows(res); i++)
+            if (lv_result_value(res, i, ct) == rep.event_log[0].t) {
+                CHECK_CLOSE(lv_result_value(res, i, cm), mf, 1e-9 * mf);
+                seen++;
+            }
+        CHECK(seen == 2);
+        printf("event state %-12s apogee v = %.2e m/s, burnout at %.12f s (exact %.12f)\n",
+               methods[k], out[1], rep.event_log[0].t, (m0 - mf) / q);
+        lv_sim_report_clear(&rep);
+        lv_sink_destroy(&mem);
+        lv_result_free(res);
+    }
+}
+
 int main(void)
 {
     test_vertical_ascent();
@@ -868,5 +927,6 @@ int main(void)
     test_integrator_failures();
     test_result_files();
     test_stepping();
+    test_event_state();
     return check_report("test_simulate");
 }
