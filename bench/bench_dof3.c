@@ -69,7 +69,7 @@ int main(void)
     cfg.gravity = grav;
     cfg.atmo = atmo;
     cfg.m0 = 150e3;
-    cfg.m_burnout = 30e3;
+    cfg.propellant = 150e3 - 30e3;
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.aero = &aero;

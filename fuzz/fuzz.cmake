@@ -21,11 +21,10 @@ if(LV_CLANG AND NOT DEFINED LV_HAVE_LIBFUZZER)
 endif()
 
 if(LV_HAVE_LIBFUZZER)
-  # The library's sources that loading a mission uses: everything but the integrator, the
-  # simulation, runs, results and post-processing (no SUNDIALS, no cJSON, no PLplot).
+  # The library's sources that loading a mission uses (checking a root phase's start state
+  # sets up its simulation: SUNDIALS too), without runs and post-processing (cJSON, PLplot).
   set(_src ${LV_SOURCES})
-  list(FILTER _src EXCLUDE REGEX
-       "^src/(integrate/|sim/simulate|mission/(run|compare|summary)\\.c|io/(export|sink|result_|atomic)|plot/|post/)")
+  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|compare)\\.c|post/)")
   list(PREPEND _src fuzz/fuzz_mission.c)
   file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
        ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)
@@ -43,7 +42,12 @@ if(LV_HAVE_LIBFUZZER)
             -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes
             -Wmissing-prototypes -Wformat=2 -ffp-contract=off
             -DLV_FUZZ_DIR="${PROJECT_SOURCE_DIR}/tests/missions" ${_inc} ${_src}
-            -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES} -lm
+            -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES}
+            $<TARGET_FILE:SUNDIALS::cvode_shared> $<TARGET_FILE:SUNDIALS::arkode_shared>
+            $<TARGET_FILE:SUNDIALS::nvecserial_shared>
+            $<TARGET_FILE:SUNDIALS::sunmatrixdense_shared>
+            $<TARGET_FILE:SUNDIALS::sunlinsoldense_shared>
+            $<TARGET_FILE:SUNDIALS::sunnonlinsolfixedpoint_shared> -lm
     DEPENDS ${_src} ${_hdr}
     COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
     COMMAND_EXPAND_LISTS VERBATIM)

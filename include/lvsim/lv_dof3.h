@@ -66,8 +66,9 @@ typedef struct lv_dof3_config {
     void *wind_user;           /* passed to `wind` */
 
     double m0;                 /* kg, start mass (default of state "m"), > 0 */
-    double m_burnout;          /* kg, mass at propellant depletion (default of parameter
-                                  "m_burnout"), 0 <= m_burnout */
+    double propellant;         /* kg, propellant of the burning stage at the start (default of
+                                  parameter "propellant"), 0 <= propellant < m0: burnout when it
+                                  is gone, whatever else the start mass carries */
     size_t n_engines;          /* 0: unpowered */
     const lv_engine_config *engines; /* [n_engines], copied (their tables borrowed) */
     const lv_aero_config *aero; /* copied (tables borrowed); NULL: no aerodynamic force */
@@ -95,7 +96,7 @@ typedef struct lv_dof3_config {
 } lv_dof3_config;
 
 /* Earth (lv_planet_earth), no gravity (must be set), no atmosphere, m0 = 1000 kg,
- * m_burnout 0, no engines, no aero, all start values and inputs 0 except throttle 1,
+ * propellant 0, no engines, no aero, all start values and inputs 0 except throttle 1,
  * stop_at_burnout 0, no ends. */
 LV_API void lv_dof3_config_default(lv_dof3_config *cfg);
 

@@ -65,7 +65,9 @@ LV_API void lv_mission_get_info(const lv_mission *m, lv_mission_info *out);
 
 LV_API const char *lv_mission_name(const lv_mission *m);
 LV_API size_t lv_mission_phase_count(const lv_mission *m);
-/* Phases are numbered in run order: parents before children, file order otherwise. */
+/* Phases are numbered in run order: a phase after its parent; among the phases ready to run
+ * (their parents done), in file order. With several worker threads, phases that are ready
+ * together start together in that order. */
 LV_API const char *lv_mission_phase_name(const lv_mission *m, size_t k);
 LV_API int lv_mission_phase_parent(const lv_mission *m, size_t k); /* -1: from parameters */
 LV_API lv_status lv_mission_phase_find(const lv_mission *m, const char *name, size_t *k,
@@ -80,6 +82,7 @@ typedef struct lv_phase_info {
     size_t n_stages;        /* the stages it carries, bottom first */
     const size_t *stages;   /* [n_stages] stage indices */
     const char *method;     /* its integration method */
+    size_t file_index;      /* its position in the mission file (0-based) */
 } lv_phase_info;
 LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out);
 
@@ -154,7 +157,13 @@ typedef struct lv_phase_result {
     size_t n_set;                /* the `set:` overrides with this run's values */
     const char *const *set_names;
     const double *set_values;
-    const double *propellant_end; /* [n_stages of the mission], kg left after the phase */
+    /* the propellant book: every stage of the mission, kg; a phase burns only its bottom
+     * stage's propellant (burnout when it is gone), and mass beyond its stages' dry mass and
+     * propellant (a `set:` of the mass) is payload, never burnt */
+    const double *propellant_start; /* [n_stages of the mission], kg at the phase's start */
+    const double *propellant_end;   /* [n_stages of the mission], kg left after the phase */
+    const double *dry_mass;         /* [n_stages of the mission], kg in this run */
+    double payload;                 /* kg, the start mass beyond the carried stages */
 } lv_phase_result;
 
 typedef struct lv_run_options {

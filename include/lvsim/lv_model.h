@@ -67,6 +67,18 @@ typedef enum lv_event_action {
     LV_EVENT_STOP = 2      /* end the run at this instant (a phase end) */
 } lv_event_action;
 
+/* A bound of the model's domain: quantity >= lower, where the model's equations hold (the
+ * vehicle above the ground, an atmosphere evaluated inside its range). lv_simulate watches
+ * every bound as a state event: crossing it ends the run, at the located instant, as failed
+ * ("h = -5000 m is below -5000 m: <why>"); a start state outside the domain fails at once. */
+typedef struct lv_domain_def {
+    const char *quantity; /* "h" */
+    const char *unit;     /* "m" */
+    double lower;         /* the domain: quantity >= lower */
+    const char *why;      /* what leaving it means and what to do: "the vehicle is under the
+                             ground: end the phase with an `impact` end" */
+} lv_domain_def;
+
 typedef struct lv_model_def lv_model_def;
 
 struct lv_model_def {
@@ -120,6 +132,12 @@ struct lv_model_def {
      * the tolerance, when smaller): no accuracy below the coordinate's own resolution is
      * asked for. NULL: every state both. */
     const unsigned char *abs_error;
+
+    /* Optional: the bounds of the model's domain, and the function that evaluates their
+     * quantities q[n_domain] at (t, x) (allocation-free: it runs with the event functions). */
+    size_t n_domain;
+    const lv_domain_def *domain;
+    int (*domain_q)(double t, const double *x, const double *p, double *q, void *inst);
 
     /* Optional. Why the last callback failed ("table 'stage1' : t = 130 is outside
      * [0, 120]"), or NULL; lv_simulate() adds it to its failure message. */

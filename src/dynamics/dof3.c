@@ -18,7 +18,7 @@
 
 /* ---- variables ------------------------------------------------------------------- */
 
-enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_MBO, P_N };
+enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_PROP, P_N };
 /* inputs: the controls lv_flight_controls knows, in the order of P_ALPHA.. */
 enum { U_ALPHA = LV_CTRL_ALPHA, U_BETA = LV_CTRL_BETA, U_MU = LV_CTRL_MU,
        U_THR = LV_CTRL_THROTTLE, U_N = LV_CTRL_N };
@@ -62,7 +62,8 @@ static const lv_var param_tpl[P_N] = {
     {"beta", "rad", "Sideslip angle (constant input)", 0, 0},
     {"mu", "rad", "Bank angle about the air-relative velocity (constant input)", 0, 0},
     {"throttle", "", "Throttle c_s (constant input)", 1, 0},
-    {"m_burnout", "kg", "Mass at propellant depletion: burnout event", 0, 0},
+    {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
+     0, 0},
 };
 
 static const lv_var output_vars[O_N] = {
@@ -130,6 +131,7 @@ static const struct {
 typedef struct dof3_inst {
     lv_dof3 *m;           /* NULL in a block lv_simulate zeroed itself */
     int engines_on;       /* mode: 1 while propellant remains */
+    double m_burnout;     /* kg: the start mass minus the burning stage's propellant */
     lv_table_cursor in_cur;
     double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
     lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
@@ -147,6 +149,7 @@ struct lv_dof3 {
     char (*event_names)[EVENT_NAME_MAX];
 
     lv_flight_world world;       /* planet, gravity, atmosphere, wind */
+    lv_domain_def domain[1];     /* the altitude floor */
     double *grav_ws;
     double gm;                   /* m^3/s^2, of the gravity model (osculating elements) */
 
@@ -257,8 +260,8 @@ static int check_params(dof3_inst *s, const double *p)
         return fail_inst(s, "start_lat = %g rad is outside [-pi/2, pi/2]", p[P_LAT]);
     if (!(p[P_VEL] >= 0.0))
         return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
-    if (!(p[P_MBO] >= 0.0))
-        return fail_inst(s, "m_burnout = %g kg is negative", p[P_MBO]);
+    if (!(p[P_PROP] >= 0.0))
+        return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
     if (m->inputs.k[U_THR] < 0)
         for (size_t i = 0; i < m->n_eng; i++)
             if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max)) {
@@ -302,7 +305,13 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
         return -1;
     if (!(x[LV_X3_M] > 0.0))
         return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X3_M]);
-    s->engines_on = s->m->n_eng > 0 && x[LV_X3_M] > p[P_MBO];
+    if (!(p[P_PROP] < x[LV_X3_M]))
+        return fail_inst(s, "the propellant %g kg is not less than the start mass %g kg",
+                         p[P_PROP], x[LV_X3_M]);
+    /* the propellant book: burnout when the burning stage's propellant is gone, whatever else
+     * the start mass carries (a payload set by the user is not burnt) */
+    s->m_burnout = x[LV_X3_M] - p[P_PROP];
+    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;
     for (int k = 0; k < 3; k++)
         s->trig.ang[k] = NAN;
     lv_flight_kin kin;
@@ -318,10 +327,11 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
 
 static int dof3_g(double t, const double *x, const double *p, double *g, void *inst)
 {
+    (void)p;
     const dof3_inst *s = inst;
     const lv_dof3 *m = s->m;
     /* burnout: disarmed (a constant) once the engines are off */
-    g[0] = s->engines_on ? x[LV_X3_M] - p[P_MBO] : 1.0;
+    g[0] = s->engines_on ? x[LV_X3_M] - s->m_burnout : 1.0;
     if (m->n_ends == 0)
         return 0;
     lv_flight_kin kin;
@@ -353,6 +363,18 @@ static int dof3_g(double t, const double *x, const double *p, double *g, void *i
         }
         g[1 + i] = gi;
     }
+    return 0;
+}
+
+/* The model's domain: the geodetic altitude above its floor (dof3_create). */
+static int dof3_domain_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)p;
+    const dof3_inst *s = inst;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&s->m->world, t, r_of(x), v_of(x), &kin);
+    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
+    q[0] = kin.h;
     return 0;
 }
 
@@ -530,7 +552,8 @@ static lv_status setup_ends(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
     m->events[0] = (lv_event_def){m->event_names[0],
-                                  "Propellant exhausted: m falls through m_burnout",
+                                  "Propellant exhausted: m falls through the start mass minus "
+                                  "the propellant",
                                   LV_DIR_FALLING};
     for (size_t i = 0; i < n; i++) {
         const lv_dof3_end *e = &cfg->ends[i];
@@ -581,8 +604,9 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         st = lv_fail(err, LV_ERR_INPUT, "dof3: start mass m0 = %g kg (must be > 0)", cfg->m0);
         goto fail;
     }
-    if (!isfinite(cfg->m_burnout) || cfg->m_burnout < 0.0) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof3: m_burnout = %g kg (must be >= 0)", cfg->m_burnout);
+    if (!isfinite(cfg->propellant) || cfg->propellant < 0.0 || !(cfg->propellant < cfg->m0)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: propellant = %g kg (must be >= 0 and less than "
+                     "the start mass m0 = %g kg)", cfg->propellant, cfg->m0);
         goto fail;
     }
     if ((st = check_finite("start_lon", cfg->start_lon, "rad", err)) != LV_OK ||
@@ -632,6 +656,14 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     }
     m->world.wind = cfg->wind;
     m->world.wind_user = cfg->wind_user;
+    /* The domain: above the atmosphere's floor (US76: -5 km), or 20 km below the ellipsoid on
+     * a planet without atmosphere (deeper than the lowest ground of the Earth, Moon and Mars). */
+    m->domain[0] = (lv_domain_def){
+        "h", "m", cfg->atmo != NULL ? LV_ATMO_ALT_MIN : -20e3,
+        cfg->atmo != NULL ? "the vehicle is under the ground (below the floor of the "
+                            "atmosphere model); an `impact` end ends the phase on the ground"
+                          : "the vehicle is under the ground (20 km below the ellipsoid); an "
+                            "`impact` end ends the phase on the ground"};
 
     /* vehicle */
     if (cfg->n_engines > 0) {
@@ -694,7 +726,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     memcpy(m->params, param_tpl, sizeof m->params);
     const double pv[P_N] = {cfg->start_lat, cfg->start_lon, cfg->start_h, cfg->start_vel,
                             cfg->start_fpa, cfg->start_chi, cfg->start_time, cfg->alpha,
-                            cfg->beta,      cfg->mu,        cfg->throttle, cfg->m_burnout};
+                            cfg->beta,      cfg->mu,        cfg->throttle, cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
 
@@ -718,6 +750,9 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .next_time_event = dof3_next_time_event,
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
+        .n_domain = 1,
+        .domain = m->domain,
+        .domain_q = dof3_domain_q,
     };
     m->inst.m = m;
     for (int k = 0; k < 3; k++)

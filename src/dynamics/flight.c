@@ -82,14 +82,16 @@ int lv_flight_air_eval(const lv_flight_world *w, double t, const lv_flight_kin *
     a->rho = a->p_amb = 0.0;
     a->a_sound = 1.0;
     if (w->atmo_model != NULL) {
-        if (!(k->h >= LV_ATMO_ALT_MIN)) {
+        if (isnan(k->h)) {
             if (err)
-                lv_fail(err, LV_ERR_INPUT,
-                        "altitude %g m below the atmosphere (%g m) at t = %.9g s", k->h,
-                        LV_ATMO_ALT_MIN, t);
+                lv_fail(err, LV_ERR_INPUT, "altitude is NaN at t = %.9g s", t);
             return 1;
         }
-        const double ha = k->h < LV_ATMO_ALT_MAX ? k->h : LV_ATMO_ALT_MAX;
+        /* Below the atmosphere's floor: its floor values, so that a trial step there can be
+         * taken and the model's domain bound (lv_domain_def) is located instead. */
+        const double ha = k->h < LV_ATMO_ALT_MIN   ? LV_ATMO_ALT_MIN
+                          : k->h < LV_ATMO_ALT_MAX ? k->h
+                                                   : LV_ATMO_ALT_MAX;
         lv_atmo_state as;
         if (w->atmo_model->eval(w->atmo_par, ha, &as, err) != LV_OK)
             return 1;

@@ -89,8 +89,9 @@ typedef struct lv_flight_air {
 } lv_flight_air;
 
 /* Atmosphere at the geodetic altitude (above the model's top: vacuum with the top layer's
- * speed of sound), the wind at the vehicle, Mach and q. Returns 0; 1 (state not acceptable:
- * below the atmosphere's floor, the model failed); or the wind function's nonzero code.
+ * speed of sound; below its floor: the floor's values - the model's domain ends there), the
+ * wind at the vehicle, Mach and q. Returns 0; 1 (state not acceptable: a NaN altitude, the
+ * atmosphere model failed); or the wind function's nonzero code.
  * `err` (NULL in the hot path) receives the reason. */
 int lv_flight_air_eval(const lv_flight_world *w, double t, const lv_flight_kin *k,
                        lv_flight_air *a, lv_err *err);

@@ -167,6 +167,52 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
     return LV_OK;
 }
 
+/* Phase k's start state lies in its model's domain: a root phase's whole start state (the
+ * parameters and overrides as the file gives them: lv_sim_create evaluates start(), init() and
+ * the domain), a child's overridden mass (its other states come from its parent at run time). */
+static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, lv_err *err)
+{
+    const lv_mission_def *d = m->def;
+    const lv_phase_def *ph = &d->phases[k];
+    const lv_phase_plan *pl = &m->plan[k];
+    for (size_t i = 0; i < ph->n_set; i++) {
+        const double v = m->defaults[ph->set_values[i]];
+        if (strcmp(ph->set_names[i], ph->type->mass_state) == 0 && !(v > 0.0))
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: %s = %g kg: a mass "
+                           "must be > 0", d->path, ph->set_locs[i].line, ph->set_locs[i].column,
+                           ph->name, ph->set_names[i], v);
+    }
+    if (ph->parent >= 0)
+        return LV_OK;
+    double *values = calloc(pl->n_init + 1, sizeof *values);
+    if (values == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_sim_settings s;
+    lv_sim_settings_default(&s);
+    s.result_file = NULL;
+    s.start_time = ph->t_start != LV_NO_SLOT ? m->defaults[ph->t_start] : 0.0;
+    s.stop_time = m->defaults[ph->t_stop];
+    s.method = ph->method ? ph->method : "dassl";
+    s.tolerance = m->defaults[ph->tolerance];
+    s.output_interval = m->defaults[ph->output_interval];
+    s.number_of_intervals = ph->intervals;
+    s.fixed_step = m->defaults[ph->fixed_step];
+    for (size_t i = 0; i < pl->n_init; i++)
+        values[i] = pl->init[i].kind == LV_INIT_START_TIME ? s.start_time
+                                                            : m->defaults[pl->init[i].index];
+    s.n_initial = pl->n_init;
+    s.initial_names = pl->init_names;
+    s.initial_values = values;
+    lv_sim *sim = NULL;
+    lv_status st = lv_sim_create(pm->def, pm->inst, &s, &sim, err);
+    lv_sim_free(sim);
+    free(values);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
+                              ph->loc.column, ph->name);
+    return LV_OK;
+}
+
 /* Every phase's model can be built with the file's values, every `set:` name is a state or
  * parameter of it (its slot takes that variable's unit), every parameter is used by some
  * phase's model; the plans are made on the way. */
@@ -226,6 +272,8 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
         if (st == LV_OK && (st = make_plan(m, k, md, &m->plan[k], err)) != LV_OK)
             st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
                                 ph->loc.column, ph->name);
+        if (st == LV_OK)
+            st = check_start(m, k, pm, err);
         lv_phase_model_free(pm);
     }
     for (size_t j = 0; j < d->n_params && st == LV_OK; j++) {
@@ -365,7 +413,8 @@ void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out)
 {
     const lv_phase_def *ph = &m->def->phases[k];
     *out = (lv_phase_info){ph->name,     ph->type->name, ph->parent,
-                           ph->n_stages, ph->stages,     ph->method ? ph->method : "dassl"};
+                           ph->n_stages, ph->stages,     ph->method ? ph->method : "dassl",
+                           ph->file_index};
 }
 
 size_t lv_mission_param_count(const lv_mission *m) { return m->def->n_slots; }

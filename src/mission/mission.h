@@ -131,7 +131,11 @@ typedef struct lv_phase_def {
     void *type_cfg;       /* what the type parsed from the phase's own keys; owned by the type */
     size_t n_stages;      /* the bodies this phase carries, bottom first */
     size_t *stages;       /* indices into lv_mission_def.stages */
+    lv_src_loc *stage_locs; /* [n_stages] where each is named */
+    int alternative;      /* 1: an alternative outcome of its parent (an abort case): it may
+                             carry stages that a sibling branch carries */
     int parent;           /* index of the phase whose final state seeds this one; -1: parameters */
+    size_t file_index;    /* its position in the file (0-based); phases are kept in run order */
     lv_slot t_start;      /* s; LV_NO_SLOT: the parent's end time (or 0 without parent) */
     lv_slot t_stop;       /* s; the fixed stop time or the time limit of the phase */
     size_t n_ends;        /* events that end the phase before t_stop */

@@ -148,9 +148,15 @@ lv_status lv_pk_slot(const lv_pctx *c, const lv_ynode *v, const char *what, cons
         x *= LV_DEG;
     if (!lv_range_holds(range, x)) {
         char rule[96];
-        lv_range_text(range, rule, sizeof rule);
+        lv_range shown = range; /* the rule in the unit the value is written in */
+        if (deg) {
+            shown.lo /= LV_DEG;
+            shown.hi /= LV_DEG;
+        }
+        lv_range_text(shown, rule, sizeof rule);
+        const char *u = deg ? "deg" : unit;
         return lv_pk_fail(c, v, "%s: %s must be %s%s%s, found %g", what, key, rule,
-                          unit[0] ? " " : "", unit, deg ? x / LV_DEG : x);
+                          u[0] ? " " : "", u, deg ? x / LV_DEG : x);
     }
     lv_src_loc loc = {v->line, v->col};
     return lv_mission_def_add_slot(c->m, name, unit, x, range, c->owner, c->owner_index, loc,
@@ -567,6 +573,31 @@ static char *file_stem(const char *path)
 }
 
 /* Outputs "thrust" and "mdot" by name, or a .mat matrix [t, thrust, mdot] (col2, col3). */
+/* Thrust and mass flow are >= 0 at every breakpoint of an engine table (its interpolants,
+ * linear or monotone PCHIP, then stay >= 0 between them): a negative thrust would push the
+ * vehicle backwards, a negative mass flow would fill the tanks. */
+static lv_status table_nonnegative(const lv_pctx *c, const lv_ynode *key, const char *what,
+                                   const lv_engine_def *e)
+{
+    size_t n;
+    const double *tb = lv_table_breakpoints(e->table, 0, &n);
+    double y[64];
+    if (lv_table_n_out(e->table) > sizeof y / sizeof y[0])
+        return LV_OK; /* (a table of engines has 2 outputs) */
+    for (size_t i = 0; i < n; i++) {
+        if (lv_table_eval1(e->table, NULL, tb[i], y, NULL) != LV_OK)
+            continue;
+        const char *bad = !(y[e->thrust_out] >= 0.0) ? "thrust" : !(y[e->mdot_out] >= 0.0) ? "mdot"
+                                                                                           : NULL;
+        if (bad != NULL)
+            return lv_pk_fail(c, key, "%s: table '%s': %s = %g %s at t = %g s: a thrust and a "
+                              "mass flow must be >= 0", what, e->table_file, bad,
+                              y[bad[0] == 't' ? e->thrust_out : e->mdot_out],
+                              bad[0] == 't' ? "N" : "kg/s", tb[i]);
+    }
+    return LV_OK;
+}
+
 static lv_status table_outputs(const lv_pctx *c, const lv_ynode *key, const char *what,
                                lv_engine_def *e)
 {
@@ -577,12 +608,12 @@ static lv_status table_outputs(const lv_pctx *c, const lv_ynode *key, const char
     const size_t no = lv_table_n_out(t);
     if (lv_table_out_index(t, "thrust", &e->thrust_out, NULL) == LV_OK &&
         lv_table_out_index(t, "mdot", &e->mdot_out, NULL) == LV_OK)
-        return LV_OK;
+        return table_nonnegative(c, key, what, e);
     if (no == 2 && strcmp(lv_table_out_name(t, 0), "col2") == 0 &&
         strcmp(lv_table_out_name(t, 1), "col3") == 0) {
         e->thrust_out = 0;
         e->mdot_out = 1;
-        return LV_OK;
+        return table_nonnegative(c, key, what, e);
     }
     char have[192] = "";
     size_t used = 0;
@@ -842,6 +873,27 @@ static const lv_var *mission_param(const char *name)
     return NULL;
 }
 
+/* Its allowed values: the narrowest every type that takes it accepts. */
+static lv_range mission_param_range(const char *name)
+{
+    lv_range r = LV_RANGE_ANY;
+    for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++)
+        for (size_t i = 0; i < (*t)->n_mission_params; i++)
+            if ((*t)->mission_param_ranges != NULL &&
+                strcmp((*t)->mission_params[i].name, name) == 0) {
+                const lv_range q = (*t)->mission_param_ranges[i];
+                if (q.lo > r.lo || (q.lo == r.lo && q.lo_open)) {
+                    r.lo = q.lo;
+                    r.lo_open = q.lo_open;
+                }
+                if (q.hi < r.hi || (q.hi == r.hi && q.hi_open)) {
+                    r.hi = q.hi;
+                    r.hi_open = q.hi_open;
+                }
+            }
+    return r;
+}
+
 /* Angles (rad) and angular rates (rad/s): these alone may be written as *_deg. */
 static int is_angular(const char *unit)
 {
@@ -915,8 +967,8 @@ static lv_status parse_params(const lv_pctx *pc, const lv_ynode *n)
             if (strcmp(m->param_names[j], base) == 0)
                 return lv_pk_fail(c, k, "%s: '%s' given twice (as '%s' at line %d)", what, base,
                             n->kids[2 * j]->text, n->kids[2 * j]->line);
-        if ((st = lv_pk_slot(c, v, what, k->text, base, pv->unit, LV_RANGE_ANY, deg,
-                             &m->param_values[i])) != LV_OK)
+        if ((st = lv_pk_slot(c, v, what, k->text, base, pv->unit, mission_param_range(base),
+                             deg, &m->param_values[i])) != LV_OK)
             return st;
         if ((m->param_names[i] = dup_text(base)) == NULL)
             return lv_pk_nomem(c);
@@ -1140,7 +1192,8 @@ static lv_status find_stage(const lv_pctx *c, const lv_ynode *v, const char *wha
 
 /* The keys every phase has; a model type adds its own (phase_type.h). */
 static const char *const phase_keys[] = { "name", "model", "stages", "from", "start_time",
-                                          "stop_time", "end", "integrator", "set", NULL };
+                                          "stop_time", "end", "integrator", "set",
+                                          "alternative", NULL };
 
 /* Checks the phase's keys: the common ones and its type's. A key that belongs to another
  * model type says which. */
@@ -1221,11 +1274,13 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
     if (v->kind != LV_YNODE_SEQ || v->n == 0)
         return lv_pk_fail(c, v, "%s: stages: a list of stage names (bottom first) expected, found %s",
                     what, v->kind == LV_YNODE_SEQ ? "an empty list" : describe(v, buf, sizeof buf));
-    if ((ph->stages = calloc(v->n, sizeof *ph->stages)) == NULL)
+    if ((ph->stages = calloc(v->n, sizeof *ph->stages)) == NULL ||
+        (ph->stage_locs = calloc(v->n, sizeof *ph->stage_locs)) == NULL)
         return lv_pk_nomem(c);
     for (size_t j = 0; j < v->n; j++) {
         if ((st = find_stage(c, v->kids[j], what, &ph->stages[j])) != LV_OK)
             return st;
+        ph->stage_locs[j] = loc_of(v->kids[j]);
         ph->n_stages = j + 1;
         for (size_t q = 0; q < j; q++)
             if (ph->stages[q] == ph->stages[j])
@@ -1233,6 +1288,13 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
                             v->kids[j]->text);
     }
 
+    if ((v = lv_pk_get(n, "alternative")) != NULL) {
+        static const char *const bools[] = { "false", "true", NULL };
+        size_t b;
+        if ((st = lv_pk_enum(c, v, what, "alternative", bools, &b)) != LV_OK)
+            return st;
+        ph->alternative = b == 1;
+    }
     const char *parent_name;
     *from = lv_pk_get(n, "from");
     if (*from != NULL && (st = lv_pk_text(c, *from, what, "from", &parent_name)) != LV_OK)
@@ -1347,10 +1409,11 @@ static lv_status order_phases(const lv_pctx *c)
             const size_t p = (size_t)m->phases[i].parent;
             kid_next[i] = kid_first[p];
             kid_first[p] = i;
-        } else {
-            heap[nh++] = i; /* ascending: already a heap */
         }
     }
+    for (size_t i = 0; i < n; i++) /* the roots, ascending: already a min-heap */
+        if (m->phases[i].parent < 0)
+            heap[nh++] = i;
     while (nh > 0) {
         const size_t top = heap[0];
         heap[0] = heap[--nh];
@@ -1384,6 +1447,7 @@ static lv_status order_phases(const lv_pctx *c)
         out[pos[i]] = m->phases[i];
         const int p = m->phases[i].parent;
         out[pos[i]].parent = p >= 0 ? (int)pos[p] : -1;
+        out[pos[i]].file_index = i;
     }
     free(m->phases);
     m->phases = out;
@@ -1398,6 +1462,113 @@ fail:
     free(kid_next);
     free(out);
     return st;
+}
+
+/* 1 if phase a is phase d or one of its ancestors. */
+static int is_ancestor(const lv_mission_def *m, int a, int d)
+{
+    for (; d >= 0; d = m->phases[d].parent)
+        if (d == a)
+            return 1;
+    return 0;
+}
+
+/* The child of `anc` on the way down to `d` (anc an ancestor of d, anc != d); anc = -1: the
+ * root of d. */
+static int child_towards(const lv_mission_def *m, int anc, int d)
+{
+    while (m->phases[d].parent != anc)
+        d = m->phases[d].parent;
+    return d;
+}
+
+static lv_src_loc slot_loc(const lv_mission_def *m, lv_slot s, lv_src_loc fallback)
+{
+    return s != LV_NO_SLOT && m->slots[s].loc.line > 0 ? m->slots[s].loc : fallback;
+}
+
+/* What the phase tree must satisfy to be flown (after ordering, parents first):
+ *  - a child carries only stages its parent carries (a stage cannot appear from nowhere);
+ *  - a stage flies in one branch at a time: two phases whose branches split at a phase X both
+ *    carry it only if one of the two branches is marked `alternative: true` (abort cases);
+ *  - a child's stop_time is after its parent's stop_time (the latest its parent can end:
+ *    otherwise it may have nothing to run), and a child's start_time, if written, is its
+ *    parent's end (known only when the parent ends at its stop_time, without end events). */
+static lv_status check_tree(const lv_pctx *c)
+{
+    const lv_mission_def *m = c->m;
+    for (size_t k = 0; k < m->n_phases; k++) {
+        const lv_phase_def *ph = &m->phases[k];
+        if (ph->parent < 0)
+            continue;
+        const lv_phase_def *par = &m->phases[ph->parent];
+        for (size_t i = 0; i < ph->n_stages; i++) {
+            int carried = 0;
+            for (size_t j = 0; j < par->n_stages; j++)
+                carried |= par->stages[j] == ph->stages[i];
+            if (!carried)
+                return lv_fail(c->err, LV_ERR_INPUT,
+                               "%s:%d:%d: phase '%s': stages: '%s' is not carried by its parent "
+                               "'%s' (stages: a child carries some of its parent's stages)",
+                               m->path, ph->stage_locs[i].line, ph->stage_locs[i].column,
+                               ph->name, m->stages[ph->stages[i]].name, par->name);
+        }
+        const double stop = lv_mission_def_value(m, ph->t_stop);
+        const double pstop = lv_mission_def_value(m, par->t_stop);
+        lv_src_loc at = slot_loc(m, ph->t_stop, ph->loc);
+        if (!(stop > pstop))
+            return lv_fail(c->err, LV_ERR_INPUT,
+                           "%s:%d:%d: phase '%s': stop_time %g s is not after the stop_time %g "
+                           "s of its parent '%s': it would have nothing to run when '%s' runs "
+                           "to its limit",
+                           m->path, at.line, at.column, ph->name, stop, pstop, par->name,
+                           par->name);
+        if (ph->t_start != LV_NO_SLOT) {
+            const double t0 = lv_mission_def_value(m, ph->t_start);
+            at = slot_loc(m, ph->t_start, ph->loc);
+            if (par->n_ends > 0)
+                return lv_fail(c->err, LV_ERR_INPUT,
+                               "%s:%d:%d: phase '%s': start_time: a phase with `from` starts "
+                               "when its parent '%s' ends, which an end event decides: remove "
+                               "start_time",
+                               m->path, at.line, at.column, ph->name, par->name);
+            if (t0 != pstop)
+                return lv_fail(c->err, LV_ERR_INPUT,
+                               "%s:%d:%d: phase '%s': start_time %g s is not the end %g s of its "
+                               "parent '%s' (a phase starts from its parent's final state: "
+                               "remove start_time)",
+                               m->path, at.line, at.column, ph->name, t0, pstop, par->name);
+        }
+    }
+    /* a stage in two branches at once */
+    for (size_t a = 0; a < m->n_phases; a++)
+        for (size_t b = a + 1; b < m->n_phases; b++) {
+            const lv_phase_def *pa = &m->phases[a], *pb = &m->phases[b];
+            if (is_ancestor(m, (int)a, (int)b))
+                continue;
+            for (size_t i = 0; i < pa->n_stages; i++)
+                for (size_t j = 0; j < pb->n_stages; j++) {
+                    if (pa->stages[i] != pb->stages[j])
+                        continue;
+                    int x = pa->parent; /* the phase where the two branches split (-1: roots) */
+                    while (x >= 0 && !is_ancestor(m, x, (int)b))
+                        x = m->phases[x].parent;
+                    const lv_phase_def *ca = &m->phases[child_towards(m, x, (int)a)];
+                    const lv_phase_def *cb = &m->phases[child_towards(m, x, (int)b)];
+                    if (ca->alternative || cb->alternative)
+                        continue;
+                    return lv_fail(c->err, LV_ERR_INPUT,
+                                   "%s:%d:%d: phase '%s': stages: '%s' also flies in phase '%s' "
+                                   "(line %d) of another branch%s%s%s: a stage is in one place "
+                                   "at a time; if the branches are alternatives (an abort "
+                                   "case), mark one `alternative: true`",
+                                   m->path, pb->stage_locs[j].line, pb->stage_locs[j].column,
+                                   pb->name, m->stages[pb->stages[j]].name, pa->name,
+                                   pa->loc.line, x >= 0 ? " (they split after '" : "",
+                                   x >= 0 ? m->phases[x].name : "", x >= 0 ? "')" : "");
+                }
+        }
+    return LV_OK;
 }
 
 static lv_status parse_phases(const lv_pctx *c, const lv_ynode *n)
@@ -1452,14 +1623,66 @@ static lv_status parse_phases(const lv_pctx *c, const lv_ynode *n)
             goto fail;
         }
     }
-    if ((st = check_cycles(c, from)) == LV_OK)
-        st = order_phases(c);
+    if ((st = check_cycles(c, from)) == LV_OK && (st = order_phases(c)) == LV_OK)
+        st = check_tree(c);
 fail:
     free(from);
     return st;
 }
 
 /* ---- the file ------------------------------------------------------------------------- */
+
+/* NULL when `s` is a UTC instant written "YYYY-MM-DDThh:mm:ss[.f...]Z" that exists in the
+ * proleptic Gregorian calendar; otherwise why not. A leap second (23:59:60) is refused: mission
+ * time counts SI seconds from the epoch and the exports convert to UTC without a table of leap
+ * seconds, so an epoch inside one could not be placed exactly. */
+static const char *epoch_check(const char *s)
+{
+    static const char *const form = "an ISO 8601 UTC time like 2026-03-01T12:00:00Z expected";
+    /* the fixed part: digits at these positions, separators at the others */
+    static const char tmpl[] = "dddd-dd-ddTdd:dd:dd";
+    for (size_t i = 0; i < sizeof tmpl - 1; i++) {
+        const char ch = s[i];
+        if (tmpl[i] == 'd' ? !(ch >= '0' && ch <= '9') : ch != tmpl[i])
+            return form;
+    }
+    const char *p = s + sizeof tmpl - 1;
+    if (*p == '.') { /* a fraction of a second: one digit or more */
+        const char *q = ++p;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (p == q)
+            return form;
+    }
+    if (p[0] != 'Z')
+        return "the time must end with Z (UTC), without a zone offset";
+    if (p[1] != '\0')
+        return "text after the Z";
+    int v[6];
+    static const int at[6] = {0, 5, 8, 11, 14, 17}, len[6] = {4, 2, 2, 2, 2, 2};
+    for (int k = 0; k < 6; k++) {
+        v[k] = 0;
+        for (int i = 0; i < len[k]; i++)
+            v[k] = 10 * v[k] + (s[at[k] + i] - '0');
+    }
+    const int y = v[0], mo = v[1], d = v[2];
+    static const int mdays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    const int leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+    if (mo < 1 || mo > 12)
+        return "the month must be 01 to 12";
+    if (d < 1 || d > mdays[mo - 1] + (mo == 2 && leap))
+        return "no such day in that month";
+    if (v[3] > 23)
+        return "the hour must be 00 to 23";
+    if (v[4] > 59)
+        return "the minute must be 00 to 59";
+    if (v[5] == 60)
+        return "a leap second (:60) cannot be an epoch: mission time counts SI seconds and the "
+               "exports convert to UTC without a leap-second table; use :59 or the next minute";
+    if (v[5] > 59)
+        return "the second must be 00 to 59";
+    return NULL;
+}
 
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
@@ -1482,17 +1705,12 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         return st;
     if ((v = lv_pk_get(info, "epoch")) != NULL) {
         const char *ep;
-        int y, mo, d, h, mi;
-        double sec;
-        char z;
         if ((st = lv_pk_text(c, v, "mission", "epoch", &ep)) != LV_OK)
             return st;
         /* ISO 8601 UTC, as CZML and CCSDS OEM want it: 2026-03-01T12:00:00Z */
-        if (sscanf(ep, "%4d-%2d-%2dT%2d:%2d:%lf%c", &y, &mo, &d, &h, &mi, &sec, &z) != 7 ||
-            z != 'Z' || mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 ||
-            !(sec >= 0.0 && sec < 61.0))
-            return lv_pk_fail(c, v, "mission: epoch: an ISO 8601 UTC time like 2026-03-01T12:00:00Z "
-                        "expected, found '%.40s'", ep);
+        const char *why = epoch_check(ep);
+        if (why != NULL)
+            return lv_pk_fail(c, v, "mission: epoch: '%.40s': %s", ep, why);
         if ((m->epoch = dup_text(ep)) == NULL)
             return lv_pk_nomem(c);
     }
@@ -1635,6 +1853,7 @@ void lv_mission_def_free(lv_mission_def *m)
         if (ph->type != NULL && ph->type->cfg_free != NULL)
             ph->type->cfg_free(ph->type_cfg);
         free(ph->stages);
+        free(ph->stage_locs);
         free(ph->ends);
         free(ph->method);
         for (size_t k = 0; k < ph->n_set; k++)

@@ -9,6 +9,7 @@
 
 #include "core/status.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
 #include "mission/phase_type.h"
 
@@ -22,6 +23,15 @@ static const lv_var mission_params[] = {
     {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
     {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
     {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
+};
+
+static const lv_range mission_param_ranges[] = {
+    {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, /* start_lat in [-90, 90] deg */
+    {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0},       /* start_h: the model's domain decides */
+    {0.0, HUGE_VAL, 0, 0},             /* start_vel >= 0 */
+    {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0},
 };
 
 static const lv_traj_col traj[] = {
@@ -240,7 +250,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     }
     const double prop0 = bc->prop[ph->stages[0]];
     cfg.m0 = m0;
-    cfg.m_burnout = m0 - prop0;
+    cfg.propellant = prop0;
     size_t ne = 0;
     for (size_t e = 0; prop0 > 0.0 && e < bottom->n_engines; e++) {
         const lv_engine_def *ed = &bottom->engines[e];
@@ -322,6 +332,7 @@ const lv_phase_type lv_phase_type_dof3 = {
     .keys = keys,
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
+    .mission_param_ranges = mission_param_ranges,
     .mass_state = "m",
     .parse = dof3_parse,
     .cfg_free = dof3_cfg_free,

@@ -26,6 +26,14 @@ static const lv_var mission_params[] = {
     {"start_r", "rad/s", "Initial yaw rate", 0, 0},
 };
 
+static const lv_range mission_param_ranges[] = {
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {0.0, HUGE_VAL, 0, 0}, /* start_vel >= 0 */
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+};
+
 /* Merged trajectories: the states, the stage mass (written by the summary), and where the
  * point is over the Earth with the flat world's origin at the mission's site. */
 static const lv_traj_col traj[] = {
@@ -144,6 +152,7 @@ const lv_phase_type lv_phase_type_flat6 = {
     .keys = NULL,
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
+    .mission_param_ranges = mission_param_ranges,
     .mass_state = "m",
     .parse = NULL,
     .cfg_free = NULL,

@@ -66,6 +66,7 @@ struct lv_phase_type {
      * (name, SI unit, description; `start` unused). */
     size_t n_mission_params;
     const lv_var *mission_params;
+    const lv_range *mission_param_ranges; /* [n_mission_params] allowed values; NULL: finite */
     const char *mass_state;  /* the state that holds the vehicle's mass: "m" */
 
     /* Parses the type's own keys of phase `ph` (`n`: its mapping, keys already checked),

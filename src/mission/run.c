@@ -28,6 +28,8 @@ typedef struct run_phase {
     lv_phase_result res;  /* the public view; arrays below */
     double *fvalues;      /* [plan n_final] */
     double *prop_end;     /* [n_stages]: propellant left after the phase, kg */
+    double *prop_start;   /* [n_stages]: the book at the phase's start, kg */
+    double *dry;          /* [n_stages]: the stages' dry masses in the run it ran with, kg */
     double *set_values;   /* [n_set]: this run's overrides */
     lv_result *rows;      /* in-memory rows, or NULL */
     char *stem;
@@ -72,6 +74,8 @@ void lv_run_free(lv_run *r)
         phase_clear(p);
         free(p->fvalues);
         free(p->prop_end);
+        free(p->prop_start);
+        free(p->dry);
         free(p->set_values);
     }
     free(r->ph);
@@ -106,8 +110,10 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
         const lv_phase_plan *pl = &m->plan[k];
         p->fvalues = calloc(pl->n_final, sizeof *p->fvalues);
         p->prop_end = calloc(d->n_stages + 1, sizeof *p->prop_end);
+        p->prop_start = calloc(d->n_stages + 1, sizeof *p->prop_start);
+        p->dry = calloc(d->n_stages + 1, sizeof *p->dry);
         p->set_values = calloc(ph->n_set + 1, sizeof *p->set_values);
-        if (!p->fvalues || !p->prop_end || !p->set_values) {
+        if (!p->fvalues || !p->prop_end || !p->prop_start || !p->dry || !p->set_values) {
             lv_run_free(r);
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
         }
@@ -123,6 +129,8 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
         p->res.set_names = (const char *const *)ph->set_names;
         p->res.set_values = p->set_values;
         p->res.propellant_end = p->prop_end;
+        p->res.propellant_start = p->prop_start;
+        p->res.dry_mass = p->dry;
         phase_clear(p);
         p->dirty = 1;
     }
@@ -381,8 +389,16 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
         if (strcmp(c->pm->def->states[i].name, ph->type->mass_state) == 0)
             m0 = c->pm->def->states[i].start;
     p->res.mass_start = m0;
-    /* the stage book: what the phase burned came out of its bottom stage */
+    /* the stage book: what the phase burned came out of its bottom stage; the start mass
+     * beyond the carried stages is payload */
+    memcpy(p->prop_start, c->prop, d->n_stages * sizeof *p->prop_start);
     memcpy(p->prop_end, c->prop, d->n_stages * sizeof *p->prop_end);
+    double stages = 0.0;
+    for (size_t s = 0; s < d->n_stages; s++)
+        p->dry[s] = r->vals[d->stages[s].dry_mass];
+    for (size_t i = 0; i < ph->n_stages; i++)
+        stages += p->dry[ph->stages[i]] + c->prop[ph->stages[i]];
+    p->res.payload = m0 - stages;
     if (st == LV_OK && pl->mass_final != (size_t)-1) {
         const size_t bottom = ph->stages[0];
         const double burned = m0 - c->finals[pl->mass_final];

@@ -294,6 +294,23 @@ static int flat6_g(double t, const double *x, const double *p, double *g, void *
     return 0;
 }
 
+/* The model's domain: above the flat ground, with a margin of 5 km so that a start on the
+ * ground is inside (a root of z exactly at the start would not be seen as a crossing). */
+static const lv_domain_def flat6_domain[] = {
+    {"z", "m", -5000.0,
+     "the vehicle is under the flat ground (5 km below it); an `impact` end ends the phase on "
+     "the ground"},
+};
+
+static int flat6_domain_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)t;
+    (void)p;
+    (void)inst;
+    q[0] = x[LV_FLAT_Z];
+    return 0;
+}
+
 static lv_event_action flat6_event(double t, double *x, const double *p, const int *fired,
                                    void *inst)
 {
@@ -424,6 +441,9 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .next_time_event = flat6_next_time_event,
         .outputs_fn = flat6_outputs_fn,
         .last_error = flat6_last_error,
+        .n_domain = 1,
+        .domain = flat6_domain,
+        .domain_q = flat6_domain_q,
     };
     *out = m;
     return LV_OK;

@@ -69,6 +69,7 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     const lv_phase_result *r = lv_run_result(run, k);
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "index", (double)(k + 1));
+    cJSON_AddNumberToObject(o, "file_index", (double)(ph.file_index + 1));
     cJSON_AddStringToObject(o, "name", ph.name);
     cJSON_AddStringToObject(o, "model", ph.model);
     cJSON *st = cJSON_AddArrayToObject(o, "stages");
@@ -133,6 +134,17 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     cJSON *ov = cJSON_AddObjectToObject(h, "overrides");
     for (size_t i = 0; i < r->n_set; i++)
         cJSON_AddNumberToObject(ov, r->set_names[i], r->set_values[i]);
+    /* the propellant book of the phase's stages: the bottom one burns */
+    cJSON *book = cJSON_AddObjectToObject(o, "propellant");
+    for (size_t i = 0; i < ph.n_stages; i++) {
+        const size_t si = ph.stages[i];
+        cJSON *sj2 = cJSON_AddObjectToObject(book, lv_mission_stage_name(m, si));
+        cJSON_AddNumberToObject(sj2, "dry_mass", r->dry_mass[si]);
+        cJSON_AddNumberToObject(sj2, "start", r->propellant_start[si]);
+        cJSON_AddNumberToObject(sj2, "end", r->propellant_end[si]);
+        cJSON_AddBoolToObject(sj2, "burns", i == 0);
+    }
+    cJSON_AddNumberToObject(o, "payload", isfinite(r->payload) ? r->payload : 0.0);
     if (r->state == LV_PHASE_DONE) {
         cJSON *fin = cJSON_AddObjectToObject(o, "final");
         for (size_t i = 0; i < r->n_final; i++)
@@ -173,6 +185,10 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
         cJSON_AddNumberToObject(site, "lat", mi.site_lat);
         cJSON_AddNumberToObject(site, "lon", mi.site_lon);
     }
+    cJSON_AddStringToObject(root, "phase_order",
+                            "run order: a phase after its parent; among the phases ready "
+                            "together, file order (index: run order, file_index: position in "
+                            "the file)");
     cJSON *phases = cJSON_AddArrayToObject(root, "phases");
     for (size_t k = 0; k < mi.n_phases; k++)
         cJSON_AddItemToArray(phases, phase_json(run, k));

@@ -97,6 +97,9 @@ lv_status lv_model_validate(const lv_model_def *def, lv_err *err)
     if (def->n_events > 0 && (def->event_g == NULL || def->events == NULL))
         return lv_fail(err, LV_ERR_INPUT, "model '%s': %zu events but no event function",
                        def->name, def->n_events);
+    if (def->n_domain > 0 && (def->domain == NULL || def->domain_q == NULL))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': %zu domain bounds but no function",
+                       def->name, def->n_domain);
     if (def->n_outputs > 0 && def->outputs_fn == NULL)
         return lv_fail(err, LV_ERR_INPUT, "model '%s': %zu outputs but no output function",
                        def->name, def->n_outputs);

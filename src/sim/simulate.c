@@ -49,6 +49,8 @@ typedef struct sim_run {
     const lv_model_def *def;
     void *inst;
     size_t nx, np, ny, ng;
+    size_t nd;    /* domain bounds: event functions ng .. ng + nd - 1 of the integrator */
+    double *q;    /* [nd] the bounded quantities */
     double *p;    /* [np] parameter values */
     double *x;    /* [nx] state */
     double *xdot; /* [nx] scratch for output rows */
@@ -87,8 +89,8 @@ static int sim_rhs(double t, const double *x, double *xdot, void *user)
 {
     sim_run *r = user;
     int rc = r->def->rhs(t, x, r->p, xdot, r->inst);
+    r->rhs_rc = rc; /* the last evaluation's outcome: a failure message names its reason */
     if (rc != 0) {
-        r->rhs_rc = rc;
         r->rhs_rc_t = t;
         return rc;
     }
@@ -108,10 +110,35 @@ static int sim_rhs(double t, const double *x, double *xdot, void *user)
     return 1;
 }
 
+/* The model's event functions, then one per bound of its domain: q - lower. */
 static int sim_g(double t, const double *x, double *g, void *user)
 {
     sim_run *r = user;
-    return r->def->event_g(t, x, r->p, g, r->inst);
+    int rc = r->ng > 0 ? r->def->event_g(t, x, r->p, g, r->inst) : 0;
+    if (rc != 0 || r->nd == 0)
+        return rc;
+    if ((rc = r->def->domain_q(t, x, r->p, r->q, r->inst)) != 0)
+        return rc;
+    for (size_t i = 0; i < r->nd; i++)
+        g[r->ng + i] = r->q[i] - r->def->domain[i].lower;
+    return 0;
+}
+
+/* The message for bound i of the domain left (q = value) at t. */
+static lv_status domain_fail(const sim_run *r, size_t i, double t, double value, int at_start,
+                             lv_err *err)
+{
+    const lv_domain_def *b = &r->def->domain[i];
+    if (at_start)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "model '%s': the start state at t = %.9g s is outside the model's "
+                       "domain: %s = %g %s is below its lower bound %g %s: %s",
+                       r->def->name, t, b->quantity, value, b->unit, b->lower, b->unit, b->why);
+    (void)value; /* at the located crossing the quantity is the bound */
+    return lv_fail(err, LV_ERR_SOLVER,
+                   "model '%s': at t = %.9g s the state left the model's domain: %s fell to its "
+                   "lower bound %g %s: %s",
+                   r->def->name, t, b->quantity, b->lower, b->unit, b->why);
 }
 
 static double thread_cpu_seconds(void)
@@ -411,6 +438,7 @@ static void free_run(sim_run *r)
     free(r->row);
     free(r->roots);
     free(r->g_dir);
+    free(r->q);
     free(r->atol);
     free(r->rtol_v);
 }
@@ -528,6 +556,12 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                                       "model '%s': right-hand side returned %d at t = %.9g s%s%s",
                                       d->name, r->rhs_rc, r->rhs_rc_t, why ? ": " : "",
                                       why ? why : "");
+            /* a state the model could not accept (it said why): the reason first */
+            if (r->rhs_rc > 0 && why != NULL && why[0] != '\0')
+                return lv_fail_prefix(err, st,
+                                      "model '%s': the right-hand side cannot be evaluated at "
+                                      "t = %.9g s: %s",
+                                      d->name, r->rhs_rc_t, why);
             return lv_fail_prefix(err, st, "model '%s'", d->name);
         }
         int state_event = (res == LV_INTEG_ROOT);
@@ -536,7 +570,14 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
             if ((st = emit_row(r, t, err)) != LV_OK) /* just before the event */
                 return st;
             lv_event_action action = LV_EVENT_CONTINUE;
-            if (state_event) {
+            int domain_left = -1; /* a bound of the domain crossed at t */
+            for (size_t i = 0; state_event && i < r->nd; i++)
+                if (r->roots[r->ng + i] != 0 && domain_left < 0)
+                    domain_left = (int)i;
+            int model_event = 0;
+            for (size_t i = 0; state_event && i < r->ng; i++)
+                model_event |= r->roots[i] != 0;
+            if (model_event) {
                 int first = -1;
                 for (size_t i = 0; i < r->ng; i++) {
                     if (r->roots[i] == 0)
@@ -568,6 +609,14 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                     snprintf(rep->stop_name, sizeof rep->stop_name, "time event");
                 if (a > action)
                     action = a;
+            }
+            /* leaving the domain ends the run as failed, unless one of the model's own ends
+             * (an `impact` end at the same instant) ended it */
+            if (domain_left >= 0 && action != LV_EVENT_STOP) {
+                double qv = NAN;
+                if (d->domain_q(t, r->x, r->p, r->q, r->inst) == 0)
+                    qv = r->q[domain_left];
+                return domain_fail(r, (size_t)domain_left, t, qv, 0, err);
             }
             for (size_t i = 0; i < r->nx; i++)
                 if (!isfinite(r->x[i]))
@@ -689,16 +738,19 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
     r->np = d->n_params;
     r->ny = d->n_outputs;
     r->ng = d->n_events;
+    r->nd = d->n_domain;
     rep->n_states = r->nx;
     r->p = calloc(r->np + 1, sizeof *r->p);
     r->x = calloc(r->nx, sizeof *r->x);
     r->xdot = calloc(r->nx, sizeof *r->xdot);
     r->y = calloc(r->ny + 1, sizeof *r->y);
-    r->roots = calloc(r->ng + 1, sizeof *r->roots);
-    r->g_dir = calloc(r->ng + 1, sizeof *r->g_dir);
+    r->roots = calloc(r->ng + r->nd + 1, sizeof *r->roots);
+    r->g_dir = calloc(r->ng + r->nd + 1, sizeof *r->g_dir);
+    r->q = calloc(r->nd + 1, sizeof *r->q);
     r->atol = calloc(r->nx, sizeof *r->atol);
     S->refs = calloc(s->n_final + 1, sizeof *S->refs);
-    if (!r->p || !r->x || !r->xdot || !r->y || !r->roots || !r->g_dir || !r->atol || !S->refs) {
+    if (!r->p || !r->x || !r->xdot || !r->y || !r->roots || !r->g_dir || !r->q || !r->atol ||
+        !S->refs) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
@@ -707,9 +759,24 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
     if ((st = apply_initial(r, s, err)) != LV_OK)
         goto fail;
     if (d->init != NULL && d->init(s->start_time, r->x, r->p, inst) != 0) {
-        st = lv_fail(err, LV_ERR_INPUT, "model '%s': initialisation failed at t = %g s", d->name,
-                     s->start_time);
+        const char *why = d->last_error ? d->last_error(inst) : NULL;
+        st = lv_fail(err, LV_ERR_INPUT, "model '%s': initialisation failed at t = %g s%s%s",
+                     d->name, s->start_time, why && why[0] ? ": " : "", why ? why : "");
         goto fail;
+    }
+    if (r->nd > 0) { /* the start state must lie in the model's domain */
+        if (d->domain_q(s->start_time, r->x, r->p, r->q, inst) != 0) {
+            const char *why = d->last_error ? d->last_error(inst) : NULL;
+            st = lv_fail(err, LV_ERR_INPUT, "model '%s': the start state cannot be evaluated "
+                         "at t = %g s%s%s", d->name, s->start_time, why && why[0] ? ": " : "",
+                         why ? why : "");
+            goto fail;
+        }
+        for (size_t i = 0; i < r->nd; i++)
+            if (!(r->q[i] >= d->domain[i].lower)) {
+                st = domain_fail(r, i, s->start_time, r->q[i], 1, err);
+                goto fail;
+            }
     }
     if ((st = build_layout(r, err)) != LV_OK)
         goto fail;
@@ -735,9 +802,11 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
         }
         for (size_t i = 0; i < r->ng; i++)
             r->g_dir[i] = (int)d->events[i].direction;
+        for (size_t i = 0; i < r->nd; i++)
+            r->g_dir[r->ng + i] = (int)LV_DIR_FALLING;
         lv_integ_problem prob = {
             .n = r->nx,
-            .n_g = r->ng,
+            .n_g = r->ng + r->nd,
             .g_dir = r->g_dir,
             .rhs = sim_rhs,
             .g = sim_g,

@@ -14,3 +14,6 @@ lv_add_unit_test(test_run unit/test_run.c)
 add_test(NAME test_no_model_names
   COMMAND sh -c "! grep -nE '\"(dof3|flat6)\"' src/mission/parse.c src/mission/mission.c src/mission/run.c src/post/summary.c"
   WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+# A run is right or says why (issue 9): model domains, load-time checks, the propellant book,
+# the run order.
+lv_add_unit_test(test_checks unit/test_checks.c)

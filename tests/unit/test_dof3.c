@@ -320,7 +320,7 @@ static void test_vertical_ascent(void)
     cfg.planet = big;
     cfg.gravity = grav;
     cfg.m0 = m0;
-    cfg.m_burnout = mb;
+    cfg.propellant = m0 - mb; /* burnout at mb */
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.start_lat = 10.0 * DEG;
@@ -418,7 +418,7 @@ static void test_thrust_loss(void)
     cfg.gravity = grav;
     cfg.atmo = atmo;
     cfg.m0 = 50e3;
-    cfg.m_burnout = 10e3;
+    cfg.propellant = 50e3 - 10e3; /* burnout at 10 t */
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.start_fpa = 90.0 * DEG;
@@ -574,7 +574,7 @@ static void test_thrust_direction(void)
     lv_dof3_config_default(&cfg);
     cfg.gravity = grav;
     cfg.m0 = 20e3;
-    cfg.m_burnout = 5e3;
+    cfg.propellant = 20e3 - 5e3; /* burnout at 5 t */
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.start_lat = -30.0 * DEG;
@@ -649,12 +649,16 @@ static void test_time_events(void)
     lv_dof3_config_default(&cfg);
     cfg.gravity = grav;
     cfg.m0 = 10e3;
-    cfg.m_burnout = 2e3;
+    cfg.propellant = 10e3 - 2e3; /* burnout at 2 t */
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.inputs = tab_u;
     cfg.throttle = 5.0; /* unused: the table gives the throttle */
+    /* climbing at 300 m/s from 10 km: thrust along the velocity from rest would tip over at
+     * once (the turn rate g cos(fpa)/v is unbounded at v = 0) and fly into the ground */
     cfg.start_fpa = 80.0 * DEG;
+    cfg.start_h = 10e3;
+    cfg.start_vel = 300.0;
     lv_dof3 *m = NULL;
     CHECK_OK(lv_dof3_create(&cfg, &m, &err), &err);
     if (m == NULL)
@@ -706,7 +710,7 @@ static void test_end_events(void)
     cfg.planet = big;
     cfg.gravity = grav;
     cfg.m0 = m0;
-    cfg.m_burnout = 100.0;
+    cfg.propellant = m0 - 100.0; /* burnout at 100 kg */
     cfg.n_engines = 1;
     cfg.engines = &eng;
     cfg.start_fpa = 90.0 * DEG;
@@ -761,9 +765,11 @@ static void test_bad_config(void)
     CHECK_FAILS(lv_dof3_create(&cfg, &m, &err), &err, LV_ERR_INPUT,
                 "start mass m0 = -5 kg (must be > 0)");
     cfg.m0 = 100.0;
-    cfg.m_burnout = -1.0;
-    CHECK_FAILS(lv_dof3_create(&cfg, &m, &err), &err, LV_ERR_INPUT, "m_burnout = -1 kg");
-    cfg.m_burnout = 10.0;
+    cfg.propellant = -1.0;
+    CHECK_FAILS(lv_dof3_create(&cfg, &m, &err), &err, LV_ERR_INPUT, "propellant = -1 kg");
+    cfg.propellant = 100.0; /* all of the start mass */
+    CHECK_FAILS(lv_dof3_create(&cfg, &m, &err), &err, LV_ERR_INPUT, "propellant = 100 kg");
+    cfg.propellant = 90.0;
     cfg.start_lat = 2.0;
     CHECK_FAILS(lv_dof3_create(&cfg, &m, &err), &err, LV_ERR_INPUT, "start_lat = 2 rad");
     cfg.start_lat = 0.0;

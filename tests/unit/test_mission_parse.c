@@ -553,8 +553,89 @@ static void test_engines(void)
              LV_MISSION_DIR "/data/bad_order.csv:5:");
 }
 
+/* Issue 9, item 3: what cannot be flown is refused when the file is read, with its position:
+ * an epoch that is not a date, a tree whose branches contradict each other, a stop time a child
+ * cannot reach, a negative thrust, an out-of-range angle. */
+static void test_unflyable(void)
+{
+#define TWO_STAGES "stages:\n  - {name: s1, dry_mass: 1, propellant_mass: 1}\n" \
+                   "  - {name: s2, dry_mass: 1, propellant_mass: 1}\n" /* lines 2-4 */
+    /* epochs: no 30 February, no hour -1, nothing after the Z, no leap second */
+    BAD("mission: {name: t, epoch: 2026-02-30T12:00:00Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2026-02-30T12:00:00Z': no such day in that month");
+    BAD("mission: {name: t, epoch: 2026-03-01T-1:00:00Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2026-03-01T-1:00:00Z': an ISO 8601 UTC time like");
+    BAD("mission: {name: t, epoch: 2026-03-01T12:00:00Zx}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2026-03-01T12:00:00Zx': text after the Z");
+    BAD("mission: {name: t, epoch: 2016-12-31T23:59:60Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2016-12-31T23:59:60Z': a leap second (:60) cannot be");
+    BAD("mission: {name: t, epoch: 2026-03-01T12:00:00+01:00}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2026-03-01T12:00:00+01:00': the time must end with Z");
+    /* 29 February of a leap year and a fraction of a second are fine */
+    {
+        const char *ok = "mission: {name: t, epoch: 2024-02-29T23:59:59.25Z}\n" STAGES PHASE;
+        lv_err err;
+        lv_mission_def *m = NULL;
+        CHECK_OK(lv_mission_def_parse(ok, strlen(ok), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+        lv_mission_def_free(m);
+    }
+    /* a child carries only its parent's stages */
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1}\n"
+        "  - {name: P2, model: flat6, stages: [s1, s2], from: P1, stop_time: 2}\n",
+        "bad.yaml:7:43: phase 'P2': stages: 's2' is not carried by its parent 'P1'");
+    /* a stage in one place at a time, unless the branches are alternatives */
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 1}\n"
+        "  - {name: A, model: flat6, stages: [s1], from: P1, stop_time: 2}\n"
+        "  - {name: B, model: flat6, stages: [s2, s1], from: P1, stop_time: 2}\n",
+        "bad.yaml:8:42: phase 'B': stages: 's1' also flies in phase 'A' (line 7) of another "
+        "branch (they split after 'P1')");
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 5}\n"
+        "  - {name: P2, model: flat6, stages: [s1], stop_time: 5}\n",
+        "bad.yaml:7:39: phase 'P2': stages: 's1' also flies in phase 'P1' (line 6)");
+    {
+        const char *ok = HEAD TWO_STAGES
+            "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 1}\n"
+            "  - {name: A, model: flat6, stages: [s1], from: P1, stop_time: 2}\n"
+            "  - {name: B, model: flat6, stages: [s2, s1], from: P1, stop_time: 2, "
+            "alternative: true}\n";
+        lv_err err;
+        lv_mission_def *m = NULL;
+        CHECK_OK(lv_mission_def_parse(ok, strlen(ok), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+        CHECK(m != NULL && m->phases[2].alternative == 1 && m->phases[1].alternative == 0);
+        lv_mission_def_free(m);
+    }
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 5}\n"
+        "  - {name: A, model: flat6, stages: [s1], from: P1, stop_time: 2, alternative: maybe}\n",
+        "bad.yaml:7:80: phase 'A': alternative: unknown value 'maybe'");
+    /* a child's stop time after its parent's, and no start time of its own */
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 5}\n"
+        "  - {name: A, model: flat6, stages: [s1], from: P1, stop_time: 5}\n",
+        "bad.yaml:7:64: phase 'A': stop_time 5 s is not after the stop_time 5 s of its parent");
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 5, "
+        "end: [burnout]}\n"
+        "  - {name: A, model: flat6, stages: [s1], from: P1, start_time: 5, stop_time: 9}\n",
+        "bad.yaml:7:65: phase 'A': start_time: a phase with `from` starts when its parent 'P1' "
+        "ends, which an end event decides");
+    BAD(HEAD TWO_STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1, s2], stop_time: 5}\n"
+        "  - {name: A, model: flat6, stages: [s1], from: P1, start_time: 4, stop_time: 9}\n",
+        "bad.yaml:7:65: phase 'A': start_time 4 s is not the end 5 s of its parent 'P1'");
+    /* a thrust table that turns negative: a thrust and a mass flow are >= 0 */
+    BAD(HEAD "stages:\n  - {name: s1, dry_mass: 1, propellant_mass: 1,\n"
+        "     engines: [{table: data/negative_thrust.csv}]}\n" PHASE,
+        "bad.yaml:4:17: stage 's1', engine #1: table '" LV_MISSION_DIR
+        "/data/negative_thrust.csv': thrust = -10000 N at t = 20 s");
+    /* the parameter set's ranges: a latitude beyond the pole, a negative speed */
+    BAD(HEAD "environment: {world: planet}\nparameters: {start_lat_deg: 95}\n" STAGES
+        "phases:\n  - {name: P1, model: dof3, stages: [s1], stop_time: 1}\n",
+        "bad.yaml:3:29: parameters: start_lat_deg must be >= -90 and <= 90 deg, found 95");
+    BAD(HEAD "parameters: {start_vel: -3}\n" STAGES PHASE,
+        "bad.yaml:2:25: parameters: start_vel must be >= 0 m/s, found -3");
+#undef TWO_STAGES
+}
+
 int main(void)
 {
+    test_unflyable();
     test_paper_branch();
     test_planet_and_defaults();
     test_mat_generated();
