@@ -121,7 +121,10 @@ static lv_status us76_eval(const void *par, double z, lv_atmo_state *out, lv_err
         out->p = P;
         out->rho = P * LV_US76_M0 / (LV_US76_RSTAR * TM);               /* eq. (42) */
         out->a = sqrt(LV_US76_GAMMA * LV_US76_RSTAR / LV_US76_M0 * TM); /* eq. (50) */
-        out->mu = viscosity(out->T);
+        /* eq. (51) as the document's tables apply it below 86 km: with the molecular-scale
+         * temperature (its Table I prints mu = 1.2647e-5 Pa s at 85 km: TM = 188.898 K gives
+         * 1.26471e-5, the kinetic T = 188.836 K 1.26436e-5); T and TM differ only above 80 km */
+        out->mu = viscosity(TM);
         out->M = LV_US76_M0 * ratio;
         return LV_OK;
     }

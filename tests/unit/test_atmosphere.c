@@ -154,6 +154,10 @@ static void test_sound_viscosity(const lv_atmo *atm)
     CHECK_OK(lv_atmo_eval(atm, 15000.0, &s, &err), &err);
     CHECK_CLOSE(s.a, 295.07, 0.005);
     CHECK_CLOSE(s.mu, 1.4216e-5, 0.00005e-5);
+    /* 85 km, where the kinetic T (188.836 K) and T_M (188.898 K) differ: Table I prints
+     * 1.2647e-5 N s/m^2, eq. (51) evaluated with T_M (with T it would be 1.26436e-5). */
+    CHECK_OK(lv_atmo_eval(atm, 85000.0, &s, &err), &err);
+    CHECK_CLOSE(s.mu, 1.2647e-5, 0.00005e-5);
     /* Above 86 km: eq. (50) with T_M = T M0 / M and eq. (51) with T (docs/atmosphere.md). */
     CHECK_OK(lv_atmo_eval(atm, 300000.0, &s, &err), &err);
     CHECK_REL(s.a, sqrt(1.4 * 8314.32 * s.T / s.M), 1e-12);
