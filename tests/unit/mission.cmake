@@ -17,3 +17,8 @@ add_test(NAME test_no_model_names
 # A run is right or says why (issue 9): model domains, load-time checks, the propellant book,
 # the run order.
 lv_add_unit_test(test_checks unit/test_checks.c)
+# Default settings give accurate answers (issue 9): a ball drop at lvsim's default method and
+# tolerance against an independent integration of the same equations (scipy).
+add_test(NAME test_drop
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_drop.py
+          $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/drop_out)
