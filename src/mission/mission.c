@@ -175,12 +175,22 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     const lv_mission_def *d = m->def;
     const lv_phase_def *ph = &d->phases[k];
     const lv_phase_plan *pl = &m->plan[k];
+    double dry = 0.0; /* the carried stages' dry mass: no mass can be less */
+    for (size_t i = 0; i < ph->n_stages; i++)
+        dry += m->defaults[d->stages[ph->stages[i]].dry_mass];
     for (size_t i = 0; i < ph->n_set; i++) {
         const double v = m->defaults[ph->set_values[i]];
-        if (strcmp(ph->set_names[i], ph->type->mass_state) == 0 && !(v > 0.0))
+        if (strcmp(ph->set_names[i], ph->type->mass_state) != 0)
+            continue;
+        if (!(v > 0.0))
             return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: %s = %g kg: a mass "
                            "must be > 0", d->path, ph->set_locs[i].line, ph->set_locs[i].column,
                            ph->name, ph->set_names[i], v);
+        if (v < dry)
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: %s = %g kg is less than "
+                           "the dry mass %g kg of the stages it carries", d->path,
+                           ph->set_locs[i].line, ph->set_locs[i].column, ph->name,
+                           ph->set_names[i], v, dry);
     }
     if (ph->parent >= 0)
         return LV_OK;

@@ -163,6 +163,10 @@ static void test_start_checks(void)
                "phases:\n  - {name: P, model: flat6, stages: [s], stop_time: 10}\n"
                "  - {name: C, model: flat6, stages: [s], from: P, stop_time: 20, set: {m: 0}}\n",
                "bad.yaml:5:72: phase 'C': set: m = 0 kg: a mass must be > 0");
+    load_fails("mission: {name: t}\n"
+               "stages: [{name: s, dry_mass: 10, propellant_mass: 0}]\n"
+               "phases:\n  - {name: P, model: flat6, stages: [s], stop_time: 10, set: {m: 7}}\n",
+               "bad.yaml:4:63: phase 'P': set: m = 7 kg is less than the dry mass 10 kg");
     /* check and run accept the same files: a good file loads */
     write_file("good.yaml", "mission: {name: t}\n"
                             "stages: [{name: s, dry_mass: 10, propellant_mass: 0}]\n"
