@@ -37,6 +37,19 @@ extern "C" {
 
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
 
+/* A condition that ends the run - a phase's end on any of the model's variables: the variable
+ * crosses `value` in `direction` (located as a state event), or, for "time", the run reaches
+ * time `value` [s] (a time event, hit exactly). The run then stops as by an event of the model,
+ * with this name in the report and the event log (index: the model's n_events + the stop's
+ * position in `stops`). */
+typedef struct lv_sim_stop {
+    const char *name;     /* "mach", "apoapsis": reported; copied */
+    const char *variable; /* a state, derivative or output of the model ("mach", "der(h)"), or
+                             "time"; resolved when the simulation is created */
+    double value;         /* in the variable's unit */
+    lv_dir direction;     /* crossings that count (ignored for "time") */
+} lv_sim_stop;
+
 typedef struct lv_sim_settings {
     double start_time;       /* s (default 0) */
     double stop_time;        /* s (default 1); >= start_time */
@@ -64,6 +77,9 @@ typedef struct lv_sim_settings {
      * the thread that runs the simulation. */
     int (*progress)(double t, void *user);
     void *progress_user;
+
+    size_t n_stops;            /* ends of the run besides the model's own events */
+    const lv_sim_stop *stops;  /* [n_stops], borrowed until the simulation ends */
 } lv_sim_settings;
 
 /* Dymola's defaults: start 0, stop 1, 500 intervals, dassl, 1e-4, "dsres". */

@@ -70,6 +70,7 @@ static void plan_clear(lv_phase_plan *p)
     for (size_t i = 0; i < p->n_events; i++)
         free(p->event_names[i]);
     free(p->event_names);
+    free(p->stop_end);
     free(p->init_names);
     free(p->init);
     memset(p, 0, sizeof *p);
@@ -90,13 +91,17 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
     const lv_phase_def *ph = &d->phases[k];
     p->n_states = md->n_states;
     p->n_final = 1 + md->n_states + md->n_outputs;
-    p->n_events = md->n_events;
+    p->n_model_events = md->n_events;
+    for (size_t j = 0; j < ph->n_ends; j++)
+        p->n_stops += ph->ends[j].kind == LV_END_VAR || ph->ends[j].kind == LV_END_TIME;
+    p->n_events = md->n_events + p->n_stops;
+    p->stop_end = calloc(p->n_stops + 1, sizeof *p->stop_end);
     p->final_names = calloc(p->n_final, sizeof *p->final_names);
     p->event_names = calloc(p->n_events + 1, sizeof *p->event_names);
     const size_t cap = 2 + d->n_params + md->n_states + ph->n_set;
     p->init_names = calloc(cap, sizeof *p->init_names);
     p->init = calloc(cap, sizeof *p->init);
-    if (!p->final_names || !p->event_names || !p->init_names || !p->init)
+    if (!p->final_names || !p->event_names || !p->init_names || !p->init || !p->stop_end)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     p->final_names[0] = strdup("time");
     for (size_t i = 0; i < md->n_states; i++)
@@ -105,6 +110,13 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
         p->final_names[1 + md->n_states + i] = strdup(md->outputs[i].name);
     for (size_t i = 0; i < md->n_events; i++)
         p->event_names[i] = strdup(md->events[i].name);
+    for (size_t j = 0, q = 0; j < ph->n_ends; j++) {
+        const lv_end_def *e = &ph->ends[j];
+        if (e->kind != LV_END_VAR && e->kind != LV_END_TIME)
+            continue;
+        p->stop_end[q] = j;
+        p->event_names[md->n_events + q++] = strdup(e->kind == LV_END_TIME ? "time" : e->var);
+    }
     for (size_t i = 0; i < p->n_final; i++)
         if (p->final_names[i] == NULL)
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -223,6 +235,42 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     return LV_OK;
 }
 
+/* An end on a variable names a state, derivative or output of the phase's model (a parameter
+ * never crosses); its slot takes the variable's unit; `_deg` only for an angle. */
+static lv_status check_var_end(lv_mission_def *d, const lv_phase_def *ph, const lv_end_def *e,
+                               const lv_model_def *md, lv_err *err)
+{
+    if (e->kind != LV_END_VAR)
+        return LV_OK;
+    lv_var_kind kind;
+    size_t idx;
+    lv_status st = lv_model_find(md, e->var, &kind, &idx, err);
+    if (st == LV_OK && kind == LV_VAR_PARAMETER)
+        st = lv_fail(err, LV_ERR_INPUT, "'%s' is a parameter of the model: constant during the "
+                     "phase, it never crosses a value", e->var);
+    const char *unit = NULL;
+    if (st == LV_OK) {
+        unit = kind == LV_VAR_STATE    ? md->states[idx].unit
+               : kind == LV_VAR_OUTPUT ? md->outputs[idx].unit
+                                       : "";
+        if (kind == LV_VAR_DERIVATIVE)
+            unit = ""; /* the derivative's unit is the state's per second: not needed here */
+        if (e->deg && strcmp(unit, "rad") != 0)
+            st = lv_fail(err, LV_ERR_INPUT, "'%s' is not an angle (its unit is '%s'): write its "
+                         "value without _deg", e->var, unit);
+    }
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s': end", d->path, e->loc.line,
+                              e->loc.column, ph->name);
+    lv_slot_def *sd = &d->slots[e->value];
+    char *u = strdup(unit);
+    if (u == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    free(sd->unit);
+    sd->unit = u;
+    return LV_OK;
+}
+
 /* Every phase's model can be built with the file's values, every `set:` name is a state or
  * parameter of it (its slot takes that variable's unit), every parameter is used by some
  * phase's model; the plans are made on the way. */
@@ -272,6 +320,8 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
             free(sd->unit);
             sd->unit = unit;
         }
+        for (size_t j = 0; j < ph->n_ends && st == LV_OK; j++)
+            st = check_var_end(d, ph, &ph->ends[j], md, err);
         for (size_t j = 0; j < d->n_params; j++) {
             lv_var_kind kind;
             size_t idx;

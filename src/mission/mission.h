@@ -110,16 +110,21 @@ typedef enum lv_end_kind {
     LV_END_ALTITUDE,    /* altitude crosses `value` (m) */
     LV_END_SPEED,       /* speed crosses `value` (m/s) */
     LV_END_APOGEE,      /* vertical/radial velocity falls through zero */
-    LV_END_IMPACT       /* altitude falls through `value` (m, default 0) */
+    LV_END_IMPACT,      /* altitude falls through `value` (m, default 0) */
+    LV_END_VAR,         /* any state, derivative or output of the model (`var`) crosses `value`
+                           in `direction`: a stop condition of the simulation (lv_sim_stop) */
+    LV_END_TIME         /* `value` s after the phase's start (a time event) */
 } lv_end_kind;
 
-/* "burnout", "altitude", "speed", "apogee", "impact". */
+/* "burnout", "altitude", "speed", "apogee", "impact", "var", "time". */
 const char *lv_end_kind_name(lv_end_kind k);
 
 typedef struct lv_end_def {
     lv_end_kind kind;
-    lv_slot value;      /* altitude, speed and impact; LV_NO_SLOT for burnout and apogee */
+    lv_slot value;      /* altitude, speed, impact, var, time; LV_NO_SLOT for burnout, apogee */
     lv_dir direction;
+    char *var;          /* LV_END_VAR: the variable's name ("mach", "der(h)") */
+    int deg;            /* LV_END_VAR: the value was written in degrees (`fpa_deg`) */
     lv_src_loc loc;
 } lv_end_def;
 

@@ -31,8 +31,11 @@ typedef struct lv_phase_plan {
     size_t n_final;           /* "time", the model's states, its outputs */
     char **final_names;       /* [n_final] */
     size_t mass_final;        /* the mass state's index in final_names, or (size_t)-1 */
-    size_t n_events;          /* the model's state events */
+    size_t n_events;          /* the model's state events, then the stop conditions */
     char **event_names;       /* [n_events] */
+    size_t n_model_events;    /* the model's own */
+    size_t n_stops;           /* the phase's ends on any variable or on time: stop conditions */
+    size_t *stop_end;         /* [n_stops] each one's index in the phase's ends */
     size_t n_states;
 } lv_phase_plan;
 

@@ -980,11 +980,11 @@ static lv_status parse_params(const lv_pctx *pc, const lv_ynode *n)
 /* ---- phases --------------------------------------------------------------------------- */
 
 static const char *const end_kind_names[] = { "burnout", "altitude", "speed", "apogee",
-                                               "impact" };
+                                               "impact",  "var",      "time" };
 
 const char *lv_end_kind_name(lv_end_kind k)
 {
-    return (unsigned)k < 5 ? end_kind_names[k] : "?";
+    return (unsigned)k < 7 ? end_kind_names[k] : "?";
 }
 
 /* The value of end event #k of phase `phase` (of kind e->kind) at `v` (NULL: the ground, 0 m)
@@ -993,18 +993,26 @@ static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
                           const char *key, const char *phase, size_t k, const lv_end_def *prev,
                           lv_end_def *e)
 {
-    char slot[LV_NAME_MAX + 48];
-    size_t same = 0; /* earlier ends of this kind */
+    char slot[2 * LV_NAME_MAX + 300];
+    const char *label = e->kind == LV_END_VAR ? e->var : end_kind_names[e->kind];
+    size_t same = 0; /* earlier ends of this kind (or variable) */
     for (size_t j = 0; j < k; j++)
-        same += prev[j].kind == e->kind;
-    int len = snprintf(slot, sizeof slot, "%s.end.%s", phase, end_kind_names[e->kind]);
-    if (same > 0)
+        same += prev[j].kind == e->kind &&
+                (e->kind != LV_END_VAR || strcmp(prev[j].var, e->var) == 0);
+    int len = snprintf(slot, sizeof slot, "%s.end.%s", phase, label);
+    if (same > 0 && len > 0 && (size_t)len < sizeof slot)
         snprintf(slot + len, sizeof slot - (size_t)len, "_%zu", same + 1);
-    const char *unit = e->kind == LV_END_SPEED ? "m/s" : "m";
+    /* a variable's unit is known once the model is built (mission.c); "" until then */
+    const char *unit = e->kind == LV_END_SPEED ? "m/s"
+                       : e->kind == LV_END_TIME ? "s"
+                       : e->kind == LV_END_VAR  ? (e->deg ? "rad" : "")
+                                                : "m";
+    const lv_range range = e->kind == LV_END_SPEED ? LV_RANGE_NONNEG
+                           : e->kind == LV_END_TIME ? LV_RANGE_POS
+                                                    : LV_RANGE_ANY;
     if (v == NULL)
-        return lv_pk_slot_default(c, slot, unit, 0.0, LV_RANGE_ANY, &e->value);
-    return lv_pk_slot(c, v, what, key, slot, unit,
-                      e->kind == LV_END_SPEED ? LV_RANGE_NONNEG : LV_RANGE_ANY, 0, &e->value);
+        return lv_pk_slot_default(c, slot, unit, 0.0, range, &e->value);
+    return lv_pk_slot(c, v, what, key, slot, unit, range, e->deg, &e->value);
 }
 
 /* End event #k of phase `phase`; its value is slot "<phase>.end.<kind>" ("_2", "_3" for the
@@ -1014,8 +1022,6 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
 {
     static const char *const words[] = { "burnout", "apogee", "impact", "altitude", "speed",
                                          NULL };
-    static const char *const keys[] = { "altitude", "speed", "impact", "burnout", "apogee",
-                                        "direction", NULL };
     static const char *const dirs[] = { "rising", "falling", "both", NULL };
     static const lv_dir dir_of[] = { LV_DIR_RISING, LV_DIR_FALLING, LV_DIR_BOTH };
     char what[LV_WHAT_MAX], buf[64];
@@ -1041,28 +1047,69 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: an event name (burnout, apogee, impact) or a mapping such as "
                     "{altitude: 100000} expected, found %s", what, describe(n, buf, sizeof buf));
-    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+    /* {altitude: h}, {speed: v}, {impact: h}, {time: dt}, {output: name, value: x}, or any
+     * variable of the phase's model as the key: {mach: 1}, {fpa_deg: 0} (checked against the
+     * model when the mission is loaded) */
+    if ((st = lv_pk_check_map(c, n, what, NULL)) != LV_OK)
         return st;
-    const lv_ynode *kind = NULL;
+    const lv_ynode *kind = NULL, *output = lv_pk_get(n, "output");
     for (size_t j = 0; j + 1 < n->n; j += 2) {
-        if (strcmp(n->kids[j]->text, "direction") == 0)
+        const char *key = n->kids[j]->text;
+        if (strcmp(key, "direction") == 0 || (output != NULL && (strcmp(key, "output") == 0 ||
+                                                                 strcmp(key, "value") == 0)))
             continue;
         if (kind != NULL)
             return lv_pk_fail(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
-                        "as two entries", what, kind->text, n->kids[j]->text);
+                        "as two entries", what, kind->text, key);
         kind = n->kids[j];
     }
-    if (kind == NULL)
-        return lv_pk_fail(c, n, "%s: which event? add altitude, speed or impact", what);
-    v = lv_pk_get(n, kind->text);
-    if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0)
-        return lv_pk_fail(c, kind, "%s: '%s' takes no value: write it as a plain list entry", what,
-                    kind->text);
-    e->kind = strcmp(kind->text, "impact") == 0  ? LV_END_IMPACT
-              : strcmp(kind->text, "speed") == 0 ? LV_END_SPEED
-                                                 : LV_END_ALTITUDE;
-    if ((st = end_slot(c, v, what, kind->text, phase, k, prev, e)) != LV_OK)
-        return st;
+    if (output != NULL) {
+        const char *name;
+        if ((st = lv_pk_text(c, output, what, "output", &name)) != LV_OK ||
+            (st = lv_pk_need(c, n, what, "value", &v)) != LV_OK)
+            return st;
+        e->kind = LV_END_VAR;
+        char base[256];
+        e->deg = strip_deg(name, base, sizeof base);
+        if ((e->var = dup_text(base)) == NULL)
+            return lv_pk_nomem(c);
+        if ((st = end_slot(c, v, what, "value", phase, k, prev, e)) != LV_OK)
+            return st;
+    } else {
+        if (kind == NULL)
+            return lv_pk_fail(c, n, "%s: which event? add altitude, speed, impact, time, or a "
+                              "variable of the model such as {mach: 1}", what);
+        v = lv_pk_get(n, kind->text);
+        if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0)
+            return lv_pk_fail(c, kind, "%s: '%s' takes no value: write it as a plain list entry",
+                              what, kind->text);
+        if (strcmp(kind->text, "impact") == 0)
+            e->kind = LV_END_IMPACT;
+        else if (strcmp(kind->text, "speed") == 0)
+            e->kind = LV_END_SPEED;
+        else if (strcmp(kind->text, "altitude") == 0)
+            e->kind = LV_END_ALTITUDE;
+        else if (strcmp(kind->text, "time") == 0)
+            e->kind = LV_END_TIME;
+        else {
+            if (kind->len == 0 || kind->len > 255)
+                return lv_pk_fail(c, kind, "%s: a variable name of 1 to 255 characters expected",
+                                  what);
+            char base[256];
+            e->kind = LV_END_VAR;
+            e->deg = strip_deg(kind->text, base, sizeof base);
+            if ((e->var = dup_text(base)) == NULL)
+                return lv_pk_nomem(c);
+        }
+        if ((st = end_slot(c, v, what, kind->text, phase, k, prev, e)) != LV_OK)
+            return st;
+    }
+    if (e->kind == LV_END_TIME) {
+        if (lv_pk_get(n, "direction") != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, "direction"), "%s: a time end has no direction",
+                              what);
+        return LV_OK;
+    }
     if ((v = lv_pk_get(n, "direction")) != NULL) {
         if ((st = lv_pk_enum(c, v, what, "direction", dirs, &i)) != LV_OK)
             return st;
@@ -1329,9 +1376,9 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
             if ((ph->ends = calloc(v->n, sizeof *ph->ends)) == NULL)
                 return lv_pk_nomem(c);
             for (size_t j = 0; j < v->n; j++) {
+                ph->n_ends = j + 1; /* counted first: a failed entry's name is freed too */
                 if ((st = parse_end(c, v->kids[j], ph->name, j, ph->ends, &ph->ends[j])) != LV_OK)
                     return st;
-                ph->n_ends = j + 1;
             }
         }
     }
@@ -1854,6 +1901,8 @@ void lv_mission_def_free(lv_mission_def *m)
             ph->type->cfg_free(ph->type_cfg);
         free(ph->stages);
         free(ph->stage_locs);
+        for (size_t j = 0; j < ph->n_ends; j++)
+            free(ph->ends[j].var);
         free(ph->ends);
         free(ph->method);
         for (size_t k = 0; k < ph->n_set; k++)

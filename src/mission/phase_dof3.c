@@ -277,6 +277,8 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     s->event_end[0] = -1; /* event 0: burnout (a phase end when the phase lists it) */
     for (size_t j = 0; j < ph->n_ends; j++) {
         const lv_end_def *e = &ph->ends[j];
+        if (e->kind == LV_END_VAR || e->kind == LV_END_TIME)
+            continue; /* a stop condition of the simulation (run.c) */
         if (e->kind == LV_END_BURNOUT) {
             cfg.stop_at_burnout = 1;
             s->event_end[0] = (int)j;

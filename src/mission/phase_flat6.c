@@ -124,13 +124,17 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
         e0 += sd->n_engines;
     }
     s->event_end[0] = -1; /* event 0: the bottom stage's burnout stops the engines */
+    size_t n_ends = 0;    /* events 1..: the model's own ends in order (an end on any variable
+                             or a time is a stop condition of the simulation: run.c) */
     for (size_t j = 0; j < ph->n_ends; j++) {
-        s->ends[j] = (lv_flat_end){flat_end_of[ph->ends[j].kind], val(bc, ph->ends[j].value),
-                                   ph->ends[j].direction};
-        s->event_end[1 + j] = (int)j; /* events 1..: the ends in order */
+        const lv_end_def *e = &ph->ends[j];
+        if (e->kind == LV_END_VAR || e->kind == LV_END_TIME)
+            continue;
+        s->ends[n_ends] = (lv_flat_end){flat_end_of[e->kind], val(bc, e->value), e->direction};
+        s->event_end[1 + n_ends++] = (int)j;
     }
     lv_flat6_config cfg = {ph->name,    val(bc, d->env.g), ph->n_stages, s->stages,
-                           ph->n_ends, s->ends};
+                           n_ends,      s->ends};
     lv_status st = lv_flat6_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         flat6_free_self(s);

@@ -217,6 +217,7 @@ struct lv_phase_call {
     double *finals;      /* [n_final] */
     double *prop;        /* [n_stages] the stage book at the phase start */
     double mass_book;    /* kg, the carried stages' mass from the book (NAN for a root) */
+    lv_sim_stop *stops;  /* [plan n_stops] the ends on any variable or on time */
     lv_result *rows;
     lv_sink mem;
 };
@@ -230,6 +231,7 @@ void lv_phase_call_free(lv_phase_call *c)
     free(c->values);
     free(c->finals);
     free(c->prop);
+    free(c->stops);
     lv_sink_destroy(&c->mem);
     lv_result_free(c->rows);
     free(c);
@@ -263,7 +265,8 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     c->values = calloc(pl->n_init + 1, sizeof *c->values);
     c->finals = calloc(pl->n_final, sizeof *c->finals);
     c->prop = calloc(d->n_stages + 1, sizeof *c->prop);
-    if (!c->names || !c->values || !c->finals || !c->prop) {
+    c->stops = calloc(pl->n_stops + 1, sizeof *c->stops);
+    if (!c->names || !c->values || !c->finals || !c->prop || !c->stops) {
         lv_phase_call_free(c);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -313,6 +316,16 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     s->initial_values = c->values;
     s->n_final = pl->n_final;
     s->final_names = (const char *const *)pl->final_names;
+    for (size_t j = 0; j < pl->n_stops; j++) {
+        const lv_end_def *e = &ph->ends[pl->stop_end[j]];
+        const int is_time = e->kind == LV_END_TIME;
+        c->stops[j] = (lv_sim_stop){pl->event_names[pl->n_model_events + j],
+                                    is_time ? "time" : e->var,
+                                    is_time ? s->start_time + v[e->value] : v[e->value],
+                                    e->direction};
+    }
+    s->n_stops = pl->n_stops;
+    s->stops = c->stops;
     if (!(opt && opt->no_rows)) {
         if ((st = lv_sink_memory_create(&c->rows, &c->mem, err)) != LV_OK) {
             lv_phase_call_free(c);
@@ -370,7 +383,9 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
         p->set_values[i] = r->vals[ph->set_values[i]];
     if (p->res.report.reason == LV_STOP_EVENT && p->res.report.stop_event >= 0 &&
         (size_t)p->res.report.stop_event < pl->n_events) {
-        int j = c->pm->event_end[p->res.report.stop_event];
+        const size_t ev = (size_t)p->res.report.stop_event;
+        int j = ev < pl->n_model_events ? c->pm->event_end[ev]
+                                        : (int)pl->stop_end[ev - pl->n_model_events];
         p->res.end_index = j;
         if (j >= 0 && ph->ends[j].value != LV_NO_SLOT)
             p->res.end_value = r->vals[ph->ends[j].value];

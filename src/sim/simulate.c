@@ -51,6 +51,11 @@ typedef struct sim_run {
     size_t nx, np, ny, ng;
     size_t nd;    /* domain bounds: event functions ng .. ng + nd - 1 of the integrator */
     double *q;    /* [nd] the bounded quantities */
+    size_t ns;    /* stop conditions (lv_sim_settings.stops) */
+    struct stop_ref *stops; /* [ns] */
+    size_t ns_root; /* of them crossings: event functions ng + nd .. ng + nd + ns_root - 1 */
+    double *xs, *ys; /* [nx], [ny] scratch for the stops' derivatives and outputs */
+    double t_model_te; /* the model's own next time event (the stops' are merged in t_te) */
     double *p;    /* [np] parameter values */
     double *x;    /* [nx] state */
     double *xdot; /* [nx] scratch for output rows */
@@ -110,17 +115,53 @@ static int sim_rhs(double t, const double *x, double *xdot, void *user)
     return 1;
 }
 
-/* The model's event functions, then one per bound of its domain: q - lower. */
+/* A stop condition resolved: the variable's kind and index ("time": a time event). */
+typedef struct stop_ref {
+    int is_time;
+    lv_var_kind kind;
+    size_t index;
+    double value;
+    size_t root; /* its event function (crossings): ng + nd + root */
+} stop_ref;
+
+/* The model's event functions, then one per bound of its domain (q - lower), then one per
+ * crossing stop condition (variable - value). */
 static int sim_g(double t, const double *x, double *g, void *user)
 {
     sim_run *r = user;
     int rc = r->ng > 0 ? r->def->event_g(t, x, r->p, g, r->inst) : 0;
-    if (rc != 0 || r->nd == 0)
+    if (rc != 0)
         return rc;
-    if ((rc = r->def->domain_q(t, x, r->p, r->q, r->inst)) != 0)
-        return rc;
-    for (size_t i = 0; i < r->nd; i++)
-        g[r->ng + i] = r->q[i] - r->def->domain[i].lower;
+    if (r->nd > 0) {
+        if ((rc = r->def->domain_q(t, x, r->p, r->q, r->inst)) != 0)
+            return rc;
+        for (size_t i = 0; i < r->nd; i++)
+            g[r->ng + i] = r->q[i] - r->def->domain[i].lower;
+    }
+    int have_xdot = 0, have_y = 0;
+    for (size_t j = 0; j < r->ns; j++) {
+        const stop_ref *sr = &r->stops[j];
+        if (sr->is_time)
+            continue;
+        double v = 0.0;
+        switch (sr->kind) {
+        case LV_VAR_STATE: v = x[sr->index]; break;
+        case LV_VAR_PARAMETER: v = r->p[sr->index]; break;
+        case LV_VAR_DERIVATIVE:
+            if (!have_xdot && (rc = r->def->rhs(t, x, r->p, r->xs, r->inst)) != 0)
+                return rc;
+            have_xdot = 1;
+            v = r->xs[sr->index];
+            break;
+        case LV_VAR_OUTPUT:
+            if (!have_y && (rc = r->def->outputs_fn(t, x, r->p, r->ys, r->inst)) != 0)
+                return rc;
+            have_y = 1;
+            v = r->ys[sr->index];
+            break;
+        }
+        g[r->ng + r->nd + sr->root] = v - sr->value;
+    }
     return 0;
 }
 
@@ -353,6 +394,34 @@ static lv_status resolve_finals(const lv_model_def *d, const lv_sim_settings *s,
     return LV_OK;
 }
 
+/* The stop conditions: their variables resolved, crossings numbered after the domain's. */
+static lv_status resolve_stops(sim_run *r, const lv_sim_settings *s, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    r->ns_root = 0;
+    for (size_t j = 0; j < s->n_stops; j++) {
+        const lv_sim_stop *sp = &s->stops[j];
+        stop_ref *sr = &r->stops[j];
+        if (sp->name == NULL || sp->variable == NULL || !isfinite(sp->value))
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': stop condition %zu: no name or "
+                           "variable, or a value that is not finite", d->name, j + 1);
+        sr->value = sp->value;
+        if (strcmp(sp->variable, "time") == 0) {
+            sr->is_time = 1;
+            continue;
+        }
+        lv_status st = lv_model_find(d, sp->variable, &sr->kind, &sr->index, err);
+        if (st != LV_OK)
+            return lv_fail_prefix(err, st, "stop condition '%s'", sp->name);
+        if (sr->kind == LV_VAR_PARAMETER)
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': stop condition '%s': '%s' is a "
+                           "parameter: constant during a run, it never crosses %g", d->name,
+                           sp->name, sp->variable, sp->value);
+        sr->root = r->ns_root++;
+    }
+    return LV_OK;
+}
+
 /* ---- sinks ------------------------------------------------------------------------ */
 
 static lv_status open_sinks(sim_run *r, const lv_sim_settings *s, lv_err *err)
@@ -439,6 +508,9 @@ static void free_run(sim_run *r)
     free(r->roots);
     free(r->g_dir);
     free(r->q);
+    free(r->stops);
+    free(r->xs);
+    free(r->ys);
     free(r->atol);
     free(r->rtol_v);
 }
@@ -475,9 +547,13 @@ static double grid_time(const out_grid *g, long k)
 
 static double next_time_event(sim_run *r, double t)
 {
-    if (r->def->next_time_event == NULL)
-        return INFINITY;
-    return r->def->next_time_event(t, r->p, r->inst);
+    double tn = r->def->next_time_event != NULL ? r->def->next_time_event(t, r->p, r->inst)
+                                                : INFINITY;
+    r->t_model_te = tn;
+    for (size_t j = 0; j < r->ns; j++)
+        if (r->stops[j].is_time && r->stops[j].value > t && r->stops[j].value < tn)
+            tn = r->stops[j].value;
+    return tn;
 }
 
 /* A simulation in progress: what lv_simulate() did in one call, in steps. */
@@ -598,7 +674,28 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                 if (a > action)
                     action = a;
             }
-            if (time_event) {
+            /* the run's stop conditions: crossings, then times reached */
+            for (size_t j = 0; j < r->ns; j++) {
+                const stop_ref *sr = &r->stops[j];
+                const int hit = sr->is_time ? (time_event && t == sr->value)
+                                            : (state_event && r->roots[r->ng + r->nd + sr->root] != 0);
+                if (!hit)
+                    continue;
+                const int dir = sr->is_time ? 0 : r->roots[r->ng + r->nd + sr->root];
+                if (sr->is_time)
+                    rep->stats.time_events++;
+                else
+                    rep->stats.state_events++;
+                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir) != LV_OK)
+                    return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                if (action != LV_EVENT_STOP) {
+                    rep->stop_event = (int)(r->ng + j);
+                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s", s->stops[j].name);
+                    action = LV_EVENT_STOP;
+                }
+            }
+            int model_time_event = time_event && t >= r->t_model_te;
+            if (model_time_event) {
                 rep->stats.time_events++;
                 if (log_event(r, t, 0, -1, 0) != LV_OK)
                     return lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -744,17 +841,23 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
     r->x = calloc(r->nx, sizeof *r->x);
     r->xdot = calloc(r->nx, sizeof *r->xdot);
     r->y = calloc(r->ny + 1, sizeof *r->y);
-    r->roots = calloc(r->ng + r->nd + 1, sizeof *r->roots);
-    r->g_dir = calloc(r->ng + r->nd + 1, sizeof *r->g_dir);
+    r->roots = calloc(r->ng + r->nd + s->n_stops + 1, sizeof *r->roots);
+    r->g_dir = calloc(r->ng + r->nd + s->n_stops + 1, sizeof *r->g_dir);
     r->q = calloc(r->nd + 1, sizeof *r->q);
+    r->ns = s->n_stops;
+    r->stops = calloc(r->ns + 1, sizeof *r->stops);
+    r->xs = calloc(r->nx + 1, sizeof *r->xs);
+    r->ys = calloc(r->ny + 1, sizeof *r->ys);
     r->atol = calloc(r->nx, sizeof *r->atol);
     S->refs = calloc(s->n_final + 1, sizeof *S->refs);
     if (!r->p || !r->x || !r->xdot || !r->y || !r->roots || !r->g_dir || !r->q || !r->atol ||
-        !S->refs) {
+        !S->refs || !r->stops || !r->xs || !r->ys) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
     if ((st = resolve_finals(d, s, S->refs, err)) != LV_OK)
+        goto fail;
+    if ((st = resolve_stops(r, s, err)) != LV_OK)
         goto fail;
     if ((st = apply_initial(r, s, err)) != LV_OK)
         goto fail;
@@ -804,9 +907,12 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             r->g_dir[i] = (int)d->events[i].direction;
         for (size_t i = 0; i < r->nd; i++)
             r->g_dir[r->ng + i] = (int)LV_DIR_FALLING;
+        for (size_t j = 0; j < r->ns; j++)
+            if (!r->stops[j].is_time)
+                r->g_dir[r->ng + r->nd + r->stops[j].root] = (int)s->stops[j].direction;
         lv_integ_problem prob = {
             .n = r->nx,
-            .n_g = r->ng + r->nd,
+            .n_g = r->ng + r->nd + r->ns_root,
             .g_dir = r->g_dir,
             .rhs = sim_rhs,
             .g = sim_g,

@@ -22,3 +22,5 @@ lv_add_unit_test(test_checks unit/test_checks.c)
 add_test(NAME test_drop
   COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_drop.py
           $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/drop_out)
+# A phase ends on any variable of its model or after a duration (issue 12).
+lv_add_unit_test(test_ends unit/test_ends.c)

@@ -207,7 +207,7 @@ static void test_planet_and_defaults(void)
         CHECK(strcmp(m->env.atmosphere, "us76") == 0);
         CHECK(m->description == NULL);
         CHECK_CLOSE(lv_mission_def_param(m, "start_lon", 0.0), -52.775 * DEG, 1e-15);
-        CHECK_CLOSE(V(m->stages[0].engines[0].mdot), 400.0, 0.0);
+        CHECK_CLOSE(V(m->stages[0].engines[0].mdot), 850.0, 0.0);
         CHECK_CLOSE(V(m->stages[0].engines[0].isp_vac), 0.0, 0.0);
         CHECK_CLOSE(V(m->stages[1].engines[0].isp_vac), 340.0, 0.0);
         CHECK(strcmp(m->stages[1].engines[0].name, "upper.e1") == 0);
@@ -215,6 +215,7 @@ static void test_planet_and_defaults(void)
         CHECK(strcmp(m->phases[1].type->name, "dof3") == 0);
         CHECK(strcmp(m->phases[1].method, "cvode-adams") == 0);
         CHECK(m->phases[1].ends[1].direction == LV_DIR_BOTH);
+        CHECK(m->phases[1].n_ends == 3 && m->phases[1].ends[2].kind == LV_END_IMPACT);
         CHECK(m->phases[1].intervals == 500);
     }
     lv_mission_def_free(m);
