@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_guidance.h"
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_status.h"
@@ -90,6 +91,13 @@ typedef struct lv_dof3_config {
      * limits. Its breakpoints are time events. Borrowed. */
     const lv_table *inputs;
 
+    /* Steering and throttle laws (lv_guidance.h). steering.law LV_STEER_INPUTS (default):
+     * the inputs above. Any other law replaces alpha, beta, mu and the inputs table's
+     * angles. steering.target_lat/lon NAN (default): the start point (start_lat/lon).
+     * Tables borrowed. */
+    lv_steering steering;
+    lv_throttle_cfg throttle_law;
+
     int stop_at_burnout;       /* 1: burnout ends the run; 0: engines off, continue */
     size_t n_ends;
     const lv_dof3_end *ends;   /* [n_ends], copied */
@@ -97,7 +105,8 @@ typedef struct lv_dof3_config {
 
 /* Earth (lv_planet_earth), no gravity (must be set), no atmosphere, m0 = 1000 kg,
  * propellant 0, no engines, no aero, all start values and inputs 0 except throttle 1,
- * stop_at_burnout 0, no ends. */
+ * stop_at_burnout 0, no ends; steering: the inputs (target: the start point, gain 1,
+ * bank_max 45 deg, tangent c = 1), throttle law: nominal without limits (q_gain 1/s). */
 LV_API void lv_dof3_config_default(lv_dof3_config *cfg);
 
 typedef struct lv_dof3 lv_dof3;

@@ -12,6 +12,7 @@
 #include "core/units.h"
 #include "core/vec3.h"
 #include "dynamics/flight.h"
+#include "dynamics/guidance.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof3.h"
 #include "vehicle/vehicle.h"
@@ -29,7 +30,8 @@ enum {
     O_NAX, O_NNORM, O_NLAT, O_ACC, O_ACC_SENSED,
     O_THRUST, O_DRAG, O_LIFT, O_SIDE, O_MDOT, O_ENGINE_ON,
     O_ALPHA, O_BETA, O_MU, O_THR, O_DOWNRANGE,
-    O_SMA, O_ECC, O_INC, O_RAAN, O_ARGP, O_APO, O_PERI, O_N
+    O_SMA, O_ECC, O_INC, O_RAAN, O_ARGP, O_APO, O_PERI,
+    O_THETA, O_PSI, O_PHI, O_PROP_LEFT, O_TGT_DIST, O_TGT_BEAR, O_TGT_OVER, O_N
 };
 
 /* Error control (docs/integration.md): the position is measured from the planet's centre, so
@@ -96,10 +98,11 @@ static const lv_var output_vars[O_N] = {
     {"side_force", "N", "Aerodynamic force along wind +y", 0, 0},
     {"mdot", "kg/s", "Propellant mass flow of all engines (-dm/dt)", 0, 0},
     {"engine_on", "", "1 while the engines burn", 0, 0},
-    {"alpha_in", "rad", "Angle of attack in effect (parameter or table)", 0, 0},
+    {"alpha_in", "rad", "Angle of attack in effect (input, table, or the attitude's)", 0, 0},
     {"beta_in", "rad", "Sideslip angle in effect", 0, 0},
-    {"mu_in", "rad", "Bank angle in effect", 0, 0},
-    {"throttle_in", "", "Commanded throttle in effect (before engine limits)", 0, 0},
+    {"mu_in", "rad", "Bank angle in effect (about the air-relative velocity)", 0, 0},
+    {"throttle_in", "", "Throttle in effect: commanded, or the throttle law's (before engine "
+     "limits)", 0, 0},
     {"downrange", "m", "Great-circle distance from the start point on the sphere of radius a", 0,
      0},
     {"sma", "m", "Osculating semi-major axis", 0, 0},
@@ -109,6 +112,15 @@ static const lv_var output_vars[O_N] = {
     {"argp", "rad", "Osculating argument of periapsis", 0, 0},
     {"apo_alt", "m", "Apoapsis radius minus the equatorial radius a", 0, 0},
     {"peri_alt", "m", "Periapsis radius minus the equatorial radius a", 0, 0},
+    {"theta", "rad", "Pitch attitude of body x above the local horizon (3-2-1 Euler, NED)", 0, 0},
+    {"psi", "rad", "Heading (yaw) attitude of body x, from north to east", 0, 0},
+    {"phi", "rad", "Roll attitude about body x", 0, 0},
+    {"propellant_left", "kg", "Propellant left in the burning stage", 0, 0},
+    {"target_distance", "m", "Great-circle distance to the target (sphere of radius a; default "
+     "target: the launch site)", 0, 0},
+    {"target_bearing", "rad", "Bearing of the target, from north to east", 0, 0},
+    {"target_overshoot", "m", "Vacuum ballistic range toward the target over flat ground minus "
+     "its distance (> 0: beyond it)", 0, 0},
 };
 
 static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
@@ -131,10 +143,12 @@ static const struct {
 typedef struct dof3_inst {
     lv_dof3 *m;           /* NULL in a block lv_simulate zeroed itself */
     int engines_on;       /* mode: 1 while propellant remains */
+    int burned_out;       /* the propellant is gone */
     double m_burnout;     /* kg: the start mass minus the burning stage's propellant */
     lv_table_cursor in_cur;
     double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
     lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
+    lv_guid_rt guid;      /* the steering law's start frame, cursors, trigonometry */
     char msg[LV_ERR_MSG_MAX];
 } dof3_inst;
 
@@ -159,6 +173,12 @@ struct lv_dof3 {
     int has_aero;
     lv_aero aero;
     lv_flight_schedule inputs;   /* control history (table NULL: constants only) */
+    int steers;                  /* a steering law other than the inputs (lv_guidance.h) */
+    lv_guid guid;
+    int throttles;               /* a throttle law with an effect (limits, landing) */
+    lv_throttle_cfg thr;
+    double c_min, c_max;         /* the throttle range every engine accepts */
+    double p_ae;                 /* m^2: the engines' exit areas */
     int stop_at_burnout;
 
     dof3_inst inst;
@@ -183,6 +203,78 @@ static const double *v_of(const double *x) { return x + LV_X3_VX; }
 
 /* ---- the point model ----------------------------------------------------------------- */
 
+/* Steps 3 to 5 with a steering law and a throttle law (guidance.h): the law's attitude and
+ * the aerodynamic angles that result; the aerodynamic force (with the heading law's
+ * load-factor limit); gravity; the throttle law from the forces without thrust; thrust. */
+static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x,
+                             const double *p, dof3_point *pt, lv_err *err)
+{
+    const lv_flight_world *w = &m->world;
+    const double mass = x[LV_X3_M];
+    lv_aero *aero = m->has_aero ? &m->aero : NULL;
+    if (m->steers) {
+        if (lv_guid_attitude(&m->guid, &s->guid, t, &pt->kin, &pt->air, p[P_THR], p[P_FPA],
+                             p[P_CHI], &pt->ctl, &pt->ax, err) != 0)
+            return 1;
+    } else {
+        if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
+                                    err) != 0)
+            return 1;
+        lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
+    }
+    if (lv_flight_aero(aero, &pt->kin, &pt->air, &pt->ctl, &pt->ax, pt->coef, &pt->f_aero, err) !=
+        0)
+        return 1;
+    if (m->guid.s.law == LV_STEER_HEADING && m->guid.s.n_max > 0.0) {
+        const double alpha = pt->ctl.u[LV_CTRL_ALPHA];
+        const double lim = lv_guid_alpha_limited(&m->guid, alpha,
+                                                 -lv_v3_dot(pt->f_aero, pt->ax.zw), mass);
+        if (lim != alpha) { /* the lift at the limited angle of attack */
+            pt->ctl.u[LV_CTRL_ALPHA] = lim;
+            pt->ctl.cs[LV_CTRL_ALPHA][0] = cos(lim);
+            pt->ctl.cs[LV_CTRL_ALPHA][1] = sin(lim);
+            lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
+            if (lv_flight_aero(aero, &pt->kin, &pt->air, &pt->ctl, &pt->ax, pt->coef,
+                               &pt->f_aero, err) != 0)
+                return 1;
+        }
+    }
+    pt->g_ecef = lv_flight_gravity(w, m->grav_ws, &pt->kin);
+    if (m->throttles && s->engines_on) {
+        double t_full, md_full;
+        lv_flight_controls full = pt->ctl;
+        full.u[LV_CTRL_THROTTLE] = 1.0;
+        if (lv_flight_thrust(m->eng, m->n_eng, 1, t, &full, &pt->air, m->eng_buf, &t_full,
+                             &md_full, err) != 0)
+            return 1;
+        const lv_vec3 a_nt = lv_v3_add(lv_v3_add(pt->g_ecef, lv_v3_scale(pt->f_aero, 1.0 / mass)),
+                                       lv_flight_frame_accel(w, &pt->kin));
+        const lv_thr_in in = {
+            .mass = mass,
+            .t_full = t_full,
+            .p_ae = pt->air.p_amb * m->p_ae,
+            .c_min = m->c_min,
+            .c_max = m->c_max,
+            .xb = pt->ax.xb,
+            .f_aero = pt->f_aero,
+            .a_nothrust = a_nt,
+            .up = lv_v3_scale(pt->kin.d_ax, -1.0),
+            .h = pt->kin.h,
+            .v_down = lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
+            .h_dot = -lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
+            .drho_dh = m->thr.q_max > 0.0 ? lv_flight_drho_dh(w, pt->kin.h) : 0.0,
+        };
+        pt->ctl.u[LV_CTRL_THROTTLE] =
+            lv_guid_throttle(&m->thr, pt->ctl.u[LV_CTRL_THROTTLE], &in, &pt->air);
+    }
+    if (lv_flight_thrust(m->eng, m->n_eng, s->engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
+                         &pt->thrust, &pt->mdot, err) != 0)
+        return 1;
+    pt->f_sum = lv_v3_add(lv_v3_scale(pt->ax.xb, pt->thrust), pt->f_aero);
+    pt->a_eci = lv_flight_accel_eci_g(&pt->kin, pt->g_ecef, pt->f_sum, mass);
+    return 0;
+}
+
 /* Fills *pt from (t, x, p): kinematics, flight condition, controls, forces, equations of
  * motion. `full` (outputs): the exact geodetic conversion. Returns 0, > 0 (state not
  * acceptable) or < 0 (stop); err (may be NULL, as in the hot path) receives the reason. */
@@ -200,6 +292,8 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
     int rc = lv_flight_air_eval(w, t, &pt->kin, &pt->air, err);
     if (rc != 0)
         return rc;
+    if (m->steers || m->throttles)
+        return point_eval_guided(m, s, t, x, p, pt, err);
     if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
                                 err) != 0)
         return 1;
@@ -311,7 +405,8 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     /* the propellant book: burnout when the burning stage's propellant is gone, whatever else
      * the start mass carries (a payload set by the user is not burnt) */
     s->m_burnout = x[LV_X3_M] - p[P_PROP];
-    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;
+    s->burned_out = 0;
+    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0 && s->m->thr.law != LV_THROTTLE_OFF;
     for (int k = 0; k < 3; k++)
         s->trig.ang[k] = NAN;
     lv_flight_kin kin;
@@ -319,6 +414,8 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     const double rn = lv_v3_norm(kin.r_ecef);
     if (!(rn > 0.0))
         return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
+    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
+    lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
     s->r0_unit[0] = kin.r_ecef.x / rn;
     s->r0_unit[1] = kin.r_ecef.y / rn;
     s->r0_unit[2] = kin.r_ecef.z / rn;
@@ -387,6 +484,7 @@ static lv_event_action dof3_on_event(double t, double *x, const double *p, const
     lv_event_action act = LV_EVENT_CONTINUE;
     if (fired[0]) { /* propellant gone: engines off, a new initial value problem */
         s->engines_on = 0;
+        s->burned_out = 1;
         act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
     }
     for (size_t i = 0; i < m->n_ends; i++)
@@ -407,6 +505,8 @@ static double dof3_next_time_event(double t, const double *p, void *inst)
     for (size_t i = 0; i < m->n_eng; i++)
         if (m->eng[i].table != NULL)
             tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
+    if (m->steers)
+        tn = min_d(tn, lv_guid_next_time_event(&m->guid, &((const dof3_inst *)inst)->guid, t));
     return tn;
 }
 
@@ -484,6 +584,10 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ARGP] = el.argp;
     y[O_APO] = el.r_apo - m->world.planet.a;
     y[O_PERI] = el.r_peri - m->world.planet.a;
+    lv_guid_euler_local(k, ax, &y[O_THETA], &y[O_PSI], &y[O_PHI]);
+    y[O_PROP_LEFT] = s->burned_out || mass < s->m_burnout ? 0.0 : mass - s->m_burnout;
+    lv_guid_target(&m->guid, k, m->world.planet.a, lv_v3_dot(pt.g_ecef, k->d_ax),
+                   &y[O_TGT_DIST], &y[O_TGT_BEAR], &y[O_TGT_OVER]);
     return 0;
 }
 
@@ -495,6 +599,55 @@ void lv_dof3_config_default(lv_dof3_config *cfg)
     cfg->planet = lv_planet_earth();
     cfg->m0 = 1000.0;
     cfg->throttle = 1.0;
+    cfg->steering.target_lat = NAN; /* the start point */
+    cfg->steering.target_lon = NAN;
+    cfg->steering.gain = 1.0;
+    cfg->steering.bank_max = 45.0 * LV_DEG;
+    cfg->steering.c = 1.0;
+    cfg->throttle_law.q_gain = 1.0;
+}
+
+/* The steering and throttle laws (lv_guidance.h) for engines m->eng. */
+static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
+{
+    lv_steering st = cfg->steering;
+    if (isnan(st.target_lat) || isnan(st.target_lon)) {
+        st.target_lat = cfg->start_lat;
+        st.target_lon = cfg->start_lon;
+    }
+    m->steers = st.law != LV_STEER_INPUTS;
+    lv_status rc = lv_guid_init(&m->guid, &st, &cfg->planet, cfg->aero != NULL, err);
+    if (rc != LV_OK)
+        return lv_fail_prefix(err, rc, "dof3");
+    const lv_throttle_cfg *t = &cfg->throttle_law;
+    if ((unsigned)t->law > LV_THROTTLE_OFF)
+        return lv_fail(err, LV_ERR_INPUT, "dof3: unknown throttle law %d", (int)t->law);
+    if (!(t->g_limit >= 0.0) || !isfinite(t->g_limit) || !(t->q_max >= 0.0) ||
+        !isfinite(t->q_max) || (t->q_max > 0.0 && !(t->q_gain > 0.0 && isfinite(t->q_gain))))
+        return lv_fail(err, LV_ERR_INPUT, "dof3: throttle: g_limit = %g, q_max = %g Pa must be "
+                       ">= 0 (0: none) and q_gain = %g 1/s > 0", t->g_limit, t->q_max, t->q_gain);
+    if (t->law == LV_THROTTLE_LANDING &&
+        (!isfinite(t->land_altitude) || !(t->land_speed >= 0.0) || !isfinite(t->land_speed)))
+        return lv_fail(err, LV_ERR_INPUT, "dof3: landing throttle: altitude %g m must be finite "
+                       "and speed %g m/s >= 0", t->land_altitude, t->land_speed);
+    m->thr = *t;
+    m->throttles = t->law == LV_THROTTLE_LANDING || t->g_limit > 0.0 || t->q_max > 0.0;
+    m->c_min = 0.0;
+    m->c_max = HUGE_VAL;
+    for (size_t i = 0; i < m->n_eng; i++) {
+        if (m->eng[i].thr_min > m->c_min)
+            m->c_min = m->eng[i].thr_min;
+        if (m->eng[i].thr_max < m->c_max)
+            m->c_max = m->eng[i].thr_max;
+        m->p_ae += m->eng[i].exit_area;
+    }
+    if (m->n_eng == 0)
+        m->c_max = 1.0;
+    if (m->throttles && m->c_min > m->c_max)
+        return lv_fail(err, LV_ERR_INPUT, "dof3: the engines' throttle ranges have nothing in "
+                       "common (largest minimum %g, smallest maximum %g): a throttle law sets one "
+                       "throttle for all", m->c_min, m->c_max);
+    return LV_OK;
 }
 
 static int is_time_axis(const char *name)
@@ -716,7 +869,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         goto fail;
     }
     m->stop_at_burnout = cfg->stop_at_burnout != 0;
-    if ((st = setup_ends(m, cfg, err)) != LV_OK)
+    if ((st = setup_ends(m, cfg, err)) != LV_OK || (st = setup_guidance(m, cfg, err)) != LV_OK)
         goto fail;
 
     /* variables with this configuration's defaults */

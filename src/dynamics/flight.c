@@ -224,12 +224,44 @@ int lv_flight_aero(lv_aero *aero, const lv_flight_kin *k, const lv_flight_air *a
 
 /* ---- 5. equations of motion ---------------------------------------------------------------- */
 
-lv_vec3 lv_flight_accel_eci(const lv_flight_world *w, double *ws, const lv_flight_kin *k,
-                            lv_vec3 f, double m, lv_vec3 *g_ecef)
+lv_vec3 lv_flight_gravity(const lv_flight_world *w, double *ws, const lv_flight_kin *k)
 {
     double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z}, g[3];
     lv_gravity_eval(w->grav, ws, r, g, NULL);
-    *g_ecef = lv_v3(g[0], g[1], g[2]);
-    const lv_vec3 a = lv_v3_add(*g_ecef, lv_v3_scale(f, 1.0 / m));
+    return lv_v3(g[0], g[1], g[2]);
+}
+
+lv_vec3 lv_flight_accel_eci_g(const lv_flight_kin *k, lv_vec3 g_ecef, lv_vec3 f, double m)
+{
+    const lv_vec3 a = lv_v3_add(g_ecef, lv_v3_scale(f, 1.0 / m));
     return lv_v3(k->c_th * a.x - k->s_th * a.y, k->s_th * a.x + k->c_th * a.y, a.z);
+}
+
+lv_vec3 lv_flight_accel_eci(const lv_flight_world *w, double *ws, const lv_flight_kin *k,
+                            lv_vec3 f, double m, lv_vec3 *g_ecef)
+{
+    *g_ecef = lv_flight_gravity(w, ws, k);
+    return lv_flight_accel_eci_g(k, *g_ecef, f, m);
+}
+
+lv_vec3 lv_flight_frame_accel(const lv_flight_world *w, const lv_flight_kin *k)
+{
+    const double om = w->planet.omega;
+    /* -2 w x v_rel - w x (w x r) with w = (0, 0, om) */
+    return lv_v3(2.0 * om * k->v_rel.y + om * om * k->r_ecef.x,
+                 -2.0 * om * k->v_rel.x + om * om * k->r_ecef.y, 0.0);
+}
+
+double lv_flight_drho_dh(const lv_flight_world *w, double h)
+{
+    if (w->atmo_model == NULL || h < LV_ATMO_ALT_MIN || h > LV_ATMO_ALT_MAX)
+        return 0.0;
+    const double dh = 1.0; /* m: a central difference, its error O(dh^2) */
+    const double lo = h - dh < LV_ATMO_ALT_MIN ? LV_ATMO_ALT_MIN : h - dh;
+    const double hi = h + dh > LV_ATMO_ALT_MAX ? LV_ATMO_ALT_MAX : h + dh;
+    lv_atmo_state s0, s1;
+    if (!(hi > lo) || w->atmo_model->eval(w->atmo_par, lo, &s0, NULL) != LV_OK ||
+        w->atmo_model->eval(w->atmo_par, hi, &s1, NULL) != LV_OK)
+        return 0.0;
+    return (s1.rho - s0.rho) / (hi - lo);
 }

@@ -157,5 +157,17 @@ int lv_flight_aero(lv_aero *aero, const lv_flight_kin *k, const lv_flight_air *a
  * returned rotated to ECI. `ws` is the gravity model's workspace; g_ecef receives g. */
 lv_vec3 lv_flight_accel_eci(const lv_flight_world *w, double *ws, const lv_flight_kin *k,
                             lv_vec3 f, double m, lv_vec3 *g_ecef);
+/* The same in two steps: gravity g(r_ecef) [m/s^2, ECEF], then a = g + f/m rotated to ECI. */
+lv_vec3 lv_flight_gravity(const lv_flight_world *w, double *ws, const lv_flight_kin *k);
+lv_vec3 lv_flight_accel_eci_g(const lv_flight_kin *k, lv_vec3 g_ecef, lv_vec3 f, double m);
+
+/* The rotating frame's apparent acceleration [m/s^2, ECEF]: -2 w x v_rel - w x (w x r)
+ * (Stevens & Lewis eq. 1.6-8): what an acceleration relative to the planet adds to the
+ * inertial one. */
+lv_vec3 lv_flight_frame_accel(const lv_flight_world *w, const lv_flight_kin *k);
+
+/* d rho / dh [kg/m^4] of the world's atmosphere at geodetic altitude h by a central
+ * difference over +-1 m (0 without atmosphere or outside its range). */
+double lv_flight_drho_dh(const lv_flight_world *w, double h);
 
 #endif
