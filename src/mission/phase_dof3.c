@@ -167,6 +167,7 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
 typedef struct dof3_self {
     lv_phase_model pm;
     lv_dof3 *model;
+    lv_phase_env env;   /* planet, gravity, atmosphere, wind of this run (borrowed by model) */
     lv_aero_config aero;
     lv_wind_user wind;  /* the wind table and this simulation's cursor */
     lv_engine_config *engines;
@@ -180,6 +181,7 @@ static void dof3_free_self(void *p)
     if (s == NULL)
         return;
     lv_dof3_free(s->model);
+    lv_phase_env_clear(&s->env);
     free(s->engines);
     free(s->ends);
     free(s->event_end);
@@ -222,14 +224,19 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         dof3_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
+    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    if (st != LV_OK) {
+        dof3_free_self(s);
+        return st;
+    }
     lv_dof3_config cfg;
     lv_dof3_config_default(&cfg);
     cfg.name = ph->name;
-    cfg.planet = bc->env->planet;
-    cfg.gravity = bc->env->gravity;
-    cfg.atmo = bc->env->atmo;
-    if (bc->env->wind != NULL) {
-        s->wind = (lv_wind_user)LV_WIND_USER_INIT(bc->env->wind);
+    cfg.planet = s->env.planet;
+    cfg.gravity = s->env.gravity;
+    cfg.atmo = s->env.atmo;
+    if (s->env.wind != NULL) {
+        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
         cfg.wind = lv_wind_fn_table;
         cfg.wind_user = &s->wind;
     }
@@ -301,7 +308,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         }
         cfg.aero = &s->aero;
     }
-    lv_status st = lv_dof3_create(&cfg, &s->model, err);
+    st = lv_dof3_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         dof3_free_self(s);
         return st;
