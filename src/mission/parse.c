@@ -795,9 +795,14 @@ static lv_status parse_env(const lv_pctx *c, const lv_ynode *n)
     if ((st = parse_atmosphere(c, v, earth ? 0 : 2, e)) != LV_OK)
         return st;
     /* wind: a table of north/east(/down) components over altitude, or a constant */
-    if ((v = lv_pk_get(n, "wind")) != NULL && !lv_yaml_is_null(v) &&
-        (st = parse_wind(c, v, e)) != LV_OK)
-        return st;
+    if ((v = lv_pk_get(n, "wind")) != NULL && !lv_yaml_is_null(v)) {
+        if ((st = parse_wind(c, v, e)) != LV_OK)
+            return st;
+        if (strcmp(e->atmosphere, "none") == 0)
+            return lv_pk_fail(c, lv_pk_key(n, "wind"), "%s: a wind moves air, and there is "
+                              "none (atmosphere: none%s): give an atmosphere, or no wind", what,
+                              lv_pk_get(n, "atmosphere") != NULL ? "" : ", the default here");
+    }
     return LV_OK;
 }
 
@@ -863,17 +868,29 @@ static lv_status table_outputs(const lv_pctx *c, const lv_ynode *key, const char
 /* A table given as `path` or {file, var, interp, extrap}: loaded into *tab; the resolved
  * path and .mat variable go to *file and *var. `extrap_default` applies when not given. */
 lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
-                                 const char *what, lv_extrap extrap_default, char **file_out,
-                                 char **var_out, lv_table **tab)
+                      const char *what, lv_extrap extrap_default, char **file_out,
+                      char **var_out, lv_table **tab)
 {
-    static const char *const keys[] = { "file", "var", "interp", "extrap", NULL };
+    return lv_pk_table_out(c, key, v, what, extrap_default, file_out, var_out, NULL, tab);
+}
+
+lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                          const char *what, lv_extrap extrap_default, char **file_out,
+                          char **var_out, const lv_ynode **output, lv_table **tab)
+{
+    static const char *const keys_out[] = { "file", "var", "interp", "extrap", "output", NULL };
+    static const char *const keys_plain[] = { "file", "var", "interp", "extrap", NULL };
     static const char *const interps[] = { "linear", "pchip", NULL };
     static const char *const extraps[] = { "clamp", "error", "linear", NULL };
     static const lv_extrap extrap_of[] = { LV_EXTRAP_CLAMP, LV_EXTRAP_ERROR, LV_EXTRAP_LINEAR };
+    const char *const *keys = output != NULL ? keys_out : keys_plain;
     lv_table_opts opts = { LV_INTERP_LINEAR, extrap_default };
     const lv_ynode *file = v, *at = v;
     const char *rel = NULL;
     lv_status st;
+
+    if (output != NULL)
+        *output = NULL;
 
     if (v->kind == LV_YNODE_MAP) {
         st = lv_pk_check_map(c, v, what, keys);
@@ -895,6 +912,12 @@ lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
             if ((st = lv_pk_enum(c, o, what, "extrap", extraps, &i)) != LV_OK)
                 return st;
             opts.extrap = extrap_of[i];
+        }
+        if (output != NULL && (o = lv_pk_get(v, "output")) != NULL) {
+            const char *name;
+            if ((st = lv_pk_text(c, o, what, "output", &name)) != LV_OK)
+                return st;
+            *output = o;
         }
         at = file;
     }
@@ -920,8 +943,8 @@ lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
     else
         st = lv_table_load_csv(*file_out, &opts, tab, c->err);
     if (st != LV_OK)
-        return lv_fail_prefix(c->err, st == LV_ERR_NOMEM ? st : LV_ERR_INPUT, "%s:%d:%d: %s: table",
-                              c->file, key->line, key->col, what);
+        return lv_fail_prefix(c->err, st == LV_ERR_NOMEM ? st : LV_ERR_INPUT, "%s:%d:%d: %s: %s",
+                              c->file, key->line, key->col, what, key->text);
     return LV_OK;
 }
 

@@ -4,7 +4,9 @@
  *  - a planet by its constants: a dof3 coast over a non-rotating point-mass sphere is the
  *    two-body problem (apoapsis at half the Kepler period, the orbit closing after one);
  *  - a custom J2: the nodal regression rate of the first-order secular theory, and again after
- *    a run changes J2 (the gravity is then built from the run's value).
+ *    a run changes J2 (the gravity is then built from the run's value);
+ *  - the flat world in air: a fall from rest with quadratic drag at constant density against
+ *    v(t) = v_t tanh(g t / v_t), and the steady drift in a constant wind and an updraft.
  */
 #include <math.h>
 #include <stdio.h>
@@ -218,9 +220,168 @@ static void test_custom_j2(void)
     remove("env_j2.yaml");
 }
 
+
+/* ---- (3) the flat world in air: a fall with quadratic drag ----------------------------- */
+/* A 10 kg ball (CD 0.47, S 0.03 m^2) falls from rest at z0 = 5 km in uniform gravity
+ * g = 9.81 m/s^2 through air of constant density rho: the exponential atmosphere with
+ * rho0 = 1.2 kg/m^3 and a scale height of 1e15 m (rho changes by 5e-12 relative over 5 km).
+ * With the drag q S CD along -v and downward speed v, m dv/dt = m g - rho S CD v^2 / 2, so
+ * (e.g. Taylor, Classical Mechanics, 2005, sec. 2.4):
+ *     v_t = sqrt(2 m g / (rho CD S)),  v(t) = v_t tanh(g t / v_t),
+ *     z0 - z(t) = (v_t^2 / g) ln cosh(g t / v_t),  drag = m g (v / v_t)^2.
+ * Mach = v / a with a = sqrt(gamma R* T / M0) at the exponential model's T = 288.15 K
+ * (US76 constants, docs/atmosphere.md). A run then sets rho0 = 0.6: v_t grows by sqrt(2). */
+static const double BALL_M = 10.0, BALL_CD = 0.47, BALL_S = 0.03, G = 9.81, Z0 = 5000.0;
+
+static void fall_closed_form(double rho, double t, double *v, double *d)
+{
+    const double vt = sqrt(2.0 * BALL_M * G / (rho * BALL_CD * BALL_S));
+    *v = vt * tanh(G * t / vt);
+    *d = vt * vt / G * log(cosh(G * t / vt));
+}
+
+static void test_flat_drag(void)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "mission: {name: drop}\n"
+             "environment:\n"
+             "  world: flat\n"
+             "  g: %g\n"
+             "  atmosphere: {model: exp, rho0: 1.2, scale_height: 1.0e15}\n"
+             "parameters: {start_z: %g, start_vel: 0}\n"
+             "stages: [{name: ball, dry_mass: %g, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - name: fall\n"
+             "    model: flat6\n"
+             "    stages: [ball]\n"
+             "    stop_time: 30\n"
+             "    end: [impact]\n"
+             "    aero: {s_ref: %g, CD: %g}\n"
+             "    integrator: {method: dopri5, tolerance: 1.0e-10, output_interval: 1}\n",
+             G, Z0, BALL_M, BALL_S, BALL_CD);
+    lv_mission *m = load("env_drop.yaml", text);
+    if (m == NULL)
+        return;
+    lv_err err;
+    lv_run *r = NULL;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    const lv_run_options opt = {.threads = 1};
+    const double rhos[2] = {1.2, 0.6};
+    const double a_sound = sqrt(1.4 * 8314.32 / 28.9644 * 288.15); /* m/s, eq. 50 */
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1)
+            CHECK_OK(lv_run_set(r, "environment.atmosphere.rho0", rhos[1], &err), &err);
+        CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+        const lv_result *res = lv_run_rows(r, 0);
+        CHECK(res != NULL);
+        if (res == NULL)
+            break;
+        size_t ct, cz, cvz, cvx, cd, cm, cq, crho;
+        CHECK_OK(lv_result_column(res, "time", &ct, &err), &err);
+        CHECK_OK(lv_result_column(res, "z", &cz, &err), &err);
+        CHECK_OK(lv_result_column(res, "vz", &cvz, &err), &err);
+        CHECK_OK(lv_result_column(res, "vx", &cvx, &err), &err);
+        CHECK_OK(lv_result_column(res, "drag", &cd, &err), &err);
+        CHECK_OK(lv_result_column(res, "mach", &cm, &err), &err);
+        CHECK_OK(lv_result_column(res, "q_dyn", &cq, &err), &err);
+        CHECK_OK(lv_result_column(res, "rho", &crho, &err), &err);
+        double worst_v = 0.0, worst_z = 0.0;
+        const double vt = sqrt(2.0 * BALL_M * G / (rhos[pass] * BALL_CD * BALL_S));
+        for (size_t row = 0; row < lv_result_rows(res); row++) {
+            const double t = lv_result_value(res, row, ct);
+            double v, d;
+            fall_closed_form(rhos[pass], t, &v, &d);
+            worst_v = fmax(worst_v, fabs(-lv_result_value(res, row, cvz) - v));
+            worst_z = fmax(worst_z, fabs(lv_result_value(res, row, cz) - (Z0 - d)));
+            CHECK(lv_result_value(res, row, cvx) == 0.0); /* no wind: straight down */
+            CHECK_REL(lv_result_value(res, row, crho), rhos[pass], 1e-11);
+            if (t > 0.0) {
+                CHECK_REL(lv_result_value(res, row, cd), BALL_M * G * (v / vt) * (v / vt), 1e-7);
+                CHECK_REL(lv_result_value(res, row, cm), v / a_sound, 1e-7);
+                CHECK_REL(lv_result_value(res, row, cq), 0.5 * rhos[pass] * v * v, 1e-7);
+            }
+        }
+        CHECK(lv_run_result(r, 0)->t_end == 30.0); /* no impact: z stays above 0 */
+        CHECK(worst_v < 1e-6);
+        CHECK(worst_z < 1e-5);
+        printf("flat drop, rho %.1f: v_t %.6f m/s, v(30) %.9f vs %.9f, worst |dv| %.2e m/s, "
+               "|dz| %.2e m\n", rhos[pass], vt, -final(r, 0, "vz"), vt * tanh(G * 30.0 / vt),
+               worst_v, worst_z);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+    remove("env_drop.yaml");
+}
+
+/* The same ball in a constant wind, with CD from a table of its own over Mach (constant: two
+ * rows of 0.47) and the density from a table atmosphere (two rows of 1.2 kg/m^3, T = 288.15 K,
+ * p = rho R* T / M0: constant between them). Drag acts along -(v - v_wind): near the steady
+ * state a horizontal difference u from the wind decays as du/dt = -(g / v_t) u (time constant
+ * v_t / g = 11 s; the vertical one is half of it), after which the body falls at v_t relative
+ * to the air. After 300 s (27 time constants, e^-27 ~ 2e-12) the closed-form steady state
+ * holds: vx = W_east, vy = W_north, vz = -v_t - W_down (an updraft, down < 0, slows the fall
+ * by its speed). The wind's sign is the check: east = 6 is air moving towards +x, which
+ * carries the ball there. */
+static void test_flat_wind(void)
+{
+    write_text("env_cd.csv", "mach [1], CD [1]\n0, 0.47\n2, 0.47\n");
+    const double rho = 1.2, T = 288.15, p = rho * 8314.32 / 28.9644 * T;
+    char text[2048];
+    snprintf(text, sizeof text, "h [m], T [K], p [Pa], rho [kg/m3]\n-5000, %.17g, %.17g, %.17g\n"
+             "1.0e5, %.17g, %.17g, %.17g\n", T, p, rho, T, p, rho);
+    write_text("env_air.csv", text);
+    snprintf(text, sizeof text,
+             "mission: {name: drift}\n"
+             "environment:\n"
+             "  world: flat\n"
+             "  g: %g\n"
+             "  atmosphere: {table: env_air.csv}\n"
+             "  wind: {north: -2, east: 6, down: -3}\n"
+             "parameters: {start_z: 50000, start_vel: 0}\n"
+             "stages: [{name: ball, dry_mass: %g, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - name: fall\n"
+             "    model: flat6\n"
+             "    stages: [ball]\n"
+             "    stop_time: 300\n"
+             "    aero: {s_ref: %g, CD: env_cd.csv}\n"
+             "    integrator: {method: dopri5, tolerance: 1.0e-10, output_interval: 10}\n",
+             G, BALL_M, BALL_S);
+    lv_mission *m = load("env_drift.yaml", text);
+    if (m == NULL)
+        return;
+    lv_err err;
+    lv_run *r = NULL;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    const lv_run_options opt = {.threads = 1};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    const double vt = sqrt(2.0 * BALL_M * G / (rho * BALL_CD * BALL_S));
+    CHECK_CLOSE(final(r, 0, "vx"), 6.0, 1e-6);
+    CHECK_CLOSE(final(r, 0, "vy"), -2.0, 1e-6);
+    CHECK_CLOSE(final(r, 0, "vz"), -vt + 3.0, 1e-6);
+    CHECK_CLOSE(final(r, 0, "v_air"), vt, 1e-6);
+    CHECK_CLOSE(final(r, 0, "drag"), BALL_M * G, 1e-6); /* steady: drag carries the weight */
+    printf("flat drift: v = (%.9f, %.9f, %.9f) m/s vs (6, -2, %.9f)\n", final(r, 0, "vx"),
+           final(r, 0, "vy"), final(r, 0, "vz"), -vt + 3.0);
+    /* the wind is a slot of the environment: a run without it falls straight down */
+    CHECK_OK(lv_run_set(r, "environment.wind.east", 0.0, &err), &err);
+    CHECK_OK(lv_run_set(r, "environment.wind.north", 0.0, &err), &err);
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(final(r, 0, "vx") == 0.0 && final(r, 0, "vy") == 0.0);
+    CHECK_CLOSE(final(r, 0, "vz"), -vt + 3.0, 1e-6);
+    lv_run_free(r);
+    lv_mission_free(m);
+    remove("env_drift.yaml");
+    remove("env_cd.csv");
+    remove("env_air.csv");
+}
+
 int main(void)
 {
     test_kepler_sphere();
     test_custom_j2();
+    test_flat_drag();
+    test_flat_wind();
     return check_report("test_mission_env");
 }

@@ -664,6 +664,11 @@ static void test_environment(void)
         "bad.yaml:8:47: environment, wind: extrap: unknown value 'clmp'; did you mean 'clamp'?");
     BAD(PW "  wind: no_such_wind.csv\n",
         "bad.yaml:8:9: environment: wind: cannot read");
+    BAD(PW "  planet: mars\n  wind: {north: 1, east: 2}\n",
+        "bad.yaml:9:3: environment: a wind moves air, and there is none (atmosphere: none, the "
+        "default here)");
+    BAD(HEAD STAGES PHASE "environment: {wind: {north: 1, east: 2}, atmosphere: none}\n",
+        "bad.yaml:6:15: environment: a wind moves air, and there is none (atmosphere: none)");
 #undef PW
 }
 
