@@ -933,10 +933,11 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
     /* Only regular files: a device or a FIFO could block the parser forever. */
     struct stat sb;
     if (stat(*file_out, &sb) != 0)
-        return lv_pk_fail(c, at, "%s: table: cannot read '%s': %s", what, *file_out,
+        return lv_pk_fail(c, at, "%s: %s: cannot read '%s': %s", what, key->text, *file_out,
                     errno == ENOENT ? "no such file" : "cannot access the file");
     if (!S_ISREG(sb.st_mode))
-        return lv_pk_fail(c, at, "%s: table: '%s' is not a regular file", what, *file_out);
+        return lv_pk_fail(c, at, "%s: %s: '%s' is not a regular file", what, key->text,
+                          *file_out);
 
     if (*var_out != NULL)
         st = lv_table_load_mat(*file_out, *var_out, &opts, tab, c->err);

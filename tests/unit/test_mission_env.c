@@ -6,12 +6,16 @@
  *  - a custom J2: the nodal regression rate of the first-order secular theory, and again after
  *    a run changes J2 (the gravity is then built from the run's value);
  *  - the flat world in air: a fall from rest with quadratic drag at constant density against
- *    v(t) = v_t tanh(g t / v_t), and the steady drift in a constant wind and an updraft.
+ *    v(t) = v_t tanh(g t / v_t), and the steady drift in a constant wind and an updraft;
+ *  - several aerodynamic tables per phase: CA over Mach from a CSV file, CN over Mach and
+ *    alpha from a MAT struct with named axes, against Anderson's body-to-wind relations.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <matio.h>
 
 #include "check.h"
 #include "lvsim/lv_io.h"
@@ -377,11 +381,117 @@ static void test_flat_wind(void)
     remove("env_air.csv");
 }
 
+
+/* ---- (4) several aerodynamic tables per phase ---------------------------------------------- */
+/* Body axes, one table per coefficient:
+ *   CA over Mach from a CSV file:          CA(M) = 0.2 + 0.1 M       (rows M = 0, 1, 3)
+ *   CN over Mach and alpha from a MAT v5/v7.3 struct {mach, alpha, CN, CM}, output chosen by
+ *   name (`output: CN`):                   CN(M, a) = 2 a + 0.05 M   (M = 0, 1, 3; a = 0, 0.1)
+ *   CY the constant 0.
+ * Both functions are (bi)linear, so linear interpolation gives them exactly. At the first
+ * row of a dof3 phase (h = 10 km over the Earth, 500 m/s horizontal relative to the ground,
+ * alpha = 4 deg, no wind) the model's own Mach number and q give the expected forces through
+ * the body-to-wind relations (Anderson, Fundamentals of Aerodynamics, 5th ed., eqs. 1.1-1.2):
+ *   CD = CA cos a + CN sin a,  CL = CN cos a - CA sin a,
+ *   drag = q S CD,  lift = q S CL,  side force 0.
+ * The examples/dof3-branch tables (one table for the set, outputs named as the coefficients)
+ * are flown by test_runner. */
+static void mat_struct_cn(const char *file, enum mat_ft ver)
+{
+    double mach[3] = {0.0, 1.0, 3.0}, alpha[2] = {0.0, 0.1}, cn[6], cm[6];
+    for (size_t j = 0; j < 2; j++)
+        for (size_t i = 0; i < 3; i++) {
+            cn[i + 3 * j] = 2.0 * alpha[j] + 0.05 * mach[i];
+            cm[i + 3 * j] = -0.5 * alpha[j];
+        }
+    const char *fields[] = {"mach", "alpha", "CN", "CM"};
+    size_t dm[2] = {1, 3}, da[2] = {1, 2}, dg[2] = {3, 2}, one[2] = {1, 1};
+    double *data[4] = {mach, alpha, cn, cm};
+    size_t *dims[4] = {dm, da, dg, dg};
+    mat_t *mat = Mat_CreateVer(file, NULL, ver);
+    CHECK(mat != NULL);
+    if (mat == NULL)
+        return;
+    matvar_t *sv = Mat_VarCreateStruct("aero", 2, one, fields, 4);
+    for (size_t i = 0; i < 4; i++)
+        Mat_VarSetStructFieldByIndex(
+            sv, i, 0, Mat_VarCreate(NULL, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims[i], data[i], 0));
+    CHECK(Mat_VarWrite(mat, sv, MAT_COMPRESSION_NONE) == 0);
+    Mat_VarFree(sv);
+    Mat_Close(mat);
+}
+
+static void test_aero_tables(void)
+{
+    write_text("env_ca.csv", "mach [1], CA [1]\n0, 0.2\n1, 0.3\n3, 0.5\n");
+    const struct {
+        const char *file;
+        enum mat_ft ver;
+    } fmt[] = {{"env_cn5.mat", MAT_FT_MAT5}, {"env_cn73.mat", MAT_FT_MAT73}};
+    for (size_t f = 0; f < 2; f++) {
+        mat_struct_cn(fmt[f].file, fmt[f].ver);
+        char text[2048];
+        snprintf(text, sizeof text,
+                 "mission: {name: aero}\n"
+                 "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+                 "parameters: {start_lat_deg: 10, start_lon_deg: 20, start_h: 10000,\n"
+                 "             start_vel: 500, start_fpa: 0, start_chi_deg: 90}\n"
+                 "stages: [{name: v, dry_mass: 1000, propellant_mass: 0}]\n"
+                 "phases:\n"
+                 "  - name: glide\n"
+                 "    model: dof3\n"
+                 "    stages: [v]\n"
+                 "    stop_time: 1\n"
+                 "    inputs: {alpha_deg: 4}\n"
+                 "    aero:\n"
+                 "      s_ref: 2\n"
+                 "      axes: body\n"
+                 "      CA: env_ca.csv\n"
+                 "      CN: {file: %s, var: aero, output: CN}\n"
+                 "      CY: 0\n"
+                 "    integrator: {output_interval: 0.5}\n",
+                 fmt[f].file);
+        lv_mission *m = load("env_aero.yaml", text);
+        if (m == NULL)
+            continue;
+        lv_err err;
+        lv_run *r = NULL;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        const lv_run_options opt = {.threads = 1};
+        CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+        const lv_result *res = lv_run_rows(r, 0);
+        CHECK(res != NULL);
+        if (res != NULL) {
+            size_t cm, cq, cd, cl, cy;
+            CHECK_OK(lv_result_column(res, "mach", &cm, &err), &err);
+            CHECK_OK(lv_result_column(res, "q_dyn", &cq, &err), &err);
+            CHECK_OK(lv_result_column(res, "drag", &cd, &err), &err);
+            CHECK_OK(lv_result_column(res, "lift", &cl, &err), &err);
+            CHECK_OK(lv_result_column(res, "side_force", &cy, &err), &err);
+            const double M = lv_result_value(res, 0, cm), q = lv_result_value(res, 0, cq);
+            const double a = 4.0 * DEG, CA = 0.2 + 0.1 * M, CN = 2.0 * a + 0.05 * M;
+            CHECK(M > 1.5 && M < 1.8); /* 500 m/s at 10 km (a = 299.5 m/s) */
+            CHECK_REL(lv_result_value(res, 0, cd), q * 2.0 * (CA * cos(a) + CN * sin(a)), 1e-12);
+            CHECK_REL(lv_result_value(res, 0, cl), q * 2.0 * (CN * cos(a) - CA * sin(a)), 1e-12);
+            CHECK(fabs(lv_result_value(res, 0, cy)) < 1e-9 * q);
+            printf("aero tables (%s): M %.6f, drag %.3f N = q S (CA cos a + CN sin a) = %.3f N\n",
+                   fmt[f].file, M, lv_result_value(res, 0, cd),
+                   q * 2.0 * (CA * cos(a) + CN * sin(a)));
+        }
+        lv_run_free(r);
+        lv_mission_free(m);
+        remove(fmt[f].file);
+    }
+    remove("env_aero.yaml");
+    remove("env_ca.csv");
+}
+
 int main(void)
 {
     test_kepler_sphere();
     test_custom_j2();
     test_flat_drag();
     test_flat_wind();
+    test_aero_tables();
     return check_report("test_mission_env");
 }

@@ -670,6 +670,38 @@ static void test_environment(void)
     BAD(HEAD STAGES PHASE "environment: {wind: {north: 1, east: 2}, atmosphere: none}\n",
         "bad.yaml:6:15: environment: a wind moves air, and there is none (atmosphere: none)");
 #undef PW
+    /* aerodynamic datasets: a table per coefficient (docs/mission-format.md, "aero") */
+#define AERO(a) HEAD STAGES "phases:\n  - {name: P1, model: dof3, stages: [s1], stop_time: 1,\n" \
+                "     aero: " a "}\nenvironment: {world: planet}\n" /* aero on line 6 */
+    m = NULL;
+    const char *ok = AERO("{s_ref: 1, axes: body, CA: {file: data/aero_two.csv, output: CA}, "
+                          "CN: {file: data/aero_two.csv, output: CN, interp: pchip}, CY: 0.01}");
+    CHECK_OK(lv_mission_def_parse(ok, strlen(ok), "aero.yaml", LV_MISSION_DIR, &m, &err), &err);
+    lv_mission_def_free(m);
+    BAD(AERO("{s_ref: 1, axes: body, CY: data/aero_two.csv}"),
+        "bad.yaml:6:35: phase 'P1', aero: CY: table 'aero_two' has several outputs (CA, CN) and "
+        "none is named CY");
+    BAD(AERO("{s_ref: 1, CD: data/aero_two.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: CD: table 'aero_two' has several outputs (CA, CN) and "
+        "none is named CD: say which with {file: .., output: name}");
+    BAD(AERO("{s_ref: 1, axes: body, CA: {file: data/aero_two.csv, output: CX}}"),
+        "bad.yaml:6:73: phase 'P1', aero: CA: table 'aero_two' has no output 'CX' (its outputs: "
+        "CA, CN)");
+    BAD(AERO("{s_ref: 1, CD: data/aero_badaxis.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: CD: table 'aero_badaxis': axis 1 is named 'speed'; the "
+        "axes of an aerodynamic table are mach");
+    BAD(AERO("{s_ref: 1, table: data/aero_two.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: table 'aero_two' gives none of CD, CL, CY (its "
+        "outputs: CA, CN)");
+    BAD(AERO("{s_ref: 1, CD: data/no_such.csv}"),
+        "bad.yaml:6:27: phase 'P1', aero: CD: cannot read");
+    BAD(AERO("{s_ref: 1, CD: .nan}"),
+        "bad.yaml:6:27: phase 'P1', aero: CD: non-finite number '.nan'");
+    BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1,\n"
+        "     aero: {s_ref: 1, CD: 0.3, CL: 0.1}}\nenvironment: {atmosphere: us76}\n",
+        "bad.yaml:6:32: phase 'P1', aero: 'CL': the flat world's body flies at zero angle of "
+        "attack and has no lift or side force; it takes CD only");
+#undef AERO
 }
 
 int main(void)
