@@ -32,7 +32,7 @@ if(LV_HAVE_LIBFUZZER)
   list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/)
   list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
   set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)
-  foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS})
+  foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS})
     list(APPEND _inc -I${_d})
   endforeach()
   set(LV_FUZZ_BIN ${CMAKE_BINARY_DIR}/fuzz/fuzz_mission)
@@ -43,7 +43,8 @@ if(LV_HAVE_LIBFUZZER)
             -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes
             -Wmissing-prototypes -Wformat=2 -ffp-contract=off
             -DLV_FUZZ_DIR="${PROJECT_SOURCE_DIR}/tests/missions" ${_inc} ${_src}
-            -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES} -lm
+            -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES}
+            ${HDF5_LINK_LIBRARIES} -lm
     DEPENDS ${_src} ${_hdr}
     COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
     COMMAND_EXPAND_LISTS VERBATIM)
