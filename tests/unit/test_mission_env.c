@@ -486,6 +486,38 @@ static void test_aero_tables(void)
     remove("env_ca.csv");
 }
 
+
+/* ---- (5) examples/sounding-rocket ------------------------------------------------------- */
+/* The example flies: burnout when the 200 kg of propellant are gone at the constant mass
+ * flow F / (Isp g0) = 15000 / (230 * 9.80665) kg/s (Sutton & Biblarz, eq. 2-5), apogee where
+ * vz = 0, impact at z = 0; the east wind carries it east (vx > 0 although it starts with no
+ * horizontal velocity), and drag = q S CD with CD from the table at the final Mach number. */
+static void test_sounding_rocket_example(void)
+{
+    char path[1024];
+    const char *root = getenv("LV_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/examples/sounding-rocket/mission.yaml", root ? root : "..");
+    lv_err err;
+    lv_mission *m = NULL;
+    CHECK_OK(lv_mission_load(path, &m, &err), &err);
+    if (m == NULL)
+        return;
+    lv_run *r = NULL;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    const lv_run_options opt = {.threads = 1};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK_CLOSE(final(r, 0, "time"), 200.0 / (15000.0 / (230.0 * 9.80665)), 1e-6);
+    CHECK_CLOSE(final(r, 1, "vz"), 0.0, 1e-6);
+    CHECK_CLOSE(final(r, 2, "z"), 0.0, 1e-4);
+    CHECK(final(r, 2, "vx") > 0.0 && final(r, 2, "x") > 0.0);
+    const double mach = final(r, 2, "mach"); /* between the rows Mach 2 and 4 of cd_mach.csv */
+    CHECK(mach > 2.0 && mach < 4.0);
+    const double cd = 0.45 + (0.32 - 0.45) * (mach - 2.0) / 2.0;
+    CHECK_REL(final(r, 2, "drag"), final(r, 2, "q_dyn") * 0.0314 * cd, 1e-12);
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_kepler_sphere();
@@ -493,5 +525,6 @@ int main(void)
     test_flat_drag();
     test_flat_wind();
     test_aero_tables();
+    test_sounding_rocket_example();
     return check_report("test_mission_env");
 }
