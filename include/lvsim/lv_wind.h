@@ -70,8 +70,9 @@ typedef struct lv_wind_user {
 /* An lv_wind_fn (lv_vehicle.h) for the 3-DoF model:
  *     lv_wind_user wu = LV_WIND_USER_INIT(wind);
  *     cfg.wind = lv_wind_fn_table;  cfg.wind_user = &wu;
- * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0, or 1 (state not
- * acceptable: a smaller step may come back inside) when lv_wind_eval fails. */
+ * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0; 1 (state not acceptable)
+ * for a NaN altitude; -1 (stop the run) outside the table under LV_EXTRAP_ERROR, as an
+ * engine table outside its range stops it. */
 LV_API int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_ned[3],
                             void *user);
 

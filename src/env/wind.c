@@ -261,5 +261,7 @@ int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_n
 {
     (void)t, (void)lat, (void)lon;
     lv_wind_user *u = user;
-    return lv_wind_eval(u->w, &u->cur, h, v_wind_ned, NULL) == LV_OK ? 0 : 1;
+    if (lv_wind_eval(u->w, &u->cur, h, v_wind_ned, NULL) == LV_OK)
+        return 0;
+    return isnan(h) ? 1 : -1; /* outside the table under extrap: error: stop */
 }

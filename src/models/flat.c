@@ -306,9 +306,10 @@ static lv_status air_init(flat_air *a, const lv_flat6_config *cfg, lv_err *err)
 }
 
 /* Air data at body state x (time t): atmosphere at the altitude z (vacuum above the
- * models' top, with the top's speed of sound), wind, v_air, Mach, q and the drag. Returns 0,
- * or 1 (state not acceptable: below the atmosphere's floor, a wind or table out of its range
- * under extrap: error) with the reason in why. */
+ * models' top, with the top's speed of sound), wind, v_air, Mach, q and the drag. Returns 0;
+ * 1 (state not acceptable: below the atmosphere's floor or outside a table atmosphere, as the
+ * 3-DoF model); or -1 (stop: the wind or the drag table evaluated outside its range under
+ * extrap: error, as an engine table), with the reason in why. */
 static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state *o, char *why,
                          size_t cap)
 {
@@ -341,7 +342,7 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
         if (lv_wind_eval(a->wind, &a->wind_cur, h, w, NULL) != LV_OK) {
             lv_wind_eval(a->wind, NULL, h, w, &err);
             snprintf(why, cap, "at t = %.9g s: %.400s", t, err.msg);
-            return 1;
+            return isnan(h) ? 1 : -1;
         }
         o->v_air[0] -= w[1]; /* NED to x east, y north, z up */
         o->v_air[1] -= w[0];
@@ -362,7 +363,7 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
         if (lv_table_eval(a->cd_tab, &a->cd_cur, xin, a->cd_y, NULL) != LV_OK) {
             lv_table_eval(a->cd_tab, NULL, xin, a->cd_y, &err);
             snprintf(why, cap, "at t = %.9g s: aerodynamics: %.400s", t, err.msg);
-            return 1;
+            return isnan(o->mach) ? 1 : -1;
         }
         o->cd = a->cd_y[a->cd_k];
     }

@@ -379,6 +379,28 @@ static void test_flat_wind(void)
     remove("env_drift.yaml");
     remove("env_cd.csv");
     remove("env_air.csv");
+
+    /* a wind table with extrap: error ends the phase where the body leaves it, with the
+     * reason: a ball thrown up at 300 m/s passes the table's top (1000 m) after ~3.5 s */
+    write_text("env_w.csv", "h [m], north [m/s], east [m/s]\n0, 0, 5\n1000, 0, 10\n");
+    m = load("env_wx.yaml", "mission: {name: wx}\n"
+                            "environment: {atmosphere: us76, wind: {file: env_w.csv, extrap: error}}\n"
+                            "parameters: {start_z: 100, start_vel: 300, start_fpa_deg: 80}\n"
+                            "stages: [{name: s, dry_mass: 100, propellant_mass: 0}]\n"
+                            "phases: [{name: up, model: flat6, stages: [s], stop_time: 60,\n"
+                            "          aero: {s_ref: 0.1, CD: 0.3}}]\n");
+    if (m != NULL) {
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_SOLVER);
+        const lv_phase_result *pr = lv_run_result(r, 0);
+        CHECK(pr->state == LV_PHASE_FAILED && pr->t_end > 3.0 && pr->t_end < 4.0);
+        CHECK(strstr(pr->error, "wind: table 'env_w': axis 0 'h' [m] = ") != NULL);
+        CHECK(strstr(pr->error, "is outside [0, 1000] (extrapolation: error)") != NULL);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove("env_wx.yaml");
+    remove("env_w.csv");
 }
 
 

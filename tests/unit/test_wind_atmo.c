@@ -469,7 +469,8 @@ static void test_wind_forms(void)
         CHECK_FAILS(lv_wind_eval(w, NULL, 1000.5, v, &err), &err, LV_ERR_INPUT,
                     "wind: table 'wind_atmo_forms': axis 0 'h' [m] = 1000.5 is outside [0, 1000]");
         lv_wind_user wu = LV_WIND_USER_INIT(w);
-        CHECK(lv_wind_fn_table(0.0, -1.0, 0.0, 0.0, v, &wu) == 1); /* retry a smaller step */
+        CHECK(lv_wind_fn_table(0.0, -1.0, 0.0, 0.0, v, &wu) == -1); /* left the data: stop */
+        CHECK(lv_wind_fn_table(0.0, NAN, 0.0, 0.0, v, &wu) == 1);   /* retry a smaller step */
         lv_wind_free(w);
         w = NULL;
     }
