@@ -580,7 +580,9 @@ static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t de
                 if (lv_pk_get(v, pkeys[k]) != NULL)
                     return lv_pk_fail(c, lv_pk_key(v, pkeys[k]), "%s: '%s' belongs to model: "
                                       "exp", what, pkeys[k]);
-            if ((st = table_file(c, v, what, "table", &e->atmo_file, &e->atmo_var)) != LV_OK)
+            if ((st = table_file(c, v, what, "table", &e->atmo_file, &e->atmo_var)) != LV_OK ||
+                (st = regular_file(c, lv_pk_get(v, "table"), what, "table", e->atmo_file)) !=
+                    LV_OK)
                 return st;
             e->atmosphere = dup_text("table");
             return e->atmosphere != NULL ? LV_OK : lv_pk_nomem(c);

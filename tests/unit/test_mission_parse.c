@@ -650,6 +650,8 @@ static void test_environment(void)
         "us76)");
     BAD(PW "  atmosphere: {table: data/wind_one_row.csv, model: exp}\n",
         "bad.yaml:8:46: environment, atmosphere: give either 'table' (a file) or 'model'");
+    BAD(PW "  atmosphere: {table: /dev/null}\n",
+        "bad.yaml:8:23: environment, atmosphere: table: '/dev/null' is not a regular file");
     BAD(PW "  atmosphere: {rho0: 1}\n",
         "bad.yaml:8:15: environment, atmosphere: missing required key 'model'");
     BAD(PW "  wind: {north: 5}\n",
