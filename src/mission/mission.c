@@ -1,8 +1,8 @@
 /* mission.c - lv_mission: a mission file loaded once, immutable afterwards. Parses and validates
  * the definition (parse.c), builds the environment every phase shares (planet, gravity,
- * atmosphere, wind: env.c), builds each phase's model once with the file's values to check it and to
- * resolve its plan (the hand-off's names to indices, the names of its finals and events), and
- * answers questions about the mission and its parameters (slots, mission.h). */
+ * atmosphere, wind: env.c), builds each phase's model once with the file's values to check it
+ * and to resolve its plan (the hand-off's names to indices, the names of its finals and
+ * events), and answers questions about the mission and its parameters (slots, mission.h). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -251,7 +251,8 @@ lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err)
         lv_range_text(d->slots[i].range, m->rules[i], sizeof m->rules[i]);
     }
     lv_status st;
-    if ((st = lv_mission_env_make(d, &m->env, err)) != LV_OK || (st = check_and_plan(m, err)) != LV_OK) {
+    if ((st = lv_mission_env_make(d, &m->env, err)) != LV_OK ||
+        (st = check_and_plan(m, err)) != LV_OK) {
         lv_mission_free(m);
         return st;
     }

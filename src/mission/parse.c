@@ -491,8 +491,10 @@ static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_de
         lv_range range;
         lv_slot *slot;
     } num[] = {
-        { "radius", "m", r_len, &pd->radius },     { "flattening", "", r_f, &pd->flattening },
-        { "gm", "m^3/s^2", r_gm, &pd->gm },        { "rotation_rate", "rad/s", r_w, &pd->rotation_rate },
+        { "radius", "m", r_len, &pd->radius },
+        { "flattening", "", r_f, &pd->flattening },
+        { "gm", "m^3/s^2", r_gm, &pd->gm },
+        { "rotation_rate", "rad/s", r_w, &pd->rotation_rate },
         { "r_ref", "m", r_len, &pd->r_ref },
     };
     for (size_t k = 0; k < sizeof num / sizeof num[0]; k++) {

@@ -384,7 +384,8 @@ static void test_flat_wind(void)
      * reason: a ball thrown up at 300 m/s passes the table's top (1000 m) after ~3.5 s */
     write_text("env_w.csv", "h [m], north [m/s], east [m/s]\n0, 0, 5\n1000, 0, 10\n");
     m = load("env_wx.yaml", "mission: {name: wx}\n"
-                            "environment: {atmosphere: us76, wind: {file: env_w.csv, extrap: error}}\n"
+                            "environment: {atmosphere: us76,\n"
+                            "              wind: {file: env_w.csv, extrap: error}}\n"
                             "parameters: {start_z: 100, start_vel: 300, start_fpa_deg: 80}\n"
                             "stages: [{name: s, dry_mass: 100, propellant_mass: 0}]\n"
                             "phases: [{name: up, model: flat6, stages: [s], stop_time: 60,\n"
