@@ -4,7 +4,8 @@
  *  - a planet by its constants: a dof3 coast over a non-rotating point-mass sphere is the
  *    two-body problem (apoapsis at half the Kepler period, the orbit closing after one);
  *  - a custom J2: the nodal regression rate of the first-order secular theory, and again after
- *    a run changes J2 (the gravity is then built from the run's value);
+ *    a run changes J2 (the gravity is then built from the run's value), and from a planet's
+ *    own coefficient file;
  *  - the flat world in air: a fall from rest with quadratic drag at constant density against
  *    v(t) = v_t tanh(g t / v_t), and the steady drift in a constant wind and an updraft;
  *  - several aerodynamic tables per phase: CA over Mach from a CSV file, CN over Mach and
@@ -222,6 +223,49 @@ static void test_custom_j2(void)
     lv_run_free(r);
     lv_mission_free(m);
     remove("env_j2.yaml");
+
+    /* The same planet's field from an ICGEM coefficient file (gravity sh): C(2,0) only, fully
+     * normalised, J2 = -sqrt(5) C(2,0) (docs/gravity.md); the file's GM and radius. Here
+     * J2 = 1.5e-3; the rate follows the same formula. */
+    const double J2f = 1.5e-3, c20 = -J2f / sqrt(5.0);
+    snprintf(text, sizeof text,
+             "product_type gravity_field\nmodelname test\nearth_gravity_constant %.17g\n"
+             "radius %.17g\nmax_degree 2\nnorm fully_normalized\nend_of_head ====\n"
+             "gfc 2 0 %.17e 0.0\ngfc 2 1 0.0 0.0\ngfc 2 2 0.0 0.0\n", GM, R, c20);
+    write_text("env_j2.gfc", text);
+    snprintf(text, sizeof text,
+             "mission: {name: j2-file}\n"
+             "environment:\n"
+             "  world: planet\n"
+             "  planet: {name: filed, radius: %.17g, gm: %.17g, rotation_rate: 0,\n"
+             "           coefficients: env_j2.gfc}\n"
+             "parameters: {start_lat: 0, start_lon: 0, start_h: %.17g, start_vel: %.17g,\n"
+             "             start_fpa: 0, start_chi_deg: 30}\n"
+             "stages: [{name: sat, dry_mass: 100, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - {name: P1, model: dof3, stages: [sat], stop_time: %.17g,\n"
+             "     integrator: {method: dopri5, tolerance: 1.0e-11, output_interval: %.17g}}\n",
+             R, GM, r0 - R, v0, n_orb * T, T / per);
+    m = load("env_j2f.yaml", text);
+    if (m != NULL) {
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+        const lv_result *res = lv_run_rows(r, 0);
+        CHECK(res != NULL);
+        if (res != NULL) {
+            double am, pm, im;
+            const double dO = raan_rate(res, T, n_orb, per, &am, &pm, &im);
+            const double nm = sqrt(GM / (am * am * am));
+            const double ref = -1.5 * nm * J2f * (R / pm) * (R / pm) * cos(im);
+            CHECK_REL(dO, ref, 5e-3);
+            printf("J2 = %g from a .gfc file: dOmega/dt %.6e rad/s vs %.6e (rel %.2e)\n", J2f,
+                   dO, ref, fabs(dO / ref - 1.0));
+        }
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove("env_j2f.yaml");
+    remove("env_j2.gfc");
 }
 
 
