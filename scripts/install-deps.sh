@@ -8,6 +8,7 @@ pkgs=(
   cmake make gcc pkg-config            # build
   libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
   libmatio-dev                         # MAT v4/v5/v7 result and table files
+  libhdf5-dev                          # MAT v7.3 tables libmatio cannot classify (src/io/table_load.c)
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
   python3-scipy python3-numpy          # independent .mat reader in the tests

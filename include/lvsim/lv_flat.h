@@ -1,5 +1,6 @@
 /* lv_flat.h - the paper's test-case world: rocket stages as 6-DoF point masses over a flat,
- * non-rotating world with uniform gravity g along -z; thrust along +z (paper, section 4.1).
+ * non-rotating world with uniform gravity g along -z; thrust along +z (paper, section 4.1);
+ * optionally air (lv_flat6): an atmosphere over the altitude z, a wind, and drag.
  *
  * Frame: x east, y north, z up (ENU), origin at the launch point. Attitude: 3-2-1 Euler
  * angles psi, theta, phi of the body relative to the local NED axes (north = +y, east = +x,
@@ -17,15 +18,25 @@
  *                  stops there (impact event).
  * Thrust and mass flow: constant, or from a table over mission time (two of its outputs);
  * its breakpoints are time events while the engine burns.
+ *
+ * Air (lv_flat6 only; docs/models.md): with an atmosphere, the air data at the altitude z
+ * (rho, p, speed of sound), the air-relative velocity v_air = v - v_wind (the wind's NED
+ * components at z, as east = x, north = y, up = -down), Mach and q = rho |v_air|^2 / 2; with
+ * an aerodynamic set, the drag q S_ref CD along -v_air. The body has no angle of attack (its
+ * attitude does not steer it: thrust stays along +z), so CD is its drag coefficient at zero
+ * angle of attack (in body axes: CA) and it has no lift or side force.
  */
 #ifndef LVSIM_LV_FLAT_H
 #define LVSIM_LV_FLAT_H
 
 #include <stddef.h>
 
+#include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
+#include "lvsim/lv_vehicle.h"
+#include "lvsim/lv_wind.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -76,6 +87,14 @@ typedef struct lv_flat6_config {
     const lv_flat_stage *stages;
     size_t n_ends;
     const lv_flat_end *ends;
+    /* the air (optional; see above): */
+    const lv_atmo *atmo;         /* borrowed; NULL: none (vacuum) */
+    const lv_wind *wind;         /* borrowed; NULL: still air. Needs an atmosphere */
+    const lv_aero_config *aero;  /* copied, its tables borrowed; NULL: no aerodynamic force.
+                                  * Drag only: coef[0] is CD (LV_AERO_WIND) or CA (LV_AERO_BODY),
+                                  * a constant or a table over "mach" and "altitude" (axes
+                                  * "alpha", "beta" are read at 0); coef[1], coef[2] must be the
+                                  * constant 0. Needs an atmosphere */
 } lv_flat6_config;
 
 typedef struct lv_flat6 lv_flat6;
@@ -85,7 +104,8 @@ typedef struct lv_flat6 lv_flat6;
  * above the x-y plane; heading from north (+y) towards east (+x)), start_psi, start_theta,
  * start_phi [rad], start_p, start_q, start_r [rad/s], g [m/s^2]; m starts at the sum of the
  * stages' masses. Events: "burnout" (always: the engines stop), then the ends in order,
- * named "burnout", "altitude", "speed", "apogee", "impact". */
+ * named "burnout", "altitude", "speed", "apogee", "impact". Outputs: thrust, mdot, speed,
+ * accel, burning, propellant; with air also mach, q_dyn, rho, p_amb, v_air, drag. */
 LV_API lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *err);
 LV_API void lv_flat6_free(lv_flat6 *m);
 LV_API const lv_model_def *lv_flat6_def(const lv_flat6 *m);

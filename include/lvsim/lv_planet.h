@@ -52,7 +52,8 @@ LV_API lv_planet lv_planet_mars(void);
 /* Preset by name ("earth", "moon", "mars"). Unknown name: LV_ERR_NOTFOUND with
  * a nearest-name suggestion. */
 LV_API lv_status lv_planet_by_name(const char *name, lv_planet *out, lv_err *err);
-/* Checks a user-built planet: a > 0, 0 <= f < 1, gm > 0, r_ref > 0, all finite.
+/* Checks a user-built planet: a > 0, 0 <= f < 1, gm > 0, r_ref > 0, all finite, and
+ * |omega| < sqrt(gm / a^3) (the equator turns slower than a circular orbit there).
  * LV_ERR_INPUT names the planet and the field. */
 LV_API lv_status lv_planet_check(const lv_planet *p, lv_err *err);
 
@@ -119,12 +120,13 @@ typedef struct lv_gravity lv_gravity;
 typedef enum lv_gravity_kind {
     LV_GRAVITY_POINTMASS, /* "pointmass": -GM r / |r|^3 */
     LV_GRAVITY_J2,        /* "j2": point mass + J2 */
-    LV_GRAVITY_ZONAL,     /* "zonal": point mass + J2, J3, J4 */
+    LV_GRAVITY_ZONAL,     /* "zonal": point mass + J2, J3, J4 (or J2 .. Jn given) */
     LV_GRAVITY_SH         /* "sh": spherical harmonics to degree/order from a file */
 } lv_gravity_kind;
 
 /* Zero-initialised fields give the defaults: whole file, all orders, shipped file. */
 #define LV_GRAVITY_ORDER_ZONAL (-1) /* lv_gravity_config.order: zonal terms (m = 0) only */
+#define LV_GRAVITY_ZONAL_MAX 40     /* highest degree of the closed-form zonal model */
 typedef struct lv_gravity_config {
     const char *model;     /* "pointmass", "j2", "zonal" or "sh" */
     int degree;            /* "sh": maximum degree n; 0 = the file's max_degree */
@@ -165,6 +167,14 @@ LV_API lv_status lv_gravity_parse_spec(const char *spec, lv_gravity_config *cfg,
  * r_ref and j2..j4. The caller frees *out with lv_gravity_free(). */
 LV_API lv_status lv_gravity_create(const lv_planet *planet, const lv_gravity_config *cfg,
                                    lv_gravity **out, lv_err *err);
+/* A closed-form model with the caller's zonal coefficients instead of the planet's
+ * j2..j4: zonal[0 .. n_zonal-1] = J2, J3, .. J_(n_zonal + 1) (unnormalised, at planet->r_ref;
+ * copied). `model` "zonal" takes all of them, "j2" only J2, "pointmass" none. LV_ERR_INPUT
+ * for n_zonal outside 1 .. LV_GRAVITY_ZONAL_MAX - 1, a coefficient not finite or |J| >= 1,
+ * or another model. */
+LV_API lv_status lv_gravity_create_zonal(const lv_planet *planet, const char *model,
+                                         const double *zonal, int n_zonal, lv_gravity **out,
+                                         lv_err *err);
 /* Creates an "sh" model from fully normalised coefficients given in memory:
  * cnm[k], snm[k] with k = n (n + 1) / 2 + m, 0 <= m <= n <= degree (the arrays
  * hold (degree + 1)(degree + 2) / 2 values each; snm may be NULL: all zero). The

@@ -126,11 +126,15 @@ LV_API lv_status lv_table_load_csv(const char *path, const lv_table_opts *opts,
 /* MATLAB/Octave MAT file (v4, v5, v7 compressed, v7.3 HDF5; read by libmatio):
  *  - `var` alone, a real matrix [m x (1 + n_out)]: Modelica CombiTable1D/CombiTimeTable
  *    convention, first column the breakpoints, the others the outputs ("col2", "col3", ..).
+ *  - `var` a 1 x 1 struct of named fields: the vector fields are the axes in field order,
+ *    the arrays n1 x .. x nN the outputs (1-D: the first field is the axis); names = fields.
  *  - `var` with `var_x1` .. `var_xN`: N-D gridded, V(i1, .., iN) = f(x1(i1), .., xN(iN))
  *    (MATLAB ndgrid/interpn order), size [n1 .. nN] or [n1 .. nN n_out].
  * Double, single and integer classes are accepted (converted to double); complex, sparse,
- * cell and struct variables are not. A missing `var` gives LV_ERR_NOTFOUND with the nearest
- * names in the file; an unreadable file LV_ERR_IO. */
+ * cell and char variables are not. v7.3 variables that libmatio cannot classify (written by
+ * other HDF5 writers, e.g. a null-padded MATLAB_class) are read with HDF5 (docs/tables.md).
+ * A missing `var` gives LV_ERR_NOTFOUND with the nearest names in the file; an unreadable
+ * file LV_ERR_IO. */
 LV_API lv_status lv_table_load_mat(const char *path, const char *var, const lv_table_opts *opts,
                                    lv_table **out, lv_err *err);
 

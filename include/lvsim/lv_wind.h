@@ -1,10 +1,14 @@
-/* lv_wind.h - wind as a table over altitude: north, east and optionally down components.
+/* lv_wind.h - wind as a table over altitude (north, east and optionally down components),
+ * or a constant.
  *
- * Contract: the wind is the velocity of the air relative to the rotating planet, in the
- * local NED frame (docs/frames.md), m/s, as a function of geodetic altitude h [m]. The
- * 3-DoF model subtracts it from the planet-relative velocity: v_air = v_rel - v_wind.
- * Outside the table's altitude range the wind is clamped: above the top it keeps the top
- * row's value, below the bottom the bottom row's. Linear interpolation in between.
+ * Contract: the wind is the velocity of the air relative to the ground (the rotating planet,
+ * or the flat world), in the local NED frame (docs/frames.md), m/s, as a function of the
+ * altitude h [m] (geodetic on a planet, z on the flat world). Models subtract it from the
+ * velocity relative to the ground: v_air = v_rel - v_wind. A table is interpolated linearly
+ * unless created with other options; outside its altitude range it is clamped by default
+ * (above the top it keeps the top row's value, below the bottom the bottom row's), or
+ * follows the options' extrapolation (LV_EXTRAP_LINEAR, or LV_EXTRAP_ERROR: an evaluation
+ * error). A table of one row, and lv_wind_create_const, give the same wind at every altitude.
  * File format and conventions: docs/wind.md.
  *
  * Threads: an lv_wind is immutable after creation and may be shared read-only between
@@ -32,14 +36,26 @@ typedef struct lv_wind lv_wind; /* opaque, immutable once created */
  * (no variable `var` in the MAT file). lv_wind_free(*out) when done. */
 LV_API lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out,
                                       lv_err *err);
+/* The same with interpolation and extrapolation of the caller's choice (`opts` NULL:
+ * LV_INTERP_LINEAR, LV_EXTRAP_CLAMP). A file of one row is a constant wind (any `opts`). */
+LV_API lv_status lv_wind_create_table_opts(const char *path, const char *var,
+                                           const lv_table_opts *opts, lv_wind **out,
+                                           lv_err *err);
+/* A constant wind, m/s: north, east, down (finite; LV_ERR_INPUT otherwise). */
+LV_API lv_status lv_wind_create_const(double north, double east, double down, lv_wind **out,
+                                      lv_err *err);
 LV_API void lv_wind_free(lv_wind *w); /* accepts NULL */
 
-/* Altitude range of the table [m] (outside it the wind is clamped). */
+/* 1 for a constant wind (lv_wind_create_const, or a table of one row). */
+LV_API int lv_wind_is_constant(const lv_wind *w);
+/* Altitude range of the table [m]; -INFINITY, INFINITY for a constant wind. */
 LV_API void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi);
 
-/* v_ned = wind at geodetic altitude h [m]: north, east, down in m/s (down 0 when the
- * table has no down column). `cur` may be NULL. Hot path: no allocation. Fails only for a
- * NaN altitude (LV_ERR_INPUT; v_ned unchanged). */
+/* v_ned = wind at altitude h [m]: north, east, down in m/s (down 0 when the table has no
+ * down column). `cur` may be NULL. Hot path: no allocation; a message is formatted only on
+ * failure and only if err != NULL. Fails (LV_ERR_INPUT; v_ned unchanged) for a NaN altitude,
+ * and outside the table under LV_EXTRAP_ERROR ("wind: table 'w': axis 0 'h' [m] = 21000 is
+ * outside [0, 20000] ..."). */
 LV_API lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h,
                               double v_ned[3], lv_err *err);
 
@@ -54,8 +70,9 @@ typedef struct lv_wind_user {
 /* An lv_wind_fn (lv_vehicle.h) for the 3-DoF model:
  *     lv_wind_user wu = LV_WIND_USER_INIT(wind);
  *     cfg.wind = lv_wind_fn_table;  cfg.wind_user = &wu;
- * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0, or 1 (state not
- * acceptable) for a NaN altitude. */
+ * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0; 1 (state not acceptable)
+ * for a NaN altitude; -1 (stop the run) outside the table under LV_EXTRAP_ERROR, as an
+ * engine table outside its range stops it. */
 LV_API int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_ned[3],
                             void *user);
 

@@ -158,6 +158,36 @@ fail:
     return st;
 }
 
+lv_status lv_gravity_create_zonal(const lv_planet *planet, const char *model,
+                                  const double *zonal, int n_zonal, lv_gravity **out,
+                                  lv_err *err)
+{
+    *out = NULL;
+    const gravity_entry *e = model != NULL ? find_model(model, strlen(model)) : NULL;
+    if (e == NULL || e->kind == LV_GRAVITY_SH)
+        return lv_fail(err, LV_ERR_INPUT, "gravity '%s': zonal coefficients go with "
+                       "'pointmass', 'j2' or 'zonal'", model != NULL ? model : "(null)");
+    if (zonal == NULL || n_zonal < 1 || n_zonal > LV_GRAVITY_ZONAL_MAX - 1)
+        return lv_fail(err, LV_ERR_INPUT, "gravity '%s': %d zonal coefficients (J2 .. J%d: "
+                       "1 to %d of them)", e->name, n_zonal, LV_GRAVITY_ZONAL_MAX,
+                       LV_GRAVITY_ZONAL_MAX - 1);
+    for (int k = 0; k < n_zonal; k++)
+        if (!(fabs(zonal[k]) < 1.0))
+            return lv_fail(err, LV_ERR_INPUT, "gravity '%s': J%d = %g must be finite and "
+                           "|J| < 1", e->name, k + 2, zonal[k]);
+    const lv_gravity_config cfg = {e->name, 0, 0, NULL};
+    lv_status st = lv_gravity_create(planet, &cfg, out, err);
+    if (st != LV_OK)
+        return st;
+    lv_gravity *g = *out; /* the caller's J2 (j2), or J2 .. Jn (zonal), replace the planet's */
+    memset(g->jn, 0, sizeof g->jn);
+    g->nz = e->kind == LV_GRAVITY_POINTMASS ? 0 : e->kind == LV_GRAVITY_J2 ? 2 : n_zonal + 1;
+    for (int n = 2; n <= g->nz; n++)
+        g->jn[n] = zonal[n - 2];
+    g->degree = g->nz;
+    return LV_OK;
+}
+
 lv_status lv_gravity_create_sh(double gm, double r_ref, int degree, int order, const double *cnm,
                                const double *snm, lv_gravity **out, lv_err *err)
 {
@@ -221,7 +251,7 @@ void lv_gravity_info_get(const lv_gravity *g, lv_gravity_info *info)
         for (int n = 2; n <= 4 && n <= g->degree; n++)
             info->jn[n] = -sqrt(2.0 * n + 1.0) * g->cnm[lv_gravity_tri(n, 0)];
     } else {
-        for (int n = 2; n <= 4; n++)
+        for (int n = 2; n <= 4 && n <= g->nz; n++)
             info->jn[n] = g->jn[n];
     }
 }
@@ -241,7 +271,7 @@ static void zonal_eval(const lv_gravity *g, const double r[3], double a[3], doub
     const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
     const double rn = sqrt(r2), u = r[2] / rn, q = g->r_ref / rn;
     const double mu_r3 = g->gm / (r2 * rn);
-    double p[7], dp[7]; /* P_n(u) and P'_n(u), n <= nz + 1 */
+    double p[LV_GRAVITY_ZONAL_MAX + 2], dp[LV_GRAVITY_ZONAL_MAX + 2]; /* P_n, P'_n, n <= nz + 1 */
     p[0] = 1.0;
     p[1] = u;
     dp[0] = 0.0;

@@ -17,8 +17,8 @@ struct lv_gravity {
     const char *name; /* registry name, static */
     double gm;        /* m^3/s^2 */
     double r_ref;     /* m */
-    double jn[5];     /* closed-form models: J_0..J_4 (J_0 = J_1 = 0) */
-    int nz;           /* closed-form models: highest zonal degree (0, 2 or 4) */
+    double jn[LV_GRAVITY_ZONAL_MAX + 1]; /* closed-form models: J_0..J_nz (J_0 = J_1 = 0) */
+    int nz;           /* closed-form models: highest zonal degree (0 .. LV_GRAVITY_ZONAL_MAX) */
     /* "sh" only: one allocation, `block`, holds every array below */
     int degree, order;
     double *block;

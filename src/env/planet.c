@@ -98,6 +98,12 @@ lv_status lv_planet_check(const lv_planet *p, lv_err *err)
         return lv_fail(err, LV_ERR_INPUT, "planet '%s': omega and theta0 must be finite", who);
     if (!isfinite(p->j2) || !isfinite(p->j3) || !isfinite(p->j4))
         return lv_fail(err, LV_ERR_INPUT, "planet '%s': j2, j3, j4 must be finite", who);
+    /* the equator may not turn faster than a circular orbit at its radius: omega^2 a < GM/a^2 */
+    const double w_orbit = sqrt(p->gm / (p->a * p->a * p->a));
+    if (!(fabs(p->omega) < w_orbit))
+        return lv_fail(err, LV_ERR_INPUT, "planet '%s': rotation rate %g rad/s must be below "
+                       "sqrt(gm / a^3) = %g rad/s (faster, the equator would fly off)", who,
+                       p->omega, w_orbit);
     return LV_OK;
 }
 

@@ -1,12 +1,15 @@
 /* wind.c - wind as a 1-axis table over geodetic altitude: north, east and optionally down
- * components in the local NED frame, m/s (lv_table.h); linear interpolation, clamped at the
- * ends of the table. An lv_wind_fn adapter lets the 3-DoF model use it directly. */
+ * components in the local NED frame, m/s (lv_table.h), interpolated linearly (or as the
+ * caller chooses) and clamped at the ends of the table unless told otherwise; or a constant
+ * (one value, or a table of one row). An lv_wind_fn adapter lets the 3-DoF model use it. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/names.h"
 #include "core/status.h"
+#include "io/table_load.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_wind.h"
 
@@ -16,8 +19,9 @@ static const char *const COL_ALIAS[W_N] = { "v_north", "v_east", "v_down" };
 #define COL_ABSENT ((size_t)-1)
 
 struct lv_wind {
-    lv_table *tab; /* over h [m]: north, east[, down] in m/s; clamped */
+    lv_table *tab;   /* over h [m]: north, east[, down] in m/s; NULL: constant */
     int has_down;
+    double c[W_N];   /* the constant wind, m/s (tab NULL) */
 };
 
 void lv_wind_free(lv_wind *w)
@@ -28,13 +32,38 @@ void lv_wind_free(lv_wind *w)
     free(w);
 }
 
-/* Output index of each component in `raw`: by name (or alias) for CSV, by position
- * (Modelica CombiTable1D columns) for MAT. Down may be absent. */
-static lv_status resolve_columns(const lv_table *raw, const char *path, int mat, size_t *k,
+lv_status lv_wind_create_const(double north, double east, double down, lv_wind **out,
+                               lv_err *err)
+{
+    if (out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_const: NULL argument");
+    *out = NULL;
+    if (!isfinite(north) || !isfinite(east) || !isfinite(down))
+        return lv_fail(err, LV_ERR_INPUT, "constant wind (%g, %g, %g) m/s (north, east, down) "
+                       "must be finite", north, east, down);
+    lv_wind *w = calloc(1, sizeof *w);
+    if (w == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
+    w->c[W_NORTH] = north;
+    w->c[W_EAST] = east;
+    w->c[W_DOWN] = down;
+    w->has_down = 1;
+    *out = w;
+    return LV_OK;
+}
+
+static const char *str_or_empty(const char *const *a, size_t k)
+{
+    return a != NULL && a[k] != NULL ? a[k] : "";
+}
+
+/* Output index of each component: by position (Modelica CombiTable1D columns col2, col3,
+ * col4 of a MAT matrix), otherwise by name or alias. Down may be absent. */
+static lv_status resolve_columns(const lv_table_spec *sp, const char *path, size_t *k,
                                  lv_err *err)
 {
-    const size_t n_out = lv_table_n_out(raw);
-    if (mat) {
+    const size_t n_out = sp->n_out;
+    if (n_out >= 1 && strcmp(str_or_empty(sp->out_name, 0), "col2") == 0) {
         if (n_out < 2 || n_out > 3)
             return lv_fail(err, LV_ERR_INPUT,
                            "%s: wind table has %zu output columns; need 2 or 3 after the "
@@ -47,7 +76,7 @@ static lv_status resolve_columns(const lv_table *raw, const char *path, int mat,
     for (size_t c = 0; c < W_N; c++)
         k[c] = COL_ABSENT;
     for (size_t j = 0; j < n_out; j++) {
-        const char *nm = lv_table_out_name(raw, j);
+        const char *nm = str_or_empty(sp->out_name, j);
         size_t c = 0;
         while (c < W_N && strcmp(nm, COL_NAME[c]) != 0 && strcmp(nm, COL_ALIAS[c]) != 0)
             c++;
@@ -67,7 +96,7 @@ static lv_status resolve_columns(const lv_table *raw, const char *path, int mat,
         }
         if (k[c] != COL_ABSENT)
             return lv_fail(err, LV_ERR_INPUT, "%s: wind table: two columns for '%s' ('%s', '%s')",
-                           path, COL_NAME[c], lv_table_out_name(raw, k[c]), nm);
+                           path, COL_NAME[c], str_or_empty(sp->out_name, k[c]), nm);
         k[c] = j;
     }
     for (size_t c = 0; c < 2; c++)
@@ -79,108 +108,127 @@ static lv_status resolve_columns(const lv_table *raw, const char *path, int mat,
     return LV_OK;
 }
 
-static lv_status check_units(const lv_table *raw, const char *path, const size_t *k,
+static lv_status check_units(const lv_table_spec *sp, const char *path, const size_t *k,
                              lv_err *err)
 {
-    const char *u = lv_table_axis_unit(raw, 0);
+    const char *u = sp->axis_unit[0] != NULL ? sp->axis_unit[0] : "";
     if (u[0] != '\0' && strcmp(u, "m") != 0)
         return lv_fail(err, LV_ERR_INPUT,
                        "%s: altitude column '%s' has unit '%s'; expected 'm'", path,
-                       lv_table_axis_name(raw, 0), u);
+                       sp->axis_name[0] != NULL ? sp->axis_name[0] : "", u);
     for (size_t c = 0; c < W_N; c++) {
         if (k[c] == COL_ABSENT)
             continue;
-        u = lv_table_out_unit(raw, k[c]);
+        u = str_or_empty(sp->out_unit, k[c]);
         if (u[0] != '\0' && strcmp(u, "m/s") != 0)
             return lv_fail(err, LV_ERR_INPUT, "%s: column '%s' has unit '%s'; expected 'm/s'",
-                           path, lv_table_out_name(raw, k[c]), u);
+                           path, str_or_empty(sp->out_name, k[c]), u);
     }
+    return LV_OK;
+}
+
+typedef struct wind_load {
+    const char *path;
+    const lv_table_opts *opts;
+    lv_wind *w;
+} wind_load;
+
+/* The loaded file: a compact table with the components in NED order (so that evaluation
+ * needs no buffer for columns it does not use), or a constant for a single row. */
+static lv_status wind_from_spec(const lv_table_spec *sp, void *user, lv_err *err)
+{
+    wind_load *wl = user;
+    const char *path = wl->path;
+    if (sp->n_dims != 1)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "%s: a wind table has one axis (altitude), this one has %zu", path,
+                       sp->n_dims);
+    size_t k[W_N];
+    lv_status st = resolve_columns(sp, path, k, err);
+    if (st == LV_OK)
+        st = check_units(sp, path, k, err);
+    if (st != LV_OK)
+        return st;
+    const size_t n = sp->n[0], n_raw = sp->n_out;
+    const size_t n_out = k[W_DOWN] != COL_ABSENT ? 3 : 2;
+    if (n == 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: wind table has no rows", path);
+    lv_wind *w = calloc(1, sizeof *w);
+    double *y = malloc(n * n_out * sizeof *y);
+    if (w == NULL || y == NULL) {
+        free(w);
+        free(y);
+        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+    }
+    for (size_t i = 0; i < n; i++)
+        for (size_t c = 0; c < n_out; c++)
+            y[i * n_out + c] = sp->y[i * n_raw + k[c]];
+    w->has_down = n_out == 3;
+    if (n == 1) { /* one row: the same wind at every altitude */
+        for (size_t c = 0; c < n_out; c++) {
+            w->c[c] = y[c];
+            if (!isfinite(y[c]))
+                st = lv_fail(err, LV_ERR_INPUT, "%s: wind value %g is not finite", path, y[c]);
+        }
+    } else {
+        static const char *const units[W_N] = { "m/s", "m/s", "m/s" };
+        lv_table_spec spec = { 0 };
+        spec.n_dims = 1;
+        spec.n[0] = n;
+        spec.x[0] = sp->x[0];
+        spec.n_out = n_out;
+        spec.y = y;
+        spec.interp = wl->opts->interp;
+        spec.extrap = wl->opts->extrap;
+        spec.name = sp->name;
+        spec.axis_name[0] = sp->axis_name[0];
+        spec.axis_unit[0] = "m";
+        spec.out_name = COL_NAME;
+        spec.out_unit = units;
+        st = lv_table_create(&spec, &w->tab, err);
+        if (st != LV_OK)
+            lv_fail_prefix(err, st, "%s", path);
+    }
+    free(y);
+    if (st != LV_OK) {
+        lv_wind_free(w);
+        return st;
+    }
+    wl->w = w;
+    return LV_OK;
+}
+
+lv_status lv_wind_create_table_opts(const char *path, const char *var,
+                                    const lv_table_opts *opts, lv_wind **out, lv_err *err)
+{
+    if (out == NULL || path == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_table: NULL argument");
+    *out = NULL;
+    static const lv_table_opts deflt = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
+    wind_load wl = { path, opts != NULL ? opts : &deflt, NULL };
+    const lv_status st = lv_table_load_spec(path, var, wl.opts, wind_from_spec, &wl, err);
+    if (st != LV_OK) {
+        lv_wind_free(wl.w);
+        return st;
+    }
+    *out = wl.w;
     return LV_OK;
 }
 
 lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out, lv_err *err)
 {
-    lv_table *raw = NULL;
-    lv_wind *w = NULL;
-    double *y = NULL, *row = NULL;
-    lv_status st;
-
-    if (out == NULL || path == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_table: NULL argument");
-    *out = NULL;
-    const int mat = lv_table_path_is_mat(path);
-    const lv_table_opts opts = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
-    st = lv_table_load(path, var, &opts, &raw, err);
-    if (st != LV_OK)
-        return st;
-    if (lv_table_n_dims(raw) != 1) {
-        st = lv_fail(err, LV_ERR_INPUT,
-                     "%s: a wind table has one axis (altitude), this one has %zu", path,
-                     lv_table_n_dims(raw));
-        goto fail;
-    }
-    size_t k[W_N];
-    st = resolve_columns(raw, path, mat, k, err);
-    if (st == LV_OK)
-        st = check_units(raw, path, k, err);
-    if (st != LV_OK)
-        goto fail;
-
-    /* A compact copy with the components in NED order, so that evaluation needs no
-     * buffer for columns it does not use. */
-    size_t n = 0;
-    const double *h = lv_table_breakpoints(raw, 0, &n);
-    const size_t n_raw = lv_table_n_out(raw);
-    const size_t n_out = k[W_DOWN] != COL_ABSENT ? 3 : 2;
-    st = LV_ERR_NOMEM;
-    w = calloc(1, sizeof *w);
-    y = malloc(n * n_out * sizeof *y);
-    row = malloc(n_raw * sizeof *row);
-    if (w == NULL || y == NULL || row == NULL) {
-        lv_fail(err, st, "%s: out of memory", path);
-        goto fail;
-    }
-    lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
-    for (size_t i = 0; i < n; i++) { /* exact at a breakpoint */
-        st = lv_table_eval1(raw, &cur, h[i], row, err);
-        if (st != LV_OK)
-            goto fail;
-        for (size_t c = 0; c < n_out; c++)
-            y[i * n_out + c] = row[k[c]];
-    }
-    char axis_name[128];
-    snprintf(axis_name, sizeof axis_name, "%s", lv_table_axis_name(raw, 0));
-    static const char *const units[W_N] = { "m/s", "m/s", "m/s" };
-    lv_table_spec spec = { 0 };
-    spec.n_dims = 1;
-    spec.n[0] = n;
-    spec.x[0] = h;
-    spec.n_out = n_out;
-    spec.y = y;
-    spec.interp = LV_INTERP_LINEAR;
-    spec.extrap = LV_EXTRAP_CLAMP;
-    spec.name = lv_table_name(raw);
-    spec.axis_name[0] = axis_name;
-    spec.axis_unit[0] = "m";
-    spec.out_name = COL_NAME;
-    spec.out_unit = units;
-    st = lv_table_create(&spec, &w->tab, err);
-    if (st != LV_OK)
-        goto fail;
-    w->has_down = n_out == 3;
-    *out = w;
-    w = NULL;
-    st = LV_OK;
-fail:
-    lv_wind_free(w);
-    free(row);
-    free(y);
-    lv_table_free(raw);
-    return st;
+    return lv_wind_create_table_opts(path, var, NULL, out, err);
 }
+
+int lv_wind_is_constant(const lv_wind *w) { return w->tab == NULL; }
 
 void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi)
 {
+    if (w->tab == NULL) {
+        *h_lo = -INFINITY;
+        *h_hi = INFINITY;
+        return;
+    }
     size_t n = 0;
     const double *h = lv_table_breakpoints(w->tab, 0, &n);
     *h_lo = h[0];
@@ -190,10 +238,18 @@ void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi)
 lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h, double v_ned[3],
                        lv_err *err)
 {
+    if (w->tab == NULL) {
+        if (isnan(h))
+            return lv_fail(err, LV_ERR_INPUT, "wind: altitude is NaN");
+        v_ned[0] = w->c[W_NORTH];
+        v_ned[1] = w->c[W_EAST];
+        v_ned[2] = w->c[W_DOWN];
+        return LV_OK;
+    }
     double y[W_N] = { 0.0, 0.0, 0.0 };
-    const lv_status st = lv_table_eval1(w->tab, cur, h, y, err); /* NaN is the only failure */
+    const lv_status st = lv_table_eval1(w->tab, cur, h, y, err); /* NaN; outside: ERROR */
     if (st != LV_OK)
-        return st;
+        return err != NULL ? lv_fail_prefix(err, st, "wind") : st;
     v_ned[0] = y[W_NORTH];
     v_ned[1] = y[W_EAST];
     v_ned[2] = w->has_down ? y[W_DOWN] : 0.0;
@@ -205,5 +261,7 @@ int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_n
 {
     (void)t, (void)lat, (void)lon;
     lv_wind_user *u = user;
-    return lv_wind_eval(u->w, &u->cur, h, v_wind_ned, NULL) == LV_OK ? 0 : 1;
+    if (lv_wind_eval(u->w, &u->cur, h, v_wind_ned, NULL) == LV_OK)
+        return 0;
+    return isnan(h) ? 1 : -1; /* outside the table under extrap: error: stop */
 }

@@ -86,6 +86,13 @@ lv_status lv_mission_compare(const lv_mission *m, const char *method, double tol
                      d->path);
         goto done;
     }
+    /* The end-to-end model flies without air (lv_flat_e2e): no atmosphere, no wind, no drag. */
+    if (d->env.atmosphere != NULL && strcmp(d->env.atmosphere, "none") != 0) {
+        st = lv_fail(err, LV_ERR_INPUT, "compare: '%s' has an atmosphere (%s); the end-to-end "
+                     "model has no air, so the two would not fly the same mission", d->path,
+                     d->env.atmosphere);
+        goto done;
+    }
     /* Same integrator settings on both sides. */
     lv_run_options opt = {.threads = 1, .output_interval = dt, .method = method,
                           .tolerance = tolerance};

@@ -1,8 +1,8 @@
 /* mission.c - lv_mission: a mission file loaded once, immutable afterwards. Parses and validates
  * the definition (parse.c), builds the environment every phase shares (planet, gravity,
- * atmosphere, wind), builds each phase's model once with the file's values to check it and to
- * resolve its plan (the hand-off's names to indices, the names of its finals and events), and
- * answers questions about the mission and its parameters (slots, mission.h). */
+ * atmosphere, wind: env.c), builds each phase's model once with the file's values to check it
+ * and to resolve its plan (the hand-off's names to indices, the names of its finals and
+ * events), and answers questions about the mission and its parameters (slots, mission.h). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -13,43 +13,6 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "mission/mission_rt.h"
-
-/* ---- the environment --------------------------------------------------------------------- */
-
-static void env_clear(lv_mission_env *env)
-{
-    lv_gravity_free(env->gravity);
-    lv_atmo_free(env->atmo);
-    lv_wind_free(env->wind);
-    memset(env, 0, sizeof *env);
-}
-
-/* Planet, gravity and atmosphere of a planet world, shared read-only by all phases. */
-static lv_status make_env(const lv_mission_def *d, lv_mission_env *env, lv_err *err)
-{
-    if (d->env.world != LV_WORLD_PLANET)
-        return LV_OK;
-    const lv_src_loc *loc = &d->env.loc;
-    lv_gravity_config gc;
-    lv_status st = lv_planet_by_name(d->env.planet ? d->env.planet : "earth", &env->planet, err);
-    if (st == LV_OK)
-        st = lv_gravity_parse_spec(d->env.gravity ? d->env.gravity : "j2", &gc, err);
-    if (st == LV_OK)
-        st = lv_gravity_create(&env->planet, &gc, &env->gravity, err);
-    const char *atm = d->env.atmosphere;
-    if (st == LV_OK && atm != NULL && strcmp(atm, "table") == 0)
-        st = lv_atmo_create_table(d->env.atmo_file, d->env.atmo_var, &env->atmo, err);
-    else if (st == LV_OK && atm != NULL && strcmp(atm, "none") != 0)
-        st = lv_atmo_create(atm, &env->atmo, err);
-    if (st == LV_OK && d->env.wind_file != NULL) {
-        loc = &d->env.wind_loc;
-        st = lv_wind_create_table(d->env.wind_file, d->env.wind_var, &env->wind, err);
-    }
-    if (st != LV_OK)
-        return lv_fail_prefix(err, LV_ERR_INPUT, "%s:%d:%d: environment", d->path, loc->line,
-                              loc->column);
-    return LV_OK;
-}
 
 /* ---- plans ------------------------------------------------------------------------------- */
 
@@ -370,7 +333,7 @@ void lv_mission_free(lv_mission *m)
     free(m->plan);
     free(m->rules);
     free(m->defaults);
-    env_clear(&m->env);
+    lv_mission_env_clear(&m->env);
     lv_mission_def_free(m->def);
     free(m);
 }
@@ -396,7 +359,8 @@ lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err)
         lv_range_text(d->slots[i].range, m->rules[i], sizeof m->rules[i]);
     }
     lv_status st;
-    if ((st = make_env(d, &m->env, err)) != LV_OK || (st = check_and_plan(m, err)) != LV_OK) {
+    if ((st = lv_mission_env_make(d, &m->env, err)) != LV_OK ||
+        (st = check_and_plan(m, err)) != LV_OK) {
         lv_mission_free(m);
         return st;
     }

@@ -17,6 +17,7 @@
 #include <stddef.h>
 
 #include "lvsim/lv_model.h"
+#include "lvsim/lv_planet.h"
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 
@@ -61,16 +62,48 @@ typedef enum lv_world_kind {
     LV_WORLD_PLANET = 1 /* rotating ellipsoidal planet (3-DoF model) */
 } lv_world_kind;
 
+/* A planet given by its constants (`planet: {radius: .., gm: ..}`) instead of a preset.
+ * Constants the file writes are slots (owner LV_OWN_ENV); the others come from `base`. */
+typedef struct lv_planet_def {
+    int custom;              /* 0: the preset named by lv_env_def.planet */
+    int has_base;            /* `base:` written: the constants not written are the preset's */
+    lv_planet base;          /* the preset, or a = 0 (radius required), f 0, omega 0, no J;
+                                name: the planet's name */
+    lv_slot radius;          /* m, equatorial radius a; LV_NO_SLOT: base's */
+    lv_slot flattening;      /* -, (a - b) / a; LV_NO_SLOT: base's */
+    lv_slot gm;              /* m^3/s^2; LV_NO_SLOT: base's */
+    lv_slot rotation_rate;   /* rad/s about +z; LV_NO_SLOT: base's */
+    lv_slot r_ref;           /* m, reference radius of the zonal coefficients; LV_NO_SLOT:
+                                base's with a base, else the radius */
+    int zonal_given;         /* `zonal:` written (it replaces base's J2..J4, even when empty) */
+    size_t n_zonal;          /* J2 .. J_(n_zonal + 1) */
+    lv_slot *zonal;          /* [n_zonal] */
+    char *coef_file;         /* ICGEM coefficient file for gravity sh (resolved), or NULL */
+    lv_src_loc loc;          /* the planet mapping */
+} lv_planet_def;
+
 typedef struct lv_env_def {
     lv_world_kind world;
     lv_slot g;            /* m/s^2, flat world: uniform gravity magnitude (default 9.81) */
-    char *planet;         /* planet world: "earth" (WGS-84, default), "moon", "mars"; NULL: flat */
-    char *gravity;        /* planet world: gravity spec, e.g. "j2", "sh:8" (default "j2");
-                             NULL on a flat world */
-    char *atmosphere;     /* "us76" (default for earth), "exp", "none" */
+    char *planet;         /* planet world: "earth" (WGS-84, default), "moon", "mars", or the
+                             name of a planet given by its constants; NULL: flat */
+    lv_planet_def pdef;   /* planet world: the planet's constants when pdef.custom */
+    char *gravity;        /* planet world: gravity spec, e.g. "j2", "sh:8" (default "j2";
+                             "zonal" for a planet by its constants, "sh" with a coefficient
+                             file); NULL on a flat world */
+    lv_src_loc gravity_loc;
+    char *atmosphere;     /* "us76" (default on the Earth), "exp", "table", "none" */
+    lv_slot atmo_par[3];  /* "exp": rho0 [kg/m^3], scale height H [m], temperature T [K];
+                             LV_NO_SLOT: the model's default */
+    lv_src_loc atmo_loc;
     double site_lat, site_lon; /* rad: flat world: geodetic position of the origin (WGS-84) */
     char *atmo_file, *atmo_var; /* atmosphere "table": the file (resolved) and .mat variable */
-    char *wind_file, *wind_var; /* wind table over altitude, or NULL: no wind */
+    char *wind_file, *wind_var; /* wind table over altitude, or NULL: no wind (or constant) */
+    lv_interp wind_interp;      /* the wind table's interpolation (default linear) */
+    lv_extrap wind_extrap;      /* and its extrapolation (default clamp) */
+    lv_slot wind_ned[3];  /* m/s: a constant wind's north, east, down; LV_NO_SLOT: none (or a
+                             table); down not written: LV_NO_SLOT with north and east given */
+    int wind_const;       /* 1: the constant wind of wind_ned */
     lv_src_loc wind_loc;
     lv_src_loc loc;
 } lv_env_def;

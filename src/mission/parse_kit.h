@@ -50,6 +50,11 @@ lv_status lv_pk_enum(const lv_pctx *c, const lv_ynode *v, const char *what, cons
 lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                       const char *what, lv_extrap extrap_default, char **file, char **var,
                       lv_table **tab);
+/* The same, the mapping also taking `output: name` (the table output to use): *output is its
+ * value node (a non-empty string), or NULL when not given. */
+lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                          const char *what, lv_extrap extrap_default, char **file, char **var,
+                          const lv_ynode **output, lv_table **tab);
 
 /* The number at `v` (key `key` of `what`) registered as slot `name` with its unit and range,
  * owned by c->owner; out of range is an error at v naming the rule. `deg`: the value is in

@@ -1,7 +1,7 @@
 /* phase_dof3.c - the phase-model type "dof3": the 3-DoF variable-mass point over the rotating
  * planet (lv_dof3.h; the paper's sec. 2.2-2.3). The phase's stages fly as one mass point and
  * the bottom stage's engines burn. Its own phase keys: inputs (alpha, beta, mu, throttle,
- * constant or a control table) and aero (the phase's aerodynamic dataset). */
+ * constant or a control table) and aero (the phase's aerodynamic dataset: aero_def.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +11,7 @@
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
+#include "mission/aero_def.h"
 #include "mission/phase_type.h"
 
 static const char *const keys[] = {"inputs", "aero", NULL};
@@ -48,12 +49,7 @@ typedef struct dof3_cfg {
     lv_slot u[4];        /* alpha, beta, mu [rad], throttle [-]: constant inputs */
     char *inputs_file, *inputs_var;
     lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
-    int has_aero;
-    int body_axes;       /* 0: CD, CL, CY (wind axes); 1: CA, CN, CY (body axes) */
-    lv_slot s_ref;       /* m^2 */
-    lv_slot coef[3];     /* constant coefficients; LV_NO_SLOT: from the table (or 0) */
-    char *aero_file, *aero_var;
-    lv_table *aero_table;
+    lv_aero_def aero;    /* the phase's aerodynamic dataset (aero_def.h) */
 } dof3_cfg;
 
 static void dof3_cfg_free(void *p)
@@ -64,9 +60,7 @@ static void dof3_cfg_free(void *p)
     free(c->inputs_file);
     free(c->inputs_var);
     lv_table_free(c->inputs);
-    free(c->aero_file);
-    free(c->aero_var);
-    lv_table_free(c->aero_table);
+    lv_aero_def_clear(&c->aero);
     free(c);
 }
 
@@ -112,56 +106,6 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     return LV_OK;
 }
 
-/* aero: {s_ref, axes: wind|body, table, CD, CL, CY | CA, CN, CY}: the phase's aerodynamic
- * dataset (tables over mach, alpha [, beta, altitude], outputs named as the coefficients). */
-static lv_status parse_aero(const lv_pctx *c, const lv_ynode *n, const char *phase,
-                            dof3_cfg *cfg)
-{
-    static const char *const akeys[] = {"s_ref", "axes", "table", "CD", "CL", "CY", "CA", "CN",
-                                        NULL};
-    static const char *const axes[] = {"wind", "body", NULL};
-    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
-    const lv_ynode *v;
-    lv_status st;
-    size_t i = 0;
-    for (int k = 0; k < 3; k++)
-        cfg->coef[k] = LV_NO_SLOT;
-    cfg->s_ref = LV_NO_SLOT;
-    snprintf(what, sizeof what, "phase '%s', aero", phase);
-    if (n == NULL || lv_yaml_is_null(n))
-        return LV_OK;
-    if ((st = lv_pk_check_map(c, n, what, akeys)) != LV_OK)
-        return st;
-    cfg->has_aero = 1;
-    snprintf(slot, sizeof slot, "%s.aero.s_ref", phase);
-    if ((st = lv_pk_need(c, n, what, "s_ref", &v)) != LV_OK ||
-        (st = lv_pk_slot(c, v, what, "s_ref", slot, "m^2", LV_RANGE_POS, 0, &cfg->s_ref)) !=
-            LV_OK)
-        return st;
-    if ((v = lv_pk_get(n, "axes")) != NULL &&
-        (st = lv_pk_enum(c, v, what, "axes", axes, &i)) != LV_OK)
-        return st;
-    cfg->body_axes = i == 1;
-    const char *const names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
-    const char *const other[2][2] = {{"CA", "CN"}, {"CD", "CL"}};
-    for (int k = 0; k < 2; k++)
-        if (lv_pk_get(n, other[i][k]) != NULL)
-            return lv_pk_fail(c, lv_pk_key(n, other[i][k]), "%s: '%s' belongs to axes: %s", what,
-                              other[i][k], i == 0 ? "body" : "wind");
-    for (int k = 0; k < 3; k++) {
-        snprintf(slot, sizeof slot, "%s.aero.%s", phase, names[i][k]);
-        if ((v = lv_pk_get(n, names[i][k])) != NULL &&
-            (st = lv_pk_slot(c, v, what, names[i][k], slot, "", LV_RANGE_ANY, 0, &cfg->coef[k])) !=
-                LV_OK)
-            return st;
-    }
-    if ((v = lv_pk_get(n, "table")) != NULL &&
-        (st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->aero_file,
-                          &cfg->aero_var, &cfg->aero_table)) != LV_OK)
-        return st;
-    return LV_OK;
-}
-
 static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
 {
     dof3_cfg *cfg = calloc(1, sizeof *cfg);
@@ -169,7 +113,7 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
         return lv_pk_nomem(c);
     ph->type_cfg = cfg;
     lv_status st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
-    return st != LV_OK ? st : parse_aero(c, lv_pk_get(n, "aero"), ph->name, cfg);
+    return st != LV_OK ? st : lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
 }
 
 /* ---- the model ---------------------------------------------------------------------------- */
@@ -177,6 +121,7 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
 typedef struct dof3_self {
     lv_phase_model pm;
     lv_dof3 *model;
+    lv_phase_env env;   /* planet, gravity, atmosphere, wind of this run (borrowed by model) */
     lv_aero_config aero;
     lv_wind_user wind;  /* the wind table and this simulation's cursor */
     lv_engine_config *engines;
@@ -190,6 +135,7 @@ static void dof3_free_self(void *p)
     if (s == NULL)
         return;
     lv_dof3_free(s->model);
+    lv_phase_env_clear(&s->env);
     free(s->engines);
     free(s->ends);
     free(s->event_end);
@@ -232,14 +178,19 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         dof3_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
+    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    if (st != LV_OK) {
+        dof3_free_self(s);
+        return st;
+    }
     lv_dof3_config cfg;
     lv_dof3_config_default(&cfg);
     cfg.name = ph->name;
-    cfg.planet = bc->env->planet;
-    cfg.gravity = bc->env->gravity;
-    cfg.atmo = bc->env->atmo;
-    if (bc->env->wind != NULL) {
-        s->wind = (lv_wind_user)LV_WIND_USER_INIT(bc->env->wind);
+    cfg.planet = s->env.planet;
+    cfg.gravity = s->env.gravity;
+    cfg.atmo = s->env.atmo;
+    if (s->env.wind != NULL) {
+        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
         cfg.wind = lv_wind_fn_table;
         cfg.wind_user = &s->wind;
     }
@@ -295,25 +246,13 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.mu = bc->vals[pc->u[2]];
     cfg.throttle = bc->vals[pc->u[3]];
     cfg.inputs = pc->inputs;
-    /* the phase's aerodynamic dataset: a coefficient is a constant, else the table's output
-     * of its name, else 0 */
-    if (pc->has_aero) {
-        static const char *const names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
-        lv_aero_config_default(&s->aero);
-        s->aero.axes = pc->body_axes ? LV_AERO_BODY : LV_AERO_WIND;
-        s->aero.s_ref = val(bc, pc->s_ref);
-        for (int c = 0; c < 3; c++) {
-            const char *nm = names[pc->body_axes][c];
-            size_t idx;
-            if (pc->coef[c] != LV_NO_SLOT)
-                s->aero.coef[c] = (lv_aero_coef){NULL, NULL, val(bc, pc->coef[c])};
-            else if (pc->aero_table &&
-                     lv_table_out_index(pc->aero_table, nm, &idx, NULL) == LV_OK)
-                s->aero.coef[c] = (lv_aero_coef){pc->aero_table, nm, 0.0};
-        }
+    /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an
+     * output of the dataset's table, or 0 */
+    if (pc->aero.present) {
+        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
         cfg.aero = &s->aero;
     }
-    lv_status st = lv_dof3_create(&cfg, &s->model, err);
+    st = lv_dof3_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         dof3_free_self(s);
         return st;

@@ -1,13 +1,16 @@
 /* phase_flat6.c - the phase-model type "flat6": the paper's test-case body (lv_flat.h), a
  * stack of stages as one 6-DoF point mass over a flat, non-rotating world with uniform
- * gravity; the bottom stage's engines burn (paper, section 4.1). */
+ * gravity; the bottom stage's engines burn (paper, section 4.1). With the environment's
+ * atmosphere and wind, and its own key `aero` (drag only), a sounding rocket in air. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/status.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_units.h"
+#include "mission/aero_def.h"
 #include "mission/phase_type.h"
 
 /* The model's parameters that are the mission's shared parameter set (lv_flat.h). */
@@ -60,6 +63,42 @@ static void flat6_traj_extra(const lv_mission_def *d, double *row)
     lv_frames_ecef_to_geodetic(&earth, r_ecef, &row[TC_LAT], &row[TC_LON], &row[TC_H]);
 }
 
+/* ---- the phase's own keys ------------------------------------------------------------ */
+
+static const char *const keys[] = {"aero", NULL};
+
+typedef struct flat6_cfg {
+    lv_aero_def aero; /* drag only (aero_def.h) */
+} flat6_cfg;
+
+static void flat6_cfg_free(void *p)
+{
+    flat6_cfg *c = p;
+    if (c == NULL)
+        return;
+    lv_aero_def_clear(&c->aero);
+    free(c);
+}
+
+/* aero: {s_ref, axes, CD | CA, table}: the body's drag; it needs the atmosphere. */
+static lv_status flat6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    flat6_cfg *cfg = calloc(1, sizeof *cfg);
+    if (cfg == NULL)
+        return lv_pk_nomem(c);
+    ph->type_cfg = cfg;
+    const lv_ynode *v = lv_pk_get(n, "aero");
+    lv_status st = lv_aero_def_parse(c, v, ph->name, 1, &cfg->aero);
+    if (st == LV_OK && cfg->aero.present && c->m->env.atmosphere != NULL &&
+        strcmp(c->m->env.atmosphere, "none") == 0)
+        st = lv_pk_fail(c, lv_pk_key(n, "aero"), "phase '%s': aero: the flat world has no "
+                        "atmosphere (environment: atmosphere: none, its default), so no drag; "
+                        "give environment: atmosphere: us76, exp or {table: ..}", ph->name);
+    return st;
+}
+
+/* ---- the model ---------------------------------------------------------------------------- */
+
 static const lv_flat_end_kind flat_end_of[] = {
     [LV_END_BURNOUT] = LV_FLAT_END_BURNOUT, [LV_END_ALTITUDE] = LV_FLAT_END_ALTITUDE,
     [LV_END_SPEED] = LV_FLAT_END_SPEED,     [LV_END_APOGEE] = LV_FLAT_END_APOGEE,
@@ -69,6 +108,8 @@ static const lv_flat_end_kind flat_end_of[] = {
 typedef struct flat6_self {
     lv_phase_model pm;
     lv_flat6 *model;
+    lv_phase_env env;     /* atmosphere and wind of this run (borrowed by the model) */
+    lv_aero_config aero;
     lv_flat_stage *stages;
     lv_flat_engine *engines;
     lv_flat_end *ends;
@@ -81,6 +122,7 @@ static void flat6_free_self(void *p)
     if (s == NULL)
         return;
     lv_flat6_free(s->model);
+    lv_phase_env_clear(&s->env);
     free(s->stages);
     free(s->engines);
     free(s->ends);
@@ -133,9 +175,25 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
         s->ends[n_ends] = (lv_flat_end){flat_end_of[e->kind], val(bc, e->value), e->direction};
         s->event_end[1 + n_ends++] = (int)j;
     }
-    lv_flat6_config cfg = {ph->name,    val(bc, d->env.g), ph->n_stages, s->stages,
-                           n_ends,      s->ends};
-    lv_status st = lv_flat6_create(&cfg, &s->model, err);
+    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    if (st != LV_OK) {
+        flat6_free_self(s);
+        return st;
+    }
+    const flat6_cfg *pc = ph->type_cfg;
+    lv_flat6_config cfg = {.name = ph->name,
+                           .g = val(bc, d->env.g),
+                           .n_stages = ph->n_stages,
+                           .stages = s->stages,
+                           .n_ends = n_ends,
+                           .ends = s->ends,
+                           .atmo = s->env.atmo,
+                           .wind = s->env.wind};
+    if (pc != NULL && pc->aero.present) {
+        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
+        cfg.aero = &s->aero;
+    }
+    st = lv_flat6_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         flat6_free_self(s);
         return st;
@@ -151,15 +209,15 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
 const lv_phase_type lv_phase_type_flat6 = {
     .name = "flat6",
     .description = "6-DoF point mass carrying a stack of stages over a flat world (the paper's "
-                   "test case; thrust along +z, no aerodynamics)",
+                   "test case; thrust along +z; drag along -v_air in the environment's air)",
     .world = LV_WORLD_FLAT,
-    .keys = NULL,
+    .keys = keys,
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
     .mission_param_ranges = mission_param_ranges,
     .mass_state = "m",
-    .parse = NULL,
-    .cfg_free = NULL,
+    .parse = flat6_parse,
+    .cfg_free = flat6_cfg_free,
     .build = flat6_build,
     .free_self = flat6_free_self,
     .n_traj = sizeof traj / sizeof traj[0],

@@ -27,14 +27,38 @@ typedef struct lv_mission_env {
     lv_wind *wind;       /* NULL: no wind */
 } lv_mission_env;
 
+/* Builds the environment from the file's values (mission.c, when the mission is loaded):
+ * the planet and its gravity, the atmosphere and the wind, on either world. Errors carry the
+ * position of the key that failed. lv_mission_env_clear frees it (a zeroed one too). */
+lv_status lv_mission_env_make(const lv_mission_def *d, lv_mission_env *env, lv_err *err);
+void lv_mission_env_clear(lv_mission_env *env);
+
+/* What one phase model flies in for one run: the shared environment where the run's values
+ * of the environment's slots (a planet's constants, the exponential atmosphere's parameters,
+ * a constant wind) are the file's; objects made from the run's values otherwise, owned here
+ * (lv_phase_env_clear, after the model that borrows them is freed). */
+typedef struct lv_phase_env {
+    lv_planet planet;          /* planet world */
+    const lv_gravity *gravity; /* NULL on a flat world */
+    const lv_atmo *atmo;       /* NULL: no atmosphere */
+    const lv_wind *wind;       /* NULL: no wind */
+    lv_gravity *own_gravity;
+    lv_atmo *own_atmo;
+    lv_wind *own_wind;
+} lv_phase_env;
+
+typedef struct lv_build_ctx lv_build_ctx;
+lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err);
+void lv_phase_env_clear(lv_phase_env *pe); /* accepts a zeroed one */
+
 /* What a type needs to build phase k's model for one run. */
-typedef struct lv_build_ctx {
+struct lv_build_ctx {
     const lv_mission_def *def;
     const lv_mission_env *env;
     size_t k;           /* the phase */
     const double *vals; /* [def->n_slots]: the run's value of every slot */
     const double *prop; /* [def->n_stages]: kg of propellant left in each stage at the start */
-} lv_build_ctx;
+};
 
 /* A built phase model: what one simulation of the phase gets. */
 typedef struct lv_phase_model lv_phase_model;

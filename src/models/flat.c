@@ -1,6 +1,7 @@
 /* flat.c - rocket stages as 6-DoF point masses over a flat world with uniform gravity (the
  * paper's test case, section 4.1): the sequential one-body model lv_flat6 and the end-to-end
- * multibody model lv_flat_e2e, over one body law (flat_body_deriv). See lv_flat.h. */
+ * multibody model lv_flat_e2e, over one body law (flat_body_deriv); lv_flat6 optionally in
+ * air (atmosphere over z, wind, drag along -v_air: flat_air_eval). See lv_flat.h. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -202,16 +203,200 @@ static void body_start(const double *p, double *x)
 
 static double stage_mass(const flat_stage_rt *s) { return s->dry_mass + s->prop_mass; }
 
+/* ---- air: atmosphere, wind and drag of lv_flat6 ---------------------------------------------- */
+
+enum { AIR_IN_MACH, AIR_IN_ALPHA, AIR_IN_BETA, AIR_IN_ALT, AIR_IN_N };
+
+typedef struct flat_air {
+    int on;                         /* an atmosphere: air data, outputs */
+    const lv_atmo_model *atmo_model;
+    const void *atmo_par;
+    const lv_wind *wind;            /* NULL: still air */
+    lv_table_cursor wind_cur;
+    int drag;                       /* an aerodynamic set */
+    double s_ref;                   /* m^2 */
+    double cd;                      /* constant CD (cd_tab NULL) */
+    const lv_table *cd_tab;         /* borrowed */
+    size_t cd_k, cd_dims;           /* output index, axes */
+    int cd_in[LV_TABLE_MAX_DIMS];   /* AIR_IN_* feeding each axis */
+    lv_table_cursor cd_cur;
+    double *cd_y;                   /* [n_out] */
+} flat_air;
+
+/* The flight condition at one state. */
+typedef struct flat_air_state {
+    double rho, p, a;   /* kg/m^3, Pa, m/s */
+    double v_air[3];    /* m/s, air-relative velocity, x east, y north, z up */
+    double speed;       /* m/s, |v_air| */
+    double mach, q;     /* -, Pa */
+    double cd, drag;    /* -, N */
+} flat_air_state;
+
+static void air_clear(flat_air *a)
+{
+    free(a->cd_y);
+    memset(a, 0, sizeof *a);
+}
+
+/* Checks and resolves cfg's air (the table's axes and output once, here). */
+static lv_status air_init(flat_air *a, const lv_flat6_config *cfg, lv_err *err)
+{
+    static const char *const in_names[AIR_IN_N] = {"mach", "alpha", "beta", "altitude"};
+    memset(a, 0, sizeof *a);
+    if (cfg->atmo == NULL) {
+        if (cfg->wind != NULL || cfg->aero != NULL)
+            return lv_fail(err, LV_ERR_INPUT, "flat6: a wind or an aerodynamic set needs an "
+                           "atmosphere (cfg.atmo)");
+        return LV_OK;
+    }
+    a->on = 1;
+    a->atmo_model = lv_atmo_model_of(cfg->atmo);
+    a->atmo_par = lv_atmo_par(cfg->atmo);
+    a->wind = cfg->wind;
+    const lv_aero_config *ac = cfg->aero;
+    if (ac == NULL)
+        return LV_OK;
+    const char *cn = ac->axes == LV_AERO_BODY ? "CA" : "CD";
+    if (ac->axes != LV_AERO_WIND && ac->axes != LV_AERO_BODY)
+        return lv_fail(err, LV_ERR_INPUT, "flat6: aerodynamics: axes = %d", (int)ac->axes);
+    if (!(ac->s_ref > 0.0) || !isfinite(ac->s_ref))
+        return lv_fail(err, LV_ERR_INPUT, "flat6: aerodynamics: s_ref = %g m^2 (must be > 0)",
+                       ac->s_ref);
+    for (int i = 1; i < 3; i++)
+        if (ac->coef[i].table != NULL || ac->coef[i].value != 0.0)
+            return lv_fail(err, LV_ERR_INPUT, "flat6: aerodynamics: %s must be 0: the flat "
+                           "world's body flies at zero angle of attack, drag only (no lift or "
+                           "side force)", ac->axes == LV_AERO_BODY ? (i == 1 ? "CN" : "CY")
+                                                                   : (i == 1 ? "CL" : "CY"));
+    a->drag = 1;
+    a->s_ref = ac->s_ref;
+    const lv_aero_coef *k = &ac->coef[0];
+    if (k->table == NULL) {
+        if (!isfinite(k->value))
+            return lv_fail(err, LV_ERR_INPUT, "flat6: aerodynamics %s = %g", cn, k->value);
+        a->cd = k->value;
+        return LV_OK;
+    }
+    const lv_table *t = k->table;
+    a->cd_tab = t;
+    a->cd_dims = lv_table_n_dims(t);
+    int used[AIR_IN_N] = {0};
+    for (size_t d = 0; d < a->cd_dims; d++) {
+        const char *ax = lv_table_axis_name(t, d);
+        int in = -1;
+        for (int j = 0; j < AIR_IN_N; j++)
+            if (strcmp(ax, in_names[j]) == 0)
+                in = j;
+        if (in < 0 || used[in]++)
+            return lv_fail(err, LV_ERR_INPUT, "flat6: aerodynamics %s: table '%s': axis %zu is "
+                           "'%s'; an aerodynamic table's axes are 'mach', 'alpha', 'beta', "
+                           "'altitude', each at most once", cn, lv_table_name(t), d, ax);
+        a->cd_in[d] = in;
+    }
+    const char *out = k->output;
+    lv_status st = LV_OK;
+    if (out == NULL && lv_table_n_out(t) == 1)
+        a->cd_k = 0;
+    else if ((st = lv_table_out_index(t, out != NULL ? out : cn, &a->cd_k, err)) != LV_OK)
+        return lv_fail_prefix(err, st, "flat6: aerodynamics %s: table '%s'", cn,
+                              lv_table_name(t));
+    if ((a->cd_y = malloc(lv_table_n_out(t) * sizeof *a->cd_y)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    return LV_OK;
+}
+
+/* Air data at body state x (time t): atmosphere at the altitude z (vacuum above the
+ * models' top, with the top's speed of sound), wind, v_air, Mach, q and the drag. Returns 0;
+ * 1 (state not acceptable: below the atmosphere's floor or outside a table atmosphere, as the
+ * 3-DoF model); or -1 (stop: the wind or the drag table evaluated outside its range under
+ * extrap: error, as an engine table), with the reason in why. */
+static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state *o, char *why,
+                         size_t cap)
+{
+    lv_err err;
+    memset(o, 0, sizeof *o);
+    o->a = 1.0;
+    const double h = x[LV_FLAT_Z];
+    if (!(h >= LV_ATMO_ALT_MIN)) {
+        snprintf(why, cap, "altitude z = %g m below the atmosphere (%g m) at t = %.9g s", h,
+                 LV_ATMO_ALT_MIN, t);
+        return 1;
+    }
+    lv_atmo_state as;
+    const double ha = h < LV_ATMO_ALT_MAX ? h : LV_ATMO_ALT_MAX;
+    if (a->atmo_model->eval(a->atmo_par, ha, &as, NULL) != LV_OK) {
+        a->atmo_model->eval(a->atmo_par, ha, &as, &err);
+        snprintf(why, cap, "at t = %.9g s: %.400s", t, err.msg);
+        return 1;
+    }
+    o->a = as.a;
+    if (h <= LV_ATMO_ALT_MAX) {
+        o->rho = as.rho;
+        o->p = as.p;
+    }
+    o->v_air[0] = x[LV_FLAT_VX];
+    o->v_air[1] = x[LV_FLAT_VY];
+    o->v_air[2] = x[LV_FLAT_VZ];
+    if (a->wind != NULL) {
+        double w[3];
+        if (lv_wind_eval(a->wind, &a->wind_cur, h, w, NULL) != LV_OK) {
+            lv_wind_eval(a->wind, NULL, h, w, &err);
+            snprintf(why, cap, "at t = %.9g s: %.400s", t, err.msg);
+            return isnan(h) ? 1 : -1;
+        }
+        o->v_air[0] -= w[1]; /* NED to x east, y north, z up */
+        o->v_air[1] -= w[0];
+        o->v_air[2] += w[2];
+    }
+    o->speed = sqrt(o->v_air[0] * o->v_air[0] + o->v_air[1] * o->v_air[1] +
+                    o->v_air[2] * o->v_air[2]);
+    o->mach = o->speed / o->a;
+    o->q = 0.5 * o->rho * o->speed * o->speed;
+    if (!a->drag)
+        return 0;
+    o->cd = a->cd;
+    if (a->cd_tab != NULL) {
+        const double in[AIR_IN_N] = {o->mach, 0.0, 0.0, h};
+        double xin[LV_TABLE_MAX_DIMS];
+        for (size_t d = 0; d < a->cd_dims; d++)
+            xin[d] = in[a->cd_in[d]];
+        if (lv_table_eval(a->cd_tab, &a->cd_cur, xin, a->cd_y, NULL) != LV_OK) {
+            lv_table_eval(a->cd_tab, NULL, xin, a->cd_y, &err);
+            snprintf(why, cap, "at t = %.9g s: aerodynamics: %.400s", t, err.msg);
+            return isnan(o->mach) ? 1 : -1;
+        }
+        o->cd = a->cd_y[a->cd_k];
+    }
+    o->drag = o->q * a->s_ref * o->cd;
+    return 0;
+}
+
+/* The drag's acceleration, -D/m v_air/|v_air| (zero at zero air speed). */
+static void drag_accel(const flat_air_state *o, double m, double acc[3])
+{
+    const double k = o->speed > 0.0 ? o->drag / (m * o->speed) : 0.0;
+    for (int i = 0; i < 3; i++)
+        acc[i] = -k * o->v_air[i];
+}
+
 /* ---- lv_flat6: one body, sequential approach ---------------------------------------------- */
 
-enum { OF_THRUST, OF_MDOT, OF_SPEED, OF_ACCEL, OF_BURNING, OF_PROP, OF_N };
-static const lv_var flat6_outputs[OF_N] = {
+enum { OF_THRUST, OF_MDOT, OF_SPEED, OF_ACCEL, OF_BURNING, OF_PROP, OF_N,
+       OF_MACH = OF_N, OF_Q, OF_RHO, OF_P, OF_VAIR, OF_DRAG, OF_N_AIR };
+static const lv_var flat6_outputs[OF_N_AIR] = {
     {"thrust", "N", "Thrust of the burning stage, along +z", 0, 0},
     {"mdot", "kg/s", "Propellant mass flow", 0, 0},
     {"speed", "m/s", "Speed |v|", 0, 0},
     {"accel", "m/s2", "Vertical acceleration dvz/dt", 0, 0},
     {"burning", "", "1 while the bottom stage burns", 0, 0},
     {"propellant", "kg", "Propellant left in the bottom stage", 0, 0},
+    /* with an atmosphere: */
+    {"mach", "1", "Mach number of the air-relative velocity", 0, 0},
+    {"q_dyn", "Pa", "Dynamic pressure rho |v_air|^2 / 2", 0, 0},
+    {"rho", "kg/m3", "Air density at the altitude z", 0, 0},
+    {"p_amb", "Pa", "Ambient pressure at the altitude z", 0, 0},
+    {"v_air", "m/s", "Air-relative speed |v - v_wind|", 0, 0},
+    {"drag", "N", "Drag q S_ref CD, along -v_air", 0, 0},
 };
 
 struct lv_flat6 {
@@ -224,6 +409,7 @@ struct lv_flat6 {
     size_t n_ends;
     size_t n_stages;
     flat_stage_rt *stages;
+    flat_air air;
     /* mode */
     int burning;
     double m_burnout; /* kg: the mass at which the bottom stage's propellant is gone */
@@ -249,6 +435,17 @@ static int flat6_rhs(double t, const double *x, const double *p, double *dx, voi
     if (flat6_thrust(s, t, &F, &mdot) != 0)
         return -1;
     flat_body_deriv(x, F / m, p[PF_G], mdot, 0, dx);
+    if (s->air.on) { /* the drag adds to thrust and gravity */
+        flat_air_state as;
+        double acc[3];
+        const int rc = flat_air_eval(&s->air, t, x, &as, s->why, sizeof s->why);
+        if (rc != 0)
+            return rc;
+        drag_accel(&as, m, acc);
+        dx[LV_FLAT_VX] += acc[0];
+        dx[LV_FLAT_VY] += acc[1];
+        dx[LV_FLAT_VZ] += acc[2];
+    }
     return 0;
 }
 
@@ -268,6 +465,8 @@ static int flat6_init(double t0, const double *x, const double *p, void *inst)
     s->burning = s->stages[0].prop_mass > 0.0 && s->stages[0].n_engines > 0;
     for (size_t e = 0; e < s->stages[0].n_engines; e++)
         s->stages[0].engines[e].cur = (lv_table_cursor)LV_TABLE_CURSOR_INIT;
+    s->air.wind_cur = (lv_table_cursor)LV_TABLE_CURSOR_INIT;
+    s->air.cd_cur = (lv_table_cursor)LV_TABLE_CURSOR_INIT;
     return 0;
 }
 
@@ -349,6 +548,20 @@ static int flat6_outputs_fn(double t, const double *x, const double *p, double *
     y[OF_ACCEL] = F / x[LV_FLAT_M] - p[PF_G];
     y[OF_BURNING] = s->burning;
     y[OF_PROP] = s->burning ? x[LV_FLAT_M] - s->m_burnout : 0.0;
+    if (s->air.on) {
+        flat_air_state as;
+        double acc[3];
+        if (flat_air_eval(&s->air, t, x, &as, s->why, sizeof s->why) != 0)
+            return -1;
+        drag_accel(&as, x[LV_FLAT_M], acc);
+        y[OF_ACCEL] += acc[2];
+        y[OF_MACH] = as.mach;
+        y[OF_Q] = as.q;
+        y[OF_RHO] = as.rho;
+        y[OF_P] = as.p;
+        y[OF_VAIR] = as.speed;
+        y[OF_DRAG] = as.drag;
+    }
     return 0;
 }
 
@@ -366,6 +579,7 @@ void lv_flat6_free(lv_flat6 *m)
         return;
     for (size_t i = 0; i < m->n_stages; i++)
         stage_free(&m->stages[i]);
+    air_clear(&m->air);
     free(m->stages);
     free(m->events);
     free(m->ends);
@@ -403,6 +617,8 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         st = lv_fail(err, LV_ERR_INPUT, "flat6: the body's mass is %g kg (must be > 0)", mass);
         goto fail;
     }
+    if ((st = air_init(&m->air, cfg, err)) != LV_OK)
+        goto fail;
     memcpy(m->states, body_states, sizeof body_states);
     m->states[LV_FLAT_M].start = mass;
     memcpy(m->params, flat_params, sizeof flat_params);
@@ -427,7 +643,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .description = "6-DoF point mass carrying a stack of stages over a flat world",
         .n_states = LV_FLAT_N,
         .n_params = PF_N,
-        .n_outputs = OF_N,
+        .n_outputs = m->air.on ? OF_N_AIR : OF_N,
         .n_events = 1 + cfg->n_ends,
         .states = m->states,
         .params = m->params,

@@ -97,6 +97,68 @@ static void test_sh_vs_closed_form(void)
     }
 }
 
+
+/* The closed-form zonal model with the caller's coefficients to degree 12 (J2..J8 of the
+ * WGS-84 normal field, then odd and higher terms made up, as large as 1e-4) against the
+ * SH engine with C(n,0) = -J_n / sqrt(2n+1): two independent evaluations of eq. G1's
+ * gradient (Bonnet recursions vs the normalised Cunningham recursion, docs/gravity.md).
+ * "j2" with the same list keeps J2 only; a bad list is refused. */
+static void test_zonal_given(void)
+{
+    const lv_planet e = lv_planet_earth();
+    enum { NZ = 11 }; /* J2 .. J12 */
+    double zon[NZ], cnm[13 * 14 / 2] = {0};
+    for (int n = 2; n <= 12; n++)
+        zon[n - 2] = n % 2 == 0 && n <= 8 ? lv_planet_normal_j(&e, n) : 1e-4 / n;
+    cnm[0] = 1.0;
+    for (int n = 2; n <= 12; n++)
+        cnm[n * (n + 1) / 2] = -zon[n - 2] / sqrt(2.0 * n + 1.0);
+    lv_err err;
+    lv_gravity *z = NULL, *j2 = NULL, *sh = NULL, *j2ref = NULL;
+    CHECK_OK(lv_gravity_create_zonal(&e, "zonal", zon, NZ, &z, &err), &err);
+    CHECK_OK(lv_gravity_create_zonal(&e, "j2", zon, NZ, &j2, &err), &err);
+    CHECK_OK(lv_gravity_create_sh(e.gm, e.r_ref, 12, 0, cnm, NULL, &sh, &err), &err);
+    lv_planet p = e;
+    p.j2 = zon[0];
+    j2ref = make(&p, "j2");
+    if (z == NULL || j2 == NULL || sh == NULL || j2ref == NULL)
+        return;
+    double *ws = malloc(lv_gravity_ws_size(sh) * sizeof *ws);
+    double worst_a = 0.0, worst_u = 0.0;
+    for (size_t i = 0; i < N_POINTS; i++) {
+        double a1[3], a2[3], a3[3], a4[3], u1, u2, u3, u4;
+        lv_gravity_eval(z, NULL, points[i], a1, &u1);
+        lv_gravity_eval(sh, ws, points[i], a2, &u2);
+        worst_a = fmax(worst_a, rel_diff3(a2, a1));
+        worst_u = fmax(worst_u, fabs(u2 - u1) / u1);
+        lv_gravity_eval(j2, NULL, points[i], a3, &u3);
+        lv_gravity_eval(j2ref, NULL, points[i], a4, &u4);
+        CHECK(a3[0] == a4[0] && a3[1] == a4[1] && a3[2] == a4[2] && u3 == u4);
+    }
+    printf("zonal J2..J12 vs sh:12x0: worst relative difference accel %.3g, potential %.3g\n",
+           worst_a, worst_u);
+    CHECK(worst_a < 1e-12);
+    CHECK(worst_u < 1e-12);
+    lv_gravity_info info;
+    lv_gravity_info_get(z, &info);
+    CHECK(info.degree == 12 && info.jn[2] == zon[0] && info.jn[4] == zon[2]);
+    free(ws);
+    lv_gravity_free(z);
+    lv_gravity_free(j2);
+    lv_gravity_free(sh);
+    lv_gravity_free(j2ref);
+    CHECK_FAILS(lv_gravity_create_zonal(&e, "zonal", zon, 0, &z, &err), &err, LV_ERR_INPUT,
+                "0 zonal coefficients");
+    CHECK_FAILS(lv_gravity_create_zonal(&e, "zonal", zon, LV_GRAVITY_ZONAL_MAX, &z, &err),
+                &err, LV_ERR_INPUT, "1 to 39 of them");
+    zon[3] = 1.5;
+    CHECK_FAILS(lv_gravity_create_zonal(&e, "zonal", zon, NZ, &z, &err), &err, LV_ERR_INPUT,
+                "J5 = 1.5 must be finite and |J| < 1");
+    CHECK_FAILS(lv_gravity_create_zonal(&e, "sh", zon, NZ, &z, &err), &err, LV_ERR_INPUT,
+                "zonal coefficients go with");
+    CHECK(z == NULL);
+}
+
 /* Somigliana: the normal gravity of the WGS-84 level ellipsoid on its surface,
  * gamma_e at the equator and gamma_p at the poles (TR8350.2 ch. 3), equals
  * the attraction of the normal field plus the centrifugal acceleration. The
@@ -496,6 +558,7 @@ int main(void)
     test_eci_adapter();
     test_pointmass();
     test_sh_vs_closed_form();
+    test_zonal_given();
     test_somigliana();
     test_gradient();
     test_poles();

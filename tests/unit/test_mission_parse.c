@@ -237,13 +237,13 @@ static void test_planet_and_defaults(void)
 
     /* other planets: no atmosphere unless asked; world flat, planet-only keys absent */
     const char *moon = "mission: {name: m}\n"
-                       "environment: {world: planet, planet: moon, gravity: 'sh:8'}\n"
+                       "environment: {world: planet, planet: moon, gravity: zonal}\n"
                        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
                        "phases: [{name: p, model: dof3, stages: [s], stop_time: 1}]\n";
     m = NULL;
     CHECK_OK(lv_mission_def_parse(moon, strlen(moon), "moon.yaml", NULL, &m, &err), &err);
     if (m != NULL) {
-        CHECK(strcmp(m->env.planet, "moon") == 0 && strcmp(m->env.gravity, "sh:8") == 0);
+        CHECK(strcmp(m->env.planet, "moon") == 0 && strcmp(m->env.gravity, "zonal") == 0);
         CHECK(strcmp(m->env.atmosphere, "none") == 0);
         CHECK(strcmp(m->dir, ".") == 0 && strcmp(m->path, "moon.yaml") == 0);
     }
@@ -634,11 +634,164 @@ static void test_unflyable(void)
 #undef TWO_STAGES
 }
 
+/* The environment's own keys (docs/mission-format.md, "environment"): a planet by its
+ * constants, gravity checked where it is written, the exponential atmosphere's parameters,
+ * the wind's forms; every number a slot of the environment, every bad value refused at its
+ * line and column. */
+#define DPHASE "phases:\n  - {name: P1, model: dof3, stages: [s1], stop_time: 1}\n"
+static void test_environment(void)
+{
+    lv_err err;
+    lv_mission_def *m = NULL;
+    const char *sphere =
+        HEAD STAGES DPHASE
+        "environment:\n"
+        "  world: planet\n"
+        "  planet: {name: sphere, radius: 6371000, gm: 3.986004418e14, rotation_rate_deg: 0.001,\n"
+        "           zonal: [1.0e-3, 0, -2.0e-6]}\n"
+        "  atmosphere: {model: exp, rho0: 1.2, scale_height: 8000}\n"
+        "  wind: {north: 5, east: -3}\n";
+    CHECK_OK(lv_mission_def_parse(sphere, strlen(sphere), "env.yaml", LV_MISSION_DIR, &m, &err),
+             &err);
+    if (m != NULL) {
+        const lv_env_def *e = &m->env;
+        CHECK(strcmp(e->planet, "sphere") == 0 && e->pdef.custom && !e->pdef.has_base);
+        CHECK(strcmp(e->gravity, "zonal") == 0); /* default for a planet by its constants */
+        CHECK(strcmp(e->atmosphere, "exp") == 0);
+        CHECK(m->slots[e->pdef.radius].value == 6371000.0);
+        CHECK(strcmp(m->slots[e->pdef.gm].name, "environment.planet.gm") == 0);
+        CHECK(m->slots[e->pdef.rotation_rate].value == 0.001 * M_PI / 180.0);
+        CHECK(strcmp(m->slots[e->pdef.rotation_rate].unit, "rad/s") == 0);
+        CHECK(e->pdef.flattening == LV_NO_SLOT && e->pdef.r_ref == LV_NO_SLOT);
+        CHECK(e->pdef.n_zonal == 3 && m->slots[e->pdef.zonal[2]].value == -2.0e-6);
+        CHECK(strcmp(m->slots[e->pdef.zonal[0]].name, "environment.planet.J2") == 0);
+        CHECK(m->slots[e->atmo_par[0]].value == 1.2 && e->atmo_par[2] == LV_NO_SLOT);
+        CHECK(strcmp(m->slots[e->atmo_par[1]].name, "environment.atmosphere.scale_height") == 0);
+        CHECK(e->wind_const && m->slots[e->wind_ned[1]].value == -3.0);
+        CHECK(e->wind_ned[2] == LV_NO_SLOT); /* down not written: 0, not a parameter */
+        for (size_t i = 0; i < m->n_slots; i++)
+            if (strncmp(m->slots[i].name, "environment.", 12) == 0)
+                CHECK(m->slots[i].owner == LV_OWN_ENV);
+    }
+    lv_mission_def_free(m);
+    m = NULL;
+    /* a preset changed: a non-rotating Earth keeps WGS-84, J2..J4 and US76; its gravity is
+     * "zonal" (every zonal term it has), as for every planet given by its constants */
+    const char *still = HEAD STAGES DPHASE
+                        "environment: {world: planet, planet: {name: still, base: earth, "
+                        "rotation_rate: 0}, wind: {file: data/wind_one_row.csv, extrap: error}}\n";
+    CHECK_OK(lv_mission_def_parse(still, strlen(still), "env.yaml", LV_MISSION_DIR, &m, &err),
+             &err);
+    if (m != NULL) {
+        const lv_env_def *e = &m->env;
+        CHECK(e->pdef.has_base && e->pdef.base.a == 6378137.0 && !e->pdef.zonal_given);
+        CHECK(strcmp(e->atmosphere, "us76") == 0 && strcmp(e->gravity, "zonal") == 0);
+        CHECK(e->wind_extrap == LV_EXTRAP_ERROR && e->wind_interp == LV_INTERP_LINEAR);
+    }
+    lv_mission_def_free(m);
+
+#define PW HEAD STAGES DPHASE "environment:\n  world: planet\n" /* lines 1-7 */
+    BAD(PW "  planet: {radius: 6371000}\n",
+        "bad.yaml:8:11: environment, planet: missing required key 'gm' (or give 'base: earth'");
+    BAD(PW "  planet: {radius: -1, gm: 1}\n",
+        "bad.yaml:8:20: environment, planet: radius must be > 0 and <= 1e+10 m, found -1");
+    BAD(PW "  planet: {radius: 1e6, gm: 4e14, flattening: 1}\n",
+        "bad.yaml:8:47: environment, planet: flattening must be >= 0 and < 1, found 1");
+    BAD(PW "  planet: {name: earth, base: earth}\n",
+        "bad.yaml:8:18: environment, planet: name 'earth' is a preset's");
+    BAD(PW "  planet: {base: venus}\n",
+        "bad.yaml:8:18: environment, planet: base: unknown value 'venus'");
+    BAD(PW "  planet: {base: earth, rotation_rate: 0.01}\n",
+        "bad.yaml:8:11: environment, planet: planet 'custom': rotation rate 0.01 rad/s must be "
+        "below sqrt(gm / a^3) = 0.00123945 rad/s");
+    BAD(PW "  planet: {base: earth, rotation_rate: 0, rotation_rate_deg: 0}\n",
+        "bad.yaml:8:43: environment, planet: 'rotation_rate' and 'rotation_rate_deg' given both");
+    BAD(PW "  planet: {base: earth, zonal: 1e-3}\n",
+        "bad.yaml:8:32: environment, planet: zonal: a list [J2, J3, ...] expected");
+    BAD(PW "  planet: {base: earth, zonal: [1e-3, 2]}\n",
+        "bad.yaml:8:39: environment, planet: J3 must be > -1 and < 1, found 2");
+    BAD(PW "  planet: {base: earth, zonal: [1e-3, x]}\n",
+        "bad.yaml:8:39: environment, planet: J3: number expected, found 'x'");
+    BAD(PW "  planet: {base: mars, coefficients: no_such.gfc}\n",
+        "bad.yaml:8:38: environment, planet: coefficients: cannot read");
+    BAD(PW "  planet: {base: mars, coefficients: data/wind_one_row.csv}\n  gravity: j2\n",
+        "bad.yaml:9:12: environment: gravity 'j2' does not use the planet's coefficient file");
+    BAD(PW "  planet: moon\n  gravity: sh:8\n",
+        "bad.yaml:9:12: environment: gravity 'sh:8' would read the shipped EGM2008 "
+        "coefficients, which are the Earth's");
+    BAD(PW "  gravity: zonl\n",
+        "bad.yaml:8:12: environment: gravity: unknown gravity model 'zonl'; did you mean 'zonal'?");
+    BAD(PW "  gravity: sh:0\n",
+        "bad.yaml:8:12: environment: gravity: gravity model 'sh:0': degree must be 1..10000");
+    BAD(PW "  atmosphere: {model: exp, rho0: 0}\n",
+        "bad.yaml:8:34: environment, atmosphere: rho0 must be > 0 kg/m^3, found 0");
+    BAD(PW "  atmosphere: {model: us76, scale_height: 7000}\n",
+        "bad.yaml:8:29: environment, atmosphere: 'scale_height' belongs to model: exp (this is "
+        "us76)");
+    BAD(PW "  atmosphere: {table: data/wind_one_row.csv, model: exp}\n",
+        "bad.yaml:8:46: environment, atmosphere: give either 'table' (a file) or 'model'");
+    BAD(PW "  atmosphere: {table: /dev/null}\n",
+        "bad.yaml:8:23: environment, atmosphere: table: '/dev/null' is not a regular file");
+    BAD(PW "  atmosphere: {rho0: 1}\n",
+        "bad.yaml:8:15: environment, atmosphere: missing required key 'model'");
+    BAD(PW "  wind: {north: 5}\n",
+        "bad.yaml:8:9: environment, wind: missing required key 'east'");
+    BAD(PW "  wind: {north: 5, east: 600}\n",
+        "bad.yaml:8:26: environment, wind: east must be >= -500 and <= 500 m/s, found 600");
+    BAD(PW "  wind: {north: 5, east: 1, extrap: error}\n",
+        "bad.yaml:8:29: environment, wind: 'extrap' goes with 'file' (a wind table)");
+    BAD(PW "  wind: {file: data/wind_one_row.csv, east: 1}\n",
+        "bad.yaml:8:39: environment, wind: give either 'file' (a table) or the constant");
+    BAD(PW "  wind: {file: data/wind_one_row.csv, extrap: clmp}\n",
+        "bad.yaml:8:47: environment, wind: extrap: unknown value 'clmp'; did you mean 'clamp'?");
+    BAD(PW "  wind: no_such_wind.csv\n",
+        "bad.yaml:8:9: environment: wind: cannot read");
+    BAD(PW "  planet: mars\n  wind: {north: 1, east: 2}\n",
+        "bad.yaml:9:3: environment: a wind moves air, and there is none (atmosphere: none, the "
+        "default here)");
+    BAD(HEAD STAGES PHASE "environment: {wind: {north: 1, east: 2}, atmosphere: none}\n",
+        "bad.yaml:6:15: environment: a wind moves air, and there is none (atmosphere: none)");
+#undef PW
+    /* aerodynamic datasets: a table per coefficient (docs/mission-format.md, "aero") */
+#define AERO(a) HEAD STAGES "phases:\n  - {name: P1, model: dof3, stages: [s1], stop_time: 1,\n" \
+                "     aero: " a "}\nenvironment: {world: planet}\n" /* aero on line 6 */
+    m = NULL;
+    const char *ok = AERO("{s_ref: 1, axes: body, CA: {file: data/aero_two.csv, output: CA}, "
+                          "CN: {file: data/aero_two.csv, output: CN, interp: pchip}, CY: 0.01}");
+    CHECK_OK(lv_mission_def_parse(ok, strlen(ok), "aero.yaml", LV_MISSION_DIR, &m, &err), &err);
+    lv_mission_def_free(m);
+    BAD(AERO("{s_ref: 1, axes: body, CY: data/aero_two.csv}"),
+        "bad.yaml:6:35: phase 'P1', aero: CY: table 'aero_two' has several outputs (CA, CN) and "
+        "none is named CY");
+    BAD(AERO("{s_ref: 1, CD: data/aero_two.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: CD: table 'aero_two' has several outputs (CA, CN) and "
+        "none is named CD: say which with {file: .., output: name}");
+    BAD(AERO("{s_ref: 1, axes: body, CA: {file: data/aero_two.csv, output: CX}}"),
+        "bad.yaml:6:73: phase 'P1', aero: CA: table 'aero_two' has no output 'CX' (its outputs: "
+        "CA, CN)");
+    BAD(AERO("{s_ref: 1, CD: data/aero_badaxis.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: CD: table 'aero_badaxis': axis 1 is named 'speed'; the "
+        "axes of an aerodynamic table are mach");
+    BAD(AERO("{s_ref: 1, table: data/aero_two.csv}"),
+        "bad.yaml:6:23: phase 'P1', aero: table 'aero_two' gives none of CD, CL, CY (its "
+        "outputs: CA, CN)");
+    BAD(AERO("{s_ref: 1, CD: data/no_such.csv}"),
+        "bad.yaml:6:27: phase 'P1', aero: CD: cannot read");
+    BAD(AERO("{s_ref: 1, CD: .nan}"),
+        "bad.yaml:6:27: phase 'P1', aero: CD: non-finite number '.nan'");
+    BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1,\n"
+        "     aero: {s_ref: 1, CD: 0.3, CL: 0.1}}\nenvironment: {atmosphere: us76}\n",
+        "bad.yaml:6:32: phase 'P1', aero: 'CL': the flat world's body flies at zero angle of "
+        "attack and has no lift or side force; it takes CD only");
+#undef AERO
+}
+
 int main(void)
 {
     test_unflyable();
     test_paper_branch();
     test_planet_and_defaults();
+    test_environment();
     test_mat_generated();
     test_syntax();
     test_keys_and_types();

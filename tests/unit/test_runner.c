@@ -427,7 +427,8 @@ static void test_dof3_branch(void)
     lv_mission_free(m);
 }
 
-/* inputs: and aero: belong to the 3-DoF model: on a flat world they are an error. */
+/* inputs: belong to the 3-DoF model: on a flat world they are an error; aero: is the flat
+ * body's drag, which needs the environment's atmosphere (none by default on a flat world). */
 static void test_bad_aero(void)
 {
     FILE *f = fopen("badaero.yaml", "w");
@@ -435,12 +436,23 @@ static void test_bad_aero(void)
             "mission: {name: bad-aero}\n"
             "stages: [{name: a, dry_mass: 100, propellant_mass: 0}]\n"
             "phases:\n"
-            "  - {name: p, model: flat6, stages: [a], stop_time: 10, aero: {s_ref: 1, CD: 0.3}}\n");
+            "  - {name: p, model: flat6, stages: [a], stop_time: 10, aero: {s_ref: 1, CD: 0.3}}\n"
+            "  - {name: q, model: flat6, stages: [a], stop_time: 10, inputs: {alpha: 0}}\n");
     fclose(f);
     lv_mission *m = NULL;
     lv_err err;
     CHECK_FAILS(lv_mission_load("badaero.yaml", &m, &err), &err, LV_ERR_INPUT,
-                "badaero.yaml:4:57: phase 'p': 'aero' applies to the dof3 model only");
+                "badaero.yaml:4:57: phase 'p': aero: the flat world has no atmosphere");
+    f = fopen("badaero.yaml", "w");
+    fprintf(f,
+            "mission: {name: bad-aero}\n"
+            "stages: [{name: a, dry_mass: 100, propellant_mass: 0}]\n"
+            "phases:\n"
+            "  - {name: q, model: flat6, stages: [a], stop_time: 10, inputs: {alpha: 0}}\n");
+    fclose(f);
+    CHECK_FAILS(lv_mission_load("badaero.yaml", &m, &err), &err, LV_ERR_INPUT,
+                "badaero.yaml:4:57: phase 'q': 'inputs' applies to the dof3 model only");
+    remove("badaero.yaml");
 }
 
 int main(void)

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <hdf5.h>
 #include <matio.h>
 
 #include "check.h"
@@ -824,6 +825,244 @@ static void test_mat(void)
     }
 }
 
+
+/* A 1 x 1 struct `name` of double fields (dims[i], data[i]) written to an open MAT file. */
+static void mat_put_struct(mat_t *mat, const char *name, size_t nf, const char *const *fields,
+                           size_t (*dims)[2], double *const *data, enum matio_compression z)
+{
+    size_t one[2] = { 1, 1 };
+    matvar_t *sv = Mat_VarCreateStruct(name, 2, one, (const char **)fields, (unsigned)nf);
+    CHECK(sv != NULL);
+    if (sv == NULL)
+        return;
+    for (size_t i = 0; i < nf; i++) {
+        matvar_t *fv = Mat_VarCreate(NULL, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims[i], data[i], 0);
+        CHECK(fv != NULL);
+        Mat_VarSetStructFieldByIndex(sv, i, 0, fv);
+    }
+    CHECK(Mat_VarWrite(mat, sv, z) == 0);
+    Mat_VarFree(sv);
+}
+
+/* N-D tables whose axes are named in the file: a struct of axis vectors and output arrays,
+ * written by libmatio as MAT v5, v7 and v7.3. Values are multilinear functions, so linear
+ * interpolation must reproduce them exactly:
+ *   cn.CN(i, j) = 2 alpha_j + 0.1 mach_i   over mach = [0.5 1 2], alpha = [0 0.1]
+ *   cn.CM(i, j) = -alpha_j mach_i                   (a second output of the same grid)
+ *   thr: 1-D, fields t, thrust, mdot (the first field is the axis) */
+static void test_mat_struct(void)
+{
+    static const struct {
+        const char *file;
+        enum mat_ft ver;
+        enum matio_compression z;
+    } fmt[] = {
+        { "tab_s5.mat", MAT_FT_MAT5, MAT_COMPRESSION_NONE },
+        { "tab_s7.mat", MAT_FT_MAT5, MAT_COMPRESSION_ZLIB },
+        { "tab_s73.mat", MAT_FT_MAT73, MAT_COMPRESSION_NONE },
+    };
+    double mach[3] = { 0.5, 1.0, 2.0 }, alpha[2] = { 0.0, 0.1 }, cn[6], cm[6];
+    for (size_t j = 0; j < 2; j++)
+        for (size_t i = 0; i < 3; i++) {
+            cn[i + 3 * j] = 2.0 * alpha[j] + 0.1 * mach[i]; /* column-major */
+            cm[i + 3 * j] = -alpha[j] * mach[i];
+        }
+    double t[3] = { 0, 10, 20 }, thrust[3] = { 100, 200, 0 }, mdot[3] = { 1, 2, 0 };
+    for (size_t f = 0; f < sizeof fmt / sizeof fmt[0]; f++) {
+        lv_err err = { 0 };
+        lv_table *tab = NULL;
+        mat_t *mat = Mat_CreateVer(fmt[f].file, NULL, fmt[f].ver);
+        CHECK(mat != NULL);
+        if (mat == NULL)
+            continue;
+        /* the output first, then the axes: only the axes' order matters */
+        const char *fn[] = { "CN", "mach", "alpha", "CM" };
+        size_t dims[4][2] = { { 3, 2 }, { 1, 3 }, { 2, 1 }, { 3, 2 } };
+        double *data[4] = { cn, mach, alpha, cm };
+        mat_put_struct(mat, "cn", 4, fn, dims, data, fmt[f].z);
+        const char *f1[] = { "t", "thrust", "mdot" };
+        size_t d1[3][2] = { { 3, 1 }, { 3, 1 }, { 1, 3 } };
+        double *data1[3] = { t, thrust, mdot };
+        mat_put_struct(mat, "thr", 3, f1, d1, data1, fmt[f].z);
+        /* wrong: CN is 3 x 2 but the axes in field order are alpha (2) then mach (3) */
+        const char *fb[] = { "alpha", "mach", "CN" };
+        size_t db[3][2] = { { 2, 1 }, { 3, 1 }, { 3, 2 } };
+        double *datab[3] = { alpha, mach, cn };
+        mat_put_struct(mat, "swapped", 3, fb, db, datab, fmt[f].z);
+        Mat_Close(mat);
+
+        const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+        double v[2];
+        CHECK_OK(lv_table_load_mat(fmt[f].file, "cn", &lin, &tab, &err), &err);
+        if (tab != NULL) {
+            CHECK(lv_table_n_dims(tab) == 2 && lv_table_n_out(tab) == 2);
+            CHECK(strcmp(lv_table_axis_name(tab, 0), "mach") == 0);
+            CHECK(strcmp(lv_table_axis_name(tab, 1), "alpha") == 0);
+            CHECK(strcmp(lv_table_out_name(tab, 0), "CN") == 0);
+            CHECK(strcmp(lv_table_out_name(tab, 1), "CM") == 0);
+            const double p[2] = { 1.5, 0.04 };
+            CHECK_OK(lv_table_eval(tab, NULL, p, v, &err), &err);
+            CHECK_CLOSE(v[0], 2.0 * 0.04 + 0.1 * 1.5, 1e-15); /* 0.23 */
+            /* -alpha mach is bilinear: exact between the grid lines too */
+            CHECK_CLOSE(v[1], -0.04 * 1.5, 1e-15);
+        }
+        lv_table_free(tab);
+        tab = NULL;
+        CHECK_OK(lv_table_load_mat(fmt[f].file, "thr", &lin, &tab, &err), &err);
+        if (tab != NULL) {
+            CHECK(lv_table_n_dims(tab) == 1 && lv_table_n_out(tab) == 2);
+            CHECK(strcmp(lv_table_axis_name(tab, 0), "t") == 0);
+            CHECK(strcmp(lv_table_out_name(tab, 1), "mdot") == 0);
+            CHECK_OK(lv_table_eval1(tab, NULL, 15.0, v, &err), &err);
+            CHECK(v[0] == 100.0 && v[1] == 1.0); /* halfway from (200, 2) to (0, 0) */
+        }
+        lv_table_free(tab);
+        tab = NULL;
+        CHECK_FAILS(lv_table_load_mat(fmt[f].file, "swapped", &lin, &tab, &err), &err,
+                    LV_ERR_INPUT, "struct 'swapped': output 'CN' is 3 x 2; the axis fields, "
+                                  "in field order, need alpha (2) x mach (3)");
+        CHECK(tab == NULL);
+        remove(fmt[f].file);
+    }
+}
+
+/* Writes `name`: a double dataset (HDF5 dims {rows_h5, cols_h5}, C order) with a
+ * MATLAB_class attribute stored as given: fixed length `cls_size` with padding `pad`, or
+ * variable length (cls_size 0); cls NULL: no attribute. */
+static void h5_put(hid_t f, const char *name, hid_t type, int rank, const hsize_t *dims,
+                   const void *data, const char *cls, size_t cls_size, H5T_str_t pad)
+{
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
+    hid_t ds = H5Dcreate2(f, name, type, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    CHECK(ds >= 0);
+    hid_t mt = H5Tget_native_type(type, H5T_DIR_DEFAULT);
+    CHECK(H5Dwrite(ds, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
+    H5Tclose(mt);
+    if (cls != NULL) {
+        hid_t st = H5Tcopy(H5T_C_S1), as = H5Screate(H5S_SCALAR);
+        if (cls_size > 0) {
+            H5Tset_size(st, cls_size);
+            H5Tset_strpad(st, pad);
+        } else {
+            H5Tset_size(st, H5T_VARIABLE);
+        }
+        hid_t a = H5Acreate2(ds, "MATLAB_class", st, as, H5P_DEFAULT, H5P_DEFAULT);
+        CHECK(a >= 0);
+        if (cls_size > 0)
+            CHECK(H5Awrite(a, st, cls) >= 0);
+        else
+            CHECK(H5Awrite(a, st, &cls) >= 0);
+        H5Aclose(a);
+        H5Sclose(as);
+        H5Tclose(st);
+    }
+    H5Dclose(ds);
+    H5Sclose(sp);
+}
+
+/* MAT v7.3 files written by an HDF5 writer other than MATLAB (as h5py or hdf5storage write
+ * them): the MATLAB header in a 512-byte user block, datasets whose MATLAB_class attribute
+ * is a null-padded string without terminator ("double" in 6 bytes). libmatio 1.5 reads such
+ * a class as "doubl" (unknown) and returns no data; lvsim then reads the dataset with HDF5.
+ * The values are those written, so every check is exact. */
+static void test_mat73_foreign(void)
+{
+    const char *file = "tab_foreign73.mat";
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    H5Pset_userblock(fcpl, 512);
+    hid_t f = H5Fcreate(file, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+    H5Pclose(fcpl);
+    CHECK(f >= 0);
+    if (f < 0)
+        return;
+    /* MATLAB's m x n matrix is HDF5's n x m: [t, thrust] = [0 0; 1 1e6; 10 1e6; 11 0] */
+    const double combi[2][4] = { { 0, 1, 10, 11 }, { 0, 1e6, 1e6, 0 } };
+    const hsize_t dc[2] = { 2, 4 };
+    h5_put(f, "pad", H5T_IEEE_F64LE, 2, dc, combi, "double", 6, H5T_STR_NULLPAD);
+    h5_put(f, "vlen", H5T_IEEE_F64LE, 2, dc, combi, "double", 0, H5T_STR_NULLTERM);
+    h5_put(f, "noclass", H5T_IEEE_F64LE, 2, dc, combi, NULL, 0, H5T_STR_NULLTERM);
+    const int32_t icombi[2][4] = { { 0, 1, 10, 11 }, { 0, 5, 5, 0 } };
+    h5_put(f, "int", H5T_STD_I32LE, 2, dc, icombi, "int32", 5, H5T_STR_NULLPAD);
+    /* N-D with breakpoint vectors, all null-padded: g(i, j) over g_x1 (3), g_x2 (2),
+     * g(i, j) = 1 + i + 10 j, stored as HDF5 {2, 3} */
+    const double g[2][3] = { { 1, 2, 3 }, { 11, 12, 13 } }, gx1[3] = { 0, 1, 2 },
+                 gx2[2] = { 0, 1 };
+    const hsize_t dg[2] = { 2, 3 }, dx1[1] = { 3 }, dx2[2] = { 2, 1 };
+    h5_put(f, "g", H5T_IEEE_F64LE, 2, dg, g, "double", 6, H5T_STR_NULLPAD);
+    h5_put(f, "g_x1", H5T_IEEE_F64LE, 1, dx1, gx1, "double", 6, H5T_STR_NULLPAD);
+    h5_put(f, "g_x2", H5T_IEEE_F64LE, 2, dx2, gx2, "double", 6, H5T_STR_NULLPAD);
+    h5_put(f, "flag", H5T_STD_U8LE, 2, dc, (const uint8_t[8]){ 0 }, "logical", 7,
+           H5T_STR_NULLPAD);
+    hid_t grp = H5Gcreate2(f, "grp", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Gclose(grp);
+    H5Fclose(f);
+    /* the MAT header in the user block: text, version 0x0200 (7.3), endian "IM" */
+    FILE *fp = fopen(file, "r+b");
+    CHECK(fp != NULL);
+    if (fp == NULL)
+        return;
+    char hdr[128];
+    memset(hdr, ' ', 116);
+    memset(hdr + 116, 0, 12);
+    const char *txt = "MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Thu Jan  1 00:00:00 "
+                      "2026 HDF5 schema 1.00 .";
+    memcpy(hdr, txt, strlen(txt));
+    hdr[125] = 2;
+    hdr[126] = 'I';
+    hdr[127] = 'M';
+    fwrite(hdr, 1, sizeof hdr, fp);
+    fclose(fp);
+
+    /* the refusal this reproduces: libmatio alone classifies "flag" (first in HDF5's name
+     * order) as empty, without data, and its listing of the file stops at "g_x1" (a 1-D
+     * dataset), so it does not find "pad" at all */
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* libmatio lets HDF5 print its errors */
+    mat_t *mat = Mat_Open(file, MAT_ACC_RDONLY);
+    CHECK(mat != NULL && Mat_GetVersion(mat) == MAT_FT_MAT73);
+    if (mat != NULL) {
+        matvar_t *mv = Mat_VarRead(mat, "flag");
+        CHECK(mv != NULL && mv->class_type == MAT_C_EMPTY && mv->data == NULL);
+        Mat_VarFree(mv);
+        CHECK(Mat_VarRead(mat, "pad") == NULL);
+        Mat_Close(mat);
+    }
+    /* printing on again: lv_table_load_mat must keep HDF5 quiet itself (none is expected on
+     * stderr below) */
+    H5Eset_auto2(H5E_DEFAULT, (H5E_auto2_t)H5Eprint2, stderr);
+
+    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+    lv_err err = { 0 };
+    double v[1];
+    const char *const ok[] = { "pad", "vlen", "noclass", "int" };
+    for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
+        lv_table *t = NULL;
+        CHECK_OK(lv_table_load_mat(file, ok[i], &lin, &t, &err), &err);
+        if (t == NULL)
+            continue;
+        CHECK(lv_table_n_dims(t) == 1 && lv_table_n_out(t) == 1);
+        CHECK_OK(lv_table_eval1(t, NULL, 0.5, v, &err), &err);
+        CHECK(v[0] == (i == 3 ? 2.5 : 5e5)); /* halfway between rows 1 and 2 */
+        CHECK(lv_table_next_breakpoint(t, 0, 1.0) == 10.0);
+        lv_table_free(t);
+    }
+    lv_table *t = NULL;
+    CHECK_OK(lv_table_load_mat(file, "g", &lin, &t, &err), &err);
+    if (t != NULL) {
+        const double p[2] = { 1.5, 0.5 };
+        CHECK(lv_table_n_dims(t) == 2);
+        CHECK_OK(lv_table_eval(t, NULL, p, v, &err), &err);
+        CHECK(v[0] == 1.0 + 1.5 + 5.0); /* linear in both: exact */
+        lv_table_free(t);
+    }
+    t = NULL;
+    CHECK_FAILS(lv_table_load_mat(file, "flag", &lin, &t, &err), &err, LV_ERR_INPUT,
+                "variable 'flag' has MATLAB_class 'logical'; a table needs a numeric class");
+    CHECK_FAILS(lv_table_load_mat(file, "grp", &lin, &t, &err), &err, LV_ERR_INPUT,
+                "variable 'grp' is an HDF5 group (MATLAB_class '-') that libmatio does not read");
+    CHECK(t == NULL);
+    remove(file);
+}
+
 int main(void)
 {
     test_exact();
@@ -838,5 +1077,7 @@ int main(void)
     test_create_errors();
     test_csv();
     test_mat();
+    test_mat_struct();
+    test_mat73_foreign();
     return check_report("test_table");
 }

@@ -408,6 +408,79 @@ static void test_wind(void)
     remove("wind_atmo_wind.mat");
 }
 
+
+/* Constant winds and the ends of a table (docs/wind.md): a wind of one value or a table of
+ * one row is that value at every altitude; a table's extrapolation is the caller's: clamp
+ * (the default), linear (the end interval's line continued), error (an evaluation error
+ * naming the altitude and the range). */
+static void test_wind_forms(void)
+{
+    lv_err err;
+    lv_wind *w = NULL;
+    double v[3], lo, hi;
+    CHECK_OK(lv_wind_create_const(5.0, -3.0, 0.25, &w, &err), &err);
+    if (w != NULL) {
+        CHECK(lv_wind_is_constant(w));
+        lv_wind_range(w, &lo, &hi);
+        CHECK(lo == -INFINITY && hi == INFINITY);
+        const double hs[] = { -4000.0, 0.0, 12345.6, 9.0e5 };
+        for (int i = 0; i < 4; i++) {
+            CHECK_OK(lv_wind_eval(w, NULL, hs[i], v, &err), &err);
+            CHECK(v[0] == 5.0 && v[1] == -3.0 && v[2] == 0.25);
+        }
+        CHECK_FAILS(lv_wind_eval(w, NULL, NAN, v, &err), &err, LV_ERR_INPUT, "NaN");
+        lv_wind_free(w);
+        w = NULL;
+    }
+    CHECK_FAILS(lv_wind_create_const(1.0, NAN, 0.0, &w, &err), &err, LV_ERR_INPUT,
+                "must be finite");
+
+    const char *path = "wind_atmo_forms.csv";
+    write_text(path, "# a constant wind as a table of one row\nh [m], north [m/s], east [m/s]\n"
+                     "100, 2, 7\n");
+    CHECK_OK(lv_wind_create_table(path, NULL, &w, &err), &err);
+    if (w != NULL) {
+        CHECK(lv_wind_is_constant(w));
+        CHECK_OK(lv_wind_eval(w, NULL, 0.0, v, &err), &err);
+        CHECK(v[0] == 2.0 && v[1] == 7.0 && v[2] == 0.0);
+        CHECK_OK(lv_wind_eval(w, NULL, 5.0e4, v, &err), &err);
+        CHECK(v[0] == 2.0 && v[1] == 7.0 && v[2] == 0.0);
+        lv_wind_free(w);
+        w = NULL;
+    }
+    write_text(path, "h [m], north [m/s], east [m/s]\n");
+    CHECK_FAILS(lv_wind_create_table(path, NULL, &w, &err), &err, LV_ERR_INPUT, "no rows");
+
+    write_text(path, "h [m], north [m/s], east [m/s]\n0, 1, 10\n1000, 3, 20\n");
+    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_LINEAR };
+    CHECK_OK(lv_wind_create_table_opts(path, NULL, &lin, &w, &err), &err);
+    if (w != NULL) { /* the line through (0, 1) and (1000, 3): north = 1 + h / 500 */
+        CHECK(!lv_wind_is_constant(w));
+        CHECK_OK(lv_wind_eval(w, NULL, 2000.0, v, &err), &err);
+        CHECK_CLOSE(v[0], 5.0, 1e-14);
+        CHECK_CLOSE(v[1], 30.0, 1e-13);
+        CHECK_OK(lv_wind_eval(w, NULL, -500.0, v, &err), &err);
+        CHECK_CLOSE(v[0], 0.0, 1e-14);
+        CHECK_CLOSE(v[1], 5.0, 1e-14);
+        lv_wind_free(w);
+        w = NULL;
+    }
+    const lv_table_opts strict = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+    CHECK_OK(lv_wind_create_table_opts(path, NULL, &strict, &w, &err), &err);
+    if (w != NULL) {
+        CHECK_OK(lv_wind_eval(w, NULL, 1000.0, v, &err), &err); /* the ends are inside */
+        CHECK(v[0] == 3.0 && v[1] == 20.0);
+        CHECK_FAILS(lv_wind_eval(w, NULL, 1000.5, v, &err), &err, LV_ERR_INPUT,
+                    "wind: table 'wind_atmo_forms': axis 0 'h' [m] = 1000.5 is outside [0, 1000]");
+        lv_wind_user wu = LV_WIND_USER_INIT(w);
+        CHECK(lv_wind_fn_table(0.0, -1.0, 0.0, 0.0, v, &wu) == -1); /* left the data: stop */
+        CHECK(lv_wind_fn_table(0.0, NAN, 0.0, 0.0, v, &wu) == 1);   /* retry a smaller step */
+        lv_wind_free(w);
+        w = NULL;
+    }
+    remove(path);
+}
+
 /* ---- (4) the 3-DoF model with a table wind ---------------------------------------------- */
 /* A body at rest relative to the ground in a uniform east wind W: the air-relative
  * velocity is v_rel - v_wind = -W east, so q = rho W^2 / 2 and the drag q S CD pushes the
@@ -527,6 +600,7 @@ int main(void)
     test_us76_table(us);
     test_atmo_files();
     test_wind();
+    test_wind_forms();
     test_dof3_wind(us);
     remove(US76_CSV);
     lv_atmo_free(us);
