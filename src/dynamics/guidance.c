@@ -29,17 +29,17 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
                              lv_guid *g, lv_err *err)
 {
     if (lv_table_n_out(t) > 16)
-        return lv_fail(err, LV_ERR_INPUT, "guidance: table '%s' has %zu outputs (at most 16)",
+        return lv_fail(err, LV_ERR_INPUT, "table '%s' has %zu outputs (at most 16)",
                        lv_table_name(t), lv_table_n_out(t));
     const char *ax = lv_table_n_dims(t) == 1 ? lv_table_axis_name(t, 0) : "";
     size_t idx;
     if (law == LV_STEER_HEADING) {
         if (!is_axis(ax, "mach", NULL))
-            return lv_fail(err, LV_ERR_INPUT, "guidance 'heading': alpha table '%s' must have "
+            return lv_fail(err, LV_ERR_INPUT, "alpha table '%s' must have "
                            "one axis named 'mach' (it has %zu, the first '%s')", lv_table_name(t),
                            lv_table_n_dims(t), lv_table_axis_name(t, 0));
         if (lv_table_out_index(t, "alpha", &idx, NULL) != LV_OK)
-            return lv_fail(err, LV_ERR_INPUT, "guidance 'heading': alpha table '%s' has no "
+            return lv_fail(err, LV_ERR_INPUT, "alpha table '%s' has no "
                            "output 'alpha' (its first is '%s')", lv_table_name(t),
                            lv_table_out_name(t, 0));
         if (g != NULL)
@@ -56,7 +56,7 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
     else if (is_axis(ax, "mach", NULL))
         axis = LV_GAXIS_MACH;
     else
-        return lv_fail(err, LV_ERR_INPUT, "guidance 'attitude': table '%s' must have one axis "
+        return lv_fail(err, LV_ERR_INPUT, "table '%s' must have one axis "
                        "named time, altitude, speed or mach (it has %zu, the first '%s')",
                        lv_table_name(t), lv_table_n_dims(t), lv_table_axis_name(t, 0));
     static const char *const aero_out[3] = {"alpha", "beta", "mu"};
@@ -71,7 +71,7 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
         }
     }
     if (!any)
-        return lv_fail(err, LV_ERR_INPUT, "guidance 'attitude': table '%s' has none of the "
+        return lv_fail(err, LV_ERR_INPUT, "table '%s' has none of the "
                        "outputs %s, %s, %s, throttle (frame %s; its first output is '%s')",
                        lv_table_name(t), names[0], names[1], names[2],
                        frame == LV_FRAME_AERO ? "aero" : "local/inertial",
@@ -147,7 +147,7 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
     if (s->law == LV_STEER_HEADING && s->alpha_table != NULL)
         st = lv_guid_table_check(s->alpha_table, s->law, s->frame, g, err);
     if (st != LV_OK)
-        return st;
+        return lv_fail_prefix(err, st, "guidance '%s'", law);
     g->cs_heading[0] = cos(s->heading);
     g->cs_heading[1] = sin(s->heading);
     g->cs_pitch[0] = cos(s->pitch);

@@ -245,7 +245,7 @@ static lv_status parse_throttle(const lv_pctx *c, const lv_ynode *n, const char 
             if (strcmp(tkeys[i], "landing") != 0 && lv_pk_get(n, tkeys[i]) != NULL)
                 return lv_pk_fail(c, lv_pk_key(n, tkeys[i]), "%s: the landing law sets the "
                                   "throttle itself: '%s' does not go with it", what, tkeys[i]);
-        char lwhat[LV_WHAT_MAX];
+        char lwhat[LV_WHAT_MAX + 16];
         snprintf(lwhat, sizeof lwhat, "%s, landing", what);
         if (land->kind != LV_YNODE_MAP)
             return lv_pk_fail(c, land, "%s: a mapping {altitude: m, speed: m/s} expected", lwhat);

@@ -118,6 +118,7 @@ typedef struct lv_engine_def {
     lv_slot isp_vac;    /* s, vacuum specific impulse (LV_NO_SLOT: mdot given) */
     lv_slot mdot;       /* kg/s, mass flow (LV_NO_SLOT: from isp) */
     lv_slot exit_area;  /* m^2, nozzle exit area (thrust loss p_amb * A_exit), default 0 */
+    lv_slot throttle_min, throttle_max; /* the throttle range, default [0, 1] */
     int count;          /* identical engines (default 1) */
     char *table_file;   /* thrust/mdot time table: CSV or .mat path (resolved) */
     char *table_var;    /* variable name inside a .mat file */

@@ -998,7 +998,8 @@ static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *s
                               lv_engine_def *e)
 {
     static const char *const keys[] = { "name", "table", "thrust_vac", "isp_vac", "mdot",
-                                        "exit_area", "count", NULL };
+                                        "exit_area", "count", "throttle_min", "throttle_max",
+                                        NULL };
     static const char *const constant[] = { "thrust_vac", "isp_vac", "mdot" };
     char what[LV_WHAT_MAX], eng[96];
     const lv_ynode *v;
@@ -1063,6 +1064,25 @@ static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *s
         st = lv_pk_slot_default(c, slot, "m^2", 0.0, LV_RANGE_NONNEG, &e->exit_area);
     if (st != LV_OK)
         return st;
+    /* the throttle range c_s may take (guidance's throttle laws and tables are clamped into
+     * it): 0 <= min <= max */
+    static const char *const tk[2] = {"throttle_min", "throttle_max"};
+    lv_slot *ts[2] = {&e->throttle_min, &e->throttle_max};
+    for (int i = 0; i < 2; i++) {
+        snprintf(slot, sizeof slot, "%s.%s", e->name, tk[i]);
+        const lv_range r = i == 0 ? LV_RANGE_NONNEG : LV_RANGE_POS;
+        if ((v = lv_pk_get(n, tk[i])) != NULL)
+            st = lv_pk_slot(c, v, what, tk[i], slot, "", r, 0, ts[i]);
+        else
+            st = lv_pk_slot_default(c, slot, "", (double)i, r, ts[i]);
+        if (st != LV_OK)
+            return st;
+    }
+    if (c->m->slots[e->throttle_min].value > c->m->slots[e->throttle_max].value)
+        return lv_pk_fail(c, lv_pk_get(n, "throttle_min") ? lv_pk_get(n, "throttle_min")
+                                                          : lv_pk_get(n, "throttle_max"),
+                          "%s: throttle_min %g is above throttle_max %g", what,
+                          c->m->slots[e->throttle_min].value, c->m->slots[e->throttle_max].value);
     if ((v = lv_pk_get(n, "count")) != NULL && (st = get_int(c, v, what, "count", 1, &e->count))
                                                  != LV_OK)
         return st;

@@ -12,9 +12,10 @@
 #include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
+#include "mission/guidance_def.h"
 #include "mission/phase_type.h"
 
-static const char *const keys[] = {"inputs", "aero", NULL};
+static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
 static const lv_var mission_params[] = {
@@ -50,6 +51,7 @@ typedef struct dof3_cfg {
     char *inputs_file, *inputs_var;
     lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
     lv_aero_def aero;    /* the phase's aerodynamic dataset (aero_def.h) */
+    lv_guidance_def guid; /* steering and throttle laws (guidance_def.h) */
 } dof3_cfg;
 
 static void dof3_cfg_free(void *p)
@@ -61,6 +63,7 @@ static void dof3_cfg_free(void *p)
     free(c->inputs_var);
     lv_table_free(c->inputs);
     lv_aero_def_clear(&c->aero);
+    lv_guidance_def_clear(&c->guid);
     free(c);
 }
 
@@ -113,7 +116,31 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
         return lv_pk_nomem(c);
     ph->type_cfg = cfg;
     lv_status st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
-    return st != LV_OK ? st : lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
+    if (st == LV_OK)
+        st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
+    if (st == LV_OK)
+        st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), lv_pk_get(n, "throttle"),
+                                   ph->name, cfg->aero.present, &cfg->guid);
+    if (st != LV_OK)
+        return st;
+    /* one source for each input: a guidance law steers instead of the inputs' angles, a
+     * throttle value replaces the inputs' throttle */
+    const lv_ynode *in = lv_pk_get(n, "inputs");
+    if (cfg->guid.given && in != NULL && in->kind == LV_YNODE_MAP) {
+        static const char *const angles[] = {"alpha", "beta", "mu", "alpha_deg", "beta_deg",
+                                             "mu_deg", "table", NULL};
+        for (size_t i = 0; angles[i] != NULL; i++)
+            if (lv_pk_get(in, angles[i]) != NULL)
+                return lv_pk_fail(c, lv_pk_key(in, angles[i]), "phase '%s', inputs: '%s' and "
+                                  "`guidance:` both steer the vehicle: give the attitude in one "
+                                  "place (the attitude law takes angles and a table)", ph->name,
+                                  angles[i]);
+    }
+    if (cfg->guid.thr_given && cfg->guid.thr_value != LV_NO_SLOT && in != NULL &&
+        in->kind == LV_YNODE_MAP && lv_pk_get(in, "throttle") != NULL)
+        return lv_pk_fail(c, lv_pk_key(in, "throttle"), "phase '%s', inputs: throttle is also "
+                          "given as throttle.value: give it once", ph->name);
+    return LV_OK;
 }
 
 /* ---- the model ---------------------------------------------------------------------------- */
@@ -213,6 +240,8 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
             ec->isp_vac = val(bc, ed->isp_vac);
             ec->mdot = val(bc, ed->mdot);
             ec->exit_area = val(bc, ed->exit_area);
+            ec->throttle_min = val(bc, ed->throttle_min);
+            ec->throttle_max = val(bc, ed->throttle_max);
             ec->table = ed->table;
         }
     }
@@ -244,8 +273,11 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.alpha = bc->vals[pc->u[0]];
     cfg.beta = bc->vals[pc->u[1]];
     cfg.mu = bc->vals[pc->u[2]];
-    cfg.throttle = bc->vals[pc->u[3]];
+    cfg.throttle = pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT
+                       ? bc->vals[pc->guid.thr_value]
+                       : bc->vals[pc->u[3]];
     cfg.inputs = pc->inputs;
+    lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &cfg.throttle_law);
     /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an
      * output of the dataset's table, or 0 */
     if (pc->aero.present) {
