@@ -430,8 +430,10 @@ double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in 
         /* constant deceleration from here to the landing point: v^2 - v_td^2 = 2 a dh */
         const double dh = in->h - t->land_altitude;
         const double vd = in->v_down > 0.0 ? in->v_down : 0.0;
-        const double a_req =
-            (vd * vd - t->land_speed * t->land_speed) / (2.0 * (dh > 1e-3 ? dh : 1e-3));
+        const double vt = t->land_speed;
+        const double a_req = dh > 0.0 ? (vd * vd - vt * vt) / (2.0 * dh) /* at or below it: */
+                             : vd > vt ? HUGE_VAL                        /* brake, or */
+                                       : 0.0;                            /* let gravity act */
         const double up1 = lv_v3_dot(in->up, a1);
         if (!(up1 > 0.0))
             return in->c_max;

@@ -27,3 +27,8 @@ add_test(NAME test_drop
           $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/drop_out)
 # A phase ends on any variable of its model or after a duration (issue 12).
 lv_add_unit_test(test_ends unit/test_ends.c)
+# Guidance laws against known answers (issue 12): gravity turn, linear tangent, throttle
+# limits, landing burn, heading law, attitude frames; bad input.
+lv_add_unit_test(test_guidance unit/test_guidance.c)
+target_compile_definitions(test_guidance PRIVATE
+  LV_MISSION_DIR="${PROJECT_SOURCE_DIR}/tests/missions")
