@@ -15,7 +15,8 @@
 #include "mission/guidance_def.h"
 #include "mission/phase_type.h"
 
-static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", NULL};
+static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
+                                   NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
 static const lv_var mission_params[] = {
@@ -52,6 +53,8 @@ typedef struct dof3_cfg {
     lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
     lv_aero_def aero;    /* the phase's aerodynamic dataset (aero_def.h) */
     lv_guidance_def guid; /* steering and throttle laws (guidance_def.h) */
+    int sep;             /* `separation:` given */
+    lv_slot sep_dv[4];   /* m/s: along the parent's body x, then north, east, down */
 } dof3_cfg;
 
 static void dof3_cfg_free(void *p)
@@ -109,6 +112,39 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     return LV_OK;
 }
 
+/* separation: {dv, dv_north, dv_east, dv_down}: the impulse this phase's body gets at the
+ * hand-off, along the parent's final body x axis and in the local NED frame [m/s]. */
+static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_ynode *phase,
+                                  const char *name, dof3_cfg *cfg)
+{
+    static const char *const skeys[] = {"dv", "dv_north", "dv_east", "dv_down", NULL};
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
+    lv_status st;
+    snprintf(what, sizeof what, "phase '%s', separation", name);
+    for (int k = 0; k < 4; k++)
+        cfg->sep_dv[k] = LV_NO_SLOT;
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if (lv_pk_get(phase, "from") == NULL)
+        return lv_pk_fail(c, lv_pk_key(phase, "separation"), "%s: a separation is a hand-off "
+                          "rule: only a phase with `from` has one", what);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {dv: -2} expected", what);
+    if ((st = lv_pk_check_map(c, n, what, skeys)) != LV_OK)
+        return st;
+    cfg->sep = 1;
+    for (int k = 0; k < 4; k++) {
+        snprintf(slot, sizeof slot, "%s.separation.%s", name, skeys[k]);
+        const lv_ynode *v = lv_pk_get(n, skeys[k]);
+        st = v != NULL ? lv_pk_slot(c, v, what, skeys[k], slot, "m/s", LV_RANGE_ANY, 0,
+                                    &cfg->sep_dv[k])
+                       : lv_pk_slot_default(c, slot, "m/s", 0.0, LV_RANGE_ANY, &cfg->sep_dv[k]);
+        if (st != LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
 static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
 {
     dof3_cfg *cfg = calloc(1, sizeof *cfg);
@@ -121,6 +157,8 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     if (st == LV_OK)
         st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), lv_pk_get(n, "throttle"),
                                    ph->name, cfg->aero.present, &cfg->guid);
+    if (st == LV_OK)
+        st = parse_separation(c, lv_pk_get(n, "separation"), n, ph->name, cfg);
     if (st != LV_OK)
         return st;
     /* one source for each input: a guidance law steers instead of the inputs' angles, a
@@ -297,6 +335,56 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     return LV_OK;
 }
 
+static size_t find(const char *const *names, size_t n, const char *name)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return i;
+    return (size_t)-1;
+}
+
+/* The separation impulse: dv along the parent's final body x (its attitude theta, psi relative
+ * to local NED at its final geodetic position) plus (dv_north, dv_east, dv_down) there, added
+ * to the inertial velocity copied from the parent: v_eci += R3(theta0 + omega t)^T
+ * C_ned_ecef^T dv_ned (a velocity change: no w x r term). */
+static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
+                              const char *const *pnames, const double *pvalues, size_t np,
+                              const char *const *names, double *values, size_t n, lv_err *err)
+{
+    const dof3_cfg *pc = bc->def->phases[bc->k].type_cfg;
+    const dof3_self *s = pm->self;
+    if (!pc->sep)
+        return LV_OK;
+    static const char *const need[] = {"time", "theta", "psi", "lat", "lon"};
+    double f[5];
+    for (int i = 0; i < 5; i++) {
+        const size_t j = find(pnames, np, need[i]);
+        if (j == (size_t)-1)
+            return lv_fail(err, LV_ERR_INPUT, "separation: the parent's final '%s' is unknown "
+                           "(its model is not dof3)", need[i]);
+        f[i] = pvalues[j];
+    }
+    size_t iv[3];
+    static const char *const vnames[3] = {"v_eci_x", "v_eci_y", "v_eci_z"};
+    for (int i = 0; i < 3; i++)
+        if ((iv[i] = find(names, n, vnames[i])) == (size_t)-1)
+            return lv_fail(err, LV_ERR_INPUT, "separation: the velocity '%s' is not handed over "
+                           "from the parent", vnames[i]);
+    const double dv = val(bc, pc->sep_dv[0]);
+    const double ct = cos(f[1]), st = sin(f[1]), cp = cos(f[2]), sp = sin(f[2]);
+    const double dv_ned[3] = {dv * ct * cp + val(bc, pc->sep_dv[1]),
+                              dv * ct * sp + val(bc, pc->sep_dv[2]),
+                              -dv * st + val(bc, pc->sep_dv[3])};
+    double C[3][3], dv_ecef[3], zero[3] = {0.0, 0.0, 0.0}, r_eci[3], dv_eci[3];
+    lv_frames_C_ned_ecef(f[3], f[4], C);
+    for (int i = 0; i < 3; i++)
+        dv_ecef[i] = C[0][i] * dv_ned[0] + C[1][i] * dv_ned[1] + C[2][i] * dv_ned[2];
+    lv_frames_ecef_to_eci(&s->env.planet, f[0], zero, dv_ecef, r_eci, dv_eci);
+    for (int i = 0; i < 3; i++)
+        values[iv[i]] += dv_eci[i];
+    return LV_OK;
+}
+
 const lv_phase_type lv_phase_type_dof3 = {
     .name = "dof3",
     .description = "3-DoF variable-mass point over the rotating planet: engines, aerodynamics, "
@@ -314,4 +402,5 @@ const lv_phase_type lv_phase_type_dof3 = {
     .n_traj = sizeof traj / sizeof traj[0],
     .traj = traj,
     .traj_extra = NULL,
+    .handoff = dof3_handoff,
 };

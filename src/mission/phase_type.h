@@ -108,6 +108,14 @@ struct lv_phase_type {
     size_t n_traj;
     const lv_traj_col *traj;
     void (*traj_extra)(const lv_mission_def *def, double *row);
+
+    /* The hand-off's own rules (a separation impulse): adjusts a child phase's initial values
+     * (names/values[n]: the states copied from the parent, the overrides) from its parent's
+     * final values (pnames/pvalues[np]: time, states, outputs), with the run's values in bc
+     * and the child's built model pm. NULL: none. Errors name the phase and the reason. */
+    lv_status (*handoff)(const lv_build_ctx *bc, const lv_phase_model *pm,
+                         const char *const *pnames, const double *pvalues, size_t np,
+                         const char *const *names, double *values, size_t n, lv_err *err);
 };
 
 /* The registered types, NULL-terminated (phase_types.c). */

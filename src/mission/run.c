@@ -311,6 +311,14 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         case LV_INIT_START_TIME: c->values[i] = s->start_time; break;
         }
     }
+    if (par != NULL && ph->type->handoff != NULL &&
+        (st = ph->type->handoff(&bc, c->pm, (const char *const *)m->plan[ph->parent].final_names,
+                                par->fvalues, m->plan[ph->parent].n_final, c->names, c->values,
+                                pl->n_init, err)) != LV_OK) {
+        lv_phase_call_free(c);
+        return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
+                              ph->loc.column, ph->name);
+    }
     s->n_initial = pl->n_init;
     s->initial_names = c->names;
     s->initial_values = c->values;

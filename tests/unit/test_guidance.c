@@ -510,6 +510,46 @@ static void test_table_and_slots(void)
     lv_mission_free(m);
 }
 
+/* The separation impulse of a hand-off: dv along the parent's final body x, plus NED parts. */
+static void test_separation(void)
+{
+    const char *yaml =
+        "mission: {name: sep}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: none}\n"
+        "parameters: {start_lat_deg: 20, start_lon_deg: 30, start_h: 150000, start_vel: 3000,\n"
+        "             start_fpa_deg: 10, start_chi_deg: 70}\n"
+        "stages: [{name: a, dry_mass: 1000, propellant_mass: 0},\n"
+        "         {name: b, dry_mass: 500, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: P, model: dof3, stages: [a, b], stop_time: 10,\n"
+        "     guidance: {law: attitude, pitch_deg: 30, heading_deg: 90}}\n"
+        "  - {name: up, model: dof3, stages: [b], from: P, stop_time: 20,\n"
+        "     separation: {dv: 5, dv_down: 1}}\n"
+        "  - {name: down, model: dof3, stages: [a], from: P, stop_time: 20,\n"
+        "     separation: {dv: -2}}\n";
+    lv_mission *m;
+    lv_run *r = run_text("sep.yaml", yaml, &m);
+    if (r == NULL)
+        return lv_mission_free(m);
+    static const char *const v[3] = {"v_north", "v_east", "v_down"};
+    /* body x at pitch 30 deg, heading 90 deg: NED (0, cos 30, -sin 30) */
+    const double up[3] = {0.0, 5.0 * cos(30.0 * DEG), -5.0 * sin(30.0 * DEG) + 1.0};
+    const double down[3] = {0.0, -2.0 * cos(30.0 * DEG), 2.0 * sin(30.0 * DEG)};
+    for (int i = 0; i < 3; i++) {
+        size_t c;
+        const lv_result *ru = lv_run_rows(r, 1), *rd = lv_run_rows(r, 2);
+        CHECK(ru != NULL && rd != NULL && lv_result_column(ru, v[i], &c, NULL) == LV_OK);
+        if (ru == NULL || rd == NULL)
+            break;
+        CHECK_CLOSE(lv_result_value(ru, 0, c) - final(r, 0, v[i]), up[i], 1e-9);
+        CHECK_CLOSE(lv_result_value(rd, 0, c) - final(r, 0, v[i]), down[i], 1e-9);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+    load_fails("separation: {dv: 3}", "bad_guidance.yaml:7:6: phase 'P', separation: a "
+               "separation is a hand-off rule: only a phase with `from` has one");
+}
+
 int main(void)
 {
     test_gravity_turn();
@@ -520,5 +560,6 @@ int main(void)
     test_frames();
     test_refused();
     test_table_and_slots();
+    test_separation();
     return check_report("test_guidance");
 }
