@@ -207,14 +207,14 @@ static const double *v_of(const double *x) { return x + LV_X3_VX; }
  * the aerodynamic angles that result; the aerodynamic force (with the heading law's
  * load-factor limit); gravity; the throttle law from the forces without thrust; thrust. */
 static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x,
-                             const double *p, dof3_point *pt, lv_err *err)
+                             const double *p, int full, dof3_point *pt, lv_err *err)
 {
     const lv_flight_world *w = &m->world;
     const double mass = x[LV_X3_M];
     lv_aero *aero = m->has_aero ? &m->aero : NULL;
     if (m->steers) {
         if (lv_guid_attitude(&m->guid, &s->guid, t, &pt->kin, &pt->air, p[P_THR], p[P_FPA],
-                             p[P_CHI], &pt->ctl, &pt->ax, err) != 0)
+                             p[P_CHI], full, &pt->ctl, &pt->ax, err) != 0)
             return 1;
     } else {
         if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
@@ -242,9 +242,9 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
     pt->g_ecef = lv_flight_gravity(w, m->grav_ws, &pt->kin);
     if (m->throttles && s->engines_on) {
         double t_full, md_full;
-        lv_flight_controls full = pt->ctl;
-        full.u[LV_CTRL_THROTTLE] = 1.0;
-        if (lv_flight_thrust(m->eng, m->n_eng, 1, t, &full, &pt->air, m->eng_buf, &t_full,
+        lv_flight_controls at_full = pt->ctl;
+        at_full.u[LV_CTRL_THROTTLE] = 1.0;
+        if (lv_flight_thrust(m->eng, m->n_eng, 1, t, &at_full, &pt->air, m->eng_buf, &t_full,
                              &md_full, err) != 0)
             return 1;
         const lv_vec3 a_nt = lv_v3_add(lv_v3_add(pt->g_ecef, lv_v3_scale(pt->f_aero, 1.0 / mass)),
@@ -262,7 +262,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
             .h = pt->kin.h,
             .v_down = lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
             .h_dot = -lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
-            .drho_dh = m->thr.q_max > 0.0 ? lv_flight_drho_dh(w, pt->kin.h) : 0.0,
+            .drho_dh = m->thr.q_max > 0.0 ? lv_flight_drho_dh(w, pt->kin.h, pt->air.rho) : 0.0,
         };
         pt->ctl.u[LV_CTRL_THROTTLE] =
             lv_guid_throttle(&m->thr, pt->ctl.u[LV_CTRL_THROTTLE], &in, &pt->air);
@@ -293,7 +293,7 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
     if (rc != 0)
         return rc;
     if (m->steers || m->throttles)
-        return point_eval_guided(m, s, t, x, p, pt, err);
+        return point_eval_guided(m, s, t, x, p, full, pt, err);
     if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
                                 err) != 0)
         return 1;
@@ -619,6 +619,14 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
     lv_status rc = lv_guid_init(&m->guid, &st, &cfg->planet, cfg->aero != NULL, err);
     if (rc != LV_OK)
         return lv_fail_prefix(err, rc, "dof3");
+    /* the angles of attack and sideslip an attitude gives are computed in the right-hand side
+     * only when an aerodynamic table reads them */
+    m->guid.need_alpha = m->guid.need_beta = 0;
+    for (size_t i = 0; m->has_aero && i < m->aero.n_tab; i++)
+        for (size_t d = 0; d < m->aero.tab[i].n_dims; d++) {
+            m->guid.need_alpha |= m->aero.tab[i].input[d] == LV_AERO_IN_ALPHA;
+            m->guid.need_beta |= m->aero.tab[i].input[d] == LV_AERO_IN_BETA;
+        }
     const lv_throttle_cfg *t = &cfg->throttle_law;
     if ((unsigned)t->law > LV_THROTTLE_OFF)
         return lv_fail(err, LV_ERR_INPUT, "dof3: unknown throttle law %d", (int)t->law);

@@ -252,16 +252,13 @@ lv_vec3 lv_flight_frame_accel(const lv_flight_world *w, const lv_flight_kin *k)
                  -2.0 * om * k->v_rel.x + om * om * k->r_ecef.y, 0.0);
 }
 
-double lv_flight_drho_dh(const lv_flight_world *w, double h)
+double lv_flight_drho_dh(const lv_flight_world *w, double h, double rho)
 {
-    if (w->atmo_model == NULL || h < LV_ATMO_ALT_MIN || h > LV_ATMO_ALT_MAX)
+    const double dh = 0.01; /* m: truncation dh / (2 H) ~ 1e-6, rounding ~ 1e-10 (relative) */
+    if (w->atmo_model == NULL || h < LV_ATMO_ALT_MIN || h + dh > LV_ATMO_ALT_MAX)
         return 0.0;
-    const double dh = 1.0; /* m: a central difference, its error O(dh^2) */
-    const double lo = h - dh < LV_ATMO_ALT_MIN ? LV_ATMO_ALT_MIN : h - dh;
-    const double hi = h + dh > LV_ATMO_ALT_MAX ? LV_ATMO_ALT_MAX : h + dh;
-    lv_atmo_state s0, s1;
-    if (!(hi > lo) || w->atmo_model->eval(w->atmo_par, lo, &s0, NULL) != LV_OK ||
-        w->atmo_model->eval(w->atmo_par, hi, &s1, NULL) != LV_OK)
+    lv_atmo_state s1;
+    if (w->atmo_model->eval(w->atmo_par, h + dh, &s1, NULL) != LV_OK)
         return 0.0;
-    return (s1.rho - s0.rho) / (hi - lo);
+    return (s1.rho - rho) / dh;
 }

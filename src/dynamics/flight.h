@@ -166,8 +166,10 @@ lv_vec3 lv_flight_accel_eci_g(const lv_flight_kin *k, lv_vec3 g_ecef, lv_vec3 f,
  * inertial one. */
 lv_vec3 lv_flight_frame_accel(const lv_flight_world *w, const lv_flight_kin *k);
 
-/* d rho / dh [kg/m^4] of the world's atmosphere at geodetic altitude h by a central
- * difference over +-1 m (0 without atmosphere or outside its range). */
-double lv_flight_drho_dh(const lv_flight_world *w, double h);
+/* d rho / dh [kg/m^4] of the world's atmosphere at geodetic altitude h where the density is
+ * rho, by a forward difference over 1 cm (relative truncation error 1 cm / (2 H) ~ 1e-6 for a
+ * scale height H of 7 km, rounding ~ 1e-10; one atmosphere evaluation); 0 without atmosphere
+ * or outside its range. */
+double lv_flight_drho_dh(const lv_flight_world *w, double h, double rho);
 
 #endif

@@ -148,6 +148,7 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
         st = lv_guid_table_check(s->alpha_table, s->law, s->frame, g, err);
     if (st != LV_OK)
         return lv_fail_prefix(err, st, "guidance '%s'", law);
+    g->need_alpha = g->need_beta = 1; /* lv_dof3 narrows them down */
     g->cs_heading[0] = cos(s->heading);
     g->cs_heading[1] = sin(s->heading);
     g->cs_pitch[0] = cos(s->pitch);
@@ -219,7 +220,8 @@ static void body_from_euler(const lv_vec3 f[3], const double cs[3][2], lv_flight
  * x_w from the vertical plane through it (lv_flight_axes_eval's convention). Without
  * air-relative speed: all 0, wind axes = body axes. */
 static void wind_from_body(const lv_flight_kin *k, const lv_flight_air *a, double chi0,
-                           lv_flight_controls *c, lv_flight_axes *ax)
+                           int full, const int need[2], lv_flight_controls *c,
+                           lv_flight_axes *ax)
 {
     if (!(a->v_air_n > V_AIR_MIN)) {
         ax->xw = ax->xb, ax->yw = ax->yb, ax->zw = ax->zb;
@@ -231,17 +233,22 @@ static void wind_from_body(const lv_flight_kin *k, const lv_flight_air *a, doubl
     }
     const double u = lv_v3_dot(a->v_air, ax->xb), v = lv_v3_dot(a->v_air, ax->yb);
     const double w = lv_v3_dot(a->v_air, ax->zb);
-    const double uw = hypot(u, w), V = a->v_air_n;
+    const double uw = sqrt(u * u + w * w), V = a->v_air_n;
     const double ca = uw > 0.0 ? u / uw : 1.0, sa = uw > 0.0 ? w / uw : 0.0;
     const double sb = v / V, cb = uw / V;
-    c->u[LV_CTRL_ALPHA] = atan2(w, u);
-    c->u[LV_CTRL_BETA] = asin(sb > 1.0 ? 1.0 : sb < -1.0 ? -1.0 : sb);
+    c->u[LV_CTRL_ALPHA] = full || need[0] ? atan2(w, u) : NAN;
+    c->u[LV_CTRL_BETA] = full || need[1] ? asin(sb > 1.0 ? 1.0 : sb < -1.0 ? -1.0 : sb) : NAN;
     c->cs[LV_CTRL_ALPHA][0] = ca, c->cs[LV_CTRL_ALPHA][1] = sa;
     c->cs[LV_CTRL_BETA][0] = cb, c->cs[LV_CTRL_BETA][1] = sb;
     ax->xw = lv_v3_scale(a->v_air, 1.0 / V);
     ax->yw = lv_v3_add(lv_v3_scale(ax->xb, -ca * sb),
                        lv_v3_sub(lv_v3_scale(ax->yb, cb), lv_v3_scale(ax->zb, sa * sb)));
     ax->zw = lv_v3_add(lv_v3_scale(ax->xb, -sa), lv_v3_scale(ax->zb, ca));
+    if (!full) { /* the force needs the wind axes, alpha and beta; mu is an output only */
+        c->u[LV_CTRL_MU] = NAN;
+        c->cs[LV_CTRL_MU][0] = NAN, c->cs[LV_CTRL_MU][1] = NAN;
+        return;
+    }
     /* mu: y_w = y0 cos mu + z0 sin mu, with z0 the downward direction normal to x_w in the
      * vertical plane and y0 = z0 x x_w */
     const double dx = lv_v3_dot(k->d_ax, ax->xw);
@@ -254,7 +261,7 @@ static void wind_from_body(const lv_flight_kin *k, const lv_flight_air *a, doubl
     const lv_vec3 y0 = lv_v3_cross(z0, ax->xw);
     const double cm = lv_v3_dot(ax->yw, y0), sm = lv_v3_dot(ax->yw, z0);
     c->u[LV_CTRL_MU] = atan2(sm, cm);
-    const double mn = hypot(cm, sm);
+    const double mn = sqrt(cm * cm + sm * sm);
     c->cs[LV_CTRL_MU][0] = mn > 0.0 ? cm / mn : 1.0;
     c->cs[LV_CTRL_MU][1] = mn > 0.0 ? sm / mn : 0.0;
 }
@@ -286,28 +293,23 @@ static void frame_axes(const lv_guid_rt *rt, const lv_flight_kin *k, lv_att_fram
     }
 }
 
-/* Bearing [rad] from the vehicle to the target over the local horizon. */
-static double bearing_to(const lv_guid *g, const lv_flight_kin *k)
+/* Direction of the target over the local horizon: cos and sin of its bearing (from north
+ * to east), without trigonometry; (1, 0) at the target itself. */
+static void bearing_cs(const lv_guid *g, const lv_flight_kin *k, double cs[2])
 {
-    const lv_vec3 up = lv_v3_unit(k->r_ecef);
-    const lv_vec3 h = lv_v3_sub(g->target, lv_v3_scale(up, lv_v3_dot(g->target, up)));
-    return atan2(lv_v3_dot(h, k->e_ax), lv_v3_dot(h, k->n_ax));
-}
-
-static double wrap_pi(double x)
-{
-    x = fmod(x + LV_PI, 2.0 * LV_PI);
-    if (x < 0.0)
-        x += 2.0 * LV_PI;
-    return x - LV_PI;
+    const double hn = lv_v3_dot(g->target, k->n_ax), he = lv_v3_dot(g->target, k->e_ax);
+    const double n = sqrt(hn * hn + he * he);
+    cs[0] = n > 0.0 ? hn / n : 1.0;
+    cs[1] = n > 0.0 ? he / n : 0.0;
 }
 
 int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_kin *k,
-                     const lv_flight_air *a, double throttle, double fpa0, double chi0,
+                     const lv_flight_air *a, double throttle, double fpa0, double chi0, int full,
                      lv_flight_controls *c, lv_flight_axes *ax, lv_err *err)
 {
     const lv_steering *s = &g->s;
     const double tau = t - rt->t0;
+    const int need[2] = {g->need_alpha, g->need_beta};
     c->u[LV_CTRL_THROTTLE] = throttle;
     lv_vec3 f[3];
     switch (s->law) {
@@ -342,7 +344,7 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
         trig3(rt, ang);
         frame_axes(rt, k, s->frame, f);
         body_from_euler(f, (const double(*)[2])rt->cs, ax);
-        wind_from_body(k, a, chi0, c, ax);
+        wind_from_body(k, a, chi0, full, need, c, ax);
         return 0;
     }
     case LV_STEER_GRAVITY_TURN: {
@@ -358,19 +360,19 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
         trig3(rt, ang);
         frame_axes(rt, k, LV_FRAME_LOCAL, f);
         body_from_euler(f, (const double(*)[2])rt->cs, ax);
-        wind_from_body(k, a, chi0, c, ax);
+        wind_from_body(k, a, chi0, full, need, c, ax);
         return 0;
     }
     case LV_STEER_TANGENT: {
         /* cos and sin of theta = atan2(a + b tau, c + d tau) without trigonometry */
         const double num = s->a + s->b * tau, den = s->c + s->d * tau;
-        const double nn = hypot(num, den);
+        const double nn = sqrt(num * num + den * den);
         const double cs[3][2] = {{nn > 0.0 ? den / nn : 1.0, nn > 0.0 ? num / nn : 0.0},
                                  {g->cs_heading[0], g->cs_heading[1]},
                                  {1.0, 0.0}};
         frame_axes(rt, k, s->frame, f);
         body_from_euler(f, cs, ax);
-        wind_from_body(k, a, chi0, c, ax);
+        wind_from_body(k, a, chi0, full, need, c, ax);
         return 0;
     }
     case LV_STEER_HEADING: {
@@ -383,8 +385,11 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
             }
             alpha = rt->buf[g->k[0]];
         }
-        const double chi = atan2(lv_v3_dot(a->v_air, k->e_ax), lv_v3_dot(a->v_air, k->n_ax));
-        double mu = s->gain * wrap_pi(bearing_to(g, k) - chi);
+        /* the heading error from the two directions' cross and dot products */
+        double b[2];
+        bearing_cs(g, k, b);
+        const double vn = lv_v3_dot(a->v_air, k->n_ax), ve = lv_v3_dot(a->v_air, k->e_ax);
+        double mu = s->gain * atan2(vn * b[1] - ve * b[0], vn * b[0] + ve * b[1]);
         mu = mu > s->bank_max ? s->bank_max : mu < -s->bank_max ? -s->bank_max : mu;
         const double ang[3] = {alpha, 0.0, mu};
         aero_angles(rt, k, a, ang, fpa0, chi0, c, ax);
@@ -396,11 +401,12 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
         return 0;
     }
     case LV_STEER_BOOSTBACK: {
-        const double b = bearing_to(g, k);
-        const double cs[3][2] = {{g->cs_pitch[0], g->cs_pitch[1]}, {cos(b), sin(b)}, {1.0, 0.0}};
+        double b[2];
+        bearing_cs(g, k, b);
+        const double cs[3][2] = {{g->cs_pitch[0], g->cs_pitch[1]}, {b[0], b[1]}, {1.0, 0.0}};
         frame_axes(rt, k, LV_FRAME_LOCAL, f);
         body_from_euler(f, cs, ax);
-        wind_from_body(k, a, chi0, c, ax);
+        wind_from_body(k, a, chi0, full, need, c, ax);
         return 0;
     }
     }

@@ -25,6 +25,8 @@ typedef struct lv_guid {
     double cs_heading[2]; /* cos, sin of s.heading */
     double cs_pitch[2];   /* BOOSTBACK: cos, sin of s.pitch */
     lv_vec3 target;       /* unit vector of the target point, ECEF (geocentric direction) */
+    int need_alpha, need_beta; /* the aerodynamic tables read alpha, beta (else the right-hand
+                                  side skips them: outputs only) */
 } lv_guid;
 
 /* Per simulation instance: the phase's start, the frozen inertial frame, cursors, scratch. */
@@ -60,11 +62,12 @@ double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t)
 /* Attitude at time t: fills ax (wind and body axes, ECEF) and c->u[alpha, beta, mu] with
  * their cosines and sines (the angles that result for an attitude frame; 0 below 1e-6 m/s
  * of air-relative speed, where the wind axes are the body axes), and c->u[throttle] from
- * `throttle` or the law's table. (fpa0, chi0): the direction the aerodynamic frame takes
+ * `throttle` or the law's table; the bank mu that results from an attitude only when `full`
+ * (outputs: the force does not need it; NAN otherwise). (fpa0, chi0): the direction the aerodynamic frame takes
  * without air-relative speed (lv_flight_axes_eval). Returns 0, or 1 when a table cannot be
  * evaluated (err, may be NULL). */
 int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_kin *k,
-                     const lv_flight_air *a, double throttle, double fpa0, double chi0,
+                     const lv_flight_air *a, double throttle, double fpa0, double chi0, int full,
                      lv_flight_controls *c, lv_flight_axes *ax, lv_err *err);
 
 /* HEADING with n_max > 0: the angle of attack that keeps the lift load factor
