@@ -10,6 +10,7 @@ pkgs=(
   libmatio-dev                         # MAT v4/v5/v7 result and table files
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
+  nettle-dev                           # SHA-256 in the results folder's manifest
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)

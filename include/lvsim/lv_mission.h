@@ -188,6 +188,24 @@ LV_API lv_status lv_run_final(const lv_run *r, size_t k, const char *name, doubl
 /* Phase k's rows in memory (every output row and event instant), or NULL. */
 LV_API const lv_result *lv_run_rows(const lv_run *r, size_t k);
 
+/* ---- output size, before running --------------------------------------------------------- */
+
+/* What phase k will write at most with the run's current values: its output grid over its
+ * longest possible duration (its stop time minus its start_time, or minus the end of its
+ * parent when that is done in this run, else minus the parent's earliest start). Each
+ * event instant adds two rows more (not counted). */
+typedef struct lv_output_estimate {
+    double duration;   /* s */
+    double rows;       /* output grid points */
+    size_t n_signals;  /* columns: time, states, their derivatives, outputs */
+    double bytes_mat;  /* the .mat file's data: 8 bytes a value (and the run's rows in
+                          memory when it keeps them: lv_run_options.no_rows = 0) */
+    double bytes_csv;  /* the .csv file: about 22 bytes a value (%.17g and a comma) */
+} lv_output_estimate;
+/* `output_interval` > 0: the grid lv_run_options.output_interval would impose. */
+LV_API lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interval,
+                                        lv_output_estimate *out, lv_err *err);
+
 /* ---- the bodies: each stage's trajectory across the phases it flies in ------------------ */
 
 /* The phases stage `s` flies in, done, in time order; returns the count written to `out`

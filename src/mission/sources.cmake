@@ -8,4 +8,5 @@ list(APPEND LV_SOURCES
   src/mission/phase_dof3.c
   src/mission/mission.c
   src/mission/run.c
-  src/mission/compare.c)
+  src/mission/compare.c
+  src/mission/run_estimate.c)

@@ -49,7 +49,15 @@ typedef struct lv_ex_run {
     lv_ex_body *bodies;
     size_t n_bodies;
     double t0, t1;       /* s: first start and last end of the done phases */
+    struct lv_export_report *rep; /* what was written or not, or NULL */
 } lv_ex_run;
+
+/* Adds an item to r->rep (when there is one): `file` written, or `note` why not (printf). */
+void lv_ex_report(const lv_ex_run *r, const char *format, const char *file, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
 
 /* Time t (s since the epoch) as whole microseconds since 1970 (the resolution of every
  * written time) and as ISO 8601 UTC text "YYYY-MM-DDThh:mm:ss[.ffffff]" + suffix ("Z" or ""),

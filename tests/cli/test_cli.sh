@@ -60,13 +60,13 @@ expect 2 "$work/data/gravity/egm2008_n20.gfc:1: no end_of_head" -- \
 src="$(cd "$(dirname "$0")/../.." && pwd)"
 expect 0 "is valid: 5 phases" -- "$lvsim" check "$src/examples/paper-test-case/mission.yaml"
 expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" check "$src/tests/missions/bad_cycle.yaml"
-expect 0 "P5 +P2 .* ok" -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run"
+expect 0 "^5 +P5 +P2 .* done$" -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run"
 [ -f "$work/run/summary.json" ] && [ -f "$work/run/mission.czml" ] && [ -f "$work/run/mission.kml" ] \
   && pass=$((pass + 1)) || { echo "FAIL: run outputs"; fails=$((fails + 1)); }
 expect 0 '"mission":' -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run2" --json
 expect 0 "number of states +39 +13" -- "$lvsim" compare "$src/examples/paper-test-case/mission.yaml"
-expect 0 "exports written" -- "$lvsim" export "$work/run" --format czml
-expect 2 "summary.json: cannot read" -- "$lvsim" export "$work/nothing"
+expect 0 "^export czml: wrote $work/run/mission.czml$" -- "$lvsim" export "$work/run" --format czml
+expect 2 "'$work/nothing' is not a results folder" -- "$lvsim" export "$work/nothing"
 # lvsim view stages with viewer/stage.sh found like any data file ($LVSIM_DATA here), which
 # copies from its own folder: web/ and cesium/ (a stand-in for the CesiumJS build)
 mkdir -p "$work/data/viewer"
