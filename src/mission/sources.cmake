@@ -9,4 +9,5 @@ list(APPEND LV_SOURCES
   src/mission/mission.c
   src/mission/run.c
   src/mission/compare.c
-  src/mission/run_estimate.c)
+  src/mission/run_estimate.c
+  src/mission/phase_types_api.c)

@@ -22,6 +22,17 @@ expect() { # expect CODE PATTERN -- command...
 }
 
 expect 0 "vertical_ascent" -- "$lvsim" models
+# the mission model types too, and their variables: the names of set:, end: and the files
+expect 0 "^dof3 +3-DoF .*\(planet world\)" -- "$lvsim" models
+expect 0 "^flat6 +6-DoF .*\(flat world\)" -- "$lvsim" models
+expect 0 "^state +r_eci_x +m " -- "$lvsim" vars dof3
+expect 0 "^output +q_dyn +Pa " -- "$lvsim" vars dof3
+expect 0 "^mission +start_lat +rad " -- "$lvsim" vars dof3
+expect 0 "^# end conditions \('end:'\): burnout altitude speed apogee impact" -- "$lvsim" vars dof3
+expect 0 "^# phase keys of its own: inputs aero" -- "$lvsim" vars dof3
+expect 0 "^state +z +m " -- "$lvsim" vars flat6
+expect 0 "^derivative +der\(vz\) +m/s/s " -- "$lvsim" vars flat6
+expect 2 "unknown model 'dof4'; mission model types: flat6 dof3; built-in models: vertical_ascent" -- "$lvsim" vars dof4
 expect 0 "^parameter +thrust +N" -- "$lvsim" vars vertical_ascent
 expect 2 "unknown model 'nope'" -- "$lvsim" vars nope
 expect 2 "unknown command 'fly'" -- "$lvsim" fly
@@ -89,6 +100,17 @@ YAML
 printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
 expect 3 "phase 'p'.*outside" -- "$lvsim" run "$work/fail.yaml" -o "$work/failrun"
 
+
+# lvsim vars TYPE lists exactly the columns of that type's phase files (time aside)
+"$lvsim" run "$src/examples/dof3-branch/mission.yaml" -o "$work/d3" -q --no-plots > /dev/null 2>&1
+for pair in "dof3 $work/d3/phase_1_ascent.csv" "flat6 $work/run/phase_1_P1.csv"; do
+  set -- $pair
+  want=$(head -1 "$2" | tr ',' '\n' | sed 's/ \[.*//' | grep -v '^time$' | sort)
+  got=$("$lvsim" vars "$1" | awk '$1 == "state" || $1 == "derivative" || $1 == "output" {print $2}' | sort)
+  [ -n "$want" ] && [ "$want" = "$got" ] && pass=$((pass + 1)) \
+    || { echo "FAIL: lvsim vars $1 and the columns of $2 differ:"; diff <(echo "$want") <(echo "$got") | head; fails=$((fails + 1)); }
+done
+set -- "$lvsim"
 
 # Usage and help come from the command table (cli/cli.h): every command, including those that
 # take no arguments, answers --help, -h and `lvsim help CMD` with exit 0 and its own usage line,
