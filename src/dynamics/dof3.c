@@ -134,6 +134,7 @@ typedef struct dof3_inst {
     double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
     lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
     char msg[LV_ERR_MSG_MAX];
+    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 } dof3_inst;
 
 struct lv_dof3 {
@@ -386,6 +387,38 @@ static double dof3_next_time_event(double t, const double *p, void *inst)
         if (m->eng[i].table != NULL)
             tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
     return tn;
+}
+
+/* 1 if table `tab` has a breakpoint at exactly t on its first axis (time). */
+static int breakpoint_at(const lv_table *tab, double t)
+{
+    size_t n = 0;
+    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
+    for (size_t i = 0; b != NULL && i < n; i++)
+        if (b[i] == t)
+            return 1;
+    return 0;
+}
+
+/* The time events at t by their source: the inputs table's or an engine table's breakpoint. */
+static const char *dof3_time_event_name(double t, const double *p, void *inst)
+{
+    (void)p;
+    dof3_inst *s = inst;
+    const lv_dof3 *m = s->m;
+    size_t len = 0;
+    s->tev[0] = '\0';
+    if (breakpoint_at(m->inputs.table, t))
+        len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
+                                lv_table_name(m->inputs.table));
+    for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
+        if (breakpoint_at(m->eng[i].table, t))
+            len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
+                                    "%sengine '%.24s' table breakpoint", len ? "; " : "",
+                                    m->eng[i].name);
+    if (len > 0 && len < sizeof s->tev)
+        snprintf(s->tev + len, sizeof s->tev - len, " t = %.9g s", t);
+    return s->tev;
 }
 
 /* Flight-path angle and heading of an ECEF vector in the local NED frame. */
@@ -718,6 +751,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .next_time_event = dof3_next_time_event,
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
+        .time_event_name = dof3_time_event_name,
     };
     m->inst.m = m;
     for (int k = 0; k < 3; k++)

@@ -138,13 +138,9 @@ void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3])
 
 const char *lv_ex_event_label(const lv_ex_event *e)
 {
-    if (e->name == NULL)
-        return "time event";
-    if (strcmp(e->name, "burnout") == 0)
-        return "MECO"; /* main engine cut-off: the burning stage's propellant is gone */
-    if (strcmp(e->name, "impact") == 0)
-        return "landing";
-    return e->name;
+    /* the event's own name, as summary.json, the report and the CLI give it: "burnout",
+     * "impact" (a ground contact, whatever its speed: never "landing"), a time event's source */
+    return e->name != NULL ? e->name : "time event";
 }
 
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap)

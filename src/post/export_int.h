@@ -74,10 +74,11 @@ const lv_ex_track *lv_ex_track_of(const lv_ex_body *b, size_t p);
 /* Colour of phase p (palette by summary index): r, g, b in 0..255. */
 void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3]);
 
-/* Label of event e of phase p ("burnout", "time event"). */
+/* Label of event e: its name as summary.json gives it ("burnout", "impact", "stage 'stage3'
+ * thrust table breakpoint t = 481 s"), "time event" when it has none. */
 const char *lv_ex_event_label(const lv_ex_event *e);
 /* Label of marker k of phase p: k = 0 its start ("separation (P2)" where the stack splits,
- * else "P2 start"), k >= 1 its events in launcher words (MECO, apogee, landing, ...). */
+ * else "P2 start"), k >= 1 its events by their names (lv_ex_event_label). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
 lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);

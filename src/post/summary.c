@@ -104,10 +104,12 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON *j = cJSON_CreateObject();
         cJSON_AddNumberToObject(j, "t", e->t);
         cJSON_AddStringToObject(j, "kind", e->is_state ? "state" : "time");
-        if (e->is_state) {
-            cJSON_AddStringToObject(j, "name", event_name(r, e->index));
+        /* a state event by its name, a time event by its source (table and breakpoint,
+         * commanded action) as the model names it */
+        cJSON_AddStringToObject(j, "name", e->is_state ? event_name(r, e->index)
+                                           : e->name[0] ? e->name : "time event");
+        if (e->is_state)
             cJSON_AddNumberToObject(j, "direction", e->direction);
-        }
         cJSON_AddItemToArray(ev, j);
     }
     cJSON *sj = cJSON_AddObjectToObject(o, "stats");

@@ -180,7 +180,7 @@ num='lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)'
 [ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: simulate --json exit $rc"; fails=$((fails + 1)); }
 json_ok "simulate --json" "$work/sim.json" "n=$num
 assert list(d) == ['model', 'ok', 'method', 'tolerance', 'end_time', 'stop', 'stats', 'final'], list(d)
-assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stopTime'
+assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stop_time'
 assert n(d['tolerance']) and n(d['end_time']) and abs(d['end_time'] - 1) < 1e-12
 assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
 assert all(n(v) for v in d['stats'].values()) and d['stats']['states'] == 2 and d['stats']['rows'] == 501
