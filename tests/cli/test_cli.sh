@@ -204,6 +204,18 @@ assert [b['name'] for b in d['bodies']] == ['stage1', 'stage2', 'stage3']
 for b in d['bodies']:
     assert list(b) == ['name', 'common_times', 'max_dpos', 'max_dvel', 'max_dmass'] and all(n(b[k]) for k in list(b)[1:])
     assert b['common_times'] > 100 and 0 <= b['max_dpos'] < 100"
+# one vocabulary in summary.json: run status, phase states, end reasons, time events named by
+# their source (the stage's thrust-table breakpoint at the event's own time)
+json_ok "run summary.json words" "$work/run/summary.json" "import re
+assert d['status'] == 'ok' and [p['index'] for p in d['phases']] == [1, 2, 3, 4, 5]
+assert [p['name'] for p in d['phases']] == ['P1', 'P2', 'P3', 'P4', 'P5']
+assert all(p['state'] == 'done' and p['end']['reason'] in ('stop_time', 'event') for p in d['phases'])
+tev = [(p, e) for p in d['phases'] for e in p['events'] if e['kind'] == 'time']
+assert len(tev) == 3, tev
+for p, e in tev:
+    m = re.fullmatch(r\"stage '(\\w+)' thrust table breakpoint t = ([0-9.]+) s\", e['name'])
+    assert m and m.group(1) == p['stages'][0] and float(m.group(2)) == e['t'], e
+assert all(e['name'] in ('burnout', 'impact') for p in d['phases'] for e in p['events'] if e['kind'] == 'state')"
 "$lvsim" params "$mission" --json > "$work/params.json"; rc=$?
 [ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: params --json exit $rc"; fails=$((fails + 1)); }
 n_text=$("$lvsim" params "$mission" | grep -vc '^#')
