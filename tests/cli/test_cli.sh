@@ -111,6 +111,35 @@ for pair in "dof3 $work/d3/phase_1_ascent.csv" "flat6 $work/run/phase_1_P1.csv";
     || { echo "FAIL: lvsim vars $1 and the columns of $2 differ:"; diff <(echo "$want") <(echo "$got") | head; fails=$((fails + 1)); }
 done
 set -- "$lvsim"
+# Bounded output: check and run estimate each phase's rows and refuse beyond --max-rows
+mission="$src/examples/paper-test-case/mission.yaml"
+expect 0 "^1 +P1 +281 +33 " -- "$lvsim" check "$mission"
+expect 2 "phase 1 'P1' would write up to 281 rows .*limit of 100 rows per phase.*--max-rows 281" -- \
+  "$lvsim" check "$mission" --max-rows 100
+expect 0 "is valid" -- "$lvsim" check "$mission" --max-rows 1251
+expect 2 "phase 1 'P1' would write up to 281 rows" -- "$lvsim" run "$mission" -o "$work/limited" --max-rows 100
+[ ! -e "$work/limited" ] && pass=$((pass + 1)) || { echo "FAIL: a refused run wrote $work/limited"; fails=$((fails + 1)); }
+cp -R "$src/examples/paper-test-case" "$work/huge"
+sed -i 's/output_interval: 0.5/output_interval: 1.0e-7/' "$work/huge/mission.yaml"
+expect 2 "phase 1 'P1' would write up to 1400000001 rows .*370 GB of .mat, 1.02 TB of .csv" -- "$lvsim" check "$work/huge/mission.yaml"
+expect 2 "--max-rows needs a whole number >= 1, got '1.5'" -- "$lvsim" check "$mission" --max-rows 1.5
+
+# Progress: not on a terminal one line per post-processing step on stderr; --quiet: none; on
+# a terminal (script(1) gives one) a live line that is redrawn in place
+"$lvsim" run "$mission" -o "$work/prog" > "$work/prog.out" 2> "$work/prog.err"
+grep -qE "^lvsim: plots and index.html \([0-9.]+ s\)$" "$work/prog.err" && ! grep -q "lvsim: " "$work/prog.out" \
+  && pass=$((pass + 1)) || { echo "FAIL: progress lines: $(cat "$work/prog.err")"; fails=$((fails + 1)); }
+"$lvsim" run "$mission" -o "$work/prog" --quiet > /dev/null 2> "$work/prog.err"
+[ ! -s "$work/prog.err" ] && pass=$((pass + 1)) || { echo "FAIL: --quiet printed: $(cat "$work/prog.err")"; fails=$((fails + 1)); }
+if command -v script > /dev/null; then
+  script -qec "$lvsim run $mission -o $work/prog" /dev/null > "$work/tty.out" 2>&1
+  grep -q $'\r\033\[Kplots and index.html \.\.\.' "$work/tty.out" && pass=$((pass + 1)) \
+    || { echo "FAIL: no live progress line on a terminal: $(head -c 300 "$work/tty.out" | od -c | head -5)"; fails=$((fails + 1)); }
+fi
+# the phase table in run order (1..5), whatever order the branches finish in
+"$lvsim" run "$mission" -o "$work/order" --threads 4 -q | awk '/^[0-9]+ +P/ {print $1}' | tr '\n' ' ' | grep -qx "1 2 3 4 5 " \
+  && pass=$((pass + 1)) || { echo "FAIL: phase table not in run order"; fails=$((fails + 1)); }
+
 
 # Usage and help come from the command table (cli/cli.h): every command, including those that
 # take no arguments, answers --help, -h and `lvsim help CMD` with exit 0 and its own usage line,
