@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "common.h"
+#include "progress.h"
 
 static int plot_run(const cli_cmd *self, int argc, char **argv)
 {
@@ -17,7 +18,11 @@ static int plot_run(const cli_cmd *self, int argc, char **argv)
     lv_status st = lv_outdir_open(argv[0], &od, &err);
     if (st != LV_OK)
         return print_err("lvsim plot", &err, exit_code_for_input(st));
+    cli_progress *prog = progress_new(0, 0);
+    progress_step_begin(prog, "plots and index.html");
     st = lv_plot_run(argv[0], &err);
+    progress_step_end(prog);
+    progress_free(prog);
     lv_err merr;
     const lv_outdir_record rec = {"plot", st == LV_OK ? "ok" : "failed", NULL, 0, NULL};
     lv_status mst = lv_outdir_commit(od, &rec, &merr);
