@@ -77,6 +77,13 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     progress_print_end(ui->prog);
 }
 
+/* lv_run_options.progress: the run's user pointer is the run_ui (on_phase shares it). */
+static int on_progress(const lv_run *run, size_t k, double t, void *user)
+{
+    const run_ui *ui = user;
+    return progress_phase(run, k, t, ui->prog);
+}
+
 /* Copies DIR/summary.json to stdout (run --json). */
 static void print_file(const char *dir, const char *name)
 {
@@ -215,7 +222,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     }
     progress_catch_signals();
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
-                          .user = &ui, .progress = progress_phase};
+                          .user = &ui, .progress = on_progress};
     lv_status run_st = lv_run_execute(run, &opt, &err);
     /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left */
     if (progress_interrupted()) {

@@ -133,7 +133,8 @@ grep -qE "^lvsim: plots and index.html \([0-9.]+ s\)$" "$work/prog.err" && ! gre
 [ ! -s "$work/prog.err" ] && pass=$((pass + 1)) || { echo "FAIL: --quiet printed: $(cat "$work/prog.err")"; fails=$((fails + 1)); }
 if command -v script > /dev/null; then
   script -qec "$lvsim run $mission -o $work/prog" /dev/null > "$work/tty.out" 2>&1
-  grep -q $'\r\033\[Kplots and index.html \.\.\.' "$work/tty.out" && pass=$((pass + 1)) \
+  grep -q $'\r\033\[Kplots and index.html \.\.\.' "$work/tty.out" \
+    && grep -qE $'\r\033\[Krunning P1 t = [0-9.]+ s \\(limit 140 s\\)' "$work/tty.out" && pass=$((pass + 1)) \
     || { echo "FAIL: no live progress line on a terminal: $(head -c 300 "$work/tty.out" | od -c | head -5)"; fails=$((fails + 1)); }
 fi
 # the phase table in run order (1..5), whatever order the branches finish in
