@@ -181,6 +181,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     }
     if (path == NULL)
         return usage_error(self, "run needs a mission file", NULL);
+    progress_catch_signals(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
     lv_mission *m;
     int code = load_mission(path, &m);
     if (code != EXIT_OK)
@@ -220,7 +221,6 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
                "t0 [s]", "t1 [s]", "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
         fflush(stdout);
     }
-    progress_catch_signals();
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
                           .user = &ui, .progress = on_progress};
     lv_status run_st = lv_run_execute(run, &opt, &err);

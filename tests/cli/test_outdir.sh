@@ -76,8 +76,7 @@ before=$(sha256sum "$out/manifest.json")
 flock "$work/.out.lock" sleep 30 &
 holder=$!
 pids+=("$holder")
-for _ in $(seq 50); do [ -e "$work/.out.lock" ] && break; sleep 0.05; done
-sleep 0.2
+for _ in $(seq 200); do flock -n "$work/.out.lock" true 2> /dev/null || break; sleep 0.05; done
 expect 2 "results folder '$out' is in use by another lvsim" -- "$lvsim" run "$paper" -o "$out" -q
 expect 2 "is in use by another lvsim" -- "$lvsim" export "$out"
 kill "$holder" 2> /dev/null; wait "$holder" 2> /dev/null
@@ -140,7 +139,8 @@ before=$(sha256sum "$kill_dir/manifest.json")
 "$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q > "$work/term.log" 2>&1 &
 victim=$!
 pids+=("$victim")
-sleep 0.25
+# once its staging folder exists it is running, with its signal handlers in place
+for _ in $(seq 200); do ls -a "$work" | grep -q "^\.killed\.staging-" && break; sleep 0.02; done
 kill -TERM "$victim"
 wait "$victim"; rc=$?
 [ "$rc" -eq 130 ] && grep -q "interrupted: '$kill_dir' was left as it was" "$work/term.log" && ok \
