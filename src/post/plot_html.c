@@ -252,7 +252,13 @@ static void file_list(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"files\">Result files</h2>\n<ul>\n<li>", f);
     link_to(f, "summary.json", "summary.json");
-    fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n", f);
+    fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n<li>", f);
+    link_to(f, "key_figures.json", "key_figures.json");
+    fputs(": the key figures above, SI units</li>\n<li>", f);
+    link_to(f, "manifest.json", "manifest.json");
+    fputs(": every file of the folder with its size and SHA-256, the mission file's SHA-256, "
+          "the lvsim version and the time (written by <code>lvsim run</code>)</li>\n",
+          f);
     for (size_t i = 0; i < res->n_bodies; i++) {
         const lv_results_body *b = &res->bodies[i];
         if (b->trajectory == NULL)
