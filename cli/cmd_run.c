@@ -77,6 +77,24 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     progress_print_end(ui->prog);
 }
 
+/* Replaces every "STAGE" in msg by "FINAL": the staging folder's name never reaches the user. */
+static void restage(char *msg, size_t cap, const char *stage, const char *final)
+{
+    char out[LV_ERR_MSG_MAX];
+    size_t n = 0;
+    const size_t ls = strlen(stage);
+    for (const char *p = msg; *p != '\0' && n + 1 < sizeof out;) {
+        if (ls > 0 && strncmp(p, stage, ls) == 0) {
+            n += (size_t)snprintf(out + n, sizeof out - n, "%s", final);
+            p += ls;
+        } else {
+            out[n++] = *p++;
+        }
+    }
+    out[n < sizeof out ? n : sizeof out - 1] = '\0';
+    snprintf(msg, cap, "%s", out);
+}
+
 /* lv_run_options.progress: the run's user pointer is the run_ui (on_phase shares it). */
 static int on_progress(const lv_run *run, size_t k, double t, void *user)
 {
@@ -224,6 +242,12 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
                           .user = &ui, .progress = on_progress};
     lv_status run_st = lv_run_execute(run, &opt, &err);
+    /* the rows on_phase could not print yet: phases never run (skipped, pending) and those
+     * after them */
+    progress_print_begin(ui.prog);
+    while (ui.table && ui.next < n)
+        print_row(run, ui.next++);
+    progress_print_end(ui.prog);
     /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left */
     if (progress_interrupted()) {
         fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n", lv_outdir_final(od));
@@ -237,32 +261,54 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     /* post-processing reads the staging folder, as `lvsim export` and `lvsim plot` do */
     const char *notes[8];
     size_t n_notes = 0;
-    char note_buf[4][LV_ERR_MSG_MAX + 32];
+    char note_buf[5][LV_ERR_MSG_MAX + 32];
     if (run_st != LV_OK) {
         snprintf(note_buf[n_notes], sizeof note_buf[0], "run: %s", err.msg);
         notes[n_notes] = note_buf[n_notes];
         n_notes++;
     }
-    lv_err serr;
-    progress_step_begin(ui.prog, "summary.json and body trajectories");
-    lv_status post_st = lv_run_write_summary(run, stage, &serr);
-    progress_step_end(ui.prog);
+    /* each step on its own: an export that cannot be made (no phase done) does not keep the
+     * report of a failed run from being written; the first failure decides the exit code */
+    lv_err serr, e;
+    lv_status post_st = LV_OK, st1;
     lv_export_report xr = {0};
-    if (post_st == LV_OK) {
+    char post_msg[3][LV_ERR_MSG_MAX];
+    size_t n_post = 0;
+    progress_step_begin(ui.prog, "summary.json and body trajectories");
+    st1 = lv_run_write_summary(run, stage, &e);
+    progress_step_end(ui.prog);
+    if (st1 != LV_OK) {
+        post_st = st1;
+        snprintf(post_msg[n_post++], sizeof post_msg[0], "%.480s", e.msg);
+    } else {
         progress_step_begin(ui.prog, "exports (CZML, KML, OEM)");
-        post_st = lv_export_run_report(stage, LV_EXPORT_ALL, &xr, &serr);
+        st1 = lv_export_run_report(stage, LV_EXPORT_ALL, &xr, &e);
         progress_step_end(ui.prog);
+        if (st1 != LV_OK) {
+            post_st = post_st != LV_OK ? post_st : st1;
+            snprintf(post_msg[n_post++], sizeof post_msg[0], "exports: %.480s", e.msg);
+        }
+        if (plots) {
+            progress_step_begin(ui.prog, "plots and index.html");
+            st1 = lv_plot_run(stage, &e);
+            progress_step_end(ui.prog);
+            if (st1 != LV_OK) {
+                post_st = post_st != LV_OK ? post_st : st1;
+                snprintf(post_msg[n_post++], sizeof post_msg[0], "plots: %.480s", e.msg);
+            }
+        }
     }
-    if (post_st == LV_OK && plots) {
-        progress_step_begin(ui.prog, "plots and index.html");
-        post_st = lv_plot_run(stage, &serr);
-        progress_step_end(ui.prog);
+    /* messages name files in the staging folder: name them where they will be */
+    for (size_t i = 0; i < n_post; i++) {
+        restage(post_msg[i], sizeof post_msg[0], stage, lv_outdir_final(od));
+        if (n_notes < sizeof note_buf / sizeof note_buf[0]) {
+            snprintf(note_buf[n_notes], sizeof note_buf[0], "post-processing: %.500s", post_msg[i]);
+            notes[n_notes] = note_buf[n_notes];
+            n_notes++;
+        }
     }
-    if (post_st != LV_OK) {
-        snprintf(note_buf[n_notes], sizeof note_buf[0], "post-processing: %s", serr.msg);
-        notes[n_notes] = note_buf[n_notes];
-        n_notes++;
-    }
+    serr.code = post_st;
+    snprintf(serr.msg, sizeof serr.msg, "%s", n_post > 0 ? post_msg[0] : "");
     if (progress_interrupted()) {
         fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n", lv_outdir_final(od));
         code = 130;
@@ -275,8 +321,8 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         progress_step_end(ui.prog);
         if (json && cst == LV_OK)
             print_file(lv_outdir_final(od), "summary.json");
-        if (post_st != LV_OK)
-            print_err("lvsim", &serr, 0);
+        for (size_t i = 0; i < n_post; i++)
+            fprintf(stderr, "lvsim: %s\n", post_msg[i]);
         for (size_t i = 0; i < xr.n && !json; i++)
             if (xr.items[i].file[0] == '\0')
                 printf("export %s: %s\n", xr.items[i].format, xr.items[i].note);

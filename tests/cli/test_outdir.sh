@@ -53,6 +53,23 @@ verify "$out" --mission "$dof3" --status ok --name dof3-branch
 ls "$out" | grep -q "phase_1_P1" && fail "files of the first mission remain: $(ls "$out")" || ok
 [ ! -e "$out/plots" ] && [ ! -e "$out/mission.kml.tmp" ] && ok || fail "old plots/ remain"
 
+# ---- a failed run is committed too, marked; every phase has its row; no staging name shown
+cat > "$work/fail.yaml" <<YAML
+mission: {name: fails}
+stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]
+phases:
+  - {name: p, model: flat6, stages: [a], stop_time: 200}
+  - {name: q, model: flat6, stages: [a], from: p, stop_time: 300}
+YAML
+printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
+fout=$("$lvsim" run "$work/fail.yaml" -o "$out" -q 2>&1); rc=$?
+[ "$rc" -eq 3 ] && grep -qE "^1 +p +- .* failed$" <<<"$fout" && grep -qE "^2 +q +p .* skipped$" <<<"$fout" \
+  && ok || fail "failed run: exit $rc: $fout"
+grep -q "staging" <<<"$fout" && fail "a message names the staging folder: $fout" || ok
+verify "$out" --mission "$work/fail.yaml" --status failed --name fails
+[ -f "$out/phase_1_p.failed.mat" ] && [ -f "$out/index.html" ] && [ ! -e "$out/phase_1_P1.csv" ] && ok \
+  || fail "failed run's folder: $(ls "$out")"
+
 # ---- path errors: exit 2, nothing touched ------------------------------------------------
 expect 2 "-o needs a folder name" -- "$lvsim" run "$paper" -o ""
 echo "not a folder" > "$work/file"
