@@ -69,7 +69,9 @@ static int listen_on(int port, int *bound)
 /* Python's http.server on the socket lvsim opened (fd 3): no port race, no request log, no
  * traceback at Ctrl-C. argv[1]: the folder served. */
 static const char serve_py[] =
-    "import functools, http.server, socket, sys\n"
+    "import functools, http.server, signal, socket, sys\n"
+    "signal.signal(signal.SIGINT, signal.default_int_handler)  # also when started ignoring it\n"
+    "signal.signal(signal.SIGTERM, lambda *a: sys.exit(0))\n"
     "class Quiet(http.server.SimpleHTTPRequestHandler):\n"
     "    def log_message(self, *args):\n"
     "        pass\n"

@@ -92,6 +92,35 @@ expect 0 "viewer staged in $work/run/viewer/" -- \
 grep -qx "lvsim viewer, CesiumJS 0.0.7" "$work/run/viewer/VERSION" && [ -f "$work/run/viewer/app.js" ] \
   && [ -f "$work/run/viewer/cesium/Cesium.js" ] && pass=$((pass + 1)) \
   || { echo "FAIL: staged viewer in $work/run/viewer"; fails=$((fails + 1)); }
+# lvsim view: a busy --port exits 2 naming it (no Python traceback); without --port it serves
+# on a free port and says where (the server is python3 on lvsim's own socket)
+/usr/bin/python3 -c 'import socket, sys, time
+s = socket.socket(); s.bind(("127.0.0.1", 0)); s.listen(1)
+print(s.getsockname()[1], flush=True); time.sleep(20)' > "$work/busy.port" &
+busy_pid=$!
+for _ in $(seq 100); do [ -s "$work/busy.port" ] && break; sleep 0.05; done
+busy=$(cat "$work/busy.port")
+out=$(env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" --port "$busy" 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "port $busy on 127.0.0.1 is busy" <<<"$out" && ! grep -q Traceback <<<"$out" \
+  && pass=$((pass + 1)) || { echo "FAIL: view on a busy port: exit $rc: $out"; fails=$((fails + 1)); }
+kill "$busy_pid" 2> /dev/null; wait "$busy_pid" 2> /dev/null
+env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" > "$work/view.out" 2>&1 &
+view_pid=$!
+for _ in $(seq 100); do grep -q "^lvsim view: http" "$work/view.out" && break; sleep 0.05; done
+url=$(sed -n 's|^lvsim view: \(http://127.0.0.1:[0-9]*\)/viewer/ .*|\1|p' "$work/view.out")
+code=$(/usr/bin/python3 -c "import sys, urllib.request, time
+for i in range(50):
+    try:
+        print(urllib.request.urlopen(sys.argv[1] + '/summary.json', timeout=2).status); break
+    except OSError: time.sleep(0.1)" "$url" 2>&1)
+[ -n "$url" ] && [ "$code" = "200" ] && pass=$((pass + 1)) \
+  || { echo "FAIL: lvsim view serves: url '$url', status '$code': $(cat "$work/view.out")"; fails=$((fails + 1)); }
+kill -INT "$view_pid" 2> /dev/null # Ctrl-C: the server ends quietly
+for _ in $(seq 100); do kill -0 "$view_pid" 2> /dev/null || break; sleep 0.05; done
+kill -9 "$view_pid" 2> /dev/null && { echo "FAIL: lvsim view did not end at SIGINT"; fails=$((fails + 1)); }
+wait "$view_pid" 2> /dev/null
+grep -q Traceback "$work/view.out" && { echo "FAIL: lvsim view printed a traceback"; fails=$((fails + 1)); } \
+  || pass=$((pass + 1))
 cat > "$work/fail.yaml" <<YAML
 mission: {name: fails}
 stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]
