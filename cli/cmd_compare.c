@@ -105,9 +105,10 @@ static int compare_run(const cli_cmd *self, int argc, char **argv)
     lv_compare_report rep;
     lv_err err;
     lv_mission *m = NULL;
-    lv_status st = lv_mission_load(path, &m, &err);
-    if (st == LV_OK)
-        st = lv_mission_compare(m, method, tol, dt, &rep, &err);
+    const int code = load_mission(path, &m);
+    if (code != EXIT_OK)
+        return code;
+    lv_status st = lv_mission_compare(m, method, tol, dt, &rep, &err);
     lv_mission_free(m);
     if (st != LV_OK)
         return print_err(NULL, &err, exit_code_for(st));

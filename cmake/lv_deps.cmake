@@ -1,5 +1,6 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
-#   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, cJSON, PLplot (pkg-config).
+#   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, cJSON, PLplot,
+#   Nettle (pkg-config).
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
@@ -9,6 +10,7 @@ pkg_search_module(HDF5 REQUIRED IMPORTED_TARGET hdf5-serial hdf5)
 pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
+pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
 find_package(Threads REQUIRED)
 
 # The core library, liblvsim.
@@ -20,4 +22,4 @@ target_link_libraries(lv_deps INTERFACE
 
 # The post-processing library, liblvsim_post (src/post): never PLplot in the core library.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT m)
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::NETTLE m)

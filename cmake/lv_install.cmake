@@ -116,4 +116,10 @@ if(LV_BUILD_TESTS)
            COMMAND ${PROJECT_SOURCE_DIR}/tests/install/test_install.sh ${PROJECT_SOURCE_DIR}
                    ${PROJECT_BINARY_DIR} ${CMAKE_COMMAND})
   set_tests_properties(test_install PROPERTIES LABELS "install;no-asan" TIMEOUT 600)
+  # The README's `make demo` in a clean copy of the sources: short output, Debian's libraries
+  # only, a failed build shows its log (~1 min; 77: skipped without npm).
+  add_test(NAME test_fresh_clone
+           COMMAND ${PROJECT_SOURCE_DIR}/tests/install/test_fresh_clone.sh ${PROJECT_SOURCE_DIR})
+  set_tests_properties(test_fresh_clone PROPERTIES LABELS "install;no-asan" TIMEOUT 600
+                       SKIP_RETURN_CODE 77)
 endif()

@@ -110,6 +110,8 @@ typedef struct lv_event_record {
     int is_state;  /* 1 state event, 0 time event */
     int index;     /* event function index (state events), -1 for time events */
     int direction; /* +1 rising, -1 falling, 0 time event */
+    char name[LV_EVENT_NAME_MAX]; /* a state event's name ("burnout"); a time event's source
+                                     (lv_model_def.time_event_name), else "time event" */
 } lv_event_record;
 
 typedef struct lv_sim_report {
@@ -117,7 +119,7 @@ typedef struct lv_sim_report {
     lv_stop_reason reason;
     double end_time;          /* s: stop_time, the stopping event, or the failure time */
     int stop_event;           /* index of the state event that stopped the run, or -1 */
-    char stop_name[64];       /* "stopTime", the event's name, "time event" or "failed" */
+    char stop_name[LV_EVENT_NAME_MAX]; /* "stop_time", the event's name or "failed" */
     size_t n_states;          /* number of continuous states */
     size_t n_event_log;       /* events handled, in order */
     lv_event_record *event_log; /* owned; free with lv_sim_report_clear() */

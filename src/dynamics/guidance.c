@@ -190,6 +190,26 @@ double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t)
     return INFINITY;
 }
 
+const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    const lv_steering *s = &g->s;
+    if (s->law == LV_STEER_GRAVITY_TURN) {
+        const double t1 = rt->t0 + s->rise_time;
+        if (t == t1 && s->kick_time > 0.0)
+            return "guidance: end of the vertical rise, start of the kick";
+        if (t == t1 + s->kick_time)
+            return "guidance: end of the kick, zero angle of attack";
+    }
+    if (s->law == LV_STEER_ATTITUDE && s->table != NULL && g->axis == LV_GAXIS_TIME) {
+        size_t n = 0;
+        const double *b = lv_table_breakpoints(s->table, 0, &n);
+        for (size_t i = 0; b != NULL && i < n; i++)
+            if (b[i] == t)
+                return "guidance: attitude table breakpoint";
+    }
+    return NULL;
+}
+
 /* cos, sin of the three angles, cached while they do not change. */
 static void trig3(lv_guid_rt *rt, const double ang[3])
 {

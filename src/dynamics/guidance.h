@@ -59,6 +59,10 @@ void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_
  * an attitude table over time: its breakpoints), or INFINITY. */
 double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t);
 
+/* What the law's time event at t is ("end of the vertical rise", "end of the kick", "attitude
+ * table breakpoint"), or NULL when the law has none at t. */
+const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, double t);
+
 /* Attitude at time t: fills ax (wind and body axes, ECEF) and c->u[alpha, beta, mu] with
  * their cosines and sines (the angles that result for an attitude frame; 0 below 1e-6 m/s
  * of air-relative speed, where the wind axes are the body axes), and c->u[throttle] from

@@ -53,7 +53,14 @@ typedef struct lv_plot_list {
 lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
                                lv_err *err);
 
-/* Writes OUTDIR/index.html (temporary name, then renamed). */
-lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *list, lv_err *err);
+struct cJSON;
+/* Computes the key figures of every body and writes OUTDIR/key_figures.json; *out is the
+ * document (cJSON_Delete it) for the report. */
+lv_status lv_plot_keys(const lv_plot_data *d, struct cJSON **out, lv_err *err);
+
+/* Writes OUTDIR/index.html (temporary name, then renamed); keys: lv_plot_keys' document or
+ * NULL. */
+lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *list,
+                             const struct cJSON *keys, lv_err *err);
 
 #endif

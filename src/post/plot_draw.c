@@ -17,6 +17,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_units.h"
 #include "post/plot.h"
 
@@ -90,7 +91,7 @@ static long find_col(const lv_results_table *c, const char *const *cols)
  * instant appears twice: the step shows). Returns the number of points; 0 when no phase of
  * the body has any of `cols`; (size_t)-1 when out of memory. */
 static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const char *const *cols,
-                          double scale, curve *c)
+                          double scale, int atmo, curve *c)
 {
     size_t n = 0;
     for (size_t i = 0; i < b->n; i++) {
@@ -108,9 +109,16 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
     for (size_t i = 0; i < b->n; i++) {
         const lv_results_table *csv = d->phases[b->phase[i]].csv;
         long k = csv ? find_col(csv, cols) : -1;
+        /* Mach and q: only where the atmosphere model is defined (rho > 0, h at most its
+         * top): a NAN breaks the curve there */
+        const long krho = atmo && csv ? lv_results_table_col(csv, "rho") : -1;
+        const long kh = atmo && csv ? lv_results_table_col(csv, "h") : -1;
         for (size_t r = 0; k >= 0 && r < csv->n_rows; r++) {
             c->x[c->n] = csv->v[r * csv->n_cols];
             c->y[c->n] = csv->v[r * csv->n_cols + (size_t)k] * scale;
+            if ((krho >= 0 && !(csv->v[r * csv->n_cols + (size_t)krho] > 0.0)) ||
+                (kh >= 0 && csv->v[r * csv->n_cols + (size_t)kh] > LV_ATMO_ALT_MAX))
+                c->y[c->n] = NAN;
             c->n++;
         }
     }
@@ -416,6 +424,7 @@ static void add_note(lv_plot_list *l, const char *note)
 /* ---- the figures --------------------------------------------------------------------------- */
 
 typedef struct quantity {
+    int atmo;          /* 1: only where the atmosphere model is defined (Mach, q) */
     const char *stem, *title, *ylabel;
     const char *a[3];  /* columns of the main curve, first found wins (planet, flat world) */
     const char *b[2];  /* a second, dashed curve, when the phases have it */
@@ -424,20 +433,20 @@ typedef struct quantity {
 } quantity;
 
 static const quantity quantities[] = {
-    {"altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
-    {"speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
+    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
+    {0, "speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
      "relative", "inertial", 1.0},
-    {"mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
-    {"mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
-    {"dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL}, {NULL},
-     "", "", 1e-3},
-    {"load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
+    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
+    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
+    {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
+     {NULL}, "", "", 1e-3},
+    {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
      {"n_normal", NULL}, "axial", "normal", 1.0},
-    {"flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
+    {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
      {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG},
-    {"acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL}, "",
-     "", 1.0},
-    {"thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
+    {0, "acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL},
+     "", "", 1.0},
+    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
 };
 
 /* "mission <name>", for a figure's subtitle. */
@@ -477,6 +486,17 @@ static PLFLT body_width(size_t i)
     return fmax(1.2, 3.2 - 0.7 * (double)i); /* later bodies thinner: shared phases show all */
 }
 
+/* Bodies flying together have the same values in their shared phases: besides its colour,
+ * each body gets its own dash pattern (and a thinner line than the one before), so every
+ * body stays visible where the curves lie on top of each other. PLplot styles: 1 solid,
+ * 3 long dashes with long gaps, 2 short dashes, 5 long and short dashes; the second curve
+ * of a quantity: 4, 6, 7, 8. */
+static PLINT body_style(size_t i, int second)
+{
+    static const PLINT main_style[4] = {1, 3, 2, 5}, second_style[4] = {4, 6, 7, 8};
+    return second ? second_style[i % 4] : main_style[i % 4];
+}
+
 /* One figure of quantity q: a curve per body (two when q has a second column); a quantity no
  * phase file has is added to the list's skipped ones. */
 static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const char *plotdir,
@@ -500,7 +520,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             continue;
         for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
             curve *c = &f.p[0].c[f.p[0].n_c];
-            size_t n = body_series(d, &d->bodies[i], cols, q->scale, c);
+            size_t n = body_series(d, &d->bodies[i], cols, q->scale, q->atmo, c);
             if (n == (size_t)-1) {
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 f.p[0].n_c++; /* freed below */
@@ -509,7 +529,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n == 0)
                 continue;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = pass == 0 ? 1 : 2;
+            c->style = body_style(i, pass == 1);
             c->body = i;
             c->width = body_width(i);
             f.p[0].n_c++;
@@ -529,7 +549,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n_b > 0)
                 snprintf(c->label, sizeof c->label, "%.96s, %.16s",
                          body_label(d, c->body, name, sizeof name),
-                         c->style == 1 ? q->a_label : q->b_label);
+                         c->style == body_style(c->body, 0) ? q->a_label : q->b_label);
             else
                 body_label(d, c->body, c->label, sizeof c->label);
         }
@@ -570,7 +590,7 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
         p->yhi = 1.08;
         for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
             curve *c = &p->c[p->n_c];
-            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, c);
+            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, 0, c);
             if (n == (size_t)-1) {
                 p->n_c++;
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -585,7 +605,7 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
             for (size_t k = 0; k < n; k++)
                 c->y[k] = ref > 0.0 ? c->y[k] / ref : NAN;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = 1;
+            c->style = body_style(i, 0);
             c->width = body_width(i);
             body_label(d, i, c->label, sizeof c->label);
             p->n_c++;
@@ -635,9 +655,26 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
             c->n++;
         }
         c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-        c->style = 1;
+        c->style = body_style(i, 0);
         c->width = body_width(i);
         body_label(d, i, c->label, sizeof c->label);
+    }
+    /* a track that never leaves the launch site (a vertical flight) makes an empty map */
+    double extent = 0.0;
+    for (size_t j = 0; st == LV_OK && j < p->n_c; j++)
+        for (size_t r = 0; r < p->c[j].n; r++) {
+            const double dlat = p->c[j].y[r] - p->c[j].y[0];
+            const double dlon = (p->c[j].x[r] - p->c[j].x[0]) * cos(p->c[j].y[0] / RAD2DEG);
+            if (isfinite(dlat) && isfinite(dlon))
+                extent = fmax(extent, hypot(dlat, dlon));
+        }
+    if (st == LV_OK && p->n_c > 0 && extent < 0.01) { /* deg: about 1 km */
+        add_skip(list, "ground_track", d->flat ? "flat world: every body flies within 1 km of "
+                                                 "the launch site (no ground track to map)"
+                                               : "every body stays within 1 km of the launch "
+                                                 "site (no ground track to map)");
+        figure_free(&f);
+        return LV_OK;
     }
     if (st == LV_OK && p->n_c == 0) {
         add_skip(list, "ground_track", "no body trajectory has 'lat' and 'lon'");
@@ -680,12 +717,11 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
 lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
                                lv_err *err)
 {
-    lv_status st = LV_OK;
+    /* the paper's Figure 10 first: the run at a glance */
+    lv_status st = fig10(d, plotdir, list, err);
     for (size_t i = 0; i < sizeof quantities / sizeof quantities[0] && st == LV_OK; i++)
         st = quantity_figure(d, &quantities[i], plotdir, list, err);
     if (st == LV_OK)
         st = ground_track(d, plotdir, list, err);
-    if (st == LV_OK)
-        st = fig10(d, plotdir, list, err);
     return st;
 }

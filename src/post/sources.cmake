@@ -5,5 +5,7 @@
 list(APPEND LV_POST_SOURCES src/post/results.c)
 # What a run leaves besides the phases' files: summary.json and the merged body trajectories.
 list(APPEND LV_POST_SOURCES src/post/summary.c)
+# Run-atomic results folders: lock, staging folder replaced as a whole, manifest with SHA-256.
+list(APPEND LV_POST_SOURCES src/post/outdir.c src/post/sha256.c)
 include(src/post/export.cmake)
 include(src/post/plot.cmake)

@@ -105,10 +105,12 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON *j = cJSON_CreateObject();
         cJSON_AddNumberToObject(j, "t", e->t);
         cJSON_AddStringToObject(j, "kind", e->is_state ? "state" : "time");
-        if (e->is_state) {
-            cJSON_AddStringToObject(j, "name", event_name(r, e->index));
+        /* a state event by its name, a time event by its source (table and breakpoint,
+         * commanded action) as the model names it */
+        cJSON_AddStringToObject(j, "name", e->is_state ? event_name(r, e->index)
+                                           : e->name[0] ? e->name : "time event");
+        if (e->is_state)
             cJSON_AddNumberToObject(j, "direction", e->direction);
-        }
         cJSON_AddItemToArray(ev, j);
     }
     cJSON *sj = cJSON_AddObjectToObject(o, "stats");
@@ -176,6 +178,11 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
     cJSON_AddStringToObject(root, "mission", mi.name);
     cJSON_AddStringToObject(root, "file", mi.path);
     cJSON_AddStringToObject(root, "lvsim", LVSIM_VERSION);
+    /* the run as a whole: "ok" when every phase is done, else "failed" (kept, marked) */
+    int all_done = 1;
+    for (size_t k = 0; k < mi.n_phases; k++)
+        all_done &= lv_run_result(run, k)->state == LV_PHASE_DONE;
+    cJSON_AddStringToObject(root, "status", all_done ? "ok" : "failed");
     cJSON_AddStringToObject(root, "epoch", mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
     cJSON_AddStringToObject(root, "world", mi.flat_world ? "flat" : "planet");
     if (!mi.flat_world)

@@ -274,7 +274,8 @@ static lv_status emit_row(sim_run *r, double t, lv_err *err)
     return LV_OK;
 }
 
-static lv_status log_event(sim_run *r, double t, int is_state, int index, int direction)
+static lv_status log_event(sim_run *r, double t, int is_state, int index, int direction,
+                           const char *name)
 {
     lv_sim_report *rep = r->rep;
     if (rep->n_event_log == r->log_cap) {
@@ -285,7 +286,9 @@ static lv_status log_event(sim_run *r, double t, int is_state, int index, int di
         rep->event_log = grown;
         r->log_cap = cap;
     }
-    rep->event_log[rep->n_event_log++] = (lv_event_record){t, is_state, index, direction};
+    lv_event_record *e = &rep->event_log[rep->n_event_log++];
+    *e = (lv_event_record){t, is_state, index, direction, ""};
+    snprintf(e->name, sizeof e->name, "%s", name != NULL && name[0] != '\0' ? name : "time event");
     return LV_OK;
 }
 
@@ -661,7 +664,7 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                     if (first < 0)
                         first = (int)i;
                     rep->stats.state_events++;
-                    if (log_event(r, t, 1, (int)i, r->roots[i]) != LV_OK)
+                    if (log_event(r, t, 1, (int)i, r->roots[i], d->events[i].name) != LV_OK)
                         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 }
                 lv_event_action a = d->on_event ? d->on_event(t, r->x, r->p, r->roots, r->inst)
@@ -686,7 +689,8 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                     rep->stats.time_events++;
                 else
                     rep->stats.state_events++;
-                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir) != LV_OK)
+                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir,
+                              s->stops[j].name) != LV_OK)
                     return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 if (action != LV_EVENT_STOP) {
                     rep->stop_event = (int)(r->ng + j);
@@ -697,13 +701,15 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
             int model_time_event = time_event && t >= r->t_model_te;
             if (model_time_event) {
                 rep->stats.time_events++;
-                if (log_event(r, t, 0, -1, 0) != LV_OK)
+                const char *tev = d->time_event_name ? d->time_event_name(t, r->p, r->inst) : NULL;
+                if (log_event(r, t, 0, -1, 0, tev) != LV_OK)
                     return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 /* Without a handler a time event is a kink: restart the integrator. */
                 lv_event_action a =
                     d->on_time_event ? d->on_time_event(t, r->x, r->p, r->inst) : LV_EVENT_RESTART;
                 if (a == LV_EVENT_STOP && action != LV_EVENT_STOP)
-                    snprintf(rep->stop_name, sizeof rep->stop_name, "time event");
+                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
+                             rep->event_log[rep->n_event_log - 1].name);
                 if (a > action)
                     action = a;
             }
@@ -750,7 +756,7 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
         }
         if (t >= tf) {
             rep->reason = LV_STOP_TIME;
-            snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+            snprintf(rep->stop_name, sizeof rep->stop_name, "stop_time");
             S->state = SIM_FINISHED;
             return LV_OK;
         }
@@ -937,7 +943,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
         }
     } else {
         rep->reason = LV_STOP_TIME;
-        snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+        snprintf(rep->stop_name, sizeof rep->stop_name, "stop_time");
         S->state = SIM_FINISHED;
     }
     S->cpu = thread_cpu_seconds() - cpu0;

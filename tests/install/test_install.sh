@@ -114,7 +114,7 @@ else ok; fi
 step "installed CLI"
 lvsim="$moved/bin/lvsim"
 expect 0 "is valid: 2 phases" -- "$lvsim" check "$mission"
-expect 0 "upper-burn .* ok" -- "$lvsim" run "$mission" -o "$tmp/run" --no-plots
+expect 0 "upper-burn .* done" -- "$lvsim" run "$mission" -o "$tmp/run" --no-plots
 [ -f "$tmp/run/summary.json" ] && ok || fail "lvsim run: no summary.json"
 expect 0 "viewer staged in $tmp/run/viewer/" -- "$lvsim" view "$tmp/run" --stage-only
 grep -qx "lvsim viewer, CesiumJS 0.0.7-install-test" "$tmp/run/viewer/VERSION" 2> /dev/null \

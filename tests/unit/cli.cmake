@@ -1,3 +1,8 @@
 add_test(NAME test_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:lvsim_cli>)
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
          $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post>)
+# Run-atomic results folders: manifest checked by tests/python/check_manifest.py, path errors,
+# the lock, concurrent runs, kill -9 at random points, SIGTERM (about 20 s).
+add_test(NAME test_outdir COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_outdir.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(test_outdir PROPERTIES TIMEOUT 180)
