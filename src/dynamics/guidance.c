@@ -457,9 +457,9 @@ double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in 
         const double dh = in->h - t->land_altitude;
         const double vd = in->v_down > 0.0 ? in->v_down : 0.0;
         const double vt = t->land_speed;
-        const double a_req = dh > 0.0 ? (vd * vd - vt * vt) / (2.0 * dh) /* at or below it: */
-                             : vd > vt ? HUGE_VAL                        /* brake, or */
-                                       : 0.0;                            /* let gravity act */
+        /* at or below the landing altitude the landing is over (the phase's impact end is
+         * there): no vertical acceleration, so that the touchdown row shows no spike */
+        const double a_req = dh > 0.0 ? (vd * vd - vt * vt) / (2.0 * dh) : 0.0;
         const double up1 = lv_v3_dot(in->up, a1);
         if (!(up1 > 0.0))
             return in->c_max;
