@@ -29,7 +29,7 @@ if(LV_HAVE_LIBFUZZER)
   list(PREPEND _src fuzz/fuzz_mission.c)
   file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
        ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)
-  list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/)
+  list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/ REGEX "^[^/]") # generated: absolute
   list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
   set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)
   foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS})
@@ -48,6 +48,7 @@ if(LV_HAVE_LIBFUZZER)
     COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
     COMMAND_EXPAND_LISTS VERBATIM)
   add_custom_target(fuzz_mission ALL DEPENDS ${LV_FUZZ_BIN})
+  add_dependencies(fuzz_mission lv_generated) # the US76 table (src/env/atmosphere.cmake)
   add_test(NAME fuzz_mission
     COMMAND ${PROJECT_SOURCE_DIR}/fuzz/run.sh ${LV_FUZZ_BIN} 20)
   set_tests_properties(fuzz_mission PROPERTIES LABELS "fuzz;no-asan" TIMEOUT 180)
