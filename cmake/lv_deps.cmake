@@ -7,13 +7,15 @@ pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
 find_package(Threads REQUIRED)
+# Shortest round-trip digits of doubles for the CSV files (src/io/numfmt.cc); header-only.
+find_package(dragonbox 1.1 REQUIRED CONFIG)
 
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  PkgConfig::MATIO PkgConfig::YAML Threads::Threads m)
+  PkgConfig::MATIO PkgConfig::YAML Threads::Threads dragonbox::dragonbox m)
 
 # The post-processing library, liblvsim_post (src/post): never PLplot in the core library.
 add_library(lv_post_deps INTERFACE)

@@ -5,13 +5,15 @@
 set -euo pipefail
 
 pkgs=(
-  cmake make gcc pkg-config            # build
+  cmake make gcc g++ pkg-config        # build (g++: the number formatter's shim, src/io/numfmt.cc)
+  libdragonbox-dev                     # shortest round-trip digits of doubles (CSV files)
   libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
   libmatio-dev                         # MAT v4/v5/v7 result and table files
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
+  libpng-dev                           # plots: PNG files written with fast settings
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
   chromium                             # headless browser for the viewer test (ctest test_viewer)
 )

@@ -2,6 +2,7 @@ list(APPEND LV_SOURCES
   src/io/sink.c
   src/io/result_memory.c
   src/io/result_csv.c
+  src/io/numfmt.cc
   src/io/result_mat.c
   src/io/table_load.c
   src/io/atomic.c)
