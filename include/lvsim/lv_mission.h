@@ -155,6 +155,8 @@ typedef struct lv_phase_result {
     const char *const *set_names;
     const double *set_values;
     const double *propellant_end; /* [n_stages of the mission], kg left after the phase */
+    unsigned result_formats;     /* the files written under result_stem: LV_RESULT_MAT |
+                                    LV_RESULT_CSV (0 when result_stem is NULL) */
 } lv_phase_result;
 
 typedef struct lv_run_options {
@@ -170,7 +172,12 @@ typedef struct lv_run_options {
      * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
     int (*progress)(const lv_run *r, size_t k, double t, void *user);
     int no_rows;          /* 1: keep no rows in memory (no merged trajectories): faster */
+    /* With outdir: the files of each phase, LV_RESULT_MAT | LV_RESULT_CSV; 0: both (the
+     * default); LV_RUN_NO_PHASE_FILES: neither (summary and bodies may still be written). */
+    unsigned result_formats;
 } lv_run_options;
+
+#define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */
 
 /* Simulates every phase whose inputs changed since it last ran (or that never ran, or
  * failed), and its descendants; the others keep their results. Independent branches run in

@@ -35,6 +35,7 @@
 extern "C" {
 #endif
 
+/* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats). */
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
 
 typedef struct lv_sim_settings {

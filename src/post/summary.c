@@ -155,21 +155,31 @@ static cJSON *phase_json(const lv_run *run, size_t k)
             if (isfinite(r->final_values[i]))
                 cJSON_AddNumberToObject(fin, r->final_names[i], r->final_values[i]);
     }
-    if (r->result_stem != NULL) {
+    if (r->result_stem != NULL && r->result_formats != 0) { /* the files it wrote */
         char buf[4200];
         cJSON *files = cJSON_AddObjectToObject(o, "files");
         const char *base = strrchr(r->result_stem, '/');
         base = base ? base + 1 : r->result_stem;
         const char *fail = r->state == LV_PHASE_DONE ? "" : ".failed";
-        snprintf(buf, sizeof buf, "%s%s.mat", base, fail);
-        cJSON_AddStringToObject(files, "mat", buf);
-        snprintf(buf, sizeof buf, "%s%s.csv", base, fail);
-        cJSON_AddStringToObject(files, "csv", buf);
+        if (r->result_formats & LV_RESULT_MAT) {
+            snprintf(buf, sizeof buf, "%s%s.mat", base, fail);
+            cJSON_AddStringToObject(files, "mat", buf);
+        }
+        if (r->result_formats & LV_RESULT_CSV) {
+            snprintf(buf, sizeof buf, "%s%s.csv", base, fail);
+            cJSON_AddStringToObject(files, "csv", buf);
+        }
     }
     return o;
 }
 
 lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *err)
+{
+    return lv_run_write_summary_files(run, outdir, LV_SUMMARY_JSON | LV_SUMMARY_BODIES, err);
+}
+
+lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsigned what,
+                                     lv_err *err)
 {
     const lv_mission *m = lv_run_mission(run);
     lv_mission_info mi;
@@ -208,14 +218,16 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
         char file[512], path[4700];
         snprintf(file, sizeof file, "body_%s.csv", stage);
         snprintf(path, sizeof path, "%s/%s", outdir, file);
-        cJSON_AddStringToObject(b, "trajectory", file);
         cJSON_AddItemToArray(bodies, b);
-        st = write_body_csv(run, s, path, err);
+        if (what & LV_SUMMARY_BODIES) {
+            cJSON_AddStringToObject(b, "trajectory", file);
+            st = write_body_csv(run, s, path, err);
+        }
     }
     free(ks);
-    char *text = st == LV_OK ? cJSON_Print(root) : NULL;
+    char *text = st == LV_OK && (what & LV_SUMMARY_JSON) ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
-    if (st != LV_OK)
+    if (st != LV_OK || !(what & LV_SUMMARY_JSON))
         return st;
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");

@@ -193,5 +193,22 @@ assert p['stage1.propellant_mass'] == {'name': 'stage1.propellant_mass', 'value'
 assert p['P1.stop_time']['value'] == 140 and p['P1.stop_time']['unit'] == 's' and p['P1.stop_time']['line'] == $line_stop
 assert any(q['line'] is None for q in d) and all(q['line'] is None or q['line'] > 0 for q in d)"
 
+# --outputs: only what is asked for is written; 'none' writes nothing, not even the folder;
+# the exports need the files they read; unknown names are refused
+expect 0 "results: .*/ \(phase_<k>_<name>.csv, summary.json\)" -- "$lvsim" run "$mission" -o "$work/out_some" --outputs csv,summary
+files=$(cd "$work/out_some" && ls | tr '\n' ' ')
+[ "$files" = "phase_1_P1.csv phase_2_P2.csv phase_3_P4.csv phase_4_P3.csv phase_5_P5.csv summary.json " ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs csv,summary wrote: $files"; fails=$((fails + 1)); }
+grep -q '"mat"' "$work/out_some/summary.json" || grep -q '"trajectory"' "$work/out_some/summary.json" \
+  && { echo "FAIL: summary.json names files that were not written"; fails=$((fails + 1)); } || pass=$((pass + 1))
+expect 0 "nothing written" -- "$lvsim" run "$mission" -o "$work/out_none" --outputs none
+[ ! -e "$work/out_none" ] && pass=$((pass + 1)) || { echo "FAIL: --outputs none made $work/out_none"; fails=$((fails + 1)); }
+expect 0 "results: .*mission.kml" -- "$lvsim" run "$mission" -o "$work/out_kml" --outputs body,summary,kml --no-plots
+[ -f "$work/out_kml/mission.kml" ] && [ ! -e "$work/out_kml/mission.czml" ] && [ ! -e "$work/out_kml/phase_1_P1.mat" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs body,summary,kml"; fails=$((fails + 1)); }
+expect 2 "czml, kml and oem read summary and body" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs czml
+expect 2 "unknown output .* 'pdf'" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs mat,pdf
+expect 2 "--json prints summary.json" -- "$lvsim" run "$mission" --json --outputs mat
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
