@@ -246,6 +246,7 @@ typedef struct lv_compare_side {
     size_t n_states;       /* per model (sequential: the largest phase model) */
     long state_events, time_events, steps, rhs_evals, jac_evals;
     double cpu_time;       /* s, sum over phases */
+    long rhs_evals_steps, rhs_evals_output; /* rhs_evals split (lv_sim_stats) */
 } lv_compare_side;
 
 typedef struct lv_compare_body {

@@ -130,6 +130,9 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     cJSON_AddNumberToObject(sj, "states", (double)rep->n_states);
     cJSON_AddNumberToObject(sj, "steps", (double)rep->stats.steps);
     cJSON_AddNumberToObject(sj, "rhs_evals", (double)rep->stats.rhs_evals);
+    cJSON_AddNumberToObject(sj, "rhs_evals_steps", (double)rep->stats.rhs_evals_steps);
+    cJSON_AddNumberToObject(sj, "rhs_evals_output", (double)rep->stats.rhs_evals_output);
+    cJSON_AddNumberToObject(sj, "row_evals", (double)rep->stats.row_evals);
     cJSON_AddNumberToObject(sj, "jac_evals", (double)rep->stats.jac_evals);
     cJSON_AddNumberToObject(sj, "state_events", (double)rep->stats.state_events);
     cJSON_AddNumberToObject(sj, "time_events", (double)rep->stats.time_events);

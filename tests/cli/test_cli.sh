@@ -160,7 +160,8 @@ json_ok "simulate --json" "$work/sim.json" "n=$num
 assert list(d) == ['model', 'ok', 'method', 'tolerance', 'end_time', 'stop', 'stats', 'final'], list(d)
 assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stopTime'
 assert n(d['tolerance']) and n(d['end_time']) and abs(d['end_time'] - 1) < 1e-12
-assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'row_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert d['stats']['rhs_evals'] == d['stats']['rhs_evals_steps'] + d['stats']['rhs_evals_output']
 assert all(n(v) for v in d['stats'].values()) and d['stats']['states'] == 2 and d['stats']['rows'] == 501
 assert list(d['final']) == ['x', 'time'] and n(d['final']['x']) and d['final']['time'] == 1"
 "$lvsim" simulate oscillator --json --stop 1000 --max-steps 50 --format none > "$work/simfail.json" 2> /dev/null; rc=$?
@@ -174,7 +175,8 @@ json_ok "compare --json" "$work/cmp.json" "n=$num
 assert list(d) == ['mission', 'output_interval', 'end_to_end', 'sequential', 'bodies'], list(d)
 assert d['mission'].endswith('mission.yaml') and d['output_interval'] == 1
 for s in ('end_to_end', 'sequential'):
-    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'jac_evals', 'cpu_time'], list(d[s])
+    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'jac_evals', 'cpu_time'], list(d[s])
+    assert d[s]['rhs_evals'] == d[s]['rhs_evals_steps'] + d[s]['rhs_evals_output']
     assert d[s]['method'] == 'dassl' and abs(d[s]['tolerance'] - 1e-7) < 1e-20
     assert all(n(v) for k, v in d[s].items() if k != 'method')
 assert d['end_to_end']['states'] == 39 and d['sequential']['states'] == 13
