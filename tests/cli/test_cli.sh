@@ -212,5 +212,13 @@ expect 2 "czml, kml and oem read summary and body" -- "$lvsim" run "$mission" -o
 expect 2 "unknown output .* 'pdf'" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs mat,pdf
 expect 2 "--json prints summary.json" -- "$lvsim" run "$mission" --json --outputs mat
 
+# PLplot is loaded only when a figure is drawn (liblvsim_post dlopens lvsim_plot.so): not by
+# check or run --no-plots, by plot
+loaded() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libplplot" || true; }
+[ "$(loaded "$lvsim" check "$mission")" -eq 0 ] && [ "$(loaded "$lvsim" run "$mission" -o "$work/ld1" --no-plots)" -eq 0 ] \
+  && pass=$((pass + 1)) || { echo "FAIL: PLplot loaded without a plot"; fails=$((fails + 1)); }
+[ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -1,6 +1,6 @@
 add_test(NAME test_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:lvsim_cli>)
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
-         $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post>)
+         $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post> $<TARGET_FILE:lvsim_plot>)
 # Every CSV value of the examples' phases reads back to the .mat file's double, bit for bit.
 add_test(NAME test_csv_mat COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_csv_mat.py
          $<TARGET_FILE:lvsim_cli>)
