@@ -3,12 +3,15 @@
  * (rhs_evals = rhs_evals_steps + rhs_evals_output); dopri5's dense output costs at most one
  * RHS per step however many output times the step holds, CVODE's and the fixed-step methods'
  * none; a run without a sink evaluates no row (row_evals counts the final values only); and
- * the dense output keeps its accuracy (oscillator against cos/sin at 20,000 output times). */
+ * the dense output keeps its accuracy (oscillator against cos/sin at 20,000 output times).
+ * Set-up: a model's names are checked for repeats by hashing (lv_names_duplicate), with the
+ * same verdicts as comparing every pair. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "check.h"
+#include "core/names.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_sim.h"
@@ -112,8 +115,38 @@ static void test_no_consumer(void)
     }
 }
 
+/* lv_names_duplicate against the pairwise check, on the stack table and on a heap one. */
+static void test_duplicates(void)
+{
+    static char text[600][12];
+    const char *names[600];
+    for (size_t i = 0; i < 600; i++) {
+        snprintf(text[i], sizeof text[i], "v%zu", i * 7);
+        names[i] = text[i];
+    }
+    for (size_t n = 0; n <= 600; n += 50) {
+        CHECK(lv_names_duplicate(names, n) == n); /* all distinct */
+        if (n < 2)
+            continue;
+        names[n - 1] = names[n / 3]; /* one repeat, the last name */
+        CHECK(lv_names_duplicate(names, n) == n - 1);
+        names[n - 1] = text[n - 1];
+    }
+    /* a model whose output has a state's name fails validation, naming it */
+    lv_model_def d = lv_model_vertical_ascent;
+    lv_var outs[8];
+    memcpy(outs, d.outputs, d.n_outputs * sizeof *outs);
+    outs[d.n_outputs - 1].name = d.states[0].name;
+    d.outputs = outs;
+    lv_err err;
+    CHECK_FAILS(lv_model_validate(&d, &err), &err, LV_ERR_INPUT, "is used twice");
+    CHECK(strstr(err.msg, d.states[0].name) != NULL);
+    CHECK_OK(lv_model_validate(&lv_model_vertical_ascent, &err), &err);
+}
+
 int main(void)
 {
+    test_duplicates();
     test_split();
     test_no_consumer();
     return check_report("test_output");
