@@ -4,5 +4,6 @@ list(APPEND LV_SOURCES
   src/io/result_csv.c
   src/io/numfmt.cc
   src/io/result_mat.c
+  src/io/matio_dl.c
   src/io/table_load.c
   src/io/atomic.c)

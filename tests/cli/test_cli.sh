@@ -217,6 +217,12 @@ expect 2 "--json prints summary.json" -- "$lvsim" run "$mission" --json --output
 loaded() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libplplot" || true; }
 [ "$(loaded "$lvsim" check "$mission")" -eq 0 ] && [ "$(loaded "$lvsim" run "$mission" -o "$work/ld1" --no-plots)" -eq 0 ] \
   && pass=$((pass + 1)) || { echo "FAIL: PLplot loaded without a plot"; fails=$((fails + 1)); }
+# libmatio (and the ~40 libraries of its HDF5 build) only when a MAT file is read or written
+matio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libmatio" || true; }
+d3="$src/examples/dof3-branch/mission.yaml"
+[ "$(matio "$lvsim" check "$d3")" -eq 0 ] && [ "$(matio "$lvsim" run "$d3" -o "$work/ld2" --outputs csv,summary)" -eq 0 ] \
+  && [ "$(matio "$lvsim" run "$d3" -o "$work/ld3" --outputs mat)" -gt 0 ] && [ -f "$work/ld3/phase_1_ascent.mat" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: libmatio loaded without a MAT file, or not with one"; fails=$((fails + 1)); }
 [ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
   && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
 
