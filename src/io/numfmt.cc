@@ -18,27 +18,48 @@ constexpr char kPairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
-// Writes the decimal digits of s (no leading zeros) into d; returns their count (1..17).
-int digits_of(std::uint64_t s, char *d)
+// Number of decimal digits of s (1..20): from its bit length, log10(2) ~ 1233 / 4096, and
+// one comparison.
+int digit_count(std::uint64_t s)
 {
-    char tmp[24];
-    int n = 0;
-    while (s >= 100) {
-        const unsigned q = static_cast<unsigned>(s % 100);
-        s /= 100;
-        tmp[n++] = kPairs[2 * q + 1];
-        tmp[n++] = kPairs[2 * q];
+    static constexpr std::uint64_t kPow10[] = {
+        1u, 10u, 100u, 1000u, 10000u, 100000u, 1000000u, 10000000u, 100000000u, 1000000000u,
+        10000000000u, 100000000000u, 1000000000000u, 10000000000000u, 100000000000000u,
+        1000000000000000u, 10000000000000000u, 100000000000000000u, 1000000000000000000u,
+        10000000000000000000u};
+    const int bits = 64 - __builtin_clzll(s | 1u);
+    const int n = (bits * 1233) >> 12;
+    return n + (s >= kPow10[n] ? 1 : 0);
+}
+
+// Writes the n decimal digits of s (n = digit_count(s)) into d[0..n), from the right: blocks
+// of eight digits in 32-bit arithmetic, two digits a lookup.
+void write_digits(std::uint64_t s, int n, char *d)
+{
+    char *p = d + n;
+    while (s >= 100000000u) {
+        std::uint32_t low = static_cast<std::uint32_t>(s % 100000000u);
+        s /= 100000000u;
+        for (int k = 0; k < 4; k++) {
+            const std::uint32_t q = low % 100u;
+            low /= 100u;
+            p -= 2;
+            std::memcpy(p, kPairs + 2 * q, 2);
+        }
     }
-    if (s >= 10) {
-        const unsigned q = static_cast<unsigned>(s);
-        tmp[n++] = kPairs[2 * q + 1];
-        tmp[n++] = kPairs[2 * q];
+    std::uint32_t v = static_cast<std::uint32_t>(s);
+    while (v >= 100u) {
+        const std::uint32_t q = v % 100u;
+        v /= 100u;
+        p -= 2;
+        std::memcpy(p, kPairs + 2 * q, 2);
+    }
+    if (v >= 10u) {
+        p -= 2;
+        std::memcpy(p, kPairs + 2 * v, 2);
     } else {
-        tmp[n++] = static_cast<char>('0' + s);
+        *--p = static_cast<char>('0' + v);
     }
-    for (int i = 0; i < n; i++)
-        d[i] = tmp[n - 1 - i];
-    return n;
 }
 
 } // namespace
@@ -63,7 +84,8 @@ extern "C" size_t lv_fmt_double(double v, char *buf)
     // v = s * 10^e with the fewest digits of s that round-trip (trailing zeros removed).
     const auto dec = jkj::dragonbox::to_decimal(v, jkj::dragonbox::policy::sign::ignore);
     char d[24];
-    const int n = digits_of(dec.significand, d);
+    const int n = digit_count(dec.significand);
+    write_digits(dec.significand, n, d);
     const int k = n + dec.exponent; // v = 0.d1 d2 .. dn * 10^k
     const int x = k - 1;            // the exponent %g would print
     if (x >= -4 && x < 17) {        // %.17g's rule for plain decimal notation
