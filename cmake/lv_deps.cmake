@@ -10,6 +10,10 @@ pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the fi
 find_package(Threads REQUIRED)
 # Shortest round-trip digits of doubles for the CSV files (src/io/numfmt.cc); header-only.
 find_package(dragonbox 1.1 REQUIRED CONFIG)
+# Reading numbers back (src/io/numparse.cc, the results reader): fast_float, header-only.
+find_path(LV_FASTFLOAT_INCLUDE fast_float/fast_float.h REQUIRED)
+add_library(lv_fastfloat INTERFACE)
+target_include_directories(lv_fastfloat INTERFACE ${LV_FASTFLOAT_INCLUDE})
 
 # libmatio is not linked but loaded when a MAT file is first read or written (src/io/matio_dl.c:
 # its HDF5 build brings ~40 libraries that cost ~5 ms at every start). Its header is used; its
@@ -32,7 +36,7 @@ add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::YAML Threads::Threads dragonbox::dragonbox ${CMAKE_DL_LIBS} m)
+  lv_matio_headers PkgConfig::YAML Threads::Threads dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)

@@ -25,7 +25,7 @@ if(LV_HAVE_LIBFUZZER)
   # simulation, runs, results and post-processing (no SUNDIALS, no cJSON, no PLplot).
   set(_src ${LV_SOURCES})
   list(FILTER _src EXCLUDE REGEX
-       "^src/(integrate/|sim/simulate|mission/(run|compare|summary)\\.c|io/(export|sink|result_|atomic|numfmt|matio_dl)|plot/|post/)")
+       "^src/(integrate/|sim/simulate|mission/(run|compare|summary)\\.c|io/(export|sink|result_|atomic|numfmt|numparse|matio_dl)|plot/|post/)")
   list(PREPEND _src fuzz/fuzz_mission.c)
   file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
        ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)

@@ -7,6 +7,7 @@ set -euo pipefail
 pkgs=(
   cmake make gcc g++ pkg-config        # build (g++: the number formatter's shim, src/io/numfmt.cc)
   libdragonbox-dev                     # shortest round-trip digits of doubles (CSV files)
+  libfast-float-dev                    # reading numbers back fast (results reader)
   libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
   libmatio-dev                         # MAT v4/v5/v7 result and table files
   libyaml-dev                          # mission files

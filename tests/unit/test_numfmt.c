@@ -1,7 +1,9 @@
 /* test_numfmt.c - lv_fmt_double (src/io/numfmt.h): every number reads back with strtod to the
  * same double, bit for bit, over millions of random bit patterns and of values like those a
  * run writes; the digits are the fewest that do (checked against %.{p}g for p = 1..17); the
- * layout is %.17g's (plain decimal for exponents -4..16, else d.ddde+XX); special values. */
+ * layout is %.17g's (plain decimal for exponents -4..16, else d.ddde+XX); special values.
+ * lv_parse_double (src/io/numparse.h) gives strtod's value and end on all of these and on
+ * the odd texts strtod accepts or refuses. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -10,6 +12,7 @@
 
 #include "check.h"
 #include "io/numfmt.h"
+#include "io/numparse.h"
 
 static uint64_t rng_state = 0x9E3779B97F4A7C15u;
 
@@ -108,8 +111,46 @@ static double gen_physical(void)
     }
 }
 
+/* lv_parse_double == strtod: the value (bits) and where it stopped. */
+static int parse_same(const char *text)
+{
+    char *e1 = NULL, *e2 = NULL;
+    const double a = strtod(text, &e1), b = lv_parse_double(text, &e2);
+    const int ok = e1 == e2 && (same_bits(a, b) || (isnan(a) && isnan(b)));
+    if (!ok)
+        fprintf(stderr, "lv_parse_double('%s') = %a (+%td), strtod %a (+%td)\n", text, b,
+                e2 - text, a, e1 - text);
+    return ok;
+}
+
+static void test_parse(void)
+{
+    const char *odd[] = {"0", "-0", "1", "-2.5", ".5", "-.5", "5.", "1e5", "1E+05", "1e-400",
+                         "1e400", "-1e400", "nan", "-nan", "inf", "-inf", "infinity", "infx",
+                         "Inf", "NaN", " 1.5", "+2", "0x1p3", "1e", "1e+", "abc", "", "-",
+                         ".", "12,34", "3 ", "4\n", "1.7976931348623157e308",
+                         "2.2250738585072011e-308", "4.9406564584124654e-324",
+                         "0.30000000000000004", "123456789012345678901234567890"};
+    for (size_t i = 0; i < sizeof odd / sizeof odd[0]; i++)
+        CHECK(parse_same(odd[i]));
+    char buf[64];
+    long bad = 0;
+    for (long i = 0; i < 1000000; i++) {
+        const double v = (i & 1) ? gen_bits() : gen_physical();
+        if (i % 3 == 0)
+            snprintf(buf, sizeof buf, "%.17g", v);
+        else
+            lv_fmt_double(v, buf);
+        bad += !parse_same(buf);
+        if (bad > 5)
+            break;
+    }
+    CHECK(bad == 0);
+}
+
 int main(void)
 {
+    test_parse();
     char buf[LV_FMT_DOUBLE_MAX];
     /* layout: the one of %.17g, with the fewest digits */
     const struct {
