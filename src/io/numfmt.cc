@@ -1,4 +1,4 @@
-// numfmt.cc - lv_fmt_double() (numfmt.h): the shortest round-trip decimal digits of a double
+// numfmt.cc - lv_numfmt_double() (numfmt.h): the shortest round-trip decimal digits of a double
 // from Dragonbox (jkj::dragonbox::to_decimal: correctly rounded, fewest digits that read back
 // to the same double; Debian package libdragonbox-dev), laid out the way %.17g lays numbers
 // out. The only C++ in lvsim: a C interface, no exceptions, no allocation, no libstdc++.
@@ -64,7 +64,7 @@ void write_digits(std::uint64_t s, int n, char *d)
 
 } // namespace
 
-extern "C" size_t lv_fmt_double(double v, char *buf)
+extern "C" size_t lv_numfmt_double(double v, char *buf)
 {
     char *p = buf;
     if (std::signbit(v))

@@ -15,11 +15,11 @@
 extern "C" {
 #endif
 
-#define LV_FMT_DOUBLE_MAX 32 /* bytes a number may need, with the terminating NUL */
+#define LV_NUMFMT_MAX 32 /* bytes a number may need, with the terminating NUL */
 
-/* Writes v into buf (at least LV_FMT_DOUBLE_MAX bytes), NUL-terminated; returns the length
+/* Writes v into buf (at least LV_NUMFMT_MAX bytes), NUL-terminated; returns the length
  * without the NUL (at most 24). Allocates nothing; thread-safe. */
-size_t lv_fmt_double(double v, char *buf);
+size_t lv_numfmt_double(double v, char *buf);
 
 #ifdef __cplusplus
 }

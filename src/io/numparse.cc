@@ -1,4 +1,4 @@
-// numparse.cc - lv_parse_double() (numparse.h): decimal text to the nearest double with
+// numparse.cc - lv_numparse_double() (numparse.h): decimal text to the nearest double with
 // fast_float (Lemire's Eisel-Lemire algorithm with an exact fallback; Debian package
 // libfast-float-dev, header-only), for the plain decimal numbers lvsim's own files hold;
 // anything else (blanks, '+', hexadecimal, "infinity", ...) goes to strtod(). Both round
@@ -10,7 +10,7 @@
 
 #include <fast_float/fast_float.h>
 
-extern "C" double lv_parse_double(const char *s, char **end)
+extern "C" double lv_numparse_double(const char *s, char **end)
 {
     const char *p = s;
     if (*p == '-')

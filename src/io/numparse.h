@@ -10,7 +10,7 @@ extern "C" {
 
 /* strtod(s, end)'s value and end, for a field that ends at '\0', ',', a blank or a line end.
  * errno is left as it was for the fast path. Thread-safe. */
-double lv_parse_double(const char *s, char **end);
+double lv_numparse_double(const char *s, char **end);
 
 #ifdef __cplusplus
 }

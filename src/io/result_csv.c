@@ -24,7 +24,7 @@ typedef struct csv_sink {
     size_t rows;
     double t_prev;   /* s */
     int state;       /* 0 created, 1 open, 2 closed */
-    char *line;      /* [n_signals * LV_FMT_DOUBLE_MAX + 1]: one row's text */
+    char *line;      /* [n_signals * LV_NUMFMT_MAX + 1]: one row's text */
     char *stream_buf; /* [CSV_STREAM_BUFFER]: the stream's buffer, freed after it is closed */
 } csv_sink;
 
@@ -60,7 +60,7 @@ static lv_status csv_open(void *self, const lv_result_info *info, lv_err *err)
     if (st != LV_OK)
         return st;
 
-    s->line = malloc(info->n_signals * LV_FMT_DOUBLE_MAX + 1);
+    s->line = malloc(info->n_signals * LV_NUMFMT_MAX + 1);
     s->stream_buf = malloc(CSV_STREAM_BUFFER);
     if (s->line == NULL || s->stream_buf == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.file.path);
@@ -111,7 +111,7 @@ static lv_status csv_row(void *self, const double *values, lv_err *err)
         return st;
     char *p = s->line;
     for (size_t i = 0; i < s->n_signals; i++) {
-        p += lv_fmt_double(values[i], p);
+        p += lv_numfmt_double(values[i], p);
         *p++ = ',';
     }
     p[-1] = '\n';

@@ -52,7 +52,7 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
         fprintf(f, ",%s [%s]", b->names[c], b->units[c]);
     fputc('\n', f);
     /* numbers as the result CSVs write them: the shortest text that reads back exactly */
-    char *line = malloc(b->n_cols * LV_FMT_DOUBLE_MAX + 1);
+    char *line = malloc(b->n_cols * LV_NUMFMT_MAX + 1);
     if (line == NULL) {
         lv_atomic_abort(&out);
         lv_body_traj_free(b);
@@ -60,14 +60,14 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
     }
     for (size_t i = 0; i < b->n_rows; i++) {
         const double *row = b->values + i * b->n_cols;
-        char *p = line + lv_fmt_double(row[0], line);
+        char *p = line + lv_numfmt_double(row[0], line);
         fputs(line, f);
         fputc(',', f);
         fputs(lv_mission_phase_name(m, b->phase[i]), f);
         p = line;
         for (size_t c = 1; c < b->n_cols; c++) {
             *p++ = ',';
-            p += lv_fmt_double(row[c], p);
+            p += lv_numfmt_double(row[c], p);
         }
         *p++ = '\n';
         fwrite(line, 1, (size_t)(p - line), f);

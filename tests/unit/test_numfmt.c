@@ -1,8 +1,8 @@
-/* test_numfmt.c - lv_fmt_double (src/io/numfmt.h): every number reads back with strtod to the
+/* test_numfmt.c - lv_numfmt_double (src/io/numfmt.h): every number reads back with strtod to the
  * same double, bit for bit, over millions of random bit patterns and of values like those a
  * run writes; the digits are the fewest that do (checked against %.{p}g for p = 1..17); the
  * layout is %.17g's (plain decimal for exponents -4..16, else d.ddde+XX); special values.
- * lv_parse_double (src/io/numparse.h) gives strtod's value and end on all of these and on
+ * lv_numparse_double (src/io/numparse.h) gives strtod's value and end on all of these and on
  * the odd texts strtod accepts or refuses. */
 #include <math.h>
 #include <stdint.h>
@@ -68,12 +68,12 @@ static int shortest_printf(double v)
 
 static long round_trips(long n, double (*gen)(void), int check_shortest)
 {
-    char buf[LV_FMT_DOUBLE_MAX];
+    char buf[LV_NUMFMT_MAX];
     long bad = 0, longer = 0;
     for (long i = 0; i < n; i++) {
         const double v = gen();
-        const size_t len = lv_fmt_double(v, buf);
-        if (len != strlen(buf) || len >= LV_FMT_DOUBLE_MAX - 7) {
+        const size_t len = lv_numfmt_double(v, buf);
+        if (len != strlen(buf) || len >= LV_NUMFMT_MAX - 7) {
             bad++;
             continue;
         }
@@ -111,14 +111,14 @@ static double gen_physical(void)
     }
 }
 
-/* lv_parse_double == strtod: the value (bits) and where it stopped. */
+/* lv_numparse_double == strtod: the value (bits) and where it stopped. */
 static int parse_same(const char *text)
 {
     char *e1 = NULL, *e2 = NULL;
-    const double a = strtod(text, &e1), b = lv_parse_double(text, &e2);
+    const double a = strtod(text, &e1), b = lv_numparse_double(text, &e2);
     const int ok = e1 == e2 && (same_bits(a, b) || (isnan(a) && isnan(b)));
     if (!ok)
-        fprintf(stderr, "lv_parse_double('%s') = %a (+%td), strtod %a (+%td)\n", text, b,
+        fprintf(stderr, "lv_numparse_double('%s') = %a (+%td), strtod %a (+%td)\n", text, b,
                 e2 - text, a, e1 - text);
     return ok;
 }
@@ -140,7 +140,7 @@ static void test_parse(void)
         if (i % 3 == 0)
             snprintf(buf, sizeof buf, "%.17g", v);
         else
-            lv_fmt_double(v, buf);
+            lv_numfmt_double(v, buf);
         bad += !parse_same(buf);
         if (bad > 5)
             break;
@@ -151,7 +151,7 @@ static void test_parse(void)
 int main(void)
 {
     test_parse();
-    char buf[LV_FMT_DOUBLE_MAX];
+    char buf[LV_NUMFMT_MAX];
     /* layout: the one of %.17g, with the fewest digits */
     const struct {
         double v;
@@ -167,7 +167,7 @@ int main(void)
         {NAN, "nan"},         {-NAN, "-nan"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        lv_fmt_double(cases[i].v, buf);
+        lv_numfmt_double(cases[i].v, buf);
         if (strcmp(buf, cases[i].text) != 0) {
             fprintf(stderr, "%.17g: '%s', expected '%s'\n", cases[i].v, buf, cases[i].text);
             CHECK(0);
@@ -178,7 +178,7 @@ int main(void)
         const double v = gen_physical();
         snprintf(buf, sizeof buf, "%.17g", v);
         const double old = strtod(buf, NULL);
-        lv_fmt_double(v, buf);
+        lv_numfmt_double(v, buf);
         CHECK(same_bits(strtod(buf, NULL), old));
     }
     /* millions of round trips; the shortest property on a subset (its check is slow) */
@@ -189,9 +189,9 @@ int main(void)
     /* subnormals and powers of two at every exponent */
     for (int e = -1074; e <= 1023; e++) {
         const double v = ldexp(1.0, e);
-        lv_fmt_double(v, buf);
+        lv_numfmt_double(v, buf);
         CHECK(same_bits(strtod(buf, NULL), v));
-        lv_fmt_double(nextafter(v, 0.0), buf);
+        lv_numfmt_double(nextafter(v, 0.0), buf);
         CHECK(same_bits(strtod(buf, NULL), nextafter(v, 0.0)));
     }
     return check_report("test_numfmt");
