@@ -820,6 +820,8 @@ lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_pl
     int fds[2] = {-1, -1};
     pid_t pid = -1;
     if (single_threaded() && pipe(fds) == 0) {
+        /* nothing buffered for the child to write twice, should PLplot ever exit() in it */
+        fflush(NULL);
         pid = fork();
         if (pid == 0) { /* the child: the odd figures; its list is a copy, thrown away */
             close(fds[0]);
