@@ -41,6 +41,7 @@ test-valgrind: deps build
 
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done
+	@bench/whole_process.py --lvsim $(BUILD)/lvsim
 
 # The mission-parser fuzzer (libFuzzer, clang) for FUZZ_TIME seconds (default 60).
 .PHONY: fuzz

@@ -162,18 +162,63 @@ static void print_results(const lv_outdir *od)
     printf("\n");
 }
 
+/* What `run` writes (--outputs): the phase files, the summary and bodies, the exports. */
+enum {
+    OUT_MAT = 1u, OUT_CSV = 2u, OUT_BODY = 4u, OUT_SUMMARY = 8u,
+    OUT_CZML = 16u, OUT_KML = 32u, OUT_OEM = 64u,
+    OUT_ALL = 127u
+};
+static const struct {
+    const char *name;
+    unsigned flag;
+} out_names[] = {{"mat", OUT_MAT},         {"csv", OUT_CSV},   {"body", OUT_BODY},
+                 {"summary", OUT_SUMMARY}, {"czml", OUT_CZML}, {"kml", OUT_KML},
+                 {"oem", OUT_OEM}};
+
+/* "mat,csv,summary" -> flags; "none" -> 0. Returns 0 and names the bad word in *bad. */
+static int parse_outputs(const char *list, unsigned *out, char *bad, size_t cap)
+{
+    *out = 0;
+    if (strcmp(list, "none") == 0)
+        return 1;
+    const char *p = list;
+    while (1) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        unsigned f = 0;
+        for (size_t i = 0; i < sizeof out_names / sizeof out_names[0]; i++)
+            if (strlen(out_names[i].name) == len && strncmp(out_names[i].name, p, len) == 0)
+                f = out_names[i].flag;
+        if (f == 0) {
+            snprintf(bad, cap, "%.*s", (int)len, p);
+            return 0;
+        }
+        *out |= f;
+        if (comma == NULL)
+            return 1;
+        p = comma + 1;
+    }
+}
+
 static int run_run(const cli_cmd *self, int argc, char **argv)
 {
     const char *path = NULL, *outdir = "lvsim-out";
     int json = 0, threads = 2, plots = 1, quiet = 0;
     double max_rows = CLI_DEFAULT_MAX_ROWS;
+    unsigned outputs = OUT_ALL;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--threads") == 0 || strcmp(a, "--max-rows") == 0) {
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--threads") == 0 ||
+            strcmp(a, "--max-rows") == 0 || strcmp(a, "--outputs") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
-            if (a[1] == 'o') {
+            char bad[64];
+            if (strcmp(a, "--outputs") == 0) {
+                if (!parse_outputs(v, &outputs, bad, sizeof bad))
+                    return usage_error(self, "--outputs: unknown output (mat, csv, body, "
+                                             "summary, czml, kml, oem, none)", bad);
+            } else if (a[1] == 'o') {
                 if (v[0] == '\0')
                     return usage_error(self, "-o needs a folder name; got an empty one", NULL);
                 outdir = v;
@@ -199,6 +244,16 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     }
     if (path == NULL)
         return usage_error(self, "run needs a mission file", NULL);
+    /* The exports and the plots read the results folder: they need what they read. */
+    const unsigned exports = outputs & (OUT_CZML | OUT_KML | OUT_OEM);
+    if (exports && (outputs & (OUT_SUMMARY | OUT_BODY)) != (OUT_SUMMARY | OUT_BODY))
+        return usage_error(self, "--outputs: czml, kml and oem read summary and body; add them",
+                           NULL);
+    if (json && !(outputs & OUT_SUMMARY))
+        return usage_error(self, "--json prints summary.json: --outputs needs summary", NULL);
+    const int can_plot = (outputs & (OUT_SUMMARY | OUT_BODY | OUT_CSV)) ==
+                         (OUT_SUMMARY | OUT_BODY | OUT_CSV);
+    plots = plots && can_plot;
     progress_catch_signals(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
     lv_mission *m;
     int code = load_mission(path, &m);
@@ -210,16 +265,16 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     }
     const size_t n = lv_mission_phase_count(m);
     lv_err err;
-    lv_outdir *od = NULL;
-    lv_status st = lv_outdir_begin(outdir, path, &od, &err);
+    lv_outdir *od = NULL; /* none with --outputs none: nothing is written, not even OUTDIR */
+    lv_status st = outputs != 0 ? lv_outdir_begin(outdir, path, &od, &err) : LV_OK;
     if (st != LV_OK) {
         lv_mission_free(m);
         return print_err("lvsim", &err, st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT);
     }
-    for (size_t i = 0; i < lv_outdir_stale_count(od); i++)
+    for (size_t i = 0; od != NULL && i < lv_outdir_stale_count(od); i++)
         fprintf(stderr, "lvsim: removed '%s', the unfinished folder of an interrupted run\n",
                 lv_outdir_stale(od, i));
-    const char *stage = lv_outdir_path(od);
+    const char *stage = od != NULL ? lv_outdir_path(od) : NULL;
     run_ui ui = {progress_new(n, quiet), !json, 0, calloc(n + 1, 1)};
     lv_run *run = NULL;
     if (ui.ended == NULL || (st = lv_run_create(m, &run, &err)) != LV_OK) {
@@ -234,13 +289,23 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         return ui.ended == NULL ? EXIT_INTERNAL : exit_code_for(st);
     }
     if (!json) {
-        printf("mission '%s': %zu phases -> %s/\n", lv_mission_name(m), n, lv_outdir_final(od));
+        if (od != NULL)
+            printf("mission '%s': %zu phases -> %s/\n", lv_mission_name(m), n,
+                   lv_outdir_final(od));
+        else
+            printf("mission '%s': %zu phases (nothing written)\n", lv_mission_name(m), n);
         printf("%-3s %-12s %-10s %9s %9s  %-10s %7s %8s %4s %4s %9s  %s\n", "#", "phase", "from",
                "t0 [s]", "t1 [s]", "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
         fflush(stdout);
     }
+    /* rows are kept in memory only for the body files, which are merged from them */
+    const unsigned phase_files = outputs & (OUT_MAT | OUT_CSV);
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
-                          .user = &ui, .progress = on_progress};
+                          .user = &ui, .progress = on_progress,
+                          .no_rows = !(outputs & OUT_BODY),
+                          .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
+                                            : (phase_files & OUT_MAT ? LV_RESULT_MAT : 0u) |
+                                                  (phase_files & OUT_CSV ? LV_RESULT_CSV : 0u)};
     lv_status run_st = lv_run_execute(run, &opt, &err);
     /* the rows on_phase could not print yet: phases never run (skipped, pending) and those
      * after them */
@@ -250,13 +315,26 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     progress_print_end(ui.prog);
     /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left */
     if (progress_interrupted()) {
-        fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n", lv_outdir_final(od));
+        if (od != NULL)
+            fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
+                    lv_outdir_final(od));
         lv_run_free(run);
         progress_free(ui.prog);
         free(ui.ended);
         lv_outdir_free(od);
         lv_mission_free(m);
         return 130;
+    }
+    if (od == NULL) { /* --outputs none: the table was all */
+        if (run_st != LV_OK) {
+            print_err("lvsim", &err, 0);
+            code = exit_code_for(run_st);
+        }
+        lv_run_free(run);
+        progress_free(ui.prog);
+        free(ui.ended);
+        lv_mission_free(m);
+        return code;
     }
     /* post-processing reads the staging folder, as `lvsim export` and `lvsim plot` do */
     const char *notes[8];
@@ -274,16 +352,28 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     lv_export_report xr = {0};
     char post_msg[3][LV_ERR_MSG_MAX];
     size_t n_post = 0;
-    progress_step_begin(ui.prog, "summary.json and body trajectories");
-    st1 = lv_run_write_summary(run, stage, &e);
-    progress_step_end(ui.prog);
+    const unsigned summary = (outputs & OUT_SUMMARY ? LV_SUMMARY_JSON : 0u) |
+                             (outputs & OUT_BODY ? LV_SUMMARY_BODIES : 0u);
+    st1 = LV_OK;
+    if (summary != 0) {
+        progress_step_begin(ui.prog, "summary.json and body trajectories");
+        st1 = lv_run_write_summary_files(run, stage, summary, &e);
+        progress_step_end(ui.prog);
+    }
     if (st1 != LV_OK) {
         post_st = st1;
         snprintf(post_msg[n_post++], sizeof post_msg[0], "%.480s", e.msg);
     } else {
-        progress_step_begin(ui.prog, "exports (CZML, KML, OEM)");
-        st1 = lv_export_run_report(stage, LV_EXPORT_ALL, &xr, &e);
-        progress_step_end(ui.prog);
+        st1 = LV_OK;
+        if (exports) {
+            progress_step_begin(ui.prog, "exports (CZML, KML, OEM)");
+            st1 = lv_export_run_report(stage,
+                                       (outputs & OUT_CZML ? LV_EXPORT_CZML : 0u) |
+                                           (outputs & OUT_KML ? LV_EXPORT_KML : 0u) |
+                                           (outputs & OUT_OEM ? LV_EXPORT_OEM : 0u),
+                                       &xr, &e);
+            progress_step_end(ui.prog);
+        }
         if (st1 != LV_OK) {
             post_st = post_st != LV_OK ? post_st : st1;
             snprintf(post_msg[n_post++], sizeof post_msg[0], "exports: %.480s", e.msg);
@@ -351,17 +441,18 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_run = {
     "run",
     "run every phase of a mission; results, exports, plots, report",
-    "MISSION.yaml [-o OUTDIR] [--threads N] [--max-rows N] [--json] [--no-plots] [--quiet]",
+    "MISSION.yaml [-o OUTDIR] [--threads N] [--max-rows N] [--outputs LIST] [--json]\n"
+    "            [--no-plots] [--quiet]",
     "Validates the mission (as 'lvsim check'), refuses a phase that would write more than\n"
     "--max-rows rows, runs every phase in dependency order, independent branches in\n"
     "parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
     "and .csv, body_<stage>.csv, summary.json, the exports (mission.czml, mission.kml,\n"
-    "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256).\n"
-    "Everything is written into a staging folder beside OUTDIR that replaces OUTDIR as a\n"
-    "whole when the run ends, also when phases failed (then marked 'failed'): OUTDIR never\n"
-    "mixes two runs. A second run into an OUTDIR in use is refused (exit 2); Ctrl-C leaves\n"
-    "OUTDIR as it was (exit 130). A failing phase stops only its descendants; the exit code\n"
-    "is then 3. Progress (running phases, post-processing) goes to stderr.\n"
+    "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
+    "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"
+    "that replaces OUTDIR as a whole when the run ends, also when phases failed (then\n"
+    "marked 'failed'): OUTDIR never mixes two runs. A second run into an OUTDIR in use is\n"
+    "refused (exit 2); Ctrl-C leaves OUTDIR as it was (exit 130). A failing phase stops\n"
+    "only its descendants; the exit code is then 3. Progress goes to stderr.\n"
     "\n"
     "options:\n"
     "  -o OUTDIR               results folder (default lvsim-out): new, empty, or an\n"
@@ -370,6 +461,12 @@ const cli_cmd cli_cmd_run = {
     "  --max-rows N            output rows one phase may write (default 1e6)\n"
     "  --json                  print summary.json instead of the table\n"
     "  --no-plots              skip plots/ and index.html\n"
+    "  --outputs LIST          what to write, comma-separated: mat, csv (each phase's\n"
+    "                          files), body (body_<stage>.csv), summary (summary.json),\n"
+    "                          czml, kml, oem (the exports; they need body and summary);\n"
+    "                          'none' writes nothing, not even OUTDIR (a run in memory:\n"
+    "                          the table only). Default: all of them. Plots are drawn only\n"
+    "                          when csv, body and summary are written.\n"
     "  --quiet, -q             no progress lines\n",
     run_run,
 };

@@ -30,6 +30,9 @@ static cJSON *report_json(const lv_model_def *m, const lv_sim_settings *s, lv_st
     cJSON_AddNumberToObject(stats, "states", (double)rep->n_states);
     cJSON_AddNumberToObject(stats, "steps", (double)rep->stats.steps);
     cJSON_AddNumberToObject(stats, "rhs_evals", (double)rep->stats.rhs_evals);
+    cJSON_AddNumberToObject(stats, "rhs_evals_steps", (double)rep->stats.rhs_evals_steps);
+    cJSON_AddNumberToObject(stats, "rhs_evals_output", (double)rep->stats.rhs_evals_output);
+    cJSON_AddNumberToObject(stats, "row_evals", (double)rep->stats.row_evals);
     cJSON_AddNumberToObject(stats, "jac_evals", (double)rep->stats.jac_evals);
     cJSON_AddNumberToObject(stats, "state_events", (double)rep->stats.state_events);
     cJSON_AddNumberToObject(stats, "time_events", (double)rep->stats.time_events);

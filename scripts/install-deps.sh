@@ -5,7 +5,9 @@
 set -euo pipefail
 
 pkgs=(
-  cmake make gcc pkg-config            # build
+  cmake make gcc g++ pkg-config        # build (g++: the number formatter's shim, src/io/numfmt.cc)
+  libdragonbox-dev                     # shortest round-trip digits of doubles (CSV files)
+  libfast-float-dev                    # reading numbers back fast (results reader)
   libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
   libmatio-dev                         # MAT v4/v5/v7 result and table files
   libhdf5-dev                          # MAT v7.3 tables libmatio cannot classify (src/io/table_load.c)
@@ -14,6 +16,7 @@ pkgs=(
   nettle-dev                           # SHA-256 in the results folder's manifest
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
+  libpng-dev                           # plots: PNG files written with fast settings
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
   chromium                             # headless browser for the viewer test (ctest test_viewer)
   python3                              # lvsim view serves with python3's http.server

@@ -164,6 +164,8 @@ typedef struct lv_phase_result {
     const double *propellant_end;   /* [n_stages of the mission], kg left after the phase */
     const double *dry_mass;         /* [n_stages of the mission], kg in this run */
     double payload;                 /* kg, the start mass beyond the carried stages */
+    unsigned result_formats;     /* the files written under result_stem: LV_RESULT_MAT |
+                                    LV_RESULT_CSV (0 when result_stem is NULL) */
 } lv_phase_result;
 
 typedef struct lv_run_options {
@@ -179,7 +181,12 @@ typedef struct lv_run_options {
      * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
     int (*progress)(const lv_run *r, size_t k, double t, void *user);
     int no_rows;          /* 1: keep no rows in memory (no merged trajectories): faster */
+    /* With outdir: the files of each phase, LV_RESULT_MAT | LV_RESULT_CSV; 0: both (the
+     * default); LV_RUN_NO_PHASE_FILES: neither (summary and bodies may still be written). */
+    unsigned result_formats;
 } lv_run_options;
+
+#define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */
 
 /* Simulates every phase whose inputs changed since it last ran (or that never ran, or
  * failed), and its descendants; the others keep their results. Independent branches run in
@@ -298,6 +305,7 @@ typedef struct lv_compare_side {
     size_t n_states;       /* per model (sequential: the largest phase model) */
     long state_events, time_events, steps, rhs_evals, jac_evals;
     double cpu_time;       /* s, sum over phases */
+    long rhs_evals_steps, rhs_evals_output; /* rhs_evals split (lv_sim_stats) */
 } lv_compare_side;
 
 typedef struct lv_compare_body {

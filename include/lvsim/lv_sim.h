@@ -35,6 +35,7 @@
 extern "C" {
 #endif
 
+/* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats). */
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
 
 /* A condition that ends the run - a phase's end on any of the model's variables: the variable
@@ -97,6 +98,12 @@ typedef struct lv_sim_stats {
     long restarts;       /* integrator re-initialisations */
     long output_rows;    /* rows written to sinks */
     double cpu_time;     /* s, thread CPU time of the run */
+    /* rhs_evals = rhs_evals_steps + rhs_evals_output (docs/integration.md, "Output cost"): */
+    long rhs_evals_steps;  /* spent on the steps: stages, Jacobians, step-size selection */
+    long rhs_evals_output; /* spent on output between steps: dopri5's dense output (at most
+                              one per step that holds output times); CVODE's is free */
+    long row_evals;        /* model evaluations (derivatives and outputs) for the result rows
+                              and the final values; none when no sink takes the rows */
 } lv_sim_stats;
 
 typedef enum lv_stop_reason {

@@ -99,7 +99,7 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     if (st == LV_OK)
         st = make_dir(pdir, err);
     if (st == LV_OK)
-        st = lv_plot_draw_figures(&d, pdir, list, err);
+        st = lv_plot_figures(&d, pdir, list, err);
     cJSON *keys = NULL;
     if (st == LV_OK)
         st = lv_plot_keys(&d, &keys, err);

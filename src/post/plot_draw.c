@@ -10,10 +10,15 @@
 #include <errno.h>
 #include <math.h>
 #include <plplot.h>
+#include <png.h>
+#include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "core/status.h"
 #include "io/atomic.h"
@@ -333,50 +338,120 @@ static int device_available(const char *dev)
     return 0;
 }
 
-/* Draws `f` with PLplot device `dev` into `path` (through `path`.tmp). */
-static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
-                        int *map_ok, lv_err *err)
+/* Draws the figure's panels on the current stream (after plinit). */
+static void draw_figure(const lv_plot_data *d, const figure *f, int *map_ok, PLINT *code,
+                        char *msg)
 {
-    /* PLplot writes the temporary file by name, and exits the process when it cannot open
-     * it: make sure it can. */
-    lv_atomic out;
-    lv_status st = lv_atomic_init(&out, path, err);
-    if (st == LV_OK)
-        st = lv_atomic_reserve(&out, err);
-    if (st != LV_OK)
-        return st;
-    PLINT old = 0, strm = -1, code = 0;
-    char msg[1024] = "";
-    plgstrm(&old);
-    plmkstrm(&strm);
-    if (strm < 0) {
-        lv_atomic_abort(&out);
-        return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
+    pladv(0);
+    if (f->n_p == 1) {
+        draw_panel(d, f, 0, 0.11, 0.89, map_ok, code, msg);
+    } else {
+        draw_panel(d, f, 0, 0.52, 0.89, map_ok, code, msg);
+        draw_panel(d, f, 1, 0.11, 0.49, map_ok, code, msg);
     }
-    plsError(&code, msg);
-    plsdev(dev);
-    plsfnam(out.tmp);
+}
+
+/* A new PLplot stream with our page and colours; its errors land in code/msg. */
+static int stream_begin(PLINT *old, PLINT *code, char *msg)
+{
+    PLINT strm = -1;
+    plgstrm(old);
+    plmkstrm(&strm);
+    if (strm < 0)
+        return 0;
+    plsError(code, msg);
     plspage(0.0, 0.0, PAGE_W, PAGE_H, 0, 0);
     plscmap0n(N_COLS);
     for (PLINT i = 0; i < N_COLS; i++)
         plscol0(i, palette[i][0], palette[i][1], palette[i][2]);
-    plinit();
-    if (code == 0) {
-        pladv(0);
-        if (f->n_p == 1)
-            draw_panel(d, f, 0, 0.11, 0.89, map_ok, &code, msg);
-        else {
-            draw_panel(d, f, 0, 0.52, 0.89, map_ok, &code, msg);
-            draw_panel(d, f, 1, 0.11, 0.49, map_ok, &code, msg);
-        }
+    return 1;
+}
+
+/* Writes the RGB image `rgb` (PAGE_W x PAGE_H, 3 bytes a pixel, rows top down) as a PNG to
+ * `fp`. Cairo's own writer (pngcairo) compresses with zlib's default level and tries every
+ * row filter: three quarters of all the plotting time. A figure is mostly flat colour, so the
+ * fastest zlib level without row filters costs a fraction of that for files about as small
+ * (docs/visualization.md). */
+static int write_png(FILE *fp, unsigned char *rgb)
+{
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png != NULL ? png_create_info_struct(png) : NULL;
+    png_bytep rows[PAGE_H];
+    if (info == NULL || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, info != NULL ? &info : NULL);
+        return -1;
     }
+    png_init_io(png, fp);
+    png_set_IHDR(png, info, PAGE_W, PAGE_H, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(png, 1);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+    for (int y = 0; y < PAGE_H; y++)
+        rows[y] = rgb + (size_t)y * PAGE_W * 3;
+    png_set_rows(png, info, rows);
+    png_write_png(png, info, PNG_TRANSFORM_IDENTITY, NULL);
+    png_destroy_write_struct(&png, &info);
+    return 0;
+}
+
+/* Draws `f` with PLplot device `dev` into `path` (through `path`.tmp). "png": PLplot's cairo
+ * memory device (memcairo: the same cairo rendering as pngcairo, into our buffer) and
+ * write_png; otherwise the device writes the file itself (svgcairo, svg). */
+static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
+                        int *map_ok, lv_err *err)
+{
+    const int png = strcmp(dev, "png") == 0;
+    /* PLplot writes the temporary file by name, and exits the process when it cannot open
+     * it: make sure it can. The PNG is written by us, through the stream. */
+    lv_atomic out;
+    lv_status st = png ? lv_atomic_open(&out, path, err) : lv_atomic_init(&out, path, err);
+    if (st == LV_OK && !png)
+        st = lv_atomic_reserve(&out, err);
+    if (st != LV_OK)
+        return st;
+    unsigned char *rgb = NULL;
+    if (png) {
+        rgb = malloc((size_t)PAGE_W * PAGE_H * 3);
+        if (rgb == NULL) {
+            lv_atomic_abort(&out);
+            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+        }
+        memset(rgb, 255, (size_t)PAGE_W * PAGE_H * 3); /* the background, colour 0: white */
+    }
+    PLINT old = 0, code = 0;
+    char msg[1024] = "";
+    if (!stream_begin(&old, &code, msg)) {
+        free(rgb);
+        lv_atomic_abort(&out);
+        return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
+    }
+    if (png) {
+        plsdev("memcairo");
+        plsmem(PAGE_W, PAGE_H, rgb);
+    } else {
+        plsdev(dev);
+        plsfnam(out.tmp);
+    }
+    plinit();
+    if (code == 0)
+        draw_figure(d, f, map_ok, &code, msg);
     plend1();
     plsstrm(old);
-    struct stat sb;
     if (code != 0) {
+        free(rgb);
         lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot: %s", path, msg);
     }
+    if (png) {
+        const int bad = write_png(out.fp, rgb);
+        free(rgb);
+        if (bad) {
+            lv_atomic_abort(&out);
+            return lv_fail(err, LV_ERR_IO, "%s: cannot write the PNG image", out.tmp);
+        }
+        return lv_atomic_commit(&out, err);
+    }
+    struct stat sb;
     if (stat(out.tmp, &sb) != 0 || sb.st_size == 0) {
         lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot (%s) wrote nothing", path, dev);
@@ -384,20 +459,48 @@ static lv_status render(const lv_plot_data *d, const figure *f, const char *dev,
     return lv_atomic_commit(&out, err);
 }
 
-static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
-                             const char *stem, lv_plot_list *list, int *map_ok, lv_err *err)
+/* The figure as PNG and SVG. */
+static lv_status render_pair(const lv_plot_data *d, const figure *f, const char *plotdir,
+                             const char *stem, int *map_ok, lv_err *err)
 {
     char path[4400];
     const char *svg = device_available("svgcairo") ? "svgcairo" : "svg";
-    if (!device_available("pngcairo"))
+    if (!device_available("memcairo"))
         return lv_fail(err, LV_ERR_IO,
-                       "%s/%s.png: PLplot has no 'pngcairo' driver (Debian: plplot-driver-cairo)",
+                       "%s/%s.png: PLplot has no 'memcairo' driver (Debian: plplot-driver-cairo)",
                        plotdir, stem);
     snprintf(path, sizeof path, "%s/%s.png", plotdir, stem);
-    lv_status st = render(d, f, "pngcairo", path, map_ok, err);
+    lv_status st = render(d, f, "png", path, map_ok, err);
     snprintf(path, sizeof path, "%s/%s.svg", plotdir, stem);
     if (st == LV_OK)
         st = render(d, f, svg, path, map_ok, err);
+    return st;
+}
+
+/* ---- two processes draw -----------------------------------------------------------------
+ * PLplot's state is global, so figures cannot be drawn by threads; they can by processes. When
+ * the calling process has one thread (fork() is then safe; lvsim plot, lvsim run), a child
+ * process is forked before anything is drawn: it goes through the same figures and draws
+ * every other one, this process the rest (map figures here: they report whether the
+ * coastlines were found), so two cores draw. The child starts from this process's state
+ * before any drawing (pango starts threads of its own once it draws text: no fork after that),
+ * touches nothing of the caller's and reports through a pipe, then _exit()s. */
+enum { DRAW_ALL = 0, DRAW_EVEN = 1, DRAW_ODD = 2 };
+
+/* Draws the figure (or leaves it to the other process), and lists it. */
+static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
+                             const char *stem, lv_plot_list *list, int *map_ok, lv_err *err)
+{
+    lv_status st = LV_OK;
+    int mine = 1;
+    if (list->draw_role != DRAW_ALL) {
+        if (f->map)
+            mine = list->draw_role == DRAW_EVEN;
+        else
+            mine = (list->draw_index++ % 2 == 0) == (list->draw_role == DRAW_EVEN);
+    }
+    if (mine)
+        st = render_pair(d, f, plotdir, stem, map_ok, err);
     if (st == LV_OK && list->n_made < LV_PLOT_MAX_FIGS) {
         snprintf(list->made[list->n_made].stem, sizeof list->made[0].stem, "%s", stem);
         snprintf(list->made[list->n_made].title, sizeof list->made[0].title, "%s", f->title);
@@ -405,6 +508,25 @@ static lv_status render_both(const lv_plot_data *d, const figure *f, const char 
     }
     return st;
 }
+
+/* One thread in this process (from /proc/self/status): fork() is safe. */
+static int single_threaded(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    int threads = 0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL)
+        if (sscanf(line, "Threads: %d", &threads) == 1)
+            break;
+    if (f != NULL)
+        fclose(f);
+    return threads == 1;
+}
+
+typedef struct child_msg {
+    lv_status st;
+    lv_err err;
+} child_msg;
 
 static void add_skip(lv_plot_list *l, const char *what, const char *why)
 {
@@ -714,8 +836,8 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
     return st;
 }
 
-lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
-                               lv_err *err)
+static lv_status draw_all(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                          lv_err *err)
 {
     /* the paper's Figure 10 first: the run at a glance */
     lv_status st = fig10(d, plotdir, list, err);
@@ -723,5 +845,55 @@ lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_pl
         st = quantity_figure(d, &quantities[i], plotdir, list, err);
     if (st == LV_OK)
         st = ground_track(d, plotdir, list, err);
+    return st;
+}
+
+lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                               lv_err *err)
+{
+    list->draw_role = DRAW_ALL;
+    list->draw_index = 0;
+    int fds[2] = {-1, -1};
+    pid_t pid = -1;
+    if (single_threaded() && pipe(fds) == 0) {
+        /* nothing buffered for the child to write twice, should PLplot ever exit() in it */
+        fflush(NULL);
+        pid = fork();
+        if (pid == 0) { /* the child: the odd figures; its list is a copy, thrown away */
+            close(fds[0]);
+            child_msg msg;
+            memset(&msg, 0, sizeof msg);
+            list->draw_role = DRAW_ODD;
+            msg.st = draw_all(d, plotdir, list, &msg.err);
+            const ssize_t w = write(fds[1], &msg, sizeof msg);
+            _exit(w == (ssize_t)sizeof msg ? 0 : 1);
+        }
+        close(fds[1]);
+        if (pid > 0)
+            list->draw_role = DRAW_EVEN;
+        else
+            close(fds[0]); /* no fork: draw everything here */
+    }
+    lv_status st = draw_all(d, plotdir, list, err);
+    if (pid > 0) { /* the child's figures and its verdict */
+        child_msg msg;
+        memset(&msg, 0, sizeof msg);
+        ssize_t got;
+        while ((got = read(fds[0], &msg, sizeof msg)) < 0 && errno == EINTR) {
+        }
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        close(fds[0]);
+        if (st == LV_OK && (got != (ssize_t)sizeof msg || !WIFEXITED(status)))
+            st = lv_fail(err, LV_ERR_IO, "%s: the process drawing half of the figures ended "
+                                         "without a word%s",
+                         plotdir, WIFSIGNALED(status) ? " (killed by a signal)" : "");
+        else if (st == LV_OK && msg.st != LV_OK) {
+            st = msg.st;
+            if (err != NULL)
+                *err = msg.err;
+        }
+    }
     return st;
 }

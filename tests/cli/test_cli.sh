@@ -243,7 +243,8 @@ json_ok "simulate --json" "$work/sim.json" "n=$num
 assert list(d) == ['model', 'ok', 'method', 'tolerance', 'end_time', 'stop', 'stats', 'final'], list(d)
 assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stop_time'
 assert n(d['tolerance']) and n(d['end_time']) and abs(d['end_time'] - 1) < 1e-12
-assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'row_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert d['stats']['rhs_evals'] == d['stats']['rhs_evals_steps'] + d['stats']['rhs_evals_output']
 assert all(n(v) for v in d['stats'].values()) and d['stats']['states'] == 2 and d['stats']['rows'] == 501
 assert list(d['final']) == ['x', 'time'] and n(d['final']['x']) and d['final']['time'] == 1"
 "$lvsim" simulate oscillator --json --stop 1000 --max-steps 50 --format none > "$work/simfail.json" 2> /dev/null; rc=$?
@@ -257,7 +258,8 @@ json_ok "compare --json" "$work/cmp.json" "n=$num
 assert list(d) == ['mission', 'output_interval', 'end_to_end', 'sequential', 'bodies'], list(d)
 assert d['mission'].endswith('mission.yaml') and d['output_interval'] == 1
 for s in ('end_to_end', 'sequential'):
-    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'jac_evals', 'cpu_time'], list(d[s])
+    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'jac_evals', 'cpu_time'], list(d[s])
+    assert d[s]['rhs_evals'] == d[s]['rhs_evals_steps'] + d[s]['rhs_evals_output']
     assert d[s]['method'] == 'dassl' and abs(d[s]['tolerance'] - 1e-7) < 1e-20
     assert all(n(v) for k, v in d[s].items() if k != 'method')
 assert d['end_to_end']['states'] == 39 and d['sequential']['states'] == 13
@@ -287,6 +289,39 @@ p = {q['name']: q for q in d}
 assert p['stage1.propellant_mass'] == {'name': 'stage1.propellant_mass', 'value': 27000, 'unit': 'kg', 'rule': '>= 0', 'line': $line_prop}, p['stage1.propellant_mass']
 assert p['P1.stop_time']['value'] == 140 and p['P1.stop_time']['unit'] == 's' and p['P1.stop_time']['line'] == $line_stop
 assert any(q['line'] is None for q in d) and all(q['line'] is None or q['line'] > 0 for q in d)"
+
+# --outputs: only what is asked for is written; 'none' writes nothing, not even the folder;
+# the exports need the files they read; unknown names are refused
+expect 0 "manifest.json, summary.json, 5 phase files" -- "$lvsim" run "$mission" -o "$work/out_some" --outputs csv,summary
+files=$(cd "$work/out_some" && ls | tr '\n' ' ')
+[ "$files" = "manifest.json phase_1_P1.csv phase_2_P2.csv phase_3_P3.csv phase_4_P4.csv phase_5_P5.csv summary.json " ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs csv,summary wrote: $files"; fails=$((fails + 1)); }
+grep -q '"mat"' "$work/out_some/summary.json" || grep -q '"trajectory"' "$work/out_some/summary.json" \
+  && { echo "FAIL: summary.json names files that were not written"; fails=$((fails + 1)); } || pass=$((pass + 1))
+expect 0 "nothing written" -- "$lvsim" run "$mission" -o "$work/out_none" --outputs none
+[ ! -e "$work/out_none" ] && pass=$((pass + 1)) || { echo "FAIL: --outputs none made $work/out_none"; fails=$((fails + 1)); }
+expect 0 "manifest.json, mission.kml, summary.json" -- "$lvsim" run "$mission" -o "$work/out_kml" --outputs body,summary,kml --no-plots
+[ -f "$work/out_kml/mission.kml" ] && [ ! -e "$work/out_kml/mission.czml" ] && [ ! -e "$work/out_kml/phase_1_P1.mat" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs body,summary,kml"; fails=$((fails + 1)); }
+expect 2 "czml, kml and oem read summary and body" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs czml
+expect 2 "unknown output .* 'pdf'" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs mat,pdf
+expect 2 "--json prints summary.json" -- "$lvsim" run "$mission" --json --outputs mat
+
+# PLplot is loaded only when a figure is drawn (liblvsim_post dlopens lvsim_plot.so): not by
+# check or run --no-plots, by plot
+loaded() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libplplot" || true; }
+[ "$(loaded "$lvsim" check "$mission")" -eq 0 ] && [ "$(loaded "$lvsim" run "$mission" -o "$work/ld1" --no-plots)" -eq 0 ] \
+  && pass=$((pass + 1)) || { echo "FAIL: PLplot loaded without a plot"; fails=$((fails + 1)); }
+# libmatio (and the ~40 libraries of its HDF5 build) only when a MAT file is read: result
+# files are written without it (the MAT v4 sink streams its own bytes)
+matio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libmatio" || true; }
+d3="$src/examples/dof3-branch/mission.yaml"
+[ "$(matio "$lvsim" check "$d3")" -eq 0 ] && [ "$(matio "$lvsim" run "$d3" -o "$work/ld2" --outputs csv,summary)" -eq 0 ] \
+  && [ "$(matio "$lvsim" run "$d3" -o "$work/ld3" --outputs mat)" -eq 0 ] && [ -f "$work/ld3/phase_1_ascent.mat" ] \
+  && [ "$(matio "$lvsim" check "$mission")" -gt 0 ] \
+  && pass=$((pass + 1)) || { echo "FAIL: libmatio loaded without a MAT file to read, or not with one"; fails=$((fails + 1)); }
+[ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
