@@ -40,23 +40,27 @@ typedef struct run_ui {
     int table;          /* print the phase table (not --json) */
     size_t next;        /* the next phase to print, in run order */
     unsigned char *ended;
+    int wname;          /* width of the phase-name columns: the longest name, >= 12 */
 } run_ui;
 
-static void print_row(const lv_run *run, size_t k)
+/* Width of the end column: the longest end words of the examples ("target_overshoot"). */
+#define END_W 16
+
+static void print_row(const lv_run *run, size_t k, int w)
 {
     const lv_mission *m = lv_run_mission(run);
     const lv_phase_result *r = lv_run_result(run, k);
     const int parent = lv_mission_phase_parent(m, k);
     const lv_sim_report *rep = &r->report;
     if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING) {
-        printf("%-3zu %-12s %-10s %9s %9s  %-10s %7s %8s %4s %4s %9s  %s\n", k + 1, r->name,
-               parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", "-", "-",
-               "-", "-", "-", "-", phase_state_name(r->state));
+        printf("%-3zu %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", k + 1, w, r->name, w,
+               parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", END_W,
+               "-", "-", "-", "-", "-", "-", phase_state_name(r->state));
         return;
     }
-    printf("%-3zu %-12s %-10s %9.3f %9.3f  %-10s %7ld %8ld %4ld %4ld %9.2f  %s\n", k + 1,
-           r->name, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", r->t_start,
-           r->t_end, end_word(r), rep->stats.steps, rep->stats.rhs_evals,
+    printf("%-3zu %-*s %-*s %9.3f %9.3f  %-*s %7ld %8ld %4ld %4ld %9.2f  %s\n", k + 1, w,
+           r->name, w, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", r->t_start,
+           r->t_end, END_W, end_word(r), rep->stats.steps, rep->stats.rhs_evals,
            rep->stats.state_events, rep->stats.time_events, 1e3 * rep->stats.cpu_time,
            phase_state_name(r->state));
 }
@@ -73,7 +77,7 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     if (r->state == LV_PHASE_FAILED)
         fprintf(stderr, "lvsim: %s\n", r->error);
     while (ui->table && ui->next < n && ui->ended[ui->next])
-        print_row(run, ui->next++);
+        print_row(run, ui->next++, ui->wname);
     progress_print_end(ui->prog);
 }
 
@@ -275,7 +279,11 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         fprintf(stderr, "lvsim: removed '%s', the unfinished folder of an interrupted run\n",
                 lv_outdir_stale(od, i));
     const char *stage = od != NULL ? lv_outdir_path(od) : NULL;
-    run_ui ui = {progress_new(n, quiet), !json, 0, calloc(n + 1, 1)};
+    run_ui ui = {progress_new(n, quiet), !json, 0, calloc(n + 1, 1), 12};
+    for (size_t k = 0; k < n; k++) {
+        const int len = (int)strlen(lv_mission_phase_name(m, k));
+        ui.wname = len > ui.wname ? len : ui.wname;
+    }
     lv_run *run = NULL;
     if (ui.ended == NULL || (st = lv_run_create(m, &run, &err)) != LV_OK) {
         if (ui.ended == NULL)
@@ -294,8 +302,9 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
                    lv_outdir_final(od));
         else
             printf("mission '%s': %zu phases (nothing written)\n", lv_mission_name(m), n);
-        printf("%-3s %-12s %-10s %9s %9s  %-10s %7s %8s %4s %4s %9s  %s\n", "#", "phase", "from",
-               "t0 [s]", "t1 [s]", "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
+        printf("%-3s %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", "#", ui.wname, "phase",
+               ui.wname, "from", "t0 [s]", "t1 [s]", END_W, "end", "steps", "rhs", "sev", "tev",
+               "cpu [ms]", "status");
         fflush(stdout);
     }
     /* rows are kept in memory only for the body files, which are merged from them */
@@ -311,7 +320,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
      * after them */
     progress_print_begin(ui.prog);
     while (ui.table && ui.next < n)
-        print_row(run, ui.next++);
+        print_row(run, ui.next++, ui.wname);
     progress_print_end(ui.prog);
     /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left */
     if (progress_interrupted()) {

@@ -25,6 +25,7 @@ typedef struct lv_guid {
     double cs_heading[2]; /* cos, sin of s.heading */
     double cs_pitch[2];   /* BOOSTBACK: cos, sin of s.pitch */
     lv_vec3 target;       /* unit vector of the target point, ECEF (geocentric direction) */
+    lv_vec3 target_r;     /* m, the target point on the ellipsoid, ECEF */
     int need_alpha, need_beta; /* the aerodynamic tables read alpha, beta (else the right-hand
                                   side skips them: outputs only) */
 } lv_guid;
