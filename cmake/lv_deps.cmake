@@ -35,13 +35,26 @@ message(STATUS "libmatio, loaded at run time: ${LV_MATIO_SONAME}")
 add_library(lv_matio_headers INTERFACE)
 target_include_directories(lv_matio_headers INTERFACE ${MATIO_INCLUDE_DIRS})
 target_compile_definitions(lv_matio_headers INTERFACE LV_MATIO_SONAME="${LV_MATIO_SONAME}")
+# HDF5 the same way (src/io/hdf5_dl.c): only a MAT v7.3 variable libmatio cannot classify needs
+# it. Its headers are used; the SONAME of the library found is what hdf5_dl.c opens.
+set(LV_HDF5_SONAME "libhdf5_serial.so")
+find_library(LV_HDF5_LIB NAMES hdf5_serial hdf5 HINTS ${HDF5_LIBRARY_DIRS})
+if(LV_HDF5_LIB AND CMAKE_OBJDUMP)
+  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_HDF5_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
+  if(_lv_od MATCHES "SONAME +([^ \n]+)")
+    set(LV_HDF5_SONAME "${CMAKE_MATCH_1}")
+  endif()
+endif()
+message(STATUS "HDF5, loaded at run time: ${LV_HDF5_SONAME}")
+target_include_directories(lv_matio_headers INTERFACE ${HDF5_INCLUDE_DIRS})
+target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_SONAME}")
 
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::HDF5 PkgConfig::YAML Threads::Threads dragonbox::dragonbox lv_fastfloat
+  lv_matio_headers PkgConfig::YAML Threads::Threads dragonbox::dragonbox lv_fastfloat
   ${CMAKE_DL_LIBS} m)
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
