@@ -15,6 +15,9 @@ pkgs=(
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
   chromium                             # headless browser for the viewer test (ctest test_viewer)
+  librandom123-dev                     # Philox counter-based generator: Monte Carlo dispersions
+  libsqlite3-dev sqlite3               # Monte Carlo campaign database (and its dumps in the tests)
+  libopenmpi-dev openmpi-bin           # mpirun -np K lvsim mc (optional in the build; tested in CI)
 )
 
 missing=()
