@@ -6,6 +6,7 @@ add_executable(lvsim_cli
   cli/cmd_models.c
   cli/cmd_simulate.c
   cli/cmd_run.c
+  cli/cmd_mc.c
   cli/cmd_check.c
   cli/cmd_params.c
   cli/cmd_compare.c
