@@ -1,3 +1,13 @@
 add_test(NAME test_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:lvsim_cli>)
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
          $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post>)
+# lvsim mc (issue 16): databases equal across -j 1 / -j 2, kill -9 then --resume, errors.
+add_test(NAME test_mc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_mc.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# ... and under `mpirun --oversubscribe -np 2` when MPI is built in (OpenMPI leaks at exit by
+# design: not under the sanitizers).
+if(MPI_C_FOUND)
+  add_test(NAME test_mc_mpi COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_mc.sh
+           $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR} 1)
+  set_tests_properties(test_mc_mpi PROPERTIES LABELS no-asan)
+endif()
