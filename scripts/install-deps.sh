@@ -18,6 +18,7 @@ pkgs=(
   librandom123-dev                     # Philox counter-based generator: Monte Carlo dispersions
   libsqlite3-dev sqlite3               # Monte Carlo campaign database (and its dumps in the tests)
   libopenmpi-dev openmpi-bin           # mpirun -np K lvsim mc (optional in the build; tested in CI)
+  time bc                              # bench/bench_mc.sh: a whole process's wall and CPU time
 )
 
 missing=()
