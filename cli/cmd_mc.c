@@ -225,7 +225,7 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
         if (sst != LV_OK)
             return print_err("lvsim", &serr, exit_code_for_input(sst));
         printf("statistics: %s/stats.json, stats.csv, ellipses.csv, outcomes.csv, "
-               "sensitivity.csv, footprint.kml%s\n", outdir, plots ? ", index.html" : "");
+               "sensitivity.csv, footprint.kml%s\n", outdir, plots ? ", plots/, index.html" : "");
     }
     return EXIT_OK;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "campaign/mc_data.h"
+#include "campaign/mc_plot.h"
 #include "core/status.h"
 #include "io/atomic.h"
 #include "lvsim/lv_campaign.h"
@@ -42,6 +43,11 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
     if (st != LV_OK)
         return st;
     char path[4200];
+    lv_mc_figs figs;
+    if ((st = lv_mc_plot_figures(d, outdir, &figs, err)) != LV_OK) {
+        lv_mc_data_free(d);
+        return st;
+    }
     snprintf(path, sizeof path, "%s/index.html", outdir);
     lv_atomic a;
     if ((st = lv_atomic_open(&a, path, err)) != LV_OK) {
@@ -144,6 +150,15 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
                     s.p50, s.p99);
         }
         fputs("</table>\n", f);
+    }
+    if (figs.n > 0)
+        fputs("<h2>Figures</h2>\n", f);
+    for (size_t i = 0; i < figs.n; i++) {
+        fprintf(f, "<figure><img src=\"plots/%s.png\" width=\"900\" alt=\"", figs.stem[i]);
+        esc(f, figs.title[i]);
+        fputs("\"><figcaption>", f);
+        esc(f, figs.title[i]);
+        fputs("</figcaption></figure>\n", f);
     }
     fputs("<p>Statistics: sample mean and standard deviation (n - 1), percentiles by linear "
           "interpolation (Hyndman &amp; Fan definition 7), ellipses of the 2 x 2 sample "

@@ -5,4 +5,5 @@ list(APPEND LV_POST_SOURCES
   src/campaign/campaign.c
   src/campaign/store.c
   src/campaign/stats.c
-  src/campaign/plot.c)
+  src/campaign/plot.c
+  src/campaign/mc_plot.c)
