@@ -77,6 +77,7 @@ void lv_mc_data_free(lv_mc_data *d)
         free(p->error);
         free(p->state);
         free(p->row_of);
+        free(p->run);
         for (size_t c = 0; c < p->n_cols; c++)
             free(p->col[c]);
         free(p->col);
