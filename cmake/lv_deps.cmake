@@ -49,6 +49,17 @@ message(STATUS "HDF5, loaded at run time: ${LV_HDF5_SONAME}")
 target_include_directories(lv_matio_headers INTERFACE ${HDF5_INCLUDE_DIRS})
 target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_SONAME}")
 
+# Random123 (Debian: librandom123-dev, header-only): the Philox4x32-10 counter-based generator
+# of the dispersions (src/mission/dispersion.c).
+find_path(RANDOM123_INCLUDE_DIR Random123/philox.h REQUIRED)
+# SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
+pkg_check_modules(SQLITE3 REQUIRED IMPORTED_TARGET sqlite3)
+# OpenMPI (Debian: libopenmpi-dev, openmpi-bin), optional: `mpirun -np K lvsim mc` when found.
+option(LV_WITH_MPI "Build lvsim mc with MPI when an MPI library is found" ON)
+if(LV_WITH_MPI)
+  find_package(MPI COMPONENTS C QUIET)
+endif()
+
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
@@ -56,10 +67,12 @@ target_link_libraries(lv_deps INTERFACE
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
   lv_matio_headers PkgConfig::YAML Threads::Threads dragonbox::dragonbox lv_fastfloat
   ${CMAKE_DL_LIBS} m)
+target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE ${CMAKE_DL_LIBS} m)
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE PkgConfig::SQLITE3
+  Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)
 target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG m)

@@ -210,6 +210,7 @@ typedef struct lv_mission_def {
     size_t n_slots;  /* every number a run may vary */
     lv_slot_def *slots;
     size_t cap_slots;
+    struct lv_disp_def *disp; /* `dispersions:` (mission/dispersion.h), or NULL */
 } lv_mission_def;
 
 /* Parse and validate a mission file. Errors are "file:line:column: message". */

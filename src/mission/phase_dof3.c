@@ -280,7 +280,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
             ec->exit_area = val(bc, ed->exit_area);
             ec->throttle_min = val(bc, ed->throttle_min);
             ec->throttle_max = val(bc, ed->throttle_max);
-            ec->table = ed->table;
+            ec->table = lv_build_table(bc, ed->table);
         }
     }
     cfg.n_engines = ne;

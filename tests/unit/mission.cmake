@@ -33,3 +33,7 @@ lv_add_unit_test(test_ends unit/test_ends.c)
 lv_add_unit_test(test_guidance unit/test_guidance.c)
 target_compile_definitions(test_guidance PRIVATE
   LV_MISSION_DIR="${PROJECT_SOURCE_DIR}/tests/missions")
+# Monte Carlo dispersions and campaigns (issue 16): the generator, streams, correlations, the
+# analytic Isp scatter, table dispersions, bad inputs (tests/missions/mc).
+lv_add_unit_test(test_campaign unit/test_campaign.c)
+target_link_libraries(test_campaign PRIVATE lvsim_post_static PkgConfig::SQLITE3)
