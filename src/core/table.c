@@ -341,6 +341,24 @@ lv_status lv_table_create(const lv_table_spec *spec, lv_table **out, lv_err *err
         if (t->out_name[k] == NULL || t->out_unit[k] == NULL)
             goto fail;
     }
+    /* a column is found by its name: two of one name would make one of them unreachable */
+    for (size_t k = 0; k < t->n_out; k++) {
+        for (size_t j = 0; j < k; j++)
+            if (strcmp(t->out_name[j], t->out_name[k]) == 0) {
+                lv_status dst = lv_fail(err, LV_ERR_INPUT, "table '%s': two outputs are named "
+                                        "'%s' (columns %zu and %zu)", tname(spec),
+                                        t->out_name[k], j + 1, k + 1);
+                lv_table_free(t);
+                return dst;
+            }
+        for (size_t d = 0; d < t->n_dims; d++)
+            if (strcmp(t->axis_name[d], t->out_name[k]) == 0) {
+                lv_status dst = lv_fail(err, LV_ERR_INPUT, "table '%s': '%s' names both an axis "
+                                        "and an output", tname(spec), t->out_name[k]);
+                lv_table_free(t);
+                return dst;
+            }
+    }
     *out = t;
     return LV_OK;
 

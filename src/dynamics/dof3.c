@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "core/units.h"
 #include "core/vec3.h"
 #include "dynamics/flight.h"
@@ -740,9 +741,15 @@ static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
                        "the first named '%s')",
                        lv_table_name(tab), lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
     int any = 0;
+    lv_status st = lv_table_expect_unit(tab, 1, 0, "s", "dof3: inputs", err);
+    if (st != LV_OK)
+        return st;
     for (int k = 0; k < U_N; k++) {
         size_t idx;
         if (lv_table_out_index(tab, input_names[k], &idx, NULL) == LV_OK) {
+            if ((st = lv_table_expect_unit(tab, 0, idx, k < 3 ? "rad" : "1", "dof3: inputs",
+                                           err)) != LV_OK)
+                return st;
             m->inputs.k[k] = (int)idx;
             any = 1;
         }

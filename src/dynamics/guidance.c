@@ -13,11 +13,12 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "core/units.h"
 
 #define V_AIR_MIN 1e-6 /* m/s, as flight.c: below, no aerodynamic angles */
 
-static const char *const law_names[] = {"inputs", "attitude", "gravity_turn", "tangent",
+static const char *const law_names[] = {"inputs", "attitude", "gravity_turn", "tangent steering",
                                         "heading", "retrograde", "boostback"};
 
 static int is_axis(const char *name, const char *a, const char *b)
@@ -42,6 +43,9 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
             return lv_fail(err, LV_ERR_INPUT, "alpha table '%s' has no "
                            "output 'alpha' (its first is '%s')", lv_table_name(t),
                            lv_table_out_name(t, 0));
+        lv_status st = lv_table_expect_unit(t, 1, 0, "1", NULL, err);
+        if (st != LV_OK || (st = lv_table_expect_unit(t, 0, idx, "rad", NULL, err)) != LV_OK)
+            return st;
         if (g != NULL)
             g->k[0] = (int)idx;
         return LV_OK;
@@ -59,6 +63,10 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
         return lv_fail(err, LV_ERR_INPUT, "table '%s' must have one axis "
                        "named time, altitude, speed or mach (it has %zu, the first '%s')",
                        lv_table_name(t), lv_table_n_dims(t), lv_table_axis_name(t, 0));
+    static const char *const axis_si[] = {"s", "m", "m/s", "1"};
+    lv_status ust = lv_table_expect_unit(t, 1, 0, axis_si[axis], NULL, err);
+    if (ust != LV_OK)
+        return ust;
     static const char *const aero_out[3] = {"alpha", "beta", "mu"};
     static const char *const att_out[3] = {"pitch", "heading", "roll"};
     const char *const *names = frame == LV_FRAME_AERO ? aero_out : att_out;
@@ -66,6 +74,8 @@ lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame 
     for (int i = 0; i < 4; i++) {
         k[i] = -1;
         if (lv_table_out_index(t, i < 3 ? names[i] : "throttle", &idx, NULL) == LV_OK) {
+            if ((ust = lv_table_expect_unit(t, 0, idx, i < 3 ? "rad" : "1", NULL, err)) != LV_OK)
+                return ust;
             k[i] = (int)idx;
             any = 1;
         }
@@ -119,10 +129,10 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
         break;
     case LV_STEER_TANGENT:
         if (s->frame == LV_FRAME_AERO)
-            return lv_fail(err, LV_ERR_INPUT, "guidance 'tangent': the pitch is measured in the "
+            return lv_fail(err, LV_ERR_INPUT, "guidance 'tangent steering': the pitch is measured in the "
                            "local or inertial frame, not the aerodynamic one");
         if (s->a == 0.0 && s->c == 0.0 && s->b == 0.0 && s->d == 0.0)
-            return lv_fail(err, LV_ERR_INPUT, "guidance 'tangent': a, b, c and d are all 0");
+            return lv_fail(err, LV_ERR_INPUT, "guidance 'tangent steering': a, b, c and d are all 0");
         break;
     case LV_STEER_HEADING:
         if (!has_aero)
@@ -199,7 +209,9 @@ const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, dou
         if (t == t1 && s->kick_time > 0.0)
             return "guidance: end of the vertical rise, start of the kick";
         if (t == t1 + s->kick_time)
-            return "guidance: end of the kick, zero angle of attack";
+            return s->kick_time > 0.0 ? "guidance: end of the kick, zero angle of attack"
+                                      : "guidance: end of the vertical rise, zero angle of "
+                                        "attack";
     }
     if (s->law == LV_STEER_ATTITUDE && s->table != NULL && g->axis == LV_GAXIS_TIME) {
         size_t n = 0;

@@ -9,6 +9,8 @@
 #include "core/status.h"
 #include "mission/aero_def.h"
 
+#include "core/table_unit.h"
+
 static const char *const coef_names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
 static const char *const axis_names[] = {"mach", "alpha", "beta", "altitude"};
 
@@ -62,7 +64,13 @@ static lv_status check_axes(const lv_pctx *c, const lv_ynode *at, const char *wh
         if (used[k]++)
             return lv_pk_fail(c, at, "%s: %s: table '%s': axis '%s' appears twice", what, key,
                               lv_table_name(t), ax);
+        static const char *const axis_si[] = {"1", "rad", "rad", "m"};
+        if (lv_table_expect_unit(t, 1, d, axis_si[k], NULL, c->err) != LV_OK)
+            return lv_pk_fail(c, at, "%s: %s: %s", what, key, c->err->msg);
     }
+    for (size_t o = 0; o < lv_table_n_out(t); o++) /* coefficients are dimensionless */
+        if (lv_table_expect_unit(t, 0, o, "1", NULL, c->err) != LV_OK)
+            return lv_pk_fail(c, at, "%s: %s: %s", what, key, c->err->msg);
     return LV_OK;
 }
 

@@ -85,7 +85,11 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
                                 int has_aero, lv_guidance_def *g)
 {
     static const char *const frames[] = {"aero", "local", "inertial", NULL};
-    const lv_range any = LV_RANGE_ANY, nonneg = LV_RANGE_NONNEG, pos = LV_RANGE_POS;
+    const lv_range any = LV_RANGE_ANY, nonneg = LV_RANGE_NONNEG;
+    const lv_range lat = {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};   /* [-90, 90] deg */
+    const lv_range half = {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};  /* pitch, alpha: [-90, 90] deg */
+    const lv_range kick = {0.0, 0.5 * LV_PI, 0, 0};          /* [0, 90] deg */
+    const lv_range gain = {0.0, 100.0, 1, 0};                /* (0, 100] */
     const char *G = "guidance";
     char what[LV_WHAT_MAX];
     const lv_ynode *v;
@@ -111,7 +115,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
     g->rise_time = g->kick = g->kick_time = g->heading = LV_NO_SLOT;
     g->a = g->b = g->c = g->d = LV_NO_SLOT;
     g->bank_max = g->gain = g->n_max = g->alpha = g->pitch = LV_NO_SLOT;
-    if ((st = num(c, n, what, phase, G, "target_lat", "rad", any, 0, NAN, &g->target_lat)) !=
+    if ((st = num(c, n, what, phase, G, "target_lat", "rad", lat, 0, NAN, &g->target_lat)) !=
             LV_OK ||
         (st = num(c, n, what, phase, G, "target_lon", "rad", any, 0, NAN, &g->target_lon)) !=
             LV_OK)
@@ -143,9 +147,9 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
                                   "inertial" : "aero", frames[g->frame], mine[0], mine[1],
                                   mine[2]);
         }
-        for (int i = 0; i < 3; i++)
-            if ((st = num(c, n, what, phase, G, mine[i], "rad", any, 0, 0.0, &g->angle[i])) !=
-                LV_OK)
+        for (int i = 0; i < 3; i++) /* pitch (and alpha) within +-90 deg; the others any */
+            if ((st = num(c, n, what, phase, G, mine[i], "rad", i == 0 ? half : any, 0, 0.0,
+                          &g->angle[i])) != LV_OK)
                 return st;
         if ((v = lv_pk_get(n, "table")) != NULL) {
             if ((st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
@@ -158,17 +162,21 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
     }
     case LV_STEER_GRAVITY_TURN:
         if ((st = num(c, n, what, phase, G, "rise_time", "s", nonneg, 0, 0.0, &g->rise_time)) ||
-            (st = num(c, n, what, phase, G, "kick", "rad", nonneg, 1, 0.0, &g->kick)) ||
+            (st = num(c, n, what, phase, G, "kick", "rad", kick, 1, 0.0, &g->kick)) ||
             (st = num(c, n, what, phase, G, "kick_time", "s", nonneg, 1, 0.0, &g->kick_time)) ||
             (st = num(c, n, what, phase, G, "heading", "rad", any, 1, 0.0, &g->heading)))
             return st;
-        if (c->m->slots[g->kick].value > 0.5 * LV_PI)
-            return lv_pk_fail(c, lv_pk_get(n, "kick") ? lv_pk_get(n, "kick")
-                                                      : lv_pk_get(n, "kick_deg"),
-                              "%s: the kick must be within [0, 90] deg", what);
         if (c->m->slots[g->kick].value > 0.0 && !(c->m->slots[g->kick_time].value > 0.0))
             return lv_pk_fail(c, lv_pk_get(n, "kick_time"), "%s: a kick needs kick_time > 0 s",
                               what);
+        for (int i = 0; i < 2; i++) { /* durations the integrator's clock can tell from 0 */
+            const lv_slot sl = i == 0 ? g->rise_time : g->kick_time;
+            const double dt = c->m->slots[sl].value;
+            if (dt > 0.0 && dt < 1e-9)
+                return lv_pk_fail(c, lv_pk_get(n, i == 0 ? "rise_time" : "kick_time"),
+                                  "%s: %s = %g s: give 0 or at least 1e-9 s", what,
+                                  i == 0 ? "rise_time" : "kick_time", dt);
+        }
         return LV_OK;
     case LV_STEER_TANGENT: {
         const int bilinear = w == 3;
@@ -176,10 +184,13 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         if (g->frame == LV_FRAME_AERO)
             return lv_pk_fail(c, v, "%s: the pitch is measured in the local or the inertial "
                               "frame", what);
+        /* c > 0: the denominator c + d tau is positive at the phase's start (theta within
+         * +-90 deg); linear tangent: no c, d (1, 0) */
+        const lv_range cpos = LV_RANGE_POS;
         if ((st = num(c, n, what, phase, G, "a", "", any, 1, 0.0, &g->a)) ||
             (st = num(c, n, what, phase, G, "b", "1/s", any, 1, 0.0, &g->b)) ||
-            (st = num(c, n, what, phase, G, "c", "", any, bilinear, 1.0, &g->c)) ||
-            (st = num(c, n, what, phase, G, "d", "1/s", any, bilinear, 0.0, &g->d)) ||
+            (st = num(c, n, what, phase, G, "c", "", cpos, bilinear, NAN, &g->c)) ||
+            (st = num(c, n, what, phase, G, "d", "1/s", any, bilinear, NAN, &g->d)) ||
             (st = num(c, n, what, phase, G, "heading", "rad", any, 1, 0.0, &g->heading)))
             return st;
         return LV_OK;
@@ -191,14 +202,15 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         const lv_range bank = {0.0, 0.5 * LV_PI, 1, 0};
         if ((st = num(c, n, what, phase, G, "bank_max", "rad", bank, 0, 45.0 * LV_DEG,
                       &g->bank_max)) ||
-            (st = num(c, n, what, phase, G, "gain", "", pos, 0, 1.0, &g->gain)) ||
+            (st = num(c, n, what, phase, G, "gain", "", gain, 0, 1.0, &g->gain)) ||
             (st = num(c, n, what, phase, G, "n_max", "", nonneg, 0, 0.0, &g->n_max)))
             return st;
         const lv_ynode *at = lv_pk_get(n, "alpha_table");
         if (at != NULL && (lv_pk_get(n, "alpha") || lv_pk_get(n, "alpha_deg")))
             return lv_pk_fail(c, lv_pk_key(n, "alpha_table"), "%s: alpha and alpha_table given "
                               "both", what);
-        if ((st = num(c, n, what, phase, G, "alpha", "rad", any, at == NULL, 0.0, &g->alpha)))
+        if ((st = num(c, n, what, phase, G, "alpha", "rad", half, at == NULL,
+                      at == NULL ? 0.0 : NAN, &g->alpha)))
             return st;
         if (at != NULL) {
             if ((st = lv_pk_table(c, lv_pk_key(n, "alpha_table"), at, what, LV_EXTRAP_CLAMP,
@@ -211,7 +223,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         return LV_OK;
     }
     case LV_STEER_BOOSTBACK:
-        return num(c, n, what, phase, G, "pitch", "rad", any, 0, 0.0, &g->pitch);
+        return num(c, n, what, phase, G, "pitch", "rad", half, 0, 0.0, &g->pitch);
     default:
         return LV_OK;
     }
@@ -268,8 +280,9 @@ static lv_status parse_throttle(const lv_pctx *c, const lv_ynode *n, const char 
         return st;
     if (g->q_max == LV_NO_SLOT && lv_pk_get(n, "q_gain") != NULL)
         return lv_pk_fail(c, lv_pk_key(n, "q_gain"), "%s: q_gain applies to q_max", what);
+    const lv_range qg = {0.0, 100.0, 1, 0}; /* (0, 100] 1/s */
     if (g->q_max != LV_NO_SLOT &&
-        (st = num(c, n, what, phase, T, "q_gain", "1/s", pos, 0, 1.0, &g->q_gain)))
+        (st = num(c, n, what, phase, T, "q_gain", "1/s", qg, 0, 1.0, &g->q_gain)))
         return st;
     return LV_OK;
 }

@@ -78,7 +78,7 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
         if (e->kind != LV_END_VAR && e->kind != LV_END_TIME)
             continue;
         p->stop_end[q] = j;
-        p->event_names[md->n_events + q++] = strdup(e->kind == LV_END_TIME ? "time" : e->var);
+        p->event_names[md->n_events + q++] = strdup(e->name);
     }
     for (size_t i = 0; i < p->n_final; i++)
         if (p->final_names[i] == NULL)

@@ -159,6 +159,9 @@ typedef struct lv_end_def {
     lv_dir direction;
     char *var;          /* LV_END_VAR: the variable's name ("mach", "der(h)") */
     int deg;            /* LV_END_VAR: the value was written in degrees (`fpa_deg`) */
+    char name[288];     /* the event's name in results and the value's slot after
+                           "<phase>.end.": "altitude", "mach", "time"; the second end of a
+                           kind (or of a variable) "altitude_2", the third "_3" */
     lv_src_loc loc;
 } lv_end_def;
 

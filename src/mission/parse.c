@@ -18,6 +18,7 @@
 
 #include "core/names.h"
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "core/units.h"
 #include "lvsim/lv_planet.h"
 #include "mission/dispersion.h"
@@ -883,13 +884,21 @@ static lv_status table_outputs(const lv_pctx *c, const lv_ynode *key, const char
         return lv_pk_fail(c, key, "%s: table '%s' has %zu axes; an engine table has one (time, s)",
                     what, e->table_file, lv_table_n_dims(t));
     const size_t no = lv_table_n_out(t);
+    int found = 0;
     if (lv_table_out_index(t, "thrust", &e->thrust_out, NULL) == LV_OK &&
-        lv_table_out_index(t, "mdot", &e->mdot_out, NULL) == LV_OK)
-        return table_nonnegative(c, key, what, e);
-    if (no == 2 && strcmp(lv_table_out_name(t, 0), "col2") == 0 &&
-        strcmp(lv_table_out_name(t, 1), "col3") == 0) {
+        lv_table_out_index(t, "mdot", &e->mdot_out, NULL) == LV_OK) {
+        found = 1;
+    } else if (no == 2 && strcmp(lv_table_out_name(t, 0), "col2") == 0 &&
+               strcmp(lv_table_out_name(t, 1), "col3") == 0) {
         e->thrust_out = 0;
         e->mdot_out = 1;
+        found = 1;
+    }
+    if (found) { /* read in s, N, kg/s: a unit written must be those */
+        if (lv_table_expect_unit(t, 1, 0, "s", NULL, c->err) != LV_OK ||
+            lv_table_expect_unit(t, 0, e->thrust_out, "N", NULL, c->err) != LV_OK ||
+            lv_table_expect_unit(t, 0, e->mdot_out, "kg/s", NULL, c->err) != LV_OK)
+            return lv_pk_fail(c, key, "%s: %s", what, c->err->msg);
         return table_nonnegative(c, key, what, e);
     }
     char have[192] = "";
@@ -1303,6 +1312,21 @@ const char *lv_end_kind_name(lv_end_kind k)
     return (unsigned)k < 7 ? end_kind_names[k] : "?";
 }
 
+/* e->name: the kind's (or variable's) name, "_2", "_3" for the second and third of a kind
+ * among the phase's ends prev[0..k). */
+static void end_name(size_t k, const lv_end_def *prev, lv_end_def *e)
+{
+    const char *label = e->kind == LV_END_VAR ? e->var : end_kind_names[e->kind];
+    size_t same = 0;
+    for (size_t j = 0; j < k; j++)
+        same += prev[j].kind == e->kind &&
+                (e->kind != LV_END_VAR || strcmp(prev[j].var, e->var) == 0);
+    if (same > 0)
+        snprintf(e->name, sizeof e->name, "%s_%zu", label, same + 1);
+    else
+        snprintf(e->name, sizeof e->name, "%s", label);
+}
+
 /* The value of end event #k of phase `phase` (of kind e->kind) at `v` (NULL: the ground, 0 m)
  * as slot "<phase>.end.<kind>", "_2", "_3" for the second and third of a kind. */
 static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
@@ -1310,21 +1334,15 @@ static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
                           lv_end_def *e)
 {
     char slot[2 * LV_NAME_MAX + 300];
-    const char *label = e->kind == LV_END_VAR ? e->var : end_kind_names[e->kind];
-    size_t same = 0; /* earlier ends of this kind (or variable) */
-    for (size_t j = 0; j < k; j++)
-        same += prev[j].kind == e->kind &&
-                (e->kind != LV_END_VAR || strcmp(prev[j].var, e->var) == 0);
-    int len = snprintf(slot, sizeof slot, "%s.end.%s", phase, label);
-    if (same > 0 && len > 0 && (size_t)len < sizeof slot)
-        snprintf(slot + len, sizeof slot - (size_t)len, "_%zu", same + 1);
+    end_name(k, prev, e);
+    snprintf(slot, sizeof slot, "%s.end.%s", phase, e->name);
     /* a variable's unit is known once the model is built (mission.c); "" until then */
     const char *unit = e->kind == LV_END_SPEED ? "m/s"
                        : e->kind == LV_END_TIME ? "s"
                        : e->kind == LV_END_VAR  ? (e->deg ? "rad" : "")
                                                 : "m";
     const lv_range range = e->kind == LV_END_SPEED ? LV_RANGE_NONNEG
-                           : e->kind == LV_END_TIME ? LV_RANGE_POS
+                           : e->kind == LV_END_TIME ? (lv_range){1e-9, HUGE_VAL, 0, 0} /* the clock tells it from 0 */
                                                     : LV_RANGE_ANY;
     if (v == NULL)
         return lv_pk_slot_default(c, slot, unit, 0.0, range, &e->value);
@@ -1358,6 +1376,7 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
         e->kind = i == 0 ? LV_END_BURNOUT : i == 1 ? LV_END_APOGEE : LV_END_IMPACT;
         if (e->kind == LV_END_IMPACT) /* ground level 0 m */
             return end_slot(c, NULL, what, NULL, phase, k, prev, e);
+        end_name(k, prev, e);
         return LV_OK;
     }
     if (n->kind != LV_YNODE_MAP)
@@ -1379,6 +1398,9 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
                         "as two entries", what, kind->text, key);
         kind = n->kids[j];
     }
+    if (output != NULL && kind != NULL)
+        return lv_pk_fail(c, kind, "%s: an entry with 'output' takes 'value' and 'direction' "
+                          "only, not '%s'", what, kind->text);
     if (output != NULL) {
         const char *name;
         if ((st = lv_pk_text(c, output, what, "output", &name)) != LV_OK ||

@@ -136,9 +136,9 @@ static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_
     for (int k = 0; k < 4; k++) {
         snprintf(slot, sizeof slot, "%s.separation.%s", name, skeys[k]);
         const lv_ynode *v = lv_pk_get(n, skeys[k]);
-        st = v != NULL ? lv_pk_slot(c, v, what, skeys[k], slot, "m/s", LV_RANGE_ANY, 0,
-                                    &cfg->sep_dv[k])
-                       : lv_pk_slot_default(c, slot, "m/s", 0.0, LV_RANGE_ANY, &cfg->sep_dv[k]);
+        const lv_range r = {-1e4, 1e4, 0, 0}; /* m/s: a separation, not a propulsive burn */
+        st = v != NULL ? lv_pk_slot(c, v, what, skeys[k], slot, "m/s", r, 0, &cfg->sep_dv[k])
+                       : lv_pk_slot_default(c, slot, "m/s", 0.0, r, &cfg->sep_dv[k]);
         if (st != LV_OK)
             return st;
     }
@@ -325,7 +325,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         }
         s->event_end[1 + n_ends] = (int)j;
         s->ends[n_ends++] =
-            (lv_dof3_end){NULL, dof3_end_of[e->kind], val(bc, e->value), e->direction, 1};
+            (lv_dof3_end){e->name, dof3_end_of[e->kind], val(bc, e->value), e->direction, 1};
     }
     cfg.n_ends = n_ends;
     cfg.ends = s->ends;

@@ -422,6 +422,7 @@ struct lv_flat6 {
     lv_var states[LV_FLAT_N];
     lv_var params[PF_N];      /* g defaults to the configuration's */
     lv_event_def *events; /* [1 + n_ends] */
+    char (*event_names)[32]; /* [n_ends] "altitude", a second one "altitude_2" */
     lv_flat_end *ends;
     size_t n_ends;
     size_t n_stages;
@@ -608,6 +609,7 @@ void lv_flat6_free(lv_flat6 *m)
     air_clear(&m->air);
     free(m->stages);
     free(m->events);
+    free(m->event_names);
     free(m->ends);
     free(m->name);
     free(m);
@@ -628,7 +630,8 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
     m->stages = calloc(cfg->n_stages, sizeof *m->stages);
     m->events = calloc(1 + cfg->n_ends, sizeof *m->events);
     m->ends = calloc(cfg->n_ends + 1, sizeof *m->ends);
-    if (!m->name || !m->stages || !m->events || !m->ends) {
+    m->event_names = calloc(cfg->n_ends + 1, sizeof *m->event_names);
+    if (!m->name || !m->stages || !m->events || !m->ends || !m->event_names) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
@@ -662,7 +665,15 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
             e.kind == LV_FLAT_END_BURNOUT)
             e.direction = LV_DIR_FALLING;
         m->ends[k] = e;
-        m->events[1 + k] = (lv_event_def){end_names[e.kind], "Ends the phase", e.direction};
+        size_t same = 0; /* a second end of a kind is "<kind>_2", as its parameter */
+        for (size_t j = 0; j < k; j++)
+            same += cfg->ends[j].kind == e.kind;
+        if (same > 0)
+            snprintf(m->event_names[k], sizeof m->event_names[0], "%s_%zu", end_names[e.kind],
+                     same + 1);
+        else
+            snprintf(m->event_names[k], sizeof m->event_names[0], "%s", end_names[e.kind]);
+        m->events[1 + k] = (lv_event_def){m->event_names[k], "Ends the phase", e.direction};
     }
     m->def = (lv_model_def){
         .name = m->name,

@@ -2,10 +2,12 @@
  * F = q S_ref C in wind axes (CD, CL, CY) or body axes (CA, CN, CY); axes and angles as in
  * Stevens, Lewis & Johnson, Aircraft Control and Simulation, 3rd ed., sec. 2.3. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "vehicle/vehicle.h"
 
 static const char *const coef_names[2][3] = {{"CD", "CL", "CY"}, {"CA", "CN", "CY"}};
@@ -58,6 +60,12 @@ static lv_status add_table(lv_aero *a, const lv_table *tab, const char *coef, in
         if (used[in]++)
             return lv_fail(err, LV_ERR_INPUT, "aerodynamics %s: table '%s': axis '%s' appears twice",
                            coef, lv_table_name(tab), ax);
+        static const char *const axis_si[LV_AERO_IN_N] = {"1", "rad", "rad", "m"};
+        char what[64];
+        snprintf(what, sizeof what, "aerodynamics %s", coef);
+        lv_status ust = lv_table_expect_unit(tab, 1, d, axis_si[in], what, err);
+        if (ust != LV_OK)
+            return ust;
         t->input[d] = in;
     }
     t->y = malloc(lv_table_n_out(tab) * sizeof *t->y);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "vehicle/vehicle.h"
 
 void lv_engine_config_default(lv_engine_config *c)
@@ -78,9 +79,17 @@ lv_status lv_engine_init(lv_engine *e, const lv_engine_config *c, size_t index, 
     if (st != LV_OK)
         return lv_fail_prefix(err, st, "engine '%s': table '%s' needs an output 'thrust' [N]", n,
                               lv_table_name(tab));
+    char what[LV_ENGINE_NAME_MAX + 16];
+    snprintf(what, sizeof what, "engine '%s'", n);
+    if ((st = lv_table_expect_unit(tab, 1, 0, "s", what, err)) != LV_OK ||
+        (st = lv_table_expect_unit(tab, 0, e->k_thrust, "N", what, err)) != LV_OK)
+        return st;
     size_t k;
-    if (lv_table_out_index(tab, "mdot", &k, NULL) == LV_OK)
+    if (lv_table_out_index(tab, "mdot", &k, NULL) == LV_OK) {
+        if ((st = lv_table_expect_unit(tab, 0, k, "kg/s", what, err)) != LV_OK)
+            return st;
         e->k_mdot = k;
+    }
     else if (!(c->isp_vac > 0.0))
         return lv_fail(err, LV_ERR_INPUT,
                        "engine '%s': table '%s' has no output 'mdot' and isp_vac is 0: give one", n,

@@ -136,6 +136,57 @@ static void test_dof3_ends(void)
     lv_mission_free(m);
 }
 
+/* Two ends of the same kind in one phase (a window: leave through the top or the bottom)
+ * load for both models; the second is named "<kind>_2" in the events and as a parameter.
+ * dof3: thrown up at 100 m/s, fpa 80 deg from 1 km in vacuum, apex below 1000 + 100^2/(2 g)
+ * = 1510 m, so the 500 m end (the second) ends the phase. flat6: dropped from 1 km, the
+ * 900 m end (the first) comes first. */
+static void test_two_ends_of_a_kind(void)
+{
+    static const char *const yaml[2] = {
+        "mission: {name: t}\n"
+        "environment: {world: planet}\n"
+        "parameters: {start_h: 1000, start_vel: 100, start_fpa_deg: 80}\n"
+        "stages: [{name: s, dry_mass: 10, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: P, model: dof3, stages: [s], stop_time: 100,\n"
+        "     end: [{altitude: 2000}, {altitude: 500}]}\n",
+        "mission: {name: t}\n"
+        "parameters: {start_z: 1000, start_vel: 0}\n"
+        "stages: [{name: s, dry_mass: 10, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: P, model: flat6, stages: [s], stop_time: 100,\n"
+        "     end: [{z: 900}, {z: 500}]}\n"};
+    static const int want_end[2] = {1, 0};
+    static const char *const want_name[2] = {"altitude_2", "z"};
+    static const char *const second[2] = {"P.end.altitude_2", "P.end.z_2"};
+    for (int k = 0; k < 2; k++) {
+        write_file("two_ends.yaml", yaml[k]);
+        lv_mission *m = NULL;
+        lv_run *r = NULL;
+        lv_err err;
+        CHECK_OK(lv_mission_load("two_ends.yaml", &m, &err), &err);
+        if (m == NULL)
+            continue;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        const lv_phase_result *p = lv_run_result(r, 0);
+        CHECK(p->end_index == want_end[k]);
+        int found = 0;
+        for (size_t i = 0; i < p->n_event_names; i++)
+            found += strcmp(p->event_names[i], want_name[k]) == 0;
+        if (found != 1)
+            for (size_t i = 0; i < p->n_event_names; i++)
+                fprintf(stderr, "  %d event %zu: %s\n", k, i, p->event_names[i]);
+        CHECK(found == 1);
+        size_t idx = 0;
+        int deg = 0;
+        CHECK_OK(lv_mission_param_find(m, second[k], &idx, &deg, &err), &err);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+}
+
 static void load_fails(const char *end, const char *want)
 {
     char yaml[1024];
@@ -164,7 +215,7 @@ static void test_refused(void)
     load_fails("{vzz: 3}", "did you mean");
     load_fails("{g: 3}", "'g' is a parameter of the model");
     load_fails("{z_deg: 3}", "'z' is not an angle (its unit is 'm')");
-    load_fails("{time: 0}", "bad_end.yaml:5:19: phase 'P', end event #1: time must be > 0 s");
+    load_fails("{time: 0}", "bad_end.yaml:5:19: phase 'P', end event #1: time must be >= 1e-09 s");
     load_fails("{time: 2, direction: rising}", "a time end has no direction");
     load_fails("{vz: 1, z: 3}", "one event per entry");
     load_fails("{output: vz}", "'value'");
@@ -176,6 +227,7 @@ int main(void)
 {
     test_flat6_ends();
     test_dof3_ends();
+    test_two_ends_of_a_kind();
     test_refused();
     return check_report("test_ends");
 }
