@@ -179,6 +179,10 @@ typedef struct lv_run_options {
      * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
     int (*progress)(const lv_run *r, size_t k, double t, void *user);
     int no_rows;          /* 1: keep no rows in memory (no merged trajectories): faster */
+    /* [n_phases] or NULL (every phase): nonzero for the phases whose results are wanted
+     * (a targeting loop's constraints). Only those and their ancestors are simulated; a phase
+     * outside them whose inputs changed is left PENDING for a later execute. */
+    const unsigned char *want;
 } lv_run_options;
 
 /* Simulates every phase whose inputs changed since it last ran (or that never ran, or
