@@ -193,6 +193,8 @@ typedef struct lv_phase_def {
 
 /* ---- mission --------------------------------------------------------------------------------- */
 
+typedef struct lv_targeting_def lv_targeting_def; /* targeting_def.h */
+
 typedef struct lv_mission_def {
     char *name;
     char *description;
@@ -210,6 +212,7 @@ typedef struct lv_mission_def {
     size_t n_slots;  /* every number a run may vary */
     lv_slot_def *slots;
     size_t cap_slots;
+    lv_targeting_def *targeting; /* the `targeting:` section, or NULL */
 } lv_mission_def;
 
 /* Parse and validate a mission file. Errors are "file:line:column: message". */

@@ -22,6 +22,7 @@
 #include "lvsim/lv_planet.h"
 #include "mission/parse_kit.h"
 #include "mission/phase_type.h"
+#include "mission/targeting_def.h"
 #include "mission/yaml_tree.h"
 
 
@@ -2049,7 +2050,7 @@ static const char *epoch_check(const char *s)
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
-                                        "phases", NULL };
+                                        "phases", "targeting", NULL };
     static const char *const mkeys[] = { "name", "description", "epoch", NULL };
     lv_mission_def *m = c->m;
     const lv_ynode *v, *info;
@@ -2086,7 +2087,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         (st = parse_stages(c, v)) != LV_OK)
         return st;
     if ((st = lv_pk_need(c, root, "top level", "phases", &v)) != LV_OK ||
-        (st = parse_phases(c, v)) != LV_OK)
+        (st = parse_phases(c, v)) != LV_OK ||
+        (st = lv_targeting_def_parse(c, lv_pk_get(root, "targeting"))) != LV_OK)
         return st;
     return check_slot_names(c);
 }
@@ -2229,6 +2231,7 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->set_locs);
     }
     free(m->phases);
+    lv_targeting_def_free(m->targeting);
     free(m);
 }
 
