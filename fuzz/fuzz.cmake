@@ -22,9 +22,10 @@ endif()
 
 if(LV_HAVE_LIBFUZZER)
   # The library's sources that loading a mission uses (checking a root phase's start state
-  # sets up its simulation: SUNDIALS too), without runs and post-processing (cJSON, PLplot).
+  # sets up its simulation: SUNDIALS too), without runs, targeting and post-processing (NLopt,
+  # cJSON, PLplot).
   set(_src ${LV_SOURCES})
-  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|compare)\\.c|post/)")
+  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|compare)\\.c|post/|target/)")
   list(PREPEND _src fuzz/fuzz_mission.c)
   file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
        ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)
