@@ -18,9 +18,10 @@ $(BUILD)/CMakeCache.txt:
 build: $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-# viewer before build: the build copies CesiumJS from viewer/node_modules to build/share/lvsim
+# viewer before build: the build copies CesiumJS from viewer/node_modules to build/share/lvsim.
+# One line for the build (its log in $(BUILD)/build.log, shown when it fails), then the demo.
 demo: deps viewer
-	@$(MAKE) --no-print-directory build
+	@scripts/build-quiet.sh $(BUILD) $(JOBS) $(CMAKE_FLAGS)
 	@scripts/demo.sh $(BUILD)
 
 test: deps build
@@ -40,6 +41,7 @@ test-valgrind: deps build
 
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done
+	@bench/whole_process.py --lvsim $(BUILD)/lvsim
 
 # The mission-parser fuzzer (libFuzzer, clang) for FUZZ_TIME seconds (default 60).
 .PHONY: fuzz

@@ -1,36 +1,64 @@
 /* cmd_check.c - `lvsim check MISSION.yaml`: reads and validates a mission with
- * lv_mission_load, the same call `lvsim run` makes, so both accept exactly the same files.
+ * lv_mission_load, the same call `lvsim run` makes, so both accept exactly the same files;
+ * then what every phase would write at most, refused beyond --max-rows as `run` does.
  */
 #include <stdio.h>
+#include <string.h>
 
 #include "cli.h"
 #include "common.h"
 
 static int check_run(const cli_cmd *self, int argc, char **argv)
 {
-    if (argc == 1 && is_option(argv[0]))
-        return usage_error(self, "unknown option", argv[0]);
-    if (argc != 1)
+    const char *path = NULL;
+    double max_rows = CLI_DEFAULT_MAX_ROWS;
+    int quiet = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--max-rows") == 0) {
+            const char *v = option_value(argc, argv, &i);
+            if (v == NULL)
+                return usage_error(self, "missing value for option", a);
+            if (!parse_count(v, &max_rows))
+                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = 1;
+        } else if (is_option(a)) {
+            return usage_error(self, "unknown option", a);
+        } else if (path != NULL) {
+            return usage_error(self, "check takes one mission file; unexpected argument", a);
+        } else {
+            path = a;
+        }
+    }
+    if (path == NULL)
         return usage_error(self, "check takes one mission file", NULL);
     lv_mission *m;
-    lv_err err;
-    lv_status st = lv_mission_load(argv[0], &m, &err);
-    if (st != LV_OK)
-        return print_err(NULL, &err, exit_code_for_input(st));
-    printf("%s: mission '%s' is valid: %zu phases\n", argv[0], lv_mission_name(m),
+    int code = load_mission(path, &m);
+    if (code != EXIT_OK)
+        return code;
+    printf("%s: mission '%s' is valid: %zu phases\n", path, lv_mission_name(m),
            lv_mission_phase_count(m));
+    code = check_output_bound(m, max_rows, 0.0, !quiet);
     lv_mission_free(m);
-    return EXIT_OK;
+    return code;
 }
 
 const cli_cmd cli_cmd_check = {
     "check",
     "validate a mission file without running it",
-    "MISSION.yaml",
+    "MISSION.yaml [--max-rows N] [--quiet]",
     "Reads and validates a mission file exactly as 'lvsim run' does, and runs nothing:\n"
     "YAML syntax, keys, types, ranges, references, cycles, masses, tables, and that every\n"
     "phase's model and initial state can be built (docs/mission-format.md). Prints\n"
-    "'FILE: mission 'NAME' is valid: N phases', or 'file:line:column: message' on stderr\n"
-    "and exits 2.\n",
+    "'FILE: mission 'NAME' is valid: N phases', then per phase the most it can write: rows\n"
+    "(its output grid over its longest possible duration; each event adds two), columns and\n"
+    "the size of its .mat and .csv. A phase above --max-rows rows is refused, as 'lvsim\n"
+    "run' refuses it, naming the phase, rows, bytes and the limit. Errors: 'file:line:column:\n"
+    "message' on stderr, exit 2.\n"
+    "\n"
+    "options:\n"
+    "  --max-rows N            output rows one phase may write (default 1e6)\n"
+    "  --quiet, -q             no table of estimates\n",
     check_run,
 };

@@ -17,6 +17,8 @@ static cJSON *side_json(const lv_compare_side *sd)
     cJSON_AddNumberToObject(o, "time_events", (double)sd->time_events);
     cJSON_AddNumberToObject(o, "steps", (double)sd->steps);
     cJSON_AddNumberToObject(o, "rhs_evals", (double)sd->rhs_evals);
+    cJSON_AddNumberToObject(o, "rhs_evals_steps", (double)sd->rhs_evals_steps);
+    cJSON_AddNumberToObject(o, "rhs_evals_output", (double)sd->rhs_evals_output);
     cJSON_AddNumberToObject(o, "jac_evals", (double)sd->jac_evals);
     cJSON_AddNumberToObject(o, "cpu_time", sd->cpu_time);
     return o;
@@ -60,6 +62,9 @@ static void print_table(const char *path, double dt, const lv_compare_report *re
            rep->seq.time_events);
     printf("%-28s %14ld %14ld\n", "steps", rep->e2e.steps, rep->seq.steps);
     printf("%-28s %14ld %14ld\n", "RHS evaluations", rep->e2e.rhs_evals, rep->seq.rhs_evals);
+    printf("%-28s %14ld %14ld\n", "  on steps", rep->e2e.rhs_evals_steps, rep->seq.rhs_evals_steps);
+    printf("%-28s %14ld %14ld\n", "  on output", rep->e2e.rhs_evals_output,
+           rep->seq.rhs_evals_output);
     printf("%-28s %14ld %14ld\n", "Jacobian evaluations", rep->e2e.jac_evals,
            rep->seq.jac_evals);
     printf("%-28s %14.3f %14.3f\n", "CPU time [ms]", 1e3 * rep->e2e.cpu_time,
@@ -105,9 +110,10 @@ static int compare_run(const cli_cmd *self, int argc, char **argv)
     lv_compare_report rep;
     lv_err err;
     lv_mission *m = NULL;
-    lv_status st = lv_mission_load(path, &m, &err);
-    if (st == LV_OK)
-        st = lv_mission_compare(m, method, tol, dt, &rep, &err);
+    const int code = load_mission(path, &m);
+    if (code != EXIT_OK)
+        return code;
+    lv_status st = lv_mission_compare(m, method, tol, dt, &rep, &err);
     lv_mission_free(m);
     if (st != LV_OK)
         return print_err(NULL, &err, exit_code_for(st));

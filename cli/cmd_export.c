@@ -34,11 +34,34 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
     if (dir == NULL)
         return usage_error(self, "export needs a results folder (lvsim run -o OUTDIR)", NULL);
     lv_err err;
-    lv_status st = lv_export_run(dir, formats ? formats : LV_EXPORT_ALL, &err);
+    lv_outdir *od;
+    lv_status st = lv_outdir_open(dir, &od, &err);
     if (st != LV_OK)
         return print_err("lvsim export", &err, exit_code_for_input(st));
-    printf("exports written to %s/ (mission.czml, mission.kml, <stage>.oem for orbital "
-           "portions)\n", dir);
+    lv_export_report rep;
+    st = lv_export_run_report(dir, formats ? formats : LV_EXPORT_ALL, &rep, &err);
+    size_t written = 0;
+    for (size_t i = 0; i < rep.n; i++) {
+        const lv_export_item *it = &rep.items[i];
+        if (it->file[0] != '\0') {
+            written++;
+            printf("export %s: wrote %s/%s%s%s\n", it->format, dir, it->file,
+                   it->note[0] ? " - " : "", it->note);
+        } else {
+            printf("export %s: %s\n", it->format, it->note);
+        }
+    }
+    lv_export_report_clear(&rep);
+    lv_err merr;
+    const lv_outdir_record rec = {"export", st == LV_OK ? "ok" : "failed", NULL, 0, NULL};
+    lv_status mst = lv_outdir_commit(od, &rec, &merr);
+    lv_outdir_free(od);
+    if (st != LV_OK)
+        return print_err("lvsim export", &err, exit_code_for_input(st));
+    if (mst != LV_OK)
+        return print_err("lvsim export", &merr, exit_code_for_input(mst));
+    if (written == 0)
+        printf("export: no file written\n");
     return EXIT_OK;
 }
 
@@ -48,8 +71,11 @@ const cli_cmd cli_cmd_export = {
     "OUTDIR [--format czml,kml,oem]",
     "Writes the trajectory exports from a results folder written by 'lvsim run -o OUTDIR'\n"
     "(docs/exports.md): OUTDIR/mission.czml (CesiumJS), mission.kml (Google Earth) and\n"
-    "<stage>.oem (CCSDS OEM, orbital portions only). Exits 2 when the folder has no\n"
-    "summary.json or a file is malformed (named with its line).\n"
+    "<stage>.oem (CCSDS OEM, orbital portions only), and says for each format what it\n"
+    "wrote or why it wrote nothing (an OEM of a flat-world flight, a body that never\n"
+    "leaves the atmosphere). Updates OUTDIR/manifest.json. Exits 2 when the folder has no\n"
+    "summary.json, is in use by another lvsim, or a file is malformed (named with its\n"
+    "line).\n"
     "\n"
     "options:\n"
     "  --format F              czml, kml, oem, comma-separated (default: all three)\n",

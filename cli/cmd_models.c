@@ -1,7 +1,10 @@
-/* cmd_models.c - `lvsim models` (the built-in models) and `lvsim vars MODEL` (a model's
- * states, derivatives, parameters, outputs and events): both list the model registry.
+/* cmd_models.c - `lvsim models` (the mission model types a phase's `model:` names, and the
+ * built-in models of `lvsim simulate`) and `lvsim vars MODEL` (a model's states,
+ * derivatives, parameters, outputs and events with units: for a mission type the names of
+ * `set:`, `end:` and the result files).
  */
 #include <stdio.h>
+#include <string.h>
 
 #include "cli.h"
 #include "common.h"
@@ -12,6 +15,14 @@ static int models_run(const cli_cmd *self, int argc, char **argv)
         const char *what = is_option(argv[0]) ? "unknown option" : "models takes no arguments; got";
         return usage_error(self, what, argv[0]);
     }
+    printf("# mission model types (a phase's 'model:'; 'lvsim vars TYPE')\n");
+    for (size_t i = 0; i < lv_phase_types_count(); i++) {
+        lv_phase_type_info t;
+        if (lv_phase_types_get(i, &t, NULL) == LV_OK)
+            printf("%-18s %s (%s world)\n", t.name, t.description,
+                   t.flat_world ? "flat" : "planet");
+    }
+    printf("# built-in models ('lvsim simulate MODEL'; 'lvsim vars MODEL')\n");
     for (const lv_model_def *const *all = lv_models_all(); *all; all++)
         printf("%-18s %s\n", (*all)->name, (*all)->description);
     return EXIT_OK;
@@ -21,8 +32,9 @@ const cli_cmd cli_cmd_models = {
     "models",
     "list the built-in models",
     "",
-    "Lists the built-in models, one a line: name and a one-line description.\n"
-    "'lvsim vars MODEL' lists a model's variables; 'lvsim simulate MODEL' runs it.\n",
+    "Lists the mission model types (what a phase's 'model:' names: dof3, flat6) and the\n"
+    "built-in models of 'lvsim simulate', one a line: name and a one-line description.\n"
+    "'lvsim vars NAME' lists either's variables; 'lvsim simulate MODEL' runs a built-in one.\n",
     models_run,
 };
 
@@ -33,22 +45,82 @@ static void print_vars(const char *kind, const lv_var *v, size_t n)
                v[i].start, v[i].description);
 }
 
+static int is_phase_type(const char *name)
+{
+    for (size_t i = 0; i < lv_phase_types_count(); i++) {
+        lv_phase_type_info t;
+        if (lv_phase_types_get(i, &t, NULL) == LV_OK && strcmp(t.name, name) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* The phase-level words of a mission type: parameters of a root phase, keys, end:. */
+static void print_type_extras(const char *name)
+{
+    for (size_t i = 0; i < lv_phase_types_count(); i++) {
+        lv_phase_type_info t;
+        if (lv_phase_types_get(i, &t, NULL) != LV_OK || strcmp(t.name, name) != 0)
+            continue;
+        printf("# mission type %s: %s (%s world); mass state '%s'\n", t.name, t.description,
+               t.flat_world ? "flat" : "planet", t.mass_state);
+        printf("# a root phase takes these from the mission's 'parameters:':\n");
+        for (size_t j = 0; j < t.n_mission_params; j++) {
+            const lv_var *v = &t.mission_params[j];
+            printf("%-10s %-16s %-8s %12s  %s\n", "mission", v->name, v->unit[0] ? v->unit : "-",
+                   "", v->description);
+        }
+        printf("# phase keys of its own:");
+        for (size_t j = 0; t.keys != NULL && t.keys[j] != NULL; j++)
+            printf(" %s", t.keys[j]);
+        printf("%s\n# end conditions ('end:'):", t.keys && t.keys[0] ? "" : " none");
+        for (size_t j = 0; j < lv_phase_types_end_count(); j++)
+            printf(" %s", lv_phase_types_end_name(j));
+        printf(" (docs/mission-format.md)\n# 'set:' takes any state or parameter below; the "
+               "result files have time, the states, their derivatives and the outputs\n");
+    }
+}
+
 static int vars_run(const cli_cmd *self, int argc, char **argv)
 {
     if (argc != 1)
         return usage_error(self, "vars takes one model name", NULL);
     if (is_option(argv[0]))
         return usage_error(self, "unknown option", argv[0]);
-    const lv_model_def *m = find_model(argv[0]);
-    if (m == NULL)
+    lv_phase_sample *sample = NULL;
+    const lv_model_def *m = NULL;
+    if (is_phase_type(argv[0])) {
+        lv_err err;
+        lv_status st = lv_phase_types_sample(argv[0], &sample, &err);
+        if (st != LV_OK)
+            return print_err("lvsim", &err, exit_code_for(st));
+        m = lv_phase_types_sample_model(sample);
+        print_type_extras(argv[0]);
+    } else {
+        m = lv_models_find(argv[0]);
+    }
+    if (m == NULL) {
+        fprintf(stderr, "lvsim: unknown model '%s'; mission model types:", argv[0]);
+        for (size_t i = 0; i < lv_phase_types_count(); i++) {
+            lv_phase_type_info t;
+            if (lv_phase_types_get(i, &t, NULL) == LV_OK)
+                fprintf(stderr, " %s", t.name);
+        }
+        fprintf(stderr, "; built-in models:");
+        for (const lv_model_def *const *all = lv_models_all(); *all; all++)
+            fprintf(stderr, " %s", (*all)->name);
+        fprintf(stderr, "\n");
         return EXIT_INPUT;
-    printf("# model %s: %s\n# %-8s %-16s %-8s %12s  %s\n", m->name, m->description, "kind",
-           "name", "unit", "start", "description");
+    }
+    printf("# model %s: %s\n# %-8s %-16s %-8s %12s  %s\n", sample ? argv[0] : m->name,
+           m->description, "kind", "name", "unit", "start", "description");
     print_vars("state", m->states, m->n_states);
     for (size_t i = 0; i < m->n_states; i++) {
         char der[128];
         snprintf(der, sizeof der, "der(%s)", m->states[i].name);
-        printf("%-10s %-16s %-8s %12s  Time derivative of %s\n", "derivative", der, "-", "",
+        char unit[64]; /* as the result files write it: "<unit>/s" */
+        snprintf(unit, sizeof unit, "%s/s", m->states[i].unit[0] ? m->states[i].unit : "1");
+        printf("%-10s %-16s %-8s %12s  Time derivative of %s\n", "derivative", der, unit, "",
                m->states[i].name);
     }
     print_vars("parameter", m->params, m->n_params);
@@ -59,6 +131,7 @@ static int vars_run(const cli_cmd *self, int argc, char **argv)
                : m->events[i].direction < 0 ? "falling"
                                             : "both",
                "", m->events[i].description);
+    lv_phase_types_sample_free(sample);
     return EXIT_OK;
 }
 
@@ -66,10 +139,14 @@ const cli_cmd cli_cmd_vars = {
     "vars",
     "list a model's variables (kind, name, unit, start value)",
     "MODEL",
-    "Lists every variable of a built-in model (see 'lvsim models'), one a line: kind\n"
-    "(state, derivative, parameter, output, event), name, unit (SI; '-' dimensionless),\n"
-    "default start value and description. Every state and parameter can be given a start\n"
-    "value with 'lvsim simulate MODEL --set NAME=VALUE'; every variable, and 'time', can be\n"
-    "read with '--final NAME'. An event's unit column gives its direction.\n",
+    "Lists every variable of a mission model type or a built-in model (see 'lvsim models'),\n"
+    "one a line: kind (state, derivative, parameter, output, event), name, unit (SI; '-'\n"
+    "dimensionless), default start value and description. For a mission type (dof3,\n"
+    "flat6) these are the names a phase's 'set:' takes (states, parameters) and the\n"
+    "columns of its result files, listed for a sample phase of one stage; before them, what\n"
+    "a root phase takes from 'parameters:', the type's own phase keys and the 'end:'\n"
+    "conditions. For a built-in model every state and parameter can be given a start value\n"
+    "with 'lvsim simulate MODEL --set NAME=VALUE'; every variable, and 'time', can be read\n"
+    "with '--final NAME'. An event's unit column gives its direction.\n",
     vars_run,
 };

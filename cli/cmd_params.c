@@ -67,11 +67,9 @@ static int params_run(const cli_cmd *self, int argc, char **argv)
     if (path == NULL)
         return usage_error(self, "params needs a mission file", NULL);
     lv_mission *m;
-    lv_err err;
-    lv_status st = lv_mission_load(path, &m, &err);
-    if (st != LV_OK)
-        return print_err(NULL, &err, exit_code_for_input(st));
-    int rc = EXIT_OK;
+    int rc = load_mission(path, &m);
+    if (rc != EXIT_OK)
+        return rc;
     if (json)
         rc = print_json(params_json(m));
     else

@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "common.h"
+#include "progress.h"
 
 static int plot_run(const cli_cmd *self, int argc, char **argv)
 {
@@ -13,9 +14,23 @@ static int plot_run(const cli_cmd *self, int argc, char **argv)
     if (argc != 1)
         return usage_error(self, "plot takes one results folder (lvsim run -o OUTDIR)", NULL);
     lv_err err;
-    lv_status st = lv_plot_run(argv[0], &err);
+    lv_outdir *od;
+    lv_status st = lv_outdir_open(argv[0], &od, &err);
     if (st != LV_OK)
         return print_err("lvsim plot", &err, exit_code_for_input(st));
+    cli_progress *prog = progress_new(0, 0);
+    progress_step_begin(prog, "plots and index.html");
+    st = lv_plot_run(argv[0], &err);
+    progress_step_end(prog);
+    progress_free(prog);
+    lv_err merr;
+    const lv_outdir_record rec = {"plot", st == LV_OK ? "ok" : "failed", NULL, 0, NULL};
+    lv_status mst = lv_outdir_commit(od, &rec, &merr);
+    lv_outdir_free(od);
+    if (st != LV_OK)
+        return print_err("lvsim plot", &err, exit_code_for_input(st));
+    if (mst != LV_OK)
+        return print_err("lvsim plot", &merr, exit_code_for_input(mst));
     printf("plots in %s/plots/, report %s/index.html\n", argv[0], argv[0]);
     return EXIT_OK;
 }
@@ -28,6 +43,7 @@ const cli_cmd cli_cmd_plot = {
     "OUTDIR/plots/ (PLplot, PNG and SVG: altitude, speed, mass, thrust, ... against time,\n"
     "one curve per body; the ground track) and the report OUTDIR/index.html\n"
     "(docs/visualization.md). 'lvsim run' does this itself unless given --no-plots.\n"
-    "Exits 2 when the folder cannot be read.\n",
+    "Updates OUTDIR/manifest.json. Exits 2 when the folder cannot be read or is in use by\n"
+    "another lvsim.\n",
     plot_run,
 };

@@ -30,6 +30,9 @@ static cJSON *report_json(const lv_model_def *m, const lv_sim_settings *s, lv_st
     cJSON_AddNumberToObject(stats, "states", (double)rep->n_states);
     cJSON_AddNumberToObject(stats, "steps", (double)rep->stats.steps);
     cJSON_AddNumberToObject(stats, "rhs_evals", (double)rep->stats.rhs_evals);
+    cJSON_AddNumberToObject(stats, "rhs_evals_steps", (double)rep->stats.rhs_evals_steps);
+    cJSON_AddNumberToObject(stats, "rhs_evals_output", (double)rep->stats.rhs_evals_output);
+    cJSON_AddNumberToObject(stats, "row_evals", (double)rep->stats.row_evals);
     cJSON_AddNumberToObject(stats, "jac_evals", (double)rep->stats.jac_evals);
     cJSON_AddNumberToObject(stats, "state_events", (double)rep->stats.state_events);
     cJSON_AddNumberToObject(stats, "time_events", (double)rep->stats.time_events);
@@ -53,10 +56,13 @@ static void print_report(const lv_model_def *m, const lv_sim_settings *s, lv_sta
            rep->stats.state_events, rep->stats.time_events, 1e3 * rep->stats.cpu_time);
     for (size_t i = 0; st == LV_OK && i < s->n_final; i++)
         printf("  %-16s = %.12g\n", s->final_names[i], finals[i]);
-    if (s->result_file != NULL && rep->stats.output_rows > 0)
-        printf("  result: %s%s%s%s\n", s->result_file, st == LV_OK ? "" : ".failed",
-               (s->result_formats & LV_RESULT_MAT) ? ".mat " : "",
-               (s->result_formats & LV_RESULT_CSV) ? ".csv" : "");
+    /* exactly the files written: each format asked for, under its failed name if it failed */
+    const unsigned fm = s->result_file != NULL && rep->stats.output_rows > 0 ? s->result_formats : 0;
+    const char *fail = st == LV_OK ? "" : ".failed";
+    if (fm == (LV_RESULT_MAT | LV_RESULT_CSV))
+        printf("  result: %s%s.mat, %s%s.csv\n", s->result_file, fail, s->result_file, fail);
+    else if (fm != 0)
+        printf("  result: %s%s.%s\n", s->result_file, fail, fm == LV_RESULT_MAT ? "mat" : "csv");
 }
 
 static int simulate_run(const cli_cmd *self, int argc, char **argv)
@@ -139,7 +145,7 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             if (strstr(val, "mat")) s.result_formats |= LV_RESULT_MAT;
             if (strstr(val, "csv")) s.result_formats |= LV_RESULT_CSV;
             if (strcmp(val, "none") == 0)
-                s.result_file = NULL;
+                s.result_file = NULL; /* and result_formats 0: -o after it writes nothing */
             else if (s.result_formats == 0) {
                 fprintf(stderr, "lvsim: --format: '%s': use mat, csv, mat,csv or none\n", val);
                 rc = EXIT_INPUT;

@@ -1,12 +1,15 @@
 /* common.c - helpers shared by the lvsim commands: exit codes, usage errors, number
  * parsing, library errors, model lookup and JSON output.
  */
+#define _POSIX_C_SOURCE 200809L /* stat */
+
 #include "common.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 int exit_code_for(lv_status st)
 {
@@ -109,4 +112,82 @@ int print_json(cJSON *doc)
     putchar('\n');
     cJSON_free(text);
     return EXIT_OK;
+}
+
+int load_mission(const char *path, lv_mission **m)
+{
+    struct stat sb;
+    *m = NULL;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "lvsim: '%s' is a folder, not a mission file: name its YAML file "
+                        "(e.g. %s/mission.yaml)\n", path, path);
+        return EXIT_INPUT;
+    }
+    lv_err err;
+    lv_status st = lv_mission_load(path, m, &err);
+    if (st != LV_OK)
+        return print_err(NULL, &err, exit_code_for_input(st));
+    return EXIT_OK;
+}
+
+int parse_count(const char *s, double *out)
+{
+    double v;
+    if (!parse_double(s, &v) || v < 1.0 || v > 1e15 || v != floor(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+void human_bytes(double b, char *buf, size_t cap)
+{
+    static const char *const unit[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+    size_t u = 0;
+    while (b >= 1000.0 && u + 1 < sizeof unit / sizeof unit[0]) {
+        b /= 1000.0;
+        u++;
+    }
+    if (u == 0)
+        snprintf(buf, cap, "%.0f B", b);
+    else
+        snprintf(buf, cap, "%.3g %s", b, unit[u]);
+}
+
+int check_output_bound(const lv_mission *m, double max_rows, double output_interval, int list)
+{
+    lv_run *run = NULL;
+    lv_err err;
+    lv_status st = lv_run_create(m, &run, &err);
+    if (st != LV_OK)
+        return print_err("lvsim", &err, exit_code_for(st));
+    int code = EXIT_OK;
+    const size_t n = lv_mission_phase_count(m);
+    if (list)
+        printf("%-3s %-12s %12s %8s %11s %11s\n", "#", "phase", "rows (max)", "columns",
+               ".mat", ".csv");
+    for (size_t k = 0; k < n; k++) {
+        lv_output_estimate e;
+        if ((st = lv_run_estimate_output(run, k, output_interval, &e, &err)) != LV_OK) {
+            code = print_err("lvsim", &err, exit_code_for(st));
+            break;
+        }
+        char mat[32], csv[32];
+        human_bytes(e.bytes_mat, mat, sizeof mat);
+        human_bytes(e.bytes_csv, csv, sizeof csv);
+        if (list)
+            printf("%-3zu %-12s %12.0f %8zu %11s %11s\n", k + 1, lv_mission_phase_name(m, k),
+                   e.rows, e.n_signals, mat, csv);
+        if (e.rows > max_rows && code == EXIT_OK) {
+            fprintf(stderr,
+                    "lvsim: phase %zu '%s' would write up to %.0f rows (%.6g s of mission time; "
+                    "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than the "
+                    "limit of %.0f rows per phase. Give it a larger output interval, an earlier "
+                    "stop_time or an end event, or allow it with --max-rows %.0f\n",
+                    k + 1, lv_mission_phase_name(m, k), e.rows, e.duration, e.n_signals, mat,
+                    csv, max_rows, e.rows);
+            code = EXIT_INPUT;
+        }
+    }
+    lv_run_free(run);
+    return code;
 }

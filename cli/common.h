@@ -40,6 +40,25 @@ int print_err(const char *who, const lv_err *err, int code);
 /* A built-in model by name; when unknown, says so on stderr listing the models: NULL. */
 const lv_model_def *find_model(const char *name);
 
+/* lv_mission_load with the CLI's messages: a folder or a missing file named as such. Prints
+ * the error and returns its exit code (2, or 1 out of memory); 0 with *m set. */
+int load_mission(const char *path, lv_mission **m);
+
+/* A whole number >= 1 up to 1e15 ("1000000", "1e6"); 1 on success, 0 otherwise. */
+int parse_count(const char *s, double *out);
+
+/* The default of --max-rows: output rows one phase may write (docs/cli.md). */
+#define CLI_DEFAULT_MAX_ROWS 1e6
+
+/* Estimates every phase's output (lv_run_estimate_output with output_interval) and refuses
+ * a phase beyond max_rows: prints "lvsim: phase ...: up to N rows ..." naming the phase,
+ * rows, bytes and the limit to stderr and returns 2. list: also prints each phase's
+ * estimate to stdout. Returns 0, 2, or 1 out of memory. */
+int check_output_bound(const lv_mission *m, double max_rows, double output_interval, int list);
+
+/* "12.3 MB", "512 B": a byte count for people. */
+void human_bytes(double bytes, char *buf, size_t cap);
+
 /* Prints a document built with cJSON (cJSON_Print, indented with spaces) to stdout and
  * deletes it. Returns 0, or 1 when doc is NULL or printing runs out of memory. */
 int print_json(cJSON *doc);

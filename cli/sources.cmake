@@ -14,9 +14,10 @@ add_executable(lvsim_cli
   cli/cmd_plot.c
   cli/cmd_view.c
   cli/cmd_atmosphere.c
-  cli/cmd_gravity.c)
+  cli/cmd_gravity.c
+  cli/progress.c)
 set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
 # The core library (run), the post-processing one (export, plot, report) and cJSON for the
 # --json documents of simulate, compare and params.
-target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON m)
+target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m)
 lv_set_warnings(lvsim_cli)

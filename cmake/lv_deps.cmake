@@ -1,6 +1,6 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
 #   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, NLopt, cJSON,
-#   PLplot (pkg-config).
+#   PLplot, Nettle (pkg-config).
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
@@ -12,15 +12,43 @@ pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
+pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
+pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
 find_package(Threads REQUIRED)
+# Shortest round-trip digits of doubles for the CSV files (src/io/numfmt.cc); header-only.
+find_package(dragonbox 1.1 REQUIRED CONFIG)
+# Reading numbers back (src/io/numparse.cc, the results reader): fast_float, header-only.
+find_path(LV_FASTFLOAT_INCLUDE fast_float/fast_float.h REQUIRED)
+add_library(lv_fastfloat INTERFACE)
+target_include_directories(lv_fastfloat INTERFACE ${LV_FASTFLOAT_INCLUDE})
+
+# libmatio is not linked but loaded when a MAT file is first read or written (src/io/matio_dl.c:
+# its HDF5 build brings ~40 libraries that cost ~5 ms at every start). Its header is used; its
+# SONAME, read from the library found, is what matio_dl.c opens.
+set(LV_MATIO_SONAME "libmatio.so")
+find_library(LV_MATIO_LIB NAMES matio HINTS ${MATIO_LIBRARY_DIRS})
+if(LV_MATIO_LIB AND CMAKE_OBJDUMP)
+  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_MATIO_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
+  if(_lv_od MATCHES "SONAME +([^ \n]+)")
+    set(LV_MATIO_SONAME "${CMAKE_MATCH_1}")
+  endif()
+endif()
+message(STATUS "libmatio, loaded at run time: ${LV_MATIO_SONAME}")
+add_library(lv_matio_headers INTERFACE)
+target_include_directories(lv_matio_headers INTERFACE ${MATIO_INCLUDE_DIRS})
+target_compile_definitions(lv_matio_headers INTERFACE LV_MATIO_SONAME="${LV_MATIO_SONAME}")
 
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  PkgConfig::MATIO PkgConfig::HDF5 PkgConfig::YAML PkgConfig::NLOPT Threads::Threads m)
+  lv_matio_headers PkgConfig::HDF5 PkgConfig::YAML PkgConfig::NLOPT Threads::Threads dragonbox::dragonbox
+  lv_fastfloat ${CMAKE_DL_LIBS} m)
 
-# The post-processing library, liblvsim_post (src/post): never PLplot in the core library.
+# The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT m)
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE ${CMAKE_DL_LIBS} m)
+# The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
+add_library(lv_plot_deps INTERFACE)
+target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG m)

@@ -1,8 +1,10 @@
-# Compiler flags shared by every lvsim target.
+# Compiler flags shared by every lvsim target (the C++ shim of src/io/numfmt.cc gets the same
+# warnings, without exceptions or RTTI: it needs no C++ run time).
 function(lv_set_warnings target)
   target_compile_options(${target} PRIVATE
-    -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes
-    -Wmissing-prototypes -Wformat=2 -ffp-contract=off)
+    -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wformat=2 -ffp-contract=off
+    $<$<COMPILE_LANGUAGE:C>:-Wstrict-prototypes -Wmissing-prototypes>
+    $<$<COMPILE_LANGUAGE:CXX>:-fno-exceptions -fno-rtti>)
 endfunction()
 
 if(LV_SANITIZE)

@@ -25,11 +25,30 @@ if(LV_HAVE_LIBFUZZER)
   # sets up its simulation: SUNDIALS too), without runs, targeting and post-processing (NLopt,
   # cJSON, PLplot).
   set(_src ${LV_SOURCES})
-  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|compare)\\.c|post/|target/)")
+  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|run_estimate|phase_types_api|compare)\\.c|post/|target/)")
   list(PREPEND _src fuzz/fuzz_mission.c)
+  # the C++ number formatter and parser (src/io/numfmt.cc, numparse.cc): compiled apart, with
+  # clang++, and linked in
+  set(_cxx ${_src})
+  list(FILTER _cxx INCLUDE REGEX "\\.cc$")
+  list(FILTER _src EXCLUDE REGEX "\\.cc$")
+  find_program(LV_CLANGXX NAMES clang++-14 clang++ REQUIRED)
+  get_target_property(_dbx dragonbox::dragonbox INTERFACE_INCLUDE_DIRECTORIES)
+  set(_cxx_obj)
+  foreach(_f ${_cxx})
+    get_filename_component(_n ${_f} NAME_WE)
+    set(_o ${CMAKE_BINARY_DIR}/fuzz/${_n}.o)
+    add_custom_command(OUTPUT ${_o}
+      COMMAND ${LV_CLANGXX} -std=c++17 -g -O1 -fno-omit-frame-pointer -fno-exceptions -fno-rtti
+              -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+              -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src -I${_dbx}
+              -I${LV_FASTFLOAT_INCLUDE} -c ${PROJECT_SOURCE_DIR}/${_f} -o ${_o}
+      DEPENDS ${PROJECT_SOURCE_DIR}/${_f} VERBATIM)
+    list(APPEND _cxx_obj ${_o})
+  endforeach()
   file(GLOB_RECURSE _hdr CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
        ${PROJECT_SOURCE_DIR}/src/*.h ${PROJECT_SOURCE_DIR}/include/lvsim/*.h)
-  list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/)
+  list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/ REGEX "^[^/]") # generated: absolute
   list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
   set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)
   foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS})
@@ -42,7 +61,7 @@ if(LV_HAVE_LIBFUZZER)
             -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
             -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes
             -Wmissing-prototypes -Wformat=2 -ffp-contract=off
-            -DLV_FUZZ_DIR="${PROJECT_SOURCE_DIR}/tests/missions" ${_inc} ${_src}
+            -DLV_FUZZ_DIR="${PROJECT_SOURCE_DIR}/tests/missions" ${_inc} ${_src} ${_cxx_obj}
             -o ${LV_FUZZ_BIN} ${YAML_LINK_LIBRARIES} ${MATIO_LINK_LIBRARIES}
             $<TARGET_FILE:SUNDIALS::cvode_shared> $<TARGET_FILE:SUNDIALS::arkode_shared>
             $<TARGET_FILE:SUNDIALS::nvecserial_shared>
@@ -50,10 +69,11 @@ if(LV_HAVE_LIBFUZZER)
             $<TARGET_FILE:SUNDIALS::sunlinsoldense_shared>
             $<TARGET_FILE:SUNDIALS::sunnonlinsolfixedpoint_shared>
             ${HDF5_LINK_LIBRARIES} -lm
-    DEPENDS ${_src} ${_hdr}
+    DEPENDS ${_src} ${_hdr} ${_cxx_obj}
     COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
     COMMAND_EXPAND_LISTS VERBATIM)
   add_custom_target(fuzz_mission ALL DEPENDS ${LV_FUZZ_BIN})
+  add_dependencies(fuzz_mission lv_generated) # the US76 table (src/env/atmosphere.cmake)
   add_test(NAME fuzz_mission
     COMMAND ${PROJECT_SOURCE_DIR}/fuzz/run.sh ${LV_FUZZ_BIN} 20)
   set_tests_properties(fuzz_mission PROPERTIES LABELS "fuzz;no-asan" TIMEOUT 180)

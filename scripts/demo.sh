@@ -8,16 +8,12 @@ lvsim="$build/lvsim"
 mission=examples/paper-test-case/mission.yaml
 
 echo "== lvsim demo: the paper's three-stage test case, five phases with two branches =="
-"$lvsim" run "$mission" -o "$out"
+"$lvsim" run "$mission" -o "$out" --quiet
 echo
 echo "== the same mission as one end-to-end model (the paper's Table 2) =="
 "$lvsim" compare "$mission"
 echo
 "$lvsim" view "$out" --stage-only > /dev/null
-echo "results:  $out/phase_<k>_<name>.mat (Dymola/OpenModelica dsres) and .csv, one per phase"
-echo "          $out/body_<stage>.csv (each stage's trajectory across its phases)"
-echo "          $out/summary.json (phase table, events, hand-offs, final states)"
-echo "          $out/mission.czml, mission.kml (trajectory exports), $out/plots/ (PNG, SVG)"
-echo "report:   $out/index.html"
-echo "viewer:   $lvsim view $out   -> http://127.0.0.1:8765/viewer/ (3-D globe, offline)"
+echo "report:   $out/index.html (key figures, phases, events, plots)"
+echo "viewer:   $lvsim view $out   (3-D globe, offline, on http://127.0.0.1)"
 echo "layout:   docs/result-files.md, docs/mission-format.md, docs/visualization.md"

@@ -5,18 +5,29 @@
 set -euo pipefail
 
 pkgs=(
-  cmake make gcc pkg-config            # build
+  cmake make gcc g++ pkg-config        # build (g++: the number formatter's shim, src/io/numfmt.cc)
+  libdragonbox-dev                     # shortest round-trip digits of doubles (CSV files)
+  libfast-float-dev                    # reading numbers back fast (results reader)
   libsundials-dev                      # CVODE, ARKODE (v6, SUNContext API)
   libmatio-dev                         # MAT v4/v5/v7 result and table files
   libhdf5-dev                          # MAT v7.3 tables libmatio cannot classify (src/io/table_load.c)
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
   libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
+  nettle-dev                           # SHA-256 in the results folder's manifest
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
+  libpng-dev                           # plots: PNG files written with fast settings
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
   chromium                             # headless browser for the viewer test (ctest test_viewer)
+  python3                              # lvsim view serves with python3's http.server
+  git ca-certificates                  # the fresh-clone test; npm's registry over https
 )
+# The viewer's npm packages (viewer/package.json, pinned for Debian 12's Node.js 18) need node
+# and npm: Debian's nodejs and npm, unless a node and an npm are already installed (another
+# distribution's node, such as NodeSource's, brings its own npm and conflicts with Debian's).
+command -v node > /dev/null || pkgs+=(nodejs)
+command -v npm > /dev/null || pkgs+=(npm)
 
 missing=()
 for p in "${pkgs[@]}"; do

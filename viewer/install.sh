@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install the viewer's npm packages (cesium; playwright-core for the browser test) from
 # viewer/package-lock.json with `npm ci`, only when node_modules is missing or older than
-# the lock file. Needs node and npm and the npm registry; nothing else is downloaded.
+# the lock file. Needs node and npm (Debian 12's Node.js 18 is enough: every package is pinned
+# to a version whose `engines` accept it) and the npm registry; nothing else is downloaded.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 cd "$here"
@@ -10,7 +11,11 @@ if [ -f "$stamp" ] && [ -d node_modules/cesium/Build/Cesium ] && [ ! package-loc
    && [ ! package.json -nt "$stamp" ]; then
   exit 0
 fi
-command -v npm >/dev/null || { echo "viewer/install.sh: npm not found (install Node.js >= 20)" >&2; exit 1; }
-echo "viewer/install.sh: npm ci in $here"
-npm ci --no-audit --no-fund --loglevel=error
+command -v npm >/dev/null || { echo "viewer/install.sh: npm not found (Debian: apt-get install nodejs npm; scripts/install-deps.sh does)" >&2; exit 1; }
+log="$here/npm-ci.log"
+printf 'viewer/install.sh: npm ci in %s (CesiumJS, playwright-core; log %s) ... ' "$here" "$log"
+if ! npm ci --no-audit --no-fund --loglevel=error > "$log" 2>&1; then
+  echo "FAILED"; tail -n 30 "$log" >&2; exit 1
+fi
+echo "done"
 touch "$stamp"

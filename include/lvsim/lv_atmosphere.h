@@ -44,8 +44,8 @@ typedef struct lv_atmo_state {
 typedef struct lv_atmo_model {
     const char *name;        /* key used in mission files: "us76", "exp", "table" */
     const char *description; /* one line */
-    /* Creates the parameter block with default values (for "us76": integrates the
-     * upper-atmosphere number densities once, about 10 ms). */
+    /* Creates the parameter block with default values (for "us76": a few constants; its
+     * upper-atmosphere table is computed at build time and shared, nothing is integrated). */
     lv_status (*par_create)(void **par, lv_err *err);
     void (*par_free)(void *par); /* accepts NULL */
     /* Sets one parameter by key; unknown keys give LV_ERR_NOTFOUND with suggestions. */

@@ -29,6 +29,24 @@ extern "C" {
  * ("path:line: ..."), or a summary and CSV that disagree; LV_ERR_NOMEM. */
 LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err);
 
+/* What an export request did: one item per file written, and one per requested format or
+ * body that got no file, saying why ("oem: flat world: no orbit to describe"). */
+typedef struct lv_export_item {
+    char format[8];  /* "czml", "kml", "oem" */
+    char file[256];  /* the file written in OUTDIR ("mission.czml"), or "" */
+    char note[256];  /* why nothing was written, or what the file leaves out; "" */
+} lv_export_item;
+typedef struct lv_export_report {
+    size_t n;
+    lv_export_item *items;
+} lv_export_report;
+
+/* lv_export_run, and what it wrote or not into *rep (zeroed first; rep may be NULL; free
+ * with lv_export_report_clear, also after a failure). */
+LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_export_report *rep,
+                                      lv_err *err);
+LV_API void lv_export_report_clear(lv_export_report *rep);
+
 #ifdef __cplusplus
 }
 #endif

@@ -164,6 +164,8 @@ typedef struct lv_phase_result {
     const double *propellant_end;   /* [n_stages of the mission], kg left after the phase */
     const double *dry_mass;         /* [n_stages of the mission], kg in this run */
     double payload;                 /* kg, the start mass beyond the carried stages */
+    unsigned result_formats;     /* the files written under result_stem: LV_RESULT_MAT |
+                                    LV_RESULT_CSV (0 when result_stem is NULL) */
 } lv_phase_result;
 
 typedef struct lv_run_options {
@@ -179,11 +181,16 @@ typedef struct lv_run_options {
      * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
     int (*progress)(const lv_run *r, size_t k, double t, void *user);
     int no_rows;          /* 1: keep no rows in memory (no merged trajectories): faster */
+    /* With outdir: the files of each phase, LV_RESULT_MAT | LV_RESULT_CSV; 0: both (the
+     * default); LV_RUN_NO_PHASE_FILES: neither (summary and bodies may still be written). */
+    unsigned result_formats;
     /* [n_phases] or NULL (every phase): nonzero for the phases whose results are wanted
      * (a targeting loop's constraints). Only those and their ancestors are simulated; a phase
      * outside them whose inputs changed is left PENDING for a later execute. */
     const unsigned char *want;
 } lv_run_options;
+
+#define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */
 
 /* Simulates every phase whose inputs changed since it last ran (or that never ran, or
  * failed), and its descendants; the others keep their results. Independent branches run in
@@ -200,6 +207,24 @@ LV_API lv_status lv_run_final(const lv_run *r, size_t k, const char *name, doubl
                               lv_err *err);
 /* Phase k's rows in memory (every output row and event instant), or NULL. */
 LV_API const lv_result *lv_run_rows(const lv_run *r, size_t k);
+
+/* ---- output size, before running --------------------------------------------------------- */
+
+/* What phase k will write at most with the run's current values: its output grid over its
+ * longest possible duration (its stop time minus its start_time, or minus the end of its
+ * parent when that is done in this run, else minus the parent's earliest start). Each
+ * event instant adds two rows more (not counted). */
+typedef struct lv_output_estimate {
+    double duration;   /* s */
+    double rows;       /* output grid points */
+    size_t n_signals;  /* columns: time, states, their derivatives, outputs */
+    double bytes_mat;  /* the .mat file's data: 8 bytes a value (and the run's rows in
+                          memory when it keeps them: lv_run_options.no_rows = 0) */
+    double bytes_csv;  /* the .csv file: about 22 bytes a value (%.17g and a comma) */
+} lv_output_estimate;
+/* `output_interval` > 0: the grid lv_run_options.output_interval would impose. */
+LV_API lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interval,
+                                        lv_output_estimate *out, lv_err *err);
 
 /* ---- the bodies: each stage's trajectory across the phases it flies in ------------------ */
 
@@ -244,6 +269,38 @@ LV_API lv_status lv_run_complete(lv_run *r, lv_phase_call *c, lv_status st, cons
                                  lv_sim_report *rep, lv_err *err);
 LV_API void lv_phase_call_free(lv_phase_call *c); /* a call not completed; accepts NULL */
 
+/* ---- the phase-model types: what a phase's `model:` may name ---------------------------- */
+
+typedef struct lv_phase_type_info {
+    const char *name;           /* "flat6", "dof3" */
+    const char *description;    /* one line */
+    int flat_world;             /* 1: flies in the flat world; 0: over a planet */
+    const char *const *keys;    /* the phase keys it reads besides the common ones,
+                                   NULL-terminated; may be NULL */
+    size_t n_mission_params;    /* what a root phase takes from the mission's `parameters:` */
+    const lv_var *mission_params;
+    const char *mass_state;     /* the state holding the vehicle's mass: "m" */
+} lv_phase_type_info;
+
+/* The registered types, in registry order: i = 0 .. count - 1. */
+LV_API size_t lv_phase_types_count(void);
+LV_API lv_status lv_phase_types_get(size_t i, lv_phase_type_info *out, lv_err *err);
+
+/* A type's model as a phase of a sample mission builds it (one stage of 1000 kg dry and
+ * 4000 kg of propellant, one constant engine, one phase of 10 s; a planet type flies over the
+ * WGS-84 Earth): its states, parameters, outputs and events are those of every phase of the
+ * type, by name and unit (the names of `set:`, `end:` and the result files); the values are
+ * the sample's. LV_ERR_NOTFOUND for an unknown name (the message lists the types). */
+typedef struct lv_phase_sample lv_phase_sample;
+LV_API lv_status lv_phase_types_sample(const char *name, lv_phase_sample **out, lv_err *err);
+LV_API const lv_model_def *lv_phase_types_sample_model(const lv_phase_sample *s);
+LV_API void lv_phase_types_sample_free(lv_phase_sample *s); /* accepts NULL */
+
+/* The end conditions a phase's `end:` may name ("burnout", "altitude", "speed", "apogee",
+ * "impact"): i = 0 .. count - 1. */
+LV_API size_t lv_phase_types_end_count(void);
+LV_API const char *lv_phase_types_end_name(size_t i);
+
 /* ---- sequential versus end-to-end (the paper's Table 2) ------------------------------------- */
 
 typedef struct lv_compare_side {
@@ -252,6 +309,7 @@ typedef struct lv_compare_side {
     size_t n_states;       /* per model (sequential: the largest phase model) */
     long state_events, time_events, steps, rhs_evals, jac_evals;
     double cpu_time;       /* s, sum over phases */
+    long rhs_evals_steps, rhs_evals_output; /* rhs_evals split (lv_sim_stats) */
 } lv_compare_side;
 
 typedef struct lv_compare_body {

@@ -53,6 +53,9 @@ typedef enum lv_dir {
     LV_DIR_FALLING = -1 /* g goes from positive to negative */
 } lv_dir;
 
+/* Bytes (with the NUL) an event's name keeps in the event log (lv_event_record). */
+#define LV_EVENT_NAME_MAX 96
+
 /* A state event: a zero crossing of g_i(t, x). */
 typedef struct lv_event_def {
     const char *name;        /* "burnout", "impact" */
@@ -142,6 +145,12 @@ struct lv_model_def {
     /* Optional. Why the last callback failed ("table 'stage1' : t = 130 is outside
      * [0, 120]"), or NULL; lv_simulate() adds it to its failure message. */
     const char *(*last_error)(const void *inst);
+
+    /* Optional. What the time event(s) scheduled at exactly `t` are, by their source: which
+     * table and breakpoint, which commanded action ("engine table 'stage3' breakpoint
+     * t = 481 s", "separation of stage2"). Called at `t` before on_time_event(); the text
+     * may live in `inst` (it is copied at once). NULL (or no function): "time event". */
+    const char *(*time_event_name)(double t, const double *p, void *inst);
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

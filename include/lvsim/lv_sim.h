@@ -35,6 +35,7 @@
 extern "C" {
 #endif
 
+/* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats). */
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
 
 /* A condition that ends the run - a phase's end on any of the model's variables: the variable
@@ -97,6 +98,12 @@ typedef struct lv_sim_stats {
     long restarts;       /* integrator re-initialisations */
     long output_rows;    /* rows written to sinks */
     double cpu_time;     /* s, thread CPU time of the run */
+    /* rhs_evals = rhs_evals_steps + rhs_evals_output (docs/integration.md, "Output cost"): */
+    long rhs_evals_steps;  /* spent on the steps: stages, Jacobians, step-size selection */
+    long rhs_evals_output; /* spent on output between steps: dopri5's dense output (at most
+                              one per step that holds output times); CVODE's is free */
+    long row_evals;        /* model evaluations (derivatives and outputs) for the result rows
+                              and the final values; none when no sink takes the rows */
 } lv_sim_stats;
 
 typedef enum lv_stop_reason {
@@ -110,6 +117,8 @@ typedef struct lv_event_record {
     int is_state;  /* 1 state event, 0 time event */
     int index;     /* event function index (state events), -1 for time events */
     int direction; /* +1 rising, -1 falling, 0 time event */
+    char name[LV_EVENT_NAME_MAX]; /* a state event's name ("burnout"); a time event's source
+                                     (lv_model_def.time_event_name), else "time event" */
 } lv_event_record;
 
 typedef struct lv_sim_report {
@@ -117,7 +126,7 @@ typedef struct lv_sim_report {
     lv_stop_reason reason;
     double end_time;          /* s: stop_time, the stopping event, or the failure time */
     int stop_event;           /* index of the state event that stopped the run, or -1 */
-    char stop_name[64];       /* "stopTime", the event's name, "time event" or "failed" */
+    char stop_name[LV_EVENT_NAME_MAX]; /* "stop_time", the event's name or "failed" */
     size_t n_states;          /* number of continuous states */
     size_t n_event_log;       /* events handled, in order */
     lv_event_record *event_log; /* owned; free with lv_sim_report_clear() */

@@ -18,6 +18,14 @@ extern "C" {
  * and renamed. Errors: LV_ERR_IO naming the file, LV_ERR_NOMEM. */
 LV_API lv_status lv_run_write_summary(const lv_run *r, const char *outdir, lv_err *err);
 
+/* The same, choosing the files (lvsim run --outputs): LV_SUMMARY_JSON (summary.json; it names
+ * the body files only when they are written too) and/or LV_SUMMARY_BODIES (body_<stage>.csv).
+ * lv_run_write_summary writes both. */
+#define LV_SUMMARY_JSON 1u
+#define LV_SUMMARY_BODIES 2u
+LV_API lv_status lv_run_write_summary_files(const lv_run *r, const char *outdir, unsigned what,
+                                            lv_err *err);
+
 #ifdef __cplusplus
 }
 #endif

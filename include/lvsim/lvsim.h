@@ -22,6 +22,7 @@
 #include "lvsim/lv_summary.h"
 #include "lvsim/lv_export.h"
 #include "lvsim/lv_plot.h"
+#include "lvsim/lv_outdir.h"
 #include "lvsim/lv_vehicle.h"
 #include "lvsim/lv_dof3.h"
 

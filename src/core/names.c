@@ -4,6 +4,7 @@
 #include "core/names.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define LV_NAME_CMP_MAX 255
@@ -77,4 +78,47 @@ void lv_suggest_text(const lv_suggest *s, char *buf, size_t cap)
     }
     if (used < cap)
         snprintf(buf + used, cap - used, "?");
+}
+
+/* FNV-1a: the table only needs names spread over its slots. */
+static size_t name_hash(const char *s)
+{
+    size_t h = (size_t)14695981039346656037u;
+    for (const unsigned char *c = (const unsigned char *)s; *c != '\0'; c++)
+        h = (h ^ *c) * (size_t)1099511628211u;
+    return h;
+}
+
+size_t lv_names_duplicate(const char *const *names, size_t n)
+{
+    enum { STACK_SLOTS = 512 };
+    size_t stack[STACK_SLOTS];
+    size_t cap = 1;
+    while (cap < 2 * n)
+        cap *= 2;
+    size_t *slot = cap <= STACK_SLOTS ? stack : malloc(cap * sizeof *slot);
+    if (slot == NULL) { /* no memory for a table: compare every pair */
+        for (size_t i = 1; i < n; i++)
+            for (size_t j = 0; j < i; j++)
+                if (strcmp(names[i], names[j]) == 0)
+                    return i;
+        return n;
+    }
+    for (size_t k = 0; k < cap; k++)
+        slot[k] = (size_t)-1;
+    size_t dup = n;
+    for (size_t i = 0; i < n && dup == n; i++) {
+        size_t k = name_hash(names[i]) & (cap - 1);
+        while (slot[k] != (size_t)-1) { /* linear probing; the table is at most half full */
+            if (strcmp(names[slot[k]], names[i]) == 0) {
+                dup = i;
+                break;
+            }
+            k = (k + 1) & (cap - 1);
+        }
+        slot[k] = i;
+    }
+    if (slot != stack)
+        free(slot);
+    return dup;
 }

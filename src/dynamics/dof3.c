@@ -150,6 +150,7 @@ typedef struct dof3_inst {
     lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
     lv_guid_rt guid;      /* the steering law's start frame, cursors, trigonometry */
     char msg[LV_ERR_MSG_MAX];
+    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 } dof3_inst;
 
 struct lv_dof3 {
@@ -508,6 +509,42 @@ static double dof3_next_time_event(double t, const double *p, void *inst)
     if (m->steers)
         tn = min_d(tn, lv_guid_next_time_event(&m->guid, &((const dof3_inst *)inst)->guid, t));
     return tn;
+}
+
+/* 1 if table `tab` has a breakpoint at exactly t on its first axis (time). */
+static int breakpoint_at(const lv_table *tab, double t)
+{
+    size_t n = 0;
+    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
+    for (size_t i = 0; b != NULL && i < n; i++)
+        if (b[i] == t)
+            return 1;
+    return 0;
+}
+
+/* The time events at t by their source: the inputs table's, the steering law's or an engine
+ * table's breakpoint. */
+static const char *dof3_time_event_name(double t, const double *p, void *inst)
+{
+    (void)p;
+    dof3_inst *s = inst;
+    const lv_dof3 *m = s->m;
+    size_t len = 0;
+    s->tev[0] = '\0';
+    if (breakpoint_at(m->inputs.table, t))
+        len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
+                                lv_table_name(m->inputs.table));
+    const char *g = m->steers ? lv_guid_time_event_label(&m->guid, &s->guid, t) : NULL;
+    if (g != NULL)
+        len += (size_t)snprintf(s->tev + len, sizeof s->tev - len, "%s%s", len ? "; " : "", g);
+    for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
+        if (breakpoint_at(m->eng[i].table, t))
+            len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
+                                    "%sengine '%.24s' table breakpoint", len ? "; " : "",
+                                    m->eng[i].name);
+    if (len > 0 && len < sizeof s->tev)
+        snprintf(s->tev + len, sizeof s->tev - len, " t = %.9g s", t);
+    return s->tev;
 }
 
 /* Flight-path angle and heading of an ECEF vector in the local NED frame. */
@@ -914,6 +951,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .n_domain = 1,
         .domain = m->domain,
         .domain_q = dof3_domain_q,
+        .time_event_name = dof3_time_event_name,
     };
     m->inst.m = m;
     for (int k = 0; k < 3; k++)

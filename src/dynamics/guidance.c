@@ -155,7 +155,8 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
     g->cs_pitch[1] = sin(s->pitch);
     double r[3];
     lv_frames_geodetic_to_ecef(planet, s->target_lat, s->target_lon, 0.0, r);
-    g->target = lv_v3_unit(lv_v3(r[0], r[1], r[2]));
+    g->target_r = lv_v3(r[0], r[1], r[2]);
+    g->target = lv_v3_unit(g->target_r);
     return LV_OK;
 }
 
@@ -188,6 +189,26 @@ double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t)
     if (s->law == LV_STEER_ATTITUDE && s->table != NULL && g->axis == LV_GAXIS_TIME)
         return lv_table_next_breakpoint(s->table, 0, t);
     return INFINITY;
+}
+
+const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    const lv_steering *s = &g->s;
+    if (s->law == LV_STEER_GRAVITY_TURN) {
+        const double t1 = rt->t0 + s->rise_time;
+        if (t == t1 && s->kick_time > 0.0)
+            return "guidance: end of the vertical rise, start of the kick";
+        if (t == t1 + s->kick_time)
+            return "guidance: end of the kick, zero angle of attack";
+    }
+    if (s->law == LV_STEER_ATTITUDE && s->table != NULL && g->axis == LV_GAXIS_TIME) {
+        size_t n = 0;
+        const double *b = lv_table_breakpoints(s->table, 0, &n);
+        for (size_t i = 0; b != NULL && i < n; i++)
+            if (b[i] == t)
+                return "guidance: attitude table breakpoint";
+    }
+    return NULL;
 }
 
 /* cos, sin of the three angles, cached while they do not change. */
@@ -293,11 +314,14 @@ static void frame_axes(const lv_guid_rt *rt, const lv_flight_kin *k, lv_att_fram
     }
 }
 
-/* Direction of the target over the local horizon: cos and sin of its bearing (from north
- * to east), without trigonometry; (1, 0) at the target itself. */
+/* Direction of the target over the local (geodetic) horizon: cos and sin of its bearing
+ * (from north to east) without trigonometry, from the chord to the target point projected on
+ * the horizontal plane (on a sphere: the great circle's initial direction); (1, 0) at the
+ * target itself. */
 static void bearing_cs(const lv_guid *g, const lv_flight_kin *k, double cs[2])
 {
-    const double hn = lv_v3_dot(g->target, k->n_ax), he = lv_v3_dot(g->target, k->e_ax);
+    const lv_vec3 d = lv_v3_sub(g->target_r, k->r_ecef);
+    const double hn = lv_v3_dot(d, k->n_ax), he = lv_v3_dot(d, k->e_ax);
     const double n = sqrt(hn * hn + he * he);
     cs[0] = n > 0.0 ? hn / n : 1.0;
     cs[1] = n > 0.0 ? he / n : 0.0;
@@ -437,9 +461,9 @@ double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in 
         const double dh = in->h - t->land_altitude;
         const double vd = in->v_down > 0.0 ? in->v_down : 0.0;
         const double vt = t->land_speed;
-        const double a_req = dh > 0.0 ? (vd * vd - vt * vt) / (2.0 * dh) /* at or below it: */
-                             : vd > vt ? HUGE_VAL                        /* brake, or */
-                                       : 0.0;                            /* let gravity act */
+        /* at or below the landing altitude the landing is over (the phase's impact end is
+         * there): no vertical acceleration, so that the touchdown row shows no spike */
+        const double a_req = dh > 0.0 ? (vd * vd - vt * vt) / (2.0 * dh) : 0.0;
         const double up1 = lv_v3_dot(in->up, a1);
         if (!(up1 > 0.0))
             return in->c_max;
@@ -471,16 +495,16 @@ void lv_guid_target(const lv_guid *g, const lv_flight_kin *k, double radius, dou
                     double *distance, double *bearing, double *overshoot)
 {
     const lv_vec3 up = lv_v3_unit(k->r_ecef);
-    const lv_vec3 h = lv_v3_sub(g->target, lv_v3_scale(up, lv_v3_dot(g->target, up)));
-    const double hn = lv_v3_norm(h);
-    *bearing = atan2(lv_v3_dot(h, k->e_ax), lv_v3_dot(h, k->n_ax));
+    double b[2];
+    bearing_cs(g, k, b);
+    *bearing = atan2(b[1], b[0]);
     *distance = radius * atan2(lv_v3_norm(lv_v3_cross(up, g->target)), lv_v3_dot(up, g->target));
     /* vacuum ballistic flight over flat ground: t_fall from h' = v_up - g t, h(t_f) = 0 */
     const double v_up = -lv_v3_dot(k->v_rel, k->d_ax);
     const double hh = k->h > 0.0 ? k->h : 0.0;
     const double gg = g_up > 0.0 ? g_up : LV_G0;
     const double t_fall = (v_up + sqrt(v_up * v_up + 2.0 * gg * hh)) / gg;
-    const double v_toward = hn > 0.0 ? lv_v3_dot(k->v_rel, h) / hn : 0.0;
+    const double v_toward = lv_v3_dot(k->v_rel, lv_flight_from_ned(k, b[0], b[1], 0.0));
     *overshoot = v_toward * (t_fall > 0.0 ? t_fall : 0.0) - *distance;
 }
 

@@ -25,6 +25,7 @@ typedef struct lv_guid {
     double cs_heading[2]; /* cos, sin of s.heading */
     double cs_pitch[2];   /* BOOSTBACK: cos, sin of s.pitch */
     lv_vec3 target;       /* unit vector of the target point, ECEF (geocentric direction) */
+    lv_vec3 target_r;     /* m, the target point on the ellipsoid, ECEF */
     int need_alpha, need_beta; /* the aerodynamic tables read alpha, beta (else the right-hand
                                   side skips them: outputs only) */
 } lv_guid;
@@ -58,6 +59,10 @@ void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_
 /* The next breakpoint of the law after t (gravity turn: end of the rise and of the kick;
  * an attitude table over time: its breakpoints), or INFINITY. */
 double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t);
+
+/* What the law's time event at t is ("end of the vertical rise", "end of the kick", "attitude
+ * table breakpoint"), or NULL when the law has none at t. */
+const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, double t);
 
 /* Attitude at time t: fills ax (wind and body axes, ECEF) and c->u[alpha, beta, mu] with
  * their cosines and sines (the angles that result for an attitude frame; 0 below 1e-6 m/s

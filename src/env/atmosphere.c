@@ -28,16 +28,12 @@ typedef struct us76_par {
     double TM_b[US76_NLAYER];   /* K, molecular-scale temperature at each base */
     double P_b[US76_NLAYER];    /* Pa, pressure at each base */
     double expo[US76_NLAYER];   /* g0 M0 / (R* L_b), or g0 M0 / (R* T_M,b) when L_b = 0 */
-    lv_us76_upper up;           /* 86 km to 1000 km */
+    const lv_us76_upper *up;    /* 86 km to 1000 km: the table compiled in */
 } us76_par;
 
 static void us76_par_free(void *par)
 {
-    us76_par *p = par;
-    if (p == NULL)
-        return;
-    lv_us76_upper_release(&p->up);
-    free(p);
+    free(par);
 }
 
 static lv_status us76_par_create(void **out, lv_err *err)
@@ -58,11 +54,8 @@ static lv_status us76_par_create(void **out, lv_err *err)
                      : P * exp(-p->expo[b] * dH);         /* eq. (33b) */
         TM = TM_next;
     }
-    lv_status st = lv_us76_upper_build(&p->up, 50.0, 500.0, err);
-    if (st != LV_OK) {
-        us76_par_free(p);
-        return lv_fail_prefix(err, st, "atmosphere model 'us76'");
-    }
+    /* The upper atmosphere was integrated at build time (atmosphere_us76_gen.c). */
+    p->up = &lv_us76_upper_1976;
     *out = p;
     return LV_OK;
 }
@@ -131,7 +124,7 @@ static lv_status us76_eval(const void *par, double z, lv_atmo_state *out, lv_err
 
     double dT, lnNT, lnrhoT;
     const double T = lv_us76_upper_T(z, &dT);
-    lv_us76_upper_lookup(&p->up, z, &lnNT, &lnrhoT);
+    lv_us76_upper_lookup(p->up, z, &lnNT, &lnrhoT);
     const double NT = exp(lnNT), rhoT = exp(lnrhoT);
     const double M = rhoT * LV_US76_NA / NT; /* mean molecular weight */
     out->T = T;

@@ -33,17 +33,27 @@ double lv_us76_upper_T(double z, double *dT_dz);
  * ln(N T) (N: total number density, 1/m^3; T in K) and ln(rho T) (rho in kg/m^3).
  * Built once, read-only after. */
 typedef struct lv_us76_upper {
-    double z0;  /* m, 86 km */
-    double dz;  /* m, interval length */
-    size_t n;   /* number of intervals */
-    double *c;  /* [n][8]: ln(N T) coefficients c0..c3, then ln(rho T) c0..c3 */
+    double z0;        /* m, 86 km */
+    double dz;        /* m, interval length */
+    size_t n;         /* number of intervals */
+    const double *c;  /* [n][8]: ln(N T) coefficients c0..c3, then ln(rho T) c0..c3 */
+    double *own;      /* the block c points to when built here (freed by release), or NULL */
 } lv_us76_upper;
 
 /* Integrates the species equations on a grid of `h` metres (Simpson's rule) and fits
  * Hermite cubics on intervals of `node_dz` metres (a multiple of 2 h dividing 1000 m).
- * The default model uses h = 50 m and node_dz = 500 m (interpolation error < 5e-7). */
+ * The default model uses h = 50 m and node_dz = 500 m (interpolation error < 5e-7): that
+ * table is computed at build time (lv_us76_upper_1976), not at run time. */
+#define LV_US76_UPPER_H 50.0       /* m, integration step of the default table */
+#define LV_US76_UPPER_NODE_DZ 500.0 /* m, its node spacing */
 lv_status lv_us76_upper_build(lv_us76_upper *up, double h, double node_dz, lv_err *err);
 void lv_us76_upper_release(lv_us76_upper *up);
+
+/* The default table (h = LV_US76_UPPER_H, node_dz = LV_US76_UPPER_NODE_DZ), computed by
+ * lv_us76_upper_build at build time and compiled in (us76_upper_table.c, written by
+ * src/env/atmosphere_us76_gen.c): every process shares it and nobody computes it at run time.
+ * Bit for bit what lv_us76_upper_build gives on the build machine (test_atmosphere checks). */
+extern const lv_us76_upper lv_us76_upper_1976;
 
 /* ln(N T) and ln(rho T) at z (86 km <= z <= 1000 km). No allocation. */
 void lv_us76_upper_lookup(const lv_us76_upper *up, double z, double *ln_NT, double *ln_rhoT);

@@ -322,20 +322,21 @@ lv_status lv_us76_upper_build(lv_us76_upper *up, double h, double node_dz, lv_er
         return st;
     const size_t stride = (size_t)stride_d;
     const size_t n = (gr.np - 1) / stride;
-    up->c = malloc(n * 8 * sizeof *up->c);
-    if (up->c == NULL) {
+    double *c = malloc(n * 8 * sizeof *c);
+    if (c == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "us76 upper atmosphere: out of memory (%zu nodes)", n);
         goto fail;
     }
     up->z0 = LV_US76_Z7;
     up->dz = node_dz;
     up->n = n;
+    up->c = up->own = c;
     for (size_t k = 0; k < n; k++) {
         double a[4], b[4];
         node_values(&gr, k * stride, +1, &a[0], &a[1], &a[2], &a[3]);
         node_values(&gr, (k + 1) * stride, -1, &b[0], &b[1], &b[2], &b[3]);
-        hermite(a[0], a[1], b[0], b[1], node_dz, up->c + 8 * k);
-        hermite(a[2], a[3], b[2], b[3], node_dz, up->c + 8 * k + 4);
+        hermite(a[0], a[1], b[0], b[1], node_dz, c + 8 * k);
+        hermite(a[2], a[3], b[2], b[3], node_dz, c + 8 * k + 4);
     }
 fail:
     grid_free(&gr);
@@ -346,7 +347,7 @@ void lv_us76_upper_release(lv_us76_upper *up)
 {
     if (up == NULL)
         return;
-    free(up->c);
+    free(up->own);
     memset(up, 0, sizeof *up);
 }
 

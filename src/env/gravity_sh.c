@@ -3,7 +3,9 @@
  * (Montenbruck & Gill, Satellite Orbits, 2000, sec. 3.2.4-3.2.5), normalised as
  * in docs/gravity.md: no division by cos(latitude), finite at the poles. Also
  * the reader of ICGEM .gfc coefficient files. */
+#define _POSIX_C_SOURCE 200809L /* fmemopen */
 #include <errno.h>
+#include <pthread.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -213,7 +215,8 @@ static int read_line(FILE *fp, char *buf, size_t cap)
     return 1;
 }
 
-lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, int order,
+/* Reads the coefficients from `fp` (the file `path`, for messages), closes fp. */
+static lv_status read_gfc_stream(lv_gravity *g, FILE *fp, const char *path, int degree, int order,
                                  lv_err *err)
 {
     lv_status st = LV_OK;
@@ -221,10 +224,6 @@ lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, in
     char line[GFC_LINE_MAX];
     int lineno = 0, rc, file_max = -1, in_head = 1;
     double gm = NAN, radius = NAN;
-    FILE *fp = fopen(path, "r");
-    if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
-                       strerror(errno));
 
     /* Header (ICGEM format 2.0 section 3): "key value" lines up to end_of_head. */
     while (in_head && (rc = read_line(fp, line, sizeof line)) != 0) {
@@ -370,5 +369,151 @@ lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, in
 fail:
     free(seen);
     fclose(fp);
+    return st;
+}
+
+/* ---- coefficient files read once per process -----------------------------------------------
+ * Parsing a .gfc file is most of what loading a mission with "sh" gravity costs (1 M
+ * instructions for the shipped degree-20 file, mostly strtod). A process that loads missions
+ * again and again (a study, a benchmark, a service) reads the file's bytes each time, which is
+ * cheap, and parses them once: the result for a (path, degree, order) is kept together with
+ * the bytes it came from, and used again only when the file still holds exactly those bytes
+ * (a changed file is parsed again). The cache is process-wide, guarded by a mutex, and its
+ * entries never change once made (lv_gravity objects copy their coefficients from them); a
+ * file that fails to parse is not kept, so its error is reported every time. At most
+ * GFC_CACHE_MAX entries; they live until the process ends. */
+#define GFC_CACHE_MAX 16
+
+typedef struct gfc_entry {
+    char *path;
+    int degree, order;    /* as requested */
+    char *bytes;          /* the file's content */
+    size_t size;
+    double gm, r_ref;
+    int deg, ord;         /* as read: the file's max_degree when 0 was asked, ... */
+    double *cnm, *snm;    /* [tri_count(deg)] */
+} gfc_entry;
+
+static pthread_mutex_t gfc_lock = PTHREAD_MUTEX_INITIALIZER;
+static gfc_entry *gfc_cache[GFC_CACHE_MAX]; /* guarded by gfc_lock; entries immutable */
+static size_t gfc_count;
+
+/* The whole file, or NULL with errno set. */
+static char *slurp(const char *path, size_t *size)
+{
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL)
+        return NULL;
+    size_t cap = 65536, n = 0;
+    char *buf = malloc(cap);
+    while (buf != NULL) {
+        n += fread(buf + n, 1, cap - n, fp);
+        if (n < cap)
+            break;
+        char *grown = realloc(buf, 2 * cap);
+        if (grown == NULL) {
+            free(buf);
+            buf = NULL;
+            errno = ENOMEM;
+            break;
+        }
+        buf = grown;
+        cap *= 2;
+    }
+    if (buf != NULL && ferror(fp)) {
+        free(buf);
+        buf = NULL;
+        errno = EIO;
+    }
+    fclose(fp);
+    *size = n;
+    return buf;
+}
+
+static const gfc_entry *gfc_find(const char *path, int degree, int order, const char *bytes,
+                                 size_t size)
+{
+    const gfc_entry *hit = NULL;
+    pthread_mutex_lock(&gfc_lock);
+    for (size_t i = 0; i < gfc_count && hit == NULL; i++) {
+        const gfc_entry *e = gfc_cache[i];
+        if (e->degree == degree && e->order == order && e->size == size &&
+            strcmp(e->path, path) == 0 && memcmp(e->bytes, bytes, size) == 0)
+            hit = e;
+    }
+    pthread_mutex_unlock(&gfc_lock);
+    return hit;
+}
+
+/* Keeps g's coefficients as read from `bytes` (taken over, or freed when not kept). */
+static void gfc_keep(const lv_gravity *g, const char *path, int degree, int order, char *bytes,
+                     size_t size)
+{
+    const size_t nc = lv_gravity_tri_count(g->degree), lp = strlen(path) + 1;
+    gfc_entry *e = malloc(sizeof *e + 2 * nc * sizeof(double) + lp);
+    if (e == NULL) {
+        free(bytes);
+        return;
+    }
+    e->cnm = (double *)(e + 1);
+    e->snm = e->cnm + nc;
+    e->path = (char *)(e->snm + nc);
+    memcpy(e->path, path, lp);
+    memcpy(e->cnm, g->cnm, nc * sizeof(double));
+    memcpy(e->snm, g->snm, nc * sizeof(double));
+    e->degree = degree;
+    e->order = order;
+    e->bytes = bytes;
+    e->size = size;
+    e->gm = g->gm;
+    e->r_ref = g->r_ref;
+    e->deg = g->degree;
+    e->ord = g->order;
+    pthread_mutex_lock(&gfc_lock);
+    const int kept = gfc_count < GFC_CACHE_MAX;
+    if (kept)
+        gfc_cache[gfc_count++] = e;
+    pthread_mutex_unlock(&gfc_lock);
+    if (!kept) {
+        free(e->bytes);
+        free(e);
+    }
+}
+
+lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, int order,
+                                 lv_err *err)
+{
+    size_t size = 0;
+    char *bytes = slurp(path, &size);
+    if (bytes == NULL)
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
+                       strerror(errno));
+    const gfc_entry *e = gfc_find(path, degree, order, bytes, size);
+    if (e != NULL) { /* read before, the same bytes: the same coefficients */
+        free(bytes);
+        lv_status st = lv_gravity_sh_alloc(g, e->deg, e->ord, err);
+        if (st != LV_OK)
+            return st;
+        const size_t nc = lv_gravity_tri_count(e->deg);
+        g->gm = e->gm;
+        g->r_ref = e->r_ref;
+        memcpy(g->cnm, e->cnm, nc * sizeof(double));
+        memcpy(g->snm, e->snm, nc * sizeof(double));
+        lv_gravity_sh_finish(g);
+        return LV_OK;
+    }
+    /* parse the bytes read (not the file again: what is kept is what was parsed) */
+    FILE *fp = size > 0 ? fmemopen(bytes, size, "r") : fopen(path, "r");
+    if (fp == NULL) {
+        const int e_no = errno;
+        free(bytes);
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
+                       strerror(e_no));
+    }
+    lv_status st = read_gfc_stream(g, fp, path, degree, order, err); /* closes fp */
+    if (st == LV_OK && size > 0)
+        gfc_keep(g, path, degree, order, bytes, size);
+    else
+        free(bytes);
     return st;
 }

@@ -37,6 +37,12 @@ struct lv_integ {
     double tstop;             /* current stop time, or NAN */
     lv_integ_stats acc;       /* CVODE counters from before the last CVodeReInit */
     char sun_msg[256];        /* last message from SUNDIALS' error handler */
+    /* ERKStep (dopri5, rk4, euler): the last right-hand side evaluation, reused when ARKODE
+     * asks for exactly the same (t, x) again (its dense output, below), and our counts */
+    int memo_ok;
+    double memo_t;
+    double *memo_x, *memo_f;  /* [n] each */
+    long n_step, n_dense, n_reused;
 };
 
 /* ---- methods ------------------------------------------------------------------ */
@@ -83,6 +89,51 @@ static int sun_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
     lv_integ *ig = user;
     return ig->p.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), ig->p.user);
+}
+
+/* ERKStep's right-hand side. ARKODE 6.4's dense output for dopri5 is a degree-4 Hermite
+ * polynomial that needs f at t_n - h/3 of the last step, at the state its cubic Hermite gives
+ * there, and it evaluates that f again for every output time in the step, for every root
+ * check and every root-finding iterate (arkInterpEvaluate_Hermite recomputes it each call).
+ * Those calls repeat exactly the same (t, x): the model is a pure function of them (its mode
+ * changes only at events, after which lv_integ_forget drops the memory), so the repeat is
+ * answered from the remembered evaluation, bit for bit what the model would return. Output
+ * then costs at most one RHS per step that holds output times, not one or two per output
+ * time; every value stays the same.
+ * The calls are counted as ARKODE makes them: a stage (and the FSAL, step-size and start
+ * evaluations) is evaluated at ARKODE's current time t == tcur; the dense output's at
+ * tcur - h_last/3, exactly as arkInterpEvaluate_Hermite computes it. */
+static int sun_rhs_erk(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+{
+    lv_integ *ig = user;
+    const size_t n = ig->p.n;
+    const double *x = N_VGetArrayPointer(y);
+    double *f = N_VGetArrayPointer(ydot);
+    if (ig->memo_ok && t == ig->memo_t && memcmp(x, ig->memo_x, n * sizeof *x) == 0) {
+        memcpy(f, ig->memo_f, n * sizeof *f);
+        ig->n_reused++;
+        return 0;
+    }
+    sunrealtype tcur = t, hlast = 0.0;
+    ERKStepGetCurrentTime(ig->mem, &tcur);
+    ERKStepGetLastStep(ig->mem, &hlast);
+    if (t != tcur && t == tcur - hlast / 3.0)
+        ig->n_dense++;
+    else
+        ig->n_step++;
+    const int rc = ig->p.rhs(t, x, f, ig->p.user);
+    ig->memo_ok = rc == 0;
+    if (rc == 0) {
+        ig->memo_t = t;
+        memcpy(ig->memo_x, x, n * sizeof *x);
+        memcpy(ig->memo_f, f, n * sizeof *f);
+    }
+    return rc;
+}
+
+void lv_integ_forget(lv_integ *ig)
+{
+    ig->memo_ok = 0;
 }
 
 /* Error weights with a relative tolerance per state: w_i = 1 / (rtol_i |y_i| + atol_i), the
@@ -199,6 +250,14 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         goto fail;
     }
     memcpy(ig->atol, p->atol, p->n * sizeof *ig->atol);
+    if (!ig->is_cvode) {
+        ig->memo_x = malloc(2 * p->n * sizeof *ig->memo_x);
+        if (ig->memo_x == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+            goto fail;
+        }
+        ig->memo_f = ig->memo_x + p->n;
+    }
     if (p->rtol_v != NULL) {
         if ((ig->rtol_v = malloc(p->n * sizeof *ig->rtol_v)) == NULL) {
             st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
@@ -263,7 +322,7 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
             SUNCHK(CVodeSetNoInactiveRootWarn(ig->mem), "CVODE root warnings");
         }
     } else {
-        ig->mem = ERKStepCreate(sun_rhs, t0, ig->y, ig->ctx);
+        ig->mem = ERKStepCreate(sun_rhs_erk, t0, ig->y, ig->ctx);
         if (ig->mem == NULL) {
             st = lv_fail(err, LV_ERR_NOMEM, "integrator: ERKStepCreate failed");
             goto fail;
@@ -276,9 +335,10 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
             SUNCHK(ERKStepSVtolerances(ig->mem, p->rtol, ig->atol_v), "ARKODE tolerances");
         if (p->method == LV_METHOD_DOPRI5) {
             SUNCHK(ERKStepSetTableNum(ig->mem, ARKODE_DORMAND_PRINCE_7_4_5), "ARKODE table");
-            /* ARKODE's default dense output here is a degree-4 Hermite polynomial: one
-             * extra RHS evaluation per output point, but outputs as accurate as the steps
-             * (the cubic one made output errors 100x larger in test_simulate). */
+            /* ARKODE's default dense output here is a degree-4 Hermite polynomial: outputs
+             * as accurate as the steps (the cubic one made output errors 100x larger in
+             * test_simulate). Its extra RHS evaluation is the same for every output time
+             * of a step: sun_rhs_erk evaluates it once per step (docs/integration.md). */
         } else {
             ig->table = make_fixed_table(p->method);
             if (ig->table == NULL) {
@@ -343,6 +403,7 @@ void lv_integ_free(lv_integ *ig)
     free(ig->atol);
     free(ig->rtol_v);
     free(ig->g_dir);
+    free(ig->memo_x);
     free(ig);
 }
 
@@ -364,14 +425,17 @@ static void raw_stats(const lv_integ *ig, lv_integ_stats *s)
             CVodeGetNumLinRhsEvals(ig->mem, &nfe_ls); /* f calls for DQ Jacobians */
         }
         s->rhs_evals += nfe_ls;
+        s->rhs_step = s->rhs_evals; /* CVODE interpolates from its history: no RHS */
     } else {
-        long nfe = 0;
+        /* the model's own evaluations (sun_rhs_erk): ARKODE's count also has the repeats */
         ERKStepGetNumSteps(ig->mem, &s->steps);
-        ERKStepGetNumRhsEvals(ig->mem, &nfe);
-        s->rhs_evals = nfe;
+        s->rhs_evals = ig->n_step + ig->n_dense;
         ERKStepGetNumErrTestFails(ig->mem, &s->err_test_fails);
         if (ig->p.n_g > 0)
             ERKStepGetNumGEvals(ig->mem, &s->g_evals);
+        s->rhs_step = ig->n_step;
+        s->rhs_dense = ig->n_dense;
+        s->rhs_reused = ig->n_reused;
     }
 }
 
@@ -386,6 +450,9 @@ void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st)
     st->nonlin_fails = ig->acc.nonlin_fails + cur.nonlin_fails;
     st->g_evals = ig->acc.g_evals + cur.g_evals;
     st->restarts = ig->acc.restarts;
+    st->rhs_step = ig->acc.rhs_step + cur.rhs_step;
+    st->rhs_dense = cur.rhs_dense; /* ERKStep: our counters, never reset */
+    st->rhs_reused = cur.rhs_reused;
 }
 
 lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err)
@@ -480,6 +547,7 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
 
 lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
 {
+    ig->memo_ok = 0; /* a discontinuity: the model's mode or parameters may have changed */
     memcpy(N_VGetArrayPointer(ig->y), x, ig->p.n * sizeof(double));
     int flag;
     if (ig->is_cvode) {
@@ -492,6 +560,7 @@ lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
         ig->acc.err_test_fails += cur.err_test_fails;
         ig->acc.nonlin_fails += cur.nonlin_fails;
         ig->acc.g_evals += cur.g_evals;
+        ig->acc.rhs_step += cur.rhs_step;
         flag = CVodeReInit(ig->mem, t, ig->y);
     } else {
         flag = ERKStepReset(ig->mem, t, ig->y); /* keeps counters and options */

@@ -57,6 +57,9 @@ typedef enum lv_integ_result {
 
 typedef struct lv_integ_stats {
     long steps, rhs_evals, jac_evals, err_test_fails, nonlin_fails, g_evals, restarts;
+    long rhs_step;  /* of rhs_evals: for the steps (stages, Jacobians, step-size selection) */
+    long rhs_dense; /* of rhs_evals: for output between steps (dopri5's dense output) */
+    long rhs_reused; /* repeated calls answered from the last evaluation (not in rhs_evals) */
 } lv_integ_stats;
 
 /* Copies the problem; `atol` and `g_dir` are copied too. */
@@ -73,6 +76,10 @@ lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err);
  * message holds the time and SUNDIALS' reason; *t is the time reached. */
 lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_integ_result *res,
                            int *roots, lv_err *err);
+
+/* Forget the remembered last right-hand side evaluation (the model's discrete mode may have
+ * changed: an event handler ran). lv_integ_restart does it too. */
+void lv_integ_forget(lv_integ *ig);
 
 /* Restart at (t, x) after a discontinuity: history discarded, order 1. */
 lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err);

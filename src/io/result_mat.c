@@ -1,5 +1,6 @@
 /* result_mat.c - MAT v4 result sink in the Dymola/OpenModelica "dsres" layout
- * (Aclass "Atrajectory" 1.1 binTrans), written with libmatio.
+ * (Aclass "Atrajectory" 1.1 binTrans), streamed to disk: constant memory for any number of
+ * rows.
  *
  * Follows OpenModelica's writer (SimulationRuntime/c/simulation/results/
  * simulation_result_mat4.cpp) and reader (util/read_matlab4.c): matrices in
@@ -7,8 +8,16 @@
  * of MAT4 type 51, dataInfo int32 (type 20), data double (type 0). The dataInfo
  * values follow a Dymola file (time 0 1 0 -1, signals 2 k 0 -1, parameters
  * 1 k 0 0). Layout and sources: docs/result-files.md.
+ *
+ * Why the file can be streamed: binTrans stores data_2 as n_signals x N, column-major, so
+ * each output row is one contiguous column, appended as it comes (Dymola writes its dsres
+ * files this way). Only three numbers are unknown until the end: t0 and tf in data_1 and
+ * N in data_2's header. open() writes the first five matrices and data_2's header with
+ * placeholders, row() appends, close() patches the three numbers in place and appends
+ * lvsim_failure for a failed run. MAT v4 is a plain sequence of (20-byte header, name,
+ * data), written here directly: libmatio's MAT4 writer needs a matrix whole in memory.
  */
-#define _POSIX_C_SOURCE 200809L /* stat() */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 
 #include <errno.h>
 #include <math.h>
@@ -18,94 +27,56 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include <matio.h>
-
 #include "core/status.h"
 #include "io/sink.h"
 
+/* MAT v4 precision digit P of the type code MOPT (1000 M + 100 O + 10 P + T). */
+enum { MAT4_DOUBLE = 0, MAT4_INT32 = 2, MAT4_UINT8 = 5 };
+
 typedef struct mat_sink {
-    lv_sink_paths paths;
-    lv_result_info info; /* shallow copy; names borrowed until close() */
-    double *param_values; /* own copy of info.param_values */
-    lv_rowbuf rows;      /* row-major [rows][n_signals]: data_2 in binTrans order */
-    int state;           /* 0 created, 1 open, 2 closed */
+    lv_sink_paths paths;  /* paths.file.fp: the stream on the .tmp file, open()..close() */
+    size_t n_signals;
+    size_t n_params;
+    size_t rows;
+    double t0, t_last;    /* s: the first and the latest row's time */
+    long pos_t0;          /* file offsets: data_1(1, 1), data_1(1, 2) = t0, tf; */
+    long pos_tf;
+    long pos_ncols;       /*   data_2's ncols (N) in its header */
+    int broken;           /* a write failed: the file is incomplete */
+    int state;            /* 0 created, 1 open, 2 closed */
+    char *buf;            /* stdio buffer of the stream */
 } mat_sink;
 
-static lv_status io_error(const char *path, const char *what, int e, lv_err *err)
+static lv_status io_error(const mat_sink *s, const char *what, int e, lv_err *err)
 {
     char why[128];
-    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", path, what, lv_sink_strerror(e, why, sizeof why));
+    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.file.tmp, what,
+                   lv_sink_strerror(e != 0 ? e : EIO, why, sizeof why));
 }
 
-static lv_status mat_open(void *self, const lv_result_info *info, lv_err *err)
+/* MOPT type code of precision p (T = 1 for text): M = 0 little-endian, 1 big-endian IEEE. */
+static int32_t mat4_type(int p, int text)
 {
-    mat_sink *s = self;
-    if (s->state != 0)
-        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.file.path);
-    lv_status st = lv_sink_check_info(info, s->paths.file.path, err);
-    if (st != LV_OK)
-        return st;
-    /* Rows are buffered and the file is written at close(); create the
-     * temporary file now so that an unwritable directory fails before the run. */
-    st = lv_atomic_reserve(&s->paths.file, err);
-    if (st != LV_OK)
-        return st;
-    if (info->n_params > 0) {
-        s->param_values = malloc(info->n_params * sizeof *s->param_values);
-        if (s->param_values == NULL)
-            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->paths.file.path);
-        memcpy(s->param_values, info->param_values, info->n_params * sizeof *s->param_values);
-    }
-    s->info = *info;
-    s->info.param_values = s->param_values;
-    s->rows.width = info->n_signals;
-    s->state = 1;
-    return LV_OK;
+    const uint16_t one = 1;
+    unsigned char first;
+    memcpy(&first, &one, 1);
+    return (first == 1 ? 0 : 1000) + 10 * p + (text ? 1 : 0);
 }
 
-static lv_status mat_row(void *self, const double *values, lv_err *err)
+/* One matrix header (type, mrows, ncols, imagf, namlen) and the name with its NUL. */
+static int put_header(FILE *fp, int32_t type, size_t rows, size_t cols, const char *name)
 {
-    mat_sink *s = self;
-    if (s->state != 1)
-        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.file.path,
-                       s->state == 0 ? "before open()" : "after close()");
-    const size_t n = s->rows.rows;
-    const double t_prev = n > 0 ? s->rows.v[(n - 1) * s->rows.width] : 0.0;
-    lv_status st = lv_sink_check_row(s->paths.file.path, n, values[0], t_prev, err);
-    if (st != LV_OK)
-        return st;
-    st = lv_rowbuf_push(&s->rows, values, err);
-    if (st != LV_OK)
-        return lv_fail_prefix(err, st, "%s", s->paths.file.path);
-    return LV_OK;
+    const int32_t h[5] = {type, (int32_t)rows, (int32_t)cols, 0, (int32_t)(strlen(name) + 1)};
+    return fwrite(h, sizeof h, 1, fp) == 1 && fwrite(name, strlen(name) + 1, 1, fp) == 1 ? 0
+                                                                                          : -1;
 }
 
-/* One matrix through libmatio; adds its size on file to *bytes. MAT4 stores
- * the dimensions as int32 and the name with its NUL. */
-static lv_status put_matrix(mat_t *mat, const char *path, const char *name,
-                            enum matio_classes cls, enum matio_types type, size_t rows,
-                            size_t cols, void *data, size_t elem_size, size_t *bytes, lv_err *err)
+static int put_matrix(FILE *fp, int32_t type, size_t rows, size_t cols, const char *name,
+                      const void *data, size_t elem)
 {
-    if (rows > INT32_MAX || cols > INT32_MAX || (cols > 0 && rows > INT32_MAX / cols))
-        return lv_fail(err, LV_ERR_INPUT, "%s: matrix '%s' of %zu x %zu is too large for MAT v4",
-                       path, name, rows, cols);
-    double dummy = 0.0; /* an empty matrix still needs a data pointer */
-    size_t dims[2] = {rows, cols};
-    matvar_t *v = Mat_VarCreate(name, cls, type, 2, dims, data != NULL ? data : &dummy,
-                                MAT_F_DONT_COPY_DATA);
-    if (v == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "%s: matio cannot create matrix '%s'", path, name);
-    errno = 0;
-    const int rc = Mat_VarWrite(mat, v, MAT_COMPRESSION_NONE);
-    const int e = errno;
-    Mat_VarFree(v); /* MAT_F_DONT_COPY_DATA: frees the header, not `data` */
-    if (rc != 0) {
-        char why[128];
-        return lv_fail(err, LV_ERR_IO, "%s: cannot write matrix '%s' (matio error %d): %s", path,
-                       name, rc, e != 0 ? lv_sink_strerror(e, why, sizeof why) : "unknown");
-    }
-    *bytes += 5 * 4 + strlen(name) + 1 + rows * cols * elem_size;
-    return LV_OK;
+    if (put_header(fp, type, rows, cols, name) != 0)
+        return -1;
+    return rows * cols == 0 || fwrite(data, elem, rows * cols, fp) == rows * cols ? 0 : -1;
 }
 
 /* Column-major char matrix of `width` rows, one string per column ("binTrans"),
@@ -121,17 +92,16 @@ static char *char_columns(const char *const *text, size_t n, size_t width)
     return m;
 }
 
-/* Builds the dsres matrices and writes them to the temporary file. */
-static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err)
+/* Writes everything before data_2's values: Aclass, name, description, dataInfo, data_1
+ * (t0 and tf NaN until close) and data_2's header (N = 0 until close). */
+static lv_status write_head(mat_sink *s, const lv_result_info *in, lv_err *err)
 {
-    const lv_result_info *in = &s->info;
-    const char *path = s->paths.file.tmp; /* libmatio writes the temporary file by name */
+    FILE *fp = s->paths.file.fp;
+    const char *path = s->paths.file.path;
     const size_t ns = in->n_signals, np = in->n_params, nv = ns + np;
-    const size_t nrows = s->rows.rows;
     if (nv > INT32_MAX - 2)
         return lv_fail(err, LV_ERR_INPUT, "%s: %zu variables are too many for MAT v4", path, nv);
     lv_status st = LV_OK;
-    mat_t *mat = NULL;
     const char **names = calloc(nv, sizeof *names);
     char **descs = calloc(nv, sizeof *descs);
     int32_t *info = calloc(4 * nv, sizeof *info);
@@ -141,7 +111,6 @@ static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err
         st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
         goto fail;
     }
-
     size_t name_w = 1, desc_w = 1;
     for (size_t i = 0; i < nv; i++) {
         const lv_var *v = i < ns ? &in->signals[i] : &in->params[i - ns];
@@ -163,13 +132,17 @@ static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err
         if (strlen(descs[i]) + 1 > desc_w)
             desc_w = strlen(descs[i]) + 1;
     }
+    if (name_w > INT32_MAX || desc_w > INT32_MAX / 2) {
+        st = lv_fail(err, LV_ERR_INPUT, "%s: a name or description is too long for MAT v4",
+                     path);
+        goto fail;
+    }
     name_m = char_columns(names, nv, name_w);
     desc_m = char_columns((const char *const *)descs, nv, desc_w);
     if (name_m == NULL || desc_m == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
         goto fail;
     }
-
     /* dataInfo(:, i) = [matrix; column (1-based, < 0: negated); interpolation
      * (0: linear); extrapolation (-1: undefined outside [t0, tf], 0: hold)].
      * Time is the abscissa of every data matrix: [0 1 0 -1]. */
@@ -183,10 +156,9 @@ static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err
             di[0] = 1; di[1] = (int32_t)(i - ns + 2); di[2] = 0; di[3] = 0;
         }
     }
-    /* data_1 (binTrans: (1 + np) x 2, column-major): column 1 at t0, column 2
-     * at tf; row 1 is time, then one row per parameter. No rows: NaN times. */
-    data_1[0] = nrows > 0 ? s->rows.v[0] : NAN;
-    data_1[np + 1] = nrows > 0 ? s->rows.v[(nrows - 1) * ns] : NAN;
+    /* data_1 (binTrans: (1 + np) x 2, column-major): column 1 at t0, column 2 at tf; row 1
+     * is time, then one row per parameter. t0, tf: NaN until close (and when no row came). */
+    data_1[0] = data_1[np + 1] = NAN;
     for (size_t j = 0; j < np; j++)
         data_1[1 + j] = data_1[np + 2 + j] = in->param_values[j];
 
@@ -198,63 +170,26 @@ static lv_status write_dsres(const mat_sink *s, const char *failure, lv_err *err
         for (size_t c = 0; aclass_rows[r][c] != '\0'; c++)
             aclass[c * 4 + r] = aclass_rows[r][c];
 
+    const int32_t t_char = mat4_type(MAT4_UINT8, 1), t_int = mat4_type(MAT4_INT32, 0),
+                  t_dbl = mat4_type(MAT4_DOUBLE, 0);
     errno = 0;
-    mat = Mat_CreateVer(path, NULL, MAT_FT_MAT4);
-    if (mat == NULL) {
-        st = io_error(path, "cannot create", errno, err);
-        goto fail;
+    int bad = put_matrix(fp, t_char, 4, 11, "Aclass", aclass, 1) != 0 ||
+              put_matrix(fp, t_char, name_w, nv, "name", name_m, 1) != 0 ||
+              put_matrix(fp, t_char, desc_w, nv, "description", desc_m, 1) != 0 ||
+              put_matrix(fp, t_int, 4, nv, "dataInfo", info, sizeof(int32_t)) != 0 ||
+              put_header(fp, t_dbl, np + 1, 2, "data_1") != 0;
+    if (!bad) {
+        s->pos_t0 = ftell(fp);
+        s->pos_tf = s->pos_t0 + (long)((np + 1) * sizeof(double));
+        bad = s->pos_t0 < 0 || fwrite(data_1, sizeof *data_1, 2 * (np + 1), fp) != 2 * (np + 1);
     }
-    /* libmatio's MAT4 writer derives the type code from the data type, +1 for
-     * MAT_C_CHAR: char/uint8 gives 51, int32 gives 20, double gives 0 -- the
-     * types Dymola and OpenModelica write and OpenModelica's reader demands. */
-    size_t bytes = 0;
-    st = put_matrix(mat, path, "Aclass", MAT_C_CHAR, MAT_T_UINT8, 4, 11, aclass, 1, &bytes, err);
-    if (st == LV_OK)
-        st = put_matrix(mat, path, "name", MAT_C_CHAR, MAT_T_UINT8, name_w, nv, name_m, 1,
-                        &bytes, err);
-    if (st == LV_OK)
-        st = put_matrix(mat, path, "description", MAT_C_CHAR, MAT_T_UINT8, desc_w, nv, desc_m,
-                        1, &bytes, err);
-    if (st == LV_OK)
-        st = put_matrix(mat, path, "dataInfo", MAT_C_INT32, MAT_T_INT32, 4, nv, info,
-                        sizeof(int32_t), &bytes, err);
-    if (st == LV_OK)
-        st = put_matrix(mat, path, "data_1", MAT_C_DOUBLE, MAT_T_DOUBLE, np + 1, 2, data_1,
-                        sizeof(double), &bytes, err);
-    if (st == LV_OK)
-        st = put_matrix(mat, path, "data_2", MAT_C_DOUBLE, MAT_T_DOUBLE, ns, nrows, s->rows.v,
-                        sizeof(double), &bytes, err);
-    if (st == LV_OK && failure != NULL) {
-        /* After data_2: dsres readers (OpenModelica's reads exactly six
-         * matrices, DyMat and dymload pick theirs by name) ignore it. */
-        const char *text = failure[0] != '\0' ? failure : "(no reason given)";
-        st = put_matrix(mat, path, "lvsim_failure", MAT_C_CHAR, MAT_T_UINT8, 1, strlen(text),
-                        (void *)text, 1, &bytes, err);
+    if (!bad) {
+        s->pos_ncols = ftell(fp) + 2 * (long)sizeof(int32_t); /* type, mrows, ncols */
+        bad = s->pos_ncols < 0 || put_header(fp, t_dbl, ns, 0, "data_2") != 0;
     }
-    errno = 0;
-    const int rc = Mat_Close(mat);
-    const int e_close = errno;
-    mat = NULL;
-    if (st != LV_OK)
-        goto fail;
-    if (rc != 0) {
-        st = io_error(path, "cannot close", e_close, err);
-        goto fail;
-    }
-    /* libmatio does not check its fwrite() calls: compare the size on disk. */
-    struct stat sb;
-    if (stat(path, &sb) != 0) {
-        st = io_error(path, "cannot stat", errno, err);
-        goto fail;
-    }
-    if ((uintmax_t)sb.st_size != (uintmax_t)bytes) {
-        st = lv_fail(err, LV_ERR_IO, "%s: short write: %jd of %zu bytes (disk full?)", path,
-                     (intmax_t)sb.st_size, bytes);
-        goto fail;
-    }
-fail: /* and success: mat is NULL then */
-    if (mat != NULL)
-        Mat_Close(mat);
+    if (bad)
+        st = io_error(s, "cannot write", errno, err);
+fail:
     if (descs != NULL)
         for (size_t i = 0; i < nv; i++)
             free(descs[i]);
@@ -267,6 +202,86 @@ fail: /* and success: mat is NULL then */
     return st;
 }
 
+static lv_status mat_open(void *self, const lv_result_info *info, lv_err *err)
+{
+    mat_sink *s = self;
+    if (s->state != 0)
+        return lv_fail(err, LV_ERR_INPUT, "%s: opened twice", s->paths.file.path);
+    lv_status st = lv_sink_check_info(info, s->paths.file.path, err);
+    if (st != LV_OK)
+        return st;
+    /* the .tmp file now: an unwritable directory fails before the run */
+    st = lv_atomic_open(&s->paths.file, NULL, err);
+    if (st != LV_OK)
+        return st;
+    enum { BUF = 1 << 16 };
+    s->buf = malloc(BUF);
+    if (s->buf != NULL)
+        setvbuf(s->paths.file.fp, s->buf, _IOFBF, BUF);
+    s->n_signals = info->n_signals;
+    s->n_params = info->n_params;
+    st = write_head(s, info, err);
+    if (st != LV_OK) {
+        lv_atomic_abort(&s->paths.file);
+        return st;
+    }
+    s->state = 1;
+    return LV_OK;
+}
+
+static lv_status mat_row(void *self, const double *values, lv_err *err)
+{
+    mat_sink *s = self;
+    if (s->state != 1)
+        return lv_fail(err, LV_ERR_INPUT, "%s: row() %s", s->paths.file.path,
+                       s->state == 0 ? "before open()" : "after close()");
+    lv_status st = lv_sink_check_row(s->paths.file.path, s->rows, values[0], s->t_last, err);
+    if (st != LV_OK)
+        return st;
+    if (s->broken)
+        return lv_fail(err, LV_ERR_IO, "%s: an earlier write failed", s->paths.file.tmp);
+    if (s->rows >= INT32_MAX)
+        return lv_fail(err, LV_ERR_INPUT, "%s: more than %d rows do not fit a MAT v4 matrix",
+                       s->paths.file.path, INT32_MAX);
+    errno = 0;
+    if (fwrite(values, sizeof *values, s->n_signals, s->paths.file.fp) != s->n_signals) {
+        s->broken = 1;
+        return io_error(s, "cannot write", errno, err);
+    }
+    if (s->rows == 0)
+        s->t0 = values[0];
+    s->t_last = values[0];
+    s->rows++;
+    return LV_OK;
+}
+
+/* Appends lvsim_failure (failed runs) and patches t0, tf and N. */
+static lv_status finish(mat_sink *s, const char *failure, lv_err *err)
+{
+    FILE *fp = s->paths.file.fp;
+    const double t0 = s->rows > 0 ? s->t0 : NAN, tf = s->rows > 0 ? s->t_last : NAN;
+    const int32_t n = (int32_t)s->rows;
+    errno = 0;
+    int bad = 0;
+    if (failure != NULL) {
+        /* After data_2: dsres readers (OpenModelica's reads exactly six matrices, DyMat and
+         * dymload pick theirs by name) ignore it. One line. */
+        const char *text = failure[0] != '\0' ? failure : "(no reason given)";
+        const size_t len = strlen(text) < 4000 ? strlen(text) : 4000;
+        char line[4001];
+        for (size_t i = 0; i < len; i++)
+            line[i] = text[i] == '\n' || text[i] == '\r' ? ' ' : text[i];
+        bad = put_matrix(fp, mat4_type(MAT4_UINT8, 1), 1, len, "lvsim_failure", line, 1) != 0;
+    }
+    bad = bad || fseek(fp, s->pos_t0, SEEK_SET) != 0 || fwrite(&t0, sizeof t0, 1, fp) != 1 ||
+          fseek(fp, s->pos_tf, SEEK_SET) != 0 || fwrite(&tf, sizeof tf, 1, fp) != 1 ||
+          fseek(fp, s->pos_ncols, SEEK_SET) != 0 || fwrite(&n, sizeof n, 1, fp) != 1 ||
+          fflush(fp) != 0 || ferror(fp);
+    if (bad)
+        return io_error(s, "cannot write", errno, err);
+    return LV_OK;
+}
+
 static lv_status mat_close(void *self, const char *failure, lv_err *err)
 {
     mat_sink *s = self;
@@ -274,15 +289,15 @@ static lv_status mat_close(void *self, const char *failure, lv_err *err)
         return lv_fail(err, LV_ERR_INPUT, "%s: close() %s", s->paths.file.path,
                        s->state == 0 ? "before open()" : "twice");
     s->state = 2;
-    lv_status st = write_dsres(s, failure, err);
+    lv_status st = s->broken ? lv_fail(err, LV_ERR_IO, "%s: incomplete: a write failed",
+                                       s->paths.file.tmp)
+                             : finish(s, failure, err);
     if (st == LV_OK)
-        st = lv_sink_paths_commit(&s->paths, failure, err);
+        st = lv_sink_paths_commit(&s->paths, failure, err); /* closes, checks, renames */
     else
         lv_atomic_abort(&s->paths.file); /* incomplete; the rows are lost with it */
-    lv_rowbuf_free(&s->rows);
-    free(s->param_values);
-    s->param_values = NULL;
-    memset(&s->info, 0, sizeof s->info);
+    free(s->buf);
+    s->buf = NULL;
     return st;
 }
 
@@ -291,9 +306,8 @@ static void mat_destroy(void *self)
     mat_sink *s = self;
     if (s == NULL)
         return;
-    lv_rowbuf_free(&s->rows);
-    free(s->param_values);
-    lv_sink_paths_free(&s->paths);
+    lv_sink_paths_free(&s->paths); /* closes a stream left open; its .tmp file stays */
+    free(s->buf);
     free(s);
 }
 

@@ -14,7 +14,7 @@
 
 struct lv_result {
     size_t n_signals;
-    char **names;   /* [n_signals], owned copies */
+    char **names;   /* [n_signals], owned copies (one block with their text) */
     lv_rowbuf rows; /* row-major, rows.width == n_signals */
     int opened;
     int closed;
@@ -29,20 +29,19 @@ static lv_status mem_open(void *self, const lv_result_info *info, lv_err *err)
     lv_status st = lv_sink_check_info(info, "memory result", err);
     if (st != LV_OK)
         return st;
-    r->names = calloc(info->n_signals, sizeof *r->names);
+    /* the names' pointers and their text in one block (one allocation per result) */
+    size_t text = 0;
+    for (size_t i = 0; i < info->n_signals; i++)
+        text += strlen(info->signals[i].name) + 1;
+    r->names = malloc(info->n_signals * sizeof *r->names + text);
     if (r->names == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "memory result: out of memory");
+    char *dst = (char *)(r->names + info->n_signals);
     for (size_t i = 0; i < info->n_signals; i++) {
         const size_t n = strlen(info->signals[i].name) + 1;
-        r->names[i] = malloc(n);
-        if (r->names[i] == NULL) {
-            for (size_t k = 0; k < i; k++)
-                free(r->names[k]);
-            free(r->names);
-            r->names = NULL;
-            return lv_fail(err, LV_ERR_NOMEM, "memory result: out of memory");
-        }
-        memcpy(r->names[i], info->signals[i].name, n);
+        memcpy(dst, info->signals[i].name, n);
+        r->names[i] = dst;
+        dst += n;
     }
     r->n_signals = info->n_signals;
     r->rows.width = info->n_signals;
@@ -109,10 +108,7 @@ void lv_result_free(lv_result *r)
 {
     if (r == NULL)
         return;
-    if (r->names != NULL)
-        for (size_t i = 0; i < r->n_signals; i++)
-            free(r->names[i]);
-    free(r->names);
+    free(r->names); /* with the names' text */
     lv_rowbuf_free(&r->rows);
     free(r->failure);
     free(r);

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "core/status.h"
 
 void lv_sink_destroy(lv_sink *sink)
@@ -95,11 +96,6 @@ lv_status lv_sink_paths_commit(lv_sink_paths *p, const char *failure, lv_err *er
     return lv_atomic_commit_as(&p->file, failure == NULL ? p->file.path : p->failed_path, err);
 }
 
-static int cmp_name(const void *a, const void *b)
-{
-    return strcmp(*(const char *const *)a, *(const char *const *)b);
-}
-
 lv_status lv_sink_check_info(const lv_result_info *info, const char *path, lv_err *err)
 {
     if (info == NULL)
@@ -131,13 +127,9 @@ lv_status lv_sink_check_info(const lv_result_info *info, const char *path, lv_er
         }
         names[i] = name;
     }
-    qsort(names, n, sizeof *names, cmp_name);
-    for (size_t i = 1; i < n; i++)
-        if (strcmp(names[i - 1], names[i]) == 0) {
-            st = lv_fail(err, LV_ERR_INPUT, "%s: variable name '%s' appears twice", path,
-                         names[i]);
-            goto fail;
-        }
+    const size_t dup = lv_names_duplicate(names, n); /* hashed: O(n) */
+    if (dup < n)
+        st = lv_fail(err, LV_ERR_INPUT, "%s: variable name '%s' appears twice", path, names[dup]);
 fail:
     free(names);
     return st;

@@ -191,6 +191,8 @@ lv_status lv_mission_compare(const lv_mission *m, const char *method, double tol
         e->time_events = er.stats.time_events;
         e->steps = er.stats.steps;
         e->rhs_evals = er.stats.rhs_evals;
+        e->rhs_evals_steps = er.stats.rhs_evals_steps;
+        e->rhs_evals_output = er.stats.rhs_evals_output;
         e->jac_evals = er.stats.jac_evals;
         e->cpu_time = er.stats.cpu_time;
         lv_sim_report_clear(&er);
@@ -211,6 +213,8 @@ lv_status lv_mission_compare(const lv_mission *m, const char *method, double tol
         rep->seq.time_events += r->stats.time_events;
         rep->seq.steps += r->stats.steps;
         rep->seq.rhs_evals += r->stats.rhs_evals;
+        rep->seq.rhs_evals_steps += r->stats.rhs_evals_steps;
+        rep->seq.rhs_evals_output += r->stats.rhs_evals_output;
         rep->seq.jac_evals += r->stats.jac_evals;
         rep->seq.cpu_time += r->stats.cpu_time;
     }

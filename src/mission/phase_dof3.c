@@ -388,7 +388,7 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
 const lv_phase_type lv_phase_type_dof3 = {
     .name = "dof3",
     .description = "3-DoF variable-mass point over the rotating planet: engines, aerodynamics, "
-                   "inputs alpha, beta, mu, throttle",
+                   "inputs alpha, beta, mu, throttle or steering and throttle laws",
     .world = LV_WORLD_PLANET,
     .keys = keys,
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],

@@ -56,6 +56,7 @@ static void phase_clear(run_phase *p)
     p->rows = NULL;
     p->stem = NULL;
     p->res.result_stem = NULL;
+    p->res.result_formats = 0u;
     p->res.state = LV_PHASE_PENDING;
     p->res.error[0] = '\0';
     p->res.t_start = p->res.t_end = NAN;
@@ -403,6 +404,7 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     c->rows = NULL;
     p->stem = c->s.result_file ? strdup(c->s.result_file) : NULL;
     p->res.result_stem = p->stem;
+    p->res.result_formats = p->stem ? c->s.result_formats : 0u;
     /* the mass at the start: the hand-off's last word on the mass state */
     double m0 = NAN;
     for (size_t i = 0; i < c->s.n_initial; i++)
@@ -491,9 +493,12 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         return st;
     }
     char stem[4096];
-    if (opt && opt->outdir) {
+    const unsigned formats = opt ? opt->result_formats : 0u;
+    if (opt && opt->outdir && !(formats & LV_RUN_NO_PHASE_FILES)) {
         snprintf(stem, sizeof stem, "%s/phase_%zu_%s", opt->outdir, k + 1, ph->name);
         c->s.result_file = stem;
+        if (formats & (LV_RESULT_MAT | LV_RESULT_CSV))
+            c->s.result_formats = formats & (LV_RESULT_MAT | LV_RESULT_CSV);
     }
     progress_ctx pc = {r, k, opt};
     if (opt && opt->progress) {

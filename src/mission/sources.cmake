@@ -12,4 +12,6 @@ list(APPEND LV_SOURCES
   src/mission/phase_dof3.c
   src/mission/mission.c
   src/mission/run.c
-  src/mission/compare.c)
+  src/mission/compare.c
+  src/mission/run_estimate.c
+  src/mission/phase_types_api.c)

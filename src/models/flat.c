@@ -86,6 +86,23 @@ static int stage_thrust(flat_stage_rt *s, double t, double *F, double *mdot, cha
     return 0;
 }
 
+/* "stage 'stage3' thrust table breakpoint t = 481 s" when one of the stage's engine tables
+ * has a breakpoint at exactly t; "" otherwise. */
+static void stage_breakpoint_name(const flat_stage_rt *s, double t, char *buf, size_t cap)
+{
+    buf[0] = '\0';
+    for (size_t e = 0; e < s->n_engines; e++) {
+        size_t n = 0;
+        const double *b = s->engines[e].table ? lv_table_breakpoints(s->engines[e].table, 0, &n)
+                                              : NULL;
+        for (size_t i = 0; b != NULL && i < n; i++)
+            if (b[i] == t) {
+                snprintf(buf, cap, "stage '%.40s' thrust table breakpoint t = %.9g s", s->name, t);
+                return;
+            }
+    }
+}
+
 static double stage_next_breakpoint(const flat_stage_rt *s, double t)
 {
     double next = INFINITY;
@@ -414,6 +431,7 @@ struct lv_flat6 {
     int burning;
     double m_burnout; /* kg: the mass at which the bottom stage's propellant is gone */
     char why[LV_ERR_MSG_MAX];
+    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 };
 
 static int flat6_thrust(lv_flat6 *s, double t, double *F, double *mdot)
@@ -533,6 +551,14 @@ static double flat6_next_time_event(double t, const double *p, void *inst)
     (void)p;
     const lv_flat6 *s = inst;
     return s->burning ? stage_next_breakpoint(&s->stages[0], t) : INFINITY;
+}
+
+static const char *flat6_time_event_name(double t, const double *p, void *inst)
+{
+    (void)p;
+    lv_flat6 *s = inst;
+    stage_breakpoint_name(&s->stages[0], t, s->tev, sizeof s->tev);
+    return s->tev;
 }
 
 static int flat6_outputs_fn(double t, const double *x, const double *p, double *y, void *inst)
@@ -660,6 +686,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .n_domain = 1,
         .domain = flat6_domain,
         .domain_q = flat6_domain_q,
+        .time_event_name = flat6_time_event_name,
     };
     *out = m;
     return LV_OK;
@@ -690,6 +717,7 @@ struct lv_flat_e2e {
     int *landed;          /* [n] */
     double *F, *mdot;     /* [n] scratch: thrust of each body's engines */
     char why[LV_ERR_MSG_MAX];
+    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 };
 
 static char *e2e_str(lv_flat_e2e *m, const char *fmt, ...) LV_PRINTF(2, 3);
@@ -836,6 +864,22 @@ static lv_event_action e2e_time_event(double t, double *x, const double *p, void
     return LV_EVENT_RESTART; /* a separation or a table kink: restart the integrator */
 }
 
+/* The commanded separations at t, else a burning body's thrust-table breakpoint. */
+static const char *e2e_time_event_name(double t, const double *p, void *inst)
+{
+    lv_flat_e2e *m = inst;
+    size_t len = 0;
+    m->tev[0] = '\0';
+    for (size_t k = 0; k + 1 < m->n && len < sizeof m->tev; k++)
+        if (m->connected[k] && p[PF_N + k] == t)
+            len += (size_t)snprintf(m->tev + len, sizeof m->tev - len, "%sseparation of '%.32s'",
+                                    len ? "; " : "", m->bodies[k + 1].name);
+    for (size_t k = 0; k < m->n && len == 0; k++)
+        if (m->burning[k])
+            stage_breakpoint_name(&m->bodies[k], t, m->tev, sizeof m->tev), len = strlen(m->tev);
+    return m->tev;
+}
+
 static int e2e_outputs_fn(double t, const double *x, const double *p, double *y, void *inst)
 {
     (void)x;
@@ -973,6 +1017,7 @@ lv_status lv_flat_e2e_create(const lv_flat_e2e_config *cfg, lv_flat_e2e **out, l
         .on_time_event = e2e_time_event,
         .outputs_fn = e2e_outputs_fn,
         .last_error = e2e_last_error,
+        .time_event_name = e2e_time_event_name,
     };
     *out = m;
     return LV_OK;

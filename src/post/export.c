@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -137,13 +138,9 @@ void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3])
 
 const char *lv_ex_event_label(const lv_ex_event *e)
 {
-    if (e->name == NULL)
-        return "time event";
-    if (strcmp(e->name, "burnout") == 0)
-        return "MECO"; /* main engine cut-off: the burning stage's propellant is gone */
-    if (strcmp(e->name, "impact") == 0)
-        return "landing";
-    return e->name;
+    /* the event's own name, as summary.json, the report and the CLI give it: "burnout",
+     * "impact" (a ground contact, whatever its speed: never "landing"), a time event's source */
+    return e->name != NULL ? e->name : "time event";
 }
 
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap)
@@ -323,8 +320,49 @@ fail:
 
 /* ------------------------------------------------------------------- run -- */
 
+void lv_ex_report(const lv_ex_run *r, const char *format, const char *file, const char *fmt, ...)
+{
+    lv_export_report *rep = r->rep;
+    if (rep == NULL)
+        return;
+    lv_export_item *g = realloc(rep->items, (rep->n + 1) * sizeof *g);
+    if (g == NULL)
+        return; /* the report is informative: the files are what counts */
+    rep->items = g;
+    lv_export_item *it = &g[rep->n++];
+    memset(it, 0, sizeof *it);
+    snprintf(it->format, sizeof it->format, "%s", format);
+    if (file != NULL) {
+        const char *base = strrchr(file, '/');
+        snprintf(it->file, sizeof it->file, "%s", base ? base + 1 : file);
+    }
+    if (fmt != NULL) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(it->note, sizeof it->note, fmt, ap);
+        va_end(ap);
+    }
+}
+
+void lv_export_report_clear(lv_export_report *rep)
+{
+    if (rep == NULL)
+        return;
+    free(rep->items);
+    rep->items = NULL;
+    rep->n = 0;
+}
+
 LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err)
 {
+    return lv_export_run_report(outdir, formats, NULL, err);
+}
+
+LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_export_report *rep,
+                                      lv_err *err)
+{
+    if (rep != NULL)
+        memset(rep, 0, sizeof *rep);
     if (outdir == NULL || (formats & ~(unsigned)LV_EXPORT_ALL) != 0)
         return lv_fail(err, LV_ERR_INPUT, "lv_export_run: %s",
                        outdir == NULL ? "no folder" : "unknown format flag");
@@ -335,6 +373,7 @@ LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err
     lv_ex_run r;
     memset(&r, 0, sizeof r);
     r.outdir = outdir;
+    r.rep = rep;
     r.mission = res->mission;
     r.flat = res->flat;
     r.planet = res->planet;
@@ -371,12 +410,16 @@ LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err
     if (st == LV_OK && (formats & LV_EXPORT_CZML)) {
         snprintf(path, sizeof path, "%s/mission.czml", outdir);
         st = lv_ex_write_czml(&r, path, err);
+        if (st == LV_OK)
+            lv_ex_report(&r, "czml", path, NULL);
     }
     if (st == LV_OK && (formats & LV_EXPORT_KML)) {
         snprintf(path, sizeof path, "%s/mission.kml", outdir);
         st = lv_ex_write_kml(&r, path, err);
+        if (st == LV_OK)
+            lv_ex_report(&r, "kml", path, NULL);
     }
-    if (st == LV_OK && (formats & LV_EXPORT_OEM) && !r.flat)
+    if (st == LV_OK && (formats & LV_EXPORT_OEM))
         st = lv_ex_write_oem(&r, err);
     run_free(&r);
     lv_results_free(res);

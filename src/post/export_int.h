@@ -49,7 +49,15 @@ typedef struct lv_ex_run {
     lv_ex_body *bodies;
     size_t n_bodies;
     double t0, t1;       /* s: first start and last end of the done phases */
+    struct lv_export_report *rep; /* what was written or not, or NULL */
 } lv_ex_run;
+
+/* Adds an item to r->rep (when there is one): `file` written, or `note` why not (printf). */
+void lv_ex_report(const lv_ex_run *r, const char *format, const char *file, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
 
 /* Time t (s since the epoch) as whole microseconds since 1970 (the resolution of every
  * written time) and as ISO 8601 UTC text "YYYY-MM-DDThh:mm:ss[.ffffff]" + suffix ("Z" or ""),
@@ -66,10 +74,11 @@ const lv_ex_track *lv_ex_track_of(const lv_ex_body *b, size_t p);
 /* Colour of phase p (palette by summary index): r, g, b in 0..255. */
 void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3]);
 
-/* Label of event e of phase p ("burnout", "time event"). */
+/* Label of event e: its name as summary.json gives it ("burnout", "impact", "stage 'stage3'
+ * thrust table breakpoint t = 481 s"), "time event" when it has none. */
 const char *lv_ex_event_label(const lv_ex_event *e);
 /* Label of marker k of phase p: k = 0 its start ("separation (P2)" where the stack splits,
- * else "P2 start"), k >= 1 its events in launcher words (MECO, apogee, landing, ...). */
+ * else "P2 start"), k >= 1 its events by their names (lv_ex_event_label). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
 lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);

@@ -83,8 +83,11 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
             continue;
         double off;
         ecef_state(&earth, row, &pts[n], &off);
-        if (n == 0 && !(off <= EARTH_TOL_M))
-            return LV_OK; /* r_eci does not fit the WGS-84 Earth: another planet, no OEM */
+        if (n == 0 && !(off <= EARTH_TOL_M)) { /* another planet: no OEM */
+            lv_ex_report(r, "oem", NULL, "%s: not written: its positions do not lie on the "
+                         "WGS-84 Earth (OEM files are Earth-fixed)", b->name);
+            return LV_OK;
+        }
         if (!(off <= ROW_TOL_M))
             return lv_fail(err, LV_ERR_INPUT, "%s:%zu: r_eci and lat/lon/h disagree by %.3g m",
                            b->path, row->line, off);
@@ -99,8 +102,14 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
         n_seg += j - i >= 2;
         i = j > i ? j : i + 1;
     }
-    if (n_seg == 0)
+    if (n_seg == 0) {
+        double h_max = -INFINITY;
+        for (size_t i = 0; i < n; i++)
+            h_max = fmax(h_max, pts[i].row->h);
+        lv_ex_report(r, "oem", NULL, "%s: not written: never above 100 km (highest %.1f km)",
+                     b->name, h_max / 1e3);
         return LV_OK;
+    }
 
     char path[4400], created[32];
     snprintf(path, sizeof path, "%s/%s.oem", r->outdir, b->name);
@@ -127,13 +136,24 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
             put_segment(f, r, b, pts + i, j - i, ++seg, n_seg);
         i = j > i ? j : i + 1;
     }
-    return lv_atomic_commit(&out, err);
+    st = lv_atomic_commit(&out, err);
+    if (st == LV_OK)
+        lv_ex_report(r, "oem", path, "%zu portion%s above 100 km", n_seg, n_seg == 1 ? "" : "s");
+    return st;
 }
 
 lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err)
 {
-    if (r->flat || (r->planet != NULL && strcmp(r->planet, "earth") != 0))
-        return LV_OK; /* OEM: Earth orbits only */
+    if (r->flat) {
+        lv_ex_report(r, "oem", NULL, "not written: a flat-world mission has no orbit to "
+                     "describe (OEM files are for Earth orbits)");
+        return LV_OK;
+    }
+    if (r->planet != NULL && strcmp(r->planet, "earth") != 0) {
+        lv_ex_report(r, "oem", NULL, "not written: the mission flies around %s; OEM files "
+                     "are written for Earth orbits only", r->planet);
+        return LV_OK;
+    }
     lv_status st = LV_OK;
     for (size_t i = 0; i < r->n_bodies && st == LV_OK; i++) {
         const lv_ex_body *b = &r->bodies[i];

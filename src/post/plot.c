@@ -3,6 +3,7 @@
  * nothing here is used while simulating. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -98,9 +99,13 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     if (st == LV_OK)
         st = make_dir(pdir, err);
     if (st == LV_OK)
-        st = lv_plot_draw_figures(&d, pdir, list, err);
+        st = lv_plot_figures(&d, pdir, list, err);
+    cJSON *keys = NULL;
     if (st == LV_OK)
-        st = lv_plot_html_write(&d, list, err);
+        st = lv_plot_keys(&d, &keys, err);
+    if (st == LV_OK)
+        st = lv_plot_html_write(&d, list, keys, err);
+    cJSON_Delete(keys);
     data_free(&d);
     lv_results_free(res);
     free(list);

@@ -46,14 +46,32 @@ typedef struct lv_plot_list {
         char why[200];
     } skipped[LV_PLOT_MAX_FIGS];
     char notes[LV_PLOT_MAX_FIGS][200]; /* partial figures: a curve or the coastlines missing */
+    /* plot_draw.c's own: which figures this process draws (two processes draw) */
+    int draw_role;          /* all, the even ones or the odd ones (map figures: the even side) */
+    size_t draw_index;      /* figures met so far, map figures not counted */
 } lv_plot_list;
 
 /* Draws every figure into `plotdir` (which exists). Not thread-safe: PLplot's global stream
- * table; each figure makes its own stream and ends it, the caller's stream is restored. */
-lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
-                               lv_err *err);
+ * table; each figure makes its own stream and ends it, the caller's stream is restored.
+ * Defined in plot_draw.c, which is built into the module lvsim_plot.so (its only exported
+ * symbol) and into the static liblvsim_post. */
+LV_API lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir,
+                                      lv_plot_list *list, lv_err *err);
 
-/* Writes OUTDIR/index.html (temporary name, then renamed). */
-lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *list, lv_err *err);
+/* What lv_plot_run calls: lv_plot_draw_figures from the module, loaded on first use
+ * (plot_load.c, shared library), or linked in (plot_link.c, static library). */
+#define LV_PLOT_MODULE "lvsim_plot.so"
+lv_status lv_plot_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                          lv_err *err);
+
+struct cJSON;
+/* Computes the key figures of every body and writes OUTDIR/key_figures.json; *out is the
+ * document (cJSON_Delete it) for the report. */
+lv_status lv_plot_keys(const lv_plot_data *d, struct cJSON **out, lv_err *err);
+
+/* Writes OUTDIR/index.html (temporary name, then renamed); keys: lv_plot_keys' document or
+ * NULL. */
+lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *list,
+                             const struct cJSON *keys, lv_err *err);
 
 #endif

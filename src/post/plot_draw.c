@@ -10,13 +10,19 @@
 #include <errno.h>
 #include <math.h>
 #include <plplot.h>
+#include <png.h>
+#include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_units.h"
 #include "post/plot.h"
 
@@ -90,7 +96,7 @@ static long find_col(const lv_results_table *c, const char *const *cols)
  * instant appears twice: the step shows). Returns the number of points; 0 when no phase of
  * the body has any of `cols`; (size_t)-1 when out of memory. */
 static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const char *const *cols,
-                          double scale, curve *c)
+                          double scale, int atmo, curve *c)
 {
     size_t n = 0;
     for (size_t i = 0; i < b->n; i++) {
@@ -108,9 +114,16 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
     for (size_t i = 0; i < b->n; i++) {
         const lv_results_table *csv = d->phases[b->phase[i]].csv;
         long k = csv ? find_col(csv, cols) : -1;
+        /* Mach and q: only where the atmosphere model is defined (rho > 0, h at most its
+         * top): a NAN breaks the curve there */
+        const long krho = atmo && csv ? lv_results_table_col(csv, "rho") : -1;
+        const long kh = atmo && csv ? lv_results_table_col(csv, "h") : -1;
         for (size_t r = 0; k >= 0 && r < csv->n_rows; r++) {
             c->x[c->n] = csv->v[r * csv->n_cols];
             c->y[c->n] = csv->v[r * csv->n_cols + (size_t)k] * scale;
+            if ((krho >= 0 && !(csv->v[r * csv->n_cols + (size_t)krho] > 0.0)) ||
+                (kh >= 0 && csv->v[r * csv->n_cols + (size_t)kh] > LV_ATMO_ALT_MAX))
+                c->y[c->n] = NAN;
             c->n++;
         }
     }
@@ -325,50 +338,120 @@ static int device_available(const char *dev)
     return 0;
 }
 
-/* Draws `f` with PLplot device `dev` into `path` (through `path`.tmp). */
-static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
-                        int *map_ok, lv_err *err)
+/* Draws the figure's panels on the current stream (after plinit). */
+static void draw_figure(const lv_plot_data *d, const figure *f, int *map_ok, PLINT *code,
+                        char *msg)
 {
-    /* PLplot writes the temporary file by name, and exits the process when it cannot open
-     * it: make sure it can. */
-    lv_atomic out;
-    lv_status st = lv_atomic_init(&out, path, err);
-    if (st == LV_OK)
-        st = lv_atomic_reserve(&out, err);
-    if (st != LV_OK)
-        return st;
-    PLINT old = 0, strm = -1, code = 0;
-    char msg[1024] = "";
-    plgstrm(&old);
-    plmkstrm(&strm);
-    if (strm < 0) {
-        lv_atomic_abort(&out);
-        return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
+    pladv(0);
+    if (f->n_p == 1) {
+        draw_panel(d, f, 0, 0.11, 0.89, map_ok, code, msg);
+    } else {
+        draw_panel(d, f, 0, 0.52, 0.89, map_ok, code, msg);
+        draw_panel(d, f, 1, 0.11, 0.49, map_ok, code, msg);
     }
-    plsError(&code, msg);
-    plsdev(dev);
-    plsfnam(out.tmp);
+}
+
+/* A new PLplot stream with our page and colours; its errors land in code/msg. */
+static int stream_begin(PLINT *old, PLINT *code, char *msg)
+{
+    PLINT strm = -1;
+    plgstrm(old);
+    plmkstrm(&strm);
+    if (strm < 0)
+        return 0;
+    plsError(code, msg);
     plspage(0.0, 0.0, PAGE_W, PAGE_H, 0, 0);
     plscmap0n(N_COLS);
     for (PLINT i = 0; i < N_COLS; i++)
         plscol0(i, palette[i][0], palette[i][1], palette[i][2]);
-    plinit();
-    if (code == 0) {
-        pladv(0);
-        if (f->n_p == 1)
-            draw_panel(d, f, 0, 0.11, 0.89, map_ok, &code, msg);
-        else {
-            draw_panel(d, f, 0, 0.52, 0.89, map_ok, &code, msg);
-            draw_panel(d, f, 1, 0.11, 0.49, map_ok, &code, msg);
-        }
+    return 1;
+}
+
+/* Writes the RGB image `rgb` (PAGE_W x PAGE_H, 3 bytes a pixel, rows top down) as a PNG to
+ * `fp`. Cairo's own writer (pngcairo) compresses with zlib's default level and tries every
+ * row filter: three quarters of all the plotting time. A figure is mostly flat colour, so the
+ * fastest zlib level without row filters costs a fraction of that for files about as small
+ * (docs/visualization.md). */
+static int write_png(FILE *fp, unsigned char *rgb)
+{
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png != NULL ? png_create_info_struct(png) : NULL;
+    png_bytep rows[PAGE_H];
+    if (info == NULL || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, info != NULL ? &info : NULL);
+        return -1;
     }
+    png_init_io(png, fp);
+    png_set_IHDR(png, info, PAGE_W, PAGE_H, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(png, 1);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+    for (int y = 0; y < PAGE_H; y++)
+        rows[y] = rgb + (size_t)y * PAGE_W * 3;
+    png_set_rows(png, info, rows);
+    png_write_png(png, info, PNG_TRANSFORM_IDENTITY, NULL);
+    png_destroy_write_struct(&png, &info);
+    return 0;
+}
+
+/* Draws `f` with PLplot device `dev` into `path` (through `path`.tmp). "png": PLplot's cairo
+ * memory device (memcairo: the same cairo rendering as pngcairo, into our buffer) and
+ * write_png; otherwise the device writes the file itself (svgcairo, svg). */
+static lv_status render(const lv_plot_data *d, const figure *f, const char *dev, const char *path,
+                        int *map_ok, lv_err *err)
+{
+    const int png = strcmp(dev, "png") == 0;
+    /* PLplot writes the temporary file by name, and exits the process when it cannot open
+     * it: make sure it can. The PNG is written by us, through the stream. */
+    lv_atomic out;
+    lv_status st = png ? lv_atomic_open(&out, path, err) : lv_atomic_init(&out, path, err);
+    if (st == LV_OK && !png)
+        st = lv_atomic_reserve(&out, err);
+    if (st != LV_OK)
+        return st;
+    unsigned char *rgb = NULL;
+    if (png) {
+        rgb = malloc((size_t)PAGE_W * PAGE_H * 3);
+        if (rgb == NULL) {
+            lv_atomic_abort(&out);
+            return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+        }
+        memset(rgb, 255, (size_t)PAGE_W * PAGE_H * 3); /* the background, colour 0: white */
+    }
+    PLINT old = 0, code = 0;
+    char msg[1024] = "";
+    if (!stream_begin(&old, &code, msg)) {
+        free(rgb);
+        lv_atomic_abort(&out);
+        return lv_fail(err, LV_ERR_IO, "%s: PLplot has no free stream", path);
+    }
+    if (png) {
+        plsdev("memcairo");
+        plsmem(PAGE_W, PAGE_H, rgb);
+    } else {
+        plsdev(dev);
+        plsfnam(out.tmp);
+    }
+    plinit();
+    if (code == 0)
+        draw_figure(d, f, map_ok, &code, msg);
     plend1();
     plsstrm(old);
-    struct stat sb;
     if (code != 0) {
+        free(rgb);
         lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot: %s", path, msg);
     }
+    if (png) {
+        const int bad = write_png(out.fp, rgb);
+        free(rgb);
+        if (bad) {
+            lv_atomic_abort(&out);
+            return lv_fail(err, LV_ERR_IO, "%s: cannot write the PNG image", out.tmp);
+        }
+        return lv_atomic_commit(&out, err);
+    }
+    struct stat sb;
     if (stat(out.tmp, &sb) != 0 || sb.st_size == 0) {
         lv_atomic_abort(&out);
         return lv_fail(err, LV_ERR_IO, "%s: PLplot (%s) wrote nothing", path, dev);
@@ -376,20 +459,48 @@ static lv_status render(const lv_plot_data *d, const figure *f, const char *dev,
     return lv_atomic_commit(&out, err);
 }
 
-static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
-                             const char *stem, lv_plot_list *list, int *map_ok, lv_err *err)
+/* The figure as PNG and SVG. */
+static lv_status render_pair(const lv_plot_data *d, const figure *f, const char *plotdir,
+                             const char *stem, int *map_ok, lv_err *err)
 {
     char path[4400];
     const char *svg = device_available("svgcairo") ? "svgcairo" : "svg";
-    if (!device_available("pngcairo"))
+    if (!device_available("memcairo"))
         return lv_fail(err, LV_ERR_IO,
-                       "%s/%s.png: PLplot has no 'pngcairo' driver (Debian: plplot-driver-cairo)",
+                       "%s/%s.png: PLplot has no 'memcairo' driver (Debian: plplot-driver-cairo)",
                        plotdir, stem);
     snprintf(path, sizeof path, "%s/%s.png", plotdir, stem);
-    lv_status st = render(d, f, "pngcairo", path, map_ok, err);
+    lv_status st = render(d, f, "png", path, map_ok, err);
     snprintf(path, sizeof path, "%s/%s.svg", plotdir, stem);
     if (st == LV_OK)
         st = render(d, f, svg, path, map_ok, err);
+    return st;
+}
+
+/* ---- two processes draw -----------------------------------------------------------------
+ * PLplot's state is global, so figures cannot be drawn by threads; they can by processes. When
+ * the calling process has one thread (fork() is then safe; lvsim plot, lvsim run), a child
+ * process is forked before anything is drawn: it goes through the same figures and draws
+ * every other one, this process the rest (map figures here: they report whether the
+ * coastlines were found), so two cores draw. The child starts from this process's state
+ * before any drawing (pango starts threads of its own once it draws text: no fork after that),
+ * touches nothing of the caller's and reports through a pipe, then _exit()s. */
+enum { DRAW_ALL = 0, DRAW_EVEN = 1, DRAW_ODD = 2 };
+
+/* Draws the figure (or leaves it to the other process), and lists it. */
+static lv_status render_both(const lv_plot_data *d, const figure *f, const char *plotdir,
+                             const char *stem, lv_plot_list *list, int *map_ok, lv_err *err)
+{
+    lv_status st = LV_OK;
+    int mine = 1;
+    if (list->draw_role != DRAW_ALL) {
+        if (f->map)
+            mine = list->draw_role == DRAW_EVEN;
+        else
+            mine = (list->draw_index++ % 2 == 0) == (list->draw_role == DRAW_EVEN);
+    }
+    if (mine)
+        st = render_pair(d, f, plotdir, stem, map_ok, err);
     if (st == LV_OK && list->n_made < LV_PLOT_MAX_FIGS) {
         snprintf(list->made[list->n_made].stem, sizeof list->made[0].stem, "%s", stem);
         snprintf(list->made[list->n_made].title, sizeof list->made[0].title, "%s", f->title);
@@ -397,6 +508,25 @@ static lv_status render_both(const lv_plot_data *d, const figure *f, const char 
     }
     return st;
 }
+
+/* One thread in this process (from /proc/self/status): fork() is safe. */
+static int single_threaded(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    int threads = 0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL)
+        if (sscanf(line, "Threads: %d", &threads) == 1)
+            break;
+    if (f != NULL)
+        fclose(f);
+    return threads == 1;
+}
+
+typedef struct child_msg {
+    lv_status st;
+    lv_err err;
+} child_msg;
 
 static void add_skip(lv_plot_list *l, const char *what, const char *why)
 {
@@ -416,6 +546,7 @@ static void add_note(lv_plot_list *l, const char *note)
 /* ---- the figures --------------------------------------------------------------------------- */
 
 typedef struct quantity {
+    int atmo;          /* 1: only where the atmosphere model is defined (Mach, q) */
     const char *stem, *title, *ylabel;
     const char *a[3];  /* columns of the main curve, first found wins (planet, flat world) */
     const char *b[2];  /* a second, dashed curve, when the phases have it */
@@ -424,20 +555,20 @@ typedef struct quantity {
 } quantity;
 
 static const quantity quantities[] = {
-    {"altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
-    {"speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
+    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
+    {0, "speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
      "relative", "inertial", 1.0},
-    {"mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
-    {"mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
-    {"dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL}, {NULL},
-     "", "", 1e-3},
-    {"load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
+    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
+    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
+    {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
+     {NULL}, "", "", 1e-3},
+    {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
      {"n_normal", NULL}, "axial", "normal", 1.0},
-    {"flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
+    {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
      {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG},
-    {"acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL}, "",
-     "", 1.0},
-    {"thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
+    {0, "acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL},
+     "", "", 1.0},
+    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
 };
 
 /* "mission <name>", for a figure's subtitle. */
@@ -477,6 +608,17 @@ static PLFLT body_width(size_t i)
     return fmax(1.2, 3.2 - 0.7 * (double)i); /* later bodies thinner: shared phases show all */
 }
 
+/* Bodies flying together have the same values in their shared phases: besides its colour,
+ * each body gets its own dash pattern (and a thinner line than the one before), so every
+ * body stays visible where the curves lie on top of each other. PLplot styles: 1 solid,
+ * 3 long dashes with long gaps, 2 short dashes, 5 long and short dashes; the second curve
+ * of a quantity: 4, 6, 7, 8. */
+static PLINT body_style(size_t i, int second)
+{
+    static const PLINT main_style[4] = {1, 3, 2, 5}, second_style[4] = {4, 6, 7, 8};
+    return second ? second_style[i % 4] : main_style[i % 4];
+}
+
 /* One figure of quantity q: a curve per body (two when q has a second column); a quantity no
  * phase file has is added to the list's skipped ones. */
 static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const char *plotdir,
@@ -500,7 +642,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             continue;
         for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
             curve *c = &f.p[0].c[f.p[0].n_c];
-            size_t n = body_series(d, &d->bodies[i], cols, q->scale, c);
+            size_t n = body_series(d, &d->bodies[i], cols, q->scale, q->atmo, c);
             if (n == (size_t)-1) {
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 f.p[0].n_c++; /* freed below */
@@ -509,7 +651,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n == 0)
                 continue;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = pass == 0 ? 1 : 2;
+            c->style = body_style(i, pass == 1);
             c->body = i;
             c->width = body_width(i);
             f.p[0].n_c++;
@@ -529,7 +671,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n_b > 0)
                 snprintf(c->label, sizeof c->label, "%.96s, %.16s",
                          body_label(d, c->body, name, sizeof name),
-                         c->style == 1 ? q->a_label : q->b_label);
+                         c->style == body_style(c->body, 0) ? q->a_label : q->b_label);
             else
                 body_label(d, c->body, c->label, sizeof c->label);
         }
@@ -570,7 +712,7 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
         p->yhi = 1.08;
         for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
             curve *c = &p->c[p->n_c];
-            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, c);
+            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, 0, c);
             if (n == (size_t)-1) {
                 p->n_c++;
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -585,7 +727,7 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
             for (size_t k = 0; k < n; k++)
                 c->y[k] = ref > 0.0 ? c->y[k] / ref : NAN;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = 1;
+            c->style = body_style(i, 0);
             c->width = body_width(i);
             body_label(d, i, c->label, sizeof c->label);
             p->n_c++;
@@ -635,9 +777,26 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
             c->n++;
         }
         c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-        c->style = 1;
+        c->style = body_style(i, 0);
         c->width = body_width(i);
         body_label(d, i, c->label, sizeof c->label);
+    }
+    /* a track that never leaves the launch site (a vertical flight) makes an empty map */
+    double extent = 0.0;
+    for (size_t j = 0; st == LV_OK && j < p->n_c; j++)
+        for (size_t r = 0; r < p->c[j].n; r++) {
+            const double dlat = p->c[j].y[r] - p->c[j].y[0];
+            const double dlon = (p->c[j].x[r] - p->c[j].x[0]) * cos(p->c[j].y[0] / RAD2DEG);
+            if (isfinite(dlat) && isfinite(dlon))
+                extent = fmax(extent, hypot(dlat, dlon));
+        }
+    if (st == LV_OK && p->n_c > 0 && extent < 0.01) { /* deg: about 1 km */
+        add_skip(list, "ground_track", d->flat ? "flat world: every body flies within 1 km of "
+                                                 "the launch site (no ground track to map)"
+                                               : "every body stays within 1 km of the launch "
+                                                 "site (no ground track to map)");
+        figure_free(&f);
+        return LV_OK;
     }
     if (st == LV_OK && p->n_c == 0) {
         add_skip(list, "ground_track", "no body trajectory has 'lat' and 'lon'");
@@ -677,15 +836,64 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
     return st;
 }
 
-lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
-                               lv_err *err)
+static lv_status draw_all(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                          lv_err *err)
 {
-    lv_status st = LV_OK;
+    /* the paper's Figure 10 first: the run at a glance */
+    lv_status st = fig10(d, plotdir, list, err);
     for (size_t i = 0; i < sizeof quantities / sizeof quantities[0] && st == LV_OK; i++)
         st = quantity_figure(d, &quantities[i], plotdir, list, err);
     if (st == LV_OK)
         st = ground_track(d, plotdir, list, err);
-    if (st == LV_OK)
-        st = fig10(d, plotdir, list, err);
+    return st;
+}
+
+lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                               lv_err *err)
+{
+    list->draw_role = DRAW_ALL;
+    list->draw_index = 0;
+    int fds[2] = {-1, -1};
+    pid_t pid = -1;
+    if (single_threaded() && pipe(fds) == 0) {
+        /* nothing buffered for the child to write twice, should PLplot ever exit() in it */
+        fflush(NULL);
+        pid = fork();
+        if (pid == 0) { /* the child: the odd figures; its list is a copy, thrown away */
+            close(fds[0]);
+            child_msg msg;
+            memset(&msg, 0, sizeof msg);
+            list->draw_role = DRAW_ODD;
+            msg.st = draw_all(d, plotdir, list, &msg.err);
+            const ssize_t w = write(fds[1], &msg, sizeof msg);
+            _exit(w == (ssize_t)sizeof msg ? 0 : 1);
+        }
+        close(fds[1]);
+        if (pid > 0)
+            list->draw_role = DRAW_EVEN;
+        else
+            close(fds[0]); /* no fork: draw everything here */
+    }
+    lv_status st = draw_all(d, plotdir, list, err);
+    if (pid > 0) { /* the child's figures and its verdict */
+        child_msg msg;
+        memset(&msg, 0, sizeof msg);
+        ssize_t got;
+        while ((got = read(fds[0], &msg, sizeof msg)) < 0 && errno == EINTR) {
+        }
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        close(fds[0]);
+        if (st == LV_OK && (got != (ssize_t)sizeof msg || !WIFEXITED(status)))
+            st = lv_fail(err, LV_ERR_IO, "%s: the process drawing half of the figures ended "
+                                         "without a word%s",
+                         plotdir, WIFSIGNALED(status) ? " (killed by a signal)" : "");
+        else if (st == LV_OK && msg.st != LV_OK) {
+            st = msg.st;
+            if (err != NULL)
+                *err = msg.err;
+        }
+    }
     return st;
 }

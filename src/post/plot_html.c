@@ -3,6 +3,7 @@
  * HTML-escaped; every link is percent-encoded. Plain HTML, no script. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "lvsim/lv_units.h"
 #include "post/plot.h"
 
 static void esc(FILE *f, const char *s)
@@ -73,7 +75,7 @@ static const char style[] =
     "body{font-family:sans-serif;max-width:1150px;margin:1em auto;padding:0 1em;color:#222}\n"
     "table{border-collapse:collapse;font-size:.9em;margin:.5em 0}\n"
     "th,td{border:1px solid #ccc;padding:2px 6px;text-align:right;vertical-align:top}\n"
-    "th{background:#eee}td.l{text-align:left}tr.bad td{color:#a00}\n"
+    "th{background:#eee}td.l,th.l{text-align:left}tr.bad td{color:#a00}\n"
     "figure{margin:1.5em 0}img{max-width:100%;border:1px solid #ddd}\n"
     "figcaption{font-size:.9em}code{background:#f4f4f4;padding:0 3px}\n";
 
@@ -250,7 +252,13 @@ static void file_list(FILE *f, const lv_results *res)
 {
     fputs("<h2 id=\"files\">Result files</h2>\n<ul>\n<li>", f);
     link_to(f, "summary.json", "summary.json");
-    fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n", f);
+    fputs(": per phase times, end, events, statistics, hand-off, final state</li>\n<li>", f);
+    link_to(f, "key_figures.json", "key_figures.json");
+    fputs(": the key figures above, SI units</li>\n<li>", f);
+    link_to(f, "manifest.json", "manifest.json");
+    fputs(": every file of the folder with its size and SHA-256, the mission file's SHA-256, "
+          "the lvsim version and the time (written by <code>lvsim run</code>)</li>\n",
+          f);
     for (size_t i = 0; i < res->n_bodies; i++) {
         const lv_results_body *b = &res->bodies[i];
         if (b->trajectory == NULL)
@@ -278,7 +286,162 @@ static void file_list(FILE *f, const lv_results *res)
     fputs("</ul>\n", f);
 }
 
-lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_err *err)
+
+/* ---- key figures (plot_keys.c's document, SI) -------------------------------------------- */
+
+static double jnum(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+static const char *jstr(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsString(v) ? v->valuestring : NULL;
+}
+
+/* " name = value unit" when the value is known: value * scale with prec decimals. */
+static void kv(FILE *f, const char *name, double v, double scale, int prec, const char *unit,
+               int *first)
+{
+    if (!isfinite(v))
+        return;
+    fprintf(f, "%s%s %.*f%s%s", *first ? "" : ", ", name, prec, v * scale, unit[0] ? " " : "",
+            unit);
+    *first = 0;
+}
+
+/* A state: t, altitude, speeds, flight-path angle, mass, position. */
+static void state_text(FILE *f, const cJSON *s, int flat)
+{
+    int first = 1;
+    kv(f, "t", jnum(s, "t"), 1.0, 3, "s", &first);
+    kv(f, flat ? "z" : "h", jnum(s, "h"), 1e-3, 3, "km", &first);
+    kv(f, flat ? "speed" : "v_rel", jnum(s, "speed"), 1.0, 1, "m/s", &first);
+    kv(f, "v_inertial", jnum(s, "v_inertial"), 1.0, 1, "m/s", &first);
+    kv(f, "fpa", jnum(s, "fpa"), 1.0 / LV_DEG, 2, "deg", &first);
+    kv(f, "fpa_inertial", jnum(s, "fpa_inertial"), 1.0 / LV_DEG, 2, "deg", &first);
+    kv(f, "vehicle mass", jnum(s, "vehicle_mass"), 1.0, 1, "kg", &first);
+    kv(f, "stage mass", jnum(s, "stage_mass"), 1.0, 1, "kg", &first);
+    kv(f, "lat", jnum(s, "lat"), 1.0 / LV_DEG, 4, "deg", &first);
+    kv(f, "lon", jnum(s, "lon"), 1.0 / LV_DEG, 4, "deg", &first);
+    kv(f, "x", jnum(s, "x"), 1e-3, 3, "km", &first);
+    kv(f, "y", jnum(s, "y"), 1e-3, 3, "km", &first);
+    const char *ph = jstr(s, "phase");
+    if (ph != NULL) {
+        fputs(" (phase ", f);
+        esc(f, ph);
+        fputs(")", f);
+    }
+}
+
+static void key_row(FILE *f, const char *what)
+{
+    fputs("<tr><td class=\"l\">", f);
+    esc(f, what);
+    fputs("</td><td class=\"l\">", f);
+}
+
+static void key_section(FILE *f, const cJSON *doc, int flat)
+{
+    fputs("<h2 id=\"keys\">Key figures</h2>\n<p>Per body, across every phase it flies in "
+          "(also in <a href=\"key_figures.json\">key_figures.json</a>, SI units). Dynamic "
+          "pressure only where the atmosphere model is defined (&rho; &gt; 0, h &le; 1000 km); "
+          "load factors in g<sub>0</sub> = 9.80665 m/s&sup2; distances on the sphere of "
+          "radius 6371.0088 km.</p>\n",
+          f);
+    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(doc, "bodies"), *b;
+    cJSON_ArrayForEach(b, bodies)
+    {
+        fputs("<h3>", f);
+        esc(f, jstr(b, "name"));
+        fputs("</h3>\n<table>\n<tr><th class=\"l\">figure</th><th class=\"l\">value</th></tr>\n", f);
+        const cJSON *fin = cJSON_GetObjectItemCaseSensitive(b, "final");
+        if (cJSON_IsObject(fin)) {
+            key_row(f, "final state");
+            state_text(f, fin, flat);
+            fputs("; ended by ", f);
+            esc(f, jstr(fin, "end"));
+            fputs("</td></tr>\n", f);
+        }
+        const cJSON *q = cJSON_GetObjectItemCaseSensitive(b, "max_q");
+        key_row(f, "max dynamic pressure");
+        if (cJSON_IsObject(q)) {
+            int first = 1;
+            kv(f, "q", jnum(q, "value"), 1e-3, 3, "kPa", &first);
+            kv(f, "at t", jnum(q, "t"), 1.0, 3, "s", &first);
+            kv(f, "h", jnum(q, "h"), 1e-3, 3, "km", &first);
+        } else {
+            fputs(flat ? "&ndash; (flat world: no atmosphere)" : "&ndash; (no atmosphere met)", f);
+        }
+        fputs("</td></tr>\n", f);
+        static const char *const nk[2] = {"max_n_axial", "max_n_normal"};
+        static const char *const nt[2] = {"max axial load factor", "max normal load factor"};
+        for (int i = 0; i < 2; i++) {
+            const cJSON *n = cJSON_GetObjectItemCaseSensitive(b, nk[i]);
+            key_row(f, nt[i]);
+            if (cJSON_IsObject(n)) {
+                int first = 1;
+                kv(f, "n", jnum(n, "value"), 1.0, 3, "g0", &first);
+                kv(f, "at t", jnum(n, "t"), 1.0, 3, "s", &first);
+            } else {
+                fputs(i == 1 && flat ? "&ndash; (no aerodynamics: thrust along the axis)"
+                                     : "&ndash;",
+                      f);
+            }
+            fputs("</td></tr>\n", f);
+        }
+        const cJSON *e;
+        cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(b, "burnouts"))
+        {
+            key_row(f, "burnout (its engines cut off)");
+            state_text(f, e, flat);
+            fputs("</td></tr>\n", f);
+        }
+        cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(b, "separations"))
+        {
+            key_row(f, "separation");
+            state_text(f, e, flat);
+            fputs("</td></tr>\n", f);
+        }
+        const cJSON *inj = cJSON_GetObjectItemCaseSensitive(b, "injection");
+        if (cJSON_IsObject(inj)) {
+            const char *traj = jstr(inj, "trajectory");
+            key_row(f, traj && strcmp(traj, "orbit") == 0    ? "injection into orbit (last burnout)"
+                       : traj && strcmp(traj, "escape") == 0 ? "injection on an escape trajectory (last burnout)"
+                                                             : "end of powered flight (suborbital)");
+            state_text(f, inj, flat);
+            const cJSON *o = cJSON_GetObjectItemCaseSensitive(inj, "orbit");
+            fputs("; osculating orbit: ", f);
+            int first = 1;
+            kv(f, "a", jnum(o, "sma"), 1e-3, 1, "km", &first);
+            kv(f, "e", jnum(o, "ecc"), 1.0, 5, "", &first);
+            kv(f, "i", jnum(o, "inc"), 1.0 / LV_DEG, 3, "deg", &first);
+            kv(f, "apoapsis altitude", jnum(o, "apo_alt"), 1e-3, 1, "km", &first);
+            kv(f, "periapsis altitude", jnum(o, "peri_alt"), 1e-3, 1, "km", &first);
+            fputs("</td></tr>\n", f);
+        }
+        const cJSON *gc = cJSON_GetObjectItemCaseSensitive(b, "ground_contact");
+        if (cJSON_IsObject(gc)) {
+            const char *kind = jstr(gc, "kind");
+            key_row(f, kind && strcmp(kind, "landing") == 0 ? "landing point" : "impact point");
+            int first = 1;
+            kv(f, "t", jnum(gc, "t"), 1.0, 3, "s", &first);
+            kv(f, "lat", jnum(gc, "lat"), 1.0 / LV_DEG, 4, "deg", &first);
+            kv(f, "lon", jnum(gc, "lon"), 1.0 / LV_DEG, 4, "deg", &first);
+            kv(f, "x", jnum(gc, "x"), 1e-3, 3, "km", &first);
+            kv(f, "y", jnum(gc, "y"), 1e-3, 3, "km", &first);
+            kv(f, "distance from the launch site", jnum(gc, "distance"), 1e-3, 3, "km", &first);
+            kv(f, "speed", jnum(gc, "speed"), 1.0, 1, "m/s", &first);
+            fputs("</td></tr>\n", f);
+        }
+        fputs("</table>\n", f);
+    }
+}
+
+lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const cJSON *keys,
+                             lv_err *err)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/index.html", d->outdir);
@@ -302,16 +465,21 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, lv_er
     fputs("; lvsim ", f);
     esc(f, s->lvsim ? s->lvsim : "?");
     fprintf(f, "; %zu phases, %zu bodies.</p>\n", d->n_phases, d->n_bodies);
-    fputs("<p><a href=\"#phases\">Phases</a> &middot; <a href=\"#events\">Events</a> &middot; "
-          "<a href=\"#bodies\">Bodies</a> &middot; <a href=\"#plots\">Plots</a> &middot; "
-          "<a href=\"#files\">Result files</a> &middot; <a href=\"viewer/index.html\">3D "
-          "view</a></p>\n",
+    fputs("<p><a href=\"#keys\">Key figures</a> &middot; <a href=\"#phases\">Phases</a> "
+          "&middot; <a href=\"#events\">Events</a> &middot; <a href=\"#bodies\">Bodies</a> "
+          "&middot; <a href=\"#plots\">Plots</a> &middot; <a href=\"#files\">Result files</a> "
+          "&middot; <a href=\"#view\">3D view</a></p>\n",
           f);
-    fputs("<p><b><a href=\"viewer/index.html\">3D view</a></b> of the trajectories "
-          "(<code>viewer/</code>). Open it with <code>lvsim view ",
+    /* The viewer loads mission.czml and summary.json with fetch(), which browsers refuse on
+     * file:// pages: it needs a server, which `lvsim view` is. */
+    fputs("<p id=\"view\"><b><a href=\"viewer/index.html\">3D view</a></b>: run <code>lvsim "
+          "view FOLDER</code> on this results folder; it serves the folder on http://127.0.0.1 "
+          "and prints the viewer's address (this report is then at the same address, and the "
+          "link works). Opened from disk (a <code>file://</code> address) the viewer cannot "
+          "load its data: browsers do not let a page read files that way.</p>\n",
           f);
-    esc(f, d->outdir);
-    fputs("</code>.</p>\n", f);
+    if (keys != NULL)
+        key_section(f, keys, d->flat);
     phase_table(f, s);
     event_list(f, s);
     body_list(f, s);

@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 
 #include "core/status.h"
+#include "io/numparse.h"
 
 /* ---------------------------------------------------------------- helpers -- */
 
@@ -446,7 +447,7 @@ static double number(const char *s, int *ok)
 {
     char *stop;
     errno = 0;
-    const double x = strtod(s, &stop);
+    const double x = lv_numparse_double(s, &stop); /* strtod's value, faster (io/numparse.h) */
     const char *q = stop;
     while (*q == ' ' || *q == '\t')
         q++;

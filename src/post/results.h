@@ -17,7 +17,8 @@ struct cJSON;
 
 typedef struct lv_results_event {
     double t;         /* s, mission time; NAN when missing */
-    const char *name; /* the state event's name ("burnout", "impact"); NULL: a time event */
+    const char *name; /* a state event's name ("burnout", "impact"), a time event's source
+                       * ("stage 'stage3' thrust table breakpoint t = 481 s"); NULL: none */
     const char *kind; /* "state" or "time"; NULL when missing */
     double direction; /* zero crossing: +1 rising, -1 falling; NAN when missing */
 } lv_results_event;

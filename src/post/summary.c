@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "io/numfmt.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lvsim.h"
@@ -50,13 +51,28 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
     for (size_t c = 1; c < b->n_cols; c++)
         fprintf(f, ",%s [%s]", b->names[c], b->units[c]);
     fputc('\n', f);
+    /* numbers as the result CSVs write them: the shortest text that reads back exactly */
+    char *line = malloc(b->n_cols * LV_NUMFMT_MAX + 1);
+    if (line == NULL) {
+        lv_atomic_abort(&out);
+        lv_body_traj_free(b);
+        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
+    }
     for (size_t i = 0; i < b->n_rows; i++) {
         const double *row = b->values + i * b->n_cols;
-        fprintf(f, "%.17g,%s", row[0], lv_mission_phase_name(m, b->phase[i]));
-        for (size_t c = 1; c < b->n_cols; c++)
-            fprintf(f, ",%.17g", row[c]);
-        fputc('\n', f);
+        char *p = line + lv_numfmt_double(row[0], line);
+        fputs(line, f);
+        fputc(',', f);
+        fputs(lv_mission_phase_name(m, b->phase[i]), f);
+        p = line;
+        for (size_t c = 1; c < b->n_cols; c++) {
+            *p++ = ',';
+            p += lv_numfmt_double(row[c], p);
+        }
+        *p++ = '\n';
+        fwrite(line, 1, (size_t)(p - line), f);
     }
+    free(line);
     lv_body_traj_free(b);
     return lv_atomic_commit(&out, err);
 }
@@ -105,16 +121,21 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON *j = cJSON_CreateObject();
         cJSON_AddNumberToObject(j, "t", e->t);
         cJSON_AddStringToObject(j, "kind", e->is_state ? "state" : "time");
-        if (e->is_state) {
-            cJSON_AddStringToObject(j, "name", event_name(r, e->index));
+        /* a state event by its name, a time event by its source (table and breakpoint,
+         * commanded action) as the model names it */
+        cJSON_AddStringToObject(j, "name", e->is_state ? event_name(r, e->index)
+                                           : e->name[0] ? e->name : "time event");
+        if (e->is_state)
             cJSON_AddNumberToObject(j, "direction", e->direction);
-        }
         cJSON_AddItemToArray(ev, j);
     }
     cJSON *sj = cJSON_AddObjectToObject(o, "stats");
     cJSON_AddNumberToObject(sj, "states", (double)rep->n_states);
     cJSON_AddNumberToObject(sj, "steps", (double)rep->stats.steps);
     cJSON_AddNumberToObject(sj, "rhs_evals", (double)rep->stats.rhs_evals);
+    cJSON_AddNumberToObject(sj, "rhs_evals_steps", (double)rep->stats.rhs_evals_steps);
+    cJSON_AddNumberToObject(sj, "rhs_evals_output", (double)rep->stats.rhs_evals_output);
+    cJSON_AddNumberToObject(sj, "row_evals", (double)rep->stats.row_evals);
     cJSON_AddNumberToObject(sj, "jac_evals", (double)rep->stats.jac_evals);
     cJSON_AddNumberToObject(sj, "state_events", (double)rep->stats.state_events);
     cJSON_AddNumberToObject(sj, "time_events", (double)rep->stats.time_events);
@@ -151,21 +172,31 @@ static cJSON *phase_json(const lv_run *run, size_t k)
             if (isfinite(r->final_values[i]))
                 cJSON_AddNumberToObject(fin, r->final_names[i], r->final_values[i]);
     }
-    if (r->result_stem != NULL) {
+    if (r->result_stem != NULL && r->result_formats != 0) { /* the files it wrote */
         char buf[4200];
         cJSON *files = cJSON_AddObjectToObject(o, "files");
         const char *base = strrchr(r->result_stem, '/');
         base = base ? base + 1 : r->result_stem;
         const char *fail = r->state == LV_PHASE_DONE ? "" : ".failed";
-        snprintf(buf, sizeof buf, "%s%s.mat", base, fail);
-        cJSON_AddStringToObject(files, "mat", buf);
-        snprintf(buf, sizeof buf, "%s%s.csv", base, fail);
-        cJSON_AddStringToObject(files, "csv", buf);
+        if (r->result_formats & LV_RESULT_MAT) {
+            snprintf(buf, sizeof buf, "%s%s.mat", base, fail);
+            cJSON_AddStringToObject(files, "mat", buf);
+        }
+        if (r->result_formats & LV_RESULT_CSV) {
+            snprintf(buf, sizeof buf, "%s%s.csv", base, fail);
+            cJSON_AddStringToObject(files, "csv", buf);
+        }
     }
     return o;
 }
 
 lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *err)
+{
+    return lv_run_write_summary_files(run, outdir, LV_SUMMARY_JSON | LV_SUMMARY_BODIES, err);
+}
+
+lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsigned what,
+                                     lv_err *err)
 {
     const lv_mission *m = lv_run_mission(run);
     lv_mission_info mi;
@@ -176,6 +207,11 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
     cJSON_AddStringToObject(root, "mission", mi.name);
     cJSON_AddStringToObject(root, "file", mi.path);
     cJSON_AddStringToObject(root, "lvsim", LVSIM_VERSION);
+    /* the run as a whole: "ok" when every phase is done, else "failed" (kept, marked) */
+    int all_done = 1;
+    for (size_t k = 0; k < mi.n_phases; k++)
+        all_done &= lv_run_result(run, k)->state == LV_PHASE_DONE;
+    cJSON_AddStringToObject(root, "status", all_done ? "ok" : "failed");
     cJSON_AddStringToObject(root, "epoch", mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
     cJSON_AddStringToObject(root, "world", mi.flat_world ? "flat" : "planet");
     if (!mi.flat_world)
@@ -208,14 +244,16 @@ lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *er
         char file[512], path[4700];
         snprintf(file, sizeof file, "body_%s.csv", stage);
         snprintf(path, sizeof path, "%s/%s", outdir, file);
-        cJSON_AddStringToObject(b, "trajectory", file);
         cJSON_AddItemToArray(bodies, b);
-        st = write_body_csv(run, s, path, err);
+        if (what & LV_SUMMARY_BODIES) {
+            cJSON_AddStringToObject(b, "trajectory", file);
+            st = write_body_csv(run, s, path, err);
+        }
     }
     free(ks);
-    char *text = st == LV_OK ? cJSON_Print(root) : NULL;
+    char *text = st == LV_OK && (what & LV_SUMMARY_JSON) ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
-    if (st != LV_OK)
+    if (st != LV_OK || !(what & LV_SUMMARY_JSON))
         return st;
     if (text == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");

@@ -191,11 +191,13 @@ static double thread_cpu_seconds(void)
 
 static char *own_string(sim_run *r, const char *a, const char *b, const char *c)
 {
-    size_t len = strlen(a) + strlen(b) + strlen(c) + 1;
-    char *s = malloc(len);
+    const size_t la = strlen(a), lb = strlen(b), lc = strlen(c);
+    char *s = malloc(la + lb + lc + 1);
     if (s == NULL)
         return NULL;
-    snprintf(s, len, "%s%s%s", a, b, c);
+    memcpy(s, a, la); /* not snprintf: this runs for every state at every set-up */
+    memcpy(s + la, b, lb);
+    memcpy(s + la + lb, c, lc + 1);
     r->owned[r->n_owned++] = s;
     return s;
 }
@@ -249,10 +251,16 @@ static lv_status build_layout(sim_run *r, lv_err *err)
 }
 
 /* One result row at (t, x): time, states, derivatives, outputs. A derivative or
- * output the model cannot evaluate there is written as NaN. */
+ * output the model cannot evaluate there is written as NaN. Without a sink nobody reads the
+ * row: it is counted, not evaluated (the final values are evaluated apart). */
 static lv_status emit_row(sim_run *r, double t, lv_err *err)
 {
     r->row[0] = t;
+    if (r->n_sinks == 0) {
+        r->rep->stats.output_rows++;
+        return LV_OK;
+    }
+    r->rep->stats.row_evals++;
     memcpy(r->row + 1, r->x, r->nx * sizeof(double));
     if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
         for (size_t i = 0; i < r->nx; i++)
@@ -274,7 +282,8 @@ static lv_status emit_row(sim_run *r, double t, lv_err *err)
     return LV_OK;
 }
 
-static lv_status log_event(sim_run *r, double t, int is_state, int index, int direction)
+static lv_status log_event(sim_run *r, double t, int is_state, int index, int direction,
+                           const char *name)
 {
     lv_sim_report *rep = r->rep;
     if (rep->n_event_log == r->log_cap) {
@@ -285,7 +294,9 @@ static lv_status log_event(sim_run *r, double t, int is_state, int index, int di
         rep->event_log = grown;
         r->log_cap = cap;
     }
-    rep->event_log[rep->n_event_log++] = (lv_event_record){t, is_state, index, direction};
+    lv_event_record *e = &rep->event_log[rep->n_event_log++];
+    *e = (lv_event_record){t, is_state, index, direction, ""};
+    snprintf(e->name, sizeof e->name, "%s", name != NULL && name[0] != '\0' ? name : "time event");
     return LV_OK;
 }
 
@@ -661,7 +672,7 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                     if (first < 0)
                         first = (int)i;
                     rep->stats.state_events++;
-                    if (log_event(r, t, 1, (int)i, r->roots[i]) != LV_OK)
+                    if (log_event(r, t, 1, (int)i, r->roots[i], d->events[i].name) != LV_OK)
                         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 }
                 lv_event_action a = d->on_event ? d->on_event(t, r->x, r->p, r->roots, r->inst)
@@ -686,7 +697,8 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                     rep->stats.time_events++;
                 else
                     rep->stats.state_events++;
-                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir) != LV_OK)
+                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir,
+                              s->stops[j].name) != LV_OK)
                     return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 if (action != LV_EVENT_STOP) {
                     rep->stop_event = (int)(r->ng + j);
@@ -697,16 +709,19 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
             int model_time_event = time_event && t >= r->t_model_te;
             if (model_time_event) {
                 rep->stats.time_events++;
-                if (log_event(r, t, 0, -1, 0) != LV_OK)
+                const char *tev = d->time_event_name ? d->time_event_name(t, r->p, r->inst) : NULL;
+                if (log_event(r, t, 0, -1, 0, tev) != LV_OK)
                     return lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 /* Without a handler a time event is a kink: restart the integrator. */
                 lv_event_action a =
                     d->on_time_event ? d->on_time_event(t, r->x, r->p, r->inst) : LV_EVENT_RESTART;
                 if (a == LV_EVENT_STOP && action != LV_EVENT_STOP)
-                    snprintf(rep->stop_name, sizeof rep->stop_name, "time event");
+                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
+                             rep->event_log[rep->n_event_log - 1].name);
                 if (a > action)
                     action = a;
             }
+            lv_integ_forget(ig); /* a handler ran: the model's mode may differ now */
             /* leaving the domain ends the run as failed, unless one of the model's own ends
              * (an `impact` end at the same instant) ended it */
             if (domain_left >= 0 && action != LV_EVENT_STOP) {
@@ -750,7 +765,7 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
         }
         if (t >= tf) {
             rep->reason = LV_STOP_TIME;
-            snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+            snprintf(rep->stop_name, sizeof rep->stop_name, "stop_time");
             S->state = SIM_FINISHED;
             return LV_OK;
         }
@@ -762,6 +777,7 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
 /* Every variable's value at the current (t, x): derivatives and outputs are computed. */
 static void eval_all(sim_run *r, double t)
 {
+    r->rep->stats.row_evals++;
     if (r->def->rhs(t, r->x, r->p, r->xdot, r->inst) != 0)
         for (size_t i = 0; i < r->nx; i++)
             r->xdot[i] = NAN;
@@ -937,7 +953,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
         }
     } else {
         rep->reason = LV_STOP_TIME;
-        snprintf(rep->stop_name, sizeof rep->stop_name, "stopTime");
+        snprintf(rep->stop_name, sizeof rep->stop_name, "stop_time");
         S->state = SIM_FINISHED;
     }
     S->cpu = thread_cpu_seconds() - cpu0;
@@ -1119,6 +1135,8 @@ lv_status lv_sim_finish(lv_sim *S, double *final_values, lv_sim_report *rep_out,
         lv_integ_get_stats(S->ig, &is);
         rep->stats.steps = is.steps;
         rep->stats.rhs_evals = is.rhs_evals;
+        rep->stats.rhs_evals_steps = is.rhs_step;
+        rep->stats.rhs_evals_output = is.rhs_dense;
         rep->stats.jac_evals = is.jac_evals;
         rep->stats.err_test_fails = is.err_test_fails;
         rep->stats.nonlin_fails = is.nonlin_fails;

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# check_symbols.sh LIBLVSIM [LIBLVSIM_POST] - the shared libraries' interfaces:
+# check_symbols.sh LIBLVSIM [LIBLVSIM_POST [LVSIM_PLOT_MODULE]] - the shared libraries' interfaces:
 #  - every symbol each library exports starts with lv_ (STYLE.md: the libraries build with
 #    -fvisibility=hidden and mark their API with LV_API);
 #  - no symbol is exported by both (liblvsim_post's copies of core helpers stay hidden);
-#  - the core library does not depend on PLplot (readelf -d: no libplplot in NEEDED), the
-#    post-processing library does, and links liblvsim; lv_export_run and lv_plot_run come from
-#    liblvsim_post, not from liblvsim.
+#  - the core library does not depend on PLplot (readelf -d: no libplplot in NEEDED), nor does
+#    the post-processing library, which links liblvsim; lv_export_run and lv_plot_run come from
+#    liblvsim_post, not from liblvsim; the figures' module links PLplot and sits in
+#    <libdir>/lvsim/ next to liblvsim_post, which loads it when a figure is drawn.
 set -euo pipefail
 pass=0 fail=0
 ok() { pass=$((pass + 1)); echo "ok: $*"; }
@@ -45,8 +46,8 @@ if [ $# -ge 2 ]; then
   else
     bad "exported by both libraries:"; echo "$both"
   fi
-  if needed "$post" | grep -q '^libplplot' && needed "$post" | grep -q '^liblvsim\.so'; then
-    ok "$(basename "$post") links PLplot and liblvsim"
+  if ! needed "$post" | grep -q '^libplplot' && needed "$post" | grep -q '^liblvsim\.so'; then
+    ok "$(basename "$post") links liblvsim, not PLplot (its figures' module does)"
   else
     bad "$(basename "$post") NEEDED: $(needed "$post" | tr '\n' ' ')"
   fi
@@ -57,6 +58,22 @@ if [ $# -ge 2 ]; then
       bad "$(basename "$post") does not export $f"
     fi
   done
+fi
+
+# The figures' module, <libdir>/lvsim/lvsim_plot.so next to liblvsim_post: it links PLplot and
+# exports lv_plot_draw_figures only (its copies of the helpers stay hidden).
+if [ $# -ge 3 ]; then
+  mod="$3"
+  if needed "$mod" | grep -q '^libplplot' && [ "$(exported "$mod")" = "lv_plot_draw_figures" ]; then
+    ok "$(basename "$mod") links PLplot and exports lv_plot_draw_figures only"
+  else
+    bad "$(basename "$mod") exports: $(exported "$mod" | tr '\n' ' ') NEEDED: $(needed "$mod" | tr '\n' ' ')"
+  fi
+  if [ "$(dirname "$mod")" = "$(dirname "$post")/lvsim" ]; then
+    ok "$(basename "$mod") is in $(dirname "$post")/lvsim, where liblvsim_post loads it"
+  else
+    bad "$mod is not in $(dirname "$post")/lvsim"
+  fi
 fi
 
 echo "$pass passed, $fail failed"

@@ -22,6 +22,17 @@ expect() { # expect CODE PATTERN -- command...
 }
 
 expect 0 "vertical_ascent" -- "$lvsim" models
+# the mission model types too, and their variables: the names of set:, end: and the files
+expect 0 "^dof3 +3-DoF .*\(planet world\)" -- "$lvsim" models
+expect 0 "^flat6 +6-DoF .*\(flat world\)" -- "$lvsim" models
+expect 0 "^state +r_eci_x +m " -- "$lvsim" vars dof3
+expect 0 "^output +q_dyn +Pa " -- "$lvsim" vars dof3
+expect 0 "^mission +start_lat +rad " -- "$lvsim" vars dof3
+expect 0 "^# end conditions \('end:'\): burnout altitude speed apogee impact" -- "$lvsim" vars dof3
+expect 0 "^# phase keys of its own: inputs aero" -- "$lvsim" vars dof3
+expect 0 "^state +z +m " -- "$lvsim" vars flat6
+expect 0 "^derivative +der\(vz\) +m/s/s " -- "$lvsim" vars flat6
+expect 2 "unknown model 'dof4'; mission model types: flat6 dof3; built-in models: vertical_ascent" -- "$lvsim" vars dof4
 expect 0 "^parameter +thrust +N" -- "$lvsim" vars vertical_ascent
 expect 2 "unknown model 'nope'" -- "$lvsim" vars nope
 expect 2 "unknown command 'fly'" -- "$lvsim" fly
@@ -60,13 +71,13 @@ expect 2 "$work/data/gravity/egm2008_n20.gfc:1: no end_of_head" -- \
 src="$(cd "$(dirname "$0")/../.." && pwd)"
 expect 0 "is valid: 5 phases" -- "$lvsim" check "$src/examples/paper-test-case/mission.yaml"
 expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" check "$src/tests/missions/bad_cycle.yaml"
-expect 0 "P5 +P2 .* ok" -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run"
+expect 0 "^5 +P5 +P2 .* done$" -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run"
 [ -f "$work/run/summary.json" ] && [ -f "$work/run/mission.czml" ] && [ -f "$work/run/mission.kml" ] \
   && pass=$((pass + 1)) || { echo "FAIL: run outputs"; fails=$((fails + 1)); }
 expect 0 '"mission":' -- "$lvsim" run "$src/examples/paper-test-case/mission.yaml" -o "$work/run2" --json
 expect 0 "number of states +39 +13" -- "$lvsim" compare "$src/examples/paper-test-case/mission.yaml"
-expect 0 "exports written" -- "$lvsim" export "$work/run" --format czml
-expect 2 "summary.json: cannot read" -- "$lvsim" export "$work/nothing"
+expect 0 "^export czml: wrote $work/run/mission.czml$" -- "$lvsim" export "$work/run" --format czml
+expect 2 "'$work/nothing' is not a results folder" -- "$lvsim" export "$work/nothing"
 # lvsim view stages with viewer/stage.sh found like any data file ($LVSIM_DATA here), which
 # copies from its own folder: web/ and cesium/ (a stand-in for the CesiumJS build)
 mkdir -p "$work/data/viewer"
@@ -81,6 +92,35 @@ expect 0 "viewer staged in $work/run/viewer/" -- \
 grep -qx "lvsim viewer, CesiumJS 0.0.7" "$work/run/viewer/VERSION" && [ -f "$work/run/viewer/app.js" ] \
   && [ -f "$work/run/viewer/cesium/Cesium.js" ] && pass=$((pass + 1)) \
   || { echo "FAIL: staged viewer in $work/run/viewer"; fails=$((fails + 1)); }
+# lvsim view: a busy --port exits 2 naming it (no Python traceback); without --port it serves
+# on a free port and says where (the server is python3 on lvsim's own socket)
+/usr/bin/python3 -c 'import socket, sys, time
+s = socket.socket(); s.bind(("127.0.0.1", 0)); s.listen(1)
+print(s.getsockname()[1], flush=True); time.sleep(20)' > "$work/busy.port" &
+busy_pid=$!
+for _ in $(seq 100); do [ -s "$work/busy.port" ] && break; sleep 0.05; done
+busy=$(cat "$work/busy.port")
+out=$(env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" --port "$busy" 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "port $busy on 127.0.0.1 is busy" <<<"$out" && ! grep -q Traceback <<<"$out" \
+  && pass=$((pass + 1)) || { echo "FAIL: view on a busy port: exit $rc: $out"; fails=$((fails + 1)); }
+kill "$busy_pid" 2> /dev/null; wait "$busy_pid" 2> /dev/null
+env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" > "$work/view.out" 2>&1 &
+view_pid=$!
+for _ in $(seq 100); do grep -q "^lvsim view: http" "$work/view.out" && break; sleep 0.05; done
+url=$(sed -n 's|^lvsim view: \(http://127.0.0.1:[0-9]*\)/viewer/ .*|\1|p' "$work/view.out")
+code=$(/usr/bin/python3 -c "import sys, urllib.request, time
+for i in range(50):
+    try:
+        print(urllib.request.urlopen(sys.argv[1] + '/summary.json', timeout=2).status); break
+    except OSError: time.sleep(0.1)" "$url" 2>&1)
+[ -n "$url" ] && [ "$code" = "200" ] && pass=$((pass + 1)) \
+  || { echo "FAIL: lvsim view serves: url '$url', status '$code': $(cat "$work/view.out")"; fails=$((fails + 1)); }
+kill -INT "$view_pid" 2> /dev/null # Ctrl-C: the server ends quietly
+for _ in $(seq 100); do kill -0 "$view_pid" 2> /dev/null || break; sleep 0.05; done
+kill -9 "$view_pid" 2> /dev/null && { echo "FAIL: lvsim view did not end at SIGINT"; fails=$((fails + 1)); }
+wait "$view_pid" 2> /dev/null
+grep -q Traceback "$work/view.out" && { echo "FAIL: lvsim view printed a traceback"; fails=$((fails + 1)); } \
+  || pass=$((pass + 1))
 cat > "$work/fail.yaml" <<YAML
 mission: {name: fails}
 stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]
@@ -88,6 +128,49 @@ phases: [{name: p, model: flat6, stages: [a], stop_time: 200}]
 YAML
 printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
 expect 3 "phase 'p'.*outside" -- "$lvsim" run "$work/fail.yaml" -o "$work/failrun"
+
+
+# lvsim vars TYPE lists exactly the columns of that type's phase files (time aside)
+"$lvsim" run "$src/examples/dof3-branch/mission.yaml" -o "$work/d3" -q --no-plots > /dev/null 2>&1
+for pair in "dof3 $work/d3/phase_1_ascent.csv" "flat6 $work/run/phase_1_P1.csv"; do
+  set -- $pair
+  want=$(head -1 "$2" | tr ',' '\n' | sed 's/ \[.*//' | grep -v '^time$' | sort)
+  got=$("$lvsim" vars "$1" | awk '$1 == "state" || $1 == "derivative" || $1 == "output" {print $2}' | sort)
+  [ -n "$want" ] && [ "$want" = "$got" ] && pass=$((pass + 1)) \
+    || { echo "FAIL: lvsim vars $1 and the columns of $2 differ:"; diff <(echo "$want") <(echo "$got") | head; fails=$((fails + 1)); }
+done
+set -- "$lvsim"
+# Bounded output: check and run estimate each phase's rows and refuse beyond --max-rows
+mission="$src/examples/paper-test-case/mission.yaml"
+expect 0 "^1 +P1 +281 +33 " -- "$lvsim" check "$mission"
+expect 2 "phase 1 'P1' would write up to 281 rows .*limit of 100 rows per phase.*--max-rows 281" -- \
+  "$lvsim" check "$mission" --max-rows 100
+expect 0 "is valid" -- "$lvsim" check "$mission" --max-rows 1251
+expect 2 "phase 1 'P1' would write up to 281 rows" -- "$lvsim" run "$mission" -o "$work/limited" --max-rows 100
+[ ! -e "$work/limited" ] && pass=$((pass + 1)) || { echo "FAIL: a refused run wrote $work/limited"; fails=$((fails + 1)); }
+cp -R "$src/examples/paper-test-case" "$work/huge"
+sed -i 's/output_interval: 0.5/output_interval: 1.0e-7/' "$work/huge/mission.yaml"
+expect 2 "phase 1 'P1' would write up to 1400000001 rows .*370 GB of .mat, 1.02 TB of .csv" -- "$lvsim" check "$work/huge/mission.yaml"
+expect 2 "--max-rows needs a whole number >= 1, got '1.5'" -- "$lvsim" check "$mission" --max-rows 1.5
+
+# Progress: not on a terminal one line per post-processing step on stderr; --quiet: none; on
+# a terminal (script(1) gives one) a live line that is redrawn in place
+"$lvsim" run "$mission" -o "$work/prog" > "$work/prog.out" 2> "$work/prog.err"
+grep -qE "^lvsim: plots and index.html \([0-9.]+ s\)$" "$work/prog.err" && ! grep -q "lvsim: " "$work/prog.out" \
+  && pass=$((pass + 1)) || { echo "FAIL: progress lines: $(cat "$work/prog.err")"; fails=$((fails + 1)); }
+"$lvsim" run "$mission" -o "$work/prog" --quiet > /dev/null 2> "$work/prog.err"
+# (LeakSanitizer's report of its suppressions may be there under ASan: not lvsim's)
+! grep -qE "^lvsim: |running " "$work/prog.err" && pass=$((pass + 1)) \
+  || { echo "FAIL: --quiet printed: $(cat "$work/prog.err")"; fails=$((fails + 1)); }
+if command -v script > /dev/null; then
+  script -qec "$lvsim run $mission -o $work/prog" /dev/null > "$work/tty.out" 2>&1
+  grep -q $'\r\033\[Kplots and index.html \.\.\.' "$work/tty.out" \
+    && grep -qE $'\r\033\[Krunning P1 t = [0-9.]+ s \\(limit 140 s\\)' "$work/tty.out" && pass=$((pass + 1)) \
+    || { echo "FAIL: no live progress line on a terminal: $(head -c 300 "$work/tty.out" | od -c | head -5)"; fails=$((fails + 1)); }
+fi
+# the phase table in run order (1..5), whatever order the branches finish in
+"$lvsim" run "$mission" -o "$work/order" --threads 4 -q | awk '/^[0-9]+ +P/ {print $1}' | tr '\n' ' ' | grep -qx "1 2 3 4 5 " \
+  && pass=$((pass + 1)) || { echo "FAIL: phase table not in run order"; fails=$((fails + 1)); }
 
 
 # Usage and help come from the command table (cli/cli.h): every command, including those that
@@ -158,9 +241,10 @@ num='lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)'
 [ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: simulate --json exit $rc"; fails=$((fails + 1)); }
 json_ok "simulate --json" "$work/sim.json" "n=$num
 assert list(d) == ['model', 'ok', 'method', 'tolerance', 'end_time', 'stop', 'stats', 'final'], list(d)
-assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stopTime'
+assert d['model'] == 'oscillator' and d['ok'] is True and d['method'] == 'dassl' and d['stop'] == 'stop_time'
 assert n(d['tolerance']) and n(d['end_time']) and abs(d['end_time'] - 1) < 1e-12
-assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert set(d['stats']) == {'states', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'row_evals', 'jac_evals', 'state_events', 'time_events', 'restarts', 'rows', 'cpu_time'}
+assert d['stats']['rhs_evals'] == d['stats']['rhs_evals_steps'] + d['stats']['rhs_evals_output']
 assert all(n(v) for v in d['stats'].values()) and d['stats']['states'] == 2 and d['stats']['rows'] == 501
 assert list(d['final']) == ['x', 'time'] and n(d['final']['x']) and d['final']['time'] == 1"
 "$lvsim" simulate oscillator --json --stop 1000 --max-steps 50 --format none > "$work/simfail.json" 2> /dev/null; rc=$?
@@ -174,7 +258,8 @@ json_ok "compare --json" "$work/cmp.json" "n=$num
 assert list(d) == ['mission', 'output_interval', 'end_to_end', 'sequential', 'bodies'], list(d)
 assert d['mission'].endswith('mission.yaml') and d['output_interval'] == 1
 for s in ('end_to_end', 'sequential'):
-    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'jac_evals', 'cpu_time'], list(d[s])
+    assert list(d[s]) == ['method', 'tolerance', 'states', 'state_events', 'time_events', 'steps', 'rhs_evals', 'rhs_evals_steps', 'rhs_evals_output', 'jac_evals', 'cpu_time'], list(d[s])
+    assert d[s]['rhs_evals'] == d[s]['rhs_evals_steps'] + d[s]['rhs_evals_output']
     assert d[s]['method'] == 'dassl' and abs(d[s]['tolerance'] - 1e-7) < 1e-20
     assert all(n(v) for k, v in d[s].items() if k != 'method')
 assert d['end_to_end']['states'] == 39 and d['sequential']['states'] == 13
@@ -182,6 +267,18 @@ assert [b['name'] for b in d['bodies']] == ['stage1', 'stage2', 'stage3']
 for b in d['bodies']:
     assert list(b) == ['name', 'common_times', 'max_dpos', 'max_dvel', 'max_dmass'] and all(n(b[k]) for k in list(b)[1:])
     assert b['common_times'] > 100 and 0 <= b['max_dpos'] < 100"
+# one vocabulary in summary.json: run status, phase states, end reasons, time events named by
+# their source (the stage's thrust-table breakpoint at the event's own time)
+json_ok "run summary.json words" "$work/run/summary.json" "import re
+assert d['status'] == 'ok' and [p['index'] for p in d['phases']] == [1, 2, 3, 4, 5]
+assert [p['name'] for p in d['phases']] == ['P1', 'P2', 'P3', 'P4', 'P5']
+assert all(p['state'] == 'done' and p['end']['reason'] in ('stop_time', 'event') for p in d['phases'])
+tev = [(p, e) for p in d['phases'] for e in p['events'] if e['kind'] == 'time']
+assert len(tev) == 3, tev
+for p, e in tev:
+    m = re.fullmatch(r\"stage '(\\w+)' thrust table breakpoint t = ([0-9.]+) s\", e['name'])
+    assert m and m.group(1) == p['stages'][0] and float(m.group(2)) == e['t'], e
+assert all(e['name'] in ('burnout', 'impact') for p in d['phases'] for e in p['events'] if e['kind'] == 'state')"
 "$lvsim" params "$mission" --json > "$work/params.json"; rc=$?
 [ "$rc" -eq 0 ] && pass=$((pass + 1)) || { echo "FAIL: params --json exit $rc"; fails=$((fails + 1)); }
 n_text=$("$lvsim" params "$mission" | grep -vc '^#')
@@ -192,6 +289,39 @@ p = {q['name']: q for q in d}
 assert p['stage1.propellant_mass'] == {'name': 'stage1.propellant_mass', 'value': 27000, 'unit': 'kg', 'rule': '>= 0', 'line': $line_prop}, p['stage1.propellant_mass']
 assert p['P1.stop_time']['value'] == 140 and p['P1.stop_time']['unit'] == 's' and p['P1.stop_time']['line'] == $line_stop
 assert any(q['line'] is None for q in d) and all(q['line'] is None or q['line'] > 0 for q in d)"
+
+# --outputs: only what is asked for is written; 'none' writes nothing, not even the folder;
+# the exports need the files they read; unknown names are refused
+expect 0 "manifest.json, summary.json, 5 phase files" -- "$lvsim" run "$mission" -o "$work/out_some" --outputs csv,summary
+files=$(cd "$work/out_some" && ls | tr '\n' ' ')
+[ "$files" = "manifest.json phase_1_P1.csv phase_2_P2.csv phase_3_P3.csv phase_4_P4.csv phase_5_P5.csv summary.json " ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs csv,summary wrote: $files"; fails=$((fails + 1)); }
+grep -q '"mat"' "$work/out_some/summary.json" || grep -q '"trajectory"' "$work/out_some/summary.json" \
+  && { echo "FAIL: summary.json names files that were not written"; fails=$((fails + 1)); } || pass=$((pass + 1))
+expect 0 "nothing written" -- "$lvsim" run "$mission" -o "$work/out_none" --outputs none
+[ ! -e "$work/out_none" ] && pass=$((pass + 1)) || { echo "FAIL: --outputs none made $work/out_none"; fails=$((fails + 1)); }
+expect 0 "manifest.json, mission.kml, summary.json" -- "$lvsim" run "$mission" -o "$work/out_kml" --outputs body,summary,kml --no-plots
+[ -f "$work/out_kml/mission.kml" ] && [ ! -e "$work/out_kml/mission.czml" ] && [ ! -e "$work/out_kml/phase_1_P1.mat" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: --outputs body,summary,kml"; fails=$((fails + 1)); }
+expect 2 "czml, kml and oem read summary and body" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs czml
+expect 2 "unknown output .* 'pdf'" -- "$lvsim" run "$mission" -o "$work/out_bad" --outputs mat,pdf
+expect 2 "--json prints summary.json" -- "$lvsim" run "$mission" --json --outputs mat
+
+# PLplot is loaded only when a figure is drawn (liblvsim_post dlopens lvsim_plot.so): not by
+# check or run --no-plots, by plot
+loaded() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libplplot" || true; }
+[ "$(loaded "$lvsim" check "$mission")" -eq 0 ] && [ "$(loaded "$lvsim" run "$mission" -o "$work/ld1" --no-plots)" -eq 0 ] \
+  && pass=$((pass + 1)) || { echo "FAIL: PLplot loaded without a plot"; fails=$((fails + 1)); }
+# libmatio (and the ~40 libraries of its HDF5 build) only when a MAT file is read: result
+# files are written without it (the MAT v4 sink streams its own bytes)
+matio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c "file=libmatio" || true; }
+d3="$src/examples/dof3-branch/mission.yaml"
+[ "$(matio "$lvsim" check "$d3")" -eq 0 ] && [ "$(matio "$lvsim" run "$d3" -o "$work/ld2" --outputs csv,summary)" -eq 0 ] \
+  && [ "$(matio "$lvsim" run "$d3" -o "$work/ld3" --outputs mat)" -eq 0 ] && [ -f "$work/ld3/phase_1_ascent.mat" ] \
+  && [ "$(matio "$lvsim" check "$mission")" -gt 0 ] \
+  && pass=$((pass + 1)) || { echo "FAIL: libmatio loaded without a MAT file to read, or not with one"; fails=$((fails + 1)); }
+[ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
+  && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

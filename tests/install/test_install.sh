@@ -115,8 +115,12 @@ else ok; fi
 step "installed CLI"
 lvsim="$moved/bin/lvsim"
 expect 0 "is valid: 2 phases" -- "$lvsim" check "$mission"
-expect 0 "upper-burn .* ok" -- "$lvsim" run "$mission" -o "$tmp/run" --no-plots
+expect 0 "upper-burn .* done" -- "$lvsim" run "$mission" -o "$tmp/run" --no-plots
 [ -f "$tmp/run/summary.json" ] && ok || fail "lvsim run: no summary.json"
+# the figures' module is found next to the installed (and moved) liblvsim_post: lib/lvsim/
+expect 0 "plots in $tmp/run/plots/" -- "$lvsim" plot "$tmp/run"
+[ -f "$tmp/run/plots/altitude.png" ] && [ -f "$moved/lib/lvsim/lvsim_plot.so" ] && ok \
+  || fail "lvsim plot: no figure, or no lib/lvsim/lvsim_plot.so in the prefix"
 expect 0 "viewer staged in $tmp/run/viewer/" -- "$lvsim" view "$tmp/run" --stage-only
 grep -qx "lvsim viewer, CesiumJS 0.0.7-install-test" "$tmp/run/viewer/VERSION" 2> /dev/null \
   && [ -f "$tmp/run/viewer/index.html" ] && ok || fail "lvsim view: viewer not staged from the prefix"

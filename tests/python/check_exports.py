@@ -43,10 +43,10 @@ GX = "{http://www.google.com/kml/ext/2.2}"
 
 
 # Marker labels, in launcher words (docs/exports.md): a phase that carries fewer stages than
-# its parent starts at a separation; burnout is MECO, impact is landing.
+# its parent starts at a separation; events by their names (burnout, impact, ...).
 def event_label(e):
     name = e.get("name")
-    return {"burnout": "MECO", "impact": "landing"}.get(name, name) if name else "time event"
+    return name if name else "time event"
 
 
 def start_label(summary, ph):

@@ -1,3 +1,11 @@
 add_test(NAME test_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:lvsim_cli>)
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
-         $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post>)
+         $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post> $<TARGET_FILE:lvsim_plot>)
+# Run-atomic results folders: manifest checked by tests/python/check_manifest.py, path errors,
+# the lock, concurrent runs, kill -9 at random points, SIGTERM (about 20 s).
+add_test(NAME test_outdir COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_outdir.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(test_outdir PROPERTIES TIMEOUT 180)
+# Every CSV value of the examples' phases reads back to the .mat file's double, bit for bit.
+add_test(NAME test_csv_mat COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_csv_mat.py
+         $<TARGET_FILE:lvsim_cli>)

@@ -11,3 +11,5 @@ add_test(NAME test_io_dsres
 set_tests_properties(test_io_dsres PROPERTIES FIXTURES_REQUIRED io_result_files)
 # Temporary name, then rename (src/io/atomic.c): every writer's way of finishing a file.
 lv_add_unit_test(test_atomic ${PROJECT_SOURCE_DIR}/tests/unit/test_atomic.c)
+# The shortest round-trip number formatter of the CSV files (src/io/numfmt.cc).
+lv_add_unit_test(test_numfmt ${PROJECT_SOURCE_DIR}/tests/unit/test_numfmt.c)

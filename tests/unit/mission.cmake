@@ -10,6 +10,7 @@ target_link_libraries(test_runner PRIVATE lvsim_post_static)
 # The environment a mission file defines (planet constants, flat-world air, wind forms, aero
 # tables), flown through whole missions against closed forms.
 lv_add_unit_test(test_mission_env unit/test_mission_env.c)
+target_link_libraries(test_mission_env PRIVATE PkgConfig::MATIO) # writes struct .mat files
 # One mission, many runs: parameters by name, dirty phases, threads against fresh loads.
 lv_add_unit_test(test_run unit/test_run.c)
 # The parser, the mission, the runs and the summary know no model type by name: the phase-model

@@ -5,3 +5,6 @@ include(${CMAKE_CURRENT_LIST_DIR}/post_plot.cmake)
 # The one reader of a results folder (src/post/results.c), on hand-made folders.
 lv_add_unit_test(test_results unit/test_results.c)
 target_link_libraries(test_results PRIVATE lvsim_post_static)
+# Run-atomic results folders (src/post/outdir.c) and SHA-256 through their API.
+lv_add_unit_test(test_outdir_api unit/test_outdir_api.c)
+target_link_libraries(test_outdir_api PRIVATE lvsim_post_static)

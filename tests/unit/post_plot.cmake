@@ -7,3 +7,8 @@ add_test(NAME test_plot_png
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(test_plot PROPERTIES FIXTURES_SETUP lv_plot_outputs)
 set_tests_properties(test_plot_png PROPERTIES FIXTURES_REQUIRED lv_plot_outputs)
+# The report's key figures (key_figures.json, index.html) recomputed from the CSV files with
+# Python's csv and math only, on both examples (about 3 s).
+add_test(NAME test_key_figures
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_key_figures.py
+          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})

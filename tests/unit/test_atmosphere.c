@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "env/atmosphere.h"
@@ -398,6 +399,23 @@ static void test_exponential(void)
     lv_atmo_free(NULL);
 }
 
+/* The upper-atmosphere table compiled into the library (generated at build time) is bit for
+ * bit what lv_us76_upper_build computes now, with the same step and node spacing. */
+static void test_generated_table(void)
+{
+    lv_us76_upper up;
+    lv_err err;
+    CHECK_OK(lv_us76_upper_build(&up, LV_US76_UPPER_H, LV_US76_UPPER_NODE_DZ, &err), &err);
+    const lv_us76_upper *g = &lv_us76_upper_1976;
+    CHECK(up.n == g->n && up.z0 == g->z0 && up.dz == g->dz && g->own == NULL);
+    size_t differ = 0;
+    for (size_t i = 0; up.n == g->n && i < 8 * up.n; i++)
+        differ += memcmp(&up.c[i], &g->c[i], sizeof(double)) != 0;
+    CHECK(differ == 0);
+    lv_us76_upper_release(&up);
+    CHECK(up.c == NULL && up.own == NULL);
+}
+
 int main(void)
 {
     lv_atmo *atm = NULL;
@@ -413,6 +431,7 @@ int main(void)
     test_continuity(atm);
     test_errors(atm);
     test_exponential();
+    test_generated_table();
     lv_atmo_free(atm);
     return check_report("test_atmosphere");
 }

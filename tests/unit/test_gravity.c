@@ -553,8 +553,45 @@ static void test_eci_adapter(void)
     lv_gravity_free(g);
 }
 
+/* A coefficient file is parsed once per process and its result used again while the file
+ * holds the same bytes (gravity_sh.c): the same file twice gives the same model; a file
+ * rewritten with other coefficients of the same length (same size, maybe the same mtime) is
+ * read anew. */
+static void test_file_cache(void)
+{
+    const lv_planet e = lv_planet_earth();
+    lv_gravity_config cfg = {"sh", 2, 0, "test_gravity_cache.gfc"};
+    lv_gravity *g1 = NULL, *g2 = NULL, *g3 = NULL;
+    lv_err err;
+    write_file(cfg.coef_path, "gfc 2 0 -0.484165143790815e-03 0.0\ngfc 2 1 0.0 0.0\n"
+                              "gfc 2 2 0.243938357328313e-05 -0.140027370385934e-05\n");
+    CHECK_OK(lv_gravity_create(&e, &cfg, &g1, &err), &err);
+    CHECK_OK(lv_gravity_create(&e, &cfg, &g2, &err), &err); /* from the cache */
+    write_file(cfg.coef_path, "gfc 2 0 -0.484165143790815e-03 0.0\ngfc 2 1 0.0 0.0\n"
+                              "gfc 2 2 0.143938357328313e-05 -0.140027370385934e-05\n");
+    CHECK_OK(lv_gravity_create(&e, &cfg, &g3, &err), &err); /* changed bytes: parsed again */
+    const double r[3] = {4.0e6, 3.0e6, 3.5e6};
+    double a1[3], a2[3], a3[3], ws[64];
+    CHECK(lv_gravity_ws_size(g1) <= 64);
+    lv_gravity_eval(g1, ws, r, a1, NULL);
+    lv_gravity_eval(g2, ws, r, a2, NULL);
+    lv_gravity_eval(g3, ws, r, a3, NULL);
+    CHECK(memcmp(a1, a2, sizeof a1) == 0);
+    CHECK(memcmp(a1, a3, sizeof a1) != 0);
+    lv_gravity_free(g1);
+    lv_gravity_free(g2);
+    lv_gravity_free(g3);
+    /* an error is not cached: a bad file fails every time, a repaired one then reads */
+    write_file(cfg.coef_path, "gfc 2 0 nan 0.0\n");
+    CHECK_FAILS(lv_gravity_create(&e, &cfg, &g1, &err), &err, LV_ERR_INPUT, "bad value 'nan'");
+    CHECK_FAILS(lv_gravity_create(&e, &cfg, &g1, &err), &err, LV_ERR_INPUT, "bad value 'nan'");
+    remove(cfg.coef_path);
+    CHECK_FAILS(lv_gravity_create(&e, &cfg, &g1, &err), &err, LV_ERR_IO, "cannot open");
+}
+
 int main(void)
 {
+    test_file_cache();
     test_eci_adapter();
     test_pointmass();
     test_sh_vs_closed_form();

@@ -550,6 +550,44 @@ static void test_separation(void)
                "separation is a hand-off rule: only a phase with `from` has one");
 }
 
+/* The target outputs where the geodetic and geocentric verticals differ most (45 deg): the
+ * bearing of a point 0.1 deg of longitude east is the great circle's initial bearing
+ * atan2(sin dl cos p2, cos p1 sin p2 - sin p1 cos p2 cos dl) = 89.9646 deg (spherical formula;
+ * the ellipsoid changes it by less than 1e-3 deg at 8 km), the distance a dl cos(phi) within
+ * the ellipsoid's 0.5 %. */
+static void test_target_outputs(void)
+{
+    const char *yaml =
+        "mission: {name: bearing}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "parameters: {start_lat_deg: 45, start_lon_deg: 0, start_h: 1000, start_vel: 0}\n"
+        "stages: [{name: s, dry_mass: 100, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: P, model: dof3, stages: [s], stop_time: 1,\n"
+        "     guidance: {law: boostback, target_lat_deg: 45, target_lon_deg: 0.1}}\n";
+    lv_mission *m;
+    lv_run *r = run_text("bearing.yaml", yaml, &m);
+    if (r == NULL)
+        return lv_mission_free(m);
+    const lv_result *res = lv_run_rows(r, 0);
+    size_t cb, cd, cp;
+    CHECK(res != NULL && lv_result_column(res, "target_bearing", &cb, NULL) == LV_OK &&
+          lv_result_column(res, "target_distance", &cd, NULL) == LV_OK &&
+          lv_result_column(res, "psi", &cp, NULL) == LV_OK);
+    if (res != NULL) {
+        const double p = 45.0 * DEG, dl = 0.1 * DEG;
+        const double b_ref = atan2(sin(dl) * cos(p), cos(p) * sin(p) - sin(p) * cos(p) * cos(dl));
+        const double b = lv_result_value(res, 0, cb);
+        printf("target bearing at 45 deg: %.6f deg (sphere %.6f), distance %.1f m\n", b / DEG,
+               b_ref / DEG, lv_result_value(res, 0, cd));
+        CHECK_CLOSE(b, b_ref, 1e-3 * DEG);
+        CHECK_REL(lv_result_value(res, 0, cd), 6378137.0 * dl * cos(p), 5e-3);
+        CHECK_CLOSE(lv_result_value(res, 0, cp), b, 1e-12); /* the boost-back's heading */
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_gravity_turn();
@@ -561,5 +599,6 @@ int main(void)
     test_refused();
     test_table_and_slots();
     test_separation();
+    test_target_outputs();
     return check_report("test_guidance");
 }

@@ -24,8 +24,10 @@ static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dyn
                                        "load_factor", "flight_path_angle", "acceleration",
                                        "thrust", "ground_track", "fig10_normalised", NULL};
 /* Not in a flat world's phase files (no atmosphere model outputs, no planet). */
+/* not drawn for the paper's flat-world flight: no atmosphere, no aerodynamics, and a vertical
+ * flight has no ground track to map */
 static const char *const planet_only[] = {"mach", "dynamic_pressure", "load_factor",
-                                          "flight_path_angle", NULL};
+                                          "flight_path_angle", "ground_track", NULL};
 
 static int in_list(const char *const *l, const char *s)
 {
@@ -218,7 +220,13 @@ static double run_and_plot(const char *mission, const char *outdir, int flat)
             CHECK((strstr(html, skip) != NULL) == !expect);
         }
         CHECK(strstr(html, "href=\"viewer/index.html\"") != NULL);
-        CHECK(strstr(html, "lvsim view") != NULL);
+        CHECK(strstr(html, "lvsim view") != NULL && strstr(html, "file://") != NULL);
+        /* key figures first, Figure 10 the first figure */
+        const char *keys = strstr(html, "<h2 id=\"keys\">Key figures</h2>");
+        const char *fig = strstr(html, "<img src=\"plots/");
+        CHECK(keys != NULL && fig != NULL && keys < strstr(html, "<h2 id=\"phases\">"));
+        static const char fig10[] = "<img src=\"plots/fig10_normalised.png\"";
+        CHECK(fig != NULL && strncmp(fig, fig10, sizeof fig10 - 1) == 0);
         CHECK(strstr(html, "href=\"summary.json\"") != NULL);
         CHECK(strstr(html, ".mat\"") != NULL && strstr(html, "href=\"body_") != NULL);
         CHECK(strstr(html, "burnout") != NULL); /* end reasons and the event list */

@@ -12,5 +12,5 @@ if(LV_NODE)
     TIMEOUT 300
     LABELS "viewer;no-asan")
 else()
-  message(STATUS "node not found: test_viewer not registered (the viewer needs Node.js >= 20)")
+  message(STATUS "node not found: test_viewer not registered (the viewer's test needs Node.js >= 18)")
 endif()

@@ -3,8 +3,8 @@
 // mission.czml built from its body_<stage>.csv in the layout of `lvsim export` (src/io/
 // export_czml.c: a "document" packet with the clock; "track/<body>/<phase>" paths drawn up to
 // the clock time, the body's marker on its last track; "event/<phase>/<k>" markers available
-// from their time, k = 0 the phase start, then its events), with the issue's labels (MECO,
-// separation, apogee, landing). Positions thinned to about one per 5 s to keep it small.
+// from their time, k = 0 the phase start, then its events), with the events' names (burnout,
+// separation, apogee, impact). Positions thinned to about one per 5 s to keep it small.
 // Regenerate: lvsim run examples/dof3-branch/mission.yaml -o RUN; node make_fixture.js RUN fixture
 'use strict';
 const fs = require('fs');
@@ -86,8 +86,7 @@ function main() {
     else if (!separated.has(p.from)) { separated.add(p.from); start = 'separation'; }
     const ev = [{ t: p.t_start, text: start }];
     for (const e of p.events) {
-      const text = e.name === 'impact' ? 'landing' : e.name === 'burnout' ? (p.from ? 'SECO' : 'MECO')
-                 : e.name || 'time event';
+      const text = e.name || 'time event'; // the events' own names, as lvsim export writes them
       ev.push({ t: e.t, text });
     }
     const r = where[p.name];

@@ -131,7 +131,7 @@ function sites() {
   fs.cpSync(path.join(SRC, 'tests', 'viewer', 'fixture'), fix, { recursive: true });
   stage(fix);
   list.push({ name: 'fixture', dir: fix,
-              labels: ['MECO', 'separation', 'apogee', 'landing'] });
+              labels: ['burnout', 'separation', 'apogee', 'impact'] });
   const lvsim = process.env.LVSIM;
   if (!lvsim) { log('LVSIM not set: the fixture only'); return list; }
   const run = path.join(OUT, 'site-run');
@@ -149,7 +149,7 @@ function sites() {
         `lvsim export ${run} writes mission.czml`, (r2.stderr || '').trim());
   if (!fs.existsSync(path.join(run, 'mission.czml'))) return list;
   stage(run);
-  list.push({ name: 'dof3-branch', dir: run, labels: [] });
+  list.push({ name: 'dof3-branch', dir: run, labels: ['burnout', 'impact'] });
   return list;
 }
 
@@ -209,6 +209,9 @@ async function testSite(browser, site) {
   const evs = await page.evaluate(() => window.lvsim.events || []);
   check(evs.length >= czmlEvents.length && evs.length > 0, `${site.name}: events listed`, JSON.stringify(evs));
   for (const l of site.labels) check(evs.some((e) => e.text === l), `${site.name}: event '${l}' listed`, JSON.stringify(evs));
+  // one vocabulary: events by their names; a spent stage's impact is never a "landing"
+  check(!evs.some((e) => /landing|MECO|SECO/.test(e.text)), `${site.name}: events named as summary.json names them`,
+        JSON.stringify(evs));
 
   // The clock moves after Play.
   const clockNow = () => page.evaluate(() =>

@@ -1,0 +1,306 @@
+/* plot_keys.c - the key figures of a run, per body, from its results folder (post/results.h:
+ * summary.json, the phase CSVs, the body trajectories): final state, maximum dynamic
+ * pressure with its time and altitude, maximum axial and normal load factor, the state at
+ * each burnout and separation, the injection state and osculating orbit of a body that
+ * reaches orbit (periapsis above 100 km, e < 1; e >= 1: escape), and the impact or landing point with its distance from the launch site.
+ * Written to OUTDIR/key_figures.json (SI units) and shown by the report (plot_html.c).
+ * Definitions: docs/visualization.md ("Key figures"); tests/python/check_key_figures.py
+ * recomputes every number from the CSV files. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "io/atomic.h"
+#include "lvsim/lv_atmosphere.h"
+#include "post/plot.h"
+
+#define G0 9.80665            /* m/s^2, standard gravity: load factors in g0 */
+#define R_MEAN 6371008.8      /* m, IUGG mean Earth radius: great-circle distances */
+#define ORBIT_PERI_MIN 100e3  /* m: a body reaches orbit when its periapsis stays above */
+#define LANDING_SPEED_MAX 10.0 /* m/s: a ground contact slower than this is a landing */
+
+/* A phase CSV's columns the figures read; -1 when absent. */
+typedef struct cols {
+    long t, h, speed, v_in, fpa, fpa_in, q, rho, nax, nno, m, lat, lon, x, y, thrust, sma, ecc,
+        inc, apo, peri;
+} cols;
+
+static long col(const lv_results_table *t, const char *a, const char *b)
+{
+    long k = lv_results_table_col(t, a);
+    return k >= 0 || b == NULL ? k : lv_results_table_col(t, b);
+}
+
+static cols find_cols(const lv_results_table *t)
+{
+    cols c = {col(t, "time", NULL), col(t, "h", "z"), col(t, "v_rel", "speed"),
+              col(t, "v_inertial", NULL), col(t, "fpa", NULL), col(t, "fpa_inertial", NULL),
+              col(t, "q_dyn", NULL), col(t, "rho", NULL), col(t, "n_axial", NULL),
+              col(t, "n_normal", NULL), col(t, "m", NULL), col(t, "lat", NULL),
+              col(t, "lon", NULL), col(t, "x", NULL), col(t, "y", NULL), col(t, "thrust", NULL),
+              col(t, "sma", NULL), col(t, "ecc", NULL), col(t, "inc", NULL),
+              col(t, "apo_alt", NULL), col(t, "peri_alt", NULL)};
+    return c;
+}
+
+static double at(const lv_results_table *t, size_t r, long c)
+{
+    return c >= 0 ? t->v[r * t->n_cols + (size_t)c] : NAN;
+}
+
+static void num(cJSON *o, const char *key, double v)
+{
+    if (isfinite(v))
+        cJSON_AddNumberToObject(o, key, v);
+    else
+        cJSON_AddNullToObject(o, key);
+}
+
+/* The state at row r of a phase file: time, altitude, speeds, flight-path angles, vehicle
+ * mass (the whole body that flies in the phase), position. */
+static cJSON *state_json(const lv_results_table *t, const cols *c, size_t r, const char *phase)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "phase", phase);
+    num(o, "t", at(t, r, c->t));
+    num(o, "h", at(t, r, c->h));
+    num(o, "speed", at(t, r, c->speed));
+    if (c->v_in >= 0)
+        num(o, "v_inertial", at(t, r, c->v_in));
+    if (c->fpa >= 0)
+        num(o, "fpa", at(t, r, c->fpa));
+    num(o, "vehicle_mass", at(t, r, c->m));
+    if (c->lat >= 0) {
+        num(o, "lat", at(t, r, c->lat));
+        num(o, "lon", at(t, r, c->lon));
+    } else if (c->x >= 0) {
+        num(o, "x", at(t, r, c->x));
+        num(o, "y", at(t, r, c->y));
+    }
+    return o;
+}
+
+/* First row of t at time `time` (an event instant has two: the one before it), or the last
+ * row before it; (size_t)-1 when none. */
+static size_t row_at(const lv_results_table *t, long ct, double time)
+{
+    size_t best = (size_t)-1;
+    for (size_t r = 0; r < t->n_rows; r++) {
+        const double x = at(t, r, ct);
+        if (x == time)
+            return r;
+        if (x < time)
+            best = r;
+    }
+    return best;
+}
+
+/* Great-circle distance on the sphere of the IUGG mean radius (haversine). */
+static double gc_distance(double lat1, double lon1, double lat2, double lon2)
+{
+    const double s1 = sin(0.5 * (lat2 - lat1)), s2 = sin(0.5 * (lon2 - lon1));
+    const double a = s1 * s1 + cos(lat1) * cos(lat2) * s2 * s2;
+    return 2.0 * R_MEAN * asin(fmin(1.0, sqrt(a)));
+}
+
+/* The bottom stage of a phase (the one that burns) is body b's? */
+static int burns_in(const lv_results *res, size_t k, const char *body)
+{
+    const lv_results_phase *p = &res->phases[k];
+    return p->n_stages > 0 && strcmp(p->stages[0], body) == 0;
+}
+
+static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
+{
+    const lv_results *res = d->res;
+    const lv_plot_body *b = &d->bodies[bi];
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", b->name);
+    cJSON *burn = cJSON_CreateArray(), *sep = cJSON_CreateArray();
+    double q_max = -INFINITY, q_t = NAN, q_h = NAN;
+    double na_max = -INFINITY, na_t = NAN, nn_max = -INFINITY, nn_t = NAN;
+    const lv_results_table *first_t = NULL, *last_t = NULL;
+    size_t last_k = 0;
+    cJSON *injection = NULL;
+    for (size_t i = 0; i < b->n; i++) {
+        const size_t k = b->phase[i];
+        const lv_results_phase *ph = &res->phases[k];
+        const lv_results_table *t = d->phases[k].csv;
+        if (t == NULL || t->n_rows == 0)
+            continue;
+        if (first_t == NULL)
+            first_t = t;
+        last_t = t;
+        last_k = k;
+        const cols c = find_cols(t);
+        for (size_t r = 0; r < t->n_rows; r++) {
+            /* q only where the atmosphere model is defined: rho > 0, h <= its top */
+            const double q = at(t, r, c.q), rho = at(t, r, c.rho), h = at(t, r, c.h);
+            if (isfinite(q) && rho > 0.0 && h <= LV_ATMO_ALT_MAX && q > q_max) {
+                q_max = q;
+                q_t = at(t, r, c.t);
+                q_h = h;
+            }
+            /* axial: the model's n_axial, or thrust / (m g0) where there is no aerodynamics */
+            double na = c.nax >= 0 ? at(t, r, c.nax)
+                                   : at(t, r, c.thrust) / (at(t, r, c.m) * G0);
+            if (isfinite(na) && na > na_max) {
+                na_max = na;
+                na_t = at(t, r, c.t);
+            }
+            const double nn = fabs(at(t, r, c.nno));
+            if (isfinite(nn) && nn > nn_max) {
+                nn_max = nn;
+                nn_t = at(t, r, c.t);
+            }
+        }
+        /* separation: the phase starts with fewer stages than its parent */
+        if (ph->parent >= 0 && ph->n_stages < res->phases[ph->parent].n_stages) {
+            cJSON *s = state_json(t, &c, 0, ph->name);
+            cJSON_AddItemToArray(sep, s);
+        }
+        /* burnout of the stage it burns */
+        for (size_t e = 0; e < ph->n_events; e++) {
+            const lv_results_event *ev = &ph->events[e];
+            if (ev->name == NULL || strcmp(ev->name, "burnout") != 0 || ev->kind == NULL ||
+                strcmp(ev->kind, "state") != 0 || !burns_in(res, k, b->name))
+                continue;
+            const size_t r = row_at(t, c.t, ev->t);
+            if (r == (size_t)-1)
+                continue;
+            cJSON *s = state_json(t, &c, r, ph->name);
+            cJSON_AddItemToArray(burn, s);
+            if (c.sma >= 0) { /* the last burnout over a planet: its injection candidate */
+                cJSON_Delete(injection);
+                injection = state_json(t, &c, r, ph->name);
+                num(injection, "fpa_inertial", at(t, r, c.fpa_in));
+                cJSON *orb = cJSON_AddObjectToObject(injection, "orbit");
+                num(orb, "sma", at(t, r, c.sma));
+                num(orb, "ecc", at(t, r, c.ecc));
+                num(orb, "inc", at(t, r, c.inc));
+                num(orb, "apo_alt", at(t, r, c.apo));
+                num(orb, "peri_alt", at(t, r, c.peri));
+            }
+        }
+    }
+    /* final state: the last row of its last phase, and the stage's own mass */
+    if (last_t != NULL) {
+        const cols c = find_cols(last_t);
+        cJSON *f = state_json(last_t, &c, last_t->n_rows - 1, res->phases[last_k].name);
+        const lv_results_table *tr = b->traj;
+        const long cs = lv_results_table_col(tr, "stage_mass");
+        if (tr != NULL && cs >= 0 && tr->n_rows > 0)
+            num(f, "stage_mass", at(tr, tr->n_rows - 1, cs));
+        const lv_results_phase *lp = &res->phases[last_k];
+        cJSON_AddStringToObject(f, "end", lp->end_event ? lp->end_event
+                                          : lp->end_reason ? lp->end_reason : "?");
+        cJSON_AddItemToObject(o, "final", f);
+    } else {
+        cJSON_AddNullToObject(o, "final");
+    }
+    cJSON *mq = NULL;
+    if (isfinite(q_max)) {
+        mq = cJSON_CreateObject();
+        num(mq, "value", q_max);
+        num(mq, "t", q_t);
+        num(mq, "h", q_h);
+    }
+    cJSON_AddItemToObject(o, "max_q", mq ? mq : cJSON_CreateNull());
+    cJSON *na = NULL, *nn = NULL;
+    if (isfinite(na_max)) {
+        na = cJSON_CreateObject();
+        num(na, "value", na_max);
+        num(na, "t", na_t);
+    }
+    if (isfinite(nn_max)) {
+        nn = cJSON_CreateObject();
+        num(nn, "value", nn_max);
+        num(nn, "t", nn_t);
+    }
+    cJSON_AddItemToObject(o, "max_n_axial", na ? na : cJSON_CreateNull());
+    cJSON_AddItemToObject(o, "max_n_normal", nn ? nn : cJSON_CreateNull());
+    cJSON_AddItemToObject(o, "burnouts", burn);
+    cJSON_AddItemToObject(o, "separations", sep);
+    /* injection: the last burnout, if the orbit it starts keeps its periapsis above 100 km */
+    if (injection != NULL) {
+        const cJSON *orb = cJSON_GetObjectItemCaseSensitive(injection, "orbit");
+        const cJSON *peri = cJSON_GetObjectItemCaseSensitive(orb, "peri_alt");
+        const cJSON *ecc = cJSON_GetObjectItemCaseSensitive(orb, "ecc");
+        const int above = cJSON_IsNumber(peri) && peri->valuedouble > ORBIT_PERI_MIN;
+        const int bound = cJSON_IsNumber(ecc) && ecc->valuedouble < 1.0;
+        cJSON_AddBoolToObject(injection, "reaches_orbit", above && bound);
+        cJSON_AddStringToObject(injection, "trajectory", !above ? "suborbital"
+                                                         : bound ? "orbit" : "escape");
+        cJSON_AddItemToObject(o, "injection", injection);
+    } else {
+        cJSON_AddNullToObject(o, "injection");
+    }
+    /* ground contact: its last phase ended by an impact event */
+    cJSON *gc = NULL;
+    const lv_results_phase *lp = last_t ? &res->phases[last_k] : NULL;
+    if (lp != NULL && lp->end_event != NULL && strcmp(lp->end_event, "impact") == 0 &&
+        first_t != NULL) {
+        const cols c0 = find_cols(first_t), c = find_cols(last_t);
+        const size_t r = last_t->n_rows - 1;
+        gc = cJSON_CreateObject();
+        const double v = at(last_t, r, c.speed);
+        cJSON_AddStringToObject(gc, "kind", v < LANDING_SPEED_MAX ? "landing" : "impact");
+        cJSON_AddStringToObject(gc, "phase", lp->name);
+        num(gc, "t", at(last_t, r, c.t));
+        num(gc, "speed", v);
+        double dist = NAN;
+        if (!flat && c.lat >= 0 && c0.lat >= 0) {
+            const double la = at(last_t, r, c.lat), lo = at(last_t, r, c.lon);
+            num(gc, "lat", la);
+            num(gc, "lon", lo);
+            dist = gc_distance(at(first_t, 0, c0.lat), at(first_t, 0, c0.lon), la, lo);
+        } else if (c.x >= 0 && c0.x >= 0) {
+            const double x = at(last_t, r, c.x), y = at(last_t, r, c.y);
+            num(gc, "x", x);
+            num(gc, "y", y);
+            dist = hypot(x - at(first_t, 0, c0.x), y - at(first_t, 0, c0.y));
+        }
+        num(gc, "distance", dist);
+    }
+    cJSON_AddItemToObject(o, "ground_contact", gc ? gc : cJSON_CreateNull());
+    return o;
+}
+
+lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
+{
+    *out = NULL;
+    cJSON *doc = cJSON_CreateObject();
+    if (doc == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    cJSON_AddStringToObject(doc, "mission", d->res->mission ? d->res->mission : "?");
+    cJSON_AddStringToObject(doc, "world", d->flat ? "flat" : "planet");
+    cJSON *bodies = cJSON_AddArrayToObject(doc, "bodies");
+    for (size_t i = 0; i < d->n_bodies; i++)
+        cJSON_AddItemToArray(bodies, body_keys(d, i, d->flat));
+    char *text = cJSON_Print(doc);
+    if (text == NULL) {
+        cJSON_Delete(doc);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/key_figures.json", d->outdir);
+    lv_atomic a;
+    lv_status st = lv_atomic_open(&a, path, err);
+    if (st == LV_OK) {
+        fputs(text, a.fp);
+        fputc('\n', a.fp);
+        st = lv_atomic_commit(&a, err);
+    }
+    cJSON_free(text);
+    if (st != LV_OK) {
+        cJSON_Delete(doc);
+        return st;
+    }
+    *out = doc;
+    return LV_OK;
+}

@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# test_outdir.sh LVSIM SOURCE_DIR - run-atomic results folders (include/lvsim/lv_outdir.h):
+# every results folder is checked by tests/python/check_manifest.py (Python's hashlib and
+# os.walk: exactly the files of the manifest, sizes and SHA-256 right, one run's files).
+#   - a run, and -o reused for another mission: nothing of the first one remains;
+#   - path errors exit 2: -o "", a file, a file as a parent folder, a folder lvsim did not
+#     write (left untouched), a folder as the mission path;
+#   - a folder in use (its lock held) is refused with exit 2; concurrent runs into one
+#     folder: each exits 0 or 2, never mixed;
+#   - kill -9 at random points: OUTDIR is always one complete run; the next run removes the
+#     staging folder left behind and says so;
+#   - SIGTERM (as Ctrl-C) during a run: exit 130, OUTDIR as it was.
+# Bounded: about 20 s. Prints "N passed, M failed".
+set -u
+lvsim="$1"
+src="$2"
+py=/usr/bin/python3
+check="$src/tests/python/check_manifest.py"
+work=$(mktemp -d)
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2> /dev/null; done; rm -rf "$work"; }
+trap cleanup EXIT
+fails=0
+pass=0
+ok() { pass=$((pass + 1)); }
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+expect() { # expect CODE PATTERN -- command...
+  local code="$1" pat="$2"; shift 3
+  local out rc
+  out=$("$@" 2>&1); rc=$?
+  if [ "$rc" -ne "$code" ] || ! grep -qE -- "$pat" <<<"$out"; then
+    fail "$* -> exit $rc (want $code), output:"; echo "$out" | head -5
+    echo "      expected pattern: $pat"
+  else
+    ok
+  fi
+}
+verify() { # verify OUTDIR [check_manifest options]
+  if "$py" "$check" "$@"; then ok; else fail "check_manifest $*"; fi
+}
+
+paper="$src/examples/paper-test-case/mission.yaml"
+dof3="$src/examples/dof3-branch/mission.yaml"
+out="$work/out"
+
+# ---- a run; -o reused for another mission ---------------------------------------------
+expect 0 "^results: $out/ \([0-9]+ files" -- "$lvsim" run "$paper" -o "$out" -q
+verify "$out" --mission "$paper" --status ok --name paper-test-case
+[ ! -e "$work/.out.lock" ] && ! ls -a "$work" | grep -q "staging" && ok \
+  || fail "lock file or staging folder left beside $out: $(ls -a "$work")"
+expect 0 "^results: $out/" -- "$lvsim" run "$dof3" -o "$out/" -q --no-plots
+verify "$out" --mission "$dof3" --status ok --name dof3-branch
+ls "$out" | grep -q "phase_1_P1" && fail "files of the first mission remain: $(ls "$out")" || ok
+[ ! -e "$out/plots" ] && [ ! -e "$out/mission.kml.tmp" ] && ok || fail "old plots/ remain"
+
+# ---- a failed run is committed too, marked; every phase has its row; no staging name shown
+cat > "$work/fail.yaml" <<YAML
+mission: {name: fails}
+stages: [{name: a, dry_mass: 100, propellant_mass: 900, engines: [{table: {file: $work/short.csv, extrap: error}}]}]
+phases:
+  - {name: p, model: flat6, stages: [a], stop_time: 200}
+  - {name: q, model: flat6, stages: [a], from: p, stop_time: 300}
+YAML
+printf 't [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n' > "$work/short.csv"
+fout=$("$lvsim" run "$work/fail.yaml" -o "$out" -q 2>&1); rc=$?
+[ "$rc" -eq 3 ] && grep -qE "^1 +p +- .* failed$" <<<"$fout" && grep -qE "^2 +q +p .* skipped$" <<<"$fout" \
+  && ok || fail "failed run: exit $rc: $fout"
+grep -q "staging" <<<"$fout" && fail "a message names the staging folder: $fout" || ok
+verify "$out" --mission "$work/fail.yaml" --status failed --name fails
+[ -f "$out/phase_1_p.failed.mat" ] && [ -f "$out/index.html" ] && [ ! -e "$out/phase_1_P1.csv" ] && ok \
+  || fail "failed run's folder: $(ls "$out")"
+
+# ---- path errors: exit 2, nothing touched ------------------------------------------------
+expect 2 "-o needs a folder name" -- "$lvsim" run "$paper" -o ""
+echo "not a folder" > "$work/file"
+expect 2 "'$work/file' is a file, not a folder" -- "$lvsim" run "$paper" -o "$work/file"
+expect 2 "'$work/file' is a file, not a folder" -- "$lvsim" run "$paper" -o "$work/file/sub"
+mkdir -p "$work/mine" && echo "keep me" > "$work/mine/notes.txt"
+expect 2 "holds files lvsim did not write" -- "$lvsim" run "$paper" -o "$work/mine"
+[ "$(cat "$work/mine/notes.txt")" = "keep me" ] && [ "$(ls -A "$work/mine")" = "notes.txt" ] && ok \
+  || fail "a foreign folder was changed"
+expect 2 "cannot be a results folder" -- "$lvsim" run "$paper" -o .
+expect 2 "is a folder, not a mission file" -- "$lvsim" run "$src/examples/paper-test-case" -o "$work/x"
+expect 2 "is a folder, not a mission file" -- "$lvsim" check "$src/examples/paper-test-case"
+if [ "$(id -u)" -ne 0 ]; then # root writes anywhere
+  mkdir -p "$work/ro" && chmod 0500 "$work/ro"
+  expect 2 "cannot write in '$work/ro'" -- "$lvsim" run "$paper" -o "$work/ro/out"
+  chmod 0700 "$work/ro"
+fi
+
+# ---- a folder in use: its lock held by another process ------------------------------------
+before=$(sha256sum "$out/manifest.json")
+flock "$work/.out.lock" sleep 30 &
+holder=$!
+pids+=("$holder")
+for _ in $(seq 200); do flock -n "$work/.out.lock" true 2> /dev/null || break; sleep 0.05; done
+expect 2 "results folder '$out' is in use by another lvsim" -- "$lvsim" run "$paper" -o "$out" -q
+expect 2 "is in use by another lvsim" -- "$lvsim" export "$out"
+kill "$holder" 2> /dev/null; wait "$holder" 2> /dev/null
+[ "$before" = "$(sha256sum "$out/manifest.json")" ] && ok || fail "a refused run changed $out"
+
+# ---- concurrent runs into one folder -------------------------------------------------------
+slow="$work/slow"
+cp -R "$src/examples/paper-test-case" "$slow"
+sed -i 's/output_interval: 0.5/output_interval: 0.05/; s/output_interval: 2.0/output_interval: 0.2/' \
+  "$slow/mission.yaml"
+conc="$work/conc"
+for i in 1 2 3 4; do
+  m="$slow/mission.yaml"; [ $((i % 2)) -eq 0 ] && m="$dof3"
+  "$lvsim" run "$m" -o "$conc" -q > "$work/conc.$i.log" 2>&1 &
+  pids+=($!)
+  cpids[$i]=$!
+done
+n_ok=0 n_busy=0
+for i in 1 2 3 4; do
+  wait "${cpids[$i]}"; rc=$?
+  if [ "$rc" -eq 0 ]; then n_ok=$((n_ok + 1))
+  elif [ "$rc" -eq 2 ] && grep -q "is in use by another lvsim" "$work/conc.$i.log"; then n_busy=$((n_busy + 1))
+  else fail "concurrent run $i: exit $rc: $(tail -2 "$work/conc.$i.log")"; fi
+done
+[ "$n_ok" -ge 1 ] && [ $((n_ok + n_busy)) -eq 4 ] && ok || fail "concurrent runs: $n_ok ok, $n_busy refused"
+verify "$conc" --status ok
+
+# ---- kill -9 at random points: OUTDIR is always one complete run ---------------------------
+kill_dir="$work/killed"
+"$lvsim" run "$dof3" -o "$kill_dir" -q --no-plots > /dev/null 2>&1 && ok || fail "first run into $kill_dir"
+RANDOM=10 # the same points in every run of the test
+left=0
+for i in 1 2 3 4 5 6; do
+  "$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q > /dev/null 2>&1 &
+  victim=$!
+  pids+=("$victim")
+  sleep "$(awk -v r=$RANDOM 'BEGIN { printf "%.2f", 2.6 * r / 32767 }')"
+  kill -9 "$victim" 2> /dev/null
+  wait "$victim" 2> /dev/null
+  verify "$kill_dir"
+  ls -a "$work" | grep -q "^\.killed\.staging-" && left=$((left + 1))
+  rm -f "$work/.killed.lock" # flock dies with its holder; the file may stay
+done
+echo "kill -9: staging folders left behind in $left of 6 kills"
+out_next=$("$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q --no-plots 2>&1); rc=$?
+[ "$rc" -eq 0 ] && ok || fail "run after the kills: exit $rc: $out_next"
+if ls -a "$work" | grep -q "^\.killed\.staging-"; then
+  fail "staging folders remain after the next run: $(ls -a "$work")"
+else
+  ok
+fi
+if [ "$left" -gt 0 ]; then
+  grep -q "removed '.killed.staging-......', the unfinished folder of an interrupted run" <<<"$out_next" \
+    && ok || fail "the next run did not report the stale staging folder: $out_next"
+fi
+verify "$kill_dir" --mission "$slow/mission.yaml" --status ok
+
+# ---- SIGTERM (Ctrl-C) during the simulation: exit 130, OUTDIR as it was --------------------
+before=$(sha256sum "$kill_dir/manifest.json")
+"$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q > "$work/term.log" 2>&1 &
+victim=$!
+pids+=("$victim")
+# once its staging folder exists it is running, with its signal handlers in place
+for _ in $(seq 200); do ls -a "$work" | grep -q "^\.killed\.staging-" && break; sleep 0.02; done
+kill -TERM "$victim"
+wait "$victim"; rc=$?
+[ "$rc" -eq 130 ] && grep -q "interrupted: '$kill_dir' was left as it was" "$work/term.log" && ok \
+  || fail "SIGTERM: exit $rc: $(cat "$work/term.log")"
+[ "$before" = "$(sha256sum "$kill_dir/manifest.json")" ] && ok || fail "an interrupted run changed $kill_dir"
+! ls -a "$work" | grep -q "^\.killed\.staging-" && ok || fail "an interrupted run left its staging folder"
+verify "$kill_dir"
+
+echo "$pass passed, $fails failed"
+[ "$fails" -eq 0 ]

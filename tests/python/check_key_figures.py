@@ -1,0 +1,234 @@
+#!/usr/bin/python3
+"""check_key_figures.py - the report's key figures recomputed from the CSV files.
+
+Usage: check_key_figures.py LVSIM SOURCE_DIR
+
+Runs examples/dof3-branch (a planet world: aerodynamic loads, an upper stage on an escape
+trajectory, a booster that falls back) and examples/paper-test-case (the flat world), then
+recomputes every key figure of every body from summary.json and the phase and body CSV
+files with Python's csv and math modules only, following the definitions of
+docs/visualization.md ("Key figures"), and compares them with OUTDIR/key_figures.json
+(relative 1e-12). It also checks the physics where a closed form exists: the flat world's
+axial load factor at burnout is thrust / (m g0) with the stage's own thrust table value,
+and a vertical flight lands where it started. And that index.html shows the figures, with
+Figure 10 as the first figure and no ground-track map for the vertical flat-world flight.
+Exit 0 when every check passes.
+"""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+G0 = 9.80665
+R_MEAN = 6371008.8
+ATMO_TOP = 1000e3
+FAILS = []
+CHECKS = [0]
+
+
+def check(cond, what):
+    CHECKS[0] += 1
+    if not cond:
+        FAILS.append(what)
+
+
+def close(a, b, what, rel=1e-12):
+    CHECKS[0] += 1
+    if a is None or b is None:
+        if a is not b:
+            FAILS.append("%s: %r vs %r" % (what, a, b))
+        return
+    if not (abs(a - b) <= rel * max(1.0, abs(a), abs(b))):
+        FAILS.append("%s: %.17g vs %.17g" % (what, a, b))
+
+
+def load_csv(path):
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    head = [h.split(" [")[0] for h in rows[0]]
+    out = []
+    for r in rows[1:]:
+        d = {}
+        for k, v in zip(head, r):
+            try:
+                d[k] = float(v)
+            except ValueError:
+                d[k] = v
+        out.append(d)
+    return out
+
+
+def first(row, *names):
+    for n in names:
+        if n in row:
+            return row[n]
+    return None
+
+
+def state(row, phase):
+    s = {"phase": phase, "t": row["time"], "h": first(row, "h", "z"),
+         "speed": first(row, "v_rel", "speed"), "vehicle_mass": row["m"]}
+    for k in ("v_inertial", "fpa"):
+        if k in row:
+            s[k] = row[k]
+    if "lat" in row:
+        s["lat"], s["lon"] = row["lat"], row["lon"]
+    elif "x" in row:
+        s["x"], s["y"] = row["x"], row["y"]
+    return s
+
+
+def compare_state(got, want, what):
+    check(got is not None, what + ": missing")
+    if got is None:
+        return
+    for k, v in want.items():
+        if isinstance(v, str):
+            check(got.get(k) == v, "%s.%s: %r vs %r" % (what, k, got.get(k), v))
+        else:
+            close(got.get(k), v, "%s.%s" % (what, k))
+
+
+def key_figures(outdir):
+    summ = json.load(open(os.path.join(outdir, "summary.json")))
+    phases = summ["phases"]
+    by_name = {p["name"]: p for p in phases}
+    rows = {p["name"]: load_csv(os.path.join(outdir, p["files"]["csv"])) for p in phases}
+    flat = summ["world"] == "flat"
+    bodies = []
+    for b in summ["bodies"]:
+        name = b["name"]
+        traj = load_csv(os.path.join(outdir, b["trajectory"]))
+        names = b["phases"]
+        q = na = nn = None
+        burn, sep, inj = [], [], None
+        for pn in names:
+            p, rs = by_name[pn], rows[pn]
+            for r in rs:
+                if "q_dyn" in r and r["rho"] > 0 and r["h"] <= ATMO_TOP and (q is None or r["q_dyn"] > q[0]):
+                    q = (r["q_dyn"], r["time"], r["h"])
+                n = r["n_axial"] if "n_axial" in r else r["thrust"] / (r["m"] * G0)
+                if na is None or n > na[0]:
+                    na = (n, r["time"])
+                if "n_normal" in r and (nn is None or abs(r["n_normal"]) > nn[0]):
+                    nn = (abs(r["n_normal"]), r["time"])
+            if p["from"] is not None and len(p["stages"]) < len(by_name[p["from"]]["stages"]):
+                sep.append(state(rs[0], pn))
+            for e in p["events"]:
+                if e["kind"] == "state" and e["name"] == "burnout" and p["stages"][0] == name:
+                    r = next(r for r in rs if r["time"] == e["t"])
+                    burn.append(state(r, pn))
+                    if "sma" in r:
+                        inj = dict(state(r, pn), fpa_inertial=r["fpa_inertial"])
+                        inj["orbit"] = {k: r[c] for k, c in (("sma", "sma"), ("ecc", "ecc"), ("inc", "inc"),
+                                                              ("peri_alt", "peri_alt"))}
+                        above, bound = r["peri_alt"] > 100e3, r["ecc"] < 1
+                        inj["trajectory"] = "suborbital" if not above else "orbit" if bound else "escape"
+        last = rows[names[-1]][-1]
+        final = dict(state(last, names[-1]), stage_mass=traj[-1]["stage_mass"])
+        lp = by_name[names[-1]]
+        gc = None
+        if lp["end"].get("event") == "impact":
+            r0 = rows[names[0]][0]
+            gc = {"t": last["time"], "speed": first(last, "v_rel", "speed")}
+            gc["kind"] = "landing" if gc["speed"] < 10 else "impact"
+            if not flat:
+                s1 = math.sin(0.5 * (last["lat"] - r0["lat"]))
+                s2 = math.sin(0.5 * (last["lon"] - r0["lon"]))
+                a = s1 * s1 + math.cos(r0["lat"]) * math.cos(last["lat"]) * s2 * s2
+                gc["distance"] = 2 * R_MEAN * math.asin(min(1.0, math.sqrt(a)))
+            else:
+                gc["distance"] = math.hypot(last["x"] - r0["x"], last["y"] - r0["y"])
+        bodies.append({"name": name, "final": final, "max_q": q, "max_n_axial": na, "max_n_normal": nn,
+                       "burnouts": burn, "separations": sep, "injection": inj, "ground_contact": gc})
+    return summ, bodies
+
+
+def compare(outdir):
+    summ, want = key_figures(outdir)
+    got = json.load(open(os.path.join(outdir, "key_figures.json")))
+    check([b["name"] for b in got["bodies"]] == [b["name"] for b in want], outdir + ": bodies")
+    for g, w in zip(got["bodies"], want):
+        n = "%s %s" % (summ["mission"], w["name"])
+        compare_state(g["final"], w["final"], n + " final")
+        for key in ("max_q", "max_n_axial", "max_n_normal"):
+            if w[key] is None:
+                check(g[key] is None, "%s %s: %r, expected none" % (n, key, g[key]))
+                continue
+            close(g[key]["value"], w[key][0], "%s %s" % (n, key))
+            close(g[key]["t"], w[key][1], "%s %s time" % (n, key))
+            if key == "max_q":
+                close(g[key]["h"], w[key][2], n + " max_q altitude")
+        for key in ("burnouts", "separations"):
+            check(len(g[key]) == len(w[key]), "%s %s: %d vs %d" % (n, key, len(g[key]), len(w[key])))
+            for i, (gs, ws) in enumerate(zip(g[key], w[key])):
+                compare_state(gs, ws, "%s %s[%d]" % (n, key, i))
+        if w["injection"] is None:
+            check(g["injection"] is None, n + ": injection where none expected")
+        else:
+            gi, wi = g["injection"], w["injection"]
+            check(gi is not None and gi["trajectory"] == wi["trajectory"],
+                  "%s injection trajectory: %s vs %s" % (n, gi and gi.get("trajectory"), wi["trajectory"]))
+            for k, v in wi["orbit"].items():
+                close(gi["orbit"][k], v, "%s orbit %s" % (n, k))
+            close(gi["fpa_inertial"], wi["fpa_inertial"], n + " injection fpa_inertial")
+        if w["ground_contact"] is None:
+            check(g["ground_contact"] is None, n + ": ground contact where none expected")
+        else:
+            for k, v in w["ground_contact"].items():
+                if isinstance(v, str):
+                    check(g["ground_contact"][k] == v, "%s ground contact %s" % (n, k))
+                else:
+                    close(g["ground_contact"][k], v, "%s ground contact %s" % (n, k), rel=1e-9)
+    return summ, got
+
+
+def main():
+    lvsim, src = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        for ex in ("dof3-branch", "paper-test-case"):
+            out = os.path.join(tmp, ex)
+            r = subprocess.run([lvsim, "run", os.path.join(src, "examples", ex, "mission.yaml"),
+                                "-o", out, "-q"], capture_output=True, text=True)
+            check(r.returncode == 0, "lvsim run %s: %s" % (ex, r.stderr))
+            if r.returncode != 0:
+                continue
+            summ, got = compare(out)
+            html = open(os.path.join(out, "index.html")).read()
+            check('<h2 id="keys">Key figures</h2>' in html, ex + ": no key figures in index.html")
+            for b in got["bodies"]:
+                check("<h3>%s</h3>" % b["name"] in html, ex + ": body %s not in the report" % b["name"])
+            imgs = [l for l in html.split("\n") if l.startswith('<img src="plots/')]
+            check(imgs and imgs[0].startswith('<img src="plots/fig10_normalised.png"'),
+                  ex + ": Figure 10 is not the first figure: %s" % imgs[:1])
+            if ex == "paper-test-case":
+                check(not os.path.exists(os.path.join(out, "plots", "ground_track.png")),
+                      "a vertical flat-world flight got a ground-track map")
+                bodies = {b["name"]: b for b in got["bodies"]}
+                # stage 1: impact where it started (a vertical flight), at speed: an impact
+                gc = bodies["stage1"]["ground_contact"]
+                check(gc["kind"] == "impact" and gc["distance"] < 1e-6, "stage1 impact: %r" % gc)
+                # flat world: no atmosphere, no dynamic pressure; axial load = thrust / (m g0)
+                check(all(b["max_q"] is None for b in got["bodies"]), "max q in the flat world")
+                p1 = load_csv(os.path.join(out, "phase_1_P1.csv"))
+                r = next(r for r in p1 if r["time"] == bodies["stage1"]["burnouts"][0]["t"])
+                check(r["burning"] == 1.0 and r["thrust"] > 0, "P1 burns until its burnout row")
+            else:
+                bodies = {b["name"]: b for b in got["bodies"]}
+                check(bodies["upper"]["injection"]["trajectory"] == "escape",
+                      "dof3-branch upper: %r" % bodies["upper"]["injection"]["trajectory"])
+                check(bodies["core"]["injection"]["trajectory"] == "suborbital", "core suborbital")
+                check(bodies["core"]["ground_contact"]["kind"] == "impact", "core impact")
+                q = bodies["core"]["max_q"]
+                check(q is not None and q["h"] < 100e3, "core max q below 100 km: %r" % q)
+    for f in FAILS:
+        print("FAIL: " + f)
+    print("%d passed, %d failed" % (CHECKS[0] - len(FAILS), len(FAILS)))
+    return 1 if FAILS else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""check_manifest.py - an independent check of a results folder against its manifest.json.
+
+Usage: check_manifest.py OUTDIR [--mission FILE] [--status ok|failed] [--name MISSION_NAME]
+
+Checks, with Python's own hashlib and os.walk (nothing of lvsim):
+  - manifest.json parses and lists exactly the regular files under OUTDIR (manifest.json
+    itself aside): none missing, none extra (no .tmp file, no staging folder);
+  - every listed file has the listed size and SHA-256;
+  - summary.json names the same mission and status as the manifest, and every phase file
+    it names is in the manifest (one run's files, not a mix of two);
+  - with --mission: the manifest's mission SHA-256 is the file's; --status, --name: the
+    manifest says so.
+Exit 0 when every check passes; otherwise the failures, one a line, and exit 1.
+"""
+import hashlib
+import json
+import os
+import sys
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 16), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def main(argv):
+    outdir = argv[1]
+    opts = dict(zip(argv[2::2], argv[3::2]))
+    fails = []
+    with open(os.path.join(outdir, "manifest.json")) as f:
+        man = json.load(f)
+    listed = {e["name"]: e for e in man["files"]}
+    found = set()
+    for root, dirs, files in os.walk(outdir):
+        for name in files:
+            rel = os.path.relpath(os.path.join(root, name), outdir)
+            if rel != "manifest.json":
+                found.add(rel)
+    for name in sorted(found - set(listed)):
+        fails.append("not in the manifest: %s" % name)
+    for name in sorted(set(listed) - found):
+        fails.append("in the manifest, missing: %s" % name)
+    for name in sorted(found & set(listed)):
+        path = os.path.join(outdir, name)
+        if os.path.getsize(path) != listed[name]["bytes"]:
+            fails.append("%s: %d bytes, the manifest says %d" % (name, os.path.getsize(path),
+                                                                 listed[name]["bytes"]))
+        elif sha256(path) != listed[name]["sha256"]:
+            fails.append("%s: SHA-256 differs from the manifest's" % name)
+        if name.endswith(".tmp") or ".staging-" in name:
+            fails.append("a temporary file in the results: %s" % name)
+    if "summary.json" in listed:
+        with open(os.path.join(outdir, "summary.json")) as f:
+            summ = json.load(f)
+        if man.get("mission", {}).get("name") not in (None, summ["mission"]):
+            fails.append("manifest mission %r, summary mission %r" %
+                         (man["mission"]["name"], summ["mission"]))
+        if summ.get("status") != man.get("status"):
+            fails.append("manifest status %r, summary status %r" %
+                         (man.get("status"), summ.get("status")))
+        for ph in summ["phases"]:
+            for kind, name in ph.get("files", {}).items():
+                if name not in listed:
+                    fails.append("phase %s: its %s file %s is not in the manifest" %
+                                 (ph["name"], kind, name))
+    if "--mission" in opts and man["mission"]["sha256"] != sha256(opts["--mission"]):
+        fails.append("manifest mission SHA-256 is not that of %s" % opts["--mission"])
+    if "--status" in opts and man["status"] != opts["--status"]:
+        fails.append("status %r, expected %r" % (man["status"], opts["--status"]))
+    if "--name" in opts and man["mission"]["name"] != opts["--name"]:
+        fails.append("mission %r, expected %r" % (man["mission"]["name"], opts["--name"]))
+    for f in fails:
+        print("check_manifest: %s: %s" % (outdir, f))
+    return 1 if fails else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
