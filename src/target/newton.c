@@ -10,8 +10,9 @@
  * Levenberg-Marquardt algorithm: implementation and theory", Lecture Notes in Mathematics 630,
  * 1978; Nocedal & Wright, Numerical Optimization, 2nd ed., alg. 4.1 and sec. 10.3): a trial
  * point where a phase fails is a rejected step (rho = -inf), and a rejected step shrinks the
- * radius to a quarter of the step actually tried. Variables at a bound that the step would
- * push out are held there and the step solved again without them (a projected step).
+ * radius to a quarter of the step actually tried. A step that would cross a bound takes the
+ * first variable to reach one to that bound and holds it there, the others solved again (a
+ * projected step).
  * The Jacobian is a finite-difference one, updated by Broyden's rank-one formula
  * J += (dg - J p) p^T / p^T p after an accepted step (Nocedal & Wright eq. 11.27), computed
  * afresh when a step is rejected or the model predicted poorly (rho < 0.25); with differences
@@ -73,6 +74,8 @@ typedef struct lm_work {
     double *J;      /* [m x n] dg/dz */
     double *A, *b;  /* [(m + n) x n], [m + n] */
     double *p, *pf; /* [n] the step; the free variables' part */
+    double *pfix;   /* [n] the step of a variable held at a bound (to the bound) */
+    double *rr;     /* [m] the residuals with the held variables' steps taken */
     int *fixed;     /* [n] held at a bound */
     int *active;    /* [m] rows of the model */
 } lm_work;
@@ -84,6 +87,8 @@ static void lm_free(lm_work *w)
     free(w->b);
     free(w->p);
     free(w->pf);
+    free(w->pfix);
+    free(w->rr);
     free(w->fixed);
     free(w->active);
 }
@@ -96,9 +101,9 @@ static double norm2(const double *v, size_t n)
     return s;
 }
 
-/* The step of the free variables for damping lambda into w->p (0 for the fixed ones);
- * -1 when the system is singular. */
-static int lm_solve(lm_work *w, const tg_point *p, double lambda)
+/* The step of the free variables for damping lambda into w->p (0 for the fixed ones), for
+ * the residuals w->rr; -1 when the system is singular. */
+static int lm_solve(lm_work *w, double lambda)
 {
     const size_t n = w->n, m = w->m;
     size_t nf = 0, row = 0;
@@ -113,7 +118,7 @@ static int lm_solve(lm_work *w, const tg_point *p, double lambda)
         for (size_t j = 0, c = 0; j < n; j++)
             if (!w->fixed[j])
                 w->A[row * nf + c++] = w->J[i * n + j];
-        w->b[row++] = -p->r[i];
+        w->b[row++] = -w->rr[i];
     }
     for (size_t j = 0, c = 0; j < n; j++) {
         if (w->fixed[j])
@@ -134,8 +139,8 @@ static int lm_solve(lm_work *w, const tg_point *p, double lambda)
     return 0;
 }
 
-/* ||J_A^T r_A|| over the free variables, and its largest component. */
-static double gradient(const lm_work *w, const tg_point *p, double *gmax)
+/* ||J_A^T r_A|| over the free variables (r: w->rr), and its largest component. */
+static double gradient(const lm_work *w, double *gmax)
 {
     double g = 0.0;
     *gmax = 0.0;
@@ -145,7 +150,7 @@ static double gradient(const lm_work *w, const tg_point *p, double *gmax)
         double s = 0.0;
         for (size_t i = 0; i < w->m; i++)
             if (w->active[i])
-                s += w->J[i * w->n + j] * p->r[i];
+                s += w->J[i * w->n + j] * w->rr[i];
         g = hypot(g, s);
         *gmax = fmax(*gmax, fabs(s));
     }
@@ -153,7 +158,9 @@ static double gradient(const lm_work *w, const tg_point *p, double *gmax)
 }
 
 /* The trust-region step from point p within radius delta (scaled variables), in the bounds:
- * w->p, its lambda and predicted reduction. */
+ * w->p, its lambda and predicted reduction. A step that would cross a bound takes the variable
+ * whose bound comes first along it to that bound, holds it there, and solves again for the
+ * others (their residuals with that move taken, the radius what remains of delta). */
 static void tr_step(const lv_target *t, lm_work *w, const tg_point *p, double delta,
                     double *lambda_out, double *pred)
 {
@@ -166,46 +173,60 @@ static void tr_step(const lv_target *t, lm_work *w, const tg_point *p, double de
     for (size_t i = 0; i < m; i++)
         w->active[i] = t->cons[i].kind == LV_CON_EQUAL || p->r[i] != 0.0;
     memset(w->fixed, 0, n * sizeof *w->fixed);
+    memset(w->pfix, 0, n * sizeof *w->pfix);
     for (size_t pass = 0; pass <= n; pass++) {
+        double fixlen = 0.0;
+        for (size_t i = 0; i < m; i++) {
+            w->rr[i] = p->r[i];
+            for (size_t j = 0; j < n; j++)
+                w->rr[i] += w->J[i * n + j] * w->pfix[j];
+        }
+        fixlen = norm2(w->pfix, n);
+        const double room = fixlen < delta ? sqrt(delta * delta - fixlen * fixlen) : 0.0;
         lambda = lam0;
-        if (lm_solve(w, p, lambda) != 0)
+        if (lm_solve(w, lambda) != 0)
             break;
-        if (norm2(w->p, n) > delta) {
+        if (norm2(w->p, n) > room) {
             double gmax;
-            double lo = lam0, hi = gradient(w, p, &gmax) / delta;
+            double lo = lam0, hi = gradient(w, &gmax) / fmax(room, 1e-300);
             for (int it = 0; it < 80 && hi > lo; it++) {
                 lambda = sqrt(lo * hi);
-                if (lm_solve(w, p, lambda) != 0)
+                if (lm_solve(w, lambda) != 0)
                     break;
                 const double len = norm2(w->p, n);
-                if (len > 1.1 * delta)
+                if (len > 1.1 * room)
                     lo = lambda;
-                else if (len < 0.9 * delta)
+                else if (len < 0.9 * room)
                     hi = lambda;
                 else
                     break;
             }
         }
-        /* a variable the step pushes past its bound, where it is, is held there and the others
-         * solved again; none: done */
-        int more = 0;
+        /* the first bound met along the step: that variable goes to it and is held */
+        size_t first = (size_t)-1;
+        double tmin = 1.0;
         for (size_t j = 0; j < n; j++) {
             const tg_var *v = &t->vars[j];
-            const double z = p->x[j] / v->r.scale;
-            const double zlo = v->r.lo / v->r.scale, zhi = v->r.hi / v->r.scale;
-            if (w->fixed[j])
+            if (w->fixed[j] || w->p[j] == 0.0)
                 continue;
-            if ((z + w->p[j] > zhi && z >= zhi - 1e-12 * fmax(1.0, fabs(zhi))) ||
-                (z + w->p[j] < zlo && z <= zlo + 1e-12 * fmax(1.0, fabs(zlo)))) {
-                w->fixed[j] = 1;
-                more = 1;
+            const double z = p->x[j] / v->r.scale;
+            const double bound = (w->p[j] > 0.0 ? v->r.hi : v->r.lo) / v->r.scale;
+            const double tj = (bound - z) / w->p[j]; /* >= 0: z lies in the bounds */
+            if (tj < tmin) {
+                tmin = tj;
+                first = j;
             }
         }
-        if (!more)
+        if (first == (size_t)-1)
             break;
+        const tg_var *v = &t->vars[first];
+        w->pfix[first] = ((w->p[first] > 0.0 ? v->r.hi : v->r.lo) - p->x[first]) / v->r.scale;
+        w->fixed[first] = 1;
     }
-    /* into the bounds (a step that crosses a bound from inside stops there) */
     for (size_t j = 0; j < n; j++) {
+        if (w->fixed[j])
+            w->p[j] = w->pfix[j];
+        /* into the bounds (rounding) */
         const tg_var *v = &t->vars[j];
         const double x = fmin(v->r.hi, fmax(v->r.lo, p->x[j] + w->p[j] * v->r.scale));
         w->p[j] = (x - p->x[j]) / v->r.scale;
@@ -229,8 +250,9 @@ static double stationarity(lm_work *w, const lv_target *t, const tg_point *p)
     for (size_t i = 0; i < w->m; i++)
         w->active[i] = t->cons[i].kind == LV_CON_EQUAL || p->r[i] != 0.0;
     memset(w->fixed, 0, w->n * sizeof *w->fixed);
+    memcpy(w->rr, p->r, w->m * sizeof *w->rr);
     double gmax;
-    gradient(w, p, &gmax);
+    gradient(w, &gmax);
     return p->merit > 0.0 ? gmax / p->merit : INFINITY;
 }
 
@@ -238,7 +260,7 @@ lv_status tg_newton(lv_target *t, tg_point *p, int max_iter, int *converged, cha
                     size_t reason_cap, lv_err *err)
 {
     const size_t n = t->n, m = t->mc;
-    lm_work w = {n, m, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    lm_work w = {n, m, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     tg_point q;
     lv_status st = LV_OK;
     char note[LV_ERR_MSG_MAX] = "";
@@ -249,9 +271,11 @@ lv_status tg_newton(lv_target *t, tg_point *p, int max_iter, int *converged, cha
     w.b = calloc(m + n + 1, sizeof *w.b);
     w.p = calloc(n + 1, sizeof *w.p);
     w.pf = calloc(n + 1, sizeof *w.pf);
+    w.pfix = calloc(n + 1, sizeof *w.pfix);
+    w.rr = calloc(m + 1, sizeof *w.rr);
     w.fixed = calloc(n + 1, sizeof *w.fixed);
     w.active = calloc(m + 1, sizeof *w.active);
-    if (!w.J || !w.A || !w.b || !w.p || !w.pf || !w.fixed || !w.active ||
+    if (!w.J || !w.A || !w.b || !w.p || !w.pf || !w.pfix || !w.rr || !w.fixed || !w.active ||
         tg_point_init(t, &q) != LV_OK) {
         lm_free(&w);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
