@@ -131,7 +131,11 @@ static void print_problem(const lv_mission *m, const lv_target *t, const char *p
 
 static void print_result(const lv_target *t, const lv_target_result *res)
 {
-    printf("%s: %s\n", res->converged ? "converged" : "NOT MET", res->reason);
+    int met = 1;
+    for (size_t i = 0; i < res->n_cons; i++)
+        met &= res->met[i];
+    printf("%s: %s\n", res->converged ? "converged" : met ? "NOT CONVERGED" : "NOT MET",
+           res->reason);
     printf("  %s; %zu iterations, %zu runs, %zu phase simulations, %.3f s\n", res->method,
            res->iterations, res->runs, res->phases, res->wall);
     printf("%s:\n", res->converged ? "converged values" : "best point");
@@ -181,7 +185,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         const char *a = argv[i];
         if (strcmp(a, "-o") == 0 || strcmp(a, "--method") == 0 ||
             strcmp(a, "--differences") == 0 || strcmp(a, "--max-iter") == 0 ||
-            strcmp(a, "--threads") == 0) {
+            strcmp(a, "--threads") == 0 || strcmp(a, "--restarts") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
@@ -202,6 +206,9 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
                     set.method = (lv_target_method)k;
                 else
                     set.differences = (lv_target_diff)k;
+            } else if (strcmp(a, "--restarts") == 0) {
+                if (!parse_int(v, &set.restarts) || set.restarts < 0)
+                    return usage_error(self, "--restarts needs a count >= 0, got", v);
             } else {
                 int n;
                 if (!parse_int(v, &n) || n < 1)
@@ -274,7 +281,7 @@ const cli_cmd cli_cmd_target = {
     "target",
     "solve a mission's targeting section: meet constraints, optimise a cost",
     "MISSION.yaml [-o CONVERGED.yaml] [--method M] [--differences D] [--max-iter N] "
-    "[--threads N] [-q]",
+    "[--restarts N] [--threads N] [-q]",
     "Varies the run parameters listed under the mission's `targeting:` section within their\n"
     "bounds until the phases' final values meet the constraints (damped Newton /\n"
     "Levenberg-Marquardt with finite-difference sensitivities) and, with a cost, optimises\n"
@@ -283,7 +290,8 @@ const cli_cmd cli_cmd_target = {
     "(solver, event, runs and phase simulations, the worst residual in tolerances, the step,\n"
     "the variables, the constraints' finals with their residuals, the cost) and a progress\n"
     "line on a terminal; then the converged values, or the best point and the constraints\n"
-    "that fail (exit 3). docs/targeting.md.\n"
+    "that fail (NOT MET, exit 3; NOT CONVERGED when they are met but the optimiser did not\n"
+    "reach its stopping test, exit 3). docs/targeting.md.\n"
     "\n"
     "options:\n"
     "  -o CONVERGED.yaml       write the mission with the converged values (comments and\n"
@@ -293,8 +301,11 @@ const cli_cmd cli_cmd_target = {
     "  --method M              auto, newton, slsqp or cobyla (default: the file's, else auto)\n"
     "  --differences D         auto, forward or central (default: the file's, else auto)\n"
     "  --max-iter N            iterations, >= 1 (default: the file's, else 50 for newton,\n"
-    "                          100 for the optimisers)\n"
-    "  --threads N             worker threads for independent branches (default 2)\n"
+    "                          50 + 25 per variable for each optimiser)\n"
+    "  --restarts N            run SLSQP again from its best point up to N times while it\n"
+    "                          gains (default: the file's, else 0)\n"
+    "  --threads N             worker threads: sensitivities in parallel, each on a run of\n"
+    "                          its own; independent branches of one evaluation (default 2)\n"
     "  -q, --quiet             no iterations, no progress line: the result only\n",
     target_run,
 };

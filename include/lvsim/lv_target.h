@@ -154,13 +154,19 @@ typedef struct lv_target_eval {
 typedef struct lv_target_settings {
     lv_target_method method;  /* default: the file's, else auto */
     lv_target_diff differences; /* default: the file's, else auto */
-    int max_iterations;   /* newton: steps tried; optimisers: points evaluated with gradients
-                             (COBYLA: points). 0: the file's, else 50 (newton) / 100 */
+    int max_iterations;   /* newton: steps tried; optimisers: points evaluated (each with
+                             its gradients when SLSQP asks for them). 0: the file's, else 50
+                             (newton) / 50 + 25 per variable (each optimiser) */
     double xtol;          /* optimisers: stop when a step changes every variable by less than
                              xtol of its scale (0: the file's, else 1e-5) */
     double ftol;          /* optimisers: stop when the cost changes by less than ftol of its
                              scale (0: the file's, else 1e-7) */
-    int threads;          /* lv_run_execute's worker threads for independent branches (0: 2) */
+    int restarts;         /* SLSQP again from its best point, with a fresh quasi-Newton
+                             Hessian, up to this many times while a run gains more than 1000
+                             ftol of the cost's scale (0: the file's, else none) */
+    int threads;          /* worker threads (0: 2): the sensitivities' columns are shared among
+                             them, each on a run of its own; a single evaluation runs
+                             independent branches in them (lv_run_execute) */
     void (*on_iteration)(const lv_target *t, const lv_target_iter *it, void *user);
     /* Called before every execution; nonzero stops the solve (LV_ERR_CANCELLED). */
     int (*on_evaluation)(const lv_target *t, const lv_target_eval *ev, void *user);

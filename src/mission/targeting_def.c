@@ -163,7 +163,8 @@ static lv_status parse_list(const lv_pctx *c, const lv_ynode *n, const char *key
 lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n)
 {
     static const char *const keys[] = {"method", "differences", "max_iterations", "xtol",
-                                       "ftol", "variables", "constraints", "cost", NULL};
+                                       "ftol", "restarts", "variables", "constraints", "cost",
+                                       NULL};
     static const char *const methods[] = {"auto", "newton", "slsqp", "cobyla", NULL};
     static const char *const diffs[] = {"auto", "forward", "central", NULL};
     const char *what = "targeting";
@@ -197,6 +198,15 @@ lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n)
             return lv_pk_fail(c, v, "%s: max_iterations: an integer from 1 to 100000 expected, "
                               "found %s", what, v->text);
         t->max_iterations = (int)x;
+    }
+    if ((v = lv_pk_get(n, "restarts")) != NULL) {
+        double x;
+        if ((st = lv_pk_num(c, v, what, "restarts", &x)) != LV_OK)
+            return st;
+        if (x != floor(x) || x < 0.0 || x > 100.0)
+            return lv_pk_fail(c, v, "%s: restarts: an integer from 0 to 100 expected, found %s",
+                              what, v->text);
+        t->restarts = (int)x;
     }
     static const char *const tols[] = {"xtol", "ftol"};
     double *tv[] = {&t->xtol, &t->ftol};

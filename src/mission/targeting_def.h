@@ -67,6 +67,7 @@ typedef struct lv_targeting_def {
     lv_target_diff differences;
     int max_iterations; /* 0: the solver's default */
     double xtol, ftol;  /* 0: the solver's default */
+    int restarts;       /* SLSQP restarts from its best point (0: none) */
     lv_src_loc loc;
 } lv_targeting_def;
 

@@ -204,7 +204,7 @@ static const char *result_text(nlopt_result r)
 }
 
 lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_iter,
-                      int *converged, char *reason, size_t reason_cap, lv_err *err)
+                      tg_opt_end *end, char *reason, size_t reason_cap, lv_err *err)
 {
     const size_t n = t->n, m = t->mc;
     opt_ctx c;
@@ -213,7 +213,7 @@ lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_i
     c.err = err;
     c.sign = t->cost.present && t->cost.maximize ? -1.0 : 1.0;
     c.max_points = max_iter;
-    *converged = 0;
+    *end = TG_OPT_FAILED;
     t->solver = alg == LV_TARGET_SLSQP ? "slsqp" : "cobyla";
     double *z = calloc(n + 1, sizeof *z), *lo = calloc(n + 1, sizeof *lo),
            *hi = calloc(n + 1, sizeof *hi), *ctol = calloc(m + 1, sizeof *ctol);
@@ -278,14 +278,14 @@ lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_i
     const int met = tg_met(t, p);
     const int stopped_ok = r == NLOPT_SUCCESS || r == NLOPT_FTOL_REACHED ||
                            r == NLOPT_XTOL_REACHED;
-    *converged = stopped_ok && met;
-    if (*converged)
+    const int limit = r == NLOPT_FORCED_STOP && c.points >= c.max_points;
+    *end = stopped_ok && met ? TG_OPT_CONVERGED : limit ? TG_OPT_LIMIT : TG_OPT_FAILED;
+    if (*end == TG_OPT_CONVERGED)
         snprintf(reason, reason_cap, "%s %s after %d points%s", t->solver, result_text(r),
                  c.points, c.central_used ? " (central differences near the optimum)" : "");
     else
         snprintf(reason, reason_cap, "%s %s after %d points; %s", t->solver,
-                 r == NLOPT_FORCED_STOP && c.points < c.max_points ? "was stopped"
-                                                                   : result_text(r),
+                 r == NLOPT_FORCED_STOP && !limit ? "was stopped" : result_text(r),
                  c.points, met ? "the best point meets every constraint"
                                : "no point met every constraint");
 done:

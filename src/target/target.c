@@ -8,6 +8,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,8 @@ void lv_target_free(lv_target *t)
     free(t->cons);
     free(t->cost.name);
     lv_run_free(t->run);
+    for (int k = 0; k < TG_MAX_WORKERS - 1; k++)
+        lv_run_free(t->aux[k]);
     free(t->want);
     free(t->tmp_x);
     free(t->order);
@@ -207,6 +210,7 @@ lv_status lv_target_create(const lv_mission *m, lv_target **out, lv_err *err)
     t->max_iter = d->max_iterations;
     t->xtol = d->xtol;
     t->ftol = d->ftol;
+    t->restarts = d->restarts;
     *out = t;
     return LV_OK;
 }
@@ -301,44 +305,40 @@ double tg_wall(const lv_target *t)
     return (double)(now.tv_sec - t->t0.tv_sec) + 1e-9 * (double)(now.tv_nsec - t->t0.tv_nsec);
 }
 
-/* The final value of phase f.phase (its unit as named). */
-static double final_of(const lv_target *t, const lv_tfinal *f)
+/* The final value of phase f.phase in run r (its unit as named). */
+static double final_of(const lv_run *r, const lv_tfinal *f)
 {
-    const lv_phase_result *res = lv_run_result(t->run, f->phase);
+    const lv_phase_result *res = lv_run_result(r, f->phase);
     const double v = res->final_values[f->index];
     return f->deg ? v / LV_DEG : v;
 }
 
 /* The point failed: the first failed (else skipped) phase the constraints need says why. */
-static int point_failed(const lv_target *t, char *why, size_t cap)
+static int point_failed(const lv_target *t, const lv_run *r, char *why, size_t cap)
 {
     const size_t np = t->m->def->n_phases;
     const lv_phase_result *bad = NULL;
     for (size_t k = 0; k < np; k++) {
-        const lv_phase_result *res = lv_run_result(t->run, k);
+        const lv_phase_result *res = lv_run_result(r, k);
         if (res->state == LV_PHASE_FAILED && bad == NULL)
             bad = res;
     }
     for (size_t k = 0; k < np && bad == NULL; k++)
-        if (t->want[k] && lv_run_result(t->run, k)->state != LV_PHASE_DONE)
-            bad = lv_run_result(t->run, k);
+        if (t->want[k] && lv_run_result(r, k)->state != LV_PHASE_DONE)
+            bad = lv_run_result(r, k);
     for (size_t k = 0; k < np; k++)
-        if (t->want[k] && lv_run_result(t->run, k)->state != LV_PHASE_DONE) {
+        if (t->want[k] && lv_run_result(r, k)->state != LV_PHASE_DONE) {
             snprintf(why, cap, "%s", bad->error[0] ? bad->error : "a phase did not run");
             return 1;
         }
     return 0;
 }
 
-lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char *var,
-                  tg_point *p, lv_err *err)
+/* x set on run r, executed with `threads` workers for its branches; p filled, *runs and
+ * *phases counted. Only reads the target: several runs may evaluate at once. */
+static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const double *x,
+                          tg_point *p, size_t *runs, size_t *phases, lv_err *err)
 {
-    if (t->set.on_evaluation != NULL) {
-        const lv_target_eval ev = {t->iteration, purpose, var, t->runs, t->phases, tg_wall(t)};
-        if (t->set.on_evaluation(t, &ev, t->set.user) != 0)
-            return lv_fail(err, LV_ERR_CANCELLED, "targeting cancelled at iteration %zu",
-                           t->iteration);
-    }
     memcpy(p->x, x, t->n * sizeof *p->x);
     p->ok = 1;
     p->why[0] = '\0';
@@ -346,21 +346,19 @@ lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char
     lv_err e;
     for (size_t j = 0; j < t->n; j++) {
         const tg_var *v = &t->vars[j];
-        if (lv_run_set_index(t->run, v->r.slot, v->r.deg ? x[j] * LV_DEG : x[j], &e) != LV_OK) {
+        if (lv_run_set_index(r, v->r.slot, v->r.deg ? x[j] * LV_DEG : x[j], &e) != LV_OK) {
             p->ok = 0;
             snprintf(p->why, sizeof p->why, "%s", e.msg);
         }
     }
     if (p->ok) {
-        const lv_run_options opt = {.threads = t->set.threads > 0 ? t->set.threads : 2,
-                                    .no_rows = 1,
-                                    .want = t->want};
-        lv_status st = lv_run_execute(t->run, &opt, &e);
-        t->runs++;
-        t->phases += lv_run_simulated(t->run);
+        const lv_run_options opt = {.threads = threads, .no_rows = 1, .want = t->want};
+        lv_status st = lv_run_execute(r, &opt, &e);
+        (*runs)++;
+        *phases += lv_run_simulated(r);
         if (st == LV_ERR_CANCELLED || st == LV_ERR_NOMEM || st == LV_ERR_IO)
             return lv_fail(err, st, "%s", e.msg);
-        if (point_failed(t, p->why, sizeof p->why))
+        if (point_failed(t, r, p->why, sizeof p->why))
             p->ok = 0;
     }
     p->worst = p->merit = p->ok ? 0.0 : INFINITY;
@@ -370,7 +368,7 @@ lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char
             p->f[i] = p->g[i] = p->r[i] = NAN;
             continue;
         }
-        p->f[i] = final_of(t, &c->f);
+        p->f[i] = final_of(r, &c->f);
         p->g[i] = (p->f[i] - c->value) / c->tol;
         p->r[i] = c->kind == LV_CON_EQUAL ? p->g[i]
                   : c->kind == LV_CON_MIN ? fmin(0.0, p->g[i])
@@ -379,13 +377,35 @@ lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char
         p->merit += 0.5 * p->r[i] * p->r[i];
     }
     if (p->ok && t->cost.present)
-        p->cost = final_of(t, &t->cost.f);
+        p->cost = final_of(r, &t->cost.f);
     if (p->ok && (!isfinite(p->merit) || (t->cost.present && !isfinite(p->cost)))) {
         p->ok = 0;
         snprintf(p->why, sizeof p->why, "a final value is not finite");
         p->worst = p->merit = INFINITY;
     }
     return LV_OK;
+}
+
+static int threads_of(const lv_target *t) { return t->set.threads > 0 ? t->set.threads : 2; }
+
+/* The on_evaluation callback (serialised: sensitivities call it from their workers). */
+static lv_status announce(lv_target *t, const char *purpose, const char *var, lv_err *err)
+{
+    if (t->set.on_evaluation == NULL)
+        return LV_OK;
+    const lv_target_eval ev = {t->iteration, purpose, var, t->runs, t->phases, tg_wall(t)};
+    if (t->set.on_evaluation(t, &ev, t->set.user) != 0)
+        return lv_fail(err, LV_ERR_CANCELLED, "targeting cancelled at iteration %zu",
+                       t->iteration);
+    return LV_OK;
+}
+
+lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char *var,
+                  tg_point *p, lv_err *err)
+{
+    lv_status st = announce(t, purpose, var, err);
+    return st != LV_OK ? st : eval_run(t, t->run, threads_of(t), x, p, &t->runs, &t->phases,
+                                       err);
 }
 
 /* eta: the relative noise of the finals, taken as the largest integrator tolerance of the
@@ -414,73 +434,195 @@ double tg_step(const lv_target *t, size_t j, int central)
     return v->r.scale * (central ? cbrt(eta) : sqrt(eta));
 }
 
+/* ---- sensitivities: one column per variable, taken by workers on runs of their own ----------- */
+
+typedef struct sens_ctx {
+    lv_target *t;
+    const tg_point *base;
+    int central;
+    double *Jg, *Jc;
+    double *h;               /* [n] steps */
+    pthread_mutex_t lock;
+    size_t next;             /* the next position in t->order */
+    int stop;
+    lv_status st;
+    lv_err err;
+    char (*why)[200];        /* [n] why a column is zero, or "" */
+} sens_ctx;
+
+typedef struct sens_worker {
+    sens_ctx *c;
+    lv_run *run;
+    int threads;             /* lv_run_execute's workers */
+    double *x;               /* [n] */
+    tg_point a, b;
+    size_t runs, phases;
+    lv_status st;
+    lv_err err;
+} sens_worker;
+
+/* Column j at the base point, on the worker's run: forward (or, at the upper bound, backward)
+ * differences, or central ones; a side whose point fails is replaced by the other. */
+static lv_status sens_column(sens_worker *w, size_t j)
+{
+    sens_ctx *c = w->c;
+    const lv_target *t = c->t;
+    const size_t n = t->n, m = t->mc;
+    const tg_var *v = &t->vars[j];
+    const double h = c->h[j], x0 = c->base->x[j];
+    const int up = x0 + h <= v->r.hi, down = x0 - h >= v->r.lo;
+    double xa = NAN, xb = x0;
+    const tg_point *pa = NULL, *pb = c->base;
+    lv_status st;
+    memcpy(w->x, c->base->x, n * sizeof *w->x);
+    if (c->central && up && down) {
+        w->x[j] = x0 + h;
+        if ((st = eval_run(t, w->run, w->threads, w->x, &w->a, &w->runs, &w->phases, &w->err)) !=
+            LV_OK)
+            return st;
+        w->x[j] = x0 - h;
+        if ((st = eval_run(t, w->run, w->threads, w->x, &w->b, &w->runs, &w->phases, &w->err)) !=
+            LV_OK)
+            return st;
+        if (w->a.ok && w->b.ok) {
+            pa = &w->a, pb = &w->b;
+            xa = x0 + h, xb = x0 - h;
+        } else if (w->a.ok) {
+            pa = &w->a, xa = x0 + h;
+        } else if (w->b.ok) {
+            pa = &w->b, xa = x0 - h;
+        }
+    } else {
+        xa = up ? x0 + h : x0 - h;
+        w->x[j] = xa;
+        if ((st = eval_run(t, w->run, w->threads, w->x, &w->a, &w->runs, &w->phases, &w->err)) !=
+            LV_OK)
+            return st;
+        if (!w->a.ok && up && down) { /* the other side */
+            w->x[j] = xa = x0 - h;
+            if ((st = eval_run(t, w->run, w->threads, w->x, &w->a, &w->runs, &w->phases,
+                               &w->err)) != LV_OK)
+                return st;
+        }
+        if (w->a.ok)
+            pa = &w->a;
+    }
+    const double dz = (xa - xb) / v->r.scale;
+    for (size_t i = 0; i < m; i++)
+        c->Jg[i * n + j] = pa != NULL ? (pa->g[i] - pb->g[i]) / dz : 0.0;
+    if (c->Jc != NULL)
+        c->Jc[j] = pa != NULL && t->cost.present ? (pa->cost - pb->cost) / t->cost_scale / dz
+                                                 : 0.0;
+    if (pa == NULL)
+        snprintf(c->why[j], sizeof c->why[j], "%.190s", w->a.why);
+    return LV_OK;
+}
+
+static void *sens_work(void *arg)
+{
+    sens_worker *w = arg;
+    sens_ctx *c = w->c;
+    lv_target *t = c->t;
+    for (;;) {
+        pthread_mutex_lock(&c->lock);
+        const size_t q = c->next++;
+        int stop = c->stop || q >= t->n;
+        if (!stop) {
+            const lv_status st = announce(t, "sensitivity", t->vars[t->order[q]].name, &w->err);
+            if (st != LV_OK) {
+                c->stop = stop = 1;
+                w->st = st;
+            }
+        }
+        pthread_mutex_unlock(&c->lock);
+        if (stop)
+            break;
+        lv_status st = sens_column(w, t->order[q]);
+        if (st != LV_OK) {
+            w->st = st;
+            pthread_mutex_lock(&c->lock);
+            c->stop = 1;
+            pthread_mutex_unlock(&c->lock);
+            break;
+        }
+    }
+    return NULL;
+}
+
 lv_status tg_sensitivities(lv_target *t, const tg_point *base, int central, double *Jg,
                            double *Jc, char *note, size_t note_cap, lv_err *err)
 {
-    const size_t n = t->n, m = t->mc;
-    tg_point a, b;
-    lv_status st;
+    const size_t n = t->n;
+    int nw = threads_of(t);
+    if ((size_t)nw > n)
+        nw = (int)n;
+    if (nw > TG_MAX_WORKERS)
+        nw = TG_MAX_WORKERS;
+    sens_ctx c = {t, base, central, Jg, Jc, NULL, PTHREAD_MUTEX_INITIALIZER, 0, 0, LV_OK,
+                  {LV_OK, ""}, NULL};
+    sens_worker w[TG_MAX_WORKERS];
+    lv_status st = LV_OK;
+    int made = 0;
+    memset(w, 0, sizeof w);
     if (note != NULL && note_cap > 0)
         note[0] = '\0';
-    if (tg_point_init(t, &a) != LV_OK || tg_point_init(t, &b) != LV_OK) {
-        tg_point_free(&a);
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    c.h = calloc(n + 1, sizeof *c.h);
+    c.why = calloc(n + 1, sizeof *c.why);
+    if (c.h == NULL || c.why == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto done;
     }
-    double *x = t->tmp_x;
-    memcpy(x, base->x, n * sizeof *x);
-    for (size_t q = 0; q < n; q++) {
-        const size_t j = t->order[q];
-        const tg_var *v = &t->vars[j];
-        const double h = tg_step(t, j, central);
-        const double x0 = base->x[j];
-        /* inside the bounds: a side that would leave them is not taken */
-        const int up = x0 + h <= v->r.hi, down = x0 - h >= v->r.lo;
-        double xa = NAN, xb = NAN; /* the two points (xb NAN: the base) */
-        const tg_point *pa = NULL, *pb = base;
-        if (central && up && down) {
-            x[j] = xa = x0 + h;
-            if ((st = tg_eval(t, x, "sensitivity", v->name, &a, err)) != LV_OK)
-                goto fail;
-            x[j] = xb = x0 - h;
-            if ((st = tg_eval(t, x, "sensitivity", v->name, &b, err)) != LV_OK)
-                goto fail;
-            if (a.ok && b.ok)
-                pa = &a, pb = &b;
-            else if (a.ok)
-                pa = &a, pb = base, xb = x0;
-            else if (b.ok)
-                pa = &b, xa = xb, pb = base, xb = x0;
-        } else {
-            const double dir = up ? 1.0 : -1.0;
-            x[j] = xa = x0 + dir * h;
-            if ((st = tg_eval(t, x, "sensitivity", v->name, &a, err)) != LV_OK)
-                goto fail;
-            if (!a.ok && up && down) { /* the other side */
-                x[j] = xa = x0 - h;
-                if ((st = tg_eval(t, x, "sensitivity", v->name, &a, err)) != LV_OK)
-                    goto fail;
-            }
-            if (a.ok)
-                pa = &a;
-            xb = x0;
+    for (size_t j = 0; j < n; j++)
+        c.h[j] = tg_step(t, j, central);
+    /* worker 0 takes the target's run; the others runs of their own (kept for later) */
+    for (int k = 0; k < nw; k++) {
+        if (k > 0 && t->aux[k - 1] == NULL &&
+            lv_run_create(t->m, &t->aux[k - 1], err) != LV_OK)
+            break;
+        w[k].c = &c;
+        w[k].run = k == 0 ? t->run : t->aux[k - 1];
+        w[k].threads = nw > 1 ? 1 : threads_of(t);
+        w[k].x = calloc(n + 1, sizeof *w[k].x);
+        if (w[k].x == NULL || tg_point_init(t, &w[k].a) != LV_OK ||
+            tg_point_init(t, &w[k].b) != LV_OK) {
+            free(w[k].x);
+            tg_point_free(&w[k].a);
+            break;
         }
-        x[j] = x0;
-        const double dz = (xa - xb) / v->r.scale;
-        for (size_t i = 0; i < m; i++)
-            Jg[i * n + j] = pa != NULL ? (pa->g[i] - pb->g[i]) / dz : 0.0;
-        if (Jc != NULL)
-            Jc[j] = pa != NULL && t->cost.present ? (pa->cost - pb->cost) / t->cost_scale / dz
-                                                  : 0.0;
-        if (pa == NULL && note != NULL) {
+        made++;
+    }
+    if (made == 0) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    pthread_t tid[TG_MAX_WORKERS];
+    int started = 0;
+    for (int k = 1; k < made; k++)
+        if (pthread_create(&tid[started], NULL, sens_work, &w[k]) == 0)
+            started++;
+    sens_work(&w[0]);
+    for (int k = 0; k < started; k++)
+        pthread_join(tid[k], NULL);
+    for (int k = 0; k < made; k++) {
+        t->runs += w[k].runs;
+        t->phases += w[k].phases;
+        if (w[k].st != LV_OK && st == LV_OK)
+            st = lv_fail(err, w[k].st, "%s", w[k].err.msg);
+    }
+    for (size_t j = 0; j < n && note != NULL && st == LV_OK; j++)
+        if (c.why[j][0]) {
             const size_t used = strlen(note);
             snprintf(note + used, note_cap - used, "%ssensitivity to %s: every perturbed point "
-                     "fails (%.120s)", used ? "; " : "", v->name, a.why);
+                     "fails (%.120s)", used ? "; " : "", t->vars[j].name, c.why[j]);
         }
+done:
+    for (int k = 0; k < made; k++) {
+        free(w[k].x);
+        tg_point_free(&w[k].a);
+        tg_point_free(&w[k].b);
     }
-    st = LV_OK;
-fail:
-    tg_point_free(&a);
-    tg_point_free(&b);
+    free(c.h);
+    free(c.why);
     return st;
 }
 
@@ -547,6 +689,8 @@ static lv_status prepare_solve(lv_target *t, const lv_target_settings *s, lv_err
         t->set.xtol = t->xtol > 0.0 ? t->xtol : 1e-5;
     if (!(t->set.ftol > 0.0))
         t->set.ftol = t->ftol > 0.0 ? t->ftol : 1e-7;
+    if (t->set.restarts <= 0)
+        t->set.restarts = t->restarts;
     if (t->n == 0)
         return lv_fail(err, LV_ERR_INPUT, "targeting: no variables");
     if (t->mc == 0 && !t->cost.present)
@@ -584,6 +728,30 @@ static void used(lv_target *t, const char *name)
     snprintf(t->method_used + n, sizeof t->method_used - n, "%s%s", n ? "+" : "", name);
 }
 
+/* SLSQP, then again from its best point (a fresh quasi-Newton Hessian) up to `restarts` times
+ * while a run gains more than 1000 ftol of the cost's scale: with finite-difference gradients
+ * its BFGS approximation can stall short of the optimum. */
+static lv_status slsqp_restarted(lv_target *t, tg_point *p, int max_it, tg_opt_end *oe,
+                                 char *reason, size_t cap, lv_err *err)
+{
+    lv_status st = tg_optimize(t, LV_TARGET_SLSQP, p, max_it, oe, reason, cap, err);
+    const double sign = t->cost.maximize ? 1.0 : -1.0;
+    int k = 0;
+    for (; st == LV_OK && *oe == TG_OPT_CONVERGED && k < t->set.restarts; k++) {
+        const double before = p->cost;
+        st = tg_optimize(t, LV_TARGET_SLSQP, p, max_it, oe, reason, cap, err);
+        if (sign * (p->cost - before) < 1e3 * t->set.ftol * t->cost_scale) {
+            k++;
+            break;
+        }
+    }
+    if (st == LV_OK && k > 0) {
+        const size_t n = strlen(reason);
+        snprintf(reason + n, cap - n, " (run %d times from its best point)", k + 1);
+    }
+    return st;
+}
+
 lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
                           const lv_target_result **out, lv_err *err)
 {
@@ -614,6 +782,9 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
     int conv = 0;
     char reason[LV_ERR_MSG_MAX] = "";
     const int max_it = t->set.max_iterations;
+    /* the optimisers count every point they evaluate: by default 50 + 25 per variable */
+    const int opt_it = max_it > 0 ? max_it : 50 + 25 * (int)t->n;
+    tg_opt_end oe = TG_OPT_FAILED;
     switch (t->set.method) {
     case LV_TARGET_NEWTON:
         used(t, "newton");
@@ -622,8 +793,10 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
     case LV_TARGET_SLSQP:
     case LV_TARGET_COBYLA:
         used(t, t->set.method == LV_TARGET_SLSQP ? "slsqp" : "cobyla");
-        st = tg_optimize(t, t->set.method, &p, max_it > 0 ? max_it : 100, &conv, reason,
-                         sizeof reason, err);
+        st = t->set.method == LV_TARGET_SLSQP
+                 ? slsqp_restarted(t, &p, opt_it, &oe, reason, sizeof reason, err)
+                 : tg_optimize(t, t->set.method, &p, opt_it, &oe, reason, sizeof reason, err);
+        conv = oe == TG_OPT_CONVERGED;
         break;
     case LV_TARGET_AUTO:
     default:
@@ -633,14 +806,15 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         }
         if (st == LV_OK && t->cost.present) {
             used(t, "slsqp");
-            st = tg_optimize(t, LV_TARGET_SLSQP, &p, max_it > 0 ? max_it : 100, &conv, reason,
-                             sizeof reason, err);
-            if (st == LV_OK && !conv) {
+            st = slsqp_restarted(t, &p, opt_it, &oe, reason, sizeof reason, err);
+            conv = oe == TG_OPT_CONVERGED;
+            if (st == LV_OK && oe == TG_OPT_FAILED) { /* COBYLA from SLSQP's best point */
                 char why[LV_ERR_MSG_MAX];
                 snprintf(why, sizeof why, "%s", reason);
                 used(t, "cobyla");
-                st = tg_optimize(t, LV_TARGET_COBYLA, &p, max_it > 0 ? max_it : 100, &conv,
-                                 reason, sizeof reason, err);
+                st = tg_optimize(t, LV_TARGET_COBYLA, &p, opt_it, &oe, reason, sizeof reason,
+                                 err);
+                conv = oe == TG_OPT_CONVERGED;
                 if (st == LV_OK) {
                     const size_t nr = strlen(reason);
                     snprintf(reason + nr, sizeof reason - nr, " (after SLSQP: %.200s)", why);

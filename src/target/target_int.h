@@ -11,6 +11,8 @@
 #include "mission/mission_rt.h"
 #include "mission/targeting_def.h"
 
+#define TG_MAX_WORKERS 16 /* threads taking sensitivities */
+
 typedef struct tg_var {
     char *name;
     lv_tvar r;          /* parameter, deg, bounds, start, scale, step (name's unit) */
@@ -57,8 +59,10 @@ struct lv_target {
     lv_target_diff diff;
     int max_iter;
     double xtol, ftol;
-    /* the run every evaluation sets and executes */
+    int restarts;
+    /* the run every evaluation sets and executes; more for the sensitivities' workers */
     lv_run *run;
+    lv_run *aux[TG_MAX_WORKERS - 1];
     unsigned char *want;   /* [n_phases] the constraints' and the cost's phases */
     /* one solve */
     lv_target_settings set;
@@ -93,7 +97,9 @@ lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char
 /* Finite-difference sensitivities at `base` (evaluated, ok) in scaled variables z = x / scale:
  * Jg[i * n + j] = dg_i / dz_j, Jc[j] = d(cost / cost_scale) / dz_j (Jc may be NULL). Central
  * differences when `central`. A variable whose perturbed points fail on both sides gets a zero
- * column (*note names it, may be NULL). The run is left at some perturbed point. */
+ * column (*note names it, may be NULL). The columns are shared among set.threads workers, each
+ * with a run of its own (the target's, then t->aux); every run is left at some perturbed
+ * point. */
 lv_status tg_sensitivities(lv_target *t, const tg_point *base, int central, double *Jg,
                            double *Jc, char *note, size_t note_cap, lv_err *err);
 
@@ -116,10 +122,16 @@ double tg_wall(const lv_target *t); /* s since the solve started */
 lv_status tg_newton(lv_target *t, tg_point *p, int max_iter, int *converged, char *reason,
                     size_t reason_cap, lv_err *err);
 
-/* NLopt's SLSQP or COBYLA from p (evaluated, ok); p becomes the best point (feasible first,
- * then the lowest cost). *converged: stopped on its tolerances at a point that meets every
- * constraint. */
+/* How an optimiser ended. */
+typedef enum tg_opt_end {
+    TG_OPT_CONVERGED = 0, /* stopped on its tolerances at a point that meets every constraint */
+    TG_OPT_LIMIT,         /* the iteration limit */
+    TG_OPT_FAILED         /* it failed, or stopped where a constraint is not met */
+} tg_opt_end;
+
+/* NLopt's SLSQP or COBYLA from p (evaluated, ok) for at most max_iter points; p becomes the
+ * best point (meeting the constraints first, then the lowest cost). */
 lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_iter,
-                      int *converged, char *reason, size_t reason_cap, lv_err *err);
+                      tg_opt_end *end, char *reason, size_t reason_cap, lv_err *err);
 
 #endif
