@@ -2,24 +2,29 @@
  * the file writes it (the slot's line and column, libyaml's character column), in the unit
  * it is written in (degrees after a `_deg` key), and the targeting section's `start:` values
  * too; every other character unchanged. Each value is written with the fewest digits that
- * read back as the same double. The written file is then loaded, run and compared with the
- * point it was written from (lv_target_write in lv_target.h). */
-#define _POSIX_C_SOURCE 200809L
+ * read back as the same double. Written into another folder, the files the mission reads by
+ * relative paths (tables, coefficients, wind) are given paths relative to the new file's
+ * folder. The written file is then loaded, run and compared with the point it was written
+ * from (lv_target_write in lv_target.h). */
+#define _XOPEN_SOURCE 700 /* realpath */
 
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "core/status.h"
 #include "io/atomic.h"
 #include "lvsim/lv_units.h"
+#include "mission/yaml_tree.h"
 #include "target/target_int.h"
 
 typedef struct edit {
     size_t at, len;  /* bytes of the original text replaced */
     char text[40];
+    char *long_text; /* a path: replaces text when set (owned) */
 } edit;
 
 static lv_status read_all(const char *path, char **out, size_t *len, lv_err *err)
@@ -168,6 +173,176 @@ static int edit_cmp(const void *a, const void *b)
     return x->at < y->at ? -1 : (x->at > y->at);
 }
 
+/* ---- relative paths, when the file moves ---------------------------------------------------- */
+
+/* The keys whose string values name files the mission reads (docs/mission-format.md). */
+static int path_key(const char *k)
+{
+    static const char *const keys[] = {"table", "file", "coefficients", "wind", "alpha_table",
+                                       "CD", "CL", "CY", "CA", "CN", NULL};
+    for (size_t i = 0; keys[i] != NULL; i++)
+        if (strcmp(keys[i], k) == 0)
+            return 1;
+    return 0;
+}
+
+/* The folder of `path` (which need not exist yet) as an absolute, resolved path; NULL. */
+static char *dir_real(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char dir[LV_ATOMIC_PATH_MAX];
+    if (slash == NULL)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    return realpath(dir, NULL);
+}
+
+/* `target` (absolute, resolved) relative to folder `from` (absolute, resolved); absolute when
+ * they share no folder but the root. */
+static char *relative_to(const char *target, const char *from)
+{
+    size_t common = 0, i = 0;
+    for (; target[i] != '\0' && from[i] != '\0' && target[i] == from[i]; i++)
+        if (target[i] == '/')
+            common = i;
+    if (from[i] == '\0' && target[i] == '/')
+        common = i; /* from is a prefix folder of target */
+    if (common == 0)
+        return strdup(target);
+    size_t ups = 0;
+    for (const char *q = from + common; *q != '\0'; q++)
+        ups += *q == '/' && q[1] != '\0';
+    if (strcmp(from, "/") == 0)
+        ups = 0;
+    const char *rest = target + common + 1;
+    const size_t n = 3 * ups + strlen(rest) + 1;
+    char *out = malloc(n);
+    if (out == NULL)
+        return NULL;
+    out[0] = '\0';
+    for (size_t k = 0; k < ups; k++)
+        strcat(out, "../");
+    strcat(out, rest);
+    return out;
+}
+
+typedef struct path_walk {
+    const char *text;
+    size_t len;
+    const char *mdir, *odir;  /* the mission's and the new file's folders (resolved) */
+    edit *edits;
+    size_t n, cap;
+    lv_status st;
+    lv_err *err;
+    const char *path;
+} path_walk;
+
+static void walk_paths(path_walk *w, const lv_ynode *n, const char *key)
+{
+    if (w->st != LV_OK || n == NULL)
+        return;
+    if (n->kind == LV_YNODE_MAP) {
+        for (size_t i = 0; i + 1 < n->n; i += 2)
+            walk_paths(w, n->kids[i + 1], n->kids[i]->text);
+        return;
+    }
+    if (n->kind == LV_YNODE_SEQ) {
+        for (size_t i = 0; i < n->n; i++)
+            walk_paths(w, n->kids[i], key);
+        return;
+    }
+    if (key == NULL || !path_key(key) || n->len == 0 || n->text[0] == '/' ||
+        strlen(n->text) != n->len)
+        return;
+    char joined[2 * LV_ATOMIC_PATH_MAX];
+    snprintf(joined, sizeof joined, "%s/%s", w->mdir, n->text);
+    char *abs = realpath(joined, NULL);
+    struct stat sb;
+    if (abs == NULL || stat(abs, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        free(abs);
+        return; /* not a file: a model's name, a number */
+    }
+    char *rel = relative_to(abs, w->odir);
+    free(abs);
+    if (rel == NULL) {
+        w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
+        return;
+    }
+    size_t at = offset_of(w->text, w->len, n->line, n->col);
+    const int quoted = !n->plain;
+    if (at != (size_t)-1 && quoted)
+        at++; /* after the quote */
+    if (at == (size_t)-1 || at + n->len > w->len || memcmp(w->text + at, n->text, n->len) != 0) {
+        free(rel);
+        w->st = lv_fail(w->err, LV_ERR_INPUT, "%s:%d:%d: the path '%s' is written with escapes: "
+                        "write the converged mission into the mission's folder", w->path,
+                        n->line, n->col, n->text);
+        return;
+    }
+    int plain_ok = 1; /* a plain scalar that stays plain */
+    for (const char *q = rel; *q != '\0'; q++)
+        plain_ok &= (*q >= 'a' && *q <= 'z') || (*q >= 'A' && *q <= 'Z') ||
+                    (*q >= '0' && *q <= '9') || *q == '.' || *q == '/' || *q == '_' || *q == '-';
+    if (w->n == w->cap) {
+        const size_t cap = w->cap ? 2 * w->cap : 8;
+        edit *e = realloc(w->edits, cap * sizeof *e);
+        if (e == NULL) {
+            free(rel);
+            w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
+            return;
+        }
+        w->edits = e;
+        w->cap = cap;
+    }
+    edit *e = &w->edits[w->n++];
+    memset(e, 0, sizeof *e);
+    e->at = at;
+    e->len = n->len;
+    if (!quoted && !plain_ok) { /* quote it */
+        e->long_text = malloc(strlen(rel) + 3);
+        if (e->long_text != NULL)
+            sprintf(e->long_text, "\"%s\"", rel);
+        free(rel);
+    } else {
+        e->long_text = rel;
+    }
+    if (e->long_text == NULL)
+        w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
+}
+
+/* Edits giving every relative file path of the mission text a path from the new file's
+ * folder (none when it is the mission's folder). */
+static lv_status path_edits(const char *text, size_t len, const lv_mission_def *d,
+                            const char *out, edit **edits, size_t *n, lv_err *err)
+{
+    *edits = NULL;
+    *n = 0;
+    char *mdir = realpath(d->dir, NULL), *odir = dir_real(out);
+    lv_ynode *root = NULL;
+    lv_status st = LV_OK;
+    if (mdir == NULL || odir == NULL) {
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot resolve its folder", mdir == NULL ? d->dir : out);
+        goto done;
+    }
+    if (strcmp(mdir, odir) == 0)
+        goto done;
+    if ((st = lv_yaml_load(text, len, d->path, &root, err)) != LV_OK)
+        goto done;
+    path_walk w = {text, len, mdir, odir, NULL, 0, 0, LV_OK, err, d->path};
+    walk_paths(&w, root, NULL);
+    st = w.st;
+    *edits = w.edits;
+    *n = w.n;
+done:
+    lv_yaml_free(root);
+    free(mdir);
+    free(odir);
+    return st;
+}
+
 /* The phases' finals of a run, for the constraints and the cost. */
 static lv_status finals_of(const lv_run *r, const lv_mission *m, const lv_target *t, double *f,
                            double *cost, lv_err *err)
@@ -202,6 +377,7 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
     lv_mission *m2 = NULL;
     lv_run *r2 = NULL;
     lv_atomic a = {0};
+    size_t nedits = 0;
     lv_status st;
     if (x == NULL || path == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_target_write: NULL argument");
@@ -243,13 +419,34 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
                 goto done;
         }
     }
+    edit *pe = NULL;
+    size_t npe = 0;
+    if ((st = path_edits(text, len, d, path, &pe, &npe, err)) != LV_OK) {
+        free(pe);
+        goto done;
+    }
+    if (npe > 0) {
+        edit *all = realloc(edits, (ne + npe + 1) * sizeof *all);
+        if (all == NULL) {
+            for (size_t i = 0; i < npe; i++)
+                free(pe[i].long_text);
+            free(pe);
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        edits = all;
+        memcpy(edits + ne, pe, npe * sizeof *pe);
+        ne += npe;
+    }
+    free(pe);
+    nedits = ne;
     qsort(edits, ne, sizeof *edits, edit_cmp);
     if ((st = lv_atomic_open(&a, path, err)) != LV_OK)
         goto done;
     size_t at = 0;
     for (size_t i = 0; i < ne; i++) {
         fwrite(text + at, 1, edits[i].at - at, a.fp);
-        fputs(edits[i].text, a.fp);
+        fputs(edits[i].long_text ? edits[i].long_text : edits[i].text, a.fp);
         at = edits[i].at + edits[i].len;
     }
     fwrite(text + at, 1, len - at, a.fp);
@@ -311,6 +508,8 @@ done:
     lv_run_free(r2);
     lv_mission_free(m2);
     free(text);
+    for (size_t i = 0; edits != NULL && i < nedits; i++)
+        free(edits[i].long_text);
     free(edits);
     free(fref);
     free(fnew);

@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "check.h"
 #include "lvsim/lv_mission.h"
@@ -358,6 +359,63 @@ static void test_round_trip(void)
     lv_mission_free(m);
 }
 
+/* Written into another folder, the files the mission reads by relative paths keep working:
+ * a rocket with a thrust table in data/, targeted for its burnout altitude (its dry mass is
+ * the variable), its converged mission written one folder over. */
+static void test_moved_file(void)
+{
+    mkdir("target_src", 0777);
+    mkdir("target_src/data", 0777);
+    mkdir("target_out", 0777);
+    write_file("target_src/data/thrust.csv", "t [s], thrust [N], mdot [kg/s]\n"
+                                             "0, 30000, 10\n100, 30000, 10\n");
+    write_file("target_src/m.yaml",
+               "mission: {name: moved}\n" FLAT_WORLD
+               "parameters: {start_h: 0, start_vel: 0}\n"
+               "stages: [{name: s, dry_mass: 500, propellant_mass: 500,\n"
+               "          engines: [{table: data/thrust.csv}]}]\n"
+               "phases:\n"
+               "  - {name: up, model: dof3, stages: [s], stop_time: 100, end: [burnout],\n"
+               "     guidance: {law: attitude, pitch_deg: 90},\n"
+               "     integrator: {tolerance: 1.0e-9}}\n"
+               "targeting:\n"
+               "  variables: [{name: stages.s.dry_mass, min: 100, max: 900, scale: 10}]\n"
+               "  constraints: [{final: up.h, equal: 20000, tolerance: 0.1}]\n");
+    lv_mission *m = NULL;
+    lv_err err;
+    /* `stages.s.dry_mass` is no parameter: the check says so (the parameter is s.dry_mass) */
+    CHECK_FAILS(lv_mission_load("target_src/m.yaml", &m, &err), &err, LV_ERR_INPUT,
+                "did you mean 's.dry_mass'");
+    char *text = read_file("target_src/m.yaml");
+    if (text != NULL) {
+        char *p = strstr(text, "stages.s.dry_mass");
+        if (p != NULL)
+            memmove(p, p + 7, strlen(p + 7) + 1);
+        write_file("target_src/m.yaml", text);
+        free(text);
+    }
+    lv_target *t = NULL;
+    const lv_target_result *res = NULL;
+    CHECK_OK(lv_mission_load("target_src/m.yaml", &m, &err), &err);
+    if (m != NULL)
+        CHECK_OK(lv_target_create(m, &t, &err), &err);
+    if (t != NULL)
+        CHECK_OK(lv_target_solve(t, NULL, &res, &err), &err);
+    if (res != NULL && res->converged) {
+        double worst = NAN;
+        CHECK_OK(lv_target_write(t, res->x, "target_out/conv.yaml", &worst, &err), &err);
+        char *out = read_file("target_out/conv.yaml");
+        CHECK(out != NULL && strstr(out, "{table: ../target_src/data/thrust.csv}") != NULL);
+        free(out);
+        printf("moved converged file: dry mass %.6f kg, written with its table's path relative "
+               "to its folder (worst difference %.2g tol)\n", res->x[0], worst);
+    } else {
+        CHECK(0);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
+}
+
 /* ---- (g) the phase tree: only what a variable reaches ----------------------------------------- */
 
 static void test_branches(void)
@@ -566,6 +624,7 @@ int main(void)
     test_no_solution();
     test_max_range();
     test_round_trip();
+    test_moved_file();
     test_branches();
     test_api();
     test_refused();
