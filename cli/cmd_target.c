@@ -236,9 +236,10 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         ui.tty = 0;
     lv_mission *m;
     lv_err err;
-    lv_status st = lv_mission_load(path, &m, &err);
-    if (st != LV_OK)
-        return print_err(NULL, &err, exit_code_for_input(st));
+    lv_status st;
+    const int lcode = load_mission(path, &m); /* as `lvsim check` and `run` load it */
+    if (lcode != EXIT_OK)
+        return lcode;
     lv_target *t = NULL;
     if ((st = lv_target_create(m, &t, &err)) != LV_OK) {
         lv_mission_free(m);
