@@ -28,6 +28,13 @@ static void clear_progress(target_ui *ui)
     }
 }
 
+/* " unit", or "" for a dimensionless value */
+static const char *with_unit(const char *unit, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s%s", unit != NULL && unit[0] ? " " : "", unit != NULL ? unit : "");
+    return buf;
+}
+
 static const char *kind_word(lv_con_kind k)
 {
     return k == LV_CON_EQUAL ? "equal" : k == LV_CON_MIN ? "min" : "max";
@@ -65,8 +72,10 @@ static void print_values(const lv_target *t, const double *x, const double *f, c
     }
     lv_target_cost_info ci;
     lv_target_cost_info_get(t, &ci);
-    if (ci.present)
-        printf("      cost: %s = %.10g %s\n", ci.name, cost, ci.unit);
+    if (ci.present) {
+        char u[32];
+        printf("      cost: %s = %.10g%s\n", ci.name, cost, with_unit(ci.unit, u, sizeof u));
+    }
 }
 
 static void on_iteration(const lv_target *t, const lv_target_iter *it, void *user)
@@ -104,7 +113,7 @@ static int on_evaluation(const lv_target *t, const lv_target_eval *ev, void *use
     return 0;
 }
 
-static void print_problem(const lv_mission *m, const lv_target *t, const char *path)
+static void print_problem(const lv_mission *m, const lv_target *t, const char *path, int quiet)
 {
     lv_target_cost_info ci;
     lv_target_cost_info_get(t, &ci);
@@ -114,19 +123,22 @@ static void print_problem(const lv_mission *m, const lv_target *t, const char *p
     for (size_t j = 0; j < lv_target_var_count(t); j++) {
         lv_target_var_info v;
         lv_target_var_info_get(t, j, &v);
-        printf("  vary     %-32s [%g, %g] %s, start %.10g, scale %g, step %.3g\n", v.name, v.lo,
-               v.hi, v.unit, v.start, v.scale, v.step);
+        char u[32];
+        printf("  vary     %-32s [%g, %g]%s, start %.10g, scale %g, step %.3g\n", v.name, v.lo,
+               v.hi, with_unit(v.unit, u, sizeof u), v.start, v.scale, v.step);
     }
     for (size_t i = 0; i < lv_target_con_count(t); i++) {
         lv_target_con_info c;
         lv_target_con_info_get(t, i, &c);
-        printf("  achieve  %-32s %s %.10g %s, tolerance %g\n", c.name, kind_word(c.kind),
-               c.value, c.unit, c.tol);
+        char u[32];
+        printf("  achieve  %-32s %s %.10g%s, tolerance %g\n", c.name, kind_word(c.kind),
+               c.value, with_unit(c.unit, u, sizeof u), c.tol);
     }
     if (ci.present)
         printf("  %-8s %s [%s]\n", ci.maximize ? "maximise" : "minimise", ci.name, ci.unit);
-    printf("%4s  %-7s %-9s %5s %6s %8s  %10s  %9s  %8s\n", "it", "solver", "event", "runs",
-           "phases", "wall [s]", "worst [tol]", "step", "lambda");
+    if (!quiet)
+        printf("%4s  %-7s %-9s %5s %6s %8s  %10s  %9s  %8s\n", "it", "solver", "event", "runs",
+               "phases", "wall [s]", "worst [tol]", "step", "lambda");
 }
 
 static void print_result(const lv_target *t, const lv_target_result *res)
@@ -142,19 +154,22 @@ static void print_result(const lv_target *t, const lv_target_result *res)
     for (size_t j = 0; j < res->n_vars; j++) {
         lv_target_var_info v;
         lv_target_var_info_get(t, j, &v);
-        printf("  %-32s = %.12g %s\n", v.name, res->x[j], v.unit);
+        char u[32];
+        printf("  %-32s = %.12g%s\n", v.name, res->x[j], with_unit(v.unit, u, sizeof u));
     }
     for (size_t i = 0; i < res->n_cons; i++) {
         lv_target_con_info c;
         lv_target_con_info_get(t, i, &c);
-        printf("  %-32s = %.12g %s  (%s %.10g +- %g: %s, %+.3g tol)\n", c.name, res->finals[i],
-               c.unit, kind_word(c.kind), c.value, c.tol, res->met[i] ? "met" : "FAILS",
-               res->residual[i]);
+        char u[32];
+        printf("  %-32s = %.12g%s  (%s %.10g +- %g: %s, %+.3g tol)\n", c.name, res->finals[i],
+               with_unit(c.unit, u, sizeof u), kind_word(c.kind), c.value, c.tol,
+               res->met[i] ? "met" : "FAILS", res->residual[i]);
     }
     lv_target_cost_info ci;
     lv_target_cost_info_get(t, &ci);
+    char u[32];
     if (ci.present)
-        printf("  %-32s = %.12g %s  (%s)\n", ci.name, res->cost, ci.unit,
+        printf("  %-32s = %.12g%s  (%s)\n", ci.name, res->cost, with_unit(ci.unit, u, sizeof u),
                ci.maximize ? "maximised" : "minimised");
     if (!res->converged) {
         size_t bad = 0;
@@ -248,7 +263,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     set.on_iteration = on_iteration;
     set.on_evaluation = on_evaluation;
     set.user = &ui;
-    print_problem(m, t, path);
+    print_problem(m, t, path, ui.quiet);
     fflush(stdout);
     const lv_target_result *res = NULL;
     st = lv_target_solve(t, &set, &res, &err);
