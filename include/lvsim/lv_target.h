@@ -168,7 +168,8 @@ typedef struct lv_target_settings {
                              them, each on a run of its own; a single evaluation runs
                              independent branches in them (lv_run_execute) */
     void (*on_iteration)(const lv_target *t, const lv_target_iter *it, void *user);
-    /* Called before every execution; nonzero stops the solve (LV_ERR_CANCELLED). */
+    /* Called before every execution, one call at a time but possibly from a worker thread
+     * (sensitivities); nonzero stops the solve (LV_ERR_CANCELLED). */
     int (*on_evaluation)(const lv_target *t, const lv_target_eval *ev, void *user);
     void *user;
 } lv_target_settings;
