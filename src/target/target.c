@@ -469,7 +469,10 @@ static lv_status sens_column(sens_worker *w, size_t j)
     const lv_target *t = c->t;
     const size_t n = t->n, m = t->mc;
     const tg_var *v = &t->vars[j];
-    const double h = c->h[j], x0 = c->base->x[j];
+    const double x0 = c->base->x[j];
+    double h = c->h[j];
+    if (x0 + h > v->r.hi && x0 - h < v->r.lo) /* bounds closer than the step: the farther */
+        h = fmax(v->r.hi - x0, x0 - v->r.lo);
     const int up = x0 + h <= v->r.hi, down = x0 - h >= v->r.lo;
     double xa = NAN, xb = x0;
     const tg_point *pa = NULL, *pb = c->base;

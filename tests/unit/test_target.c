@@ -3,7 +3,8 @@
  *   (a) the launch angle of a drag-free shot that hits a given range over flat ground
  *       (closed form R = v^2 sin(2 gamma) / g);
  *   (b) two variables (speed and angle) for a range and a flight time, from a poor start;
- *   (c) a trial point where the vehicle leaves its model's domain is a rejected step;
+ *   (c) a trial point where the vehicle leaves its model's domain is a rejected step (Newton)
+ *       or a penalised point (SLSQP);
  *   (d) a range beyond the maximum: reported as not met, the failing constraint named;
  *   (e) the maximum range (45 deg) by SLSQP, and COBYLA;
  *   (f) the converged mission file: values replaced in place, comments kept, and running it
@@ -218,6 +219,42 @@ static void test_rejected_step(void)
         CHECK(res->converged);
         CHECK(c.domain >= 1);
         CHECK_CLOSE(res->x[0], gamma / DEG, 2e-4);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
+}
+
+/* The same ball, the horizontal range at 70 s maximised by SLSQP with the ball above the
+ * ground (h >= 0): the optimum is the h = 0 boundary, gamma = asin(g T / 2 v) again. SLSQP's
+ * first step lands 20 km under the ground: the penalty makes its line search step back. */
+static void test_rejected_point(void)
+{
+    const double v = 400.0, T = 70.0;
+    char yaml[4096];
+    snprintf(yaml, sizeof yaml,
+             "mission: {name: shot-fail-opt}\n" FLAT_WORLD
+             "parameters: {start_h: 0, start_vel: %.17g, start_fpa_deg: 85, start_chi_deg: 90}\n"
+             "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - {name: flight, model: dof3, stages: [ball], stop_time: %.17g,\n"
+             "     integrator: {tolerance: 1.0e-10}}\n"
+             "targeting:\n"
+             "  method: slsqp\n"
+             "  variables: [{name: start_fpa_deg, min: -10, max: 89, scale: 30}]\n"
+             "  constraints: [{final: flight.h, min: 0, tolerance: 0.01}]\n"
+             "  cost: {maximize: flight.downrange}\n",
+             v, T);
+    lv_mission *m;
+    lv_target *t;
+    counts c = {0};
+    const lv_target_result *res = solve_text("target_fail_opt.yaml", yaml, &m, &t, &c);
+    if (res != NULL) {
+        const double gamma = asin(G0 * T / (2.0 * v));
+        printf("SLSQP through a failing point: %d outside the domain, %.6f deg (%.6f), range "
+               "%.3f m\n", c.domain, res->x[0], gamma / DEG, res->cost);
+        CHECK(res->converged);
+        CHECK(c.domain >= 1);
+        CHECK_CLOSE(res->x[0], gamma / DEG, 2e-4); /* the sphere's 0.05 m: test_rejected_step */
     }
     lv_target_free(t);
     lv_mission_free(m);
@@ -621,6 +658,7 @@ int main(void)
     test_launch_angle();
     test_two_variables();
     test_rejected_step();
+    test_rejected_point();
     test_no_solution();
     test_max_range();
     test_round_trip();
