@@ -6,6 +6,7 @@ add_executable(lvsim_cli
   cli/cmd_models.c
   cli/cmd_simulate.c
   cli/cmd_run.c
+  cli/cmd_mc.c
   cli/cmd_check.c
   cli/cmd_target.c
   cli/cmd_params.c
@@ -21,3 +22,10 @@ set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRE
 # --json documents of simulate, compare and params.
 target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m)
 lv_set_warnings(lvsim_cli)
+# `mpirun -np K lvsim mc`: only when MPI is found (cmake/lv_deps.cmake); the plain build needs
+# none. Without it cmd_mc.c runs every campaign on threads.
+if(MPI_C_FOUND)
+  target_sources(lvsim_cli PRIVATE cli/mc_mpi.c)
+  target_compile_definitions(lvsim_cli PRIVATE LV_WITH_MPI)
+  target_link_libraries(lvsim_cli PRIVATE MPI::MPI_C)
+endif()

@@ -37,18 +37,44 @@ message(STATUS "libmatio, loaded at run time: ${LV_MATIO_SONAME}")
 add_library(lv_matio_headers INTERFACE)
 target_include_directories(lv_matio_headers INTERFACE ${MATIO_INCLUDE_DIRS})
 target_compile_definitions(lv_matio_headers INTERFACE LV_MATIO_SONAME="${LV_MATIO_SONAME}")
+# HDF5 the same way (src/io/hdf5_dl.c): only a MAT v7.3 variable libmatio cannot classify needs
+# it. Its headers are used; the SONAME of the library found is what hdf5_dl.c opens.
+set(LV_HDF5_SONAME "libhdf5_serial.so")
+find_library(LV_HDF5_LIB NAMES hdf5_serial hdf5 HINTS ${HDF5_LIBRARY_DIRS})
+if(LV_HDF5_LIB AND CMAKE_OBJDUMP)
+  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_HDF5_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
+  if(_lv_od MATCHES "SONAME +([^ \n]+)")
+    set(LV_HDF5_SONAME "${CMAKE_MATCH_1}")
+  endif()
+endif()
+message(STATUS "HDF5, loaded at run time: ${LV_HDF5_SONAME}")
+target_include_directories(lv_matio_headers INTERFACE ${HDF5_INCLUDE_DIRS})
+target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_SONAME}")
+
+# Random123 (Debian: librandom123-dev, header-only): the Philox4x32-10 counter-based generator
+# of the dispersions (src/mission/dispersion.c).
+find_path(RANDOM123_INCLUDE_DIR Random123/philox.h REQUIRED)
+# SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
+pkg_check_modules(SQLITE3 REQUIRED IMPORTED_TARGET sqlite3)
+# OpenMPI (Debian: libopenmpi-dev, openmpi-bin), optional: `mpirun -np K lvsim mc` when found.
+option(LV_WITH_MPI "Build lvsim mc with MPI when an MPI library is found" ON)
+if(LV_WITH_MPI)
+  find_package(MPI COMPONENTS C QUIET)
+endif()
 
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::HDF5 PkgConfig::YAML PkgConfig::NLOPT Threads::Threads dragonbox::dragonbox
-  lv_fastfloat ${CMAKE_DL_LIBS} m)
+  lv_matio_headers PkgConfig::YAML PkgConfig::NLOPT Threads::Threads dragonbox::dragonbox lv_fastfloat
+  ${CMAKE_DL_LIBS} m)
+target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE ${CMAKE_DL_LIBS} m)
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE PkgConfig::SQLITE3
+  Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)
 target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG m)

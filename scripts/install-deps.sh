@@ -22,6 +22,10 @@ pkgs=(
   chromium                             # headless browser for the viewer test (ctest test_viewer)
   python3                              # lvsim view serves with python3's http.server
   git ca-certificates                  # the fresh-clone test; npm's registry over https
+  librandom123-dev                     # Philox counter-based generator: Monte Carlo dispersions
+  libsqlite3-dev sqlite3               # Monte Carlo campaign database (and its dumps in the tests)
+  libopenmpi-dev openmpi-bin           # mpirun -np K lvsim mc (optional in the build; tested in CI)
+  time bc                              # bench/bench_mc.sh: a whole process's wall and CPU time
 )
 # The viewer's npm packages (viewer/package.json, pinned for Debian 12's Node.js 18) need node
 # and npm: Debian's nodejs and npm, unless a node and an npm are already installed (another

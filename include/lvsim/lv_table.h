@@ -73,6 +73,14 @@ typedef struct lv_table_cursor {
 } lv_table_cursor;
 #define LV_TABLE_CURSOR_INIT { { 0 } }
 
+/* A copy of `tab` whose outputs are y_k' = scale[k] * y_k + bias[k] (k < n_out; `scale` or
+ * `bias` NULL: 1 or 0 for every output), with the same axes, names, interpolation and
+ * extrapolation (PCHIP slopes are those of the new values). Used for table dispersions: a
+ * thrust curve, an aerodynamic coefficient or a wind profile scaled or biased per run.
+ * LV_ERR_INPUT for a non-finite factor; lv_table_free(*out) when done. */
+LV_API lv_status lv_table_create_affine(const lv_table *tab, const double *scale,
+                                        const double *bias, lv_table **out, lv_err *err);
+
 /* y[0 .. n_out-1] = table at x[0 .. n_dims-1]. `cur` may be NULL (a fresh search).
  * Returns LV_OK, or LV_ERR_INPUT when a coordinate is NaN, or outside its axis under
  * LV_EXTRAP_ERROR ("table 'thrust': axis 0 't' [s] = 130 is outside [0, 120]"); the

@@ -45,6 +45,12 @@ LV_API lv_status lv_wind_create_table_opts(const char *path, const char *var,
 LV_API lv_status lv_wind_create_const(double north, double east, double down, lv_wind **out,
                                       lv_err *err);
 LV_API void lv_wind_free(lv_wind *w); /* accepts NULL */
+/* A copy of `w` with every component c (north, east, down) replaced by
+ * scale * c + bias[c] (`bias` NULL: no bias): a wind profile dispersed per run. A table without
+ * a down column keeps down 0 (bias[2] ignored). lv_wind_free(*out) when done. */
+LV_API lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bias[3],
+                                       lv_wind **out, lv_err *err);
+
 
 /* 1 for a constant wind (lv_wind_create_const, or a table of one row). */
 LV_API int lv_wind_is_constant(const lv_wind *w);

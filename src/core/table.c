@@ -599,3 +599,48 @@ lv_status lv_table_out_index(const lv_table *tab, const char *name, size_t *k, l
     lv_suggest_text(&sg, hint, sizeof hint);
     return lv_fail(err, LV_ERR_NOTFOUND, "table '%s': no output '%s'%s", tab->name, name, hint);
 }
+
+/* ---- affine copies (table dispersions) ------------------------------------------------ */
+
+lv_status lv_table_create_affine(const lv_table *tab, const double *scale, const double *bias,
+                                 lv_table **out, lv_err *err)
+{
+    if (tab == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_table_create_affine: NULL argument");
+    *out = NULL;
+    size_t np = 1;
+    lv_table_spec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.n_dims = tab->n_dims;
+    for (size_t d = 0; d < tab->n_dims; d++) {
+        sp.n[d] = tab->n[d];
+        sp.x[d] = tab->x[d];
+        sp.axis_name[d] = tab->axis_name[d];
+        sp.axis_unit[d] = tab->axis_unit[d];
+        np *= tab->n[d];
+    }
+    for (size_t k = 0; k < tab->n_out; k++)
+        if ((scale != NULL && !isfinite(scale[k])) || (bias != NULL && !isfinite(bias[k])))
+            return lv_fail(err, LV_ERR_INPUT, "table '%s': output '%s': scale %g and bias %g "
+                           "must be finite", tab->name ? tab->name : "",
+                           tab->out_name ? tab->out_name[k] : "", scale ? scale[k] : 1.0,
+                           bias ? bias[k] : 0.0);
+    double *y = malloc(np * tab->n_out * sizeof *y);
+    if (y == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < np; i++)
+        for (size_t k = 0; k < tab->n_out; k++) {
+            const size_t j = i * tab->n_out + k;
+            y[j] = (scale ? scale[k] : 1.0) * tab->y[j] + (bias ? bias[k] : 0.0);
+        }
+    sp.n_out = tab->n_out;
+    sp.y = y;
+    sp.interp = tab->interp;
+    sp.extrap = tab->extrap;
+    sp.name = tab->name;
+    sp.out_name = (const char *const *)tab->out_name;
+    sp.out_unit = (const char *const *)tab->out_unit;
+    const lv_status st = lv_table_create(&sp, out, err);
+    free(y);
+    return st;
+}

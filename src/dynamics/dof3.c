@@ -160,6 +160,8 @@ struct lv_dof3 {
     lv_var params[P_N];
     size_t n_ends;
     lv_dof3_end *ends;           /* [n_ends], names point into event_names */
+    double *end_off;             /* [n_ends] m, an impact end's offset for a start on (or below)
+                                    its level: set by init() (one simulation at a time) */
     lv_event_def *events;        /* [1 + n_ends] */
     char (*event_names)[EVENT_NAME_MAX];
 
@@ -174,6 +176,7 @@ struct lv_dof3 {
     int has_aero;
     lv_aero aero;
     lv_flight_schedule inputs;   /* control history (table NULL: constants only) */
+    int const_throttle;          /* the parameter "throttle" drives the engines (no table, on) */
     int steers;                  /* a steering law other than the inputs (lv_guidance.h) */
     lv_guid guid;
     int throttles;               /* a throttle law with an effect (limits, landing) */
@@ -357,7 +360,7 @@ static int check_params(dof3_inst *s, const double *p)
         return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
     if (!(p[P_PROP] >= 0.0))
         return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
-    if (m->inputs.k[U_THR] < 0)
+    if (m->const_throttle)
         for (size_t i = 0; i < m->n_eng; i++)
             if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max)) {
                 return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
@@ -417,6 +420,15 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
         return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
     lv_flight_geodetic(&s->m->world, &kin, 0, 0);
     lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
+    /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
+     * below its weight) has no crossing from above to find: its impact is 1 micrometre below
+     * where it starts. */
+    for (size_t i = 0; i < s->m->n_ends; i++) {
+        const lv_dof3_end *e = &s->m->ends[i];
+        s->m->end_off[i] = e->kind == LV_DOF3_END_IMPACT && kin.h <= e->value
+                               ? e->value - kin.h + 1e-6
+                               : 0.0;
+    }
     s->r0_unit[0] = kin.r_ecef.x / rn;
     s->r0_unit[1] = kin.r_ecef.y / rn;
     s->r0_unit[2] = kin.r_ecef.z / rn;
@@ -445,7 +457,7 @@ static int dof3_g(double t, const double *x, const double *p, double *g, void *i
                 lv_flight_geodetic(&m->world, &kin, 0, 0);
                 have_h = 1;
             }
-            gi = kin.h - e->value;
+            gi = kin.h - e->value + m->end_off[i];
             break;
         case LV_DOF3_END_SPEED_REL:
             gi = lv_v3_norm(kin.v_rel) - e->value;
@@ -605,6 +617,8 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ENGINE_ON] = s->engines_on;
     for (int i = 0; i < U_N; i++)
         y[O_ALPHA + i] = pt.ctl.u[i];
+    if (!s->engines_on) /* engines off (burnt out, a coast): no throttle */
+        y[O_THR] = 0.0;
     const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
     const double rn = lv_v3_norm(k->r_ecef);
     const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / rn);
@@ -626,6 +640,13 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     lv_guid_target(&m->guid, k, m->world.planet.a, lv_v3_dot(pt.g_ecef, k->d_ax),
                    &y[O_TGT_DIST], &y[O_TGT_BEAR], &y[O_TGT_OVER]);
     return 0;
+}
+
+/* Why the last callback failed (a table out of range, the atmosphere, a bad parameter). */
+static const char *dof3_last_error_cb(const void *inst)
+{
+    const dof3_inst *s = inst;
+    return s != NULL && s->msg[0] != '\0' ? s->msg : NULL;
 }
 
 /* ---- construction ---------------------------------------------------------------------- */
@@ -746,7 +767,8 @@ static lv_status setup_ends(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
     m->events = calloc(n + 1, sizeof *m->events);
     m->event_names = calloc(n + 1, sizeof *m->event_names);
     m->ends = calloc(n + 1, sizeof *m->ends);
-    if (!m->events || !m->event_names || !m->ends)
+    m->end_off = calloc(n + 1, sizeof *m->end_off);
+    if (!m->events || !m->event_names || !m->ends || !m->end_off)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
     m->events[0] = (lv_event_def){m->event_names[0],
@@ -898,7 +920,24 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     }
     if ((st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
         goto fail;
-    if (m->inputs.k[U_THR] < 0) { /* a constant throttle must lie within every engine's limits */
+    /* one throttle drives every engine: their ranges must overlap */
+    for (size_t i = 0; i < m->n_eng; i++)
+        for (size_t j = 0; j < i; j++)
+            if (m->eng[i].thr_min > m->eng[j].thr_max || m->eng[j].thr_min > m->eng[i].thr_max) {
+                st = lv_fail(err, LV_ERR_INPUT, "dof3: the throttle ranges of engines '%s' [%g, "
+                             "%g] and '%s' [%g, %g] do not overlap: one throttle c_s drives "
+                             "every engine of the stage", m->eng[j].name, m->eng[j].thr_min,
+                             m->eng[j].thr_max, m->eng[i].name, m->eng[i].thr_min,
+                             m->eng[i].thr_max);
+                goto fail;
+            }
+    /* a constant throttle (not a table's, not with the engines off) within the limits */
+    size_t tk;
+    m->const_throttle =
+        m->inputs.k[U_THR] < 0 && cfg->throttle_law.law != LV_THROTTLE_OFF &&
+        !(cfg->steering.law == LV_STEER_ATTITUDE && cfg->steering.table != NULL &&
+          lv_table_out_index(cfg->steering.table, "throttle", &tk, NULL) == LV_OK);
+    if (m->const_throttle) {
         for (size_t i = 0; i < m->n_eng; i++) {
             if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
                 st = lv_fail(err, LV_ERR_INPUT,
@@ -951,6 +990,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .n_domain = 1,
         .domain = m->domain,
         .domain_q = dof3_domain_q,
+        .last_error = dof3_last_error_cb,
         .time_event_name = dof3_time_event_name,
     };
     m->inst.m = m;
@@ -977,6 +1017,7 @@ void lv_dof3_free(lv_dof3 *m)
     free(m->events);
     free(m->event_names);
     free(m->ends);
+    free(m->end_off);
     free(m);
 }
 

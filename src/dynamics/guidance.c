@@ -323,8 +323,8 @@ static void bearing_cs(const lv_guid *g, const lv_flight_kin *k, double cs[2])
     const lv_vec3 d = lv_v3_sub(g->target_r, k->r_ecef);
     const double hn = lv_v3_dot(d, k->n_ax), he = lv_v3_dot(d, k->e_ax);
     const double n = sqrt(hn * hn + he * he);
-    cs[0] = n > 0.0 ? hn / n : 1.0;
-    cs[1] = n > 0.0 ? he / n : 0.0;
+    cs[0] = n > 1e-3 ? hn / n : 1.0; /* within 1 mm of the target's vertical: north */
+    cs[1] = n > 1e-3 ? he / n : 0.0;
 }
 
 int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_kin *k,
@@ -372,9 +372,10 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
         return 0;
     }
     case LV_STEER_GRAVITY_TURN: {
-        if (tau >= s->rise_time + s->kick_time) { /* zero angle of attack */
+        if (tau >= s->rise_time + s->kick_time) { /* zero angle of attack; at rest (no
+                                                      velocity to follow yet): straight up */
             static const double zero[3] = {0.0, 0.0, 0.0};
-            aero_angles(rt, k, a, zero, fpa0, chi0, c, ax);
+            aero_angles(rt, k, a, zero, 0.5 * LV_PI, s->heading, c, ax);
             return 0;
         }
         double pitch = 0.5 * LV_PI;
@@ -445,14 +446,12 @@ double lv_guid_alpha_limited(const lv_guid *g, double alpha, double lift, double
     return n > g->s.n_max ? alpha * g->s.n_max / n : alpha;
 }
 
-static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
-
 double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in *in,
                         const lv_flight_air *a)
 {
     const double slope = in->t_full + in->p_ae; /* dT/dc, N */
     if (!(slope > 0.0))
-        return clamp(c_nom, in->c_min, in->c_max);
+        return c_nom;
     /* acceleration relative to the planet at throttle c: a0 + c a1 */
     const lv_vec3 a0 = lv_v3_sub(in->a_nothrust, lv_v3_scale(in->xb, in->p_ae / in->mass));
     const lv_vec3 a1 = lv_v3_scale(in->xb, slope / in->mass);
@@ -467,7 +466,7 @@ double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in 
         const double up1 = lv_v3_dot(in->up, a1);
         if (!(up1 > 0.0))
             return in->c_max;
-        return clamp((a_req - lv_v3_dot(in->up, a0)) / up1, in->c_min, in->c_max);
+        return (a_req - lv_v3_dot(in->up, a0)) / up1;
     }
     double c = c_nom;
     if (t->g_limit > 0.0) { /* (T(c) + F_aero . x_b) / m <= n g0 */
@@ -488,17 +487,22 @@ double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in 
                 c = cq;
         }
     }
-    return clamp(c, in->c_min, in->c_max);
+    return c;
 }
 
 void lv_guid_target(const lv_guid *g, const lv_flight_kin *k, double radius, double g_up,
                     double *distance, double *bearing, double *overshoot)
 {
-    const lv_vec3 up = lv_v3_unit(k->r_ecef);
     double b[2];
     bearing_cs(g, k, b);
     *bearing = atan2(b[1], b[0]);
-    *distance = radius * atan2(lv_v3_norm(lv_v3_cross(up, g->target)), lv_v3_dot(up, g->target));
+    if (*bearing < 0.0) /* [0, 2 pi), as the headings */
+        *bearing += 2.0 * LV_PI;
+    /* from the point on the ellipsoid below the vehicle (along its geodetic vertical), so that
+     * a vehicle above the target is at distance 0 */
+    const lv_vec3 foot = lv_v3_unit(lv_v3_add(k->r_ecef, lv_v3_scale(k->d_ax, k->h)));
+    *distance =
+        radius * atan2(lv_v3_norm(lv_v3_cross(foot, g->target)), lv_v3_dot(foot, g->target));
     /* vacuum ballistic flight over flat ground: t_fall from h' = v_up - g t, h(t_f) = 0 */
     const double v_up = -lv_v3_dot(k->v_rel, k->d_ax);
     const double hh = k->h > 0.0 ? k->h : 0.0;
@@ -516,6 +520,14 @@ void lv_guid_euler_local(const lv_flight_kin *k, const lv_flight_axes *ax, doubl
     const double x_d = lv_v3_dot(ax->xb, k->d_ax);
     const double y_d = lv_v3_dot(ax->yb, k->d_ax), z_d = lv_v3_dot(ax->zb, k->d_ax);
     *theta = -asin(x_d > 1.0 ? 1.0 : x_d < -1.0 ? -1.0 : x_d);
-    *psi = atan2(x_e, x_n);
-    *phi = atan2(y_d, z_d);
+    if (x_n * x_n + x_e * x_e > 1e-18) {
+        *psi = atan2(x_e, x_n);
+        *phi = atan2(y_d, z_d);
+    } else { /* body x vertical (gimbal lock): psi and phi are one rotation; phi = 0, so that
+                body y = (-sin psi, cos psi, 0) gives psi */
+        *psi = atan2(-lv_v3_dot(ax->yb, k->n_ax), lv_v3_dot(ax->yb, k->e_ax));
+        *phi = 0.0;
+    }
+    if (*psi < 0.0) /* [0, 2 pi), as the headings */
+        *psi += 2.0 * LV_PI;
 }

@@ -98,7 +98,9 @@ typedef struct lv_thr_in {
     double drho_dh;     /* kg/m^4 (q_max only) */
 } lv_thr_in;
 
-/* The throttle of law `t` given the nominal throttle `c_nom` (in [c_min, c_max] after). */
+/* The throttle of law `t` given the nominal throttle `c_nom`, before the engines' clamp into
+ * [c_min, c_max]: outside it the law asks for more (or less) than the engines can give and
+ * its limit does not hold there. */
 double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in *in,
                         const lv_flight_air *a);
 

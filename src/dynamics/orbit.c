@@ -38,7 +38,9 @@ void lv_orbit_elements(double gm, const double r_in[3], const double v_in[3], lv
     el->a = energy != 0.0 ? -gm / (2.0 * energy) : INFINITY;
     el->i = atan2(hypot(h.x, h.y), h.z);
     el->r_peri = p / (1.0 + e);
-    el->r_apo = e < 1.0 ? p / (1.0 - e) : INFINITY;
+    /* bound (negative energy): a (1 + e), finite also for a radial (rectilinear, e = 1) path;
+     * p / (1 - e) would divide by zero there */
+    el->r_apo = energy < 0.0 ? el->a * (1.0 + e) : INFINITY;
 
     const double eps = 1e-11;
     const int equatorial = nn <= eps * hn;

@@ -265,3 +265,27 @@ int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_n
         return 0;
     return isnan(h) ? 1 : -1; /* outside the table under extrap: error: stop */
 }
+
+lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bias[3],
+                                lv_wind **out, lv_err *err)
+{
+    if (w == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: NULL argument");
+    *out = NULL;
+    const double b[W_N] = { bias ? bias[0] : 0.0, bias ? bias[1] : 0.0, bias ? bias[2] : 0.0 };
+    if (w->tab == NULL)
+        return lv_wind_create_const(scale * w->c[W_NORTH] + b[0], scale * w->c[W_EAST] + b[1],
+                                    scale * w->c[W_DOWN] + (w->has_down ? b[2] : 0.0), out, err);
+    lv_wind *c = calloc(1, sizeof *c);
+    if (c == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
+    const double s[W_N] = { scale, scale, scale };
+    c->has_down = w->has_down;
+    lv_status st = lv_table_create_affine(w->tab, s, b, &c->tab, err);
+    if (st != LV_OK) {
+        lv_wind_free(c);
+        return lv_fail_prefix(err, st, "wind");
+    }
+    *out = c;
+    return LV_OK;
+}

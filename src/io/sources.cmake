@@ -6,5 +6,6 @@ list(APPEND LV_SOURCES
   src/io/numparse.cc
   src/io/result_mat.c
   src/io/matio_dl.c
+  src/io/hdf5_dl.c
   src/io/table_load.c
   src/io/atomic.c)

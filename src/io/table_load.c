@@ -18,6 +18,7 @@
 
 #include "core/names.h"
 #include "core/status.h"
+#include "io/hdf5_dl.h"
 #include "io/table_load.h"
 #include "lvsim/lv_table.h"
 
@@ -529,7 +530,7 @@ static int h5_class(hid_t obj, char *cls, size_t cap)
         H5Sget_simple_extent_npoints(sp) == 1) {
         if (H5Tis_variable_str(t) > 0) {
             char *s = NULL;
-            hid_t mt = H5Tcopy(H5T_C_S1);
+            hid_t mt = H5Tcopy(lv_h5_c_s1());
             if (mt >= 0 && H5Tset_size(mt, H5T_VARIABLE) >= 0 && H5Aread(a, mt, &s) >= 0 &&
                 s != NULL) {
                 snprintf(cls, cap, "%s", s);
@@ -646,7 +647,7 @@ static lv_status h5_read_dataset(mat_src *s, const char *obj, const char *shown,
         st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", s->path);
         goto done;
     }
-    if (out->n > 0 && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out->v) < 0) {
+    if (out->n > 0 && H5Dread(ds, lv_h5_native_double(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out->v) < 0) {
         mat_arr_free(out);
         st = lv_fail(err, LV_ERR_IO, "%s: variable '%s': HDF5 read failed", s->path, shown);
     }

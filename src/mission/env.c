@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "mission/dispersion.h"
 #include "mission/phase_type.h"
 
 void lv_mission_env_clear(lv_mission_env *env)
@@ -178,9 +179,16 @@ lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err
     if (st == LV_OK && e->wind_const && changed(bc, e->wind_ned, 3) &&
         (st = wind_const(e, bc->vals, &pe->own_wind, err)) == LV_OK)
         pe->wind = pe->own_wind;
+    if (st == LV_OK && lv_run_tables_wind(bc->tables) != NULL) /* a dispersed wind table */
+        pe->wind = lv_run_tables_wind(bc->tables);
     if (st != LV_OK) {
         lv_phase_env_clear(pe);
         return lv_fail_prefix(err, st, "environment");
     }
     return LV_OK;
+}
+
+const lv_table *lv_build_table(const lv_build_ctx *bc, const lv_table *t)
+{
+    return lv_run_tables_get(bc->tables, t);
 }

@@ -213,6 +213,7 @@ typedef struct lv_mission_def {
     lv_slot_def *slots;
     size_t cap_slots;
     lv_targeting_def *targeting; /* the `targeting:` section, or NULL */
+    struct lv_disp_def *disp; /* `dispersions:` (mission/dispersion.h), or NULL */
 } lv_mission_def;
 
 /* Parse and validate a mission file. Errors are "file:line:column: message". */

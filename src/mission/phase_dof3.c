@@ -174,10 +174,31 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
                                   "place (the attitude law takes angles and a table)", ph->name,
                                   angles[i]);
     }
-    if (cfg->guid.thr_given && cfg->guid.thr_value != LV_NO_SLOT && in != NULL &&
-        in->kind == LV_YNODE_MAP && lv_pk_get(in, "throttle") != NULL)
-        return lv_pk_fail(c, lv_pk_key(in, "throttle"), "phase '%s', inputs: throttle is also "
-                          "given as throttle.value: give it once", ph->name);
+    /* one source for the throttle: inputs.throttle, throttle.value or the attitude table's
+     * "throttle" output, and none where the throttle law decides (off, landing) */
+    const lv_ynode *in_thr = in != NULL && in->kind == LV_YNODE_MAP ? lv_pk_key(in, "throttle")
+                                                                      : NULL;
+    const lv_ynode *thr = lv_pk_get(n, "throttle");
+    const lv_ynode *thr_val = thr != NULL && thr->kind == LV_YNODE_MAP ? lv_pk_key(thr, "value")
+                                                                         : NULL;
+    size_t tk;
+    const int table_thr = cfg->guid.given && cfg->guid.law == LV_STEER_ATTITUDE &&
+                          cfg->guid.table != NULL &&
+                          lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK;
+    if (in_thr != NULL && thr_val != NULL)
+        return lv_pk_fail(c, in_thr, "phase '%s', inputs: throttle is also given as "
+                          "throttle.value: give it once", ph->name);
+    if (table_thr && (in_thr != NULL || thr_val != NULL))
+        return lv_pk_fail(c, in_thr != NULL ? in_thr : thr_val, "phase '%s': the attitude "
+                          "table gives the throttle (its output 'throttle'): give it once",
+                          ph->name);
+    if (cfg->guid.thr_given && cfg->guid.thr_law != LV_THROTTLE_NOMINAL &&
+        (in_thr != NULL || table_thr))
+        return lv_pk_fail(c, in_thr != NULL ? in_thr : lv_pk_key(n, "throttle"),
+                          "phase '%s': the throttle is '%s' (throttle: %s): a throttle %s has no "
+                          "effect", ph->name, cfg->guid.thr_law == LV_THROTTLE_OFF ? "off"
+                          : "the landing law's", cfg->guid.thr_law == LV_THROTTLE_OFF ? "off"
+                          : "{landing: ..}", in_thr != NULL ? "in inputs" : "in the attitude table");
     return LV_OK;
 }
 
@@ -280,7 +301,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
             ec->exit_area = val(bc, ed->exit_area);
             ec->throttle_min = val(bc, ed->throttle_min);
             ec->throttle_max = val(bc, ed->throttle_max);
-            ec->table = ed->table;
+            ec->table = lv_build_table(bc, ed->table);
         }
     }
     cfg.n_engines = ne;
@@ -314,6 +335,14 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.throttle = pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT
                        ? bc->vals[pc->guid.thr_value]
                        : bc->vals[pc->u[3]];
+    /* a throttle nobody wrote is full throttle: the most every engine accepts (1 unless an
+     * engine's throttle_max is lower) */
+    const lv_slot_def *ts = &d->slots[pc->u[3]];
+    if (!(pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT) && ts->loc.line == 0 &&
+        cfg.throttle == ts->value)
+        for (size_t e = 0; e < ne; e++)
+            if (s->engines[e].throttle_max < cfg.throttle)
+                cfg.throttle = s->engines[e].throttle_max;
     cfg.inputs = pc->inputs;
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &cfg.throttle_law);
     /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an

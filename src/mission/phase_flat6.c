@@ -158,7 +158,7 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
             double thrust = val(bc, ed->thrust_vac), mdot = val(bc, ed->mdot);
             if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac != LV_NO_SLOT)
                 mdot = thrust / (val(bc, ed->isp_vac) * LV_G0);
-            s->engines[e0 + e] = (lv_flat_engine){ed->table, ed->thrust_out, ed->mdot_out, thrust,
+            s->engines[e0 + e] = (lv_flat_engine){lv_build_table(bc, ed->table), ed->thrust_out, ed->mdot_out, thrust,
                                                   mdot, ed->count};
         }
         s->stages[i] = (lv_flat_stage){sd->name, val(bc, sd->dry_mass), bc->prop[si],

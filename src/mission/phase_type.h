@@ -58,7 +58,12 @@ struct lv_build_ctx {
     size_t k;           /* the phase */
     const double *vals; /* [def->n_slots]: the run's value of every slot */
     const double *prop; /* [def->n_stages]: kg of propellant left in each stage at the start */
+    const struct lv_run_tables *tables; /* the run's dispersed tables (dispersion.h), or NULL */
 };
+
+/* The table a phase flies for the definition's table `t`: the run's dispersed copy (a scale
+ * factor or bias drawn for the run: dispersion.h), or `t` itself. Borrowed for the build. */
+const lv_table *lv_build_table(const lv_build_ctx *bc, const lv_table *t);
 
 /* A built phase model: what one simulation of the phase gets. */
 typedef struct lv_phase_model lv_phase_model;

@@ -19,7 +19,9 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "core/units.h"
+#include "lvsim/lv_dispersion.h"
 #include "lvsim/lv_io.h"
+#include "mission/dispersion.h"
 #include "mission/mission_rt.h"
 
 /* ---- the run object ---------------------------------------------------------------------- */
@@ -44,6 +46,7 @@ struct lv_run {
     double *vals;         /* [n_slots] */
     run_phase *ph;        /* [n_phases] */
     size_t simulated;     /* phases simulated by the last execute */
+    lv_run_tables *tables; /* copies of the dispersed tables with this run's factors, or NULL */
     pthread_mutex_t lock;
     pthread_cond_t cv;
 };
@@ -81,6 +84,7 @@ void lv_run_free(lv_run *r)
     }
     free(r->ph);
     free(r->vals);
+    lv_run_tables_free(r->tables);
     pthread_mutex_destroy(&r->lock);
     pthread_cond_destroy(&r->cv);
     free(r);
@@ -274,7 +278,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     /* the stage book: what the parent left, or the run's propellant loads */
     for (size_t s = 0; s < d->n_stages; s++)
         c->prop[s] = par ? par->prop_end[s] : v[d->stages[s].propellant_mass];
-    const lv_build_ctx bc = {d, &m->env, k, v, c->prop};
+    const lv_build_ctx bc = {d, &m->env, k, v, c->prop, r->tables};
     lv_status st = lv_phase_model_build(&bc, &c->pm, err);
     if (st != LV_OK) {
         lv_phase_call_free(c);
@@ -360,7 +364,8 @@ lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
 {
     if (k >= r->m->def->n_phases)
         return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
-    return prepare(r, k, NULL, out, err);
+    lv_status st = lv_run_tables_update(r->m->def, r->m->env.wind, r->vals, &r->tables, err);
+    return st != LV_OK ? st : prepare(r, k, NULL, out, err);
 }
 
 /* The phase's result from a finished call (the run's lock is held when workers run). */
@@ -589,6 +594,10 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
     if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
                        strerror(errno));
+    /* the dispersed tables with this run's factors (phase builds only read them) */
+    lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, &r->tables, err);
+    if (tst != LV_OK)
+        return tst;
     /* what runs: changed, never run, failed, skipped, and every descendant of those */
     r->simulated = 0;
     unsigned char *need = NULL; /* opt->want and their ancestors */
@@ -819,4 +828,26 @@ lv_status lv_run_body_trajectory(const lv_run *r, size_t s, lv_body_traj **out, 
     b->pub = (lv_body_traj){d->stages[s].name, at, nc, b->names, b->units, v, phase};
     *out = &b->pub;
     return LV_OK;
+}
+
+/* ---- dispersions (lv_dispersion.h) ------------------------------------------------------ */
+
+lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values, lv_err *err)
+{
+    const lv_mission *m = r->m;
+    const lv_disp_def *dd = m->def->disp;
+    if (dd == NULL)
+        return LV_OK;
+    double buf[256], *v = values != NULL ? values : dd->n <= 256 ? buf : NULL;
+    if (v == NULL && (v = malloc(dd->n * sizeof *v)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_mission_disp_draw(m, seed, run, v);
+    lv_status st = LV_OK;
+    for (size_t j = 0; j < dd->n && st == LV_OK; j++)
+        st = lv_run_set_index(r, dd->p[j].slot, dd->p[j].deg ? v[j] * LV_DEG : v[j], err);
+    if (st != LV_OK)
+        lv_fail_prefix(err, st, "run %llu: dispersion", (unsigned long long)run);
+    if (v != values && v != buf)
+        free(v);
+    return st;
 }

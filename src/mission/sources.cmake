@@ -7,6 +7,8 @@ list(APPEND LV_SOURCES
   src/mission/aero_def.c
   src/mission/guidance_def.c
   src/mission/targeting_def.c
+  src/mission/dispersion_def.c
+  src/mission/dispersion.c
   src/mission/phase_types.c
   src/mission/phase_flat6.c
   src/mission/phase_dof3.c

@@ -13,33 +13,59 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "campaign/mc_plot.h"
 #include "core/status.h"
 #include "post/plot.h"
 
 static const char anchor = 0; /* an address inside liblvsim_post */
 
-typedef lv_status (*draw_fn)(const lv_plot_data *, const char *, lv_plot_list *, lv_err *);
-
-lv_status lv_plot_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
-                          lv_err *err)
+/* The module's function `name` (a data pointer: dlsym's), or NULL with err. */
+static void *module_sym(const char *name, lv_err *err)
 {
     Dl_info info;
     char lib[PATH_MAX], path[PATH_MAX + 64];
     if (dladdr(&anchor, &info) == 0 || info.dli_fname == NULL ||
-        realpath(info.dli_fname, lib) == NULL)
-        return lv_fail(err, LV_ERR_IO, "plots: cannot tell where liblvsim_post is, so not "
-                                       "where its plotting module %s is", LV_PLOT_MODULE);
+        realpath(info.dli_fname, lib) == NULL) {
+        lv_fail(err, LV_ERR_IO, "plots: cannot tell where liblvsim_post is, so not where its "
+                                "plotting module %s is", LV_PLOT_MODULE);
+        return NULL;
+    }
     char *slash = strrchr(lib, '/');
     if (slash != NULL)
         *slash = '\0';
     snprintf(path, sizeof path, "%s/lvsim/%s", lib, LV_PLOT_MODULE);
     void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (h == NULL)
-        return lv_fail(err, LV_ERR_IO, "plots: cannot load the plotting module: %s", dlerror());
-    draw_fn fn;
-    void *sym = dlsym(h, "lv_plot_draw_figures");
+    if (h == NULL) {
+        lv_fail(err, LV_ERR_IO, "plots: cannot load the plotting module: %s", dlerror());
+        return NULL;
+    }
+    void *sym = dlsym(h, name);
     if (sym == NULL)
-        return lv_fail(err, LV_ERR_IO, "plots: %s has no lv_plot_draw_figures", path);
+        lv_fail(err, LV_ERR_IO, "plots: %s has no %s", path, name);
+    return sym;
+}
+
+typedef lv_status (*draw_fn)(const lv_plot_data *, const char *, lv_plot_list *, lv_err *);
+typedef lv_status (*mc_draw_fn)(const lv_mc_data *, const char *, lv_mc_figs *, lv_err *);
+
+lv_status lv_plot_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                          lv_err *err)
+{
+    void *sym = module_sym("lv_plot_draw_figures", err);
+    if (sym == NULL)
+        return err ? err->code : LV_ERR_IO;
+    draw_fn fn;
     memcpy(&fn, &sym, sizeof fn); /* POSIX: a data pointer from dlsym names the function */
     return fn(d, plotdir, list, err);
+}
+
+lv_status lv_mc_plot_figures(const lv_mc_data *d, const char *outdir, lv_mc_figs *figs,
+                             lv_err *err)
+{
+    void *sym = module_sym("lv_mc_draw_figures", err);
+    if (sym == NULL)
+        return err ? err->code : LV_ERR_IO;
+    mc_draw_fn fn;
+    memcpy(&fn, &sym, sizeof fn);
+    return fn(d, outdir, figs, err);
 }

@@ -61,11 +61,13 @@ if [ $# -ge 2 ]; then
 fi
 
 # The figures' module, <libdir>/lvsim/lvsim_plot.so next to liblvsim_post: it links PLplot and
-# exports lv_plot_draw_figures only (its copies of the helpers stay hidden).
+# exports the two drawing entry points only, the run's and the campaign's figures (its copies of
+# the helpers stay hidden).
 if [ $# -ge 3 ]; then
   mod="$3"
-  if needed "$mod" | grep -q '^libplplot' && [ "$(exported "$mod")" = "lv_plot_draw_figures" ]; then
-    ok "$(basename "$mod") links PLplot and exports lv_plot_draw_figures only"
+  if needed "$mod" | grep -q '^libplplot' &&
+     [ "$(exported "$mod" | tr '\n' ' ')" = "lv_mc_draw_figures lv_plot_draw_figures " ]; then
+    ok "$(basename "$mod") links PLplot and exports lv_plot_draw_figures, lv_mc_draw_figures only"
   else
     bad "$(basename "$mod") exports: $(exported "$mod" | tr '\n' ' ') NEEDED: $(needed "$mod" | tr '\n' ' ')"
   fi

@@ -9,3 +9,13 @@ set_tests_properties(test_outdir PROPERTIES TIMEOUT 180)
 # Every CSV value of the examples' phases reads back to the .mat file's double, bit for bit.
 add_test(NAME test_csv_mat COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_csv_mat.py
          $<TARGET_FILE:lvsim_cli>)
+# lvsim mc (issue 16): databases equal across -j 1 / -j 2, kill -9 then --resume, errors.
+add_test(NAME test_mc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_mc.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# ... and under `mpirun --oversubscribe -np 2` when MPI is built in (OpenMPI leaks at exit by
+# design: not under the sanitizers).
+if(MPI_C_FOUND)
+  add_test(NAME test_mc_mpi COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_mc.sh
+           $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR} 1)
+  set_tests_properties(test_mc_mpi PROPERTIES LABELS no-asan)
+endif()

@@ -1,0 +1,274 @@
+/* cmd_mc.c - `lvsim mc MISSION.yaml -n N`: a Monte Carlo dispersion campaign (lv_campaign.h):
+ * the mission loaded once, its runs on a thread pool (or across MPI ranks under mpirun), a
+ * progress bar, the SQLite database, then statistics, figures, the report and KML.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "common.h"
+#include "lvsim/lv_campaign.h"
+#include "lvsim/lv_dispersion.h"
+#include "mc.h"
+
+static volatile int stop_flag = 0;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_flag = 1;
+}
+
+typedef struct bar {
+    int tty;
+    double last_line; /* elapsed time of the last plain line */
+    uint64_t last_done;
+} bar;
+
+static void fmt_time(double s, char *buf, size_t cap)
+{
+    if (!isfinite(s) || s < 0) {
+        snprintf(buf, cap, "--:--");
+        return;
+    }
+    const long t = (long)(s + 0.5);
+    if (t >= 3600)
+        snprintf(buf, cap, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+    else
+        snprintf(buf, cap, "%ld:%02ld", t / 60, t % 60);
+}
+
+static void show_progress(const lv_campaign_progress *p, void *user)
+{
+    bar *b = user;
+    char eta[32], el[32];
+    fmt_time(p->eta, eta, sizeof eta);
+    fmt_time(p->elapsed, el, sizeof el);
+    const double frac = p->total ? (double)p->done / (double)p->total : 1.0;
+    if (b->tty) {
+        char fill[41];
+        const int w = (int)(40.0 * frac);
+        for (int i = 0; i < 40; i++)
+            fill[i] = i < w ? '#' : '.';
+        fill[40] = '\0';
+        fprintf(stderr, "\r[%s] %5.1f%% %llu/%llu  %.1f runs/s  ETA %s  failed %llu ", fill,
+                100.0 * frac, (unsigned long long)p->done, (unsigned long long)p->total,
+                p->rate, eta, (unsigned long long)p->failed);
+        if (p->done == p->total)
+            fputc('\n', stderr);
+    } else if (p->elapsed - b->last_line >= 10.0 || p->done == p->total ||
+               (p->done - b->last_done) * 10 >= p->total) {
+        fprintf(stderr, "mc: %llu/%llu runs (%.1f%%), %.1f runs/s, elapsed %s, ETA %s, failed "
+                "%llu\n", (unsigned long long)p->done, (unsigned long long)p->total,
+                100.0 * frac, p->rate, el, eta, (unsigned long long)p->failed);
+        b->last_line = p->elapsed;
+        b->last_done = p->done;
+    }
+    fflush(stderr);
+}
+
+static int parse_u64(const char *s, uint64_t *out)
+{
+    if (s == NULL || *s < '0' || *s > '9')
+        return 0;
+    char *end;
+    errno = 0;
+    const unsigned long long v = strtoull(s, &end, 10);
+    if (errno != 0 || *end != '\0')
+        return 0;
+    *out = (uint64_t)v;
+    return 1;
+}
+
+static int run_mc(const cli_cmd *self, int argc, char **argv)
+{
+    const char *path = NULL, *outdir = "lvsim-mc", *method = NULL;
+    uint64_t n = 0, seed = 0, keep = 0;
+    int threads = 1, seed_given = 0, resume = 0, force = 0, plots = 1, stats = 1;
+    double tol = 0.0, dt_out = 0.0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "-n") == 0 || strcmp(a, "-j") == 0 || strcmp(a, "--threads") == 0 ||
+            strcmp(a, "--seed") == 0 || strcmp(a, "-o") == 0 || strcmp(a, "--keep-runs") == 0 ||
+            strcmp(a, "--method") == 0 || strcmp(a, "--tolerance") == 0 ||
+            strcmp(a, "--output-interval") == 0) {
+            const char *v = option_value(argc, argv, &i);
+            if (v == NULL)
+                return usage_error(self, "missing value for option", a);
+            if (strcmp(a, "-n") == 0) {
+                if (!parse_u64(v, &n) || n == 0)
+                    return usage_error(self, "-n needs a run count >= 1, got", v);
+            } else if (strcmp(a, "-j") == 0 || strcmp(a, "--threads") == 0) {
+                if (!parse_int(v, &threads) || threads < 1 || threads > 256)
+                    return usage_error(self, "-j needs a thread count 1..256, got", v);
+            } else if (strcmp(a, "--seed") == 0) {
+                if (!parse_u64(v, &seed))
+                    return usage_error(self, "--seed needs an integer 0..2^64-1, got", v);
+                seed_given = 1;
+            } else if (strcmp(a, "--keep-runs") == 0) {
+                if (!parse_u64(v, &keep))
+                    return usage_error(self, "--keep-runs needs a count >= 0, got", v);
+            } else if (strcmp(a, "--method") == 0) {
+                method = v;
+            } else if (strcmp(a, "--tolerance") == 0) {
+                if (!parse_double(v, &tol) || !(tol > 0.0))
+                    return usage_error(self, "--tolerance needs a number > 0, got", v);
+            } else if (strcmp(a, "--output-interval") == 0) {
+                if (!parse_double(v, &dt_out) || !(dt_out > 0.0))
+                    return usage_error(self, "--output-interval needs seconds > 0, got", v);
+            } else {
+                outdir = v;
+            }
+        } else if (strcmp(a, "--resume") == 0) {
+            resume = 1;
+        } else if (strcmp(a, "--force") == 0) {
+            force = 1;
+        } else if (strcmp(a, "--no-plots") == 0) {
+            plots = 0;
+        } else if (strcmp(a, "--no-stats") == 0) {
+            stats = 0, plots = 0;
+        } else if (is_option(a)) {
+            return usage_error(self, "unknown option", a);
+        } else if (path != NULL) {
+            return usage_error(self, "unexpected argument", a);
+        } else {
+            path = a;
+        }
+    }
+    if (path == NULL)
+        return usage_error(self, "mc needs a mission file", NULL);
+    if (n == 0)
+        return usage_error(self, "mc needs the run count: -n N", NULL);
+    if (resume && force)
+        return usage_error(self, "--resume and --force exclude each other", NULL);
+    lv_mission *m;
+    lv_err err;
+    lv_status st = lv_mission_load(path, &m, &err);
+    if (st != LV_OK)
+        return print_err(NULL, &err, exit_code_for_input(st));
+    if (lv_mission_disp_count(m) == 0) {
+        fprintf(stderr, "lvsim: %s has no 'dispersions:' section: nothing to disperse "
+                "(docs/monte-carlo.md)\n", path);
+        lv_mission_free(m);
+        return EXIT_INPUT;
+    }
+    if (!seed_given && !lv_mission_disp_seed(m, &seed))
+        seed = 1;
+    const int world = mc_mpi_world_size();
+    char db[4200], keep_dir[4200];
+    snprintf(db, sizeof db, "%s/campaign.db", outdir);
+    snprintf(keep_dir, sizeof keep_dir, "%s/runs", outdir);
+    if (mkdir(outdir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "lvsim: cannot create '%s': %s\n", outdir, strerror(errno));
+        lv_mission_free(m);
+        return EXIT_INPUT;
+    }
+    lv_campaign_options o;
+    lv_campaign_options_default(&o);
+    o.n_runs = n;
+    o.seed = seed;
+    o.threads = threads;
+    o.db_path = db;
+    o.resume = resume;
+    o.overwrite = force;
+    o.keep_runs = keep;
+    o.keep_dir = keep > 0 ? keep_dir : NULL;
+    o.method = method;
+    o.tolerance = tol;
+    o.output_interval = dt_out;
+    bar b = { isatty(2), -1e9, 0 };
+    o.progress = show_progress;
+    o.user = &b;
+    o.stop = &stop_flag;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    lv_campaign_progress prog;
+    memset(&prog, 0, sizeof prog);
+    int rank0 = 1;
+    if (world > 1) {
+        st = mc_mpi_run(m, &o, &prog, &rank0, &err);
+    } else {
+        fprintf(stderr, "mc: mission '%s', %llu runs, seed %llu, %d thread%s -> %s\n",
+                lv_mission_name(m), (unsigned long long)n, (unsigned long long)seed, threads,
+                threads == 1 ? "" : "s", db);
+        st = lv_campaign_run(m, &o, &prog, &err);
+    }
+    lv_mission_free(m);
+    if (!rank0)
+        return st == LV_OK ? EXIT_OK : exit_code_for(st);
+    if (st == LV_ERR_CANCELLED) {
+        print_err("lvsim", &err, 0);
+        return 130;
+    }
+    if (st != LV_OK)
+        return print_err("lvsim", &err, exit_code_for(st));
+    printf("mc: %llu runs in %s (%llu this session in %.2f s: %.1f runs/s), %llu with a failed "
+           "phase or an input out of range\n", (unsigned long long)prog.done, db,
+           (unsigned long long)prog.this_session, prog.elapsed, prog.rate,
+           (unsigned long long)prog.failed);
+    if (stats) {
+        lv_err serr;
+        lv_status sst = lv_campaign_stats(db, outdir, &serr);
+        if (sst == LV_OK && plots)
+            sst = lv_campaign_plot(db, outdir, &serr);
+        if (sst != LV_OK)
+            return print_err("lvsim", &serr, exit_code_for_input(sst));
+        printf("statistics: %s/stats.json, stats.csv, ellipses.csv, outcomes.csv, "
+               "sensitivity.csv, footprint.kml%s\n", outdir, plots ? ", plots/, index.html" : "");
+    }
+    return EXIT_OK;
+}
+
+const cli_cmd cli_cmd_mc = {
+    "mc",
+    "Monte Carlo dispersion campaign: N runs, SQLite database, statistics",
+    "MISSION.yaml -n N [-j THREADS] [--seed S] [-o DIR] [--resume] [options]",
+    "Runs N missions with the values the mission's 'dispersions:' section draws for each\n"
+    "run (docs/monte-carlo.md): the mission is loaded once, the runs go to a pool of\n"
+    "threads, and each run's drawn inputs, every phase's end, final values, events and\n"
+    "failure are stored in DIR/campaign.db (SQLite, committed in batches: a killed campaign\n"
+    "keeps every stored run and --resume continues it). Run i draws the same values whatever\n"
+    "-j, the rank count under mpirun, or the order runs finish in. A failing run is an\n"
+    "outcome, never the end of the campaign. Then writes stats.json, stats.csv,\n"
+    "ellipses.csv, outcomes.csv, sensitivity.csv, footprint.kml, plots/ and index.html.\n"
+    "Under 'mpirun -np K lvsim mc ...' rank 0 owns the database and hands out runs in\n"
+    "chunks to every rank (itself included).\n"
+    "\n"
+    "options:\n"
+    "  -n N                    runs 0 .. N-1 (required)\n"
+    "  -j, --threads T         worker threads per process (default 1)\n"
+    "  --seed S                the campaign's seed, 0..2^64-1 (default: the file's\n"
+    "                          dispersions: seed, else 1)\n"
+    "  -o DIR                  output folder (default lvsim-mc)\n"
+    "  --resume                continue DIR/campaign.db (same mission file, seed, options)\n"
+    "  --force                 replace an existing DIR/campaign.db\n"
+    "  --keep-runs K           runs 0 .. K-1 also write their result files to DIR/runs/\n"
+    "                          run_<i>/ (phases, summary.json) (default 0)\n"
+    "  --method M, --tolerance T   every phase's integration method / tolerance\n"
+    "  --output-interval S     every phase's output grid (default none: start and end only)\n"
+    "  --no-plots              statistics without plots/ and index.html\n"
+    "  --no-stats              the database only\n",
+    run_mc,
+};
+
+#ifndef LV_WITH_MPI
+int mc_mpi_world_size(void) { return 1; }
+
+lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
+                     int *rank0, lv_err *err)
+{
+    *rank0 = 1;
+    return lv_campaign_run(m, o, out, err);
+}
+#endif

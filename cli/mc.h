@@ -1,0 +1,18 @@
+/* mc.h - `lvsim mc` under mpirun (cli/mc_mpi.c, built only when MPI is found): the same
+ * campaign split across ranks; rank 0 owns the database and hands out run indices in chunks
+ * as ranks ask for them (dynamic load balancing). */
+#ifndef LVSIM_CLI_MC_H
+#define LVSIM_CLI_MC_H
+
+#include "lvsim/lv_campaign.h"
+
+/* The MPI world's size when this process was started by mpirun (OpenMPI, or a PMI launcher),
+ * else 1; without MPI support always 1. */
+int mc_mpi_world_size(void);
+
+/* Runs the campaign on every rank (each with o->threads worker threads; rank 0 also stores).
+ * Returns the library status on rank 0 (*rank0 = 1), LV_OK elsewhere (*rank0 = 0). */
+lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
+                     int *rank0, lv_err *err);
+
+#endif

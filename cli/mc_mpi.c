@@ -1,0 +1,472 @@
+/* mc_mpi.c - `mpirun -np K lvsim mc ...`: one campaign across K ranks (built only when MPI
+ * is found; OpenMPI from Debian). Rank 0 opens the database and owns the list of runs still
+ * to do; every rank, rank 0 included, asks for a chunk of run indices when it is ready for
+ * more (dynamic load balancing; one request kept ahead, so a rank never waits for work), runs
+ * it on its threads and sends the records back; rank 0 stores them (lv_campaign_store), so the
+ * database is the threaded run's, whatever K. Only the main thread of a rank calls MPI
+ * (MPI_THREAD_FUNNELED): rank 0's runs go to its worker threads. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <mpi.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "mc.h"
+
+/* A growable byte buffer: a batch of records, each preceded by its length (u64), after the
+ * count (u64). */
+typedef struct lv_bytes {
+    unsigned char *p;
+    size_t n, cap;
+    int nomem;
+} lv_bytes;
+
+static void put(lv_bytes *b, const void *src, size_t n)
+{
+    if (b->nomem)
+        return;
+    if (b->n + n > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->n + n)
+            cap *= 2;
+        unsigned char *p = realloc(b->p, cap);
+        if (p == NULL) {
+            b->nomem = 1;
+            return;
+        }
+        b->p = p;
+        b->cap = cap;
+    }
+    memcpy(b->p + b->n, src, n);
+    b->n += n;
+}
+
+static void put_u64(lv_bytes *b, uint64_t v) { put(b, &v, sizeof v); }
+
+static lv_status mc_fail(lv_err *err, lv_status code, const char *msg)
+{
+    if (err != NULL) {
+        err->code = code;
+        snprintf(err->msg, sizeof err->msg, "%s", msg);
+    }
+    return code;
+}
+
+enum { TAG_REQ = 1, TAG_WORK = 2, TAG_RECS = 3 };
+
+int mc_mpi_world_size(void)
+{
+    const char *v = getenv("OMPI_COMM_WORLD_SIZE");
+    if (v == NULL)
+        v = getenv("PMI_SIZE");
+    return v != NULL && atoi(v) > 1 ? atoi(v) : 1;
+}
+
+static void nap(long ns)
+{
+    struct timespec ts = { 0, ns };
+    nanosleep(&ts, NULL);
+}
+
+/* ---- running a chunk on a rank's threads -------------------------------------------------- */
+
+typedef struct chunk_job {
+    lv_mc_worker **w;
+    int threads;
+    const uint64_t *runs;
+    size_t n, next;
+    lv_bytes *out;        /* [n] each run's record */
+    lv_status st;
+    lv_err err;
+    pthread_mutex_t lock;
+} chunk_job;
+
+static void *chunk_thread(void *arg)
+{
+    chunk_job *j = ((void **)arg)[0];
+    lv_mc_worker *w = ((void **)arg)[1];
+    for (;;) {
+        pthread_mutex_lock(&j->lock);
+        const size_t i = j->st == LV_OK && j->next < j->n ? j->next++ : (size_t)-1;
+        pthread_mutex_unlock(&j->lock);
+        if (i == (size_t)-1)
+            break;
+        const void *rec;
+        size_t len;
+        lv_err err;
+        lv_status st = lv_mc_worker_run(w, j->runs[i], &rec, &len, &err);
+        pthread_mutex_lock(&j->lock);
+        if (st != LV_OK && j->st == LV_OK) {
+            j->st = st;
+            j->err = err;
+        } else if (st == LV_OK) {
+            j->out[i].n = 0;
+            put_u64(&j->out[i], len); /* length prefix, then the record */
+            put(&j->out[i], rec, len);
+        }
+        pthread_mutex_unlock(&j->lock);
+    }
+    return NULL;
+}
+
+/* Runs `runs` on the workers' threads; the records, each preceded by its length, go to *batch
+ * (u64 count first). */
+static lv_status run_chunk(lv_mc_worker **w, int threads, const uint64_t *runs, size_t n,
+                           lv_bytes *batch, lv_err *err)
+{
+    chunk_job j;
+    memset(&j, 0, sizeof j);
+    j.w = w;
+    j.threads = threads;
+    j.runs = runs;
+    j.n = n;
+    j.out = calloc(n + 1, sizeof *j.out);
+    if (j.out == NULL)
+        return mc_fail(err, LV_ERR_NOMEM, "out of memory");
+    pthread_mutex_init(&j.lock, NULL);
+    pthread_t tid[256];
+    void *args[256][2];
+    int started = 0;
+    for (int t = 1; t < threads && (size_t)t < n; t++) {
+        args[t][0] = &j;
+        args[t][1] = w[t];
+        if (pthread_create(&tid[started], NULL, chunk_thread, args[t]) == 0)
+            started++;
+    }
+    args[0][0] = &j;
+    args[0][1] = w[0];
+    chunk_thread(args[0]);
+    for (int t = 0; t < started; t++)
+        pthread_join(tid[t], NULL);
+    pthread_mutex_destroy(&j.lock);
+    lv_status st = j.st;
+    if (st != LV_OK && err)
+        *err = j.err;
+    batch->n = 0;
+    batch->nomem = 0;
+    put_u64(batch, n);
+    for (size_t i = 0; i < n; i++) {
+        put(batch, j.out[i].p, j.out[i].n);
+        if ((j.out[i].nomem || batch->nomem) && st == LV_OK)
+            st = mc_fail(err, LV_ERR_NOMEM, "out of memory");
+        free(j.out[i].p);
+    }
+    free(j.out);
+    return st;
+}
+
+/* ---- rank 0: the writer and dispatcher ------------------------------------------------------- */
+
+typedef struct local_ctx {
+    lv_mc_worker **w;
+    int threads;
+    pthread_mutex_t lock;
+    /* work handed to this rank's own threads */
+    uint64_t *runs;
+    size_t n_runs;
+    int has_work, no_more, busy;
+    /* a finished chunk waiting to be stored */
+    lv_bytes done;
+    int has_done;
+    lv_status st;
+    lv_err err;
+} local_ctx;
+
+static void *local_thread(void *arg)
+{
+    local_ctx *lc = arg;
+    lv_bytes batch = { 0 };
+    for (;;) {
+        pthread_mutex_lock(&lc->lock);
+        while (!lc->has_work && !lc->no_more) {
+            pthread_mutex_unlock(&lc->lock);
+            nap(200000);
+            pthread_mutex_lock(&lc->lock);
+        }
+        if (!lc->has_work) {
+            pthread_mutex_unlock(&lc->lock);
+            break;
+        }
+        uint64_t *runs = lc->runs;
+        const size_t n = lc->n_runs;
+        lc->runs = NULL;
+        lc->has_work = 0;
+        lc->busy = 1;
+        pthread_mutex_unlock(&lc->lock);
+        lv_err err;
+        lv_status st = run_chunk(lc->w, lc->threads, runs, n, &batch, &err);
+        free(runs);
+        pthread_mutex_lock(&lc->lock);
+        while (lc->has_done) { /* the writer has not taken the last one yet */
+            pthread_mutex_unlock(&lc->lock);
+            nap(100000);
+            pthread_mutex_lock(&lc->lock);
+        }
+        if (st != LV_OK) {
+            lc->st = st;
+            lc->err = err;
+        } else {
+            lv_bytes t = lc->done;
+            lc->done = batch;
+            batch = t;
+            lc->has_done = 1;
+        }
+        lc->busy = 0;
+        pthread_mutex_unlock(&lc->lock);
+        if (st != LV_OK)
+            break;
+    }
+    free(batch.p);
+    return NULL;
+}
+
+static lv_status store_batch(lv_campaign *c, const unsigned char *p, size_t len, lv_err *err)
+{
+    uint64_t n, rl;
+    size_t at = sizeof n;
+    if (len < sizeof n)
+        return mc_fail(err, LV_ERR_INPUT, "campaign: a malformed batch from a rank");
+    memcpy(&n, p, sizeof n);
+    for (uint64_t i = 0; i < n; i++) {
+        if (len - at < sizeof rl)
+            return mc_fail(err, LV_ERR_INPUT, "campaign: a malformed batch from a rank");
+        memcpy(&rl, p + at, sizeof rl);
+        at += sizeof rl;
+        if (rl > len - at)
+            return mc_fail(err, LV_ERR_INPUT, "campaign: a malformed batch from a rank");
+        lv_status st = lv_campaign_store(c, p + at, (size_t)rl, err);
+        if (st != LV_OK)
+            return st;
+        at += (size_t)rl;
+    }
+    return LV_OK;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int world,
+                       lv_mc_worker **w, lv_campaign_progress *out, lv_err *err)
+{
+    lv_campaign *c = NULL;
+    lv_status st = lv_campaign_open(m, o, &c, err);
+    if (st != LV_OK) {
+        /* tell the others there is nothing to do */
+        for (int r = 1; r < world; r++) {
+            uint64_t dummy;
+            MPI_Recv(&dummy, 0, MPI_BYTE, r, TAG_REQ, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            MPI_Send(&dummy, 0, MPI_UINT64_T, r, TAG_WORK, MPI_COMM_WORLD);
+        }
+        return st;
+    }
+    const uint64_t *todo;
+    const size_t n_todo = lv_campaign_todo(c, &todo);
+    size_t next = 0;
+    const int threads = o->threads > 0 ? o->threads : 1;
+    fprintf(stderr, "mc: mission '%s', %llu runs, seed %llu, %d ranks x %d thread%s -> %s\n",
+            lv_mission_name(m), (unsigned long long)o->n_runs, (unsigned long long)o->seed, world,
+            threads, threads == 1 ? "" : "s", o->db_path);
+    local_ctx lc;
+    memset(&lc, 0, sizeof lc);
+    lc.w = w;
+    lc.threads = threads;
+    pthread_mutex_init(&lc.lock, NULL);
+    pthread_t tid;
+    const int local = pthread_create(&tid, NULL, local_thread, &lc) == 0;
+    if (!local)
+        lc.no_more = 1; /* the other ranks do it all */
+    int finished_ranks = 0;   /* ranks told "no more" */
+    int outstanding = 0;      /* chunks handed to other ranks and not back yet */
+    double last_commit = now_s(), last_prog = last_commit;
+    unsigned char *buf = NULL;
+    size_t buf_cap = 0;
+    /* the chunk size: about 8 chunks per worker thread over what is left, 1 .. 64 runs */
+    const size_t total_threads = (size_t)world * (size_t)threads;
+    for (;;) {
+        const int stopping = st != LV_OK || (o->stop && *o->stop);
+        size_t want = (n_todo - next) / (8 * total_threads);
+        want = want < 1 ? 1 : want > 64 ? 64 : want;
+        /* the local threads */
+        pthread_mutex_lock(&lc.lock);
+        if (!lc.has_work && !lc.no_more) {
+            if (next < n_todo && !stopping) {
+                const size_t k = n_todo - next < want ? n_todo - next : want;
+                lc.runs = malloc(k * sizeof *lc.runs);
+                if (lc.runs != NULL) {
+                    memcpy(lc.runs, todo + next, k * sizeof *lc.runs);
+                    lc.n_runs = k;
+                    lc.has_work = 1;
+                    next += k;
+                }
+            } else {
+                lc.no_more = 1;
+            }
+        }
+        int took = 0;
+        lv_bytes mine = { 0 };
+        if (lc.has_done) {
+            mine = lc.done;
+            memset(&lc.done, 0, sizeof lc.done);
+            lc.has_done = 0;
+            took = 1;
+        }
+        if (lc.st != LV_OK && st == LV_OK) {
+            st = lc.st;
+            if (err)
+                *err = lc.err;
+        }
+        const int local_idle = lc.no_more && !lc.has_work && !lc.busy && !lc.has_done;
+        pthread_mutex_unlock(&lc.lock);
+        if (took) {
+            if (st == LV_OK)
+                st = store_batch(c, mine.p, mine.n, err);
+            free(mine.p);
+        }
+        /* messages from the other ranks */
+        int flag = 0;
+        MPI_Status ms;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &ms);
+        if (flag) {
+            int count = 0;
+            MPI_Get_count(&ms, MPI_BYTE, &count);
+            if ((size_t)count > buf_cap) {
+                unsigned char *nb = realloc(buf, (size_t)count);
+                if (nb == NULL)
+                    MPI_Abort(MPI_COMM_WORLD, 1);
+                buf = nb;
+                buf_cap = (size_t)count;
+            }
+            MPI_Recv(buf, count, MPI_BYTE, ms.MPI_SOURCE, ms.MPI_TAG, MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE);
+            if (ms.MPI_TAG == TAG_REQ) {
+                size_t k = 0;
+                if (next < n_todo && !stopping) {
+                    k = n_todo - next < want ? n_todo - next : want;
+                    outstanding++;
+                } else {
+                    finished_ranks++;
+                }
+                MPI_Send(todo + next, (int)k, MPI_UINT64_T, ms.MPI_SOURCE, TAG_WORK,
+                         MPI_COMM_WORLD);
+                next += k;
+            } else if (ms.MPI_TAG == TAG_RECS) {
+                outstanding--;
+                if (st == LV_OK)
+                    st = store_batch(c, buf, (size_t)count, err);
+            }
+        } else if (!took) {
+            nap(500000); /* 0.5 ms: a rank's request waits at most this */
+        }
+        const double t = now_s();
+        const int done = finished_ranks == world - 1 && outstanding == 0 &&
+                         (local_idle || !local);
+        if (st == LV_OK && (t - last_commit > 0.5 || done)) {
+            st = lv_campaign_commit(c, err);
+            last_commit = t;
+        }
+        if (o->progress && (t - last_prog > 0.25 || done)) {
+            lv_campaign_progress p;
+            lv_campaign_get_progress(c, &p);
+            o->progress(&p, o->user);
+            last_prog = t;
+        }
+        if (done)
+            break;
+    }
+    if (local)
+        pthread_join(tid, NULL);
+    pthread_mutex_destroy(&lc.lock);
+    free(lc.done.p);
+    free(lc.runs);
+    free(buf);
+    lv_campaign_get_progress(c, out);
+    lv_err cerr;
+    const lv_status cst = lv_campaign_close(c, &cerr);
+    if (st == LV_OK && cst != LV_OK) {
+        st = cst;
+        if (err)
+            *err = cerr;
+    }
+    if (st == LV_OK && o->stop && *o->stop && out->done < out->total)
+        st = mc_fail(err, LV_ERR_CANCELLED, "campaign stopped (continue with --resume)");
+    return st;
+}
+
+/* ---- the other ranks -------------------------------------------------------------------------- */
+
+static lv_status worker_rank(lv_mc_worker **w, int threads, lv_err *err)
+{
+    uint64_t *cur = malloc(64 * sizeof *cur), *nxt = malloc(64 * sizeof *nxt);
+    lv_bytes batch = { 0 };
+    lv_status st = LV_OK;
+    if (cur == NULL || nxt == NULL)
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    MPI_Status ms;
+    int n = 0;
+    MPI_Send(NULL, 0, MPI_BYTE, 0, TAG_REQ, MPI_COMM_WORLD);
+    MPI_Recv(cur, 64, MPI_UINT64_T, 0, TAG_WORK, MPI_COMM_WORLD, &ms);
+    MPI_Get_count(&ms, MPI_UINT64_T, &n);
+    while (n > 0) {
+        /* ask for the next chunk now: it is there when this one is done */
+        MPI_Request req;
+        MPI_Send(NULL, 0, MPI_BYTE, 0, TAG_REQ, MPI_COMM_WORLD);
+        MPI_Irecv(nxt, 64, MPI_UINT64_T, 0, TAG_WORK, MPI_COMM_WORLD, &req);
+        st = run_chunk(w, threads, cur, (size_t)n, &batch, err);
+        if (st != LV_OK) {
+            fprintf(stderr, "lvsim: rank: %s\n", err ? err->msg : "error");
+            MPI_Abort(MPI_COMM_WORLD, 1);
+        }
+        MPI_Send(batch.p, (int)batch.n, MPI_BYTE, 0, TAG_RECS, MPI_COMM_WORLD);
+        int flag = 0;
+        while (!flag) { /* poll gently: a blocking wait would spin on a shared core */
+            MPI_Test(&req, &flag, &ms);
+            if (!flag)
+                nap(200000);
+        }
+        MPI_Get_count(&ms, MPI_UINT64_T, &n);
+        uint64_t *t = cur;
+        cur = nxt;
+        nxt = t;
+    }
+    free(cur);
+    free(nxt);
+    free(batch.p);
+    return st;
+}
+
+lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
+                     int *is_rank0, lv_err *err)
+{
+    int provided = 0, rank = 0, world = 1;
+    MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &world);
+    *is_rank0 = rank == 0;
+    memset(out, 0, sizeof *out);
+    const int threads = o->threads > 0 ? (o->threads > 256 ? 256 : o->threads) : 1;
+    lv_mc_worker *w[256];
+    lv_status st = LV_OK;
+    int made = 0;
+    for (; made < threads && st == LV_OK; made++)
+        st = lv_mc_worker_create(m, o, &w[made], err);
+    if (st != LV_OK) {
+        fprintf(stderr, "lvsim: rank %d: %s\n", rank, err ? err->msg : "error");
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    if (rank == 0)
+        st = rank0(m, o, world, w, out, err);
+    else
+        st = worker_rank(w, threads, err);
+    for (int i = 0; i < made; i++)
+        lv_mc_worker_free(w[i]);
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Finalize();
+    return st;
+}
