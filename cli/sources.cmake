@@ -8,6 +8,7 @@ add_executable(lvsim_cli
   cli/cmd_run.c
   cli/cmd_mc.c
   cli/cmd_check.c
+  cli/cmd_target.c
   cli/cmd_params.c
   cli/cmd_compare.c
   cli/cmd_export.c

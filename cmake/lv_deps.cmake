@@ -1,6 +1,6 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
-#   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, cJSON, PLplot,
-#   Nettle (pkg-config).
+#   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, NLopt, cJSON,
+#   PLplot, Nettle (pkg-config).
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
@@ -8,6 +8,8 @@ pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
 # variables that libmatio cannot classify directly. The serial library, as libmatio's.
 pkg_search_module(HDF5 REQUIRED IMPORTED_TARGET hdf5-serial hdf5)
 pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
+# NLopt (Debian: libnlopt-dev): the optimisers of src/target (SLSQP, COBYLA).
+pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
 pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
@@ -65,7 +67,7 @@ add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::YAML Threads::Threads dragonbox::dragonbox lv_fastfloat
+  lv_matio_headers PkgConfig::YAML PkgConfig::NLOPT Threads::Threads dragonbox::dragonbox lv_fastfloat
   ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 

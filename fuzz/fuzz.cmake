@@ -22,9 +22,10 @@ endif()
 
 if(LV_HAVE_LIBFUZZER)
   # The library's sources that loading a mission uses (checking a root phase's start state
-  # sets up its simulation: SUNDIALS too), without runs and post-processing (cJSON, PLplot).
+  # sets up its simulation: SUNDIALS too), without runs, targeting and post-processing (NLopt,
+  # cJSON, PLplot).
   set(_src ${LV_SOURCES})
-  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|run_estimate|phase_types_api|compare)\\.c|post/)")
+  list(FILTER _src EXCLUDE REGEX "^src/(mission/(run|run_estimate|phase_types_api|compare)\\.c|post/|target/)")
   list(PREPEND _src fuzz/fuzz_mission.c)
   # the C++ number formatter and parser (src/io/numfmt.cc, numparse.cc): compiled apart, with
   # clang++, and linked in

@@ -13,6 +13,7 @@ pkgs=(
   libhdf5-dev                          # MAT v7.3 tables libmatio cannot classify (src/io/table_load.c)
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
+  libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
   nettle-dev                           # SHA-256 in the results folder's manifest
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines

@@ -184,6 +184,10 @@ typedef struct lv_run_options {
     /* With outdir: the files of each phase, LV_RESULT_MAT | LV_RESULT_CSV; 0: both (the
      * default); LV_RUN_NO_PHASE_FILES: neither (summary and bodies may still be written). */
     unsigned result_formats;
+    /* [n_phases] or NULL (every phase): nonzero for the phases whose results are wanted
+     * (a targeting loop's constraints). Only those and their ancestors are simulated; a phase
+     * outside them whose inputs changed is left PENDING for a later execute. */
+    const unsigned char *want;
 } lv_run_options;
 
 #define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */

@@ -18,6 +18,7 @@
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"
+#include "lvsim/lv_target.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lv_export.h"
 #include "lvsim/lv_plot.h"

@@ -13,6 +13,7 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "mission/mission_rt.h"
+#include "mission/targeting_def.h"
 
 /* ---- plans ------------------------------------------------------------------------------- */
 
@@ -360,7 +361,8 @@ lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err)
     }
     lv_status st;
     if ((st = lv_mission_env_make(d, &m->env, err)) != LV_OK ||
-        (st = check_and_plan(m, err)) != LV_OK) {
+        (st = check_and_plan(m, err)) != LV_OK ||
+        (st = lv_targeting_def_check(m, err)) != LV_OK) {
         lv_mission_free(m);
         return st;
     }

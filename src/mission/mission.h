@@ -196,6 +196,8 @@ typedef struct lv_phase_def {
 
 /* ---- mission --------------------------------------------------------------------------------- */
 
+typedef struct lv_targeting_def lv_targeting_def; /* targeting_def.h */
+
 typedef struct lv_mission_def {
     char *name;
     char *description;
@@ -213,6 +215,7 @@ typedef struct lv_mission_def {
     size_t n_slots;  /* every number a run may vary */
     lv_slot_def *slots;
     size_t cap_slots;
+    lv_targeting_def *targeting; /* the `targeting:` section, or NULL */
     struct lv_disp_def *disp; /* `dispersions:` (mission/dispersion.h), or NULL */
 } lv_mission_def;
 

@@ -24,6 +24,7 @@
 #include "mission/dispersion.h"
 #include "mission/parse_kit.h"
 #include "mission/phase_type.h"
+#include "mission/targeting_def.h"
 #include "mission/yaml_tree.h"
 
 
@@ -2072,7 +2073,7 @@ static const char *epoch_check(const char *s)
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
-                                        "phases", "dispersions", NULL };
+                                        "phases", "dispersions", "targeting", NULL };
     static const char *const mkeys[] = { "name", "description", "epoch", NULL };
     lv_mission_def *m = c->m;
     const lv_ynode *v, *info;
@@ -2109,7 +2110,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         (st = parse_stages(c, v)) != LV_OK)
         return st;
     if ((st = lv_pk_need(c, root, "top level", "phases", &v)) != LV_OK ||
-        (st = parse_phases(c, v)) != LV_OK)
+        (st = parse_phases(c, v)) != LV_OK ||
+        (st = lv_targeting_def_parse(c, lv_pk_get(root, "targeting"))) != LV_OK)
         return st;
     /* after everything else: it names the parameters the other sections register */
     if ((st = lv_disp_def_parse(c, lv_pk_get(root, "dispersions"))) != LV_OK)
@@ -2255,6 +2257,7 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->set_locs);
     }
     free(m->phases);
+    lv_targeting_def_free(m->targeting);
     lv_disp_def_free(m->disp);
     free(m);
 }

@@ -600,14 +600,25 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
         return tst;
     /* what runs: changed, never run, failed, skipped, and every descendant of those */
     r->simulated = 0;
+    unsigned char *need = NULL; /* opt->want and their ancestors */
+    if (opt && opt->want && (need = calloc(d->n_phases, 1)) != NULL)
+        for (size_t k = 0; k < d->n_phases; k++)
+            for (int j = opt->want[k] ? (int)k : -1; j >= 0 && !need[j]; j = d->phases[j].parent)
+                need[j] = 1;
     for (size_t k = 0; k < d->n_phases; k++) {
         run_phase *p = &r->ph[k];
         const int par = d->phases[k].parent;
         p->claimed = 0;
-        p->todo = p->dirty || p->res.state != LV_PHASE_DONE || (par >= 0 && r->ph[par].todo);
+        p->todo = p->dirty || p->res.state != LV_PHASE_DONE ||
+                  (par >= 0 && (r->ph[par].todo || r->ph[par].res.state != LV_PHASE_DONE));
         if (p->todo)
             phase_clear(p);
+        if (p->todo && need != NULL && !need[k]) { /* not wanted: pending (never run) */
+            p->todo = 0;
+            p->dirty = 1;
+        }
     }
+    free(need);
     int threads = opt && opt->threads > 0 ? opt->threads : 2;
     if (threads > 16)
         threads = 16;

@@ -1,11 +1,12 @@
 # Missions: the YAML parser, the phase-model types and their registry, the loaded mission
-# (immutable), runs of it, sequential versus end-to-end.
+# (immutable), runs of it, sequential versus end-to-end; the `targeting:` section.
 list(APPEND LV_SOURCES
   src/mission/yaml_tree.c
   src/mission/parse.c
   src/mission/env.c
   src/mission/aero_def.c
   src/mission/guidance_def.c
+  src/mission/targeting_def.c
   src/mission/dispersion_def.c
   src/mission/dispersion.c
   src/mission/phase_types.c

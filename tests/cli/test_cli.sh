@@ -323,5 +323,46 @@ d3="$src/examples/dof3-branch/mission.yaml"
 [ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
   && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
 
+# lvsim target (issue 13): a drag-free shot over flat ground that must land 800 m away; the
+# closed form gives gamma = asin(800 g / v^2) / 2 = 25.8387 deg for 100 m/s
+shot() { # shot RANGE: the mission with its targeting section
+  cat <<YAML
+mission: {name: shot}
+environment:
+  world: planet
+  planet: {name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}
+  atmosphere: none
+parameters: {start_h: 0, start_vel: 100, start_fpa_deg: 20, start_chi_deg: 90}  # the gun
+stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]
+phases:
+  - {name: flight, model: dof3, stages: [ball], stop_time: 100, end: [impact],
+     integrator: {tolerance: 1.0e-10}}
+targeting:
+  variables: [{name: start_fpa_deg, min: 5, max: 60, scale: 1}]
+  constraints: [{final: flight.downrange, equal: $1, tolerance: 0.001}]
+YAML
+}
+shot 800 > "$work/shot.yaml"
+expect 0 "^converged: every constraint met" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml"
+expect 0 "start_fpa_deg += 25\.8387" -- "$lvsim" target "$work/shot.yaml" -q
+expect 0 "^ +1  newton  accepted" -- "$lvsim" target "$work/shot.yaml"
+expect 0 "reproduces the targeted finals" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml"
+grep -q "start_fpa_deg: 25\.838.*start_chi_deg: 90}  # the gun" "$work/shot_conv.yaml" \
+  && pass=$((pass + 1)) || { echo "FAIL: the converged file"; fails=$((fails + 1)); }
+expect 0 "mission 'shot': 1 phases" -- "$lvsim" run "$work/shot_conv.yaml" -o "$work/shot_out" --no-plots
+expect 0 "converged: every constraint is met at the start point" -- "$lvsim" target "$work/shot_conv.yaml"
+# 2000 m is out of reach (at most v^2 / g = 1019.7 m): exit 3, the failing constraint named
+shot 2000 > "$work/far.yaml"
+expect 3 "^failing constraints: flight.downrange" -- "$lvsim" target "$work/far.yaml" -o "$work/far_conv.yaml"
+[ ! -e "$work/far_conv.yaml" ] && pass=$((pass + 1)) || { echo "FAIL: a file for an unmet target"; fails=$((fails + 1)); }
+expect 3 "^NOT MET: " -- "$lvsim" target "$work/far.yaml" -q
+# the section is checked when the mission is loaded: check refuses what target would
+sed 's/start_fpa_deg, min/start_fpa_dg, min/' "$work/shot.yaml" > "$work/bad.yaml"
+expect 2 "bad.yaml:12:22: targeting: variable 'start_fpa_dg': mission 'shot' has no parameter" -- "$lvsim" check "$work/bad.yaml"
+expect 2 "bad.yaml:12:22: targeting: variable 'start_fpa_dg'" -- "$lvsim" target "$work/bad.yaml"
+expect 2 "the mission has no \`targeting:\` section" -- "$lvsim" target "$src/examples/dof3-branch/mission.yaml"
+expect 2 "--method: auto, newton, slsqp or cobyla expected, got 'simplex'" -- "$lvsim" target "$work/shot.yaml" --method simplex
+expect 0 "^usage: lvsim target MISSION.yaml" -- "$lvsim" target --help
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -11,7 +11,8 @@
 #      `lvsim check`, `lvsim run --no-plots` and `lvsim view --stage-only`, and one lookup
 #      that fails, for its message;
 #   5. no installed file contains the temporary or the real source or build path, and the
-#      private dependencies (SUNDIALS, matio, HDF5, libyaml, cJSON, PLplot) do not reach the consumer.
+#      private dependencies (SUNDIALS, matio, HDF5, libyaml, NLopt, cJSON, PLplot) do not reach
+#      the consumer.
 # Prints "N passed, M failed" and the time of each step.
 set -uo pipefail
 src="$(cd "$1" && pwd)"
@@ -100,7 +101,7 @@ gfc="$moved/share/lvsim/gravity/egm2008_n20.gfc"
 expect 0 "^gravity file: $gfc\$" -- "$tmp/consumer/consumer" "$mission"
 expect 0 "^install-check: 2 phases, final altitude [0-9]+\.[0-9] km\$" -- "$tmp/consumer/consumer" "$mission"
 # private dependencies stay private: neither the consumer nor the package names them
-deps='sundials|matio|hdf5|yaml|cjson|plplot'
+deps='sundials|matio|hdf5|yaml|nlopt|cjson|plplot'
 if readelf -d "$tmp/consumer/consumer" | grep NEEDED | grep -qiE "$deps"; then
   fail "consumer links a private dependency: $(readelf -d "$tmp/consumer/consumer" | grep NEEDED)"
 else ok; fi

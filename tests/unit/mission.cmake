@@ -33,6 +33,10 @@ lv_add_unit_test(test_ends unit/test_ends.c)
 lv_add_unit_test(test_guidance unit/test_guidance.c)
 target_compile_definitions(test_guidance PRIVATE
   LV_MISSION_DIR="${PROJECT_SOURCE_DIR}/tests/missions")
+# Targeting and optimisation over the phase tree (issue 13): closed-form shots, a poor start,
+# a failing trial point, no solution, the maximum range, the converged file, branches, the API,
+# bad targeting sections.
+lv_add_unit_test(test_target unit/test_target.c)
 # Monte Carlo dispersions and campaigns (issue 16): the generator, streams, correlations, the
 # analytic Isp scatter, table dispersions, bad inputs (tests/missions/mc).
 lv_add_unit_test(test_campaign unit/test_campaign.c)

@@ -1,0 +1,435 @@
+/* targeting_def.c - the `targeting:` section of a mission file (targeting_def.h): parsed with
+ * the parse kit, then resolved against the loaded mission (parameters by lv_mission_param_find,
+ * finals against each phase's model). Format: docs/targeting.md. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "mission/targeting_def.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/names.h"
+#include "core/status.h"
+#include "core/units.h"
+#include "mission/mission_rt.h"
+
+/* ---- parsing --------------------------------------------------------------------------- */
+
+static lv_src_loc loc_of(const lv_ynode *n)
+{
+    lv_src_loc l = {n->line, n->col};
+    return l;
+}
+
+static lv_status dup_name(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                          char **out)
+{
+    const char *s;
+    lv_status st = lv_pk_text(c, v, what, key, &s);
+    if (st != LV_OK)
+        return st;
+    if ((*out = strdup(s)) == NULL)
+        return lv_pk_nomem(c);
+    return LV_OK;
+}
+
+/* An optional number: NAN when absent. */
+static lv_status opt_num(const lv_pctx *c, const lv_ynode *map, const char *what,
+                         const char *key, double *out)
+{
+    const lv_ynode *v = lv_pk_get(map, key);
+    *out = NAN;
+    return v != NULL ? lv_pk_num(c, v, what, key, out) : LV_OK;
+}
+
+static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tvar_def *v)
+{
+    static const char *const keys[] = {"name", "min", "max", "start", "scale", "step", NULL};
+    char what[LV_WHAT_MAX];
+    const lv_ynode *x;
+    lv_status st;
+    snprintf(what, sizeof what, "targeting: variable #%zu", k + 1);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {name: P1.guidance.kick_deg, min: 0.5, "
+                          "max: 8} expected", what);
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK ||
+        (st = lv_pk_need(c, n, what, "name", &x)) != LV_OK ||
+        (st = dup_name(c, x, what, "name", &v->name)) != LV_OK)
+        return st;
+    v->loc = loc_of(x);
+    snprintf(what, sizeof what, "targeting: variable '%.60s'", v->name);
+    if ((st = lv_pk_need(c, n, what, "min", &x)) != LV_OK ||
+        (st = lv_pk_num(c, x, what, "min", &v->lo)) != LV_OK ||
+        (st = lv_pk_need(c, n, what, "max", &x)) != LV_OK ||
+        (st = lv_pk_num(c, x, what, "max", &v->hi)) != LV_OK ||
+        (st = opt_num(c, n, what, "start", &v->start)) != LV_OK ||
+        (st = opt_num(c, n, what, "scale", &v->scale)) != LV_OK ||
+        (st = opt_num(c, n, what, "step", &v->step)) != LV_OK)
+        return st;
+    if (!(v->lo < v->hi))
+        return lv_pk_fail(c, x, "%s: max %g must be greater than min %g", what, v->hi, v->lo);
+    if ((x = lv_pk_get(n, "start")) != NULL)
+        v->start_loc = loc_of(x);
+    if ((x = lv_pk_get(n, "scale")) != NULL && !(v->scale > 0.0))
+        return lv_pk_fail(c, x, "%s: scale must be > 0, found %g", what, v->scale);
+    if ((x = lv_pk_get(n, "step")) != NULL && !(v->step > 0.0))
+        return lv_pk_fail(c, x, "%s: step must be > 0, found %g", what, v->step);
+    return LV_OK;
+}
+
+static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tcon_def *con)
+{
+    static const char *const keys[] = {"final", "equal", "min", "max", "tolerance", NULL};
+    static const char *const kinds[] = {"equal", "min", "max"};
+    char what[LV_WHAT_MAX];
+    const lv_ynode *x, *kv = NULL;
+    lv_status st;
+    snprintf(what, sizeof what, "targeting: constraint #%zu", k + 1);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {final: P2.peri_alt, equal: 200000, "
+                          "tolerance: 100} expected", what);
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK ||
+        (st = lv_pk_need(c, n, what, "final", &x)) != LV_OK ||
+        (st = dup_name(c, x, what, "final", &con->name)) != LV_OK)
+        return st;
+    con->loc = loc_of(x);
+    snprintf(what, sizeof what, "targeting: constraint on '%.60s'", con->name);
+    for (int i = 0; i < 3; i++) {
+        const lv_ynode *v = lv_pk_get(n, kinds[i]);
+        if (v == NULL)
+            continue;
+        if (kv != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, kinds[i]), "%s: give one of equal, min and max "
+                              "(a range is two constraints)", what);
+        kv = v;
+        con->kind = (lv_con_kind)i;
+        if ((st = lv_pk_num(c, v, what, kinds[i], &con->value)) != LV_OK)
+            return st;
+    }
+    if (kv == NULL)
+        return lv_pk_fail(c, n, "%s: give one of equal, min and max", what);
+    if ((st = lv_pk_need(c, n, what, "tolerance", &x)) != LV_OK ||
+        (st = lv_pk_num(c, x, what, "tolerance", &con->tol)) != LV_OK)
+        return st;
+    if (!(con->tol > 0.0))
+        return lv_pk_fail(c, x, "%s: tolerance must be > 0, found %g", what, con->tol);
+    return LV_OK;
+}
+
+static lv_status parse_cost(const lv_pctx *c, const lv_ynode *n, lv_tcost_def *cost)
+{
+    static const char *const keys[] = {"maximize", "minimize", "scale", NULL};
+    const char *what = "targeting: cost";
+    lv_status st;
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {maximize: P4.m} expected", what);
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    const lv_ynode *mx = lv_pk_get(n, "maximize"), *mn = lv_pk_get(n, "minimize");
+    if ((mx == NULL) == (mn == NULL))
+        return lv_pk_fail(c, mx && mn ? lv_pk_key(n, "minimize") : n,
+                          "%s: give one of maximize and minimize (a final value PHASE.NAME)",
+                          what);
+    const lv_ynode *v = mx ? mx : mn;
+    if ((st = dup_name(c, v, what, mx ? "maximize" : "minimize", &cost->name)) != LV_OK ||
+        (st = opt_num(c, n, what, "scale", &cost->scale)) != LV_OK)
+        return st;
+    if (lv_pk_get(n, "scale") != NULL && !(cost->scale > 0.0))
+        return lv_pk_fail(c, lv_pk_get(n, "scale"), "%s: scale must be > 0, found %g", what,
+                          cost->scale);
+    cost->present = 1;
+    cost->maximize = mx != NULL;
+    cost->loc = loc_of(v);
+    return LV_OK;
+}
+
+static lv_status parse_list(const lv_pctx *c, const lv_ynode *n, const char *key, size_t *count,
+                            void **items, size_t size)
+{
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if (n->kind != LV_YNODE_SEQ)
+        return lv_pk_fail(c, n, "targeting: %s: a list expected", key);
+    if (n->n == 0)
+        return LV_OK;
+    if ((*items = calloc(n->n, size)) == NULL)
+        return lv_pk_nomem(c);
+    *count = n->n;
+    return LV_OK;
+}
+
+lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n)
+{
+    static const char *const keys[] = {"method", "differences", "max_iterations", "xtol",
+                                       "ftol", "restarts", "variables", "constraints", "cost",
+                                       NULL};
+    static const char *const methods[] = {"auto", "newton", "slsqp", "cobyla", NULL};
+    static const char *const diffs[] = {"auto", "forward", "central", NULL};
+    const char *what = "targeting";
+    lv_status st;
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    lv_targeting_def *t = calloc(1, sizeof *t);
+    if (t == NULL)
+        return lv_pk_nomem(c);
+    c->m->targeting = t;
+    t->loc = loc_of(n);
+    const lv_ynode *v;
+    size_t idx;
+    if ((v = lv_pk_get(n, "method")) != NULL) {
+        if ((st = lv_pk_enum(c, v, what, "method", methods, &idx)) != LV_OK)
+            return st;
+        t->method = (lv_target_method)idx;
+    }
+    if ((v = lv_pk_get(n, "differences")) != NULL) {
+        if ((st = lv_pk_enum(c, v, what, "differences", diffs, &idx)) != LV_OK)
+            return st;
+        t->differences = (lv_target_diff)idx;
+    }
+    if ((v = lv_pk_get(n, "max_iterations")) != NULL) {
+        double x;
+        if ((st = lv_pk_num(c, v, what, "max_iterations", &x)) != LV_OK)
+            return st;
+        if (x != floor(x) || x < 1.0 || x > 100000.0)
+            return lv_pk_fail(c, v, "%s: max_iterations: an integer from 1 to 100000 expected, "
+                              "found %s", what, v->text);
+        t->max_iterations = (int)x;
+    }
+    if ((v = lv_pk_get(n, "restarts")) != NULL) {
+        double x;
+        if ((st = lv_pk_num(c, v, what, "restarts", &x)) != LV_OK)
+            return st;
+        if (x != floor(x) || x < 0.0 || x > 100.0)
+            return lv_pk_fail(c, v, "%s: restarts: an integer from 0 to 100 expected, found %s",
+                              what, v->text);
+        t->restarts = (int)x;
+    }
+    static const char *const tols[] = {"xtol", "ftol"};
+    double *tv[] = {&t->xtol, &t->ftol};
+    for (int i = 0; i < 2; i++)
+        if ((v = lv_pk_get(n, tols[i])) != NULL) {
+            if ((st = lv_pk_num(c, v, what, tols[i], tv[i])) != LV_OK)
+                return st;
+            if (!(*tv[i] > 0.0 && *tv[i] < 1.0))
+                return lv_pk_fail(c, v, "%s: %s must be > 0 and < 1, found %g", what, tols[i],
+                                  *tv[i]);
+        }
+    const lv_ynode *vars = lv_pk_get(n, "variables"), *cons = lv_pk_get(n, "constraints");
+    if (vars == NULL || lv_yaml_is_null(vars) || (vars->kind == LV_YNODE_SEQ && vars->n == 0))
+        return lv_pk_fail(c, vars ? vars : n, "%s: 'variables' needs at least one variable "
+                          "({name: PARAMETER, min: .., max: ..})", what);
+    if ((st = parse_list(c, vars, "variables", &t->n_vars, (void **)&t->vars, sizeof *t->vars)) !=
+            LV_OK ||
+        (st = parse_list(c, cons, "constraints", &t->n_cons, (void **)&t->cons,
+                         sizeof *t->cons)) != LV_OK)
+        return st;
+    for (size_t k = 0; k < t->n_vars; k++)
+        if ((st = parse_var(c, vars->kids[k], k, &t->vars[k])) != LV_OK)
+            return st;
+    for (size_t k = 0; k < t->n_cons; k++)
+        if ((st = parse_con(c, cons->kids[k], k, &t->cons[k])) != LV_OK)
+            return st;
+    if ((v = lv_pk_get(n, "cost")) != NULL && !lv_yaml_is_null(v) &&
+        (st = parse_cost(c, v, &t->cost)) != LV_OK)
+        return st;
+    if (t->n_cons == 0 && !t->cost.present)
+        return lv_pk_fail(c, n, "%s: nothing to achieve: give 'constraints', a 'cost' or both",
+                          what);
+    if (t->method == LV_TARGET_NEWTON && t->cost.present)
+        return lv_pk_fail(c, lv_pk_get(n, "method"), "%s: method newton meets constraints and "
+                          "optimises no cost: use auto, slsqp or cobyla with a cost", what);
+    if (t->method == LV_TARGET_NEWTON && t->n_cons == 0)
+        return lv_pk_fail(c, lv_pk_get(n, "method"), "%s: method newton needs constraints",
+                          what);
+    return LV_OK;
+}
+
+void lv_targeting_def_free(lv_targeting_def *t)
+{
+    if (t == NULL)
+        return;
+    for (size_t k = 0; k < t->n_vars; k++)
+        free(t->vars[k].name);
+    free(t->vars);
+    for (size_t k = 0; k < t->n_cons; k++)
+        free(t->cons[k].name);
+    free(t->cons);
+    free(t->cost.name);
+    free(t);
+}
+
+/* ---- resolution against a loaded mission ------------------------------------------------- */
+
+lv_status lv_targeting_resolve_var(const lv_mission *m, const char *name, double lo, double hi,
+                                   double start, double scale, double step, lv_tvar *out,
+                                   lv_err *err)
+{
+    const lv_mission_def *d = m->def;
+    size_t i;
+    int deg;
+    lv_status st = lv_mission_param_find(m, name, &i, &deg, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st == LV_ERR_NOTFOUND ? LV_ERR_INPUT : st, "variable '%s'",
+                              name);
+    const lv_slot_def *sd = &d->slots[i];
+    const double f = deg ? LV_DEG : 1.0;
+    const char *unit = deg ? "deg" : sd->unit;
+    if (!(isfinite(lo) && isfinite(hi) && lo < hi))
+        return lv_fail(err, LV_ERR_INPUT, "variable '%s': the bounds must be finite with min < "
+                       "max, found [%g, %g]", name, lo, hi);
+    for (int b = 0; b < 2; b++) {
+        const double x = b ? hi : lo;
+        if (!lv_range_holds(sd->range, x * f)) {
+            char rule[96];
+            lv_range shown = sd->range;
+            shown.lo /= f;
+            shown.hi /= f;
+            lv_range_text(shown, rule, sizeof rule);
+            return lv_fail(err, LV_ERR_INPUT, "variable '%s': %s %g %s is outside the "
+                           "parameter's allowed values (%s)", name, b ? "max" : "min", x, unit,
+                           rule);
+        }
+    }
+    const int given = !isnan(start);
+    if (!given)
+        start = m->defaults[i] / f;
+    if (!(start >= lo && start <= hi))
+        return lv_fail(err, LV_ERR_INPUT, "variable '%s': the %s %.10g %s is outside [%g, %g]%s",
+                       name, given ? "start" : "start (the mission file's value)", start, unit,
+                       lo, hi, given ? "" : ": give a start");
+    if (!(scale > 0.0) || !isfinite(scale))
+        scale = (hi - lo) / 10.0;
+    if (!(step > 0.0) || !isfinite(step))
+        step = NAN;
+    *out = (lv_tvar){i, deg, lo, hi, start, scale, step};
+    return LV_OK;
+}
+
+lv_status lv_targeting_resolve_final(const lv_mission *m, const char *name, lv_tfinal *out,
+                                     lv_err *err)
+{
+    const lv_mission_def *d = m->def;
+    const char *dot = strchr(name, '.');
+    if (dot == NULL || dot == name || dot[1] == '\0')
+        return lv_fail(err, LV_ERR_INPUT, "'%s': a final value is PHASE.NAME (P2.peri_alt)",
+                       name);
+    char phase[LV_NAME_MAX + 8], var[128];
+    const size_t np = (size_t)(dot - name);
+    if (np >= sizeof phase || strlen(dot + 1) >= sizeof var)
+        return lv_fail(err, LV_ERR_INPUT, "'%.80s': name too long", name);
+    memcpy(phase, name, np);
+    phase[np] = '\0';
+    snprintf(var, sizeof var, "%s", dot + 1);
+    size_t k;
+    lv_status st = lv_mission_phase_find(m, phase, &k, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, LV_ERR_INPUT, "'%s'", name);
+    const lv_phase_plan *pl = &m->plan[k];
+    /* the variable's unit: the phase's model built with the file's values */
+    double *prop = calloc(d->n_stages + 1, sizeof *prop);
+    if (prop == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t s = 0; s < d->n_stages; s++)
+        prop[s] = m->defaults[d->stages[s].propellant_mass];
+    const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL};
+    lv_phase_model *pm = NULL;
+    st = lv_phase_model_build(&bc, &pm, err);
+    free(prop);
+    if (st != LV_OK)
+        return st;
+    int deg = 0;
+    size_t idx = (size_t)-1;
+    const char *unit = NULL;
+    for (int pass = 0; pass < 2 && idx == (size_t)-1; pass++) {
+        char look[128];
+        snprintf(look, sizeof look, "%s", var);
+        if (pass == 1) { /* NAME_deg: an angle in degrees */
+            const size_t n = strlen(look);
+            if (n < 5 || strcmp(look + n - 4, "_deg") != 0)
+                break;
+            look[n - 4] = '\0';
+        }
+        for (size_t i = 0; i < pl->n_final; i++)
+            if (strcmp(pl->final_names[i], look) == 0)
+                idx = i;
+        if (idx == (size_t)-1)
+            continue;
+        lv_var_kind kind;
+        size_t vi;
+        if (idx == 0)
+            unit = "s"; /* "time" */
+        else if (lv_model_find(pm->def, look, &kind, &vi, NULL) == LV_OK)
+            unit = kind == LV_VAR_STATE    ? pm->def->states[vi].unit
+                   : kind == LV_VAR_OUTPUT ? pm->def->outputs[vi].unit
+                                           : "";
+        else
+            unit = "";
+        deg = pass == 1;
+        if (deg && strcmp(unit, "rad") != 0) {
+            st = lv_fail(err, LV_ERR_INPUT, "'%s': '%s' is not an angle (its unit is '%s'): "
+                         "name it without _deg", name, look, unit);
+            lv_phase_model_free(pm);
+            return st;
+        }
+    }
+    if (idx == (size_t)-1) {
+        lv_suggest sg;
+        lv_suggest_init(&sg, var);
+        for (size_t i = 0; i < pl->n_final; i++)
+            lv_suggest_add(&sg, pl->final_names[i]);
+        char hint[200];
+        lv_suggest_text(&sg, hint, sizeof hint);
+        lv_phase_model_free(pm);
+        return lv_fail(err, LV_ERR_INPUT, "'%s': phase '%s' (model %s) has no final value '%s'%s",
+                       name, phase, d->phases[k].type->name, var, hint);
+    }
+    out->phase = k;
+    out->index = idx;
+    out->deg = deg;
+    snprintf(out->unit, sizeof out->unit, "%s", deg ? "deg" : unit);
+    lv_phase_model_free(pm);
+    return LV_OK;
+}
+
+lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
+{
+    lv_mission_def *d = m->def;
+    lv_targeting_def *t = d->targeting;
+    lv_status st = LV_OK;
+    lv_err e = {LV_OK, ""};
+    if (t == NULL)
+        return LV_OK;
+    for (size_t k = 0; k < t->n_vars && st == LV_OK; k++) {
+        lv_tvar_def *v = &t->vars[k];
+        lv_src_loc l = v->loc;
+        st = lv_targeting_resolve_var(m, v->name, v->lo, v->hi, v->start, v->scale, v->step,
+                                      &v->res, &e);
+        if (st == LV_OK && d->slots[v->res.slot].loc.line <= 0)
+            st = lv_fail(&e, LV_ERR_INPUT, "variable '%s': the mission file does not write "
+                         "this parameter (its value is a default): write it in the file so "
+                         "that the converged mission can carry the value", v->name);
+        for (size_t j = 0; j < k && st == LV_OK; j++)
+            if (t->vars[j].res.slot == v->res.slot)
+                st = lv_fail(&e, LV_ERR_INPUT, "variable '%s': the parameter is already a "
+                             "variable (line %d)", v->name, t->vars[j].loc.line);
+        if (st == LV_ERR_INPUT && v->start_loc.line > 0 && strstr(e.msg, "the start") != NULL)
+            l = v->start_loc;
+        if (st != LV_OK)
+            st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting", d->path, l.line, l.column);
+    }
+    for (size_t k = 0; k < t->n_cons && st == LV_OK; k++) {
+        lv_tcon_def *c = &t->cons[k];
+        if ((st = lv_targeting_resolve_final(m, c->name, &c->res, &e)) != LV_OK)
+            st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: constraint", d->path,
+                                c->loc.line, c->loc.column);
+    }
+    if (st == LV_OK && t->cost.present &&
+        (st = lv_targeting_resolve_final(m, t->cost.name, &t->cost.res, &e)) != LV_OK)
+        st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: cost", d->path, t->cost.loc.line,
+                            t->cost.loc.column);
+    return st == LV_OK ? LV_OK : lv_fail(err, st, "%s", e.msg);
+}

@@ -1,0 +1,90 @@
+/* targeting_def.h - a mission file's `targeting:` section: design variables (run parameters by
+ * name, with bounds, start, scale), constraints on phases' final values, an optional cost and
+ * the solver's settings. Parsed with the mission (the section's own keys, types and values),
+ * then checked against the loaded mission (names, units, bounds), so `lvsim check` refuses
+ * what `lvsim target` would. The solver: src/target, include/lvsim/lv_target.h. Format:
+ * docs/targeting.md.
+ */
+#ifndef LV_MISSION_TARGETING_DEF_H
+#define LV_MISSION_TARGETING_DEF_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_mission.h"
+#include "lvsim/lv_target.h"
+#include "mission/mission.h"
+#include "mission/parse_kit.h"
+
+/* A variable resolved against a mission: the parameter and its unit. */
+typedef struct lv_tvar {
+    size_t slot;        /* the parameter's index */
+    int deg;            /* the name is NAME_deg: values in degrees */
+    double lo, hi;      /* in the name's unit */
+    double start;       /* in the name's unit */
+    double scale;       /* > 0 */
+    double step;        /* > 0, or NAN: from the scale */
+} lv_tvar;
+
+/* A final value "PHASE.NAME" resolved against a mission. */
+typedef struct lv_tfinal {
+    size_t phase;       /* run order */
+    size_t index;       /* into the phase's final values (lv_phase_result.final_values) */
+    int deg;            /* written NAME_deg: the value in degrees */
+    char unit[24];      /* "deg" for a _deg name, else the variable's unit */
+} lv_tfinal;
+
+typedef struct lv_tvar_def {
+    char *name;
+    double lo, hi, start, scale, step; /* start, scale, step NAN when not written */
+    lv_src_loc loc;                    /* the name's value */
+    lv_src_loc start_loc;              /* the start's value, or 0 */
+    lv_tvar res;                       /* resolved when the mission is loaded */
+} lv_tvar_def;
+
+typedef struct lv_tcon_def {
+    char *name;
+    lv_con_kind kind;
+    double value, tol;
+    lv_src_loc loc;
+    lv_tfinal res;
+} lv_tcon_def;
+
+typedef struct lv_tcost_def {
+    int present, maximize;
+    char *name;
+    double scale;       /* NAN: from the start point */
+    lv_src_loc loc;
+    lv_tfinal res;
+} lv_tcost_def;
+
+typedef struct lv_targeting_def {
+    size_t n_vars;
+    lv_tvar_def *vars;
+    size_t n_cons;
+    lv_tcon_def *cons;
+    lv_tcost_def cost;
+    lv_target_method method;
+    lv_target_diff differences;
+    int max_iterations; /* 0: the solver's default */
+    double xtol, ftol;  /* 0: the solver's default */
+    int restarts;       /* SLSQP restarts from its best point (0: none) */
+    lv_src_loc loc;
+} lv_targeting_def;
+
+/* Parses the `targeting:` mapping `n` (NULL or empty: none) into c->m->targeting. */
+lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n);
+/* Resolves and checks the section against the loaded mission m (its plans made): every
+ * variable a parameter written in the file, with bounds in its allowed values and the start
+ * within them; every final a phase's time, state or output. Errors: "file:line:column:
+ * targeting: ...". No section: LV_OK. */
+lv_status lv_targeting_def_check(lv_mission *m, lv_err *err);
+void lv_targeting_def_free(lv_targeting_def *t); /* accepts NULL */
+
+/* Resolution shared with the programmatic API (src/target); messages carry no position. */
+lv_status lv_targeting_resolve_var(const lv_mission *m, const char *name, double lo, double hi,
+                                   double start, double scale, double step, lv_tvar *out,
+                                   lv_err *err);
+lv_status lv_targeting_resolve_final(const lv_mission *m, const char *name, lv_tfinal *out,
+                                     lv_err *err);
+
+#endif

@@ -1,0 +1,137 @@
+/* target_int.h - internal: the targeting problem (lv_target), its evaluations on one lv_run and
+ * finite-difference sensitivities, shared by the solvers (newton.c, optimize.c) and the
+ * converged-file writer (write.c). Not exported. */
+#ifndef LV_TARGET_TARGET_INT_H
+#define LV_TARGET_TARGET_INT_H
+
+#include <stddef.h>
+#include <time.h>
+
+#include "lvsim/lv_target.h"
+#include "mission/mission_rt.h"
+#include "mission/targeting_def.h"
+
+#define TG_MAX_WORKERS 16 /* threads taking sensitivities */
+
+typedef struct tg_var {
+    char *name;
+    lv_tvar r;          /* parameter, deg, bounds, start, scale, step (name's unit) */
+    size_t first_phase; /* the first phase (run order) the parameter reaches */
+    lv_src_loc start_loc; /* the targeting section's `start:` value, or 0 */
+} tg_var;
+
+typedef struct tg_con {
+    char *name;
+    lv_con_kind kind;
+    double value, tol;  /* in the final's unit as named */
+    lv_tfinal f;
+} tg_con;
+
+typedef struct tg_cost {
+    int present, maximize;
+    char *name;
+    double scale;       /* NAN: from the start point */
+    lv_tfinal f;
+} tg_cost;
+
+/* One evaluated point. */
+typedef struct tg_point {
+    double *x;      /* [n] the variables (their units) */
+    double *f;      /* [m] the constraints' finals */
+    double *g;      /* [m] (f - v) / tol */
+    double *r;      /* [m] residuals: g for equal, its violation for min / max (0 when met) */
+    double cost;    /* the cost's final (NAN: none) */
+    double worst;   /* max |r| */
+    double merit;   /* sum r^2 / 2 */
+    int ok;         /* 0: a phase failed (why) */
+    char why[LV_ERR_MSG_MAX];
+} tg_point;
+
+struct lv_target {
+    const lv_mission *m;
+    size_t n, cap_n;       /* variables */
+    tg_var *vars;
+    size_t mc, cap_m;      /* constraints */
+    tg_con *cons;
+    tg_cost cost;
+    /* the settings the file gives (0: defaults) */
+    lv_target_method method;
+    lv_target_diff diff;
+    int max_iter;
+    double xtol, ftol;
+    int restarts;
+    /* the run every evaluation sets and executes; more for the sensitivities' workers */
+    lv_run *run;
+    lv_run *aux[TG_MAX_WORKERS - 1];
+    unsigned char *want;   /* [n_phases] the constraints' and the cost's phases */
+    /* one solve */
+    lv_target_settings set;
+    struct timespec t0;
+    size_t runs, phases;   /* totals */
+    size_t rep_runs, rep_phases; /* totals at the last iteration reported */
+    size_t iteration;      /* the current iteration */
+    const char *solver;    /* "newton", "slsqp", "cobyla" */
+    double cost_scale;     /* > 0 */
+    double *tmp_x;         /* [n] scratch for evaluations */
+    size_t *order;         /* [n] the variables in the order sensitivities are taken */
+    /* the result */
+    lv_target_result res;
+    double *res_x, *res_f, *res_r;
+    int *res_met;
+    char method_used[48];
+};
+
+/* ---- points and evaluations (target.c) ------------------------------------------------------ */
+
+lv_status tg_point_init(const lv_target *t, tg_point *p);
+void tg_point_free(tg_point *p);
+void tg_point_copy(const lv_target *t, tg_point *dst, const tg_point *src);
+
+/* Sets x on the run and executes it (only the phases whose inputs changed and that the
+ * constraints and cost need); fills p (p->ok = 0 with p->why when a phase failed: a rejected
+ * point, not an error). `purpose` and `var` go to the on_evaluation callback. Errors:
+ * LV_ERR_CANCELLED, LV_ERR_NOMEM. */
+lv_status tg_eval(lv_target *t, const double *x, const char *purpose, const char *var,
+                  tg_point *p, lv_err *err);
+
+/* Finite-difference sensitivities at `base` (evaluated, ok) in scaled variables z = x / scale:
+ * Jg[i * n + j] = dg_i / dz_j, Jc[j] = d(cost / cost_scale) / dz_j (Jc may be NULL). Central
+ * differences when `central`. A variable whose perturbed points fail on both sides gets a zero
+ * column (*note names it, may be NULL). The columns are shared among set.threads workers, each
+ * with a run of its own (the target's, then t->aux); every run is left at some perturbed
+ * point. */
+lv_status tg_sensitivities(lv_target *t, const tg_point *base, int central, double *Jg,
+                           double *Jc, char *note, size_t note_cap, lv_err *err);
+
+/* The forward (central: 1) difference step of variable j, in its unit. */
+double tg_step(const lv_target *t, size_t j, int central);
+
+/* 1 when every constraint is met (|r_i| <= 1). */
+int tg_met(const lv_target *t, const tg_point *p);
+
+/* Reports an iteration to the on_iteration callback (and counts runs since the last). */
+void tg_report(lv_target *t, const char *event, const tg_point *p, double damping, double step,
+               const char *note);
+
+double tg_wall(const lv_target *t); /* s since the solve started */
+
+/* ---- solvers ---------------------------------------------------------------------------------- */
+
+/* Levenberg-Marquardt from p (evaluated, ok) for at most `max_iter` trial steps; p becomes the
+ * best point. *converged: every constraint met. */
+lv_status tg_newton(lv_target *t, tg_point *p, int max_iter, int *converged, char *reason,
+                    size_t reason_cap, lv_err *err);
+
+/* How an optimiser ended. */
+typedef enum tg_opt_end {
+    TG_OPT_CONVERGED = 0, /* stopped on its tolerances at a point that meets every constraint */
+    TG_OPT_LIMIT,         /* the iteration limit */
+    TG_OPT_FAILED         /* it failed, or stopped where a constraint is not met */
+} tg_opt_end;
+
+/* NLopt's SLSQP or COBYLA from p (evaluated, ok) for at most max_iter points; p becomes the
+ * best point (meeting the constraints first, then the lowest cost). */
+lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_iter,
+                      tg_opt_end *end, char *reason, size_t reason_cap, lv_err *err);
+
+#endif
