@@ -184,9 +184,9 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         if (g->frame == LV_FRAME_AERO)
             return lv_pk_fail(c, v, "%s: the pitch is measured in the local or the inertial "
                               "frame", what);
-        /* c > 0: the denominator c + d tau is positive at the phase's start (theta within
-         * +-90 deg); linear tangent: no c, d (1, 0) */
-        const lv_range cpos = LV_RANGE_POS;
+        /* c >= 0: the denominator c + d tau is not negative at the phase's start (theta
+         * within +-90 deg; c = 0 starts vertical); linear tangent: no c, d (1, 0) */
+        const lv_range cpos = LV_RANGE_NONNEG;
         if ((st = num(c, n, what, phase, G, "a", "", any, 1, 0.0, &g->a)) ||
             (st = num(c, n, what, phase, G, "b", "1/s", any, 1, 0.0, &g->b)) ||
             (st = num(c, n, what, phase, G, "c", "", cpos, bilinear, NAN, &g->c)) ||
