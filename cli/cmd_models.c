@@ -76,7 +76,9 @@ static void print_type_extras(const char *name)
         printf("%s\n# end conditions ('end:'):", t.keys && t.keys[0] ? "" : " none");
         for (size_t j = 0; j < lv_phase_types_end_count(); j++)
             printf(" %s", lv_phase_types_end_name(j));
-        printf(" (docs/mission-format.md)\n# 'set:' takes any state or parameter below; the "
+        printf(", {time: DT} (s after the phase's start), or any state or output below crossing a "
+               "value: {NAME: X}, {NAME_deg: X} for an angle, {output: NAME, value: X} (docs/mission-format.md)\n"
+               "# 'set:' takes any state or parameter below; the "
                "result files have time, the states, their derivatives and the outputs\n");
     }
 }

@@ -104,7 +104,7 @@ static const lv_var output_vars[O_N] = {
     {"mu_in", "rad", "Bank angle in effect (about the air-relative velocity)", 0, 0},
     {"throttle_in", "", "Throttle in effect: commanded, or the throttle law's (before engine "
      "limits)", 0, 0},
-    {"downrange", "m", "Great-circle distance from the start point on the sphere of radius a", 0,
+    {"downrange", "m", "Great-circle distance from the phase's start point on the sphere of radius a", 0,
      0},
     {"sma", "m", "Osculating semi-major axis", 0, 0},
     {"ecc", "", "Osculating eccentricity", 0, 0},
