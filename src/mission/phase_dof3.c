@@ -72,9 +72,13 @@ static void dof3_cfg_free(void *p)
 
 /* inputs: {alpha_deg, beta_deg, mu_deg, throttle, table}: constant, or from a control history
  * over mission time (outputs alpha, beta, mu [rad], throttle). Slots "<phase>.inputs.alpha"
- * ... always exist (defaults 0, 0, 0 rad and throttle 1). */
+ * ... (defaults 0, 0, 0 rad and throttle 1) exist where they act: no angles in a phase that a
+ * guidance law steers (`steered`), no throttle where the throttle comes from elsewhere
+ * (`throttle_elsewhere`: throttle.value, off, landing, the attitude table) unless written (the
+ * caller refuses it then, naming both): a parameter that changes nothing is not offered to
+ * targeting or dispersions. */
 static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *phase,
-                              dof3_cfg *cfg)
+                              int steered, int throttle_elsewhere, dof3_cfg *cfg)
 {
     static const char *const ikeys[] = {"alpha", "beta", "mu", "throttle", "alpha_deg",
                                         "beta_deg", "mu_deg", "table", NULL};
@@ -97,6 +101,10 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
             return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
                               names[k], deg);
         const lv_range r = k == 3 ? LV_RANGE_NONNEG : LV_RANGE_ANY;
+        if (v == NULL && vd == NULL && (k < 3 ? steered : throttle_elsewhere)) {
+            cfg->u[k] = LV_NO_SLOT;
+            continue;
+        }
         if (v != NULL || vd != NULL)
             st = lv_pk_slot(c, v ? v : vd, what, v ? names[k] : deg, slot, units[k], r, vd != NULL,
                             &cfg->u[k]);
@@ -151,12 +159,22 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     if (cfg == NULL)
         return lv_pk_nomem(c);
     ph->type_cfg = cfg;
-    lv_status st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
-    if (st == LV_OK)
-        st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
+    for (int k = 0; k < 4; k++)
+        cfg->u[k] = LV_NO_SLOT;
+    lv_status st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
     if (st == LV_OK)
         st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), lv_pk_get(n, "throttle"),
                                    ph->name, cfg->aero.present, &cfg->guid);
+    size_t tk;
+    const int table_thr = st == LV_OK && cfg->guid.given &&
+                          cfg->guid.law == LV_STEER_ATTITUDE && cfg->guid.table != NULL &&
+                          lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK;
+    const int thr_elsewhere = table_thr || (cfg->guid.thr_given &&
+                                            (cfg->guid.thr_law != LV_THROTTLE_NOMINAL ||
+                                             cfg->guid.thr_value != LV_NO_SLOT));
+    if (st == LV_OK)
+        st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg->guid.given, thr_elsewhere,
+                          cfg);
     if (st == LV_OK)
         st = parse_separation(c, lv_pk_get(n, "separation"), n, ph->name, cfg);
     if (st != LV_OK)
@@ -181,10 +199,6 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     const lv_ynode *thr = lv_pk_get(n, "throttle");
     const lv_ynode *thr_val = thr != NULL && thr->kind == LV_YNODE_MAP ? lv_pk_key(thr, "value")
                                                                          : NULL;
-    size_t tk;
-    const int table_thr = cfg->guid.given && cfg->guid.law == LV_STEER_ATTITUDE &&
-                          cfg->guid.table != NULL &&
-                          lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK;
     if (in_thr != NULL && thr_val != NULL)
         return lv_pk_fail(c, in_thr, "phase '%s', inputs: throttle is also given as "
                           "throttle.value: give it once", ph->name);
@@ -329,17 +343,20 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     }
     cfg.n_ends = n_ends;
     cfg.ends = s->ends;
-    cfg.alpha = bc->vals[pc->u[0]];
-    cfg.beta = bc->vals[pc->u[1]];
-    cfg.mu = bc->vals[pc->u[2]];
+    /* an input without a slot does not act (a guidance law steers, the throttle comes from
+     * elsewhere): its default */
+    cfg.alpha = pc->u[0] != LV_NO_SLOT ? bc->vals[pc->u[0]] : 0.0;
+    cfg.beta = pc->u[1] != LV_NO_SLOT ? bc->vals[pc->u[1]] : 0.0;
+    cfg.mu = pc->u[2] != LV_NO_SLOT ? bc->vals[pc->u[2]] : 0.0;
     cfg.throttle = pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT
                        ? bc->vals[pc->guid.thr_value]
-                       : bc->vals[pc->u[3]];
+                   : pc->u[3] != LV_NO_SLOT ? bc->vals[pc->u[3]]
+                                            : 1.0;
     /* a throttle nobody wrote is full throttle: the most every engine accepts (1 unless an
      * engine's throttle_max is lower) */
-    const lv_slot_def *ts = &d->slots[pc->u[3]];
-    if (!(pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT) && ts->loc.line == 0 &&
-        cfg.throttle == ts->value)
+    const lv_slot_def *ts = pc->u[3] != LV_NO_SLOT ? &d->slots[pc->u[3]] : NULL;
+    if (!(pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT) &&
+        (ts == NULL || (ts->loc.line == 0 && cfg.throttle == ts->value)))
         for (size_t e = 0; e < ne; e++)
             if (s->engines[e].throttle_max < cfg.throttle)
                 cfg.throttle = s->engines[e].throttle_max;
