@@ -199,6 +199,24 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     return LV_OK;
 }
 
+/* lv_model_find on a phase's model, whose model is named after the phase: a miss reads "the
+ * dof3 model has no variable 'x'" rather than "model 'P' has ...", since the message is
+ * prefixed with the phase already. */
+static lv_status find_phase_var(const lv_phase_def *ph, const lv_model_def *md, const char *name,
+                                lv_var_kind *kind, size_t *idx, lv_err *err)
+{
+    lv_status st = lv_model_find(md, name, kind, idx, err);
+    if (st == LV_OK || err == NULL)
+        return st;
+    char was[sizeof err->msg];
+    const int n = snprintf(was, sizeof was, "model '%s' has ", md->name);
+    if (n > 0 && (size_t)n < sizeof was && strncmp(err->msg, was, (size_t)n) == 0) {
+        snprintf(was, sizeof was, "%s", err->msg + n);
+        return lv_fail(err, err->code, "the %s model has %s", ph->type->name, was);
+    }
+    return st;
+}
+
 /* An end on a variable names a state, derivative or output of the phase's model (a parameter
  * never crosses); its slot takes the variable's unit; `_deg` only for an angle. */
 static lv_status check_var_end(lv_mission_def *d, const lv_phase_def *ph, const lv_end_def *e,
@@ -208,7 +226,7 @@ static lv_status check_var_end(lv_mission_def *d, const lv_phase_def *ph, const 
         return LV_OK;
     lv_var_kind kind;
     size_t idx;
-    lv_status st = lv_model_find(md, e->var, &kind, &idx, err);
+    lv_status st = find_phase_var(ph, md, e->var, &kind, &idx, err);
     if (st == LV_OK && kind == LV_VAR_PARAMETER)
         st = lv_fail(err, LV_ERR_INPUT, "'%s' is a parameter of the model: constant during the "
                      "phase, it never crosses a value", e->var);
@@ -264,7 +282,7 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
         for (size_t i = 0; i < ph->n_set && st == LV_OK; i++) {
             lv_var_kind kind;
             size_t idx;
-            st = lv_model_find(md, ph->set_names[i], &kind, &idx, err);
+            st = find_phase_var(ph, md, ph->set_names[i], &kind, &idx, err);
             if (st == LV_OK && kind != LV_VAR_STATE && kind != LV_VAR_PARAMETER)
                 st = lv_fail(err, LV_ERR_INPUT, "'%s' is not a state or parameter",
                              ph->set_names[i]);

@@ -211,7 +211,7 @@ static void load_fails(const char *end, const char *want)
 
 static void test_refused(void)
 {
-    load_fails("{vzz: 3}", "bad_end.yaml:5:12: phase 'P': end: model 'P' has no variable 'vzz'");
+    load_fails("{vzz: 3}", "bad_end.yaml:5:12: phase 'P': end: the flat6 model has no variable 'vzz'");
     load_fails("{vzz: 3}", "did you mean");
     load_fails("{g: 3}", "'g' is a parameter of the model");
     load_fails("{z_deg: 3}", "'z' is not an angle (its unit is 'm')");

@@ -325,7 +325,7 @@ static void test_bad_set(void)
     lv_mission *m = NULL;
     lv_err err;
     CHECK_FAILS(lv_mission_load("badset.yaml", &m, &err), &err, LV_ERR_INPUT,
-                "badset.yaml:8:11: phase 'p': set: model 'p' has no variable 'vzz'; did you mean 'vz'");
+                "badset.yaml:8:11: phase 'p': set: the flat6 model has no variable 'vzz'; did you mean 'vz'");
     CHECK(m == NULL);
 }
 
