@@ -7,7 +7,8 @@
  *     phi(z) = -+ cost / cost_scale     subject to  g_i(z) = (f_i - v_i) / tol_i = 0   (equal)
  *                                                   (v_i - f_i) / tol_i <= 0          (min)
  *                                                   (f_i - v_i) / tol_i <= 0          (max)
- * Every function and constraint call at one point shares one evaluation (a cache keyed by the
+ * (without a cost, phi = sum r_i^2 / 2, the residuals' merit: an optimiser asked only to meet
+ * the constraints). Every function and constraint call at one point shares one evaluation (a cache keyed by the
  * point), and the gradients are taken only when NLopt asks for them. A point where a phase
  * fails gets the best cost found plus a penalty of 1000 and every constraint violated by 1000
  * tolerances: SLSQP's line search (an L1 merit function) and COBYLA then step back from it. */
@@ -42,8 +43,13 @@ typedef struct opt_ctx {
     char note[LV_ERR_MSG_MAX];
 } opt_ctx;
 
+/* The objective NLopt minimises: the signed, scaled cost; without a cost (an optimiser asked
+ * to meet constraints only) the merit sum r_i^2 / 2 in tolerances, which is 0 exactly where
+ * every constraint is met (a NaN or constant objective stalls SLSQP and COBYLA). */
 static double objective_of(const opt_ctx *c, const tg_point *p)
 {
+    if (!c->t->cost.present)
+        return p->merit;
     return c->sign * p->cost / c->t->cost_scale;
 }
 
@@ -143,9 +149,15 @@ static double fun(unsigned n, const double *z, double *grad, void *data)
             memset(grad, 0, n * sizeof *grad);
         return (c->have_best ? objective_of(c, &c->best) : 0.0) + PENALTY;
     }
-    if (grad != NULL)
+    if (grad != NULL && c->t->cost.present)
         for (unsigned j = 0; j < n; j++)
             grad[j] = c->sign * c->Jc[j];
+    else if (grad != NULL) /* d(sum r_i^2 / 2)/dz_j = sum r_i dg_i/dz_j (r_i = 0 when met) */
+        for (unsigned j = 0; j < n; j++) {
+            grad[j] = 0.0;
+            for (size_t i = 0; i < c->t->mc; i++)
+                grad[j] += c->cur.r[i] * c->Jg[i * n + j];
+        }
     return objective_of(c, &c->cur);
 }
 

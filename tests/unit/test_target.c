@@ -151,6 +151,42 @@ static void test_launch_angle(void)
     lv_mission_free(m);
 }
 
+/* The same shot with the optimisers and no cost: they minimise the residuals' merit and meet
+ * the constraint (a NaN objective once stalled SLSQP in an endless loop). The met constraint
+ * puts gamma within tolerance / (dR/dgamma) = 0.1 / 1274 rad of the closed form. */
+static void test_launch_angle_optimisers(void)
+{
+    const double v = 100.0, range = 800.0;
+    const double gamma = 0.5 * asin(range * G0 / (v * v));
+    static const char *const methods[] = {"slsqp", "cobyla"};
+    for (int k = 0; k < 2; k++) {
+        char tg[512], yaml[4096];
+        snprintf(tg, sizeof tg,
+                 "targeting:\n"
+                 "  method: %s\n"
+                 "  variables:\n"
+                 "    - {name: start_fpa_deg, min: 5, max: 44, scale: 1}\n"
+                 "  constraints:\n"
+                 "    - {final: flight.downrange, equal: 800, tolerance: 0.1}\n",
+                 methods[k]);
+        shot_yaml(yaml, sizeof yaml, v, 20.0, tg);
+        lv_mission *m;
+        lv_target *t;
+        counts c = {0};
+        const lv_target_result *res = solve_text("target_angle_opt.yaml", yaml, &m, &t, &c);
+        if (res != NULL) {
+            printf("launch angle, %s without a cost: %.6f deg (closed form %.6f), %zu runs\n",
+                   methods[k], res->x[0], gamma / DEG, res->runs);
+            CHECK(res->converged && res->met[0]);
+            CHECK_CLOSE(res->x[0] * DEG, gamma, 0.11 / 1274.0);
+            CHECK(strcmp(res->method, methods[k]) == 0);
+            CHECK(res->runs < 200);
+        }
+        lv_target_free(t);
+        lv_mission_free(m);
+    }
+}
+
 /* ---- (b) two variables from a poor start ------------------------------------------------- */
 
 static void test_two_variables(void)
@@ -656,6 +692,7 @@ static void test_refused(void)
 int main(void)
 {
     test_launch_angle();
+    test_launch_angle_optimisers();
     test_two_variables();
     test_rejected_step();
     test_rejected_point();
