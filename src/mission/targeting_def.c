@@ -76,6 +76,10 @@ static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tva
         return lv_pk_fail(c, x, "%s: scale must be > 0, found %g", what, v->scale);
     if ((x = lv_pk_get(n, "step")) != NULL && !(v->step > 0.0))
         return lv_pk_fail(c, x, "%s: step must be > 0, found %g", what, v->step);
+    if (x != NULL && !(v->step < 0.5 * (v->hi - v->lo)))
+        return lv_pk_fail(c, x, "%s: step %g must be less than half the range max - min = %g "
+                          "(a difference step crosses the bounds otherwise)", what, v->step,
+                          v->hi - v->lo);
     return LV_OK;
 }
 
@@ -115,6 +119,14 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
         return st;
     if (!(con->tol > 0.0))
         return lv_pk_fail(c, x, "%s: tolerance must be > 0, found %g", what, con->tol);
+    /* residuals are (final - value) / tolerance: finite, and a tolerance a double can resolve
+     * at the value (2^-50 of it: a few units in the last place) */
+    if (!isfinite(1.0 / con->tol) || !isfinite(con->value / con->tol) ||
+        con->tol < 0x1p-50 * fabs(con->value))
+        return lv_pk_fail(c, x, "%s: tolerance %g is too small for the value %g: the residual "
+                          "(final - value) / tolerance must be finite and a double must resolve "
+                          "the tolerance at the value (at least %g)", what, con->tol,
+                          con->value, fmax(0x1p-50 * fabs(con->value), 1e-300));
     return LV_OK;
 }
 
@@ -169,8 +181,11 @@ lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n)
     static const char *const diffs[] = {"auto", "forward", "central", NULL};
     const char *what = "targeting";
     lv_status st;
-    if (n == NULL || lv_yaml_is_null(n))
+    if (n == NULL)
         return LV_OK;
+    if (lv_yaml_is_null(n))
+        return lv_pk_fail(c, n, "%s: the section is empty: give variables and constraints (or a "
+                          "cost), or remove the key", what);
     if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
         return st;
     lv_targeting_def *t = calloc(1, sizeof *t);
@@ -426,6 +441,16 @@ lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
         if ((st = lv_targeting_resolve_final(m, c->name, &c->res, &e)) != LV_OK)
             st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: constraint", d->path,
                                 c->loc.line, c->loc.column);
+        /* the same final twice as `equal`, or twice as `min` (`max`): one is enough (two equal
+         * rows make the sensitivities singular) */
+        for (size_t j = 0; j < k && st == LV_OK; j++) {
+            const lv_tcon_def *o = &t->cons[j];
+            if (o->res.phase == c->res.phase && o->res.index == c->res.index &&
+                o->kind == c->kind)
+                st = lv_fail(&e, LV_ERR_INPUT, "%s:%d:%d: targeting: constraint on '%s': the "
+                             "final is already constrained the same way (line %d): give it once",
+                             d->path, c->loc.line, c->loc.column, c->name, o->loc.line);
+        }
     }
     if (st == LV_OK && t->cost.present &&
         (st = lv_targeting_resolve_final(m, t->cost.name, &t->cost.res, &e)) != LV_OK)

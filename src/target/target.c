@@ -380,7 +380,19 @@ static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const doub
         p->cost = final_of(r, &t->cost.f);
     if (p->ok && (!isfinite(p->merit) || (t->cost.present && !isfinite(p->cost)))) {
         p->ok = 0;
-        snprintf(p->why, sizeof p->why, "a final value is not finite");
+        if (t->cost.present && !isfinite(p->cost))
+            snprintf(p->why, sizeof p->why, "the cost's final %s is not finite", t->cost.name);
+        else
+            snprintf(p->why, sizeof p->why, "the residuals' sum of squares overflows");
+        for (size_t i = 0; i < t->mc; i++)
+            if (!isfinite(p->f[i])) {
+                snprintf(p->why, sizeof p->why, "the final %s is not finite", t->cons[i].name);
+                break;
+            } else if (!isfinite(p->r[i]) || !isfinite(0.5 * p->r[i] * p->r[i])) {
+                snprintf(p->why, sizeof p->why, "the residual of %s, (%g - %g) / %g, overflows",
+                         t->cons[i].name, p->f[i], t->cons[i].value, t->cons[i].tol);
+                break;
+            }
         p->worst = p->merit = INFINITY;
     }
     return LV_OK;

@@ -685,6 +685,19 @@ static void test_refused(void)
     load_fails(buf, "targeting: method: unknown value 'simplex'");
     snprintf(buf, sizeof buf, V("%s") C("%s") "  max_iterations: 2.5\n", ok_var, ok_con);
     load_fails(buf, "max_iterations: an integer from 1 to 100000 expected");
+    load_fails("targeting:\n", "target_bad.yaml:12:11: targeting: the section is empty");
+    snprintf(buf, sizeof buf, V("{name: start_fpa_deg, min: 5, max: 44, step: 20}") C("%s"),
+             ok_con);
+    load_fails(buf, "step 20 must be less than half the range max - min = 39");
+    snprintf(buf, sizeof buf, V("%s") C("{final: flight.downrange, equal: 1e308, tolerance: "
+                                        "1e-300}"), ok_var);
+    load_fails(buf, "tolerance 1e-300 is too small for the value 1e+308");
+    snprintf(buf, sizeof buf, V("%s") C("{final: flight.downrange, equal: 800, tolerance: "
+                                        "1e-13}"), ok_var);
+    load_fails(buf, "tolerance 1e-13 is too small for the value 800");
+    snprintf(buf, sizeof buf, V("%s") C("%s") "    - %s\n", ok_var, ok_con, ok_con);
+    load_fails(buf, "target_bad.yaml:17:15: targeting: constraint on 'flight.downrange': the "
+                    "final is already constrained the same way (line 16)");
 #undef V
 #undef C
 }
