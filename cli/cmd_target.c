@@ -6,18 +6,31 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
 #include "common.h"
+#include "progress.h"
 
 typedef struct target_ui {
     int quiet, tty;
     int progress_shown;
+    double drawn; /* s: the progress line's last redraw (at most every 0.1 s) */
 } target_ui;
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 static void clear_progress(target_ui *ui)
 {
@@ -103,11 +116,15 @@ static int on_evaluation(const lv_target *t, const lv_target_eval *ev, void *use
 {
     (void)t;
     target_ui *ui = user;
-    if (!ui->tty)
+    if (progress_interrupted())
+        return 1; /* Ctrl-C: the solve ends with the best point so far */
+    const double now = wall_now();
+    if (!ui->tty || now - ui->drawn < 0.1)
         return 0;
-    fprintf(stderr, "\r\033[K  iteration %zu: %s%s%s - %zu runs, %zu phase simulations, %.1f s",
-            ev->iteration, ev->purpose, ev->var ? " of " : "", ev->var ? ev->var : "",
-            ev->runs_total, ev->phases_total, ev->wall);
+    ui->drawn = now;
+    fprintf(stderr, "\r\033[K  %s%s%s - %zu runs, %zu phase simulations so far, %.1f s",
+            ev->purpose, ev->var ? " of " : "", ev->var ? ev->var : "", ev->runs_total,
+            ev->phases_total, ev->wall);
     fflush(stderr);
     ui->progress_shown = 1;
     return 0;
@@ -195,7 +212,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     const char *path = NULL, *out = NULL;
     lv_target_settings set;
     lv_target_settings_default(&set);
-    target_ui ui = {0, isatty(2), 0};
+    target_ui ui = {0, isatty(2), 0, 0.0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "-o") == 0 || strcmp(a, "--method") == 0 ||
@@ -205,6 +222,8 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
             if (strcmp(a, "-o") == 0) {
+                if (out != NULL)
+                    return usage_error(self, "-o given twice", v);
                 out = v;
             } else if (strcmp(a, "--method") == 0 || strcmp(a, "--differences") == 0) {
                 const char *const *list = a[2] == 'm' ? methods : diffs;
@@ -221,19 +240,22 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
                     set.method = (lv_target_method)k;
                 else
                     set.differences = (lv_target_diff)k;
-            } else if (strcmp(a, "--restarts") == 0) {
-                if (!parse_int(v, &set.restarts) || set.restarts < 0)
-                    return usage_error(self, "--restarts needs a count >= 0, got", v);
             } else {
-                int n;
-                if (!parse_int(v, &n) || n < 1)
-                    return usage_error(self, a[2] == 'm' ? "--max-iter needs a count >= 1, got"
-                                                         : "--threads needs a count >= 1, got",
-                                       v);
-                if (a[2] == 'm')
-                    set.max_iterations = n;
+                /* counts as the file's keys take them: an integer, also written 1e3 */
+                const int r = strcmp(a, "--restarts") == 0, mi = strcmp(a, "--max-iter") == 0;
+                const double lo = r ? 0.0 : 1.0, hi = r ? 100.0 : mi ? 100000.0 : 1024.0;
+                double x;
+                if (!parse_double(v, &x) || x != floor(x) || x < lo || x > hi) {
+                    char msg[96];
+                    snprintf(msg, sizeof msg, "%s needs an integer from %g to %g, got", a, lo, hi);
+                    return usage_error(self, msg, v);
+                }
+                if (r)
+                    set.restarts = (int)x;
+                else if (mi)
+                    set.max_iterations = (int)x;
                 else
-                    set.threads = n;
+                    set.threads = (int)x;
             }
         } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
             ui.quiet = 1;
@@ -247,6 +269,31 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     }
     if (path == NULL)
         return usage_error(self, "target needs a mission file", NULL);
+    if (out != NULL) { /* before the solve, not after it */
+        struct stat sb;
+        char dir[4096];
+        snprintf(dir, sizeof dir, "%s", out);
+        char *slash = strrchr(dir, '/');
+        if (slash == dir)
+            dir[1] = '\0';
+        else if (slash != NULL)
+            *slash = '\0';
+        else
+            snprintf(dir, sizeof dir, ".");
+        if (out[0] == '\0' || out[strlen(out) - 1] == '/' ||
+            (stat(out, &sb) == 0 && S_ISDIR(sb.st_mode)))
+            return usage_error(self, "-o names the file to write (CONVERGED.yaml), not a folder:",
+                               out);
+        if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+            fprintf(stderr, "lvsim: -o %s: the folder '%s' does not exist\n", out, dir);
+            return EXIT_INPUT;
+        }
+        if (access(dir, W_OK) != 0) {
+            fprintf(stderr, "lvsim: -o %s: cannot write into '%s': %s\n", out, dir,
+                    strerror(errno));
+            return EXIT_INPUT;
+        }
+    }
     if (ui.quiet)
         ui.tty = 0;
     lv_mission *m;
@@ -260,6 +307,15 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         lv_mission_free(m);
         return print_err("lvsim", &err, exit_code_for_input(st));
     }
+    lv_target_cost_info ci0;
+    lv_target_cost_info_get(t, &ci0);
+    if (set.method == LV_TARGET_NEWTON && ci0.present) {
+        lv_target_free(t);
+        lv_mission_free(m);
+        return usage_error(self, "--method newton meets constraints and optimises no cost; the "
+                           "mission has a cost: use auto, slsqp or cobyla", NULL);
+    }
+    progress_catch_signals(); /* Ctrl-C: the best point so far, nothing written */
     set.on_iteration = on_iteration;
     set.on_evaluation = on_evaluation;
     set.user = &ui;
@@ -275,7 +331,11 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         print_result(t, res);
         if (!res->converged)
             code = EXIT_SIM;
-        if (out != NULL && res->converged) {
+        if (res->cancelled) {
+            fprintf(stderr, "lvsim: interrupted: the best point so far above%s\n",
+                    out != NULL ? "; nothing written" : "");
+            code = 130;
+        } else if (out != NULL && res->converged) {
             double worst = NAN;
             st = lv_target_write(t, res->x, out, &worst, &err);
             if (st != LV_OK)
@@ -307,18 +367,19 @@ const cli_cmd cli_cmd_target = {
     "the variables, the constraints' finals with their residuals, the cost) and a progress\n"
     "line on a terminal; then the converged values, or the best point and the constraints\n"
     "that fail (NOT MET, exit 3; NOT CONVERGED when they are met but the optimiser did not\n"
-    "reach its stopping test, exit 3). docs/targeting.md.\n"
+    "reach its stopping test, exit 3). Ctrl-C stops it with the best point so far (exit\n"
+    "130, nothing written). docs/targeting.md.\n"
     "\n"
     "options:\n"
     "  -o CONVERGED.yaml       write the mission with the converged values (comments and\n"
-    "                          layout kept), then run it and check that it reproduces the\n"
-    "                          targeted finals; keep it in the mission's folder when the\n"
-    "                          mission reads files by relative paths\n"
+    "                          layout kept; paths to the files it reads rewritten from the\n"
+    "                          new file's folder), then run it and check that it reproduces\n"
+    "                          the targeted finals; its folder must exist\n"
     "  --method M              auto, newton, slsqp or cobyla (default: the file's, else auto)\n"
     "  --differences D         auto, forward or central (default: the file's, else auto)\n"
-    "  --max-iter N            iterations, >= 1 (default: the file's, else 50 for newton,\n"
+    "  --max-iter N            iterations, 1 to 100000 (default: the file's, else 50 for newton,\n"
     "                          50 + 25 per variable for each optimiser)\n"
-    "  --restarts N            run SLSQP again from its best point up to N times while it\n"
+    "  --restarts N            run SLSQP again from its best point up to N (<= 100) times while it\n"
     "                          gains (default: the file's, else 0)\n"
     "  --threads N             worker threads: sensitivities in parallel, each on a run of\n"
     "                          its own; independent branches of one evaluation (default 2)\n"

@@ -180,6 +180,7 @@ LV_API void lv_target_settings_default(lv_target_settings *s);
 typedef struct lv_target_result {
     int converged;        /* 1: every constraint met (and the optimiser stopped on its
                              tolerances: a local optimum); 0: the best point found */
+    int cancelled;        /* 1: on_evaluation stopped the solve: the best point so far */
     char reason[LV_ERR_MSG_MAX]; /* how it ended, one sentence */
     const char *method;   /* the solver(s) used: "newton", "newton+slsqp", ... */
     size_t n_vars, n_cons;
@@ -195,7 +196,8 @@ typedef struct lv_target_result {
 
 /* Solves: returns LV_OK with *out filled whether or not the target was met (out->converged
  * says; out->x is the best point then); LV_ERR_SOLVER when the start point itself fails
- * (err names the phase and why); LV_ERR_CANCELLED when on_evaluation asked to stop. *out is
+ * (err names the phase and why); LV_ERR_CANCELLED when on_evaluation asked to stop before
+ * the start point was evaluated (later, the result is the best point so far, `cancelled` 1). *out is
  * owned by t and valid until the next solve or lv_target_free. */
 LV_API lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
                                  const lv_target_result **out, lv_err *err);

@@ -284,6 +284,8 @@ lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_i
     const nlopt_result r = nlopt_optimize(c.opt, z, &fmin_val);
     if (c.st != LV_OK) {
         st = c.st;
+        if (st == LV_ERR_CANCELLED) /* the caller reports the best point so far */
+            tg_point_copy(t, p, &c.best);
         goto done;
     }
     tg_point_copy(t, p, &c.best);

@@ -838,6 +838,17 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         }
         break;
     }
+    /* cancelled (on_evaluation returned nonzero): the best point so far is the result, not
+     * converged; the callback is not asked again for the result's run */
+    int cancelled = 0;
+    if (st == LV_ERR_CANCELLED && p.ok) {
+        cancelled = 1;
+        conv = 0;
+        snprintf(reason, sizeof reason, "cancelled at iteration %zu: the best point so far",
+                 t->iteration);
+        t->set.on_evaluation = NULL;
+        st = LV_OK;
+    }
     if (st != LV_OK)
         goto done;
     /* the run holds the result's point */
@@ -858,6 +869,7 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         t->res_met[i] = p.ok && fabs(p.r[i]) <= 1.0;
     t->res = (lv_target_result){0};
     t->res.converged = conv && tg_met(t, &p);
+    t->res.cancelled = cancelled;
     snprintf(t->res.reason, sizeof t->res.reason, "%s", reason);
     t->res.method = t->method_used;
     t->res.n_vars = t->n;

@@ -450,8 +450,10 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
         at = edits[i].at + edits[i].len;
     }
     fwrite(text + at, 1, len - at, a.fp);
-    if ((st = lv_atomic_commit(&a, err)) != LV_OK)
+    if (fflush(a.fp) != 0) {
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", a.tmp, strerror(errno));
         goto done;
+    }
 
     /* the point written, on this target's run: the reference */
     lv_err e;
@@ -466,10 +468,17 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
         lv_fail_prefix(err, st, "the point written fails");
         goto done;
     }
-    /* the written file, loaded and run as `lvsim run` does: every phase */
-    if ((st = lv_mission_load(path, &m2, err)) != LV_OK) {
-        lv_fail_prefix(err, st, "%s: the converged mission does not load (a file it reads by "
-                       "a relative path? write it into the mission's folder)", path);
+    /* the written file (still under its temporary name: a file that fails here is not
+     * left behind), loaded and run as `lvsim run` does: every phase */
+    if ((st = lv_mission_load(a.tmp, &m2, err)) != LV_OK) {
+        char msg[sizeof err->msg];
+        const size_t nt = strlen(a.tmp);
+        if (strncmp(err->msg, a.tmp, nt) == 0) /* the messages name the file to be */
+            snprintf(msg, sizeof msg, "%s%s", path, err->msg + nt);
+        else
+            snprintf(msg, sizeof msg, "%s", err->msg);
+        lv_fail(err, st, "%s: the converged values make a mission that does not load, not "
+                "written: %s", path, msg);
         goto done;
     }
     if ((st = lv_run_create(m2, &r2, err)) != LV_OK)
@@ -501,7 +510,9 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
     if (!(w <= 1e-3) || !(cdev <= 1e-6))
         st = lv_fail(err, LV_ERR_SOLVER, "%s: running the converged mission does not reproduce "
                      "the targeted finals: %s differs by %.3g of its tolerance, the cost by %.3g "
-                     "of its scale", path, wname ? wname : "-", w, cdev);
+                     "of its scale; not written", path, wname ? wname : "-", w, cdev);
+    if (st == LV_OK)
+        st = lv_atomic_commit(&a, err);
 done:
     if (a.fp != NULL)
         lv_atomic_abort(&a);
