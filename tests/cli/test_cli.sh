@@ -363,6 +363,29 @@ expect 2 "bad.yaml:12:22: targeting: variable 'start_fpa_dg'" -- "$lvsim" target
 expect 2 "the mission has no \`targeting:\` section" -- "$lvsim" target "$src/examples/dof3-branch/mission.yaml"
 expect 2 "--method: auto, newton, slsqp or cobyla expected, got 'simplex'" -- "$lvsim" target "$work/shot.yaml" --method simplex
 expect 0 "^usage: lvsim target MISSION.yaml" -- "$lvsim" target --help
+# -o is checked before the solve; the counts take the file's ranges
+expect 2 "the folder '$work/no-such-dir' does not exist" -- "$lvsim" target "$work/shot.yaml" -o "$work/no-such-dir/c.yaml"
+expect 2 "not a folder" -- "$lvsim" target "$work/shot.yaml" -o "$work"
+expect 2 "\-\-restarts needs an integer from 0 to 100, got '101'" -- "$lvsim" target "$work/shot.yaml" --restarts 101
+expect 0 "^converged" -- "$lvsim" target "$work/shot.yaml" --max-iter 1e3 -q
+expect 0 "^converged: slsqp" -- "$lvsim" target "$work/shot.yaml" --method slsqp -q
+# a converged value that breaks a cross-phase load rule: the file is not written
+# (the parent ends at its apogee, ~3.5 s, long before its stop_time 50 s: the child's stop
+# time 5 s runs, but the loader refuses a child stop_time before the parent's)
+cat > "$work/two.yaml" <<'YAML'
+mission: {name: two}
+environment: {world: planet, atmosphere: none}
+parameters: {start_h: 0, start_vel: 100, start_fpa_deg: 20, start_chi_deg: 90}
+stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]
+phases:
+  - {name: up, model: dof3, stages: [ball], stop_time: 50, end: [apogee]}
+  - {name: down, model: dof3, stages: [ball], from: up, stop_time: 100, end: [impact]}
+targeting:
+  variables: [{name: down.stop_time, min: 1, max: 100, start: 6}]
+  constraints: [{final: down.time, equal: 5, tolerance: 0.01}]
+YAML
+expect 2 "the converged values make a mission that does not load, not written" -- "$lvsim" target "$work/two.yaml" -o "$work/two_conv.yaml"
+[ ! -e "$work/two_conv.yaml" ] && [ ! -e "$work/two_conv.yaml.tmp" ] && pass=$((pass + 1)) || { echo "FAIL: an unloadable converged file was left"; fails=$((fails + 1)); }
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
