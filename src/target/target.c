@@ -793,6 +793,16 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         t->cost_scale = t->cost.scale > 0.0 ? t->cost.scale
                                             : (fabs(p.cost) > 0.0 ? fabs(p.cost) : 1.0);
     tg_report(t, "start", &p, NAN, NAN, NULL);
+    /* the start's finals, to tell a problem whose constraints do not move from a hard one */
+    double *f0 = malloc((t->mc + 1) * sizeof *f0), *x0 = malloc((t->n + 1) * sizeof *x0);
+    if (f0 == NULL || x0 == NULL) {
+        free(f0);
+        free(x0);
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    memcpy(f0, p.f, t->mc * sizeof *f0);
+    memcpy(x0, p.x, t->n * sizeof *x0);
 
     int conv = 0;
     char reason[LV_ERR_MSG_MAX] = "";
@@ -849,6 +859,23 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         t->set.on_evaluation = NULL;
         st = LV_OK;
     }
+    /* not met, the variables moved by a scale or more and no final moved by more than 1e-6
+     * of its size: the constraints do not depend on the variables (only integration noise
+     * moved them) */
+    if (st == LV_OK && !cancelled && !tg_met(t, &p) && p.ok && t->mc > 0) {
+        double dz = 0.0, df = 0.0;
+        for (size_t j = 0; j < t->n; j++)
+            dz = hypot(dz, (p.x[j] - x0[j]) / t->vars[j].r.scale);
+        for (size_t i = 0; i < t->mc; i++)
+            df = fmax(df, fabs(p.f[i] - f0[i]) / fmax(fabs(f0[i]), t->cons[i].tol));
+        const size_t nr = strlen(reason);
+        if (dz >= 1.0 && df <= 1e-6)
+            snprintf(reason + nr, sizeof reason - nr, "; the constraints do not depend on the "
+                     "variables: moving them by %.3g scales changed no final by more than %.2g "
+                     "of its size", dz, df);
+    }
+    free(f0);
+    free(x0);
     if (st != LV_OK)
         goto done;
     /* the run holds the result's point */
