@@ -18,6 +18,8 @@
 
 static const char *const keys[] = {"runway", "takeoff", "landing", "aero", NULL};
 static const char *const from_types[] = {"dof3", NULL};
+/* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
+static const char *const ends[] = {"burnout", "speed", NULL};
 
 static const lv_traj_col traj[] = {
     {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
@@ -176,7 +178,10 @@ static lv_status runway_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def 
     /* the ends a roll has: its speed, burnout, a variable or a time; no altitude */
     for (size_t j = 0; j < ph->n_ends; j++) {
         const lv_end_def *e = &ph->ends[j];
-        if (e->kind == LV_END_ALTITUDE || e->kind == LV_END_APOGEE || e->kind == LV_END_IMPACT)
+        int known = e->kind == LV_END_VAR || e->kind == LV_END_TIME;
+        for (size_t i = 0; ends[i] != NULL; i++)
+            known |= strcmp(ends[i], lv_end_kind_name(e->kind)) == 0;
+        if (!known)
             return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': end '%s': a runway phase "
                            "rolls on the ground: it ends at lift-off (take-off) or stop "
                            "(landing) by itself, and takes speed, burnout, time and variable "
@@ -393,6 +398,7 @@ const lv_phase_type lv_phase_type_runway = {
     .world = LV_WORLD_PLANET,
     .keys = keys,
     .from_types = from_types,
+    .ends = ends,
     .sample_keys = "runway: {lat_deg: 0, lon_deg: 0, elevation: 0, heading_deg: 90}, "
                    "takeoff: {mu: 0.02, v_rot: 80, alpha_rot_deg: 8}",
     .n_mission_params = 0,

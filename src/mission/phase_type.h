@@ -99,6 +99,9 @@ struct lv_phase_type {
     /* The keys a sample phase of this type needs besides name, model, stages and stop_time
      * (`lvsim models`, `lvsim vars <type>`), as YAML flow-mapping entries; NULL: none. */
     const char *sample_keys;
+    /* The named end conditions (lv_end_kind_name) its phases take, NULL-terminated; NULL: all.
+     * The type's parse refuses the others at their position. */
+    const char *const *ends;
     /* The model parameters a root phase takes from the mission's shared parameter set
      * (name, SI unit, description; `start` unused). */
     size_t n_mission_params;

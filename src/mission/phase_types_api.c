@@ -32,6 +32,7 @@ lv_status lv_phase_types_get(size_t i, lv_phase_type_info *out, lv_err *err)
     out->n_mission_params = t->n_mission_params;
     out->mission_params = t->mission_params;
     out->mass_state = t->mass_state;
+    out->ends = t->ends;
     return LV_OK;
 }
 
