@@ -64,7 +64,10 @@ static void print_type_extras(const char *name)
             continue;
         printf("# mission type %s: %s (%s world); mass state '%s'\n", t.name, t.description,
                t.flat_world ? "flat" : "planet", t.mass_state);
-        printf("# a root phase takes these from the mission's 'parameters:':\n");
+        printf(t.n_mission_params > 0
+                   ? "# a root phase takes these from the mission's 'parameters:':\n"
+                   : "# a root phase takes nothing from the mission's 'parameters:' (its own "
+                     "keys give its start)\n");
         for (size_t j = 0; j < t.n_mission_params; j++) {
             const lv_var *v = &t.mission_params[j];
             printf("%-10s %-16s %-8s %12s  %s\n", "mission", v->name, v->unit[0] ? v->unit : "-",
@@ -74,8 +77,10 @@ static void print_type_extras(const char *name)
         for (size_t j = 0; t.keys != NULL && t.keys[j] != NULL; j++)
             printf(" %s", t.keys[j]);
         printf("%s\n# end conditions ('end:'):", t.keys && t.keys[0] ? "" : " none");
-        for (size_t j = 0; j < lv_phase_types_end_count(); j++)
+        for (size_t j = 0; t.ends == NULL && j < lv_phase_types_end_count(); j++)
             printf(" %s", lv_phase_types_end_name(j));
+        for (size_t j = 0; t.ends != NULL && t.ends[j] != NULL; j++)
+            printf(" %s", t.ends[j]);
         printf(", {time: DT} (s after the phase's start), or any state or output below crossing a "
                "value: {NAME: X}, {NAME_deg: X} for an angle, {output: NAME, value: X} (docs/mission-format.md)\n"
                "# 'set:' takes any state or parameter below; the "

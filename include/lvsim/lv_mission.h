@@ -280,6 +280,8 @@ typedef struct lv_phase_type_info {
     size_t n_mission_params;    /* what a root phase takes from the mission's `parameters:` */
     const lv_var *mission_params;
     const char *mass_state;     /* the state holding the vehicle's mass: "m" */
+    const char *const *ends;    /* the named end conditions its `end:` takes (NULL-terminated),
+                                   or NULL: all of lv_phase_types_end_name */
 } lv_phase_type_info;
 
 /* The registered types, in registry order: i = 0 .. count - 1. */

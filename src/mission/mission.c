@@ -47,6 +47,16 @@ static int model_has(const lv_model_def *md, const char *name)
     return lv_model_find(md, name, &kind, &idx, NULL) == LV_OK;
 }
 
+/* A phase of type t may start from a phase of type p: the same type, or one t lists in its
+ * from_types (phase_type.h). */
+static int type_accepts(const lv_phase_type *t, const lv_phase_type *p)
+{
+    for (size_t i = 0; t->from_types != NULL && t->from_types[i] != NULL; i++)
+        if (strcmp(t->from_types[i], p->name) == 0)
+            return 1;
+    return 0;
+}
+
 /* Phase k's plan from its model `md` (built with the file's values) and its parent's plan. */
 static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md,
                            lv_phase_plan *p, lv_err *err)
@@ -110,7 +120,8 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
     } else {
         const lv_phase_plan *par = &m->plan[ph->parent];
         const lv_phase_def *pph = &d->phases[ph->parent];
-        if (pph->type != ph->type)
+        const int other = pph->type != ph->type;
+        if (other && !type_accepts(ph->type, pph->type))
             return lv_fail(err, LV_ERR_INPUT,
                            "model %s cannot start from phase '%s' (model %s): no conversion "
                            "between the two models",
@@ -122,13 +133,21 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
                 p->init[n++] = (lv_init_src){LV_INIT_MASS, 0};
                 continue;
             }
-            for (size_t j = 0; j < par->n_final; j++)
-                if (strcmp(par->final_names[j], sn) == 0) {
-                    p->init_names[n] = p->final_names[1 + i];
-                    p->init[n++] = (lv_init_src){LV_INIT_PARENT, j};
-                    p->n_copied++;
-                    break;
-                }
+            size_t j = 0;
+            while (j < par->n_final && strcmp(par->final_names[j], sn) != 0)
+                j++;
+            if (j < par->n_final) {
+                p->init_names[n] = p->final_names[1 + i];
+                p->init[n++] = (lv_init_src){LV_INIT_PARENT, j};
+                p->n_copied++;
+            } else if (other) { /* converted by the child's type from the parent's finals */
+                if (ph->type->handoff == NULL)
+                    return lv_fail(err, LV_ERR_INPUT, "model %s cannot start from phase '%s' "
+                                   "(model %s): its state '%s' has no value there", ph->type->name,
+                                   pph->name, pph->type->name, sn);
+                p->init_names[n] = p->final_names[1 + i];
+                p->init[n++] = (lv_init_src){LV_INIT_CONVERT, 0};
+            }
         }
     }
     if (model_has(md, "start_time")) {

@@ -14,7 +14,9 @@ typedef enum lv_init_kind {
     LV_INIT_SLOT = 0,   /* the run's value of slot `index` (parameters, g, overrides) */
     LV_INIT_PARENT,     /* the parent's final value `index` (a state copied by name) */
     LV_INIT_MASS,       /* the carried stages' mass from the stage book */
-    LV_INIT_START_TIME  /* the phase's start time (the ECI <-> ECEF angle of dof3) */
+    LV_INIT_START_TIME, /* the phase's start time (the ECI <-> ECEF angle of dof3) */
+    LV_INIT_CONVERT     /* a state the parent (of another type) has no final of: its type's
+                           handoff converts it from the parent's finals (phase_type.h) */
 } lv_init_kind;
 
 typedef struct lv_init_src {

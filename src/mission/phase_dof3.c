@@ -17,6 +17,9 @@
 
 static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
                                    NULL};
+/* A runway phase's outputs r_eci_*, v_eci_* are this model's states: a climb-out starts where
+ * the take-off roll lifted off (phase_runway.c). */
+static const char *const from_types[] = {"runway", NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
 static const lv_var mission_params[] = {
@@ -437,6 +440,7 @@ const lv_phase_type lv_phase_type_dof3 = {
                    "inputs alpha, beta, mu, throttle or steering and throttle laws",
     .world = LV_WORLD_PLANET,
     .keys = keys,
+    .from_types = from_types,
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
     .mission_param_ranges = mission_param_ranges,

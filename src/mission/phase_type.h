@@ -91,6 +91,17 @@ struct lv_phase_type {
     const char *const *keys; /* phase keys it parses itself besides the common ones (name,
                                 model, stages, from, start_time, stop_time, end, integrator,
                                 set), NULL-terminated; may be NULL */
+    /* The other types whose phases a phase of this type may start from (`from:`),
+     * NULL-terminated; NULL: its own type only. The hand-off copies the parent's finals
+     * (states and outputs) by the names of this type's states; a state the parent has no
+     * final of is given by `handoff` (the conversion), which must then exist. */
+    const char *const *from_types;
+    /* The keys a sample phase of this type needs besides name, model, stages and stop_time
+     * (`lvsim models`, `lvsim vars <type>`), as YAML flow-mapping entries; NULL: none. */
+    const char *sample_keys;
+    /* The named end conditions (lv_end_kind_name) its phases take, NULL-terminated; NULL: all.
+     * The type's parse refuses the others at their position. */
+    const char *const *ends;
     /* The model parameters a root phase takes from the mission's shared parameter set
      * (name, SI unit, description; `start` unused). */
     size_t n_mission_params;

@@ -32,6 +32,7 @@ lv_status lv_phase_types_get(size_t i, lv_phase_type_info *out, lv_err *err)
     out->n_mission_params = t->n_mission_params;
     out->mission_params = t->mission_params;
     out->mass_state = t->mass_state;
+    out->ends = t->ends;
     return LV_OK;
 }
 
@@ -56,13 +57,16 @@ static void sample_text(const lv_phase_type *t, char *buf, size_t cap)
              "    propellant_mass: 4000\n"
              "    engines: [{thrust_vac: 1.0e5, isp_vac: 300}]\n"
              "phases:\n"
-             "  - {name: sample, model: %s, stages: [stage], stop_time: 10}\n",
+             "  - {name: sample, model: %s, stages: [stage], stop_time: 10%s%s}\n",
              t->name,
              flat ? ""
-                  : "environment: {world: planet, planet: earth}\n"
-                    "parameters: {start_lat: 0, start_lon: 0, start_h: 0, start_vel: 1,\n"
-                    "             start_fpa_deg: 89, start_chi: 0}\n",
-             t->name);
+             : t->n_mission_params == 0
+                 ? "environment: {world: planet, planet: earth}\n"
+                 : "environment: {world: planet, planet: earth}\n"
+                   "parameters: {start_lat: 0, start_lon: 0, start_h: 0, start_vel: 1,\n"
+                   "             start_fpa_deg: 89, start_chi: 0}\n",
+             t->name, t->sample_keys != NULL ? ", " : "",
+             t->sample_keys != NULL ? t->sample_keys : "");
 }
 
 lv_status lv_phase_types_sample(const char *name, lv_phase_sample **out, lv_err *err)

@@ -314,6 +314,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         case LV_INIT_PARENT: c->values[i] = par->fvalues[src->index]; break;
         case LV_INIT_MASS: c->values[i] = c->mass_book; break;
         case LV_INIT_START_TIME: c->values[i] = s->start_time; break;
+        case LV_INIT_CONVERT: c->values[i] = NAN; break; /* the type's handoff gives it */
         }
     }
     if (par != NULL && ph->type->handoff != NULL &&
@@ -324,6 +325,14 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
                               ph->loc.column, ph->name);
     }
+    for (size_t i = 0; i < pl->n_init; i++)
+        if (pl->init[i].kind == LV_INIT_CONVERT && isnan(c->values[i])) {
+            lv_phase_call_free(c);
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': the hand-off from phase "
+                           "'%s' gives no value for the state '%s'", d->path, ph->loc.line,
+                           ph->loc.column, ph->name, d->phases[ph->parent].name,
+                           pl->init_names[i]);
+        }
     s->n_initial = pl->n_init;
     s->initial_names = c->names;
     s->initial_values = c->values;

@@ -12,6 +12,7 @@ list(APPEND LV_SOURCES
   src/mission/phase_types.c
   src/mission/phase_flat6.c
   src/mission/phase_dof3.c
+  src/mission/phase_runway.c
   src/mission/mission.c
   src/mission/run.c
   src/mission/compare.c

@@ -1,2 +1,5 @@
 # 3-DoF model through lv_simulate.
 lv_add_unit_test(test_dof3 unit/test_dof3.c)
+# The runway model (take-off roll, landing roll-out) against closed forms of the ground roll,
+# and the `runway` phase type in missions (parse errors, hand-offs to and from dof3).
+lv_add_unit_test(test_runway unit/test_runway.c)

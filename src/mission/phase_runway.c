@@ -1,0 +1,416 @@
+/* phase_runway.c - the phase-model type "runway": the take-off roll or the landing roll-out
+ * of the phase's stages on a runway over the rotating planet (lv_runway.h; docs/models.md,
+ * "The runway model"). Its own phase keys: `runway` (the threshold and heading), `takeoff`
+ * or `landing` (the roll's parameters), `aero` (the phase's aerodynamic dataset). It hands
+ * over to "dof3" by its outputs r_eci_*, v_eci_* (named as dof3's states) and starts from a
+ * "dof3" phase by projecting its final state onto the runway (touchdown). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "lvsim/lv_runway.h"
+#include "lvsim/lv_units.h"
+#include "lvsim/lv_wind.h"
+#include "mission/aero_def.h"
+#include "mission/phase_type.h"
+
+static const char *const keys[] = {"runway", "takeoff", "landing", "aero", NULL};
+static const char *const from_types[] = {"dof3", NULL};
+/* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
+static const char *const ends[] = {"burnout", "speed", NULL};
+
+static const lv_traj_col traj[] = {
+    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
+    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
+    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
+    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
+    {"q_dyn", "Pa", "q_dyn"},
+};
+
+/* Touchdown tolerances of the hand-off from a dof3 phase (runway_handoff). */
+#define TOUCHDOWN_HEIGHT_MAX 10.0 /* m above or below the runway plane */
+#define TOUCHDOWN_LATERAL_MAX 60.0 /* m from the centre line (a 45-60 m wide runway) */
+
+/* ---- the phase's own keys ---------------------------------------------------------------- */
+
+enum { G_LAT, G_LON, G_H, G_HDG, G_N };           /* runway: */
+enum { R_MU, R_AG, R_VROT, R_AROT, R_RATE, R_VSTOP, R_S0, R_V0, R_THR, R_N }; /* the roll */
+
+typedef struct runway_cfg {
+    lv_runway_mode mode;
+    lv_slot geo[G_N];
+    lv_slot roll[R_N];   /* LV_NO_SLOT where the mode has no such parameter */
+    lv_aero_def aero;
+} runway_cfg;
+
+static void runway_cfg_free(void *p)
+{
+    runway_cfg *c = p;
+    if (c == NULL)
+        return;
+    lv_aero_def_clear(&c->aero);
+    free(c);
+}
+
+/* runway: {lat_deg, lon_deg, elevation, heading_deg} (all required; lat/lon/heading also in
+ * rad as lat, lon, heading). */
+static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *phase, const lv_ynode *n,
+                                const char *name, runway_cfg *cfg)
+{
+    static const char *const gkeys[] = {"lat", "lat_deg", "lon", "lon_deg", "elevation",
+                                        "heading", "heading_deg", NULL};
+    static const char *const base[G_N] = {"lat", "lon", "elevation", "heading"};
+    static const char *const units[G_N] = {"rad", "rad", "m", "rad"};
+    const lv_range ranges[G_N] = {{-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, LV_RANGE_ANY,
+                                  {-1e4, 1e4, 0, 0}, LV_RANGE_ANY};
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
+    snprintf(what, sizeof what, "phase '%s', runway", name);
+    if (n == NULL || lv_yaml_is_null(n))
+        return lv_pk_fail(c, phase, "phase '%s': a runway phase needs `runway: {lat_deg, "
+                          "lon_deg, elevation, heading_deg}` (its threshold and heading)", name);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {lat_deg: 43.5, lon_deg: 1.4, "
+                          "elevation: 150, heading_deg: 90} expected", what);
+    lv_status st = lv_pk_check_map(c, n, what, gkeys);
+    if (st != LV_OK)
+        return st;
+    for (int k = 0; k < G_N; k++) {
+        char deg[24];
+        snprintf(deg, sizeof deg, "%s_deg", base[k]);
+        const lv_ynode *v = lv_pk_get(n, base[k]), *vd = k != G_H ? lv_pk_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
+                              base[k], deg);
+        if (v == NULL && vd == NULL)
+            return lv_pk_fail(c, n, "%s: '%s' is missing", what, k != G_H ? deg : base[k]);
+        snprintf(slot, sizeof slot, "%s.runway.%s", name, base[k]);
+        if ((st = lv_pk_slot(c, v ? v : vd, what, v ? base[k] : deg, slot, units[k], ranges[k],
+                             vd != NULL, &cfg->geo[k])) != LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
+/* takeoff: {mu, v_rot, alpha_rot_deg, rotation_rate_deg, alpha_ground_deg, throttle,
+ *           start_distance, start_speed}
+ * landing: {mu, v_stop, alpha_deg, start_distance, start_speed} */
+static lv_status parse_roll(const lv_pctx *c, const lv_ynode *phase, const char *name,
+                            runway_cfg *cfg)
+{
+    static const char *const names[R_N] = {"mu", "alpha_ground", "v_rot", "alpha_rot",
+                                           "rotation_rate", "v_stop", "start_distance",
+                                           "start_speed", "throttle"};
+    static const char *const units[R_N] = {"", "rad", "m/s", "rad", "rad/s", "m/s", "m", "m/s",
+                                           ""};
+    static const int angle[R_N] = {0, 1, 0, 1, 1, 0, 0, 0, 0};
+    /* take-off: every parameter but v_stop; landing: mu, v_stop, alpha (the ground attitude)
+     * and the start values */
+    static const int in_takeoff[R_N] = {1, 1, 1, 1, 1, 0, 1, 1, 1};
+    static const int in_landing[R_N] = {1, 1, 0, 0, 0, 1, 1, 1, 0};
+    static const int required_to[R_N] = {1, 0, 1, 1, 0, 0, 0, 0, 0};
+    static const int required_la[R_N] = {1, 0, 0, 0, 0, 1, 0, 0, 0};
+    static const double defaults[R_N] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+    static const char *const tkeys[] = {"mu", "v_rot", "alpha_rot", "alpha_rot_deg",
+                                        "rotation_rate", "rotation_rate_deg", "alpha_ground",
+                                        "alpha_ground_deg", "throttle", "start_distance",
+                                        "start_speed", NULL};
+    static const char *const lkeys[] = {"mu", "v_stop", "alpha", "alpha_deg", "start_distance",
+                                        "start_speed", NULL};
+    const lv_ynode *to = lv_pk_get(phase, "takeoff"), *la = lv_pk_get(phase, "landing");
+    if (to != NULL && la != NULL)
+        return lv_pk_fail(c, lv_pk_key(phase, "landing"), "phase '%s': `takeoff` and `landing` "
+                          "given both: a runway phase is one roll", name);
+    if (to == NULL && la == NULL)
+        return lv_pk_fail(c, phase, "phase '%s': a runway phase needs `takeoff: {mu, v_rot, "
+                          "alpha_rot_deg, ...}` or `landing: {mu, v_stop}`", name);
+    cfg->mode = to != NULL ? LV_RUNWAY_TAKEOFF : LV_RUNWAY_LANDING;
+    const lv_ynode *n = to != NULL ? to : la;
+    const char *mode = to != NULL ? "takeoff" : "landing";
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 48];
+    snprintf(what, sizeof what, "phase '%s', %s", name, mode);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as %s expected", what,
+                          to != NULL ? "{mu: 0.02, v_rot: 110, alpha_rot_deg: 10}"
+                                     : "{mu: 0.3, v_stop: 1}");
+    lv_status st = lv_pk_check_map(c, n, what, to != NULL ? tkeys : lkeys);
+    if (st != LV_OK)
+        return st;
+    const int has_from = lv_pk_get(phase, "from") != NULL;
+    for (int k = 0; k < R_N; k++) {
+        cfg->roll[k] = LV_NO_SLOT;
+        if (!(to != NULL ? in_takeoff[k] : in_landing[k]))
+            continue;
+        /* the landing roll's ground attitude is written `alpha` */
+        const char *key = la != NULL && k == R_AG ? "alpha" : names[k];
+        char deg[32];
+        snprintf(deg, sizeof deg, "%s_deg", key);
+        const lv_ynode *v = lv_pk_get(n, key), *vd = angle[k] ? lv_pk_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what, key,
+                              deg);
+        if ((k == R_S0 || k == R_V0) && has_from && v != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, key), "%s: '%s': a phase with `from` starts where "
+                              "its parent ended", what, key);
+        if (v == NULL && vd == NULL && (to != NULL ? required_to[k] : required_la[k]))
+            return lv_pk_fail(c, n, "%s: '%s' is missing", what, angle[k] ? deg : key);
+        const lv_range r = k == R_VROT || k == R_VSTOP ? LV_RANGE_POS
+                           : k == R_AG || k == R_AROT || k == R_S0 ? LV_RANGE_ANY
+                                                                   : LV_RANGE_NONNEG;
+        snprintf(slot, sizeof slot, "%s.%s.%s", name, mode, names[k]);
+        st = v != NULL || vd != NULL
+                 ? lv_pk_slot(c, v ? v : vd, what, v ? key : deg, slot, units[k], r, vd != NULL,
+                              &cfg->roll[k])
+                 : lv_pk_slot_default(c, slot, units[k], defaults[k], r, &cfg->roll[k]);
+        if (st != LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
+static lv_status runway_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    runway_cfg *cfg = calloc(1, sizeof *cfg);
+    if (cfg == NULL)
+        return lv_pk_nomem(c);
+    ph->type_cfg = cfg;
+    /* the ends a roll has: its speed, burnout, a variable or a time; no altitude */
+    for (size_t j = 0; j < ph->n_ends; j++) {
+        const lv_end_def *e = &ph->ends[j];
+        int known = e->kind == LV_END_VAR || e->kind == LV_END_TIME;
+        for (size_t i = 0; ends[i] != NULL; i++)
+            known |= strcmp(ends[i], lv_end_kind_name(e->kind)) == 0;
+        if (!known)
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': end '%s': a runway phase "
+                           "rolls on the ground: it ends at lift-off (take-off) or stop "
+                           "(landing) by itself, and takes speed, burnout, time and variable "
+                           "ends", c->file, e->loc.line, e->loc.column, ph->name,
+                           lv_end_kind_name(e->kind));
+    }
+    lv_status st = parse_geometry(c, n, lv_pk_get(n, "runway"), ph->name, cfg);
+    if (st == LV_OK)
+        st = parse_roll(c, n, ph->name, cfg);
+    if (st == LV_OK)
+        st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
+    return st;
+}
+
+/* ---- the model ---------------------------------------------------------------------------- */
+
+typedef struct runway_self {
+    lv_phase_model pm;
+    lv_runway *model;
+    lv_phase_env env;
+    lv_aero_config aero;
+    lv_wind_user wind;
+    lv_engine_config *engines;
+    lv_runway_end *ends;
+    int *event_end;
+} runway_self;
+
+static void runway_free_self(void *p)
+{
+    runway_self *s = p;
+    if (s == NULL)
+        return;
+    lv_runway_free(s->model);
+    lv_phase_env_clear(&s->env);
+    free(s->engines);
+    free(s->ends);
+    free(s->event_end);
+    free(s);
+}
+
+static double val(const lv_build_ctx *bc, lv_slot s, double fallback)
+{
+    return s == LV_NO_SLOT ? fallback : bc->vals[s];
+}
+
+static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
+{
+    const lv_mission_def *d = bc->def;
+    const lv_phase_def *ph = &d->phases[bc->k];
+    const runway_cfg *pc = ph->type_cfg;
+    const lv_stage_def *bottom = &d->stages[ph->stages[0]];
+    *out = NULL;
+    if (bc->env == NULL || bc->env->gravity == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "model 'runway' needs a planet world");
+    size_t n_all = 0;
+    for (size_t e = 0; e < bottom->n_engines; e++)
+        n_all += (size_t)(bottom->engines[e].count > 0 ? bottom->engines[e].count : 1);
+    runway_self *s = calloc(1, sizeof *s);
+    if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
+        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
+        (s->event_end = calloc(ph->n_ends + 3, sizeof *s->event_end)) == NULL) {
+        runway_free_self(s);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    if (st != LV_OK) {
+        runway_free_self(s);
+        return st;
+    }
+    lv_runway_config cfg;
+    lv_runway_config_default(&cfg);
+    cfg.name = ph->name;
+    cfg.planet = s->env.planet;
+    cfg.gravity = s->env.gravity;
+    cfg.atmo = s->env.atmo;
+    if (s->env.wind != NULL) {
+        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
+        cfg.wind = lv_wind_fn_table;
+        cfg.wind_user = &s->wind;
+    }
+    cfg.mode = pc->mode;
+    double m0 = 0.0;
+    for (size_t i = 0; i < ph->n_stages; i++) {
+        const size_t si = ph->stages[i];
+        m0 += bc->vals[d->stages[si].dry_mass] + bc->prop[si];
+    }
+    const double prop0 = bc->prop[ph->stages[0]];
+    cfg.m0 = m0;
+    cfg.propellant = prop0;
+    size_t ne = 0;
+    for (size_t e = 0; pc->mode == LV_RUNWAY_TAKEOFF && prop0 > 0.0 && e < bottom->n_engines;
+         e++) {
+        const lv_engine_def *ed = &bottom->engines[e];
+        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
+            lv_engine_config *ec = &s->engines[ne++];
+            lv_engine_config_default(ec);
+            ec->name = ed->name;
+            ec->thrust_vac = val(bc, ed->thrust_vac, 0.0);
+            ec->isp_vac = val(bc, ed->isp_vac, 0.0);
+            ec->mdot = val(bc, ed->mdot, 0.0);
+            ec->exit_area = val(bc, ed->exit_area, 0.0);
+            ec->throttle_min = val(bc, ed->throttle_min, 0.0);
+            ec->throttle_max = val(bc, ed->throttle_max, 1.0);
+            ec->table = lv_build_table(bc, ed->table);
+        }
+    }
+    cfg.n_engines = ne;
+    cfg.engines = s->engines;
+    cfg.runway_lat = bc->vals[pc->geo[G_LAT]];
+    cfg.runway_lon = bc->vals[pc->geo[G_LON]];
+    cfg.runway_h = bc->vals[pc->geo[G_H]];
+    cfg.runway_heading = bc->vals[pc->geo[G_HDG]];
+    cfg.mu = val(bc, pc->roll[R_MU], 0.0);
+    cfg.alpha_ground = val(bc, pc->roll[R_AG], 0.0);
+    cfg.v_rot = val(bc, pc->roll[R_VROT], cfg.v_rot);
+    cfg.alpha_rot = val(bc, pc->roll[R_AROT], cfg.alpha_ground);
+    cfg.rotation_rate = val(bc, pc->roll[R_RATE], 0.0);
+    cfg.v_stop = val(bc, pc->roll[R_VSTOP], cfg.v_stop);
+    cfg.start_distance = val(bc, pc->roll[R_S0], 0.0);
+    cfg.start_speed = val(bc, pc->roll[R_V0], 0.0);
+    cfg.throttle = val(bc, pc->roll[R_THR], 1.0);
+    size_t n_ends = 0;
+    s->event_end[0] = -1; /* burnout, rotation, liftoff/stop: the roll's own events */
+    s->event_end[1] = -1;
+    s->event_end[2] = -1;
+    for (size_t j = 0; j < ph->n_ends; j++) {
+        const lv_end_def *e = &ph->ends[j];
+        if (e->kind == LV_END_BURNOUT) {
+            cfg.stop_at_burnout = 1;
+            s->event_end[0] = (int)j;
+        } else if (e->kind == LV_END_SPEED) {
+            s->event_end[3 + n_ends] = (int)j;
+            s->ends[n_ends++] = (lv_runway_end){e->name, val(bc, e->value, 0.0), e->direction};
+        }
+        /* variables and time: stop conditions of the simulation (run.c) */
+    }
+    cfg.n_ends = n_ends;
+    cfg.ends = s->ends;
+    if (pc->aero.present) {
+        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
+        cfg.aero = &s->aero;
+    }
+    st = lv_runway_create(&cfg, &s->model, err);
+    if (st != LV_OK) {
+        runway_free_self(s);
+        return st;
+    }
+    s->pm.def = lv_runway_def(s->model);
+    s->pm.inst = lv_runway_inst(s->model);
+    s->pm.event_end = s->event_end;
+    s->pm.self = s;
+    *out = &s->pm;
+    return LV_OK;
+}
+
+static size_t find(const char *const *names, size_t n, const char *name)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return i;
+    return (size_t)-1;
+}
+
+/* Touchdown: a landing roll that starts from a dof3 phase takes the parent's final ECI state,
+ * turned into ECEF position and velocity relative to the planet at the parent's end time and
+ * projected on the runway: distance = (r - r0) . u, speed = v_rel . u. What the projection
+ * drops (the height above the runway plane, the sink rate, the lateral offset and speed) is
+ * what the touchdown absorbs: a parent that ends more than 10 m above or below the runway
+ * plane, more than 60 m beside its centre line or moving backwards is refused, naming the
+ * values (end the approach at touchdown: `{altitude: <elevation>}` or `impact`). */
+static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
+                                const char *const *pnames, const double *pvalues, size_t np,
+                                const char *const *names, double *values, size_t n, lv_err *err)
+{
+    const runway_self *s = pm->self;
+    const size_t is = find(names, n, "distance"), iv = find(names, n, "speed");
+    if (is == (size_t)-1 || iv == (size_t)-1)
+        return LV_OK; /* a runway parent: the states were copied by name */
+    static const char *const need[] = {"time", "r_eci_x", "r_eci_y", "r_eci_z",
+                                       "v_eci_x", "v_eci_y", "v_eci_z"};
+    double f[7];
+    for (int i = 0; i < 7; i++) {
+        const size_t j = find(pnames, np, need[i]);
+        if (j == (size_t)-1)
+            return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent's final '%s' is unknown "
+                           "(its model is not dof3)", need[i]);
+        f[i] = pvalues[j];
+    }
+    /* ECI -> ECEF with the relative velocity: the inverse of lv_frames_ecef_to_eci */
+    const lv_planet *pl = &s->env.planet;
+    const double th = pl->theta0 + pl->omega * f[0], c = cos(th), sn = sin(th);
+    const double vx = f[4] + pl->omega * f[2], vy = f[5] - pl->omega * f[1];
+    const double r[3] = {c * f[1] + sn * f[2], -sn * f[1] + c * f[2], f[3]};
+    const double v[3] = {c * vx + sn * vy, -sn * vx + c * vy, f[6]};
+    double dist, speed, height, lateral;
+    lv_runway_project(s->model, r, v, &dist, &speed, &height, &lateral);
+    (void)bc;
+    if (!(fabs(height) <= TOUCHDOWN_HEIGHT_MAX) || !(fabs(lateral) <= TOUCHDOWN_LATERAL_MAX) ||
+        !(speed >= 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent ends %.3g m above the runway "
+                       "plane, %.3g m right of its centre line, at %.4g m/s along it: a "
+                       "roll-out starts on the runway (within %g m of its plane and %g m of its "
+                       "centre line, rolling forwards); end the parent at touchdown",
+                       height, lateral, speed, TOUCHDOWN_HEIGHT_MAX, TOUCHDOWN_LATERAL_MAX);
+    values[is] = dist;
+    values[iv] = speed;
+    return LV_OK;
+}
+
+const lv_phase_type lv_phase_type_runway = {
+    .name = "runway",
+    .description = "take-off roll or landing roll-out on a runway over the rotating planet: "
+                   "thrust, aerodynamics, friction, rotation, lift-off or stop",
+    .world = LV_WORLD_PLANET,
+    .keys = keys,
+    .from_types = from_types,
+    .ends = ends,
+    .sample_keys = "runway: {lat_deg: 0, lon_deg: 0, elevation: 0, heading_deg: 90}, "
+                   "takeoff: {mu: 0.02, v_rot: 80, alpha_rot_deg: 8}",
+    .n_mission_params = 0,
+    .mission_params = NULL,
+    .mission_param_ranges = NULL,
+    .mass_state = "m",
+    .parse = runway_parse,
+    .cfg_free = runway_cfg_free,
+    .build = runway_build,
+    .free_self = runway_free_self,
+    .n_traj = sizeof traj / sizeof traj[0],
+    .traj = traj,
+    .traj_extra = NULL,
+    .handoff = runway_handoff,
+};
