@@ -50,8 +50,9 @@ typedef enum lv_steer_law {
     LV_STEER_TANGENT = 3,
     /* Bank to turn toward the target: mu = clamp(gain (bearing - chi_air), +-bank_max),
      * alpha = `alpha` or from `alpha_table` over Mach (output "alpha"), beta 0; with
-     * n_max > 0, alpha is scaled down so that the lift load factor L / (m g0) stays below
-     * n_max. Needs an aerodynamic dataset. */
+     * n_max > 0, alpha is scaled down smoothly so that the lift load factor L / (m g0)
+     * stays below n_max; with q_max > 0 that limit yields as the dynamic pressure rises to
+     * q_max. Needs an aerodynamic dataset. */
     LV_STEER_HEADING = 4,
     /* Body x against the air-relative velocity (alpha = 180 deg, beta = mu = 0): entry and
      * landing burns. */
@@ -75,7 +76,10 @@ typedef struct lv_steering {
     double target_lon;      /* rad */
     double bank_max;        /* rad, HEADING, in (0, pi/2] */
     double gain;            /* HEADING: bank per heading error (rad/rad), > 0 */
-    double n_max;           /* HEADING: lift load-factor limit [g0]; 0: none */
+    double n_max;           /* HEADING: lift load-factor limit [g0], a soft saturation
+                               (docs/guidance.md); 0: none */
+    double q_max;           /* Pa, HEADING with n_max: above q_max / 2 the load-factor limit
+                               yields, at q_max the schedule's alpha is back; 0: none */
     double alpha;           /* rad, HEADING: angle of attack when no alpha_table */
     const lv_table *alpha_table; /* HEADING: optional, 1 axis "mach", output "alpha" [rad] */
     double pitch;           /* rad, BOOSTBACK: pitch above the local horizon */

@@ -233,7 +233,8 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
     if (m->guid.s.law == LV_STEER_HEADING && m->guid.s.n_max > 0.0) {
         const double alpha = pt->ctl.u[LV_CTRL_ALPHA];
         const double lim = lv_guid_alpha_limited(&m->guid, alpha,
-                                                 -lv_v3_dot(pt->f_aero, pt->ax.zw), mass);
+                                                 -lv_v3_dot(pt->f_aero, pt->ax.zw), mass,
+                                                 pt->air.q);
         if (lim != alpha) { /* the lift at the limited angle of attack */
             pt->ctl.u[LV_CTRL_ALPHA] = lim;
             pt->ctl.cs[LV_CTRL_ALPHA][0] = cos(lim);

@@ -147,6 +147,12 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
         if (!(s->n_max >= 0.0) || !isfinite(s->n_max))
             return lv_fail(err, LV_ERR_INPUT, "guidance 'heading': n_max = %g must be >= 0 "
                            "(0: no limit)", s->n_max);
+        if (!(s->q_max >= 0.0) || !isfinite(s->q_max))
+            return lv_fail(err, LV_ERR_INPUT, "guidance 'heading': q_max = %g Pa must be >= 0 "
+                           "(0: none)", s->q_max);
+        if (s->q_max > 0.0 && !(s->n_max > 0.0))
+            return lv_fail(err, LV_ERR_INPUT, "guidance 'heading': q_max = %g Pa releases the "
+                           "load-factor limit: it needs n_max > 0", s->q_max);
         break;
     default:
         break;
@@ -450,12 +456,29 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
     return 1;
 }
 
-double lv_guid_alpha_limited(const lv_guid *g, double alpha, double lift, double mass)
+double lv_guid_alpha_limited(const lv_guid *g, double alpha, double lift, double mass, double q)
 {
-    if (g->s.law != LV_STEER_HEADING || !(g->s.n_max > 0.0))
+    if (g->s.law != LV_STEER_HEADING || !(g->s.n_max > 0.0) || !(mass > 0.0))
         return alpha;
-    const double n = fabs(lift) / (mass * LV_G0);
-    return n > g->s.n_max ? alpha * g->s.n_max / n : alpha;
+    return lv_guid_heading_alpha(alpha, fabs(lift) / (mass * LV_G0), g->s.n_max, q,
+                                 g->s.q_max);
+}
+
+double lv_guid_heading_alpha(double alpha, double n, double n_max, double q, double q_max)
+{
+    if (!(n_max > 0.0) || !(n > 0.0))
+        return alpha;
+    /* soft saturation: alpha / (1 + (n / n_max)^8)^(1/8) */
+    const double x = n / n_max, x2 = x * x, x4 = x2 * x2;
+    const double f = sqrt(sqrt(sqrt(1.0 + x4 * x4)));
+    const double a_n = alpha / f;
+    if (!(q_max > 0.0))
+        return a_n;
+    /* the limit yields between q_max / 2 and q_max: smoothstep s(t) = 3 t^2 - 2 t^3 */
+    double t = 2.0 * q / q_max - 1.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    const double s = t * t * (3.0 - 2.0 * t);
+    return a_n + s * (alpha - a_n);
 }
 
 double lv_guid_throttle(const lv_throttle_cfg *t, double c_nom, const lv_thr_in *in,

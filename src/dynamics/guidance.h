@@ -75,10 +75,22 @@ int lv_guid_attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight
                      const lv_flight_air *a, double throttle, double fpa0, double chi0, int full,
                      lv_flight_controls *c, lv_flight_axes *ax, lv_err *err);
 
-/* HEADING with n_max > 0: the angle of attack that keeps the lift load factor
- * L / (m g0) = n at or below n_max given the lift L [N] at alpha: alpha n_max / n when n
- * exceeds it (exact for a lift coefficient proportional to alpha), else alpha. */
-double lv_guid_alpha_limited(const lv_guid *g, double alpha, double lift, double mass);
+/* HEADING with n_max > 0: the law's angle of attack `alpha` [rad] given the lift L [N] it
+ * gives, the mass [kg] and the dynamic pressure q [Pa]: lv_guid_heading_alpha with the lift
+ * load factor n = |L| / (m g0) and the law's n_max, q_max. Other laws, n_max 0: alpha. */
+double lv_guid_alpha_limited(const lv_guid *g, double alpha, double lift, double mass, double q);
+
+/* The heading law's limits on its scheduled angle of attack `alpha` [rad] (pure; equations
+ * in docs/guidance.md, "heading"). n: the lift load factor L / (m g0) at `alpha`; n_max > 0.
+ * Load-factor limit, a soft saturation: a_n = alpha / (1 + (n / n_max)^8)^(1/8); for a lift
+ * coefficient proportional to alpha the lift load factor becomes n / (1 + (n/n_max)^8)^(1/8),
+ * below n_max for every n, within 0.1 % of n below n_max / 2 and tending to n_max as n grows
+ * (a smooth function of the state: no switch for the integrator to resolve). Dynamic-pressure
+ * release, q_max > 0: alpha_cmd = a_n + s (alpha - a_n), s = 3 t^2 - 2 t^3, t = clamp(2 q /
+ * q_max - 1, 0, 1): at q >= q_max the schedule's alpha (the drag and lift of the high angle
+ * of attack stop a dive instead of the limit lowering alpha and letting q grow), at q <=
+ * q_max / 2 the limited one. q_max 0: a_n. n <= 0 or n_max <= 0: alpha. */
+double lv_guid_heading_alpha(double alpha, double n, double n_max, double q, double q_max);
 
 /* The forces a throttle law needs, thrust excluded. T(c) = c (t_full + p_ae) - p_ae is the
  * engines' net thrust at throttle c [N]. */

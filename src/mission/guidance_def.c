@@ -23,7 +23,7 @@ static const char *const law_keys[][10] = {
     {"rise_time", "kick", "kick_time", "heading", NULL},
     {"a", "b", "heading", "frame", NULL},
     {"a", "b", "c", "d", "heading", "frame", NULL},
-    {"bank_max", "gain", "n_max", "alpha", "alpha_table", NULL},
+    {"bank_max", "gain", "n_max", "q_max", "alpha", "alpha_table", NULL},
     {NULL},
     {"pitch", NULL},
 };
@@ -114,7 +114,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         g->angle[i] = LV_NO_SLOT;
     g->rise_time = g->kick = g->kick_time = g->heading = LV_NO_SLOT;
     g->a = g->b = g->c = g->d = LV_NO_SLOT;
-    g->bank_max = g->gain = g->n_max = g->alpha = g->pitch = LV_NO_SLOT;
+    g->bank_max = g->gain = g->n_max = g->hq_max = g->alpha = g->pitch = LV_NO_SLOT;
     if ((st = num(c, n, what, phase, G, "target_lat", "rad", lat, 0, NAN, &g->target_lat)) !=
             LV_OK ||
         (st = num(c, n, what, phase, G, "target_lon", "rad", any, 0, NAN, &g->target_lon)) !=
@@ -203,8 +203,12 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         if ((st = num(c, n, what, phase, G, "bank_max", "rad", bank, 0, 45.0 * LV_DEG,
                       &g->bank_max)) ||
             (st = num(c, n, what, phase, G, "gain", "", gain, 0, 1.0, &g->gain)) ||
-            (st = num(c, n, what, phase, G, "n_max", "", nonneg, 0, 0.0, &g->n_max)))
+            (st = num(c, n, what, phase, G, "n_max", "", nonneg, 0, 0.0, &g->n_max)) ||
+            (st = num(c, n, what, phase, G, "q_max", "Pa", nonneg, 0, 0.0, &g->hq_max)))
             return st;
+        if (c->m->slots[g->hq_max].value > 0.0 && !(c->m->slots[g->n_max].value > 0.0))
+            return lv_pk_fail(c, lv_pk_get(n, "q_max"), "%s: q_max releases the load-factor "
+                              "limit as q rises: it needs n_max > 0", what);
         const lv_ynode *at = lv_pk_get(n, "alpha_table");
         if (at != NULL && (lv_pk_get(n, "alpha") || lv_pk_get(n, "alpha_deg")))
             return lv_pk_fail(c, lv_pk_key(n, "alpha_table"), "%s: alpha and alpha_table given "
@@ -329,6 +333,7 @@ void lv_guidance_def_make(const lv_guidance_def *g, const double *vals, lv_steer
         s->bank_max = val(vals, g->bank_max, s->bank_max);
         s->gain = val(vals, g->gain, s->gain);
         s->n_max = val(vals, g->n_max, 0.0);
+        s->q_max = val(vals, g->hq_max, 0.0);
         s->alpha = val(vals, g->alpha, 0.0);
         s->pitch = val(vals, g->pitch, 0.0);
     }

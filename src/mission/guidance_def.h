@@ -18,7 +18,7 @@ typedef struct lv_guidance_def {
     lv_slot rise_time, kick, kick_time, heading;
     lv_slot a, b, c, d;
     lv_slot target_lat, target_lon; /* LV_NO_SLOT: the launch site */
-    lv_slot bank_max, gain, n_max, alpha, pitch;
+    lv_slot bank_max, gain, n_max, hq_max, alpha, pitch; /* hq_max: the heading law's q_max */
     char *table_file, *table_var;
     lv_table *table;          /* attitude table or heading's alpha table */
 
