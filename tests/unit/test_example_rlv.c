@@ -15,7 +15,13 @@
  *     separation impulses (1 m/s each);
  *   - the lift-off speed consistent with the wing loading: at lift-off the lift plus the
  *     thrust's normal part carries the weight, L = q S CL with CL within the table's range
- *     around (Mach, alpha), and V_LO above the stall speed at the table's CL_max. */
+ *     around (Mach, alpha), and V_LO above the stall speed at the table's CL_max;
+ *   - the main stage's return within the limits its README states ("Limits of the return"):
+ *     dynamic pressure q = rho V^2 / 2 from the rows' density and air-relative speed, load
+ *     factor |F_thrust + F_aero| / (m g0) from the rows' thrust, lift, drag and side force;
+ *   - the approach ends in an equilibrium glide: L = W cos(gamma), D = W sin(-gamma)
+ *     (Anderson, Introduction to Flight, 7th ed., sec. 6.8, "gliding flight"), W from the
+ *     WGS-84 normal gravity (Somigliana; NIMA TR8350.2 eq. 4-1). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -124,6 +130,68 @@ static void check_return(const lv_run *r)
     CHECK_CLOSE(final(r, k, "h"), 160.0, 1.0);
     CHECK_CLOSE(hd, 270.0, 1.0);
     CHECK(fabs(final(r, k, "mu_in")) < 5.0 * DEG);
+}
+
+/* Load factor [g0] of row i from the forces in wind axes (beta = 0: body x at alpha above x_w
+ * in the symmetry plane): thrust T (cos a, 0, -sin a), aerodynamic force (-D, Y, -L). */
+static double load_factor(const lv_run *r, size_t k, size_t i)
+{
+    const double T = row(r, k, i, "thrust"), a = row(r, k, i, "alpha_in");
+    const double fx = T * cos(a) - row(r, k, i, "drag"), fy = row(r, k, i, "side_force");
+    const double fz = T * sin(a) + row(r, k, i, "lift");
+    return sqrt(fx * fx + fy * fy + fz * fz) / (row(r, k, i, "m") * 9.80665);
+}
+
+/* The largest q [Pa] and load factor [g0] of phase k (rows with mach below `mach_below` only
+ * when it is finite). */
+static void phase_peaks(const lv_run *r, size_t k, double mach_below, double *q_max,
+                        double *n_max)
+{
+    *q_max = 0.0, *n_max = 0.0;
+    for (size_t i = 0; i < n_rows(r, k); i++) {
+        if (isfinite(mach_below) && !(row(r, k, i, "mach") < mach_below))
+            continue;
+        const double v = row(r, k, i, "v_rel");
+        *q_max = fmax(*q_max, 0.5 * row(r, k, i, "rho") * v * v);
+        *n_max = fmax(*n_max, load_factor(r, k, i));
+    }
+}
+
+/* The return's stated limits (README, "Limits of the return"): q <= 20 kPa in every return
+ * phase; load factor <= 3 g in the turn-around (its throttle's g_limit), <= 2.5 g in the
+ * subsonic glide and the approach (the heading law's n_max), <= 6 g in the supersonic
+ * pull-out (the stated exceedance: the fall from the 117 km apogee). And the approach's
+ * equilibrium glide at its end. */
+static void check_limits(const lv_run *r)
+{
+    static const struct {
+        const char *phase;
+        double mach_below, q_lim, n_lim;
+    } lim[] = {
+        {"turn-around", INFINITY, 20e3, 3.0 + 1e-6},
+        {"glide-back", INFINITY, 20e3, 6.0},
+        {"glide-back", 1.0, 20e3, 2.5},
+        {"approach", INFINITY, 20e3, 2.5},
+    };
+    for (size_t j = 0; j < sizeof lim / sizeof lim[0]; j++) {
+        double q, n;
+        phase_peaks(r, phase(r, lim[j].phase), lim[j].mach_below, &q, &n);
+        printf("  %s%s: max q %.0f Pa (<= %.0f), max load factor %.3f g (<= %.1f)\n",
+               lim[j].phase, isfinite(lim[j].mach_below) ? " below Mach 1" : "", q,
+               lim[j].q_lim, n, lim[j].n_lim);
+        CHECK(q > 0.0 && q <= lim[j].q_lim);
+        CHECK(n > 0.0 && n <= lim[j].n_lim);
+    }
+    const size_t k = phase(r, "approach"), i = n_rows(r, k) - 1;
+    const double sphi = sin(row(r, k, i, "lat"));
+    const double g = 9.7803253359 * (1.0 + 0.00193185265241 * sphi * sphi) /
+                     sqrt(1.0 - 0.00669437999013 * sphi * sphi);
+    const double W = row(r, k, i, "m") * g, gam = row(r, k, i, "fpa");
+    printf("  approach end: L/W %.4f vs cos(gamma) %.4f, D/W %.4f vs sin(-gamma) %.4f "
+           "(gamma %.2f deg)\n", row(r, k, i, "lift") / W, cos(gam), row(r, k, i, "drag") / W,
+           sin(-gam), gam / DEG);
+    CHECK_REL(row(r, k, i, "lift") / W, cos(gam), 0.02);
+    CHECK_REL(row(r, k, i, "drag") / W, sin(-gam), 0.02);
 }
 
 /* Mass: inside each phase non-increasing (constant with the engines off); across hand-offs
@@ -282,6 +350,7 @@ int main(void)
         check_mass(r);
         check_continuity(r);
         check_liftoff(r, dir);
+        check_limits(r);
     } else {
         CHECK(0);
         fprintf(stderr, "  %s\n", err.msg);

@@ -9,6 +9,9 @@
  *       load-factor limits;
  *   (f) one attitude commanded in the three frames gives one thrust direction where the
  *       frames coincide;
+ *   (g) the heading law's limits on its angle of attack (lv_guid_heading_alpha): the
+ *       load-factor soft saturation and the dynamic-pressure release, by their defining
+ *       properties;
  * and bad input refused with file:line:column.
  *
  * "Flat world, uniform gravity" is a non-rotating sphere of radius R = 1e10 m with
@@ -23,6 +26,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "dynamics/guidance.h"
 #include "lvsim/lv_mission.h"
 
 #define G0 9.80665
@@ -358,13 +362,56 @@ static void test_heading(void)
     col_range(r, 0, "mu_in", &lo, &hi);
     CHECK(lo >= -60.0 * DEG - 1e-12 && hi <= 60.0 * DEG + 1e-12);
     CHECK(hi > 59.9 * DEG); /* it banked to the limit to turn right (east) */
-    /* the lift load factor L / (m g0) at most n_max: alpha scaled down where the lift is
-     * proportional to alpha */
+    /* the lift load factor L / (m g0) at most n_max: alpha scaled down smoothly where the lift
+     * is proportional to alpha (3.4 g unlimited: 3.4 / (1 + (3.4/1.5)^8)^(1/8) = 1.4993 g) */
     col_range(r, 0, "lift", &lo, &hi);
     printf("heading law: max lift load factor %.9f (n_max 1.5)\n", hi / (1000.0 * G0));
     CHECK(hi / (1000.0 * G0) <= 1.5 + 1e-9 && hi / (1000.0 * G0) > 1.49);
     lv_run_free(r);
     lv_mission_free(m);
+}
+
+/* ---- (g) the heading law's limits ---------------------------------------------------------------- */
+
+/* For a lift coefficient proportional to alpha the lift load factor at the limited angle is
+ * n a_n / alpha. The soft saturation n / (1 + (n/n_max)^8)^(1/8) is a p-norm-type limiter
+ * (p = 8): below n_max for every n, increasing in n, tending to n_max, and within 0.1 % of n
+ * below n_max / 2 ((1 + 2^-8)^(1/8) - 1 = 4.9e-4). The release is the cubic smoothstep
+ * 3 t^2 - 2 t^3 (0 and 1 with zero slope at t = 0 and 1; 1/2 at t = 1/2). */
+static void test_heading_limits(void)
+{
+    const double a = 0.5, n_max = 2.5, q_max = 4000.0;
+    /* no limit: the schedule */
+    CHECK(lv_guid_heading_alpha(a, 10.0, 0.0, 0.0, 0.0) == a);
+    CHECK(lv_guid_heading_alpha(a, 0.0, n_max, 0.0, 0.0) == a);
+    double prev = 0.0;
+    int below = 1, rising = 1;
+    for (int i = 1; i <= 4000; i++) {
+        const double n = 0.01 * i; /* 0.01 .. 40 g */
+        const double ne = n * lv_guid_heading_alpha(a, n, n_max, 0.0, 0.0) / a;
+        below &= ne < n_max;
+        rising &= ne > prev;
+        prev = ne;
+        if (n <= 0.5 * n_max)
+            CHECK(ne >= n * (1.0 - 5e-4) && ne <= n);
+    }
+    CHECK(below && rising);
+    /* at n = n_max: 2^(-1/8) of it; far above: n_max to 1e-12 */
+    CHECK_CLOSE(n_max * lv_guid_heading_alpha(a, n_max, n_max, 0.0, 0.0) / a,
+                n_max * pow(2.0, -0.125), 1e-15);
+    CHECK_CLOSE(1e6 * lv_guid_heading_alpha(a, 1e6, n_max, 0.0, 0.0) / a, n_max, 1e-12);
+    /* the release: limited at q <= q_max / 2, the schedule at q >= q_max, the mean at 3/4 */
+    const double an = lv_guid_heading_alpha(a, 6.0, n_max, 0.0, 0.0);
+    CHECK(an < 0.5 * a);
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, 0.5 * q_max, q_max), an, 1e-15);
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, 0.75 * q_max, q_max), 0.5 * (an + a),
+                1e-15);
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, q_max, q_max), a, 1e-15);
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, 5.0 * q_max, q_max), a, 1e-15);
+    /* continuous: no step at either end of the release */
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, 0.5 * q_max * (1.0 + 1e-9), q_max), an,
+                1e-12);
+    CHECK_CLOSE(lv_guid_heading_alpha(a, 6.0, n_max, q_max * (1.0 - 1e-9), q_max), a, 1e-12);
 }
 
 /* ---- (f) frames ---------------------------------------------------------------------------------- */
@@ -469,6 +516,13 @@ static void test_refused(void)
     load_fails("guidance: {law: heading, alpha_deg: 5}",
                "bad_guidance.yaml:7:22: phase 'P', guidance 'heading': the heading law banks the "
                "lift vector: the phase needs an aerodynamic dataset (aero:)");
+    load_fails("aero: {s_ref: 2, table: data/glider_aero.csv},\n"
+               "     guidance: {law: heading, alpha_deg: 5, q_max: 3000}",
+               "bad_guidance.yaml:8:52: phase 'P', guidance 'heading': q_max releases the "
+               "load-factor limit as q rises: it needs n_max > 0");
+    load_fails("aero: {s_ref: 2, table: data/glider_aero.csv},\n"
+               "     guidance: {law: heading, alpha_deg: 5, n_max: 2.5, q_max: -1}",
+               "bad_guidance.yaml:8:64: phase 'P', guidance 'heading': q_max must be >= 0 Pa, found -1");
     load_fails("guidance: {law: attitude, frame: local, alpha_deg: 3}",
                "'alpha_deg' is an angle of the aero frame; frame local takes pitch, heading, roll");
     load_fails("guidance: {law: attitude, table: data/glider_aero.csv}",
@@ -615,6 +669,7 @@ int main(void)
     test_throttle_limits();
     test_landing();
     test_heading();
+    test_heading_limits();
     test_frames();
     test_refused();
     test_table_and_slots();
