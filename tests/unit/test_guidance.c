@@ -367,6 +367,18 @@ static void test_heading(void)
     col_range(r, 0, "lift", &lo, &hi);
     printf("heading law: max lift load factor %.9f (n_max 1.5)\n", hi / (1000.0 * G0));
     CHECK(hi / (1000.0 * G0) <= 1.5 + 1e-9 && hi / (1000.0 * G0) > 1.49);
+    /* q_max as a run parameter: at the start q = rho V^2 / 2 = 13 kPa (US 1976 at 30 km,
+     * rho = 0.01841 kg/m^3); with q_max 10 kPa the limit is released there and the lift
+     * load factor exceeds n_max, as the law says it may */
+    lv_err err;
+    double q0 = NAN;
+    CHECK_OK(lv_run_get(r, "glide.guidance.q_max", &q0, &err), &err);
+    CHECK(q0 == 0.0);
+    CHECK_OK(lv_run_set(r, "glide.guidance.q_max", 10000.0, &err), &err);
+    CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+    col_range(r, 0, "lift", &lo, &hi);
+    printf("heading law, q_max 10 kPa: max lift load factor %.3f\n", hi / (1000.0 * G0));
+    CHECK(hi / (1000.0 * G0) > 2.0);
     lv_run_free(r);
     lv_mission_free(m);
 }
