@@ -4,6 +4,7 @@
  * is replaced as a whole at the end, failed runs included (marked in manifest.json and
  * summary.json), so it never mixes two runs. Progress on stderr (progress.h).
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,7 +53,8 @@ static void print_row(const lv_run *run, size_t k, int w)
     const lv_phase_result *r = lv_run_result(run, k);
     const int parent = lv_mission_phase_parent(m, k);
     const lv_sim_report *rep = &r->report;
-    if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING) {
+    /* skipped, pending, or failed before its simulation started (no times): dashes */
+    if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING || isnan(r->t_start)) {
         printf("%-3zu %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", k + 1, w, r->name, w,
                parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", END_W,
                "-", "-", "-", "-", "-", "-", phase_state_name(r->state));

@@ -2,8 +2,11 @@
 """Draws docs/img/paper-test-case.png from a run of the paper's test case (a developer's
 script for the README picture, not part of the build; needs python3-matplotlib):
 
-    build/lvsim run examples/paper-test-case/mission.yaml -o build/demo
-    /usr/bin/python3 docs/make_figures.py build/demo
+    build/lvsim run examples/paper-test-case/mission.yaml -o build/paper
+    /usr/bin/python3 docs/make_figures.py build/paper
+
+(docs/img/rlv-hthl-fig10.png is build/demo/plots/fig10_normalised.png of `make demo` as
+lvsim draws it.)
 """
 import csv
 import json

@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
-# make demo: run the default mission (the paper's test case) and say where the results are.
+# make demo: run the default mission (examples/rlv-hthl: the paper's section 4.2, a winged
+# two-stage reusable launcher, seven phases) and say where the results, plots and 3-D view are.
+# The paper's three-stage test case stays an example: examples/paper-test-case.
 # Usage: scripts/demo.sh BUILD_DIR
 set -euo pipefail
 build="${1:-build}"
 out="$build/demo"
 lvsim="$build/lvsim"
-mission=examples/paper-test-case/mission.yaml
+mission=examples/rlv-hthl/mission.yaml
 
-echo "== lvsim demo: the paper's three-stage test case, five phases with two branches =="
+echo "== lvsim demo: a winged two-stage reusable launcher, horizontal take-off and landing =="
+echo "   (the paper's section 4.2: seven phases, one separation state seeding two branches)"
 "$lvsim" run "$mission" -o "$out" --quiet
-echo
-echo "== the same mission as one end-to-end model (the paper's Table 2) =="
-"$lvsim" compare "$mission"
 echo
 "$lvsim" view "$out" --stage-only > /dev/null
 echo "report:   $out/index.html (key figures, phases, events, plots)"
-echo "viewer:   $lvsim view $out   (3-D globe, offline, on http://127.0.0.1)"
+echo "plots:    $out/plots/fig10_normalised.png (the paper's Figure 10), altitude, mach,"
+echo "          dynamic_pressure, load_factor, ground_track, ground_track_site (.png, .svg)"
+echo "3-D view: $lvsim view $out   (the three tracks: stack, upper stage, main stage;"
+echo "          3-D globe, offline, on http://127.0.0.1; data: $out/mission.czml)"
+echo "more:     $lvsim run examples/paper-test-case/mission.yaml -o out   (the paper's test case;"
+echo "          $lvsim compare examples/paper-test-case/mission.yaml: its Table 2)"
 echo "layout:   docs/result-files.md, docs/mission-format.md, docs/visualization.md"

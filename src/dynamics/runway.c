@@ -31,9 +31,9 @@ enum {
     O_RX, O_RY, O_RZ, O_VX, O_VY, O_VZ, O_N
 };
 
-/* Events: burnout, rotation, the mode's own end (liftoff or stop), then the configured
- * speed ends. */
-enum { E_BURNOUT, E_ROTATION, E_END, E_N0 };
+/* Events: burnout, rotation, the mode's own end (liftoff or stop), at rest (a take-off that
+ * slows to a standstill: an aborted take-off ends there), then the configured speed ends. */
+enum { E_BURNOUT, E_ROTATION, E_END, E_REST, E_N0 };
 
 static const lv_var state_tpl[LV_XRW_N] = {
     {"distance", "m", "Distance along the runway from its threshold", 0.0, 1e3},
@@ -345,6 +345,20 @@ static int rw_init(double t0, const double *x, const double *p, void *inst)
     s->t_rot = t0;
     for (int k = 0; k < 3; k++)
         s->trig.ang[k] = NAN;
+    if (s->m->mode == LV_RUNWAY_LANDING && !(x[LV_XRW_V] > p[P_VSTOP]))
+        return fail_inst(s, "the roll-out starts at %g m/s, not above v_stop = %g m/s: it has "
+                         "nothing to do", x[LV_XRW_V], p[P_VSTOP]);
+    if (s->m->mode == LV_RUNWAY_TAKEOFF) { /* the runway cannot pull the vehicle down */
+        rw_point pt;
+        lv_err e = {LV_OK, ""};
+        if (point_eval(s->m, s, t0, x, p, 0, &pt, &e) != 0)
+            return fail_inst(s, "at the start: %s", e.msg);
+        if (!(pt.normal_raw > 0.0))
+            return fail_inst(s, "the vehicle is already flying at the start (t = %.9g s, %g m/s): "
+                             "lift and thrust carry its weight on the runway (normal force %g "
+                             "N); start a flight phase instead", t0, x[LV_XRW_V],
+                             pt.normal_raw);
+    }
     return 0;
 }
 
@@ -362,6 +376,9 @@ static int rw_g(double t, const double *x, const double *p, double *g, void *ins
     } else {
         g[E_END] = x[LV_XRW_V] - p[P_VSTOP];
     }
+    /* the speed falling to 0 while rolling: at rest, where the friction's sign flips (the
+     * ground-roll equation switches to static friction: the phase ends there) */
+    g[E_REST] = m->mode == LV_RUNWAY_TAKEOFF ? x[LV_XRW_V] : 1.0;
     for (size_t i = 0; i < m->n_ends; i++)
         g[E_N0 + i] = x[LV_XRW_V] - m->ends[i].value;
     return 0;
@@ -390,7 +407,7 @@ static lv_event_action rw_on_event(double t, double *x, const double *p, const i
             pt.normal_raw <= 0.0)
             act = LV_EVENT_STOP;
     }
-    if (fired[E_END])
+    if (fired[E_END] || fired[E_REST])
         act = LV_EVENT_STOP;
     for (size_t i = 0; i < m->n_ends; i++)
         if (fired[E_N0 + i])
@@ -563,6 +580,10 @@ static lv_status setup_events(lv_runway *m, const lv_runway_config *cfg, lv_err 
                        to ? "Lift-off: the runway's normal force falls through zero"
                           : "The speed falls through v_stop: roll-out complete",
                        LV_DIR_FALLING};
+    snprintf(m->event_names[E_REST], EVENT_NAME_MAX, "at_rest");
+    m->events[E_REST] = (lv_event_def){m->event_names[E_REST],
+                                       "Take-off: the speed falls to 0 (an aborted take-off "
+                                       "stops on the runway)", LV_DIR_FALLING};
     for (size_t i = 0; i < n; i++) {
         const lv_runway_end *e = &cfg->ends[i];
         const char *nm = e->name != NULL ? e->name : "speed";

@@ -212,10 +212,22 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     lv_status st = lv_sim_create(pm->def, pm->inst, &s, &sim, err);
     lv_sim_free(sim);
     free(values);
+    if (st != LV_OK && err != NULL)
+        lv_drop_model_prefix(err, ph->name);
     if (st != LV_OK)
         return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
                               ph->loc.column, ph->name);
     return LV_OK;
+}
+
+/* A phase's model is named after the phase: "model 'P': " at the head of the simulation's
+ * message repeats the "phase 'P'" the message gets, and goes. */
+void lv_drop_model_prefix(lv_err *err, const char *phase)
+{
+    char head[LV_ERR_MSG_MAX];
+    const int n = snprintf(head, sizeof head, "model '%s': ", phase);
+    if (n > 0 && (size_t)n < sizeof head && strncmp(err->msg, head, (size_t)n) == 0)
+        memmove(err->msg, err->msg + n, strlen(err->msg + n) + 1);
 }
 
 /* lv_model_find on a phase's model, whose model is named after the phase: a miss reads "the
@@ -305,6 +317,14 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
             if (st == LV_OK && kind != LV_VAR_STATE && kind != LV_VAR_PARAMETER)
                 st = lv_fail(err, LV_ERR_INPUT, "'%s' is not a state or parameter",
                              ph->set_names[i]);
+            if (st == LV_OK && ph->set_deg != NULL && ph->set_deg[i]) {
+                const char *u = kind == LV_VAR_STATE ? md->states[idx].unit
+                                                     : md->params[idx].unit;
+                if (strcmp(u, "rad") != 0)
+                    st = lv_fail(err, LV_ERR_INPUT, "'%s' is not an angle (its unit is '%s'): "
+                                 "write its value without _deg", ph->set_names[i],
+                                 u[0] ? u : "1");
+            }
             if (st != LV_OK) {
                 lv_src_loc loc = ph->set_locs ? ph->set_locs[i] : ph->loc;
                 st = lv_fail_prefix(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set", d->path,

@@ -191,6 +191,7 @@ typedef struct lv_phase_def {
     char **set_names;
     lv_slot *set_values;
     lv_src_loc *set_locs; /* [n_set] where each override was written, for later messages */
+    unsigned char *set_deg; /* [n_set] 1: written NAME_deg (the variable must be an angle) */
     lv_src_loc loc;
 } lv_phase_def;
 

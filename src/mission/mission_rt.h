@@ -63,4 +63,8 @@ const double *lv_run_vals(const lv_run *r);
 /* 1 if phase k carries stage s. */
 int lv_mission_phase_has_stage(const lv_mission_def *d, size_t k, size_t s);
 
+/* Drops a leading "model '<phase>': " from err->msg (a phase's model is named after the
+ * phase, which the caller names already). */
+void lv_drop_model_prefix(lv_err *err, const char *phase);
+
 #endif

@@ -1531,7 +1531,9 @@ static lv_status parse_set(const lv_pctx *c, const lv_ynode *n, const char *phas
     ph->set_names = calloc(ns, sizeof *ph->set_names);
     ph->set_values = calloc(ns, sizeof *ph->set_values);
     ph->set_locs = calloc(ns, sizeof *ph->set_locs);
-    if (ph->set_names == NULL || ph->set_values == NULL || ph->set_locs == NULL)
+    ph->set_deg = calloc(ns, sizeof *ph->set_deg);
+    if (ph->set_names == NULL || ph->set_values == NULL || ph->set_locs == NULL ||
+        ph->set_deg == NULL)
         return lv_pk_nomem(c);
     for (size_t i = 0; i < ns; i++) {
         const lv_ynode *k = n->kids[2 * i], *v = n->kids[2 * i + 1];
@@ -1548,6 +1550,7 @@ static lv_status parse_set(const lv_pctx *c, const lv_ynode *n, const char *phas
                              &ph->set_values[i])) != LV_OK)
             return st;
         ph->set_locs[i] = loc_of(k);
+        ph->set_deg[i] = (unsigned char)deg;
         if ((ph->set_names[i] = dup_text(base)) == NULL)
             return lv_pk_nomem(c);
         ph->n_set = i + 1;
@@ -2255,6 +2258,7 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->set_names);
         free(ph->set_values);
         free(ph->set_locs);
+        free(ph->set_deg);
     }
     free(m->phases);
     lv_targeting_def_free(m->targeting);

@@ -402,6 +402,14 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
 {
     const dof3_cfg *pc = bc->def->phases[bc->k].type_cfg;
     const dof3_self *s = pm->self;
+    /* a runway parent must have lifted off: lift and thrust carry the weight (margin 1 at the
+     * located lift-off); a roll that ended otherwise leaves the vehicle on the runway */
+    const size_t im = find(pnames, np, "lift_margin"), in = find(pnames, np, "normal_force");
+    if (im != (size_t)-1 && in != (size_t)-1 && pvalues[im] < 1.0 - 1e-6)
+        return lv_fail(err, LV_ERR_INPUT, "the parent roll did not lift off (it ended with a "
+                       "normal force of %.6g N, lift margin %.6g): a flight phase starts at "
+                       "lift-off: end the roll with its lift-off (the default), or give it more "
+                       "thrust, lift or runway time", pvalues[in], pvalues[im]);
     if (!pc->sep)
         return LV_OK;
     static const char *const need[] = {"time", "theta", "psi", "lat", "lon"};

@@ -63,8 +63,9 @@ static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *phase, const l
                                         "heading", "heading_deg", NULL};
     static const char *const base[G_N] = {"lat", "lon", "elevation", "heading"};
     static const char *const units[G_N] = {"rad", "rad", "m", "rad"};
-    const lv_range ranges[G_N] = {{-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, LV_RANGE_ANY,
-                                  {-1e4, 1e4, 0, 0}, LV_RANGE_ANY};
+    const lv_range ranges[G_N] = {{-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
+                                  {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0},
+                                  {-1e4, 1e4, 0, 0}, {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}};
     char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
     snprintf(what, sizeof what, "phase '%s', runway", name);
     if (n == NULL || lv_yaml_is_null(n))
@@ -155,9 +156,11 @@ static lv_status parse_roll(const lv_pctx *c, const lv_ynode *phase, const char 
                               "its parent ended", what, key);
         if (v == NULL && vd == NULL && (to != NULL ? required_to[k] : required_la[k]))
             return lv_pk_fail(c, n, "%s: '%s' is missing", what, angle[k] ? deg : key);
+        /* angles of attack on the wheels within +-90 deg (the thrust points forwards) */
         const lv_range r = k == R_VROT || k == R_VSTOP ? LV_RANGE_POS
-                           : k == R_AG || k == R_AROT || k == R_S0 ? LV_RANGE_ANY
-                                                                   : LV_RANGE_NONNEG;
+                           : k == R_AG || k == R_AROT ? (lv_range){-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}
+                           : k == R_S0                ? LV_RANGE_ANY
+                                                      : LV_RANGE_NONNEG;
         snprintf(slot, sizeof slot, "%s.%s.%s", name, mode, names[k]);
         st = v != NULL || vd != NULL
                  ? lv_pk_slot(c, v ? v : vd, what, v ? key : deg, slot, units[k], r, vd != NULL,
@@ -242,7 +245,7 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     runway_self *s = calloc(1, sizeof *s);
     if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
         (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
-        (s->event_end = calloc(ph->n_ends + 3, sizeof *s->event_end)) == NULL) {
+        (s->event_end = calloc(ph->n_ends + 4, sizeof *s->event_end)) == NULL) {
         runway_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -304,16 +307,17 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     cfg.start_speed = val(bc, pc->roll[R_V0], 0.0);
     cfg.throttle = val(bc, pc->roll[R_THR], 1.0);
     size_t n_ends = 0;
-    s->event_end[0] = -1; /* burnout, rotation, liftoff/stop: the roll's own events */
+    s->event_end[0] = -1; /* burnout, rotation, liftoff/stop, at rest: the roll's own */
     s->event_end[1] = -1;
     s->event_end[2] = -1;
+    s->event_end[3] = -1;
     for (size_t j = 0; j < ph->n_ends; j++) {
         const lv_end_def *e = &ph->ends[j];
         if (e->kind == LV_END_BURNOUT) {
             cfg.stop_at_burnout = 1;
             s->event_end[0] = (int)j;
         } else if (e->kind == LV_END_SPEED) {
-            s->event_end[3 + n_ends] = (int)j;
+            s->event_end[4 + n_ends] = (int)j;
             s->ends[n_ends++] = (lv_runway_end){e->name, val(bc, e->value, 0.0), e->direction};
         }
         /* variables and time: stop conditions of the simulation (run.c) */
@@ -357,9 +361,17 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
                                 const char *const *names, double *values, size_t n, lv_err *err)
 {
     const runway_self *s = pm->self;
+    const runway_cfg *pc = bc->def->phases[bc->k].type_cfg;
     const size_t is = find(names, n, "distance"), iv = find(names, n, "speed");
+    const size_t im = find(pnames, np, "lift_margin"); /* a runway parent has it */
     if (is == (size_t)-1 || iv == (size_t)-1)
-        return LV_OK; /* a runway parent: the states were copied by name */
+        return LV_OK;
+    if (pc->mode == LV_RUNWAY_TAKEOFF && im == (size_t)-1)
+        return lv_fail(err, LV_ERR_INPUT, "take-off: a take-off roll starts on the runway, not "
+                       "from a flight phase (a landing roll-out does: `landing:`)");
+    if (pc->mode == LV_RUNWAY_TAKEOFF && !(pvalues[im] < 1.0 - 1e-6))
+        return lv_fail(err, LV_ERR_INPUT, "take-off: the parent roll ended at lift-off (lift "
+                       "margin %.6g): the flight goes on in a dof3 phase", pvalues[im]);
     static const char *const need[] = {"time", "r_eci_x", "r_eci_y", "r_eci_z",
                                        "v_eci_x", "v_eci_y", "v_eci_z"};
     double f[7];
@@ -378,11 +390,11 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
     const double v[3] = {c * vx + sn * vy, -sn * vx + c * vy, f[6]};
     double dist, speed, height, lateral;
     lv_runway_project(s->model, r, v, &dist, &speed, &height, &lateral);
-    (void)bc;
     if (!(fabs(height) <= TOUCHDOWN_HEIGHT_MAX) || !(fabs(lateral) <= TOUCHDOWN_LATERAL_MAX) ||
         !(speed >= 0.0))
         return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent ends %.3g m above the runway "
-                       "plane, %.3g m right of its centre line, at %.4g m/s along it: a "
+                       "plane, %.3g m right of its centre line (negative: left), at %.4g m/s "
+                       "along it: a "
                        "roll-out starts on the runway (within %g m of its plane and %g m of its "
                        "centre line, rolling forwards); end the parent at touchdown",
                        height, lateral, speed, TOUCHDOWN_HEIGHT_MAX, TOUCHDOWN_LATERAL_MAX);

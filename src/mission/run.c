@@ -491,6 +491,7 @@ static int progress_thunk(double t, void *user)
 }
 
 /* Runs phase k: prepare, simulate, then (under the lock) record. Called without the lock. */
+
 static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err *err)
 {
     const lv_phase_def *ph = &r->m->def->phases[k];
@@ -501,7 +502,12 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         run_phase *p = &r->ph[k];
         phase_clear(p);
         p->res.state = LV_PHASE_FAILED;
-        snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': %.430s", ph->name, err->msg);
+        char named[80];
+        snprintf(named, sizeof named, "phase '%.60s'", ph->name);
+        if (strstr(err->msg, named) != NULL) /* "FILE:L:C: phase 'P': ..." names it already */
+            snprintf(p->res.error, sizeof p->res.error, "%.490s", err->msg);
+        else
+            snprintf(p->res.error, sizeof p->res.error, "%s: %.430s", named, err->msg);
         p->dirty = 0;
         pthread_mutex_unlock(&r->lock);
         return st;
@@ -521,6 +527,8 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
     }
     lv_sim_report rep;
     st = lv_simulate(c->pm->def, c->pm->inst, &c->s, c->finals, &rep, err);
+    if (st != LV_OK && err != NULL)
+        lv_drop_model_prefix(err, ph->name);
     pthread_mutex_lock(&r->lock);
     record(r, c, st, err, &rep);
     pthread_mutex_unlock(&r->lock);

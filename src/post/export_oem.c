@@ -107,7 +107,7 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
         for (size_t i = 0; i < n; i++)
             h_max = fmax(h_max, pts[i].row->h);
         lv_ex_report(r, "oem", NULL, "%s: not written: never above 100 km (highest %.1f km)",
-                     b->name, h_max / 1e3);
+                     b->name, fabs(h_max) < 50.0 ? 0.0 : h_max / 1e3); /* no "-0.0" */
         return LV_OK;
     }
 

@@ -85,7 +85,7 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
         return lv_fail(err, LV_ERR_INPUT, "lv_plot_run: no output directory");
     if (strlen(outdir) > 4000)
         return lv_fail(err, LV_ERR_INPUT, "lv_plot_run: output directory name too long");
-    lv_plot_data d = {.outdir = outdir};
+    lv_plot_data d = {.outdir = outdir, .v_max = NAN, .m_0 = NAN};
     lv_results *res = NULL;
     lv_plot_list *list = calloc(1, sizeof *list);
     if (list == NULL)
@@ -96,8 +96,13 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     d.res = res;
     if (st == LV_OK)
         st = load(&d, err);
-    if (st == LV_OK)
+    if (st == LV_OK) {
+        lv_plot_fig10_refs(&d);
+        lv_plot_find_sites(&d);
         st = make_dir(pdir, err);
+    }
+    if (st == LV_OK)
+        st = lv_plot_fig10_write(&d, pdir, err);
     if (st == LV_OK)
         st = lv_plot_figures(&d, pdir, list, err);
     cJSON *keys = NULL;

@@ -6,5 +6,6 @@
 list(APPEND LV_POST_SOURCES
   src/post/plot_html.c
   src/post/plot_keys.c
+  src/post/plot_series.c
   src/post/plot.c)
 set(LV_PLOT_MODULE_SOURCES src/post/plot_draw.c)

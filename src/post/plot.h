@@ -23,6 +23,19 @@ typedef struct lv_plot_body {
     lv_results_table *traj;  /* body_<name>.csv: lat, lon [rad] for the ground track; or NULL */
 } lv_plot_body;
 
+/* A place the ground-track figures mark: a runway (the part of it a runway phase rolled on)
+ * or, when no runway is there, the launch site (the mission's first position). */
+typedef struct lv_plot_site {
+    char label[96];         /* "runway 09 (liftoff)", "launch site" */
+    double lat, lon;        /* rad: the runway's threshold, or the launch site */
+    double lat1, lon1;      /* rad: the farthest point along the runway rolled on; = lat, lon
+                             * for a launch site */
+    double heading;         /* rad from north to east: the runway's heading; NAN: a point */
+    double length;          /* m: threshold to (lat1, lon1) along the runway; 0: a point */
+} lv_plot_site;
+
+#define LV_PLOT_MAX_SITES 8
+
 typedef struct lv_plot_data {
     const lv_results *res;  /* summary.json as read back: mission, phases, events, files */
     const char *outdir;
@@ -30,6 +43,12 @@ typedef struct lv_plot_data {
     size_t n_phases, n_bodies;
     lv_plot_phase *phases;
     lv_plot_body *bodies;
+    /* the paper's Figure 10 (lv_plot_fig10_refs): every body's speed over v_max and mass over
+     * m_0; NAN when no phase file has a speed (or the mass) */
+    double v_max;           /* m/s: the largest speed ('v_rel' or 'speed') of any body, any phase */
+    double m_0;             /* kg: the mission's initial mass, the largest first mass of a body */
+    lv_plot_site sites[LV_PLOT_MAX_SITES]; /* lv_plot_find_sites; none on a flat world */
+    size_t n_sites;
 } lv_plot_data;
 
 #define LV_PLOT_MAX_FIGS 16
@@ -63,6 +82,24 @@ LV_API lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir
 #define LV_PLOT_MODULE "lvsim_plot.so"
 lv_status lv_plot_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
                           lv_err *err);
+
+/* Sets d->v_max and d->m_0 from the bodies' phase files (plot_series.c). */
+void lv_plot_fig10_refs(lv_plot_data *d);
+
+/* Writes OUTDIR/plots/fig10_normalised.csv, the data of the Figure-10 plot: a comment line
+ * with v_max [m/s] and m_0 [kg], the header "time [s],body,phase,v_norm,m_norm", then every
+ * body's rows across its phases in time order (v_norm = speed / v_max, m_norm = m / m_0;
+ * dimensionless; an event instant twice). Nothing when v_max or m_0 is NAN. Through a
+ * temporary file. Errors: LV_ERR_IO, LV_ERR_NOMEM. */
+lv_status lv_plot_fig10_write(const lv_plot_data *d, const char *plotdir, lv_err *err);
+
+/* Fills d->sites (plot_series.c): every runway phase's runway (a phase of model "runway"
+ * whose file has 'distance', 'lat', 'lon', 'heading': the threshold found by extrapolating
+ * its rows' positions back to distance 0), then the launch site (the first row of the
+ * earliest phase with 'lat' and 'lon') unless a runway's threshold is within 0.01 deg (about
+ * 1 km on the Earth) of it.
+ * Nothing on a flat world. */
+void lv_plot_find_sites(lv_plot_data *d);
 
 struct cJSON;
 /* Computes the key figures of every body and writes OUTDIR/key_figures.json; *out is the

@@ -63,7 +63,8 @@ typedef struct figure {
     const char *xlabel;
     panel p[2];
     size_t n_p;
-    int map;           /* ground track: x longitude, y latitude [deg], coastlines */
+    int map;           /* ground track: x longitude, y latitude [deg], the sites */
+    int coast;         /* map: coastlines (drawn by the even side: it reports whether found) */
     int boundaries;    /* phase starts as vertical lines */
     double xlo, xhi;   /* x range */
     double mlo, mhi;   /* map: latitude range */
@@ -202,44 +203,81 @@ static void draw_curve(const curve *c)
     plwidth(1.0);
 }
 
-/* Dashed vertical lines at the phase starts, labelled with the phases that start there. */
+/* A phase's number: its place in run order (summary.json's index), as the report numbers it. */
+static int phase_number(const lv_plot_data *d, size_t k)
+{
+    return d->res->phases[k].index > 0 ? d->res->phases[k].index : (int)k + 1;
+}
+
+/* Dashed vertical lines at the phase starts, each labelled at the top with the numbers of the
+ * phases that start there ("4,5"); the legend names them. A label that would overlap the one
+ * before it goes one row lower (three rows, then the row with the most room). */
 static void draw_boundaries(const lv_plot_data *d, double xlo, double xhi, double ylo, double yhi)
 {
     plschr(0.0, 0.75);
-    for (size_t k = 0; k < d->n_phases; k++) {
-        const double t = d->phases[k].t0;
-        if (!isfinite(t) || t < xlo || t > xhi)
+    PLFLT def_mm, ht_mm, vx0, vx1, vy0, vy1, sx0, sx1, sy0, sy1;
+    plgchr(&def_mm, &ht_mm);
+    plgvpd(&vx0, &vx1, &vy0, &vy1);
+    plgspa(&sx0, &sx1, &sy0, &sy1);
+    const double w_mm = (vx1 - vx0) * (sx1 - sx0), h_mm = (vy1 - vy0) * (sy1 - sy0);
+    const double cw = w_mm > 0.0 ? 0.75 * ht_mm * (xhi - xlo) / w_mm : 0.0; /* a digit, x */
+    const double ch = h_mm > 0.0 ? ht_mm * (yhi - ylo) / h_mm : 0.0;        /* a line, y */
+    double right[3] = {-INFINITY, -INFINITY, -INFINITY}; /* each row's last label's end */
+    /* the starts in time order: phases are in run order, which is not time order */
+    double t_prev = -INFINITY;
+    for (;;) {
+        double t = INFINITY;
+        for (size_t k = 0; k < d->n_phases; k++)
+            if (isfinite(d->phases[k].t0) && d->phases[k].t0 > t_prev && d->phases[k].t0 < t)
+                t = d->phases[k].t0;
+        if (!isfinite(t))
+            break;
+        t_prev = t;
+        if (t < xlo || t > xhi)
             continue;
-        int seen = 0; /* an earlier phase starting at the same instant drew it */
-        for (size_t j = 0; j < k && !seen; j++)
-            seen = d->phases[j].t0 == t;
-        if (seen)
-            continue;
-        char label[512] = "", name[256];
+        char label[128] = "";
         size_t len = 0;
-        for (size_t j = k; j < d->n_phases; j++)
-            if (d->phases[j].t0 == t) {
-                pl_text(name, sizeof name, d->phases[j].name);
-                if (len + strlen(name) + 4 < sizeof label)
-                    len += (size_t)snprintf(label + len, sizeof label - len, "%s%s",
-                                            len ? " | " : "", name);
-            }
+        for (size_t k = 0; k < d->n_phases; k++)
+            if (d->phases[k].t0 == t && len + 12 < sizeof label)
+                len += (size_t)snprintf(label + len, sizeof label - len, "%s%d", len ? "," : "",
+                                        phase_number(d, k));
         PLFLT x[2] = {t, t}, y[2] = {ylo, yhi};
         plcol0(COL_PHASE);
         pllsty(3);
         plline(2, x, y);
         pllsty(1);
-        /* Text reads upwards along the line's right side and ends near the top. */
-        plptex(t + 0.008 * (xhi - xlo), yhi - 0.02 * (yhi - ylo), 0.0, 1.0, 1.0, label);
+        /* right of the line; left of it where it would leave the plot */
+        double w = ((double)len + 0.6) * cw, x0 = t + 0.4 * cw, just = 0.0;
+        if (x0 + w > xhi) {
+            x0 = t - 0.4 * cw;
+            just = 1.0;
+        }
+        const double a = just == 0.0 ? t : t - w, b = just == 0.0 ? t + w : t;
+        size_t row = 0;
+        while (row < 3 && a < right[row])
+            row++;
+        if (row == 3) { /* no row free: the one whose last label ends first */
+            row = 0;
+            for (size_t r = 1; r < 3; r++)
+                if (right[r] < right[row])
+                    row = r;
+        }
+        right[row] = b;
+        plcol0(COL_FG);
+        plptex(x0, yhi - (1.0 + 1.4 * (double)row) * ch, 1.0, 0.0, just, label);
     }
     plschr(0.0, 1.0);
 }
 
-static void draw_legend(const panel *p)
+#define MAX_LEGEND (MAX_CURVES + 40)
+
+/* The curves' legend; with `phases`, then the phases that ran, numbered as their lines. */
+static void draw_legend(const lv_plot_data *d, const panel *p, int phases)
 {
-    PLINT opt[MAX_CURVES], tcol[MAX_CURVES], lcol[MAX_CURVES], lsty[MAX_CURVES];
-    PLFLT lw[MAX_CURVES];
-    const char *text[MAX_CURVES];
+    PLINT opt[MAX_LEGEND], tcol[MAX_LEGEND], lcol[MAX_LEGEND], lsty[MAX_LEGEND];
+    PLFLT lw[MAX_LEGEND];
+    const char *text[MAX_LEGEND];
+    char key[MAX_LEGEND - MAX_CURVES][80];
     PLINT n = 0;
     for (size_t j = 0; j < p->n_c; j++) {
         if (p->c[j].label[0] == '\0')
@@ -252,6 +290,21 @@ static void draw_legend(const panel *p)
         text[n] = p->c[j].label;
         n++;
     }
+    size_t n_key = 0;
+    for (size_t k = 0; phases && k < d->n_phases && n_key < MAX_LEGEND - MAX_CURVES; k++) {
+        if (!isfinite(d->phases[k].t0))
+            continue;
+        char name[64];
+        pl_text(name, sizeof name, d->phases[k].name);
+        snprintf(key[n_key], sizeof key[0], "%d  %s", phase_number(d, k), name);
+        opt[n] = PL_LEGEND_NONE;
+        tcol[n] = COL_PHASE;
+        lcol[n] = COL_BG;
+        lsty[n] = 1;
+        lw[n] = 1.0;
+        text[n] = key[n_key++];
+        n++;
+    }
     if (n == 0)
         return;
     PLFLT w, h;
@@ -261,6 +314,35 @@ static void draw_legend(const panel *p)
              COL_FG, 1, 0, 1, n, opt, 0.8, 0.9, 2.0, 0.0, tcol, text, NULL, NULL, NULL, NULL,
              lcol, lsty, lw, NULL, NULL, NULL, NULL);
     plschr(0.0, 1.0);
+}
+
+/* The sites on a map: a runway as a thick line from its threshold along the part rolled on,
+ * and a triangle at its threshold (or at the launch site), labelled. */
+static void draw_sites(const lv_plot_data *d, const figure *f, double ylo, double yhi)
+{
+    const double xm = 0.5 * (f->xlo + f->xhi);
+    for (size_t i = 0; i < d->n_sites; i++) {
+        const lv_plot_site *s = &d->sites[i];
+        PLFLT x[2] = {s->lon * RAD2DEG, s->lon1 * RAD2DEG}, y[2] = {s->lat * RAD2DEG,
+                                                                     s->lat1 * RAD2DEG};
+        for (int k = 0; k < 2; k++) /* the longitude nearest the map's centre */
+            x[k] += 360.0 * round((xm - x[k]) / 360.0);
+        if (x[0] < f->xlo || x[0] > f->xhi || y[0] < ylo || y[0] > yhi)
+            continue;
+        plcol0(COL_FG);
+        if (s->length > 0.0) {
+            plwidth(5.0);
+            plline(2, x, y);
+            plwidth(1.0);
+        }
+        plschr(0.0, 1.1);
+        plpoin(1, x, y, 7);
+        char label[200];
+        pl_text(label, sizeof label, s->label);
+        plschr(0.0, 0.75);
+        plptex(x[0] + 0.015 * (f->xhi - f->xlo), y[0] - 0.035 * (yhi - ylo), 1.0, 0.0, 0.0, label);
+        plschr(0.0, 1.0);
+    }
 }
 
 typedef void (*mapform_fn)(PLINT n, PLFLT *x, PLFLT *y);
@@ -284,7 +366,7 @@ static void draw_panel(const lv_plot_data *d, const figure *f, size_t ip, PLFLT 
     plwind(f->xlo, f->xhi, ylo, yhi);
     plcol0(COL_GRID);
     plbox("g", 0.0, 0, "g", 0.0, 0);
-    if (f->map) {
+    if (f->coast) {
         plcol0(COL_LAND);
         plwidth(1.2);
         plmap((mapform_fn)NULL, "globe", f->xlo, f->xhi, ylo, yhi);
@@ -299,6 +381,8 @@ static void draw_panel(const lv_plot_data *d, const figure *f, size_t ip, PLFLT 
         draw_boundaries(d, f->xlo, f->xhi, ylo, yhi);
     for (size_t j = 0; j < p->n_c; j++)
         draw_curve(&p->c[j]);
+    if (f->map)
+        draw_sites(d, f, ylo, yhi);
     if (f->map) /* start and end of each track */
         for (size_t j = 0; j < p->n_c; j++) {
             const curve *c = &p->c[j];
@@ -323,7 +407,7 @@ static void draw_panel(const lv_plot_data *d, const figure *f, size_t ip, PLFLT 
         plschr(0.0, 1.0);
     }
     if (ip == 0 || f->p[ip].n_c != f->p[0].n_c)
-        draw_legend(p);
+        draw_legend(d, p, f->boundaries && ip == 0);
 }
 
 static int device_available(const char *dev)
@@ -494,7 +578,7 @@ static lv_status render_both(const lv_plot_data *d, const figure *f, const char 
     lv_status st = LV_OK;
     int mine = 1;
     if (list->draw_role != DRAW_ALL) {
-        if (f->map)
+        if (f->coast)
             mine = list->draw_role == DRAW_EVEN;
         else
             mine = (list->draw_index++ % 2 == 0) == (list->draw_role == DRAW_EVEN);
@@ -688,13 +772,18 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
     return st;
 }
 
-/* The paper's Figure 10: per body, speed over its maximum and mass over its initial value
- * (the whole vehicle the body is part of: the steps are the separations). */
+/* The paper's Figure 10: every body's speed over v_max, the largest speed of any body, and its
+ * mass over m_0, the mission's initial mass (lv_plot_fig10_refs): where bodies fly together
+ * their curves coincide, and a separation's steps show each part's share of m_0. */
 static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
                        lv_err *err)
 {
     static const char *const v_cols[] = {"v_rel", "speed", NULL};
     static const char *const m_cols[] = {"m", NULL};
+    if (!(isfinite(d->v_max) && isfinite(d->m_0))) {
+        add_skip(list, "fig10_normalised", "no phase file has a speed and the mass 'm'");
+        return LV_OK;
+    }
     figure f;
     memset(&f, 0, sizeof f);
     snprintf(f.title, sizeof f.title, "Normalised speed and mass (as the paper's Figure 10)");
@@ -703,8 +792,9 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
     f.n_p = 2;
     f.boundaries = 1;
     time_range(d, &f.xlo, &f.xhi);
-    snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "speed / max speed [-]");
-    snprintf(f.p[1].ylabel, sizeof f.p[1].ylabel, "mass / initial mass [-]");
+    snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "v / v#dmax#u (v#dmax#u = %.0f m/s)",
+             d->v_max);
+    snprintf(f.p[1].ylabel, sizeof f.p[1].ylabel, "m / m#d0#u (m#d0#u = %.4g t)", d->m_0 * 1e-3);
     lv_status st = LV_OK;
     for (size_t ip = 0; ip < 2 && st == LV_OK; ip++) {
         panel *p = &f.p[ip];
@@ -712,7 +802,8 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
         p->yhi = 1.08;
         for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
             curve *c = &p->c[p->n_c];
-            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0, 0, c);
+            const double ref = ip == 0 ? d->v_max : d->m_0;
+            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0 / ref, 0, c);
             if (n == (size_t)-1) {
                 p->n_c++;
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -720,12 +811,8 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
             }
             if (n == 0)
                 continue;
-            double ref = 0.0; /* speed: its maximum; mass: the first value */
-            for (size_t k = 0; k < n; k++)
-                if (isfinite(c->y[k]) && (ip == 0 ? fabs(c->y[k]) > ref : ref == 0.0))
-                    ref = fabs(c->y[k]);
-            for (size_t k = 0; k < n; k++)
-                c->y[k] = ref > 0.0 ? c->y[k] / ref : NAN;
+            for (size_t k = 0; ip == 0 && k < n; k++)
+                c->y[k] = fabs(c->y[k]);
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
             c->style = body_style(i, 0);
             c->width = body_width(i);
@@ -733,9 +820,7 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
             p->n_c++;
         }
     }
-    if (st == LV_OK && (f.p[0].n_c == 0 || f.p[1].n_c == 0))
-        add_skip(list, "fig10_normalised", "no phase file has a speed and the mass 'm'");
-    else if (st == LV_OK) {
+    if (st == LV_OK) {
         int map_ok = 1;
         st = render_both(d, &f, plotdir, "fig10_normalised", list, &map_ok, err);
     }
@@ -743,16 +828,60 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
     return st;
 }
 
-static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
-                              lv_err *err)
+#define SITE_NEAR 1.0 /* deg: a track that ends this close to the first site came back to it */
+
+/* The window of the site figure: around the first site (a runway, else the launch site), wide
+ * enough for the runway and for every track's end within SITE_NEAR of it (x 1.3), at least
+ * 0.1 deg (about 11 km on the Earth) and at most 0.6 deg from the centre. 0: no site, or
+ * neither a runway nor a track that comes back (the site figure is not drawn). */
+static int site_window(const lv_plot_data *d, const panel *p, double *xm, double *ym,
+                       double *half)
 {
+    if (d->n_sites == 0)
+        return 0;
+    const lv_plot_site *s = &d->sites[0];
+    *xm = 0.5 * (s->lon + s->lon1) * RAD2DEG;
+    *ym = 0.5 * (s->lat + s->lat1) * RAD2DEG;
+    const double coslat = fmax(cos(*ym / RAD2DEG), 0.2);
+    double r = 3.0 * hypot(s->lat1 - s->lat, (s->lon1 - s->lon) * coslat) * RAD2DEG;
+    int back = s->length > 0.0;
+    for (size_t j = 0; j < p->n_c; j++) {
+        const curve *c = &p->c[j];
+        if (c->n == 0)
+            continue;
+        const double dlon = c->x[c->n - 1] - *xm;
+        const double dist = hypot(c->y[c->n - 1] - *ym,
+                                  (dlon - 360.0 * round(dlon / 360.0)) * coslat);
+        if (c->n > 0 && dist < SITE_NEAR) {
+            r = fmax(r, 1.3 * dist);
+            back = 1;
+        }
+    }
+    *half = fmin(fmax(r, 0.1), 0.6);
+    return back;
+}
+
+/* The ground track on a map with coastlines (site 0), or (site 1) without them, around the
+ * first site: the runway, the take-off and the return. */
+static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
+                              int site, lv_err *err)
+{
+    const char *stem = site ? "ground_track_site" : "ground_track";
     figure f;
     memset(&f, 0, sizeof f);
-    snprintf(f.title, sizeof f.title, "Ground track");
+    if (site && d->n_sites > 0) {
+        char where[200];
+        pl_text(where, sizeof where, d->sites[0].label);
+        snprintf(f.title, sizeof f.title, "Ground track around %s%.100s", strncmp(where, "launch", 6) == 0 ? "the " : "",
+                 where);
+    } else {
+        snprintf(f.title, sizeof f.title, "Ground track");
+    }
     mission_line(d, f.subtitle, sizeof f.subtitle);
     f.xlabel = "longitude [deg]";
     f.n_p = 1;
     f.map = 1;
+    f.coast = !site;
     snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "latitude [deg]");
     panel *p = &f.p[0];
     lv_status st = LV_OK;
@@ -790,8 +919,16 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
             if (isfinite(dlat) && isfinite(dlon))
                 extent = fmax(extent, hypot(dlat, dlon));
         }
+    double xm = 0.0, ym = 0.0, half = 0.0;
+    if (st == LV_OK && site && !site_window(d, p, &xm, &ym, &half)) {
+        add_skip(list, stem, d->n_sites == 0 ? "no launch site: no phase file has 'lat' and 'lon'"
+                                             : "no runway phase, and no track ends within 1 deg "
+                                               "of the launch site");
+        figure_free(&f);
+        return LV_OK;
+    }
     if (st == LV_OK && p->n_c > 0 && extent < 0.01) { /* deg: about 1 km */
-        add_skip(list, "ground_track", d->flat ? "flat world: every body flies within 1 km of "
+        add_skip(list, stem, d->flat ? "flat world: every body flies within 1 km of "
                                                  "the launch site (no ground track to map)"
                                                : "every body stays within 1 km of the launch "
                                                  "site (no ground track to map)");
@@ -799,7 +936,7 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
         return LV_OK;
     }
     if (st == LV_OK && p->n_c == 0) {
-        add_skip(list, "ground_track", "no body trajectory has 'lat' and 'lon'");
+        add_skip(list, stem, "no body trajectory has 'lat' and 'lon'");
         figure_free(&f);
         return LV_OK;
     }
@@ -810,6 +947,14 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
         range_of(p, 1, &xlo, &xhi);
         range_of(p, 0, &ylo, &yhi);
         double lon_span = fmax(xhi - xlo, 4.0), lat_span = fmax(yhi - ylo, 4.0);
+        if (site) {
+            xlo = xm - half / fmax(cos(ym / RAD2DEG), 0.2);
+            xhi = xm + half / fmax(cos(ym / RAD2DEG), 0.2);
+            ylo = ym - half;
+            yhi = ym + half;
+            lon_span = (xhi - xlo) / 1.3;
+            lat_span = (yhi - ylo) / 1.3;
+        }
         double coslat = fmax(cos(0.5 * (ylo + yhi) / RAD2DEG), 0.2);
         const double aspect = ((VP_X1 - VP_X0) * PAGE_W) / (0.78 * PAGE_H); /* viewport width / height */
         lon_span *= 1.3;
@@ -818,14 +963,18 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
             lon_span = aspect * lat_span / coslat;
         else
             lat_span = lon_span * coslat / aspect;
-        double xm = 0.5 * (xlo + xhi), ym = 0.5 * (ylo + yhi);
+        xm = 0.5 * (xlo + xhi);
+        ym = 0.5 * (ylo + yhi);
         f.xlo = xm - 0.5 * lon_span;
         f.xhi = xm + 0.5 * lon_span;
         f.mlo = fmax(ym - 0.5 * lat_span, -90.0);
         f.mhi = fmin(ym + 0.5 * lat_span, 90.0);
         int map_ok = 1;
-        st = render_both(d, &f, plotdir, "ground_track", list, &map_ok, err);
-        if (st == LV_OK && !map_ok)
+        st = render_both(d, &f, plotdir, stem, list, &map_ok, err);
+        if (st == LV_OK && site)
+            add_note(list, "ground_track_site: the runway drawn is the part of it a runway phase "
+                           "rolled on, from its threshold (triangle)");
+        else if (st == LV_OK && !map_ok)
             add_note(list, "ground_track: PLplot's coastline data ('globe' shapefile, Debian "
                            "package libplplot-data) not found: latitude/longitude grid only");
         else if (st == LV_OK)
@@ -844,7 +993,9 @@ static lv_status draw_all(const lv_plot_data *d, const char *plotdir, lv_plot_li
     for (size_t i = 0; i < sizeof quantities / sizeof quantities[0] && st == LV_OK; i++)
         st = quantity_figure(d, &quantities[i], plotdir, list, err);
     if (st == LV_OK)
-        st = ground_track(d, plotdir, list, err);
+        st = ground_track(d, plotdir, list, 0, err);
+    if (st == LV_OK)
+        st = ground_track(d, plotdir, list, 1, err);
     return st;
 }
 

@@ -50,7 +50,7 @@ grep -qE "^building lvsim in $build/ \(log: $build/build.log\) \.\.\. done in [0
 grep -qE "warning:|error:|Building C object|Linking C|^-- |\[ *[0-9]+%\]" <<<"$out" \
   && fail "compiler or CMake lines in the output" || ok
 grep -q "Building C object" "$build/build.log" && ok || fail "the build log has no compiler lines"
-grep -qE "^5 +P5 +P2 .* done$" <<<"$out" && grep -q "^results: $build/demo/" <<<"$out" && ok \
+grep -qE "^7 +approach +glide-back .* done$" <<<"$out" && grep -q "^results: $build/demo/" <<<"$out" && ok \
   || fail "the demo's own output is missing"
 [ -f "$build/demo/manifest.json" ] && [ -f "$build/demo/viewer/VERSION" ] && ok \
   || fail "the demo's results folder or staged viewer is missing"

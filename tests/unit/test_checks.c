@@ -151,7 +151,7 @@ static void test_start_checks(void)
                "parameters: {start_h: -6000}\n"
                "stages: [{name: s, dry_mass: 10, propellant_mass: 0}]\n"
                "phases:\n  - {name: P, model: dof3, stages: [s], stop_time: 10}\n",
-               "bad.yaml:6:5: phase 'P': model 'P': the start state at t = 0 s is outside the "
+               "bad.yaml:6:5: phase 'P': the start state at t = 0 s is outside the "
                "model's domain: h = -6000 m is below its lower bound -5000 m");
     /* a mass set to zero or below, in a root and in a child */
     load_fails("mission: {name: t}\n"

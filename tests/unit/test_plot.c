@@ -1,12 +1,16 @@
-/* test_plot.c - lv_plot_run() on two example runs (the paper's flat-world test case and the
- * 3-DoF branch over the Earth): every expected figure exists as a PNG (signature, IHDR size, not
+/* test_plot.c - lv_plot_run() on three example runs (the paper's flat-world test case, the
+ * 3-DoF branch over the Earth, the seven-phase winged launcher with its runway and fly-back):
+ * every expected figure exists as a PNG (signature, IHDR size, not
  * a blank page by size) and an SVG, quantities a world lacks are skipped and said so, index.html
  * names every phase and figure and escapes mission text, nothing is printed, PLplot's current
  * stream is left as it was; errors name the file (and line). The PNGs' pixels are checked by
- * tests/unit/plot_png_check.py (ctest test_plot_png). */
+ * tests/unit/plot_png_check.py (ctest test_plot_png). The data of the Figure-10 plot
+ * (plots/fig10_normalised.csv) are checked against the definition: one speed and one mass
+ * reference for every body, the launcher's mass steps at the separation. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <math.h>
 #include <plplot.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,12 +26,16 @@
 
 static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dynamic_pressure",
                                        "load_factor", "flight_path_angle", "acceleration",
-                                       "thrust", "ground_track", "fig10_normalised", NULL};
-/* Not in a flat world's phase files (no atmosphere model outputs, no planet). */
+                                       "thrust", "ground_track", "ground_track_site",
+                                       "fig10_normalised", NULL};
 /* not drawn for the paper's flat-world flight: no atmosphere, no aerodynamics, and a vertical
  * flight has no ground track to map */
-static const char *const planet_only[] = {"mach", "dynamic_pressure", "load_factor",
-                                          "flight_path_angle", "ground_track", NULL};
+static const char *const flat_skipped[] = {"mach", "dynamic_pressure", "load_factor",
+                                           "flight_path_angle", "ground_track",
+                                           "ground_track_site", NULL};
+/* dof3-branch: no runway, and no stage comes back near the launch site */
+static const char *const dof3_skipped[] = {"ground_track_site", NULL};
+static const char *const none_skipped[] = {NULL};
 
 static int in_list(const char *const *l, const char *s)
 {
@@ -115,6 +123,8 @@ static void clean(const char *dir)
         snprintf(path, sizeof path, "%s/plots/%s.svg", dir, all_figs[i]);
         remove(path);
     }
+    snprintf(path, sizeof path, "%s/plots/fig10_normalised.csv", dir);
+    remove(path);
     snprintf(path, sizeof path, "%s/plots", dir);
     remove(path);
     snprintf(path, sizeof path, "%s/index.html", dir);
@@ -128,7 +138,8 @@ static int exists(const char *path)
 }
 
 /* Runs `mission` into `outdir`, plots it, checks the files; returns the plotting time in ms. */
-static double run_and_plot(const char *mission, const char *outdir, int flat)
+static double run_and_plot(const char *mission, const char *outdir, int flat,
+                           const char *const *skipped)
 {
     char path[4096];
     const char *root = getenv("LV_SOURCE_DIR");
@@ -183,7 +194,7 @@ static double run_and_plot(const char *mission, const char *outdir, int flat)
     remove(quiet);
 
     for (size_t i = 0; all_figs[i]; i++) {
-        const int expect = !(flat && in_list(planet_only, all_figs[i]));
+        const int expect = !in_list(skipped, all_figs[i]);
         snprintf(path, sizeof path, "%s/plots/%s.png", outdir, all_figs[i]);
         CHECK(exists(path) == expect);
         if (exists(path) != expect)
@@ -210,7 +221,7 @@ static double run_and_plot(const char *mission, const char *outdir, int flat)
             CHECK(strstr(html, cell) != NULL);
         }
         for (size_t i = 0; all_figs[i]; i++) {
-            const int expect = !(flat && in_list(planet_only, all_figs[i]));
+            const int expect = !in_list(skipped, all_figs[i]);
             char img[128], svg[128], skip[128];
             snprintf(img, sizeof img, "<img src=\"plots/%s.png\"", all_figs[i]);
             snprintf(svg, sizeof svg, "href=\"plots/%s.svg\"", all_figs[i]);
@@ -236,6 +247,91 @@ static double run_and_plot(const char *mission, const char *outdir, int flat)
     free(html);
     lv_mission_free(m);
     return 1e3 * ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+}
+
+/* plots/fig10_normalised.csv of a run: v_norm = v / v_max and m_norm = m / m_0 with one
+ * v_max and one m_0 for every body: the largest v_norm is 1 exactly and none exceeds it, every
+ * body (all start in one stack in these examples) starts at m_norm 1, times do not go back.
+ * With `rlv`, the seven-phase launcher's numbers: m_0 = 401 t, the upper stage's share at the
+ * separation 66 t / 401 t, the stack's mass the sum of its parts' there, and every body's speed
+ * continuous across each boundary (a 1 m/s separation impulse at most). */
+typedef struct f10_row {
+    double t, v, m;
+    char body[32], phase[32];
+} f10_row;
+
+static void check_fig10_csv(const char *outdir, int rlv)
+{
+    char path[512], line[512];
+    snprintf(path, sizeof path, "%s/plots/fig10_normalised.csv", outdir);
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL);
+    if (f == NULL)
+        return;
+    double v_max = NAN, m_0 = NAN;
+    CHECK(fgets(line, sizeof line, f) != NULL &&
+          sscanf(line, "# the paper's Figure 10: v_norm = speed / v_max, m_norm = m / m_0; "
+                       "v_max = %lf m/s, m_0 = %lf kg", &v_max, &m_0) == 2);
+    CHECK(v_max > 0.0 && m_0 > 0.0);
+    CHECK(fgets(line, sizeof line, f) != NULL &&
+          strcmp(line, "time [s],body,phase,v_norm,m_norm\n") == 0);
+    size_t n = 0, cap = 4096;
+    f10_row *rows = malloc(cap * sizeof *rows);
+    CHECK(rows != NULL);
+    while (rows != NULL && fgets(line, sizeof line, f) != NULL) {
+        if (n == cap) {
+            f10_row *r = realloc(rows, 2 * cap * sizeof *rows);
+            CHECK(r != NULL);
+            if (r == NULL)
+                break;
+            rows = r;
+            cap *= 2;
+        }
+        f10_row *r = &rows[n];
+        CHECK(sscanf(line, "%lf,%31[^,],%31[^,],%lf,%lf", &r->t, r->body, r->phase, &r->v,
+                     &r->m) == 5);
+        n++;
+    }
+    fclose(f);
+    CHECK(n > 10);
+    double v_top = -1.0;
+    for (size_t i = 0; rows != NULL && i < n; i++) {
+        v_top = fmax(v_top, rows[i].v);
+        CHECK(rows[i].v >= 0.0 && rows[i].v <= 1.0);
+        CHECK(rows[i].m > 0.0 && rows[i].m <= 1.0);
+        const int first = i == 0 || strcmp(rows[i].body, rows[i - 1].body) != 0;
+        if (first)
+            CHECK(rows[i].m == 1.0);
+        else
+            CHECK(rows[i].t >= rows[i - 1].t);
+        /* a phase boundary of the same body: speed continuous */
+        if (!first && strcmp(rows[i].phase, rows[i - 1].phase) != 0) {
+            CHECK(rows[i].t == rows[i - 1].t);
+            CHECK(fabs(rows[i].v - rows[i - 1].v) <= 1.01 / v_max + 1e-12);
+            if (fabs(rows[i].v - rows[i - 1].v) > 1.01 / v_max + 1e-12)
+                fprintf(stderr, "%s: %s -> %s at %g s: v_norm %.9g -> %.9g\n", rows[i].body,
+                        rows[i - 1].phase, rows[i].phase, rows[i].t, rows[i - 1].v, rows[i].v);
+        }
+    }
+    CHECK(v_top == 1.0);
+    if (rlv && rows != NULL) {
+        CHECK(m_0 == 401000.0);
+        double m_stack = NAN, m_us = NAN, m_ms = NAN;
+        for (size_t i = 0; i < n; i++) {
+            if (strcmp(rows[i].body, "ms") == 0 && strcmp(rows[i].phase, "ballistic") == 0)
+                m_stack = rows[i].m; /* its last row: the separation state */
+            if (isnan(m_us) && strcmp(rows[i].body, "us") == 0 &&
+                strcmp(rows[i].phase, "us-ascent") == 0)
+                m_us = rows[i].m;
+            if (isnan(m_ms) && strcmp(rows[i].body, "ms") == 0 &&
+                strcmp(rows[i].phase, "turn-around") == 0)
+                m_ms = rows[i].m;
+        }
+        CHECK(fabs(m_us - 66000.0 / 401000.0) < 1e-12);
+        CHECK(fabs(m_stack - (m_us + m_ms)) < 1e-9);
+        CHECK(m_ms > 0.25 && m_ms < 0.35); /* the MS with its reserve: ~120 t */
+    }
+    free(rows);
 }
 
 /* A hand-made output directory: hostile names are escaped, bad files give file and line. */
@@ -301,12 +397,20 @@ int main(void)
 {
     clean("plot_paper");
     clean("plot_dof3");
+    clean("plot_rlv");
     clean("plot_hand");
     remove("plot_hand/p 1.csv");
     remove("plot_hand/b.csv");
-    double ms_paper = run_and_plot("examples/paper-test-case/mission.yaml", "plot_paper", 1);
-    double ms_dof3 = run_and_plot("examples/dof3-branch/mission.yaml", "plot_dof3", 0);
-    printf("lv_plot_run: paper-test-case %.0f ms, dof3-branch %.0f ms\n", ms_paper, ms_dof3);
+    double ms_paper =
+        run_and_plot("examples/paper-test-case/mission.yaml", "plot_paper", 1, flat_skipped);
+    double ms_dof3 =
+        run_and_plot("examples/dof3-branch/mission.yaml", "plot_dof3", 0, dof3_skipped);
+    double ms_rlv = run_and_plot("examples/rlv-hthl/mission.yaml", "plot_rlv", 0, none_skipped);
+    printf("lv_plot_run: paper-test-case %.0f ms, dof3-branch %.0f ms, rlv-hthl %.0f ms\n",
+           ms_paper, ms_dof3, ms_rlv);
+    check_fig10_csv("plot_paper", 0);
+    check_fig10_csv("plot_dof3", 0);
+    check_fig10_csv("plot_rlv", 1);
     test_errors_and_escaping();
     return check_report("test_plot");
 }

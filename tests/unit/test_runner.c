@@ -327,6 +327,17 @@ static void test_bad_set(void)
     CHECK_FAILS(lv_mission_load("badset.yaml", &m, &err), &err, LV_ERR_INPUT,
                 "badset.yaml:8:11: phase 'p': set: the flat6 model has no variable 'vzz'; did you mean 'vz'");
     CHECK(m == NULL);
+    /* NAME_deg converts degrees: only for an angle (vz is a speed) */
+    f = fopen("badset.yaml", "w");
+    fprintf(f,
+            "mission: {name: bad-set}\n"
+            "stages: [{name: a, dry_mass: 100, propellant_mass: 0}]\n"
+            "phases:\n"
+            "  - {name: p, model: flat6, stages: [a], stop_time: 10, set: {vz_deg: 3}}\n");
+    fclose(f);
+    CHECK_FAILS(lv_mission_load("badset.yaml", &m, &err), &err, LV_ERR_INPUT,
+                "badset.yaml:4:63: phase 'p': set: 'vz' is not an angle (its unit is 'm/s')");
+    CHECK(m == NULL);
 }
 
 /* Sequential against end-to-end on the paper's case (the paper's Table 2 and Figure 8). */

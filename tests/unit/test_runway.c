@@ -511,6 +511,96 @@ static void test_mission_handoffs(void)
     remove(path);
 }
 
+/* Writes yaml to path and loads it: the mission, or NULL with err. */
+static lv_mission *load_text(const char *path, const char *yaml, lv_err *err)
+{
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f == NULL)
+        return NULL;
+    fputs(yaml, f);
+    fclose(f);
+    lv_mission *m = NULL;
+    if (lv_mission_load(path, &m, err) != LV_OK)
+        return NULL;
+    return m;
+}
+
+#define ROLL_RUNWAY "     runway: {lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140},\n"
+
+/* The roll's edges: a vehicle that never lifts off hands nothing to a flight phase; one that
+ * is flying at the start is not held on the runway; an aborted take-off (burnout before
+ * lift-off) ends at rest; a take-off roll does not start from a flight phase. */
+static void test_mission_edges(void)
+{
+    lv_err err;
+    /* thrust 2 MN on 150 t, no lift: it never lifts off; the roll ends at its time limit */
+    lv_mission *m = load_text("rw_edges.yaml",
+        HEAD "  - {name: roll, model: runway, stages: [ms], stop_time: 20,\n" ROLL_RUNWAY
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 0}}\n"
+             "  - {name: climb, model: dof3, stages: [ms], from: roll, stop_time: 90}\n", &err);
+    CHECK(m != NULL);
+    if (m != NULL) {
+        lv_run *r = NULL;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK(lv_run_execute(r, NULL, &err) != LV_OK);
+        CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE);
+        CHECK(lv_run_result(r, 1)->state == LV_PHASE_FAILED &&
+              strstr(lv_run_result(r, 1)->error, "the parent roll did not lift off") != NULL);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    /* a root roll at 150 m/s with CL 2 on 300 m^2: lift (q S CL ~ 1.6e7 N) far above the
+     * weight (1.5e6 N): refused when the mission is loaded, as `lvsim check` does */
+    m = load_text("rw_edges.yaml",
+        HEAD "  - {name: roll, model: runway, stages: [ms], stop_time: 20,\n" ROLL_RUNWAY
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8, start_speed: 150},\n"
+             "     aero: {s_ref: 300, CD: 0.05, CL: 2}}\n", &err);
+    CHECK(m == NULL && strstr(err.msg, "the vehicle is already flying at the start") != NULL);
+    lv_mission_free(m);
+    /* 2 t of propellant at 2 MN and Isp 350 s (mdot 583 kg/s): burnout after 3.4 s, then the
+     * friction and drag stop it: the roll ends at rest, "at_rest", before its time limit */
+    m = load_text("rw_edges.yaml",
+        "mission: {name: rw}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "stages:\n"
+        "  - {name: ms, dry_mass: 50000, propellant_mass: 2000,\n"
+        "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 350, exit_area: 1.5}]}\n"
+        "phases:\n"
+        "  - {name: roll, model: runway, stages: [ms], stop_time: 600,\n" ROLL_RUNWAY
+        "     takeoff: {mu: 0.05, v_rot: 90, alpha_rot_deg: 0}}\n", &err);
+    CHECK(m != NULL);
+    if (m != NULL) {
+        lv_run *r = NULL;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        const lv_phase_result *p = lv_run_result(r, 0);
+        CHECK(p->report.reason == LV_STOP_EVENT && p->t_end < 600.0);
+        CHECK(p->report.stop_event >= 0 && (size_t)p->report.stop_event < p->n_event_names &&
+              strcmp(p->event_names[p->report.stop_event], "at_rest") == 0);
+        double v = NAN;
+        CHECK_OK(lv_run_final(r, 0, "speed", &v, &err), &err);
+        CHECK_CLOSE(v, 0.0, 1e-6);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    /* a take-off roll from a flight phase */
+    m = load_text("rw_edges.yaml",
+        HEAD "  - {name: fly, model: dof3, stages: [ms], stop_time: 1, throttle: off}\n"
+             "  - {name: roll, model: runway, stages: [ms], from: fly, stop_time: 20,\n" ROLL_RUNWAY
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8}}\n", &err);
+    CHECK(m != NULL);
+    if (m != NULL) {
+        lv_run *r = NULL;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK(lv_run_execute(r, NULL, &err) != LV_OK);
+        CHECK(strstr(lv_run_result(r, 1)->error, "a take-off roll starts on the runway") != NULL);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove("rw_edges.yaml");
+}
+
 int main(void)
 {
     test_friction_no_air();
@@ -518,6 +608,7 @@ int main(void)
     test_liftoff_speed();
     test_landing_rollout();
     test_rotating_threshold();
+    test_mission_edges();
     test_bad_config();
     test_mission_errors();
     test_mission_handoffs();
