@@ -408,18 +408,25 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         const cJSON *inj = cJSON_GetObjectItemCaseSensitive(b, "injection");
         if (cJSON_IsObject(inj)) {
             const char *traj = jstr(inj, "trajectory");
-            key_row(f, traj && strcmp(traj, "orbit") == 0    ? "injection into orbit (last burnout)"
-                       : traj && strcmp(traj, "escape") == 0 ? "injection on an escape trajectory (last burnout)"
-                                                             : "end of powered flight (suborbital)");
+            const int orbit = traj && strcmp(traj, "orbit") == 0;
+            const int escape = traj && strcmp(traj, "escape") == 0;
+            key_row(f, orbit    ? "injection into orbit (end of powered flight)"
+                       : escape ? "injection on an escape trajectory (end of powered flight)"
+                                : "end of powered flight (suborbital)");
             state_text(f, inj, flat);
             const cJSON *o = cJSON_GetObjectItemCaseSensitive(inj, "orbit");
-            fputs("; osculating orbit: ", f);
             int first = 1;
-            kv(f, "a", jnum(o, "sma"), 1e-3, 1, "km", &first);
-            kv(f, "e", jnum(o, "ecc"), 1.0, 5, "", &first);
-            kv(f, "i", jnum(o, "inc"), 1.0 / LV_DEG, 3, "deg", &first);
-            kv(f, "apoapsis altitude", jnum(o, "apo_alt"), 1e-3, 1, "km", &first);
-            kv(f, "periapsis altitude", jnum(o, "peri_alt"), 1e-3, 1, "km", &first);
+            if (orbit || escape) {
+                fputs("; osculating orbit: ", f);
+                kv(f, "a", jnum(o, "sma"), 1e-3, 1, "km", &first);
+                kv(f, "e", jnum(o, "ecc"), 1.0, 5, "", &first);
+                kv(f, "i", jnum(o, "inc"), 1.0 / LV_DEG, 3, "deg", &first);
+                kv(f, "apoapsis altitude", jnum(o, "apo_alt"), 1e-3, 1, "km", &first);
+                kv(f, "periapsis altitude", jnum(o, "peri_alt"), 1e-3, 1, "km", &first);
+            } else { /* a suborbital arc: its elements say little; the apoapsis it coasts to */
+                fputs("; ballistic ", f);
+                kv(f, "apoapsis altitude", jnum(o, "apo_alt"), 1e-3, 1, "km", &first);
+            }
             fputs("</td></tr>\n", f);
         }
         const cJSON *gc = cJSON_GetObjectItemCaseSensitive(b, "ground_contact");

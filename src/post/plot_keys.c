@@ -127,6 +127,11 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     const lv_results_table *first_t = NULL, *last_t = NULL;
     size_t last_k = 0;
     cJSON *injection = NULL;
+    /* the body's last powered instant (thrust > 0 in a phase where its stage burns): the end
+     * of powered flight, whatever ended the burn (a burnout, an orbit end such as `sma`) */
+    const lv_results_table *pow_t = NULL;
+    size_t pow_r = 0;
+    const char *pow_phase = NULL;
     for (size_t i = 0; i < b->n; i++) {
         const size_t k = b->phase[i];
         const lv_results_phase *ph = &res->phases[k];
@@ -158,6 +163,11 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 nn_max = nn;
                 nn_t = at(t, r, c.t);
             }
+            if (c.thrust >= 0 && at(t, r, c.thrust) > 0.0 && burns_in(res, k, b->name)) {
+                pow_t = t;
+                pow_r = r;
+                pow_phase = ph->name;
+            }
         }
         /* separation: the phase starts with fewer stages than its parent */
         if (ph->parent >= 0 && ph->n_stages < res->phases[ph->parent].n_stages) {
@@ -175,17 +185,19 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 continue;
             cJSON *s = state_json(t, &c, r, ph->name);
             cJSON_AddItemToArray(burn, s);
-            if (c.sma >= 0) { /* the last burnout over a planet: its injection candidate */
-                cJSON_Delete(injection);
-                injection = state_json(t, &c, r, ph->name);
-                num(injection, "fpa_inertial", at(t, r, c.fpa_in));
-                cJSON *orb = cJSON_AddObjectToObject(injection, "orbit");
-                num(orb, "sma", at(t, r, c.sma));
-                num(orb, "ecc", at(t, r, c.ecc));
-                num(orb, "inc", at(t, r, c.inc));
-                num(orb, "apo_alt", at(t, r, c.apo));
-                num(orb, "peri_alt", at(t, r, c.peri));
-            }
+        }
+    }
+    if (pow_t != NULL) { /* over a planet (osculating elements): the injection candidate */
+        const cols c = find_cols(pow_t);
+        if (c.sma >= 0) {
+            injection = state_json(pow_t, &c, pow_r, pow_phase);
+            num(injection, "fpa_inertial", at(pow_t, pow_r, c.fpa_in));
+            cJSON *orb = cJSON_AddObjectToObject(injection, "orbit");
+            num(orb, "sma", at(pow_t, pow_r, c.sma));
+            num(orb, "ecc", at(pow_t, pow_r, c.ecc));
+            num(orb, "inc", at(pow_t, pow_r, c.inc));
+            num(orb, "apo_alt", at(pow_t, pow_r, c.apo));
+            num(orb, "peri_alt", at(pow_t, pow_r, c.peri));
         }
     }
     /* final state: the last row of its last phase, and the stage's own mass */
@@ -226,7 +238,7 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     cJSON_AddItemToObject(o, "max_n_normal", nn ? nn : cJSON_CreateNull());
     cJSON_AddItemToObject(o, "burnouts", burn);
     cJSON_AddItemToObject(o, "separations", sep);
-    /* injection: the last burnout, if the orbit it starts keeps its periapsis above 100 km */
+    /* injection: the end of powered flight, an orbit if its periapsis stays above 100 km */
     if (injection != NULL) {
         const cJSON *orb = cJSON_GetObjectItemCaseSensitive(injection, "orbit");
         const cJSON *peri = cJSON_GetObjectItemCaseSensitive(orb, "peri_alt");

@@ -121,12 +121,15 @@ def key_figures(outdir):
                 if e["kind"] == "state" and e["name"] == "burnout" and p["stages"][0] == name:
                     r = next(r for r in rs if r["time"] == e["t"])
                     burn.append(state(r, pn))
-                    if "sma" in r:
-                        inj = dict(state(r, pn), fpa_inertial=r["fpa_inertial"])
-                        inj["orbit"] = {k: r[c] for k, c in (("sma", "sma"), ("ecc", "ecc"), ("inc", "inc"),
-                                                              ("peri_alt", "peri_alt"))}
-                        above, bound = r["peri_alt"] > 100e3, r["ecc"] < 1
-                        inj["trajectory"] = "suborbital" if not above else "orbit" if bound else "escape"
+            # the injection: the body's last row with thrust > 0 in a phase its stage burns in
+            # (the end of powered flight, whatever event ended it)
+            for r in rs:
+                if p["stages"][0] == name and r["thrust"] > 0 and "sma" in r:
+                    inj = dict(state(r, pn), fpa_inertial=r["fpa_inertial"])
+                    inj["orbit"] = {k: r[c] for k, c in (("sma", "sma"), ("ecc", "ecc"), ("inc", "inc"),
+                                                          ("peri_alt", "peri_alt"))}
+                    above, bound = r["peri_alt"] > 100e3, r["ecc"] < 1
+                    inj["trajectory"] = "suborbital" if not above else "orbit" if bound else "escape"
         last = rows[names[-1]][-1]
         final = dict(state(last, names[-1]), stage_mass=traj[-1]["stage_mass"])
         lp = by_name[names[-1]]
@@ -189,7 +192,7 @@ def compare(outdir):
 def main():
     lvsim, src = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
-        for ex in ("dof3-branch", "paper-test-case"):
+        for ex in ("dof3-branch", "paper-test-case", "rlv-hthl"):
             out = os.path.join(tmp, ex)
             r = subprocess.run([lvsim, "run", os.path.join(src, "examples", ex, "mission.yaml"),
                                 "-o", out, "-q"], capture_output=True, text=True)
@@ -216,6 +219,18 @@ def main():
                 p1 = load_csv(os.path.join(out, "phase_1_P1.csv"))
                 r = next(r for r in p1 if r["time"] == bodies["stage1"]["burnouts"][0]["t"])
                 check(r["burning"] == 1.0 and r["thrust"] > 0, "P1 burns until its burnout row")
+            elif ex == "rlv-hthl":
+                # the upper stage's burn ends on its `sma` end, not a burnout: still its
+                # injection, into the 200 km orbit of the example's README; the main stage's
+                # powered flight ends suborbital (the turn-around)
+                bodies = {b["name"]: b for b in got["bodies"]}
+                inj = bodies["us"]["injection"]
+                check(inj is not None and inj["trajectory"] == "orbit", "rlv us injection: %r" % inj)
+                if inj is not None:
+                    check(199e3 < inj["orbit"]["peri_alt"] < inj["orbit"]["apo_alt"] < 201e3,
+                          "rlv us orbit: %r" % inj["orbit"])
+                check(bodies["ms"]["injection"]["trajectory"] == "suborbital", "rlv ms suborbital")
+                check("ballistic apoapsis altitude" in html, "rlv: suborbital end without its apoapsis")
             else:
                 bodies = {b["name"]: b for b in got["bodies"]}
                 check(bodies["upper"]["injection"]["trajectory"] == "escape",
