@@ -17,7 +17,7 @@ echo
 echo "report:   $out/index.html (key figures, phases, events, plots)"
 echo "plots:    $out/plots/fig10_normalised.png (the paper's Figure 10), altitude, mach,"
 echo "          dynamic_pressure, load_factor, ground_track, ground_track_site (.png, .svg)"
-echo "3-D view: $lvsim view $out   (the three tracks: stack, upper stage, main stage;"
+echo "3-D view: $lvsim view $out   (a track per stage: main stage, upper stage, payload, on one path until the separation;"
 echo "          3-D globe, offline, on http://127.0.0.1; data: $out/mission.czml)"
 echo "more:     $lvsim run examples/paper-test-case/mission.yaml -o out   (the paper's test case;"
 echo "          $lvsim compare examples/paper-test-case/mission.yaml: its Table 2)"
