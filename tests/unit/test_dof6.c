@@ -14,7 +14,10 @@
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_dof6.h"
 #include "lvsim/lv_planet.h"
+#include "lvsim/lv_io.h"
+#include "lvsim/lv_mission.h"
 #include "lvsim/lv_sim.h"
+#include "mission/mission.h"
 
 #define DEG (M_PI / 180.0)
 
@@ -445,6 +448,178 @@ static void test_bad_config(void)
     lv_gravity_free(g);
 }
 
+/* ---- missions: the dof6 phase type, parse errors, hand-offs -------------------------------- */
+
+#define BAD(yaml, want) bad_((yaml), (want), __LINE__)
+static void bad_(const char *yaml, const char *want, int line)
+{
+    lv_err err = {LV_OK, ""};
+    lv_mission_def *m = NULL;
+    lv_status st = lv_mission_def_parse(yaml, strlen(yaml), "bad.yaml", ".", &m, &err);
+    check_count_++;
+    if (st != LV_ERR_INPUT || m != NULL || strncmp(err.msg, want, strlen(want)) != 0) {
+        check_failures_++;
+        fprintf(stderr, "%s:%d: expected LV_ERR_INPUT \"%s...\",\n    got %d \"%s\"\n", __FILE__,
+                line, want, (int)st, err.msg);
+    }
+    lv_mission_def_free(m);
+}
+
+#define HEAD0                                                                               \
+    "mission: {name: six}\n"                                                                \
+    "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"          \
+    "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 0, start_vel: 1,\n"        \
+    "             start_fpa_deg: 89, start_chi_deg: 90}\n"                                   \
+    "stages:\n"
+#define STAGE_RB                                                                            \
+    "  - {name: s1, dry_mass: 20000, propellant_mass: 100000,\n"                            \
+    "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}],\n"                         \
+    "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"                  \
+    "                  inertia_empty: {xx: 5.0e4, yy: 2.0e6, zz: 2.0e6},\n"                 \
+    "                  cg_full: {x: -15}, cg_empty: {x: -20}, engine_position: {x: -30}}}\n"
+#define STAGE_PLAIN                                                                         \
+    "  - {name: s1, dry_mass: 20000, propellant_mass: 100000,\n"                            \
+    "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}]}\n"
+
+static void test_mission_errors(void)
+{
+    BAD(HEAD0 STAGE_PLAIN "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10}\n",
+        "bad.yaml:9:5: phase 'P': model dof6 needs the rigid-body data of its bottom stage 's1'");
+    BAD(HEAD0 "  - {name: s1, dry_mass: 1, propellant_mass: 1, rigid_body: {cg_full: {x: 1}}}\n"
+        "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10}\n",
+        "bad.yaml:6:61: stage 's1', rigid_body: 'inertia_full' is missing");
+    BAD(HEAD0 "  - {name: s1, dry_mass: 1, propellant_mass: 1,\n"
+        "     rigid_body: {inertia_full: {xx: 1, yy: 1, zz: 1, xq: 0}}}\n"
+        "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10}\n",
+        "bad.yaml:7:55: stage 's1', rigid_body, inertia_full: unknown key 'xq'");
+    BAD(HEAD0 "  - {name: s1, dry_mass: 1, propellant_mass: 1,\n"
+        "     rigid_body: {inertia_full: {xx: 1, yy: 1}}}\n"
+        "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10}\n",
+        "bad.yaml:7:33: stage 's1', rigid_body, inertia_full: 'zz' is missing");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10, attitude: {theta_deg: 95}}\n",
+        "bad.yaml:12:79: phase 'P', attitude: theta_deg must be >= -90 and <= 90 deg, found 95");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10, moments: {Cmq: -1}}\n",
+        "bad.yaml:12:57: phase 'P', moments: aerodynamic moments need the phase's `aero:`");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10, aero: {s_ref: 10},\n"
+        "     moments: {Cmq: -1, b_ref: 4}}\n",
+        "bad.yaml:13:15: phase 'P', moments: 'c_ref' is missing");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10, rates: {q_degs: 1}}\n",
+        "bad.yaml:12:65: phase 'P', rates: unknown key 'q_degs'");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: A, model: dof3, stages: [s1], stop_time: 10}\n"
+        "  - {name: P, model: dof6, stages: [s1], from: A, stop_time: 20,\n"
+        "     attitude: {theta_deg: 80}}\n",
+        "bad.yaml:14:6: phase 'P': 'attitude': a phase with `from` starts with its parent's");
+}
+
+static lv_run *run_text(const char *path, const char *yaml, lv_mission **mp)
+{
+    lv_err err;
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f == NULL)
+        return NULL;
+    fputs(yaml, f);
+    fclose(f);
+    *mp = NULL;
+    CHECK_OK(lv_mission_load(path, mp, &err), &err);
+    if (*mp == NULL)
+        return NULL;
+    lv_run *r = NULL;
+    CHECK_OK(lv_run_create(*mp, &r, &err), &err);
+    if (r != NULL)
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+    remove(path);
+    return r;
+}
+
+/* The first row of phase k equals the final values of phase k - 1 in `names` (tolerance tol). */
+static void check_continuous(lv_run *r, size_t k, const char *const *names, size_t n, double tol)
+{
+    lv_err err;
+    const lv_result *rows = lv_run_rows(r, k);
+    CHECK(rows != NULL && lv_result_rows(rows) > 0);
+    for (size_t i = 0; rows != NULL && i < n; i++) {
+        double fv;
+        size_t col = 0;
+        CHECK_OK(lv_run_final(r, k - 1, names[i], &fv, &err), &err);
+        CHECK_OK(lv_result_column(rows, names[i], &col, &err), &err);
+        if (tol == 0.0)
+            CHECK(lv_result_value(rows, 0, col) == fv);
+        else
+            CHECK_CLOSE(lv_result_value(rows, 0, col), fv, tol);
+    }
+}
+
+/* A root dof6 phase starts with the attitude and rates of `attitude:` and `rates:`; a dof3
+ * ascent hands over to a dof6 coast (attitude from the dof3 final theta, psi, phi; rates 0),
+ * which hands over to a dof3 coast: position, velocity and mass continuous to the bit. */
+static void test_mission_handoffs(void)
+{
+    lv_mission *m = NULL;
+    lv_err err;
+    lv_run *r = run_text("test_dof6_root.yaml",
+                         HEAD0 STAGE_RB "phases:\n"
+                         "  - {name: P, model: dof6, stages: [s1], stop_time: 5,\n"
+                         "     attitude: {psi_deg: 90, theta_deg: 88, phi_deg: 10},\n"
+                         "     rates: {p_deg: 1, q_deg: -0.5, r: 0.01},\n"
+                         "     inputs: {gimbal_pitch_deg: 0.5}}\n",
+                         &m);
+    if (r != NULL) {
+        const lv_result *rows = lv_run_rows(r, 0);
+        const char *nm[] = {"psi", "theta", "phi", "p", "q", "r", "gimbal_pitch_in"};
+        const double want[] = {90.0 * DEG, 88.0 * DEG, 10.0 * DEG, 1.0 * DEG, -0.5 * DEG, 0.01,
+                               0.5 * DEG};
+        for (int i = 0; rows != NULL && i < 7; i++) {
+            size_t col = 0;
+            CHECK_OK(lv_result_column(rows, nm[i], &col, &err), &err);
+            CHECK_CLOSE(lv_result_value(rows, 0, col), want[i], 1e-12);
+        }
+        double h;
+        CHECK_OK(lv_run_final(r, 0, "h", &h, &err), &err);
+        CHECK(h > 50.0); /* it flew up: about (T/m - g) t^2 / 2 = 86 m */
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+
+    r = run_text("test_dof6_handoff.yaml",
+                 HEAD0 STAGE_RB "phases:\n"
+                 "  - {name: up, model: dof3, stages: [s1], stop_time: 40,\n"
+                 "     guidance: {law: attitude, pitch_deg: 80, heading_deg: 90}}\n"
+                 "  - {name: six, model: dof6, stages: [s1], from: up, stop_time: 60,\n"
+                 "     aero: {s_ref: 10, CD: 0.3}, moments: {Cmq: -5, b_ref: 3.5, c_ref: 3.5}}\n"
+                 "  - {name: three, model: dof3, stages: [s1], from: six, stop_time: 70}\n",
+                 &m);
+    if (r != NULL) {
+        const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", "m"};
+        check_continuous(r, 1, st, 7, 0.0);
+        check_continuous(r, 2, st, 7, 0.0);
+        /* the attitude the dof3 phase flew: 3-2-1 angles back from the quaternion to round-off */
+        const char *att[] = {"theta", "psi", "phi"};
+        check_continuous(r, 1, att, 3, 1e-12);
+        const lv_result *rows = lv_run_rows(r, 1);
+        const char *w[] = {"p", "q", "r"};
+        for (int i = 0; rows != NULL && i < 3; i++) {
+            size_t col = 0;
+            CHECK_OK(lv_result_column(rows, w[i], &col, &err), &err);
+            CHECK(lv_result_value(rows, 0, col) == 0.0);
+        }
+        double th;
+        CHECK_OK(lv_run_final(r, 0, "theta", &th, &err), &err);
+        CHECK_CLOSE(th, 80.0 * DEG, 1e-9); /* the attitude law's pitch */
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_torque_free();
@@ -454,5 +629,7 @@ int main(void)
     test_start_attitude();
     test_thrust_moment();
     test_bad_config();
+    test_mission_errors();
+    test_mission_handoffs();
     return check_report("test_dof6");
 }
