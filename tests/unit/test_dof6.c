@@ -197,7 +197,7 @@ static void test_precession(void)
     lv_gravity_free(g);
 }
 
-/* ---- (3) pure pitch-rate damping: q = q0 exp(lambda t) ---------------------------------- */
+/* ---- (3) pure rate damping: q = q0 exp(lambda t), and p, r likewise ---------------------------------- */
 /* Only Cmq acts: Iyy q' = q_dyn S c Cmq q c / (2 V), so q = q0 exp(lambda t) with
  * lambda = q_dyn S c^2 Cmq / (2 V Iyy) (Etkin & Reid, Dynamics of Flight, 3rd ed., sec. 5.6:
  * the pitch damping term alone). Constant q_dyn and V: a non-rotating planet with negligible
@@ -215,50 +215,124 @@ static void test_pitch_damping(void)
     lv_atmo *atm = NULL;
     CHECK_OK(lv_atmo_create("exp", &atm, &err), &err);
     CHECK_OK(lv_atmo_set(atm, "H", 1e15, &err), &err);
+    /* axis 0: roll (Clp, Ixx, b), 1: pitch (Cmq, Iyy, c), 2: yaw (Cnr, Izz, b). A rate about one
+     * principal axis alone stays alone (the gyroscopic terms need two), so each decays as the
+     * pitch rate above with its own derivative, inertia and length. */
+    const double Iax[3] = {20000.0, 50000.0, 60000.0}, deriv[3] = {-8.0, -20.0, -15.0};
+    const double len[3] = {3.0, 2.0, 3.0};
+    const char *rate[3] = {"p", "q", "r"}, *mom[3] = {"L_aero", "M_aero", "N_aero"};
+    for (int ax = 0; ax < 3; ax++) {
+        lv_dof6_config cfg;
+        lv_dof6_config_default(&cfg);
+        cfg.planet = pl;
+        cfg.gravity = g;
+        cfg.atmo = atm;
+        cfg.m0 = 1000.0;
+        cfg.start_h = 1000.0;
+        cfg.start_vel = 200.0;
+        cfg.start_chi = 30.0 * DEG;
+        cfg.start_psi = 30.0 * DEG; /* flying along body x: alpha = beta = 0 at the start */
+        const double w0 = 0.2;
+        if (ax == 0)
+            cfg.start_p = w0;
+        else if (ax == 1)
+            cfg.start_q = w0;
+        else
+            cfg.start_r = w0;
+        for (int i = 0; i < 3; i++)
+            cfg.mass.inertia_full[i] = cfg.mass.inertia_empty[i] = Iax[i];
+        lv_aero_config ac;
+        lv_aero_config_default(&ac);
+        ac.s_ref = 10.0;
+        cfg.aero = &ac;
+        lv_dof6_moments mo;
+        memset(&mo, 0, sizeof mo);
+        mo.clp = deriv[0];
+        mo.cmq = deriv[1];
+        mo.cnr = deriv[2];
+        mo.b_ref = 3.0;
+        mo.c_ref = 2.0;
+        cfg.moments = &mo;
+        lv_dof6 *m = NULL;
+        CHECK_OK(lv_dof6_create(&cfg, &m, &err), &err);
+        if (m == NULL)
+            continue;
+        const double qd = 0.5 * 1.225 * 200.0 * 200.0; /* 24500 Pa */
+        const double lambda = qd * 10.0 * len[ax] * len[ax] * deriv[ax] / (2.0 * 200.0 * Iax[ax]);
+        const double tf[] = {0.5, 2.0, 5.0};
+        for (int k = 0; k < 3; k++) {
+            const char *fin[] = {rate[ax], rate[(ax + 1) % 3], rate[(ax + 2) % 3], "q_dyn",
+                                 mom[ax]};
+            double out[5];
+            CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 0.0, tf[k], "dassl", 1e-10, 0.0, 0,
+                         NULL, NULL, 5, fin, out, &err),
+                     &err);
+            /* relative 1e-7, or the rates' absolute tolerance 1e-10 x 0.01 rad/s (x 10) once the
+             * rate has decayed to e^-11 of its start (roll at 5 s) */
+            const double ref = w0 * exp(lambda * tf[k]);
+            CHECK_CLOSE(out[0], ref, 1e-7 * ref + 1e-11);
+            CHECK_CLOSE(out[1], 0.0, 1e-15);
+            CHECK_CLOSE(out[2], 0.0, 1e-15);
+            CHECK_REL(out[3], qd, 1e-9);
+            /* the moment the output reports: q_dyn S l C_x w l / (2 V) */
+            CHECK_REL(out[4], qd * 10.0 * len[ax] * deriv[ax] * out[0] * len[ax] / 400.0, 1e-9);
+        }
+        lv_dof6_free(m);
+    }
+    lv_atmo_free(atm);
+    lv_gravity_free(g);
+}
+
+/* ---- moment reference point ahead of the CG: M_cg = (r_mrp - r_cg) x F ----------------- */
+/* A constant normal-force coefficient CN = 0.5 (body axes) with Cm = 0 about a reference point
+ * 5 m ahead of the CG: F = (0, 0, -q S CN), M_cg = (5, 0, 0) x F = (0, 5 q S CN, 0), a nose-up
+ * (destabilising) moment, whatever the attitude; same air as above. Checked at the start. */
+static void test_moment_transfer(void)
+{
+    lv_err err;
+    lv_planet pl = lv_planet_earth();
+    pl.omega = 0.0;
+    pl.gm = 1e-3;
+    lv_gravity *g = pointmass(&pl);
+    lv_atmo *atm = NULL;
+    CHECK_OK(lv_atmo_create("exp", &atm, &err), &err);
+    CHECK_OK(lv_atmo_set(atm, "H", 1e15, &err), &err);
     lv_dof6_config cfg;
     lv_dof6_config_default(&cfg);
     cfg.planet = pl;
     cfg.gravity = g;
     cfg.atmo = atm;
-    cfg.m0 = 1000.0;
     cfg.start_h = 1000.0;
     cfg.start_vel = 200.0;
-    cfg.start_chi = 30.0 * DEG;
-    cfg.start_psi = 30.0 * DEG; /* flying along body x: alpha = beta = 0 at the start */
-    cfg.start_q = 0.2;
-    const double Ie[6] = {20000.0, 50000.0, 50000.0, 0.0, 0.0, 0.0};
-    memcpy(cfg.mass.inertia_full, Ie, sizeof Ie);
-    memcpy(cfg.mass.inertia_empty, Ie, sizeof Ie);
+    cfg.mass.cg_full[0] = cfg.mass.cg_empty[0] = -10.0;
+    for (int i = 0; i < 3; i++)
+        cfg.mass.inertia_full[i] = cfg.mass.inertia_empty[i] = 1e6;
     lv_aero_config ac;
     lv_aero_config_default(&ac);
+    ac.axes = LV_AERO_BODY;
     ac.s_ref = 10.0;
+    ac.coef[1].value = 0.5;
     cfg.aero = &ac;
     lv_dof6_moments mo;
     memset(&mo, 0, sizeof mo);
-    mo.cmq = -20.0;
-    mo.b_ref = 2.0;
-    mo.c_ref = 2.0;
+    mo.b_ref = mo.c_ref = 2.0;
+    mo.r_mrp[0] = -5.0;
     cfg.moments = &mo;
     lv_dof6 *m = NULL;
     CHECK_OK(lv_dof6_create(&cfg, &m, &err), &err);
-    if (m == NULL)
-        return;
-    const double lambda = 0.5 * 1.225 * 200.0 * 200.0 * 10.0 * 4.0 * -20.0 / (2.0 * 200.0 * 50000.0);
-    const double tf[] = {0.5, 2.0, 5.0};
-    for (int k = 0; k < 3; k++) {
-        const char *fin[] = {"q", "p", "r", "q_dyn", "M_aero"};
+    if (m != NULL) {
+        const char *fin[] = {"M_aero", "L_aero", "N_aero", "q_dyn", "n_normal"};
         double out[5];
-        CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 0.0, tf[k], "dassl", 1e-10, 0.0, 0, NULL,
+        CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 0.0, 1e-6, "dassl", 1e-10, 0.0, 0, NULL,
                      NULL, 5, fin, out, &err),
                  &err);
-        CHECK_REL(out[0], 0.2 * exp(lambda * tf[k]), 1e-7);
-        CHECK_CLOSE(out[1], 0.0, 1e-15);
-        CHECK_CLOSE(out[2], 0.0, 1e-15);
-        CHECK_REL(out[3], 24500.0, 1e-9);
-        /* the moment the output reports: q_dyn S c Cmq q c / (2 V) */
-        CHECK_REL(out[4], 24500.0 * 10.0 * 2.0 * -20.0 * out[0] * 2.0 / 400.0, 1e-9);
+        CHECK_REL(out[0], 5.0 * out[3] * 10.0 * 0.5, 1e-12);
+        CHECK_REL(out[3], 24500.0, 1e-6);
+        CHECK_CLOSE(out[1], 0.0, 1e-9);
+        CHECK_CLOSE(out[2], 0.0, 1e-9);
+        CHECK_REL(out[4], out[3] * 10.0 * 0.5 / 1000.0 / LV_G0, 1e-12); /* F_N / (m g0) */
+        lv_dof6_free(m);
     }
-    lv_dof6_free(m);
     lv_atmo_free(atm);
     lv_gravity_free(g);
 }
@@ -625,6 +699,7 @@ int main(void)
     test_torque_free();
     test_precession();
     test_pitch_damping();
+    test_moment_transfer();
     test_vs_dof3();
     test_start_attitude();
     test_thrust_moment();
