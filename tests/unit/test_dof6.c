@@ -17,6 +17,7 @@
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_sim.h"
+#include "lvsim/lv_table.h"
 #include "mission/mission.h"
 
 #define DEG (M_PI / 180.0)
@@ -494,6 +495,58 @@ static void test_thrust_moment(void)
     lv_gravity_free(g);
 }
 
+/* ---- gimbal angles from a table over time ---------------------------------------------- */
+/* gimbal_pitch ramps 0 -> 0.01 rad over [0, 1] s and holds, gimbal_yaw holds -0.02 rad: at
+ * t = 0.5 s the angles in effect are 0.005 and -0.02 rad (linear interpolation), and the thrust
+ * moment about y is (x_cg - x_e) T sin(dp) cos(dy) plus the jet damping of q (as above). */
+static void test_gimbal_table(void)
+{
+    lv_err err;
+    const lv_planet earth = lv_planet_earth();
+    lv_gravity *g = pointmass(&earth);
+    double tt[3] = {0.0, 1.0, 2.0}, y[6] = {0.0, -0.02, 0.01, -0.02, 0.01, -0.02};
+    const char *outs[] = {"gimbal_pitch", "gimbal_yaw"};
+    const char *units[] = {"rad", "rad"};
+    lv_table_spec ts = {.n_dims = 1, .n = {3}, .x = {tt}, .n_out = 2, .y = y,
+                        .interp = LV_INTERP_LINEAR, .extrap = LV_EXTRAP_CLAMP, .name = "gimbal",
+                        .axis_name = {"time"}, .out_name = outs, .axis_unit = {"s"},
+                        .out_unit = units};
+    lv_table *tab = NULL;
+    CHECK_OK(lv_table_create(&ts, &tab, &err), &err);
+    lv_dof6_config cfg;
+    free_fall_config(&cfg, g);
+    cfg.m0 = 1000.0;
+    cfg.propellant = 400.0;
+    const double Ie[6] = {100.0, 2000.0, 2000.0, 0, 0, 0};
+    memcpy(cfg.mass.inertia_full, Ie, sizeof Ie);
+    memcpy(cfg.mass.inertia_empty, Ie, sizeof Ie);
+    cfg.mass.cg_full[0] = cfg.mass.cg_empty[0] = -4.0;
+    lv_engine_config ec;
+    lv_engine_config_default(&ec);
+    ec.thrust_vac = 1e5;
+    ec.isp_vac = 300.0;
+    lv_dof6_engine_geom eg = {{-10.0, 0.0, 0.0}, 0.0, 0.0};
+    cfg.n_engines = 1;
+    cfg.engines = &ec;
+    cfg.engine_geom = &eg;
+    cfg.inputs = tab;
+    lv_dof6 *m = NULL;
+    CHECK_OK(lv_dof6_create(&cfg, &m, &err), &err);
+    if (m != NULL) {
+        const char *fin[] = {"gimbal_pitch_in", "gimbal_yaw_in", "M_thrust", "q", "mdot"};
+        double out[5];
+        CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 0.0, 0.5, "dassl", 1e-10, 0.0, 0, NULL,
+                     NULL, 5, fin, out, &err),
+                 &err);
+        CHECK_CLOSE(out[0], 0.005, 1e-15);
+        CHECK_CLOSE(out[1], -0.02, 1e-15);
+        CHECK_REL(out[2], 6.0 * 1e5 * sin(0.005) * cos(-0.02) - out[4] * 36.0 * out[3], 1e-12);
+        lv_dof6_free(m);
+    }
+    lv_table_free(tab);
+    lv_gravity_free(g);
+}
+
 /* ---- bad configurations ---------------------------------------------------------------- */
 static void test_bad_config(void)
 {
@@ -703,6 +756,7 @@ int main(void)
     test_vs_dof3();
     test_start_attitude();
     test_thrust_moment();
+    test_gimbal_table();
     test_bad_config();
     test_mission_errors();
     test_mission_handoffs();
