@@ -102,7 +102,8 @@ typedef struct lv_dof6_config {
     const lv_dof6_engine_geom *engine_geom; /* [n_engines], copied; NULL: every engine on the
                                              x axis at the structural origin, aligned */
     const lv_aero_config *aero;           /* copied; NULL: no aerodynamic force or moment */
-    const lv_dof6_moments *moments;       /* copied; NULL: no aerodynamic moment */
+    const lv_dof6_moments *moments;       /* copied; NULL: no aerodynamic moment (the force
+                                             acts through the CG) */
 
     /* Default values of the parameters of the same name. Position and velocity as lv_dof3;
      * attitude: 3-2-1 Euler angles of the body relative to the local NED frame at the start

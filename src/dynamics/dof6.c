@@ -493,10 +493,7 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
                       pt->air.q * S * m->c_ref * (cm[1] + m->cmq * w_r.y * ch),
                       pt->air.q * S * m->b_ref * (cm[2] + m->cnr * w_r.z * bh));
             pt->m_aero_b = moment_transfer(m_mrp, m->r_mrp, pt->mp.cg, pt->f_aero_b);
-        } else {
-            pt->m_aero_b = moment_transfer(lv_v3(0.0, 0.0, 0.0), m->r_mrp, pt->mp.cg,
-                                           pt->f_aero_b);
-        }
+        } /* else: no moment data, the force acts through the CG (lv_dof6_config.moments) */
     }
     /* 5: translation (as lv_dof3) and rotation */
     const lv_vec3 f_ecef = body_to_ecef(&pt->ax, lv_v3_add(pt->f_thrust_b, pt->f_aero_b));
