@@ -6,3 +6,4 @@ lv_add_unit_test(test_runway unit/test_runway.c)
 # The 6-DoF rigid body against conservation laws and closed forms (torque-free motion,
 # precession, rate damping, quaternion norm, free fall equal to dof3's, thrust moments).
 lv_add_unit_test(test_dof6 unit/test_dof6.c)
+target_link_libraries(test_dof6 PRIVATE lvsim_post_static) # summary.json's transitions

@@ -4,10 +4,13 @@
  * the quaternion norm, free fall equal to the 3-DoF model's, start attitude, thrust moment of a
  * gimballed engine and the mass properties, bad configurations. References are derived or
  * cited next to each check; none is the code's own output. */
+#define _POSIX_C_SOURCE 200809L /* mkdir */
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "check.h"
 #include "lvsim/lv_atmosphere.h"
@@ -17,6 +20,7 @@
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_sim.h"
+#include "lvsim/lv_summary.h"
 #include "lvsim/lv_table.h"
 #include "mission/mission.h"
 
@@ -742,6 +746,19 @@ static void test_mission_handoffs(void)
         double th;
         CHECK_OK(lv_run_final(r, 0, "theta", &th, &err), &err);
         CHECK_CLOSE(th, 80.0 * DEG, 1e-9); /* the attitude law's pitch */
+        /* summary.json names each change of model in the phase's handoff */
+        mkdir("dof6_out", 0755);
+        CHECK_OK(lv_run_write_summary(r, "dof6_out", &err), &err);
+        FILE *f = fopen("dof6_out/summary.json", "rb");
+        CHECK(f != NULL);
+        if (f != NULL) {
+            static char text[1 << 20];
+            const size_t nb = fread(text, 1, sizeof text - 1, f);
+            text[nb] = '\0';
+            fclose(f);
+            CHECK(strstr(text, "\"transition\":\t\"dof3 -> dof6\"") != NULL);
+            CHECK(strstr(text, "\"transition\":\t\"dof6 -> dof3\"") != NULL);
+        }
         lv_run_free(r);
     }
     lv_mission_free(m);
