@@ -39,7 +39,8 @@ enum {
     O_MACH, O_Q, O_RHO, O_PAMB, O_THRUST, O_MDOT, O_ENGINE_ON, O_DRAG, O_LIFT, O_SIDE,
     O_NAX, O_NNORM, O_NLAT, O_THETA, O_PSI, O_PHI, O_ALPHA, O_BETA, O_BANK,
     O_LA, O_MA, O_NA, O_LT, O_MT, O_NT, O_CGX, O_CGY, O_CGZ, O_IXX, O_IYY, O_IZZ,
-    O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI, O_N
+    O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI,
+    O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_N
 };
 
 /* Error control as lv_dof3 (docs/integration.md) for position, velocity and mass; the
@@ -138,6 +139,15 @@ static const lv_var output_vars[O_N] = {
     {"inc", "rad", "Osculating inclination", 0, 0},
     {"apo_alt", "m", "Apoapsis radius minus the equatorial radius a", 0, 0},
     {"peri_alt", "m", "Periapsis radius minus the equatorial radius a", 0, 0},
+    {"lat_gc", "rad", "Geocentric latitude", 0, 0},
+    {"fpa_inertial", "rad", "Flight-path angle of the inertial velocity", 0, 0},
+    {"heading_inertial", "rad", "Heading of the inertial velocity", 0, 0},
+    {"accel", "m/s2", "Magnitude of the inertial acceleration of the CG (gravity included)", 0, 0},
+    {"accel_sensed", "m/s2", "Magnitude of the specific force (thrust + aero) / m", 0, 0},
+    {"raan", "rad", "Osculating right ascension of the ascending node (ECI)", 0, 0},
+    {"argp", "rad", "Osculating argument of periapsis", 0, 0},
+    {"downrange", "m", "Great-circle distance from the phase's start point on the sphere of radius a",
+     0, 0},
 };
 
 static const char *const input_names[U_N] = {"gimbal_pitch", "gimbal_yaw", "throttle"};
@@ -163,6 +173,7 @@ typedef struct dof6_inst {
     int burned_out;
     double m_burnout;     /* kg */
     lv_table_cursor in_cur;
+    double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
     char msg[LV_ERR_MSG_MAX];
     char tev[LV_EVENT_NAME_MAX];
 } dof6_inst;
@@ -637,6 +648,8 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     if (!(rn > 0.0))
         return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
     lv_flight_geodetic(&s->m->world, &kin, 0, 0);
+    for (int i = 0; i < 3; i++)
+        s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
     for (size_t i = 0; i < s->m->n_ends; i++) {
         const lv_dof3_end *e = &s->m->ends[i];
         s->m->end_off[i] =
@@ -845,6 +858,22 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_INC] = el.i;
     y[O_APO] = el.r_apo - m->world.planet.a;
     y[O_PERI] = el.r_peri - m->world.planet.a;
+    y[O_RAAN] = el.raan;
+    y[O_ARGP] = el.argp;
+    const double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
+    lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, NULL);
+    /* inertial velocity in ECEF axes (no w x r): the inertial angles, as lv_dof3 */
+    const lv_vec3 v_i = {k->c_th * v_eci.x + k->s_th * v_eci.y,
+                         -k->s_th * v_eci.x + k->c_th * v_eci.y, v_eci.z};
+    const double ned_i[3] = {lv_v3_dot(v_i, k->n_ax), lv_v3_dot(v_i, k->e_ax),
+                             lv_v3_dot(v_i, k->d_ax)};
+    lv_frames_fpa_from_ned(ned_i, NULL, &y[O_FPA_I], &y[O_CHI_I]);
+    y[O_ACC] = lv_v3_norm(pt.a_eci);
+    y[O_ACC_SENSED] = lv_v3_norm(f_spec);
+    const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
+    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / y[O_RADIUS]);
+    y[O_DOWNRANGE] =
+        m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
     return 0;
 }
 
