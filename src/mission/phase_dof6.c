@@ -30,11 +30,21 @@ static const lv_var mission_params[] = {
     {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
     {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
     {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
+    /* the paper's Table 1, 6-DoF: the same as a root phase's `attitude:` and `rates:` */
+    {"start_psi", "rad", "Initial yaw attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_theta", "rad", "Initial pitch attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_phi", "rad", "Initial roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_p", "rad/s", "Initial roll rate (relative to inertial space)", 0, 0},
+    {"start_q", "rad/s", "Initial pitch rate (relative to inertial space)", 0, 0},
+    {"start_r", "rad/s", "Initial yaw rate (relative to inertial space)", 0, 0},
 };
 
 static const lv_range mission_param_ranges[] = {
     {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
     {0.0, HUGE_VAL, 0, 0},             {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
+    {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0},
 };
 
 static const lv_traj_col traj[] = {
@@ -153,6 +163,17 @@ static lv_status parse_start(const lv_pctx *c, const lv_ynode *n, const char *ph
                               "with `set:` instead", phase, key);
         return LV_OK;
     }
+    /* one source: the mission's parameter set (Table 1's names) or the phase's keys */
+    static const char *const pn[A_N] = {"start_psi", "start_theta", "start_phi", "start_p",
+                                        "start_q", "start_r"};
+    for (size_t i = 0; i < c->m->n_params; i++)
+        for (int k = 0; k < A_N; k++)
+            if (strcmp(c->m->param_names[i], pn[k]) == 0 && (k < A_P ? a : r) != NULL)
+                return lv_pk_fail(c, lv_pk_key(n, k < A_P ? "attitude" : "rates"),
+                                  "phase '%s': '%s': the mission's `parameters:` give %s "
+                                  "already: give the start %s in one place", phase,
+                                  k < A_P ? "attitude" : "rates", pn[k],
+                                  k < A_P ? "attitude" : "rates");
     lv_status st = parse_numbers(c, a, phase, "attitude", 3, an, au, deg, zero, ar, NULL,
                                  cfg->att);
     if (st == LV_OK)

@@ -670,6 +670,12 @@ static void test_mission_errors(void)
         "  - {name: P, model: dof6, stages: [s1], from: A, stop_time: 20,\n"
         "     attitude: {theta_deg: 80}}\n",
         "bad.yaml:14:6: phase 'P': 'attitude': a phase with `from` starts with its parent's");
+    BAD("mission: {name: six}\n"
+        "environment: {world: planet, planet: earth}\n"
+        "parameters: {start_q_deg: 1}\n"
+        "stages:\n" STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10, rates: {q_deg: 2}}\n",
+        "bad.yaml:11:57: phase 'P': 'rates': the mission's `parameters:` give start_q already");
 }
 
 static lv_run *run_text(const char *path, const char *yaml, lv_mission **mp)
@@ -738,6 +744,30 @@ static void test_mission_handoffs(void)
         double h;
         CHECK_OK(lv_run_final(r, 0, "h", &h, &err), &err);
         CHECK(h > 50.0); /* it flew up: about (T/m - g) t^2 / 2 = 86 m */
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+
+    /* the same start through the mission's parameter set, with the paper's Table 1 names */
+    r = run_text("test_dof6_table1.yaml",
+                 "mission: {name: six}\n"
+                 "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+                 "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 0, start_vel: 1,\n"
+                 "             start_fpa_deg: 89, start_chi_deg: 90, start_psi_deg: 90,\n"
+                 "             start_theta_deg: 88, start_phi_deg: 10, start_p_deg: 1,\n"
+                 "             start_q_deg: -0.5, start_r: 0.01}\n"
+                 "stages:\n" STAGE_RB "phases:\n"
+                 "  - {name: P, model: dof6, stages: [s1], stop_time: 5}\n",
+                 &m);
+    if (r != NULL) {
+        const lv_result *rows = lv_run_rows(r, 0);
+        const char *nm[] = {"psi", "theta", "phi", "p", "q", "r"};
+        const double want[] = {90.0 * DEG, 88.0 * DEG, 10.0 * DEG, 1.0 * DEG, -0.5 * DEG, 0.01};
+        for (int i = 0; rows != NULL && i < 6; i++) {
+            size_t col = 0;
+            CHECK_OK(lv_result_column(rows, nm[i], &col, &err), &err);
+            CHECK_CLOSE(lv_result_value(rows, 0, col), want[i], 1e-12);
+        }
         lv_run_free(r);
     }
     lv_mission_free(m);
