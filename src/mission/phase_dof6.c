@@ -89,7 +89,8 @@ static void dof6_cfg_free(void *p)
 }
 
 /* A mapping of named numbers (`names[k]`, also `<name>_deg` where deg[k]) as slots
- * "<phase>.<sub>.<name>" with defaults; `allowed`: the mapping's keys besides those. */
+ * "<phase>.<sub>.<name>" with defaults; `extra` (NULL-terminated, may be NULL): the mapping's
+ * other keys, parsed by the caller. */
 static lv_status parse_numbers(const lv_pctx *c, const lv_ynode *n, const char *phase,
                                const char *sub, size_t nk, const char *const *names,
                                const char *const *units, const int *deg, const double *dflt,
