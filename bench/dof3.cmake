@@ -6,3 +6,8 @@ lv_set_warnings(bench_dof3)
 add_executable(bench_guidance ${CMAKE_CURRENT_LIST_DIR}/bench_guidance.c)
 target_link_libraries(bench_guidance PRIVATE lvsim_static)
 lv_set_warnings(bench_guidance)
+# 6-DoF rigid body: ns per right-hand side with full aerodynamic moments and one gimballed engine
+# (issue 15's target: <= 1 us).
+add_executable(bench_dof6 ${CMAKE_CURRENT_LIST_DIR}/bench_dof6.c)
+target_link_libraries(bench_dof6 PRIVATE lvsim_static)
+lv_set_warnings(bench_dof6)

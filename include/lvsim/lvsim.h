@@ -25,5 +25,6 @@
 #include "lvsim/lv_outdir.h"
 #include "lvsim/lv_vehicle.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_dof6.h"
 
 #endif

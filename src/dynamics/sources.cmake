@@ -2,5 +2,6 @@ list(APPEND LV_SOURCES
   src/dynamics/flight.c
   src/dynamics/guidance.c
   src/dynamics/dof3.c
+  src/dynamics/dof6.c
   src/dynamics/runway.c
   src/dynamics/orbit.c)

@@ -128,12 +128,28 @@ typedef struct lv_engine_def {
     lv_src_loc loc;
 } lv_engine_def;
 
+/* A stage's rigid-body data (`rigid_body:`, docs/mission-format.md), for the phases it burns
+ * in as the bottom stage of a 6-DoF model (lv_dof6.h): the mass properties of the whole stack
+ * the phase flies, with the stage's propellant full and empty, and its engines' geometry.
+ * Body axes (x forward, z down in the plane of symmetry) from a structural origin. */
+typedef struct lv_rigid_body_def {
+    int present;                  /* `rigid_body:` given */
+    lv_slot inertia_full[6];      /* kg m^2: tensor elements xx, yy, zz, xy, xz, yz */
+    lv_slot inertia_empty[6];     /* kg m^2 (default: the full values as written) */
+    lv_slot cg_full[3];           /* m (default 0) */
+    lv_slot cg_empty[3];          /* m (default: the full values as written) */
+    lv_slot engine_pos[3];        /* m, the engines' gimbal point (default 0) */
+    lv_slot mis_pitch, mis_yaw;   /* rad, thrust misalignment (default 0) */
+    lv_src_loc loc;
+} lv_rigid_body_def;
+
 typedef struct lv_stage_def {
     char *name;
     lv_slot dry_mass;        /* kg */
     lv_slot propellant_mass; /* kg, at liftoff */
     size_t n_engines;
     lv_engine_def *engines;
+    lv_rigid_body_def rigid; /* 6-DoF data (rigid.present 0: none) */
     lv_src_loc loc;
 } lv_stage_def;
 

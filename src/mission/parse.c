@@ -1102,9 +1102,110 @@ static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *s
     return LV_OK;
 }
 
+/* One {x, y, z}-like mapping of `rigid_body` (`sub`: its key): the components `comp[nc]` as
+ * slots "<stage>.rigid_body.<sub>.<comp>" with `unit`; a missing one takes `dflt[i]` (NAN:
+ * required). `angles`: the components may also be written `<comp>_deg`. */
+static lv_status parse_rigid_vec(const lv_pctx *c, const lv_ynode *rb, const char *stage,
+                                 const char *sub, const char *const *comp, size_t nc,
+                                 const char *unit, lv_range range, const double *dflt,
+                                 int angles, lv_slot *out)
+{
+    char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 64], deg[32];
+    const char *known[16];
+    size_t nk = 0;
+    for (size_t i = 0; i < nc; i++) {
+        known[nk++] = comp[i];
+        if (angles)
+            known[nk++] = i == 0 ? "pitch_deg" : "yaw_deg";
+    }
+    known[nk] = NULL;
+    snprintf(what, sizeof what, "stage '%s', rigid_body, %s", stage, sub);
+    const lv_ynode *n = lv_pk_get(rb, sub);
+    lv_status st;
+    if (n != NULL && lv_yaml_is_null(n))
+        n = NULL;
+    if (n != NULL && n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {%s: ..} expected", what, comp[0]);
+    if (n != NULL && (st = lv_pk_check_map(c, n, what, known)) != LV_OK)
+        return st;
+    for (size_t i = 0; i < nc; i++) {
+        snprintf(deg, sizeof deg, "%s_deg", comp[i]);
+        snprintf(slot, sizeof slot, "%s.rigid_body.%s.%s", stage, sub, comp[i]);
+        const lv_ynode *v = lv_pk_get(n, comp[i]), *vd = angles ? lv_pk_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
+                              comp[i], deg);
+        if (v == NULL && vd == NULL && isnan(dflt[i]))
+            return lv_pk_fail(c, n != NULL ? n : lv_pk_key(rb, sub) ? lv_pk_key(rb, sub) : rb,
+                              "%s: '%s' is missing", what, comp[i]);
+        st = v != NULL || vd != NULL
+                 ? lv_pk_slot(c, v ? v : vd, what, v ? comp[i] : deg, slot, unit, range,
+                              vd != NULL, &out[i])
+                 : lv_pk_slot_default(c, slot, unit, dflt[i], range, &out[i]);
+        if (st != LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
+/* rigid_body: {inertia_full: {xx, yy, zz, xy, xz, yz}, inertia_empty: {..}, cg_full: {x, y, z},
+ * cg_empty: {..}, engine_position: {x, y, z}, misalignment: {pitch_deg, yaw_deg}}: the 6-DoF
+ * data of the stack this stage drives (lv_rigid_body_def). inertia_full's xx, yy, zz are
+ * required; the empty values default to the full ones as written, the rest to 0. */
+static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, lv_stage_def *s)
+{
+    static const char *const keys[] = {"inertia_full", "inertia_empty", "cg_full", "cg_empty",
+                                       "engine_position", "misalignment", NULL};
+    static const char *const ic[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
+    static const char *const xyz[3] = {"x", "y", "z"};
+    static const char *const py[2] = {"pitch", "yaw"};
+    char what[LV_WHAT_MAX];
+    lv_status st;
+    lv_rigid_body_def *r = &s->rigid;
+    if (rb == NULL || lv_yaml_is_null(rb))
+        return LV_OK;
+    snprintf(what, sizeof what, "stage '%s', rigid_body", s->name);
+    if (rb->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, rb, "%s: a mapping such as {inertia_full: {xx: 1e5, yy: 4e6, zz: "
+                          "4e6}} expected", what);
+    if ((st = lv_pk_check_map(c, rb, what, keys)) != LV_OK)
+        return st;
+    if (lv_pk_get(rb, "inertia_full") == NULL)
+        return lv_pk_fail(c, rb, "%s: 'inertia_full' is missing (at least {xx, yy, zz} in kg "
+                          "m^2)", what);
+    r->present = 1;
+    r->loc = loc_of(rb);
+    const double need[6] = {NAN, NAN, NAN, 0.0, 0.0, 0.0}, zero[3] = {0.0, 0.0, 0.0};
+    if ((st = parse_rigid_vec(c, rb, s->name, "inertia_full", ic, 6, "kg.m2", LV_RANGE_ANY, need,
+                              0, r->inertia_full)) != LV_OK)
+        return st;
+    double full[6];
+    for (int i = 0; i < 6; i++)
+        full[i] = c->m->slots[r->inertia_full[i]].value;
+    if ((st = parse_rigid_vec(c, rb, s->name, "inertia_empty", ic, 6, "kg.m2", LV_RANGE_ANY, full,
+                              0, r->inertia_empty)) != LV_OK ||
+        (st = parse_rigid_vec(c, rb, s->name, "cg_full", xyz, 3, "m", LV_RANGE_ANY, zero, 0,
+                              r->cg_full)) != LV_OK)
+        return st;
+    for (int i = 0; i < 3; i++)
+        full[i] = c->m->slots[r->cg_full[i]].value;
+    lv_slot mis[2];
+    if ((st = parse_rigid_vec(c, rb, s->name, "cg_empty", xyz, 3, "m", LV_RANGE_ANY, full, 0,
+                              r->cg_empty)) != LV_OK ||
+        (st = parse_rigid_vec(c, rb, s->name, "engine_position", xyz, 3, "m", LV_RANGE_ANY, zero,
+                              0, r->engine_pos)) != LV_OK ||
+        (st = parse_rigid_vec(c, rb, s->name, "misalignment", py, 2, "rad",
+                              (lv_range){-0.1, 0.1, 0, 0}, zero, 1, mis)) != LV_OK)
+        return st;
+    r->mis_pitch = mis[0];
+    r->mis_yaw = mis[1];
+    return LV_OK;
+}
+
 static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)
 {
-    static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines", NULL };
+    static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines",
+                                        "rigid_body", NULL };
     char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
     lv_status st;
@@ -1129,6 +1230,8 @@ static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
     if ((st = lv_pk_need(c, n, what, "propellant_mass", &v)) != LV_OK ||
         (st = lv_pk_slot(c, v, what, "propellant_mass", slot, "kg", LV_RANGE_NONNEG, 0,
                          &s->propellant_mass)) != LV_OK)
+        return st;
+    if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), s)) != LV_OK)
         return st;
 
     v = lv_pk_get(n, "engines");
@@ -1604,15 +1707,18 @@ static lv_status check_phase_keys(const lv_pctx *c, const lv_ynode *n, const cha
         if (mine)
             continue;
         char owners[160] = "";
-        size_t used = 0;
+        size_t used = 0, n_own = 0;
         for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++)
             for (size_t j = 0; (*t)->keys != NULL && (*t)->keys[j] != NULL; j++)
-                if (strcmp((*t)->keys[j], key) == 0 && used < sizeof owners)
+                if (strcmp((*t)->keys[j], key) == 0 && used < sizeof owners) {
                     used += (size_t)snprintf(owners + used, sizeof owners - used, "%s%s",
                                              used ? ", " : "", (*t)->name);
+                    n_own++;
+                }
         if (used > 0)
-            return lv_pk_fail(c, n->kids[i], "%s: '%s' applies to the %s model only (this "
-                              "phase's model is %s)", what, key, owners, type->name);
+            return lv_pk_fail(c, n->kids[i], "%s: '%s' applies to the %s model%s only (this "
+                              "phase's model is %s)", what, key, owners, n_own > 1 ? "s" : "",
+                              type->name);
     }
     return lv_pk_check_map(c, n, what, known);
 }

@@ -18,8 +18,9 @@
 static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
                                    NULL};
 /* A runway phase's outputs r_eci_*, v_eci_* are this model's states: a climb-out starts where
- * the take-off roll lifted off (phase_runway.c). */
-static const char *const from_types[] = {"runway", NULL};
+ * the take-off roll lifted off (phase_runway.c). A dof6 phase's states r_eci_*, v_eci_*, m are
+ * too: 6-DoF -> 3-DoF drops the attitude and rates (docs/models.md). */
+static const char *const from_types[] = {"runway", "dof6", NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
 static const lv_var mission_params[] = {

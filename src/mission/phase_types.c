@@ -7,9 +7,10 @@
 extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
 extern const lv_phase_type lv_phase_type_dof3;  /* phase_dof3.c */
 extern const lv_phase_type lv_phase_type_runway; /* phase_runway.c */
+extern const lv_phase_type lv_phase_type_dof6;  /* phase_dof6.c */
 
 static const lv_phase_type *const types[] = {&lv_phase_type_flat6, &lv_phase_type_dof3,
-                                             &lv_phase_type_runway, NULL};
+                                             &lv_phase_type_runway, &lv_phase_type_dof6, NULL};
 
 const lv_phase_type *const *lv_phase_types(void) { return types; }
 

@@ -13,6 +13,7 @@ list(APPEND LV_SOURCES
   src/mission/phase_flat6.c
   src/mission/phase_dof3.c
   src/mission/phase_runway.c
+  src/mission/phase_dof6.c
   src/mission/mission.c
   src/mission/run.c
   src/mission/compare.c

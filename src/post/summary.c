@@ -149,6 +149,13 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     cJSON_AddStringToObject(h, "from", ph.parent >= 0 ? lv_mission_phase_name(m, (size_t)ph.parent)
                                                        : "parameters");
     if (ph.parent >= 0) {
+        lv_phase_info pp;
+        lv_mission_phase_info(m, (size_t)ph.parent, &pp);
+        if (strcmp(pp.model, ph.model) != 0) { /* a change of model (docs/models.md) */
+            char tr[96];
+            snprintf(tr, sizeof tr, "%s -> %s", pp.model, ph.model);
+            cJSON_AddStringToObject(h, "transition", tr);
+        }
         cJSON_AddNumberToObject(h, "states_copied", (double)r->n_copied);
         cJSON_AddNumberToObject(h, "mass_from_stages", r->mass_from_stages);
     }

@@ -3,3 +3,7 @@ lv_add_unit_test(test_dof3 unit/test_dof3.c)
 # The runway model (take-off roll, landing roll-out) against closed forms of the ground roll,
 # and the `runway` phase type in missions (parse errors, hand-offs to and from dof3).
 lv_add_unit_test(test_runway unit/test_runway.c)
+# The 6-DoF rigid body against conservation laws and closed forms (torque-free motion,
+# precession, rate damping, quaternion norm, free fall equal to dof3's, thrust moments).
+lv_add_unit_test(test_dof6 unit/test_dof6.c)
+target_link_libraries(test_dof6 PRIVATE lvsim_post_static) # summary.json's transitions

@@ -409,7 +409,7 @@ static void test_keys_and_types(void)
         "bad.yaml:3:12: stage 'stage one': name 'stage one' must be 1 to 64 letters, digits, '_' or '-'");
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat9, stages: [s1], stop_time: 1}\n",
         "bad.yaml:5:23: phase 'P1': model: unknown value 'flat9'; did you mean 'flat6'? "
-        "(expected one of: flat6, dof3, runway)");
+        "(expected one of: flat6, dof3, runway, dof6)");
 }
 
 static void test_references(void)

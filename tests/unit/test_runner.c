@@ -462,7 +462,7 @@ static void test_bad_aero(void)
             "  - {name: q, model: flat6, stages: [a], stop_time: 10, inputs: {alpha: 0}}\n");
     fclose(f);
     CHECK_FAILS(lv_mission_load("badaero.yaml", &m, &err), &err, LV_ERR_INPUT,
-                "badaero.yaml:4:57: phase 'q': 'inputs' applies to the dof3 model only");
+                "badaero.yaml:4:57: phase 'q': 'inputs' applies to the dof3, dof6 models only");
     remove("badaero.yaml");
 }
 

@@ -1,0 +1,1271 @@
+/* dof6.c - 6-DoF variable-mass rigid body over a rotating ellipsoidal planet: ECI position and
+ * velocity of the centre of mass, attitude quaternion body -> ECI, body rates, mass. Built from
+ * the pieces of flight.h (kinematics, air data, engines, aerodynamic coefficients, gravity).
+ * Rigid-body equations: Stevens, Lewis & Johnson, Aircraft Control and Simulation, 3rd ed.,
+ * sec. 1.7-1.8 (quaternion kinematics eq. 1.8-15, Euler's equations eq. 1.7-18); variable mass:
+ * Thomson, Introduction to Space Dynamics (Dover, 1986), ch. 8; quaternion norm control:
+ * Zipfel, Modeling and Simulation of Aerospace Vehicle Dynamics, 2nd ed., sec. 4.3.
+ * Equations and the terms kept: docs/models.md, "6-DoF rigid body". */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "core/table_unit.h"
+#include "core/units.h"
+#include "core/vec3.h"
+#include "dynamics/flight.h"
+#include "dynamics/guidance.h"
+#include "dynamics/orbit.h"
+#include "lvsim/lv_dof6.h"
+#include "vehicle/vehicle.h"
+
+/* Gain of the quaternion norm correction K (1 - |q|^2) q [1/s] (Zipfel sec. 4.3): the unit
+ * sphere attracts the quaternion at the rate 2 K, slower than any step an adaptive method
+ * takes (K dt < 1 for dt < 1 s), so that it does not stiffen the equations. */
+#define QUAT_NORM_GAIN 1.0
+#define V_AIR_MIN 1e-6 /* m/s: below, alpha = beta = 0 (no aerodynamic force: q = 0) */
+
+/* ---- variables ------------------------------------------------------------------- */
+
+enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_PSI, P_THETA, P_PHI, P_RP, P_RQ, P_RR,
+       P_GP, P_GY, P_THR, P_PROP, P_N };
+enum { U_GP, U_GY, U_THR, U_N };
+
+enum {
+    O_H, O_LAT, O_LON, O_RADIUS, O_VN, O_VE, O_VD, O_VREL, O_VINR, O_FPA, O_CHI,
+    O_MACH, O_Q, O_RHO, O_PAMB, O_THRUST, O_MDOT, O_ENGINE_ON, O_DRAG, O_LIFT, O_SIDE,
+    O_NAX, O_NNORM, O_NLAT, O_THETA, O_PSI, O_PHI, O_ALPHA, O_BETA, O_BANK,
+    O_LA, O_MA, O_NA, O_LT, O_MT, O_NT, O_CGX, O_CGY, O_CGZ, O_IXX, O_IYY, O_IZZ,
+    O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI,
+    O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_N
+};
+
+/* Error control as lv_dof3 (docs/integration.md) for position, velocity and mass; the
+ * quaternion to tol (|q| ~ 1), the rates to tol (|w| + 0.01 rad/s). */
+static const lv_var state_tpl[LV_X6_N] = {
+    {"r_eci_x", "m", "Position of the centre of mass, ECI x", 0.0, 1e3},
+    {"r_eci_y", "m", "Position of the centre of mass, ECI y", 0.0, 1e3},
+    {"r_eci_z", "m", "Position of the centre of mass, ECI z", 0.0, 1e3},
+    {"v_eci_x", "m/s", "Inertial velocity, ECI x", 0.0, 1.0},
+    {"v_eci_y", "m/s", "Inertial velocity, ECI y", 0.0, 1.0},
+    {"v_eci_z", "m/s", "Inertial velocity, ECI z", 0.0, 1.0},
+    {"q_w", "", "Attitude quaternion body -> ECI, scalar part", 1.0, 1.0},
+    {"q_x", "", "Attitude quaternion body -> ECI, x", 0.0, 1.0},
+    {"q_y", "", "Attitude quaternion body -> ECI, y", 0.0, 1.0},
+    {"q_z", "", "Attitude quaternion body -> ECI, z", 0.0, 1.0},
+    {"p", "rad/s", "Roll rate: body rate relative to inertial space about body x", 0.0, 0.01},
+    {"q", "rad/s", "Pitch rate: body rate relative to inertial space about body y", 0.0, 0.01},
+    {"r", "rad/s", "Yaw rate: body rate relative to inertial space about body z", 0.0, 0.01},
+    {"m", "kg", "Vehicle mass", 1000.0, 1e3},
+};
+
+static const unsigned char abs_error[LV_X6_N] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+
+static const lv_var param_tpl[P_N] = {
+    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
+    {"start_lon", "rad", "Initial longitude", 0, 0},
+    {"start_h", "m", "Initial geodetic altitude", 0, 0},
+    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
+    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
+    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
+    {"start_time", "s", "Mission time at which the start_* values hold", 0, 0},
+    {"start_psi", "rad", "Initial yaw attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_theta", "rad", "Initial pitch attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_phi", "rad", "Initial roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"start_p", "rad/s", "Initial roll rate (relative to inertial space)", 0, 0},
+    {"start_q", "rad/s", "Initial pitch rate (relative to inertial space)", 0, 0},
+    {"start_r", "rad/s", "Initial yaw rate (relative to inertial space)", 0, 0},
+    {"gimbal_pitch", "rad", "Pitch gimbal angle of every engine (constant input)", 0, 0},
+    {"gimbal_yaw", "rad", "Yaw gimbal angle of every engine (constant input)", 0, 0},
+    {"throttle", "", "Throttle c_s (constant input)", 1, 0},
+    {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
+     0, 0},
+};
+
+static const lv_var output_vars[O_N] = {
+    {"h", "m", "Geodetic altitude", 0, 0},
+    {"lat", "rad", "Geodetic latitude", 0, 0},
+    {"lon", "rad", "Longitude", 0, 0},
+    {"radius", "m", "Distance from the planet's centre", 0, 0},
+    {"v_north", "m/s", "Velocity relative to the planet, north (NED)", 0, 0},
+    {"v_east", "m/s", "Velocity relative to the planet, east (NED)", 0, 0},
+    {"v_down", "m/s", "Velocity relative to the planet, down (NED)", 0, 0},
+    {"v_rel", "m/s", "Speed relative to the rotating planet", 0, 0},
+    {"v_inertial", "m/s", "Inertial speed", 0, 0},
+    {"fpa", "rad", "Flight-path angle of the relative velocity, up positive", 0, 0},
+    {"heading", "rad", "Heading of the relative velocity, from north to east", 0, 0},
+    {"mach", "", "Mach number of the air-relative velocity", 0, 0},
+    {"q_dyn", "Pa", "Dynamic pressure rho V_air^2 / 2", 0, 0},
+    {"rho", "kg/m3", "Air density", 0, 0},
+    {"p_amb", "Pa", "Ambient pressure", 0, 0},
+    {"thrust", "N", "Net thrust of all engines (magnitude of the sum)", 0, 0},
+    {"mdot", "kg/s", "Propellant mass flow of all engines (-dm/dt)", 0, 0},
+    {"engine_on", "", "1 while the engines burn", 0, 0},
+    {"drag", "N", "Drag: aerodynamic force opposite the air-relative velocity", 0, 0},
+    {"lift", "N", "Lift: aerodynamic force along wind -z", 0, 0},
+    {"side_force", "N", "Aerodynamic force along wind +y", 0, 0},
+    {"n_axial", "", "Axial load factor: specific force along body x / g0", 0, 0},
+    {"n_normal", "", "Normal load factor: specific force along body -z / g0", 0, 0},
+    {"n_lateral", "", "Lateral load factor: specific force along body y / g0", 0, 0},
+    {"theta", "rad", "Pitch attitude (3-2-1 Euler angles of the body relative to NED)", 0, 0},
+    {"psi", "rad", "Yaw attitude (3-2-1 Euler angles relative to NED), [0, 2 pi)", 0, 0},
+    {"phi", "rad", "Roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
+    {"alpha", "rad", "Angle of attack: atan2(w, u) of the air-relative velocity in body axes", 0,
+     0},
+    {"beta", "rad", "Sideslip angle: asin(v / V) of the air-relative velocity in body axes", 0, 0},
+    {"bank", "rad", "Bank angle of the wind axes about the air-relative velocity", 0, 0},
+    {"L_aero", "N.m", "Aerodynamic rolling moment about the centre of mass, body x", 0, 0},
+    {"M_aero", "N.m", "Aerodynamic pitching moment about the centre of mass, body y", 0, 0},
+    {"N_aero", "N.m", "Aerodynamic yawing moment about the centre of mass, body z", 0, 0},
+    {"L_thrust", "N.m", "Thrust moment about the centre of mass, body x", 0, 0},
+    {"M_thrust", "N.m", "Thrust moment about the centre of mass, body y", 0, 0},
+    {"N_thrust", "N.m", "Thrust moment about the centre of mass, body z", 0, 0},
+    {"cg_x", "m", "Centre of mass, body x from the structural origin", 0, 0},
+    {"cg_y", "m", "Centre of mass, body y from the structural origin", 0, 0},
+    {"cg_z", "m", "Centre of mass, body z from the structural origin", 0, 0},
+    {"I_xx", "kg.m2", "Moment of inertia about body x through the centre of mass", 0, 0},
+    {"I_yy", "kg.m2", "Moment of inertia about body y through the centre of mass", 0, 0},
+    {"I_zz", "kg.m2", "Moment of inertia about body z through the centre of mass", 0, 0},
+    {"quat_norm", "", "Norm of the attitude quaternion state (1 up to the drift control)", 0, 0},
+    {"gimbal_pitch_in", "rad", "Pitch gimbal angle in effect", 0, 0},
+    {"gimbal_yaw_in", "rad", "Yaw gimbal angle in effect", 0, 0},
+    {"throttle_in", "", "Throttle in effect (0 with the engines off)", 0, 0},
+    {"propellant_left", "kg", "Propellant left in the burning stage", 0, 0},
+    {"sma", "m", "Osculating semi-major axis", 0, 0},
+    {"ecc", "", "Osculating eccentricity", 0, 0},
+    {"inc", "rad", "Osculating inclination", 0, 0},
+    {"apo_alt", "m", "Apoapsis radius minus the equatorial radius a", 0, 0},
+    {"peri_alt", "m", "Periapsis radius minus the equatorial radius a", 0, 0},
+    {"lat_gc", "rad", "Geocentric latitude", 0, 0},
+    {"fpa_inertial", "rad", "Flight-path angle of the inertial velocity", 0, 0},
+    {"heading_inertial", "rad", "Heading of the inertial velocity", 0, 0},
+    {"accel", "m/s2", "Magnitude of the inertial acceleration of the CG (gravity included)", 0, 0},
+    {"accel_sensed", "m/s2", "Magnitude of the specific force (thrust + aero) / m", 0, 0},
+    {"raan", "rad", "Osculating right ascension of the ascending node (ECI)", 0, 0},
+    {"argp", "rad", "Osculating argument of periapsis", 0, 0},
+    {"downrange", "m", "Great-circle distance from the phase's start point on the sphere of radius a",
+     0, 0},
+};
+
+static const char *const input_names[U_N] = {"gimbal_pitch", "gimbal_yaw", "throttle"};
+
+static const struct {
+    const char *name, *description;
+} end_info[] = {
+    {"", ""},
+    {"altitude", "Geodetic altitude crosses the configured value"},
+    {"speed_rel", "Speed relative to the rotating planet crosses the configured value"},
+    {"speed_inertial", "Inertial speed crosses the configured value"},
+    {"apogee", "Radial velocity falls through zero"},
+    {"impact", "Geodetic altitude falls through the configured ground level"},
+};
+
+/* ---- model data -------------------------------------------------------------------- */
+
+#define EVENT_NAME_MAX 48
+
+typedef struct dof6_inst {
+    lv_dof6 *m;           /* NULL in a block lv_simulate zeroed itself */
+    int engines_on;
+    int burned_out;
+    double m_burnout;     /* kg */
+    lv_table_cursor in_cur;
+    double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
+    char msg[LV_ERR_MSG_MAX];
+    char tev[LV_EVENT_NAME_MAX];
+} dof6_inst;
+
+typedef struct eng6 {
+    lv_vec3 pos;             /* m, body, structural origin */
+    double mis_pitch, mis_yaw; /* rad */
+} eng6;
+
+struct lv_dof6 {
+    lv_model_def def;
+    char name[64];
+    lv_var states[LV_X6_N];
+    lv_var params[P_N];
+    size_t n_ends;
+    lv_dof3_end *ends;
+    double *end_off;
+    lv_event_def *events;
+    char (*event_names)[EVENT_NAME_MAX];
+
+    lv_flight_world world;
+    lv_domain_def domain[1];
+    double *grav_ws;
+    double gm;
+
+    lv_dof6_mass mp;             /* mass properties */
+    size_t n_eng;
+    lv_engine *eng;
+    eng6 *geom;
+    double *eng_buf;
+    int has_aero, has_moments;
+    lv_aero aero;                /* forces */
+    lv_aero mom;                 /* moment coefficients in the slots of CA, CN, CY: Cl, Cm, Cn */
+    double clp, cmq, cnr, b_ref, c_ref;
+    lv_vec3 r_mrp;
+    const lv_table *inputs;
+    int in_k[U_N];               /* output index per input, -1: the parameter */
+    double *in_buf;
+    int const_throttle;
+    int stop_at_burnout;
+
+    dof6_inst inst;
+};
+
+/* ---- the rigid body: small pure functions ---------------------------------------------- */
+
+/* Direction cosine matrix C_eci_body of the quaternion q = (w, x, y, z) divided by its norm
+ * (Stevens & Lewis eq. 1.8-10 with the rotation body -> ECI): the attitude is exact whatever
+ * the norm's drift. */
+static lv_mat3 quat_to_dcm(const double *q)
+{
+    const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    const double s = 2.0 / n2;
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    lv_mat3 C = {{{1.0 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y)},
+                  {s * (x * y + w * z), 1.0 - s * (x * x + z * z), s * (y * z - w * x)},
+                  {s * (x * z - w * y), s * (y * z + w * x), 1.0 - s * (x * x + y * y)}}};
+    return C;
+}
+
+/* Unit quaternion of a rotation matrix C_a_b (Shepperd's method, J. Guidance Control 1 (1978)
+ * 223-224: the largest of the four squared components first). */
+static void quat_from_dcm(const lv_mat3 *C, double q[4])
+{
+    const double tr = C->m[0][0] + C->m[1][1] + C->m[2][2];
+    const double c4[4] = {1.0 + tr, 1.0 + 2.0 * C->m[0][0] - tr, 1.0 + 2.0 * C->m[1][1] - tr,
+                          1.0 + 2.0 * C->m[2][2] - tr};
+    int k = 0;
+    for (int i = 1; i < 4; i++)
+        if (c4[i] > c4[k])
+            k = i;
+    const double d = 2.0 * sqrt(c4[k]); /* 4 |q_k| */
+    const double a = C->m[2][1] - C->m[1][2], b = C->m[0][2] - C->m[2][0];
+    const double c = C->m[1][0] - C->m[0][1], e = C->m[1][0] + C->m[0][1];
+    const double f = C->m[0][2] + C->m[2][0], g = C->m[2][1] + C->m[1][2];
+    switch (k) {
+    case 0: q[0] = 0.25 * d; q[1] = a / d; q[2] = b / d; q[3] = c / d; break;
+    case 1: q[0] = a / d; q[1] = 0.25 * d; q[2] = e / d; q[3] = f / d; break;
+    case 2: q[0] = b / d; q[1] = e / d; q[2] = 0.25 * d; q[3] = g / d; break;
+    default: q[0] = c / d; q[1] = f / d; q[2] = g / d; q[3] = 0.25 * d; break;
+    }
+    if (q[0] < 0.0)
+        for (int i = 0; i < 4; i++)
+            q[i] = -q[i];
+}
+
+/* Quaternion kinematics q' = 1/2 q (x) (0, w_body) (Stevens & Lewis eq. 1.8-15, body rates
+ * relative to the frame q rotates into, here ECI) plus the norm correction
+ * K (1 - |q|^2) q (Zipfel sec. 4.3.2), which leaves the direction of q (the attitude) alone. */
+static void quat_rate(const double *q, lv_vec3 w, double *qd)
+{
+    const double lam = QUAT_NORM_GAIN * (1.0 - (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] +
+                                                q[3] * q[3]));
+    qd[0] = 0.5 * (-q[1] * w.x - q[2] * w.y - q[3] * w.z) + lam * q[0];
+    qd[1] = 0.5 * (q[0] * w.x + q[2] * w.z - q[3] * w.y) + lam * q[1];
+    qd[2] = 0.5 * (q[0] * w.y + q[3] * w.x - q[1] * w.z) + lam * q[2];
+    qd[3] = 0.5 * (q[0] * w.z + q[1] * w.y - q[2] * w.x) + lam * q[3];
+}
+
+/* Symmetric tensor of the six elements (xx, yy, zz, xy, xz, yz). */
+static lv_mat3 tensor(const double *e)
+{
+    lv_mat3 I = {{{e[0], e[3], e[4]}, {e[3], e[1], e[5]}, {e[4], e[5], e[2]}}};
+    return I;
+}
+
+/* Mass properties at mass m: the fraction of the propellant used s = (m_full - m) /
+ * (m_full - m_empty) in [0, 1], the inertia tensor I and centre of mass cg linear in s, and
+ * dI/ds (zero once s is clamped). */
+typedef struct mass_props {
+    double s;
+    lv_mat3 I, dI_ds;
+    lv_vec3 cg;
+} mass_props;
+
+static mass_props mass_props_at(const lv_dof6_mass *mp, double m)
+{
+    mass_props r;
+    const double span = mp->m_full - mp->m_empty;
+    double s = span > 0.0 ? (mp->m_full - m) / span : 0.0;
+    const int inside = span > 0.0 && s > 0.0 && s < 1.0;
+    s = s < 0.0 ? 0.0 : s > 1.0 ? 1.0 : s;
+    double e[6], de[6];
+    for (int i = 0; i < 6; i++) {
+        de[i] = inside ? mp->inertia_empty[i] - mp->inertia_full[i] : 0.0;
+        e[i] = mp->inertia_full[i] + s * (mp->inertia_empty[i] - mp->inertia_full[i]);
+    }
+    r.s = s;
+    r.I = tensor(e);
+    r.dI_ds = tensor(de);
+    r.cg = lv_v3(mp->cg_full[0] + s * (mp->cg_empty[0] - mp->cg_full[0]),
+                 mp->cg_full[1] + s * (mp->cg_empty[1] - mp->cg_full[1]),
+                 mp->cg_full[2] + s * (mp->cg_empty[2] - mp->cg_full[2]));
+    return r;
+}
+
+/* x = A^-1 b for a symmetric positive definite 3x3 A, by the adjugate (Cramer's rule). */
+static lv_vec3 solve3(const lv_mat3 *A, lv_vec3 b)
+{
+    const double (*a)[3] = A->m;
+    const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    const double c11 = a[0][0] * a[2][2] - a[0][2] * a[2][0];
+    const double c12 = a[0][1] * a[2][0] - a[0][0] * a[2][1];
+    const double c22 = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+    /* symmetric: the adjugate is symmetric too */
+    return lv_v3((c00 * b.x + c01 * b.y + c02 * b.z) / det,
+                 (c01 * b.x + c11 * b.y + c12 * b.z) / det,
+                 (c02 * b.x + c12 * b.y + c22 * b.z) / det);
+}
+
+/* Euler's equations of a body of varying mass (Thomson ch. 8; docs/models.md):
+ *   I w' = M - w x (I w) - I' w
+ * with I' = dI/dt the change of the inertia tensor as propellant is used; the jet damping
+ * moment is part of M (jet_damping). */
+static lv_vec3 euler_rate(const lv_mat3 *I, const lv_mat3 *I_dot, lv_vec3 w, lv_vec3 M)
+{
+    const lv_vec3 Iw = lv_m3_mul_v3(I, w);
+    const lv_vec3 rhs = lv_v3_sub(lv_v3_sub(M, lv_v3_cross(w, Iw)), lv_m3_mul_v3(I_dot, w));
+    return solve3(I, rhs);
+}
+
+/* Unit thrust direction in body axes of an engine gimballed by dp (pitch) and dy (yaw) [rad]:
+ * (cos dp cos dy, -sin dy, sin dp cos dy). + dp tilts the thrust toward +z_b: for an engine
+ * aft of the CG a nose-up (+M) moment; + dy toward -y_b: a nose-right (+N) moment. */
+static lv_vec3 thrust_dir(double dp, double dy)
+{
+    const double cy = cos(dy);
+    return lv_v3(cos(dp) * cy, -sin(dy), sin(dp) * cy);
+}
+
+/* Jet damping: the exhaust leaves the nozzle exit at r_e from the CG with the body's rotation
+ * velocity w x r_e, carrying angular momentum away at the rate mdot r_e x (w x r_e) (Thomson
+ * ch. 8): the moment -mdot r_e x (w x r_e), mdot > 0 the flow out [kg/s]. */
+static lv_vec3 jet_damping(double mdot, lv_vec3 r_e, lv_vec3 w)
+{
+    return lv_v3_scale(lv_v3_cross(r_e, lv_v3_cross(w, r_e)), -mdot);
+}
+
+/* Transfer of a moment about the reference point r_mrp to the centre of mass cg under the
+ * force f (all body axes): M_cg = M_mrp + (r_mrp - cg) x f. */
+static lv_vec3 moment_transfer(lv_vec3 M_mrp, lv_vec3 r_mrp, lv_vec3 cg, lv_vec3 f)
+{
+    return lv_v3_add(M_mrp, lv_v3_cross(lv_v3_sub(r_mrp, cg), f));
+}
+
+/* ---- the point: everything (t, x, p) gives ------------------------------------------------ */
+
+typedef struct dof6_point {
+    lv_flight_kin kin;
+    lv_flight_air air;
+    lv_mat3 C_eci_body;
+    lv_flight_axes ax;         /* body axes (and the wind axes, at outputs), ECEF */
+    lv_vec3 v_air_b;           /* m/s, body */
+    double alpha, beta;        /* rad */
+    mass_props mp;
+    double u[U_N];             /* gimbal pitch, yaw [rad], throttle */
+    double mdot;               /* kg/s */
+    lv_vec3 f_thrust_b, m_thrust_b; /* N, N m (about the CG, jet damping included) */
+    double coef[3];
+    lv_vec3 f_aero_b, m_aero_b;
+    lv_vec3 g_ecef, a_eci;
+    lv_vec3 w_dot;             /* rad/s^2 */
+} dof6_point;
+
+static lv_vec3 body_to_ecef(const lv_flight_axes *ax, lv_vec3 v)
+{
+    return lv_v3_add(lv_v3_add(lv_v3_scale(ax->xb, v.x), lv_v3_scale(ax->yb, v.y)),
+                     lv_v3_scale(ax->zb, v.z));
+}
+
+static int inputs_eval(lv_dof6 *m, dof6_inst *s, double t, const double *p, double *u,
+                       lv_err *err)
+{
+    u[U_GP] = p[P_GP];
+    u[U_GY] = p[P_GY];
+    u[U_THR] = p[P_THR];
+    if (m->inputs == NULL)
+        return 0;
+    if (lv_table_eval1(m->inputs, &s->in_cur, t, m->in_buf, err) != LV_OK) {
+        if (err)
+            lv_fail_prefix(err, LV_ERR_INPUT, "inputs");
+        return 1;
+    }
+    for (int i = 0; i < U_N; i++)
+        if (m->in_k[i] >= 0)
+            u[i] = m->in_buf[m->in_k[i]];
+    return 0;
+}
+
+static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const double *p,
+                      int full, dof6_point *pt, lv_err *err)
+{
+    const double mass = x[LV_X6_M];
+    if (!(mass > 0.0)) {
+        if (err)
+            lv_fail(err, LV_ERR_INPUT, "mass %g kg is not positive at t = %.9g s", mass, t);
+        return 1;
+    }
+    const lv_flight_world *w = &m->world;
+    /* 1, 2: kinematics and flight condition */
+    lv_flight_kinematics(w, t, x + LV_X6_RX, x + LV_X6_VX, full, &pt->kin);
+    int rc = lv_flight_air_eval(w, t, &pt->kin, &pt->air, err);
+    if (rc != 0)
+        return rc;
+    /* attitude: body axes in ECEF = R3(theta) C_eci_body columns */
+    pt->C_eci_body = quat_to_dcm(x + LV_X6_QW);
+    const lv_flight_kin *k = &pt->kin;
+    lv_vec3 col[3];
+    for (int j = 0; j < 3; j++) {
+        const double cx = pt->C_eci_body.m[0][j], cy = pt->C_eci_body.m[1][j];
+        col[j] = lv_v3(k->c_th * cx + k->s_th * cy, -k->s_th * cx + k->c_th * cy,
+                       pt->C_eci_body.m[2][j]);
+    }
+    pt->ax.xb = col[0];
+    pt->ax.yb = col[1];
+    pt->ax.zb = col[2];
+    /* aerodynamic angles of the attitude (Stevens & Lewis eq. 2.3-6) */
+    pt->v_air_b = lv_v3(lv_v3_dot(pt->air.v_air, col[0]), lv_v3_dot(pt->air.v_air, col[1]),
+                        lv_v3_dot(pt->air.v_air, col[2]));
+    if (pt->air.v_air_n > V_AIR_MIN) {
+        pt->alpha = atan2(pt->v_air_b.z, pt->v_air_b.x);
+        const double sb = pt->v_air_b.y / pt->air.v_air_n;
+        pt->beta = asin(sb > 1.0 ? 1.0 : sb < -1.0 ? -1.0 : sb);
+    } else {
+        pt->alpha = pt->beta = 0.0;
+    }
+    /* 3: inputs; mass properties */
+    if (inputs_eval(m, s, t, p, pt->u, err) != 0)
+        return 1;
+    pt->mp = mass_props_at(&m->mp, mass);
+    const lv_vec3 w_b = {x[LV_X6_P], x[LV_X6_Q], x[LV_X6_R]};
+
+    /* 4a: engines, each at its gimbal point */
+    pt->mdot = 0.0;
+    pt->f_thrust_b = pt->m_thrust_b = lv_v3(0.0, 0.0, 0.0);
+    if (s->engines_on) {
+        for (size_t i = 0; i < m->n_eng; i++) {
+            double f, md;
+            if (lv_engine_eval(&m->eng[i], t, pt->u[U_THR], pt->air.p_amb, m->eng_buf, &f, &md,
+                               err) != LV_OK)
+                return 1;
+            const eng6 *g = &m->geom[i];
+            const lv_vec3 fi = lv_v3_scale(thrust_dir(pt->u[U_GP] + g->mis_pitch,
+                                                      pt->u[U_GY] + g->mis_yaw), f);
+            const lv_vec3 r_e = lv_v3_sub(g->pos, pt->mp.cg);
+            pt->f_thrust_b = lv_v3_add(pt->f_thrust_b, fi);
+            pt->m_thrust_b = lv_v3_add(pt->m_thrust_b,
+                                       lv_v3_add(lv_v3_cross(r_e, fi), jet_damping(md, r_e, w_b)));
+            pt->mdot += md;
+        }
+    }
+    /* 4b: aerodynamic force and moment (only where there is air) */
+    pt->coef[0] = pt->coef[1] = pt->coef[2] = 0.0;
+    pt->f_aero_b = pt->m_aero_b = lv_v3(0.0, 0.0, 0.0);
+    if (m->has_aero && pt->air.q > 0.0) {
+        if (lv_aero_coefs(&m->aero, pt->air.mach, pt->alpha, pt->beta, k->h, pt->coef, err) !=
+            LV_OK)
+            return 1;
+        const double ca = cos(pt->alpha), sa = sin(pt->alpha);
+        const double cb = cos(pt->beta), sb = sin(pt->beta);
+        const double qs = pt->air.q * m->aero.s_ref;
+        if (m->aero.axes == LV_AERO_BODY) {
+            pt->f_aero_b = lv_v3(-qs * pt->coef[0], qs * pt->coef[2], -qs * pt->coef[1]);
+        } else { /* f_b = C_body_wind f_w, C_body_wind = R2(alpha) R3(-beta) */
+            double fw[3];
+            lv_aero_force_wind(&m->aero, pt->coef, qs, ca, sa, cb, sb, fw);
+            pt->f_aero_b = lv_v3(ca * cb * fw[0] - ca * sb * fw[1] - sa * fw[2],
+                                 sb * fw[0] + cb * fw[1],
+                                 sa * cb * fw[0] - sa * sb * fw[1] + ca * fw[2]);
+        }
+        if (m->has_moments) {
+            double cm[3];
+            if (lv_aero_coefs(&m->mom, pt->air.mach, pt->alpha, pt->beta, k->h, cm, err) !=
+                LV_OK)
+                return 1;
+            /* rates relative to the atmosphere: w - C_body_eci (0, 0, omega) */
+            const double om = w->planet.omega;
+            const lv_vec3 w_r = lv_v3(w_b.x - om * pt->C_eci_body.m[2][0],
+                                      w_b.y - om * pt->C_eci_body.m[2][1],
+                                      w_b.z - om * pt->C_eci_body.m[2][2]);
+            const double V = pt->air.v_air_n, S = m->aero.s_ref;
+            const double bh = m->b_ref / (2.0 * V), ch = m->c_ref / (2.0 * V);
+            const lv_vec3 m_mrp =
+                lv_v3(pt->air.q * S * m->b_ref * (cm[0] + m->clp * w_r.x * bh),
+                      pt->air.q * S * m->c_ref * (cm[1] + m->cmq * w_r.y * ch),
+                      pt->air.q * S * m->b_ref * (cm[2] + m->cnr * w_r.z * bh));
+            pt->m_aero_b = moment_transfer(m_mrp, m->r_mrp, pt->mp.cg, pt->f_aero_b);
+        } /* else: no moment data, the force acts through the CG (lv_dof6_config.moments) */
+    }
+    /* 5: translation (as lv_dof3) and rotation */
+    const lv_vec3 f_ecef = body_to_ecef(&pt->ax, lv_v3_add(pt->f_thrust_b, pt->f_aero_b));
+    pt->a_eci = lv_flight_accel_eci(w, m->grav_ws, k, f_ecef, mass, &pt->g_ecef);
+    const double span = m->mp.m_full - m->mp.m_empty;
+    lv_mat3 I_dot = pt->mp.dI_ds; /* dI/dt = dI/ds ds/dt, ds/dt = mdot / span */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            I_dot.m[i][j] *= span > 0.0 ? pt->mdot / span : 0.0;
+    pt->w_dot = euler_rate(&pt->mp.I, &I_dot, w_b, lv_v3_add(pt->m_thrust_b, pt->m_aero_b));
+    return 0;
+}
+
+/* ---- callbacks ------------------------------------------------------------------------ */
+
+static void note(dof6_inst *s, const lv_err *e) { snprintf(s->msg, sizeof s->msg, "%s", e->msg); }
+
+static int dof6_rhs(double t, const double *x, const double *p, double *xdot, void *inst)
+{
+    dof6_inst *s = inst;
+    dof6_point pt;
+    int rc = point_eval(s->m, s, t, x, p, 0, &pt, NULL);
+    if (rc != 0) {
+        lv_err e = {LV_OK, ""};
+        point_eval(s->m, s, t, x, p, 0, &pt, &e);
+        note(s, &e);
+        return rc;
+    }
+    xdot[LV_X6_RX] = x[LV_X6_VX];
+    xdot[LV_X6_RY] = x[LV_X6_VY];
+    xdot[LV_X6_RZ] = x[LV_X6_VZ];
+    xdot[LV_X6_VX] = pt.a_eci.x;
+    xdot[LV_X6_VY] = pt.a_eci.y;
+    xdot[LV_X6_VZ] = pt.a_eci.z;
+    quat_rate(x + LV_X6_QW, lv_v3(x[LV_X6_P], x[LV_X6_Q], x[LV_X6_R]), xdot + LV_X6_QW);
+    xdot[LV_X6_P] = pt.w_dot.x;
+    xdot[LV_X6_Q] = pt.w_dot.y;
+    xdot[LV_X6_R] = pt.w_dot.z;
+    xdot[LV_X6_M] = -pt.mdot;
+    return 0;
+}
+
+static int fail_inst(dof6_inst *s, const char *fmt, ...) LV_PRINTF(2, 3);
+static int fail_inst(dof6_inst *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->msg, sizeof s->msg, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+static int check_params(dof6_inst *s, const double *p)
+{
+    const lv_dof6 *m = s->m;
+    if (!(fabs(p[P_LAT]) <= 0.5 * LV_PI))
+        return fail_inst(s, "start_lat = %g rad is outside [-pi/2, pi/2]", p[P_LAT]);
+    if (!(p[P_VEL] >= 0.0))
+        return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
+    if (!(p[P_PROP] >= 0.0))
+        return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
+    for (int i = P_PSI; i <= P_RR; i++)
+        if (!isfinite(p[i]))
+            return fail_inst(s, "%s = %g is not finite", param_tpl[i].name, p[i]);
+    if (m->const_throttle)
+        for (size_t i = 0; i < m->n_eng; i++)
+            if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max))
+                return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
+                                 p[P_THR], m->eng[i].thr_min, m->eng[i].thr_max, m->eng[i].name);
+    return 0;
+}
+
+void lv_dof6_quat_from_euler(const lv_planet *pl, double t, double lat, double lon, double psi,
+                             double theta, double phi, double q[4])
+{
+    lv_mat3 C_ecef_eci, C_ned_ecef, C_body_ned;
+    lv_frames_C_ecef_eci(pl, t, C_ecef_eci.m);
+    lv_frames_C_ned_ecef(lat, lon, C_ned_ecef.m);
+    lv_frames_C_body_ned(psi, theta, phi, C_body_ned.m);
+    /* C_body_eci = C_body_ned C_ned_ecef C_ecef_eci; its transpose is C_eci_body */
+    const lv_mat3 A = lv_m3_mul(&C_body_ned, &C_ned_ecef);
+    const lv_mat3 C_body_eci = lv_m3_mul(&A, &C_ecef_eci);
+    const lv_mat3 C_eci_body = lv_m3_transpose(&C_body_eci);
+    quat_from_dcm(&C_eci_body, q);
+}
+
+/* Position and velocity from the geodetic start values (as lv_dof3); the attitude from the
+ * Euler angles relative to NED at the start point; the rates as given. */
+static int dof6_start(const double *p, double *x, void *inst)
+{
+    dof6_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    s->msg[0] = '\0';
+    if (check_params(s, p) != 0)
+        return -1;
+    const lv_planet *pl = &s->m->world.planet;
+    double r_ecef[3], v_ned[3], C[3][3], v_ecef[3], r_eci[3], v_eci[3];
+    lv_frames_geodetic_to_ecef(pl, p[P_LAT], p[P_LON], p[P_H], r_ecef);
+    lv_frames_ned_from_fpa(p[P_VEL], p[P_FPA], p[P_CHI], v_ned);
+    lv_frames_C_ned_ecef(p[P_LAT], p[P_LON], C);
+    for (int i = 0; i < 3; i++)
+        v_ecef[i] = C[0][i] * v_ned[0] + C[1][i] * v_ned[1] + C[2][i] * v_ned[2];
+    lv_frames_ecef_to_eci(pl, p[P_T0], r_ecef, v_ecef, r_eci, v_eci);
+    for (int i = 0; i < 3; i++) {
+        x[LV_X6_RX + i] = r_eci[i];
+        x[LV_X6_VX + i] = v_eci[i];
+    }
+    lv_dof6_quat_from_euler(pl, p[P_T0], p[P_LAT], p[P_LON], p[P_PSI], p[P_THETA], p[P_PHI],
+                            x + LV_X6_QW);
+    x[LV_X6_P] = p[P_RP];
+    x[LV_X6_Q] = p[P_RQ];
+    x[LV_X6_R] = p[P_RR];
+    return 0;
+}
+
+static int dof6_init(double t0, const double *x, const double *p, void *inst)
+{
+    dof6_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    s->msg[0] = '\0';
+    if (check_params(s, p) != 0)
+        return -1;
+    if (!(x[LV_X6_M] > 0.0))
+        return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X6_M]);
+    if (!(p[P_PROP] < x[LV_X6_M]))
+        return fail_inst(s, "the propellant %g kg is not less than the start mass %g kg",
+                         p[P_PROP], x[LV_X6_M]);
+    const double qn = sqrt(x[LV_X6_QW] * x[LV_X6_QW] + x[LV_X6_QX] * x[LV_X6_QX] +
+                           x[LV_X6_QY] * x[LV_X6_QY] + x[LV_X6_QZ] * x[LV_X6_QZ]);
+    if (!(fabs(qn - 1.0) < 1e-6))
+        return fail_inst(s, "start quaternion (%g, %g, %g, %g) has norm %.9g, not 1 (within "
+                         "1e-6)", x[LV_X6_QW], x[LV_X6_QX], x[LV_X6_QY], x[LV_X6_QZ], qn);
+    s->m_burnout = x[LV_X6_M] - p[P_PROP];
+    s->burned_out = 0;
+    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&s->m->world, t0, x + LV_X6_RX, x + LV_X6_VX, &kin);
+    const double rn = lv_v3_norm(kin.r_ecef);
+    if (!(rn > 0.0))
+        return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
+    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
+    for (int i = 0; i < 3; i++)
+        s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
+    for (size_t i = 0; i < s->m->n_ends; i++) {
+        const lv_dof3_end *e = &s->m->ends[i];
+        s->m->end_off[i] =
+            e->kind == LV_DOF3_END_IMPACT && kin.h <= e->value ? e->value - kin.h + 1e-6 : 0.0;
+    }
+    return 0;
+}
+
+static int dof6_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    (void)p;
+    const dof6_inst *s = inst;
+    const lv_dof6 *m = s->m;
+    g[0] = s->engines_on ? x[LV_X6_M] - s->m_burnout : 1.0;
+    if (m->n_ends == 0)
+        return 0;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&m->world, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
+    int have_h = 0;
+    for (size_t i = 0; i < m->n_ends; i++) {
+        const lv_dof3_end *e = &m->ends[i];
+        double gi = 0.0;
+        switch (e->kind) {
+        case LV_DOF3_END_ALTITUDE:
+        case LV_DOF3_END_IMPACT:
+            if (!have_h) {
+                lv_flight_geodetic(&m->world, &kin, 0, 0);
+                have_h = 1;
+            }
+            gi = kin.h - e->value + m->end_off[i];
+            break;
+        case LV_DOF3_END_SPEED_REL:
+            gi = lv_v3_norm(kin.v_rel) - e->value;
+            break;
+        case LV_DOF3_END_SPEED_INERTIAL:
+            gi = hypot(hypot(x[LV_X6_VX], x[LV_X6_VY]), x[LV_X6_VZ]) - e->value;
+            break;
+        case LV_DOF3_END_APOGEE:
+            gi = (x[LV_X6_RX] * x[LV_X6_VX] + x[LV_X6_RY] * x[LV_X6_VY] +
+                  x[LV_X6_RZ] * x[LV_X6_VZ]) /
+                 hypot(hypot(x[LV_X6_RX], x[LV_X6_RY]), x[LV_X6_RZ]);
+            break;
+        }
+        g[1 + i] = gi;
+    }
+    return 0;
+}
+
+static int dof6_domain_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)p;
+    const dof6_inst *s = inst;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(&s->m->world, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
+    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
+    q[0] = kin.h;
+    return 0;
+}
+
+static lv_event_action dof6_on_event(double t, double *x, const double *p, const int *fired,
+                                     void *inst)
+{
+    (void)t, (void)x, (void)p;
+    dof6_inst *s = inst;
+    const lv_dof6 *m = s->m;
+    lv_event_action act = LV_EVENT_CONTINUE;
+    if (fired[0]) {
+        s->engines_on = 0;
+        s->burned_out = 1;
+        act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
+    }
+    for (size_t i = 0; i < m->n_ends; i++)
+        if (fired[1 + i] && m->ends[i].stop)
+            act = LV_EVENT_STOP;
+    return act;
+}
+
+static double min_d(double a, double b) { return b < a ? b : a; }
+
+static double dof6_next_time_event(double t, const double *p, void *inst)
+{
+    (void)p;
+    const lv_dof6 *m = ((const dof6_inst *)inst)->m;
+    double tn = INFINITY;
+    if (m->inputs != NULL)
+        tn = min_d(tn, lv_table_next_breakpoint(m->inputs, 0, t));
+    for (size_t i = 0; i < m->n_eng; i++)
+        if (m->eng[i].table != NULL)
+            tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
+    return tn;
+}
+
+static int breakpoint_at(const lv_table *tab, double t)
+{
+    size_t n = 0;
+    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
+    for (size_t i = 0; b != NULL && i < n; i++)
+        if (b[i] == t)
+            return 1;
+    return 0;
+}
+
+static const char *dof6_time_event_name(double t, const double *p, void *inst)
+{
+    (void)p;
+    dof6_inst *s = inst;
+    const lv_dof6 *m = s->m;
+    size_t len = 0;
+    s->tev[0] = '\0';
+    if (breakpoint_at(m->inputs, t))
+        len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
+                                lv_table_name(m->inputs));
+    for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
+        if (breakpoint_at(m->eng[i].table, t))
+            len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
+                                    "%sengine '%.24s' table breakpoint", len ? "; " : "",
+                                    m->eng[i].name);
+    if (len > 0 && len < sizeof s->tev)
+        snprintf(s->tev + len, sizeof s->tev - len, " t = %.9g s", t);
+    return s->tev;
+}
+
+static int dof6_outputs(double t, const double *x, const double *p, double *y, void *inst)
+{
+    dof6_inst *s = inst;
+    lv_dof6 *m = s->m;
+    dof6_point pt;
+    lv_err e = {LV_OK, ""};
+    int rc = point_eval(m, s, t, x, p, 1, &pt, &e);
+    if (rc != 0) {
+        note(s, &e);
+        return rc;
+    }
+    const lv_flight_kin *k = &pt.kin;
+    const double mass = x[LV_X6_M];
+    const lv_vec3 v_eci = {x[LV_X6_VX], x[LV_X6_VY], x[LV_X6_VZ]};
+    y[O_H] = k->h;
+    y[O_LAT] = k->lat;
+    y[O_LON] = k->lon;
+    y[O_RADIUS] = lv_v3_norm(k->r_ecef);
+    y[O_VN] = lv_v3_dot(k->v_rel, k->n_ax);
+    y[O_VE] = lv_v3_dot(k->v_rel, k->e_ax);
+    y[O_VD] = lv_v3_dot(k->v_rel, k->d_ax);
+    y[O_VREL] = lv_v3_norm(k->v_rel);
+    y[O_VINR] = lv_v3_norm(v_eci);
+    const double ned[3] = {y[O_VN], y[O_VE], y[O_VD]};
+    lv_frames_fpa_from_ned(ned, NULL, &y[O_FPA], &y[O_CHI]);
+    y[O_MACH] = pt.air.mach;
+    y[O_Q] = pt.air.q;
+    y[O_RHO] = pt.air.rho;
+    y[O_PAMB] = pt.air.p_amb;
+    y[O_THRUST] = lv_v3_norm(pt.f_thrust_b);
+    y[O_MDOT] = pt.mdot;
+    y[O_ENGINE_ON] = s->engines_on;
+    /* aerodynamic force in wind axes: x_w, y_w, z_w in body components (eq. 2.3-6) */
+    const double ca = cos(pt.alpha), sa = sin(pt.alpha), cb = cos(pt.beta), sb = sin(pt.beta);
+    const lv_vec3 xw_b = {ca * cb, sb, sa * cb}, yw_b = {-ca * sb, cb, -sa * sb},
+                  zw_b = {-sa, 0.0, ca};
+    y[O_DRAG] = -lv_v3_dot(pt.f_aero_b, xw_b);
+    y[O_LIFT] = -lv_v3_dot(pt.f_aero_b, zw_b);
+    y[O_SIDE] = lv_v3_dot(pt.f_aero_b, yw_b);
+    const lv_vec3 f_spec = lv_v3_scale(lv_v3_add(pt.f_thrust_b, pt.f_aero_b), 1.0 / mass);
+    y[O_NAX] = f_spec.x / LV_G0;
+    y[O_NNORM] = -f_spec.z / LV_G0;
+    y[O_NLAT] = f_spec.y / LV_G0;
+    lv_guid_euler_local(k, &pt.ax, &y[O_THETA], &y[O_PSI], &y[O_PHI]);
+    y[O_ALPHA] = pt.alpha;
+    y[O_BETA] = pt.beta;
+    /* bank: y_w against the horizontal y0 = z0 x x_w, z0 the down axis normal to x_w
+     * (the wind frame of flight.h with mu = 0) */
+    y[O_BANK] = 0.0;
+    if (pt.air.v_air_n > V_AIR_MIN) {
+        const lv_vec3 xw = body_to_ecef(&pt.ax, xw_b), yw = body_to_ecef(&pt.ax, yw_b);
+        lv_vec3 z0 = lv_v3_sub(k->d_ax, lv_v3_scale(xw, lv_v3_dot(k->d_ax, xw)));
+        const double zn = lv_v3_norm(z0);
+        if (zn > 1e-9) {
+            z0 = lv_v3_scale(z0, 1.0 / zn);
+            const lv_vec3 y0 = lv_v3_cross(z0, xw);
+            y[O_BANK] = atan2(lv_v3_dot(yw, z0), lv_v3_dot(yw, y0));
+        }
+    }
+    y[O_LA] = pt.m_aero_b.x;
+    y[O_MA] = pt.m_aero_b.y;
+    y[O_NA] = pt.m_aero_b.z;
+    y[O_LT] = pt.m_thrust_b.x;
+    y[O_MT] = pt.m_thrust_b.y;
+    y[O_NT] = pt.m_thrust_b.z;
+    y[O_CGX] = pt.mp.cg.x;
+    y[O_CGY] = pt.mp.cg.y;
+    y[O_CGZ] = pt.mp.cg.z;
+    y[O_IXX] = pt.mp.I.m[0][0];
+    y[O_IYY] = pt.mp.I.m[1][1];
+    y[O_IZZ] = pt.mp.I.m[2][2];
+    y[O_QNORM] = sqrt(x[LV_X6_QW] * x[LV_X6_QW] + x[LV_X6_QX] * x[LV_X6_QX] +
+                      x[LV_X6_QY] * x[LV_X6_QY] + x[LV_X6_QZ] * x[LV_X6_QZ]);
+    y[O_GP] = pt.u[U_GP];
+    y[O_GY] = pt.u[U_GY];
+    y[O_THR] = s->engines_on ? pt.u[U_THR] : 0.0;
+    y[O_PROP_LEFT] = s->burned_out || mass < s->m_burnout ? 0.0 : mass - s->m_burnout;
+    lv_orbit_elem el;
+    const double rv[3] = {x[LV_X6_RX], x[LV_X6_RY], x[LV_X6_RZ]};
+    const double vv[3] = {v_eci.x, v_eci.y, v_eci.z};
+    lv_orbit_elements(m->gm, rv, vv, &el);
+    y[O_SMA] = el.a;
+    y[O_ECC] = el.e;
+    y[O_INC] = el.i;
+    y[O_APO] = el.r_apo - m->world.planet.a;
+    y[O_PERI] = el.r_peri - m->world.planet.a;
+    y[O_RAAN] = el.raan;
+    y[O_ARGP] = el.argp;
+    const double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
+    lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, NULL);
+    /* inertial velocity in ECEF axes (no w x r): the inertial angles, as lv_dof3 */
+    const lv_vec3 v_i = {k->c_th * v_eci.x + k->s_th * v_eci.y,
+                         -k->s_th * v_eci.x + k->c_th * v_eci.y, v_eci.z};
+    const double ned_i[3] = {lv_v3_dot(v_i, k->n_ax), lv_v3_dot(v_i, k->e_ax),
+                             lv_v3_dot(v_i, k->d_ax)};
+    lv_frames_fpa_from_ned(ned_i, NULL, &y[O_FPA_I], &y[O_CHI_I]);
+    y[O_ACC] = lv_v3_norm(pt.a_eci);
+    y[O_ACC_SENSED] = lv_v3_norm(f_spec);
+    const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
+    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / y[O_RADIUS]);
+    y[O_DOWNRANGE] =
+        m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
+    return 0;
+}
+
+static const char *dof6_last_error_cb(const void *inst)
+{
+    const dof6_inst *s = inst;
+    return s != NULL && s->msg[0] != '\0' ? s->msg : NULL;
+}
+
+/* ---- construction ---------------------------------------------------------------------- */
+
+void lv_dof6_config_default(lv_dof6_config *cfg)
+{
+    memset(cfg, 0, sizeof *cfg);
+    cfg->planet = lv_planet_earth();
+    cfg->m0 = 1000.0;
+    cfg->throttle = 1.0;
+    for (int i = 0; i < 3; i++)
+        cfg->mass.inertia_full[i] = cfg->mass.inertia_empty[i] = 1.0;
+}
+
+static int is_time_axis(const char *name)
+{
+    return strcmp(name, "time") == 0 || strcmp(name, "t") == 0;
+}
+
+static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
+{
+    for (int k = 0; k < U_N; k++)
+        m->in_k[k] = -1;
+    if (tab == NULL)
+        return LV_OK;
+    if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
+        return lv_fail(err, LV_ERR_INPUT,
+                       "dof6: input table '%s' must have exactly one axis named 'time' (has %zu, "
+                       "the first named '%s')",
+                       lv_table_name(tab), lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
+    lv_status st = lv_table_expect_unit(tab, 1, 0, "s", "dof6: inputs", err);
+    if (st != LV_OK)
+        return st;
+    int any = 0;
+    for (int k = 0; k < U_N; k++) {
+        size_t idx;
+        if (lv_table_out_index(tab, input_names[k], &idx, NULL) == LV_OK) {
+            if ((st = lv_table_expect_unit(tab, 0, idx, k < U_THR ? "rad" : "1", "dof6: inputs",
+                                           err)) != LV_OK)
+                return st;
+            m->in_k[k] = (int)idx;
+            any = 1;
+        }
+    }
+    if (!any)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "dof6: input table '%s' has none of the outputs 'gimbal_pitch', "
+                       "'gimbal_yaw', 'throttle' (its first output is '%s')",
+                       lv_table_name(tab), lv_table_out_name(tab, 0));
+    m->in_buf = malloc(lv_table_n_out(tab) * sizeof *m->in_buf);
+    if (m->in_buf == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    m->inputs = tab;
+    return LV_OK;
+}
+
+static lv_status setup_ends(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
+{
+    const size_t n = cfg->n_ends;
+    if (n > 0 && cfg->ends == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: n_ends = %zu but ends is NULL", n);
+    m->events = calloc(n + 1, sizeof *m->events);
+    m->event_names = calloc(n + 1, sizeof *m->event_names);
+    m->ends = calloc(n + 1, sizeof *m->ends);
+    m->end_off = calloc(n + 1, sizeof *m->end_off);
+    if (!m->events || !m->event_names || !m->ends || !m->end_off)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
+    m->events[0] = (lv_event_def){m->event_names[0],
+                                  "Propellant exhausted: m falls through the start mass minus "
+                                  "the propellant",
+                                  LV_DIR_FALLING};
+    for (size_t i = 0; i < n; i++) {
+        const lv_dof3_end *e = &cfg->ends[i];
+        if (e->kind < LV_DOF3_END_ALTITUDE || e->kind > LV_DOF3_END_IMPACT)
+            return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: unknown kind %d", i, (int)e->kind);
+        const char *nm = e->name != NULL ? e->name : end_info[e->kind].name;
+        if (nm[0] == '\0' || strlen(nm) >= EVENT_NAME_MAX)
+            return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: name '%s' is empty or longer "
+                           "than %d characters", i, nm, EVENT_NAME_MAX - 1);
+        for (size_t j = 0; j <= i; j++)
+            if (strcmp(m->event_names[j], nm) == 0)
+                return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: event name '%s' is used twice",
+                               i, nm);
+        if (!isfinite(e->value))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: end '%s': value %g is not finite", nm,
+                           e->value);
+        if (e->direction < LV_DIR_FALLING || e->direction > LV_DIR_RISING)
+            return lv_fail(err, LV_ERR_INPUT, "dof6: end '%s': direction %d", nm,
+                           (int)e->direction);
+        snprintf(m->event_names[i + 1], EVENT_NAME_MAX, "%s", nm);
+        m->ends[i] = *e;
+        m->ends[i].name = m->event_names[i + 1];
+        lv_dir dir = e->direction;
+        if (e->kind == LV_DOF3_END_APOGEE || e->kind == LV_DOF3_END_IMPACT)
+            dir = LV_DIR_FALLING;
+        m->events[i + 1] =
+            (lv_event_def){m->event_names[i + 1], end_info[e->kind].description, dir};
+    }
+    m->n_ends = n;
+    return LV_OK;
+}
+
+/* 1 if the symmetric tensor of elements e[6] is positive definite (Sylvester's criterion). */
+static int positive_definite(const double *e)
+{
+    const lv_mat3 I = tensor(e);
+    const double d1 = I.m[0][0], d2 = I.m[0][0] * I.m[1][1] - I.m[0][1] * I.m[1][0];
+    const double d3 = I.m[0][0] * (I.m[1][1] * I.m[2][2] - I.m[1][2] * I.m[2][1]) -
+                      I.m[0][1] * (I.m[1][0] * I.m[2][2] - I.m[1][2] * I.m[2][0]) +
+                      I.m[0][2] * (I.m[1][0] * I.m[2][1] - I.m[1][1] * I.m[2][0]);
+    return d1 > 0.0 && d2 > 0.0 && d3 > 0.0;
+}
+
+static lv_status setup_mass(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
+{
+    m->mp = cfg->mass;
+    if (m->mp.m_full == 0.0) {
+        m->mp.m_full = cfg->m0;
+        m->mp.m_empty = cfg->m0 - cfg->propellant;
+    }
+    const lv_dof6_mass *mp = &m->mp;
+    if (!isfinite(mp->m_full) || !isfinite(mp->m_empty) || !(mp->m_empty > 0.0) ||
+        mp->m_empty > mp->m_full)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: mass properties: m_full = %g kg and m_empty = "
+                       "%g kg must satisfy m_full >= m_empty > 0", mp->m_full, mp->m_empty);
+    const char *const nm[6] = {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
+    for (int i = 0; i < 6; i++)
+        if (!isfinite(mp->inertia_full[i]) || !isfinite(mp->inertia_empty[i]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: inertia %s = %g (full), %g (empty) kg m^2 "
+                           "must be finite", nm[i], mp->inertia_full[i], mp->inertia_empty[i]);
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(mp->cg_full[i]) || !isfinite(mp->cg_empty[i]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: centre of mass component %d = %g (full), "
+                           "%g (empty) m must be finite", i, mp->cg_full[i], mp->cg_empty[i]);
+    /* a convex combination of positive definite tensors is positive definite: both ends */
+    if (!positive_definite(mp->inertia_full) || !positive_definite(mp->inertia_empty))
+        return lv_fail(err, LV_ERR_INPUT, "dof6: the inertia tensor (Ixx %g, Iyy %g, Izz %g, Ixy "
+                       "%g, Ixz %g, Iyz %g kg m^2 full; Ixx %g, Iyy %g, Izz %g empty) is not "
+                       "positive definite at both ends", mp->inertia_full[0],
+                       mp->inertia_full[1], mp->inertia_full[2], mp->inertia_full[3],
+                       mp->inertia_full[4], mp->inertia_full[5], mp->inertia_empty[0],
+                       mp->inertia_empty[1], mp->inertia_empty[2]);
+    return LV_OK;
+}
+
+static lv_status setup_aero(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
+{
+    lv_status st;
+    if (cfg->aero != NULL) {
+        if ((st = lv_aero_init(&m->aero, cfg->aero, err)) != LV_OK)
+            return lv_fail_prefix(err, st, "dof6");
+        m->has_aero = 1;
+    }
+    const lv_dof6_moments *mo = cfg->moments;
+    if (mo == NULL)
+        return LV_OK;
+    if (cfg->aero == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: aerodynamic moments need the force set (its "
+                       "reference area): aero is NULL");
+    if (!(mo->b_ref > 0.0) || !(mo->c_ref > 0.0) || !isfinite(mo->b_ref) || !isfinite(mo->c_ref))
+        return lv_fail(err, LV_ERR_INPUT, "dof6: moments: b_ref = %g m and c_ref = %g m must be "
+                       "> 0", mo->b_ref, mo->c_ref);
+    if (!isfinite(mo->clp) || !isfinite(mo->cmq) || !isfinite(mo->cnr))
+        return lv_fail(err, LV_ERR_INPUT, "dof6: moments: Clp = %g, Cmq = %g, Cnr = %g 1/rad "
+                       "must be finite", mo->clp, mo->cmq, mo->cnr);
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(mo->r_mrp[i]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: moments: reference point component %d = %g m",
+                           i, mo->r_mrp[i]);
+    /* Cl, Cm, Cn through the coefficient machinery of lv_aero, in the slots of CA, CN, CY */
+    lv_aero_config mc;
+    lv_aero_config_default(&mc);
+    mc.axes = LV_AERO_BODY;
+    mc.s_ref = cfg->aero->s_ref;
+    const lv_aero_coef *src[3] = {&mo->cl, &mo->cm, &mo->cn};
+    static const char *const names[3] = {"Cl", "Cm", "Cn"};
+    for (int i = 0; i < 3; i++) {
+        mc.coef[i] = *src[i];
+        if (mc.coef[i].table != NULL && mc.coef[i].output == NULL &&
+            lv_table_n_out(mc.coef[i].table) > 1)
+            mc.coef[i].output = names[i];
+    }
+    if ((st = lv_aero_init(&m->mom, &mc, err)) != LV_OK)
+        return lv_fail_prefix(err, st, "dof6: moment coefficients (Cl, Cm, Cn in the slots of CA, "
+                              "CN, CY)");
+    m->has_moments = 1;
+    m->clp = mo->clp;
+    m->cmq = mo->cmq;
+    m->cnr = mo->cnr;
+    m->b_ref = mo->b_ref;
+    m->c_ref = mo->c_ref;
+    m->r_mrp = lv_v3(mo->r_mrp[0], mo->r_mrp[1], mo->r_mrp[2]);
+    return LV_OK;
+}
+
+static lv_status setup_engines(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
+{
+    lv_status st;
+    if (cfg->n_engines == 0)
+        return LV_OK;
+    if (cfg->engines == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: n_engines = %zu but engines is NULL",
+                       cfg->n_engines);
+    m->eng = calloc(cfg->n_engines, sizeof *m->eng);
+    m->geom = calloc(cfg->n_engines, sizeof *m->geom);
+    if (m->eng == NULL || m->geom == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    size_t nbuf = 1;
+    for (size_t i = 0; i < cfg->n_engines; i++) {
+        if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
+            return st;
+        m->n_eng = i + 1;
+        if (m->eng[i].n_out > nbuf)
+            nbuf = m->eng[i].n_out;
+        if (cfg->engine_geom != NULL) {
+            const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
+            if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
+                !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
+                return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m "
+                               "and misalignment (%g, %g) rad must be finite", m->eng[i].name,
+                               g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
+            m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
+        }
+    }
+    m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
+    if (m->eng_buf == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    return LV_OK;
+}
+
+lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
+{
+    *out = NULL;
+    lv_status st;
+    lv_dof6 *m = calloc(1, sizeof *m);
+    if (m == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "dof6");
+    if (!isfinite(cfg->m0) || !(cfg->m0 > 0.0)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof6: start mass m0 = %g kg (must be > 0)", cfg->m0);
+        goto fail;
+    }
+    if (!isfinite(cfg->propellant) || cfg->propellant < 0.0 || !(cfg->propellant < cfg->m0)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof6: propellant = %g kg (must be >= 0 and less than "
+                     "the start mass m0 = %g kg)", cfg->propellant, cfg->m0);
+        goto fail;
+    }
+    const double fin[] = {cfg->start_lon, cfg->start_h, cfg->start_fpa, cfg->start_chi,
+                          cfg->start_time, cfg->start_psi, cfg->start_theta, cfg->start_phi,
+                          cfg->start_p, cfg->start_q, cfg->start_r, cfg->gimbal_pitch,
+                          cfg->gimbal_yaw, cfg->throttle};
+    static const char *const fin_names[] = {"start_lon", "start_h", "start_fpa", "start_chi",
+                                            "start_time", "start_psi", "start_theta",
+                                            "start_phi", "start_p", "start_q", "start_r",
+                                            "gimbal_pitch", "gimbal_yaw", "throttle"};
+    for (size_t i = 0; i < sizeof fin / sizeof fin[0]; i++)
+        if (!isfinite(fin[i])) {
+            st = lv_fail(err, LV_ERR_INPUT, "dof6: %s = %g (must be finite)", fin_names[i],
+                         fin[i]);
+            goto fail;
+        }
+    if (!(fabs(cfg->start_lat) <= 0.5 * LV_PI) || !(cfg->start_vel >= 0.0) ||
+        !isfinite(cfg->start_vel)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof6: start_lat = %g rad (must be in [-pi/2, pi/2]), "
+                     "start_vel = %g m/s (must be >= 0)", cfg->start_lat, cfg->start_vel);
+        goto fail;
+    }
+    if ((st = lv_planet_check(&cfg->planet, err)) != LV_OK) {
+        lv_fail_prefix(err, st, "dof6");
+        goto fail;
+    }
+    m->world.planet = cfg->planet;
+    lv_flight_world_init(&m->world);
+    if (cfg->gravity == NULL) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof6: no gravity model (gravity is NULL)");
+        goto fail;
+    }
+    m->world.grav = cfg->gravity;
+    lv_gravity_info gi;
+    lv_gravity_info_get(m->world.grav, &gi);
+    m->gm = gi.gm;
+    const size_t nws = lv_gravity_ws_size(m->world.grav);
+    m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
+    if (m->grav_ws == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    if (cfg->atmo != NULL) {
+        m->world.atmo_model = lv_atmo_model_of(cfg->atmo);
+        m->world.atmo_par = lv_atmo_par(cfg->atmo);
+    }
+    m->world.wind = cfg->wind;
+    m->world.wind_user = cfg->wind_user;
+    m->domain[0] = (lv_domain_def){
+        "h", "m", cfg->atmo != NULL ? LV_ATMO_ALT_MIN : -20e3,
+        "the vehicle is under the ground; an `impact` end ends the phase on the ground"};
+
+    if ((st = setup_mass(m, cfg, err)) != LV_OK || (st = setup_engines(m, cfg, err)) != LV_OK ||
+        (st = setup_aero(m, cfg, err)) != LV_OK || (st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
+        goto fail;
+    m->const_throttle = m->in_k[U_THR] < 0;
+    if (m->const_throttle)
+        for (size_t i = 0; i < m->n_eng; i++)
+            if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
+                st = lv_fail(err, LV_ERR_INPUT,
+                             "dof6: throttle = %g is outside the limits [%g, %g] of engine '%s'",
+                             cfg->throttle, m->eng[i].thr_min, m->eng[i].thr_max,
+                             m->eng[i].name);
+                goto fail;
+            }
+    m->stop_at_burnout = cfg->stop_at_burnout != 0;
+    if ((st = setup_ends(m, cfg, err)) != LV_OK)
+        goto fail;
+
+    memcpy(m->states, state_tpl, sizeof m->states);
+    m->states[LV_X6_M].start = cfg->m0;
+    m->states[LV_X6_M].nominal = cfg->m0;
+    memcpy(m->params, param_tpl, sizeof m->params);
+    const double pv[P_N] = {cfg->start_lat,   cfg->start_lon,   cfg->start_h,
+                            cfg->start_vel,   cfg->start_fpa,   cfg->start_chi,
+                            cfg->start_time,  cfg->start_psi,   cfg->start_theta,
+                            cfg->start_phi,   cfg->start_p,     cfg->start_q,
+                            cfg->start_r,     cfg->gimbal_pitch, cfg->gimbal_yaw,
+                            cfg->throttle,    cfg->propellant};
+    for (int i = 0; i < P_N; i++)
+        m->params[i].start = pv[i];
+
+    m->def = (lv_model_def){
+        .name = m->name,
+        .description = "6-DoF variable-mass rigid body over a rotating planet, ECI states and "
+                       "attitude quaternion",
+        .n_states = LV_X6_N,
+        .n_params = P_N,
+        .n_outputs = O_N,
+        .n_events = 1 + m->n_ends,
+        .states = m->states,
+        .params = m->params,
+        .outputs = output_vars,
+        .events = m->events,
+        .inst_size = sizeof(dof6_inst),
+        .start = dof6_start,
+        .init = dof6_init,
+        .rhs = dof6_rhs,
+        .event_g = dof6_g,
+        .on_event = dof6_on_event,
+        .next_time_event = dof6_next_time_event,
+        .outputs_fn = dof6_outputs,
+        .abs_error = abs_error,
+        .n_domain = 1,
+        .domain = m->domain,
+        .domain_q = dof6_domain_q,
+        .last_error = dof6_last_error_cb,
+        .time_event_name = dof6_time_event_name,
+    };
+    m->inst.m = m;
+    if ((st = lv_model_validate(&m->def, err)) != LV_OK)
+        goto fail;
+    *out = m;
+    return LV_OK;
+fail:
+    lv_dof6_free(m);
+    return st;
+}
+
+void lv_dof6_free(lv_dof6 *m)
+{
+    if (m == NULL)
+        return;
+    lv_aero_clear(&m->aero);
+    lv_aero_clear(&m->mom);
+    free(m->eng);
+    free(m->geom);
+    free(m->eng_buf);
+    free(m->in_buf);
+    free(m->grav_ws);
+    free(m->events);
+    free(m->event_names);
+    free(m->ends);
+    free(m->end_off);
+    free(m);
+}
+
+const lv_model_def *lv_dof6_def(const lv_dof6 *m) { return &m->def; }
+
+void *lv_dof6_inst(lv_dof6 *m) { return &m->inst; }
+
+const char *lv_dof6_last_error(const lv_dof6 *m) { return m->inst.msg; }
