@@ -208,7 +208,7 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
 
 const lv_phase_type lv_phase_type_flat6 = {
     .name = "flat6",
-    .description = "6-DoF point mass carrying a stack of stages over a flat world (the paper's "
+    .description = "point mass with the paper's 13 states (attitude kinematics at constant rates, no moments) carrying a stack of stages over a flat world (the paper's "
                    "test case; thrust along +z; drag along -v_air in the environment's air)",
     .world = LV_WORLD_FLAT,
     .keys = keys,

@@ -677,7 +677,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
     }
     m->def = (lv_model_def){
         .name = m->name,
-        .description = "6-DoF point mass carrying a stack of stages over a flat world",
+        .description = "point mass with the paper's 13 states (attitude at constant rates, no moments) carrying a stack of stages over a flat world",
         .n_states = LV_FLAT_N,
         .n_params = PF_N,
         .n_outputs = m->air.on ? OF_N_AIR : OF_N,
@@ -1010,7 +1010,7 @@ lv_status lv_flat_e2e_create(const lv_flat_e2e_config *cfg, lv_flat_e2e **out, l
     m->params[PF_G].start = cfg->g;
     m->def = (lv_model_def){
         .name = m->name,
-        .description = "End-to-end: every stage a 6-DoF point mass, joined until separation",
+        .description = "End-to-end: every stage a point mass with attitude kinematics, joined until separation",
         .n_states = n * LV_FLAT_N,
         .n_params = PF_N + n - 1,
         .n_outputs = n,

@@ -24,7 +24,7 @@ expect() { # expect CODE PATTERN -- command...
 expect 0 "vertical_ascent" -- "$lvsim" models
 # the mission model types too, and their variables: the names of set:, end: and the files
 expect 0 "^dof3 +3-DoF .*\(planet world\)" -- "$lvsim" models
-expect 0 "^flat6 +6-DoF .*\(flat world\)" -- "$lvsim" models
+expect 0 "^flat6 +point mass with the paper.s 13 states .*\(flat world\)" -- "$lvsim" models
 expect 0 "^state +r_eci_x +m " -- "$lvsim" vars dof3
 expect 0 "^output +q_dyn +Pa " -- "$lvsim" vars dof3
 expect 0 "^mission +start_lat +rad " -- "$lvsim" vars dof3
