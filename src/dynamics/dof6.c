@@ -930,6 +930,46 @@ static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
                        "dof6: input table '%s' has none of the outputs 'gimbal_pitch', "
                        "'gimbal_yaw', 'throttle' (its first output is '%s')",
                        lv_table_name(tab), lv_table_out_name(tab, 0));
+    for (size_t o = 0; o < lv_table_n_out(tab); o++) { /* a column nobody reads is a typo */
+        int known = 0;
+        for (int k = 0; k < U_N; k++)
+            known |= m->in_k[k] == (int)o;
+        if (!known)
+            return lv_fail(err, LV_ERR_INPUT, "dof6: input table '%s': column '%s' is not an "
+                           "input (gimbal_pitch, gimbal_yaw, throttle)", lv_table_name(tab),
+                           lv_table_out_name(tab, o));
+    }
+    /* the values at the breakpoints within the ranges the constants are held to (linear and
+     * PCHIP interpolation do not overshoot them; the ends are clamped): gimbal angles within
+     * +-90 deg, the throttle within every engine's limits */
+    size_t nb = 0;
+    const double *tb = lv_table_breakpoints(tab, 0, &nb);
+    double *row = malloc((lv_table_n_out(tab) + 1) * sizeof *row);
+    if (row == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_table_cursor cur = {0};
+    for (size_t i = 0; i < nb && st == LV_OK; i++) {
+        if ((st = lv_table_eval1(tab, &cur, tb[i], row, err)) != LV_OK)
+            break;
+        for (int k = 0; k < U_N && st == LV_OK; k++) {
+            if (m->in_k[k] < 0)
+                continue;
+            const double v = row[m->in_k[k]];
+            if (k < U_THR && !(fabs(v) <= 0.5 * LV_PI))
+                st = lv_fail(err, LV_ERR_INPUT, "dof6: input table '%s': %s = %g rad at time "
+                             "%g s is outside [-pi/2, pi/2]", lv_table_name(tab),
+                             input_names[k], v, tb[i]);
+            for (size_t e = 0; k == U_THR && e < m->n_eng && st == LV_OK; e++)
+                if (!(v >= m->eng[e].thr_min && v <= m->eng[e].thr_max))
+                    st = lv_fail(err, LV_ERR_INPUT, "dof6: input table '%s': throttle = %g at "
+                                 "time %g s is outside the limits [%g, %g] of engine '%s'",
+                                 lv_table_name(tab), v, tb[i], m->eng[e].thr_min,
+                                 m->eng[e].thr_max, m->eng[e].name);
+        }
+    }
+    free(row);
+    if (st != LV_OK)
+        return st;
     m->in_buf = malloc(lv_table_n_out(tab) * sizeof *m->in_buf);
     if (m->in_buf == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");

@@ -203,8 +203,21 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
         return LV_OK;
     char what[LV_WHAT_MAX];
     snprintf(what, sizeof what, "phase '%s', inputs", phase);
-    return lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->inputs_file,
-                       &cfg->inputs_var, &cfg->inputs);
+    if ((st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->inputs_file,
+                          &cfg->inputs_var, &cfg->inputs)) != LV_OK)
+        return st;
+    /* one source per input: a column of the table replaces the constant, so both is an error */
+    for (int k = 0; k < U_N; k++) {
+        char dk[32];
+        snprintf(dk, sizeof dk, "%s_deg", names[k]);
+        const lv_ynode *key = lv_pk_key(n, names[k]) ? lv_pk_key(n, names[k])
+                              : deg[k] ? lv_pk_key(n, dk) : NULL;
+        size_t idx;
+        if (key != NULL && lv_table_out_index(cfg->inputs, names[k], &idx, NULL) == LV_OK)
+            return lv_pk_fail(c, key, "%s: '%s' is also a column of table '%s': give it once",
+                              what, names[k], lv_table_name(cfg->inputs));
+    }
+    return LV_OK;
 }
 
 /* moments: {Cl, Cm, Cn, Clp, Cmq, Cnr, b_ref, c_ref, mrp_x, mrp_y, mrp_z, table}. */

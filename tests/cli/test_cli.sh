@@ -323,6 +323,32 @@ d3="$src/examples/dof3-branch/mission.yaml"
 [ "$(loaded "$lvsim" plot "$work/ld1")" -gt 0 ] && [ -f "$work/ld1/plots/altitude.png" ] \
   && pass=$((pass + 1)) || { echo "FAIL: lvsim plot did not load PLplot or draw"; fails=$((fails + 1)); }
 
+# dof6 inputs from a table: the values held to the constants' ranges, no column unread, no
+# input given twice (check refuses what run would)
+dof6_yaml() { # dof6_yaml TABLE [INPUT-KEYS]
+  cat <<YAML
+mission: {name: r}
+environment: {world: planet, planet: earth, gravity: j2, atmosphere: none}
+parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 1000, start_vel: 1, start_fpa_deg: 89, start_chi_deg: 90}
+stages:
+  - {name: s1, dry_mass: 20000, propellant_mass: 100000, engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}],
+     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6}, engine_position: {x: -30}}}
+phases:
+  - {name: P, model: dof6, stages: [s1], stop_time: 2, attitude: {psi_deg: 90, theta_deg: 89}, inputs: {table: $1${2:-}}}
+YAML
+}
+printf 'time [s],throttle\n0,3\n10,3\n' > "$work/thr3.csv"
+printf 'time [s],gimbal_pitch [rad]\n0,3\n10,3\n' > "$work/gim3.csv"
+printf 'time [s],gimbal_pitch [rad],gimbal_roll [rad]\n0,0,0\n10,0,0\n' > "$work/roll.csv"
+printf 'time [s],gimbal_pitch [rad]\n0,0.01\n10,0.01\n' > "$work/gim.csv"
+dof6_yaml thr3.csv > "$work/d6a.yaml"; dof6_yaml gim3.csv > "$work/d6b.yaml"
+dof6_yaml gim.csv ", gimbal_pitch_deg: 5" > "$work/d6c.yaml"
+expect 2 "throttle = 3 at time 0 s is outside the limits \[0, 1\] of engine 'e'" -- "$lvsim" check "$work/d6a.yaml"
+expect 2 "gimbal_pitch = 3 rad at time 0 s is outside \[-pi/2, pi/2\]" -- "$lvsim" run "$work/d6b.yaml" -o "$work/d6b" --no-plots
+expect 2 "'gimbal_pitch' is also a column of table 'gim': give it once" -- "$lvsim" check "$work/d6c.yaml"
+dof6_yaml roll.csv > "$work/d6d.yaml"
+expect 2 "column 'gimbal_roll' is not an input \(gimbal_pitch, gimbal_yaw, throttle\)" -- "$lvsim" check "$work/d6d.yaml"
+
 # lvsim target (issue 13): a drag-free shot over flat ground that must land 800 m away; the
 # closed form gives gamma = asin(800 g / v^2) / 2 = 25.8387 deg for 100 m/s
 shot() { # shot RANGE: the mission with its targeting section
