@@ -13,6 +13,7 @@
 #include "core/units.h"
 #include "core/vec3.h"
 #include "dynamics/flight.h"
+#include "dynamics/flight_ends.h"
 #include "dynamics/guidance.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof3.h"
@@ -126,20 +127,9 @@ static const lv_var output_vars[O_N] = {
 
 static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
 
-static const struct {
-    const char *name, *description;
-} end_info[] = {
-    {"", ""},
-    {"altitude", "Geodetic altitude crosses the configured value"},
-    {"speed_rel", "Speed relative to the rotating planet crosses the configured value"},
-    {"speed_inertial", "Inertial speed crosses the configured value"},
-    {"apogee", "Radial velocity falls through zero"},
-    {"impact", "Geodetic altitude falls through the configured ground level"},
-};
 
 /* ---- model data -------------------------------------------------------------------- */
 
-#define EVENT_NAME_MAX 48
 
 typedef struct dof3_inst {
     lv_dof3 *m;           /* NULL in a block lv_simulate zeroed itself */
@@ -159,12 +149,7 @@ struct lv_dof3 {
     char name[64];
     lv_var states[LV_X3_N];
     lv_var params[P_N];
-    size_t n_ends;
-    lv_dof3_end *ends;           /* [n_ends], names point into event_names */
-    double *end_off;             /* [n_ends] m, an impact end's offset for a start on (or below)
-                                    its level: set by init() (one simulation at a time) */
-    lv_event_def *events;        /* [1 + n_ends] */
-    char (*event_names)[EVENT_NAME_MAX];
+    lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
 
     lv_flight_world world;       /* planet, gravity, atmosphere, wind */
     lv_domain_def domain[1];     /* the altitude floor */
@@ -425,12 +410,7 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
      * below its weight) has no crossing from above to find: its impact is 1 micrometre below
      * where it starts. */
-    for (size_t i = 0; i < s->m->n_ends; i++) {
-        const lv_dof3_end *e = &s->m->ends[i];
-        s->m->end_off[i] = e->kind == LV_DOF3_END_IMPACT && kin.h <= e->value
-                               ? e->value - kin.h + 1e-6
-                               : 0.0;
-    }
+    lv_flight_ends_start(&s->m->fe, kin.h);
     s->r0_unit[0] = kin.r_ecef.x / rn;
     s->r0_unit[1] = kin.r_ecef.y / rn;
     s->r0_unit[2] = kin.r_ecef.z / rn;
@@ -444,37 +424,11 @@ static int dof3_g(double t, const double *x, const double *p, double *g, void *i
     const lv_dof3 *m = s->m;
     /* burnout: disarmed (a constant) once the engines are off */
     g[0] = s->engines_on ? x[LV_X3_M] - s->m_burnout : 1.0;
-    if (m->n_ends == 0)
+    if (m->fe.n == 0)
         return 0;
     lv_flight_kin kin;
-    lv_flight_to_ecef(&m->world, t, r_of(x), v_of(x), &kin);
-    int have_h = 0;
-    for (size_t i = 0; i < m->n_ends; i++) {
-        const lv_dof3_end *e = &m->ends[i];
-        double gi = 0.0;
-        switch (e->kind) {
-        case LV_DOF3_END_ALTITUDE:
-        case LV_DOF3_END_IMPACT:
-            if (!have_h) {
-                lv_flight_geodetic(&m->world, &kin, 0, 0);
-                have_h = 1;
-            }
-            gi = kin.h - e->value + m->end_off[i];
-            break;
-        case LV_DOF3_END_SPEED_REL:
-            gi = lv_v3_norm(kin.v_rel) - e->value;
-            break;
-        case LV_DOF3_END_SPEED_INERTIAL:
-            gi = hypot(hypot(x[LV_X3_VX], x[LV_X3_VY]), x[LV_X3_VZ]) - e->value;
-            break;
-        case LV_DOF3_END_APOGEE: /* d|r|/dt = r.v / |r| (w x r is normal to r) */
-            gi = (x[LV_X3_RX] * x[LV_X3_VX] + x[LV_X3_RY] * x[LV_X3_VY] +
-                  x[LV_X3_RZ] * x[LV_X3_VZ]) /
-                 hypot(hypot(x[LV_X3_RX], x[LV_X3_RY]), x[LV_X3_RZ]);
-            break;
-        }
-        g[1 + i] = gi;
-    }
+    lv_flight_to_ecef(&m->world, t, x + LV_X3_RX, x + LV_X3_VX, &kin);
+    lv_flight_ends_eval(&m->fe, &m->world, &kin, x + LV_X3_RX, x + LV_X3_VX, g + 1);
     return 0;
 }
 
@@ -502,8 +456,8 @@ static lv_event_action dof3_on_event(double t, double *x, const double *p, const
         s->burned_out = 1;
         act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
     }
-    for (size_t i = 0; i < m->n_ends; i++)
-        if (fired[1 + i] && m->ends[i].stop)
+    for (size_t i = 0; i < m->fe.n; i++)
+        if (fired[1 + i] && m->fe.ends[i].stop)
             act = LV_EVENT_STOP;
     return act;
 }
@@ -769,53 +723,7 @@ static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
 
 static lv_status setup_ends(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
 {
-    const size_t n = cfg->n_ends;
-    if (n > 0 && cfg->ends == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "dof3: n_ends = %zu but ends is NULL", n);
-    m->events = calloc(n + 1, sizeof *m->events);
-    m->event_names = calloc(n + 1, sizeof *m->event_names);
-    m->ends = calloc(n + 1, sizeof *m->ends);
-    m->end_off = calloc(n + 1, sizeof *m->end_off);
-    if (!m->events || !m->event_names || !m->ends || !m->end_off)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
-    m->events[0] = (lv_event_def){m->event_names[0],
-                                  "Propellant exhausted: m falls through the start mass minus "
-                                  "the propellant",
-                                  LV_DIR_FALLING};
-    for (size_t i = 0; i < n; i++) {
-        const lv_dof3_end *e = &cfg->ends[i];
-        if (e->kind < LV_DOF3_END_ALTITUDE || e->kind > LV_DOF3_END_IMPACT)
-            return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: unknown kind %d", i, (int)e->kind);
-        const char *nm = e->name != NULL ? e->name : end_info[e->kind].name;
-        if (nm[0] == '\0' || strlen(nm) >= EVENT_NAME_MAX)
-            return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: name '%s' is empty or longer "
-                           "than %d characters", i, nm, EVENT_NAME_MAX - 1);
-        for (size_t j = 0; j <= i; j++)
-            if (strcmp(m->event_names[j], nm) == 0)
-                return lv_fail(err, LV_ERR_INPUT, "dof3: ends[%zu]: event name '%s' is used twice",
-                               i, nm);
-        if (!isfinite(e->value))
-            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': value %g is not finite", nm,
-                           e->value);
-        if ((e->kind == LV_DOF3_END_SPEED_REL || e->kind == LV_DOF3_END_SPEED_INERTIAL) &&
-            e->value < 0.0)
-            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': speed %g m/s is negative", nm,
-                           e->value);
-        if (e->direction < LV_DIR_FALLING || e->direction > LV_DIR_RISING)
-            return lv_fail(err, LV_ERR_INPUT, "dof3: end '%s': direction %d", nm,
-                           (int)e->direction);
-        snprintf(m->event_names[i + 1], EVENT_NAME_MAX, "%s", nm);
-        m->ends[i] = *e;
-        m->ends[i].name = m->event_names[i + 1];
-        lv_dir dir = e->direction;
-        if (e->kind == LV_DOF3_END_APOGEE || e->kind == LV_DOF3_END_IMPACT)
-            dir = LV_DIR_FALLING;
-        m->events[i + 1] =
-            (lv_event_def){m->event_names[i + 1], end_info[e->kind].description, dir};
-    }
-    m->n_ends = n;
-    return LV_OK;
+    return lv_flight_ends_init(&m->fe, "dof3", cfg->ends, cfg->n_ends, err);
 }
 
 lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
@@ -981,11 +889,11 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .n_states = LV_X3_N,
         .n_params = P_N,
         .n_outputs = O_N,
-        .n_events = 1 + m->n_ends,
+        .n_events = 1 + m->fe.n,
         .states = m->states,
         .params = m->params,
         .outputs = output_vars,
-        .events = m->events,
+        .events = m->fe.events,
         .inst_size = sizeof(dof3_inst),
         .start = dof3_start,
         .init = dof3_init,
@@ -1022,10 +930,7 @@ void lv_dof3_free(lv_dof3 *m)
     free(m->eng_buf);
     free(m->inputs.buf);
     free(m->grav_ws);
-    free(m->events);
-    free(m->event_names);
-    free(m->ends);
-    free(m->end_off);
+    lv_flight_ends_clear(&m->fe);
     free(m);
 }
 

@@ -17,6 +17,7 @@
 #include "core/units.h"
 #include "core/vec3.h"
 #include "dynamics/flight.h"
+#include "dynamics/flight_ends.h"
 #include "dynamics/guidance.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof6.h"
@@ -152,20 +153,9 @@ static const lv_var output_vars[O_N] = {
 
 static const char *const input_names[U_N] = {"gimbal_pitch", "gimbal_yaw", "throttle"};
 
-static const struct {
-    const char *name, *description;
-} end_info[] = {
-    {"", ""},
-    {"altitude", "Geodetic altitude crosses the configured value"},
-    {"speed_rel", "Speed relative to the rotating planet crosses the configured value"},
-    {"speed_inertial", "Inertial speed crosses the configured value"},
-    {"apogee", "Radial velocity falls through zero"},
-    {"impact", "Geodetic altitude falls through the configured ground level"},
-};
 
 /* ---- model data -------------------------------------------------------------------- */
 
-#define EVENT_NAME_MAX 48
 
 typedef struct dof6_inst {
     lv_dof6 *m;           /* NULL in a block lv_simulate zeroed itself */
@@ -188,11 +178,7 @@ struct lv_dof6 {
     char name[64];
     lv_var states[LV_X6_N];
     lv_var params[P_N];
-    size_t n_ends;
-    lv_dof3_end *ends;
-    double *end_off;
-    lv_event_def *events;
-    char (*event_names)[EVENT_NAME_MAX];
+    lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
 
     lv_flight_world world;
     lv_domain_def domain[1];
@@ -650,11 +636,7 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     lv_flight_geodetic(&s->m->world, &kin, 0, 0);
     for (int i = 0; i < 3; i++)
         s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
-    for (size_t i = 0; i < s->m->n_ends; i++) {
-        const lv_dof3_end *e = &s->m->ends[i];
-        s->m->end_off[i] =
-            e->kind == LV_DOF3_END_IMPACT && kin.h <= e->value ? e->value - kin.h + 1e-6 : 0.0;
-    }
+    lv_flight_ends_start(&s->m->fe, kin.h);
     return 0;
 }
 
@@ -664,37 +646,11 @@ static int dof6_g(double t, const double *x, const double *p, double *g, void *i
     const dof6_inst *s = inst;
     const lv_dof6 *m = s->m;
     g[0] = s->engines_on ? x[LV_X6_M] - s->m_burnout : 1.0;
-    if (m->n_ends == 0)
+    if (m->fe.n == 0)
         return 0;
     lv_flight_kin kin;
     lv_flight_to_ecef(&m->world, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
-    int have_h = 0;
-    for (size_t i = 0; i < m->n_ends; i++) {
-        const lv_dof3_end *e = &m->ends[i];
-        double gi = 0.0;
-        switch (e->kind) {
-        case LV_DOF3_END_ALTITUDE:
-        case LV_DOF3_END_IMPACT:
-            if (!have_h) {
-                lv_flight_geodetic(&m->world, &kin, 0, 0);
-                have_h = 1;
-            }
-            gi = kin.h - e->value + m->end_off[i];
-            break;
-        case LV_DOF3_END_SPEED_REL:
-            gi = lv_v3_norm(kin.v_rel) - e->value;
-            break;
-        case LV_DOF3_END_SPEED_INERTIAL:
-            gi = hypot(hypot(x[LV_X6_VX], x[LV_X6_VY]), x[LV_X6_VZ]) - e->value;
-            break;
-        case LV_DOF3_END_APOGEE:
-            gi = (x[LV_X6_RX] * x[LV_X6_VX] + x[LV_X6_RY] * x[LV_X6_VY] +
-                  x[LV_X6_RZ] * x[LV_X6_VZ]) /
-                 hypot(hypot(x[LV_X6_RX], x[LV_X6_RY]), x[LV_X6_RZ]);
-            break;
-        }
-        g[1 + i] = gi;
-    }
+    lv_flight_ends_eval(&m->fe, &m->world, &kin, x + LV_X6_RX, x + LV_X6_VX, g + 1);
     return 0;
 }
 
@@ -721,8 +677,8 @@ static lv_event_action dof6_on_event(double t, double *x, const double *p, const
         s->burned_out = 1;
         act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
     }
-    for (size_t i = 0; i < m->n_ends; i++)
-        if (fired[1 + i] && m->ends[i].stop)
+    for (size_t i = 0; i < m->fe.n; i++)
+        if (fired[1 + i] && m->fe.ends[i].stop)
             act = LV_EVENT_STOP;
     return act;
 }
@@ -979,49 +935,7 @@ static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
 
 static lv_status setup_ends(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
 {
-    const size_t n = cfg->n_ends;
-    if (n > 0 && cfg->ends == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "dof6: n_ends = %zu but ends is NULL", n);
-    m->events = calloc(n + 1, sizeof *m->events);
-    m->event_names = calloc(n + 1, sizeof *m->event_names);
-    m->ends = calloc(n + 1, sizeof *m->ends);
-    m->end_off = calloc(n + 1, sizeof *m->end_off);
-    if (!m->events || !m->event_names || !m->ends || !m->end_off)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    snprintf(m->event_names[0], EVENT_NAME_MAX, "burnout");
-    m->events[0] = (lv_event_def){m->event_names[0],
-                                  "Propellant exhausted: m falls through the start mass minus "
-                                  "the propellant",
-                                  LV_DIR_FALLING};
-    for (size_t i = 0; i < n; i++) {
-        const lv_dof3_end *e = &cfg->ends[i];
-        if (e->kind < LV_DOF3_END_ALTITUDE || e->kind > LV_DOF3_END_IMPACT)
-            return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: unknown kind %d", i, (int)e->kind);
-        const char *nm = e->name != NULL ? e->name : end_info[e->kind].name;
-        if (nm[0] == '\0' || strlen(nm) >= EVENT_NAME_MAX)
-            return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: name '%s' is empty or longer "
-                           "than %d characters", i, nm, EVENT_NAME_MAX - 1);
-        for (size_t j = 0; j <= i; j++)
-            if (strcmp(m->event_names[j], nm) == 0)
-                return lv_fail(err, LV_ERR_INPUT, "dof6: ends[%zu]: event name '%s' is used twice",
-                               i, nm);
-        if (!isfinite(e->value))
-            return lv_fail(err, LV_ERR_INPUT, "dof6: end '%s': value %g is not finite", nm,
-                           e->value);
-        if (e->direction < LV_DIR_FALLING || e->direction > LV_DIR_RISING)
-            return lv_fail(err, LV_ERR_INPUT, "dof6: end '%s': direction %d", nm,
-                           (int)e->direction);
-        snprintf(m->event_names[i + 1], EVENT_NAME_MAX, "%s", nm);
-        m->ends[i] = *e;
-        m->ends[i].name = m->event_names[i + 1];
-        lv_dir dir = e->direction;
-        if (e->kind == LV_DOF3_END_APOGEE || e->kind == LV_DOF3_END_IMPACT)
-            dir = LV_DIR_FALLING;
-        m->events[i + 1] =
-            (lv_event_def){m->event_names[i + 1], end_info[e->kind].description, dir};
-    }
-    m->n_ends = n;
-    return LV_OK;
+    return lv_flight_ends_init(&m->fe, "dof6", cfg->ends, cfg->n_ends, err);
 }
 
 /* 1 if the symmetric tensor of elements e[6] is positive definite (Sylvester's criterion). */
@@ -1256,11 +1170,11 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .n_states = LV_X6_N,
         .n_params = P_N,
         .n_outputs = O_N,
-        .n_events = 1 + m->n_ends,
+        .n_events = 1 + m->fe.n,
         .states = m->states,
         .params = m->params,
         .outputs = output_vars,
-        .events = m->events,
+        .events = m->fe.events,
         .inst_size = sizeof(dof6_inst),
         .start = dof6_start,
         .init = dof6_init,
@@ -1297,10 +1211,7 @@ void lv_dof6_free(lv_dof6 *m)
     free(m->eng_buf);
     free(m->in_buf);
     free(m->grav_ws);
-    free(m->events);
-    free(m->event_names);
-    free(m->ends);
-    free(m->end_off);
+    lv_flight_ends_clear(&m->fe);
     free(m);
 }
 
