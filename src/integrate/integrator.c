@@ -165,7 +165,10 @@ static void sun_err_handler(int code, const char *module, const char *function, 
 {
     (void)code;
     lv_integ *ig = user;
-    snprintf(ig->sun_msg, sizeof ig->sun_msg, "%s/%s: %s", module, function, msg);
+    /* Named after the method the user chose ("dassl" runs SUNDIALS' CVODE with BDF), then
+     * the SUNDIALS module and function that complained. */
+    snprintf(ig->sun_msg, sizeof ig->sun_msg, "(method %s: SUNDIALS %s, %s) %s",
+             lv_method_name(ig->p.method), module, function, msg);
 }
 
 /* ---- creation ------------------------------------------------------------------ */
