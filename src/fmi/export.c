@@ -216,7 +216,7 @@ static lv_status default_binary(char *out, size_t cap, lv_err *err)
     char lib[PATH_MAX];
     if (dladdr(&anchor, &info) == 0 || info.dli_fname == NULL ||
         realpath(info.dli_fname, lib) == NULL)
-        return lv_fail(err, LV_ERR_IO, "fmu: cannot tell where liblvsim_post is, so not where "
+        return lv_fail(err, LV_ERR_IO, "cannot tell where liblvsim_post is, so not where "
                        "the FMU binary %s is", LV_FMU_MODULE);
     char *slash = strrchr(lib, '/');
     if (slash != NULL)
@@ -240,7 +240,7 @@ static lv_status read_file(const char *path, char **out, size_t *len, lv_err *er
 {
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "fmu: cannot read '%s': %s", path, strerror(errno));
+        return lv_fail(err, LV_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
     char *buf = NULL;
     size_t n = 0, cap = 0;
     for (;;) {
@@ -263,7 +263,7 @@ static lv_status read_file(const char *path, char **out, size_t *len, lv_err *er
     fclose(fp);
     if (bad) {
         free(buf);
-        return lv_fail(err, LV_ERR_IO, "fmu: read error on '%s'", path);
+        return lv_fail(err, LV_ERR_IO, "read error on '%s'", path);
     }
     *out = buf;
     *len = n;
@@ -483,7 +483,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
 
 static lv_status zip_fail(zip_t *za, const char *tmp, const char *out, lv_err *err)
 {
-    lv_status st = lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': %s", out,
+    lv_status st = lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", out,
                            za != NULL ? zip_strerror(za) : "zip error");
     if (za != NULL)
         zip_discard(za);
@@ -525,7 +525,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
         err = &local;
     if (mission_path == NULL || phase == NULL || phase[0] == '\0' || fmu_path == NULL ||
         fmu_path[0] == '\0')
-        return lv_fail(err, LV_ERR_INPUT, "fmu: a mission file, a phase name and an output path "
+        return lv_fail(err, LV_ERR_INPUT, "a mission file, a phase name and an output path "
                        "are needed");
     lv_fmu_options o = {0};
     if (opt != NULL)
@@ -538,7 +538,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
         return st;
     struct stat sb;
     if (stat(binary, &sb) != 0 || !S_ISREG(sb.st_mode))
-        return lv_fail(err, LV_ERR_IO, "fmu: the FMU binary '%s' is missing (built with lvsim as "
+        return lv_fail(err, LV_ERR_IO, "the FMU binary '%s' is missing (built with lvsim as "
                        "<libdir>/lvsim/%s; reinstall, or build the target lvsim_fmu)", binary,
                        LV_FMU_MODULE);
     /* the output's folder must exist and be writable before the phases run */
@@ -552,13 +552,13 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     else
         *sl = '\0';
     if (stat(outdir, &sb) != 0 || !S_ISDIR(sb.st_mode))
-        return lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': folder '%s' does not exist",
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': folder '%s' does not exist",
                        fmu_path, outdir);
     if (access(outdir, W_OK) != 0)
-        return lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': folder '%s' is not writable",
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': folder '%s' is not writable",
                        fmu_path, outdir);
     if (stat(fmu_path, &sb) == 0 && S_ISDIR(sb.st_mode))
-        return lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': it is a folder", fmu_path);
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': it is a folder", fmu_path);
 
     lv_fmu_phase fp;
     if ((st = lv_fmu_phase_open(mission_path, phase, &fp, err)) != LV_OK)
@@ -570,7 +570,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     if (o.model_identifier != NULL) {
         if (!is_identifier(o.model_identifier) || strlen(o.model_identifier) >= sizeof id) {
             lv_fmu_phase_close(&fp);
-            return lv_fail(err, LV_ERR_INPUT, "fmu: model identifier '%s' is not a C identifier "
+            return lv_fail(err, LV_ERR_INPUT, "model identifier '%s' is not a C identifier "
                            "(letters, digits, '_'; not starting with a digit)",
                            o.model_identifier);
         }
@@ -655,7 +655,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     if ((za = zip_open(tmp, ZIP_CREATE | ZIP_TRUNCATE, &zerr)) == NULL) {
         zip_error_t ze;
         zip_error_init_with_code(&ze, zerr);
-        st = lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': %s", tmp, zip_error_strerror(&ze));
+        st = lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", tmp, zip_error_strerror(&ze));
         zip_error_fini(&ze);
         goto out;
     }
@@ -683,7 +683,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     }
     za = NULL;
     if (rename(tmp, fmu_path) != 0) {
-        st = lv_fail(err, LV_ERR_IO, "fmu: cannot write '%s': %s", fmu_path, strerror(errno));
+        st = lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", fmu_path, strerror(errno));
         unlink(tmp);
         goto out;
     }

@@ -59,7 +59,14 @@ lv_status lv_fmu_phase_open(const char *path, const char *phase, lv_fmu_phase *f
     if (st != LV_OK)
         goto fail;
     if ((st = lv_mission_phase_find(fp->mission, phase, &fp->k, err)) != LV_OK) {
-        lv_fail_prefix(err, st, "%s", path);
+        char names[256] = "";
+        size_t used = 0;
+        for (size_t i = 0; i < lv_mission_phase_count(fp->mission) && used < sizeof names; i++) {
+            int n = snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "",
+                             lv_mission_phase_name(fp->mission, i));
+            used += n > 0 ? (size_t)n : 0;
+        }
+        st = lv_fail(err, st, "%s: unknown phase '%s' (the phases: %s)", path, phase, names);
         goto fail;
     }
     if ((st = lv_run_create(fp->mission, &fp->run, err)) != LV_OK)
