@@ -1261,7 +1261,9 @@ lv_status lv_sim_save(lv_sim *S, lv_sim_saved **out, lv_err *err)
     memcpy(sv->p, r->p, r->np * sizeof *sv->p);
     if (ni > 0)
         memcpy(sv->inst, r->inst, ni);
-    memcpy(sv->rep.event_log, S->rep.event_log, S->rep.n_event_log * sizeof *S->rep.event_log);
+    if (S->rep.n_event_log > 0)
+        memcpy(sv->rep.event_log, S->rep.event_log,
+               S->rep.n_event_log * sizeof *S->rep.event_log);
     sv->t = S->t;
     sv->t_te = S->t_te;
     sv->t_model_te = r->t_model_te;
