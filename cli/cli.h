@@ -34,5 +34,6 @@ extern const cli_cmd cli_cmd_plot;
 extern const cli_cmd cli_cmd_view;
 extern const cli_cmd cli_cmd_atmosphere;
 extern const cli_cmd cli_cmd_gravity;
+extern const cli_cmd cli_cmd_fmu;
 
 #endif

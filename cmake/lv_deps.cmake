@@ -1,6 +1,6 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
 #   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, NLopt, cJSON,
-#   PLplot, Nettle (pkg-config).
+#   PLplot, Nettle, libzip (pkg-config).
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
@@ -14,6 +14,7 @@ pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
 pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
+pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip) # src/fmi only: the FMU archive
 find_package(Threads REQUIRED)
 # Shortest round-trip digits of doubles for the CSV files (src/io/numfmt.cc); header-only.
 find_package(dragonbox 1.1 REQUIRED CONFIG)
@@ -74,6 +75,7 @@ target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
 target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE PkgConfig::SQLITE3
+  PkgConfig::LIBZIP
   Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)

@@ -84,6 +84,10 @@ install(TARGETS ${LV_INSTALL_PROGRAMS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDI
 if(TARGET lvsim_plot)
   install(TARGETS lvsim_plot LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/lvsim)
 endif()
+# The FMU binary, where lv_fmu_export looks for it: <libdir>/lvsim/lvsim_fmu.so.
+if(TARGET lvsim_fmu)
+  install(TARGETS lvsim_fmu LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/lvsim)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lvsim DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
 

@@ -15,6 +15,7 @@ pkgs=(
   libcjson-dev                         # summary.json, exports
   libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
   nettle-dev                           # SHA-256 in the results folder's manifest
+  libzip-dev unzip                     # lvsim fmu: the FMU archive; its test unpacks it
   python3-scipy python3-numpy          # independent .mat reader in the tests
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   libpng-dev                           # plots: PNG files written with fast settings

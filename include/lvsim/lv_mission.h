@@ -64,6 +64,12 @@ typedef struct lv_mission_info {
 LV_API void lv_mission_get_info(const lv_mission *m, lv_mission_info *out);
 
 LV_API const char *lv_mission_name(const lv_mission *m);
+/* The files the mission reads: i = 0 the mission file, then every data file it names (tables,
+ * wind, gravity coefficients), each once, in the order the parser met them, as it resolved
+ * them (relative to the mission file's folder, or absolute when the file writes them so);
+ * NULL past the end. What a package of the mission (an FMU, lv_fmu.h) must carry. */
+LV_API size_t lv_mission_file_count(const lv_mission *m);
+LV_API const char *lv_mission_file(const lv_mission *m, size_t i);
 LV_API size_t lv_mission_phase_count(const lv_mission *m);
 /* Phases are numbered in run order: a phase after its parent; among the phases ready to run
  * (their parents done), in file order. With several worker threads, phases that are ready

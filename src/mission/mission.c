@@ -461,6 +461,11 @@ void lv_mission_get_info(const lv_mission *m, lv_mission_info *out)
 
 const char *lv_mission_name(const lv_mission *m) { return m->def->name; }
 size_t lv_mission_phase_count(const lv_mission *m) { return m->def->n_phases; }
+size_t lv_mission_file_count(const lv_mission *m) { return 1 + m->def->n_files; }
+const char *lv_mission_file(const lv_mission *m, size_t i)
+{
+    return i == 0 ? m->def->path : i <= m->def->n_files ? m->def->files[i - 1] : NULL;
+}
 const char *lv_mission_phase_name(const lv_mission *m, size_t k)
 {
     return k < m->def->n_phases ? m->def->phases[k].name : NULL;

@@ -221,6 +221,8 @@ typedef struct lv_mission_def {
     char *epoch;   /* ISO 8601 UTC of mission time 0, or NULL (exports use 2000-01-01T12:00:00Z) */
     char *path;    /* the mission file */
     char *dir;     /* its directory: relative table paths resolve against it */
+    size_t n_files; /* the data files it names (tables, wind, gravity coefficients), resolved */
+    char **files;   /* against dir, each once, in the order the parser met them */
     lv_env_def env;
     size_t n_params; /* the shared parameter set written in the file (start_lat, start_h, ...) */
     char **param_names;

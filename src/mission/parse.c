@@ -408,6 +408,7 @@ static lv_src_loc loc_of(const lv_ynode *n)
 /* ---- environment ---------------------------------------------------------------------- */
 
 static char *resolve_path(const char *dir, const char *rel);
+static char *resolve_file(const lv_pctx *c, const char *rel);
 
 /* {<file_key>: path, var: name} of a table read later by its model (atmosphere, wind). */
 static lv_status table_file(const lv_pctx *c, const lv_ynode *n, const char *what,
@@ -419,7 +420,7 @@ static lv_status table_file(const lv_pctx *c, const lv_ynode *n, const char *wha
     if ((st = lv_pk_need(c, n, what, file_key, &v)) != LV_OK ||
         (st = lv_pk_text(c, v, what, file_key, &rel)) != LV_OK)
         return st;
-    if ((*file = resolve_path(c->m->dir, rel)) == NULL)
+    if ((*file = resolve_file(c, rel)) == NULL)
         return lv_pk_nomem(c);
     if ((v = lv_pk_get(n, "var")) != NULL && (st = get_str(c, v, what, "var", var)) != LV_OK)
         return st;
@@ -545,7 +546,7 @@ static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_de
         const char *rel;
         if ((st = lv_pk_text(c, v, what, "coefficients", &rel)) != LV_OK)
             return st;
-        if ((pd->coef_file = resolve_path(c->m->dir, rel)) == NULL)
+        if ((pd->coef_file = resolve_file(c, rel)) == NULL)
             return lv_pk_nomem(c);
         if ((st = regular_file(c, v, what, "coefficients", pd->coef_file)) != LV_OK)
             return st;
@@ -645,7 +646,7 @@ static lv_status parse_wind(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
         const char *rel;
         if ((st = lv_pk_text(c, v, "environment", "wind", &rel)) != LV_OK)
             return st;
-        if ((e->wind_file = resolve_path(c->m->dir, rel)) == NULL)
+        if ((e->wind_file = resolve_file(c, rel)) == NULL)
             return lv_pk_nomem(c);
         return regular_file(c, v, "environment", "wind", e->wind_file);
     }
@@ -836,6 +837,31 @@ static char *resolve_path(const char *dir, const char *rel)
     return p;
 }
 
+/* resolve_path, and the path noted in the mission's list of the files it reads (once; an
+ * FMU or any other package of the mission carries them). NULL: out of memory. */
+static char *resolve_file(const lv_pctx *c, const char *rel)
+{
+    char *p = resolve_path(c->m->dir, rel);
+    if (p == NULL)
+        return NULL;
+    lv_mission_def *m = c->m;
+    for (size_t i = 0; i < m->n_files; i++)
+        if (strcmp(m->files[i], p) == 0)
+            return p;
+    char **grown = realloc(m->files, (m->n_files + 1) * sizeof *grown);
+    char *copy = dup_text(p);
+    if (grown == NULL || copy == NULL) {
+        if (grown != NULL)
+            m->files = grown;
+        free(copy);
+        free(p);
+        return NULL;
+    }
+    m->files = grown;
+    m->files[m->n_files++] = copy;
+    return p;
+}
+
 /* The file name without directory and extension: the default .mat variable. */
 static char *file_stem(const char *path)
 {
@@ -970,7 +996,7 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
     st = lv_pk_text(c, file, what, "table", &rel);
     if (st != LV_OK)
         return st;
-    *file_out = resolve_path(c->m->dir, rel);
+    *file_out = resolve_file(c, rel);
     if (*var_out == NULL && lv_table_path_is_mat(rel))
         *var_out = file_stem(rel);
     if (*file_out == NULL || (lv_table_path_is_mat(rel) && *var_out == NULL))
@@ -2322,6 +2348,9 @@ void lv_mission_def_free(lv_mission_def *m)
     free(m->env.wind_var);
     free(m->path);
     free(m->dir);
+    for (size_t i = 0; i < m->n_files; i++)
+        free(m->files[i]);
+    free(m->files);
     free(m->env.planet);
     free(m->env.pdef.zonal);
     free(m->env.pdef.coef_file);

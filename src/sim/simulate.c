@@ -1197,3 +1197,121 @@ lv_status lv_simulate(const lv_model_def *d, void *inst, const lv_sim_settings *
     lv_sim_free(S);
     return st;
 }
+
+/* ---- saved states (sim_state.h) -------------------------------------------------------- */
+
+#include "sim/sim_state.h"
+
+struct lv_sim_saved {
+    const lv_model_def *def;   /* the model it was taken from (counts checked on restore) */
+    double t, t_te, t_model_te;
+    long k;
+    sim_phase state;
+    lv_status fail_st;
+    lv_err fail;
+    double *x, *p;             /* [nx], [np] */
+    unsigned char *inst;       /* [inst_size] */
+    lv_sim_report rep;         /* with its own copy of the event log */
+};
+
+void lv_sim_saved_free(lv_sim_saved *sv)
+{
+    if (sv == NULL)
+        return;
+    free(sv->x);
+    free(sv->p);
+    free(sv->inst);
+    free(sv->rep.event_log);
+    free(sv);
+}
+
+/* A fresh start of the integrator at the current point (saving, restoring). */
+static lv_status sim_restart_here(lv_sim *S, lv_err *err)
+{
+    if (S->ig == NULL || S->state != SIM_RUNNING)
+        return LV_OK;
+    lv_status st = lv_integ_restart(S->ig, S->t, S->r.x, err);
+    if (st != LV_OK)
+        return sim_failed(S, lv_fail_prefix(err, st, "model '%s'", S->r.def->name), err);
+    S->tstop_set = NAN;
+    return LV_OK;
+}
+
+lv_status lv_sim_save(lv_sim *S, lv_sim_saved **out, lv_err *err)
+{
+    *out = NULL;
+    const sim_run *r = &S->r;
+    if (r->def == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_save: the simulation was not set up");
+    lv_sim_saved *sv = calloc(1, sizeof *sv);
+    if (sv == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    const size_t ni = r->inst != NULL ? r->def->inst_size : 0;
+    sv->x = malloc((r->nx + 1) * sizeof *sv->x);
+    sv->p = malloc((r->np + 1) * sizeof *sv->p);
+    sv->inst = malloc(ni + 1);
+    sv->rep = S->rep;
+    sv->rep.event_log = malloc((S->rep.n_event_log + 1) * sizeof *sv->rep.event_log);
+    if (!sv->x || !sv->p || !sv->inst || !sv->rep.event_log) {
+        lv_sim_saved_free(sv);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    sv->def = r->def;
+    memcpy(sv->x, r->x, r->nx * sizeof *sv->x);
+    memcpy(sv->p, r->p, r->np * sizeof *sv->p);
+    if (ni > 0)
+        memcpy(sv->inst, r->inst, ni);
+    if (S->rep.n_event_log > 0)
+        memcpy(sv->rep.event_log, S->rep.event_log,
+               S->rep.n_event_log * sizeof *S->rep.event_log);
+    sv->t = S->t;
+    sv->t_te = S->t_te;
+    sv->t_model_te = r->t_model_te;
+    sv->k = S->k;
+    sv->state = S->state;
+    sv->fail_st = S->fail_st;
+    sv->fail = S->fail;
+    lv_status st = sim_restart_here(S, err);
+    if (st != LV_OK) {
+        lv_sim_saved_free(sv);
+        return st;
+    }
+    *out = sv;
+    return LV_OK;
+}
+
+lv_status lv_sim_restore(lv_sim *S, const lv_sim_saved *sv, lv_err *err)
+{
+    sim_run *r = &S->r;
+    if (r->def == NULL || sv == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_sim_restore: no simulation or no saved state");
+    if (sv->def->n_states != r->nx || sv->def->n_params != r->np ||
+        sv->def->inst_size != r->def->inst_size)
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': the saved state is of another model ('%s')",
+                       r->def->name, sv->def->name);
+    lv_event_record *log = S->rep.event_log;
+    if (sv->rep.n_event_log > 0) {
+        log = realloc(S->rep.event_log, sv->rep.n_event_log * sizeof *log);
+        if (log == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        memcpy(log, sv->rep.event_log, sv->rep.n_event_log * sizeof *log);
+        r->log_cap = sv->rep.n_event_log; /* the buffer's size now */
+    }
+    S->rep = sv->rep;
+    S->rep.event_log = log;
+    memcpy(r->x, sv->x, r->nx * sizeof *r->x);
+    memcpy(r->p, sv->p, r->np * sizeof *r->p);
+    if (r->inst != NULL && r->def->inst_size > 0)
+        memcpy(r->inst, sv->inst, r->def->inst_size);
+    S->t = sv->t;
+    S->t_te = sv->t_te;
+    r->t_model_te = sv->t_model_te;
+    S->k = sv->k;
+    S->state = sv->state;
+    S->fail_st = sv->fail_st;
+    S->fail = sv->fail;
+    r->row[0] = sv->t;
+    r->bad_seen = 0;
+    r->rhs_rc = 0;
+    return sim_restart_here(S, err);
+}

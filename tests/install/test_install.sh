@@ -122,6 +122,10 @@ expect 0 "plots in $tmp/run/plots/" -- "$lvsim" plot "$tmp/run"
 [ -f "$tmp/run/plots/altitude.png" ] && [ -f "$moved/lib/lvsim/lvsim_plot.so" ] && ok \
   || fail "lvsim plot: no figure, or no lib/lvsim/lvsim_plot.so in the prefix"
 expect 0 "viewer staged in $tmp/run/viewer/" -- "$lvsim" view "$tmp/run" --stage-only
+# the FMU binary is found next to the installed (and moved) liblvsim_post too: lib/lvsim/
+expect 0 "wrote $tmp/ascent.fmu: FMI 2.0" -- "$lvsim" fmu "$mission" --phase ascent -o "$tmp/ascent.fmu"
+unzip -l "$tmp/ascent.fmu" 2> /dev/null | grep -q "binaries/linux64/.*\.so" && ok \
+  || fail "lvsim fmu: no binary in the archive from the prefix"
 grep -qx "lvsim viewer, CesiumJS 0.0.7-install-test" "$tmp/run/viewer/VERSION" 2> /dev/null \
   && [ -f "$tmp/run/viewer/index.html" ] && ok || fail "lvsim view: viewer not staged from the prefix"
 # nothing found: the message lists each folder searched

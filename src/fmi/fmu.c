@@ -1,0 +1,1462 @@
+/* fmu.c - the binary of an lvsim FMU (FMI 2.0, Model Exchange and Co-Simulation): one
+ * mission phase's model behind the standard's C functions (fmi2.h; FMI 2.0.x specification,
+ * sections 2.1, 3.2 and 4.2). `lvsim fmu` (export.c) puts this module into the archive as
+ * binaries/linux64/<modelIdentifier>.so beside resources/ (the mission and its data files,
+ * lvsim-fmu.txt) and modelDescription.xml.
+ *
+ * At fmi2Instantiate the FMU loads the mission from its resources, runs the phase's ancestors
+ * (a child phase starts from its parent's final state, computed here as by `lvsim run`) and
+ * prepares the phase (lv_run_prepare). Value references are lv_model_vref's: states,
+ * derivatives, parameters, outputs. Model Exchange evaluates the model's functions directly:
+ * event indicators are the model's event functions, its domain bounds and the phase's ends on
+ * a variable; time events are the model's, the phase's ends on time and its time limit.
+ * Co-Simulation steps lvsim's own integrator (lv_sim, the phase's method and tolerance).
+ * A phase end sets terminateSimulation (Model Exchange) or ends fmi2DoStep with fmi2Discard and
+ * fmi2Terminated (Co-Simulation); leaving the model's domain is fmi2Error, as lv_simulate
+ * fails. docs/fmi.md describes the behaviour for users.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FMI2_EXPORT __attribute__((visibility("default")))
+#define LV_FMI2_DECLARE_FUNCTIONS
+#include "fmi/fmi2.h"
+#include "fmi/fmu_phase.h"
+#include "lvsim/lv_sim.h"
+#include "sim/sim_state.h"
+
+#define LV_FMU_CONFIG "lvsim-fmu.txt"
+
+/* ---- the instance ------------------------------------------------------------------------ */
+
+typedef enum fmu_mode {
+    M_INSTANTIATED = 0,
+    M_INIT,          /* initialization mode */
+    M_EVENT,         /* Model Exchange: event mode */
+    M_CONT,          /* Model Exchange: continuous-time mode */
+    M_STEP_COMPLETE, /* Co-Simulation: between steps */
+    M_STEP_FAILED,   /* Co-Simulation: a step ended early (phase end): fmi2Discard */
+    M_TERMINATED,
+    M_ERROR
+} fmu_mode;
+
+static const char *const mode_names[] = {"Instantiated",     "InitializationMode", "EventMode",
+                                         "ContinuousTimeMode", "StepComplete",     "StepFailed",
+                                         "Terminated",       "Error"};
+
+enum { B_INST = 1 << M_INSTANTIATED, B_INIT = 1 << M_INIT, B_EVENT = 1 << M_EVENT,
+       B_CONT = 1 << M_CONT, B_STEPOK = 1 << M_STEP_COMPLETE, B_STEPFAIL = 1 << M_STEP_FAILED,
+       B_TERM = 1 << M_TERMINATED, B_ERR = 1 << M_ERROR };
+#define B_RUN (B_INIT | B_EVENT | B_CONT | B_STEPOK | B_STEPFAIL | B_TERM | B_ERR)
+
+/* Log categories (modelDescription.xml's LogCategories; export.c writes the same list). */
+enum { C_EVENTS = 1, C_DISCARD = 2, C_ERROR = 4, C_CALLS = 8 };
+static const struct { const char *name; unsigned bit; } categories[] = {
+    {"logEvents", C_EVENTS}, {"logStatusDiscard", C_DISCARD},
+    {"logStatusError", C_ERROR}, {"logCalls", C_CALLS}};
+#define N_CATEGORIES (sizeof categories / sizeof categories[0])
+
+/* A phase end on a variable or on time (lv_sim_stop) resolved. */
+typedef struct fmu_stop {
+    const char *name;
+    int is_time;
+    lv_var_kind kind;
+    size_t index;
+    double value;
+    lv_dir dir;
+} fmu_stop;
+
+typedef struct fmu {
+    fmi2Type type;
+    char *name;
+    fmi2CallbackFunctions cb;
+    int logging;      /* debug logging on */
+    unsigned cats;    /* the categories on */
+    fmu_mode mode;
+
+    lv_fmu_phase ph;
+    const lv_model_def *d;
+    void *inst;
+    unsigned char *inst0; /* the instance's bytes after preparation (fmi2Reset) */
+    size_t inst_size;
+    size_t nx, np, ny, ng, nd, ns, ns_root, ni;
+    fmu_stop *stops;  /* [ns] */
+
+    double t, t_start, t_limit; /* s: current time, the experiment's start, the phase's limit */
+    double tol;                 /* the tolerance lvsim's integrator uses (Co-Simulation) */
+    double *x, *p, *xdot, *y, *q, *xs, *ys; /* [nx] [np] [nx] [ny] [nd] [nx] [ny] */
+    double *z, *z_pre;          /* [ni] event indicators now and at the last event */
+    double *x_init, *p_init;    /* [nx] [np] as they were at fmi2ExitInitializationMode */
+    double *x_prev;             /* [nx] the states before an event's handlers */
+    int *fired;                 /* [ng] */
+    int eval_ok;                /* xdot and y hold the model at (t, x) */
+    int init_done;              /* the model's init() was called for the current start */
+    double t_model_te, t_next, t_prev_event;
+    int end_reached;            /* a phase end fired: terminateSimulation */
+    char end_name[LV_EVENT_NAME_MAX];
+
+    /* Co-Simulation */
+    lv_sim *sim;
+    lv_sim_settings cs;
+    const char **cs_names;      /* [nx + np] */
+    double *cs_values;          /* [nx + np] */
+    double last_ok_time;        /* fmi2LastSuccessfulTime */
+    int cs_terminated;          /* fmi2Terminated */
+} fmu;
+
+/* A saved state (fmi2GetFMUstate). */
+typedef struct fmu_saved {
+    fmu_mode mode;
+    double t, t_start, tol;
+    double *x, *p, *z_pre, *x_init, *p_init;
+    unsigned char *inst;
+    int init_done, end_reached, cs_terminated;
+    double t_model_te, t_next, t_prev_event, last_ok_time;
+    char end_name[LV_EVENT_NAME_MAX];
+    lv_sim_saved *sim; /* Co-Simulation after initialization */
+} fmu_saved;
+
+/* ---- logging ------------------------------------------------------------------------------ */
+
+static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* Errors and discards are always reported through the logger (the reason of the status);
+ * events and calls only with debug logging on and their category enabled. */
+static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
+{
+    if (f == NULL || f->cb.logger == NULL)
+        return;
+    const int always = cat == C_ERROR || cat == C_DISCARD;
+    if (!always && !(f->logging && (f->cats & cat)))
+        return;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    const char *cname = "logEvents";
+    for (size_t i = 0; i < N_CATEGORIES; i++)
+        if (categories[i].bit == cat)
+            cname = categories[i].name;
+    /* the message is a format for the logger: passed as an argument, never as the format */
+    f->cb.logger(f->cb.componentEnvironment, f->name, st, cname, "%s", msg);
+}
+
+#define FAIL(f, ...) (fmu_log((f), fmi2Error, C_ERROR, __VA_ARGS__), fmi2Error)
+
+/* The call is allowed in the current mode (mask of B_*), else fmi2Error with a message. */
+static int allowed(fmu *f, const char *fn, unsigned mask)
+{
+    if (f == NULL)
+        return 0;
+    fmu_log(f, fmi2OK, C_CALLS, "%s (in %s)", fn, mode_names[f->mode]);
+    if ((1u << f->mode) & mask)
+        return 1;
+    fmu_log(f, fmi2Error, C_ERROR, "%s: not allowed in %s (the FMI 2.0 state machine)", fn,
+            mode_names[f->mode]);
+    return 0;
+}
+
+static int is_me(fmu *f, const char *fn)
+{
+    if (f->type == fmi2ModelExchange)
+        return 1;
+    fmu_log(f, fmi2Error, C_ERROR, "%s: a Model Exchange function; this instance is "
+            "Co-Simulation", fn);
+    return 0;
+}
+
+static int is_cs(fmu *f, const char *fn)
+{
+    if (f->type == fmi2CoSimulation)
+        return 1;
+    fmu_log(f, fmi2Error, C_ERROR, "%s: a Co-Simulation function; this instance is "
+            "Model Exchange", fn);
+    return 0;
+}
+
+/* ---- the model ---------------------------------------------------------------------------- */
+
+static const char *model_why(const fmu *f)
+{
+    const char *why = f->d->last_error ? f->d->last_error(f->inst) : NULL;
+    return why != NULL ? why : "";
+}
+
+/* The model's init() (modes consistent with the start) when the start changed since. */
+static int ensure_init(fmu *f)
+{
+    if (f->init_done)
+        return 0;
+    if (f->d->init != NULL && f->d->init(f->t, f->x, f->p, f->inst) != 0)
+        return -1;
+    f->init_done = 1;
+    f->eval_ok = 0;
+    return 0;
+}
+
+/* Derivatives and outputs at (t, x): 0, or the model's nonzero return (values NaN). */
+static int eval_model(fmu *f)
+{
+    if (f->eval_ok)
+        return 0;
+    if (ensure_init(f) != 0)
+        return -1;
+    int rc = f->d->rhs(f->t, f->x, f->p, f->xdot, f->inst);
+    for (size_t i = 0; rc == 0 && i < f->nx; i++)
+        if (!isfinite(f->xdot[i]))
+            rc = 1;
+    if (rc != 0)
+        for (size_t i = 0; i < f->nx; i++)
+            f->xdot[i] = NAN;
+    int rc_y = f->ny > 0 ? f->d->outputs_fn(f->t, f->x, f->p, f->y, f->inst) : 0;
+    if (rc_y != 0)
+        for (size_t i = 0; i < f->ny; i++)
+            f->y[i] = NAN;
+    if (rc == 0 && rc_y == 0)
+        f->eval_ok = 1;
+    return rc != 0 ? rc : rc_y;
+}
+
+/* The event indicators at (t, x): the model's event functions, its domain bounds (q - lower),
+ * the phase's ends on a variable (variable - value). 0, or the model's nonzero return. */
+static int eval_indicators(fmu *f, double *z)
+{
+    if (ensure_init(f) != 0)
+        return -1;
+    int rc = f->ng > 0 ? f->d->event_g(f->t, f->x, f->p, z, f->inst) : 0;
+    if (rc != 0)
+        return rc;
+    if (f->nd > 0) {
+        if ((rc = f->d->domain_q(f->t, f->x, f->p, f->q, f->inst)) != 0)
+            return rc;
+        for (size_t i = 0; i < f->nd; i++)
+            z[f->ng + i] = f->q[i] - f->d->domain[i].lower;
+    }
+    int have_xdot = 0, have_y = 0;
+    size_t r = 0;
+    for (size_t j = 0; j < f->ns; j++) {
+        const fmu_stop *sp = &f->stops[j];
+        if (sp->is_time)
+            continue;
+        double v = 0.0;
+        switch (sp->kind) {
+        case LV_VAR_STATE: v = f->x[sp->index]; break;
+        case LV_VAR_PARAMETER: v = f->p[sp->index]; break;
+        case LV_VAR_DERIVATIVE:
+            if (!have_xdot && (rc = f->d->rhs(f->t, f->x, f->p, f->xs, f->inst)) != 0)
+                return rc;
+            have_xdot = 1;
+            v = f->xs[sp->index];
+            break;
+        case LV_VAR_OUTPUT:
+            if (!have_y && (rc = f->d->outputs_fn(f->t, f->x, f->p, f->ys, f->inst)) != 0)
+                return rc;
+            have_y = 1;
+            v = f->ys[sp->index];
+            break;
+        }
+        z[f->ng + f->nd + r++] = v - sp->value;
+    }
+    return 0;
+}
+
+/* The next time event after f->t: the model's, a phase end on time, the phase's limit. */
+static void schedule(fmu *f)
+{
+    f->t_model_te = f->d->next_time_event ? f->d->next_time_event(f->t, f->p, f->inst) : INFINITY;
+    double tn = f->t_model_te;
+    for (size_t j = 0; j < f->ns; j++)
+        if (f->stops[j].is_time && f->stops[j].value > f->t && f->stops[j].value < tn)
+            tn = f->stops[j].value;
+    if (f->t_limit < tn)
+        tn = f->t_limit;
+    f->t_next = tn;
+}
+
+/* ---- resources ---------------------------------------------------------------------------- */
+
+/* The folder of a file:// URI ("file:///a/b", "file://localhost/a/b", "file:/a/b"), decoded
+ * (%XX), without a trailing slash. NULL when it is no local file URI. */
+static char *uri_to_path(const char *uri)
+{
+    const char *p;
+    if (strncmp(uri, "file:///", 8) == 0)
+        p = uri + 7;
+    else if (strncmp(uri, "file://localhost/", 17) == 0)
+        p = uri + 16;
+    else if (strncmp(uri, "file:/", 6) == 0)
+        p = uri + 5;
+    else
+        return NULL;
+    char *out = malloc(strlen(p) + 1);
+    if (out == NULL)
+        return NULL;
+    size_t n = 0;
+    for (; *p; p++) {
+        unsigned v;
+        if (p[0] == '%' && p[1] && p[2] && sscanf(p + 1, "%2x", &v) == 1) {
+            out[n++] = (char)v;
+            p += 2;
+        } else {
+            out[n++] = *p;
+        }
+    }
+    while (n > 1 && out[n - 1] == '/')
+        n--;
+    out[n] = '\0';
+    return out;
+}
+
+typedef struct fmu_config {
+    char guid[128], mission[2048], phase[256];
+    long counts[4]; /* states, parameters, outputs, event indicators */
+} fmu_config;
+
+/* resources/lvsim-fmu.txt: "key value" lines written by the exporter. */
+static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
+{
+    FILE *fp = fopen(path, "r");
+    if (fp == NULL) {
+        snprintf(why, cap, "cannot open '%s'", path);
+        return -1;
+    }
+    memset(c, 0, sizeof *c);
+    for (int i = 0; i < 4; i++)
+        c->counts[i] = -1;
+    char line[2400];
+    int have_magic = 0;
+    while (fgets(line, sizeof line, fp) != NULL) {
+        line[strcspn(line, "\r\n")] = '\0';
+        char *sp = strchr(line, ' ');
+        if (sp == NULL)
+            continue;
+        *sp = '\0';
+        const char *v = sp + 1;
+        if (strcmp(line, "lvsim-fmu") == 0)
+            have_magic = strcmp(v, "1") == 0;
+        else if (strcmp(line, "guid") == 0)
+            snprintf(c->guid, sizeof c->guid, "%s", v);
+        else if (strcmp(line, "mission") == 0)
+            snprintf(c->mission, sizeof c->mission, "%s", v);
+        else if (strcmp(line, "phase") == 0)
+            snprintf(c->phase, sizeof c->phase, "%s", v);
+        else if (strcmp(line, "states") == 0)
+            c->counts[0] = atol(v);
+        else if (strcmp(line, "parameters") == 0)
+            c->counts[1] = atol(v);
+        else if (strcmp(line, "outputs") == 0)
+            c->counts[2] = atol(v);
+        else if (strcmp(line, "event_indicators") == 0)
+            c->counts[3] = atol(v);
+    }
+    fclose(fp);
+    if (!have_magic || !c->guid[0] || !c->mission[0] || !c->phase[0]) {
+        snprintf(why, cap, "'%s' is not an lvsim FMU description (format 1)", path);
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- instantiate, free, reset ------------------------------------------------------------- */
+
+static void fmu_free(fmu *f)
+{
+    if (f == NULL)
+        return;
+    lv_sim_free(f->sim);
+    lv_fmu_phase_close(&f->ph);
+    free(f->name);
+    free(f->inst0);
+    free(f->stops);
+    free(f->x);
+    free(f->p);
+    free(f->xdot);
+    free(f->y);
+    free(f->q);
+    free(f->xs);
+    free(f->ys);
+    free(f->z);
+    free(f->z_pre);
+    free(f->x_init);
+    free(f->p_init);
+    free(f->x_prev);
+    free(f->fired);
+    free(f->cs_names);
+    free(f->cs_values);
+    free(f);
+}
+
+/* Back to the state right after instantiation: start values, the instance's bytes. */
+static void to_start(fmu *f)
+{
+    lv_sim_free(f->sim);
+    f->sim = NULL;
+    memcpy(f->x, f->ph.x0, f->nx * sizeof *f->x);
+    memcpy(f->p, f->ph.p0, f->np * sizeof *f->p);
+    if (f->inst_size > 0)
+        memcpy(f->inst, f->inst0, f->inst_size);
+    f->t = f->t_start = f->ph.s->start_time;
+    f->t_limit = f->ph.s->stop_time;
+    f->tol = f->ph.s->tolerance;
+    f->eval_ok = 0;
+    f->init_done = 0;
+    f->end_reached = 0;
+    f->end_name[0] = '\0';
+    f->cs_terminated = 0;
+    f->last_ok_time = f->t;
+    f->mode = M_INSTANTIATED;
+}
+
+fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+                              fmi2String fmuResourceLocation,
+                              const fmi2CallbackFunctions *functions, fmi2Boolean visible,
+                              fmi2Boolean loggingOn)
+{
+    (void)visible;
+    fmu *f = calloc(1, sizeof *f);
+    if (f == NULL)
+        return NULL;
+    if (functions != NULL)
+        f->cb = *functions;
+    f->name = strdup(instanceName != NULL ? instanceName : "");
+    f->logging = loggingOn != 0;
+    f->cats = C_EVENTS | C_DISCARD | C_ERROR; /* logCalls only when asked for */
+    f->type = fmuType;
+    char *dir = NULL;
+    char why[4200];
+    lv_err err = {0};
+    if (f->name == NULL)
+        goto fail_nomsg;
+    if (instanceName == NULL || instanceName[0] == '\0') {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: instanceName is empty");
+        goto fail_nomsg;
+    }
+    if (fmuType != fmi2ModelExchange && fmuType != fmi2CoSimulation) {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: unknown fmuType %d", (int)fmuType);
+        goto fail_nomsg;
+    }
+    if (fmuResourceLocation == NULL || (dir = uri_to_path(fmuResourceLocation)) == NULL) {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: fmuResourceLocation '%s' is not a "
+                "file:// URI of the FMU's resources folder",
+                fmuResourceLocation ? fmuResourceLocation : "(null)");
+        goto fail_nomsg;
+    }
+    char path[4096];
+    fmu_config cfg;
+    snprintf(path, sizeof path, "%s/%s", dir, LV_FMU_CONFIG);
+    if (read_config(path, &cfg, why, sizeof why) != 0) {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: %s", why);
+        goto fail_nomsg;
+    }
+    if (fmuGUID == NULL || strcmp(fmuGUID, cfg.guid) != 0) {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: GUID '%s' is not this FMU's '%s' "
+                "(modelDescription.xml and resources/ from different exports?)",
+                fmuGUID ? fmuGUID : "(null)", cfg.guid);
+        goto fail_nomsg;
+    }
+    char mission[6200];
+    snprintf(mission, sizeof mission, "%s/%s", dir, cfg.mission);
+    if (lv_fmu_phase_open(mission, cfg.phase, &f->ph, &err) != LV_OK) {
+        fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: %s", err.msg);
+        goto fail_nomsg;
+    }
+    f->d = f->ph.def;
+    f->inst = f->ph.inst;
+    f->inst_size = f->inst != NULL ? f->d->inst_size : 0;
+    f->nx = f->d->n_states;
+    f->np = f->d->n_params;
+    f->ny = f->d->n_outputs;
+    f->ng = f->d->n_events;
+    f->nd = f->d->n_domain;
+    f->ns = f->ph.s->n_stops;
+    f->stops = calloc(f->ns + 1, sizeof *f->stops);
+    if (f->stops == NULL)
+        goto fail_nomem;
+    for (size_t j = 0; j < f->ns; j++) {
+        const lv_sim_stop *sp = &f->ph.s->stops[j];
+        fmu_stop *fs = &f->stops[j];
+        fs->name = sp->name;
+        fs->value = sp->value;
+        fs->dir = sp->direction;
+        fs->is_time = strcmp(sp->variable, "time") == 0;
+        if (!fs->is_time) {
+            if (lv_model_find(f->d, sp->variable, &fs->kind, &fs->index, &err) != LV_OK) {
+                fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: phase end '%s': %s", sp->name,
+                        err.msg);
+                goto fail_nomsg;
+            }
+            f->ns_root++;
+        }
+    }
+    f->ni = f->ng + f->nd + f->ns_root;
+    const long have[4] = {(long)f->nx, (long)f->np, (long)f->ny, (long)f->ni};
+    static const char *const what[4] = {"states", "parameters", "outputs", "event indicators"};
+    for (int i = 0; i < 4; i++)
+        if (cfg.counts[i] != have[i]) {
+            fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: the model of phase '%s' has %ld %s, "
+                    "modelDescription.xml %ld: this binary is not the one the FMU was exported "
+                    "with", cfg.phase, have[i], what[i], cfg.counts[i]);
+            goto fail_nomsg;
+        }
+    f->x = calloc(f->nx + 1, sizeof(double));
+    f->p = calloc(f->np + 1, sizeof(double));
+    f->xdot = calloc(f->nx + 1, sizeof(double));
+    f->y = calloc(f->ny + 1, sizeof(double));
+    f->q = calloc(f->nd + 1, sizeof(double));
+    f->xs = calloc(f->nx + 1, sizeof(double));
+    f->ys = calloc(f->ny + 1, sizeof(double));
+    f->z = calloc(f->ni + 1, sizeof(double));
+    f->z_pre = calloc(f->ni + 1, sizeof(double));
+    f->x_init = calloc(f->nx + 1, sizeof(double));
+    f->p_init = calloc(f->np + 1, sizeof(double));
+    f->x_prev = calloc(f->nx + 1, sizeof(double));
+    f->fired = calloc(f->ng + 1, sizeof(int));
+    f->cs_names = calloc(f->nx + f->np + 1, sizeof(const char *));
+    f->cs_values = calloc(f->nx + f->np + 1, sizeof(double));
+    f->inst0 = malloc(f->inst_size + 1);
+    if (!f->x || !f->p || !f->xdot || !f->y || !f->q || !f->xs || !f->ys || !f->z || !f->z_pre ||
+        !f->x_init || !f->p_init || !f->x_prev || !f->fired || !f->cs_names || !f->cs_values || !f->inst0)
+        goto fail_nomem;
+    if (f->inst_size > 0)
+        memcpy(f->inst0, f->inst, f->inst_size);
+    to_start(f);
+    free(dir);
+    fmu_log(f, fmi2OK, C_EVENTS, "instantiated phase '%s' of %s (%s, %zu states, %zu event "
+            "indicators) for %s", cfg.phase, cfg.mission, f->d->name, f->nx, f->ni,
+            fmuType == fmi2ModelExchange ? "Model Exchange" : "Co-Simulation");
+    return f;
+fail_nomem:
+    fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: out of memory");
+fail_nomsg:
+    free(dir);
+    fmu_free(f);
+    return NULL;
+}
+
+void fmi2FreeInstance(fmi2Component c) { fmu_free(c); }
+
+fmi2Status fmi2Reset(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2Reset", ~0u))
+        return fmi2Error;
+    to_start(f);
+    return fmi2OK;
+}
+
+const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+const char *fmi2GetVersion(void) { return fmi2Version; }
+
+fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
+                               const fmi2String categories_in[])
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetDebugLogging", ~0u))
+        return fmi2Error;
+    if (nCategories == 0) {
+        f->logging = loggingOn != 0;
+        f->cats = loggingOn ? C_EVENTS | C_DISCARD | C_ERROR | C_CALLS : 0u;
+        return fmi2OK;
+    }
+    if (categories_in == NULL)
+        return FAIL(f, "fmi2SetDebugLogging: %zu categories but no array", nCategories);
+    for (size_t i = 0; i < nCategories; i++) {
+        unsigned bit = 0;
+        for (size_t k = 0; k < N_CATEGORIES; k++)
+            if (categories_in[i] != NULL && strcmp(categories_in[i], categories[k].name) == 0)
+                bit = categories[k].bit;
+        if (bit == 0)
+            return FAIL(f, "fmi2SetDebugLogging: unknown log category '%s' (known: logEvents, "
+                        "logStatusDiscard, logStatusError, logCalls)",
+                        categories_in[i] ? categories_in[i] : "(null)");
+        f->cats = loggingOn ? f->cats | bit : f->cats & ~bit;
+    }
+    if (loggingOn)
+        f->logging = 1;
+    return fmi2OK;
+}
+
+/* ---- experiment and initialization -------------------------------------------------------- */
+
+fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetupExperiment", B_INST))
+        return fmi2Error;
+    if (!isfinite(startTime))
+        return FAIL(f, "fmi2SetupExperiment: startTime %g is not finite", startTime);
+    if (!(startTime < f->t_limit))
+        return FAIL(f, "fmi2SetupExperiment: startTime %.9g s is not before the phase's time "
+                    "limit %.9g s (DefaultExperiment stopTime)", startTime, f->t_limit);
+    if (stopTimeDefined && !(stopTime >= startTime))
+        return FAIL(f, "fmi2SetupExperiment: stopTime %g s is before startTime %g s", stopTime,
+                    startTime);
+    if (toleranceDefined) {
+        if (!(tolerance > 0.0) || !isfinite(tolerance))
+            return FAIL(f, "fmi2SetupExperiment: tolerance %g is not > 0", tolerance);
+        f->tol = tolerance; /* Co-Simulation: lvsim's integrator uses it */
+    }
+    f->t = f->t_start = startTime;
+    f->init_done = 0;
+    f->eval_ok = 0;
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterInitializationMode(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2EnterInitializationMode", B_INST))
+        return fmi2Error;
+    f->mode = M_INIT;
+    return fmi2OK;
+}
+
+/* Co-Simulation: lvsim's simulation from the current (t_start, x, p). */
+static fmi2Status cs_create(fmu *f, const double *x, const double *p)
+{
+    const lv_sim_settings *ps = f->ph.s;
+    lv_sim_settings *s = &f->cs;
+    lv_sim_settings_default(s);
+    s->start_time = f->t_start;
+    s->stop_time = f->t_limit;
+    s->number_of_intervals = ps->number_of_intervals;
+    s->output_interval = ps->output_interval;
+    s->method = ps->method;
+    s->tolerance = f->tol;
+    s->fixed_step = ps->fixed_step;
+    s->result_file = NULL;
+    s->result_formats = 0;
+    s->max_steps = ps->max_steps;
+    s->max_step_size = ps->max_step_size;
+    s->n_stops = ps->n_stops;
+    s->stops = ps->stops;
+    for (size_t i = 0; i < f->nx; i++) {
+        f->cs_names[i] = f->d->states[i].name;
+        f->cs_values[i] = x[i];
+    }
+    for (size_t j = 0; j < f->np; j++) {
+        f->cs_names[f->nx + j] = f->d->params[j].name;
+        f->cs_values[f->nx + j] = p[j];
+    }
+    s->n_initial = f->nx + f->np;
+    s->initial_names = f->cs_names;
+    s->initial_values = f->cs_values;
+    lv_err err;
+    if (lv_sim_create(f->d, f->inst, s, &f->sim, &err) != LV_OK) {
+        f->mode = M_ERROR;
+        return FAIL(f, "%s", err.msg);
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2ExitInitializationMode(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2ExitInitializationMode", B_INIT))
+        return fmi2Error;
+    memcpy(f->x_init, f->x, f->nx * sizeof *f->x);
+    memcpy(f->p_init, f->p, f->np * sizeof *f->p);
+    f->end_reached = 0;
+    f->t_prev_event = f->t;
+    if (f->type == fmi2CoSimulation) {
+        fmi2Status st = cs_create(f, f->x, f->p);
+        if (st != fmi2OK)
+            return st;
+        f->last_ok_time = f->t;
+        f->mode = M_STEP_COMPLETE;
+        return fmi2OK;
+    }
+    f->init_done = 0;
+    if (ensure_init(f) != 0) {
+        f->mode = M_ERROR;
+        const char *why = model_why(f);
+        return FAIL(f, "model '%s': initialisation failed at t = %g s%s%s", f->d->name, f->t,
+                    why[0] ? ": " : "", why);
+    }
+    if (f->nd > 0) {
+        if (f->d->domain_q(f->t, f->x, f->p, f->q, f->inst) != 0) {
+            f->mode = M_ERROR;
+            return FAIL(f, "model '%s': the start state cannot be evaluated at t = %g s: %s",
+                        f->d->name, f->t, model_why(f));
+        }
+        for (size_t i = 0; i < f->nd; i++)
+            if (!(f->q[i] >= f->d->domain[i].lower)) {
+                const lv_domain_def *b = &f->d->domain[i];
+                f->mode = M_ERROR;
+                return FAIL(f, "model '%s': the start state at t = %.9g s is outside the model's "
+                            "domain: %s = %g %s is below its lower bound %g %s: %s", f->d->name,
+                            f->t, b->quantity, f->q[i], b->unit, b->lower, b->unit, b->why);
+            }
+    }
+    if (eval_indicators(f, f->z_pre) != 0) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': the event indicators cannot be evaluated at the start "
+                    "t = %g s: %s", f->d->name, f->t, model_why(f));
+    }
+    schedule(f);
+    if (!(f->t_next > f->t)) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': next time event %g is not after t = %g", f->d->name,
+                    f->t_next, f->t);
+    }
+    f->mode = M_EVENT;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Terminate(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2Terminate", B_EVENT | B_CONT | B_STEPOK | B_STEPFAIL | B_ERR))
+        return fmi2Error;
+    f->mode = M_TERMINATED;
+    return fmi2OK;
+}
+
+/* ---- variables ---------------------------------------------------------------------------- */
+
+/* The kind and index of a value reference, or -1. */
+static int split_vr(const fmu *f, fmi2ValueReference vr, lv_var_kind *kind, size_t *idx)
+{
+    size_t v = vr;
+    if (v < f->nx) {
+        *kind = LV_VAR_STATE;
+        *idx = v;
+    } else if (v < 2 * f->nx) {
+        *kind = LV_VAR_DERIVATIVE;
+        *idx = v - f->nx;
+    } else if (v < 2 * f->nx + f->np) {
+        *kind = LV_VAR_PARAMETER;
+        *idx = v - 2 * f->nx;
+    } else if (v < 2 * f->nx + f->np + f->ny) {
+        *kind = LV_VAR_OUTPUT;
+        *idx = v - 2 * f->nx - f->np;
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
+static const char *var_name(const fmu *f, lv_var_kind kind, size_t idx)
+{
+    switch (kind) {
+    case LV_VAR_STATE: return f->d->states[idx].name;
+    case LV_VAR_DERIVATIVE: return f->d->states[idx].name; /* der(...) */
+    case LV_VAR_PARAMETER: return f->d->params[idx].name;
+    case LV_VAR_OUTPUT: return f->d->outputs[idx].name;
+    }
+    return "?";
+}
+
+static int check_vrs(fmu *f, const char *fn, const fmi2ValueReference vr[], size_t nvr,
+                     const void *values)
+{
+    if (nvr > 0 && (vr == NULL || values == NULL)) {
+        fmu_log(f, fmi2Error, C_ERROR, "%s: NULL array for %zu values", fn, nvr);
+        return -1;
+    }
+    for (size_t i = 0; i < nvr; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        if (split_vr(f, vr[i], &kind, &idx) != 0) {
+            fmu_log(f, fmi2Error, C_ERROR, "%s: unknown value reference %u (this FMU's Real "
+                    "variables are 0 .. %zu)", fn, vr[i], 2 * f->nx + f->np + f->ny - 1);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       fmi2Real value[])
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetReal", B_RUN) || check_vrs(f, "fmi2GetReal", vr, nvr, value) != 0)
+        return fmi2Error;
+    if (nvr == 0)
+        return fmi2OK;
+    if (f->sim != NULL) { /* Co-Simulation after initialization: lvsim's simulation */
+        lv_err err;
+        if (lv_sim_get(f->sim, vr, nvr, value, &err) != LV_OK)
+            return FAIL(f, "fmi2GetReal: %s", err.msg);
+        for (size_t i = 0; i < nvr; i++)
+            if (isnan(value[i])) {
+                fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetReal: the model cannot be evaluated "
+                        "at t = %.9g s: %s", lv_sim_time(f->sim), model_why(f));
+                return fmi2Discard;
+            }
+        return fmi2OK;
+    }
+    int need_eval = 0;
+    for (size_t i = 0; i < nvr; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        split_vr(f, vr[i], &kind, &idx);
+        need_eval |= kind == LV_VAR_DERIVATIVE || kind == LV_VAR_OUTPUT;
+    }
+    int rc = need_eval ? eval_model(f) : 0;
+    for (size_t i = 0; i < nvr; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        split_vr(f, vr[i], &kind, &idx);
+        switch (kind) {
+        case LV_VAR_STATE: value[i] = f->x[idx]; break;
+        case LV_VAR_DERIVATIVE: value[i] = f->xdot[idx]; break;
+        case LV_VAR_PARAMETER: value[i] = f->p[idx]; break;
+        case LV_VAR_OUTPUT: value[i] = f->y[idx]; break;
+        }
+    }
+    if (rc != 0) {
+        fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetReal: the model cannot be evaluated at "
+                "t = %.9g s: %s", f->t, model_why(f));
+        return fmi2Discard;
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       const fmi2Real value[])
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetReal", B_INST | B_INIT | B_EVENT | B_CONT | B_STEPOK) ||
+        check_vrs(f, "fmi2SetReal", vr, nvr, value) != 0)
+        return fmi2Error;
+    for (size_t i = 0; i < nvr; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        split_vr(f, vr[i], &kind, &idx);
+        const char *nm = var_name(f, kind, idx);
+        if (kind == LV_VAR_DERIVATIVE || kind == LV_VAR_OUTPUT)
+            return FAIL(f, "fmi2SetReal: '%s%s%s' (value reference %u) is %s, computed by the "
+                        "model: it cannot be set", kind == LV_VAR_DERIVATIVE ? "der(" : "", nm,
+                        kind == LV_VAR_DERIVATIVE ? ")" : "", vr[i],
+                        kind == LV_VAR_OUTPUT ? "an output" : "a derivative");
+        if (f->mode != M_INSTANTIATED && f->mode != M_INIT)
+            return FAIL(f, "fmi2SetReal: '%s' (value reference %u) is a %s: it can be set only "
+                        "before fmi2ExitInitializationMode%s", nm, vr[i],
+                        kind == LV_VAR_STATE ? "state" : "fixed parameter",
+                        kind == LV_VAR_STATE && f->type == fmi2ModelExchange
+                            ? " (then with fmi2SetContinuousStates)" : "");
+        if (!isfinite(value[i]))
+            return FAIL(f, "fmi2SetReal: value %g for '%s' is not finite", value[i], nm);
+    }
+    for (size_t i = 0; i < nvr; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        split_vr(f, vr[i], &kind, &idx);
+        if (kind == LV_VAR_STATE)
+            f->x[idx] = value[i];
+        else
+            f->p[idx] = value[i];
+    }
+    if (nvr > 0) {
+        f->init_done = 0;
+        f->eval_ok = 0;
+    }
+    return fmi2OK;
+}
+
+/* No Integer, Boolean or String variables: every reference is unknown. */
+#define NO_VARS(fn)                                                                           \
+    fmu *f = c;                                                                               \
+    (void)value;                                                                              \
+    if (!allowed(f, #fn, ~0u))                                                                \
+        return fmi2Error;                                                                     \
+    if (nvr == 0)                                                                             \
+        return fmi2OK;                                                                        \
+    return FAIL(f, "%s: unknown value reference %u: this FMU has Real variables only", #fn,  \
+                vr != NULL ? vr[0] : 0u)
+
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Integer value[]) { NO_VARS(fmi2GetInteger); }
+fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Boolean value[]) { NO_VARS(fmi2GetBoolean); }
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         fmi2String value[]) { NO_VARS(fmi2GetString); }
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Integer value[]) { NO_VARS(fmi2SetInteger); }
+fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Boolean value[]) { NO_VARS(fmi2SetBoolean); }
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         const fmi2String value[]) { NO_VARS(fmi2SetString); }
+
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[],
+                                        size_t nUnknown, const fmi2ValueReference vKnown_ref[],
+                                        size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[])
+{
+    (void)vUnknown_ref, (void)nUnknown, (void)vKnown_ref, (void)nKnown, (void)dvKnown;
+    (void)dvUnknown;
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetDirectionalDerivative", ~0u))
+        return fmi2Error;
+    return FAIL(f, "fmi2GetDirectionalDerivative: not provided (providesDirectionalDerivative "
+                "is false)");
+}
+
+/* ---- FMU states ---------------------------------------------------------------------------- */
+
+static void saved_free(fmu_saved *s)
+{
+    if (s == NULL)
+        return;
+    free(s->x);
+    free(s->p);
+    free(s->z_pre);
+    free(s->x_init);
+    free(s->p_init);
+    free(s->inst);
+    lv_sim_saved_free(s->sim);
+    free(s);
+}
+
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetFMUstate", ~0u))
+        return fmi2Error;
+    if (FMUstate == NULL)
+        return FAIL(f, "fmi2GetFMUstate: NULL pointer");
+    fmu_saved *s = *FMUstate; /* an earlier state given back is overwritten */
+    if (s == NULL && (s = calloc(1, sizeof *s)) == NULL)
+        return FAIL(f, "fmi2GetFMUstate: out of memory");
+    lv_sim_saved_free(s->sim);
+    s->sim = NULL;
+    if ((s->x == NULL && (s->x = malloc((f->nx + 1) * sizeof(double))) == NULL) ||
+        (s->p == NULL && (s->p = malloc((f->np + 1) * sizeof(double))) == NULL) ||
+        (s->z_pre == NULL && (s->z_pre = malloc((f->ni + 1) * sizeof(double))) == NULL) ||
+        (s->x_init == NULL && (s->x_init = malloc((f->nx + 1) * sizeof(double))) == NULL) ||
+        (s->p_init == NULL && (s->p_init = malloc((f->np + 1) * sizeof(double))) == NULL) ||
+        (s->inst == NULL && (s->inst = malloc(f->inst_size + 1)) == NULL)) {
+        if (*FMUstate == NULL)
+            saved_free(s);
+        return FAIL(f, "fmi2GetFMUstate: out of memory");
+    }
+    if (f->sim != NULL) {
+        lv_err err;
+        if (lv_sim_save(f->sim, &s->sim, &err) != LV_OK) {
+            if (*FMUstate == NULL)
+                saved_free(s);
+            return FAIL(f, "fmi2GetFMUstate: %s", err.msg);
+        }
+    }
+    s->mode = f->mode;
+    s->t = f->t;
+    s->t_start = f->t_start;
+    s->tol = f->tol;
+    memcpy(s->x, f->x, f->nx * sizeof(double));
+    memcpy(s->p, f->p, f->np * sizeof(double));
+    memcpy(s->z_pre, f->z_pre, f->ni * sizeof(double));
+    memcpy(s->x_init, f->x_init, f->nx * sizeof(double));
+    memcpy(s->p_init, f->p_init, f->np * sizeof(double));
+    if (f->inst_size > 0)
+        memcpy(s->inst, f->inst, f->inst_size);
+    s->init_done = f->init_done;
+    s->end_reached = f->end_reached;
+    s->cs_terminated = f->cs_terminated;
+    s->t_model_te = f->t_model_te;
+    s->t_next = f->t_next;
+    s->t_prev_event = f->t_prev_event;
+    s->last_ok_time = f->last_ok_time;
+    memcpy(s->end_name, f->end_name, sizeof s->end_name);
+    *FMUstate = s;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetFMUstate", ~0u))
+        return fmi2Error;
+    const fmu_saved *s = FMUstate;
+    if (s == NULL)
+        return FAIL(f, "fmi2SetFMUstate: NULL state");
+    const int after_init = s->mode != M_INSTANTIATED && s->mode != M_INIT;
+    f->t_start = s->t_start;
+    f->tol = s->tol;
+    memcpy(f->x_init, s->x_init, f->nx * sizeof(double));
+    memcpy(f->p_init, s->p_init, f->np * sizeof(double));
+    if (after_init && f->type == fmi2CoSimulation && s->sim != NULL) {
+        if (f->sim == NULL) { /* after fmi2Reset: the simulation made again, then restored */
+            if (cs_create(f, s->x_init, s->p_init) != fmi2OK)
+                return fmi2Error;
+        }
+        lv_err err;
+        if (lv_sim_restore(f->sim, s->sim, &err) != LV_OK) {
+            f->mode = M_ERROR;
+            return FAIL(f, "fmi2SetFMUstate: %s", err.msg);
+        }
+    } else if (after_init && f->type == fmi2ModelExchange && f->d->init != NULL) {
+        /* the model's init() may set up more than its instance (an impact level's offset):
+         * done again for the saved start, then the instance's bytes are the saved ones */
+        f->d->init(s->t_start, s->x_init, s->p_init, f->inst);
+    }
+    if (!after_init || f->type == fmi2ModelExchange) {
+        lv_sim_free(f->sim);
+        f->sim = NULL;
+    }
+    f->mode = s->mode;
+    f->t = s->t;
+    memcpy(f->x, s->x, f->nx * sizeof(double));
+    memcpy(f->p, s->p, f->np * sizeof(double));
+    memcpy(f->z_pre, s->z_pre, f->ni * sizeof(double));
+    if (f->inst_size > 0)
+        memcpy(f->inst, s->inst, f->inst_size);
+    f->init_done = s->init_done;
+    f->end_reached = s->end_reached;
+    f->cs_terminated = s->cs_terminated;
+    f->t_model_te = s->t_model_te;
+    f->t_next = s->t_next;
+    f->t_prev_event = s->t_prev_event;
+    f->last_ok_time = s->last_ok_time;
+    memcpy(f->end_name, s->end_name, sizeof f->end_name);
+    f->eval_ok = 0;
+    return fmi2OK;
+}
+
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2FreeFMUstate", ~0u))
+        return fmi2Error;
+    if (FMUstate == NULL)
+        return FAIL(f, "fmi2FreeFMUstate: NULL pointer");
+    saved_free(*FMUstate);
+    *FMUstate = NULL;
+    return fmi2OK;
+}
+
+#define NO_SERIALIZE(fn)                                                                      \
+    fmu *f = c;                                                                               \
+    if (!allowed(f, #fn, ~0u))                                                                \
+        return fmi2Error;                                                                     \
+    return FAIL(f, "%s: not supported (canSerializeFMUstate is false: a saved state holds "   \
+                "the model's instance data, pointers included, valid in this process only)", #fn)
+
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size)
+{
+    (void)FMUstate, (void)size;
+    NO_SERIALIZE(fmi2SerializedFMUstateSize);
+}
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate,
+                                 fmi2Byte serializedState[], size_t size)
+{
+    (void)FMUstate, (void)serializedState, (void)size;
+    NO_SERIALIZE(fmi2SerializeFMUstate);
+}
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
+                                   fmi2FMUstate *FMUstate)
+{
+    (void)serializedState, (void)size, (void)FMUstate;
+    NO_SERIALIZE(fmi2DeSerializeFMUstate);
+}
+
+/* ---- Model Exchange ------------------------------------------------------------------------ */
+
+fmi2Status fmi2EnterEventMode(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2EnterEventMode", B_EVENT | B_CONT) || !is_me(f, "fmi2EnterEventMode"))
+        return fmi2Error;
+    f->mode = M_EVENT;
+    return fmi2OK;
+}
+
+static void note_end(fmu *f, const char *name)
+{
+    if (!f->end_reached)
+        snprintf(f->end_name, sizeof f->end_name, "%s", name);
+    f->end_reached = 1;
+}
+
+/* The events at f->t, in lv_simulate's order: the model's state events (one on_event call),
+ * the phase's ends (crossings, then times), the model's time event; then the domain. */
+fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *ev)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2NewDiscreteStates", B_EVENT) || !is_me(f, "fmi2NewDiscreteStates"))
+        return fmi2Error;
+    if (ev == NULL)
+        return FAIL(f, "fmi2NewDiscreteStates: NULL eventInfo");
+    const lv_model_def *d = f->d;
+    memset(ev, 0, sizeof *ev);
+    if (eval_indicators(f, f->z) != 0) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': the event indicators cannot be evaluated at t = %.9g s: %s",
+                    d->name, f->t, model_why(f));
+    }
+    double *x_before = f->x_prev;
+    memcpy(x_before, f->x, f->nx * sizeof *x_before);
+    /* a crossing: z leaves (0, inf) or enters it (the standard's z > 0 / z <= 0) */
+#define CROSS(i) ((f->z_pre[i] > 0.0) == (f->z[i] > 0.0) ? 0 : f->z[i] > 0.0 ? 1 : -1)
+    int any = 0;
+    for (size_t i = 0; i < f->ng; i++) {
+        const int s = CROSS(i);
+        const int want = (int)d->events[i].direction;
+        f->fired[i] = s != 0 && (want == 0 || want == s) ? s : 0;
+        any |= f->fired[i] != 0;
+    }
+    if (any) {
+        for (size_t i = 0; i < f->ng; i++)
+            if (f->fired[i])
+                fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: state event '%s' (%s)", f->t,
+                        d->events[i].name, f->fired[i] > 0 ? "rising" : "falling");
+        lv_event_action a = d->on_event ? d->on_event(f->t, f->x, f->p, f->fired, f->inst)
+                                        : LV_EVENT_STOP;
+        if (a == LV_EVENT_STOP) {
+            const char *nm = "event";
+            for (size_t i = 0; i < f->ng; i++)
+                if (f->fired[i]) {
+                    nm = d->events[i].name;
+                    break;
+                }
+            note_end(f, nm);
+        }
+    }
+    size_t r = 0;
+    for (size_t j = 0; j < f->ns; j++) {
+        const fmu_stop *sp = &f->stops[j];
+        int hit;
+        if (sp->is_time) {
+            hit = sp->value > f->t_prev_event && f->t >= sp->value;
+        } else {
+            const int s = CROSS(f->ng + f->nd + r);
+            hit = s != 0 && (sp->dir == LV_DIR_BOTH || (int)sp->dir == s);
+            r++;
+        }
+        if (hit) {
+            fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: the phase's end '%s'", f->t, sp->name);
+            note_end(f, sp->name);
+        }
+    }
+    if (f->t >= f->t_model_te) {
+        const char *tev = d->time_event_name ? d->time_event_name(f->t, f->p, f->inst) : NULL;
+        fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: time event (%s)", f->t,
+                tev != NULL ? tev : "time event");
+        lv_event_action a = d->on_time_event ? d->on_time_event(f->t, f->x, f->p, f->inst)
+                                             : LV_EVENT_RESTART;
+        if (a == LV_EVENT_STOP)
+            note_end(f, tev != NULL ? tev : "time event");
+    }
+    if (f->t >= f->t_limit) {
+        fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: the phase's time limit", f->t);
+        note_end(f, "stop_time");
+    }
+    for (size_t i = 0; i < f->nd; i++) {
+        if (CROSS(f->ng + i) < 0 && !f->end_reached) {
+            const lv_domain_def *b = &d->domain[i];
+            f->mode = M_ERROR;
+            return FAIL(f, "model '%s': at t = %.9g s the state left the model's domain: %s fell "
+                        "to its lower bound %g %s: %s", d->name, f->t, b->quantity, b->lower,
+                        b->unit, b->why);
+        }
+    }
+#undef CROSS
+    for (size_t i = 0; i < f->nx; i++)
+        if (!isfinite(f->x[i])) {
+            f->mode = M_ERROR;
+            return FAIL(f, "model '%s': event handler at t = %.9g s made '%s' = %g", d->name,
+                        f->t, d->states[i].name, f->x[i]);
+        }
+    ev->valuesOfContinuousStatesChanged =
+        memcmp(x_before, f->x, f->nx * sizeof *x_before) != 0 ? fmi2True : fmi2False;
+    f->eval_ok = 0;
+    if (eval_indicators(f, f->z_pre) != 0) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': the event indicators cannot be evaluated after the event at "
+                    "t = %.9g s: %s", d->name, f->t, model_why(f));
+    }
+    f->t_prev_event = f->t;
+    if (f->end_reached) {
+        fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: the phase ends ('%s'): terminateSimulation",
+                f->t, f->end_name);
+        ev->terminateSimulation = fmi2True;
+        return fmi2OK;
+    }
+    schedule(f);
+    if (!(f->t_next > f->t)) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': next time event %g is not after t = %g", d->name, f->t_next,
+                    f->t);
+    }
+    ev->nextEventTimeDefined = fmi2True;
+    ev->nextEventTime = f->t_next;
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2EnterContinuousTimeMode", B_EVENT) ||
+        !is_me(f, "fmi2EnterContinuousTimeMode"))
+        return fmi2Error;
+    if (f->end_reached)
+        return FAIL(f, "fmi2EnterContinuousTimeMode: the phase ended at t = %.9g s ('%s'); "
+                    "call fmi2Terminate", f->t, f->end_name);
+    f->mode = M_CONT;
+    return fmi2OK;
+}
+
+fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStatePriorToCurrentPoint,
+                                       fmi2Boolean *enterEventMode,
+                                       fmi2Boolean *terminateSimulation)
+{
+    (void)noSetFMUStatePriorToCurrentPoint;
+    fmu *f = c;
+    if (!allowed(f, "fmi2CompletedIntegratorStep", B_CONT) ||
+        !is_me(f, "fmi2CompletedIntegratorStep"))
+        return fmi2Error;
+    if (enterEventMode == NULL || terminateSimulation == NULL)
+        return FAIL(f, "fmi2CompletedIntegratorStep: NULL pointer");
+    *enterEventMode = fmi2False; /* no step events: every event is a state or time event */
+    *terminateSimulation = fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetTime", B_INST | B_INIT | B_EVENT | B_CONT) || !is_me(f, "fmi2SetTime"))
+        return fmi2Error;
+    if (!isfinite(time))
+        return FAIL(f, "fmi2SetTime: time %g is not finite", time);
+    if (f->mode == M_INSTANTIATED || f->mode == M_INIT) {
+        f->t_start = time;
+        f->init_done = 0;
+    }
+    f->t = time;
+    f->eval_ok = 0;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetContinuousStates", B_CONT) || !is_me(f, "fmi2SetContinuousStates"))
+        return fmi2Error;
+    if (nx != f->nx || x == NULL)
+        return FAIL(f, "fmi2SetContinuousStates: %zu states given, the model has %zu", nx, f->nx);
+    memcpy(f->x, x, nx * sizeof *x);
+    f->eval_ok = 0;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetDerivatives", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
+        !is_me(f, "fmi2GetDerivatives"))
+        return fmi2Error;
+    if (nx != f->nx || derivatives == NULL)
+        return FAIL(f, "fmi2GetDerivatives: %zu derivatives asked for, the model has %zu", nx,
+                    f->nx);
+    int rc = eval_model(f);
+    memcpy(derivatives, f->xdot, nx * sizeof *derivatives);
+    if (rc == 0)
+        return fmi2OK;
+    if (rc < 0) {
+        f->mode = M_ERROR;
+        return FAIL(f, "model '%s': right-hand side returned %d at t = %.9g s: %s", f->d->name,
+                    rc, f->t, model_why(f));
+    }
+    /* outside the model's domain (a table's range, a state it cannot take): the standard's
+     * fmi2Discard - the importer retries with a smaller step */
+    fmu_log(f, fmi2Discard, C_DISCARD, "model '%s': the right-hand side cannot be evaluated at "
+            "t = %.9g s: %s", f->d->name, f->t, model_why(f)[0] ? model_why(f)
+                                                             : "a derivative is not finite");
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], size_t ni)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetEventIndicators", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
+        !is_me(f, "fmi2GetEventIndicators"))
+        return fmi2Error;
+    if (ni != f->ni || (ni > 0 && eventIndicators == NULL))
+        return FAIL(f, "fmi2GetEventIndicators: %zu indicators asked for, the FMU has %zu", ni,
+                    f->ni);
+    int rc = eval_indicators(f, eventIndicators);
+    if (rc == 0)
+        return fmi2OK;
+    fmu_log(f, fmi2Discard, C_DISCARD, "model '%s': the event indicators cannot be evaluated "
+            "at t = %.9g s: %s", f->d->name, f->t, model_why(f));
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetContinuousStates", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
+        !is_me(f, "fmi2GetContinuousStates"))
+        return fmi2Error;
+    if (nx != f->nx || x == NULL)
+        return FAIL(f, "fmi2GetContinuousStates: %zu states asked for, the model has %zu", nx,
+                    f->nx);
+    memcpy(x, f->x, nx * sizeof *x);
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x_nominal[], size_t nx)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetNominalsOfContinuousStates", B_RUN | B_INST) ||
+        !is_me(f, "fmi2GetNominalsOfContinuousStates"))
+        return fmi2Error;
+    if (nx != f->nx || x_nominal == NULL)
+        return FAIL(f, "fmi2GetNominalsOfContinuousStates: %zu asked for, the model has %zu", nx,
+                    f->nx);
+    for (size_t i = 0; i < nx; i++)
+        x_nominal[i] = f->d->states[i].nominal;
+    return fmi2OK;
+}
+
+/* ---- Co-Simulation ------------------------------------------------------------------------- */
+
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                       const fmi2Integer order[], const fmi2Real value[])
+{
+    (void)order, (void)value;
+    fmu *f = c;
+    if (!allowed(f, "fmi2SetRealInputDerivatives", ~0u) || !is_cs(f, "fmi2SetRealInputDerivatives"))
+        return fmi2Error;
+    return FAIL(f, "fmi2SetRealInputDerivatives: this FMU has no inputs (canInterpolateInputs is "
+                "false)%s%u", nvr > 0 ? "; value reference " : "", nvr > 0 && vr ? vr[0] : 0u);
+}
+
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                        const fmi2Integer order[], fmi2Real value[])
+{
+    (void)vr, (void)nvr, (void)order, (void)value;
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetRealOutputDerivatives", ~0u) ||
+        !is_cs(f, "fmi2GetRealOutputDerivatives"))
+        return fmi2Error;
+    return FAIL(f, "fmi2GetRealOutputDerivatives: not provided (maxOutputDerivativeOrder is 0)");
+}
+
+fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
+                      fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
+{
+    (void)noSetFMUStatePriorToCurrentPoint;
+    fmu *f = c;
+    if (!allowed(f, "fmi2DoStep", B_STEPOK) || !is_cs(f, "fmi2DoStep"))
+        return fmi2Error;
+    const double t_now = lv_sim_time(f->sim);
+    if (!(communicationStepSize > 0.0) || !isfinite(communicationStepSize))
+        return FAIL(f, "fmi2DoStep: communicationStepSize %g is not > 0", communicationStepSize);
+    /* the master's time and the slave's agree to round-off (a sum of steps) */
+    if (!(fabs(currentCommunicationPoint - t_now) <= 1e-9 * fmax(1.0, fabs(t_now))))
+        return FAIL(f, "fmi2DoStep: currentCommunicationPoint %.17g s is not the FMU's time "
+                    "%.17g s", currentCommunicationPoint, t_now);
+    if (lv_sim_done(f->sim)) {
+        f->mode = M_STEP_FAILED;
+        f->cs_terminated = 1;
+        fmu_log(f, fmi2Discard, C_DISCARD, "fmi2DoStep: the phase has ended at t = %.9g s",
+                t_now);
+        return fmi2Discard;
+    }
+    const double target = currentCommunicationPoint + communicationStepSize;
+    lv_err err;
+    lv_status st = lv_sim_advance(f->sim, target, &err);
+    const double t = lv_sim_time(f->sim);
+    f->t = t;
+    if (st != LV_OK) {
+        f->mode = M_ERROR;
+        f->last_ok_time = t;
+        return FAIL(f, "fmi2DoStep: %s", err.msg);
+    }
+    f->last_ok_time = t;
+    if (lv_sim_done(f->sim)) { /* a phase end, or its time limit */
+        const lv_sim_report *rep = lv_sim_report_get(f->sim);
+        f->cs_terminated = 1;
+        snprintf(f->end_name, sizeof f->end_name, "%s", rep->stop_name);
+        fmu_log(f, fmi2OK, C_EVENTS, "t = %.9g s: the phase ends ('%s')", t, rep->stop_name);
+        if (t < target && fabs(target - t) > 1e-12 * fmax(1.0, fabs(t))) {
+            f->mode = M_STEP_FAILED;
+            fmu_log(f, fmi2Discard, C_DISCARD, "fmi2DoStep: the phase ended at t = %.17g s "
+                    "('%s'), before the end of the step at %.17g s: fmi2Terminated, "
+                    "fmi2LastSuccessfulTime", t, rep->stop_name, target);
+            return fmi2Discard;
+        }
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2CancelStep(fmi2Component c)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2CancelStep", ~0u) || !is_cs(f, "fmi2CancelStep"))
+        return fmi2Error;
+    return FAIL(f, "fmi2CancelStep: fmi2DoStep runs synchronously and never returns fmi2Pending: "
+                "there is no step to cancel");
+}
+
+fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
+{
+    (void)value;
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetStatus", ~0u) || !is_cs(f, "fmi2GetStatus"))
+        return fmi2Error;
+    fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetStatus(%d): no status of this kind (fmi2DoStep "
+            "is synchronous: it never returns fmi2Pending)", (int)s);
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetRealStatus", ~0u) || !is_cs(f, "fmi2GetRealStatus"))
+        return fmi2Error;
+    if (value == NULL)
+        return FAIL(f, "fmi2GetRealStatus: NULL pointer");
+    if (s == fmi2LastSuccessfulTime) {
+        *value = f->last_ok_time;
+        return fmi2OK;
+    }
+    fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetRealStatus(%d): only fmi2LastSuccessfulTime",
+            (int)s);
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)
+{
+    (void)value;
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetIntegerStatus", ~0u) || !is_cs(f, "fmi2GetIntegerStatus"))
+        return fmi2Error;
+    fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetIntegerStatus(%d): no integer status", (int)s);
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
+{
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetBooleanStatus", ~0u) || !is_cs(f, "fmi2GetBooleanStatus"))
+        return fmi2Error;
+    if (value == NULL)
+        return FAIL(f, "fmi2GetBooleanStatus: NULL pointer");
+    if (s == fmi2Terminated) {
+        *value = f->cs_terminated ? fmi2True : fmi2False;
+        return fmi2OK;
+    }
+    fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetBooleanStatus(%d): only fmi2Terminated", (int)s);
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value)
+{
+    (void)value;
+    fmu *f = c;
+    if (!allowed(f, "fmi2GetStringStatus", ~0u) || !is_cs(f, "fmi2GetStringStatus"))
+        return fmi2Error;
+    fmu_log(f, fmi2Discard, C_DISCARD, "fmi2GetStringStatus(%d): no pending step, no status "
+            "text", (int)s);
+    return fmi2Discard;
+}

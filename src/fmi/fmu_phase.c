@@ -1,0 +1,135 @@
+/* fmu_phase.c - a mission's phase made ready to be an FMU's model (fmu_phase.h): the same
+ * code at export and inside the FMU, so both compute the same start values. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/status.h"
+#include "fmi/fmu_phase.h"
+
+void lv_fmu_phase_close(lv_fmu_phase *fp)
+{
+    if (fp == NULL)
+        return;
+    lv_phase_call_free(fp->call);
+    lv_run_free(fp->run);
+    lv_mission_free(fp->mission);
+    free(fp->x0);
+    free(fp->p0);
+    memset(fp, 0, sizeof *fp);
+}
+
+lv_status lv_fmu_phase_start_values(const lv_model_def *d, void *inst, const lv_sim_settings *s,
+                                    double *x, double *p, lv_err *err)
+{
+    for (size_t j = 0; j < d->n_params; j++)
+        p[j] = d->params[j].start;
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t i = 0; i < s->n_initial; i++) {
+            lv_var_kind kind;
+            size_t idx;
+            lv_status st = lv_model_find(d, s->initial_names[i], &kind, &idx, err);
+            if (st != LV_OK)
+                return st;
+            if (pass == 0 && kind == LV_VAR_PARAMETER)
+                p[idx] = s->initial_values[i];
+            if (pass == 1 && kind == LV_VAR_STATE)
+                x[idx] = s->initial_values[i];
+        }
+        if (pass == 0) {
+            for (size_t i = 0; i < d->n_states; i++)
+                x[i] = d->states[i].start;
+            if (d->start != NULL && d->start(p, x, inst) != 0)
+                return lv_fail(err, LV_ERR_INPUT, "model '%s': start values cannot be computed "
+                               "from the parameters", d->name);
+        }
+    }
+    for (size_t i = 0; i < d->n_states; i++)
+        if (!isfinite(x[i]))
+            return lv_fail(err, LV_ERR_INPUT, "model '%s': start value of '%s' is %g", d->name,
+                           d->states[i].name, x[i]);
+    return LV_OK;
+}
+
+lv_status lv_fmu_phase_open(const char *path, const char *phase, lv_fmu_phase *fp, lv_err *err)
+{
+    memset(fp, 0, sizeof *fp);
+    lv_status st = lv_mission_load(path, &fp->mission, err);
+    if (st != LV_OK)
+        goto fail;
+    if ((st = lv_mission_phase_find(fp->mission, phase, &fp->k, err)) != LV_OK) {
+        char names[256] = "";
+        size_t used = 0;
+        for (size_t i = 0; i < lv_mission_phase_count(fp->mission) && used < sizeof names; i++) {
+            int n = snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "",
+                             lv_mission_phase_name(fp->mission, i));
+            used += n > 0 ? (size_t)n : 0;
+        }
+        st = lv_fail(err, st, "%s: unknown phase '%s' (the phases: %s)", path, phase, names);
+        goto fail;
+    }
+    if ((st = lv_run_create(fp->mission, &fp->run, err)) != LV_OK)
+        goto fail;
+    fp->parent = lv_mission_phase_parent(fp->mission, fp->k);
+    if (fp->parent >= 0) {
+        /* the hand-off: the ancestors run (no files, no rows kept) to give the start state */
+        const size_t n = lv_mission_phase_count(fp->mission);
+        unsigned char *want = calloc(n, 1);
+        if (want == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+        want[fp->parent] = 1;
+        lv_run_options opt = {0};
+        opt.threads = 1;
+        opt.no_rows = 1;
+        opt.want = want;
+        lv_err run_err;
+        st = lv_run_execute(fp->run, &opt, &run_err);
+        free(want);
+        const lv_phase_result *pr = lv_run_result(fp->run, (size_t)fp->parent);
+        if (pr == NULL || pr->state != LV_PHASE_DONE) {
+            st = lv_fail(err, st != LV_OK ? st : LV_ERR_SOLVER,
+                         "%s: phase '%s' starts from phase '%s', which did not complete: %s",
+                         path, phase, lv_mission_phase_name(fp->mission, (size_t)fp->parent),
+                         pr != NULL && pr->error[0] ? pr->error : run_err.msg);
+            goto fail;
+        }
+    }
+    if ((st = lv_run_prepare(fp->run, fp->k, &fp->call, err)) != LV_OK) {
+        lv_fail_prefix(err, st, "%s: phase '%s'", path, phase);
+        goto fail;
+    }
+    fp->def = lv_phase_call_model(fp->call);
+    fp->inst = lv_phase_call_inst(fp->call);
+    fp->s = lv_phase_call_settings(fp->call);
+    fp->x0 = calloc(fp->def->n_states + 1, sizeof *fp->x0);
+    fp->p0 = calloc(fp->def->n_params + 1, sizeof *fp->p0);
+    if (fp->x0 == NULL || fp->p0 == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    if ((st = lv_fmu_phase_start_values(fp->def, fp->inst, fp->s, fp->x0, fp->p0, err)) != LV_OK) {
+        lv_fail_prefix(err, st, "%s: phase '%s'", path, phase);
+        goto fail;
+    }
+    return LV_OK;
+fail:
+    lv_fmu_phase_close(fp);
+    return st;
+}
+
+void lv_fmu_derivative_unit(const char *unit, char *buf, size_t cap)
+{
+    const size_t len = strlen(unit);
+    if (len == 0)
+        snprintf(buf, cap, "1/s");
+    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
+        snprintf(buf, cap, "%s2", unit);
+    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
+             unit[len - 1] < '9')
+        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
+    else
+        snprintf(buf, cap, "%s/s", unit);
+}

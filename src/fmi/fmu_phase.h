@@ -1,0 +1,44 @@
+/* fmu_phase.h - one phase of a mission made ready to be an FMU's model: the mission loaded,
+ * the phase's ancestors simulated (a child phase starts from its parent's final state), the
+ * phase prepared (lv_run_prepare: its model, instance and settings), and its start values
+ * computed as lv_simulate computes them. The exporter (export.c) writes these start values into
+ * modelDescription.xml; the FMU (fmu.c) does the same at fmi2Instantiate from the copy of the
+ * mission in its resources, and gets the same numbers. Public API of liblvsim only. */
+#ifndef LV_FMI_FMU_PHASE_H
+#define LV_FMI_FMU_PHASE_H
+
+#include <stddef.h>
+
+#include "lvsim/lv_mission.h"
+
+typedef struct lv_fmu_phase {
+    lv_mission *mission;
+    lv_run *run;
+    size_t k;                  /* the phase's index */
+    int parent;                /* its parent's index, or -1 */
+    lv_phase_call *call;       /* lv_run_prepare's: owns the model and its instance */
+    const lv_model_def *def;
+    void *inst;
+    const lv_sim_settings *s;  /* the phase's settings: times, method, tolerance, stops */
+    double *x0, *p0;           /* [n_states], [n_params]: the start values */
+} lv_fmu_phase;
+
+/* Loads `mission_path`, runs the ancestors of phase `phase` (by name) and prepares it.
+ * Errors name the mission file, the phase and the reason (an unknown phase lists the names;
+ * a parent that fails gives its error). On failure *fp is cleared. */
+lv_status lv_fmu_phase_open(const char *mission_path, const char *phase, lv_fmu_phase *fp,
+                            lv_err *err);
+void lv_fmu_phase_close(lv_fmu_phase *fp); /* accepts a cleared one */
+
+/* The start values of states x[n_states] and parameters p[n_params] from the phase's settings,
+ * as lv_simulate sets them: parameters at their defaults, then those the hand-off names; the
+ * states' defaults, the model's start() from the parameters, then the states the hand-off
+ * names. */
+lv_status lv_fmu_phase_start_values(const lv_model_def *def, void *inst, const lv_sim_settings *s,
+                                    double *x, double *p, lv_err *err);
+
+/* The time unit of a derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s" (as the result
+ * files name them). Writes into buf[cap]. */
+void lv_fmu_derivative_unit(const char *unit, char *buf, size_t cap);
+
+#endif

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# `lvsim fmu` with bad input: each case exits nonzero with a message naming what is wrong, and
+# leaves no file behind. Usage: test_fmu_cli.sh LVSIM SOURCE_DIR
+set -u
+LVSIM=$1
+SRC=$2
+M="$SRC/examples/kourou-leo/mission.yaml"
+T=$(mktemp -d)
+trap 'chmod -R u+w "$T"; rm -rf "$T"' EXIT
+fails=0
+# expect CODE TEXT -- ARGS...: the exit code and a piece of the message on stderr
+expect() {
+  local code=$1 text=$2
+  shift 3
+  "$LVSIM" fmu "$@" > "$T/out" 2> "$T/err"
+  local rc=$?
+  if [ "$rc" -ne "$code" ] || ! grep -qF -- "$text" "$T/err"; then
+    echo "FAIL: lvsim fmu $*: exit $rc (want $code), stderr:"; cat "$T/err"
+    echo "  (wanted: $text)"
+    fails=$((fails + 1))
+  else
+    echo "ok: lvsim fmu $* -> $rc: $(head -1 "$T/err")"
+  fi
+}
+expect 2 "unknown phase 'nope'" -- "$M" --phase nope -o "$T/a.fmu"
+expect 2 "needs the output file: -o" -- "$M" --phase ascent
+expect 2 "needs the phase to export" -- "$M" -o "$T/a.fmu"
+expect 2 "needs a mission file" -- --phase ascent -o "$T/a.fmu"
+expect 2 "missing value for option" -- "$M" --phase ascent -o
+expect 2 "unknown option" -- "$M" --phase ascent -o "$T/a.fmu" --bogus
+expect 2 "no-such.yaml" -- "$T/no-such.yaml" --phase ascent -o "$T/a.fmu"
+expect 2 "does not exist" -- "$M" --phase ascent -o "$T/no/dir/a.fmu"
+mkdir "$T/ro" && chmod a-w "$T/ro"
+if [ "$(id -u)" -ne 0 ]; then  # root writes anywhere
+  expect 2 "is not writable" -- "$M" --phase ascent -o "$T/ro/a.fmu"
+fi
+expect 2 "it is a folder" -- "$M" --phase ascent -o "$T/ro"
+expect 2 "not a C identifier" -- "$M" --phase ascent -o "$T/a.fmu" --model-identifier 9x
+# a data file named by an absolute path cannot travel in the FMU
+sed "s|table: aero_ascent.csv|table: $SRC/examples/kourou-leo/aero_ascent.csv|" "$M" > "$T/abs.yaml"
+expect 2 "absolute path" -- "$T/abs.yaml" --phase ascent -o "$T/b.fmu"
+if ls "$T"/*.fmu "$T"/*.tmp > /dev/null 2>&1; then
+  echo "FAIL: a file was left behind:"; ls "$T"; fails=$((fails + 1))
+fi
+# and a good one, for contrast
+if "$LVSIM" fmu "$M" --phase ascent -o "$T/ok.fmu" > "$T/out" 2>&1 && [ -s "$T/ok.fmu" ]; then
+  echo "ok: $(head -1 "$T/out")"
+else
+  echo "FAIL: the good export"; cat "$T/out"; fails=$((fails + 1))
+fi
+[ "$fails" -eq 0 ] && echo "test_fmu_cli: all passed" || echo "test_fmu_cli: $fails failed"
+exit $((fails > 0))
