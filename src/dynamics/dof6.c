@@ -960,7 +960,7 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ACC] = lv_v3_norm(pt.a_eci);
     y[O_ACC_SENSED] = lv_v3_norm(f_spec);
     const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
-    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / y[O_RADIUS]);
+    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / lv_v3_norm(k->r_ecef)); /* as lv_dof3 */
     y[O_DOWNRANGE] =
         m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
     if (m->steers) {
