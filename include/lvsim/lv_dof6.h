@@ -90,8 +90,8 @@ typedef struct lv_dof6_moments {
 /* Attitude controller (docs/models.md, "Attitude control"): the attitude error e (body axes,
  * rad) is the rotation vector of the rotation from the actual body axes to the commanded ones
  * (those of the steering law, lv_guid_attitude), e = theta n with cos theta = (tr R - 1) / 2,
- * sin theta n = vex((R - R^T) / 2), R_ij = b_i . c_j (Markley & Crassidis, Fundamentals of
- * Spacecraft Attitude Determination and Control, 2014, sec. 2.9). Pitch (body y) and yaw
+ * sin theta n = vex((R - R^T) / 2), R_ij = b_i . c_j (Euler axis and angle: Shuster, "A
+ * survey of attitude representations", J. Astronaut. Sci. 41 (1993) 439-517). Pitch (body y) and yaw
  * (body z) are controlled by the gimbal of every engine (aft of the centre of mass):
  *   delta_c,pitch = kp_pitch e_y + ki_pitch integral(e_y) - kd_pitch q
  *   delta_c,yaw   = kp_yaw   e_z + ki_yaw   integral(e_z) - kd_yaw   r

@@ -388,9 +388,9 @@ static lv_vec3 moment_transfer(lv_vec3 M_mrp, lv_vec3 r_mrp, lv_vec3 cg, lv_vec3
 /* Attitude error: the rotation vector e = theta n [rad, body axes] of the rotation R that
  * carries the actual body axes b_i onto the commanded ones c_i, R_ij = b_i . c_j (the
  * commanded axes in body components): cos theta = (tr R - 1) / 2, sin theta n = vex((R - R^T)
- * / 2) (Markley & Crassidis, Fundamentals of Spacecraft Attitude Determination and Control,
- * 2014, eqs. 2.99-2.101 with the rotation vector of sec. 2.9.3); equal to twice the vector part
- * of the error quaternion q_b^* q_c for small angles. A positive component asks for a
+ * / 2) (the Euler axis and angle of a rotation matrix: Shuster, "A survey of attitude
+ * representations", J. Astronaut. Sci. 41 (1993) 439-517); the rotation vector of the error
+ * quaternion q_b^* q_c, twice its vector part for small angles. A positive component asks for a
  * positive rotation about that body axis. theta in [0, pi]: at theta = pi (commanded axes
  * upside down) the direction is undefined and e = 0 is returned along with the angle lost
  * (never met in a controlled flight). */

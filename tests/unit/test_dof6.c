@@ -1061,8 +1061,8 @@ static void test_controller_vs_dof3(void)
 /* Without the controller (gimbal fixed at 0) the statically unstable body diverges in angle
  * of attack: with the centre of pressure l = 10 m ahead of the centre of mass the aerodynamic
  * moment q S CN_alpha l alpha grows alpha at the rate sqrt(q S CN_alpha l / I_yy) (0.55 /s at
- * q = 8 kPa: Etkin & Reid, Dynamics of Flight, 3rd ed., sec. 5.2, the short-period roots
- * with Cm_alpha > 0), so |alpha| reaches 20 deg within seconds of the dynamic pressure's rise
+ * q = 8 kPa: I_yy alpha'' = M_alpha alpha with M_alpha > 0 has the real root
+ * sqrt(M_alpha / I_yy), damping and the path's turn aside), so |alpha| reaches 20 deg within seconds of the dynamic pressure's rise
  * (its end event stops the phase, long before burnout); the same body with the centre of
  * pressure 5-10 m aft of the centre of mass (mrp_x = -25) weathervanes: |alpha| stays below
  * 1 deg wherever q > 1 kPa, to burnout. The controlled run of test_controller_vs_dof3 flies

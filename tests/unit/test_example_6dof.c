@@ -64,7 +64,7 @@ int main(void)
                res->t_end, ends[k]);
     }
     /* burnout of the booster: its 395 t of propellant at the mass flow of nine engines,
-     * mdot = 9 F_vac / (Isp g0) (Sutton & Biblarz eq. 2-5), from lift-off */
+     * mdot = 9 F_vac / (Isp g0) (the definition of the specific impulse), from lift-off */
     const double mdot = 9.0 * 914000.0 / (311.0 * LV_G0);
     CHECK_CLOSE(fin(r, 1, "time"), 395000.0 / mdot, 1e-3);
     /* the stage book: the stack at burnout is booster dry + upper + payload; after staging
@@ -103,7 +103,7 @@ int main(void)
     /* 3-DoF -> 6-DoF with the curvature rule: the first pitch rate is the turn of the velocity.
      * At 14 s the lift-off's kick has ended (alpha = 0: no normal force, thrust along the
      * velocity), so the velocity turns by gravity alone: d(fpa)/dt = -g cos(fpa) / v (the
-     * gravity turn, Wiesel, Spaceflight Dynamics, sec. 9.2), g = 9.78 m/s^2 at Kourou; the
+     * gravity turn, Wiesel, Spaceflight Dynamics, 3rd ed., sec. 9), g = 9.78 m/s^2 at Kourou; the
      * rotating Earth's and the local horizon's own rates (omega, v cos(fpa) / r) are below
      * 1e-4 rad/s here: the tolerance 2e-4 rad/s. */
     {
