@@ -5,7 +5,9 @@
  * with the propellant, one engine gimballed in pitch and yaw with a misalignment, rotating
  * Earth. States sweep an ascent-like envelope (0-90 km, 50-3000 m/s, attitude and rates varying)
  * so table cursors and atmosphere layers move as in a run. Target (issue 15): <= 1 us per rhs.
- * CPU time; the 3-DoF model's figure for the same envelope: bench_dof3. */
+ * Then the same with a steering law (gravity turn; linear tangent) and the PID attitude
+ * controller with its actuators (18 states). CPU time; the 3-DoF model's figure for the same
+ * envelope: bench_dof3. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,6 +26,71 @@ static double now_s(void) { return (double)clock() / CLOCKS_PER_SEC; }
 #define DEG (3.14159265358979323846 / 180.0)
 
 static volatile double sink_;
+
+#define N_X 18 /* states with a PID controller */
+
+/* ns per right-hand side of the model `cfg` over the ascent envelope; -1 on failure. */
+static double bench(const lv_dof6_config *cfg)
+{
+    lv_err err;
+    lv_dof6 *m = NULL;
+    if (lv_dof6_create(cfg, &m, &err) != LV_OK) {
+        fprintf(stderr, "bench_dof6: %s\n", err.msg);
+        return -1.0;
+    }
+    const lv_model_def *d = lv_dof6_def(m);
+    void *inst = lv_dof6_inst(m);
+    double p[64], x0[N_X], xdot[N_X];
+    for (size_t i = 0; i < d->n_params; i++)
+        p[i] = d->params[i].start;
+    static double xs[N_PTS][N_X];
+    for (int k = 0; k < N_PTS; k++) { /* an ascent: altitude, speed, pitch over */
+        const double s = (double)k / (N_PTS - 1);
+        p[2] = 90e3 * s * s;              /* start_h */
+        p[3] = 50.0 + 2950.0 * s;         /* start_vel */
+        p[4] = 1.5 * (1.0 - s);           /* start_fpa */
+        p[7] = 1.2;                       /* start_psi */
+        p[8] = 1.5 * (1.0 - s) + 0.03 * sin(40.0 * s); /* start_theta: alpha wanders */
+        p[9] = 0.02 * cos(30.0 * s);      /* start_phi */
+        p[10] = 0.01 * sin(50.0 * s);     /* start_p, q, r */
+        p[11] = -0.005 + 0.01 * s;
+        p[12] = 0.003 * cos(20.0 * s);
+        for (size_t i = 0; i < d->n_states; i++)
+            x0[i] = d->states[i].start;
+        if (d->start(p, x0, inst) != 0) {
+            fprintf(stderr, "bench_dof6: start failed: %s\n", lv_dof6_last_error(m));
+            lv_dof6_free(m);
+            return -1.0;
+        }
+        x0[LV_X6_M] = 150e3 - 100e3 * s;
+        for (size_t i = LV_X6_N; i < d->n_states; i++) /* gimbal angles, integrals */
+            x0[i] = 0.01 * sin(17.0 * s + (double)i);
+        for (size_t i = 0; i < d->n_states; i++)
+            xs[k][i] = x0[i];
+    }
+    if (d->init(0.0, xs[0], p, inst) != 0) {
+        fprintf(stderr, "bench_dof6: init failed: %s\n", lv_dof6_last_error(m));
+        lv_dof6_free(m);
+        return -1.0;
+    }
+    const long reps = 500;
+    double acc = 0.0;
+    const double t0 = now_s();
+    for (long r = 0; r < reps; r++)
+        for (int k = 0; k < N_PTS; k++) {
+            const int kk = (r & 1) ? N_PTS - 1 - k : k;
+            if (d->rhs(0.1 * kk, xs[kk], p, xdot, inst) != 0) {
+                fprintf(stderr, "bench_dof6: rhs failed: %s\n", lv_dof6_last_error(m));
+                lv_dof6_free(m);
+                return -1.0;
+            }
+            acc += xdot[LV_X6_Q];
+        }
+    const double dt = now_s() - t0;
+    sink_ = acc;
+    lv_dof6_free(m);
+    return 1e9 * dt / (double)(reps * N_PTS);
+}
 
 int main(void)
 {
@@ -95,57 +162,32 @@ int main(void)
     lv_dof3_end ends[] = {{"impact", LV_DOF3_END_IMPACT, 0.0, LV_DIR_FALLING, 1}};
     cfg.n_ends = 1;
     cfg.ends = ends;
-    if (lv_dof6_create(&cfg, &m, &err) != LV_OK)
+    const double ns0 = bench(&cfg);
+    if (ns0 < 0.0)
         goto fail;
-
-    const lv_model_def *d = lv_dof6_def(m);
-    void *inst = lv_dof6_inst(m);
-    double p[64], x0[LV_X6_N], xdot[LV_X6_N];
-    for (size_t i = 0; i < d->n_params; i++)
-        p[i] = d->params[i].start;
-    static double xs[N_PTS][LV_X6_N];
-    for (int k = 0; k < N_PTS; k++) { /* an ascent: altitude, speed, pitch over */
-        const double s = (double)k / (N_PTS - 1);
-        p[2] = 90e3 * s * s;              /* start_h */
-        p[3] = 50.0 + 2950.0 * s;         /* start_vel */
-        p[4] = 1.5 * (1.0 - s);           /* start_fpa */
-        p[7] = 1.2;                       /* start_psi */
-        p[8] = 1.5 * (1.0 - s) + 0.03 * sin(40.0 * s); /* start_theta: alpha wanders */
-        p[9] = 0.02 * cos(30.0 * s);      /* start_phi */
-        p[10] = 0.01 * sin(50.0 * s);     /* start_p, q, r */
-        p[11] = -0.005 + 0.01 * s;
-        p[12] = 0.003 * cos(20.0 * s);
-        for (int i = 0; i < LV_X6_N; i++)
-            x0[i] = d->states[i].start;
-        if (d->start(p, x0, inst) != 0) {
-            fprintf(stderr, "bench_dof6: start failed: %s\n", lv_dof6_last_error(m));
-            return 1;
-        }
-        x0[LV_X6_M] = 150e3 - 100e3 * s;
-        for (int i = 0; i < LV_X6_N; i++)
-            xs[k][i] = x0[i];
-    }
-    if (d->init(0.0, xs[0], p, inst) != 0) {
-        fprintf(stderr, "bench_dof6: init failed: %s\n", lv_dof6_last_error(m));
-        return 1;
-    }
-    const long reps = 500;
-    double acc = 0.0;
-    const double t0 = now_s();
-    for (long r = 0; r < reps; r++)
-        for (int k = 0; k < N_PTS; k++) {
-            const int kk = (r & 1) ? N_PTS - 1 - k : k;
-            if (d->rhs(0.1 * kk, xs[kk], p, xdot, inst) != 0) {
-                fprintf(stderr, "bench_dof6: rhs failed: %s\n", lv_dof6_last_error(m));
-                return 1;
-            }
-            acc += xdot[LV_X6_Q];
-        }
-    const double dt = now_s() - t0;
-    sink_ = acc;
     printf("full 6-DoF rhs (j2, us76, 2-D force and moment tables, Cl Cn Clp Cmq Cnr, moment "
            "transfer, 1 gimballed engine, variable inertia): %8.1f ns/rhs (target <= 1000)\n",
-           1e9 * dt / (double)(reps * N_PTS));
+           ns0);
+    /* the attitude controller (PID, actuators) holding a steering law's attitude */
+    cfg.controller = (lv_dof6_controller){LV_DOF6_CTL_PID, {1.5, 1.5}, {1.2, 1.2}, {0.3, 0.3},
+                                          6.0 * DEG, 20.0 * DEG, 0.05};
+    cfg.steering.law = LV_STEER_GRAVITY_TURN;
+    cfg.steering.rise_time = 5.0;
+    cfg.steering.kick = 3.0 * DEG;
+    cfg.steering.kick_time = 10.0;
+    cfg.steering.heading = 1.2;
+    const double ns1 = bench(&cfg);
+    cfg.steering.law = LV_STEER_TANGENT;
+    cfg.steering.frame = LV_FRAME_LOCAL;
+    cfg.steering.a = 1.0;
+    cfg.steering.b = -0.004;
+    const double ns2 = bench(&cfg);
+    if (ns1 < 0.0 || ns2 < 0.0)
+        goto fail;
+    printf("  + PID controller (18 states) and gravity turn (zero alpha):      %8.1f ns/rhs "
+           "(target <= 1000)\n", ns1);
+    printf("  + PID controller (18 states) and linear tangent (local frame):   %8.1f ns/rhs "
+           "(target <= 1000)\n", ns2);
     lv_dof6_free(m);
     lv_table_free(tab);
     lv_atmo_free(atmo);

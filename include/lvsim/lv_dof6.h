@@ -28,6 +28,7 @@
 
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_guidance.h"
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_status.h"
@@ -86,6 +87,41 @@ typedef struct lv_dof6_moments {
                                  origin */
 } lv_dof6_moments;
 
+/* Attitude controller (docs/models.md, "Attitude control"): the attitude error e (body axes,
+ * rad) is the rotation vector of the rotation from the actual body axes to the commanded ones
+ * (those of the steering law, lv_guid_attitude), e = theta n with cos theta = (tr R - 1) / 2,
+ * sin theta n = vex((R - R^T) / 2), R_ij = b_i . c_j (Euler axis and angle: Shuster, "A
+ * survey of attitude representations", J. Astronaut. Sci. 41 (1993) 439-517). Pitch (body y) and yaw
+ * (body z) are controlled by the gimbal of every engine (aft of the centre of mass):
+ *   delta_c,pitch = kp_pitch e_y + ki_pitch integral(e_y) - kd_pitch q
+ *   delta_c,yaw   = kp_yaw   e_z + ki_yaw   integral(e_z) - kd_yaw   r
+ * clamped to +-limit; each gimbal angle is a state of a rate-limited first-order actuator
+ *   delta' = rate_limit tanh((delta_c - delta) / (tau rate_limit)).
+ * Roll (body x) is not controlled: engines that share one gimbal point have no roll authority;
+ * the roll error is an output. kind PID adds the two integrals as states. */
+typedef enum lv_dof6_ctl_kind {
+    LV_DOF6_CTL_NONE = 0,
+    LV_DOF6_CTL_PD = 1,
+    LV_DOF6_CTL_PID = 2
+} lv_dof6_ctl_kind;
+
+typedef struct lv_dof6_controller {
+    lv_dof6_ctl_kind kind;
+    double kp[2];             /* rad of deflection per rad of error (pitch, yaw), > 0 */
+    double kd[2];             /* rad per rad/s of body rate = s, >= 0 */
+    double ki[2];             /* rad per rad s of integrated error = 1/s, >= 0 (PID) */
+    double limit;             /* rad, deflection limit, in (0, pi/2] */
+    double rate_limit;        /* rad/s, gimbal rate limit, > 0 */
+    double tau;               /* s, actuator time constant, > 0 */
+} lv_dof6_controller;
+
+/* Start body rates of a 3-DoF -> 6-DoF hand-off (docs/models.md, "Level-of-detail
+ * transitions"). */
+typedef enum lv_dof6_rates_rule {
+    LV_DOF6_RATES_ZERO = 0,     /* p = q = r = 0 */
+    LV_DOF6_RATES_CURVATURE = 1 /* the angular velocity of the velocity relative to the planet */
+} lv_dof6_rates_rule;
+
 typedef struct lv_dof6_config {
     const char *name;          /* model name in reports; copied; NULL: "dof6" */
     lv_planet planet;          /* copied */
@@ -122,6 +158,14 @@ typedef struct lv_dof6_config {
      * Borrowed. */
     const lv_table *inputs;
 
+    /* Steering law (lv_guidance.h): law LV_STEER_INPUTS (default): none. Otherwise the
+     * commanded attitude, its Euler angles and the attitude error are outputs; with a
+     * controller the gimbal angles come from it (the inputs' gimbal angles are then unused).
+     * target_lat/lon NAN: the start point. The heading law's n_max and q_max are refused (the
+     * load-factor limit is a 3-DoF device). */
+    lv_steering steering;
+    lv_dof6_controller controller; /* kind NONE: gimbal angles from the inputs */
+
     int stop_at_burnout;
     size_t n_ends;
     const lv_dof3_end *ends;   /* [n_ends], copied: the end kinds of lv_dof3.h */
@@ -130,7 +174,7 @@ typedef struct lv_dof6_config {
 /* Earth, no gravity (must be set), vacuum, m0 = 1000 kg, propellant 0, mass properties of a
  * unit sphere's inertia (1 kg m^2 about every axis) with the CG at the origin, no engines, no
  * aero, every start value and input 0 except throttle 1 and the quaternion of psi = theta =
- * phi = 0. */
+ * phi = 0; no steering law, no controller. */
 LV_API void lv_dof6_config_default(lv_dof6_config *cfg);
 
 typedef struct lv_dof6 lv_dof6;
@@ -151,6 +195,22 @@ LV_API const char *lv_dof6_last_error(const lv_dof6 *m);
  * phi). For the hand-offs between phases and tests. */
 LV_API void lv_dof6_quat_from_euler(const lv_planet *pl, double t, double lat, double lon,
                                     double psi, double theta, double phi, double q[4]);
+
+/* Largest body rate a start value or the state may have [rad/s]: 10 revolutions per second
+ * (a spin-stabilised stage spins at 1-2 rev/s). */
+#define LV_DOF6_RATE_MAX (20.0 * 3.14159265358979323846)
+
+/* The "curvature" rule of the 3-DoF -> 6-DoF hand-off: the body rates [rad/s, body axes]
+ * of a body whose x axis follows the velocity relative to the planet, at time t [s], with the
+ * 14 states x (position, velocity, attitude quaternion; rates and mass unused) and the
+ * specific force f_eci [m/s^2, ECI] (thrust and aerodynamic force over mass) of the parent:
+ *   u = v - W x r,  du/dt = a - W x v,  a = g(r) + f,  w = u x du/dt / |u|^2
+ * (W the planet's rotation; the angular velocity in inertial space of the direction of u,
+ * perpendicular to it: no roll about the velocity), w_body = C_body_eci w. Below |u| = 1 m/s
+ * the direction is undefined: zero rates. Evaluates the model's gravity (not thread-safe on
+ * one model). */
+LV_API void lv_dof6_rates_from_trajectory(lv_dof6 *m, double t, const double *x,
+                                          const double f_eci[3], double w_body[3]);
 
 #ifdef __cplusplus
 }

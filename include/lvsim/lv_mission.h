@@ -89,6 +89,8 @@ typedef struct lv_phase_info {
     const size_t *stages;   /* [n_stages] stage indices */
     const char *method;     /* its integration method */
     size_t file_index;      /* its position in the mission file (0-based) */
+    const char *handoff_rule; /* the rule of its conversion from a parent of another model
+                                 ("rates: zero"), or NULL */
 } lv_phase_info;
 LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out);
 

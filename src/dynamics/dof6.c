@@ -43,6 +43,11 @@ enum {
     O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI,
     O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_N
 };
+/* outputs of a steering law (after O_N), then of a controller */
+enum { O_THC = O_N, O_PSC, O_PHC, O_ER, O_EP, O_EY, O_GPC, O_GYC, O_NMAX };
+/* controller states after the 14 of lv_x6: the actuators' gimbal angles, then (PID) the
+ * integrals of the pitch and yaw errors */
+enum { X_AP = LV_X6_N, X_AY, X_IP, X_IY, X_NMAX };
 
 /* Error control as lv_dof3 (docs/integration.md) for position, velocity and mass; the
  * quaternion to tol (|q| ~ 1), the rates to tol (|w| + 0.01 rad/s). */
@@ -63,7 +68,15 @@ static const lv_var state_tpl[LV_X6_N] = {
     {"m", "kg", "Vehicle mass", 1000.0, 1e3},
 };
 
-static const unsigned char abs_error[LV_X6_N] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+static const lv_var ctl_state_tpl[X_NMAX - LV_X6_N] = {
+    {"act_pitch", "rad", "Pitch gimbal angle: the actuator's state", 0.0, 0.01},
+    {"act_yaw", "rad", "Yaw gimbal angle: the actuator's state", 0.0, 0.01},
+    {"int_pitch", "rad.s", "Integral of the pitch attitude error (PID)", 0.0, 0.01},
+    {"int_yaw", "rad.s", "Integral of the yaw attitude error (PID)", 0.0, 0.01},
+};
+
+static const unsigned char abs_error[X_NMAX] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                                0, 0, 0, 0};
 
 static const lv_var param_tpl[P_N] = {
     {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
@@ -151,6 +164,21 @@ static const lv_var output_vars[O_N] = {
      0, 0},
 };
 
+static const lv_var steer_output_vars[O_NMAX - O_N] = {
+    {"theta_cmd", "rad", "Commanded pitch attitude (3-2-1 Euler, local NED) of the steering law",
+     0, 0},
+    {"psi_cmd", "rad", "Commanded heading (yaw) attitude of the steering law", 0, 0},
+    {"phi_cmd", "rad", "Commanded roll attitude of the steering law", 0, 0},
+    {"err_roll", "rad", "Attitude error about body x: rotation vector from the actual to the "
+     "commanded body axes", 0, 0},
+    {"err_pitch", "rad", "Attitude error about body y (rotation vector, body axes)", 0, 0},
+    {"err_yaw", "rad", "Attitude error about body z (rotation vector, body axes)", 0, 0},
+    {"gimbal_pitch_cmd", "rad", "Controller's pitch gimbal command (after the deflection limit)",
+     0, 0},
+    {"gimbal_yaw_cmd", "rad", "Controller's yaw gimbal command (after the deflection limit)", 0,
+     0},
+};
+
 static const char *const input_names[U_N] = {"gimbal_pitch", "gimbal_yaw", "throttle"};
 
 
@@ -164,6 +192,7 @@ typedef struct dof6_inst {
     double m_burnout;     /* kg */
     lv_table_cursor in_cur;
     double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
+    lv_guid_rt guid;      /* the steering law's start frame, cursors, trigonometry */
     char msg[LV_ERR_MSG_MAX];
     char tev[LV_EVENT_NAME_MAX];
 } dof6_inst;
@@ -176,7 +205,10 @@ typedef struct eng6 {
 struct lv_dof6 {
     lv_model_def def;
     char name[64];
-    lv_var states[LV_X6_N];
+    lv_var states[X_NMAX];
+    size_t n_states;             /* 14, + 2 actuator states (PD), + 2 integrals (PID) */
+    lv_var outputs[O_NMAX];
+    size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
     lv_var params[P_N];
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
 
@@ -200,6 +232,9 @@ struct lv_dof6 {
     double *in_buf;
     int const_throttle;
     int stop_at_burnout;
+    int steers;                  /* a steering law gives the commanded attitude */
+    lv_guid guid;
+    lv_dof6_controller ctl;      /* kind NONE: gimbal angles from the inputs */
 
     dof6_inst inst;
 };
@@ -348,6 +383,49 @@ static lv_vec3 moment_transfer(lv_vec3 M_mrp, lv_vec3 r_mrp, lv_vec3 cg, lv_vec3
     return lv_v3_add(M_mrp, lv_v3_cross(lv_v3_sub(r_mrp, cg), f));
 }
 
+/* ---- attitude control: small pure functions ------------------------------------------------ */
+
+/* Attitude error: the rotation vector e = theta n [rad, body axes] of the rotation R that
+ * carries the actual body axes b_i onto the commanded ones c_i, R_ij = b_i . c_j (the
+ * commanded axes in body components): cos theta = (tr R - 1) / 2, sin theta n = vex((R - R^T)
+ * / 2) (the Euler axis and angle of a rotation matrix: Shuster, "A survey of attitude
+ * representations", J. Astronaut. Sci. 41 (1993) 439-517); the rotation vector of the error
+ * quaternion q_b^* q_c, twice its vector part for small angles. A positive component asks for a
+ * positive rotation about that body axis. theta in [0, pi]: at theta = pi (commanded axes
+ * upside down) the direction is undefined and e = 0 is returned along with the angle lost
+ * (never met in a controlled flight). */
+static lv_vec3 attitude_error(const lv_flight_axes *b, const lv_flight_axes *c)
+{
+    const lv_vec3 bx = b->xb, by = b->yb, bz = b->zb, cx = c->xb, cy = c->yb, cz = c->zb;
+    const double tr = lv_v3_dot(bx, cx) + lv_v3_dot(by, cy) + lv_v3_dot(bz, cz);
+    const lv_vec3 sn = lv_v3(0.5 * (lv_v3_dot(bz, cy) - lv_v3_dot(by, cz)),
+                             0.5 * (lv_v3_dot(bx, cz) - lv_v3_dot(bz, cx)),
+                             0.5 * (lv_v3_dot(by, cx) - lv_v3_dot(bx, cy)));
+    const double s = lv_v3_norm(sn), ct = 0.5 * (tr - 1.0);
+    if (!(s > 0.0))
+        return lv_v3(0.0, 0.0, 0.0);
+    const double theta = atan2(s, ct);
+    return lv_v3_scale(sn, theta / s);
+}
+
+/* PD/PID gimbal command of one axis before the deflection limit [rad]: kp e + ki i - kd w,
+ * e the attitude error [rad], i its integral [rad s], w the body rate [rad/s] about the axis
+ * (rate feedback on the inertial body rate, as a rate gyro measures it). */
+static double gimbal_command(double kp, double ki, double kd, double e, double i, double w)
+{
+    return kp * e + ki * i - kd * w;
+}
+
+static double clamp_abs(double v, double lim) { return v > lim ? lim : v < -lim ? -lim : v; }
+
+/* Rate-limited first-order actuator [rad/s]: delta' = rho tanh((delta_c - delta) / (tau rho)):
+ * the first-order lag (delta_c - delta) / tau for small errors, the rate rho for large ones,
+ * smoothly in between (no kink for the integrator to resolve). */
+static double actuator_rate(double delta_c, double delta, double tau, double rho)
+{
+    return rho * tanh((delta_c - delta) / (tau * rho));
+}
+
 /* ---- the point: everything (t, x, p) gives ------------------------------------------------ */
 
 typedef struct dof6_point {
@@ -359,6 +437,9 @@ typedef struct dof6_point {
     double alpha, beta;        /* rad */
     mass_props mp;
     double u[U_N];             /* gimbal pitch, yaw [rad], throttle */
+    lv_flight_axes cmd;        /* commanded body axes (steering law), ECEF */
+    lv_vec3 err;               /* rad, attitude error, body axes (rotation vector) */
+    double delta_c[2];         /* rad, controller's gimbal commands after the limit */
     double mdot;               /* kg/s */
     lv_vec3 f_thrust_b, m_thrust_b; /* N, N m (about the CG, jet damping included) */
     double coef[3];
@@ -429,11 +510,30 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
     } else {
         pt->alpha = pt->beta = 0.0;
     }
-    /* 3: inputs; mass properties */
+    /* 3: inputs; the steering law's commanded attitude, the attitude error and the
+     * controller's gimbal commands (the actuators' states are the gimbal angles in effect) */
     if (inputs_eval(m, s, t, p, pt->u, err) != 0)
         return 1;
-    pt->mp = mass_props_at(&m->mp, mass);
     const lv_vec3 w_b = {x[LV_X6_P], x[LV_X6_Q], x[LV_X6_R]};
+    if (m->steers) {
+        lv_flight_controls cc;
+        if (lv_guid_attitude(&m->guid, &s->guid, t, k, &pt->air, pt->u[U_THR], p[P_FPA],
+                             p[P_CHI], full, &cc, &pt->cmd, err) != 0)
+            return 1;
+        pt->u[U_THR] = cc.u[LV_CTRL_THROTTLE]; /* an attitude table's throttle */
+        pt->err = attitude_error(&pt->ax, &pt->cmd);
+        if (m->ctl.kind != LV_DOF6_CTL_NONE) {
+            const lv_dof6_controller *c = &m->ctl;
+            const int pid = c->kind == LV_DOF6_CTL_PID;
+            pt->delta_c[0] = clamp_abs(gimbal_command(c->kp[0], c->ki[0], c->kd[0], pt->err.y,
+                                                      pid ? x[X_IP] : 0.0, w_b.y), c->limit);
+            pt->delta_c[1] = clamp_abs(gimbal_command(c->kp[1], c->ki[1], c->kd[1], pt->err.z,
+                                                      pid ? x[X_IY] : 0.0, w_b.z), c->limit);
+            pt->u[U_GP] = x[X_AP];
+            pt->u[U_GY] = x[X_AY];
+        }
+    }
+    pt->mp = mass_props_at(&m->mp, mass);
 
     /* 4a: engines, each at its gimbal point */
     pt->mdot = 0.0;
@@ -530,6 +630,15 @@ static int dof6_rhs(double t, const double *x, const double *p, double *xdot, vo
     xdot[LV_X6_Q] = pt.w_dot.y;
     xdot[LV_X6_R] = pt.w_dot.z;
     xdot[LV_X6_M] = -pt.mdot;
+    if (s->m->ctl.kind != LV_DOF6_CTL_NONE) {
+        const lv_dof6_controller *c = &s->m->ctl;
+        xdot[X_AP] = actuator_rate(pt.delta_c[0], x[X_AP], c->tau, c->rate_limit);
+        xdot[X_AY] = actuator_rate(pt.delta_c[1], x[X_AY], c->tau, c->rate_limit);
+        if (c->kind == LV_DOF6_CTL_PID) {
+            xdot[X_IP] = pt.err.y;
+            xdot[X_IY] = pt.err.z;
+        }
+    }
     return 0;
 }
 
@@ -555,6 +664,10 @@ static int check_params(dof6_inst *s, const double *p)
     for (int i = P_PSI; i <= P_RR; i++)
         if (!isfinite(p[i]))
             return fail_inst(s, "%s = %g is not finite", param_tpl[i].name, p[i]);
+    for (int i = P_RP; i <= P_RR; i++)
+        if (!(fabs(p[i]) <= LV_DOF6_RATE_MAX))
+            return fail_inst(s, "%s = %g rad/s is outside [-%g, %g] rad/s (10 rev/s)",
+                             param_tpl[i].name, p[i], LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX);
     if (m->const_throttle)
         for (size_t i = 0; i < m->n_eng; i++)
             if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max))
@@ -604,6 +717,8 @@ static int dof6_start(const double *p, double *x, void *inst)
     x[LV_X6_P] = p[P_RP];
     x[LV_X6_Q] = p[P_RQ];
     x[LV_X6_R] = p[P_RR];
+    for (size_t i = LV_X6_N; i < s->m->n_states; i++)
+        x[i] = 0.0; /* gimbal angles and integrals start at 0 */
     return 0;
 }
 
@@ -625,6 +740,16 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     if (!(fabs(qn - 1.0) < 1e-6))
         return fail_inst(s, "start quaternion (%g, %g, %g, %g) has norm %.9g, not 1 (within "
                          "1e-6)", x[LV_X6_QW], x[LV_X6_QX], x[LV_X6_QY], x[LV_X6_QZ], qn);
+    for (int i = LV_X6_P; i <= LV_X6_R; i++)
+        if (!(fabs(x[i]) <= LV_DOF6_RATE_MAX))
+            return fail_inst(s, "start body rate %s = %g rad/s is outside [-%g, %g] rad/s (10 "
+                             "rev/s)", state_tpl[i].name, x[i], LV_DOF6_RATE_MAX,
+                             LV_DOF6_RATE_MAX);
+    for (size_t i = LV_X6_N; i < s->m->n_states; i++)
+        if (!isfinite(x[i]) || (i <= X_AY && !(fabs(x[i]) <= s->m->ctl.limit)))
+            return fail_inst(s, "start %s = %g %s: must be finite%s", ctl_state_tpl[i - LV_X6_N].name,
+                             x[i], ctl_state_tpl[i - LV_X6_N].unit,
+                             i <= X_AY ? " and within the controller's deflection limit" : "");
     s->m_burnout = x[LV_X6_M] - p[P_PROP];
     s->burned_out = 0;
     s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;
@@ -636,6 +761,8 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     lv_flight_geodetic(&s->m->world, &kin, 0, 0);
     for (int i = 0; i < 3; i++)
         s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
+    if (s->m->steers)
+        lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
     lv_flight_ends_start(&s->m->fe, kin.h);
     return 0;
 }
@@ -695,6 +822,8 @@ static double dof6_next_time_event(double t, const double *p, void *inst)
     for (size_t i = 0; i < m->n_eng; i++)
         if (m->eng[i].table != NULL)
             tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
+    if (m->steers)
+        tn = min_d(tn, lv_guid_next_time_event(&m->guid, &((const dof6_inst *)inst)->guid, t));
     return tn;
 }
 
@@ -718,6 +847,9 @@ static const char *dof6_time_event_name(double t, const double *p, void *inst)
     if (breakpoint_at(m->inputs, t))
         len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
                                 lv_table_name(m->inputs));
+    const char *g = m->steers ? lv_guid_time_event_label(&m->guid, &s->guid, t) : NULL;
+    if (g != NULL && len < sizeof s->tev)
+        len += (size_t)snprintf(s->tev + len, sizeof s->tev - len, "%s%s", len ? "; " : "", g);
     for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
         if (breakpoint_at(m->eng[i].table, t))
             len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
@@ -745,7 +877,9 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_H] = k->h;
     y[O_LAT] = k->lat;
     y[O_LON] = k->lon;
-    y[O_RADIUS] = lv_v3_norm(k->r_ecef);
+    const double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
+    /* as lv_dof3 (hypot, not the norm of lv_vec3): the same bits at the same state */
+    lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, &y[O_RADIUS]);
     y[O_VN] = lv_v3_dot(k->v_rel, k->n_ax);
     y[O_VE] = lv_v3_dot(k->v_rel, k->e_ax);
     y[O_VD] = lv_v3_dot(k->v_rel, k->d_ax);
@@ -816,8 +950,7 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_PERI] = el.r_peri - m->world.planet.a;
     y[O_RAAN] = el.raan;
     y[O_ARGP] = el.argp;
-    const double r[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
-    lv_frames_ecef_to_geocentric(r, &y[O_LAT_GC], NULL, NULL);
+
     /* inertial velocity in ECEF axes (no w x r): the inertial angles, as lv_dof3 */
     const lv_vec3 v_i = {k->c_th * v_eci.x + k->s_th * v_eci.y,
                          -k->s_th * v_eci.x + k->c_th * v_eci.y, v_eci.z};
@@ -827,10 +960,47 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ACC] = lv_v3_norm(pt.a_eci);
     y[O_ACC_SENSED] = lv_v3_norm(f_spec);
     const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
-    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / y[O_RADIUS]);
+    const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / lv_v3_norm(k->r_ecef)); /* as lv_dof3 */
     y[O_DOWNRANGE] =
         m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
+    if (m->steers) {
+        lv_guid_euler_local(k, &pt.cmd, &y[O_THC], &y[O_PSC], &y[O_PHC]);
+        y[O_ER] = pt.err.x;
+        y[O_EP] = pt.err.y;
+        y[O_EY] = pt.err.z;
+    }
+    if (m->ctl.kind != LV_DOF6_CTL_NONE) {
+        y[O_GPC] = pt.delta_c[0];
+        y[O_GYC] = pt.delta_c[1];
+    }
     return 0;
+}
+
+void lv_dof6_rates_from_trajectory(lv_dof6 *m, double t, const double *x, const double f_eci[3],
+                                   double w_body[3])
+{
+    const lv_flight_world *w = &m->world;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(w, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
+    const lv_vec3 g_ecef = lv_flight_gravity(w, m->grav_ws, &kin);
+    /* a = g + f, ECI (g rotated back: R3(theta)^T) */
+    const lv_vec3 a = lv_v3(kin.c_th * g_ecef.x - kin.s_th * g_ecef.y + f_eci[0],
+                            kin.s_th * g_ecef.x + kin.c_th * g_ecef.y + f_eci[1],
+                            g_ecef.z + f_eci[2]);
+    const lv_vec3 Wv = lv_v3(0.0, 0.0, w->planet.omega);
+    const lv_vec3 r = lv_v3(x[LV_X6_RX], x[LV_X6_RY], x[LV_X6_RZ]);
+    const lv_vec3 v = lv_v3(x[LV_X6_VX], x[LV_X6_VY], x[LV_X6_VZ]);
+    const lv_vec3 u = lv_v3_sub(v, lv_v3_cross(Wv, r));    /* v_rel, ECI axes */
+    const lv_vec3 du = lv_v3_sub(a, lv_v3_cross(Wv, v));   /* its inertial rate of change */
+    const double u2 = lv_v3_dot(u, u);
+    w_body[0] = w_body[1] = w_body[2] = 0.0;
+    if (!(u2 > 1.0))
+        return;
+    const lv_vec3 w_eci = lv_v3_scale(lv_v3_cross(u, du), 1.0 / u2);
+    const lv_mat3 C = quat_to_dcm(x + LV_X6_QW); /* C_eci_body: its transpose to body */
+    w_body[0] = C.m[0][0] * w_eci.x + C.m[1][0] * w_eci.y + C.m[2][0] * w_eci.z;
+    w_body[1] = C.m[0][1] * w_eci.x + C.m[1][1] * w_eci.y + C.m[2][1] * w_eci.z;
+    w_body[2] = C.m[0][2] * w_eci.x + C.m[1][2] * w_eci.y + C.m[2][2] * w_eci.z;
 }
 
 static const char *dof6_last_error_cb(const void *inst)
@@ -849,6 +1019,65 @@ void lv_dof6_config_default(lv_dof6_config *cfg)
     cfg->throttle = 1.0;
     for (int i = 0; i < 3; i++)
         cfg->mass.inertia_full[i] = cfg->mass.inertia_empty[i] = 1.0;
+    cfg->steering.target_lat = NAN; /* the start point */
+    cfg->steering.target_lon = NAN;
+    cfg->steering.gain = 1.0;
+    cfg->steering.bank_max = 45.0 * LV_DEG;
+    cfg->steering.c = 1.0;
+}
+
+/* The steering law and the attitude controller (lv_dof6.h; docs/models.md, "Attitude
+ * control"). */
+static lv_status setup_control(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
+{
+    lv_steering st = cfg->steering;
+    if (isnan(st.target_lat) || isnan(st.target_lon)) {
+        st.target_lat = cfg->start_lat;
+        st.target_lon = cfg->start_lon;
+    }
+    m->steers = st.law != LV_STEER_INPUTS;
+    const lv_dof6_controller *c = &cfg->controller;
+    if ((unsigned)c->kind > LV_DOF6_CTL_PID)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: controller: unknown kind %d", (int)c->kind);
+    if (c->kind != LV_DOF6_CTL_NONE && !m->steers)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: the attitude controller needs a steering law: "
+                       "the attitude it holds (steering.law is LV_STEER_INPUTS)");
+    if (m->steers) {
+        if (st.law == LV_STEER_HEADING && (st.n_max > 0.0 || st.q_max > 0.0))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: guidance 'heading': n_max and q_max limit "
+                           "the 3-DoF model's commanded angle of attack; a 6-DoF body flies the "
+                           "attitude its controller reaches: give neither");
+        lv_status rc = lv_guid_init(&m->guid, &st, &cfg->planet, cfg->aero != NULL, err);
+        if (rc != LV_OK)
+            return lv_fail_prefix(err, rc, "dof6");
+        m->guid.need_alpha = m->guid.need_beta = 0; /* the commanded attitude's angles: unused */
+    }
+    m->ctl = *c;
+    if (c->kind == LV_DOF6_CTL_NONE)
+        return LV_OK;
+    static const char *const ax[2] = {"pitch", "yaw"};
+    for (int i = 0; i < 2; i++)
+        if (!(c->kp[i] > 0.0 && c->kp[i] <= 100.0) || !(c->kd[i] >= 0.0 && c->kd[i] <= 100.0) ||
+            !(c->ki[i] >= 0.0 && c->ki[i] <= 100.0))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: controller, %s: kp = %g rad/rad must be in "
+                           "(0, 100], kd = %g s and ki = %g 1/s in [0, 100]", ax[i], c->kp[i],
+                           c->kd[i], c->ki[i]);
+    if (!(c->limit > 0.0 && c->limit <= 0.5 * LV_PI) || !(c->rate_limit > 0.0) ||
+        !isfinite(c->rate_limit) || !(c->tau > 0.0) || !isfinite(c->tau))
+        return lv_fail(err, LV_ERR_INPUT, "dof6: controller: limit = %g rad must be in (0, pi/2], "
+                       "rate_limit = %g rad/s and tau = %g s > 0", c->limit, c->rate_limit,
+                       c->tau);
+    if (m->inputs != NULL && (m->in_k[U_GP] >= 0 || m->in_k[U_GY] >= 0))
+        return lv_fail(err, LV_ERR_INPUT, "dof6: the controller gives the gimbal angles: the "
+                       "input table '%s' must not", lv_table_name(m->inputs));
+    /* the controller's signs hold for a gimbal point aft of the centre of mass */
+    for (size_t i = 0; i < m->n_eng; i++)
+        if (!(m->geom[i].pos.x < m->mp.cg_full[0] && m->geom[i].pos.x < m->mp.cg_empty[0]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: controller: engine '%s' at x = %g m is not "
+                           "aft of the centre of mass (x = %g m full, %g m empty): the gimbal "
+                           "commands' signs assume it is", m->eng[i].name, m->geom[i].pos.x,
+                           m->mp.cg_full[0], m->mp.cg_empty[0]);
+    return LV_OK;
 }
 
 static int is_time_axis(const char *name)
@@ -938,6 +1167,41 @@ static lv_status setup_ends(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
     return lv_flight_ends_init(&m->fe, "dof6", cfg->ends, cfg->n_ends, err);
 }
 
+/* Eigenvalues l[0] <= l[1] <= l[2] of the symmetric tensor of elements e[6] (the principal
+ * moments): the closed form of O. K. Smith, "Eigenvalues of a symmetric 3 x 3 matrix", Commun.
+ * ACM 4 (1961) 168. */
+static void principal_moments(const double *e, double l[3])
+{
+    const double p1 = e[3] * e[3] + e[4] * e[4] + e[5] * e[5];
+    const double q = (e[0] + e[1] + e[2]) / 3.0;
+    const double d0 = e[0] - q, d1 = e[1] - q, d2 = e[2] - q;
+    const double p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * p1;
+    if (!(p2 > 0.0)) { /* a multiple of the identity */
+        l[0] = l[1] = l[2] = q;
+        return;
+    }
+    const double pp = sqrt(p2 / 6.0);
+    /* det((I - q E) / pp) / 2 */
+    const double b00 = d0 / pp, b11 = d1 / pp, b22 = d2 / pp;
+    const double b01 = e[3] / pp, b02 = e[4] / pp, b12 = e[5] / pp;
+    double rr = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+                       b02 * (b01 * b12 - b11 * b02));
+    rr = rr < -1.0 ? -1.0 : rr > 1.0 ? 1.0 : rr;
+    const double phi = acos(rr) / 3.0;
+    l[2] = q + 2.0 * pp * cos(phi);
+    l[0] = q + 2.0 * pp * cos(phi + 2.0 * LV_PI / 3.0);
+    l[1] = 3.0 * q - l[0] - l[2];
+}
+
+/* 1 if the principal moments of the tensor of elements e[6] satisfy the triangle inequality
+ * I1 + I2 >= I3 of a real body (the second moment of mass J = tr(I)/2 E - I is positive
+ * semidefinite), within 1e-9 of the largest; the moments in l[3]. */
+static int physical_inertia(const double *e, double l[3])
+{
+    principal_moments(e, l);
+    return l[0] + l[1] >= l[2] * (1.0 - 1e-9);
+}
+
 /* 1 if the symmetric tensor of elements e[6] is positive definite (Sylvester's criterion). */
 static int positive_definite(const double *e)
 {
@@ -978,6 +1242,15 @@ static lv_status setup_mass(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
                        mp->inertia_full[1], mp->inertia_full[2], mp->inertia_full[3],
                        mp->inertia_full[4], mp->inertia_full[5], mp->inertia_empty[0],
                        mp->inertia_empty[1], mp->inertia_empty[2]);
+    /* J = tr(I)/2 E - I is linear in I: positive semidefinite at both ends, it is in between */
+    for (int end = 0; end < 2; end++) {
+        double l[3];
+        if (!physical_inertia(end == 0 ? mp->inertia_full : mp->inertia_empty, l))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: the inertia tensor (%s) has the principal "
+                           "moments %g, %g, %g kg m^2: the two smaller add up to less than the "
+                           "largest (I1 + I2 >= I3 holds for every real body)",
+                           end == 0 ? "full" : "empty", l[0], l[1], l[2]);
+    }
     return LV_OK;
 }
 
@@ -1147,12 +1420,19 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
                 goto fail;
             }
     m->stop_at_burnout = cfg->stop_at_burnout != 0;
-    if ((st = setup_ends(m, cfg, err)) != LV_OK)
+    if ((st = setup_ends(m, cfg, err)) != LV_OK || (st = setup_control(m, cfg, err)) != LV_OK)
         goto fail;
 
-    memcpy(m->states, state_tpl, sizeof m->states);
+    memcpy(m->states, state_tpl, sizeof state_tpl);
     m->states[LV_X6_M].start = cfg->m0;
     m->states[LV_X6_M].nominal = cfg->m0;
+    m->n_states = LV_X6_N + (m->ctl.kind == LV_DOF6_CTL_PID   ? 4
+                             : m->ctl.kind == LV_DOF6_CTL_PD ? 2
+                                                              : 0);
+    memcpy(m->states + LV_X6_N, ctl_state_tpl, (m->n_states - LV_X6_N) * sizeof *m->states);
+    memcpy(m->outputs, output_vars, sizeof output_vars);
+    m->n_outputs = m->ctl.kind != LV_DOF6_CTL_NONE ? O_NMAX : m->steers ? O_GPC : O_N;
+    memcpy(m->outputs + O_N, steer_output_vars, (m->n_outputs - O_N) * sizeof *m->outputs);
     memcpy(m->params, param_tpl, sizeof m->params);
     const double pv[P_N] = {cfg->start_lat,   cfg->start_lon,   cfg->start_h,
                             cfg->start_vel,   cfg->start_fpa,   cfg->start_chi,
@@ -1167,13 +1447,13 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .name = m->name,
         .description = "6-DoF variable-mass rigid body over a rotating planet, ECI states and "
                        "attitude quaternion",
-        .n_states = LV_X6_N,
+        .n_states = m->n_states,
         .n_params = P_N,
-        .n_outputs = O_N,
+        .n_outputs = m->n_outputs,
         .n_events = 1 + m->fe.n,
         .states = m->states,
         .params = m->params,
-        .outputs = output_vars,
+        .outputs = m->outputs,
         .events = m->fe.events,
         .inst_size = sizeof(dof6_inst),
         .start = dof6_start,

@@ -291,9 +291,11 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
 {
     lv_mission_def *d = m->def;
     int *param_used = calloc(d->n_params + 1, sizeof *param_used);
+    size_t *param_child = calloc(d->n_params + 1, sizeof *param_child); /* phase + 1 */
     double *prop = calloc(d->n_stages + 1, sizeof *prop);
-    if (param_used == NULL || prop == NULL) {
+    if (param_used == NULL || param_child == NULL || prop == NULL) {
         free(param_used);
+        free(param_child);
         free(prop);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -346,9 +348,18 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
         for (size_t j = 0; j < d->n_params; j++) {
             lv_var_kind kind;
             size_t idx;
-            if (lv_model_find(md, d->param_names[j], &kind, &idx, NULL) == LV_OK &&
-                kind == LV_VAR_PARAMETER)
+            if (lv_model_find(md, d->param_names[j], &kind, &idx, NULL) != LV_OK ||
+                kind != LV_VAR_PARAMETER)
+                continue;
+            /* a child phase does not read the start values its type lists as a root's only */
+            int root_only = 0;
+            for (const char *const *r = ph->type->root_only_params; ph->parent >= 0 && r != NULL &&
+                                                                     *r != NULL; r++)
+                root_only |= strcmp(*r, d->param_names[j]) == 0;
+            if (!root_only)
                 param_used[j] = 1;
+            else if (param_child[j] == 0)
+                param_child[j] = k + 1;
         }
         if (st == LV_OK && (st = make_plan(m, k, md, &m->plan[k], err)) != LV_OK)
             st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
@@ -360,6 +371,17 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
     for (size_t j = 0; j < d->n_params && st == LV_OK; j++) {
         if (param_used[j])
             continue;
+        if (param_child[j] > 0) {
+            const lv_phase_def *ph = &d->phases[param_child[j] - 1];
+            const lv_slot_def *sd = &d->slots[d->param_values[j]];
+            st = lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: parameter '%s' would start only phase "
+                         "'%s' (model %s), which starts from its parent '%s' (`from`) with the "
+                         "parent's final state: the parameters start a root phase only; override "
+                         "a state of the child with `set:` instead", d->path, sd->loc.line,
+                         sd->loc.column, d->param_names[j], ph->name, ph->type->name,
+                         d->phases[ph->parent].name);
+            break;
+        }
         char known[640] = "";
         size_t used = 0;
         for (const lv_phase_type *const *t = lv_phase_types(); *t != NULL; t++) {
@@ -376,6 +398,7 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
                      d->param_names[j], known);
     }
     free(param_used);
+    free(param_child);
     free(prop);
     return st;
 }
@@ -502,7 +525,10 @@ void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out)
     const lv_phase_def *ph = &m->def->phases[k];
     *out = (lv_phase_info){ph->name,     ph->type->name, ph->parent,
                            ph->n_stages, ph->stages,     ph->method ? ph->method : "dassl",
-                           ph->file_index};
+                           ph->file_index, NULL};
+    if (ph->parent >= 0 && m->def->phases[ph->parent].type != ph->type &&
+        ph->type->handoff_rule != NULL)
+        out->handoff_rule = ph->type->handoff_rule(ph);
 }
 
 size_t lv_mission_param_count(const lv_mission *m) { return m->def->n_slots; }

@@ -3,9 +3,11 @@
  * rigid body with the mass properties of its bottom stage's `rigid_body:` data; the bottom
  * stage's engines burn at their gimbal point. Its own phase keys: attitude and rates (the start
  * values psi, theta, phi, p, q, r of a root phase), inputs (gimbal angles, throttle: constants or
- * a table over time), aero (the force dataset: aero_def.h) and moments (Cl, Cm, Cn, damping
- * derivatives, reference lengths and point). Hand-offs from and to "dof3": docs/models.md,
- * "Level-of-detail transitions". */
+ * a table over time), aero (the force dataset: aero_def.h), moments (Cl, Cm, Cn, damping
+ * derivatives, reference lengths and point), guidance (the steering laws of dof3:
+ * guidance_def.h, the commanded attitude), controller (PD/PID gimbal control of pitch and yaw
+ * with rate-limited actuators) and transition (the 3-DoF -> 6-DoF rates rule). Hand-offs from
+ * and to "dof3": docs/models.md, "Level-of-detail transitions". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,9 +18,18 @@
 #include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
+#include "mission/guidance_def.h"
 #include "mission/phase_type.h"
 
-static const char *const keys[] = {"attitude", "rates", "inputs", "aero", "moments", NULL};
+static const char *const keys[] = {"attitude", "rates",    "inputs",     "aero",
+                                   "moments",  "guidance", "controller", "transition",
+                                   NULL};
+/* The mission parameters only a root phase reads: a child starts with its parent's position,
+ * velocity, attitude and rates (start_lat, start_lon: the steering laws' default target;
+ * start_fpa, start_chi: the direction of the aerodynamic frame at zero air speed). */
+static const char *const root_only[] = {"start_h",   "start_vel", "start_psi", "start_theta",
+                                        "start_phi", "start_p",   "start_q",   "start_r",
+                                        NULL};
 /* A dof3 phase hands over its position, velocity and mass; the attitude is built here
  * (dof6_handoff). */
 static const char *const from_types[] = {"dof3", NULL};
@@ -43,8 +54,8 @@ static const lv_range mission_param_ranges[] = {
     {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
     {0.0, HUGE_VAL, 0, 0},             {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
-    {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
+    {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
 };
 
 static const lv_traj_col traj[] = {
@@ -60,6 +71,8 @@ static const lv_traj_col traj[] = {
 enum { A_PSI, A_THETA, A_PHI, A_P, A_Q, A_R, A_N };  /* attitude:, rates: */
 enum { U_GP, U_GY, U_THR, U_N };                    /* inputs: */
 enum { M_CL, M_CM, M_CN, M_CLP, M_CMQ, M_CNR, M_B, M_C, M_X, M_Y, M_Z, M_N }; /* moments: */
+enum { G_KP, G_KD, G_KI, G_N };                     /* controller: pitch:, yaw: */
+enum { C_LIM, C_RATE, C_TAU, C_N };                 /* controller: */
 
 typedef struct dof6_cfg {
     lv_slot att[A_N];    /* rad, rad/s (LV_NO_SLOT: a phase with `from`) */
@@ -71,6 +84,11 @@ typedef struct dof6_cfg {
     lv_slot mom[M_N];
     lv_table *mom_table; /* outputs Cl, Cm, Cn over mach, alpha, beta, altitude; or NULL */
     char *mom_file, *mom_var;
+    lv_guidance_def guid; /* the steering law (guidance_def.h) */
+    int ctl;              /* controller: 0 none, LV_DOF6_CTL_PD, LV_DOF6_CTL_PID */
+    lv_slot gain[2][G_N]; /* pitch, yaw: kp [rad/rad], kd [s], ki [1/s] (LV_NO_SLOT: 0) */
+    lv_slot ctl_num[C_N]; /* limit [rad], rate_limit [rad/s], tau [s] */
+    lv_dof6_rates_rule rates_rule; /* transition: {rates: ...} */
 } dof6_cfg;
 
 static void dof6_cfg_free(void *p)
@@ -85,6 +103,7 @@ static void dof6_cfg_free(void *p)
     lv_table_free(c->mom_table);
     free(c->mom_file);
     free(c->mom_var);
+    lv_guidance_def_clear(&c->guid);
     free(c);
 }
 
@@ -151,7 +170,8 @@ static lv_status parse_start(const lv_pctx *c, const lv_ynode *n, const char *ph
     const lv_range ar[3] = {{-2.0 * LV_PI, 2.0 * LV_PI, 0, 0},
                             {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
                             {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}};
-    const lv_range rr[3] = {LV_RANGE_ANY, LV_RANGE_ANY, LV_RANGE_ANY};
+    const lv_range rmax = {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0}; /* 10 rev/s */
+    const lv_range rr[3] = {rmax, rmax, rmax};
     const lv_ynode *a = lv_pk_get(n, "attitude"), *r = lv_pk_get(n, "rates");
     for (int k = 0; k < A_N; k++)
         cfg->att[k] = LV_NO_SLOT;
@@ -187,6 +207,15 @@ static lv_status parse_start(const lv_pctx *c, const lv_ynode *n, const char *ph
 static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *phase,
                               dof6_cfg *cfg)
 {
+    if (cfg->ctl && n != NULL && n->kind == LV_YNODE_MAP) { /* the controller gives them */
+        static const char *const g[] = {"gimbal_pitch", "gimbal_pitch_deg", "gimbal_yaw",
+                                        "gimbal_yaw_deg", NULL};
+        for (size_t i = 0; g[i] != NULL; i++)
+            if (lv_pk_get(n, g[i]) != NULL)
+                return lv_pk_fail(c, lv_pk_key(n, g[i]), "phase '%s', inputs: '%s': the "
+                                  "controller gives the gimbal angles: give them in one place",
+                                  phase, g[i]);
+    }
     static const char *const names[U_N] = {"gimbal_pitch", "gimbal_yaw", "throttle"};
     static const char *const units[U_N] = {"rad", "rad", ""};
     static const int deg[U_N] = {1, 1, 0};
@@ -194,8 +223,13 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     static const char *const extra[] = {"table", NULL};
     const lv_range g = {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};
     const lv_range range[U_N] = {g, g, LV_RANGE_NONNEG};
-    lv_status st = parse_numbers(c, n, phase, "inputs", U_N, names, units, deg, dflt, range,
-                                 extra, cfg->u);
+    /* with a controller only the throttle: gimbal angles that would change nothing are not
+     * parameters of the run */
+    const int k0 = cfg->ctl ? U_THR : U_GP;
+    cfg->u[U_GP] = cfg->u[U_GY] = LV_NO_SLOT;
+    lv_status st = parse_numbers(c, n, phase, "inputs", (size_t)(U_N - k0), names + k0,
+                                 units + k0, deg + k0, dflt + k0, range + k0, extra,
+                                 cfg->u + k0);
     if (st != LV_OK)
         return st;
     const lv_ynode *v = n != NULL && n->kind == LV_YNODE_MAP ? lv_pk_get(n, "table") : NULL;
@@ -217,7 +251,111 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
             return lv_pk_fail(c, key, "%s: '%s' is also a column of table '%s': give it once",
                               what, names[k], lv_table_name(cfg->inputs));
     }
+    for (int k = U_GP; cfg->ctl && k <= U_GY; k++) {
+        size_t idx;
+        if (lv_table_out_index(cfg->inputs, names[k], &idx, NULL) == LV_OK)
+            return lv_pk_fail(c, v, "%s: table '%s' has the column '%s': the controller gives "
+                              "the gimbal angles", what, lv_table_name(cfg->inputs), names[k]);
+    }
     return LV_OK;
+}
+
+/* controller: {pitch: {kp, kd, ki}, yaw: {kp, kd, ki}, limit_deg, rate_limit_deg, tau}: slots
+ * "<phase>.controller.pitch.kp", ..., "<phase>.controller.limit"; PID when either axis writes
+ * `ki`. The ranges: kp in (0, 100] rad/rad, kd in [0, 100] s, ki in [0, 100] 1/s, the
+ * deflection limit in (0, 90] deg, the rate limit in (0, 1000] deg/s, tau in (0, 10] s. */
+static lv_status parse_controller(const lv_pctx *c, const lv_ynode *phase_n, const lv_ynode *n,
+                                  const char *phase, dof6_cfg *cfg)
+{
+    for (int a = 0; a < 2; a++)
+        for (int k = 0; k < G_N; k++)
+            cfg->gain[a][k] = LV_NO_SLOT;
+    for (int k = 0; k < C_N; k++)
+        cfg->ctl_num[k] = LV_NO_SLOT;
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    char what[LV_WHAT_MAX];
+    snprintf(what, sizeof what, "phase '%s', controller", phase);
+    if (!cfg->guid.given)
+        return lv_pk_fail(c, lv_pk_key(phase_n, "controller"), "%s: the controller holds the "
+                          "attitude a steering law commands: the phase needs `guidance:` "
+                          "(docs/guidance.md)", what);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {pitch: {kp: 2, kd: 0.5}, yaw: {kp: 2, "
+                          "kd: 0.5}, limit_deg: 6, rate_limit_deg: 20} expected", what);
+    static const char *const req[] = {"pitch", "yaw", "limit_deg", "rate_limit_deg", NULL};
+    for (size_t i = 0; req[i] != NULL; i++) {
+        const int ang = i >= 2;
+        char plain[32];
+        snprintf(plain, sizeof plain, "%.*s", (int)strlen(req[i]) - (ang ? 4 : 0), req[i]);
+        if (lv_pk_get(n, req[i]) == NULL && (!ang || lv_pk_get(n, plain) == NULL))
+            return lv_pk_fail(c, n, "%s: '%s' is missing%s", what, req[i],
+                              ang ? " (or the same in rad without _deg)" : "");
+    }
+    static const char *const gn[G_N] = {"kp", "kd", "ki"};
+    static const char *const gu[G_N] = {"rad/rad", "s", "1/s"};
+    static const int gdeg[G_N] = {0, 0, 0};
+    static const double gd[G_N] = {NAN, 0.0, 0.0};
+    const lv_range gr[G_N] = {{0.0, 100.0, 1, 0}, {0.0, 100.0, 0, 0}, {0.0, 100.0, 0, 0}};
+    static const char *const axes[2] = {"pitch", "yaw"};
+    int pid = 0;
+    lv_status st;
+    for (int a = 0; a < 2; a++) {
+        const lv_ynode *g = lv_pk_get(n, axes[a]);
+        pid |= g->kind == LV_YNODE_MAP && lv_pk_get(g, "ki") != NULL;
+    }
+    for (int a = 0; a < 2; a++) {
+        const lv_ynode *g = lv_pk_get(n, axes[a]);
+        char sub[48], gw[LV_WHAT_MAX];
+        snprintf(sub, sizeof sub, "controller.%s", axes[a]);
+        snprintf(gw, sizeof gw, "%.150s, %s", what, axes[a]);
+        if (g->kind != LV_YNODE_MAP)
+            return lv_pk_fail(c, g, "%s: a mapping {kp: rad/rad, kd: s, ki: 1/s} expected", gw);
+        if (lv_pk_get(g, "kp") == NULL)
+            return lv_pk_fail(c, g, "%s: 'kp' is missing (rad of deflection per rad of "
+                              "attitude error)", gw);
+        if ((st = parse_numbers(c, g, phase, sub, pid ? G_N : G_KI, gn, gu, gdeg, gd, gr, NULL,
+                                cfg->gain[a])) != LV_OK)
+            return st;
+    }
+    static const char *const cn[C_N] = {"limit", "rate_limit", "tau"};
+    static const char *const cu[C_N] = {"rad", "rad/s", "s"};
+    static const int cdeg[C_N] = {1, 1, 0};
+    static const double cd[C_N] = {NAN, NAN, 0.05};
+    const lv_range cr[C_N] = {{0.0, 0.5 * LV_PI, 1, 0},
+                              {0.0, 1000.0 * LV_PI / 180.0, 1, 0},
+                              {0.0, 10.0, 1, 0}};
+    static const char *const extra[] = {"pitch", "yaw", NULL};
+    if ((st = parse_numbers(c, n, phase, "controller", C_N, cn, cu, cdeg, cd, cr, extra,
+                            cfg->ctl_num)) != LV_OK)
+        return st;
+    cfg->ctl = pid ? LV_DOF6_CTL_PID : LV_DOF6_CTL_PD;
+    return LV_OK;
+}
+
+/* transition: {rates: zero | curvature}: the start body rates of a 3-DoF -> 6-DoF hand-off. */
+static lv_status parse_transition(const lv_pctx *c, const lv_ynode *phase_n, const lv_ynode *n,
+                                  const char *phase, dof6_cfg *cfg)
+{
+    static const char *const tkeys[] = {"rates", NULL};
+    static const char *const rules[] = {"zero", "curvature", NULL};
+    char what[LV_WHAT_MAX];
+    snprintf(what, sizeof what, "phase '%s', transition", phase);
+    cfg->rates_rule = LV_DOF6_RATES_ZERO;
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    if (lv_pk_get(phase_n, "from") == NULL)
+        return lv_pk_fail(c, lv_pk_key(phase_n, "transition"), "%s: a transition is a hand-off "
+                          "rule: only a phase with `from` has one (a root phase takes "
+                          "`attitude:` and `rates:`)", what);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {rates: curvature} expected", what);
+    lv_status st = lv_pk_check_map(c, n, what, tkeys);
+    const lv_ynode *v = lv_pk_get(n, "rates");
+    size_t idx = 0;
+    if (st == LV_OK && v != NULL && (st = lv_pk_enum(c, v, what, "rates", rules, &idx)) == LV_OK)
+        cfg->rates_rule = (lv_dof6_rates_rule)idx;
+    return st;
 }
 
 /* moments: {Cl, Cm, Cn, Clp, Cmq, Cnr, b_ref, c_ref, mrp_x, mrp_y, mrp_z, table}. */
@@ -291,12 +429,96 @@ static lv_status dof6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
                           "stage; docs/mission-format.md)", ph->name, bottom->name);
     lv_status st = parse_start(c, n, ph->name, cfg);
     if (st == LV_OK)
-        st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
-    if (st == LV_OK)
         st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
     if (st == LV_OK)
+        st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), NULL, ph->name,
+                                   cfg->aero.present, &cfg->guid);
+    if (st == LV_OK)
+        st = parse_controller(c, n, lv_pk_get(n, "controller"), ph->name, cfg);
+    if (st == LV_OK)
+        st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg);
+    if (st == LV_OK)
         st = parse_moments(c, n, lv_pk_get(n, "moments"), ph->name, cfg);
-    return st;
+    if (st == LV_OK)
+        st = parse_transition(c, n, lv_pk_get(n, "transition"), ph->name, cfg);
+    if (st != LV_OK)
+        return st;
+    const lv_ynode *g = lv_pk_get(n, "guidance");
+    /* the heading law's load-factor limit acts on the 3-DoF model's commanded alpha only */
+    if (cfg->guid.given && cfg->guid.law == LV_STEER_HEADING) {
+        const lv_ynode *k = lv_pk_key(g, "n_max") ? lv_pk_key(g, "n_max") : lv_pk_key(g, "q_max");
+        if (k != NULL)
+            return lv_pk_fail(c, k, "phase '%s', guidance 'heading': '%s' limits the commanded "
+                              "angle of attack of a 3-DoF phase; a 6-DoF body flies the attitude "
+                              "its controller reaches: not in a dof6 phase", ph->name, k->text);
+    }
+    /* one source for the throttle: inputs (constant, table) or the attitude table */
+    size_t tk;
+    const lv_ynode *in = lv_pk_get(n, "inputs");
+    if (cfg->guid.given && cfg->guid.law == LV_STEER_ATTITUDE && cfg->guid.table != NULL &&
+        lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK && in != NULL &&
+        in->kind == LV_YNODE_MAP) {
+        size_t ik;
+        const lv_ynode *k = lv_pk_key(in, "throttle");
+        if (k == NULL && cfg->inputs != NULL &&
+            lv_table_out_index(cfg->inputs, "throttle", &ik, NULL) == LV_OK)
+            k = lv_pk_key(in, "table");
+        if (k != NULL)
+            return lv_pk_fail(c, k, "phase '%s', inputs: the attitude table gives the throttle "
+                              "(its output 'throttle'): give it once", ph->name);
+    }
+    return LV_OK;
+}
+
+/* After `set:` (parse.c): the quaternion states are set all four together, as a unit
+ * quaternion (a partial set would leave the attitude undefined: the model refuses a start
+ * quaternion whose norm is not 1). */
+static lv_status dof6_check_set(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    (void)n;
+    static const char *const qn[4] = {"q_w", "q_x", "q_y", "q_z"};
+    int idx[4] = {-1, -1, -1, -1}, first = -1, given = 0;
+    for (size_t i = 0; i < ph->n_set; i++)
+        for (int k = 0; k < 4; k++)
+            if (strcmp(ph->set_names[i], qn[k]) == 0) {
+                idx[k] = (int)i;
+                given++;
+                if (first < 0)
+                    first = (int)i;
+            }
+    if (given == 0)
+        return LV_OK;
+    const lv_src_loc loc = ph->set_locs != NULL ? ph->set_locs[first] : ph->loc;
+    if (given < 4) {
+        char missing[32] = "";
+        size_t len = 0;
+        for (int k = 0; k < 4; k++)
+            if (idx[k] < 0)
+                len += (size_t)snprintf(missing + len, sizeof missing - len, "%s%s",
+                                        len ? ", " : "", qn[k]);
+        return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: the attitude quaternion "
+                       "is set by its four components q_w, q_x, q_y, q_z together (missing: %s), "
+                       "a unit quaternion body -> ECI", c->file, loc.line, loc.column, ph->name,
+                       missing);
+    }
+    double n2 = 0.0;
+    for (int k = 0; k < 4; k++) {
+        const double v = c->m->slots[ph->set_values[idx[k]]].value;
+        n2 += v * v;
+    }
+    if (!(fabs(sqrt(n2) - 1.0) < 1e-6))
+        return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: the quaternion (q_w, "
+                       "q_x, q_y, q_z) has norm %.9g: it must be 1 (within 1e-6)", c->file,
+                       loc.line, loc.column, ph->name, sqrt(n2));
+    return LV_OK;
+}
+
+/* The conversion's rule of a 3-DoF -> 6-DoF hand-off, for summary.json. */
+static const char *dof6_handoff_rule(const lv_phase_def *ph)
+{
+    const dof6_cfg *cfg = ph->type_cfg;
+    return cfg != NULL && cfg->rates_rule == LV_DOF6_RATES_CURVATURE ? "rates: curvature"
+                                                                     : "rates: zero";
 }
 
 /* ---- the model ---------------------------------------------------------------------------- */
@@ -444,12 +666,26 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.gimbal_pitch = val(bc, pc->u[U_GP], 0.0);
     cfg.gimbal_yaw = val(bc, pc->u[U_GY], 0.0);
     cfg.throttle = val(bc, pc->u[U_THR], 1.0);
-    const lv_slot_def *ts = &d->slots[pc->u[U_THR]];
+    const lv_slot_def *ts = &d->slots[pc->u[U_THR]]; /* always a slot (default 1) */
     if (ts->loc.line == 0) /* a throttle nobody wrote: the most every engine accepts */
         for (size_t e = 0; e < ne; e++)
             if (s->engines[e].throttle_max < cfg.throttle)
                 cfg.throttle = s->engines[e].throttle_max;
     cfg.inputs = pc->inputs;
+    lv_throttle_cfg thr_unused = {0};
+    lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &thr_unused);
+    if (pc->ctl) {
+        lv_dof6_controller *k = &cfg.controller;
+        k->kind = (lv_dof6_ctl_kind)pc->ctl;
+        for (int a = 0; a < 2; a++) {
+            k->kp[a] = val(bc, pc->gain[a][G_KP], 0.0);
+            k->kd[a] = val(bc, pc->gain[a][G_KD], 0.0);
+            k->ki[a] = val(bc, pc->gain[a][G_KI], 0.0);
+        }
+        k->limit = val(bc, pc->ctl_num[C_LIM], 0.0);
+        k->rate_limit = val(bc, pc->ctl_num[C_RATE], 0.0);
+        k->tau = val(bc, pc->ctl_num[C_TAU], 0.0);
+    }
     size_t n_ends = 0;
     s->event_end[0] = -1;
     for (size_t j = 0; j < ph->n_ends; j++) {
@@ -517,14 +753,23 @@ static size_t find(const char *const *names, size_t n, const char *name)
  * outputs theta, psi, phi (the body axes its alpha, beta, mu or steering law gave) when it has
  * them, else the direction of the velocity relative to the planet (psi = heading, theta = fpa,
  * phi = 0: alpha = beta = 0 without wind); the quaternion of those angles relative to NED at
- * the parent's final geodetic position and time; the body rates zero. */
+ * the parent's final geodetic position and time; the body rates zero, or (transition: {rates:
+ * curvature}) the angular velocity of the velocity relative to the planet from the parent's
+ * final specific force (lv_dof6_rates_from_trajectory); a controller's actuators and integrals
+ * at 0. */
 static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
                               const char *const *pnames, const double *pvalues, size_t np,
                               const char *const *names, double *values, size_t n, lv_err *err)
 {
     const dof6_self *s = pm->self;
-    (void)bc;
+    const dof6_cfg *pc = bc->def->phases[bc->k].type_cfg;
     static const char *const qn[4] = {"q_w", "q_x", "q_y", "q_z"}, *const wn[3] = {"p", "q", "r"};
+    static const char *const cn[4] = {"act_pitch", "act_yaw", "int_pitch", "int_yaw"};
+    for (int i = 0; i < 4; i++) { /* a controller the parent did not have starts at rest */
+        const size_t j = find(names, n, cn[i]);
+        if (j != (size_t)-1 && isnan(values[j]))
+            values[j] = 0.0;
+    }
     if (find(pnames, np, "q_w") != (size_t)-1)
         return LV_OK; /* a dof6 parent: the states were copied */
     const size_t it = find(pnames, np, "time"), ila = find(pnames, np, "lat");
@@ -557,10 +802,45 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
         if (j != (size_t)-1)
             values[j] = q[i];
     }
+    double w[3] = {0.0, 0.0, 0.0};
+    if (pc->rates_rule == LV_DOF6_RATES_CURVATURE) {
+        /* the parent's specific force: its load factors along body x, y, -z times g0, in ECI
+         * through the attitude just built; the state of the hand-off: position and velocity
+         * copied from the parent */
+        static const char *const need[] = {"n_axial", "n_lateral", "n_normal", "r_eci_x",
+                                           "r_eci_y", "r_eci_z",   "v_eci_x",  "v_eci_y",
+                                           "v_eci_z"};
+        double f[9];
+        for (int i = 0; i < 9; i++) {
+            const size_t j = find(pnames, np, need[i]);
+            if (j == (size_t)-1)
+                return lv_fail(err, LV_ERR_INPUT, "3-DoF -> 6-DoF, rates from the trajectory's "
+                               "curvature: the parent's final '%s' is unknown", need[i]);
+            f[i] = pvalues[j];
+        }
+        const double fb[3] = {f[0] * LV_G0, f[1] * LV_G0, -f[2] * LV_G0};
+        /* C_eci_body of q (unit): rows r_i = sum_j C_ij fb_j */
+        const double a = q[0], b = q[1], c = q[2], d = q[3];
+        const double C[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d),
+                                 2 * (b * d + a * c)},
+                                {2 * (b * c + a * d), a * a - b * b + c * c - d * d,
+                                 2 * (c * d - a * b)},
+                                {2 * (b * d - a * c), 2 * (c * d + a * b),
+                                 a * a - b * b - c * c + d * d}};
+        double f_eci[3], x[LV_X6_N] = {0};
+        for (int i = 0; i < 3; i++) {
+            f_eci[i] = C[i][0] * fb[0] + C[i][1] * fb[1] + C[i][2] * fb[2];
+            x[LV_X6_RX + i] = f[3 + i];
+            x[LV_X6_VX + i] = f[6 + i];
+        }
+        for (int i = 0; i < 4; i++)
+            x[LV_X6_QW + i] = q[i];
+        lv_dof6_rates_from_trajectory(s->model, pvalues[it], x, f_eci, w);
+    }
     for (int i = 0; i < 3; i++) {
         const size_t j = find(names, n, wn[i]);
         if (j != (size_t)-1)
-            values[j] = 0.0;
+            values[j] = w[i];
     }
     return LV_OK;
 }
@@ -573,7 +853,7 @@ const lv_phase_type lv_phase_type_dof6 = {
     .world = LV_WORLD_PLANET,
     .keys = keys,
     .from_types = from_types,
-    .sample_keys = "attitude: {psi_deg: 90, theta_deg: 90, phi_deg: 0}",
+    .sample_keys = NULL, /* `lvsim vars dof6` lists the defaults a root phase takes */
     .ends = NULL, /* all: burnout, altitude, speed, apogee, impact, variables, time */
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
@@ -587,4 +867,7 @@ const lv_phase_type lv_phase_type_dof6 = {
     .traj = traj,
     .traj_extra = NULL,
     .handoff = dof6_handoff,
+    .check = dof6_check_set,
+    .handoff_rule = dof6_handoff_rule,
+    .root_only_params = root_only,
 };

@@ -132,6 +132,17 @@ struct lv_phase_type {
     lv_status (*handoff)(const lv_build_ctx *bc, const lv_phase_model *pm,
                          const char *const *pnames, const double *pvalues, size_t np,
                          const char *const *names, double *values, size_t n, lv_err *err);
+
+    /* Checks of the phase as a whole once its common keys (`set:` included: ph->set_names,
+     * set_values, set_locs) are read; errors at file:line:column. NULL: none. */
+    lv_status (*check)(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph);
+    /* The rule of its conversion from a parent of another type, in words for summary.json
+     * ("rates: zero"); NULL: none to name. */
+    const char *(*handoff_rule)(const lv_phase_def *ph);
+    /* The mission parameters (of mission_params) only a root phase of this type reads,
+     * NULL-terminated; NULL: a child reads them all. A parameter that only children read is
+     * refused where the file writes it. */
+    const char *const *root_only_params;
 };
 
 /* The registered types, NULL-terminated (phase_types.c). */

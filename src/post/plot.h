@@ -51,7 +51,7 @@ typedef struct lv_plot_data {
     size_t n_sites;
 } lv_plot_data;
 
-#define LV_PLOT_MAX_FIGS 16
+#define LV_PLOT_MAX_FIGS 32
 
 /* What lv_plot_draw_figures() made and left out, for the report. */
 typedef struct lv_plot_list {

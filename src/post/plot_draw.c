@@ -47,6 +47,7 @@ typedef struct curve {
     PLINT color, style; /* cmap0 index; PLplot line style 1 (solid) .. 8 */
     PLFLT width;
     size_t body;        /* index into lv_plot_data.bodies */
+    int set;            /* which of a quantity's curves (main, second, third) */
 } curve;
 
 #define MAX_CURVES 32
@@ -632,27 +633,43 @@ static void add_note(lv_plot_list *l, const char *note)
 typedef struct quantity {
     int atmo;          /* 1: only where the atmosphere model is defined (Mach, q) */
     const char *stem, *title, *ylabel;
-    const char *a[3];  /* columns of the main curve, first found wins (planet, flat world) */
-    const char *b[2];  /* a second, dashed curve, when the phases have it */
+    const char *a[3];  /* columns of the main curve, first found wins (planet, flat world; the
+                          6-DoF model's name before the 3-DoF model's) */
+    const char *b[3];  /* a second, dashed curve, when the phases have it */
     const char *a_label, *b_label;
     double scale;      /* SI -> the unit of ylabel */
+    const char *c[3];  /* a third curve (dash-dotted), when the phases have it */
+    const char *c_label;
 } quantity;
 
 static const quantity quantities[] = {
-    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3},
+    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
     {0, "speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
-     "relative", "inertial", 1.0},
-    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3},
-    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0},
+     "relative", "inertial", 1.0, {NULL}, ""},
+    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
+    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, ""},
     {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
-     {NULL}, "", "", 1e-3},
+     {NULL}, "", "", 1e-3, {NULL}, ""},
     {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
-     {"n_normal", NULL}, "axial", "normal", 1.0},
+     {"n_normal", NULL}, "axial", "normal", 1.0, {NULL}, ""},
     {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
-     {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG},
+     {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG, {NULL}, ""},
     {0, "acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL},
-     "", "", 1.0},
-    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3},
+     "", "", 1.0, {NULL}, ""},
+    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
+    /* attitude and control (6-DoF phases; the 3-DoF model's attitude and aerodynamic angles
+     * are outputs too: theta, psi, phi, alpha_in, beta_in) */
+    {0, "attitude", "Attitude (3-2-1 Euler angles, local NED)", "angle [deg]", {"theta", NULL},
+     {"psi", NULL}, "pitch", "heading", RAD2DEG, {"phi", NULL}, "roll"},
+    {0, "angle_of_attack", "Angle of attack and sideslip", "angle [deg]",
+     {"alpha", "alpha_in", NULL}, {"beta", "beta_in", NULL}, "alpha", "beta", RAD2DEG, {NULL},
+     ""},
+    {0, "body_rates", "Body rates", "rate [deg/s]", {"q", NULL}, {"r", NULL}, "pitch q", "yaw r",
+     RAD2DEG, {"p", NULL}, "roll p"},
+    {0, "gimbal", "Gimbal angles", "gimbal angle [deg]", {"gimbal_pitch_in", NULL},
+     {"gimbal_yaw_in", NULL}, "pitch", "yaw", RAD2DEG, {NULL}, ""},
+    {0, "attitude_error", "Attitude error (controller)", "error [deg]", {"err_pitch", NULL},
+     {"err_yaw", NULL}, "pitch", "yaw", RAD2DEG, {"err_roll", NULL}, "roll"},
 };
 
 /* "mission <name>", for a figure's subtitle. */
@@ -700,7 +717,8 @@ static PLFLT body_width(size_t i)
 static PLINT body_style(size_t i, int second)
 {
     static const PLINT main_style[4] = {1, 3, 2, 5}, second_style[4] = {4, 6, 7, 8};
-    return second ? second_style[i % 4] : main_style[i % 4];
+    static const PLINT third_style[4] = {5, 2, 1, 3};
+    return second == 2 ? third_style[i % 4] : second ? second_style[i % 4] : main_style[i % 4];
 }
 
 /* One figure of quantity q: a curve per body (two when q has a second column); a quantity no
@@ -718,10 +736,10 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
     f.p[0].ylo = f.p[0].yhi = NAN;
     snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "%s", q->ylabel);
     time_range(d, &f.xlo, &f.xhi);
-    size_t n_a = 0, n_b = 0;
+    size_t n_a = 0, n_b = 0, n_c = 0;
     lv_status st = LV_OK;
-    for (int pass = 0; pass < 2 && st == LV_OK; pass++) {
-        const char *const *cols = pass == 0 ? q->a : q->b;
+    for (int pass = 0; pass < 3 && st == LV_OK; pass++) {
+        const char *const *cols = pass == 0 ? q->a : pass == 1 ? q->b : q->c;
         if (cols[0] == NULL)
             continue;
         for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
@@ -735,11 +753,12 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n == 0)
                 continue;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = body_style(i, pass == 1);
+            c->style = body_style(i, pass);
             c->body = i;
+            c->set = pass;
             c->width = body_width(i);
             f.p[0].n_c++;
-            *(pass == 0 ? &n_a : &n_b) += 1;
+            *(pass == 0 ? &n_a : pass == 1 ? &n_b : &n_c) += 1;
         }
     }
     char why[200];
@@ -752,10 +771,10 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
         char name[96];
         for (size_t j = 0; j < f.p[0].n_c; j++) { /* labels: body, and which curve if two */
             curve *c = &f.p[0].c[j];
-            if (n_b > 0)
+            if (n_b > 0 || n_c > 0)
                 snprintf(c->label, sizeof c->label, "%.96s, %.16s",
                          body_label(d, c->body, name, sizeof name),
-                         c->style == body_style(c->body, 0) ? q->a_label : q->b_label);
+                         c->set == 0 ? q->a_label : c->set == 1 ? q->b_label : q->c_label);
             else
                 body_label(d, c->body, c->label, sizeof c->label);
         }

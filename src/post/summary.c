@@ -155,6 +155,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
             char tr[96];
             snprintf(tr, sizeof tr, "%s -> %s", pp.model, ph.model);
             cJSON_AddStringToObject(h, "transition", tr);
+            if (ph.handoff_rule != NULL)
+                cJSON_AddStringToObject(h, "rule", ph.handoff_rule);
         }
         cJSON_AddNumberToObject(h, "states_copied", (double)r->n_copied);
         cJSON_AddNumberToObject(h, "mass_from_stages", r->mass_from_stages);

@@ -27,15 +27,19 @@
 static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dynamic_pressure",
                                        "load_factor", "flight_path_angle", "acceleration",
                                        "thrust", "ground_track", "ground_track_site",
-                                       "fig10_normalised", NULL};
+                                       "fig10_normalised", "attitude", "angle_of_attack",
+                                       "body_rates", "gimbal", "attitude_error", NULL};
 /* not drawn for the paper's flat-world flight: no atmosphere, no aerodynamics, and a vertical
  * flight has no ground track to map */
 static const char *const flat_skipped[] = {"mach", "dynamic_pressure", "load_factor",
                                            "flight_path_angle", "ground_track",
-                                           "ground_track_site", NULL};
-/* dof3-branch: no runway, and no stage comes back near the launch site */
-static const char *const dof3_skipped[] = {"ground_track_site", NULL};
-static const char *const none_skipped[] = {NULL};
+                                           "ground_track_site", "angle_of_attack", "gimbal",
+                                           "attitude_error", NULL};
+/* dof3-branch: no runway, and no stage comes back near the launch site; 3-DoF phases have an
+ * attitude and aerodynamic angles but no body rates, gimbal or controller */
+static const char *const dof3_skipped[] = {"ground_track_site", "body_rates", "gimbal",
+                                           "attitude_error", NULL};
+static const char *const rlv_skipped[] = {"body_rates", "gimbal", "attitude_error", NULL};
 
 static int in_list(const char *const *l, const char *s)
 {
@@ -405,7 +409,7 @@ int main(void)
         run_and_plot("examples/paper-test-case/mission.yaml", "plot_paper", 1, flat_skipped);
     double ms_dof3 =
         run_and_plot("examples/dof3-branch/mission.yaml", "plot_dof3", 0, dof3_skipped);
-    double ms_rlv = run_and_plot("examples/rlv-hthl/mission.yaml", "plot_rlv", 0, none_skipped);
+    double ms_rlv = run_and_plot("examples/rlv-hthl/mission.yaml", "plot_rlv", 0, rlv_skipped);
     printf("lv_plot_run: paper-test-case %.0f ms, dof3-branch %.0f ms, rlv-hthl %.0f ms\n",
            ms_paper, ms_dof3, ms_rlv);
     check_fig10_csv("plot_paper", 0);
