@@ -4,7 +4,8 @@
 #   test_python     tests/python/test_python.py (pytest): the C structures' mirrors, results bit
 #                   for bit equal to `lvsim run`'s files, errors, sweeps, threads and the GIL,
 #                   the one-phase call, targeting, Monte Carlo, freeing
-#   test_python_doc docs/python.md's code blocks run in order (tests/python/run_doc.py)
+#   test_python_doc the ```python blocks of docs/python.md and README.md run in order
+#                   (tests/python/run_doc.py)
 #   test_notebook   examples/notebook.ipynb executed by Debian's jupyter-nbconvert
 #   test_python_install (in cmake/lv_install.cmake's install test) the installed package
 # Under the sanitizers (make test-asan) Python is not instrumented: the C libraries' ASan and
@@ -16,7 +17,7 @@ lv_set_warnings(py_layout)
 
 set(_py_env "PYTHONPATH=${PROJECT_BINARY_DIR}/python" "LV_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
     "LVSIM=$<TARGET_FILE:lvsim_cli>" "LV_PY_LAYOUT=$<TARGET_FILE:py_layout>"
-    "PYTHONDONTWRITEBYTECODE=1" "MPLBACKEND=Agg")
+    "PYTHONDONTWRITEBYTECODE=1" "MPLBACKEND=Agg" "PYDEVD_DISABLE_FILE_VALIDATION=1")
 if(LV_SANITIZE)
   set(_py_preload "")
   foreach(rt libasan.so libubsan.so)
@@ -38,8 +39,8 @@ add_test(NAME test_python
 set_tests_properties(test_python PROPERTIES ENVIRONMENT "${_py_env}" TIMEOUT 600)
 
 add_test(NAME test_python_doc
-         COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/run_doc.py
-                 ${PROJECT_SOURCE_DIR}/docs/python.md
+         COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/run_doc.py ${PROJECT_SOURCE_DIR}
+                 docs/python.md README.md
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(test_python_doc PROPERTIES ENVIRONMENT "${_py_env}" TIMEOUT 300)
 
