@@ -754,7 +754,7 @@ class Run:
         want = None
         if phases is not None or until is not None:
             want = (c_ubyte * n)()
-            if isinstance(phases, (str, int, Phase)):
+            if isinstance(phases, (str, int, np.integer, Phase)):
                 phases = [phases]
             for p in phases or []:
                 want[m.phase_index(p)] = 1
