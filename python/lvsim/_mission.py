@@ -501,7 +501,7 @@ class Mission:
 
     # ---- lifetime ----
     def _handle(self):
-        if self._h is None:
+        if self._h is None or self._dead:
             raise LvsimError("mission is closed")
         return self._h
 
@@ -530,8 +530,7 @@ class Mission:
             for r in list(self._runs):
                 r.close()
             self._dead = True
-            self._maybe_free()
-        self._h = None  # a borrower left unclosed (never: each is in _runs) frees it
+            self._maybe_free()  # now, or when its last borrower is freed
 
     def __enter__(self):
         return self
