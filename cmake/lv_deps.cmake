@@ -1,6 +1,9 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
 #   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, NLopt, cJSON,
 #   PLplot, Nettle, libzip (pkg-config).
+# The Python package (python/, docs/python.md) needs no build dependency: ctypes at run time,
+# with Debian's /usr/bin/python3 and python3-numpy (pandas, matplotlib, pytest, nbconvert,
+# setuptools for the tests and pip installs: tests/python/python.cmake).
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)

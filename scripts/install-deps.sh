@@ -16,7 +16,11 @@ pkgs=(
   libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
   nettle-dev                           # SHA-256 in the results folder's manifest
   libzip-dev unzip                     # lvsim fmu: the FMU archive; its test unpacks it
-  python3-scipy python3-numpy          # independent .mat reader in the tests
+  python3-scipy python3-numpy          # independent .mat reader in the tests; NumPy: the Python package
+  python3-pandas python3-matplotlib    # the Python package's DataFrames; the example notebook's plots
+  python3-pytest                       # the Python package's tests (ctest test_python)
+  jupyter-nbconvert python3-ipykernel  # ctest test_notebook: examples/notebook.ipynb executed
+  python3-setuptools python3-wheel python3-pip python3-venv  # pip install build/python (no index)
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   libpng-dev                           # plots: PNG files written with fast settings
   clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)

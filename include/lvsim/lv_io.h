@@ -71,6 +71,14 @@ LV_API size_t lv_result_signals(const lv_result *r);
 /* Column index of a signal by name ("time", "h", "der(h)", ...) or LV_ERR_NOTFOUND. */
 LV_API lv_status lv_result_column(const lv_result *r, const char *name, size_t *col, lv_err *err);
 LV_API double lv_result_value(const lv_result *r, size_t row, size_t col);
+/* Signal col's name ("time", "h", "der(h)") and unit (SI, "" dimensionless), owned by the
+ * result; NULL when col >= lv_result_signals() (or the result was never opened). */
+LV_API const char *lv_result_name(const lv_result *r, size_t col);
+LV_API const char *lv_result_unit(const lv_result *r, size_t col);
+/* Every value, row-major: [lv_result_rows() * lv_result_signals()], value (row, col) at
+ * row * signals + col; NULL when there is no row. Owned by the result and valid until its
+ * next row or lv_result_free() (for copying out in one go, as the Python package does). */
+LV_API const double *lv_result_data(const lv_result *r);
 /* NULL until closed; then NULL when complete or the failure text. */
 LV_API const char *lv_result_failure(const lv_result *r);
 LV_API int lv_result_closed(const lv_result *r);

@@ -1,6 +1,6 @@
 /* result_memory.c - the in-memory result sink and the lv_result accessors.
  *
- * Keeps every row (time and all signals) and a copy of the signal names, so
+ * Keeps every row (time and all signals) and a copy of the signal names and units, so
  * that the result outlives the model and the sink. Parameters are not kept:
  * the caller already holds them.
  */
@@ -14,7 +14,8 @@
 
 struct lv_result {
     size_t n_signals;
-    char **names;   /* [n_signals], owned copies (one block with their text) */
+    char **names;   /* [n_signals], owned copies (one block with their text and units) */
+    char **units;   /* [n_signals], in the same block */
     lv_rowbuf rows; /* row-major, rows.width == n_signals */
     int opened;
     int closed;
@@ -29,19 +30,28 @@ static lv_status mem_open(void *self, const lv_result_info *info, lv_err *err)
     lv_status st = lv_sink_check_info(info, "memory result", err);
     if (st != LV_OK)
         return st;
-    /* the names' pointers and their text in one block (one allocation per result) */
+    /* the names' and units' pointers and their text in one block (one allocation per
+     * result); a NULL unit is kept as "" */
     size_t text = 0;
-    for (size_t i = 0; i < info->n_signals; i++)
-        text += strlen(info->signals[i].name) + 1;
-    r->names = malloc(info->n_signals * sizeof *r->names + text);
+    for (size_t i = 0; i < info->n_signals; i++) {
+        const char *unit = info->signals[i].unit;
+        text += strlen(info->signals[i].name) + 1 + (unit ? strlen(unit) : 0) + 1;
+    }
+    r->names = malloc(2 * info->n_signals * sizeof *r->names + text);
     if (r->names == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "memory result: out of memory");
-    char *dst = (char *)(r->names + info->n_signals);
+    r->units = r->names + info->n_signals;
+    char *dst = (char *)(r->units + info->n_signals);
     for (size_t i = 0; i < info->n_signals; i++) {
         const size_t n = strlen(info->signals[i].name) + 1;
         memcpy(dst, info->signals[i].name, n);
         r->names[i] = dst;
         dst += n;
+        const char *unit = info->signals[i].unit ? info->signals[i].unit : "";
+        const size_t nu = strlen(unit) + 1;
+        memcpy(dst, unit, nu);
+        r->units[i] = dst;
+        dst += nu;
     }
     r->n_signals = info->n_signals;
     r->rows.width = info->n_signals;
@@ -147,6 +157,21 @@ double lv_result_value(const lv_result *r, size_t row, size_t col)
     if (r == NULL || row >= r->rows.rows || col >= r->n_signals)
         return NAN;
     return r->rows.v[row * r->n_signals + col];
+}
+
+const char *lv_result_name(const lv_result *r, size_t col)
+{
+    return r != NULL && r->names != NULL && col < r->n_signals ? r->names[col] : NULL;
+}
+
+const char *lv_result_unit(const lv_result *r, size_t col)
+{
+    return r != NULL && r->names != NULL && col < r->n_signals ? r->units[col] : NULL;
+}
+
+const double *lv_result_data(const lv_result *r)
+{
+    return r != NULL && r->rows.rows > 0 ? r->rows.v : NULL;
 }
 
 const char *lv_result_failure(const lv_result *r)

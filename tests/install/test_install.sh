@@ -12,7 +12,11 @@
 #      that fails, for its message;
 #   5. no installed file contains the temporary or the real source or build path, and the
 #      private dependencies (SUNDIALS, matio, HDF5, libyaml, NLopt, cJSON, PLplot) do not reach
-#      the consumer.
+#      the consumer;
+#   6. the Python package: the installed one (lib/python3/dist-packages/lvsim, in the moved
+#      prefix) imports with Debian's python3, loads the prefix's liblvsim and runs the mission;
+#      a pip install of the real build tree's build/python (--target, and into a venv with
+#      --system-site-packages; no index) does the same with the build tree's library.
 # Prints "N passed, M failed" and the time of each step.
 set -uo pipefail
 src="$(cd "$1" && pwd)"
@@ -134,6 +138,29 @@ expect 2 "gravity/egm2008_n20.gfc: lvsim data file not found \(LVSIM_DATA not se
   -- "$lvsim" gravity 0 0 0 --model sh
 mv "$moved/share.off" "$moved/share"
 expect 0 "^[-0-9.e]+ [-0-9.e]+ 9\.814[0-9]* 9\.814" -- env LVSIM_DATA="$moved/share/lvsim" "$lvsim" gravity 0 0 0 --model sh
+
+step "Python package: installed, and pip-installed from the build tree"
+py=/usr/bin/python3
+pycheck='import lvsim, sys
+m = lvsim.Mission(sys.argv[1]); r = m.run()
+print("lvsim", lvsim.__version__, "from", lvsim.library_path)
+print("python-check: %d phases, final altitude %.1f km" % (len(m.phases), r.final(len(m.phases) - 1, "h") / 1e3))'
+expect 0 "^lvsim [0-9.]+ from $moved/lib/liblvsim\.so\.0" -- env -u LVSIM_LIBRARY_DIR PYTHONDONTWRITEBYTECODE=1 \
+  PYTHONPATH="$moved/lib/python3/dist-packages" "$py" -c "$pycheck" "$mission"
+expect 0 "^python-check: 2 phases, final altitude [0-9]+\.[0-9] km\$" -- env PYTHONDONTWRITEBYTECODE=1 \
+  PYTHONPATH="$moved/lib/python3/dist-packages" "$py" -c "$pycheck" "$mission"
+if [ -n "$real_build" ] && [ -f "$real_build/python/pyproject.toml" ]; then
+  rb="$(cd "$real_build" && pwd)"
+  run pip-target "$py" -m pip install --no-build-isolation --no-index --no-cache-dir --quiet \
+      --target "$tmp/pip" "$rb/python" && ok || fail "pip install --target"
+  expect 0 "^lvsim [0-9.]+ from $rb/lib/liblvsim\.so\.0" -- env PYTHONDONTWRITEBYTECODE=1 \
+    PYTHONPATH="$tmp/pip" "$py" -c "$pycheck" "$mission"
+  run venv "$py" -m venv --system-site-packages "$tmp/venv" && \
+    run pip-venv "$tmp/venv/bin/pip" install --no-build-isolation --no-index --no-cache-dir --quiet \
+      "$rb/python" && ok || fail "pip install into a venv"
+  expect 0 "^python-check: 2 phases" -- env PYTHONDONTWRITEBYTECODE=1 "$tmp/venv/bin/python" \
+    -c "$pycheck" "$mission"
+fi
 
 step "no installed file contains a source or build path"
 paths=("$copy" "$build" "$src")

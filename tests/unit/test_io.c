@@ -146,6 +146,7 @@ static void test_memory(void)
     CHECK_OK(lv_sink_memory_create(&r, &s, &err), &err);
     CHECK(strcmp(s.vt->format, "memory") == 0);
     CHECK(lv_result_rows(r) == 0 && !lv_result_closed(r) && lv_result_failure(r) == NULL);
+    CHECK(lv_result_name(r, 0) == NULL && lv_result_unit(r, 0) == NULL && lv_result_data(r) == NULL);
     CHECK_OK(run_sink(&s, NROWS, NULL, &err), &err);
     CHECK(lv_result_rows(r) == NROWS);
     CHECK(lv_result_signals(r) == NSIG);
@@ -160,6 +161,20 @@ static void test_memory(void)
     CHECK(lv_result_value(r, 5, 0) == lv_result_value(r, 6, 0)); /* event row twice */
     CHECK(isnan(lv_result_value(r, NROWS, 0)));
     CHECK(isnan(lv_result_value(r, 0, NSIG)));
+    /* names and units copied (the sample's lv_var array may go); every value in one block */
+    for (size_t c = 0; c < NSIG; c++) {
+        CHECK(lv_result_name(r, c) != NULL && strcmp(lv_result_name(r, c), sig[c].name) == 0);
+        CHECK(lv_result_unit(r, c) != NULL && strcmp(lv_result_unit(r, c), sig[c].unit) == 0);
+        CHECK(lv_result_name(r, c) != sig[c].name);
+    }
+    CHECK(strcmp(lv_result_unit(r, 4), "") == 0);
+    CHECK(lv_result_name(r, NSIG) == NULL && lv_result_unit(r, NSIG) == NULL);
+    const double *data = lv_result_data(r);
+    CHECK(data != NULL);
+    for (size_t i = 0; data != NULL && i < NROWS; i++)
+        for (size_t c = 0; c < NSIG; c++)
+            CHECK(data[i * NSIG + c] == lv_result_value(r, i, c));
+    CHECK(lv_result_name(NULL, 0) == NULL && lv_result_data(NULL) == NULL);
     CHECK_FAILS(lv_result_column(r, "der(hh)", &col, &err), &err, LV_ERR_NOTFOUND, "der(h)");
     CHECK_FAILS(s.vt->close(s.self, NULL, &err), &err, LV_ERR_INPUT, "twice");
     double v[NSIG] = {0};

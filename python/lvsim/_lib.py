@@ -1,0 +1,390 @@
+"""_lib.py - the C libraries through ctypes: loading, the structures of the public headers
+(include/lvsim/*.h) mirrored field by field, and the functions' prototypes.
+
+The structures are written by hand, in the headers' order: ctypes has no header parser, and
+Debian ships no cffi/ctypesgen that would read them at build time without a compiler at import
+time. tests/python/test_python.py checks every mirrored structure's size and field offsets
+against a C program compiled from the real headers (tests/python/py_layout.c), so a header
+change that is not made here too fails the suite.
+
+Calls go through ctypes.CDLL, which releases the GIL for the duration of every foreign call
+(ctypes.PyDLL would hold it): a mission run in one Python thread lets the others go on.
+"""
+import ctypes
+import os
+from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c_int,
+                    c_long, c_size_t, c_ubyte, c_uint, c_uint64, c_void_p)
+
+from . import _paths
+
+LV_ERR_MSG_MAX = 512
+LV_EVENT_NAME_MAX = 96
+
+# lv_status (lv_status.h)
+LV_OK = 0
+STATUS_NAMES = {0: "LV_OK", -1: "LV_ERR_NOMEM", -2: "LV_ERR_INPUT", -3: "LV_ERR_SOLVER",
+                -4: "LV_ERR_IO", -5: "LV_ERR_NOTFOUND", -6: "LV_ERR_CANCELLED"}
+
+LV_RESULT_MAT = 1
+LV_RESULT_CSV = 2
+LV_RUN_NO_PHASE_FILES = 0x100
+
+
+class lv_err(Structure):
+    _fields_ = [("code", c_int), ("msg", c_char * LV_ERR_MSG_MAX)]
+
+
+class lv_var(Structure):
+    _fields_ = [("name", c_char_p), ("unit", c_char_p), ("description", c_char_p),
+                ("start", c_double), ("nominal", c_double)]
+
+
+class lv_event_def(Structure):
+    _fields_ = [("name", c_char_p), ("description", c_char_p), ("direction", c_int)]
+
+
+class lv_model_def(Structure):
+    # only the leading fields are read (names and counts of the variables); the callbacks
+    # after them are never called from Python, so the structure is not mirrored past them
+    _fields_ = [("name", c_char_p), ("description", c_char_p),
+                ("n_states", c_size_t), ("n_params", c_size_t), ("n_outputs", c_size_t),
+                ("n_events", c_size_t),
+                ("states", POINTER(lv_var)), ("params", POINTER(lv_var)),
+                ("outputs", POINTER(lv_var)), ("events", POINTER(lv_event_def)),
+                ("inst_size", c_size_t)]
+
+
+class lv_mission_info(Structure):
+    _fields_ = [("name", c_char_p), ("description", c_char_p), ("path", c_char_p),
+                ("epoch", c_char_p), ("flat_world", c_int), ("planet", c_char_p),
+                ("site_lat", c_double), ("site_lon", c_double),
+                ("n_phases", c_size_t), ("n_stages", c_size_t), ("n_params", c_size_t)]
+
+
+class lv_phase_info(Structure):
+    _fields_ = [("name", c_char_p), ("model", c_char_p), ("parent", c_int),
+                ("n_stages", c_size_t), ("stages", POINTER(c_size_t)), ("method", c_char_p),
+                ("file_index", c_size_t)]
+
+
+class lv_param_info(Structure):
+    _fields_ = [("name", c_char_p), ("unit", c_char_p), ("value", c_double), ("line", c_int),
+                ("rule", c_char_p)]
+
+
+class lv_sim_stats(Structure):
+    _fields_ = [("steps", c_long), ("rhs_evals", c_long), ("jac_evals", c_long),
+                ("err_test_fails", c_long), ("nonlin_fails", c_long), ("g_evals", c_long),
+                ("state_events", c_long), ("time_events", c_long), ("restarts", c_long),
+                ("output_rows", c_long), ("cpu_time", c_double),
+                ("rhs_evals_steps", c_long), ("rhs_evals_output", c_long),
+                ("row_evals", c_long)]
+
+
+class lv_event_record(Structure):
+    _fields_ = [("t", c_double), ("is_state", c_int), ("index", c_int), ("direction", c_int),
+                ("name", c_char * LV_EVENT_NAME_MAX)]
+
+
+class lv_sim_report(Structure):
+    _fields_ = [("stats", lv_sim_stats), ("reason", c_int), ("end_time", c_double),
+                ("stop_event", c_int), ("stop_name", c_char * LV_EVENT_NAME_MAX),
+                ("n_states", c_size_t), ("n_event_log", c_size_t),
+                ("event_log", POINTER(lv_event_record))]
+
+
+class lv_phase_result(Structure):
+    _fields_ = [("name", c_char_p), ("state", c_int), ("error", c_char * LV_ERR_MSG_MAX),
+                ("t_start", c_double), ("t_end", c_double), ("t_stop", c_double),
+                ("method", c_char_p), ("tolerance", c_double), ("report", lv_sim_report),
+                ("end_index", c_int), ("end_value", c_double),
+                ("n_final", c_size_t), ("final_names", POINTER(c_char_p)),
+                ("final_values", POINTER(c_double)), ("result_stem", c_char_p),
+                ("n_event_names", c_size_t), ("event_names", POINTER(c_char_p)),
+                ("n_copied", c_size_t), ("mass_from_stages", c_double),
+                ("mass_start", c_double), ("n_set", c_size_t),
+                ("set_names", POINTER(c_char_p)), ("set_values", POINTER(c_double)),
+                ("propellant_start", POINTER(c_double)), ("propellant_end", POINTER(c_double)),
+                ("dry_mass", POINTER(c_double)), ("payload", c_double),
+                ("result_formats", c_uint)]
+
+
+ON_PHASE_FN = CFUNCTYPE(None, c_void_p, c_size_t, POINTER(lv_phase_result), c_void_p)
+RUN_PROGRESS_FN = CFUNCTYPE(c_int, c_void_p, c_size_t, c_double, c_void_p)
+
+
+class lv_run_options(Structure):
+    _fields_ = [("outdir", c_char_p), ("threads", c_int), ("on_phase", ON_PHASE_FN),
+                ("user", c_void_p), ("output_interval", c_double), ("method", c_char_p),
+                ("tolerance", c_double), ("progress", RUN_PROGRESS_FN), ("no_rows", c_int),
+                ("result_formats", c_uint), ("want", POINTER(c_ubyte))]
+
+
+class lv_body_traj(Structure):
+    _fields_ = [("stage", c_char_p), ("n_rows", c_size_t), ("n_cols", c_size_t),
+                ("names", POINTER(c_char_p)), ("units", POINTER(c_char_p)),
+                ("values", POINTER(c_double)), ("phase", POINTER(c_size_t))]
+
+
+class lv_sink(Structure):
+    _fields_ = [("vt", c_void_p), ("self", c_void_p)]
+
+
+class lv_sim_stop(Structure):
+    _fields_ = [("name", c_char_p), ("variable", c_char_p), ("value", c_double),
+                ("direction", c_int)]
+
+
+SIM_PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_void_p)
+
+
+class lv_sim_settings(Structure):
+    _fields_ = [("start_time", c_double), ("stop_time", c_double),
+                ("number_of_intervals", c_int), ("output_interval", c_double),
+                ("method", c_char_p), ("tolerance", c_double), ("fixed_step", c_double),
+                ("result_file", c_char_p), ("result_formats", c_uint),
+                ("n_initial", c_size_t), ("initial_names", POINTER(c_char_p)),
+                ("initial_values", POINTER(c_double)),
+                ("n_final", c_size_t), ("final_names", POINTER(c_char_p)),
+                ("max_steps", c_long), ("max_step_size", c_double),
+                ("n_sinks", c_size_t), ("sinks", POINTER(lv_sink)),
+                ("progress", SIM_PROGRESS_FN), ("progress_user", c_void_p),
+                ("n_stops", c_size_t), ("stops", POINTER(lv_sim_stop))]
+
+
+# ---- targeting (lv_target.h) --------------------------------------------------------------
+
+class lv_target_var_info(Structure):
+    _fields_ = [("name", c_char_p), ("unit", c_char_p), ("param", c_size_t), ("deg", c_int),
+                ("lo", c_double), ("hi", c_double), ("start", c_double), ("scale", c_double),
+                ("step", c_double)]
+
+
+class lv_target_con_info(Structure):
+    _fields_ = [("name", c_char_p), ("unit", c_char_p), ("phase", c_size_t), ("kind", c_int),
+                ("value", c_double), ("tol", c_double)]
+
+
+class lv_target_cost_info(Structure):
+    _fields_ = [("present", c_int), ("name", c_char_p), ("unit", c_char_p),
+                ("phase", c_size_t), ("maximize", c_int), ("scale", c_double)]
+
+
+class lv_target_iter(Structure):
+    _fields_ = [("iteration", c_size_t), ("solver", c_char_p), ("event", c_char_p),
+                ("note", c_char_p), ("x", POINTER(c_double)), ("finals", POINTER(c_double)),
+                ("residual", POINTER(c_double)), ("cost", c_double), ("worst", c_double),
+                ("damping", c_double), ("step", c_double), ("runs", c_size_t),
+                ("phases", c_size_t), ("runs_total", c_size_t), ("phases_total", c_size_t),
+                ("wall", c_double)]
+
+
+class lv_target_eval(Structure):
+    _fields_ = [("iteration", c_size_t), ("purpose", c_char_p), ("var", c_char_p),
+                ("runs_total", c_size_t), ("phases_total", c_size_t), ("wall", c_double)]
+
+
+TARGET_ITER_FN = CFUNCTYPE(None, c_void_p, POINTER(lv_target_iter), c_void_p)
+TARGET_EVAL_FN = CFUNCTYPE(c_int, c_void_p, POINTER(lv_target_eval), c_void_p)
+
+
+class lv_target_settings(Structure):
+    _fields_ = [("method", c_int), ("differences", c_int), ("max_iterations", c_int),
+                ("xtol", c_double), ("ftol", c_double), ("restarts", c_int),
+                ("threads", c_int), ("on_iteration", TARGET_ITER_FN),
+                ("on_evaluation", TARGET_EVAL_FN), ("user", c_void_p)]
+
+
+class lv_target_result(Structure):
+    _fields_ = [("converged", c_int), ("cancelled", c_int),
+                ("reason", c_char * LV_ERR_MSG_MAX), ("method", c_char_p),
+                ("n_vars", c_size_t), ("n_cons", c_size_t), ("x", POINTER(c_double)),
+                ("finals", POINTER(c_double)), ("residual", POINTER(c_double)),
+                ("met", POINTER(c_int)), ("cost", c_double), ("worst", c_double),
+                ("iterations", c_size_t), ("runs", c_size_t), ("phases", c_size_t),
+                ("wall", c_double)]
+
+
+# ---- dispersions and campaigns (lv_dispersion.h, lv_campaign.h) ----------------------------
+
+class lv_disp_info(Structure):
+    _fields_ = [("name", c_char_p), ("unit", c_char_p), ("dist", c_char_p), ("kind", c_int),
+                ("relative", c_int), ("nominal", c_double), ("mean", c_double),
+                ("sigma", c_double), ("min", c_double), ("max", c_double),
+                ("param", c_size_t), ("group", c_int), ("stream", c_uint64),
+                ("line", c_int), ("column", c_int)]
+
+
+class lv_campaign_progress(Structure):
+    _fields_ = [("total", c_uint64), ("done", c_uint64), ("this_session", c_uint64),
+                ("failed", c_uint64), ("elapsed", c_double), ("rate", c_double),
+                ("eta", c_double)]
+
+
+CAMPAIGN_PROGRESS_FN = CFUNCTYPE(None, POINTER(lv_campaign_progress), c_void_p)
+
+
+class lv_campaign_options(Structure):
+    _fields_ = [("n_runs", c_uint64), ("seed", c_uint64), ("threads", c_int),
+                ("db_path", c_char_p), ("resume", c_int), ("overwrite", c_int),
+                ("keep_runs", c_uint64), ("keep_dir", c_char_p), ("method", c_char_p),
+                ("tolerance", c_double), ("output_interval", c_double),
+                ("progress", CAMPAIGN_PROGRESS_FN), ("user", c_void_p),
+                ("stop", POINTER(c_int))]
+
+
+# The structures the layout test compares with the C compiler's view of the headers.
+MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_param_info,
+            lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
+            lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
+            lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
+            lv_target_settings, lv_target_result, lv_disp_info, lv_campaign_progress,
+            lv_campaign_options]
+# lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
+PARTIAL = [lv_model_def]
+
+# ---- loading ------------------------------------------------------------------------------
+
+_here = os.path.dirname(os.path.abspath(__file__))
+
+
+def _candidates(soname):
+    """Where the library is looked for, in order: $LVSIM_LIBRARY_DIR, the library folder
+    relative to this package (the build tree's or the installation's layout), the folder it
+    was built or installed in, then the dynamic loader's own search (LD_LIBRARY_PATH,
+    ld.so.cache)."""
+    out = []
+    env = os.environ.get("LVSIM_LIBRARY_DIR")
+    if env:
+        out.append(os.path.join(env, soname))
+    out.append(os.path.normpath(os.path.join(_here, _paths.LIBDIR_REL, soname)))
+    if _paths.LIBDIR_ABS:
+        out.append(os.path.join(_paths.LIBDIR_ABS, soname))
+    return out
+
+
+def _load(soname):
+    tried = []
+    for path in _candidates(soname):
+        if os.path.exists(path):
+            try:
+                return ctypes.CDLL(path)
+            except OSError as e:
+                tried.append(f"{path}: {e}")
+        else:
+            tried.append(f"{path}: not found")
+    try:
+        return ctypes.CDLL(soname)
+    except OSError as e:
+        tried.append(f"{soname} (dynamic loader): {e}")
+    raise ImportError(f"lvsim: cannot load {soname}; tried " + "; ".join(tried)
+                      + " (set LVSIM_LIBRARY_DIR to the folder holding it)")
+
+
+lib = _load(_paths.SONAME)
+_post = None
+
+
+def post():
+    """liblvsim_post (Monte Carlo campaigns), loaded on first use from the folder liblvsim
+    came from."""
+    global _post
+    if _post is None:
+        _post = _load(_paths.POST_SONAME)
+        _proto(_post, "lv_campaign_options_default", None, POINTER(lv_campaign_options))
+        _proto(_post, "lv_campaign_run", c_int, c_void_p, POINTER(lv_campaign_options),
+               POINTER(lv_campaign_progress), POINTER(lv_err))
+        _proto(_post, "lv_campaign_stats", c_int, c_char_p, c_char_p, POINTER(lv_err))
+    return _post
+
+
+def _proto(dll, name, restype, *argtypes):
+    f = getattr(dll, name)
+    f.restype = restype
+    f.argtypes = list(argtypes)
+
+
+E = POINTER(lv_err)
+P = c_void_p
+_proto(lib, "lv_status_str", c_char_p, c_int)
+_proto(lib, "lv_mission_load", c_int, c_char_p, POINTER(c_void_p), E)
+_proto(lib, "lv_mission_free", None, P)
+_proto(lib, "lv_mission_get_info", None, P, POINTER(lv_mission_info))
+_proto(lib, "lv_mission_phase_count", c_size_t, P)
+_proto(lib, "lv_mission_phase_info", None, P, c_size_t, POINTER(lv_phase_info))
+_proto(lib, "lv_mission_phase_find", c_int, P, c_char_p, POINTER(c_size_t), E)
+_proto(lib, "lv_mission_stage_count", c_size_t, P)
+_proto(lib, "lv_mission_stage_name", c_char_p, P, c_size_t)
+_proto(lib, "lv_mission_param_count", c_size_t, P)
+_proto(lib, "lv_mission_param_info", None, P, c_size_t, POINTER(lv_param_info))
+_proto(lib, "lv_mission_param_find", c_int, P, c_char_p, POINTER(c_size_t), POINTER(c_int), E)
+_proto(lib, "lv_run_create", c_int, P, POINTER(c_void_p), E)
+_proto(lib, "lv_run_free", None, P)
+_proto(lib, "lv_run_set", c_int, P, c_char_p, c_double, E)
+_proto(lib, "lv_run_get", c_int, P, c_char_p, POINTER(c_double), E)
+_proto(lib, "lv_run_reset", None, P)
+_proto(lib, "lv_run_execute", c_int, P, POINTER(lv_run_options), E)
+_proto(lib, "lv_run_simulated", c_size_t, P)
+_proto(lib, "lv_run_result", POINTER(lv_phase_result), P, c_size_t)
+_proto(lib, "lv_run_final", c_int, P, c_size_t, c_char_p, POINTER(c_double), E)
+_proto(lib, "lv_run_rows", c_void_p, P, c_size_t)
+_proto(lib, "lv_run_body_phases", c_size_t, P, c_size_t, POINTER(c_size_t))
+_proto(lib, "lv_run_body_trajectory", c_int, P, c_size_t, POINTER(POINTER(lv_body_traj)), E)
+_proto(lib, "lv_body_traj_free", None, POINTER(lv_body_traj))
+_proto(lib, "lv_run_prepare", c_int, P, c_size_t, POINTER(c_void_p), E)
+_proto(lib, "lv_phase_call_model", POINTER(lv_model_def), P)
+_proto(lib, "lv_phase_call_inst", c_void_p, P)
+_proto(lib, "lv_phase_call_settings", POINTER(lv_sim_settings), P)
+_proto(lib, "lv_phase_call_finals", POINTER(c_double), P)
+_proto(lib, "lv_run_complete", c_int, P, P, c_int, E, POINTER(lv_sim_report), E)
+_proto(lib, "lv_phase_call_free", None, P)
+_proto(lib, "lv_simulate", c_int, POINTER(lv_model_def), c_void_p, POINTER(lv_sim_settings),
+       POINTER(c_double), POINTER(lv_sim_report), E)
+_proto(lib, "lv_sim_report_clear", None, POINTER(lv_sim_report))
+_proto(lib, "lv_sim_settings_default", None, POINTER(lv_sim_settings))
+_proto(lib, "lv_models_find", POINTER(lv_model_def), c_char_p)
+_proto(lib, "lv_models_all", POINTER(POINTER(lv_model_def)))
+_proto(lib, "lv_result_rows", c_size_t, P)
+_proto(lib, "lv_result_signals", c_size_t, P)
+_proto(lib, "lv_result_name", c_char_p, P, c_size_t)
+_proto(lib, "lv_result_unit", c_char_p, P, c_size_t)
+_proto(lib, "lv_result_data", POINTER(c_double), P)
+_proto(lib, "lv_result_failure", c_char_p, P)
+_proto(lib, "lv_target_create", c_int, P, POINTER(c_void_p), E)
+_proto(lib, "lv_target_create_empty", c_int, P, POINTER(c_void_p), E)
+_proto(lib, "lv_target_free", None, P)
+_proto(lib, "lv_target_add_var", c_int, P, c_char_p, c_double, c_double, c_double, c_double,
+       c_double, E)
+_proto(lib, "lv_target_add_con", c_int, P, c_char_p, c_int, c_double, c_double, E)
+_proto(lib, "lv_target_set_cost", c_int, P, c_char_p, c_int, c_double, E)
+_proto(lib, "lv_target_var_count", c_size_t, P)
+_proto(lib, "lv_target_con_count", c_size_t, P)
+_proto(lib, "lv_target_var_info_get", None, P, c_size_t, POINTER(lv_target_var_info))
+_proto(lib, "lv_target_con_info_get", None, P, c_size_t, POINTER(lv_target_con_info))
+_proto(lib, "lv_target_cost_info_get", None, P, POINTER(lv_target_cost_info))
+_proto(lib, "lv_target_settings_default", None, POINTER(lv_target_settings))
+_proto(lib, "lv_target_solve", c_int, P, POINTER(lv_target_settings),
+       POINTER(POINTER(lv_target_result)), E)
+_proto(lib, "lv_target_run", c_void_p, P)
+_proto(lib, "lv_target_write", c_int, P, POINTER(c_double), c_char_p, POINTER(c_double), E)
+_proto(lib, "lv_mission_disp_count", c_size_t, P)
+_proto(lib, "lv_mission_disp_info", None, P, c_size_t, POINTER(lv_disp_info))
+_proto(lib, "lv_mission_disp_seed", c_int, P, POINTER(c_uint64))
+_proto(lib, "lv_mission_disp_draw", None, P, c_uint64, c_uint64, POINTER(c_double))
+_proto(lib, "lv_run_disperse", c_int, P, c_uint64, c_uint64, POINTER(c_double), E)
+
+
+def text(b):
+    """C string (bytes or None) -> str or None."""
+    return None if b is None else b.decode("utf-8", "replace")
+
+
+def enc(s):
+    """str -> bytes for a const char * argument (None stays NULL)."""
+    if s is None:
+        return None
+    if isinstance(s, os.PathLike):
+        s = os.fspath(s)
+    if isinstance(s, bytes):
+        return s
+    return str(s).encode("utf-8")
