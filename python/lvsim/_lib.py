@@ -64,7 +64,7 @@ class lv_mission_info(Structure):
 class lv_phase_info(Structure):
     _fields_ = [("name", c_char_p), ("model", c_char_p), ("parent", c_int),
                 ("n_stages", c_size_t), ("stages", POINTER(c_size_t)), ("method", c_char_p),
-                ("file_index", c_size_t)]
+                ("file_index", c_size_t), ("handoff_rule", c_char_p)]
 
 
 class lv_param_info(Structure):

@@ -405,9 +405,12 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
 class Phase:
     """A phase of a mission: `index` (run order), `name`, `model` (its model type, "dof3"),
     `parent` (the phase it starts from, a name, or None: from the parameter set), `stages`
-    (the stages it carries, bottom first), `method` (integration method), `file_index`."""
+    (the stages it carries, bottom first), `method` (integration method), `file_index`,
+    `handoff_rule` (the rule of its conversion from a parent of another model, "rates: zero",
+    or None)."""
 
-    __slots__ = ("index", "name", "model", "parent", "stages", "method", "file_index")
+    __slots__ = ("index", "name", "model", "parent", "stages", "method", "file_index",
+                 "handoff_rule")
 
     def __repr__(self):
         return f"Phase({self.index}, {self.name!r}, model={self.model!r}, parent={self.parent!r})"
@@ -482,6 +485,7 @@ class Mission:
             p.parent = pi.parent  # index for now
             p.stages = [self.stages[pi.stages[i]] for i in range(pi.n_stages)]
             p.method, p.file_index = text(pi.method), pi.file_index
+            p.handoff_rule = text(pi.handoff_rule) if pi.handoff_rule else None
             self.phases.append(p)
         for p in self.phases:
             p.parent = None if p.parent < 0 else self.phases[p.parent].name

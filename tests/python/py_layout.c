@@ -32,6 +32,7 @@ int main(void)
     S(lv_phase_info); F(lv_phase_info, name); F(lv_phase_info, model); F(lv_phase_info, parent);
     F(lv_phase_info, n_stages); F(lv_phase_info, stages); F(lv_phase_info, method);
     F(lv_phase_info, file_index);
+    F(lv_phase_info, handoff_rule);
     S(lv_param_info); F(lv_param_info, name); F(lv_param_info, unit); F(lv_param_info, value);
     F(lv_param_info, line); F(lv_param_info, rule);
     S(lv_sim_stats); F(lv_sim_stats, steps); F(lv_sim_stats, rhs_evals);

@@ -202,6 +202,18 @@ def test_mission_description(demo_run):
     assert res.dry_mass["us"] == 6000 and res.propellant_start["us"] == 55000
     assert res.stats["steps"] > 0 and res.stats["output_rows"] == len(res)
     assert res.final_units["h"] == "m"
+    assert all(p.handoff_rule is None for p in m.phases)  # no change of model
+
+
+def test_level_of_detail_transition_rule():
+    # the two-stage example's boost phase is a dof6 child of a dof3 phase and asks for
+    # `transition: {rates: curvature}` (docs/models.md, "Level-of-detail transitions")
+    with lvsim.Mission(os.path.join(ROOT, "examples", "two-stage-6dof", "mission.yaml")) as m:
+        boost = m.phases[1]
+        assert boost.name == "boost" and boost.model == "dof6" and boost.parent == "liftoff"
+        assert boost.handoff_rule == "rates: curvature"
+        # dof6 -> dof3 drops the attitude states: no rule to choose
+        assert m.phases[2].model == "dof3" and m.phases[2].handoff_rule is None
 
 
 # ---- errors -----------------------------------------------------------------------------
