@@ -174,6 +174,13 @@ typedef struct lv_phase_result {
     double payload;                 /* kg, the start mass beyond the carried stages */
     unsigned result_formats;     /* the files written under result_stem: LV_RESULT_MAT |
                                     LV_RESULT_CSV (0 when result_stem is NULL) */
+    /* what the hand-off absorbed: the parent's final quantities the phase's state cannot
+     * hold (a touchdown on a runway: the height above the runway plane, the sink rate, the
+     * lateral offset and speed), by name, SI unit and value */
+    size_t n_absorbed;
+    const char *const *absorbed_names;
+    const char *const *absorbed_units;
+    const double *absorbed_values;
 } lv_phase_result;
 
 typedef struct lv_run_options {

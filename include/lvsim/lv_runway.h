@@ -109,12 +109,22 @@ LV_API void lv_runway_free(lv_runway *m); /* accepts NULL */
 LV_API const lv_model_def *lv_runway_def(const lv_runway *m);
 LV_API void *lv_runway_inst(lv_runway *m);
 
-/* The position on the runway of an ECEF point and velocity relative to the planet (a 3-DoF
- * vehicle at touchdown): distance along the runway from the threshold [m], ground speed
- * along it [m/s], height above the runway plane [m], lateral offset to the right of its
- * centre line [m]. The runway's geometry is the configuration's defaults. */
+/* A point and velocity relative to the planet (a 3-DoF vehicle at touchdown) in the runway's
+ * axes: along the centre line from the threshold, up along the normal of the runway plane,
+ * and to the right of the centre line. */
+typedef struct lv_runway_pos {
+    double distance;      /* m, along the runway from the threshold */
+    double speed;         /* m/s, ground speed along it */
+    double height;        /* m, above the runway plane */
+    double sink_rate;     /* m/s, downward speed across the plane (positive: descending) */
+    double lateral;       /* m, offset to the right of the centre line */
+    double lateral_speed; /* m/s, speed to the right */
+} lv_runway_pos;
+
+/* The runway position of ECEF position r_ecef [m] and velocity relative to the planet
+ * v_ecef [m/s]; the runway's geometry is the configuration's defaults. */
 LV_API void lv_runway_project(const lv_runway *m, const double r_ecef[3], const double v_ecef[3],
-                              double *distance, double *speed, double *height, double *lateral);
+                              lv_runway_pos *out);
 
 #ifdef __cplusplus
 }

@@ -106,7 +106,9 @@ class lv_phase_result(Structure):
                 ("set_names", POINTER(c_char_p)), ("set_values", POINTER(c_double)),
                 ("propellant_start", POINTER(c_double)), ("propellant_end", POINTER(c_double)),
                 ("dry_mass", POINTER(c_double)), ("payload", c_double),
-                ("result_formats", c_uint)]
+                ("result_formats", c_uint), ("n_absorbed", c_size_t),
+                ("absorbed_names", POINTER(c_char_p)), ("absorbed_units", POINTER(c_char_p)),
+                ("absorbed_values", POINTER(c_double))]
 
 
 ON_PHASE_FN = CFUNCTYPE(None, c_void_p, c_size_t, POINTER(lv_phase_result), c_void_p)

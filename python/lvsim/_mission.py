@@ -124,7 +124,9 @@ class PhaseResult(Table):
     integrator's counters: steps, rhs_evals, state_events, ..., cpu_time in s), `events`
     (list of Event), `finals` (dict name -> value: time, every state and output; SI),
     `final_units` (name -> unit where the rows name it), the hand-off (`n_copied`,
-    `mass_from_stages`, `mass_start` in kg, `set` the overrides), the stage book
+    `mass_from_stages`, `mass_start` in kg, `set` the overrides, `absorbed`: dict name ->
+    (value, unit) of what the hand-off could not carry over, e.g. a touchdown's "sink_rate"
+    in m/s on a runway roll-out), the stage book
     (`propellant_start`, `propellant_end`, `dry_mass`: dict stage -> kg; `payload` kg),
     `result_files` (the files written, or []).
     As a Table: the phase's rows (time, states, der(states), outputs) when the run kept
@@ -159,6 +161,8 @@ class PhaseResult(Table):
         self.mass_from_stages = r.mass_from_stages
         self.mass_start = r.mass_start
         self.set = {text(r.set_names[i]): r.set_values[i] for i in range(r.n_set)}
+        self.absorbed = {text(r.absorbed_names[i]): (r.absorbed_values[i], text(r.absorbed_units[i]))
+                         for i in range(r.n_absorbed)}
         stages = m.stages
         book = r.state != 0 and bool(r.dry_mass)
         self.propellant_start = {s: r.propellant_start[i] for i, s in enumerate(stages)} if book else {}

@@ -753,13 +753,16 @@ const lv_model_def *lv_runway_def(const lv_runway *m) { return &m->def; }
 void *lv_runway_inst(lv_runway *m) { return &m->inst; }
 
 void lv_runway_project(const lv_runway *m, const double r_ecef[3], const double v_ecef[3],
-                       double *distance, double *speed, double *height, double *lateral)
+                       lv_runway_pos *out)
 {
     const rw_inst *s = &m->inst;
     const lv_vec3 d = lv_v3_sub(lv_v3(r_ecef[0], r_ecef[1], r_ecef[2]), s->r0);
+    const lv_vec3 v = lv_v3(v_ecef[0], v_ecef[1], v_ecef[2]);
     const lv_vec3 right = lv_v3_cross(s->u, s->n); /* forward x up = right */
-    *distance = lv_v3_dot(d, s->u);
-    *speed = lv_v3_dot(lv_v3(v_ecef[0], v_ecef[1], v_ecef[2]), s->u);
-    *height = lv_v3_dot(d, s->n);
-    *lateral = lv_v3_dot(d, right);
+    out->distance = lv_v3_dot(d, s->u);
+    out->speed = lv_v3_dot(v, s->u);
+    out->height = lv_v3_dot(d, s->n);
+    out->sink_rate = -lv_v3_dot(v, s->n);
+    out->lateral = lv_v3_dot(d, right);
+    out->lateral_speed = lv_v3_dot(v, right);
 }

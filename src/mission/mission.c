@@ -305,7 +305,7 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
     for (size_t k = 0; k < d->n_phases && st == LV_OK; k++) {
         const lv_phase_def *ph = &d->phases[k];
         lv_phase_model *pm = NULL;
-        const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL};
+        const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL, NULL};
         if ((st = lv_phase_model_build(&bc, &pm, err)) != LV_OK) {
             st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
                                 ph->loc.column, ph->name);

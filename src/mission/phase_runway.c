@@ -353,9 +353,10 @@ static size_t find(const char *const *names, size_t n, const char *name)
  * turned into ECEF position and velocity relative to the planet at the parent's end time and
  * projected on the runway: distance = (r - r0) . u, speed = v_rel . u. What the projection
  * drops (the height above the runway plane, the sink rate, the lateral offset and speed) is
- * what the touchdown absorbs: a parent that ends more than 10 m above or below the runway
- * plane, more than 60 m beside its centre line or moving backwards is refused, naming the
- * values (end the approach at touchdown: `{altitude: <elevation>}` or `impact`). */
+ * what the touchdown absorbs, recorded in the phase's result (summary.json: handoff /
+ * absorbed): a parent that ends more than 10 m above or below the runway plane, more than
+ * 60 m beside its centre line or moving backwards is refused, naming the values (end the
+ * approach at touchdown: `{altitude: <elevation>}` or `impact`). */
 static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
                                 const char *const *pnames, const double *pvalues, size_t np,
                                 const char *const *names, double *values, size_t n, lv_err *err)
@@ -388,8 +389,9 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
     const double vx = f[4] + pl->omega * f[2], vy = f[5] - pl->omega * f[1];
     const double r[3] = {c * f[1] + sn * f[2], -sn * f[1] + c * f[2], f[3]};
     const double v[3] = {c * vx + sn * vy, -sn * vx + c * vy, f[6]};
-    double dist, speed, height, lateral;
-    lv_runway_project(s->model, r, v, &dist, &speed, &height, &lateral);
+    lv_runway_pos td;
+    lv_runway_project(s->model, r, v, &td);
+    const double height = td.height, lateral = td.lateral, speed = td.speed;
     if (!(fabs(height) <= TOUCHDOWN_HEIGHT_MAX) || !(fabs(lateral) <= TOUCHDOWN_LATERAL_MAX) ||
         !(speed >= 0.0))
         return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent ends %.3g m above the runway "
@@ -398,8 +400,12 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
                        "roll-out starts on the runway (within %g m of its plane and %g m of its "
                        "centre line, rolling forwards); end the parent at touchdown",
                        height, lateral, speed, TOUCHDOWN_HEIGHT_MAX, TOUCHDOWN_LATERAL_MAX);
-    values[is] = dist;
+    values[is] = td.distance;
     values[iv] = speed;
+    lv_build_note(bc, "height", "m", td.height);
+    lv_build_note(bc, "sink_rate", "m/s", td.sink_rate);
+    lv_build_note(bc, "lateral", "m", td.lateral);
+    lv_build_note(bc, "lateral_speed", "m/s", td.lateral_speed);
     return LV_OK;
 }
 

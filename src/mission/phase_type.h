@@ -48,6 +48,17 @@ typedef struct lv_phase_env {
 } lv_phase_env;
 
 typedef struct lv_build_ctx lv_build_ctx;
+
+/* What a hand-off absorbed: the parent's final quantities that the child's state cannot hold
+ * (a touchdown's sink rate, the height the projection on the runway drops), recorded by the
+ * type's handoff for the phase's result and summary.json ("handoff" / "absorbed"). */
+#define LV_HANDOFF_NOTES_MAX 8
+typedef struct lv_handoff_notes {
+    size_t n;
+    const char *name[LV_HANDOFF_NOTES_MAX]; /* static strings */
+    const char *unit[LV_HANDOFF_NOTES_MAX]; /* SI, "" dimensionless */
+    double value[LV_HANDOFF_NOTES_MAX];
+} lv_handoff_notes;
 lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err);
 void lv_phase_env_clear(lv_phase_env *pe); /* accepts a zeroed one */
 
@@ -59,7 +70,11 @@ struct lv_build_ctx {
     const double *vals; /* [def->n_slots]: the run's value of every slot */
     const double *prop; /* [def->n_stages]: kg of propellant left in each stage at the start */
     const struct lv_run_tables *tables; /* the run's dispersed tables (dispersion.h), or NULL */
+    lv_handoff_notes *notes; /* where the handoff records what it absorbed, or NULL */
 };
+
+/* Records name = value [unit] in bc->notes (nothing when bc->notes is NULL or full). */
+void lv_build_note(const lv_build_ctx *bc, const char *name, const char *unit, double value);
 
 /* The table a phase flies for the definition's table `t`: the run's dispersed copy (a scale
  * factor or bias drawn for the run: dispersion.h), or `t` itself. Borrowed for the build. */

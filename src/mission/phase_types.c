@@ -28,3 +28,14 @@ void lv_phase_model_free(lv_phase_model *pm)
     if (pm != NULL)
         pm->type->free_self(pm->self);
 }
+
+void lv_build_note(const lv_build_ctx *bc, const char *name, const char *unit, double value)
+{
+    lv_handoff_notes *n = bc->notes;
+    if (n == NULL || n->n >= LV_HANDOFF_NOTES_MAX)
+        return;
+    n->name[n->n] = name;
+    n->unit[n->n] = unit;
+    n->value[n->n] = value;
+    n->n++;
+}

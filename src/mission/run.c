@@ -36,6 +36,7 @@ typedef struct run_phase {
     lv_result *rows;      /* in-memory rows, or NULL */
     char *stem;
     char method[32];      /* the integration method it ran with */
+    lv_handoff_notes notes; /* what its hand-off absorbed (res.absorbed_* point here) */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
     int claimed;          /* in the current execute: taken by a worker */
@@ -67,6 +68,8 @@ static void phase_clear(run_phase *p)
     p->res.end_value = NAN;
     p->res.n_copied = 0;
     p->res.mass_from_stages = p->res.mass_start = NAN;
+    p->notes.n = 0;
+    p->res.n_absorbed = 0;
 }
 
 void lv_run_free(lv_run *r)
@@ -223,6 +226,7 @@ struct lv_phase_call {
     double *prop;        /* [n_stages] the stage book at the phase start */
     double mass_book;    /* kg, the carried stages' mass from the book (NAN for a root) */
     lv_sim_stop *stops;  /* [plan n_stops] the ends on any variable or on time */
+    lv_handoff_notes notes; /* what the hand-off absorbed */
     lv_result *rows;
     lv_sink mem;
 };
@@ -278,7 +282,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     /* the stage book: what the parent left, or the run's propellant loads */
     for (size_t s = 0; s < d->n_stages; s++)
         c->prop[s] = par ? par->prop_end[s] : v[d->stages[s].propellant_mass];
-    const lv_build_ctx bc = {d, &m->env, k, v, c->prop, r->tables};
+    const lv_build_ctx bc = {d, &m->env, k, v, c->prop, r->tables, &c->notes};
     lv_status st = lv_phase_model_build(&bc, &c->pm, err);
     if (st != LV_OK) {
         lv_phase_call_free(c);
@@ -402,6 +406,11 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     p->res.tolerance = c->s.tolerance;
     p->res.n_copied = pl->n_copied;
     p->res.mass_from_stages = c->mass_book;
+    p->notes = c->notes;
+    p->res.n_absorbed = p->notes.n;
+    p->res.absorbed_names = p->notes.name;
+    p->res.absorbed_units = p->notes.unit;
+    p->res.absorbed_values = p->notes.value;
     for (size_t i = 0; i < ph->n_set; i++)
         p->set_values[i] = r->vals[ph->set_values[i]];
     if (p->res.report.reason == LV_STOP_EVENT && p->res.report.stop_event >= 0 &&

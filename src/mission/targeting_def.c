@@ -350,7 +350,7 @@ lv_status lv_targeting_resolve_final(const lv_mission *m, const char *name, lv_t
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     for (size_t s = 0; s < d->n_stages; s++)
         prop[s] = m->defaults[d->stages[s].propellant_mass];
-    const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL};
+    const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL, NULL};
     lv_phase_model *pm = NULL;
     st = lv_phase_model_build(&bc, &pm, err);
     free(prop);

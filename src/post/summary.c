@@ -160,6 +160,11 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         }
         cJSON_AddNumberToObject(h, "states_copied", (double)r->n_copied);
         cJSON_AddNumberToObject(h, "mass_from_stages", r->mass_from_stages);
+        if (r->n_absorbed > 0) { /* what the hand-off absorbed (a touchdown's sink rate) */
+            cJSON *ab = cJSON_AddObjectToObject(h, "absorbed");
+            for (size_t i = 0; i < r->n_absorbed; i++)
+                cJSON_AddNumberToObject(ab, r->absorbed_names[i], r->absorbed_values[i]);
+        }
     }
     cJSON *ov = cJSON_AddObjectToObject(h, "overrides");
     for (size_t i = 0; i < r->n_set; i++)

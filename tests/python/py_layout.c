@@ -58,6 +58,8 @@ int main(void)
     F(lv_phase_result, set_values); F(lv_phase_result, propellant_start);
     F(lv_phase_result, propellant_end); F(lv_phase_result, dry_mass);
     F(lv_phase_result, payload); F(lv_phase_result, result_formats);
+    F(lv_phase_result, n_absorbed); F(lv_phase_result, absorbed_names);
+    F(lv_phase_result, absorbed_units); F(lv_phase_result, absorbed_values);
     S(lv_run_options); F(lv_run_options, outdir); F(lv_run_options, threads);
     F(lv_run_options, on_phase); F(lv_run_options, user); F(lv_run_options, output_interval);
     F(lv_run_options, method); F(lv_run_options, tolerance); F(lv_run_options, progress);

@@ -203,6 +203,7 @@ def test_mission_description(demo_run):
     assert res.stats["steps"] > 0 and res.stats["output_rows"] == len(res)
     assert res.final_units["h"] == "m"
     assert all(p.handoff_rule is None for p in m.phases)  # no change of model
+    assert res.absorbed == {}  # a flight-to-flight hand-off carries everything over
 
 
 def test_level_of_detail_transition_rule():

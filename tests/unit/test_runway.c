@@ -503,6 +503,25 @@ static void test_mission_handoffs(void)
     /* the horizontal speed along the runway: v cos(fpa) cos(heading - runway heading), to the
      * runway plane's tilt over the distance flown (~1e-3 rad) */
     CHECK_REL(v0, v_td * cos(fpa_td) * cos(hd_td - 140.0 * DEG), 2e-3);
+    /* what the touchdown absorbed, recorded in the roll-out's result: the sink rate is the
+     * parent's descent rate -v sin(fpa) and the lateral speed v cos(fpa) sin(heading - 140
+     * deg), both to the plane's tilt (~1e-3 rad of v ~ 1e-1 m/s); the height above the plane
+     * is the parent's final altitude (150 m, the runway's elevation) minus the plane's drop
+     * d^2 / (2 R) below the ellipsoid over the distance d flown (< 5 m for d < 8 km) */
+    const lv_phase_result *p3 = lv_run_result(r, 3);
+    CHECK(p3->n_absorbed == 4);
+    double ab[4] = {NAN, NAN, NAN, NAN};
+    const char *abn[4] = {"height", "sink_rate", "lateral", "lateral_speed"};
+    for (size_t i = 0; i < p3->n_absorbed && i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (strcmp(p3->absorbed_names[i], abn[j]) == 0)
+                ab[j] = p3->absorbed_values[i];
+    CHECK(fabs(ab[0]) < 5.0);
+    CHECK(-v_td * sin(fpa_td) > 1.0); /* it descends */
+    CHECK_CLOSE(ab[1], -v_td * sin(fpa_td), 0.15);
+    CHECK(fabs(ab[2]) < 60.0);
+    CHECK_CLOSE(ab[3], v_td * cos(fpa_td) * sin(hd_td - 140.0 * DEG), 0.15);
+    CHECK(lv_run_result(r, 1)->n_absorbed == 0); /* a lift-off absorbs nothing */
     CHECK_OK(lv_run_final(r, 3, "speed", &t_end, &err), &err);
     CHECK_CLOSE(t_end, 2.0, 1e-6);
     CHECK(lv_run_result(r, 3)->report.reason == LV_STOP_EVENT);
