@@ -122,3 +122,11 @@ size_t lv_names_duplicate(const char *const *names, size_t n)
         free(slot);
     return dup;
 }
+
+size_t lv_names_find(const char *const *names, size_t n, const char *name)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return i;
+    return (size_t)-1;
+}

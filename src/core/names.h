@@ -29,4 +29,8 @@ void lv_suggest_text(const lv_suggest *s, char *buf, size_t cap);
  * allocation fails after falling back to pairs. */
 size_t lv_names_duplicate(const char *const *names, size_t n);
 
+/* The index of `name` among names[0..n-1] (a linear search: hand-offs look up a few names
+ * once per phase), or (size_t)-1. */
+size_t lv_names_find(const char *const *names, size_t n, const char *name);
+
 #endif

@@ -766,32 +766,9 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     }
 
     /* environment */
-    if ((st = lv_planet_check(&cfg->planet, err)) != LV_OK) {
-        lv_fail_prefix(err, st, "dof3");
+    if ((st = lv_flight_world_setup(&m->world, "dof3", &cfg->planet, cfg->gravity, cfg->atmo,
+                                    cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    }
-    m->world.planet = cfg->planet;
-    lv_flight_world_init(&m->world);
-    if (cfg->gravity == NULL) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof3: no gravity model (gravity is NULL)");
-        goto fail;
-    }
-    m->world.grav = cfg->gravity;
-    lv_gravity_info gi;
-    lv_gravity_info_get(m->world.grav, &gi);
-    m->gm = gi.gm;
-    const size_t nws = lv_gravity_ws_size(m->world.grav);
-    m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
-    if (m->grav_ws == NULL) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto fail;
-    }
-    if (cfg->atmo != NULL) {
-        m->world.atmo_model = lv_atmo_model_of(cfg->atmo);
-        m->world.atmo_par = lv_atmo_par(cfg->atmo);
-    }
-    m->world.wind = cfg->wind;
-    m->world.wind_user = cfg->wind_user;
     /* The domain: above the atmosphere's floor (US76: -5 km), or 20 km below the ellipsoid on
      * a planet without atmosphere (deeper than the lowest ground of the Earth, Moon and Mars). */
     m->domain[0] = (lv_domain_def){

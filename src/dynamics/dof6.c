@@ -1376,32 +1376,9 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
                      "start_vel = %g m/s (must be >= 0)", cfg->start_lat, cfg->start_vel);
         goto fail;
     }
-    if ((st = lv_planet_check(&cfg->planet, err)) != LV_OK) {
-        lv_fail_prefix(err, st, "dof6");
+    if ((st = lv_flight_world_setup(&m->world, "dof6", &cfg->planet, cfg->gravity, cfg->atmo,
+                                    cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    }
-    m->world.planet = cfg->planet;
-    lv_flight_world_init(&m->world);
-    if (cfg->gravity == NULL) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof6: no gravity model (gravity is NULL)");
-        goto fail;
-    }
-    m->world.grav = cfg->gravity;
-    lv_gravity_info gi;
-    lv_gravity_info_get(m->world.grav, &gi);
-    m->gm = gi.gm;
-    const size_t nws = lv_gravity_ws_size(m->world.grav);
-    m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
-    if (m->grav_ws == NULL) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto fail;
-    }
-    if (cfg->atmo != NULL) {
-        m->world.atmo_model = lv_atmo_model_of(cfg->atmo);
-        m->world.atmo_par = lv_atmo_par(cfg->atmo);
-    }
-    m->world.wind = cfg->wind;
-    m->world.wind_user = cfg->wind_user;
     m->domain[0] = (lv_domain_def){
         "h", "m", cfg->atmo != NULL ? LV_ATMO_ALT_MIN : -20e3,
         "the vehicle is under the ground; an `impact` end ends the phase on the ground"};

@@ -5,6 +5,7 @@
 #include "dynamics/flight.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "core/status.h"
 
@@ -15,6 +16,36 @@ void lv_flight_world_init(lv_flight_world *w)
 {
     w->e2 = lv_planet_e2(&w->planet);
     w->b = lv_planet_b(&w->planet);
+}
+
+lv_status lv_flight_world_setup(lv_flight_world *w, const char *model, const lv_planet *planet,
+                                const lv_gravity *gravity, const lv_atmo *atmo, lv_wind_fn wind,
+                                void *wind_user, double **grav_ws, double *gm, lv_err *err)
+{
+    lv_status st = lv_planet_check(planet, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "%s", model);
+    w->planet = *planet;
+    lv_flight_world_init(w);
+    if (gravity == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: no gravity model (gravity is NULL)", model);
+    w->grav = gravity;
+    if (gm != NULL) {
+        lv_gravity_info gi;
+        lv_gravity_info_get(gravity, &gi);
+        *gm = gi.gm;
+    }
+    const size_t nws = lv_gravity_ws_size(gravity);
+    *grav_ws = malloc((nws > 0 ? nws : 1) * sizeof **grav_ws);
+    if (*grav_ws == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    if (atmo != NULL) {
+        w->atmo_model = lv_atmo_model_of(atmo);
+        w->atmo_par = lv_atmo_par(atmo);
+    }
+    w->wind = wind;
+    w->wind_user = wind_user;
+    return LV_OK;
 }
 
 /* ---- 1. kinematics ------------------------------------------------------------------ */

@@ -49,6 +49,14 @@ typedef struct lv_flight_world {
 /* Fills the derived fields (e2, b) of `w` from w->planet. */
 void lv_flight_world_init(lv_flight_world *w);
 
+/* The environment of a model over the planet (dof3, dof6, runway): checks the planet, requires
+ * a gravity model, takes the atmosphere (NULL: vacuum) and wind; *grav_ws gets the gravity
+ * model's workspace (malloc'ed, the caller frees it) and *gm its GM [m^3/s^2] (NULL: not
+ * wanted). LV_ERR_INPUT with the model's name for a bad planet or no gravity, LV_ERR_NOMEM. */
+lv_status lv_flight_world_setup(lv_flight_world *w, const char *model, const lv_planet *planet,
+                                const lv_gravity *gravity, const lv_atmo *atmo, lv_wind_fn wind,
+                                void *wind_user, double **grav_ws, double *gm, lv_err *err);
+
 /* 1. Kinematics at time t of the ECI position r [m] and velocity v [m/s]. */
 typedef struct lv_flight_kin {
     double c_th, s_th;        /* cos, sin of the ECI -> ECEF angle theta0 + omega t */

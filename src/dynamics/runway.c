@@ -622,29 +622,9 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "runway");
     m->mode = cfg->mode;
-    if ((st = lv_planet_check(&cfg->planet, err)) != LV_OK) {
-        lv_fail_prefix(err, st, "runway");
+    if ((st = lv_flight_world_setup(&m->world, "runway", &cfg->planet, cfg->gravity, cfg->atmo,
+                                    cfg->wind, cfg->wind_user, &m->grav_ws, NULL, err)) != LV_OK)
         goto fail;
-    }
-    m->world.planet = cfg->planet;
-    lv_flight_world_init(&m->world);
-    if (cfg->gravity == NULL) {
-        st = lv_fail(err, LV_ERR_INPUT, "runway: no gravity model (gravity is NULL)");
-        goto fail;
-    }
-    m->world.grav = cfg->gravity;
-    const size_t nws = lv_gravity_ws_size(m->world.grav);
-    m->grav_ws = malloc((nws > 0 ? nws : 1) * sizeof *m->grav_ws);
-    if (m->grav_ws == NULL) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto fail;
-    }
-    if (cfg->atmo != NULL) {
-        m->world.atmo_model = lv_atmo_model_of(cfg->atmo);
-        m->world.atmo_par = lv_atmo_par(cfg->atmo);
-    }
-    m->world.wind = cfg->wind;
-    m->world.wind_user = cfg->wind_user;
     const size_t n_eng = cfg->mode == LV_RUNWAY_TAKEOFF ? cfg->n_engines : 0;
     if (n_eng > 0) {
         if (cfg->engines == NULL) {

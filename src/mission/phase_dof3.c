@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "core/status.h"
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_units.h"
@@ -385,14 +386,6 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     return LV_OK;
 }
 
-static size_t find(const char *const *names, size_t n, const char *name)
-{
-    for (size_t i = 0; i < n; i++)
-        if (strcmp(names[i], name) == 0)
-            return i;
-    return (size_t)-1;
-}
-
 /* The separation impulse: dv along the parent's final body x (its attitude theta, psi relative
  * to local NED at its final geodetic position) plus (dv_north, dv_east, dv_down) there, added
  * to the inertial velocity copied from the parent: v_eci += R3(theta0 + omega t)^T
@@ -405,7 +398,7 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     const dof3_self *s = pm->self;
     /* a runway parent must have lifted off: lift and thrust carry the weight (margin 1 at the
      * located lift-off); a roll that ended otherwise leaves the vehicle on the runway */
-    const size_t im = find(pnames, np, "lift_margin"), in = find(pnames, np, "normal_force");
+    const size_t im = lv_names_find(pnames, np, "lift_margin"), in = lv_names_find(pnames, np, "normal_force");
     if (im != (size_t)-1 && in != (size_t)-1 && pvalues[im] < 1.0 - 1e-6)
         return lv_fail(err, LV_ERR_INPUT, "the parent roll did not lift off (it ended with a "
                        "normal force of %.6g N, lift margin %.6g): a flight phase starts at "
@@ -416,7 +409,7 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     static const char *const need[] = {"time", "theta", "psi", "lat", "lon"};
     double f[5];
     for (int i = 0; i < 5; i++) {
-        const size_t j = find(pnames, np, need[i]);
+        const size_t j = lv_names_find(pnames, np, need[i]);
         if (j == (size_t)-1)
             return lv_fail(err, LV_ERR_INPUT, "separation: the parent's final '%s' is unknown "
                            "(its model is not dof3)", need[i]);
@@ -425,7 +418,7 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     size_t iv[3];
     static const char *const vnames[3] = {"v_eci_x", "v_eci_y", "v_eci_z"};
     for (int i = 0; i < 3; i++)
-        if ((iv[i] = find(names, n, vnames[i])) == (size_t)-1)
+        if ((iv[i] = lv_names_find(names, n, vnames[i])) == (size_t)-1)
             return lv_fail(err, LV_ERR_INPUT, "separation: the velocity '%s' is not handed over "
                            "from the parent", vnames[i]);
     const double dv = val(bc, pc->sep_dv[0]);

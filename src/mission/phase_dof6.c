@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "core/status.h"
 #include "lvsim/lv_dof6.h"
 #include "lvsim/lv_units.h"
@@ -740,14 +741,6 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     return LV_OK;
 }
 
-static size_t find(const char *const *names, size_t n, const char *name)
-{
-    for (size_t i = 0; i < n; i++)
-        if (strcmp(names[i], name) == 0)
-            return i;
-    return (size_t)-1;
-}
-
 /* 3-DoF -> 6-DoF (docs/models.md, "Level-of-detail transitions"): position, velocity and mass
  * are copied by name (continuous to the bit); the attitude is the parent's final attitude, its
  * outputs theta, psi, phi (the body axes its alpha, beta, mu or steering law gave) when it has
@@ -766,19 +759,19 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     static const char *const qn[4] = {"q_w", "q_x", "q_y", "q_z"}, *const wn[3] = {"p", "q", "r"};
     static const char *const cn[4] = {"act_pitch", "act_yaw", "int_pitch", "int_yaw"};
     for (int i = 0; i < 4; i++) { /* a controller the parent did not have starts at rest */
-        const size_t j = find(names, n, cn[i]);
+        const size_t j = lv_names_find(names, n, cn[i]);
         if (j != (size_t)-1 && isnan(values[j]))
             values[j] = 0.0;
     }
-    if (find(pnames, np, "q_w") != (size_t)-1)
+    if (lv_names_find(pnames, np, "q_w") != (size_t)-1)
         return LV_OK; /* a dof6 parent: the states were copied */
-    const size_t it = find(pnames, np, "time"), ila = find(pnames, np, "lat");
-    const size_t ilo = find(pnames, np, "lon");
+    const size_t it = lv_names_find(pnames, np, "time"), ila = lv_names_find(pnames, np, "lat");
+    const size_t ilo = lv_names_find(pnames, np, "lon");
     if (it == (size_t)-1 || ila == (size_t)-1 || ilo == (size_t)-1)
         return lv_fail(err, LV_ERR_INPUT, "3-DoF -> 6-DoF: the parent's final time, lat or lon "
                        "is unknown (its model is not dof3)");
-    size_t ith = find(pnames, np, "theta"), ips = find(pnames, np, "psi");
-    size_t iph = find(pnames, np, "phi");
+    size_t ith = lv_names_find(pnames, np, "theta"), ips = lv_names_find(pnames, np, "psi");
+    size_t iph = lv_names_find(pnames, np, "phi");
     double psi, theta, phi;
     if (ith != (size_t)-1 && ips != (size_t)-1 && iph != (size_t)-1 && isfinite(pvalues[ith]) &&
         isfinite(pvalues[ips]) && isfinite(pvalues[iph])) {
@@ -786,7 +779,7 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
         theta = pvalues[ith];
         phi = pvalues[iph];
     } else {
-        const size_t ig = find(pnames, np, "fpa"), ic = find(pnames, np, "heading");
+        const size_t ig = lv_names_find(pnames, np, "fpa"), ic = lv_names_find(pnames, np, "heading");
         if (ig == (size_t)-1 || ic == (size_t)-1)
             return lv_fail(err, LV_ERR_INPUT, "3-DoF -> 6-DoF: the parent has neither an "
                            "attitude (theta, psi, phi) nor a flight direction (fpa, heading)");
@@ -798,7 +791,7 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     lv_dof6_quat_from_euler(&s->env.planet, pvalues[it], pvalues[ila], pvalues[ilo], psi, theta,
                             phi, q);
     for (int i = 0; i < 4; i++) {
-        const size_t j = find(names, n, qn[i]);
+        const size_t j = lv_names_find(names, n, qn[i]);
         if (j != (size_t)-1)
             values[j] = q[i];
     }
@@ -812,7 +805,7 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
                                            "v_eci_z"};
         double f[9];
         for (int i = 0; i < 9; i++) {
-            const size_t j = find(pnames, np, need[i]);
+            const size_t j = lv_names_find(pnames, np, need[i]);
             if (j == (size_t)-1)
                 return lv_fail(err, LV_ERR_INPUT, "3-DoF -> 6-DoF, rates from the trajectory's "
                                "curvature: the parent's final '%s' is unknown", need[i]);
@@ -838,7 +831,7 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
         lv_dof6_rates_from_trajectory(s->model, pvalues[it], x, f_eci, w);
     }
     for (int i = 0; i < 3; i++) {
-        const size_t j = find(names, n, wn[i]);
+        const size_t j = lv_names_find(names, n, wn[i]);
         if (j != (size_t)-1)
             values[j] = w[i];
     }

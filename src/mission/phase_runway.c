@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "core/status.h"
 #include "lvsim/lv_runway.h"
 #include "lvsim/lv_units.h"
@@ -341,14 +342,6 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     return LV_OK;
 }
 
-static size_t find(const char *const *names, size_t n, const char *name)
-{
-    for (size_t i = 0; i < n; i++)
-        if (strcmp(names[i], name) == 0)
-            return i;
-    return (size_t)-1;
-}
-
 /* Touchdown: a landing roll that starts from a dof3 phase takes the parent's final ECI state,
  * turned into ECEF position and velocity relative to the planet at the parent's end time and
  * projected on the runway: distance = (r - r0) . u, speed = v_rel . u. What the projection
@@ -363,8 +356,8 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
 {
     const runway_self *s = pm->self;
     const runway_cfg *pc = bc->def->phases[bc->k].type_cfg;
-    const size_t is = find(names, n, "distance"), iv = find(names, n, "speed");
-    const size_t im = find(pnames, np, "lift_margin"); /* a runway parent has it */
+    const size_t is = lv_names_find(names, n, "distance"), iv = lv_names_find(names, n, "speed");
+    const size_t im = lv_names_find(pnames, np, "lift_margin"); /* a runway parent has it */
     if (is == (size_t)-1 || iv == (size_t)-1)
         return LV_OK;
     if (pc->mode == LV_RUNWAY_TAKEOFF && im == (size_t)-1)
@@ -377,7 +370,7 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
                                        "v_eci_x", "v_eci_y", "v_eci_z"};
     double f[7];
     for (int i = 0; i < 7; i++) {
-        const size_t j = find(pnames, np, need[i]);
+        const size_t j = lv_names_find(pnames, np, need[i]);
         if (j == (size_t)-1)
             return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent's final '%s' is unknown "
                            "(its model is not dof3)", need[i]);
