@@ -408,12 +408,16 @@ static lv_vec3 attitude_error(const lv_flight_axes *b, const lv_flight_axes *c)
     return lv_v3_scale(sn, theta / s);
 }
 
-/* PD/PID gimbal command of one axis before the deflection limit [rad]: kp e + ki i - kd w,
- * e the attitude error [rad], i its integral [rad s], w the body rate [rad/s] about the axis
- * (rate feedback on the inertial body rate, as a rate gyro measures it). */
-static double gimbal_command(double kp, double ki, double kd, double e, double i, double w)
+/* PD/PID gimbal command of one axis before the deflection limit [rad]:
+ * kp e + ki i + kd (w_c - w), e the attitude error [rad], i its integral [rad s], w the body
+ * rate [rad/s] about the axis (inertial, as a rate gyro measures it) and w_c the commanded
+ * attitude's rate about it (command_rate): the damping acts on the rate error, so a command
+ * that turns at a steady rate is tracked without the lag kd w_c / kp that damping on the body
+ * rate alone leaves (docs/models.md, "Attitude control"). */
+static double gimbal_command(double kp, double ki, double kd, double e, double i, double w,
+                             double w_c)
 {
-    return kp * e + ki * i - kd * w;
+    return kp * e + ki * i + kd * (w_c - w);
 }
 
 static double clamp_abs(double v, double lim) { return v > lim ? lim : v < -lim ? -lim : v; }
@@ -438,6 +442,8 @@ typedef struct dof6_point {
     mass_props mp;
     double u[U_N];             /* gimbal pitch, yaw [rad], throttle */
     lv_flight_axes cmd;        /* commanded body axes (steering law), ECEF */
+    lv_vec3 w_cmd;             /* rad/s, the commanded attitude's angular velocity relative to
+                                  inertial space, body axes (with a controller) */
     lv_vec3 err;               /* rad, attitude error, body axes (rotation vector) */
     double delta_c[2];         /* rad, controller's gimbal commands after the limit */
     double mdot;               /* kg/s */
@@ -470,6 +476,51 @@ static int inputs_eval(lv_dof6 *m, dof6_inst *s, double t, const double *p, doub
     for (int i = 0; i < U_N; i++)
         if (m->in_k[i] >= 0)
             u[i] = m->in_buf[m->in_k[i]];
+    return 0;
+}
+
+/* The commanded attitude's angular velocity relative to inertial space, body axes [rad/s]:
+ * the steering law evaluated again at t + h on the state carried there to first order
+ * (r + v h, v + a h in ECI: the law may follow the velocity, as `frame: aero` does), the
+ * rotation from the commanded axes at t to those at t + h (attitude_error, a rotation vector)
+ * over h - relative to the rotating ECEF frame the axes are given in - plus the planet's
+ * rotation. A forward difference of h = CMD_RATE_DT, backwards when a time breakpoint of the
+ * law (an attitude table's, the end of a kick) lies within h ahead, so the difference never
+ * spans the breakpoint the integrator stops at. Its error is O(h) of the command's angular
+ * acceleration, and rounding ~1e-16 / (w h) relative: 1e-9 at w = 1e-3 rad/s. */
+#define CMD_RATE_DT 1e-4 /* s */
+static int command_rate(lv_dof6 *m, dof6_inst *s, double t, const double *x, const double *p,
+                        const dof6_point *pt, lv_vec3 *w_cmd_b, lv_err *err)
+{
+    const lv_flight_world *w = &m->world;
+    double h = CMD_RATE_DT;
+    if (lv_guid_next_time_event(&m->guid, &s->guid, t) - t < h)
+        h = -h;
+    const double r[3] = {x[LV_X6_RX] + h * x[LV_X6_VX], x[LV_X6_RY] + h * x[LV_X6_VY],
+                         x[LV_X6_RZ] + h * x[LV_X6_VZ]};
+    const double v[3] = {x[LV_X6_VX] + h * pt->a_eci.x, x[LV_X6_VY] + h * pt->a_eci.y,
+                         x[LV_X6_VZ] + h * pt->a_eci.z};
+    lv_flight_kin kh;
+    lv_flight_air ah;
+    lv_flight_controls cc;
+    lv_flight_axes ch;
+    lv_flight_kinematics(w, t + h, r, v, 0, &kh);
+    if (lv_guid_reads_atmosphere(&m->guid)) {
+        if (lv_flight_air_eval(w, t + h, &kh, &ah, err) != 0)
+            return 1;
+    } else { /* the air-relative velocity only: the wind at t + h, the atmosphere unread */
+        const lv_flight_world wv = {.planet = w->planet, .e2 = w->e2, .b = w->b,
+                                    .grav = w->grav, .wind = w->wind, .wind_user = w->wind_user};
+        if (lv_flight_air_eval(&wv, t + h, &kh, &ah, err) != 0)
+            return 1;
+    }
+    if (lv_guid_attitude(&m->guid, &s->guid, t + h, &kh, &ah, pt->u[U_THR], p[P_FPA], p[P_CHI],
+                         0, &cc, &ch, err) != 0)
+        return 1;
+    lv_vec3 w_e = lv_v3_scale(body_to_ecef(&pt->cmd, attitude_error(&pt->cmd, &ch)), 1.0 / h);
+    w_e.z += w->planet.omega; /* ECEF turns at omega about its z axis */
+    *w_cmd_b = lv_v3(lv_v3_dot(w_e, pt->ax.xb), lv_v3_dot(w_e, pt->ax.yb),
+                     lv_v3_dot(w_e, pt->ax.zb));
     return 0;
 }
 
@@ -522,13 +573,7 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
             return 1;
         pt->u[U_THR] = cc.u[LV_CTRL_THROTTLE]; /* an attitude table's throttle */
         pt->err = attitude_error(&pt->ax, &pt->cmd);
-        if (m->ctl.kind != LV_DOF6_CTL_NONE) {
-            const lv_dof6_controller *c = &m->ctl;
-            const int pid = c->kind == LV_DOF6_CTL_PID;
-            pt->delta_c[0] = clamp_abs(gimbal_command(c->kp[0], c->ki[0], c->kd[0], pt->err.y,
-                                                      pid ? x[X_IP] : 0.0, w_b.y), c->limit);
-            pt->delta_c[1] = clamp_abs(gimbal_command(c->kp[1], c->ki[1], c->kd[1], pt->err.z,
-                                                      pid ? x[X_IY] : 0.0, w_b.z), c->limit);
+        if (m->ctl.kind != LV_DOF6_CTL_NONE) { /* the gimbal angles in effect: the actuators */
             pt->u[U_GP] = x[X_AP];
             pt->u[U_GY] = x[X_AY];
         }
@@ -601,6 +646,19 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
         for (int j = 0; j < 3; j++)
             I_dot.m[i][j] *= span > 0.0 ? pt->mdot / span : 0.0;
     pt->w_dot = euler_rate(&pt->mp.I, &I_dot, w_b, lv_v3_add(pt->m_thrust_b, pt->m_aero_b));
+    /* 6: the controller's gimbal commands (they drive the actuators, not this point's forces) */
+    if (m->steers && m->ctl.kind != LV_DOF6_CTL_NONE) {
+        const lv_dof6_controller *c = &m->ctl;
+        const int pid = c->kind == LV_DOF6_CTL_PID;
+        if (command_rate(m, s, t, x, p, pt, &pt->w_cmd, err) != 0)
+            return 1;
+        pt->delta_c[0] = clamp_abs(gimbal_command(c->kp[0], c->ki[0], c->kd[0], pt->err.y,
+                                                  pid ? x[X_IP] : 0.0, w_b.y, pt->w_cmd.y),
+                                   c->limit);
+        pt->delta_c[1] = clamp_abs(gimbal_command(c->kp[1], c->ki[1], c->kd[1], pt->err.z,
+                                                  pid ? x[X_IY] : 0.0, w_b.z, pt->w_cmd.z),
+                                   c->limit);
+    }
     return 0;
 }
 

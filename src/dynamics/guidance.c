@@ -566,3 +566,9 @@ void lv_guid_euler_local(const lv_flight_kin *k, const lv_flight_axes *ax, doubl
     if (*psi < 0.0) /* [0, 2 pi), as the headings */
         *psi += 2.0 * LV_PI;
 }
+
+int lv_guid_reads_atmosphere(const lv_guid *g)
+{
+    return (g->s.law == LV_STEER_ATTITUDE && g->axis == LV_GAXIS_MACH) ||
+           g->s.law == LV_STEER_HEADING;
+}

@@ -52,6 +52,11 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
 lv_status lv_guid_table_check(const lv_table *t, lv_steer_law law, lv_att_frame frame,
                              lv_guid *g, lv_err *err);
 
+/* 1 when the law's attitude reads the atmosphere (Mach: an attitude table over Mach, the
+ * heading law's alpha over Mach), 0 when it needs only the kinematics and the air-relative
+ * velocity. */
+int lv_guid_reads_atmosphere(const lv_guid *g);
+
 /* At the phase's start (time t0, kinematics k): freezes the inertial frame, resets the
  * cursors. */
 void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_kin *k);
