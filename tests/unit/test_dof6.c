@@ -1441,6 +1441,124 @@ static void test_control_errors(void)
     lv_mission_free(m);
 }
 
+/* Every YAML example of docs/mission-format.md about dof6 (the indented blocks of "Rigid-body
+ * data" and "6-DoF phases") loads as `lvsim check` loads it: a phase block as a phase of a
+ * mission with the stages it names (and the dof3 parent `liftoff` a block with `from:` names),
+ * a rigid_body block as the data of the bottom stage of a dof6 phase. A breaker found the
+ * example `aero: {s_ref: 10, CA: 0.3, CN: 0.1}` refused ("'CA' belongs to axes: body"). */
+static char *slurp_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        const long n = ftell(f);
+        rewind(f);
+        buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+        if (buf != NULL)
+            buf[fread(buf, 1, (size_t)n, f)] = '\0';
+    }
+    fclose(f);
+    return buf;
+}
+
+static void test_doc_examples(void)
+{
+    const char *root = getenv("LV_SOURCE_DIR");
+    char path[4096];
+    static const char *const tables[] = {"ca_mach.csv", "cn_alpha.csv"};
+    for (int i = 0; i < 2; i++) { /* the tables the examples name, from the example */
+        snprintf(path, sizeof path, "%s/examples/two-stage-6dof/%s", root ? root : "..",
+                 tables[i]);
+        char *t = slurp_file(path);
+        CHECK(t != NULL);
+        if (t != NULL)
+            write_file(tables[i], t);
+        free(t);
+    }
+    snprintf(path, sizeof path, "%s/docs/mission-format.md", root ? root : "..");
+    char *doc = slurp_file(path);
+    CHECK(doc != NULL);
+    if (doc == NULL)
+        return;
+    static const char *const sections[] = {"### Rigid-body data", "#### 6-DoF phases"};
+    int n_blocks = 0;
+    for (int sct = 0; sct < 2; sct++) {
+        const char *a = strstr(doc, sections[sct]);
+        CHECK(a != NULL);
+        if (a == NULL)
+            continue;
+        const char *end = strstr(a + strlen(sections[sct]), "\n#");
+        if (end == NULL)
+            end = a + strlen(a);
+        for (const char *b = a; b < end;) { /* the indented blocks after a blank line */
+            const char *blk = strstr(b, "\n\n    ");
+            if (blk == NULL || blk >= end)
+                break;
+            blk += 2;
+            const char *e = blk;
+            while (e < end && strncmp(e, "    ", 4) == 0) {
+                const char *nl = strchr(e, '\n');
+                e = nl ? nl + 1 : e + strlen(e);
+            }
+            const int len = (int)(e - blk);
+            static char yaml[16384];
+            const int rigid = strncmp(blk, "    rigid_body:", 15) == 0;
+            snprintf(yaml, sizeof yaml,
+                     "mission: {name: doc}\n"
+                     "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+                     "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 0, "
+                     "start_vel: 1,\n"
+                     "             start_fpa_deg: 89, start_chi_deg: 90}\n"
+                     "stages:\n"
+                     "  - name: %s\n"
+                     "    dry_mass: 20000\n"
+                     "    propellant_mass: 100000\n"
+                     "    engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}]\n"
+                     "%.*s%s"
+                     "  - {name: upper, dry_mass: 4000, propellant_mass: 10000}\n"
+                     "  - {name: payload, dry_mass: 1000, propellant_mass: 0}\n"
+                     "  - name: s1\n"
+                     "    dry_mass: 20000\n"
+                     "    propellant_mass: 100000\n"
+                     "    engines: [{name: e1, thrust_vac: 2.0e6, isp_vac: 300}]\n"
+                     "    rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                     "                 cg_full: {x: -15}, engine_position: {x: -30}}\n"
+                     "  - {name: s2, dry_mass: 4000, propellant_mass: 10000}\n"
+                     "phases:\n"
+                     "    - {name: liftoff, model: dof3, stages: [booster, upper, payload],\n"
+                     "       stop_time: 14}\n"
+                     "%.*s%s",
+                     "booster", rigid ? len : 0, blk,
+                     rigid ? ""
+                           : "    rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                             "                 cg_full: {x: -15}, engine_position: {x: -30}}\n",
+                     rigid ? 0 : len, blk,
+                     rigid ? "    - {name: six, model: dof6, stages: [booster], from: liftoff,\n"
+                             "       stop_time: 20}\n"
+                           : "");
+            lv_err err = {LV_OK, ""};
+            lv_mission *m = NULL;
+            write_file("doc_example.yaml", yaml);
+            const lv_status st = lv_mission_load("doc_example.yaml", &m, &err);
+            check_count_++;
+            if (st != LV_OK) {
+                check_failures_++;
+                fprintf(stderr, "%s:%d: docs/mission-format.md example at \"%.40s\" refused: %s\n",
+                        __FILE__, __LINE__, blk + 4, err.msg);
+            }
+            lv_mission_free(m);
+            remove("doc_example.yaml");
+            n_blocks++;
+            b = e;
+        }
+    }
+    CHECK(n_blocks >= 3); /* rigid_body, ascent6, boost */
+    printf("docs/mission-format.md: %d dof6 examples load\n", n_blocks);
+    free(doc);
+}
+
 int main(void)
 {
     test_torque_free();
@@ -1459,5 +1577,6 @@ int main(void)
     test_unstable_diverges();
     test_rates_curvature();
     test_control_errors();
+    test_doc_examples();
     return check_report("test_dof6");
 }
