@@ -303,7 +303,10 @@ static lv_mat3 tensor(const double *e)
 
 /* Mass properties at mass m: the fraction of the propellant used s = (m_full - m) /
  * (m_full - m_empty) in [0, 1], the inertia tensor I and centre of mass cg linear in s, and
- * dI/ds (zero once s is clamped). */
+ * dI/ds (zero once s is clamped). The ends belong to the range (to 1e-9 of the span, for the
+ * rounding of m): at a full start and at the burnout event's instant the engines still burn,
+ * and I' = dI/ds mdot / span there is the limit from inside, consistent with the mass flow of
+ * the same row; the mode after the event (mdot = 0) makes it 0 on the event's second row. */
 typedef struct mass_props {
     double s;
     lv_mat3 I, dI_ds;
@@ -315,7 +318,7 @@ static mass_props mass_props_at(const lv_dof6_mass *mp, double m)
     mass_props r;
     const double span = mp->m_full - mp->m_empty;
     double s = span > 0.0 ? (mp->m_full - m) / span : 0.0;
-    const int inside = span > 0.0 && s > 0.0 && s < 1.0;
+    const int inside = span > 0.0 && s >= -1e-9 && s <= 1.0 + 1e-9;
     s = s < 0.0 ? 0.0 : s > 1.0 ? 1.0 : s;
     double e[6], de[6];
     for (int i = 0; i < 6; i++) {

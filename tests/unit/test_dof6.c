@@ -1559,6 +1559,62 @@ static void test_doc_examples(void)
     free(doc);
 }
 
+/* The burnout event's two rows (the instant written twice, docs/result-files.md), each in the
+ * mode of its side. A body pitching at q = 1 deg/s in vacuum (2000 km up), its engine on the
+ * axis: no thrust or aerodynamic moment, only the mass-variation terms of Euler's equation
+ * (docs/models.md), I_yy q' = -mdot l^2 q - I'_yy q with l the engine's distance from the CG
+ * (jet damping) and I'_yy = (I_empty - I_full)_yy mdot / propellant_mass. Before the event the
+ * engine burns: mdot = T / (Isp g0) and both terms act (the breaker found I' = 0 on that row
+ * while mdot flowed: q' = -mdot l^2 q / I_yy alone, about 6 times smaller and of the other
+ * sign here); after it mdot = 0 and q' = 0 (omega x I omega = 0 for a rate about a principal
+ * axis). */
+static void test_burnout_rows(void)
+{
+    lv_mission *m = NULL;
+    lv_run *r = run_text("test_dof6_burnout.yaml",
+                         "mission: {name: bo}\n"
+                         "environment: {world: planet, planet: earth, gravity: j2}\n"
+                         "parameters: {start_lat: 0, start_lon: 0, start_h: 2.0e6, "
+                         "start_vel: 7000, start_fpa: 0, start_chi: 0}\n"
+                         "stages:\n"
+                         "  - {name: s1, dry_mass: 20000, propellant_mass: 10000,\n"
+                         "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}],\n"
+                         "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                         "                  inertia_empty: {xx: 5.0e4, yy: 2.0e6, zz: 2.0e6},\n"
+                         "                  cg_full: {x: -15}, cg_empty: {x: -20},\n"
+                         "                  engine_position: {x: -30}}}\n"
+                         "phases:\n"
+                         "  - {name: P, model: dof6, stages: [s1], stop_time: 30, end: [burnout],\n"
+                         "     rates: {q_deg: 1}, integrator: {tolerance: 1e-10}}\n",
+                         &m);
+    if (r != NULL) {
+        const lv_result *rows = lv_run_rows(r, 0);
+        const size_t n = rows ? lv_result_rows(rows) : 0;
+        CHECK(n > 3);
+        if (n > 3) {
+            const size_t b = n - 2, a = n - 1; /* before, after */
+            CHECK(at(rows, b, "time") == at(rows, a, "time"));
+            const double mdot = 2.0e6 / (300.0 * 9.80665);
+            CHECK_CLOSE(at(rows, b, "mdot"), mdot, 1e-9 * mdot);
+            const double l = -30.0 - at(rows, b, "cg_x"), q = at(rows, b, "q");
+            const double idot = (2.0e6 - 8.0e6) * mdot / 10000.0;
+            const double qd = -(mdot * l * l + idot) * q / at(rows, b, "I_yy");
+            printf("burnout rows: der(q) = %.9g (expected %.9g; jet damping alone %.9g), then "
+                   "%.3g; mdot %.6g then %.3g kg/s\n", at(rows, b, "der(q)"), qd,
+                   -mdot * l * l * q / at(rows, b, "I_yy"), at(rows, a, "der(q)"),
+                   at(rows, b, "mdot"), at(rows, a, "mdot"));
+            CHECK_CLOSE(at(rows, b, "der(q)"), qd, 1e-9 * fabs(qd));
+            CHECK(at(rows, a, "mdot") == 0.0 && at(rows, a, "der(m)") == 0.0);
+            CHECK_CLOSE(at(rows, a, "der(q)"), 0.0, 1e-15);
+            /* the row before continues the burn: its der(q) on the trend of the rows before */
+            CHECK_CLOSE(at(rows, b, "der(q)"), at(rows, b - 1, "der(q)"),
+                        0.05 * fabs(at(rows, b - 1, "der(q)")));
+        }
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_torque_free();
@@ -1578,5 +1634,6 @@ int main(void)
     test_rates_curvature();
     test_control_errors();
     test_doc_examples();
+    test_burnout_rows();
     return check_report("test_dof6");
 }
