@@ -69,10 +69,10 @@ static const lv_var state_tpl[LV_X6_N] = {
 };
 
 static const lv_var ctl_state_tpl[X_NMAX - LV_X6_N] = {
-    {"act_pitch", "rad", "Pitch gimbal angle: the actuator's state", 0.0, 0.01},
-    {"act_yaw", "rad", "Yaw gimbal angle: the actuator's state", 0.0, 0.01},
-    {"int_pitch", "rad.s", "Integral of the pitch attitude error (PID)", 0.0, 0.01},
-    {"int_yaw", "rad.s", "Integral of the yaw attitude error (PID)", 0.0, 0.01},
+    {"act_pitch", "rad", "Pitch gimbal angle: the actuator's state (with a controller)", 0.0, 0.01},
+    {"act_yaw", "rad", "Yaw gimbal angle: the actuator's state (with a controller)", 0.0, 0.01},
+    {"int_pitch", "rad.s", "Integral of the pitch attitude error (with a PID controller)", 0.0, 0.01},
+    {"int_yaw", "rad.s", "Integral of the yaw attitude error (with a PID controller)", 0.0, 0.01},
 };
 
 static const unsigned char abs_error[X_NMAX] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
@@ -92,8 +92,8 @@ static const lv_var param_tpl[P_N] = {
     {"start_p", "rad/s", "Initial roll rate (relative to inertial space)", 0, 0},
     {"start_q", "rad/s", "Initial pitch rate (relative to inertial space)", 0, 0},
     {"start_r", "rad/s", "Initial yaw rate (relative to inertial space)", 0, 0},
-    {"gimbal_pitch", "rad", "Pitch gimbal angle of every engine (constant input)", 0, 0},
-    {"gimbal_yaw", "rad", "Yaw gimbal angle of every engine (constant input)", 0, 0},
+    {"gimbal_pitch", "rad", "Pitch gimbal angle of every engine (constant input, without a controller)", 0, 0},
+    {"gimbal_yaw", "rad", "Yaw gimbal angle of every engine (constant input, without a controller)", 0, 0},
     {"throttle", "", "Throttle c_s (constant input)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
@@ -165,17 +165,17 @@ static const lv_var output_vars[O_N] = {
 };
 
 static const lv_var steer_output_vars[O_NMAX - O_N] = {
-    {"theta_cmd", "rad", "Commanded pitch attitude (3-2-1 Euler, local NED) of the steering law",
+    {"theta_cmd", "rad", "Commanded pitch attitude (3-2-1 Euler, local NED) (with a steering law)",
      0, 0},
-    {"psi_cmd", "rad", "Commanded heading (yaw) attitude of the steering law", 0, 0},
-    {"phi_cmd", "rad", "Commanded roll attitude of the steering law", 0, 0},
+    {"psi_cmd", "rad", "Commanded heading (yaw) attitude (with a steering law)", 0, 0},
+    {"phi_cmd", "rad", "Commanded roll attitude (with a steering law)", 0, 0},
     {"err_roll", "rad", "Attitude error about body x: rotation vector from the actual to the "
-     "commanded body axes", 0, 0},
-    {"err_pitch", "rad", "Attitude error about body y (rotation vector, body axes)", 0, 0},
-    {"err_yaw", "rad", "Attitude error about body z (rotation vector, body axes)", 0, 0},
-    {"gimbal_pitch_cmd", "rad", "Controller's pitch gimbal command (after the deflection limit)",
+     "commanded body axes (with a steering law)", 0, 0},
+    {"err_pitch", "rad", "Attitude error about body y (rotation vector, body axes) (with a steering law)", 0, 0},
+    {"err_yaw", "rad", "Attitude error about body z (rotation vector, body axes) (with a steering law)", 0, 0},
+    {"gimbal_pitch_cmd", "rad", "Pitch gimbal command after the deflection limit (with a controller)",
      0, 0},
-    {"gimbal_yaw_cmd", "rad", "Controller's yaw gimbal command (after the deflection limit)", 0,
+    {"gimbal_yaw_cmd", "rad", "Yaw gimbal command after the deflection limit (with a controller)", 0,
      0},
 };
 
@@ -303,7 +303,10 @@ static lv_mat3 tensor(const double *e)
 
 /* Mass properties at mass m: the fraction of the propellant used s = (m_full - m) /
  * (m_full - m_empty) in [0, 1], the inertia tensor I and centre of mass cg linear in s, and
- * dI/ds (zero once s is clamped). */
+ * dI/ds (zero once s is clamped). The ends belong to the range (to 1e-9 of the span, for the
+ * rounding of m): at a full start and at the burnout event's instant the engines still burn,
+ * and I' = dI/ds mdot / span there is the limit from inside, consistent with the mass flow of
+ * the same row; the mode after the event (mdot = 0) makes it 0 on the event's second row. */
 typedef struct mass_props {
     double s;
     lv_mat3 I, dI_ds;
@@ -315,7 +318,7 @@ static mass_props mass_props_at(const lv_dof6_mass *mp, double m)
     mass_props r;
     const double span = mp->m_full - mp->m_empty;
     double s = span > 0.0 ? (mp->m_full - m) / span : 0.0;
-    const int inside = span > 0.0 && s > 0.0 && s < 1.0;
+    const int inside = span > 0.0 && s >= -1e-9 && s <= 1.0 + 1e-9;
     s = s < 0.0 ? 0.0 : s > 1.0 ? 1.0 : s;
     double e[6], de[6];
     for (int i = 0; i < 6; i++) {
@@ -803,11 +806,18 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
             return fail_inst(s, "start body rate %s = %g rad/s is outside [-%g, %g] rad/s (10 "
                              "rev/s)", state_tpl[i].name, x[i], LV_DOF6_RATE_MAX,
                              LV_DOF6_RATE_MAX);
-    for (size_t i = LV_X6_N; i < s->m->n_states; i++)
-        if (!isfinite(x[i]) || (i <= X_AY && !(fabs(x[i]) <= s->m->ctl.limit)))
+    /* the actuators within the deflection limit; the integrals' share of the command, ki int,
+     * too (0 on an axis with ki = 0, where the integral does not act): docs/models.md,
+     * "Attitude control", start values */
+    for (size_t i = LV_X6_N; i < s->m->n_states; i++) {
+        const double ki = i >= X_IP ? s->m->ctl.ki[i - X_IP] : 1.0;
+        const double share = i >= X_IP ? ki * x[i] : x[i];
+        if (!isfinite(x[i]) || !(fabs(share) <= s->m->ctl.limit) || (ki == 0.0 && x[i] != 0.0))
             return fail_inst(s, "start %s = %g %s: must be finite%s", ctl_state_tpl[i - LV_X6_N].name,
                              x[i], ctl_state_tpl[i - LV_X6_N].unit,
-                             i <= X_AY ? " and within the controller's deflection limit" : "");
+                             i <= X_AY ? " and within the controller's deflection limit"
+                                       : ", |ki int| within the deflection limit (0 with ki = 0)");
+    }
     s->m_burnout = x[LV_X6_M] - p[P_PROP];
     s->burned_out = 0;
     s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;

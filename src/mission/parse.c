@@ -2025,6 +2025,11 @@ static lv_status check_tree(const lv_pctx *c)
         if (ph->parent < 0)
             continue;
         const lv_phase_def *par = &m->phases[ph->parent];
+        if (ph->type->check_parent != NULL) {
+            const lv_status st = ph->type->check_parent(c, ph, par);
+            if (st != LV_OK)
+                return st;
+        }
         for (size_t i = 0; i < ph->n_stages; i++) {
             int carried = 0;
             for (size_t j = 0; j < par->n_stages; j++)

@@ -90,6 +90,7 @@ typedef struct dof6_cfg {
     lv_slot gain[2][G_N]; /* pitch, yaw: kp [rad/rad], kd [s], ki [1/s] (LV_NO_SLOT: 0) */
     lv_slot ctl_num[C_N]; /* limit [rad], rate_limit [rad/s], tau [s] */
     lv_dof6_rates_rule rates_rule; /* transition: {rates: ...} */
+    lv_src_loc transition_loc;     /* where `transition:` is written; line 0: not given */
 } dof6_cfg;
 
 static void dof6_cfg_free(void *p)
@@ -284,6 +285,14 @@ static lv_status parse_controller(const lv_pctx *c, const lv_ynode *phase_n, con
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {pitch: {kp: 2, kd: 0.5}, yaw: {kp: 2, "
                           "kd: 0.5}, limit_deg: 6, rate_limit_deg: 20} expected", what);
+    /* an unknown key first (with a suggestion), before what is missing: a misspelt key is
+     * the likelier mistake */
+    static const char *const known[] = {"pitch",      "yaw",            "limit", "limit_deg",
+                                        "rate_limit", "rate_limit_deg", "tau",   NULL};
+    static const char *const gknown[] = {"kp", "kd", "ki", NULL};
+    lv_status st = lv_pk_check_map(c, n, what, known);
+    if (st != LV_OK)
+        return st;
     static const char *const req[] = {"pitch", "yaw", "limit_deg", "rate_limit_deg", NULL};
     for (size_t i = 0; req[i] != NULL; i++) {
         const int ang = i >= 2;
@@ -300,7 +309,6 @@ static lv_status parse_controller(const lv_pctx *c, const lv_ynode *phase_n, con
     const lv_range gr[G_N] = {{0.0, 100.0, 1, 0}, {0.0, 100.0, 0, 0}, {0.0, 100.0, 0, 0}};
     static const char *const axes[2] = {"pitch", "yaw"};
     int pid = 0;
-    lv_status st;
     for (int a = 0; a < 2; a++) {
         const lv_ynode *g = lv_pk_get(n, axes[a]);
         pid |= g->kind == LV_YNODE_MAP && lv_pk_get(g, "ki") != NULL;
@@ -309,9 +317,11 @@ static lv_status parse_controller(const lv_pctx *c, const lv_ynode *phase_n, con
         const lv_ynode *g = lv_pk_get(n, axes[a]);
         char sub[48], gw[LV_WHAT_MAX];
         snprintf(sub, sizeof sub, "controller.%s", axes[a]);
-        snprintf(gw, sizeof gw, "%.150s, %s", what, axes[a]);
+        snprintf(gw, sizeof gw, "%.150s.%s", what, axes[a]);
         if (g->kind != LV_YNODE_MAP)
             return lv_pk_fail(c, g, "%s: a mapping {kp: rad/rad, kd: s, ki: 1/s} expected", gw);
+        if ((st = lv_pk_check_map(c, g, gw, gknown)) != LV_OK)
+            return st;
         if (lv_pk_get(g, "kp") == NULL)
             return lv_pk_fail(c, g, "%s: 'kp' is missing (rad of deflection per rad of "
                               "attitude error)", gw);
@@ -351,6 +361,8 @@ static lv_status parse_transition(const lv_pctx *c, const lv_ynode *phase_n, con
                           "`attitude:` and `rates:`)", what);
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {rates: curvature} expected", what);
+    const lv_ynode *k = lv_pk_key(phase_n, "transition");
+    cfg->transition_loc = (lv_src_loc){k->line, k->col};
     lv_status st = lv_pk_check_map(c, n, what, tkeys);
     const lv_ynode *v = lv_pk_get(n, "rates");
     size_t idx = 0;
@@ -471,13 +483,77 @@ static lv_status dof6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     return LV_OK;
 }
 
-/* After `set:` (parse.c): the quaternion states are set all four together, as a unit
- * quaternion (a partial set would leave the attitude undefined: the model refuses a start
- * quaternion whose norm is not 1). */
+/* The start values `set:` gives the body rates and the controller's states, refused where the
+ * file writes them with the ranges the model checks when it starts (lv_dof6.h, dof6_init), so
+ * that `lvsim check` and `lvsim run` accept the same files (a child's states are set only when
+ * it starts, after its parent has run):
+ *   p, q, r                 |w| <= 10 rev/s (LV_DOF6_RATE_MAX);
+ *   act_pitch, act_yaw      with a controller, within its deflection limit;
+ *   int_pitch, int_yaw      with a PID controller, |ki int| <= the deflection limit: the
+ *                           integral's share of the command within what the actuator can
+ *                           deflect (a larger start is a wound-up integrator that would hold
+ *                           the gimbal at its limit until the error unwinds it); 0 on an axis
+ *                           with ki = 0, where the integral does not act.
+ * A controller state in a phase without the controller is named as such. */
+static lv_status check_set_ranges(const lv_pctx *c, const lv_phase_def *ph)
+{
+    const dof6_cfg *cfg = ph->type_cfg;
+    static const char *const wn[3] = {"p", "q", "r"};
+    static const char *const cn[4] = {"act_pitch", "act_yaw", "int_pitch", "int_yaw"};
+    for (size_t i = 0; i < ph->n_set; i++) {
+        const char *name = ph->set_names[i];
+        const double v = c->m->slots[ph->set_values[i]].value;
+        const lv_src_loc loc = ph->set_locs != NULL ? ph->set_locs[i] : ph->loc;
+        for (int k = 0; k < 3; k++)
+            if (strcmp(name, wn[k]) == 0 && !(fabs(v) <= LV_DOF6_RATE_MAX))
+                return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: start body "
+                               "rate %s = %g rad/s is outside [-%g, %g] rad/s (10 rev/s)",
+                               c->file, loc.line, loc.column, ph->name, name, v,
+                               LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX);
+        int k = 0;
+        while (k < 4 && strcmp(name, cn[k]) != 0)
+            k++;
+        if (k == 4)
+            continue;
+        if (!cfg->ctl || (k >= 2 && cfg->ctl != LV_DOF6_CTL_PID))
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: '%s' is a state of "
+                           "the %s controller: the phase has %s", c->file, loc.line, loc.column,
+                           ph->name, name, k >= 2 ? "PID" : "attitude",
+                           !cfg->ctl ? "no `controller:`" : "a PD controller (no `ki`)");
+        const double lim = c->m->slots[cfg->ctl_num[C_LIM]].value;
+        if (k < 2 && !(fabs(v) <= lim))
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: start %s = %g rad "
+                           "(%g deg) is outside the controller's deflection limit +-%g deg",
+                           c->file, loc.line, loc.column, ph->name, name, v, v / LV_DEG,
+                           lim / LV_DEG);
+        if (k < 2)
+            continue;
+        const lv_slot ks = cfg->gain[k - 2][G_KI];
+        const double ki = ks == LV_NO_SLOT ? 0.0 : c->m->slots[ks].value;
+        if (ki == 0.0 && v != 0.0)
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: start %s = %g rad s "
+                           "on an axis with ki = 0, where the integral does not act: 0 or "
+                           "nothing", c->file, loc.line, loc.column, ph->name, name, v);
+        if (ki > 0.0 && !(fabs(ki * v) <= lim))
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: start %s = %g rad s "
+                           "is outside +-%g rad s: its part of the command, ki %s = %g deg, "
+                           "beyond the deflection limit %g deg (a wound-up integrator)",
+                           c->file, loc.line, loc.column, ph->name, name, v, lim / ki, name,
+                           ki * v / LV_DEG, lim / LV_DEG);
+    }
+    return LV_OK;
+}
+
+/* After `set:` (parse.c): the start values in the model's ranges (check_set_ranges); the
+ * quaternion states set all four together, as a unit quaternion (a partial set would leave
+ * the attitude undefined: the model refuses a start quaternion whose norm is not 1). */
 static lv_status dof6_check_set(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
 {
     (void)n;
     static const char *const qn[4] = {"q_w", "q_x", "q_y", "q_z"};
+    lv_status st = check_set_ranges(c, ph);
+    if (st != LV_OK)
+        return st;
     int idx[4] = {-1, -1, -1, -1}, first = -1, given = 0;
     for (size_t i = 0; i < ph->n_set; i++)
         for (int k = 0; k < 4; k++)
@@ -512,6 +588,20 @@ static lv_status dof6_check_set(const lv_pctx *c, const lv_ynode *n, lv_phase_de
                        "q_x, q_y, q_z) has norm %.9g: it must be 1 (within 1e-6)", c->file,
                        loc.line, loc.column, ph->name, sqrt(n2));
     return LV_OK;
+}
+
+/* Once the phase tree is known (parse.c, check_tree): a `transition:` is the rule of a change
+ * of model; from a dof6 parent the attitude and rates are states of both models, copied. */
+static lv_status dof6_check_parent(const lv_pctx *c, const lv_phase_def *ph,
+                                   const lv_phase_def *parent)
+{
+    const dof6_cfg *cfg = ph->type_cfg;
+    if (cfg == NULL || cfg->transition_loc.line == 0 || parent->type != ph->type)
+        return LV_OK;
+    return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s', transition: applies to a change "
+                   "of model (from a dof3 parent); the parent '%s' is dof6: its rates are copied",
+                   c->file, cfg->transition_loc.line, cfg->transition_loc.column, ph->name,
+                   parent->name);
 }
 
 /* The conversion's rule of a 3-DoF -> 6-DoF hand-off, for summary.json. */
@@ -748,8 +838,9 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
  * phi = 0: alpha = beta = 0 without wind); the quaternion of those angles relative to NED at
  * the parent's final geodetic position and time; the body rates zero, or (transition: {rates:
  * curvature}) the angular velocity of the velocity relative to the planet from the parent's
- * final specific force (lv_dof6_rates_from_trajectory); a controller's actuators and integrals
- * at 0. */
+ * final specific force (lv_dof6_rates_from_trajectory), in the body axes of the attitude the
+ * child starts with (a `set:` of the quaternion included); a controller's actuators and
+ * integrals at 0. */
 static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
                               const char *const *pnames, const double *pvalues, size_t np,
                               const char *const *names, double *values, size_t n, lv_err *err)
@@ -798,8 +889,8 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     double w[3] = {0.0, 0.0, 0.0};
     if (pc->rates_rule == LV_DOF6_RATES_CURVATURE) {
         /* the parent's specific force: its load factors along body x, y, -z times g0, in ECI
-         * through the attitude just built; the state of the hand-off: position and velocity
-         * copied from the parent */
+         * through the parent's attitude (the axes of its load factors); the state of the
+         * hand-off: position and velocity copied from the parent */
         static const char *const need[] = {"n_axial", "n_lateral", "n_normal", "r_eci_x",
                                            "r_eci_y", "r_eci_z",   "v_eci_x",  "v_eci_y",
                                            "v_eci_z"};
@@ -826,8 +917,14 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
             x[LV_X6_RX + i] = f[3 + i];
             x[LV_X6_VX + i] = f[6 + i];
         }
-        for (int i = 0; i < 4; i++)
+        /* the rates in the body axes the child starts with: the attitude after `set:` (an
+         * override comes after the converted value in names[]: the last one is in effect) */
+        for (int i = 0; i < 4; i++) {
             x[LV_X6_QW + i] = q[i];
+            for (size_t j = 0; j < n; j++)
+                if (strcmp(names[j], qn[i]) == 0)
+                    x[LV_X6_QW + i] = values[j];
+        }
         lv_dof6_rates_from_trajectory(s->model, pvalues[it], x, f_eci, w);
     }
     for (int i = 0; i < 3; i++) {
@@ -846,7 +943,11 @@ const lv_phase_type lv_phase_type_dof6 = {
     .world = LV_WORLD_PLANET,
     .keys = keys,
     .from_types = from_types,
-    .sample_keys = NULL, /* `lvsim vars dof6` lists the defaults a root phase takes */
+    /* `lvsim vars dof6` lists the defaults a root phase takes, and with a steering law and a
+     * PID controller the variables they add (marked so in their descriptions) */
+    .sample_keys = "guidance: {law: attitude, pitch_deg: 80, heading_deg: 90}, "
+                   "controller: {pitch: {kp: 1, kd: 0.5, ki: 0.1}, "
+                   "yaw: {kp: 1, kd: 0.5, ki: 0.1}, limit_deg: 5, rate_limit_deg: 20}",
     .ends = NULL, /* all: burnout, altitude, speed, apogee, impact, variables, time */
     .n_mission_params = sizeof mission_params / sizeof mission_params[0],
     .mission_params = mission_params,
@@ -861,6 +962,7 @@ const lv_phase_type lv_phase_type_dof6 = {
     .traj_extra = NULL,
     .handoff = dof6_handoff,
     .check = dof6_check_set,
+    .check_parent = dof6_check_parent,
     .handoff_rule = dof6_handoff_rule,
     .root_only_params = root_only,
 };

@@ -151,6 +151,10 @@ struct lv_phase_type {
     /* Checks of the phase as a whole once its common keys (`set:` included: ph->set_names,
      * set_values, set_locs) are read; errors at file:line:column. NULL: none. */
     lv_status (*check)(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph);
+    /* Checks of a child phase against its parent once the phase tree is known (parse.c,
+     * check_tree); errors at file:line:column. NULL: none. */
+    lv_status (*check_parent)(const lv_pctx *c, const lv_phase_def *ph,
+                              const lv_phase_def *parent);
     /* The rule of its conversion from a parent of another type, in words for summary.json
      * ("rates: zero"); NULL: none to name. */
     const char *(*handoff_rule)(const lv_phase_def *ph);

@@ -44,7 +44,8 @@ struct lv_phase_sample {
 };
 
 /* One constant-thrust stage, one phase of the type, nothing else: the smallest valid mission
- * in the type's world (the stage's rigid_body data serve the dof6 type; others ignore it). */
+ * in the type's world (the stage's rigid_body data serve the dof6 type, its engine aft of the
+ * centre of mass for a controller; others ignore it). */
 static void sample_text(const lv_phase_type *t, char *buf, size_t cap)
 {
     const int flat = t->world == LV_WORLD_FLAT;
@@ -56,7 +57,8 @@ static void sample_text(const lv_phase_type *t, char *buf, size_t cap)
              "    dry_mass: 1000\n"
              "    propellant_mass: 4000\n"
              "    engines: [{thrust_vac: 1.0e5, isp_vac: 300}]\n"
-             "    rigid_body: {inertia_full: {xx: 1.0e3, yy: 2.0e4, zz: 2.0e4}}\n"
+             "    rigid_body: {inertia_full: {xx: 1.0e3, yy: 2.0e4, zz: 2.0e4},\n"
+             "                 engine_position: {x: -5}}\n"
              "phases:\n"
              "  - {name: sample, model: %s, stages: [stage], stop_time: 10%s%s}\n",
              t->name,

@@ -5,6 +5,7 @@
 #define LV_POST_PLOT_H
 
 #include <stddef.h>
+#include <string.h>
 
 #include "lvsim/lv_status.h"
 #include "post/results.h"
@@ -82,6 +83,20 @@ LV_API lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir
 #define LV_PLOT_MODULE "lvsim_plot.so"
 lv_status lv_plot_figures(const lv_plot_data *d, const char *plotdir, lv_plot_list *list,
                           lv_err *err);
+
+/* Whether body `b` is the vehicle that flies in phase `k`: the phase's bottom
+ * stage, the first of its `stages` in summary.json, is that body. The vehicle-attitude figures
+ * (attitude, angle_of_attack, body_rates, gimbal, attitude_error) draw a body's curve over
+ * these phases only: the stages a phase carries ride on its bottom stage's attitude, so one
+ * curve per phase (docs/visualization.md). */
+static inline int lv_plot_is_vehicle(const lv_plot_data *d, size_t b, size_t k)
+{
+    if (d->res == NULL || b >= d->n_bodies || k >= d->n_phases || k >= d->res->n_phases)
+        return 0;
+    const lv_results_phase *ph = &d->res->phases[k];
+    return ph->n_stages > 0 && ph->stages[0] != NULL && d->bodies[b].name != NULL &&
+           strcmp(ph->stages[0], d->bodies[b].name) == 0;
+}
 
 /* Sets d->v_max and d->m_0 from the bodies' phase files (plot_series.c). */
 void lv_plot_fig10_refs(lv_plot_data *d);

@@ -95,16 +95,20 @@ static long find_col(const lv_results_table *c, const char *const *cols)
 }
 
 /* Time and value (times `scale`) of body b across its phases, joined in time order (an event
- * instant appears twice: the step shows). Returns the number of points; 0 when no phase of
- * the body has any of `cols`; (size_t)-1 when out of memory. */
+ * instant appears twice: the step shows); with `vehicle`, over the phases where b is the
+ * vehicle only (lv_plot_is_vehicle), the line broken (a NAN) where one such phase does not
+ * start where the one before ended. Returns the number of points; 0 when no phase of the body
+ * has any of `cols`; (size_t)-1 when out of memory. */
 static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const char *const *cols,
-                          double scale, int atmo, curve *c)
+                          double scale, int atmo, int vehicle, curve *c)
 {
+    const size_t bi = (size_t)(b - d->bodies);
     size_t n = 0;
     for (size_t i = 0; i < b->n; i++) {
         const lv_results_table *csv = d->phases[b->phase[i]].csv;
-        if (csv != NULL && find_col(csv, cols) >= 0)
-            n += csv->n_rows;
+        if (csv != NULL && find_col(csv, cols) >= 0 &&
+            (!vehicle || lv_plot_is_vehicle(d, bi, b->phase[i])))
+            n += csv->n_rows + 1;
     }
     if (n == 0)
         return 0;
@@ -116,6 +120,13 @@ static size_t body_series(const lv_plot_data *d, const lv_plot_body *b, const ch
     for (size_t i = 0; i < b->n; i++) {
         const lv_results_table *csv = d->phases[b->phase[i]].csv;
         long k = csv ? find_col(csv, cols) : -1;
+        if (vehicle && !lv_plot_is_vehicle(d, bi, b->phase[i]))
+            continue;
+        if (vehicle && k >= 0 && csv->n_rows > 0 && c->n > 0 &&
+            c->x[c->n - 1] != csv->v[0]) { /* not where the last one ended: a gap */
+            c->x[c->n] = c->y[c->n] = NAN;
+            c->n++;
+        }
         /* Mach and q: only where the atmosphere model is defined (rho > 0, h at most its
          * top): a NAN breaks the curve there */
         const long krho = atmo && csv ? lv_results_table_col(csv, "rho") : -1;
@@ -640,36 +651,41 @@ typedef struct quantity {
     double scale;      /* SI -> the unit of ylabel */
     const char *c[3];  /* a third curve (dash-dotted), when the phases have it */
     const char *c_label;
+    int vehicle;       /* 1: a vehicle's attitude: one curve per phase's vehicle (its bottom
+                          stage: lv_plot_is_vehicle), one colour per vehicle, one line style
+                          per quantity (solid, dashed, dash-dotted), a legend of each */
+    int own_time;      /* 1: the time axis spans the rows that have the quantity (6-DoF
+                          phases only), not the whole mission */
 } quantity;
 
 static const quantity quantities[] = {
-    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
+    {0, "altitude", "Altitude", "altitude [km]", {"h", "z", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     {0, "speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
-     "relative", "inertial", 1.0, {NULL}, ""},
-    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
-    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, ""},
+     "relative", "inertial", 1.0, {NULL}, "", 0, 0},
+    {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
+    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, "", 0, 0},
     {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
-     {NULL}, "", "", 1e-3, {NULL}, ""},
+     {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
-     {"n_normal", NULL}, "axial", "normal", 1.0, {NULL}, ""},
+     {"n_normal", NULL}, "axial", "normal", 1.0, {NULL}, "", 0, 0},
     {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},
-     {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG, {NULL}, ""},
+     {"fpa_inertial", NULL}, "relative", "inertial", RAD2DEG, {NULL}, "", 0, 0},
     {0, "acceleration", "Acceleration", "acceleration [m/s\xc2\xb2]", {"accel", NULL}, {NULL},
-     "", "", 1.0, {NULL}, ""},
-    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3, {NULL}, ""},
+     "", "", 1.0, {NULL}, "", 0, 0},
+    {0, "thrust", "Thrust", "thrust [kN]", {"thrust", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     /* attitude and control (6-DoF phases; the 3-DoF model's attitude and aerodynamic angles
      * are outputs too: theta, psi, phi, alpha_in, beta_in) */
     {0, "attitude", "Attitude (3-2-1 Euler angles, local NED)", "angle [deg]", {"theta", NULL},
-     {"psi", NULL}, "pitch", "heading", RAD2DEG, {"phi", NULL}, "roll"},
+     {"psi", NULL}, "pitch", "heading", RAD2DEG, {"phi", NULL}, "roll", 1, 0},
     {0, "angle_of_attack", "Angle of attack and sideslip", "angle [deg]",
      {"alpha", "alpha_in", NULL}, {"beta", "beta_in", NULL}, "alpha", "beta", RAD2DEG, {NULL},
-     ""},
+     "", 1, 0},
     {0, "body_rates", "Body rates", "rate [deg/s]", {"q", NULL}, {"r", NULL}, "pitch q", "yaw r",
-     RAD2DEG, {"p", NULL}, "roll p"},
+     RAD2DEG, {"p", NULL}, "roll p", 1, 1},
     {0, "gimbal", "Gimbal angles", "gimbal angle [deg]", {"gimbal_pitch_in", NULL},
-     {"gimbal_yaw_in", NULL}, "pitch", "yaw", RAD2DEG, {NULL}, ""},
+     {"gimbal_yaw_in", NULL}, "pitch", "yaw", RAD2DEG, {NULL}, "", 1, 1},
     {0, "attitude_error", "Attitude error (controller)", "error [deg]", {"err_pitch", NULL},
-     {"err_yaw", NULL}, "pitch", "yaw", RAD2DEG, {"err_roll", NULL}, "roll"},
+     {"err_yaw", NULL}, "pitch", "yaw", RAD2DEG, {"err_roll", NULL}, "roll", 1, 1},
 };
 
 /* "mission <name>", for a figure's subtitle. */
@@ -721,7 +737,13 @@ static PLINT body_style(size_t i, int second)
     return second == 2 ? third_style[i % 4] : second ? second_style[i % 4] : main_style[i % 4];
 }
 
-/* One figure of quantity q: a curve per body (two when q has a second column); a quantity no
+/* The line styles of a vehicle-attitude figure's quantities (docs/visualization.md): the
+ * first solid, the second dashed (PLplot 4: long dashes, short gaps), the third dash-dotted
+ * (5: long and short dashes). */
+static const PLINT quantity_style[3] = {1, 4, 5};
+
+/* One figure of quantity q: a curve per body (two when q has a second column); with
+ * q->vehicle a curve per vehicle over the phases it flies as the vehicle; a quantity no
  * phase file has is added to the list's skipped ones. */
 static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const char *plotdir,
                                  lv_plot_list *list, lv_err *err)
@@ -744,7 +766,7 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             continue;
         for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
             curve *c = &f.p[0].c[f.p[0].n_c];
-            size_t n = body_series(d, &d->bodies[i], cols, q->scale, q->atmo, c);
+            size_t n = body_series(d, &d->bodies[i], cols, q->scale, q->atmo, q->vehicle, c);
             if (n == (size_t)-1) {
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
                 f.p[0].n_c++; /* freed below */
@@ -753,10 +775,10 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
             if (n == 0)
                 continue;
             c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
-            c->style = body_style(i, pass);
+            c->style = q->vehicle ? quantity_style[pass] : body_style(i, pass);
             c->body = i;
             c->set = pass;
-            c->width = body_width(i);
+            c->width = q->vehicle ? 2.0 : body_width(i);
             f.p[0].n_c++;
             *(pass == 0 ? &n_a : pass == 1 ? &n_b : &n_c) += 1;
         }
@@ -767,9 +789,41 @@ static lv_status quantity_figure(const lv_plot_data *d, const quantity *q, const
                  d->flat ? "flat" : "planet");
         add_skip(list, q->stem, why);
     }
+    if (st == LV_OK && n_a > 0 && q->own_time) /* the rows that have it */
+        range_of(&f.p[0], 1, &f.xlo, &f.xhi);
+    if (st == LV_OK && n_a > 0 && q->vehicle) {
+        /* the legend: each vehicle's colour, then each quantity's line style (data curves
+         * unlabelled; legend entries as curves without points) */
+        const size_t n_data = f.p[0].n_c;
+        for (size_t i = 0; i < d->n_bodies && f.p[0].n_c < MAX_CURVES; i++) {
+            int drawn = 0;
+            for (size_t j = 0; j < n_data; j++)
+                drawn |= f.p[0].c[j].body == i;
+            if (!drawn)
+                continue;
+            curve *c = &f.p[0].c[f.p[0].n_c++];
+            c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
+            c->style = 1;
+            c->width = 2.0;
+            c->body = i;
+            body_label(d, i, c->label, sizeof c->label);
+        }
+        const size_t n_set[3] = {n_a, n_b, n_c};
+        const char *const set_label[3] = {q->a_label, q->b_label, q->c_label};
+        for (int k = 0; k < 3 && f.p[0].n_c < MAX_CURVES; k++) {
+            if (n_set[k] == 0)
+                continue;
+            curve *c = &f.p[0].c[f.p[0].n_c++];
+            c->color = COL_FG;
+            c->style = quantity_style[k];
+            c->width = 2.0;
+            c->set = k;
+            snprintf(c->label, sizeof c->label, "%s", set_label[k]);
+        }
+    }
     if (st == LV_OK && n_a > 0) {
         char name[96];
-        for (size_t j = 0; j < f.p[0].n_c; j++) { /* labels: body, and which curve if two */
+        for (size_t j = 0; j < f.p[0].n_c && !q->vehicle; j++) { /* body, which curve if two */
             curve *c = &f.p[0].c[j];
             if (n_b > 0 || n_c > 0)
                 snprintf(c->label, sizeof c->label, "%.96s, %.16s",
@@ -822,7 +876,8 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
         for (size_t i = 0; i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
             curve *c = &p->c[p->n_c];
             const double ref = ip == 0 ? d->v_max : d->m_0;
-            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0 / ref, 0, c);
+            size_t n = body_series(d, &d->bodies[i], ip == 0 ? v_cols : m_cols, 1.0 / ref, 0, 0,
+                                   c);
             if (n == (size_t)-1) {
                 p->n_c++;
                 st = lv_fail(err, LV_ERR_NOMEM, "out of memory");

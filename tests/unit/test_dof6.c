@@ -1164,10 +1164,15 @@ static void test_unstable_diverges(void)
  * r_eci. Reference: that direction's rotation from the parent's own rows (0.01 s apart), by
  * the second-order backward difference of u/|u| at its last three rows, w = u_hat x
  * d(u_hat)/dt, in body axes through the child's first attitude; zero rates under the default
- * rule. summary.json names the rule. */
+ * rule. summary.json names the rule. rule 2: the same with the child's quaternion set (a
+ * quarter turn about ECI x, far from the parent's attitude): the inertial angular velocity is
+ * the trajectory's whatever the attitude, so the rates are its projection on the attitude set
+ * (the breaker's finding: they were projected on the parent's attitude), and C_eci_body (p, q,
+ * r) is the same vector in both runs. */
 static void test_rates_curvature(void)
 {
-    for (int rule = 0; rule < 2; rule++) {
+    double w_eci_run[3][3] = {{0}}, w_body_run1[3] = {0};
+    for (int rule = 0; rule < 3; rule++) {
         char text[4096];
         snprintf(text, sizeof text,
                  HEAD0 STAGE_RB "phases:\n"
@@ -1175,8 +1180,11 @@ static void test_rates_curvature(void)
                  "     guidance: {law: gravity_turn, rise_time: 5, kick_deg: 5, kick_time: 5,\n"
                  "                heading_deg: 90},\n"
                  "     integrator: {output_interval: 0.01, tolerance: 1e-10}}\n"
-                 "  - {name: six, model: dof6, stages: [s1], from: up, stop_time: 41%s}\n",
-                 rule ? ", transition: {rates: curvature}" : "");
+                 "  - {name: six, model: dof6, stages: [s1], from: up, stop_time: 41%s%s}\n",
+                 rule ? ", transition: {rates: curvature}" : "",
+                 rule == 2 ? ",\n     set: {q_w: 0.7071067811865476, q_x: 0.7071067811865476, "
+                             "q_y: 0, q_z: 0}"
+                           : "");
         lv_mission *m = NULL;
         lv_run *r = run_text("test_dof6_rates.yaml", text, &m);
         if (r == NULL) {
@@ -1216,11 +1224,36 @@ static void test_rates_curvature(void)
             printf("curvature rates: p, q, r = %.6g, %.6g, %.6g rad/s (finite difference %.6g, "
                    "%.6g, %.6g; h = %g s)\n", at(six, 0, "p"), at(six, 0, "q"), at(six, 0, "r"),
                    w_ref[0], w_ref[1], w_ref[2], h);
-            CHECK(fabs(w_ref[1]) > 1e-3); /* the trajectory turns: not a trivial zero */
+            /* the trajectory turns: not a trivial zero */
+            CHECK(sqrt(w_ref[0] * w_ref[0] + w_ref[1] * w_ref[1] + w_ref[2] * w_ref[2]) > 1e-3);
         }
         const char *wn[3] = {"p", "q", "r"};
         for (int c = 0; c < 3; c++) /* difference error O(h^2 w''), h = 0.01 s */
             CHECK_CLOSE(at(six, 0, wn[c]), w_ref[c], rule ? 2e-6 : 0.0);
+        if (rule == 2) /* the attitude set is the one the child starts with */
+            CHECK_CLOSE(at(six, 0, "q_x"), 0.7071067811865476, 1e-15);
+        if (six != NULL) { /* the start rates as an inertial vector, C_eci_body (p, q, r) */
+            double q[4], C[3][3];
+            const char *qn[4] = {"q_w", "q_x", "q_y", "q_z"};
+            for (int c = 0; c < 4; c++)
+                q[c] = at(six, 0, qn[c]);
+            dcm(q, C);
+            for (int c = 0; c < 3; c++)
+                w_eci_run[rule][c] = C[c][0] * at(six, 0, "p") + C[c][1] * at(six, 0, "q") +
+                                     C[c][2] * at(six, 0, "r");
+            for (int c = 0; rule == 1 && c < 3; c++)
+                w_body_run1[c] = at(six, 0, wn[c]);
+        }
+        if (rule == 2) {
+            /* same parent, same rule: the same inertial vector (to rounding), though the body
+             * rates differ (the attitudes are far apart) */
+            for (int c = 0; c < 3; c++)
+                CHECK_CLOSE(w_eci_run[2][c], w_eci_run[1][c], 1e-15);
+            double dw = 0.0;
+            for (int c = 0; c < 3; c++)
+                dw += fabs(at(six, 0, wn[c]) - w_body_run1[c]);
+            CHECK(dw > 1e-3);
+        }
         mkdir("dof6_rates_out", 0755);
         lv_err err;
         CHECK_OK(lv_run_write_summary(r, "dof6_rates_out", &err), &err);
@@ -1334,6 +1367,72 @@ static void test_control_errors(void)
         lv_run_free(r);
     }
     lv_mission_free(m);
+    /* `set:` of the rates and the controller's states in a child, refused where the file
+     * writes them, as the model refuses them when the child starts (so `lvsim check` and
+     * `lvsim run` accept the same files). The controller: PID on pitch (ki 0.5 /s), ki = 0 on
+     * yaw, limit 5 deg = 0.0872665 rad: an integral start within +-0.0872665 / 0.5 = 0.174533
+     * rad s */
+#define CHILD_CTL(ctl, set)                                                                 \
+    HEAD0 STAGE_RB "phases:\n"                                                              \
+    "  - {name: A, model: dof3, stages: [s1], stop_time: 10}\n"                             \
+    "  - {name: P, model: dof6, stages: [s1], from: A, stop_time: 12,\n"                    \
+    "     guidance: {law: attitude, pitch_deg: 80, heading_deg: 90},\n"                     \
+    "     " ctl ",\n"                                                                       \
+    "     set: {" set "}}\n"
+#define PID_5 "controller: {pitch: {kp: 1, ki: 0.5}, yaw: {kp: 1}, limit_deg: 5, rate_limit_deg: 20}"
+#define PD_5 "controller: {pitch: {kp: 1}, yaw: {kp: 1}, limit_deg: 5, rate_limit_deg: 20}"
+    BAD(CHILD_CTL(PID_5, "q: 100"),
+        "bad.yaml:16:12: phase 'P': set: start body rate q = 100 rad/s is outside [-62.8319, "
+        "62.8319] rad/s (10 rev/s)");
+    BAD(CHILD_CTL(PID_5, "act_pitch: 3"),
+        "bad.yaml:16:12: phase 'P': set: start act_pitch = 3 rad (171.887 deg) is outside the "
+        "controller's deflection limit +-5 deg");
+    BAD(CHILD_CTL(PID_5, "act_yaw_deg: -5.01"), "bad.yaml:16:12: phase 'P': set: start act_yaw");
+    BAD(CHILD_CTL(PID_5, "int_pitch: 1e6"),
+        "bad.yaml:16:12: phase 'P': set: start int_pitch = 1e+06 rad s is outside +-0.174533 "
+        "rad s");
+    BAD(CHILD_CTL(PID_5, "int_pitch: 0.18"), /* 0.5 x 0.18 = 0.09 rad = 5.16 deg > 5 deg */
+        "bad.yaml:16:12: phase 'P': set: start int_pitch = 0.18 rad s is outside +-0.174533");
+    BAD(CHILD_CTL(PID_5, "int_yaw: 0.01"),
+        "bad.yaml:16:12: phase 'P': set: start int_yaw = 0.01 rad s on an axis with ki = 0");
+    BAD(CHILD_CTL(PD_5, "int_pitch: 0"),
+        "bad.yaml:16:12: phase 'P': set: 'int_pitch' is a state of the PID controller: the "
+        "phase has a PD controller (no `ki`)");
+    BAD(CHILD_CTL("inputs: {throttle: 1}", "act_pitch: 0"),
+        "bad.yaml:16:12: phase 'P': set: 'act_pitch' is a state of the attitude controller: the "
+        "phase has no `controller:`");
+    /* ... and within the ranges, the child runs from them (what check accepts, run accepts) */
+    r = run_text("test_dof6_setctl.yaml",
+                 CHILD_CTL(PID_5, "act_pitch_deg: 4.99, act_yaw: -0.087, int_pitch: 0.17, "
+                                  "q: 62.8"),
+                 &m);
+    if (r != NULL) {
+        CHECK(lv_run_result(r, 1)->state == LV_PHASE_DONE);
+        CHECK_CLOSE(at(lv_run_rows(r, 1), 0, "act_pitch"), 4.99 * M_PI / 180.0, 1e-15);
+        CHECK_CLOSE(at(lv_run_rows(r, 1), 0, "int_pitch"), 0.17, 0.0);
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+    m = NULL;
+    /* a transition is the rule of a change of model: refused from a dof6 parent */
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: A, model: dof6, stages: [s1], stop_time: 10}\n"
+        "  - {name: P, model: dof6, stages: [s1], from: A, stop_time: 20,\n"
+        "     transition: {rates: curvature}}\n",
+        "bad.yaml:14:6: phase 'P', transition: applies to a change of model (from a dof3 "
+        "parent); the parent 'A' is dof6: its rates are copied");
+    /* an unknown controller key is named (with a suggestion) before what is missing */
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10,\n"
+        "     guidance: {law: attitude, pitch_deg: 80, heading_deg: 90},\n"
+        "     controller: {pitch: {kp_deg: 1.5}, yaw: {kp: 1}, limit_deg: 5, rate_limit_deg: 20}}\n",
+        "bad.yaml:14:27: phase 'P', controller.pitch: unknown key 'kp_deg'; did you mean 'kp'");
+    BAD(HEAD0 STAGE_RB "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 10,\n"
+        "     guidance: {law: attitude, pitch_deg: 80, heading_deg: 90},\n"
+        "     controller: {pitch: {kp: 1}, yaw: {kp: 1}, limit_deg: 5, rate_limt_deg: 20}}\n",
+        "bad.yaml:14:63: phase 'P', controller: unknown key 'rate_limt_deg'; did you mean "
+        "'rate_limit_deg'");
     /* start values in `parameters:` that only a child would read */
     LOAD_BAD("mission: {name: six}\n"
              "environment: {world: planet, planet: earth}\n"
@@ -1369,6 +1468,18 @@ static void test_control_errors(void)
                 seen++;
             }
         CHECK(seen == 3);
+        /* `lvsim vars dof6` lists the controller's states and outputs (the sample has a
+         * steering law and a PID controller), the names `set:` and `end:` take */
+        static const char *const ctl_vars[] = {"act_pitch", "act_yaw", "int_pitch", "int_yaw",
+                                               "err_roll", "err_pitch", "err_yaw", "theta_cmd",
+                                               "psi_cmd", "phi_cmd", "gimbal_pitch_cmd",
+                                               "gimbal_yaw_cmd"};
+        for (size_t i = 0; i < sizeof ctl_vars / sizeof ctl_vars[0]; i++) {
+            lv_var_kind kind;
+            size_t idx;
+            CHECK(lv_model_find(md, ctl_vars[i], &kind, &idx, NULL) == LV_OK);
+            CHECK(kind == (i < 4 ? LV_VAR_STATE : LV_VAR_OUTPUT));
+        }
         lv_phase_types_sample_free(sm);
     }
     r = run_text("test_dof6_default.yaml",
@@ -1380,6 +1491,180 @@ static void test_control_errors(void)
         CHECK_CLOSE(at(rows, 0, "phi"), 0.0, 1e-12);
         const double psi = at(rows, 0, "psi");
         CHECK(fabs(psi) < 1e-12 || fabs(psi - 2.0 * M_PI) < 1e-12);
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+}
+
+/* Every YAML example of docs/mission-format.md about dof6 (the indented blocks of "Rigid-body
+ * data" and "6-DoF phases") loads as `lvsim check` loads it: a phase block as a phase of a
+ * mission with the stages it names (and the dof3 parent `liftoff` a block with `from:` names),
+ * a rigid_body block as the data of the bottom stage of a dof6 phase. A breaker found the
+ * example `aero: {s_ref: 10, CA: 0.3, CN: 0.1}` refused ("'CA' belongs to axes: body"). */
+static char *slurp_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        const long n = ftell(f);
+        rewind(f);
+        buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+        if (buf != NULL)
+            buf[fread(buf, 1, (size_t)n, f)] = '\0';
+    }
+    fclose(f);
+    return buf;
+}
+
+static void test_doc_examples(void)
+{
+    const char *root = getenv("LV_SOURCE_DIR");
+    char path[4096];
+    static const char *const tables[] = {"ca_mach.csv", "cn_alpha.csv"};
+    for (int i = 0; i < 2; i++) { /* the tables the examples name, from the example */
+        snprintf(path, sizeof path, "%s/examples/two-stage-6dof/%s", root ? root : "..",
+                 tables[i]);
+        char *t = slurp_file(path);
+        CHECK(t != NULL);
+        if (t != NULL)
+            write_file(tables[i], t);
+        free(t);
+    }
+    snprintf(path, sizeof path, "%s/docs/mission-format.md", root ? root : "..");
+    char *doc = slurp_file(path);
+    CHECK(doc != NULL);
+    if (doc == NULL)
+        return;
+    static const char *const sections[] = {"### Rigid-body data", "#### 6-DoF phases"};
+    int n_blocks = 0;
+    for (int sct = 0; sct < 2; sct++) {
+        const char *a = strstr(doc, sections[sct]);
+        CHECK(a != NULL);
+        if (a == NULL)
+            continue;
+        const char *end = strstr(a + strlen(sections[sct]), "\n#");
+        if (end == NULL)
+            end = a + strlen(a);
+        for (const char *b = a; b < end;) { /* the indented blocks after a blank line */
+            const char *blk = strstr(b, "\n\n    ");
+            if (blk == NULL || blk >= end)
+                break;
+            blk += 2;
+            const char *e = blk;
+            while (e < end && strncmp(e, "    ", 4) == 0) {
+                const char *nl = strchr(e, '\n');
+                e = nl ? nl + 1 : e + strlen(e);
+            }
+            const int len = (int)(e - blk);
+            static char yaml[16384];
+            const int rigid = strncmp(blk, "    rigid_body:", 15) == 0;
+            snprintf(yaml, sizeof yaml,
+                     "mission: {name: doc}\n"
+                     "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+                     "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 0, "
+                     "start_vel: 1,\n"
+                     "             start_fpa_deg: 89, start_chi_deg: 90}\n"
+                     "stages:\n"
+                     "  - name: %s\n"
+                     "    dry_mass: 20000\n"
+                     "    propellant_mass: 100000\n"
+                     "    engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}]\n"
+                     "%.*s%s"
+                     "  - {name: upper, dry_mass: 4000, propellant_mass: 10000}\n"
+                     "  - {name: payload, dry_mass: 1000, propellant_mass: 0}\n"
+                     "  - name: s1\n"
+                     "    dry_mass: 20000\n"
+                     "    propellant_mass: 100000\n"
+                     "    engines: [{name: e1, thrust_vac: 2.0e6, isp_vac: 300}]\n"
+                     "    rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                     "                 cg_full: {x: -15}, engine_position: {x: -30}}\n"
+                     "  - {name: s2, dry_mass: 4000, propellant_mass: 10000}\n"
+                     "phases:\n"
+                     "    - {name: liftoff, model: dof3, stages: [booster, upper, payload],\n"
+                     "       stop_time: 14}\n"
+                     "%.*s%s",
+                     "booster", rigid ? len : 0, blk,
+                     rigid ? ""
+                           : "    rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                             "                 cg_full: {x: -15}, engine_position: {x: -30}}\n",
+                     rigid ? 0 : len, blk,
+                     rigid ? "    - {name: six, model: dof6, stages: [booster], from: liftoff,\n"
+                             "       stop_time: 20}\n"
+                           : "");
+            lv_err err = {LV_OK, ""};
+            lv_mission *m = NULL;
+            write_file("doc_example.yaml", yaml);
+            const lv_status st = lv_mission_load("doc_example.yaml", &m, &err);
+            check_count_++;
+            if (st != LV_OK) {
+                check_failures_++;
+                fprintf(stderr, "%s:%d: docs/mission-format.md example at \"%.40s\" refused: %s\n",
+                        __FILE__, __LINE__, blk + 4, err.msg);
+            }
+            lv_mission_free(m);
+            remove("doc_example.yaml");
+            n_blocks++;
+            b = e;
+        }
+    }
+    CHECK(n_blocks >= 3); /* rigid_body, ascent6, boost */
+    printf("docs/mission-format.md: %d dof6 examples load\n", n_blocks);
+    free(doc);
+}
+
+/* The burnout event's two rows (the instant written twice, docs/result-files.md), each in the
+ * mode of its side. A body pitching at q = 1 deg/s in vacuum (2000 km up), its engine on the
+ * axis: no thrust or aerodynamic moment, only the mass-variation terms of Euler's equation
+ * (docs/models.md), I_yy q' = -mdot l^2 q - I'_yy q with l the engine's distance from the CG
+ * (jet damping) and I'_yy = (I_empty - I_full)_yy mdot / propellant_mass. Before the event the
+ * engine burns: mdot = T / (Isp g0) and both terms act (the breaker found I' = 0 on that row
+ * while mdot flowed: q' = -mdot l^2 q / I_yy alone, about 6 times smaller and of the other
+ * sign here); after it mdot = 0 and q' = 0 (omega x I omega = 0 for a rate about a principal
+ * axis). */
+static void test_burnout_rows(void)
+{
+    lv_mission *m = NULL;
+    lv_run *r = run_text("test_dof6_burnout.yaml",
+                         "mission: {name: bo}\n"
+                         "environment: {world: planet, planet: earth, gravity: j2}\n"
+                         "parameters: {start_lat: 0, start_lon: 0, start_h: 2.0e6, "
+                         "start_vel: 7000, start_fpa: 0, start_chi: 0}\n"
+                         "stages:\n"
+                         "  - {name: s1, dry_mass: 20000, propellant_mass: 10000,\n"
+                         "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}],\n"
+                         "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+                         "                  inertia_empty: {xx: 5.0e4, yy: 2.0e6, zz: 2.0e6},\n"
+                         "                  cg_full: {x: -15}, cg_empty: {x: -20},\n"
+                         "                  engine_position: {x: -30}}}\n"
+                         "phases:\n"
+                         "  - {name: P, model: dof6, stages: [s1], stop_time: 30, end: [burnout],\n"
+                         "     rates: {q_deg: 1}, integrator: {tolerance: 1e-10}}\n",
+                         &m);
+    if (r != NULL) {
+        const lv_result *rows = lv_run_rows(r, 0);
+        const size_t n = rows ? lv_result_rows(rows) : 0;
+        CHECK(n > 3);
+        if (n > 3) {
+            const size_t b = n - 2, a = n - 1; /* before, after */
+            CHECK(at(rows, b, "time") == at(rows, a, "time"));
+            const double mdot = 2.0e6 / (300.0 * 9.80665);
+            CHECK_CLOSE(at(rows, b, "mdot"), mdot, 1e-9 * mdot);
+            const double l = -30.0 - at(rows, b, "cg_x"), q = at(rows, b, "q");
+            const double idot = (2.0e6 - 8.0e6) * mdot / 10000.0;
+            const double qd = -(mdot * l * l + idot) * q / at(rows, b, "I_yy");
+            printf("burnout rows: der(q) = %.9g (expected %.9g; jet damping alone %.9g), then "
+                   "%.3g; mdot %.6g then %.3g kg/s\n", at(rows, b, "der(q)"), qd,
+                   -mdot * l * l * q / at(rows, b, "I_yy"), at(rows, a, "der(q)"),
+                   at(rows, b, "mdot"), at(rows, a, "mdot"));
+            CHECK_CLOSE(at(rows, b, "der(q)"), qd, 1e-9 * fabs(qd));
+            CHECK(at(rows, a, "mdot") == 0.0 && at(rows, a, "der(m)") == 0.0);
+            CHECK_CLOSE(at(rows, a, "der(q)"), 0.0, 1e-15);
+            /* the row before continues the burn: its der(q) on the trend of the rows before */
+            CHECK_CLOSE(at(rows, b, "der(q)"), at(rows, b - 1, "der(q)"),
+                        0.05 * fabs(at(rows, b - 1, "der(q)")));
+        }
         lv_run_free(r);
     }
     lv_mission_free(m);
@@ -1404,5 +1689,7 @@ int main(void)
     test_unstable_diverges();
     test_rates_curvature();
     test_control_errors();
+    test_doc_examples();
+    test_burnout_rows();
     return check_report("test_dof6");
 }

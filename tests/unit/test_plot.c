@@ -23,6 +23,7 @@
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lv_plot.h"
+#include "post/plot.h"
 
 static const char *const all_figs[] = {"altitude", "speed", "mass", "mach", "dynamic_pressure",
                                        "load_factor", "flight_path_angle", "acceleration",
@@ -397,6 +398,56 @@ static void test_errors_and_escaping(void)
     remove("plot_hand/plots");
 }
 
+/* The vehicle-attitude figures' rule (lv_plot_is_vehicle, docs/visualization.md): a body's
+ * curve covers the phases whose bottom stage (the first of `stages`) it is. The two-stage
+ * launcher of examples/two-stage-6dof: lift-off and boost carry [booster, upper, payload] (the
+ * booster's attitude: one curve, the booster's, not three that coincide), coast and upper burn
+ * [upper, payload] (the upper stage's), a fall-back of [booster] alone and a payload released
+ * into its own phase: each the vehicle of its phase. */
+static void test_vehicle_rule(void)
+{
+    const char *stack[] = {"booster", "upper", "payload"}, *upper[] = {"upper", "payload"};
+    const char *booster[] = {"booster"}, *payload[] = {"payload"};
+    lv_results_phase ph[6];
+    memset(ph, 0, sizeof ph);
+    const char **stages[6] = {stack, stack, upper, upper, booster, payload};
+    const size_t n_st[6] = {3, 3, 2, 2, 1, 1};
+    for (int k = 0; k < 6; k++) {
+        ph[k].stages = stages[k];
+        ph[k].n_stages = n_st[k];
+    }
+    lv_results res;
+    memset(&res, 0, sizeof res);
+    res.phases = ph;
+    res.n_phases = 6;
+    lv_plot_phase pp[6];
+    memset(pp, 0, sizeof pp);
+    lv_plot_body bodies[3];
+    memset(bodies, 0, sizeof bodies);
+    for (int b = 0; b < 3; b++)
+        bodies[b].name = stack[b];
+    lv_plot_data d;
+    memset(&d, 0, sizeof d);
+    d.res = &res;
+    d.n_phases = 6;
+    d.phases = pp;
+    d.n_bodies = 3;
+    d.bodies = bodies;
+    /* expected[b][k]: body b (booster, upper, payload) is the vehicle of phase k */
+    static const int expected[3][6] = {{1, 1, 0, 0, 1, 0}, {0, 0, 1, 1, 0, 0}, {0, 0, 0, 0, 0, 1}};
+    for (size_t b = 0; b < 3; b++)
+        for (size_t k = 0; k < 6; k++)
+            CHECK(lv_plot_is_vehicle(&d, b, k) == expected[b][k]);
+    /* every phase has exactly one vehicle: one curve per phase and quantity */
+    for (size_t k = 0; k < 6; k++) {
+        int n = 0;
+        for (size_t b = 0; b < 3; b++)
+            n += lv_plot_is_vehicle(&d, b, k);
+        CHECK(n == 1);
+    }
+    CHECK(!lv_plot_is_vehicle(&d, 3, 0) && !lv_plot_is_vehicle(&d, 0, 6)); /* out of range */
+}
+
 int main(void)
 {
     clean("plot_paper");
@@ -416,5 +467,6 @@ int main(void)
     check_fig10_csv("plot_dof3", 0);
     check_fig10_csv("plot_rlv", 1);
     test_errors_and_escaping();
+    test_vehicle_rule();
     return check_report("test_plot");
 }
