@@ -165,17 +165,23 @@ static int reg_add(void ***list, size_t *n, size_t *cap, void *p)
     return rc;
 }
 
-/* Removes p; 1 when it was there. */
-static int reg_remove(void **list, size_t *n, const void *p)
+/* Removes p; 1 when it was there. An empty list is freed (nothing is left behind when the
+ * importer unloads the binary after freeing everything). */
+static int reg_remove(void ***list, size_t *n, size_t *cap, const void *p)
 {
     pthread_mutex_lock(&reg_lock);
     int found = 0;
     for (size_t i = 0; i < *n; i++)
-        if (list[i] == p) {
-            list[i] = list[--*n];
+        if ((*list)[i] == p) {
+            (*list)[i] = (*list)[--*n];
             found = 1;
             break;
         }
+    if (*n == 0) {
+        free(*list);
+        *list = NULL;
+        *cap = 0;
+    }
     pthread_mutex_unlock(&reg_lock);
     return found;
 }
@@ -535,7 +541,7 @@ static void fmu_free(fmu *f)
         pthread_mutex_unlock(&reg_lock);
         if (s == NULL)
             break;
-        reg_remove(reg_state, &n_state, s);
+        reg_remove(&reg_state, &n_state, &cap_state, s);
         saved_free(s);
     }
     lv_sim_free(f->sim);
@@ -774,7 +780,7 @@ void fmi2FreeInstance(fmi2Component c)
 {
     if (c == NULL)
         return;
-    if (!reg_remove(reg_inst, &n_inst, c)) {
+    if (!reg_remove(&reg_inst, &n_inst, &cap_inst, c)) {
         fprintf(stderr, "lvsim FMU: fmi2FreeInstance: %p is not a live instance of this FMU "
                 "(freed already, or not returned by fmi2Instantiate): ignored\n", c);
         return;
@@ -1388,7 +1394,7 @@ fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
         return fmi2OK;
     if (!own_state(f, "fmi2FreeFMUstate", *FMUstate))
         return fmi2Error;
-    reg_remove(reg_state, &n_state, *FMUstate);
+    reg_remove(&reg_state, &n_state, &cap_state, *FMUstate);
     saved_free(*FMUstate);
     *FMUstate = NULL;
     return fmi2OK;
