@@ -10,20 +10,28 @@
 
 static int fmu_run(const cli_cmd *self, int argc, char **argv)
 {
-    const char *path = NULL, *phase = NULL, *out = NULL, *id = NULL;
+    const char *path = NULL, *phase = NULL, *out = NULL, *id = NULL, *rows = NULL;
+    double max_rows = CLI_DEFAULT_MAX_ROWS;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--phase") == 0 || strcmp(a, "-o") == 0 ||
-            strcmp(a, "--model-identifier") == 0) {
+            strcmp(a, "--model-identifier") == 0 || strcmp(a, "--max-rows") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
-            if (strcmp(a, "--phase") == 0)
-                phase = v;
-            else if (strcmp(a, "-o") == 0)
-                out = v;
-            else
-                id = v;
+            /* one value each: a repeated option is refused, never silently the last one */
+            const char **slot = strcmp(a, "--phase") == 0 ? &phase
+                                : strcmp(a, "-o") == 0    ? &out
+                                : strcmp(a, "--max-rows") == 0 ? &rows
+                                                               : &id;
+            if (*slot != NULL) {
+                char what[64];
+                snprintf(what, sizeof what, "%s given twice; the second is", a);
+                return usage_error(self, what, v);
+            }
+            *slot = v;
+            if (slot == &rows && !parse_count(v, &max_rows))
+                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (path != NULL) {
@@ -38,6 +46,18 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
         return usage_error(self, "fmu needs the phase to export: --phase NAME", NULL);
     if (out == NULL)
         return usage_error(self, "fmu needs the output file: -o NAME.fmu", NULL);
+    /* the mission read as `lvsim check` and `run` read it (their messages: a folder, a
+     * missing file), and the same bound on the rows a phase writes: the FMU's
+     * DefaultExperiment stepSize is the phase's output interval, the step an importer samples
+     * at */
+    lv_mission *m;
+    int code = load_mission(path, &m);
+    if (code != EXIT_OK)
+        return code;
+    code = check_output_bound(m, max_rows, 0.0, 0);
+    lv_mission_free(m);
+    if (code != EXIT_OK)
+        return code;
     lv_fmu_options opt = {0};
     opt.model_identifier = id;
     lv_fmu_info info;
@@ -58,7 +78,7 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_fmu = {
     "fmu",
     "export one phase's model as an FMI 2.0 FMU (Model Exchange and Co-Simulation)",
-    "MISSION.yaml --phase NAME -o FILE.fmu [--model-identifier ID]",
+    "MISSION.yaml --phase NAME -o FILE.fmu [--model-identifier ID] [--max-rows N]",
     "Writes an FMI 2.0 FMU of the phase's model: modelDescription.xml (states, derivatives,\n"
     "parameters and outputs with units and start values, event indicators, ModelStructure),\n"
     "the binary binaries/linux64/ID.so and the mission with its data files in resources/.\n"
@@ -66,9 +86,15 @@ const cli_cmd cli_cmd_fmu = {
     "now, and again by the FMU when it is instantiated. The phase's ends stop the FMU\n"
     "(terminateSimulation; fmi2Discard with fmi2Terminated in Co-Simulation). See docs/fmi.md.\n"
     "  --phase NAME             the phase to export (required)\n"
-    "  -o FILE.fmu              the archive to write (required; written whole or not at all)\n"
+    "  -o FILE.fmu              the archive to write (required; written whole or not at all;\n"
+    "                           it must end in .fmu and must not be the mission or one of its\n"
+    "                           data files; an existing .fmu of that name is replaced)\n"
     "  --model-identifier ID    the FMU's modelIdentifier, a C identifier (default: the mission's\n"
     "                           and the phase's names, e.g. kourou_leo_ascent)\n"
-    "Exit codes: 2 bad input (unknown phase, unwritable path), 3 an ancestor phase failed.\n",
+    "  --max-rows N             output rows one phase may write (default 1e6), as 'lvsim check'\n"
+    "                           and 'run': the FMU's stepSize is the phase's output interval\n"
+    "Each option may be given once.\n"
+    "Exit codes: 2 bad input (unknown phase, unwritable path, an output that is an input),\n"
+    "3 an ancestor phase failed.\n",
     fmu_run,
 };

@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+#include <nettle/sha2.h>
 #include <zip.h>
 
 #include "core/status.h"
@@ -317,6 +318,34 @@ static lv_status plan_resources(const lv_mission *m, res_file *rf, size_t n, lv_
     return LV_OK;
 }
 
+/* The output must not be the mission or one of its data files (any spelling of the path:
+ * compared by device and inode), nor may its temporary "<out>.tmp" be. */
+static lv_status refuse_inputs(const char *mission_path, const char *fmu_path, lv_err *err)
+{
+    lv_mission *m = NULL;
+    lv_status st = lv_mission_load(mission_path, &m, err);
+    if (st != LV_OK)
+        return st;
+    char tmp[PATH_MAX + 8];
+    snprintf(tmp, sizeof tmp, "%s.tmp", fmu_path);
+    const char *outs[2] = {fmu_path, tmp};
+    for (int o = 0; o < 2 && st == LV_OK; o++) {
+        struct stat so, si;
+        if (stat(outs[o], &so) != 0)
+            continue; /* not there: not an input */
+        for (size_t i = 0; i < lv_mission_file_count(m) && st == LV_OK; i++) {
+            const char *in = lv_mission_file(m, i);
+            if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino)
+                st = lv_fail(err, LV_ERR_INPUT, "cannot write '%s'%s: it is the mission's %s "
+                             "'%s' (the same file): the export would destroy its own input; "
+                             "choose another output", outs[o], o ? " (the temporary file)" : "",
+                             i == 0 ? "file" : "data file", in);
+        }
+    }
+    lv_mission_free(m);
+    return st;
+}
+
 /* ---- modelDescription.xml ------------------------------------------------------------------ */
 
 static void var_open(sbuf *b, const char *name, unsigned vr, const char *desc,
@@ -418,6 +447,8 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
               "    <Category name=\"logStatusError\" description=\"why a call returned "
               "fmi2Error (always reported)\"/>\n"
               "    <Category name=\"logCalls\" description=\"every FMI function called\"/>\n"
+              "    <Category name=\"logStatusWarning\" description=\"why a call returned "
+              "fmi2Warning (always reported)\"/>\n"
               "  </LogCategories>\n");
     const double span = s->stop_time - s->start_time;
     const double step = s->output_interval > 0.0 ? s->output_interval
@@ -527,6 +558,13 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
         fmu_path[0] == '\0')
         return lv_fail(err, LV_ERR_INPUT, "a mission file, a phase name and an output path "
                        "are needed");
+    /* FMI 2.0, 2.3: an FMU is a zip file with the extension ".fmu". Required of the output,
+     * so that -o never replaces a file of another kind (a mission, a table, a result). */
+    const size_t lo = strlen(fmu_path);
+    if (lo < 5 || strcmp(fmu_path + lo - 4, ".fmu") != 0)
+        return lv_fail(err, LV_ERR_INPUT, "output '%s' does not end in '.fmu': an FMU is a zip "
+                       "archive named NAME.fmu (FMI 2.0, section 2.3); an existing FMU of that "
+                       "name is replaced, a file of another kind never is", fmu_path);
     lv_fmu_options o = {0};
     if (opt != NULL)
         o = *opt;
@@ -559,6 +597,8 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
                        fmu_path, outdir);
     if (stat(fmu_path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return lv_fail(err, LV_ERR_IO, "cannot write '%s': it is a folder", fmu_path);
+    if ((st = refuse_inputs(mission_path, fmu_path, err)) != LV_OK)
+        return st;
 
     lv_fmu_phase fp;
     if ((st = lv_fmu_phase_open(mission_path, phase, &fp, err)) != LV_OK)
@@ -568,7 +608,13 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     lv_mission_get_info(fp.mission, &mi);
     char id[128];
     if (o.model_identifier != NULL) {
-        if (!is_identifier(o.model_identifier) || strlen(o.model_identifier) >= sizeof id) {
+        if (strlen(o.model_identifier) >= sizeof id) {
+            lv_fmu_phase_close(&fp);
+            return lv_fail(err, LV_ERR_INPUT, "model identifier '%.40s...' is too long (%zu "
+                           "characters; max %zu)", o.model_identifier,
+                           strlen(o.model_identifier), sizeof id - 1);
+        }
+        if (!is_identifier(o.model_identifier)) {
             lv_fmu_phase_close(&fp);
             return lv_fail(err, LV_ERR_INPUT, "model identifier '%s' is not a C identifier "
                            "(letters, digits, '_'; not starting with a digit)",
@@ -643,9 +689,21 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
            LVSIM_VERSION, when, ni);
     sb_add(&head, "%s", body.s);
 
-    sb_add(&cfg, "lvsim-fmu 1\nguid %s\nmission mission/%s\nphase %s\nstates %zu\n"
+    sb_add(&cfg, "lvsim-fmu 2\nguid %s\nmission mission/%s\nphase %s\nstates %zu\n"
                  "parameters %zu\noutputs %zu\nevent_indicators %zu\n", guid, rf[0].arc, phase,
            d->n_states, d->n_params, d->n_outputs, ni);
+    /* the SHA-256 of each resource file as packed: the FMU refuses edited resources */
+    for (size_t i = 0; i < nf; i++) {
+        struct sha256_ctx sc;
+        unsigned char dg[SHA256_DIGEST_SIZE];
+        sha256_init(&sc);
+        sha256_update(&sc, dlen[i], (const uint8_t *)data[i]);
+        sha256_digest(&sc, sizeof dg, dg);
+        sb_add(&cfg, "sha256 ");
+        for (size_t k = 0; k < sizeof dg; k++)
+            sb_add(&cfg, "%02x", dg[k]);
+        sb_add(&cfg, " mission/%s\n", rf[i].arc);
+    }
     if (head.oom || cfg.oom) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto out;

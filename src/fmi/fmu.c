@@ -17,7 +17,10 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <float.h>
 #include <math.h>
+#include <nettle/sha2.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,10 +58,10 @@ enum { B_INST = 1 << M_INSTANTIATED, B_INIT = 1 << M_INIT, B_EVENT = 1 << M_EVEN
 #define B_RUN (B_INIT | B_EVENT | B_CONT | B_STEPOK | B_STEPFAIL | B_TERM | B_ERR)
 
 /* Log categories (modelDescription.xml's LogCategories; export.c writes the same list). */
-enum { C_EVENTS = 1, C_DISCARD = 2, C_ERROR = 4, C_CALLS = 8 };
+enum { C_EVENTS = 1, C_DISCARD = 2, C_ERROR = 4, C_CALLS = 8, C_WARNING = 16 };
 static const struct { const char *name; unsigned bit; } categories[] = {
     {"logEvents", C_EVENTS}, {"logStatusDiscard", C_DISCARD},
-    {"logStatusError", C_ERROR}, {"logCalls", C_CALLS}};
+    {"logStatusError", C_ERROR}, {"logCalls", C_CALLS}, {"logStatusWarning", C_WARNING}};
 #define N_CATEGORIES (sizeof categories / sizeof categories[0])
 
 /* A phase end on a variable or on time (lv_sim_stop) resolved. */
@@ -74,6 +77,7 @@ typedef struct fmu_stop {
 typedef struct fmu {
     fmi2Type type;
     char *name;
+    char guid[128];
     fmi2CallbackFunctions cb;
     int logging;      /* debug logging on */
     unsigned cats;    /* the categories on */
@@ -88,6 +92,10 @@ typedef struct fmu {
     fmu_stop *stops;  /* [ns] */
 
     double t, t_start, t_limit; /* s: current time, the experiment's start, the phase's limit */
+    int stop_defined;           /* fmi2SetupExperiment's stopTimeDefined */
+    double t_stop;              /* s: its stopTime: computing past it is fmi2Error */
+    unsigned char *x_set;       /* [nx] the importer set the state (fmi2SetReal) */
+    unsigned char *start_reads; /* [np] the model's start() reads the parameter */
     double tol;                 /* the tolerance lvsim's integrator uses (Co-Simulation) */
     double *x, *p, *xdot, *y, *q, *xs, *ys; /* [nx] [np] [nx] [ny] [nd] [nx] [ny] */
     double *z, *z_pre;          /* [ni] event indicators now and at the last event */
@@ -109,29 +117,107 @@ typedef struct fmu {
     int cs_terminated;          /* fmi2Terminated */
 } fmu;
 
-/* A saved state (fmi2GetFMUstate). */
+/* A saved state (fmi2GetFMUstate). It belongs to the instance that saved it (owner): the
+ * registry below lists the live ones, so that a state of another instance, of another FMU,
+ * or one already freed is refused without reading it. */
 typedef struct fmu_saved {
+    fmu *owner;
+    fmi2Type type;
     fmu_mode mode;
     double t, t_start, tol;
     double *x, *p, *z_pre, *x_init, *p_init;
     unsigned char *inst;
     int init_done, end_reached, cs_terminated;
     double t_model_te, t_next, t_prev_event, last_ok_time;
+    int stop_defined;
+    double t_stop;
+    unsigned char *x_set;
     char end_name[LV_EVENT_NAME_MAX];
     lv_sim_saved *sim; /* Co-Simulation after initialization */
 } fmu_saved;
 
+/* ---- the live instances and states of this binary ------------------------------------------ */
+
+/* A call with an instance freed (or never returned by fmi2Instantiate) is refused without
+ * reading it: its logger is gone with it, so the reason goes to stderr. Likewise a state is
+ * used only when this registry holds it. Pointer lists under one mutex: a few entries. */
+static pthread_mutex_t reg_lock = PTHREAD_MUTEX_INITIALIZER;
+static void **reg_inst, **reg_state;
+static size_t n_inst, cap_inst, n_state, cap_state;
+
+static int reg_add(void ***list, size_t *n, size_t *cap, void *p)
+{
+    pthread_mutex_lock(&reg_lock);
+    int rc = 0;
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 16;
+        void **g = realloc(*list, c * sizeof *g);
+        if (g == NULL)
+            rc = -1;
+        else {
+            *list = g;
+            *cap = c;
+        }
+    }
+    if (rc == 0)
+        (*list)[(*n)++] = p;
+    pthread_mutex_unlock(&reg_lock);
+    return rc;
+}
+
+/* Removes p; 1 when it was there. An empty list is freed (nothing is left behind when the
+ * importer unloads the binary after freeing everything). */
+static int reg_remove(void ***list, size_t *n, size_t *cap, const void *p)
+{
+    pthread_mutex_lock(&reg_lock);
+    int found = 0;
+    for (size_t i = 0; i < *n; i++)
+        if ((*list)[i] == p) {
+            (*list)[i] = (*list)[--*n];
+            found = 1;
+            break;
+        }
+    if (*n == 0) {
+        free(*list);
+        *list = NULL;
+        *cap = 0;
+    }
+    pthread_mutex_unlock(&reg_lock);
+    return found;
+}
+
+static int reg_has(void *const *list, const size_t *n, const void *p)
+{
+    pthread_mutex_lock(&reg_lock);
+    int found = 0;
+    for (size_t i = 0; i < *n && !found; i++)
+        found = list[i] == p;
+    pthread_mutex_unlock(&reg_lock);
+    return found;
+}
+
+static int is_live(const void *c)
+{
+    return c != NULL && reg_has(reg_inst, &n_inst, c);
+}
+
 /* ---- logging ------------------------------------------------------------------------------ */
 
-static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
+static void fmu_log(fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
-/* Errors and discards are always reported through the logger (the reason of the status);
- * events and calls only with debug logging on and their category enabled. */
-static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
+/* Errors, discards and warnings are always reported through the logger (the reason of the
+ * status); events and calls only with debug logging on and their category enabled. Logging
+ * fmi2Error puts the instance into the standard's Error state (FMI 2.0, 2.1.3: after fmi2Error
+ * only the get functions, fmi2SetFMUstate, fmi2Reset and fmi2FreeInstance are allowed). */
+static void fmu_log(fmu *f, fmi2Status st, unsigned cat, const char *fmt, ...)
 {
-    if (f == NULL || f->cb.logger == NULL)
+    if (f == NULL)
         return;
-    const int always = cat == C_ERROR || cat == C_DISCARD;
+    if (st == fmi2Error)
+        f->mode = M_ERROR;
+    if (f->cb.logger == NULL)
+        return;
+    const int always = cat == C_ERROR || cat == C_DISCARD || cat == C_WARNING;
     if (!always && !(f->logging && (f->cats & cat)))
         return;
     char msg[1024];
@@ -143,8 +229,22 @@ static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, 
     for (size_t i = 0; i < N_CATEGORIES; i++)
         if (categories[i].bit == cat)
             cname = categories[i].name;
-    /* the message is a format for the logger: passed as an argument, never as the format */
-    f->cb.logger(f->cb.componentEnvironment, f->name, st, cname, "%s", msg);
+    /* the message itself is the logger's format, every '%' doubled and no arguments: an
+     * importer that formats it shows the text, and so does one that prints it as it is
+     * (FMI 2.0, 2.1.5: the message "is to be formatted" like printf) */
+    char fmt_msg[2 * sizeof msg];
+    size_t n = 0;
+    for (const char *p = msg; *p && n + 2 < sizeof fmt_msg; p++) {
+        if (*p == '%')
+            fmt_msg[n++] = '%';
+        fmt_msg[n++] = *p;
+    }
+    fmt_msg[n] = '\0';
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-security"
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+    f->cb.logger(f->cb.componentEnvironment, f->name, st, cname, fmt_msg);
+#pragma GCC diagnostic pop
 }
 
 #define FAIL(f, ...) (fmu_log((f), fmi2Error, C_ERROR, __VA_ARGS__), fmi2Error)
@@ -152,8 +252,12 @@ static void fmu_log(const fmu *f, fmi2Status st, unsigned cat, const char *fmt, 
 /* The call is allowed in the current mode (mask of B_*), else fmi2Error with a message. */
 static int allowed(fmu *f, const char *fn, unsigned mask)
 {
-    if (f == NULL)
+    if (!is_live(f)) {
+        fprintf(stderr, "lvsim FMU: %s: %p is not a live instance of this FMU (freed with "
+                "fmi2FreeInstance, or not returned by fmi2Instantiate): fmi2Error\n", fn,
+                (const void *)f);
         return 0;
+    }
     fmu_log(f, fmi2OK, C_CALLS, "%s (in %s)", fn, mode_names[f->mode]);
     if ((1u << f->mode) & mask)
         return 1;
@@ -313,10 +417,44 @@ static char *uri_to_path(const char *uri)
     return out;
 }
 
+#define LV_FMU_MAX_FILES 256
 typedef struct fmu_config {
     char guid[128], mission[2048], phase[256];
     long counts[4]; /* states, parameters, outputs, event indicators */
+    size_t n_files;
+    char sha[LV_FMU_MAX_FILES][65];   /* SHA-256 of each resource file (hex) */
+    char *file[LV_FMU_MAX_FILES];     /* its path under resources/ (malloc) */
 } fmu_config;
+
+static void config_free(fmu_config *c)
+{
+    for (size_t i = 0; i < c->n_files; i++)
+        free(c->file[i]);
+    c->n_files = 0;
+}
+
+/* The SHA-256 of a file in hex; -1 when it cannot be read. */
+static int sha256_hex(const char *path, char hex[65])
+{
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL)
+        return -1;
+    struct sha256_ctx ctx;
+    sha256_init(&ctx);
+    unsigned char buf[1 << 14];
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, fp)) > 0)
+        sha256_update(&ctx, got, buf);
+    const int bad = ferror(fp);
+    fclose(fp);
+    if (bad)
+        return -1;
+    unsigned char d[SHA256_DIGEST_SIZE];
+    sha256_digest(&ctx, sizeof d, d);
+    for (size_t i = 0; i < sizeof d; i++)
+        snprintf(hex + 2 * i, 3, "%02x", d[i]);
+    return 0;
+}
 
 /* resources/lvsim-fmu.txt: "key value" lines written by the exporter. */
 static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
@@ -339,7 +477,7 @@ static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
         *sp = '\0';
         const char *v = sp + 1;
         if (strcmp(line, "lvsim-fmu") == 0)
-            have_magic = strcmp(v, "1") == 0;
+            have_magic = strcmp(v, "2") == 0;
         else if (strcmp(line, "guid") == 0)
             snprintf(c->guid, sizeof c->guid, "%s", v);
         else if (strcmp(line, "mission") == 0)
@@ -354,10 +492,32 @@ static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
             c->counts[2] = atol(v);
         else if (strcmp(line, "event_indicators") == 0)
             c->counts[3] = atol(v);
+        else if (strcmp(line, "sha256") == 0) {
+            /* "sha256 HEX PATH": PATH under resources/, the rest of the line */
+            if (strlen(v) < 66 || v[64] != ' ' || c->n_files == LV_FMU_MAX_FILES) {
+                fclose(fp);
+                config_free(c);
+                snprintf(why, cap, "resources/%s: bad line 'sha256 %.80s' (expected: sha256, "
+                         "64 hex digits, the file's path)", LV_FMU_CONFIG, v);
+                return -1;
+            }
+            memcpy(c->sha[c->n_files], v, 64);
+            c->sha[c->n_files][64] = '\0';
+            if ((c->file[c->n_files] = strdup(v + 65)) == NULL) {
+                fclose(fp);
+                config_free(c);
+                snprintf(why, cap, "out of memory");
+                return -1;
+            }
+            c->n_files++;
+        }
     }
     fclose(fp);
-    if (!have_magic || !c->guid[0] || !c->mission[0] || !c->phase[0]) {
-        snprintf(why, cap, "'%s' is not an lvsim FMU description (format 1)", path);
+    if (!have_magic || !c->guid[0] || !c->mission[0] || !c->phase[0] || c->n_files == 0) {
+        config_free(c);
+        snprintf(why, cap, "resources/%s is not an lvsim FMU description (format 2: lvsim-fmu 2, "
+                 "guid, mission, phase, the counts and a sha256 line per resource file)",
+                 LV_FMU_CONFIG);
         return -1;
     }
     return 0;
@@ -365,11 +525,28 @@ static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
 
 /* ---- instantiate, free, reset ------------------------------------------------------------- */
 
+static void saved_free(fmu_saved *s);
+
 static void fmu_free(fmu *f)
 {
     if (f == NULL)
         return;
+    /* the states it saved and the importer did not free: they go with it */
+    for (;;) {
+        fmu_saved *s = NULL;
+        pthread_mutex_lock(&reg_lock);
+        for (size_t i = 0; i < n_state && s == NULL; i++)
+            if (((fmu_saved *)reg_state[i])->owner == f)
+                s = reg_state[i];
+        pthread_mutex_unlock(&reg_lock);
+        if (s == NULL)
+            break;
+        reg_remove(&reg_state, &n_state, &cap_state, s);
+        saved_free(s);
+    }
     lv_sim_free(f->sim);
+    free(f->x_set);
+    free(f->start_reads);
     lv_fmu_phase_close(&f->ph);
     free(f->name);
     free(f->inst0);
@@ -410,7 +587,39 @@ static void to_start(fmu *f)
     f->end_name[0] = '\0';
     f->cs_terminated = 0;
     f->last_ok_time = f->t;
+    f->stop_defined = 0;
+    f->t_stop = INFINITY;
+    memset(f->x_set, 0, f->nx + 1);
     f->mode = M_INSTANTIATED;
+}
+
+/* Which parameters the model's start() reads (start_lat, start_h ...): each one moved in turn,
+ * the start values compared with those of the phase's. A parameter start() fails on when
+ * moved counts as read. The instance's bytes are put back after. */
+static void probe_start_params(fmu *f)
+{
+    if (f->d->start == NULL || f->np == 0)
+        return;
+    double *p = malloc((f->np + 1) * sizeof *p), *xa = malloc((f->nx + 1) * sizeof *xa),
+           *xb = malloc((f->nx + 1) * sizeof *xb);
+    if (p != NULL && xa != NULL && xb != NULL) {
+        memcpy(p, f->ph.p0, f->np * sizeof *p);
+        memcpy(xa, f->ph.x0, f->nx * sizeof *xa);
+        const int rc_a = f->d->start(p, xa, f->inst);
+        for (size_t j = 0; rc_a == 0 && j < f->np; j++) {
+            memcpy(xb, f->ph.x0, f->nx * sizeof *xb);
+            const double keep = p[j];
+            p[j] = keep + fmax(1e-3, 1e-3 * fabs(keep));
+            const int rc_b = f->d->start(p, xb, f->inst);
+            p[j] = keep;
+            f->start_reads[j] = rc_b != 0 || memcmp(xa, xb, f->nx * sizeof *xa) != 0;
+        }
+    }
+    free(p);
+    free(xa);
+    free(xb);
+    if (f->inst_size > 0)
+        memcpy(f->inst, f->inst0, f->inst_size);
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -448,7 +657,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         goto fail_nomsg;
     }
     char path[4096];
-    fmu_config cfg;
+    fmu_config cfg = {0};
     snprintf(path, sizeof path, "%s/%s", dir, LV_FMU_CONFIG);
     if (read_config(path, &cfg, why, sizeof why) != 0) {
         fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: %s", why);
@@ -458,8 +667,27 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: GUID '%s' is not this FMU's '%s' "
                 "(modelDescription.xml and resources/ from different exports?)",
                 fmuGUID ? fmuGUID : "(null)", cfg.guid);
+        config_free(&cfg);
         goto fail_nomsg;
     }
+    snprintf(f->guid, sizeof f->guid, "%s", cfg.guid);
+    /* the resources as exported: an edited mission or data file would give numbers the
+     * description does not describe (its start values, its counts) */
+    for (size_t i = 0; i < cfg.n_files; i++) {
+        char fpath[6200], hex[65];
+        snprintf(fpath, sizeof fpath, "%s/%s", dir, cfg.file[i]);
+        const int rc = sha256_hex(fpath, hex);
+        if (rc != 0 || strcmp(hex, cfg.sha[i]) != 0) {
+            fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: resources/%s %s: the FMU's "
+                    "resources must be as exported (resources/%s lists their SHA-256); export "
+                    "the FMU again after changing the mission", cfg.file[i],
+                    rc != 0 ? "cannot be read" : "differs from the file exported (its SHA-256 "
+                    "is not the one recorded)", LV_FMU_CONFIG);
+            config_free(&cfg);
+            goto fail_nomsg;
+        }
+    }
+    config_free(&cfg);
     char mission[6200];
     snprintf(mission, sizeof mission, "%s/%s", dir, cfg.mission);
     if (lv_fmu_phase_open(mission, cfg.phase, &f->ph, &err) != LV_OK) {
@@ -500,8 +728,9 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     for (int i = 0; i < 4; i++)
         if (cfg.counts[i] != have[i]) {
             fmu_log(f, fmi2Error, C_ERROR, "fmi2Instantiate: the model of phase '%s' has %ld %s, "
-                    "modelDescription.xml %ld: this binary is not the one the FMU was exported "
-                    "with", cfg.phase, have[i], what[i], cfg.counts[i]);
+                    "resources/%s says %ld: the binary, the mission in resources/ and "
+                    "resources/%s are not from one export", cfg.phase, have[i], what[i],
+                    LV_FMU_CONFIG, cfg.counts[i], LV_FMU_CONFIG);
             goto fail_nomsg;
         }
     f->x = calloc(f->nx + 1, sizeof(double));
@@ -520,11 +749,17 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     f->cs_names = calloc(f->nx + f->np + 1, sizeof(const char *));
     f->cs_values = calloc(f->nx + f->np + 1, sizeof(double));
     f->inst0 = malloc(f->inst_size + 1);
+    f->x_set = calloc(f->nx + 1, 1);
+    f->start_reads = calloc(f->np + 1, 1);
     if (!f->x || !f->p || !f->xdot || !f->y || !f->q || !f->xs || !f->ys || !f->z || !f->z_pre ||
-        !f->x_init || !f->p_init || !f->x_prev || !f->fired || !f->cs_names || !f->cs_values || !f->inst0)
+        !f->x_init || !f->p_init || !f->x_prev || !f->fired || !f->cs_names || !f->cs_values ||
+        !f->inst0 || !f->x_set || !f->start_reads)
         goto fail_nomem;
     if (f->inst_size > 0)
         memcpy(f->inst0, f->inst, f->inst_size);
+    probe_start_params(f);
+    if (reg_add(&reg_inst, &n_inst, &cap_inst, f) != 0)
+        goto fail_nomem;
     to_start(f);
     free(dir);
     fmu_log(f, fmi2OK, C_EVENTS, "instantiated phase '%s' of %s (%s, %zu states, %zu event "
@@ -539,7 +774,19 @@ fail_nomsg:
     return NULL;
 }
 
-void fmi2FreeInstance(fmi2Component c) { fmu_free(c); }
+/* A second fmi2FreeInstance of the same instance (undefined by the standard) is refused
+ * without touching it: the registry no longer holds it. */
+void fmi2FreeInstance(fmi2Component c)
+{
+    if (c == NULL)
+        return;
+    if (!reg_remove(&reg_inst, &n_inst, &cap_inst, c)) {
+        fprintf(stderr, "lvsim FMU: fmi2FreeInstance: %p is not a live instance of this FMU "
+                "(freed already, or not returned by fmi2Instantiate): ignored\n", c);
+        return;
+    }
+    fmu_free(c);
+}
 
 fmi2Status fmi2Reset(fmi2Component c)
 {
@@ -590,20 +837,27 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     fmu *f = c;
     if (!allowed(f, "fmi2SetupExperiment", B_INST))
         return fmi2Error;
-    if (!isfinite(startTime))
-        return FAIL(f, "fmi2SetupExperiment: startTime %g is not finite", startTime);
-    if (!(startTime < f->t_limit))
-        return FAIL(f, "fmi2SetupExperiment: startTime %.9g s is not before the phase's time "
-                    "limit %.9g s (DefaultExperiment stopTime)", startTime, f->t_limit);
-    if (stopTimeDefined && !(stopTime >= startTime))
-        return FAIL(f, "fmi2SetupExperiment: stopTime %g s is before startTime %g s", stopTime,
-                    startTime);
-    if (toleranceDefined) {
-        if (!(tolerance > 0.0) || !isfinite(tolerance))
-            return FAIL(f, "fmi2SetupExperiment: tolerance %g is not > 0", tolerance);
+    /* The start time is part of the phase's start: the hand-off's states hold at that mission
+     * time, and the model is time-dependent (the Earth's rotation angle, guidance clocks,
+     * tables over mission time). Another start time would integrate the hand-off state from
+     * the wrong instant: refused. A few ulps of a decimal round trip are accepted. */
+    const double t0 = f->ph.s->start_time;
+    if (!(fabs(startTime - t0) <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(t0))))
+        return FAIL(f, "fmi2SetupExperiment: startTime %.17g s is not the phase's start "
+                    "%.17g s (DefaultExperiment startTime): the start state holds at that "
+                    "mission time and the model depends on time (the planet's rotation, "
+                    "guidance clocks, tables over mission time), so the FMU starts there only",
+                    startTime, t0);
+    if (stopTimeDefined && !(stopTime >= t0) )
+        return FAIL(f, "fmi2SetupExperiment: stopTime %.17g s is before startTime %.17g s",
+                    stopTime, t0);
+    if (toleranceDefined && (!(tolerance > 0.0) || !isfinite(tolerance)))
+        return FAIL(f, "fmi2SetupExperiment: tolerance %g is not > 0", tolerance);
+    if (toleranceDefined)
         f->tol = tolerance; /* Co-Simulation: lvsim's integrator uses it */
-    }
-    f->t = f->t_start = startTime;
+    f->stop_defined = stopTimeDefined != 0;
+    f->t_stop = stopTimeDefined ? stopTime : INFINITY;
+    f->t = f->t_start = t0;
     f->init_done = 0;
     f->eval_ok = 0;
     return fmi2OK;
@@ -616,6 +870,14 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c)
         return fmi2Error;
     f->mode = M_INIT;
     return fmi2OK;
+}
+
+static fmi2Status restart_from_params(fmu *f);
+
+/* Round-off accepted beyond stopTime (a sum of communication steps). */
+static double stop_slack(const fmu *f)
+{
+    return 1e-9 * fmax(1.0, fabs(f->t_stop));
 }
 
 /* Co-Simulation: lvsim's simulation from the current (t_start, x, p). */
@@ -713,7 +975,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 fmi2Status fmi2Terminate(fmi2Component c)
 {
     fmu *f = c;
-    if (!allowed(f, "fmi2Terminate", B_EVENT | B_CONT | B_STEPOK | B_STEPFAIL | B_ERR))
+    if (!allowed(f, "fmi2Terminate", B_EVENT | B_CONT | B_STEPOK | B_STEPFAIL))
         return fmi2Error;
     f->mode = M_TERMINATED;
     return fmi2OK;
@@ -846,19 +1108,74 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         if (!isfinite(value[i]))
             return FAIL(f, "fmi2SetReal: value %g for '%s' is not finite", value[i], nm);
     }
+    int start_moved = 0;
+    const char *child_start = NULL;
     for (size_t i = 0; i < nvr; i++) {
         lv_var_kind kind;
         size_t idx;
         split_vr(f, vr[i], &kind, &idx);
-        if (kind == LV_VAR_STATE)
+        if (kind == LV_VAR_STATE) {
             f->x[idx] = value[i];
-        else
+            f->x_set[idx] = 1;
+        } else {
+            if (f->start_reads[idx] && f->p[idx] != value[i]) {
+                start_moved = 1;
+                if (child_start == NULL)
+                    child_start = f->d->params[idx].name;
+            }
             f->p[idx] = value[i];
+        }
     }
     if (nvr > 0) {
         f->init_done = 0;
         f->eval_ok = 0;
     }
+    if (start_moved && f->ph.parent < 0)
+        return restart_from_params(f);
+    if (start_moved) {
+        /* a child phase: the hand-off gives every state */
+        fmu_log(f, fmi2Warning, C_WARNING, "fmi2SetReal: '%s' is a start-value parameter of "
+                "model '%s', but phase '%s' starts from the final state of phase '%s': the "
+                "start state stays the hand-off's (set the states to move it); the value "
+                "counts only where the model's equations read it", child_start, f->d->name,
+                lv_mission_phase_name(f->ph.mission, f->ph.k),
+                lv_mission_phase_name(f->ph.mission, (size_t)f->ph.parent));
+        return fmi2Warning;
+    }
+    return fmi2OK;
+}
+
+/* A root phase whose start-value parameters (start_lat, start_h ...) were set: the start
+ * states computed again from the parameters as lv_simulate computes them (the states'
+ * defaults, the model's start(), the states the mission names), then the states the importer
+ * set kept. On failure the parameters' old values are not known here: fmi2Error, and the
+ * instance is in the Error state (fmi2Reset starts again). */
+static fmi2Status restart_from_params(fmu *f)
+{
+    const lv_sim_settings *s = f->ph.s;
+    double *xn = f->xs; /* scratch [nx] */
+    for (size_t i = 0; i < f->nx; i++)
+        xn[i] = f->d->states[i].start;
+    if (f->d->start(f->p, xn, f->inst) != 0)
+        return FAIL(f, "fmi2SetReal: model '%s': the start state cannot be computed from the "
+                    "start-value parameters: %s", f->d->name, model_why(f));
+    for (size_t i = 0; i < s->n_initial; i++) {
+        lv_var_kind kind;
+        size_t idx;
+        lv_err err;
+        if (lv_model_find(f->d, s->initial_names[i], &kind, &idx, &err) == LV_OK &&
+            kind == LV_VAR_STATE)
+            xn[idx] = s->initial_values[i];
+    }
+    for (size_t i = 0; i < f->nx; i++) {
+        if (!f->x_set[i])
+            f->x[i] = xn[i];
+        if (!isfinite(f->x[i]))
+            return FAIL(f, "fmi2SetReal: model '%s': start value of '%s' is %g", f->d->name,
+                        f->d->states[i].name, f->x[i]);
+    }
+    f->init_done = 0;
+    f->eval_ok = 0;
     return fmi2OK;
 }
 
@@ -911,9 +1228,38 @@ static void saved_free(fmu_saved *s)
     free(s->z_pre);
     free(s->x_init);
     free(s->p_init);
+    free(s->x_set);
     free(s->inst);
     lv_sim_saved_free(s->sim);
     free(s);
+}
+
+static const char *type_name(fmi2Type t)
+{
+    return t == fmi2ModelExchange ? "Model Exchange" : "Co-Simulation";
+}
+
+/* The state is a live one of instance f: 1; else fmi2Error logged (why) and 0. The state is
+ * looked up in the registry before it is read: a freed one, one of another FMU (another
+ * binary, so another registry) or any other pointer is refused without touching it. */
+static int own_state(fmu *f, const char *fn, const void *state)
+{
+    if (!reg_has(reg_state, &n_state, state)) {
+        fmu_log(f, fmi2Error, C_ERROR, "%s: %p is not a live FMU state of this FMU (freed with "
+                "fmi2FreeFMUstate or with its instance, saved by another FMU, or not returned "
+                "by fmi2GetFMUstate)", fn, state);
+        return 0;
+    }
+    const fmu_saved *s = state;
+    if (s->owner != f) {
+        /* the owner is live: its states are freed with it */
+        fmu_log(f, fmi2Error, C_ERROR, "%s: the state was saved by instance '%s' (%s, GUID %s), "
+                "not by this instance '%s' (%s, GUID %s): an FMU state belongs to the instance "
+                "that saved it", fn, s->owner->name, type_name(s->type), s->owner->guid,
+                f->name, type_name(f->type), f->guid);
+        return 0;
+    }
+    return 1;
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
@@ -924,8 +1270,13 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
     if (FMUstate == NULL)
         return FAIL(f, "fmi2GetFMUstate: NULL pointer");
     fmu_saved *s = *FMUstate; /* an earlier state given back is overwritten */
-    if (s == NULL && (s = calloc(1, sizeof *s)) == NULL)
+    if (s != NULL && !own_state(f, "fmi2GetFMUstate", s))
+        return fmi2Error;
+    const int fresh = s == NULL;
+    if (fresh && (s = calloc(1, sizeof *s)) == NULL)
         return FAIL(f, "fmi2GetFMUstate: out of memory");
+    s->owner = f;
+    s->type = f->type;
     lv_sim_saved_free(s->sim);
     s->sim = NULL;
     if ((s->x == NULL && (s->x = malloc((f->nx + 1) * sizeof(double))) == NULL) ||
@@ -933,18 +1284,24 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
         (s->z_pre == NULL && (s->z_pre = malloc((f->ni + 1) * sizeof(double))) == NULL) ||
         (s->x_init == NULL && (s->x_init = malloc((f->nx + 1) * sizeof(double))) == NULL) ||
         (s->p_init == NULL && (s->p_init = malloc((f->np + 1) * sizeof(double))) == NULL) ||
+        (s->x_set == NULL && (s->x_set = malloc(f->nx + 1)) == NULL) ||
         (s->inst == NULL && (s->inst = malloc(f->inst_size + 1)) == NULL)) {
-        if (*FMUstate == NULL)
+        if (fresh)
             saved_free(s);
         return FAIL(f, "fmi2GetFMUstate: out of memory");
     }
     if (f->sim != NULL) {
+        /* side-effect free: the simulation's integrator goes on untouched */
         lv_err err;
         if (lv_sim_save(f->sim, &s->sim, &err) != LV_OK) {
-            if (*FMUstate == NULL)
+            if (fresh)
                 saved_free(s);
             return FAIL(f, "fmi2GetFMUstate: %s", err.msg);
         }
+    }
+    if (fresh && reg_add(&reg_state, &n_state, &cap_state, s) != 0) {
+        saved_free(s);
+        return FAIL(f, "fmi2GetFMUstate: out of memory");
     }
     s->mode = f->mode;
     s->t = f->t;
@@ -955,6 +1312,7 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
     memcpy(s->z_pre, f->z_pre, f->ni * sizeof(double));
     memcpy(s->x_init, f->x_init, f->nx * sizeof(double));
     memcpy(s->p_init, f->p_init, f->np * sizeof(double));
+    memcpy(s->x_set, f->x_set, f->nx);
     if (f->inst_size > 0)
         memcpy(s->inst, f->inst, f->inst_size);
     s->init_done = f->init_done;
@@ -964,6 +1322,8 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
     s->t_next = f->t_next;
     s->t_prev_event = f->t_prev_event;
     s->last_ok_time = f->last_ok_time;
+    s->stop_defined = f->stop_defined;
+    s->t_stop = f->t_stop;
     memcpy(s->end_name, f->end_name, sizeof s->end_name);
     *FMUstate = s;
     return fmi2OK;
@@ -974,9 +1334,11 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
     fmu *f = c;
     if (!allowed(f, "fmi2SetFMUstate", ~0u))
         return fmi2Error;
-    const fmu_saved *s = FMUstate;
-    if (s == NULL)
+    if (FMUstate == NULL)
         return FAIL(f, "fmi2SetFMUstate: NULL state");
+    if (!own_state(f, "fmi2SetFMUstate", FMUstate))
+        return fmi2Error;
+    const fmu_saved *s = FMUstate;
     const int after_init = s->mode != M_INSTANTIATED && s->mode != M_INIT;
     f->t_start = s->t_start;
     f->tol = s->tol;
@@ -988,10 +1350,8 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
                 return fmi2Error;
         }
         lv_err err;
-        if (lv_sim_restore(f->sim, s->sim, &err) != LV_OK) {
-            f->mode = M_ERROR;
+        if (lv_sim_restore(f->sim, s->sim, &err) != LV_OK)
             return FAIL(f, "fmi2SetFMUstate: %s", err.msg);
-        }
     } else if (after_init && f->type == fmi2ModelExchange && f->d->init != NULL) {
         /* the model's init() may set up more than its instance (an impact level's offset):
          * done again for the saved start, then the instance's bytes are the saved ones */
@@ -1006,6 +1366,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
     memcpy(f->x, s->x, f->nx * sizeof(double));
     memcpy(f->p, s->p, f->np * sizeof(double));
     memcpy(f->z_pre, s->z_pre, f->ni * sizeof(double));
+    memcpy(f->x_set, s->x_set, f->nx);
     if (f->inst_size > 0)
         memcpy(f->inst, s->inst, f->inst_size);
     f->init_done = s->init_done;
@@ -1015,6 +1376,8 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
     f->t_next = s->t_next;
     f->t_prev_event = s->t_prev_event;
     f->last_ok_time = s->last_ok_time;
+    f->stop_defined = s->stop_defined;
+    f->t_stop = s->t_stop;
     memcpy(f->end_name, s->end_name, sizeof f->end_name);
     f->eval_ok = 0;
     return fmi2OK;
@@ -1027,6 +1390,11 @@ fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
         return fmi2Error;
     if (FMUstate == NULL)
         return FAIL(f, "fmi2FreeFMUstate: NULL pointer");
+    if (*FMUstate == NULL)
+        return fmi2OK;
+    if (!own_state(f, "fmi2FreeFMUstate", *FMUstate))
+        return fmi2Error;
+    reg_remove(&reg_state, &n_state, &cap_state, *FMUstate);
     saved_free(*FMUstate);
     *FMUstate = NULL;
     return fmi2OK;
@@ -1222,14 +1590,16 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStat
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
 {
     fmu *f = c;
-    if (!allowed(f, "fmi2SetTime", B_INST | B_INIT | B_EVENT | B_CONT) || !is_me(f, "fmi2SetTime"))
+    /* the standard's Event and Continuous-Time Modes only: the start time is
+     * fmi2SetupExperiment's */
+    if (!allowed(f, "fmi2SetTime", B_EVENT | B_CONT) || !is_me(f, "fmi2SetTime"))
         return fmi2Error;
     if (!isfinite(time))
         return FAIL(f, "fmi2SetTime: time %g is not finite", time);
-    if (f->mode == M_INSTANTIATED || f->mode == M_INIT) {
-        f->t_start = time;
-        f->init_done = 0;
-    }
+    if (f->stop_defined && time > f->t_stop + stop_slack(f))
+        return FAIL(f, "fmi2SetTime: time %.17g s is past stopTime %.17g s of "
+                    "fmi2SetupExperiment (stopTimeDefined): the FMU computes up to stopTime "
+                    "only", time, f->t_stop);
     f->t = time;
     f->eval_ok = 0;
     return fmi2OK;
@@ -1240,7 +1610,9 @@ fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n
     fmu *f = c;
     if (!allowed(f, "fmi2SetContinuousStates", B_CONT) || !is_me(f, "fmi2SetContinuousStates"))
         return fmi2Error;
-    if (nx != f->nx || x == NULL)
+    if (nx > 0 && x == NULL)
+        return FAIL(f, "fmi2SetContinuousStates: the array 'x' is NULL (%zu states)", nx);
+    if (nx != f->nx)
         return FAIL(f, "fmi2SetContinuousStates: %zu states given, the model has %zu", nx, f->nx);
     memcpy(f->x, x, nx * sizeof *x);
     f->eval_ok = 0;
@@ -1253,7 +1625,10 @@ fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx
     if (!allowed(f, "fmi2GetDerivatives", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
         !is_me(f, "fmi2GetDerivatives"))
         return fmi2Error;
-    if (nx != f->nx || derivatives == NULL)
+    if (nx > 0 && derivatives == NULL)
+        return FAIL(f, "fmi2GetDerivatives: the array 'derivatives' is NULL (%zu asked for)",
+                    nx);
+    if (nx != f->nx)
         return FAIL(f, "fmi2GetDerivatives: %zu derivatives asked for, the model has %zu", nx,
                     f->nx);
     int rc = eval_model(f);
@@ -1279,10 +1654,22 @@ fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], s
     if (!allowed(f, "fmi2GetEventIndicators", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
         !is_me(f, "fmi2GetEventIndicators"))
         return fmi2Error;
-    if (ni != f->ni || (ni > 0 && eventIndicators == NULL))
+    if (ni > 0 && eventIndicators == NULL)
+        return FAIL(f, "fmi2GetEventIndicators: the array 'eventIndicators' is NULL (%zu asked "
+                    "for)", ni);
+    if (ni != f->ni)
         return FAIL(f, "fmi2GetEventIndicators: %zu indicators asked for, the FMU has %zu", ni,
                     f->ni);
     int rc = eval_indicators(f, eventIndicators);
+    for (size_t i = 0; rc == 0 && i < ni; i++)
+        if (!isfinite(eventIndicators[i])) {
+            /* as fmi2GetDerivatives: a value that is not finite is a point outside the
+             * model's domain (fmi2Discard), never an indicator to compare */
+            fmu_log(f, fmi2Discard, C_DISCARD, "model '%s': event indicator %zu is %g at "
+                    "t = %.9g s (states not finite, or outside the model's domain)",
+                    f->d->name, i, eventIndicators[i], f->t);
+            return fmi2Discard;
+        }
     if (rc == 0)
         return fmi2OK;
     fmu_log(f, fmi2Discard, C_DISCARD, "model '%s': the event indicators cannot be evaluated "
@@ -1296,7 +1683,9 @@ fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
     if (!allowed(f, "fmi2GetContinuousStates", B_INIT | B_EVENT | B_CONT | B_TERM | B_ERR) ||
         !is_me(f, "fmi2GetContinuousStates"))
         return fmi2Error;
-    if (nx != f->nx || x == NULL)
+    if (nx > 0 && x == NULL)
+        return FAIL(f, "fmi2GetContinuousStates: the array 'x' is NULL (%zu asked for)", nx);
+    if (nx != f->nx)
         return FAIL(f, "fmi2GetContinuousStates: %zu states asked for, the model has %zu", nx,
                     f->nx);
     memcpy(x, f->x, nx * sizeof *x);
@@ -1362,7 +1751,15 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                 t_now);
         return fmi2Discard;
     }
-    const double target = currentCommunicationPoint + communicationStepSize;
+    double target = currentCommunicationPoint + communicationStepSize;
+    if (f->stop_defined && target > f->t_stop) {
+        if (target > f->t_stop + stop_slack(f))
+            return FAIL(f, "fmi2DoStep: the step from %.17g s by %.17g s ends at %.17g s, past "
+                        "stopTime %.17g s of fmi2SetupExperiment (stopTimeDefined): the FMU "
+                        "computes up to stopTime only", currentCommunicationPoint,
+                        communicationStepSize, target, f->t_stop);
+        target = f->t_stop; /* round-off of the master's sum */
+    }
     lv_err err;
     lv_status st = lv_sim_advance(f->sim, target, &err);
     const double t = lv_sim_time(f->sim);

@@ -34,19 +34,52 @@ mkdir "$T/ro" && chmod a-w "$T/ro"
 if [ "$(id -u)" -ne 0 ]; then  # root writes anywhere
   expect 2 "is not writable" -- "$M" --phase ascent -o "$T/ro/a.fmu"
 fi
-expect 2 "it is a folder" -- "$M" --phase ascent -o "$T/ro"
+mkdir "$T/dir.fmu"
+expect 2 "it is a folder" -- "$M" --phase ascent -o "$T/dir.fmu"
+expect 2 "does not end in '.fmu'" -- "$M" --phase ascent -o "$T/a.zip"
 expect 2 "not a C identifier" -- "$M" --phase ascent -o "$T/a.fmu" --model-identifier 9x
 # a data file named by an absolute path cannot travel in the FMU
 sed "s|table: aero_ascent.csv|table: $SRC/examples/kourou-leo/aero_ascent.csv|" "$M" > "$T/abs.yaml"
 expect 2 "absolute path" -- "$T/abs.yaml" --phase ascent -o "$T/b.fmu"
-if ls "$T"/*.fmu "$T"/*.tmp > /dev/null 2>&1; then
+if ls "$T"/*.fmu "$T"/*.tmp 2> /dev/null | grep -v "/dir.fmu" | grep -q .; then
   echo "FAIL: a file was left behind:"; ls "$T"; fails=$((fails + 1))
 fi
+expect 2 "too long (130 characters; max 127)" -- "$M" --phase ascent -o "$T/a.fmu" --model-identifier "$(printf 'x%.0s' $(seq 130))"
+expect 2 "is a folder" -- "$SRC/examples/kourou-leo" --phase ascent -o "$T/a.fmu"
+# repeated options are refused, not silently the last one
+expect 2 "--phase given twice" -- "$M" --phase ascent --phase upper-burn-1 -o "$T/a.fmu"
+expect 2 "-o given twice" -- "$M" --phase ascent -o "$T/a.fmu" -o "$T/b.fmu"
+# the output is never the mission or one of its data files, by any spelling (a copy here)
+mkdir "$T/m" && cp "$SRC"/examples/kourou-leo/* "$T/m/"
+cp "$T/m/mission.yaml" "$T/m/keep.yaml"
+# the --max-rows guard of check and run: an output interval of 1e-6 s
+sed 's|output_interval: 1.0}|output_interval: 1.0e-6}|' "$M" > "$T/m/dense.yaml"
+if grep -q "output_interval: 1.0e-6" "$T/m/dense.yaml"; then
+  expect 2 "more than the limit" -- "$T/m/dense.yaml" --phase ascent -o "$T/d.fmu"
+else
+  echo "FAIL: no output_interval in $M to make dense"; fails=$((fails + 1))
+fi
+ln -s mission.yaml "$T/m/mission.fmu"
+ln -s aero_ascent.csv "$T/m/aero.fmu"
+expect 2 "does not end in '.fmu'" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.yaml"
+expect 2 "does not end in '.fmu'" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/aero_ascent.csv"
+expect 2 "is the mission's file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.fmu"
+expect 2 "is the mission's data file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/../m/aero.fmu"
+if ! cmp -s "$T/m/mission.yaml" "$T/m/keep.yaml" || ! cmp -s "$T/m/aero_ascent.csv" "$SRC/examples/kourou-leo/aero_ascent.csv"; then
+  echo "FAIL: the mission or its data file was changed"; fails=$((fails + 1))
+fi
+rm -rf "$T/m"
 # and a good one, for contrast
 if "$LVSIM" fmu "$M" --phase ascent -o "$T/ok.fmu" > "$T/out" 2>&1 && [ -s "$T/ok.fmu" ]; then
   echo "ok: $(head -1 "$T/out")"
 else
   echo "FAIL: the good export"; cat "$T/out"; fails=$((fails + 1))
+fi
+# an existing FMU of the name is replaced
+if "$LVSIM" fmu "$M" --phase upper-burn-1 -o "$T/ok.fmu" > "$T/out" 2>&1 && unzip -l "$T/ok.fmu" | grep -q kourou_leo_upper_burn_1.so; then
+  echo "ok: an existing .fmu replaced"
+else
+  echo "FAIL: replacing an existing .fmu"; cat "$T/out"; fails=$((fails + 1))
 fi
 [ "$fails" -eq 0 ] && echo "test_fmu_cli: all passed" || echo "test_fmu_cli: $fails failed"
 exit $((fails > 0))

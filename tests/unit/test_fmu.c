@@ -47,6 +47,7 @@ typedef struct fmu_lib {
 } fmu_lib;
 
 static char log_text[8192]; /* the latest messages of the FMU's logger */
+static char log_fmt[8192];  /* the latest message as passed, before formatting */
 static int log_count;
 
 static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status,
@@ -58,6 +59,7 @@ static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status
     va_start(ap, message);
     vsnprintf(msg, sizeof msg, message, ap);
     va_end(ap);
+    snprintf(log_fmt, sizeof log_fmt, "%s", message);
     snprintf(log_text, sizeof log_text, "[%s %d %s] %s", instance, (int)status, category, msg);
     log_count++;
     if (getenv("LV_FMU_TEST_VERBOSE") != NULL)
@@ -452,7 +454,9 @@ out:
     return rc;
 }
 
-/* CS: save after n1 steps, n2 more, restore, the same n2 again: bit-identical states. */
+/* CS: save after n1 steps, n2 more (a), restore, the same n2 (b), restore, again (c): b and c
+ * bit-identical (a restore restarts the integrator at the saved point); a, which went on
+ * without a restart (saving changes nothing), agrees with them to the tolerance. */
 static void check_cs_state_roundtrip(fmu_lib *L, double t0, size_t nx, double H, long n1, long n2)
 {
     fmi2Component c = L->fmi2Instantiate("cs-state", fmi2CoSimulation, L->guid, L->uri,
@@ -472,18 +476,25 @@ static void check_cs_state_roundtrip(fmu_lib *L, double t0, size_t nx, double H,
     fmi2FMUstate s = NULL;
     CHECK(L->fmi2GetFMUstate(c, &s) == fmi2OK);
     const double t_saved = t;
-    double xa[32], xb[32];
-    for (long k = 0; k < n2; k++, t += H)
-        CHECK(L->fmi2DoStep(c, t, H, fmi2False) == fmi2OK);
-    CHECK(L->fmi2GetReal(c, vr, nx, xa) == fmi2OK);
-    CHECK(L->fmi2SetFMUstate(c, s) == fmi2OK);
-    t = t_saved;
-    for (long k = 0; k < n2; k++, t += H)
-        CHECK(L->fmi2DoStep(c, t, H, fmi2False) == fmi2OK);
-    CHECK(L->fmi2GetReal(c, vr, nx, xb) == fmi2OK);
-    CHECK(memcmp(xa, xb, nx * sizeof *xa) == 0);
-    printf("  CS state round trip: saved at t = %g s, %ld steps on twice: %s\n", t_saved, n2,
-           memcmp(xa, xb, nx * sizeof *xa) == 0 ? "bit-identical" : "DIFFERENT");
+    double xa[32], xb[32], xc[32];
+    double *out[3] = {xa, xb, xc};
+    for (int pass = 0; pass < 3; pass++) {
+        if (pass > 0) {
+            CHECK(L->fmi2SetFMUstate(c, s) == fmi2OK);
+            t = t_saved;
+        }
+        for (long k = 0; k < n2; k++, t += H)
+            CHECK(L->fmi2DoStep(c, t, H, fmi2False) == fmi2OK);
+        CHECK(L->fmi2GetReal(c, vr, nx, out[pass]) == fmi2OK);
+    }
+    CHECK(memcmp(xb, xc, nx * sizeof *xb) == 0);
+    double dr = 0.0;
+    for (int i = 0; i < 3; i++)
+        dr = fmax(dr, fabs(xa[i] - xb[i]));
+    printf("  CS state round trip: saved at t = %g s, %ld steps on after two restores: %s; "
+           "after the save itself (no restart): |dr| = %.3g m\n", t_saved, n2,
+           memcmp(xb, xc, nx * sizeof *xb) == 0 ? "bit-identical" : "DIFFERENT", dr);
+    CHECK(dr <= 0.05);
     /* serialization is declared unsupported: fmi2Error with a message */
     size_t sz = 0;
     log_count = 0;
@@ -491,8 +502,40 @@ static void check_cs_state_roundtrip(fmu_lib *L, double t0, size_t nx, double H,
     CHECK(log_count > 0 && strstr(log_text, "canSerializeFMUstate") != NULL);
     CHECK(L->fmi2FreeFMUstate(c, &s) == fmi2OK);
     CHECK(s == NULL);
-    CHECK(L->fmi2Terminate(c) == fmi2OK);
     L->fmi2FreeInstance(c);
+}
+
+/* CS: a master that saves (and frees) a state after every step gets the same numbers, bit for
+ * bit, as one that never saves: fmi2GetFMUstate has no side effect. */
+static void check_cs_getstate_free_of_effects(fmu_lib *L, double t0, size_t nx, double H, long n)
+{
+    double x[2][32];
+    fmi2ValueReference vr[32];
+    for (size_t i = 0; i < nx; i++)
+        vr[i] = (fmi2ValueReference)i;
+    for (int save = 0; save < 2; save++) {
+        fmi2Component c = L->fmi2Instantiate("cs-getstate", fmi2CoSimulation, L->guid, L->uri,
+                                             &callbacks, fmi2False, fmi2False);
+        CHECK(c != NULL);
+        if (c == NULL)
+            return;
+        CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
+        for (long k = 0; k < n; k++) {
+            CHECK(L->fmi2DoStep(c, t0 + (double)k * H, H, fmi2False) == fmi2OK);
+            if (save) {
+                fmi2FMUstate s = NULL;
+                CHECK(L->fmi2GetFMUstate(c, &s) == fmi2OK);
+                CHECK(L->fmi2FreeFMUstate(c, &s) == fmi2OK);
+            }
+        }
+        CHECK(L->fmi2GetReal(c, vr, nx, x[save]) == fmi2OK);
+        L->fmi2FreeInstance(c);
+    }
+    CHECK(memcmp(x[0], x[1], nx * sizeof x[0][0]) == 0);
+    printf("  CS with fmi2GetFMUstate after each of %ld steps: %s the run without\n", n,
+           memcmp(x[0], x[1], nx * sizeof x[0][0]) == 0 ? "bit-identical to" : "DIFFERENT from");
 }
 
 /* ---- bad calls -------------------------------------------------------------------------------- */
@@ -507,7 +550,33 @@ static void check_cs_state_roundtrip(fmu_lib *L, double t0, size_t nx, double H,
             fprintf(stderr, "  expected '%s' in the log, got: %s\n", text, log_text);         \
     } while (0)
 
-static void check_bad_calls(fmu_lib *L, double t0, size_t nx)
+/* An instance through initialization: ready to step (Co-Simulation) or in Event Mode. */
+static fmi2Component started(fmu_lib *L, fmi2Type type, const char *name, double t0)
+{
+    fmi2Component c = L->fmi2Instantiate(name, type, L->guid, L->uri, &callbacks, fmi2False,
+                                         fmi2False);
+    CHECK(c != NULL);
+    if (c == NULL)
+        return NULL;
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
+    return c;
+}
+
+/* After fmi2Error the instance is in the standard's Error state: a step is refused, the get
+ * functions are not, fmi2Reset brings it back to Instantiated. */
+static void check_in_error(fmu_lib *L, fmi2Component c, double t0)
+{
+    double v = 0.0;
+    fmi2ValueReference st0 = 0;
+    CHECK_ERROR_LOGGED(L->fmi2EnterInitializationMode(c), "not allowed in Error");
+    CHECK(L->fmi2GetReal(c, &st0, 1, &v) == fmi2OK);
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+}
+
+static void check_bad_calls(fmu_lib *L, double t0, size_t nx, size_t ni)
 {
     fmi2ValueReference bad = 100000, out_vr = (fmi2ValueReference)(2 * nx + 12);
     double v = 0.0;
@@ -526,55 +595,246 @@ static void check_bad_calls(fmu_lib *L, double t0, size_t nx)
     CHECK(c != NULL);
     if (c == NULL)
         return;
+    /* each error puts the instance into Error (FMI 2.0): fmi2Reset, and on */
     CHECK_ERROR_LOGGED(L->fmi2DoStep(c, t0, 1.0, fmi2True), "not allowed in Instantiated");
+    check_in_error(L, c, t0);
+    CHECK(L->fmi2Reset(c) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2ExitInitializationMode(c), "not allowed in Instantiated");
-    CHECK_ERROR_LOGGED(L->fmi2GetReal(c, &bad, 1, &v), "not allowed in Instantiated");
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    /* a tolerance that is not > 0: fmi2Error, and initialization is refused after it */
+    CHECK_ERROR_LOGGED(L->fmi2SetupExperiment(c, fmi2True, 0.0, t0, fmi2False, 0.0),
+                       "tolerance 0 is not > 0");
+    check_in_error(L, c, t0);
+    /* the start time is the phase's (the hand-off's time): another one is refused, naming both */
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    char want[128];
+    const double t_other = t0 == 0.0 ? -5.0 : 0.0;
+    snprintf(want, sizeof want, "startTime %.17g s is not the phase's start %.17g s", t_other,
+             t0);
+    CHECK_ERROR_LOGGED(L->fmi2SetupExperiment(c, fmi2False, 0.0, t_other, fmi2False, 0.0), want);
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0 + 1.0, fmi2False, 0.0),
+                       "is not the phase's start");
+    CHECK(L->fmi2Reset(c) == fmi2OK);
     CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
     CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2GetReal(c, &bad, 1, &v), "unknown value reference 100000");
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2SetReal(c, &out_vr, 1, &v), "cannot be set");
+    CHECK(L->fmi2Reset(c) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2GetInteger(c, &bad, 1, (fmi2Integer *)&v), "unknown value reference");
-    CHECK_ERROR_LOGGED(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0),
-                       "not allowed in InitializationMode");
-    CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
-    CHECK_ERROR_LOGGED(L->fmi2NewDiscreteStates(c, &(fmi2EventInfo){0}), "");
-    CHECK_ERROR_LOGGED(L->fmi2GetDerivatives(c, &v, 1), "");
+    L->fmi2FreeInstance(c);
+
+    c = started(L, fmi2CoSimulation, "bad-cs", t0);
+    if (c == NULL)
+        return;
     fmi2ValueReference st0 = 0;
     CHECK_ERROR_LOGGED(L->fmi2SetReal(c, &st0, 1, &v), "before fmi2ExitInitializationMode");
+    L->fmi2FreeInstance(c);
+    c = started(L, fmi2CoSimulation, "bad-cs", t0);
     CHECK_ERROR_LOGGED(L->fmi2DoStep(c, t0 + 5.0, 1.0, fmi2True), "currentCommunicationPoint");
+    L->fmi2FreeInstance(c);
+    c = started(L, fmi2CoSimulation, "bad-cs", t0);
+    CHECK_ERROR_LOGGED(L->fmi2NewDiscreteStates(c, &(fmi2EventInfo){0}),
+                       "not allowed in StepComplete");
+    L->fmi2FreeInstance(c);
+    c = started(L, fmi2CoSimulation, "bad-cs", t0);
     CHECK_ERROR_LOGGED(L->fmi2CancelStep(c), "no step to cancel");
+    L->fmi2FreeInstance(c);
+    c = started(L, fmi2CoSimulation, "bad-cs", t0);
     fmi2Status ds;
     CHECK(L->fmi2GetStatus(c, fmi2DoStepStatus, &ds) == fmi2Discard);
     CHECK(L->fmi2DoStep(c, t0, 1.0, fmi2True) == fmi2OK);
     CHECK(L->fmi2Terminate(c) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2DoStep(c, t0 + 1.0, 1.0, fmi2True), "not allowed in Terminated");
     CHECK(L->fmi2Reset(c) == fmi2OK); /* back to Instantiated: a second run works */
-    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+    /* stopTime defined: a step past it is fmi2Error; up to it (round-off included) is not */
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2True, t0 + 1.5) == fmi2OK);
     CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
     CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
     CHECK(L->fmi2DoStep(c, t0, 1.0, fmi2True) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2DoStep(c, t0 + 1.0, 1.0, fmi2True), "past stopTime");
+    CHECK(L->fmi2Reset(c) == fmi2OK);
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2True, t0 + 1.5) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
+    CHECK(L->fmi2DoStep(c, t0, 1.0, fmi2True) == fmi2OK);
+    CHECK(L->fmi2DoStep(c, t0 + 1.0, 0.5 + 1e-13, fmi2True) == fmi2OK);
+    fmi2Real t_last = 0.0;
+    CHECK(L->fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t_last) == fmi2OK);
+    CHECK(t_last == t0 + 1.5);
+    /* a log message with '%': the logger's format has it doubled, the text shows it once */
+    log_count = 0;
+    CHECK(L->fmi2SetDebugLogging(c, fmi2True, 1, (fmi2String[]){"100%s"}) == fmi2Error);
+    CHECK(strstr(log_fmt, "'100%%s'") != NULL && strstr(log_text, "'100%s'") != NULL);
     L->fmi2FreeInstance(c);
 
-    fmi2Component me = L->fmi2Instantiate("bad-me", fmi2ModelExchange, L->guid, L->uri,
-                                          &callbacks, fmi2False, fmi2False);
-    CHECK(me != NULL);
+    fmi2Component me = started(L, fmi2ModelExchange, "bad-me", t0);
     if (me == NULL)
         return;
-    CHECK(L->fmi2SetupExperiment(me, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
-    CHECK(L->fmi2EnterInitializationMode(me) == fmi2OK);
-    CHECK(L->fmi2ExitInitializationMode(me) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2SetContinuousStates(me, &v, 1), "not allowed in EventMode");
-    CHECK_ERROR_LOGGED(L->fmi2DoStep(me, t0, 1.0, fmi2True), "");
+    L->fmi2FreeInstance(me);
+    me = started(L, fmi2ModelExchange, "bad-me", t0);
+    CHECK_ERROR_LOGGED(L->fmi2DoStep(me, t0, 1.0, fmi2True), "not allowed in EventMode");
+    L->fmi2FreeInstance(me);
+    me = started(L, fmi2ModelExchange, "bad-me", t0);
     CHECK_ERROR_LOGGED(L->fmi2SetDebugLogging(me, fmi2True, 1, (fmi2String[]){"logNothing"}),
                        "unknown log category");
+    L->fmi2FreeInstance(me);
+    me = started(L, fmi2ModelExchange, "bad-me", t0);
     CHECK(L->fmi2SetDebugLogging(me, fmi2True, 1, (fmi2String[]){"logEvents"}) == fmi2OK);
     fmi2EventInfo ev;
     CHECK(L->fmi2NewDiscreteStates(me, &ev) == fmi2OK);
     CHECK(L->fmi2EnterContinuousTimeMode(me) == fmi2OK);
+    /* NULL arrays are named as such */
+    CHECK_ERROR_LOGGED(L->fmi2GetDerivatives(me, NULL, nx), "'derivatives' is NULL");
+    L->fmi2FreeInstance(me);
+    me = started(L, fmi2ModelExchange, "bad-me", t0);
+    CHECK(L->fmi2NewDiscreteStates(me, &ev) == fmi2OK);
+    CHECK(L->fmi2EnterContinuousTimeMode(me) == fmi2OK);
     CHECK_ERROR_LOGGED(L->fmi2NewDiscreteStates(me, &ev), "not allowed in ContinuousTimeMode");
+    L->fmi2FreeInstance(me);
+    me = started(L, fmi2ModelExchange, "bad-me", t0);
     CHECK_ERROR_LOGGED(L->fmi2GetDirectionalDerivative(me, NULL, 0, NULL, 0, NULL, NULL),
                        "providesDirectionalDerivative");
     L->fmi2FreeInstance(me);
+    /* fmi2SetTime only in Event and Continuous-Time Mode */
+    me = L->fmi2Instantiate("me-time", fmi2ModelExchange, L->guid, L->uri, &callbacks, fmi2False,
+                            fmi2False);
+    CHECK_ERROR_LOGGED(L->fmi2SetTime(me, t0), "not allowed in Instantiated");
+    L->fmi2FreeInstance(me);
+    /* stopTime in Model Exchange: fmi2SetTime past it is fmi2Error */
+    me = L->fmi2Instantiate("me-stop", fmi2ModelExchange, L->guid, L->uri, &callbacks, fmi2False,
+                            fmi2False);
+    CHECK(L->fmi2SetupExperiment(me, fmi2False, 0.0, t0, fmi2True, t0 + 2.0) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(me) == fmi2OK);
+    CHECK(L->fmi2ExitInitializationMode(me) == fmi2OK);
+    CHECK(L->fmi2NewDiscreteStates(me, &ev) == fmi2OK);
+    CHECK(L->fmi2EnterContinuousTimeMode(me) == fmi2OK);
+    CHECK(L->fmi2SetTime(me, t0 + 2.0) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2SetTime(me, t0 + 2.5), "past stopTime");
+    L->fmi2FreeInstance(me);
+    /* states that are not finite: indicators and derivatives both fmi2Discard */
+    me = started(L, fmi2ModelExchange, "me-nan", t0);
+    CHECK(L->fmi2NewDiscreteStates(me, &ev) == fmi2OK);
+    CHECK(L->fmi2EnterContinuousTimeMode(me) == fmi2OK);
+    double xn[32], dx[32], z[64];
+    for (size_t i = 0; i < nx; i++)
+        xn[i] = NAN;
+    CHECK(L->fmi2SetContinuousStates(me, xn, nx) == fmi2OK);
+    CHECK(L->fmi2GetDerivatives(me, dx, nx) == fmi2Discard);
+    if (ni > 0) /* with indicators: the same status as the derivatives */
+        CHECK(L->fmi2GetEventIndicators(me, z, ni) == fmi2Discard);
+    L->fmi2FreeInstance(me);
+}
+
+/* FMU states belong to the instance that saved it: a state of another instance (also after
+ * that one is freed), of the other kind, or a freed one, is refused with a message; a state
+ * into or an instance freed twice does no harm (valgrind and ASan watch this test). */
+static void check_foreign_states(fmu_lib *L, fmu_lib *other, double t0, double t0_other)
+{
+    fmi2Component a = started(L, fmi2CoSimulation, "A", t0);
+    fmi2Component b = started(L, fmi2CoSimulation, "B", t0);
+    fmi2Component m = started(L, fmi2ModelExchange, "M", t0);
+    fmi2Component o = started(other, fmi2CoSimulation, "O", t0_other);
+    if (a == NULL || b == NULL || m == NULL || o == NULL)
+        return;
+    fmi2FMUstate sa = NULL, sm = NULL, so = NULL;
+    CHECK(L->fmi2GetFMUstate(a, &sa) == fmi2OK);
+    CHECK(L->fmi2GetFMUstate(m, &sm) == fmi2OK);
+    CHECK(other->fmi2GetFMUstate(o, &so) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2SetFMUstate(b, sa), "saved by instance 'A'");
+    CHECK(L->fmi2Reset(b) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2SetFMUstate(b, sm), "(Model Exchange");
+    CHECK(L->fmi2Reset(b) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2SetFMUstate(b, so), "not a live FMU state of this FMU");
+    CHECK(L->fmi2Reset(b) == fmi2OK);
+    CHECK_ERROR_LOGGED(L->fmi2FreeFMUstate(b, &sa), "saved by instance 'A'");
+    CHECK(sa != NULL);
+    L->fmi2FreeInstance(a); /* frees sa with it */
+    CHECK_ERROR_LOGGED(L->fmi2SetFMUstate(b, sa), "not a live FMU state");
+    CHECK(L->fmi2Reset(b) == fmi2OK);
+    /* a state into an instance already freed, an instance freed twice: refused, no harm */
+    CHECK(L->fmi2SetFMUstate(a, sm) == fmi2Error);
+    L->fmi2FreeInstance(a);
+    CHECK(L->fmi2SetupExperiment(b, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(b) == fmi2OK);
+    CHECK(L->fmi2ExitInitializationMode(b) == fmi2OK);
+    CHECK(L->fmi2DoStep(b, t0, 1.0, fmi2True) == fmi2OK);
+    CHECK(other->fmi2FreeFMUstate(o, &so) == fmi2OK);
+    L->fmi2FreeInstance(b);
+    L->fmi2FreeInstance(m); /* sm is freed with it */
+    other->fmi2FreeInstance(o);
+}
+
+/* The start-value parameters (start_lat ...): a root phase computes its start states from them
+ * again (those the importer set are kept); a child phase starts from the hand-off, and says so
+ * with fmi2Warning. */
+static void check_start_params(fmu_lib *L, double t0, size_t nx, int root)
+{
+    fmi2Component c = L->fmi2Instantiate("start", fmi2CoSimulation, L->guid, L->uri, &callbacks,
+                                         fmi2False, fmi2False);
+    CHECK(c != NULL);
+    if (c == NULL)
+        return;
+    const fmi2ValueReference lat = (fmi2ValueReference)(2 * nx); /* the first parameter */
+    fmi2ValueReference vr[32];
+    for (size_t i = 0; i < nx; i++)
+        vr[i] = (fmi2ValueReference)i;
+    double x0[32], x1[32], lat0 = 0.0;
+    CHECK(L->fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L->fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L->fmi2GetReal(c, vr, nx, x0) == fmi2OK);
+    CHECK(L->fmi2GetReal(c, &lat, 1, &lat0) == fmi2OK);
+    const double lat1 = lat0 + 0.1, mass = x0[nx - 1] + 1.0;
+    fmi2ValueReference vm = (fmi2ValueReference)(nx - 1);
+    CHECK(L->fmi2SetReal(c, &vm, 1, &mass) == fmi2OK);
+    log_count = 0;
+    const fmi2Status st = L->fmi2SetReal(c, &lat, 1, &lat1);
+    CHECK(L->fmi2GetReal(c, vr, nx, x1) == fmi2OK);
+    if (root) {
+        CHECK(st == fmi2OK);
+        CHECK(x1[0] != x0[0] && x1[2] != x0[2]); /* the position moved */
+        CHECK(x1[nx - 1] == mass);                /* the state set stays */
+        printf("  root phase: start_lat + 0.1 rad moves the start by %.0f m in z\n",
+               x1[2] - x0[2]);
+    } else {
+        CHECK(st == fmi2Warning);
+        CHECK(log_count > 0 && strstr(log_text, "starts from the final state of phase") != NULL);
+        CHECK(memcmp(x1, x0, (nx - 1) * sizeof *x0) == 0);
+    }
+    log_count = 0;
+    CHECK(L->fmi2ExitInitializationMode(c) == fmi2OK);
+    if (log_count > 0)
+        fprintf(stderr, "  %s\n", log_text);
+    L->fmi2FreeInstance(c);
+}
+
+/* Edited resources: the mission (its SHA-256 differs from the one recorded) and the counts
+ * of resources/lvsim-fmu.txt: no instance, and the message names the file. */
+static void check_edited_resources(fmu_lib *L)
+{
+    char cmd[6 * PATH_MAX], uri[PATH_MAX + 64];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s.ed' && cp -r '%s' '%s.ed' && echo '# edited' >> "
+             "'%s.ed/resources/mission/mission.yaml'", L->dir, L->dir, L->dir, L->dir);
+    CHECK(system(cmd) == 0);
+    snprintf(uri, sizeof uri, "file://%s.ed/resources", L->dir);
+    log_count = 0;
+    CHECK(L->fmi2Instantiate("ed", fmi2CoSimulation, L->guid, uri, &callbacks, fmi2False,
+                             fmi2False) == NULL);
+    CHECK(strstr(log_text, "resources/mission/mission.yaml differs") != NULL);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s.ed' && cp -r '%s' '%s.ed' && sed -i "
+             "'s/^states \\(.*\\)/states 99/' '%s.ed/resources/lvsim-fmu.txt'", L->dir, L->dir,
+             L->dir, L->dir);
+    CHECK(system(cmd) == 0);
+    log_count = 0;
+    CHECK(L->fmi2Instantiate("ed", fmi2CoSimulation, L->guid, uri, &callbacks, fmi2False,
+                             fmi2False) == NULL);
+    CHECK(strstr(log_text, "resources/lvsim-fmu.txt says 99") != NULL);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s.ed'", L->dir);
+    CHECK(system(cmd) == 0);
 }
 
 /* ---- one phase ------------------------------------------------------------------------------ */
@@ -671,7 +931,10 @@ static void check_phase(const char *mission, const char *phase, const char *id, 
     CHECK(cpos <= 0.05 && cvel <= 1e-3);
 
     check_cs_state_roundtrip(&L, ref.t0, nx, (ref.t_end - ref.t0) / 100.0, 30, 40);
-    check_bad_calls(&L, ref.t0, nx);
+    check_cs_getstate_free_of_effects(&L, ref.t0, nx, 0.37 * (ref.t_end - ref.t0) / 100.0, 90);
+    check_bad_calls(&L, ref.t0, nx, ni);
+    check_start_params(&L, ref.t0, nx, strcmp(phase, "ascent") == 0);
+    check_edited_resources(&L);
     fmu_close(&L);
 }
 
@@ -696,5 +959,24 @@ int main(void)
     /* A grandchild with an end on time (a time event ends it) after a long coast: h = 1 s. */
     check_phase("examples/kourou-leo/mission.yaml", "orbit-coast", "kourou_leo_orbit_coast", 1.0,
                 1.0, 1e-3, 1e-9);
+    /* FMU states across instances, kinds and FMUs (two FMUs loaded at once) */
+    {
+        fmu_lib A, B;
+        reference ra = {0}, rb = {0};
+        CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "ascent", 0.0, &ra) == 0);
+        CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "upper-burn-1", 0.0,
+                                 &rb) == 0);
+        if (export_fmu("examples/kourou-leo/mission.yaml", "ascent", "kourou_leo_ascent", &A) ==
+                0 &&
+            export_fmu("examples/kourou-leo/mission.yaml", "upper-burn-1",
+                       "kourou_leo_upper_burn_1", &B) == 0) {
+            printf("FMU states across instances and FMUs:\n");
+            check_foreign_states(&A, &B, ra.t0, rb.t0);
+        } else {
+            CHECK(!"export and load");
+        }
+        fmu_close(&A);
+        fmu_close(&B);
+    }
     return check_report("test_fmu");
 }
