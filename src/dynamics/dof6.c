@@ -512,10 +512,20 @@ static int command_rate(lv_dof6 *m, dof6_inst *s, double t, const double *x, con
         if (lv_flight_air_eval(w, t + h, &kh, &ah, err) != 0)
             return 1;
     } else { /* the air-relative velocity only: the wind at t + h, the atmosphere unread */
-        const lv_flight_world wv = {.planet = w->planet, .e2 = w->e2, .b = w->b,
-                                    .grav = w->grav, .wind = w->wind, .wind_user = w->wind_user};
-        if (lv_flight_air_eval(&wv, t + h, &kh, &ah, err) != 0)
-            return 1;
+        ah = pt->air;
+        ah.v_air = kh.v_rel;
+        if (w->wind != NULL) {
+            double w_ned[3] = {0.0, 0.0, 0.0};
+            const int rc = w->wind(t + h, kh.h, kh.lat, kh.lon, w_ned, w->wind_user);
+            if (rc != 0) {
+                if (err)
+                    lv_fail(err, LV_ERR_INPUT, "wind function returned %d at t = %.9g s", rc,
+                            t + h);
+                return rc;
+            }
+            ah.v_air = lv_v3_sub(kh.v_rel, lv_flight_from_ned(&kh, w_ned[0], w_ned[1], w_ned[2]));
+        }
+        ah.v_air_n = lv_v3_norm(ah.v_air);
     }
     if (lv_guid_attitude(&m->guid, &s->guid, t + h, &kh, &ah, pt->u[U_THR], p[P_FPA], p[P_CHI],
                          0, &cc, &ch, err) != 0)
