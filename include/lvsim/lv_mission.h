@@ -216,6 +216,18 @@ LV_API lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *er
 /* How many phases the last lv_run_execute simulated. */
 LV_API size_t lv_run_simulated(const lv_run *r);
 
+#define LV_RUN_ALL_PHASES ((size_t)-1) /* lv_run_invalidate: every phase */
+/* Marks phase k (LV_RUN_ALL_PHASES: every phase) to run again at the next lv_run_execute,
+ * and with it its descendants, as a changed input would (e.g. because the options that shape
+ * its results - method, tolerance, output grid, rows kept - differ from those it ran with).
+ * Its result stays readable until then; lv_run_stale says it is out of date. LV_ERR_INPUT
+ * for k out of range. */
+LV_API lv_status lv_run_invalidate(lv_run *r, size_t k, lv_err *err);
+/* 1 when phase k's result is out of date: an input of it or of an ancestor changed since it
+ * ran (lv_run_set, lv_run_disperse, lv_run_invalidate) and no lv_run_execute ran it again;
+ * also for a phase never run. 0 otherwise, and for k out of range. */
+LV_API int lv_run_stale(const lv_run *r, size_t k);
+
 LV_API const lv_phase_result *lv_run_result(const lv_run *r, size_t k);
 /* A final value of a done phase by name ("time", "z", "m", ...). */
 LV_API lv_status lv_run_final(const lv_run *r, size_t k, const char *name, double *value,

@@ -155,7 +155,9 @@ static lv_status set_slot(lv_run *r, size_t i, double v, int deg, lv_err *err)
 {
     const lv_mission_def *d = r->m->def;
     const lv_slot_def *sd = &d->slots[i];
-    const double x = deg ? v * LV_DEG : v;
+    /* in degrees, the value lv_run_get gives back is the value it has (x / LV_DEG * LV_DEG
+     * may differ from x in the last bit: a get/set round trip must change nothing) */
+    const double x = deg ? (v == r->vals[i] / LV_DEG ? r->vals[i] : v * LV_DEG) : v;
     if (!lv_range_holds(sd->range, x))
         return lv_fail(err, LV_ERR_INPUT, "mission '%s': %s%s = %g %s: must be %s%s%s", d->name,
                        sd->name, deg ? "_deg" : "", v, deg ? "deg" : sd->unit,
@@ -671,6 +673,32 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
 }
 
 size_t lv_run_simulated(const lv_run *r) { return r->simulated; }
+
+lv_status lv_run_invalidate(lv_run *r, size_t k, lv_err *err)
+{
+    const size_t n = r->m->def->n_phases;
+    if (k == LV_RUN_ALL_PHASES) {
+        for (size_t j = 0; j < n; j++)
+            r->ph[j].dirty = 1;
+        return LV_OK;
+    }
+    if (k >= n)
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': phase index %zu out of range (0..%zu)",
+                       r->m->def->name, k, n - 1);
+    r->ph[k].dirty = 1;
+    return LV_OK;
+}
+
+int lv_run_stale(const lv_run *r, size_t k)
+{
+    const lv_mission_def *d = r->m->def;
+    if (k >= d->n_phases)
+        return 0;
+    for (int j = (int)k; j >= 0; j = d->phases[j].parent)
+        if (r->ph[j].dirty || r->ph[j].res.state == LV_PHASE_PENDING)
+            return 1;
+    return 0;
+}
 
 /* ---- results ------------------------------------------------------------------------------------- */
 

@@ -126,5 +126,10 @@ int main(void)
     F(lv_campaign_options, method); F(lv_campaign_options, tolerance);
     F(lv_campaign_options, output_interval); F(lv_campaign_options, progress);
     F(lv_campaign_options, user); F(lv_campaign_options, stop);
+    S(lv_output_estimate); F(lv_output_estimate, duration); F(lv_output_estimate, rows);
+    F(lv_output_estimate, n_signals); F(lv_output_estimate, bytes_mat);
+    F(lv_output_estimate, bytes_csv);
+    S(lv_outdir_record); F(lv_outdir_record, command); F(lv_outdir_record, status);
+    F(lv_outdir_record, mission_name); F(lv_outdir_record, n_notes); F(lv_outdir_record, notes);
     return 0;
 }
