@@ -1032,3 +1032,36 @@ def test_clearer_errors(tmp_path):
         lvsim.Mission(d / "typo.yaml")
     assert e.value.file == str(d / "typo.yaml") and e.value.line == 3 and e.value.column
     r.close(); m.close(); b.close()
+
+
+def test_notebook_copy_finds_the_repository(tmp_path):
+    # the notebook's first cells, run from a copy's folder inside the repository (no
+    # LV_SOURCE_DIR), then from outside it with LV_SOURCE_DIR: both find the example mission
+    nb = json.load(open(os.path.join(ROOT, "examples", "notebook.ipynb")))
+    code = "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code")
+    code = "\n".join(l for l in code.split("\n") if not l.startswith("%"))
+    first = code.split("bodies = run.bodies()")[0] + "\nprint('mission', mission.name)\n"
+    script = tmp_path / "nb.py"
+    script.write_text(first)
+    inside = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(lvsim.__file__)))), "nbcopy-test")
+    if not os.path.abspath(inside).startswith(os.path.abspath(ROOT) + os.sep):
+        inside = None  # the build tree is outside the sources: only the LV_SOURCE_DIR case
+    env = {k: v for k, v in os.environ.items() if k != "LV_SOURCE_DIR"}
+    env["MPLBACKEND"] = "Agg"
+    cases = [(str(tmp_path), dict(env, LV_SOURCE_DIR=ROOT))]
+    if inside:
+        os.makedirs(inside, exist_ok=True)
+        cases.append((inside, env))
+    try:
+        for cwd, e in cases:
+            p = subprocess.run([sys.executable, str(script)], cwd=cwd, env=e,
+                               capture_output=True, text=True, timeout=300)
+            assert p.returncode == 0 and "mission rlv-hthl" in p.stdout, (cwd, p.stderr[-1500:])
+        # from outside the repository without LV_SOURCE_DIR: a clear error
+        p = subprocess.run([sys.executable, str(script)], cwd=str(tmp_path), env=env,
+                           capture_output=True, text=True, timeout=300)
+        assert p.returncode != 0 and "LV_SOURCE_DIR" in p.stderr
+    finally:
+        if inside:
+            shutil.rmtree(inside, ignore_errors=True)
