@@ -203,6 +203,11 @@ typedef struct lv_run_options {
      * (a targeting loop's constraints). Only those and their ancestors are simulated; a phase
      * outside them whose inputs changed is left PENDING for a later execute. */
     const unsigned char *want;
+    /* NULL, or a flag another thread (a signal handler) may set nonzero to stop the run: each
+     * running phase is cancelled at its next output row, and no phase starts after (they
+     * fail with LV_ERR_CANCELLED, "stopped"); lv_run_execute returns LV_ERR_CANCELLED. Costs
+     * no callback: bindings use it for Ctrl-C. */
+    const volatile int *stop;
 } lv_run_options;
 
 #define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */

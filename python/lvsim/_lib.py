@@ -120,7 +120,8 @@ class lv_run_options(Structure):
     _fields_ = [("outdir", c_char_p), ("threads", c_int), ("on_phase", ON_PHASE_FN),
                 ("user", c_void_p), ("output_interval", c_double), ("method", c_char_p),
                 ("tolerance", c_double), ("progress", RUN_PROGRESS_FN), ("no_rows", c_int),
-                ("result_formats", c_uint), ("want", POINTER(c_ubyte))]
+                ("result_formats", c_uint), ("want", POINTER(c_ubyte)),
+                ("stop", POINTER(c_int))]
 
 
 class lv_body_traj(Structure):

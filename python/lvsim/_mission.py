@@ -916,24 +916,24 @@ class Run:
         opt.no_rows = 0 if keep_rows else 1
         if want is not None:
             opt.want = ctypes.cast(want, POINTER(c_ubyte))
-        # the progress callback: always installed, so that a Ctrl-C stops every branch
+        # the stop flag (lv_run_options.stop): set by Ctrl-C or by an exception in
+        # `progress`, it stops every branch at its next output row, at no cost until then
         cb_state = {}
-        stop = threading.Event()
-
-        def _prog(run, k, t, user):
-            if stop.is_set():
-                return 1
-            if progress is None:
-                return 0
-            try:
-                return 1 if progress(k, t) else 0
-            except BaseException as exc:  # stop; raised after the run
-                cb_state.setdefault("exc", exc)
-                stop.set()
-                return 1
-        cb = _lib.RUN_PROGRESS_FN(_prog)
-        keep.append(cb)
-        opt.progress = cb
+        stop = c_int(0)
+        opt.stop = ctypes.pointer(stop)
+        if progress is not None:
+            def _prog(run, k, t, user):
+                if stop.value:
+                    return 1
+                try:
+                    return 1 if progress(k, t) else 0
+                except BaseException as exc:  # stop everything; raised after the run
+                    cb_state.setdefault("exc", exc)
+                    stop.value = 1
+                    return 1
+            cb = _lib.RUN_PROGRESS_FN(_prog)
+            keep.append(cb)
+            opt.progress = cb
 
         with self._lock:
             h = self._handle()
@@ -964,7 +964,7 @@ class Run:
                                 and not lib.lv_run_stale(h, k):
                             self._ran_with[k] = key
                 if od is not None:
-                    interrupted = "exc" in cb_state or stop.is_set() or st == -6
+                    interrupted = "exc" in cb_state or stop.value or st == -6
                     if not interrupted:
                         rec = _lib.lv_outdir_record()
                         rec.command = b"python"
@@ -996,10 +996,10 @@ class Run:
 
     def _execute_interruptible(self, h, opt, err, stop):
         """lv_run_execute, stoppable by Ctrl-C. From the main thread (the only one Python
-        delivers SIGINT to) the C call runs in a helper thread while this one waits
-        interruptibly: a KeyboardInterrupt sets `stop`, which the progress callback turns
-        into a cancel of every running phase (and of any that starts after); once the run
-        has stopped, the run is consistent and KeyboardInterrupt is raised."""
+        delivers SIGINT to) the C call runs in a helper thread while this one waits: SIGINT
+        sets the C run's stop flag (`stop`, lv_run_options.stop), which cancels every running
+        phase at its next output row and starts no other; once the run has stopped (the run
+        consistent), KeyboardInterrupt is raised."""
         if threading.current_thread() is not threading.main_thread():
             return lib.lv_run_execute(h, byref(opt), byref(err))
         box = {}
@@ -1017,7 +1017,7 @@ class Run:
             # stop, so no KeyboardInterrupt can fly while the run is still going
             def _on_sigint(signum, frame):
                 got.append(KeyboardInterrupt())
-                stop.set()
+                stop.value = 1
             signal.signal(signal.SIGINT, _on_sigint)
             try:
                 t.start()
@@ -1034,7 +1034,7 @@ class Run:
                     break
                 except BaseException as exc:
                     got.append(exc)
-                    stop.set()
+                    stop.value = 1
         if "exc" in box:
             raise box["exc"]
         if got:

@@ -495,10 +495,17 @@ typedef struct progress_ctx {
     const lv_run_options *opt;
 } progress_ctx;
 
+static int stop_requested(const lv_run_options *opt)
+{
+    return opt && opt->stop && __atomic_load_n(opt->stop, __ATOMIC_RELAXED) != 0;
+}
+
 static int progress_thunk(double t, void *user)
 {
     const progress_ctx *pc = user;
-    return pc->opt->progress(pc->r, pc->k, t, pc->opt->user);
+    if (stop_requested(pc->opt))
+        return 1;
+    return pc->opt->progress ? pc->opt->progress(pc->r, pc->k, t, pc->opt->user) : 0;
 }
 
 /* Runs phase k: prepare, simulate, then (under the lock) record. Called without the lock. */
@@ -507,7 +514,8 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
 {
     const lv_phase_def *ph = &r->m->def->phases[k];
     lv_phase_call *c = NULL;
-    lv_status st = prepare(r, k, opt, &c, err);
+    lv_status st = stop_requested(opt) ? lv_fail(err, LV_ERR_CANCELLED, "stopped before it began")
+                                       : prepare(r, k, opt, &c, err);
     if (st != LV_OK) {
         pthread_mutex_lock(&r->lock);
         run_phase *p = &r->ph[k];
@@ -532,7 +540,7 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
             c->s.result_formats = formats & (LV_RESULT_MAT | LV_RESULT_CSV);
     }
     progress_ctx pc = {r, k, opt};
-    if (opt && opt->progress) {
+    if (opt && (opt->progress || opt->stop)) {
         c->s.progress = progress_thunk;
         c->s.progress_user = &pc;
     }

@@ -262,6 +262,17 @@ static void test_invalidate_stale(void)
     CHECK(lv_run_stale(r, p1) && lv_run_stale(r, p4));
     CHECK_OK(lv_run_execute(r, &opt, &err), &err);
     CHECK(lv_run_simulated(r) == 5);
+    /* a stop flag set: nothing starts, the run is cancelled; cleared: everything runs */
+    CHECK_OK(lv_run_invalidate(r, LV_RUN_ALL_PHASES, &err), &err);
+    volatile int stop = 1;
+    const lv_run_options sopt = {.threads = 2, .no_rows = 1, .stop = &stop};
+    CHECK(lv_run_execute(r, &sopt, &err) == LV_ERR_CANCELLED);
+    CHECK(lv_run_result(r, p1)->state == LV_PHASE_FAILED &&
+          strstr(lv_run_result(r, p1)->error, "stopped") != NULL &&
+          lv_run_result(r, p3)->state == LV_PHASE_SKIPPED);
+    stop = 0;
+    CHECK_OK(lv_run_execute(r, &sopt, &err), &err);
+    CHECK(lv_run_simulated(r) == 5);
     CHECK(lv_run_invalidate(r, 5, &err) == LV_ERR_INPUT);
     CHECK(strstr(err.msg, "out of range") != NULL);
     lv_run_free(r);
