@@ -1189,7 +1189,8 @@ class Run:
         return Trajectory(stage_name, names, units, vals, ph, [p.name for p in m.phases])
 
     def bodies(self):
-        """dict stage name -> Trajectory for every stage that flew in a done phase."""
+        """dict stage name -> Trajectory for every stage that flew in a done phase; LvsimError
+        as body() (rows not kept, a stale phase)."""
         out = {}
         for s, name in enumerate(self.mission.stages):
             with self._lock:

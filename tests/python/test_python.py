@@ -961,20 +961,18 @@ def test_library_version_and_structure_sizes_are_checked_at_load():
     for st in _lib.MIRRORED:
         assert lib.lv_abi_sizeof(st.__name__.encode()) == ctypes.sizeof(st), st.__name__
     assert lib.lv_abi_sizeof(b"no_such_struct") == 0
-    # a mismatch is an ImportError naming the structure
-    class Fake:
-        _name = "libfake.so"
-
-        @staticmethod
-        def _f(*a):
-            return None
+    # a mismatch is an ImportError naming the structure (a library whose every struct is
+    # 8 bytes), and so is a library without the functions (too old)
     bad = type("BadDLL", (), {})()
     bad._name = "libfake.so"
     bad.lv_version = lib.lv_version
     size = ctypes.CFUNCTYPE(ctypes.c_size_t, ctypes.c_char_p)(lambda name: 8)
     bad.lv_abi_sizeof = size
-    with pytest.raises(ImportError, match="lv_err"):
+    with pytest.raises(ImportError, match="struct lv_err is 8 bytes"):
         _lib._check_abi(bad)
+    old = type("OldDLL", (), {"_name": "libold.so"})()
+    with pytest.raises(ImportError, match="too old"):
+        _lib._check_abi(old)
 
 
 def test_installed_paths_name_the_install_prefix(tmp_path):
