@@ -203,6 +203,11 @@ typedef struct lv_run_options {
      * (a targeting loop's constraints). Only those and their ancestors are simulated; a phase
      * outside them whose inputs changed is left PENDING for a later execute. */
     const unsigned char *want;
+    /* NULL, or a flag another thread (a signal handler) may set nonzero to stop the run: each
+     * running phase is cancelled at its next output row, and no phase starts after (they
+     * fail with LV_ERR_CANCELLED, "stopped"); lv_run_execute returns LV_ERR_CANCELLED. Costs
+     * no callback: bindings use it for Ctrl-C. */
+    const volatile int *stop;
 } lv_run_options;
 
 #define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */
@@ -215,6 +220,18 @@ typedef struct lv_run_options {
 LV_API lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err);
 /* How many phases the last lv_run_execute simulated. */
 LV_API size_t lv_run_simulated(const lv_run *r);
+
+#define LV_RUN_ALL_PHASES ((size_t)-1) /* lv_run_invalidate: every phase */
+/* Marks phase k (LV_RUN_ALL_PHASES: every phase) to run again at the next lv_run_execute,
+ * and with it its descendants, as a changed input would (e.g. because the options that shape
+ * its results - method, tolerance, output grid, rows kept - differ from those it ran with).
+ * Its result stays readable until then; lv_run_stale says it is out of date. LV_ERR_INPUT
+ * for k out of range. */
+LV_API lv_status lv_run_invalidate(lv_run *r, size_t k, lv_err *err);
+/* 1 when phase k's result is out of date: an input of it or of an ancestor changed since it
+ * ran (lv_run_set, lv_run_disperse, lv_run_invalidate) and no lv_run_execute ran it again;
+ * also for a phase never run. 0 otherwise, and for k out of range. */
+LV_API int lv_run_stale(const lv_run *r, size_t k);
 
 LV_API const lv_phase_result *lv_run_result(const lv_run *r, size_t k);
 /* A final value of a done phase by name ("time", "z", "m", ...). */

@@ -7,6 +7,8 @@
 #ifndef LVSIM_LV_STATUS_H
 #define LVSIM_LV_STATUS_H
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -39,6 +41,13 @@ typedef struct lv_err {
 
 /* Short English text for a status code ("invalid input"). Never NULL. */
 LV_API const char *lv_status_str(lv_status st);
+
+/* The library's version, LVSIM_VERSION of the headers it was built from ("0.1.0"). */
+LV_API const char *lv_version(void);
+/* sizeof the public structure named `type` ("lv_run_options", "lv_phase_result", ...) as
+ * this library was compiled, 0 for a name it does not know: bindings that mirror the
+ * structures (the Python package's ctypes) check at load time that they match. */
+LV_API size_t lv_abi_sizeof(const char *type);
 
 #ifdef __cplusplus
 }

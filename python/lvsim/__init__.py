@@ -18,11 +18,11 @@ Campaign. Functions: simulate (a built-in model, the paper's Code 1), models. Ex
 LvsimError, MissionError, ParameterError, SimulationError, CancelledError.
 """
 from ._paths import VERSION as __version__
-from .errors import (CancelledError, LvsimError, MissionError, ParameterError,
-                     SimulationError)
+from .errors import (CancelledError, InputError, LvsimError, MissionError, OutputLimitError,
+                     ParameterError, SimulationError)
 from ._mission import (Dispersion, Event, Mission, Model, Outcome, Parameter, Phase,
                        PhaseCall, PhaseResult, Run, Table, Trajectory, Variable, models,
-                       simulate)
+                       simulate, METHODS)
 from ._target import Target, TargetResult
 from ._campaign import Campaign
 
@@ -40,5 +40,6 @@ library_path = _library_path()
 __all__ = ["Mission", "Run", "PhaseResult", "Trajectory", "Table", "PhaseCall", "Outcome",
            "Model", "Variable", "Phase", "Parameter", "Dispersion", "Event", "Target",
            "TargetResult", "Campaign", "simulate", "models", "LvsimError", "MissionError",
-           "ParameterError", "SimulationError", "CancelledError", "library_path",
+           "ParameterError", "SimulationError", "CancelledError", "InputError", "OutputLimitError",
+           "METHODS", "library_path",
            "__version__"]

@@ -3,13 +3,14 @@ Python: N runs of a mission with the values its `dispersions:` draw, on C worker
 GIL released), stored in an SQLite database that Python's sqlite3 reads; the statistics
 written by lv_campaign_stats. Schema and statistics: docs/monte-carlo.md."""
 import json
+import math
 import os
 import sqlite3
 from ctypes import byref, c_int, pointer
 
 from . import _lib
-from ._lib import enc
-from .errors import LvsimError, check
+from ._lib import enc, int_arg, path_arg, real_arg
+from .errors import InputError, LvsimError, check
 
 
 class Campaign:
@@ -19,37 +20,82 @@ class Campaign:
     stats()."""
 
     def __init__(self, db_path, progress=None):
+        """An existing campaign database `db_path` (lvsim mc, Campaign.run): its counts are
+        read from it (`total` the runs asked for, `done` those stored, `failed`; the timing
+        attributes `this_session`, `elapsed`, `rate`, `eta` are those of the call that ran it,
+        0 when opened here)."""
         self.db_path = os.fspath(db_path)
         if progress is not None:
             for f, _ in _lib.lv_campaign_progress._fields_:
                 setattr(self, f, getattr(progress, f))
+            return
+        if not os.path.isfile(self.db_path):
+            raise LvsimError(f"{self.db_path}: no such campaign database", -5)
+        try:
+            _, meta = self._query("SELECT key, value FROM campaign WHERE key = 'n_runs'")
+            _, counts = self._query("SELECT COUNT(*), COALESCE(SUM(status != 'ok'), 0) FROM runs")
+        except sqlite3.DatabaseError as e:
+            raise LvsimError(f"{self.db_path}: not a campaign database ({e})", -2) from None
+        self.done, self.failed = int(counts[0][0]), int(counts[0][1])
+        self.total = int(meta[0][1]) if meta else self.done
+        self.this_session, self.elapsed, self.rate, self.eta = 0, 0.0, 0.0, 0.0
 
     @classmethod
     def run(cls, mission, n_runs, db_path, *, seed=None, threads=1, resume=False,
-            overwrite=False, keep_runs=0, keep_dir=None, method=None, tolerance=0.0,
-            output_interval=0.0, progress=None):
+            overwrite=False, keep_runs=0, keep_dir=None, method=None, tolerance=None,
+            output_interval="ends", progress=None):
         """Runs runs 0 .. n_runs-1 of `mission` (lv_campaign_run) into the SQLite database
         `db_path`: seed (None: the file's `seed:`, else 1, as `lvsim mc`), threads (C
         worker threads), resume (continue a database of the same campaign), overwrite
         (replace one), keep_runs/keep_dir (runs < keep_runs also write result files into
-        keep_dir/run_<i>), method/tolerance/output_interval (every phase's; 0: only start
-        and end rows, the fastest). progress(dict) is called about every 0.25 s from the
+        keep_dir/run_<i>), method/tolerance (every phase's; None: each phase's own),
+        output_interval ("ends": only start and end rows, the fastest, the default; a
+        number > 0: every phase's grid in s) - the same meanings as Run.execute's, so
+        run.disperse(seed, i); run.execute(output_interval=..., method=..., tolerance=...)
+        reproduces run i bit for bit. progress(dict) is called about every 0.25 s from the
         calling thread (total, done, failed, rate, eta); returning True stops the campaign
         (CancelledError, the runs done are kept). Failed runs are outcomes, not errors;
         LvsimError for the campaign itself (an existing database without overwrite or
-        resume, one of another campaign)."""
+        resume, one of another campaign); TypeError/ValueError for bad arguments."""
+        from ._mission import METHODS
         post = _lib.post()
         o = _lib.lv_campaign_options()
         post.lv_campaign_options_default(byref(o))
+        n_runs = int_arg(n_runs, "n_runs")
         if n_runs <= 0:
-            raise LvsimError(f"n_runs must be > 0, got {n_runs}", -2)
+            raise InputError(f"n_runs must be > 0, got {n_runs}")
         if seed is None:
             seed = mission.seed if mission.seed is not None else 1
-        o.n_runs, o.seed, o.threads = int(n_runs), int(seed), int(threads)
-        keep = [enc(db_path), enc(keep_dir), enc(method)]
+        seed = int_arg(seed, "seed", 0)
+        threads = int_arg(threads, "threads", 0)
+        keep_runs = int_arg(keep_runs, "keep_runs", 0)
+        if method is not None:
+            if not isinstance(method, str):
+                raise TypeError(f"method must be a str, not {type(method).__name__}")
+            if method not in METHODS:
+                raise InputError(f"unknown method {method!r}; methods: {', '.join(METHODS)}")
+        if tolerance is None:
+            tol = 0.0
+        else:
+            tol = real_arg(tolerance, "tolerance")
+            if not (tol > 0.0 and math.isfinite(tol)):
+                raise InputError(f"tolerance must be > 0 and finite, got {tolerance!r}")
+        if isinstance(output_interval, str) and output_interval == "ends":
+            oi = 0.0  # lv_campaign_options: 0 is start and end rows only
+        elif output_interval is None or isinstance(output_interval, str):
+            raise InputError(f"output_interval {output_interval!r}: 'ends' (start and end rows "
+                             "only) or a number of seconds > 0")
+        else:
+            oi = real_arg(output_interval, "output_interval")
+            if not (oi > 0.0 and math.isfinite(oi)):
+                raise InputError(f"output_interval must be > 0 s and finite, or 'ends', got "
+                                 f"{output_interval!r}")
+        o.n_runs, o.seed, o.threads = n_runs, seed, threads
+        keep = [path_arg(db_path, "db_path"),
+                None if keep_dir is None else path_arg(keep_dir, "keep_dir"), enc(method)]
         o.db_path, o.keep_dir, o.method = keep
-        o.resume, o.overwrite, o.keep_runs = int(bool(resume)), int(bool(overwrite)), int(keep_runs)
-        o.tolerance, o.output_interval = float(tolerance), float(output_interval)
+        o.resume, o.overwrite, o.keep_runs = int(bool(resume)), int(bool(overwrite)), keep_runs
+        o.tolerance, o.output_interval = tol, oi
         stop = c_int(0)
         o.stop = pointer(stop)
         state = {}
@@ -71,6 +117,10 @@ class Campaign:
         st = post.lv_campaign_run(mission._handle(), byref(o), byref(out), byref(err))
         if "exc" in state:
             raise state["exc"]
+        if st != _lib.LV_OK:  # the C messages name the CLI's flags: name the arguments
+            msg = err.msg.decode("utf-8", "replace")
+            msg = msg.replace("--resume", "resume=True").replace("--force", "overwrite=True")
+            err.msg = msg.encode()[:_lib.LV_ERR_MSG_MAX - 1]
         check(st, err)
         return cls(db_path, out)
 
@@ -78,9 +128,10 @@ class Campaign:
         """Writes the statistics into `outdir` (lv_campaign_stats: stats.json, stats.csv,
         ellipses.csv, outcomes.csv, sensitivity.csv, footprint.kml) and returns stats.json
         as a dict."""
-        os.makedirs(outdir, exist_ok=True)
+        b = path_arg(outdir, "outdir")
+        os.makedirs(b, exist_ok=True)
         err = _lib.lv_err()
-        check(_lib.post().lv_campaign_stats(enc(self.db_path), enc(outdir), byref(err)), err)
+        check(_lib.post().lv_campaign_stats(path_arg(self.db_path), b, byref(err)), err)
         with open(os.path.join(outdir, "stats.json"), encoding="utf-8") as f:
             return json.load(f)
 

@@ -28,6 +28,7 @@ STATUS_NAMES = {0: "LV_OK", -1: "LV_ERR_NOMEM", -2: "LV_ERR_INPUT", -3: "LV_ERR_
 LV_RESULT_MAT = 1
 LV_RESULT_CSV = 2
 LV_RUN_NO_PHASE_FILES = 0x100
+LV_RUN_ALL_PHASES = (1 << (8 * ctypes.sizeof(c_size_t))) - 1
 
 
 class lv_err(Structure):
@@ -119,7 +120,8 @@ class lv_run_options(Structure):
     _fields_ = [("outdir", c_char_p), ("threads", c_int), ("on_phase", ON_PHASE_FN),
                 ("user", c_void_p), ("output_interval", c_double), ("method", c_char_p),
                 ("tolerance", c_double), ("progress", RUN_PROGRESS_FN), ("no_rows", c_int),
-                ("result_formats", c_uint), ("want", POINTER(c_ubyte))]
+                ("result_formats", c_uint), ("want", POINTER(c_ubyte)),
+                ("stop", POINTER(c_int))]
 
 
 class lv_body_traj(Structure):
@@ -235,13 +237,23 @@ class lv_campaign_options(Structure):
                 ("stop", POINTER(c_int))]
 
 
+class lv_output_estimate(Structure):
+    _fields_ = [("duration", c_double), ("rows", c_double), ("n_signals", c_size_t),
+                ("bytes_mat", c_double), ("bytes_csv", c_double)]
+
+
+class lv_outdir_record(Structure):
+    _fields_ = [("command", c_char_p), ("status", c_char_p), ("mission_name", c_char_p),
+                ("n_notes", c_size_t), ("notes", POINTER(c_char_p))]
+
+
 # The structures the layout test compares with the C compiler's view of the headers.
 MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_param_info,
             lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
             lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
             lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
             lv_target_settings, lv_target_result, lv_disp_info, lv_campaign_progress,
-            lv_campaign_options]
+            lv_campaign_options, lv_output_estimate, lv_outdir_record]
 # lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
 PARTIAL = [lv_model_def]
 
@@ -251,23 +263,24 @@ _here = os.path.dirname(os.path.abspath(__file__))
 
 
 def _candidates(soname):
-    """Where the library is looked for, in order: $LVSIM_LIBRARY_DIR, the library folder
-    relative to this package (the build tree's or the installation's layout), the folder it
-    was built or installed in, then the dynamic loader's own search (LD_LIBRARY_PATH,
-    ld.so.cache)."""
-    out = []
+    """Where the library is looked for, in order: $LVSIM_LIBRARY_DIR alone when it is set
+    (a folder that does not hold the library is an error, never a silent fall-back to
+    another copy), else the library folder relative to this package (the build tree's or
+    the installation's layout), the folder it was built or installed in, then the dynamic
+    loader's own search (LD_LIBRARY_PATH, ld.so.cache)."""
     env = os.environ.get("LVSIM_LIBRARY_DIR")
     if env:
-        out.append(os.path.join(env, soname))
-    out.append(os.path.normpath(os.path.join(_here, _paths.LIBDIR_REL, soname)))
+        return [os.path.join(env, soname)], False
+    out = [os.path.normpath(os.path.join(_here, _paths.LIBDIR_REL, soname))]
     if _paths.LIBDIR_ABS:
         out.append(os.path.join(_paths.LIBDIR_ABS, soname))
-    return out
+    return out, True
 
 
 def _load(soname):
     tried = []
-    for path in _candidates(soname):
+    paths, loader = _candidates(soname)
+    for path in paths:
         if os.path.exists(path):
             try:
                 return ctypes.CDLL(path)
@@ -275,6 +288,10 @@ def _load(soname):
                 tried.append(f"{path}: {e}")
         else:
             tried.append(f"{path}: not found")
+    if not loader:
+        raise ImportError(f"lvsim: LVSIM_LIBRARY_DIR={os.environ.get('LVSIM_LIBRARY_DIR')!r} "
+                          f"does not hold a loadable {soname} (" + "; ".join(tried)
+                          + "); unset it to use the library the package was built with")
     try:
         return ctypes.CDLL(soname)
     except OSError as e:
@@ -283,7 +300,35 @@ def _load(soname):
                       + " (set LVSIM_LIBRARY_DIR to the folder holding it)")
 
 
+def _check_abi(dll):
+    """The library must be the one this package mirrors: same version (lv_version) and every
+    mirrored structure the same size as the library was compiled with (lv_abi_sizeof).
+    ImportError naming the file and the first mismatch otherwise."""
+    where = getattr(dll, "_name", "liblvsim")
+    try:
+        ver = dll.lv_version
+        size = dll.lv_abi_sizeof
+    except AttributeError:
+        raise ImportError(f"lvsim {_paths.VERSION}: {where} is too old for this package "
+                          "(it has no lv_version/lv_abi_sizeof); rebuild or reinstall lvsim, "
+                          "or point LVSIM_LIBRARY_DIR at the matching library") from None
+    ver.restype, ver.argtypes = c_char_p, []
+    size.restype, size.argtypes = c_size_t, [c_char_p]
+    v = ver().decode("utf-8", "replace")
+    if v != _paths.VERSION:
+        raise ImportError(f"lvsim: the package is version {_paths.VERSION} but {where} is "
+                          f"version {v}; install matching versions")
+    for st in MIRRORED:
+        n = size(st.__name__.encode())
+        if n != ctypes.sizeof(st):
+            raise ImportError(f"lvsim: {where} does not match this package: struct "
+                              f"{st.__name__} is {n} bytes in the library, "
+                              f"{ctypes.sizeof(st)} in python/lvsim/_lib.py; rebuild both "
+                              "from the same sources")
+
+
 lib = _load(_paths.SONAME)
+_check_abi(lib)
 _post = None
 
 
@@ -297,6 +342,13 @@ def post():
         _proto(_post, "lv_campaign_run", c_int, c_void_p, POINTER(lv_campaign_options),
                POINTER(lv_campaign_progress), POINTER(lv_err))
         _proto(_post, "lv_campaign_stats", c_int, c_char_p, c_char_p, POINTER(lv_err))
+        _proto(_post, "lv_outdir_begin", c_int, c_char_p, c_char_p, POINTER(c_void_p),
+               POINTER(lv_err))
+        _proto(_post, "lv_outdir_path", c_char_p, c_void_p)
+        _proto(_post, "lv_outdir_final", c_char_p, c_void_p)
+        _proto(_post, "lv_outdir_commit", c_int, c_void_p, POINTER(lv_outdir_record),
+               POINTER(lv_err))
+        _proto(_post, "lv_outdir_free", None, c_void_p)
     return _post
 
 
@@ -327,6 +379,11 @@ _proto(lib, "lv_run_get", c_int, P, c_char_p, POINTER(c_double), E)
 _proto(lib, "lv_run_reset", None, P)
 _proto(lib, "lv_run_execute", c_int, P, POINTER(lv_run_options), E)
 _proto(lib, "lv_run_simulated", c_size_t, P)
+_proto(lib, "lv_run_invalidate", c_int, P, c_size_t, E)
+_proto(lib, "lv_run_stale", c_int, P, c_size_t)
+_proto(lib, "lv_run_estimate_output", c_int, P, c_size_t, c_double, POINTER(lv_output_estimate),
+       E)
+_proto(lib, "lv_sim_methods", POINTER(c_char_p))
 _proto(lib, "lv_run_result", POINTER(lv_phase_result), P, c_size_t)
 _proto(lib, "lv_run_final", c_int, P, c_size_t, c_char_p, POINTER(c_double), E)
 _proto(lib, "lv_run_rows", c_void_p, P, c_size_t)
@@ -381,12 +438,71 @@ def text(b):
     return None if b is None else b.decode("utf-8", "replace")
 
 
-def enc(s):
-    """str -> bytes for a const char * argument (None stays NULL)."""
-    if s is None:
-        return None
+def name_arg(s, what="name"):
+    """A name argument (a phase, final, parameter, model, method name) -> bytes for a
+    const char *: TypeError unless a str, ValueError for an embedded NUL (C would see a
+    shorter name)."""
+    if isinstance(s, bytes):
+        s = s.decode("utf-8")
+    if not isinstance(s, str):
+        raise TypeError(f"{what} must be a str, not {type(s).__name__} ({s!r})")
+    if "\x00" in s:
+        raise ValueError(f"{what} {s!r} contains a NUL character")
+    return s.encode("utf-8")
+
+
+def path_arg(s, what="path"):
+    """A file or folder argument (str, bytes or os.PathLike) -> bytes: TypeError for
+    anything else, ValueError for "" or an embedded NUL."""
     if isinstance(s, os.PathLike):
         s = os.fspath(s)
     if isinstance(s, bytes):
-        return s
-    return str(s).encode("utf-8")
+        b = s
+    elif isinstance(s, str):
+        b = os.fsencode(s)
+    else:
+        raise TypeError(f"{what} must be a str or path, not {type(s).__name__} ({s!r})")
+    if b"\x00" in b:
+        raise ValueError(f"{what} {s!r} contains a NUL character")
+    if not b:
+        raise ValueError(f"{what} is empty")
+    return b
+
+
+def real_arg(v, what="value"):
+    """A number argument -> float: TypeError for a bool, a str or anything that is not a
+    real number (numpy scalars are fine)."""
+    if isinstance(v, (bool, np_bool_types())) or isinstance(v, (str, bytes)):
+        raise TypeError(f"{what} must be a number, not {type(v).__name__} ({v!r})")
+    try:
+        return float(v.__float__()) if not isinstance(v, float) else v
+    except (AttributeError, TypeError):
+        raise TypeError(f"{what} must be a number, not {type(v).__name__} ({v!r})") from None
+
+
+def int_arg(v, what="value", lo=None):
+    """A whole-number argument -> int: TypeError for a bool, a float (2.7), a str; ValueError
+    below `lo`."""
+    import operator
+    if isinstance(v, (bool, np_bool_types())):
+        raise TypeError(f"{what} must be an integer, not {type(v).__name__} ({v!r})")
+    try:
+        n = operator.index(v)
+    except TypeError:
+        raise TypeError(f"{what} must be an integer, not {type(v).__name__} ({v!r})") from None
+    if lo is not None and n < lo:
+        raise ValueError(f"{what} must be >= {lo}, got {n}")
+    return n
+
+
+def np_bool_types():
+    try:
+        import numpy
+        return numpy.bool_
+    except ImportError:  # pragma: no cover
+        return bool
+
+
+def enc(s, what="name"):
+    """A name argument -> bytes (name_arg); None stays NULL (an optional argument)."""
+    return None if s is None else name_arg(s, what)

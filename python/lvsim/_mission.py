@@ -6,6 +6,10 @@ it; "NAME_deg" parameters take degrees. Frames: docs/frames.md (ECI, ECEF, geode
 Every array returned is a copy owned by NumPy: it stays valid whatever the run does next.
 """
 import ctypes
+import math
+import re
+import os
+import signal
 import threading
 import weakref
 from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_size_t, c_ubyte, c_uint64, c_void_p
@@ -13,11 +17,26 @@ from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_size_t, c_ubyte,
 import numpy as np
 
 from . import _lib
-from ._lib import lib, enc, text
-from .errors import (LvsimError, MissionError, ParameterError, SimulationError, check)
+from ._lib import lib, enc, text, name_arg, path_arg, real_arg, int_arg
+from .errors import (InputError, LvsimError, MissionError, OutputLimitError, ParameterError,
+                     SimulationError, check)
 
 _check = check
 
+
+_DEG = math.pi / 180.0  # rad per degree (LV_DEG)
+DEFAULT_MAX_ROWS = 1e6  # output rows one phase may write (the CLI's --max-rows default)
+
+def _methods():
+    arr = lib.lv_sim_methods()
+    out, i = [], 0
+    while arr[i]:
+        out.append(text(arr[i]))
+        i += 1
+    return tuple(out)
+
+
+METHODS = _methods()  # the integration methods (lv_sim_methods): "dassl", "rk4", ...
 
 PHASE_STATES = {0: "pending", 1: "done", 2: "failed", 3: "skipped"}
 STOP_REASONS = {0: "stop_time", 1: "event", 2: "failed"}
@@ -116,8 +135,10 @@ class Event:
 class PhaseResult(Table):
     """What one phase did in a run, copied out of the run (lv_phase_result).
 
-    Attributes: `index` (run order), `name`, `state` ("pending", "done", "failed",
-    "skipped"), `error` (phase, time and reason when failed or skipped, else None),
+    Attributes: `index` (run order, from 0; its result files are named phase_<index+1>_...),
+    `name`, `state` ("pending", "done", "failed", "skipped", or "stale": done, but an input
+    changed since - Run.set() without execute() - so the values are those of the earlier
+    inputs; `stale` True then), `error` (phase, time and reason when failed or skipped, else None),
     `t_start`, `t_end`, `t_stop` (s), `method`, `tolerance`, `stop_reason` ("stop_time",
     "event", "failed"), `stop_name` (the event that ended it), `end_index` (the `end:`
     condition that fired, 0-based in file order, or -1), `end_value`, `stats` (dict of the
@@ -144,6 +165,11 @@ class PhaseResult(Table):
         self.index = k
         self.name = text(r.name)
         self.state = PHASE_STATES.get(r.state, str(r.state))
+        # a done phase whose inputs changed since it ran (Run.set without execute, or options
+        # that change results): its values are those of the earlier inputs
+        self.stale = bool(r.state == 1 and lib.lv_run_stale(run._h, k))
+        if self.stale:
+            self.state = "stale"
         self.error = r.error.decode("utf-8", "replace") or None
         self.t_start, self.t_end, self.t_stop = r.t_start, r.t_end, r.t_stop
         self.method = text(r.method)
@@ -170,6 +196,8 @@ class PhaseResult(Table):
         self.dry_mass = {s: r.dry_mass[i] for i, s in enumerate(stages)} if book else {}
         self.payload = r.payload
         stem = text(r.result_stem)
+        if stem and run._stage_map and stem.startswith(run._stage_map[0] + "/"):
+            stem = run._stage_map[1] + stem[len(run._stage_map[0]):]  # staged, then committed
         self.result_files = []
         if stem:
             failed = self.state == "failed"
@@ -179,6 +207,7 @@ class PhaseResult(Table):
 
     @property
     def ok(self):
+        """True when the phase is done and up to date."""
         return self.state == "done"
 
     def __repr__(self):
@@ -268,7 +297,7 @@ def _simulate(model_ptr, inst, base, initial, finals, overrides, want_rows, prog
         if val is None:
             continue
         if key in ("method", "result_file"):
-            b = enc(val)
+            b = enc(val, key) if key == "method" else path_arg(val, key)
             keep.append(b)
             setattr(s, key, b)
         else:
@@ -277,8 +306,8 @@ def _simulate(model_ptr, inst, base, initial, finals, overrides, want_rows, prog
     names = [s.initial_names[i] for i in range(s.n_initial)]
     values = [s.initial_values[i] for i in range(s.n_initial)]
     for n, v in (initial or {}).items():
-        b = enc(n)
-        v = float(v)
+        b = name_arg(n, "initial value name")
+        v = real_arg(v, f"initial value of '{n}'")
         if b in names:
             values[names.index(b)] = v
         else:
@@ -288,7 +317,7 @@ def _simulate(model_ptr, inst, base, initial, finals, overrides, want_rows, prog
     na = (c_char_p * max(1, len(names)))(*names)
     va = (c_double * max(1, len(values)))(*values)
     s.n_initial, s.initial_names, s.initial_values = len(names), na, va
-    fn = [enc(f) for f in finals]
+    fn = [name_arg(f, "final name") for f in finals]
     fa = (c_char_p * max(1, len(fn)))(*fn)
     s.n_final, s.final_names = len(fn), fa
     out = (c_double * max(1, len(fn)))()
@@ -385,7 +414,7 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
     `progress(t)` is called at every output row (returning True cancels the run).
     Errors of the inputs (an unknown name, a negative tolerance) raise LvsimError; a failing
     integration is an Outcome with ok False and its message."""
-    ptr = lib.lv_models_find(enc(model))
+    ptr = lib.lv_models_find(name_arg(model, "model"))
     if not ptr:
         raise LvsimError(f"no built-in model '{model}'; models: {', '.join(models())}", -5)
     base = _lib.lv_sim_settings()
@@ -394,7 +423,7 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
     ov = dict(start_time=float(start_time), stop_time=float(stop_time),
               number_of_intervals=number_of_intervals, output_interval=output_interval,
               method=method, tolerance=tolerance, fixed_step=fixed_step, result_file=result_file)
-    finals = list(finals)
+    finals = [finals] if isinstance(finals, str) else list(finals)
     st, err, rep, vals, tab, exc = _simulate(ptr, None, base, initial, finals, ov, rows,
                                              progress)
     o = _outcome(st, err, rep, finals, vals, tab)
@@ -466,7 +495,7 @@ class Mission:
         self._lock = threading.RLock()
         h = c_void_p()
         err = _err()
-        st = lib.lv_mission_load(enc(path), byref(h), byref(err))
+        st = lib.lv_mission_load(path_arg(path, "mission path"), byref(h), byref(err))
         check(st, err, MissionError)
         self._h = h
         self._free = lib.lv_mission_free
@@ -558,6 +587,8 @@ class Mission:
     def phase_index(self, phase):
         """Run-order index of a phase given by name (or index, checked). NotFound: an
         LvsimError (LV_ERR_NOTFOUND) whose message suggests the nearest names."""
+        if isinstance(phase, (bool, np.bool_)):
+            raise TypeError(f"phase must be a name (str), an index (int) or a Phase, not {phase!r}")
         if isinstance(phase, (int, np.integer)):
             if not 0 <= phase < len(self.phases):
                 raise LvsimError(f"phase index {phase} out of range (0..{len(self.phases) - 1})", -2)
@@ -566,28 +597,46 @@ class Mission:
             return phase.index
         k = c_size_t()
         err = _err()
-        check(lib.lv_mission_phase_find(self._handle(), enc(phase), byref(k), byref(err)), err)
+        if not isinstance(phase, (str, bytes)):
+            raise TypeError("phase must be a name (str), an index (int) or a Phase, not "
+                            f"{type(phase).__name__} ({phase!r})")
+        check(lib.lv_mission_phase_find(self._handle(), name_arg(phase, "phase name"), byref(k),
+                                        byref(err)), err)
         return k.value
 
     def stage_index(self, stage):
         """Index of a stage by name (or index)."""
+        if isinstance(stage, (bool, np.bool_)) or not isinstance(stage, (str, int, np.integer)):
+            raise TypeError(f"stage must be a name (str) or an index (int), not "
+                            f"{type(stage).__name__} ({stage!r})")
         if isinstance(stage, (int, np.integer)):
             if not 0 <= stage < len(self.stages):
                 raise LvsimError(f"stage index {stage} out of range (0..{len(self.stages) - 1})", -2)
             return int(stage)
+        name_arg(stage, "stage name")
         try:
             return self.stages.index(stage)
         except ValueError:
             raise LvsimError(f"no stage '{stage}'; stages: {', '.join(self.stages)}", -5) from None
 
     def parameter(self, name):
-        """The Parameter `name`; ParameterError (LV_ERR_NOTFOUND, with suggestions)."""
+        """The Parameter `name`; ParameterError (LV_ERR_NOTFOUND, with suggestions).
+
+        An angle asked for as "NAME_deg" comes in degrees, as Run.get/Run.set take it: a
+        Parameter named "NAME_deg", unit "deg", value the file's value in degrees. So
+        run.set(n, m.parameter(n).value) sets the file's value for either spelling."""
         i = c_size_t()
         deg = c_int()
         err = _err()
-        check(lib.lv_mission_param_find(self._handle(), enc(name), byref(i), byref(deg),
-                                        byref(err)), err, ParameterError)
-        return self.parameters[i.value]
+        check(lib.lv_mission_param_find(self._handle(), name_arg(name, "parameter name"),
+                                        byref(i), byref(deg), byref(err)), err, ParameterError)
+        p = self.parameters[i.value]
+        if not deg.value:
+            return p
+        q = Parameter()
+        q.name, q.unit, q.line, q.rule = p.name + "_deg", "deg", p.line, p.rule
+        q.value = p.value / _DEG
+        return q
 
     # ---- runs ----
     def create_run(self, params=None):
@@ -610,6 +659,8 @@ class Mission:
         """The values run `index` of a Monte Carlo campaign with `seed` draws for the
         dispersed parameters (lv_mission_disp_draw): dict name -> value in its written unit
         (degrees for *_deg)."""
+        seed = int_arg(seed, "seed", 0)
+        index = int_arg(index, "index", 0)
         n = len(self.dispersions)
         vals = (c_double * max(1, n))()
         lib.lv_mission_disp_draw(self._handle(), c_uint64(seed), c_uint64(index), vals)
@@ -653,6 +704,8 @@ class Run:
         check(lib.lv_run_create(mission._handle(), byref(h), byref(err)), err)
         self._h = h
         self._free = lib.lv_run_free
+        self._ran_with = {}     # phase index -> the result-shaping options it ran with
+        self._stage_map = None  # (staging folder, results folder) of the last outdir
         mission._acquire()
         mission._runs.add(self)
 
@@ -697,7 +750,8 @@ class Run:
         (with "did you mean"), or a value outside the parameter's range (with its rule)."""
         with self._lock:
             err = _err()
-            check(lib.lv_run_set(self._handle(), enc(name), float(value), byref(err)), err,
+            check(lib.lv_run_set(self._handle(), name_arg(name, "parameter name"),
+                                 real_arg(value, f"value of '{name}'"), byref(err)), err,
                   ParameterError)
 
     def get(self, name):
@@ -705,12 +759,25 @@ class Run:
         with self._lock:
             v = c_double()
             err = _err()
-            check(lib.lv_run_get(self._handle(), enc(name), byref(v), byref(err)), err,
-                  ParameterError)
+            check(lib.lv_run_get(self._handle(), name_arg(name, "parameter name"), byref(v),
+                                 byref(err)), err, ParameterError)
             return v.value
 
     __getitem__ = get
     __setitem__ = set
+
+    def __contains__(self, name):
+        """True when `name` is a parameter of the run's mission ("NAME_deg" for an angle)."""
+        if not isinstance(name, str):
+            return False
+        try:
+            self.mission.parameter(name)
+            return True
+        except (ParameterError, ValueError):
+            return False
+
+    # A Run is not a sequence: without this, iter(run) would call run[0], run[1]...
+    __iter__ = None
 
     def update(self, params):
         """Sets every (name, value) of a dict; stops at the first error."""
@@ -726,6 +793,8 @@ class Run:
         """Draws Monte Carlo run `index`'s values (campaign `seed`) and sets them on this
         run; returns them (dict name -> value, written unit). ParameterError when a drawn
         value is outside its parameter's range (the run keeps its earlier values)."""
+        seed = int_arg(seed, "seed", 0)
+        index = int_arg(index, "index", 0)
         with self._lock:
             n = len(self.mission.dispersions)
             vals = (c_double * max(1, n))()
@@ -737,73 +806,179 @@ class Run:
     # ---- executing ----
     def execute(self, phases=None, *, until=None, outdir=None, formats=("mat", "csv"),
                 threads=0, output_interval=None, method=None, tolerance=None,
-                keep_rows=True, progress=None, check=True):
-        """Simulates the phases whose inputs changed (all, the first time).
+                keep_rows=True, progress=None, check=True, max_rows=DEFAULT_MAX_ROWS):
+        """Simulates the phases whose inputs changed (all, the first time), and those whose
+        results the options below would change.
 
         phases: names (or indices) of the phases wanted: only those and their ancestors run
             (the others whose inputs changed stay pending); None: every phase.
         until: a phase name: every phase up to it in run order (ancestors included).
-        outdir: folder for each phase's result files phase_<k>_<name>.mat/.csv (created);
-            None: no files. formats: which of "mat", "csv" (empty: none).
+        outdir: a results folder, written as `lvsim run -o` writes one: every phase is
+            simulated again and its files phase_<k>_<name>.mat/.csv (k = index + 1) go into a
+            private staging folder that replaces `outdir` as a whole at the end, with a
+            manifest.json; so a folder never mixes two runs. `outdir` may exist only empty or
+            as an lvsim results folder (anything else: LvsimError); an interrupted or
+            cancelled run leaves it as it was; a run with failed phases is kept, marked
+            "failed" in the manifest. None: no files. formats: which of "mat", "csv" (empty:
+            none).
         threads: worker threads for independent branches (0: 2).
-        output_interval (s), method, tolerance: override every phase's.
+        output_interval: None: each phase's own output grid; a number > 0 (s): every phase's
+            grid; "ends": only each phase's start and end rows, the fastest, as Monte Carlo
+            campaigns run (Campaign.run's default): run.disperse(seed, i);
+            run.execute(output_interval="ends") gives campaign run i's finals bit for bit.
+        method (one of lvsim.METHODS), tolerance (> 0): override every phase's.
         keep_rows: keep each phase's rows in memory (PhaseResult rows, Run.body); False is
             faster when only finals are read.
+            A phase that ran with other method, tolerance, output_interval or keep_rows than
+            these is simulated again (so are its descendants).
         progress: progress(phase_index, t) called at every output row from the thread that
             runs the phase (it takes the GIL: costly); returning True cancels the run.
         check: raise SimulationError when a phase fails (the others keep their results);
             False: return normally, see .failed.
+        max_rows: the most output rows one phase may keep or write (default 1e6, as the
+            CLI's --max-rows): with keep_rows=True or an outdir, a phase whose output grid
+            over its longest possible duration is larger raises OutputLimitError before
+            anything runs (keep_rows=False without outdir keeps no rows: no limit). None: no
+            limit.
 
-        Returns self. LvsimError for bad arguments or an output folder that cannot be
-        made; CancelledError when progress cancelled."""
+        Ctrl-C (SIGINT) while it runs, from the main thread: every branch stops at its next
+        output row and KeyboardInterrupt is raised; the phases completed before keep their
+        results, the interrupted ones are left failed (cancelled) and run at the next
+        execute().
+
+        Returns self. TypeError/ValueError for bad arguments (naming the argument);
+        LvsimError for an output folder that cannot be made; CancelledError when progress
+        cancelled."""
         m = self.mission
         n = len(m.phases)
+        # ---- the arguments, all checked before anything runs ----
         want = None
         if phases is not None or until is not None:
             want = (c_ubyte * n)()
-            if isinstance(phases, (str, int, np.integer, Phase)):
+            if isinstance(phases, (str, bytes, int, np.integer, Phase)):
                 phases = [phases]
             for p in phases or []:
                 want[m.phase_index(p)] = 1
             if until is not None:
                 for k in range(m.phase_index(until) + 1):
                     want[k] = 1
-        opt = _lib.lv_run_options()
-        keep = []
+        threads = int_arg(threads, "threads", 0)
+        if output_interval is None:
+            oi = 0.0
+        elif isinstance(output_interval, str):
+            if output_interval != "ends":
+                raise InputError(f"output_interval {output_interval!r}: a number of seconds "
+                                 "> 0, None (each phase's own) or 'ends' (start and end rows)")
+            oi = 1e300  # one interval longer than any phase: its start and end rows only
+        else:
+            oi = real_arg(output_interval, "output_interval")
+            if not (oi > 0.0 and math.isfinite(oi)):
+                raise InputError(f"output_interval must be > 0 s and finite, got {oi!r} (None: "
+                                 "each phase's own grid; 'ends': start and end rows only)")
+        if method is not None:
+            if not isinstance(method, str):
+                raise TypeError(f"method must be a str, not {type(method).__name__}")
+            if method not in METHODS:
+                raise InputError(f"unknown method {method!r}; methods: {', '.join(METHODS)}")
+        if tolerance is not None:
+            tolerance = real_arg(tolerance, "tolerance")
+            if not (tolerance > 0.0 and math.isfinite(tolerance)):
+                raise InputError(f"tolerance must be > 0 and finite, got {tolerance!r}")
+        if not isinstance(keep_rows, (bool, np.bool_)):
+            raise TypeError(f"keep_rows must be True or False, not {keep_rows!r}")
+        keep_rows = bool(keep_rows)
+        if max_rows is not None:
+            max_rows = real_arg(max_rows, "max_rows")
+            if not max_rows >= 1:
+                raise InputError(f"max_rows must be >= 1 (or None: no limit), got {max_rows!r}")
+        if progress is not None and not callable(progress):
+            raise TypeError(f"progress must be callable, not {type(progress).__name__}")
+        fm = 0
         if outdir is not None:
-            opt.outdir = enc(outdir)
-            keep.append(opt.outdir)
-            fm = 0
+            outdir = path_arg(outdir, "outdir")
+            if isinstance(formats, str):
+                formats = [formats]
             for f in formats or ():
                 if f not in ("mat", "csv"):
-                    raise LvsimError(f"unknown result format '{f}' (mat, csv)", -2)
+                    raise InputError(f"unknown result format {f!r} (mat, csv)")
                 fm |= _lib.LV_RESULT_MAT if f == "mat" else _lib.LV_RESULT_CSV
-            opt.result_formats = fm if fm else _lib.LV_RUN_NO_PHASE_FILES
-        opt.threads = int(threads)
-        if output_interval is not None:
-            opt.output_interval = float(output_interval)
+        key = (method, tolerance, oi, keep_rows)
+
+        opt = _lib.lv_run_options()
+        keep = []
+        opt.threads = threads
+        opt.output_interval = oi
         if method is not None:
-            opt.method = enc(method)
+            opt.method = method.encode()
             keep.append(opt.method)
         if tolerance is not None:
-            opt.tolerance = float(tolerance)
+            opt.tolerance = tolerance
         opt.no_rows = 0 if keep_rows else 1
         if want is not None:
             opt.want = ctypes.cast(want, POINTER(c_ubyte))
+        # the stop flag (lv_run_options.stop): set by Ctrl-C or by an exception in
+        # `progress`, it stops every branch at its next output row, at no cost until then
         cb_state = {}
+        stop = c_int(0)
+        opt.stop = ctypes.pointer(stop)
         if progress is not None:
             def _prog(run, k, t, user):
+                if stop.value:
+                    return 1
                 try:
                     return 1 if progress(k, t) else 0
-                except BaseException as exc:  # stop; raised after the run
-                    cb_state["exc"] = exc
+                except BaseException as exc:  # stop everything; raised after the run
+                    cb_state.setdefault("exc", exc)
+                    stop.value = 1
                     return 1
             cb = _lib.RUN_PROGRESS_FN(_prog)
             keep.append(cb)
             opt.progress = cb
-        err = _err()
+
         with self._lock:
-            st = lib.lv_run_execute(self._handle(), byref(opt), byref(err))
+            h = self._handle()
+            # results the options would change run again (phases that ran otherwise)
+            err = _err()
+            for k in range(n):
+                if k in self._ran_with and self._ran_with[k] != key:
+                    _check(lib.lv_run_invalidate(h, k, byref(err)), err)
+            if outdir is not None:  # a complete results folder: every phase, written anew
+                _check(lib.lv_run_invalidate(h, _lib.LV_RUN_ALL_PHASES, byref(err)), err)
+            if max_rows is not None and (keep_rows or outdir is not None):
+                self._check_rows(want, oi, max_rows)
+            od = None
+            if outdir is not None:
+                post = _lib.post()
+                od = c_void_p()
+                _check(post.lv_outdir_begin(outdir, path_arg(m.path), byref(od), byref(err)), err)
+                stage = post.lv_outdir_path(od)
+                keep.append(stage)
+                opt.outdir = stage
+                opt.result_formats = fm if fm else _lib.LV_RUN_NO_PHASE_FILES
+            try:
+                try:
+                    st = self._execute_interruptible(h, opt, err, stop)
+                finally:  # also when interrupted: what each phase now holds ran with these
+                    for k in range(n):
+                        if PHASE_STATES[lib.lv_run_result(h, k).contents.state] != "pending" \
+                                and not lib.lv_run_stale(h, k):
+                            self._ran_with[k] = key
+                if od is not None:
+                    interrupted = "exc" in cb_state or stop.value or st == -6
+                    if not interrupted:
+                        rec = _lib.lv_outdir_record()
+                        rec.command = b"python"
+                        rec.status = b"ok" if st == _lib.LV_OK else b"failed"
+                        rec.mission_name = enc(m.name)
+                        cerr = _err()
+                        cst = post.lv_outdir_commit(od, byref(rec), byref(cerr))
+                        if cst == _lib.LV_OK:
+                            self._stage_map = (text(stage), text(post.lv_outdir_final(od)))
+                        else:
+                            _check(cst, cerr)
+            finally:
+                if od is not None:
+                    post.lv_outdir_free(od)  # uncommitted: staging removed, outdir untouched
         if "exc" in cb_state:
             raise cb_state["exc"]
         if st == -3:  # LV_ERR_SOLVER: some phases failed, the others are complete
@@ -819,6 +994,89 @@ class Run:
         _check(st, err)
         return self
 
+    def _execute_interruptible(self, h, opt, err, stop):
+        """lv_run_execute, stoppable by Ctrl-C. From the main thread (the only one Python
+        delivers SIGINT to) the C call runs in a helper thread while this one waits: SIGINT
+        sets the C run's stop flag (`stop`, lv_run_options.stop), which cancels every running
+        phase at its next output row and starts no other; once the run has stopped (the run
+        consistent), KeyboardInterrupt is raised."""
+        if threading.current_thread() is not threading.main_thread():
+            return lib.lv_run_execute(h, byref(opt), byref(err))
+        box = {}
+
+        def _go():
+            try:
+                box["st"] = lib.lv_run_execute(h, byref(opt), byref(err))
+            except BaseException as exc:  # pragma: no cover - ctypes itself failing
+                box["exc"] = exc
+        t = threading.Thread(target=_go, name="lvsim-execute", daemon=True)
+        got = []
+        old = signal.getsignal(signal.SIGINT)
+        if old is signal.default_int_handler:
+            # Python's own handler: replaced for the run by one that only asks the run to
+            # stop, so no KeyboardInterrupt can fly while the run is still going
+            def _on_sigint(signum, frame):
+                got.append(KeyboardInterrupt())
+                stop.value = 1
+            signal.signal(signal.SIGINT, _on_sigint)
+            try:
+                t.start()
+                while t.is_alive():
+                    t.join(0.05)
+            finally:
+                signal.signal(signal.SIGINT, old)
+        else:  # the caller's own handler: its exception stops the run, raised after it
+            t.start()
+            while True:
+                try:
+                    while t.is_alive():
+                        t.join(0.05)
+                    break
+                except BaseException as exc:
+                    got.append(exc)
+                    stop.value = 1
+        if "exc" in box:
+            raise box["exc"]
+        if got:
+            raise got[0]
+        return box["st"]
+
+    def _check_rows(self, want, oi, max_rows):
+        """OutputLimitError when a phase to run (all, or `want` and their ancestors) could
+        write more than max_rows rows with output interval `oi` (0: its own)."""
+        m = self.mission
+        ks = range(len(m.phases))
+        if want is not None:
+            need = set()
+            for k in ks:
+                j = k if want[k] else None
+                while j is not None and j not in need:
+                    need.add(j)
+                    par = m.phases[j].parent
+                    j = None if par is None else m.phase_index(par)
+            ks = sorted(need)
+        for k in ks:
+            e = _lib.lv_output_estimate()
+            err = _err()
+            check(lib.lv_run_estimate_output(self._h, k, oi, byref(e), byref(err)), err)
+            if e.rows > max_rows:
+                raise OutputLimitError(
+                    f"phase {k + 1} '{m.phases[k].name}' would write up to {e.rows:.0f} rows "
+                    f"({e.duration:.6g} s of mission time, {e.n_signals} columns: "
+                    f"{e.bytes_mat / 1e6:.3g} MB of .mat, {e.bytes_csv / 1e6:.3g} MB of .csv, "
+                    f"and as much memory) - more than max_rows={max_rows:.0f}. Give it a larger "
+                    f"output_interval, an earlier stop_time or an end event, or allow it with "
+                    f"max_rows={math.ceil(e.rows)}", -2)
+
+    def invalidate(self, phase=None):
+        """Marks `phase` (None: every phase) to be simulated again at the next execute(),
+        with its descendants; until then its result reads as "stale"."""
+        with self._lock:
+            h = self._handle()
+            k = _lib.LV_RUN_ALL_PHASES if phase is None else self.mission.phase_index(phase)
+            err = _err()
+            check(lib.lv_run_invalidate(h, k, byref(err)), err)
+
     @property
     def simulated(self):
         """How many phases the last execute() simulated."""
@@ -826,10 +1084,14 @@ class Run:
             return lib.lv_run_simulated(self._handle())
 
     def state(self, phase):
-        """"pending", "done", "failed" or "skipped" (an ancestor failed)."""
+        """"pending", "done", "failed", "skipped" (an ancestor failed) or "stale" (done, but
+        an input of it or of an ancestor changed since: set() without execute(); its values
+        are those of the earlier inputs, and final() refuses them)."""
         k = self.mission.phase_index(phase)
         with self._lock:
-            return PHASE_STATES[lib.lv_run_result(self._handle(), k).contents.state]
+            h = self._handle()
+            st = PHASE_STATES[lib.lv_run_result(h, k).contents.state]
+            return "stale" if st == "done" and lib.lv_run_stale(h, k) else st
 
     @property
     def states(self):
@@ -870,12 +1132,19 @@ class Run:
 
     def final(self, phase, name):
         """A final value of a done phase by name ("time", "h", "m", ...), SI. LvsimError
-        when the phase is not done or has no such final."""
+        when the phase is not done, is stale (an input changed since it ran: execute()
+        first) or has no such final."""
         k = self.mission.phase_index(phase)
+        b = name_arg(name, "final name")
         with self._lock:
+            h = self._handle()
+            if lib.lv_run_result(h, k).contents.state == 1 and lib.lv_run_stale(h, k):
+                raise LvsimError(f"phase '{self.mission.phases[k].name}' is stale: an input "
+                                 "changed since it ran (set() without execute()); call "
+                                 "execute() first", -2)
             v = c_double()
             err = _err()
-            check(lib.lv_run_final(self._handle(), k, enc(name), byref(v), byref(err)), err)
+            check(lib.lv_run_final(h, k, b, byref(v), byref(err)), err)
             return v.value
 
     def finals(self, phase):
@@ -884,10 +1153,23 @@ class Run:
 
     def body(self, stage):
         """Stage `stage`'s (name or index) merged Trajectory across the done phases it flies
-        in (needs keep_rows=True at execute). LvsimError when it flew in no done phase."""
+        in (needs keep_rows=True at execute). LvsimError when it flew in no done phase, or
+        when one of them kept no rows (execute(keep_rows=False)) or is stale."""
         m = self.mission
         s = m.stage_index(stage)
         with self._lock:
+            h = self._handle()
+            ks = (c_size_t * max(1, len(m.phases)))()
+            for j in range(lib.lv_run_body_phases(h, s, ks)):
+                k = ks[j]
+                if not lib.lv_run_rows(h, k):
+                    raise LvsimError(f"stage '{m.stages[s]}': phase '{m.phases[k].name}' kept "
+                                     "no rows (execute(keep_rows=False)); execute("
+                                     "keep_rows=True) for its trajectory", -2)
+                if lib.lv_run_stale(h, k):
+                    raise LvsimError(f"stage '{m.stages[s]}': phase '{m.phases[k].name}' is "
+                                     "stale (an input changed since it ran); call execute() "
+                                     "first", -2)
             b = POINTER(_lib.lv_body_traj)()
             err = _err()
             check(lib.lv_run_body_trajectory(self._handle(), s, byref(b), byref(err)), err)
@@ -907,7 +1189,8 @@ class Run:
         return Trajectory(stage_name, names, units, vals, ph, [p.name for p in m.phases])
 
     def bodies(self):
-        """dict stage name -> Trajectory for every stage that flew in a done phase."""
+        """dict stage name -> Trajectory for every stage that flew in a done phase; LvsimError
+        as body() (rows not kept, a stale phase)."""
         out = {}
         for s, name in enumerate(self.mission.stages):
             with self._lock:
@@ -926,6 +1209,7 @@ class Run:
         k = self.mission.phase_index(phase)
         with self._lock:
             h = self._handle()
+            self._ran_with.pop(k, None)  # what it holds next comes from a hand-made call
             c = c_void_p()
             err = _err()
             check(lib.lv_run_prepare(h, k, byref(c), byref(err)), err)
@@ -1002,23 +1286,28 @@ class PhaseCall:
         for i in range(s.n_initial):
             nm = text(s.initial_names[i])
             if nm in initial:
-                s.initial_values[i] = float(initial.pop(nm))
+                s.initial_values[i] = real_arg(initial.pop(nm), f"initial value of '{nm}'")
         scal = dict(start_time=start_time, stop_time=stop_time,
-                    output_interval=output_interval, number_of_intervals=number_of_intervals,
-                    tolerance=tolerance)
+                    output_interval=output_interval, tolerance=tolerance)
         for k, v in scal.items():
             if v is not None:
-                setattr(s, k, v)
+                setattr(s, k, real_arg(v, k))
+        if number_of_intervals is not None:
+            s.number_of_intervals = int_arg(number_of_intervals, "number_of_intervals", 0)
         keep = []
         if method is not None:
-            b = enc(method)
+            b = enc(method, "method")
             keep.append(b)
             s.method = b
         if result_file is not None:
-            b = enc(result_file)
+            b = path_arg(result_file, "result_file")
             keep.append(b)
             s.result_file = b
+        if isinstance(finals, str):
+            finals = [finals]  # one name, not its letters
         want = list(finals) if finals is not None else list(self.final_names)
+        for f in want:
+            name_arg(f, "final name")
         names = self.final_names + want  # the run's finals first, so they can be recorded
         model = lib.lv_phase_call_model(c)
         inst = lib.lv_phase_call_inst(c)
@@ -1043,6 +1332,13 @@ class PhaseCall:
                 run._pending = None
                 if exc is not None:
                     raise exc
+                msg = err.msg.decode("utf-8", "replace")
+                mt = re.match(r"finalNames\[(\d+)\]: ", msg)
+                if mt:  # the index counts the run's own finals first: name the caller's
+                    i = int(mt.group(1))
+                    which = (f"finals[{i - n0}] '{want[i - n0]}'" if i >= n0
+                             else f"final '{names[i]}'")
+                    err.msg = (which + ": " + msg[mt.end():]).encode()[:_lib.LV_ERR_MSG_MAX - 1]
                 check(st, err)
             if record:
                 e2 = _err()

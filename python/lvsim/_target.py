@@ -5,7 +5,7 @@ import threading
 from ctypes import POINTER, byref, c_double, c_void_p
 
 from . import _lib
-from ._lib import enc, lib, text
+from ._lib import lib, name_arg, path_arg, real_arg, text
 from ._mission import Run
 from .errors import LvsimError, check
 
@@ -36,6 +36,8 @@ class _TargetRun(Run):
         self._lock = threading.RLock()
         self._target = target  # keeps the target (the run's owner) alive
         self.mission = target.mission
+        self._ran_with = {}
+        self._stage_map = None
 
     def _dispose(self):  # the target frees its run (lv_target_free)
         self._h = None
@@ -100,32 +102,43 @@ class Target:
     def add_variable(self, name, lo, hi, start=float("nan"), scale=float("nan"),
                      step=float("nan")):
         """A variable: run parameter `name` ("P1.guidance.kick_deg": degrees; else SI)
-        within [lo, hi]; start NaN: the file's value; scale/step NaN: from the bounds."""
+        within [lo, hi]; start NaN: the file's value; scale/step NaN: from the bounds.
+        TypeError for a name that is not a str or a bound that is not a number."""
+        b = name_arg(name, "variable name")
+        lo, hi = real_arg(lo, "lo"), real_arg(hi, "hi")
+        start, scale, step = real_arg(start, "start"), real_arg(scale, "scale"), real_arg(step, "step")
         with self._lock:
             err = _lib.lv_err()
-            check(lib.lv_target_add_var(self._handle(), enc(name), lo, hi, start, scale, step,
+            check(lib.lv_target_add_var(self._handle(), b, lo, hi, start, scale, step,
                                         byref(err)), err)
 
     def add_constraint(self, final, kind, value, tol):
         """A constraint on final value "PHASE.NAME" ("us-ascent.peri_alt"; "_deg" for an
         angle in degrees): kind "equal", "min" or "max" `value`, met within `tol` > 0."""
+        b = name_arg(final, "constraint final")
         if kind not in KINDS:
             raise LvsimError(f"constraint kind '{kind}': equal, min or max", -2)
+        value, tol = real_arg(value, "value"), real_arg(tol, "tol")
         with self._lock:
             err = _lib.lv_err()
-            check(lib.lv_target_add_con(self._handle(), enc(final), KINDS[kind], value, tol,
+            check(lib.lv_target_add_con(self._handle(), b, KINDS[kind], value, tol,
                                         byref(err)), err)
 
     def set_cost(self, final, maximize=True, scale=float("nan")):
         """The cost: final "PHASE.NAME" maximised (or minimised); scale: a significant
         change (NaN: from the start point)."""
+        b = name_arg(final, "cost final")
+        scale = real_arg(scale, "scale")
         with self._lock:
             err = _lib.lv_err()
-            check(lib.lv_target_set_cost(self._handle(), enc(final), 1 if maximize else 0,
+            check(lib.lv_target_set_cost(self._handle(), b, 1 if maximize else 0,
                                          scale, byref(err)), err)
 
     @property
     def variables(self):
+        """The variables, in order: a list of dicts with `name` (the run parameter; "_deg":
+        degrees), `unit`, `lo`, `hi` (bounds), `start` (NaN: the file's value), `scale` (a
+        significant change) and `step` (the finite-difference step), in the variable's unit."""
         out = []
         with self._lock:
             for i in range(lib.lv_target_var_count(self._handle())):
@@ -137,6 +150,9 @@ class Target:
 
     @property
     def constraints(self):
+        """The constraints, in order: a list of dicts with `name` ("PHASE.FINAL"), `unit`,
+        `phase` (the phase whose final it is), `kind` ("equal", "min", "max"), `value` (the
+        target or bound) and `tol` (met within it), in the final's unit."""
         kinds = {v: k for k, v in KINDS.items()}
         out = []
         with self._lock:
@@ -150,6 +166,8 @@ class Target:
 
     @property
     def cost(self):
+        """The cost, or None: a dict with `name` ("PHASE.FINAL"), `unit`, `phase`,
+        `maximize` (bool) and `scale` (a significant change)."""
         with self._lock:
             c = _lib.lv_target_cost_info()
             lib.lv_target_cost_info_get(self._handle(), byref(c))
@@ -224,10 +242,10 @@ class Target:
     @property
     def run(self):
         """The run holding the last point evaluated (after a solve: the result's point), as
-        a Run (owned by the target; valid until it is closed)."""
+        a Run (owned by the target; valid until it is closed). LvsimError before solve()."""
         with self._lock:
             h = lib.lv_target_run(self._handle())
-            if not h:
+            if not h or self._result is None:
                 raise LvsimError("the target has evaluated no point yet: solve() first", -2)
             if self._run is None or self._run._h is None or self._run._h.value != h:
                 self._run = _TargetRun(self, c_void_p(h))
@@ -250,6 +268,7 @@ class Target:
         worst = c_double()
         err = _lib.lv_err()
         with self._lock:
-            check(lib.lv_target_write(self._handle(), arr, enc(path), byref(worst), byref(err)),
+            check(lib.lv_target_write(self._handle(), arr, path_arg(path, "path"), byref(worst),
+                                      byref(err)),
                   err)
         return worst.value

@@ -24,7 +24,10 @@ class MissionError(LvsimError):
     ("path.yaml:12:5: phase 'P2': unknown key 'stop_tme' (did you mean 'stop_time'?)");
     None when the message names no position (a file that cannot be read)."""
 
-    _pos = re.compile(r"^(?P<file>[^:\n]+):(?P<line>\d+):(?:(?P<column>\d+):)?")
+    # "FILE:LINE:COLUMN: " where FILE may itself hold ':' (a folder "dir:colon"): the
+    # position is the first ":digits:" (and ":digits:") followed by a space after a file name
+    # ending in a YAML/CSV extension or not, matched lazily from the left up to that point
+    _pos = re.compile(r"^(?P<file>[^\n]+?):(?P<line>\d+):(?:(?P<column>\d+):)? ")
 
     def __init__(self, message, code=-2):
         super().__init__(message, code)
@@ -51,6 +54,18 @@ class SimulationError(LvsimError):
         self.failed = failed
         self.skipped = skipped
         self.done = done
+
+
+class InputError(LvsimError, ValueError):
+    """An argument out of its range (a tolerance <= 0, an unknown method, a negative count):
+    raised before anything runs, the message naming the argument (status LV_ERR_INPUT). A
+    ValueError too; an argument of the wrong type is a TypeError."""
+
+
+class OutputLimitError(InputError):
+    """A run would write more output rows than allowed (Run.execute's max_rows, the CLI's
+    --max-rows): refused before anything runs; the message names the phase, its rows and
+    the max_rows that would allow it."""
 
 
 class CancelledError(LvsimError):

@@ -1,5 +1,6 @@
 list(APPEND LV_SOURCES
   src/core/status.c
+  src/core/abi.c
   src/core/names.c
   src/core/data.c)
 include(src/core/tables.cmake OPTIONAL)

@@ -155,7 +155,9 @@ static lv_status set_slot(lv_run *r, size_t i, double v, int deg, lv_err *err)
 {
     const lv_mission_def *d = r->m->def;
     const lv_slot_def *sd = &d->slots[i];
-    const double x = deg ? v * LV_DEG : v;
+    /* in degrees, the value lv_run_get gives back is the value it has (x / LV_DEG * LV_DEG
+     * may differ from x in the last bit: a get/set round trip must change nothing) */
+    const double x = deg ? (v == r->vals[i] / LV_DEG ? r->vals[i] : v * LV_DEG) : v;
     if (!lv_range_holds(sd->range, x))
         return lv_fail(err, LV_ERR_INPUT, "mission '%s': %s%s = %g %s: must be %s%s%s", d->name,
                        sd->name, deg ? "_deg" : "", v, deg ? "deg" : sd->unit,
@@ -493,10 +495,17 @@ typedef struct progress_ctx {
     const lv_run_options *opt;
 } progress_ctx;
 
+static int stop_requested(const lv_run_options *opt)
+{
+    return opt && opt->stop && __atomic_load_n(opt->stop, __ATOMIC_RELAXED) != 0;
+}
+
 static int progress_thunk(double t, void *user)
 {
     const progress_ctx *pc = user;
-    return pc->opt->progress(pc->r, pc->k, t, pc->opt->user);
+    if (stop_requested(pc->opt))
+        return 1;
+    return pc->opt->progress ? pc->opt->progress(pc->r, pc->k, t, pc->opt->user) : 0;
 }
 
 /* Runs phase k: prepare, simulate, then (under the lock) record. Called without the lock. */
@@ -505,7 +514,8 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
 {
     const lv_phase_def *ph = &r->m->def->phases[k];
     lv_phase_call *c = NULL;
-    lv_status st = prepare(r, k, opt, &c, err);
+    lv_status st = stop_requested(opt) ? lv_fail(err, LV_ERR_CANCELLED, "stopped before it began")
+                                       : prepare(r, k, opt, &c, err);
     if (st != LV_OK) {
         pthread_mutex_lock(&r->lock);
         run_phase *p = &r->ph[k];
@@ -530,7 +540,7 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
             c->s.result_formats = formats & (LV_RESULT_MAT | LV_RESULT_CSV);
     }
     progress_ctx pc = {r, k, opt};
-    if (opt && opt->progress) {
+    if (opt && (opt->progress || opt->stop)) {
         c->s.progress = progress_thunk;
         c->s.progress_user = &pc;
     }
@@ -671,6 +681,32 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
 }
 
 size_t lv_run_simulated(const lv_run *r) { return r->simulated; }
+
+lv_status lv_run_invalidate(lv_run *r, size_t k, lv_err *err)
+{
+    const size_t n = r->m->def->n_phases;
+    if (k == LV_RUN_ALL_PHASES) {
+        for (size_t j = 0; j < n; j++)
+            r->ph[j].dirty = 1;
+        return LV_OK;
+    }
+    if (k >= n)
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': phase index %zu out of range (0..%zu)",
+                       r->m->def->name, k, n - 1);
+    r->ph[k].dirty = 1;
+    return LV_OK;
+}
+
+int lv_run_stale(const lv_run *r, size_t k)
+{
+    const lv_mission_def *d = r->m->def;
+    if (k >= d->n_phases)
+        return 0;
+    for (int j = (int)k; j >= 0; j = d->phases[j].parent)
+        if (r->ph[j].dirty || r->ph[j].res.state == LV_PHASE_PENDING)
+            return 1;
+    return 0;
+}
 
 /* ---- results ------------------------------------------------------------------------------------- */
 

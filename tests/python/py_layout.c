@@ -64,6 +64,7 @@ int main(void)
     F(lv_run_options, on_phase); F(lv_run_options, user); F(lv_run_options, output_interval);
     F(lv_run_options, method); F(lv_run_options, tolerance); F(lv_run_options, progress);
     F(lv_run_options, no_rows); F(lv_run_options, result_formats); F(lv_run_options, want);
+    F(lv_run_options, stop);
     S(lv_body_traj); F(lv_body_traj, stage); F(lv_body_traj, n_rows); F(lv_body_traj, n_cols);
     F(lv_body_traj, names); F(lv_body_traj, units); F(lv_body_traj, values);
     F(lv_body_traj, phase);
@@ -126,5 +127,10 @@ int main(void)
     F(lv_campaign_options, method); F(lv_campaign_options, tolerance);
     F(lv_campaign_options, output_interval); F(lv_campaign_options, progress);
     F(lv_campaign_options, user); F(lv_campaign_options, stop);
+    S(lv_output_estimate); F(lv_output_estimate, duration); F(lv_output_estimate, rows);
+    F(lv_output_estimate, n_signals); F(lv_output_estimate, bytes_mat);
+    F(lv_output_estimate, bytes_csv);
+    S(lv_outdir_record); F(lv_outdir_record, command); F(lv_outdir_record, status);
+    F(lv_outdir_record, mission_name); F(lv_outdir_record, n_notes); F(lv_outdir_record, notes);
     return 0;
 }

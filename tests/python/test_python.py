@@ -17,6 +17,7 @@ import math
 import os
 import shutil
 import subprocess
+import sys
 import threading
 import time
 
@@ -698,3 +699,367 @@ def test_no_growth_over_many_runs():
     grown = rss() - before
     print(f"\nRSS growth over {more} cycles: {grown / 1e6:.2f} MB")
     assert grown < 8e6
+
+
+# ---- the breaker's findings (py-fixes): each test failed before its fix ---------------------
+
+RLV_HEADING = "ascent.guidance.heading_deg"
+
+
+def test_none_and_bad_names_are_type_errors_not_crashes(tmp_path):
+    # None reached C as NULL and crashed the interpreter (SIGSEGV)
+    m = lvsim.Mission(DEMO)
+    r = m.run(until="ascent", keep_rows=False)
+    calls = [lambda: m.phase_index(None), lambda: r.result(None), lambda: r.state(None),
+             lambda: r.dataframe(None), lambda: r.final(None, "h"),
+             lambda: r.final("ascent", None), lambda: r.execute(phases=[None]),
+             lambda: r.prepare(None), lambda: lvsim.simulate(None), lambda: r.set(None, 1.0),
+             lambda: r.get(None), lambda: m.parameter(None), lambda: lvsim.Mission(None),
+             lambda: r.execute(phases=[True]), lambda: m.phase_index(1.0),
+             lambda: r.set("us.propellant_mass", True),
+             lambda: r.set("us.propellant_mass", "50000"), lambda: r.body(None),
+             lambda: m.monte_carlo(2.7, tmp_path / "x.db"), lambda: r.execute(threads=1.5),
+             lambda: r.execute(method=3)]
+    for i, f in enumerate(calls):
+        with pytest.raises(TypeError):
+            f()
+            pytest.fail(f"call {i} accepted")
+    # an embedded NUL: C would read a shorter name
+    for f in (lambda: r.set("us.propellant_mass\x00junk", 1.0),
+              lambda: r.result("ascent\x00x"),
+              lambda: lvsim.Mission(DEMO + "\x00.bak"),
+              lambda: r.execute(outdir=str(tmp_path / "o\x00x")),
+              lambda: r.final("ascent", "h\x00x"),
+              lambda: m.draw(-1, 0), lambda: r.disperse(0, -1)):
+        with pytest.raises(ValueError):
+            f()
+    assert not (tmp_path / "o").exists()
+    # numpy scalars are numbers and indices still
+    r.set("us.propellant_mass", np.float32(50000.0))
+    assert r.get("us.propellant_mass") == 50000.0
+    assert m.phase_index(np.int64(1)) == 1
+    r.close(); m.close()
+
+
+def test_deg_parameter_is_in_degrees_and_round_trips():
+    m = lvsim.Mission(DEMO)
+    p = m.parameter(RLV_HEADING)
+    rad = m.parameter(RLV_HEADING[:-4])
+    assert p.name == RLV_HEADING and p.unit == "deg"
+    assert rad.name == RLV_HEADING[:-4] and rad.unit == "rad"
+    assert p.value == pytest.approx(math.degrees(rad.value), rel=1e-15)
+    r = m.run(keep_rows=False)
+    assert r.get(RLV_HEADING) == p.value  # what get says, what parameter() says
+    for name in (RLV_HEADING, RLV_HEADING[:-4]):
+        r.set(name, m.parameter(name).value)  # the round trip changes nothing
+        r.execute(keep_rows=False)
+        assert r.simulated == 0, name
+        assert r.get(RLV_HEADING[:-4]) == rad.value
+    r.close(); m.close()
+
+
+def test_reexecute_applies_new_options_and_reports_stale():
+    m = lvsim.Mission(PAPER)
+    n = len(m.phases)
+    r = m.run(keep_rows=False)
+    # body() without rows raises (it returned an empty trajectory)
+    with pytest.raises(lvsim.LvsimError, match="keep_rows"):
+        r.body(0)
+    r.execute(keep_rows=True)  # simulated nothing before: 0 rows
+    assert r.simulated == n and len(r.result(0)) > 0 and len(r.body(0)) > 0
+    r.execute(tolerance=1e-7)
+    assert r.simulated == n and all(r.result(k).tolerance == 1e-7 for k in range(n))
+    r.execute(tolerance=1e-7)
+    assert r.simulated == 0  # the same options: nothing to do
+    r.execute(output_interval=5.0)
+    t = r.result(0)["time"]
+    assert r.simulated == n and np.all(np.diff(np.unique(t)) <= 5.0 + 1e-9)
+    r.execute(method="rk4", output_interval=5.0)
+    assert r.simulated == n and r.result(0).method == "rk4"
+    r.execute()  # back to the phases' own: again
+    assert r.simulated == n and r.result(0).method != "rk4"
+    with pytest.raises(lvsim.InputError, match="no-such-method"):
+        r.execute(method="no-such-method")
+    # set() without execute(): the phases it reaches are stale, not done
+    f0 = r.final("P3", "time")
+    r.set("P2.stop_time", 281.0)
+    assert r.state("P1") == "done" and r.state("P3") == "stale" and not r.ok
+    res = r.result("P3")
+    assert res.state == "stale" and res.stale and not res.ok and res.finals["time"] == f0
+    with pytest.raises(lvsim.LvsimError, match="stale"):
+        r.final("P3", "time")
+    r.execute()
+    assert r.ok and r.simulated == 3 and not r.result("P3").stale
+    r.close(); m.close()
+
+
+def test_disperse_and_execute_reproduce_a_campaign_run_bit_for_bit(tmp_path):
+    m = lvsim.Mission(BRANCH)
+    c = m.monte_carlo(3, tmp_path / "mc.db", threads=2)
+    tabs = {p.name: c.phase(p.name) for p in m.phases}
+    r = m.create_run()
+    compared = 0
+    for i in range(3):
+        r.disperse(m.seed, i)
+        r.execute(output_interval="ends", keep_rows=False)
+        for p in m.phases:
+            row = tabs[p.name][tabs[p.name]["run"] == i].iloc[0]
+            assert row["state"] == r.state(p.name)
+            for name, v in r.finals(p.name).items():
+                if name in row.index:  # bit for bit (SQLite keeps no sign of a zero)
+                    w = row[name]
+                    assert (w == v and (w != 0 or v == 0)) or (math.isnan(w) and math.isnan(v)) \
+                        or bits(np.array([w])) == bits(np.array([v])), (i, p.name, name, w, v)
+                    compared += 1
+    assert compared > 20
+    # 0 has no second meaning any more: it is refused by both
+    with pytest.raises(lvsim.InputError, match="output_interval"):
+        r.execute(output_interval=0)
+    with pytest.raises(lvsim.InputError, match="output_interval"):
+        m.monte_carlo(2, tmp_path / "z.db", output_interval=0)
+    r.close(); m.close()
+
+
+@pytest.mark.parametrize("kw,word", [
+    (dict(tolerance=-1), "tolerance"), (dict(tolerance=0), "tolerance"),
+    (dict(tolerance=float("nan")), "tolerance"), (dict(tolerance=float("inf")), "tolerance"),
+    (dict(output_interval=-1), "output_interval"),
+    (dict(output_interval=float("nan")), "output_interval"),
+    (dict(output_interval="x"), "output_interval"), (dict(threads=-1), "threads"),
+    (dict(method=""), "method"), (dict(max_rows=0), "max_rows")])
+def test_bad_execute_options_are_refused_up_front(kw, word):
+    m = lvsim.Mission(PAPER)
+    r = m.create_run()
+    with pytest.raises(ValueError, match=word) as e:
+        r.execute(**kw)
+    assert "liftoff" not in str(e.value) and "phase '" not in str(e.value)
+    assert set(r.states.values()) == {"pending"}  # nothing ran
+    r.close(); m.close()
+
+
+def test_max_rows_refuses_a_huge_output_before_running():
+    m = lvsim.Mission(DEMO)
+    r = m.create_run()
+    t0 = time.monotonic()
+    with pytest.raises(lvsim.OutputLimitError, match="max_rows") as e:
+        r.execute(output_interval=1e-6)
+    assert time.monotonic() - t0 < 5.0 and "phase 1 'liftoff'" in str(e.value)
+    assert set(r.states.values()) == {"pending"}
+    with pytest.raises(lvsim.OutputLimitError):
+        r.execute(max_rows=10)  # the phases' own grids: more than 10 rows
+    r.execute(phases="liftoff", max_rows=None, keep_rows=False)
+    assert r.state("liftoff") == "done"
+    r.close(); m.close()
+
+
+CTRL_C = r"""
+import json, os, signal, sys, threading, time
+import lvsim
+m = lvsim.Mission(sys.argv[1])
+r = m.create_run()
+mode = sys.argv[2]
+threading.Timer(float(sys.argv[3]), lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t0 = time.monotonic()
+kw = dict(output_interval=1e-4, max_rows=None, keep_rows=False)  # a run of many seconds
+if mode == "progress":
+    kw["progress"] = lambda k, t: False
+out = {}
+try:
+    r.execute(**kw)
+    out["raised"] = None
+except KeyboardInterrupt:
+    out["raised"] = "KeyboardInterrupt"
+except BaseException as e:
+    out["raised"] = type(e).__name__ + ": " + str(e)
+out["after"] = time.monotonic() - t0
+out["states"] = r.states
+r.execute(keep_rows=False, check=False)
+out["failed_after"] = r.failed  # the run is consistent: it completes
+out["ok_after"] = r.ok
+print(json.dumps(out))
+"""
+
+
+@pytest.mark.parametrize("mode", ["plain", "progress"])
+def test_ctrl_c_stops_every_branch_and_raises_keyboard_interrupt(tmp_path, mode):
+    script = tmp_path / "ctrl_c.py"
+    script.write_text(CTRL_C)
+    env = dict(os.environ)
+    delay = 3.0 if SANITIZED else 0.5
+    p = subprocess.run([sys.executable, str(script), DEMO, mode, str(delay)], env=env,
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-2000:]
+    assert "Exception ignored" not in p.stderr
+    out = json.loads(p.stdout.strip().splitlines()[-1])
+    assert out["raised"] == "KeyboardInterrupt", out
+    # stopped soon, not when the whole run (tens of seconds at this grid) was over
+    assert out["after"] < delay + (20.0 if SANITIZED else 2.0), out
+    states = out["states"]
+    assert "running" not in states.values() and "pending" in states.values() or \
+        "failed" in states.values()
+    assert set(states.values()) <= {"done", "failed", "skipped", "pending"}
+    assert out["ok_after"] is True, out
+
+
+def _files(d):
+    return sorted(os.listdir(d))
+
+
+def test_outdir_never_mixes_two_runs(tmp_path):
+    (tmp_path / "short.csv").write_text("t [s], thrust [N], mdot [kg/s]\n0, 30000, 10\n50, 30000, 10\n")
+    (tmp_path / "fail.yaml").write_text(FAILING)
+    m = lvsim.Mission(tmp_path / "fail.yaml")
+    out = tmp_path / "out"
+    r = m.run(outdir=out, formats=("csv",), check=False)
+    assert "phase_2_p2.failed.csv" in _files(out) and "manifest.json" in _files(out)
+    assert json.load(open(out / "manifest.json"))["status"] == "failed"
+    # a good run into the same folder: the failed run's files are gone
+    r.set("p2.stop_time", 25.0)
+    r.set("p3.stop_time", 30.0)
+    r.execute(outdir=out, formats=("csv",))
+    assert r.ok
+    names = _files(out)
+    assert not [f for f in names if ".failed." in f], names
+    assert {"phase_1_p1.csv", "phase_2_p2.csv", "phase_3_p3.csv"} <= set(names)
+    # result_files name the results folder, not the staging folder
+    assert all(os.path.dirname(f) == str(out) and os.path.exists(f)
+               for k in range(3) for f in r.result(k).result_files)
+    # re-executing into a new folder writes every phase, not only the re-simulated ones
+    r.set("p3.stop_time", 31.0)
+    r.execute(outdir=tmp_path / "b", formats=("csv",))
+    assert {"phase_1_p1.csv", "phase_2_p2.csv", "phase_3_p3.csv"} <= set(_files(tmp_path / "b"))
+    # a folder lvsim did not write is refused, untouched
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "thesis.tex").write_text("keep me")
+    with pytest.raises(lvsim.LvsimError, match="mine"):
+        r.execute(outdir=foreign)
+    assert _files(foreign) == ["thesis.tex"]
+    # an exception in progress: the folder is left as it was
+    before = (out / "phase_3_p3.csv").read_bytes()
+    r.set("p3.stop_time", 32.0)
+
+    def boom(k, t):
+        raise RuntimeError("stop")
+    with pytest.raises(RuntimeError):
+        r.execute(outdir=out, formats=("csv",), progress=boom)
+    assert (out / "phase_3_p3.csv").read_bytes() == before
+    assert not [f for f in os.listdir(tmp_path) if "staging" in f]
+    r.close(); m.close()
+
+
+def test_library_dir_that_does_not_hold_the_library_is_an_error():
+    env = dict(os.environ, LVSIM_LIBRARY_DIR="/nonexistent")
+    p = subprocess.run([sys.executable, "-c", "import lvsim"], env=env, capture_output=True,
+                       text=True)
+    assert p.returncode != 0 and "ImportError" in p.stderr and "/nonexistent" in p.stderr
+
+
+def test_library_version_and_structure_sizes_are_checked_at_load():
+    lib = _lib.lib
+    assert lib.lv_version().decode() == lvsim.__version__
+    for st in _lib.MIRRORED:
+        assert lib.lv_abi_sizeof(st.__name__.encode()) == ctypes.sizeof(st), st.__name__
+    assert lib.lv_abi_sizeof(b"no_such_struct") == 0
+    # a mismatch is an ImportError naming the structure (a library whose every struct is
+    # 8 bytes), and so is a library without the functions (too old)
+    bad = type("BadDLL", (), {})()
+    bad._name = "libfake.so"
+    bad.lv_version = lib.lv_version
+    size = ctypes.CFUNCTYPE(ctypes.c_size_t, ctypes.c_char_p)(lambda name: 8)
+    bad.lv_abi_sizeof = size
+    with pytest.raises(ImportError, match="struct lv_err is 8 bytes"):
+        _lib._check_abi(bad)
+    old = type("OldDLL", (), {"_name": "libold.so"})()
+    with pytest.raises(ImportError, match="too old"):
+        _lib._check_abi(old)
+
+
+def test_installed_paths_name_the_install_prefix(tmp_path):
+    build = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(lvsim.__file__))))
+    if not os.path.exists(os.path.join(build, "cmake_install.cmake")):
+        pytest.skip("not the build tree's package")
+    prefix = tmp_path / "prefix"
+    subprocess.run(["cmake", "--install", build, "--prefix", str(prefix)], check=True,
+                   capture_output=True)
+    found = [os.path.join(d, f) for d, _, fs in os.walk(prefix) for f in fs if f == "_paths.py"]
+    assert len(found) == 1, found
+    ns = {}
+    exec(open(found[0]).read(), ns)
+    assert ns["LIBDIR_ABS"].startswith(str(prefix) + "/"), ns["LIBDIR_ABS"]
+    assert os.path.exists(os.path.join(ns["LIBDIR_ABS"], ns["SONAME"]))
+    rel = os.path.normpath(os.path.join(os.path.dirname(found[0]), ns["LIBDIR_REL"]))
+    assert rel == ns["LIBDIR_ABS"]
+
+
+def test_clearer_errors(tmp_path):
+    m = lvsim.Mission(DEMO)
+    r = m.run(until="ballistic", keep_rows=False)
+    # a str of finals is one name, not its letters; an unknown one is named, not indexed
+    o = r.prepare("us-ascent").simulate(finals="sma", record=False)
+    assert list(o.finals) == ["sma"]
+    with pytest.raises(lvsim.LvsimError) as e:
+        r.prepare("us-ascent").simulate(finals=["time", "nope"], record=False)
+    assert "finals[1] 'nope'" in str(e.value) and "finalNames" not in str(e.value)
+    # `in` asks for a parameter; a Run is not iterable
+    assert "us.dry_mass" in r and "nope" not in r and RLV_HEADING in r
+    with pytest.raises(TypeError):
+        iter(r)
+    # Python argument names in the campaign's message, not the CLI's flags
+    b = lvsim.Mission(BRANCH)
+    b.monte_carlo(1, tmp_path / "c.db")
+    with pytest.raises(lvsim.LvsimError) as e:
+        b.monte_carlo(1, tmp_path / "c.db")
+    assert "resume=True" in str(e.value) and "overwrite=True" in str(e.value)
+    assert "--" not in str(e.value)
+    c = lvsim.Campaign(tmp_path / "c.db")  # opened directly: its counts
+    assert c.done == 1 and c.total == 1 and c.failed == 0
+    # a typed error naming the argument, not ctypes' ArgumentError
+    t = lvsim.Mission(LEO_TARGETED).target(from_file=False)
+    with pytest.raises(TypeError, match="lo"):
+        t.add_variable("upper.dry_mass", "1", 2)
+    with pytest.raises(lvsim.LvsimError, match="solve"):
+        lvsim.Mission(LEO_TARGETED).target().run  # before solve(), as documented
+    # a mission in a folder with ':' in its name: the position is still parsed
+    d = tmp_path / "dir:colon"
+    d.mkdir()
+    (d / "typo.yaml").write_text("mission: {name: typo}\nstages: [{name: s, dry_mass: 100, "
+                                 "propellant_mass: 0}]\nphases: [{name: coast, model: flat6, "
+                                 "stages: [s], stop_tme: 10}]\n")
+    with pytest.raises(lvsim.MissionError) as e:
+        lvsim.Mission(d / "typo.yaml")
+    assert e.value.file == str(d / "typo.yaml") and e.value.line == 3 and e.value.column
+    r.close(); m.close(); b.close()
+
+
+def test_notebook_copy_finds_the_repository(tmp_path):
+    # the notebook's first cells, run from a copy's folder inside the repository (no
+    # LV_SOURCE_DIR), then from outside it with LV_SOURCE_DIR: both find the example mission
+    nb = json.load(open(os.path.join(ROOT, "examples", "notebook.ipynb")))
+    code = "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code")
+    code = "\n".join(l for l in code.split("\n") if not l.startswith("%"))
+    first = code.split("bodies = run.bodies()")[0] + "\nprint('mission', mission.name)\n"
+    script = tmp_path / "nb.py"
+    script.write_text(first)
+    inside = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(lvsim.__file__)))), "nbcopy-test")
+    if not os.path.abspath(inside).startswith(os.path.abspath(ROOT) + os.sep):
+        inside = None  # the build tree is outside the sources: only the LV_SOURCE_DIR case
+    env = {k: v for k, v in os.environ.items() if k != "LV_SOURCE_DIR"}
+    env["MPLBACKEND"] = "Agg"
+    cases = [(str(tmp_path), dict(env, LV_SOURCE_DIR=ROOT))]
+    if inside:
+        os.makedirs(inside, exist_ok=True)
+        cases.append((inside, env))
+    try:
+        for cwd, e in cases:
+            p = subprocess.run([sys.executable, str(script)], cwd=cwd, env=e,
+                               capture_output=True, text=True, timeout=300)
+            assert p.returncode == 0 and "mission rlv-hthl" in p.stdout, (cwd, p.stderr[-1500:])
+        # from outside the repository without LV_SOURCE_DIR: a clear error
+        p = subprocess.run([sys.executable, str(script)], cwd=str(tmp_path), env=env,
+                           capture_output=True, text=True, timeout=300)
+        assert p.returncode != 0 and "LV_SOURCE_DIR" in p.stderr
+    finally:
+        if inside:
+            shutil.rmtree(inside, ignore_errors=True)

@@ -225,9 +225,64 @@ static void test_threads_vs_fresh(void)
     CHECK(memcmp(results_fresh[0], results_fresh[1], sizeof results_fresh[0]) != 0);
 }
 
+/* ---- lv_run_invalidate and lv_run_stale: results out of date, and forced to run again ---- */
+
+static void test_invalidate_stale(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    lv_err err;
+    CHECK_OK(lv_mission_load(mission_path(), &m, &err), &err);
+    if (m == NULL)
+        return;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    const size_t p1 = phase(m, "P1"), p2 = phase(m, "P2"), p3 = phase(m, "P3"),
+                 p4 = phase(m, "P4"), p5 = phase(m, "P5");
+    CHECK(lv_run_stale(r, p1) && lv_run_stale(r, p3)); /* never run */
+    const lv_run_options opt = {.threads = 2, .no_rows = 1};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    for (size_t k = 0; k < 5; k++)
+        CHECK(!lv_run_stale(r, k));
+    CHECK(!lv_run_stale(r, 99));
+    /* a parameter of P2: P2 and its descendants are out of date, the others are not */
+    CHECK_OK(lv_run_set(r, "P2.stop_time", 281.0, &err), &err);
+    CHECK(!lv_run_stale(r, p1) && lv_run_stale(r, p2) && lv_run_stale(r, p3) &&
+          lv_run_stale(r, p5) && !lv_run_stale(r, p4));
+    CHECK(lv_run_result(r, p3)->state == LV_PHASE_DONE); /* still readable */
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(lv_run_simulated(r) == 3);
+    CHECK(!lv_run_stale(r, p3));
+    /* one phase invalidated: it and its descendants run again */
+    CHECK_OK(lv_run_invalidate(r, p2, &err), &err);
+    CHECK(lv_run_stale(r, p5) && !lv_run_stale(r, p4));
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(lv_run_simulated(r) == 3);
+    /* every phase */
+    CHECK_OK(lv_run_invalidate(r, LV_RUN_ALL_PHASES, &err), &err);
+    CHECK(lv_run_stale(r, p1) && lv_run_stale(r, p4));
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(lv_run_simulated(r) == 5);
+    /* a stop flag set: nothing starts, the run is cancelled; cleared: everything runs */
+    CHECK_OK(lv_run_invalidate(r, LV_RUN_ALL_PHASES, &err), &err);
+    volatile int stop = 1;
+    const lv_run_options sopt = {.threads = 2, .no_rows = 1, .stop = &stop};
+    CHECK(lv_run_execute(r, &sopt, &err) == LV_ERR_CANCELLED);
+    CHECK(lv_run_result(r, p1)->state == LV_PHASE_FAILED &&
+          strstr(lv_run_result(r, p1)->error, "stopped") != NULL &&
+          lv_run_result(r, p3)->state == LV_PHASE_SKIPPED);
+    stop = 0;
+    CHECK_OK(lv_run_execute(r, &sopt, &err), &err);
+    CHECK(lv_run_simulated(r) == 5);
+    CHECK(lv_run_invalidate(r, 5, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "out of range") != NULL);
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_dirty_phases();
     test_threads_vs_fresh();
+    test_invalidate_stale();
     return check_report("test_run");
 }
