@@ -673,10 +673,11 @@ def test_close_and_context_managers():
     gc.collect()
 
 
+@pytest.mark.skipif(SANITIZED, reason="ASan's quarantine keeps freed memory resident (up to "
+                    "256 MB): RSS measures no leak there; LSan and valgrind check the C side")
 def test_no_growth_over_many_runs():
     """Creating, running and dropping runs and missions frees their memory: the resident
-    size after 150 more cycles is within a few MB of the size after the first 50 (60 after
-    20 under the sanitizers)."""
+    size after 150 more cycles is within a few MB of the size after the first 50."""
     def rss():
         with open("/proc/self/statm") as f:
             return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
@@ -688,7 +689,7 @@ def test_no_growth_over_many_runs():
         call = m.create_run().prepare(0)
         call.close()
 
-    warm, more = (20, 60) if SANITIZED else (50, 150)
+    warm, more = 50, 150
     for _ in range(warm):
         cycle()
     gc.collect()
