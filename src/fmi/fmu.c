@@ -120,6 +120,12 @@ typedef struct fmu {
 /* A saved state (fmi2GetFMUstate). It belongs to the instance that saved it (owner): the
  * registry below lists the live ones, so that a state of another instance, of another FMU,
  * or one already freed is refused without reading it. */
+/* What an FMU state holds of an instance besides its arrays and the simulation: the scalars
+ * fmi2GetFMUstate copies out and fmi2SetFMUstate copies back, listed once for both. */
+#define FMU_SAVED_SCALARS(X)                                                                \
+    X(mode) X(t) X(t_start) X(tol) X(init_done) X(end_reached) X(cs_terminated)             \
+    X(t_model_te) X(t_next) X(t_prev_event) X(last_ok_time) X(stop_defined) X(t_stop)
+
 typedef struct fmu_saved {
     fmu *owner;
     fmi2Type type;
@@ -1303,10 +1309,9 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
         saved_free(s);
         return FAIL(f, "fmi2GetFMUstate: out of memory");
     }
-    s->mode = f->mode;
-    s->t = f->t;
-    s->t_start = f->t_start;
-    s->tol = f->tol;
+#define COPY_OUT(field) s->field = f->field;
+    FMU_SAVED_SCALARS(COPY_OUT)
+#undef COPY_OUT
     memcpy(s->x, f->x, f->nx * sizeof(double));
     memcpy(s->p, f->p, f->np * sizeof(double));
     memcpy(s->z_pre, f->z_pre, f->ni * sizeof(double));
@@ -1315,15 +1320,6 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
     memcpy(s->x_set, f->x_set, f->nx);
     if (f->inst_size > 0)
         memcpy(s->inst, f->inst, f->inst_size);
-    s->init_done = f->init_done;
-    s->end_reached = f->end_reached;
-    s->cs_terminated = f->cs_terminated;
-    s->t_model_te = f->t_model_te;
-    s->t_next = f->t_next;
-    s->t_prev_event = f->t_prev_event;
-    s->last_ok_time = f->last_ok_time;
-    s->stop_defined = f->stop_defined;
-    s->t_stop = f->t_stop;
     memcpy(s->end_name, f->end_name, sizeof s->end_name);
     *FMUstate = s;
     return fmi2OK;
@@ -1361,23 +1357,15 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
         lv_sim_free(f->sim);
         f->sim = NULL;
     }
-    f->mode = s->mode;
-    f->t = s->t;
+#define COPY_BACK(field) f->field = s->field;
+    FMU_SAVED_SCALARS(COPY_BACK)
+#undef COPY_BACK
     memcpy(f->x, s->x, f->nx * sizeof(double));
     memcpy(f->p, s->p, f->np * sizeof(double));
     memcpy(f->z_pre, s->z_pre, f->ni * sizeof(double));
     memcpy(f->x_set, s->x_set, f->nx);
     if (f->inst_size > 0)
         memcpy(f->inst, s->inst, f->inst_size);
-    f->init_done = s->init_done;
-    f->end_reached = s->end_reached;
-    f->cs_terminated = s->cs_terminated;
-    f->t_model_te = s->t_model_te;
-    f->t_next = s->t_next;
-    f->t_prev_event = s->t_prev_event;
-    f->last_ok_time = s->last_ok_time;
-    f->stop_defined = s->stop_defined;
-    f->t_stop = s->t_stop;
     memcpy(f->end_name, s->end_name, sizeof f->end_name);
     f->eval_ok = 0;
     return fmi2OK;
