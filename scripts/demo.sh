@@ -21,4 +21,7 @@ echo "3-D view: $lvsim view $out   (a track per stage: main stage, upper stage, 
 echo "          3-D globe, offline, on http://127.0.0.1; data: $out/mission.czml)"
 echo "more:     $lvsim run examples/paper-test-case/mission.yaml -o out   (the paper's test case;"
 echo "          $lvsim compare examples/paper-test-case/mission.yaml: its Table 2)"
+echo "          $lvsim run examples/two-stage-6dof/mission.yaml -o out6   (a 6-DoF first stage under attitude control)"
+echo "          $lvsim fmu examples/two-stage-6dof/mission.yaml --phase boost -o boost.fmu   (FMI 2.0: docs/fmi.md)"
+echo "python:   PYTHONPATH=build/python /usr/bin/python3 -c 'import lvsim'   (docs/python.md, examples/notebook.ipynb)"
 echo "layout:   docs/result-files.md, docs/mission-format.md, docs/visualization.md"
