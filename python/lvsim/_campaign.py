@@ -9,7 +9,7 @@ import sqlite3
 from ctypes import byref, c_int, pointer
 
 from . import _lib
-from ._lib import enc, int_arg, path_arg, real_arg
+from ._lib import enc, int_arg, path_arg, real_arg, U64_MAX
 from .errors import InputError, LvsimError, check
 
 
@@ -66,8 +66,8 @@ class Campaign:
             raise InputError(f"n_runs must be > 0, got {n_runs}")
         if seed is None:
             seed = mission.seed if mission.seed is not None else 1
-        seed = int_arg(seed, "seed", 0)
-        threads = int_arg(threads, "threads", 0)
+        seed = int_arg(seed, "seed", 0, U64_MAX)
+        threads = int_arg(threads, "threads", 0, 1024)
         keep_runs = int_arg(keep_runs, "keep_runs", 0)
         if method is not None:
             if not isinstance(method, str):

@@ -480,9 +480,22 @@ def real_arg(v, what="value"):
         raise TypeError(f"{what} must be a number, not {type(v).__name__} ({v!r})") from None
 
 
-def int_arg(v, what="value", lo=None):
+U64_MAX = 2**64 - 1  # seeds and run indices are uint64_t in C
+
+
+def bool_arg(v, what="value"):
+    """A flag argument -> bool: True/False (numpy's too) or 0/1; TypeError otherwise (a str, a
+    list or NaN is no flag)."""
+    if isinstance(v, (bool, np_bool_types())):
+        return bool(v)
+    if isinstance(v, int) and v in (0, 1):
+        return bool(v)
+    raise TypeError(f"{what} must be True or False, not {type(v).__name__} ({v!r})")
+
+
+def int_arg(v, what="value", lo=None, hi=None):
     """A whole-number argument -> int: TypeError for a bool, a float (2.7), a str; ValueError
-    below `lo`."""
+    below `lo` or above `hi`."""
     import operator
     if isinstance(v, (bool, np_bool_types())):
         raise TypeError(f"{what} must be an integer, not {type(v).__name__} ({v!r})")
@@ -492,6 +505,8 @@ def int_arg(v, what="value", lo=None):
         raise TypeError(f"{what} must be an integer, not {type(v).__name__} ({v!r})") from None
     if lo is not None and n < lo:
         raise ValueError(f"{what} must be >= {lo}, got {n}")
+    if hi is not None and n > hi:
+        raise ValueError(f"{what} must be <= {hi}, got {n}")
     return n
 
 

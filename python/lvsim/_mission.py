@@ -17,7 +17,7 @@ from ctypes import POINTER, byref, c_char_p, c_double, c_int, c_size_t, c_ubyte,
 import numpy as np
 
 from . import _lib
-from ._lib import lib, enc, text, name_arg, path_arg, real_arg, int_arg
+from ._lib import lib, enc, text, name_arg, path_arg, real_arg, int_arg, bool_arg, U64_MAX
 from .errors import (InputError, LvsimError, MissionError, OutputLimitError, ParameterError,
                      SimulationError, check)
 
@@ -300,8 +300,10 @@ def _simulate(model_ptr, inst, base, initial, finals, overrides, want_rows, prog
             b = enc(val, key) if key == "method" else path_arg(val, key)
             keep.append(b)
             setattr(s, key, b)
+        elif key == "number_of_intervals":
+            setattr(s, key, int_arg(val, key, 0))
         else:
-            setattr(s, key, val)
+            setattr(s, key, real_arg(val, key))
     # start values: the base's, then the caller's (by name; a name given twice: the last)
     names = [s.initial_names[i] for i in range(s.n_initial)]
     values = [s.initial_values[i] for i in range(s.n_initial)]
@@ -420,7 +422,8 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
     base = _lib.lv_sim_settings()
     lib.lv_sim_settings_default(byref(base))
     base.result_file = None
-    ov = dict(start_time=float(start_time), stop_time=float(stop_time),
+    ov = dict(start_time=real_arg(start_time, "start_time"),
+              stop_time=real_arg(stop_time, "stop_time"),
               number_of_intervals=number_of_intervals, output_interval=output_interval,
               method=method, tolerance=tolerance, fixed_step=fixed_step, result_file=result_file)
     finals = [finals] if isinstance(finals, str) else list(finals)
@@ -659,8 +662,8 @@ class Mission:
         """The values run `index` of a Monte Carlo campaign with `seed` draws for the
         dispersed parameters (lv_mission_disp_draw): dict name -> value in its written unit
         (degrees for *_deg)."""
-        seed = int_arg(seed, "seed", 0)
-        index = int_arg(index, "index", 0)
+        seed = int_arg(seed, "seed", 0, U64_MAX)
+        index = int_arg(index, "index", 0, U64_MAX)
         n = len(self.dispersions)
         vals = (c_double * max(1, n))()
         lib.lv_mission_disp_draw(self._handle(), c_uint64(seed), c_uint64(index), vals)
@@ -793,8 +796,8 @@ class Run:
         """Draws Monte Carlo run `index`'s values (campaign `seed`) and sets them on this
         run; returns them (dict name -> value, written unit). ParameterError when a drawn
         value is outside its parameter's range (the run keeps its earlier values)."""
-        seed = int_arg(seed, "seed", 0)
-        index = int_arg(index, "index", 0)
+        seed = int_arg(seed, "seed", 0, U64_MAX)
+        index = int_arg(index, "index", 0, U64_MAX)
         with self._lock:
             n = len(self.mission.dispersions)
             vals = (c_double * max(1, n))()
@@ -862,7 +865,8 @@ class Run:
             if until is not None:
                 for k in range(m.phase_index(until) + 1):
                     want[k] = 1
-        threads = int_arg(threads, "threads", 0)
+        threads = int_arg(threads, "threads", 0, 1024)
+        check = bool_arg(check, "check")
         if output_interval is None:
             oi = 0.0
         elif isinstance(output_interval, str):
@@ -889,6 +893,8 @@ class Run:
         keep_rows = bool(keep_rows)
         if max_rows is not None:
             max_rows = real_arg(max_rows, "max_rows")
+            if max_rows == max_rows and max_rows != float("inf") and max_rows != int(max_rows):
+                raise InputError(f"max_rows must be a whole number of rows, got {max_rows!r}")
             if not max_rows >= 1:
                 raise InputError(f"max_rows must be >= 1 (or None: no limit), got {max_rows!r}")
         if progress is not None and not callable(progress):
@@ -1126,9 +1132,22 @@ class Run:
         """Every phase's PhaseResult, dict name -> result, in run order."""
         return {p.name: self.result(p.index) for p in self.mission.phases}
 
+    def _not_stale(self, k):
+        """LvsimError when done phase k is stale (an input changed since it ran)."""
+        h = self._handle()
+        if lib.lv_run_result(h, k).contents.state == 1 and lib.lv_run_stale(h, k):
+            raise LvsimError(f"phase '{self.mission.phases[k].name}' is stale: an input "
+                             "changed since it ran (set() without execute()); call "
+                             "execute() first", -2)
+
     def dataframe(self, phase):
-        """Phase `phase`'s rows as a pandas DataFrame (units in df.attrs["units"])."""
-        return self.result(phase).to_dataframe()
+        """Phase `phase`'s rows as a pandas DataFrame (units in df.attrs["units"]).
+        LvsimError when the phase is stale (as final()); result(phase) still gives the old
+        rows with .stale True."""
+        k = self.mission.phase_index(phase)
+        with self._lock:
+            self._not_stale(k)
+        return self.result(k).to_dataframe()
 
     def final(self, phase, name):
         """A final value of a done phase by name ("time", "h", "m", ...), SI. LvsimError
@@ -1137,19 +1156,20 @@ class Run:
         k = self.mission.phase_index(phase)
         b = name_arg(name, "final name")
         with self._lock:
+            self._not_stale(k)
             h = self._handle()
-            if lib.lv_run_result(h, k).contents.state == 1 and lib.lv_run_stale(h, k):
-                raise LvsimError(f"phase '{self.mission.phases[k].name}' is stale: an input "
-                                 "changed since it ran (set() without execute()); call "
-                                 "execute() first", -2)
             v = c_double()
             err = _err()
             check(lib.lv_run_final(h, k, b, byref(v), byref(err)), err)
             return v.value
 
     def finals(self, phase):
-        """dict name -> final value of phase `phase` (time, states, outputs; SI)."""
-        return self.result(phase).finals
+        """dict name -> final value of phase `phase` (time, states, outputs; SI). LvsimError
+        when the phase is stale (as final())."""
+        k = self.mission.phase_index(phase)
+        with self._lock:
+            self._not_stale(k)
+        return self.result(k).finals
 
     def body(self, stage):
         """Stage `stage`'s (name or index) merged Trajectory across the done phases it flies
@@ -1263,6 +1283,7 @@ class PhaseCall:
     def simulate(self, initial=None, finals=None, *, start_time=None, stop_time=None,
                  output_interval=None, number_of_intervals=None, method=None,
                  tolerance=None, result_file=None, record=True, progress=None):
+        record = bool_arg(record, "record")
         """lv_simulate of the phase's model (simulateExtendedModel): `initial` (dict name ->
         value, SI) overrides or adds start values (states or model parameters) over the
         hand-off; `finals` (names, default final_names) are returned in Outcome.finals;

@@ -1064,3 +1064,31 @@ def test_notebook_copy_finds_the_repository(tmp_path):
     finally:
         if inside:
             shutil.rmtree(inside, ignore_errors=True)
+
+
+def test_second_breaker_arguments():
+    # a second breaker's pass: seeds beyond uint64 wrapped to another run's draw; bools passed
+    # as numbers to simulate(); flags took any value; max_rows was rounded; finals() and
+    # dataframe() of a stale phase gave the old values while final() refused
+    m = lvsim.Mission(BRANCH)
+    with pytest.raises(ValueError, match="seed must be <="):
+        m.draw(2**64 + 5, 0)
+    run = m.create_run()
+    with pytest.raises(ValueError, match="index must be <="):
+        run.disperse(1, 2**64)
+    for kw in (dict(stop_time=True), dict(tolerance=True), dict(output_interval=False),
+               dict(start_time=None), dict(stop_time="10")):
+        with pytest.raises(TypeError):
+            lvsim.simulate("vertical_ascent", **kw)
+    for kw in (dict(check="a"), dict(check=[1]), dict(check=float("nan")), dict(check=None),
+               dict(max_rows=1.5), dict(threads=10**30)):
+        with pytest.raises((TypeError, ValueError)):
+            run.execute(**kw)
+    d = lvsim.Mission(DEMO)
+    r = d.run(keep_rows=True)
+    r.set("us.propellant_mass", 54000.0)
+    for f in (lambda: r.final("us-ascent", "m"), lambda: r.finals("us-ascent"),
+              lambda: r.dataframe("us-ascent")):
+        with pytest.raises(lvsim.LvsimError, match="stale"):
+            f()
+    assert r.result("us-ascent").stale  # the old rows stay readable, marked
