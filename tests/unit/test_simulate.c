@@ -15,6 +15,42 @@
 static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler"};
 #define N_METHODS 5
 
+/* A far output grid: stop_time 1e30 with the default 500 intervals puts the rows 2e27 s
+ * apart; CVODE's first step after the burnout's restart is estimated against that distance
+ * (~1e8 s) and needs more than its default 7 error-test failures to come down to the
+ * flight's scale (it failed "at t = 60 s: error test failed repeatedly" before). The impact
+ * time from the closed form of test_vertical_ascent: apogee at tb + vb/g, then a free fall of
+ * sqrt(2 h_apo / g). */
+static void test_far_output_grid(void)
+{
+    const double F = 30000.0, q = 10.0, g = 9.81, m0 = 1000.0, mf = 400.0;
+    const double ve = F / q, tb = (m0 - mf) / q;
+    const double vb = ve * log(m0 / mf) - g * tb;
+    const double hb = ve * (tb - (mf / q) * log(m0 / mf)) - 0.5 * g * tb * tb;
+    const double h_apo = hb + vb * vb / (2.0 * g);
+    const double t_imp = tb + vb / g + sqrt(2.0 * h_apo / g);
+    lv_sim_settings s;
+    lv_sim_settings_default(&s);
+    s.result_file = NULL;
+    s.tolerance = 1e-8;
+    s.stop_time = 1e30;
+    const char *in[] = {"thrust", "mdot", "g", "m0", "m_final", "stop_at_apogee"};
+    const double iv[] = {F, q, g, m0, mf, 0.0};
+    const char *fin[] = {"time"};
+    double out[1] = {NAN};
+    s.n_initial = 6;
+    s.initial_names = in;
+    s.initial_values = iv;
+    s.n_final = 1;
+    s.final_names = fin;
+    lv_sim_report rep;
+    lv_err err;
+    CHECK_OK(lv_simulate(&lv_model_vertical_ascent, NULL, &s, out, &rep, &err), &err);
+    CHECK(rep.reason == LV_STOP_EVENT && strcmp(rep.stop_name, "impact") == 0);
+    CHECK_CLOSE(out[0], t_imp, 1e-3);
+    lv_sim_report_clear(&rep);
+}
+
 /* ---- (1) vertical ascent: Tsiolkovsky with gravity loss --------------------------- */
 /* Constant thrust F and mass flow q in uniform gravity g, no drag, from rest:
  *   m(t) = m0 - q t,  ve = F / q,
@@ -917,6 +953,7 @@ static void test_event_state(void)
 int main(void)
 {
     test_vertical_ascent();
+    test_far_output_grid();
     test_free_fall();
     test_oscillator();
     test_fixed_step_recurrences();
