@@ -128,7 +128,10 @@ expect 0 "plots in $tmp/run/plots/" -- "$lvsim" plot "$tmp/run"
 expect 0 "viewer staged in $tmp/run/viewer/" -- "$lvsim" view "$tmp/run" --stage-only
 # the FMU binary is found next to the installed (and moved) liblvsim_post too: lib/lvsim/
 expect 0 "wrote $tmp/ascent.fmu: FMI 2.0" -- "$lvsim" fmu "$mission" --phase ascent -o "$tmp/ascent.fmu"
-unzip -l "$tmp/ascent.fmu" 2> /dev/null | grep -q "binaries/linux64/.*\.so" && ok \
+# the listing captured first: `unzip -l | grep -q` under pipefail fails at random when grep
+# exits at its first match and unzip dies of SIGPIPE writing the rest (exit 141)
+fmu_listing="$(unzip -l "$tmp/ascent.fmu" 2> /dev/null)"
+grep -q "binaries/linux64/.*\.so" <<< "$fmu_listing" && ok \
   || fail "lvsim fmu: no binary in the archive from the prefix"
 grep -qx "lvsim viewer, CesiumJS 0.0.7-install-test" "$tmp/run/viewer/VERSION" 2> /dev/null \
   && [ -f "$tmp/run/viewer/index.html" ] && ok || fail "lvsim view: viewer not staged from the prefix"
