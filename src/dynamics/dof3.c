@@ -462,32 +462,13 @@ static lv_event_action dof3_on_event(double t, double *x, const double *p, const
     return act;
 }
 
-static double min_d(double a, double b) { return b < a ? b : a; }
-
 static double dof3_next_time_event(double t, const double *p, void *inst)
 {
     (void)p;
-    const lv_dof3 *m = ((const dof3_inst *)inst)->m;
-    double tn = INFINITY;
-    if (m->inputs.table != NULL)
-        tn = min_d(tn, lv_table_next_breakpoint(m->inputs.table, 0, t));
-    for (size_t i = 0; i < m->n_eng; i++)
-        if (m->eng[i].table != NULL)
-            tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
-    if (m->steers)
-        tn = min_d(tn, lv_guid_next_time_event(&m->guid, &((const dof3_inst *)inst)->guid, t));
-    return tn;
-}
-
-/* 1 if table `tab` has a breakpoint at exactly t on its first axis (time). */
-static int breakpoint_at(const lv_table *tab, double t)
-{
-    size_t n = 0;
-    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
-    for (size_t i = 0; b != NULL && i < n; i++)
-        if (b[i] == t)
-            return 1;
-    return 0;
+    const dof3_inst *s = inst;
+    const lv_dof3 *m = s->m;
+    return lv_flight_next_time_event(m->inputs.table, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                                     &s->guid, t);
 }
 
 /* The time events at t by their source: the inputs table's, the steering law's or an engine
@@ -497,22 +478,8 @@ static const char *dof3_time_event_name(double t, const double *p, void *inst)
     (void)p;
     dof3_inst *s = inst;
     const lv_dof3 *m = s->m;
-    size_t len = 0;
-    s->tev[0] = '\0';
-    if (breakpoint_at(m->inputs.table, t))
-        len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
-                                lv_table_name(m->inputs.table));
-    const char *g = m->steers ? lv_guid_time_event_label(&m->guid, &s->guid, t) : NULL;
-    if (g != NULL)
-        len += (size_t)snprintf(s->tev + len, sizeof s->tev - len, "%s%s", len ? "; " : "", g);
-    for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
-        if (breakpoint_at(m->eng[i].table, t))
-            len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
-                                    "%sengine '%.24s' table breakpoint", len ? "; " : "",
-                                    m->eng[i].name);
-    if (len > 0 && len < sizeof s->tev)
-        snprintf(s->tev + len, sizeof s->tev - len, " t = %.9g s", t);
-    return s->tev;
+    return lv_flight_time_event_label(m->inputs.table, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                                      &s->guid, t, s->tev, sizeof s->tev);
 }
 
 /* Flight-path angle and heading of an ECEF vector in the local NED frame. */

@@ -888,54 +888,24 @@ static lv_event_action dof6_on_event(double t, double *x, const double *p, const
     return act;
 }
 
-static double min_d(double a, double b) { return b < a ? b : a; }
-
 static double dof6_next_time_event(double t, const double *p, void *inst)
 {
     (void)p;
-    const lv_dof6 *m = ((const dof6_inst *)inst)->m;
-    double tn = INFINITY;
-    if (m->inputs != NULL)
-        tn = min_d(tn, lv_table_next_breakpoint(m->inputs, 0, t));
-    for (size_t i = 0; i < m->n_eng; i++)
-        if (m->eng[i].table != NULL)
-            tn = min_d(tn, lv_table_next_breakpoint(m->eng[i].table, 0, t));
-    if (m->steers)
-        tn = min_d(tn, lv_guid_next_time_event(&m->guid, &((const dof6_inst *)inst)->guid, t));
-    return tn;
+    const dof6_inst *s = inst;
+    const lv_dof6 *m = s->m;
+    return lv_flight_next_time_event(m->inputs, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                                     &s->guid, t);
 }
 
-static int breakpoint_at(const lv_table *tab, double t)
-{
-    size_t n = 0;
-    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
-    for (size_t i = 0; b != NULL && i < n; i++)
-        if (b[i] == t)
-            return 1;
-    return 0;
-}
-
+/* The time events at t by their source: the inputs table's, the steering law's or an engine
+ * table's breakpoint. */
 static const char *dof6_time_event_name(double t, const double *p, void *inst)
 {
     (void)p;
     dof6_inst *s = inst;
     const lv_dof6 *m = s->m;
-    size_t len = 0;
-    s->tev[0] = '\0';
-    if (breakpoint_at(m->inputs, t))
-        len += (size_t)snprintf(s->tev, sizeof s->tev, "inputs table '%.40s' breakpoint",
-                                lv_table_name(m->inputs));
-    const char *g = m->steers ? lv_guid_time_event_label(&m->guid, &s->guid, t) : NULL;
-    if (g != NULL && len < sizeof s->tev)
-        len += (size_t)snprintf(s->tev + len, sizeof s->tev - len, "%s%s", len ? "; " : "", g);
-    for (size_t i = 0; i < m->n_eng && len < sizeof s->tev; i++)
-        if (breakpoint_at(m->eng[i].table, t))
-            len += (size_t)snprintf(s->tev + len, sizeof s->tev - len,
-                                    "%sengine '%.24s' table breakpoint", len ? "; " : "",
-                                    m->eng[i].name);
-    if (len > 0 && len < sizeof s->tev)
-        snprintf(s->tev + len, sizeof s->tev - len, " t = %.9g s", t);
-    return s->tev;
+    return lv_flight_time_event_label(m->inputs, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                                      &s->guid, t, s->tev, sizeof s->tev);
 }
 
 static int dof6_outputs(double t, const double *x, const double *p, double *y, void *inst)

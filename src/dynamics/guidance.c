@@ -10,6 +10,7 @@
 #include "dynamics/guidance.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/status.h"
@@ -571,4 +572,47 @@ int lv_guid_reads_atmosphere(const lv_guid *g)
 {
     return (g->s.law == LV_STEER_ATTITUDE && g->axis == LV_GAXIS_MACH) ||
            g->s.law == LV_STEER_HEADING;
+}
+
+/* ---- a flight model's time events -------------------------------------------------------- */
+
+double lv_flight_next_time_event(const lv_table *inputs, const lv_engine *eng, size_t n_eng,
+                                 const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    double tn = inputs != NULL ? lv_table_next_breakpoint(inputs, 0, t) : INFINITY;
+    for (size_t i = 0; i < n_eng; i++)
+        if (eng[i].table != NULL)
+            tn = fmin(tn, lv_table_next_breakpoint(eng[i].table, 0, t));
+    return g != NULL ? fmin(tn, lv_guid_next_time_event(g, rt, t)) : tn;
+}
+
+/* 1 if table `tab` has a breakpoint at exactly t on its first axis (time). */
+static int breakpoint_at(const lv_table *tab, double t)
+{
+    size_t n = 0;
+    const double *b = tab != NULL ? lv_table_breakpoints(tab, 0, &n) : NULL;
+    for (size_t i = 0; b != NULL && i < n; i++)
+        if (b[i] == t)
+            return 1;
+    return 0;
+}
+
+const char *lv_flight_time_event_label(const lv_table *inputs, const lv_engine *eng,
+                                       size_t n_eng, const lv_guid *g, const lv_guid_rt *rt,
+                                       double t, char *buf, size_t cap)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    if (breakpoint_at(inputs, t))
+        len += (size_t)snprintf(buf, cap, "inputs table '%.40s' breakpoint", lv_table_name(inputs));
+    const char *gl = g != NULL ? lv_guid_time_event_label(g, rt, t) : NULL;
+    if (gl != NULL && len < cap)
+        len += (size_t)snprintf(buf + len, cap - len, "%s%s", len ? "; " : "", gl);
+    for (size_t i = 0; i < n_eng && len < cap; i++)
+        if (breakpoint_at(eng[i].table, t))
+            len += (size_t)snprintf(buf + len, cap - len, "%sengine '%.24s' table breakpoint",
+                                    len ? "; " : "", eng[i].name);
+    if (len > 0 && len < cap)
+        snprintf(buf + len, cap - len, " t = %.9g s", t);
+    return buf;
 }

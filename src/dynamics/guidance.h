@@ -69,6 +69,18 @@ double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t)
  * table breakpoint"), or NULL when the law has none at t. */
 const char *lv_guid_time_event_label(const lv_guid *g, const lv_guid_rt *rt, double t);
 
+/* The time events of a flight model over the planet (dof3, dof6): the breakpoints on the first
+ * axis (time) of its inputs table and of its engines' tables, and its steering law's events
+ * (g NULL: no law). The next one after t, or INFINITY. */
+double lv_flight_next_time_event(const lv_table *inputs, const lv_engine *eng, size_t n_eng,
+                                 const lv_guid *g, const lv_guid_rt *rt, double t);
+
+/* What those events at t are, written into buf[cap] ("inputs table 'x' breakpoint; end of
+ * the kick t = 14 s"); "" when none. Returns buf. */
+const char *lv_flight_time_event_label(const lv_table *inputs, const lv_engine *eng,
+                                       size_t n_eng, const lv_guid *g, const lv_guid_rt *rt,
+                                       double t, char *buf, size_t cap);
+
 /* Attitude at time t: fills ax (wind and body axes, ECEF) and c->u[alpha, beta, mu] with
  * their cosines and sines (the angles that result for an attitude frame; 0 below 1e-6 m/s
  * of air-relative speed, where the wind axes are the body axes), and c->u[throttle] from
