@@ -38,8 +38,12 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
     lv_status st = lv_outdir_open(dir, &od, &err);
     if (st != LV_OK)
         return print_err("lvsim export", &err, exit_code_for_input(st));
+    /* written into a replica of the folder, which replaces it at the commit */
+    const char *stage = lv_outdir_path(od);
     lv_export_report rep;
-    st = lv_export_run_report(dir, formats ? formats : LV_EXPORT_ALL, &rep, &err);
+    st = lv_export_run_report(stage, formats ? formats : LV_EXPORT_ALL, &rep, &err);
+    if (st != LV_OK)
+        restage(err.msg, sizeof err.msg, stage, lv_outdir_final(od));
     size_t written = 0;
     for (size_t i = 0; i < rep.n; i++) {
         const lv_export_item *it = &rep.items[i];
@@ -48,7 +52,10 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
             printf("export %s: wrote %s/%s%s%s\n", it->format, dir, it->file,
                    it->note[0] ? " - " : "", it->note);
         } else {
-            printf("export %s: %s\n", it->format, it->note);
+            char note[sizeof it->note];
+            snprintf(note, sizeof note, "%s", it->note);
+            restage(note, sizeof note, stage, lv_outdir_final(od));
+            printf("export %s: %s\n", it->format, note);
         }
     }
     lv_export_report_clear(&rep);

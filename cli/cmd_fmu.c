@@ -12,9 +12,12 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
 {
     const char *path = NULL, *phase = NULL, *out = NULL, *id = NULL, *rows = NULL;
     double max_rows = CLI_DEFAULT_MAX_ROWS;
+    int force = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "--phase") == 0 || strcmp(a, "-o") == 0 ||
+        if (strcmp(a, "--force") == 0) {
+            force = 1;
+        } else if (strcmp(a, "--phase") == 0 || strcmp(a, "-o") == 0 ||
             strcmp(a, "--model-identifier") == 0 || strcmp(a, "--max-rows") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
@@ -55,13 +58,16 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
     if (code != EXIT_OK)
         return code;
     code = check_output_bound(m, max_rows, 0.0, 0);
+    lv_err err;
+    /* never an input; an existing file only with --force (lv_output_check) */
+    if (code == EXIT_OK && lv_output_check(out, m, force ? LV_OUTPUT_REPLACE : 0u, &err) != LV_OK)
+        code = print_err("lvsim fmu", &err, EXIT_INPUT);
     lv_mission_free(m);
     if (code != EXIT_OK)
         return code;
     lv_fmu_options opt = {0};
     opt.model_identifier = id;
     lv_fmu_info info;
-    lv_err err;
     lv_status st = lv_fmu_export(path, phase, out, &opt, &info, &err);
     if (st != LV_OK)
         return print_err("lvsim fmu", &err, exit_code_for(st));
@@ -78,7 +84,7 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_fmu = {
     "fmu",
     "export one phase's model as an FMI 2.0 FMU (Model Exchange and Co-Simulation)",
-    "MISSION.yaml --phase NAME -o FILE.fmu [--model-identifier ID] [--max-rows N]",
+    "MISSION.yaml --phase NAME -o FILE.fmu [--force] [--model-identifier ID] [--max-rows N]",
     "Writes an FMI 2.0 FMU of the phase's model: modelDescription.xml (states, derivatives,\n"
     "parameters and outputs with units and start values, event indicators, ModelStructure),\n"
     "the binary binaries/linux64/ID.so and the mission with its data files in resources/.\n"
@@ -88,7 +94,8 @@ const cli_cmd cli_cmd_fmu = {
     "  --phase NAME             the phase to export (required)\n"
     "  -o FILE.fmu              the archive to write (required; written whole or not at all;\n"
     "                           it must end in .fmu and must not be the mission or one of its\n"
-    "                           data files; an existing .fmu of that name is replaced)\n"
+    "                           data files; an existing file is refused unless --force)\n"
+    "  --force                  replace an existing FILE.fmu (never an input)\n"
     "  --model-identifier ID    the FMU's modelIdentifier, a C identifier (default: the mission's\n"
     "                           and the phase's names, e.g. kourou_leo_ascent)\n"
     "  --max-rows N             output rows one phase may write (default 1e6), as 'lvsim check'\n"

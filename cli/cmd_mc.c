@@ -163,14 +163,27 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     if (!seed_given && !lv_mission_disp_seed(m, &seed))
         seed = 1;
     const int world = mc_mpi_world_size();
-    char db[4200], keep_dir[4200];
+    char db[4300], keep_dir[4300], final_dir[4200];
+    /* DIR is lvsim's (lv_outdir.h): the database and the kept runs are written in it as the
+     * campaign goes (its manifest claims them at once), the statistics and figures in a
+     * replica that replaces it at the end. Rank 0 alone owns it. */
+    static const char *const live[] = {"campaign.db", "campaign.db-wal", "campaign.db-shm",
+                                       "campaign.db-journal", "runs", NULL};
+    lv_outdir *od = NULL;
+    if (mc_mpi_env_rank() == 0) {
+        st = lv_outdir_open_live(outdir, path, force ? LV_OUTDIR_FORCE : 0u, live, &od, &err);
+        if (st != LV_OK) {
+            lv_mission_free(m);
+            return print_err("lvsim", &err, exit_code_for_input(st));
+        }
+        for (size_t i = 0; i < lv_outdir_stale_count(od); i++)
+            fprintf(stderr, "lvsim: removed '%s', the unfinished folder of an interrupted "
+                    "command\n", lv_outdir_stale(od, i));
+        snprintf(final_dir, sizeof final_dir, "%s", lv_outdir_final(od));
+        outdir = final_dir;
+    }
     snprintf(db, sizeof db, "%s/campaign.db", outdir);
     snprintf(keep_dir, sizeof keep_dir, "%s/runs", outdir);
-    if (mkdir(outdir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "lvsim: cannot create '%s': %s\n", outdir, strerror(errno));
-        lv_mission_free(m);
-        return EXIT_INPUT;
-    }
     lv_campaign_options o;
     lv_campaign_options_default(&o);
     o.n_runs = n;
@@ -205,28 +218,41 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
         st = lv_campaign_run(m, &o, &prog, &err);
     }
     lv_mission_free(m);
-    if (!rank0)
+    if (!rank0) {
+        lv_outdir_free(od);
         return st == LV_OK ? EXIT_OK : exit_code_for(st);
-    if (st == LV_ERR_CANCELLED) {
-        print_err("lvsim", &err, 0);
-        return 130;
     }
-    if (st != LV_OK)
-        return print_err("lvsim", &err, exit_code_for(st));
+    if (st != LV_OK) { /* the folder stays as it is, its manifest saying "incomplete" */
+        lv_outdir_free(od);
+        print_err("lvsim", &err, 0);
+        return st == LV_ERR_CANCELLED ? 130 : exit_code_for(st);
+    }
     printf("mc: %llu runs in %s (%llu this session in %.2f s: %.1f runs/s), %llu with a failed "
            "phase or an input out of range\n", (unsigned long long)prog.done, db,
            (unsigned long long)prog.this_session, prog.elapsed, prog.rate,
            (unsigned long long)prog.failed);
-    if (stats) {
-        lv_err serr;
-        lv_status sst = lv_campaign_stats(db, outdir, &serr);
-        if (sst == LV_OK && plots)
-            sst = lv_campaign_plot(db, outdir, &serr);
-        if (sst != LV_OK)
-            return print_err("lvsim", &serr, exit_code_for_input(sst));
+    lv_err serr;
+    lv_status sst = stats ? lv_outdir_stage(od, &serr) : LV_OK;
+    const char *stage = lv_outdir_path(od);
+    if (stats && sst == LV_OK)
+        sst = lv_campaign_stats(db, stage, &serr);
+    if (stats && sst == LV_OK && plots)
+        sst = lv_campaign_plot(db, stage, &serr);
+    if (sst != LV_OK) {
+        restage(serr.msg, sizeof serr.msg, stage, lv_outdir_final(od));
+        lv_outdir_free(od);
+        return print_err("lvsim", &serr, exit_code_for_input(sst));
+    }
+    const lv_outdir_record rec = {"mc", "ok", NULL, 0, NULL};
+    if ((sst = lv_outdir_commit(od, &rec, &serr)) != LV_OK) {
+        lv_outdir_free(od);
+        return print_err("lvsim", &serr, exit_code_for_input(sst));
+    }
+    print_kept(od);
+    lv_outdir_free(od);
+    if (stats)
         printf("statistics: %s/stats.json, stats.csv, ellipses.csv, outcomes.csv, "
                "sensitivity.csv, footprint.kml%s\n", outdir, plots ? ", plots/, index.html" : "");
-    }
     return EXIT_OK;
 }
 
@@ -250,9 +276,11 @@ const cli_cmd cli_cmd_mc = {
     "  -j, --threads T         worker threads per process (default 1)\n"
     "  --seed S                the campaign's seed, 0..2^64-1 (default: the file's\n"
     "                          dispersions: seed, else 1)\n"
-    "  -o DIR                  output folder (default lvsim-mc)\n"
+    "  -o DIR                  output folder (default lvsim-mc): new, empty, or one of lvsim\n"
+    "                          (its manifest.json lists every file; others are refused)\n"
     "  --resume                continue DIR/campaign.db (same mission file, seed, options)\n"
-    "  --force                 replace an existing DIR/campaign.db\n"
+    "  --force                 replace an existing DIR/campaign.db; DIR may hold files lvsim\n"
+    "                          did not write: they are kept, never replaced\n"
     "  --keep-runs K           runs 0 .. K-1 also write their result files to DIR/runs/\n"
     "                          run_<i>/ (phases, summary.json) (default 0)\n"
     "  --method M, --tolerance T   every phase's integration method / tolerance\n"
@@ -264,6 +292,7 @@ const cli_cmd cli_cmd_mc = {
 
 #ifndef LV_WITH_MPI
 int mc_mpi_world_size(void) { return 1; }
+int mc_mpi_env_rank(void) { return 0; }
 
 lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
                      int *rank0, lv_err *err)

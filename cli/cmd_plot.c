@@ -20,7 +20,9 @@ static int plot_run(const cli_cmd *self, int argc, char **argv)
         return print_err("lvsim plot", &err, exit_code_for_input(st));
     cli_progress *prog = progress_new(0, 0);
     progress_step_begin(prog, "plots and index.html");
-    st = lv_plot_run(argv[0], &err);
+    st = lv_plot_run(lv_outdir_path(od), &err); /* a replica of the folder, see lv_outdir.h */
+    if (st != LV_OK)
+        restage(err.msg, sizeof err.msg, lv_outdir_path(od), lv_outdir_final(od));
     progress_step_end(prog);
     progress_free(prog);
     lv_err merr;

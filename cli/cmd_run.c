@@ -83,24 +83,6 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     progress_print_end(ui->prog);
 }
 
-/* Replaces every "STAGE" in msg by "FINAL": the staging folder's name never reaches the user. */
-static void restage(char *msg, size_t cap, const char *stage, const char *final)
-{
-    char out[LV_ERR_MSG_MAX];
-    size_t n = 0;
-    const size_t ls = strlen(stage);
-    for (const char *p = msg; *p != '\0' && n + 1 < sizeof out;) {
-        if (ls > 0 && strncmp(p, stage, ls) == 0) {
-            n += (size_t)snprintf(out + n, sizeof out - n, "%s", final);
-            p += ls;
-        } else {
-            out[n++] = *p++;
-        }
-    }
-    out[n < sizeof out ? n : sizeof out - 1] = '\0';
-    snprintf(msg, cap, "%s", out);
-}
-
 /* lv_run_options.progress: the run's user pointer is the run_ui (on_phase shares it). */
 static int on_progress(const lv_run *run, size_t k, double t, void *user)
 {
@@ -209,7 +191,7 @@ static int parse_outputs(const char *list, unsigned *out, char *bad, size_t cap)
 static int run_run(const cli_cmd *self, int argc, char **argv)
 {
     const char *path = NULL, *outdir = "lvsim-out";
-    int json = 0, threads = 2, plots = 1, quiet = 0;
+    int json = 0, threads = 2, plots = 1, quiet = 0, force = 0;
     double max_rows = CLI_DEFAULT_MAX_ROWS;
     unsigned outputs = OUT_ALL;
     for (int i = 0; i < argc; i++) {
@@ -238,6 +220,8 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
             json = 1;
         } else if (strcmp(a, "--no-plots") == 0) {
             plots = 0;
+        } else if (strcmp(a, "--force") == 0) {
+            force = 1;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = 1;
         } else if (is_option(a)) {
@@ -272,7 +256,9 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     const size_t n = lv_mission_phase_count(m);
     lv_err err;
     lv_outdir *od = NULL; /* none with --outputs none: nothing is written, not even OUTDIR */
-    lv_status st = outputs != 0 ? lv_outdir_begin(outdir, path, &od, &err) : LV_OK;
+    lv_status st = outputs != 0
+                       ? lv_outdir_begin(outdir, path, force ? LV_OUTDIR_FORCE : 0u, &od, &err)
+                       : LV_OK;
     if (st != LV_OK) {
         lv_mission_free(m);
         return print_err("lvsim", &err, st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT);
@@ -324,15 +310,15 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     while (ui.table && ui.next < n)
         print_row(run, ui.next++, ui.wname);
     progress_print_end(ui.prog);
-    /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left */
-    if (progress_interrupted()) {
-        if (od != NULL)
-            fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
-                    lv_outdir_final(od));
+    /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left.
+     * Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
+     * folder marked failed; no exports or plots (a second signal ends the process at once and
+     * leaves OUTDIR as it was) */
+    int interrupted = progress_interrupted();
+    if (od == NULL && interrupted) {
         lv_run_free(run);
         progress_free(ui.prog);
         free(ui.ended);
-        lv_outdir_free(od);
         lv_mission_free(m);
         return 130;
     }
@@ -351,6 +337,13 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     const char *notes[8];
     size_t n_notes = 0;
     char note_buf[5][LV_ERR_MSG_MAX + 32];
+    if (interrupted) {
+        snprintf(note_buf[n_notes], sizeof note_buf[0],
+                 "interrupted (SIGINT or SIGTERM): the phases that ended are complete, the "
+                 "others failed or not run; no exports or plots");
+        notes[n_notes] = note_buf[n_notes];
+        n_notes++;
+    }
     if (run_st != LV_OK) {
         snprintf(note_buf[n_notes], sizeof note_buf[0], "run: %s", err.msg);
         notes[n_notes] = note_buf[n_notes];
@@ -376,7 +369,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         snprintf(post_msg[n_post++], sizeof post_msg[0], "%.480s", e.msg);
     } else {
         st1 = LV_OK;
-        if (exports) {
+        if (exports && !progress_interrupted()) {
             progress_step_begin(ui.prog, "exports (CZML, KML, OEM)");
             st1 = lv_export_run_report(stage,
                                        (outputs & OUT_CZML ? LV_EXPORT_CZML : 0u) |
@@ -389,7 +382,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
             post_st = post_st != LV_OK ? post_st : st1;
             snprintf(post_msg[n_post++], sizeof post_msg[0], "exports: %.480s", e.msg);
         }
-        if (plots) {
+        if (plots && !progress_interrupted()) {
             progress_step_begin(ui.prog, "plots and index.html");
             st1 = lv_plot_run(stage, &e);
             progress_step_end(ui.prog);
@@ -408,13 +401,23 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
             n_notes++;
         }
     }
+    /* a signal during the post-processing: what was written is kept, marked failed */
+    if (!interrupted && progress_interrupted()) {
+        interrupted = 1;
+        if (n_notes < sizeof note_buf / sizeof note_buf[0]) {
+            snprintf(note_buf[n_notes], sizeof note_buf[0],
+                     "interrupted (SIGINT or SIGTERM) during the post-processing: exports, plots "
+                     "or the report may be missing");
+            notes[n_notes] = note_buf[n_notes];
+            n_notes++;
+        }
+    }
     serr.code = post_st;
     snprintf(serr.msg, sizeof serr.msg, "%s", n_post > 0 ? post_msg[0] : "");
-    if (progress_interrupted()) {
-        fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n", lv_outdir_final(od));
-        code = 130;
-    } else {
-        const lv_outdir_record rec = {"run", run_st == LV_OK && post_st == LV_OK ? "ok" : "failed",
+    {
+        const lv_outdir_record rec = {"run",
+                                      run_st == LV_OK && post_st == LV_OK && !interrupted ? "ok"
+                                                                                         : "failed",
                                       lv_mission_name(m), n_notes, notes};
         progress_step_begin(ui.prog, "manifest.json");
         lv_err cerr;
@@ -433,7 +436,17 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         } else if (!json) {
             print_results(od);
         }
-        if (run_st != LV_OK) {
+        if (cst == LV_OK)
+            print_kept(od);
+        if (interrupted) {
+            if (cst == LV_OK)
+                fprintf(stderr, "lvsim: interrupted: '%s' holds the phases that ended, marked "
+                        "failed\n", lv_outdir_final(od));
+            else
+                fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
+                        lv_outdir_final(od));
+            code = 130;
+        } else if (run_st != LV_OK) {
             print_err("lvsim", &err, 0);
             code = exit_code_for(run_st);
         } else if (code == EXIT_OK && post_st != LV_OK) {
@@ -452,8 +465,8 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_run = {
     "run",
     "run every phase of a mission; results, exports, plots, report",
-    "MISSION.yaml [-o OUTDIR] [--threads N] [--max-rows N] [--outputs LIST] [--json]\n"
-    "            [--no-plots] [--quiet]",
+    "MISSION.yaml [-o OUTDIR] [--force] [--threads N] [--max-rows N] [--outputs LIST]\n"
+    "            [--json] [--no-plots] [--quiet]",
     "Validates the mission (as 'lvsim check'), refuses a phase that would write more than\n"
     "--max-rows rows, runs every phase in dependency order, independent branches in\n"
     "parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
@@ -461,13 +474,20 @@ const cli_cmd cli_cmd_run = {
     "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
     "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"
     "that replaces OUTDIR as a whole when the run ends, also when phases failed (then\n"
-    "marked 'failed'): OUTDIR never mixes two runs. A second run into an OUTDIR in use is\n"
-    "refused (exit 2); Ctrl-C leaves OUTDIR as it was (exit 130). A failing phase stops\n"
-    "only its descendants; the exit code is then 3. Progress goes to stderr.\n"
+    "marked 'failed'): OUTDIR never mixes two runs. lvsim replaces only what it provably\n"
+    "wrote: an OUTDIR holding files that its manifest.json does not list (or that changed\n"
+    "since) is refused (exit 2) unless --force. A second run into an OUTDIR in use is\n"
+    "refused (exit 2). Ctrl-C or SIGTERM stops the run: OUTDIR then holds the phases that\n"
+    "ended and summary.json, marked 'failed' (exit 130; a second Ctrl-C leaves OUTDIR as it\n"
+    "was). A failing phase stops only its descendants; the exit code is then 3. Progress\n"
+    "goes to stderr.\n"
     "\n"
     "options:\n"
     "  -o OUTDIR               results folder (default lvsim-out): new, empty, or an\n"
     "                          earlier one of lvsim\n"
+    "  --force                 OUTDIR may hold files lvsim did not write: they are kept\n"
+    "                          (never replaced; a run whose results have a file of the\n"
+    "                          same name is refused), lvsim's own files are replaced\n"
     "  --threads N             worker threads for independent branches, >= 1 (default 2)\n"
     "  --max-rows N            output rows one phase may write (default 1e6)\n"
     "  --json                  print summary.json instead of the table\n"

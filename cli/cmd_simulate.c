@@ -75,7 +75,7 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
 
     lv_sim_settings s;
     lv_sim_settings_default(&s);
-    int json = 0;
+    int json = 0, force = 0;
     int rc = EXIT_OK;
     size_t cap = (size_t)argc;
     char **set_names = calloc(cap, sizeof *set_names);
@@ -97,6 +97,10 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             known |= strcmp(a, with_value[k]) == 0;
         if (strcmp(a, "--json") == 0) {
             json = 1;
+            continue;
+        }
+        if (strcmp(a, "--force") == 0) {
+            force = 1;
             continue;
         }
         if (!known) {
@@ -170,6 +174,23 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             final_names[s.n_final++] = val;
         }
     }
+    /* the result files it may write (a failed run's under .failed): none replaces a file
+     * lvsim cannot prove it wrote, unless --force (lv_output_check) */
+    if (s.result_file != NULL) {
+        static const char *const kinds[] = {".mat", ".csv", ".failed.mat", ".failed.csv"};
+        for (size_t k = 0; k < 4; k++) {
+            const unsigned fmt = k % 2 == 0 ? LV_RESULT_MAT : LV_RESULT_CSV;
+            if (!(s.result_formats & fmt))
+                continue;
+            char name[4200];
+            lv_err cerr;
+            snprintf(name, sizeof name, "%s%s", s.result_file, kinds[k]);
+            if (lv_output_check(name, NULL, force ? LV_OUTPUT_REPLACE : 0u, &cerr) != LV_OK) {
+                rc = print_err("lvsim", &cerr, EXIT_INPUT);
+                goto out;
+            }
+        }
+    }
     s.initial_names = (const char *const *)set_names;
     s.initial_values = set_values;
     s.final_names = final_names;
@@ -214,7 +235,9 @@ const cli_cmd cli_cmd_simulate = {
     "  --max-steps N           internal steps allowed in total (default 1e6)\n"
     "  --set NAME=VALUE        start value of a state or parameter, SI (repeatable)\n"
     "  --final NAME            print this variable's final value, or 'time' (repeatable)\n"
-    "  -o PATH                 result file path without extension (default dsres)\n"
+    "  -o PATH                 result file path without extension (default dsres); an\n"
+    "                          existing PATH.mat or .csv is refused unless --force\n"
+    "  --force                 replace existing result files\n"
     "  --format F              mat, csv, mat,csv or none (default mat,csv)\n"
     "  --json                  print the report as one JSON object\n"
     "\n"

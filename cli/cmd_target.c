@@ -210,6 +210,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     static const char *const methods[] = {"auto", "newton", "slsqp", "cobyla", NULL};
     static const char *const diffs[] = {"auto", "forward", "central", NULL};
     const char *path = NULL, *out = NULL;
+    int force = 0;
     lv_target_settings set;
     lv_target_settings_default(&set);
     target_ui ui = {0, isatty(2), 0, 0.0};
@@ -259,6 +260,8 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             }
         } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
             ui.quiet = 1;
+        } else if (strcmp(a, "--force") == 0) {
+            force = 1;
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (path != NULL) {
@@ -302,6 +305,11 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     const int lcode = load_mission(path, &m); /* as `lvsim check` and `run` load it */
     if (lcode != EXIT_OK)
         return lcode;
+    /* before the solve: never an input; an existing file only with --force */
+    if (out != NULL && (st = lv_output_check(out, m, force ? LV_OUTPUT_REPLACE : 0u, &err)) != LV_OK) {
+        lv_mission_free(m);
+        return print_err("lvsim target", &err, EXIT_INPUT);
+    }
     lv_target *t = NULL;
     if ((st = lv_target_create(m, &t, &err)) != LV_OK) {
         lv_mission_free(m);
@@ -356,8 +364,8 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_target = {
     "target",
     "solve a mission's targeting section: meet constraints, optimise a cost",
-    "MISSION.yaml [-o CONVERGED.yaml] [--method M] [--differences D] [--max-iter N] "
-    "[--restarts N] [--threads N] [-q]",
+    "MISSION.yaml [-o CONVERGED.yaml [--force]] [--method M] [--differences D] "
+    "[--max-iter N] [--restarts N] [--threads N] [-q]",
     "Varies the run parameters listed under the mission's `targeting:` section within their\n"
     "bounds until the phases' final values meet the constraints (damped Newton /\n"
     "Levenberg-Marquardt with finite-difference sensitivities) and, with a cost, optimises\n"
@@ -374,7 +382,10 @@ const cli_cmd cli_cmd_target = {
     "  -o CONVERGED.yaml       write the mission with the converged values (comments and\n"
     "                          layout kept; paths to the files it reads rewritten from the\n"
     "                          new file's folder), then run it and check that it reproduces\n"
-    "                          the targeted finals; its folder must exist\n"
+    "                          the targeted finals; its folder must exist; never the\n"
+    "                          mission or one of its data files; an existing file is\n"
+    "                          refused unless --force\n"
+    "  --force                 -o may replace an existing file (never an input)\n"
     "  --method M              auto, newton, slsqp or cobyla (default: the file's, else auto)\n"
     "  --differences D         auto, forward or central (default: the file's, else auto)\n"
     "  --max-iter N            iterations, 1 to 100000 (default: the file's, else 50 for newton,\n"

@@ -121,8 +121,11 @@ static int view_run(const cli_cmd *self, int argc, char **argv)
         if (lv_outdir_open(dir, &od, &err) != LV_OK)
             return print_err("lvsim view", &err, EXIT_INPUT);
         int code = EXIT_OK;
-        if (need_czml && lv_export_run(dir, LV_EXPORT_CZML, &err) != LV_OK)
+        const char *stage = lv_outdir_path(od); /* a replica of the folder, see lv_outdir.h */
+        if (need_czml && lv_export_run(stage, LV_EXPORT_CZML, &err) != LV_OK) {
+            restage(err.msg, sizeof err.msg, stage, lv_outdir_final(od));
             code = print_err("lvsim view", &err, EXIT_INPUT);
+        }
         if (code == EXIT_OK && need_viewer) {
             /* the installed (or build tree's) share/lvsim/viewer; stage.sh copies from its
              * folder */
@@ -130,7 +133,7 @@ static int view_run(const cli_cmd *self, int argc, char **argv)
             if (lv_data_find(NULL, "viewer/stage.sh", script, sizeof script, &err) != LV_OK) {
                 code = print_err("lvsim view", &err, EXIT_INTERNAL);
             } else {
-                char *args[] = {script, (char *)dir, NULL}; /* executable, with its own #! */
+                char *args[] = {script, (char *)stage, NULL}; /* executable, its own #! */
                 if (run_program(args) != 0) {
                     fprintf(stderr, "lvsim view: staging the viewer with %s failed\n", script);
                     code = EXIT_INTERNAL;

@@ -191,3 +191,34 @@ int check_output_bound(const lv_mission *m, double max_rows, double output_inter
     lv_run_free(run);
     return code;
 }
+
+void restage(char *msg, size_t cap, const char *stage, const char *final)
+{
+    char out[LV_ERR_MSG_MAX];
+    size_t n = 0;
+    const size_t ls = strlen(stage);
+    for (const char *p = msg; *p != '\0' && n + 1 < sizeof out;) {
+        if (ls > 0 && strncmp(p, stage, ls) == 0) {
+            n += (size_t)snprintf(out + n, sizeof out - n, "%s", final);
+            p += ls;
+        } else {
+            out[n++] = *p++;
+        }
+    }
+    out[n < sizeof out ? n : sizeof out - 1] = '\0';
+    snprintf(msg, cap, "%s", out);
+}
+
+void print_kept(const lv_outdir *od)
+{
+    const size_t n = lv_outdir_kept_count(od);
+    if (n == 0)
+        return;
+    printf("kept %zu file%s lvsim did not write in %s/ (not in its manifest):", n,
+           n == 1 ? "" : "s", lv_outdir_final(od));
+    for (size_t i = 0; i < n && i < 8; i++)
+        printf("%s %s", i ? "," : "", lv_outdir_kept(od, i));
+    if (n > 8)
+        printf(" and %zu more", n - 8);
+    printf("\n");
+}

@@ -63,4 +63,11 @@ void human_bytes(double bytes, char *buf, size_t cap);
  * deletes it. Returns 0, or 1 when doc is NULL or printing runs out of memory. */
 int print_json(cJSON *doc);
 
+/* Replaces every STAGE in msg by FINAL: the staging folder's name never reaches the user. */
+void restage(char *msg, size_t cap, const char *stage, const char *final);
+
+/* After a commit with LV_OUTDIR_FORCE: "kept N files lvsim did not write in OUTDIR/: a, b"
+ * on stdout (nothing when none). */
+void print_kept(const lv_outdir *od);
+
 #endif

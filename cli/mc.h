@@ -10,6 +10,10 @@
  * else 1; without MPI support always 1. */
 int mc_mpi_world_size(void);
 
+/* This process's rank as the launcher tells it before MPI starts (OMPI_COMM_WORLD_RANK,
+ * PMI_RANK), else 0: rank 0 alone owns the campaign folder. */
+int mc_mpi_env_rank(void);
+
 /* Runs the campaign on every rank (each with o->threads worker threads; rank 0 also stores).
  * Returns the library status on rank 0 (*rank0 = 1), LV_OK elsewhere (*rank0 = 0). */
 lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,

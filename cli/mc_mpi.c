@@ -65,6 +65,14 @@ int mc_mpi_world_size(void)
     return v != NULL && atoi(v) > 1 ? atoi(v) : 1;
 }
 
+int mc_mpi_env_rank(void)
+{
+    const char *v = getenv("OMPI_COMM_WORLD_RANK");
+    if (v == NULL)
+        v = getenv("PMI_RANK");
+    return v != NULL ? atoi(v) : 0;
+}
+
 static void nap(long ns)
 {
     struct timespec ts = { 0, ns };

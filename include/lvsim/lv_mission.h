@@ -70,6 +70,17 @@ LV_API const char *lv_mission_name(const lv_mission *m);
  * NULL past the end. What a package of the mission (an FMU, lv_fmu.h) must carry. */
 LV_API size_t lv_mission_file_count(const lv_mission *m);
 LV_API const char *lv_mission_file(const lv_mission *m, size_t i);
+
+/* Flags of lv_output_check. */
+enum { LV_OUTPUT_REPLACE = 1u /* an existing file may be replaced (the CLI's --force) */ };
+/* Whether a command may write the file `path` of its own (a converged mission, an FMU, a
+ * result file named by the user): refuses an empty name, a folder, a path that is the
+ * mission file of `m` or one of its data files (compared by device and inode, so any
+ * spelling of the path; m NULL: no mission) - always, whatever the flags -, and an existing
+ * file unless LV_OUTPUT_REPLACE (then only a regular file). A missing file is fine (its
+ * folder is the writer's to check). Errors: LV_ERR_INPUT naming the path and what to do. */
+LV_API lv_status lv_output_check(const char *path, const lv_mission *m, unsigned flags,
+                                 lv_err *err);
 LV_API size_t lv_mission_phase_count(const lv_mission *m);
 /* Phases are numbered in run order: a phase after its parent; among the phases ready to run
  * (their parents done), in file order. With several worker threads, phases that are ready

@@ -209,11 +209,12 @@ LV_API lv_run *lv_target_run(lv_target *t);
 /* Writes the mission file with each variable's value replaced by x[i] (the result's point)
  * at the place the file writes it, in the unit it is written in, and the `start:` of the
  * targeting section's variables too; comments, layout and every other character unchanged
- * (written as "<path>.tmp", then renamed). Then loads the written file, runs it and checks
+ * (written under a temporary name, then renamed; `path` must not be the mission file or one of
+ * its data files: lv_output_check). Then loads the written file, runs it and checks
  * that it reproduces the constraints' finals and the cost at x (every difference below 1e-3
  * of the tolerance and 1e-6 of the cost's scale): *worst (may be NULL) receives the largest
  * difference in tolerances. LV_ERR_INPUT when a variable's value is not written in the file
- * (a default), LV_ERR_IO, LV_ERR_SOLVER when the written file does not reproduce them. */
+ * (a default) or `path` is an input, LV_ERR_IO, LV_ERR_SOLVER when the written file does not reproduce them. */
 LV_API lv_status lv_target_write(lv_target *t, const double *x, const char *path,
                                  double *worst, lv_err *err);
 

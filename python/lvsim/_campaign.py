@@ -6,7 +6,7 @@ import json
 import math
 import os
 import sqlite3
-from ctypes import byref, c_int, pointer
+from ctypes import byref, c_char_p, c_int, c_void_p, pointer
 
 from . import _lib
 from ._lib import enc, int_arg, path_arg, real_arg, U64_MAX
@@ -129,9 +129,22 @@ class Campaign:
         ellipses.csv, outcomes.csv, sensitivity.csv, footprint.kml) and returns stats.json
         as a dict."""
         b = path_arg(outdir, "outdir")
-        os.makedirs(b, exist_ok=True)
+        post = _lib.post()
         err = _lib.lv_err()
-        check(_lib.post().lv_campaign_stats(path_arg(self.db_path), b, byref(err)), err)
+        # outdir as `lvsim mc -o` treats its folder (lv_outdir.h): new, empty or lvsim's;
+        # written in a replica that replaces it, a user's file never replaced
+        od = c_void_p()
+        no_live = (c_char_p * 1)()
+        check(post.lv_outdir_open_live(b, None, 0, no_live, byref(od), byref(err)), err)
+        try:
+            check(post.lv_outdir_stage(od, byref(err)), err)
+            stage = post.lv_outdir_path(od)
+            check(post.lv_campaign_stats(path_arg(self.db_path), stage, byref(err)), err)
+            rec = _lib.lv_outdir_record()
+            rec.command, rec.status = b"python stats", b"ok"
+            check(post.lv_outdir_commit(od, byref(rec), byref(err)), err)
+        finally:
+            post.lv_outdir_free(od)
         with open(os.path.join(outdir, "stats.json"), encoding="utf-8") as f:
             return json.load(f)
 

@@ -342,8 +342,11 @@ def post():
         _proto(_post, "lv_campaign_run", c_int, c_void_p, POINTER(lv_campaign_options),
                POINTER(lv_campaign_progress), POINTER(lv_err))
         _proto(_post, "lv_campaign_stats", c_int, c_char_p, c_char_p, POINTER(lv_err))
-        _proto(_post, "lv_outdir_begin", c_int, c_char_p, c_char_p, POINTER(c_void_p),
+        _proto(_post, "lv_outdir_begin", c_int, c_char_p, c_char_p, c_uint, POINTER(c_void_p),
                POINTER(lv_err))
+        _proto(_post, "lv_outdir_open_live", c_int, c_char_p, c_char_p, c_uint,
+               POINTER(c_char_p), POINTER(c_void_p), POINTER(lv_err))
+        _proto(_post, "lv_outdir_stage", c_int, c_void_p, POINTER(lv_err))
         _proto(_post, "lv_outdir_path", c_char_p, c_void_p)
         _proto(_post, "lv_outdir_final", c_char_p, c_void_p)
         _proto(_post, "lv_outdir_commit", c_int, c_void_p, POINTER(lv_outdir_record),

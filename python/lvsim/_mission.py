@@ -956,7 +956,7 @@ class Run:
             if outdir is not None:
                 post = _lib.post()
                 od = c_void_p()
-                _check(post.lv_outdir_begin(outdir, path_arg(m.path), byref(od), byref(err)), err)
+                _check(post.lv_outdir_begin(outdir, path_arg(m.path), 0, byref(od), byref(err)), err)
                 stage = post.lv_outdir_path(od)
                 keep.append(stage)
                 opt.outdir = stage

@@ -16,6 +16,7 @@
 #include "campaign/campaign_int.h"
 #include "core/status.h"
 #include "lvsim/lv_dispersion.h"
+#include "lvsim/lv_outdir.h"
 #include "lvsim/lv_summary.h"
 
 /* ---- bytes ------------------------------------------------------------------------------------ */
@@ -137,24 +138,6 @@ lv_status lv_mc_worker_create(const lv_mission *m, const lv_campaign_options *o,
     return LV_OK;
 }
 
-static int mkdir_p(const char *dir)
-{
-    char buf[4096];
-    const size_t n = strlen(dir);
-    if (n == 0 || n >= sizeof buf)
-        return -1;
-    memcpy(buf, dir, n + 1);
-    for (size_t i = 1; i <= n; i++)
-        if (buf[i] == '/' || buf[i] == '\0') {
-            const char ch = buf[i];
-            buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return -1;
-            buf[i] = ch;
-        }
-    return 0;
-}
-
 /* The end a done phase reached: the event's name, or "stop_time". */
 static const char *end_of(const lv_phase_result *res)
 {
@@ -206,22 +189,36 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
             msg = rerr.msg;
         }
         ran = 1;
-        if (keep) { /* the files of this run: again, with the phases' own output grids */
+        if (keep) { /* the files of this run: again, with the phases' own output grids, as
+                     * a results folder of its own (lv_outdir.h: never a user's file replaced) */
             lv_run *kr = NULL;
+            lv_outdir *kod = NULL;
             lv_err kerr;
+            lv_mission_info mi;
+            lv_mission_get_info(m, &mi);
             snprintf(dir, sizeof dir, "%s/run_%llu", w->o.keep_dir, (unsigned long long)run);
+            lv_status kst = lv_outdir_begin(dir, mi.path, 0, &kod, &kerr);
+            if (kst != LV_OK)
+                return lv_fail(err, kst == LV_ERR_NOMEM ? kst : LV_ERR_IO, "run %llu: %s",
+                               (unsigned long long)run, kerr.msg);
             lv_run_options ko = ro;
             ko.no_rows = 0;
             ko.output_interval = w->o.output_interval;
-            ko.outdir = dir;
-            if (mkdir_p(dir) != 0)
-                return lv_fail(err, LV_ERR_IO, "cannot create '%s': %s", dir, strerror(errno));
+            ko.outdir = lv_outdir_path(kod);
+            lv_status rst = LV_ERR_INPUT;
             if (lv_run_create(m, &kr, &kerr) == LV_OK &&
                 lv_run_disperse(kr, w->o.seed, run, NULL, &kerr) == LV_OK) {
-                lv_run_execute(kr, &ko, &kerr);
-                lv_run_write_summary(kr, dir, &kerr);
+                rst = lv_run_execute(kr, &ko, &kerr);
+                if (lv_run_write_summary(kr, ko.outdir, &kerr) != LV_OK)
+                    rst = LV_ERR_IO;
             }
+            const lv_outdir_record krec = {"mc", rst == LV_OK ? "ok" : "failed", mi.name, 0, NULL};
+            kst = lv_outdir_commit(kod, &krec, &kerr);
+            lv_outdir_free(kod);
             lv_run_free(kr);
+            if (kst != LV_OK)
+                return lv_fail(err, kst == LV_ERR_NOMEM ? kst : LV_ERR_IO, "run %llu: %s",
+                               (unsigned long long)run, kerr.msg);
         }
     }
     lv_bytes_u64(b, run);

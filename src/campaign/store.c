@@ -118,6 +118,24 @@ static int meta_get(lv_campaign *c, const char *key, char *val, size_t cap)
     return found;
 }
 
+/* A file that is an lvsim campaign database: SQLite with the campaign table and its schema
+ * row (what create_schema writes). Only such a file is replaced by --force / overwrite. */
+static int is_campaign_db(const char *path)
+{
+    sqlite3 *db = NULL;
+    int ok = 0;
+    if (sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL) == SQLITE_OK) {
+        sqlite3_stmt *s = NULL;
+        if (sqlite3_prepare_v2(db, "SELECT value FROM campaign WHERE key = 'schema'", -1, &s,
+                               NULL) == SQLITE_OK &&
+            sqlite3_step(s) == SQLITE_ROW)
+            ok = 1;
+        sqlite3_finalize(s);
+    }
+    sqlite3_close(db);
+    return ok;
+}
+
 static lv_status meta_put(lv_campaign *c, const char *key, const char *val, lv_err *err)
 {
     sqlite3_stmt *s = NULL;
@@ -375,6 +393,12 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
         goto fail;
     }
     if (exists && o->overwrite && !o->resume) {
+        if (!is_campaign_db(o->db_path)) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s is not an lvsim campaign database: it is not "
+                         "replaced (also with --force); move it away or choose another path",
+                         o->db_path);
+            goto fail;
+        }
         char side[4200];
         remove(o->db_path);
         snprintf(side, sizeof side, "%s-wal", o->db_path);

@@ -1,4 +1,6 @@
 /* status.c - status strings and error-record formatting. */
+#define _POSIX_C_SOURCE 200809L /* strerror_r, the XSI form (this file defines no _GNU_SOURCE) */
+
 #include "core/status.h"
 
 #include <stdarg.h>
@@ -54,4 +56,13 @@ lv_status lv_fail_prefix(lv_err *err, lv_status code, const char *fmt, ...)
     memcpy(err->msg + n + 2, old, m);
     err->msg[n + 2 + m] = '\0';
     return code;
+}
+
+const char *lv_strerror(int e, char *buf, size_t cap)
+{
+    if (cap == 0)
+        return "";
+    if (strerror_r(e, buf, cap) != 0)
+        snprintf(buf, cap, "system error %d", e);
+    return buf;
 }

@@ -16,4 +16,9 @@ lv_status lv_fail(lv_err *err, lv_status code, const char *fmt, ...) LV_PRINTF(3
 /* Prefix an existing message: "prefix: old message". Returns err->code (or code). */
 lv_status lv_fail_prefix(lv_err *err, lv_status code, const char *fmt, ...) LV_PRINTF(3, 4);
 
+/* The system's text for errno value e ("Permission denied"), written into buf (strerror_r in
+ * its XSI form: no buffer shared between threads, and the same in files that define
+ * _GNU_SOURCE); returns buf. */
+const char *lv_strerror(int e, char *buf, size_t cap);
+
 #endif

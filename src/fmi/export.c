@@ -318,30 +318,14 @@ static lv_status plan_resources(const lv_mission *m, res_file *rf, size_t n, lv_
     return LV_OK;
 }
 
-/* The output must not be the mission or one of its data files (any spelling of the path:
- * compared by device and inode), nor may its temporary "<out>.tmp" be. */
+/* The output must not be the mission or one of its data files (lv_output_check: any spelling
+ * of the path; the archive's temporary file is libzip's own, beside it, never an input). */
 static lv_status refuse_inputs(const char *mission_path, const char *fmu_path, lv_err *err)
 {
     lv_mission *m = NULL;
     lv_status st = lv_mission_load(mission_path, &m, err);
-    if (st != LV_OK)
-        return st;
-    char tmp[PATH_MAX + 8];
-    snprintf(tmp, sizeof tmp, "%s.tmp", fmu_path);
-    const char *outs[2] = {fmu_path, tmp};
-    for (int o = 0; o < 2 && st == LV_OK; o++) {
-        struct stat so, si;
-        if (stat(outs[o], &so) != 0)
-            continue; /* not there: not an input */
-        for (size_t i = 0; i < lv_mission_file_count(m) && st == LV_OK; i++) {
-            const char *in = lv_mission_file(m, i);
-            if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino)
-                st = lv_fail(err, LV_ERR_INPUT, "cannot write '%s'%s: it is the mission's %s "
-                             "'%s' (the same file): the export would destroy its own input; "
-                             "choose another output", outs[o], o ? " (the temporary file)" : "",
-                             i == 0 ? "file" : "data file", in);
-        }
-    }
+    if (st == LV_OK)
+        st = lv_output_check(fmu_path, m, LV_OUTPUT_REPLACE, err);
     lv_mission_free(m);
     return st;
 }
@@ -563,8 +547,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     const size_t lo = strlen(fmu_path);
     if (lo < 5 || strcmp(fmu_path + lo - 4, ".fmu") != 0)
         return lv_fail(err, LV_ERR_INPUT, "output '%s' does not end in '.fmu': an FMU is a zip "
-                       "archive named NAME.fmu (FMI 2.0, section 2.3); an existing FMU of that "
-                       "name is replaced, a file of another kind never is", fmu_path);
+                       "archive named NAME.fmu (FMI 2.0, section 2.3)", fmu_path);
     lv_fmu_options o = {0};
     if (opt != NULL)
         o = *opt;

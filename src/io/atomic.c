@@ -7,7 +7,10 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <fcntl.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/status.h"
 
@@ -25,6 +28,27 @@ static lv_status io_fail(const lv_atomic *a, const char *what, int e, lv_err *er
     return lv_fail(err, LV_ERR_IO, "%s: %s: %s", a->tmp, what, why(e, text, sizeof text));
 }
 
+/* tmp = path + ".tmp", or path + ".tmp.<pid>.<k>" when a file of that name exists already (a
+ * user's, or one a killed writer left): lvsim's temporary file never replaces anything. */
+static lv_status pick_tmp(lv_atomic *a, lv_err *err)
+{
+    const size_t n = strlen(a->path);
+    struct stat sb;
+    for (unsigned k = 0; k < 1000; k++) {
+        int w;
+        if (k == 0)
+            w = snprintf(a->tmp, sizeof a->tmp, "%s.tmp", a->path);
+        else
+            w = snprintf(a->tmp, sizeof a->tmp, "%s.tmp.%ld.%u", a->path, (long)getpid(), k);
+        if (w < 0 || (size_t)w >= sizeof a->tmp)
+            return lv_fail(err, LV_ERR_INPUT, "%.200s...: file name of %zu bytes is too long",
+                           a->path, n);
+        if (lstat(a->tmp, &sb) != 0 && errno == ENOENT)
+            return LV_OK;
+    }
+    return lv_fail(err, LV_ERR_IO, "%s: no free temporary name beside it", a->path);
+}
+
 lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err)
 {
     a->path[0] = a->tmp[0] = '\0';
@@ -33,13 +57,26 @@ lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err)
     if (path == NULL || path[0] == '\0')
         return lv_fail(err, LV_ERR_INPUT, "output file: empty path");
     const size_t n = strlen(path);
-    if (n >= sizeof a->path)
+    if (n + 32 >= sizeof a->path)
         return lv_fail(err, LV_ERR_INPUT, "%.200s...: file name of %zu bytes is too long", path,
                        n);
     memcpy(a->path, path, n + 1);
-    memcpy(a->tmp, path, n);
-    memcpy(a->tmp + n, ".tmp", sizeof ".tmp");
-    return LV_OK;
+    return pick_tmp(a, err);
+}
+
+/* Creates tmp, which must not exist (O_EXCL: a name taken since pick_tmp is picked anew). */
+static int create_tmp(lv_atomic *a, lv_err *err)
+{
+    for (int attempt = 0; attempt < 3; attempt++) {
+        errno = 0;
+        const int fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0)
+            return fd;
+        if (errno != EEXIST || pick_tmp(a, err) != LV_OK)
+            break;
+    }
+    io_fail(a, "cannot create", errno ? errno : EEXIST, err);
+    return -1;
 }
 
 lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err)
@@ -49,20 +86,25 @@ lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err)
         if (st != LV_OK)
             return st;
     }
-    errno = 0;
-    a->fp = fopen(a->tmp, "w");
-    if (a->fp == NULL)
-        return io_fail(a, "cannot create", errno, err);
+    const int fd = create_tmp(a, err);
+    if (fd < 0)
+        return LV_ERR_IO;
+    a->fp = fdopen(fd, "w");
+    if (a->fp == NULL) {
+        const int e = errno;
+        close(fd);
+        remove(a->tmp);
+        return io_fail(a, "cannot create", e, err);
+    }
     return LV_OK;
 }
 
 lv_status lv_atomic_reserve(lv_atomic *a, lv_err *err)
 {
-    errno = 0;
-    FILE *fp = fopen(a->tmp, "w");
-    if (fp == NULL)
-        return io_fail(a, "cannot create", errno, err);
-    if (fclose(fp) != 0) {
+    const int fd = create_tmp(a, err);
+    if (fd < 0)
+        return LV_ERR_IO;
+    if (close(fd) != 0) {
         const int e = errno;
         remove(a->tmp);
         return io_fail(a, "cannot close", e, err);

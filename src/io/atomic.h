@@ -16,18 +16,20 @@
  * a valid "nothing" for lv_atomic_abort() and lv_atomic_release(). */
 typedef struct lv_atomic {
     char path[LV_ATOMIC_PATH_MAX];    /* the final name, as given */
-    char tmp[LV_ATOMIC_PATH_MAX + 4]; /* path + ".tmp": what is written */
+    char tmp[LV_ATOMIC_PATH_MAX + 40]; /* path + ".tmp" (or ".tmp.<pid>.<k>"): what is written */
     FILE *fp;  /* stream on tmp after lv_atomic_open(); NULL when a library writes tmp by name */
     int keep;  /* set by the caller: a failed commit leaves tmp in place (the result sinks keep
                 * the rows written so far); 0: a failed commit removes it */
 } lv_atomic;
 
 /* Fills the names only, opens nothing: for writers that take a file name (libmatio, PLplot).
- * Errors: LV_ERR_INPUT (empty or too long a path). */
+ * tmp is "<path>.tmp", or "<path>.tmp.<pid>.<k>" when a file of that name exists (never
+ * replaced). Errors: LV_ERR_INPUT (empty or too long a path). */
 lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err);
 
 /* lv_atomic_init (path NULL: the names an earlier lv_atomic_init gave), then creates tmp for
- * writing: a->fp. Errors: LV_ERR_INPUT as above; LV_ERR_IO "<tmp>: cannot create: <reason>".
+ * writing, exclusively (O_EXCL: an existing file is never truncated; in a hard-linked replica
+ * of a results folder that would change the original): a->fp. Errors: LV_ERR_INPUT as above; LV_ERR_IO "<tmp>: cannot create: <reason>".
  * On failure nothing is left open. */
 lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err);
 

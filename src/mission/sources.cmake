@@ -18,4 +18,5 @@ list(APPEND LV_SOURCES
   src/mission/run.c
   src/mission/compare.c
   src/mission/run_estimate.c
+  src/mission/output_check.c
   src/mission/phase_types_api.c)

@@ -383,6 +383,10 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
         return lv_fail(err, LV_ERR_INPUT, "lv_target_write: NULL argument");
     if (worst != NULL)
         *worst = NAN;
+    /* never the mission it reads or one of its data files (the caller decides on another
+     * existing file: lvsim target refuses one without --force) */
+    if ((st = lv_output_check(path, t->m, LV_OUTPUT_REPLACE, err)) != LV_OK)
+        return st;
     if ((st = read_all(d->path, &text, &len, err)) != LV_OK)
         return st;
     edits = calloc(2 * t->n + 1, sizeof *edits);

@@ -39,6 +39,12 @@ expect 2 "unknown command 'fly'" -- "$lvsim" fly
 # Free fall from 100 m: impact at sqrt(2 h / g) = 4.51523641 s (g = 9.81)
 expect 0 "time += 4.515236" -- "$lvsim" simulate free_fall --stop 10 --tolerance 1e-10 --method dopri5 --final time -o "$work/ff"
 [ -f "$work/ff.mat" ] && [ -f "$work/ff.csv" ] && pass=$((pass + 1)) || { echo "FAIL: result files"; fails=$((fails + 1)); }
+# result files that exist (lvsim cannot prove it wrote them: a Dymola dsres.mat, say) are
+# refused, untouched, unless --force
+before=$(sha256sum < "$work/ff.mat")
+expect 2 "ff.mat' exists: lvsim does not replace a file it cannot prove it wrote" -- "$lvsim" simulate free_fall --stop 1 -o "$work/ff"
+[ "$before" = "$(sha256sum < "$work/ff.mat")" ] && pass=$((pass + 1)) || { echo "FAIL: a refused simulate changed ff.mat"; fails=$((fails + 1)); }
+expect 0 "result: $work/ff.mat, $work/ff.csv" -- "$lvsim" simulate free_fall --stop 1 -o "$work/ff" --force
 expect 0 '"ok":[[:space:]]*true' -- "$lvsim" simulate oscillator --json --format none --final x
 expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
@@ -372,7 +378,16 @@ shot 800 > "$work/shot.yaml"
 expect 0 "^converged: every constraint met" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml"
 expect 0 "start_fpa_deg += 25\.8387" -- "$lvsim" target "$work/shot.yaml" -q
 expect 0 "^ +1  newton  accepted" -- "$lvsim" target "$work/shot.yaml"
-expect 0 "reproduces the targeted finals" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml"
+# an existing -o file: refused before the solve, untouched; replaced with --force; the
+# mission (or a data file) itself never, by any spelling, also with --force
+before=$(sha256sum < "$work/shot_conv.yaml")
+expect 2 "shot_conv.yaml' exists: lvsim does not replace a file it cannot prove it wrote" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml"
+[ "$before" = "$(sha256sum < "$work/shot_conv.yaml")" ] && pass=$((pass + 1)) || { echo "FAIL: a refused target -o changed the file"; fails=$((fails + 1)); }
+cp "$work/shot.yaml" "$work/shot.keep"
+expect 2 "it is the mission's file" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot.yaml" --force
+expect 2 "it is the mission's file" -- "$lvsim" target "$work/shot.yaml" -o "$work/../$(basename "$work")/shot.yaml"
+cmp -s "$work/shot.yaml" "$work/shot.keep" && pass=$((pass + 1)) || { echo "FAIL: target -o changed its mission"; fails=$((fails + 1)); }
+expect 0 "reproduces the targeted finals" -- "$lvsim" target "$work/shot.yaml" -o "$work/shot_conv.yaml" --force
 grep -q "start_fpa_deg: 25\.838.*start_chi_deg: 90}  # the gun" "$work/shot_conv.yaml" \
   && pass=$((pass + 1)) || { echo "FAIL: the converged file"; fails=$((fails + 1)); }
 expect 0 "mission 'shot': 1 phases" -- "$lvsim" run "$work/shot_conv.yaml" -o "$work/shot_out" --no-plots

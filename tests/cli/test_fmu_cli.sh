@@ -35,7 +35,7 @@ if [ "$(id -u)" -ne 0 ]; then  # root writes anywhere
   expect 2 "is not writable" -- "$M" --phase ascent -o "$T/ro/a.fmu"
 fi
 mkdir "$T/dir.fmu"
-expect 2 "it is a folder" -- "$M" --phase ascent -o "$T/dir.fmu"
+expect 2 "is a folder" -- "$M" --phase ascent -o "$T/dir.fmu"
 expect 2 "does not end in '.fmu'" -- "$M" --phase ascent -o "$T/a.zip"
 expect 2 "not a C identifier" -- "$M" --phase ascent -o "$T/a.fmu" --model-identifier 9x
 # a data file named by an absolute path cannot travel in the FMU
@@ -61,10 +61,11 @@ else
 fi
 ln -s mission.yaml "$T/m/mission.fmu"
 ln -s aero_ascent.csv "$T/m/aero.fmu"
-expect 2 "does not end in '.fmu'" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.yaml"
-expect 2 "does not end in '.fmu'" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/aero_ascent.csv"
+expect 2 "is the mission's file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.yaml" --force
+expect 2 "is the mission's data file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/aero_ascent.csv"
 expect 2 "is the mission's file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.fmu"
 expect 2 "is the mission's data file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/../m/aero.fmu"
+expect 2 "is the mission's file" -- "$T/m/mission.yaml" --phase ascent -o "$T/m/mission.fmu" --force
 if ! cmp -s "$T/m/mission.yaml" "$T/m/keep.yaml" || ! cmp -s "$T/m/aero_ascent.csv" "$SRC/examples/kourou-leo/aero_ascent.csv"; then
   echo "FAIL: the mission or its data file was changed"; fails=$((fails + 1))
 fi
@@ -75,11 +76,14 @@ if "$LVSIM" fmu "$M" --phase ascent -o "$T/ok.fmu" > "$T/out" 2>&1 && [ -s "$T/o
 else
   echo "FAIL: the good export"; cat "$T/out"; fails=$((fails + 1))
 fi
-# an existing FMU of the name is replaced
-if "$LVSIM" fmu "$M" --phase upper-burn-1 -o "$T/ok.fmu" > "$T/out" 2>&1 && unzip -l "$T/ok.fmu" | grep -q kourou_leo_upper_burn_1.so; then
-  echo "ok: an existing .fmu replaced"
+# an existing file of the name is refused (lvsim cannot prove it wrote it), replaced with --force
+before=$(sha256sum < "$T/ok.fmu")
+expect 2 "ok.fmu' exists: lvsim does not replace a file it cannot prove it wrote" -- "$M" --phase upper-burn-1 -o "$T/ok.fmu"
+[ "$before" = "$(sha256sum < "$T/ok.fmu")" ] || { echo "FAIL: a refused export changed ok.fmu"; fails=$((fails + 1)); }
+if "$LVSIM" fmu "$M" --phase upper-burn-1 -o "$T/ok.fmu" --force > "$T/out" 2>&1 && unzip -l "$T/ok.fmu" | grep -q kourou_leo_upper_burn_1.so; then
+  echo "ok: an existing .fmu replaced with --force"
 else
-  echo "FAIL: replacing an existing .fmu"; cat "$T/out"; fails=$((fails + 1))
+  echo "FAIL: replacing an existing .fmu with --force"; cat "$T/out"; fails=$((fails + 1))
 fi
 [ "$fails" -eq 0 ] && echo "test_fmu_cli: all passed" || echo "test_fmu_cli: $fails failed"
 exit $((fails > 0))

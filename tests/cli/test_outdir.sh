@@ -9,7 +9,13 @@
 #     folder: each exits 0 or 2, never mixed;
 #   - kill -9 at random points: OUTDIR is always one complete run; the next run removes the
 #     staging folder left behind and says so;
-#   - SIGTERM (as Ctrl-C) during a run: exit 130, OUTDIR as it was.
+#   - SIGTERM (as Ctrl-C) during a run: exit 130, OUTDIR holds the phases that ended, marked
+#     failed;
+#   - never a user's file: a decoy folder (thesis.tex, a subfolder, a foreign summary.json)
+#     survives `run -o` byte for byte; --force keeps the user's files and refuses a run whose
+#     results would replace one; a file of lvsim's changed since is the user's; export and
+#     mc keep the user's files; modes follow the umask (022, 077) and a replaced folder keeps
+#     its mode.
 # Bounded: about 20 s. Prints "N passed, M failed".
 set -u
 lvsim="$1"
@@ -76,7 +82,7 @@ echo "not a folder" > "$work/file"
 expect 2 "'$work/file' is a file, not a folder" -- "$lvsim" run "$paper" -o "$work/file"
 expect 2 "'$work/file' is a file, not a folder" -- "$lvsim" run "$paper" -o "$work/file/sub"
 mkdir -p "$work/mine" && echo "keep me" > "$work/mine/notes.txt"
-expect 2 "holds files lvsim did not write" -- "$lvsim" run "$paper" -o "$work/mine"
+expect 2 "holds 1 file lvsim did not write \(notes.txt\)" -- "$lvsim" run "$paper" -o "$work/mine"
 [ "$(cat "$work/mine/notes.txt")" = "keep me" ] && [ "$(ls -A "$work/mine")" = "notes.txt" ] && ok \
   || fail "a foreign folder was changed"
 expect 2 "cannot be a results folder" -- "$lvsim" run "$paper" -o .
@@ -155,8 +161,7 @@ if [ "$stale" -gt 0 ]; then
 fi
 verify "$kill_dir" --mission "$slow/mission.yaml" --status ok
 
-# ---- SIGTERM (Ctrl-C) during the simulation: exit 130, OUTDIR as it was --------------------
-before=$(sha256sum "$kill_dir/manifest.json")
+# ---- SIGTERM (Ctrl-C) during the simulation: exit 130, the phases that ended, marked failed
 "$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q > "$work/term.log" 2>&1 &
 victim=$!
 pids+=("$victim")
@@ -164,11 +169,78 @@ pids+=("$victim")
 for _ in $(seq 200); do ls -a "$work" | grep -q "^\.killed\.staging-" && break; sleep 0.02; done
 kill -TERM "$victim"
 wait "$victim"; rc=$?
-[ "$rc" -eq 130 ] && grep -q "interrupted: '$kill_dir' was left as it was" "$work/term.log" && ok \
+[ "$rc" -eq 130 ] && grep -q "interrupted: '$kill_dir' holds the phases that ended, marked failed" "$work/term.log" && ok \
   || fail "SIGTERM: exit $rc: $(cat "$work/term.log")"
-[ "$before" = "$(sha256sum "$kill_dir/manifest.json")" ] && ok || fail "an interrupted run changed $kill_dir"
+verify "$kill_dir" --mission "$slow/mission.yaml" --status failed
+grep -q '"interrupted (SIGINT or SIGTERM)' "$kill_dir/manifest.json" && ok || fail "no interruption note in the manifest"
+grep -q '"status":[[:space:]]*"failed"' "$kill_dir/summary.json" && ok || fail "summary.json of an interrupted run not marked failed"
 ! ls -a "$work" | grep -q "^\.killed\.staging-" && ok || fail "an interrupted run left its staging folder"
-verify "$kill_dir"
+
+# ---- a user's files are never touched ------------------------------------------------------
+snap() { (cd "$1" && find . -print | LC_ALL=C sort | while read -r f; do
+  if [ -f "$f" ]; then printf '%s ' "$f"; sha256sum < "$f"; else echo "$f"; fi; done); }
+decoy="$work/thesis"
+mkdir -p "$decoy/figures"
+echo '\documentclass{article}' > "$decoy/thesis.tex"
+echo '%PDF-1.4' > "$decoy/figures/f1.pdf"
+echo '{"from": "another tool"}' > "$decoy/summary.json"
+before=$(snap "$decoy")
+expect 2 "holds 3 files lvsim did not write \(figures/, summary.json, thesis.tex\)" -- "$lvsim" run "$paper" -o "$decoy" -q
+[ "$before" = "$(snap "$decoy")" ] && ok || fail "a refused run changed the decoy folder"
+# --force, and the run writes a summary.json: refused at the end, the folder as it was
+expect 2 "summary.json' is not lvsim's, and the new results have a file of that name: nothing was replaced" \
+  -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots --force
+[ "$before" = "$(snap "$decoy")" ] && ok || fail "a refused --force run changed the decoy folder"
+! ls -a "$work" | grep -q "^\.thesis\." && ok || fail "a refused run left a staging folder or lock"
+# --force without the clash: lvsim's files added, the user's kept as they are
+rm "$decoy/summary.json"
+before=$(snap "$decoy")
+expect 0 "^kept 2 files lvsim did not write in $decoy/ \(not in its manifest\): figures/f1.pdf, thesis.tex" \
+  -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots --force
+verify "$decoy" --status ok --foreign "thesis.tex,figures/f1.pdf"
+[ "$(cd "$decoy" && sha256sum thesis.tex figures/f1.pdf)" = "$(cd "$decoy" && sha256sum thesis.tex figures/f1.pdf)" ] && ok
+grep -qF "$(echo "$before" | grep thesis.tex)" <<<"$(snap "$decoy")" && ok || fail "thesis.tex changed"
+# a file of lvsim's the user changed since is the user's
+echo ' ' >> "$decoy/summary.json"
+expect 2 "summary.json' is lvsim's file changed since it wrote it, and the new results have a file of that name" \
+  -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots --force
+expect 2 "summary.json: changed since lvsim wrote it" -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots
+grep -q ' $' "$decoy/summary.json" && ok || fail "the user's change to summary.json was lost"
+# export and plot keep a user's note; an export that would replace a user's file is refused
+res="$work/res"
+"$lvsim" run "$dof3" -o "$res" -q --no-plots --outputs mat,csv,body,summary > /dev/null 2>&1 && ok || fail "run into $res"
+echo "my notes" > "$res/notes.txt"
+echo "<kml>mine</kml>" > "$res/mission.kml"
+before=$(snap "$res")
+expect 2 "mission.kml' is not lvsim's, and the new results have a file of that name" -- "$lvsim" export "$res"
+[ "$before" = "$(snap "$res")" ] && ok || fail "a refused export changed $res"
+rm "$res/mission.kml"
+expect 0 "export czml: wrote $res/mission.czml" -- "$lvsim" export "$res" --format czml
+[ "$(cat "$res/notes.txt")" = "my notes" ] && ok || fail "export lost the user's notes"
+verify "$res" --foreign notes.txt
+expect 0 "^plots in $res/plots/" -- "$lvsim" plot "$res"
+verify "$res" --foreign notes.txt
+expect 2 "is not a results folder of lvsim" -- "$lvsim" export "$decoy/figures"
+# mc: a user's folder refused; with --force the user's files kept, lvsim's written beside
+mcd="$work/mcdir"
+mkdir -p "$mcd" && echo '{"mine": 1}' > "$mcd/stats.json" && echo "mine" > "$mcd/outcomes.csv"
+expect 2 "holds 2 files lvsim did not write" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --no-stats
+expect 2 "csv' is not lvsim's, and the new results have a file of that name" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --force
+[ "$(cat "$mcd/stats.json")" = '{"mine": 1}' ] && [ "$(cat "$mcd/outcomes.csv")" = mine ] && ok || fail "mc changed the user's files"
+rm "$mcd/stats.json" "$mcd/outcomes.csv"; echo "keep" > "$mcd/readme.txt"
+expect 0 "^kept 1 file lvsim did not write in $mcd/" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --force
+[ "$(cat "$mcd/readme.txt")" = keep ] && [ -s "$mcd/stats.json" ] && ok || fail "mc --force: $(ls "$mcd")"
+verify "$mcd" --foreign readme.txt
+expect 0 "statistics:" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --resume
+# modes follow the umask; a replaced folder keeps its mode
+for mask in 022 077; do
+  (umask $mask; "$lvsim" run "$dof3" -o "$work/mode$mask" -q --no-plots > /dev/null 2>&1)
+  want=$(printf '%o' $((0777 & ~0$mask)))
+  [ "$(stat -c %a "$work/mode$mask")" = "$want" ] && ok || fail "umask $mask: mode $(stat -c %a "$work/mode$mask"), want $want"
+done
+chmod 0750 "$work/mode077"
+(umask 077; "$lvsim" run "$dof3" -o "$work/mode077" -q --no-plots > /dev/null 2>&1)
+[ "$(stat -c %a "$work/mode077")" = 750 ] && ok || fail "a rerun changed the folder's mode to $(stat -c %a "$work/mode077")"
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

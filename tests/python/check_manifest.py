@@ -2,6 +2,7 @@
 """check_manifest.py - an independent check of a results folder against its manifest.json.
 
 Usage: check_manifest.py OUTDIR [--mission FILE] [--status ok|failed] [--name MISSION_NAME]
+                          [--foreign NAME,NAME...]
 
 Checks, with Python's own hashlib and os.walk (nothing of lvsim):
   - manifest.json parses and lists exactly the regular files under OUTDIR (manifest.json
@@ -10,7 +11,8 @@ Checks, with Python's own hashlib and os.walk (nothing of lvsim):
   - summary.json names the same mission and status as the manifest, and every phase file
     it names is in the manifest (one run's files, not a mix of two);
   - with --mission: the manifest's mission SHA-256 is the file's; --status, --name: the
-    manifest says so.
+    manifest says so; --foreign: these files (the user's, kept by --force) are in OUTDIR and
+    not in the manifest.
 Exit 0 when every check passes; otherwise the failures, one a line, and exit 1.
 """
 import hashlib
@@ -40,7 +42,13 @@ def main(argv):
             rel = os.path.relpath(os.path.join(root, name), outdir)
             if rel != "manifest.json":
                 found.add(rel)
-    for name in sorted(found - set(listed)):
+    foreign = set(opts["--foreign"].split(",")) if "--foreign" in opts else set()
+    for name in sorted(foreign):
+        if name in listed:
+            fails.append("a user's file in the manifest: %s" % name)
+        if name not in found:
+            fails.append("a user's file is gone: %s" % name)
+    for name in sorted(found - set(listed) - foreign):
         fails.append("not in the manifest: %s" % name)
     for name in sorted(set(listed) - found):
         fails.append("in the manifest, missing: %s" % name)

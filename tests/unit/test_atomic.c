@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "io/atomic.h"
@@ -115,6 +116,43 @@ static void test_by_name(void)
     CHECK(!exists(OUT "/run.mat") && !exists(OUT "/run.mat.tmp"));
 }
 
+/* lvsim's temporary file never replaces a file: an existing "<path>.tmp" (a user's) is left
+ * as it is and another name taken; a file replaced through a hard link (a staging replica of
+ * a results folder) leaves the other name's data as it was. */
+static void test_never_truncates(void)
+{
+    char buf[256];
+    lv_err err = {0};
+    lv_atomic a;
+    write_text(OUT "/user.txt.tmp", "the user's own file\n");
+    CHECK_OK(lv_atomic_open(&a, OUT "/user.txt", &err), &err);
+    CHECK(strcmp(a.tmp, OUT "/user.txt.tmp") != 0 &&
+          strncmp(a.tmp, OUT "/user.txt.tmp.", strlen(OUT "/user.txt.tmp.")) == 0);
+    fputs("lvsim's\n", a.fp);
+    CHECK_OK(lv_atomic_commit(&a, &err), &err);
+    CHECK(strcmp(text_of(OUT "/user.txt.tmp", buf, sizeof buf), "the user's own file\n") == 0);
+    CHECK(strcmp(text_of(OUT "/user.txt", buf, sizeof buf), "lvsim's\n") == 0);
+    CHECK(!exists(a.tmp));
+    /* by name (init + reserve), the same */
+    CHECK_OK(lv_atomic_init(&a, OUT "/user.txt", &err), &err);
+    CHECK_OK(lv_atomic_reserve(&a, &err), &err);
+    CHECK(strcmp(a.tmp, OUT "/user.txt.tmp") != 0);
+    lv_atomic_abort(&a);
+    CHECK(strcmp(text_of(OUT "/user.txt.tmp", buf, sizeof buf), "the user's own file\n") == 0);
+    remove(OUT "/user.txt.tmp");
+    remove(OUT "/user.txt");
+    /* a hard link replaced: the other name keeps its data */
+    mkdir(OUT "/replica", 0777);
+    write_text(OUT "/orig.txt", "original\n");
+    remove(OUT "/replica/orig.txt");
+    CHECK(link(OUT "/orig.txt", OUT "/replica/orig.txt") == 0);
+    CHECK_OK(lv_atomic_open(&a, OUT "/replica/orig.txt", &err), &err);
+    fputs("replaced\n", a.fp);
+    CHECK_OK(lv_atomic_commit(&a, &err), &err);
+    CHECK(strcmp(text_of(OUT "/orig.txt", buf, sizeof buf), "original\n") == 0);
+    CHECK(strcmp(text_of(OUT "/replica/orig.txt", buf, sizeof buf), "replaced\n") == 0);
+}
+
 /* Errors name the temporary file and the system's reason. */
 static void test_errors(void)
 {
@@ -179,6 +217,7 @@ int main(void)
     test_abort();
     test_release();
     test_by_name();
+    test_never_truncates();
     test_errors();
     return check_report("test_atomic");
 }

@@ -73,7 +73,7 @@ static int export_fmu(const char *mission, const char *phase, const char *id, fm
 {
     memset(L, 0, sizeof *L);
     char cmd[4 * PATH_MAX];
-    snprintf(cmd, sizeof cmd, "rm -rf fmu_%s && \"%s\" fmu \"%s/%s\" --phase %s -o fmu_%s.fmu "
+    snprintf(cmd, sizeof cmd, "rm -rf fmu_%s && \"%s\" fmu \"%s/%s\" --phase %s -o fmu_%s.fmu --force "
              "> fmu_%s.log 2>&1 && unzip -q -o fmu_%s.fmu -d fmu_%s", id, LV_LVSIM,
              getenv("LV_SOURCE_DIR"), mission, phase, id, id, id, id);
     if (system(cmd) != 0) {

@@ -1,11 +1,16 @@
 /* test_outdir_api.c - lv_outdir (include/lvsim/lv_outdir.h) through its API, in one process:
  * a new folder appears only at commit, with its manifest; a second writer is refused while
  * the first holds the lock (flock locks open files, so even in one process); a folder lvsim
- * did not write, a file, "", "." are refused and left alone; a stale staging folder is
- * removed and reported; -o reused leaves nothing of the earlier run; an uncommitted folder
- * leaves OUTDIR as it was; an in-place update adds to the manifest's history. SHA-256 against
- * the FIPS 180-4 examples ("abc", the empty message). The CLI's behaviour (concurrent
- * processes, kill -9) is tests/cli/test_outdir.sh. */
+ * did not write (also one with a foreign summary.json or manifest.json), a file, "", "." are
+ * refused and left alone byte for byte; with LV_OUTDIR_FORCE the user's files are kept (the
+ * same inode, not in the manifest) and a commit that would replace one is refused; a file of
+ * lvsim's changed since is the user's; a stale staging folder is removed and reported only
+ * when it is lvsim's; -o reused leaves nothing of the earlier run; an uncommitted folder
+ * leaves OUTDIR as it was; an in-place update works in a replica and adds to the manifest's
+ * history; modes follow the umask and a replaced folder keeps its mode; a live folder (a
+ * campaign's) claims its names at once. SHA-256 against the FIPS 180-4 examples ("abc", the
+ * empty message). The CLI's behaviour (concurrent processes, kill -9) is
+ * tests/cli/test_outdir.sh. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <dirent.h>
@@ -92,7 +97,7 @@ static void test_run_folder(void)
     lv_outdir *a = NULL, *b = NULL;
     const char *out = ROOT "/out";
     put(ROOT "/m.yaml", "abc");
-    CHECK_OK(lv_outdir_begin(out, ROOT "/m.yaml", &a, &err), &err);
+    CHECK_OK(lv_outdir_begin(out, ROOT "/m.yaml", 0, &a, &err), &err);
     if (a == NULL)
         return;
     /* writing goes to a staging folder beside OUTDIR; OUTDIR does not exist yet */
@@ -100,7 +105,7 @@ static void test_run_folder(void)
     CHECK(strncmp(stage, ROOT "/.out.staging-", strlen(ROOT "/.out.staging-")) == 0);
     CHECK(exists(stage) && !exists(out) && exists(ROOT "/.out.lock"));
     /* a second writer is refused at once, naming the folder */
-    CHECK(lv_outdir_begin(out, NULL, &b, &err) == LV_ERR_INPUT && b == NULL);
+    CHECK(lv_outdir_begin(out, NULL, 0, &b, &err) == LV_ERR_INPUT && b == NULL);
     CHECK(strstr(err.msg, "results folder '" ROOT "/out' is in use by another lvsim") != NULL);
     CHECK(lv_outdir_open(out, &b, &err) == LV_ERR_INPUT && b == NULL); /* not a folder yet */
     char path[4200];
@@ -120,12 +125,12 @@ static void test_run_folder(void)
     free(man);
 
     /* an uncommitted run leaves OUTDIR as it was and no staging folder */
-    CHECK_OK(lv_outdir_begin(out, NULL, &a, &err), &err);
+    CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
     lv_outdir_free(a);
     CHECK(exists(ROOT "/out/phase_1_a.csv") && count_entries(".out.staging-") == 0);
 
     /* -o reused: the folder is replaced, nothing of the earlier run remains */
-    CHECK_OK(lv_outdir_begin(ROOT "/out/", NULL, &a, &err), &err); /* trailing slash: the same */
+    CHECK_OK(lv_outdir_begin(ROOT "/out/", NULL, 0, &a, &err), &err); /* trailing slash: the same */
     snprintf(path, sizeof path, "%s/phase_1_b.csv", lv_outdir_path(a));
     put(path, "time [s]\n");
     const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
@@ -133,18 +138,28 @@ static void test_run_folder(void)
     lv_outdir_free(a);
     CHECK(exists(ROOT "/out/phase_1_b.csv") && !exists(ROOT "/out/phase_1_a.csv"));
 
-    /* a stale staging folder of a killed run is removed and reported */
+    /* a stale staging folder of a killed run (marked by lvsim) is removed and reported; one
+     * that is not provably lvsim's (no marker, no lvsim manifest) is left alone */
     mkdir(ROOT "/.out.staging-Ab12Cd", 0777);
+    put(ROOT "/.out.staging-Ab12Cd/.lvsim-staging", "");
     put(ROOT "/.out.staging-Ab12Cd/phase_9_x.csv.tmp", "half");
-    CHECK_OK(lv_outdir_begin(out, NULL, &a, &err), &err);
+    mkdir(ROOT "/.out.staging-Zz99Yy", 0777);
+    put(ROOT "/.out.staging-Zz99Yy/mine.txt", "a user's folder of an unlucky name");
+    CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
     CHECK(lv_outdir_stale_count(a) == 1 && strcmp(lv_outdir_stale(a, 0), ".out.staging-Ab12Cd") == 0);
-    CHECK(!exists(ROOT "/.out.staging-Ab12Cd"));
+    CHECK(!exists(ROOT "/.out.staging-Ab12Cd") && exists(ROOT "/.out.staging-Zz99Yy/mine.txt"));
     lv_outdir_free(a);
+    rm_rf(ROOT "/.out.staging-Zz99Yy");
 
-    /* in place (export, plot, view): the manifest keeps its run and gains a history entry */
+    /* in place (export, plot, view): a replica to write in; the manifest keeps its run and
+     * gains a history entry */
     CHECK_OK(lv_outdir_open(out, &a, &err), &err);
-    CHECK(strcmp(lv_outdir_path(a), out) == 0);
-    put(ROOT "/out/mission.kml", "<kml/>");
+    CHECK(strcmp(lv_outdir_path(a), out) != 0);
+    snprintf(path, sizeof path, "%s/phase_1_b.csv", lv_outdir_path(a));
+    CHECK(exists(path)); /* the replica has the folder's files */
+    snprintf(path, sizeof path, "%s/mission.kml", lv_outdir_path(a));
+    put(path, "<kml/>");
+    CHECK(!exists(ROOT "/out/mission.kml")); /* nothing in OUTDIR before the commit */
     const lv_outdir_record ex = {"export", "ok", NULL, 0, NULL};
     CHECK_OK(lv_outdir_commit(a, &ex, &err), &err);
     CHECK(lv_outdir_file_count(a) == 2);
@@ -159,24 +174,251 @@ static void test_refused(void)
 {
     lv_err err;
     lv_outdir *a = (lv_outdir *)&err; /* must come back NULL */
-    CHECK(lv_outdir_begin("", NULL, &a, &err) == LV_ERR_INPUT && a == NULL);
+    CHECK(lv_outdir_begin("", NULL, 0, &a, &err) == LV_ERR_INPUT && a == NULL);
     CHECK(strstr(err.msg, "name is empty") != NULL);
-    CHECK(lv_outdir_begin(".", NULL, &a, &err) == LV_ERR_INPUT && a == NULL);
+    CHECK(lv_outdir_begin(".", NULL, 0, &a, &err) == LV_ERR_INPUT && a == NULL);
     CHECK(strstr(err.msg, "cannot be a results folder") != NULL);
     put(ROOT "/file", "x");
-    CHECK(lv_outdir_begin(ROOT "/file", NULL, &a, &err) == LV_ERR_INPUT);
+    CHECK(lv_outdir_begin(ROOT "/file", NULL, 0, &a, &err) == LV_ERR_INPUT);
     CHECK(strstr(err.msg, "'" ROOT "/file' is a file, not a folder") != NULL);
-    CHECK(lv_outdir_begin(ROOT "/file/sub", NULL, &a, &err) == LV_ERR_INPUT);
+    CHECK(lv_outdir_begin(ROOT "/file/sub", NULL, 0, &a, &err) == LV_ERR_INPUT);
     mkdir(ROOT "/mine", 0777);
     put(ROOT "/mine/notes.txt", "keep");
-    CHECK(lv_outdir_begin(ROOT "/mine", NULL, &a, &err) == LV_ERR_INPUT);
-    CHECK(strstr(err.msg, "holds files lvsim did not write") != NULL);
+    CHECK(lv_outdir_begin(ROOT "/mine", NULL, 0, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "holds 1 file lvsim did not write (notes.txt)") != NULL);
     char *kept = slurp(ROOT "/mine/notes.txt");
     CHECK(kept != NULL && strcmp(kept, "keep") == 0);
     free(kept);
     CHECK(count_entries(".mine.") == 0 && count_entries(".file.") == 0); /* no lock left */
-    CHECK(lv_outdir_begin(ROOT "/new", ROOT "/no-such-mission.yaml", &a, &err) == LV_ERR_IO);
+    CHECK(lv_outdir_begin(ROOT "/new", ROOT "/no-such-mission.yaml", 0, &a, &err) == LV_ERR_IO);
     CHECK(!exists(ROOT "/new") && count_entries(".new.") == 0);
+}
+
+/* Byte-for-byte snapshot of a small folder tree: "name\tcontent\n" per file, sorted (find). */
+static char *snapshot(const char *dir)
+{
+    char cmd[512];
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && find . -print | LC_ALL=C sort | while read -r f; do "
+             "if [ -f \"$f\" ]; then printf '%%s\\t' \"$f\"; sha256sum < \"$f\"; "
+             "else printf '%%s\\n' \"$f\"; fi; done", dir);
+    FILE *p = popen(cmd, "r");
+    if (p == NULL)
+        return NULL;
+    char *buf = calloc(1, 1 << 16);
+    size_t n = buf != NULL ? fread(buf, 1, (1 << 16) - 1, p) : 0;
+    if (buf != NULL)
+        buf[n] = '\0';
+    pclose(p);
+    return buf;
+}
+
+static ino_t inode_of(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 ? sb.st_ino : 0;
+}
+
+/* The issue's decoy: a folder with thesis.tex, a subfolder and a summary.json from another
+ * tool. Refused and untouched byte for byte; with LV_OUTDIR_FORCE a commit whose results
+ * have a summary.json is refused (OUTDIR as it was), one without keeps every user's file as
+ * itself (same inode), and the manifest lists only lvsim's files. */
+static void test_decoy(void)
+{
+    lv_err err;
+    lv_outdir *a = NULL;
+    const char *dec = ROOT "/decoy";
+    mkdir(dec, 0777);
+    mkdir(ROOT "/decoy/figures", 0777);
+    put(ROOT "/decoy/thesis.tex", "\\documentclass{article}");
+    put(ROOT "/decoy/figures/f1.pdf", "%PDF-1.4");
+    put(ROOT "/decoy/summary.json", "{\"from\": \"another tool\"}");
+    char *before = snapshot(dec);
+    CHECK(lv_outdir_begin(dec, NULL, 0, &a, &err) == LV_ERR_INPUT && a == NULL);
+    CHECK(strstr(err.msg, "holds 3 files lvsim did not write (figures/, summary.json, "
+                          "thesis.tex)") != NULL);
+    CHECK(strstr(err.msg, "--force") != NULL);
+    char *after = snapshot(dec);
+    CHECK(before != NULL && after != NULL && strcmp(before, after) == 0);
+    free(after);
+    /* a user's manifest.json is never replaced, even with force */
+    put(ROOT "/decoy/manifest.json", "{\"mine\": true}");
+    CHECK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "'" ROOT "/decoy/manifest.json' is not lvsim's") != NULL);
+    remove(ROOT "/decoy/manifest.json");
+    /* force, and the results have a summary.json: refused at commit, nothing changed */
+    CHECK_OK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err), &err);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/summary.json", lv_outdir_path(a));
+    put(path, "{\"lvsim\": 1}");
+    const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
+    CHECK(lv_outdir_commit(a, &ok, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "'" ROOT "/decoy/summary.json' is not lvsim's, and the new results "
+                          "have a file of that name: nothing was replaced") != NULL);
+    lv_outdir_free(a);
+    after = snapshot(dec);
+    CHECK(after != NULL && strcmp(before, after) == 0 && count_entries(".decoy.") == 0);
+    free(after);
+    /* force without a collision: the user's files kept as themselves */
+    const ino_t thesis = inode_of(ROOT "/decoy/thesis.tex");
+    CHECK_OK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err), &err);
+    snprintf(path, sizeof path, "%s/phase_1_a.csv", lv_outdir_path(a));
+    put(path, "time [s]\n0\n");
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    CHECK(lv_outdir_kept_count(a) == 3 && strcmp(lv_outdir_kept(a, 0), "figures/f1.pdf") == 0);
+    CHECK(lv_outdir_file_count(a) == 1 && strcmp(lv_outdir_files(a)[0].name, "phase_1_a.csv") == 0);
+    lv_outdir_free(a);
+    CHECK(inode_of(ROOT "/decoy/thesis.tex") == thesis && exists(ROOT "/decoy/figures/f1.pdf"));
+    char *man = slurp(ROOT "/decoy/manifest.json");
+    CHECK(man != NULL && strstr(man, "thesis.tex") == NULL && strstr(man, "phase_1_a.csv") != NULL);
+    free(man);
+    /* a second run without force: still refused (the user's files are still there) */
+    CHECK(lv_outdir_begin(dec, NULL, 0, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "holds 3 files lvsim did not write") != NULL);
+    free(before);
+}
+
+/* A file lvsim wrote and the user changed since is the user's: a rerun is refused; in place
+ * (open), a writer that replaces a user's file makes the commit fail with OUTDIR as it was,
+ * while the user's files added to a results folder survive an update. */
+static void test_changed_and_in_place(void)
+{
+    lv_err err;
+    lv_outdir *a = NULL;
+    const char *out = ROOT "/res";
+    char path[4200];
+    const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
+    CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
+    snprintf(path, sizeof path, "%s/summary.json", lv_outdir_path(a));
+    put(path, "{\"status\": \"ok\"}");
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    lv_outdir_free(a);
+    /* the user edits it (same size, new content) */
+    put(ROOT "/res/summary.json", "{\"status\": \"OK\"}");
+    CHECK(lv_outdir_begin(out, NULL, 0, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "summary.json: changed since lvsim wrote it") != NULL);
+    put(ROOT "/res/summary.json", "{\"status\": \"ok\"}"); /* back as lvsim wrote it */
+    CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
+    lv_outdir_free(a);
+    /* a note the user adds to the results survives an export, not listed in the manifest */
+    put(ROOT "/res/notes.txt", "my notes");
+    const ino_t notes = inode_of(ROOT "/res/notes.txt");
+    CHECK_OK(lv_outdir_open(out, &a, &err), &err);
+    snprintf(path, sizeof path, "%s/mission.czml", lv_outdir_path(a));
+    put(path, "[]");
+    const lv_outdir_record ex = {"export", "ok", NULL, 0, NULL};
+    CHECK_OK(lv_outdir_commit(a, &ex, &err), &err);
+    lv_outdir_free(a);
+    CHECK(inode_of(ROOT "/res/notes.txt") == notes && exists(ROOT "/res/mission.czml"));
+    char *man = slurp(ROOT "/res/manifest.json");
+    CHECK(man != NULL && strstr(man, "notes.txt") == NULL && strstr(man, "mission.czml") != NULL);
+    free(man);
+    /* an update that would replace the user's file: refused, OUTDIR as it was */
+    char *before = snapshot(out);
+    CHECK_OK(lv_outdir_open(out, &a, &err), &err);
+    snprintf(path, sizeof path, "%s/notes.txt", lv_outdir_path(a));
+    remove(path); /* as a writer's rename over it would */
+    put(path, "lvsim's notes");
+    CHECK(lv_outdir_commit(a, &ex, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "'" ROOT "/res/notes.txt' is not lvsim's") != NULL);
+    lv_outdir_free(a);
+    char *after = snapshot(out);
+    CHECK(before != NULL && after != NULL && strcmp(before, after) == 0);
+    free(before);
+    free(after);
+    /* open needs lvsim's folder */
+    mkdir(ROOT "/plain", 0777);
+    put(ROOT "/plain/summary.json", "{}");
+    CHECK(lv_outdir_open(ROOT "/plain", &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "is not a results folder of lvsim") != NULL);
+    /* a lock file beside the folder that is not lvsim's is left alone */
+    put(ROOT "/.res.lock", "a user's file");
+    CHECK(lv_outdir_begin(out, NULL, 0, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "is not lvsim's lock file") != NULL);
+    char *lk = slurp(ROOT "/.res.lock");
+    CHECK(lk != NULL && strcmp(lk, "a user's file") == 0);
+    free(lk);
+    remove(ROOT "/.res.lock");
+}
+
+/* Modes: a new folder 0777 less the umask (022 and 077); a replaced folder keeps its mode. */
+static void test_modes(void)
+{
+    lv_err err;
+    lv_outdir *a = NULL;
+    const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
+    const mode_t masks[2] = {022, 077}, want[2] = {0755, 0700};
+    for (int i = 0; i < 2; i++) {
+        const mode_t old = umask(masks[i]);
+        char out[64];
+        snprintf(out, sizeof out, ROOT "/mode%d", i);
+        CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
+        CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+        lv_outdir_free(a);
+        struct stat sb;
+        CHECK(stat(out, &sb) == 0 && (sb.st_mode & 07777) == want[i]);
+        umask(old);
+    }
+    chmod(ROOT "/mode1", 0750);
+    const mode_t old = umask(077);
+    CHECK_OK(lv_outdir_begin(ROOT "/mode1", NULL, 0, &a, &err), &err);
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    lv_outdir_free(a);
+    umask(old);
+    struct stat sb;
+    CHECK(stat(ROOT "/mode1", &sb) == 0 && (sb.st_mode & 07777) == 0750);
+}
+
+/* A live folder (lvsim mc): created with its manifest at once, status "incomplete", its live
+ * names lvsim's whatever they hold; a user's file of a live name refused even with force;
+ * staged, committed, the manifest lists the database. */
+static void test_live(void)
+{
+    lv_err err;
+    lv_outdir *a = NULL, *b = NULL;
+    const char *dir = ROOT "/mc";
+    const char *live[] = {"campaign.db", "runs", NULL};
+    CHECK_OK(lv_outdir_open_live(dir, NULL, 0, live, &a, &err), &err);
+    CHECK(strcmp(lv_outdir_path(a), dir) == 0);
+    char *man = slurp(ROOT "/mc/manifest.json");
+    CHECK(man != NULL && strstr(man, "\"incomplete\"") != NULL && strstr(man, "\"campaign.db\"") != NULL);
+    free(man);
+    CHECK(lv_outdir_open_live(dir, NULL, 0, live, &b, &err) == LV_ERR_INPUT); /* in use */
+    put(ROOT "/mc/campaign.db", "rows");
+    lv_outdir_free(a); /* killed, say: the folder stays lvsim's */
+    put(ROOT "/mc/campaign.db", "more rows");
+    CHECK_OK(lv_outdir_open_live(dir, NULL, 0, live, &a, &err), &err);
+    CHECK_OK(lv_outdir_stage(a, &err), &err);
+    CHECK(strcmp(lv_outdir_path(a), dir) != 0);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/stats.json", lv_outdir_path(a));
+    put(path, "{}");
+    const lv_outdir_record ok = {"mc", "ok", NULL, 0, NULL};
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    CHECK(lv_outdir_file_count(a) == 2);
+    lv_outdir_free(a);
+    man = slurp(ROOT "/mc/manifest.json");
+    CHECK(man != NULL && strstr(man, "\"status\":\t\"ok\"") != NULL &&
+          strstr(man, "\"stats.json\"") != NULL);
+    free(man);
+    /* a user's campaign.db in a user's folder: refused, also with force */
+    mkdir(ROOT "/mine2", 0777);
+    put(ROOT "/mine2/campaign.db", "not lvsim's");
+    CHECK(lv_outdir_open_live(ROOT "/mine2", NULL, LV_OUTDIR_FORCE, live, &a, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "campaign.db' is not lvsim's") != NULL);
+    put(ROOT "/mine2/stats.json", "mine");
+    remove(ROOT "/mine2/campaign.db");
+    CHECK(lv_outdir_open_live(ROOT "/mine2", NULL, 0, live, &a, &err) == LV_ERR_INPUT);
+    CHECK_OK(lv_outdir_open_live(ROOT "/mine2", NULL, LV_OUTDIR_FORCE, live, &a, &err), &err);
+    CHECK_OK(lv_outdir_stage(a, &err), &err);
+    snprintf(path, sizeof path, "%s/stats.json", lv_outdir_path(a));
+    remove(path);
+    put(path, "{}");
+    CHECK(lv_outdir_commit(a, &ok, &err) == LV_ERR_INPUT); /* would replace the user's */
+    lv_outdir_free(a);
+    char *kept = slurp(ROOT "/mine2/stats.json");
+    CHECK(kept != NULL && strcmp(kept, "mine") == 0);
+    free(kept);
 }
 
 int main(void)
@@ -189,6 +431,10 @@ int main(void)
     test_sha256();
     test_run_folder();
     test_refused();
+    test_decoy();
+    test_changed_and_in_place();
+    test_modes();
+    test_live();
     rm_rf(ROOT);
     return check_report("test_outdir_api");
 }
