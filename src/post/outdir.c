@@ -345,16 +345,20 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
                 e->owner = JUNK;
                 continue;
             }
+            if (depth >= MAX_DEPTH) { /* never carry a folder whose contents were not seen */
+                errno = ELOOP;
+                rc = -1;
+                break;
+            }
             manifest sub;
-            const int has_sub = depth < MAX_DEPTH ? man_load(full, &sub) : 0;
+            const int has_sub = man_load(full, &sub);
             if (has_sub < 0) {
                 rc = -1;
                 break;
             }
             const size_t before = c->l->n;
-            const int f = depth >= MAX_DEPTH ? 1
-                          : has_sub ? survey(c, r, &sub, strlen(r), depth + 1)
-                                    : survey(c, r, m, mrel_len, depth + 1);
+            const int f = has_sub ? survey(c, r, &sub, strlen(r), depth + 1)
+                                  : survey(c, r, m, mrel_len, depth + 1);
             if (has_sub)
                 man_free(&sub);
             if (f < 0) {
@@ -379,7 +383,9 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
             }
         } else if (S_ISREG(sb.st_mode)) {
             const man_file *mf = m->root != NULL ? man_find(m, mname) : NULL;
-            if (mf != NULL && mf->bytes == (double)sb.st_size) {
+            if (m->root != NULL && man_is_live(m, mname)) {
+                /* lvsim's whatever it holds (a campaign database, growing) */
+            } else if (mf != NULL && mf->bytes == (double)sb.st_size) {
                 const int newer = sb.st_mtim.tv_sec > m->mtime.tv_sec ||
                                   (sb.st_mtim.tv_sec == m->mtime.tv_sec &&
                                    sb.st_mtim.tv_nsec > m->mtime.tv_nsec);
@@ -395,8 +401,6 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
                 }
                 if (e->owner == OWNED)
                     snprintf(e->sha, sizeof e->sha, "%s", mf->sha);
-            } else if (m->root != NULL && man_is_live(m, mname)) {
-                e->owner = OWNED;
             } else if (lock_is_lvsims(full, names[i], &sb) ||
                        (strcmp(names[i], MARKER) == 0 && sb.st_size == 0)) {
                 e->owner = JUNK; /* a stale lock; the marker of an exchange cut short */
@@ -490,6 +494,9 @@ static int rm_contents(int fd, const char *keep)
             continue;
         }
         if (S_ISDIR(sb.st_mode)) {
+            /* a read-only folder (carried with its mode) must be writable to be emptied */
+            if (fchmodat(dirfd(d), e->d_name, 0700, 0) != 0) {
+            }
             int sub = openat(dirfd(d), e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
             if (sub < 0 || rm_contents(sub, NULL) != 0 ||
                 unlinkat(dirfd(d), e->d_name, AT_REMOVEDIR) != 0)
@@ -506,6 +513,9 @@ static int rm_contents(int fd, const char *keep)
  * leaves a folder that is still provably lvsim's, which the next writer removes. */
 static int rm_tree(const char *path)
 {
+    struct stat sb;
+    if (lstat(path, &sb) == 0 && S_ISDIR(sb.st_mode) && chmod(path, 0700) != 0) {
+    }
     int fd = open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0)
         return errno == ENOENT ? 0 : -1;
@@ -972,8 +982,6 @@ lv_status lv_outdir_begin(const char *outdir, const char *mission_file, unsigned
         st = clean_stale(od, err);
     if (st == LV_OK)
         st = make_staging(od, err);
-    if (st == LV_OK)
-        copy_folder_mode(od);
     if (st != LV_OK) {
         lv_outdir_free(od);
         return st;
@@ -1028,10 +1036,8 @@ static lv_status open_folder(const char *outdir, const char *mission_file, unsig
         list_free(&l);
     } else if (st == LV_OK) {
         st = make_staging(od, err);
-        if (st == LV_OK) {
-            copy_folder_mode(od);
+        if (st == LV_OK)
             st = replicate(od, err);
-        }
     }
     if (st != LV_OK) {
         lv_outdir_free(od);
@@ -1061,10 +1067,8 @@ lv_status lv_outdir_stage(lv_outdir *od, lv_err *err)
     if (od == NULL || od->mode != MODE_LIVE || od->staging[0] != '\0' || od->committed)
         return lv_fail(err, LV_ERR_INPUT, "lv_outdir_stage: not a live folder, or staged twice");
     lv_status st = make_staging(od, err);
-    if (st == LV_OK) {
-        copy_folder_mode(od);
+    if (st == LV_OK)
         st = replicate(od, err);
-    }
     return st;
 }
 
@@ -1397,6 +1401,7 @@ static lv_status exchange(lv_outdir *od, lv_err *err)
     int rc;
     snprintf(marker, sizeof marker, "%s/" MARKER, od->staging);
     unlink(marker);
+    copy_folder_mode(od); /* now: a read-only folder's mode would have kept lvsim from writing */
     if (lstat(od->final, &sb) == 0) {
         int marked = 0;
         if (join(old_marker, sizeof old_marker, od->final, MARKER) == 0) {

@@ -367,6 +367,17 @@ static void test_modes(void)
     umask(old);
     struct stat sb;
     CHECK(stat(ROOT "/mode1", &sb) == 0 && (sb.st_mode & 07777) == 0750);
+    /* a read-only results folder: replaced, still read-only, nothing left beside it */
+    chmod(ROOT "/mode1", 0555);
+    CHECK_OK(lv_outdir_begin(ROOT "/mode1", NULL, 0, &a, &err), &err);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/summary.json", lv_outdir_path(a));
+    put(path, "{}");
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    lv_outdir_free(a);
+    CHECK(stat(ROOT "/mode1", &sb) == 0 && (sb.st_mode & 07777) == 0555);
+    CHECK(exists(ROOT "/mode1/summary.json") && count_entries(".mode1.") == 0);
+    chmod(ROOT "/mode1", 0755);
 }
 
 /* A live folder (lvsim mc): created with its manifest at once, status "incomplete", its live
