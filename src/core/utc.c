@@ -241,3 +241,8 @@ int lv_utc_note(lv_tai a, lv_tai b, char *buf, size_t cap)
     }
     return 1;
 }
+
+const char *lv_utc_erfa_version(void)
+{
+    return eraVersion();
+}

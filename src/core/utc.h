@@ -50,4 +50,7 @@ size_t lv_utc_leaps(lv_tai a, lv_tai b, lv_tai *starts, size_t cap);
  * and 0. 256 bytes hold both sentences (before 1960, after the table). */
 int lv_utc_note(lv_tai a, lv_tai b, char *buf, size_t cap);
 
+/* The version of the ERFA whose table is used: "2.0.0". */
+const char *lv_utc_erfa_version(void);
+
 #endif
