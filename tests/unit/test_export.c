@@ -358,6 +358,10 @@ static void test_leap_second(void)
     oem = slurp(at60, "sat.oem");
     CHECK(oem != NULL && has_line(oem, "COMMENT UTC from "));
     free(oem);
+    /* ... and past the year 9999, which the text cannot hold: refused (t = 600 s is 10000) */
+    replace_in(at60, "summary.json", "\"2200-06-30T23:55:00Z\"", "\"9999-12-31T23:55:00Z\"");
+    CHECK_FAILS(lv_export_run(at60, LV_EXPORT_CZML, &err), &err, LV_ERR_INPUT,
+                "leave the years 0000-9999");
 }
 
 int main(void)
