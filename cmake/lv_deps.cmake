@@ -1,6 +1,6 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh):
 #   SUNDIALS 6.4 (CMake config: CVODE, ARKODE), libmatio (and its HDF5), libyaml, NLopt, cJSON,
-#   PLplot, Nettle, libzip (pkg-config).
+#   PLplot, Nettle, libzip, ERFA (pkg-config).
 # The Python package (python/, docs/python.md) needs no build dependency: ctypes at run time,
 # with Debian's /usr/bin/python3 and python3-numpy (pandas, matplotlib, pytest, nbconvert,
 # setuptools for the tests and pip installs: tests/python/python.cmake).
@@ -18,6 +18,9 @@ pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/
 pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip) # src/fmi only: the FMU archive
+# ERFA (Debian: liberfa-dev; the IAU SOFA algorithms): UTC with its leap seconds, the mission
+# epoch (src/core/utc.c, in liblvsim and in liblvsim_post's helpers).
+pkg_check_modules(ERFA REQUIRED IMPORTED_TARGET erfa)
 find_package(Threads REQUIRED)
 # Shortest round-trip digits of doubles for the CSV files (src/io/numfmt.cc); header-only.
 find_package(dragonbox 1.1 REQUIRED CONFIG)
@@ -71,14 +74,14 @@ add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::YAML PkgConfig::NLOPT Threads::Threads dragonbox::dragonbox lv_fastfloat
-  ${CMAKE_DL_LIBS} m)
+  lv_matio_headers PkgConfig::YAML PkgConfig::NLOPT PkgConfig::ERFA Threads::Threads
+  dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
 target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE PkgConfig::SQLITE3
-  PkgConfig::LIBZIP
+  PkgConfig::LIBZIP PkgConfig::ERFA
   Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)

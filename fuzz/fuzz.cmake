@@ -51,7 +51,7 @@ if(LV_HAVE_LIBFUZZER)
   list(TRANSFORM _src PREPEND ${PROJECT_SOURCE_DIR}/ REGEX "^[^/]") # generated: absolute
   list(TRANSFORM _hdr PREPEND ${PROJECT_SOURCE_DIR}/)
   set(_inc -I${PROJECT_SOURCE_DIR}/include -I${PROJECT_SOURCE_DIR}/src)
-  foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS})
+  foreach(_d ${YAML_INCLUDE_DIRS} ${MATIO_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS} ${ERFA_INCLUDE_DIRS})
     list(APPEND _inc -I${_d})
   endforeach()
   set(LV_FUZZ_BIN ${CMAKE_BINARY_DIR}/fuzz/fuzz_mission)
@@ -68,7 +68,7 @@ if(LV_HAVE_LIBFUZZER)
             $<TARGET_FILE:SUNDIALS::sunmatrixdense_shared>
             $<TARGET_FILE:SUNDIALS::sunlinsoldense_shared>
             $<TARGET_FILE:SUNDIALS::sunnonlinsolfixedpoint_shared>
-            ${HDF5_LINK_LIBRARIES} -lm
+            ${HDF5_LINK_LIBRARIES} ${ERFA_LINK_LIBRARIES} -lm
     DEPENDS ${_src} ${_hdr} ${_cxx_obj}
     COMMENT "Building the libFuzzer target fuzz_mission with ${LV_CLANG}"
     COMMAND_EXPAND_LISTS VERBATIM)

@@ -13,6 +13,7 @@ pkgs=(
   libhdf5-dev                          # MAT v7.3 tables libmatio cannot classify (src/io/table_load.c)
   libyaml-dev                          # mission files
   libcjson-dev                         # summary.json, exports
+  liberfa-dev                          # UTC with leap seconds: the mission epoch, written times
   libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
   nettle-dev                           # SHA-256 in the results folder's manifest
   libzip-dev unzip                     # lvsim fmu: the FMU archive; its test unpacks it

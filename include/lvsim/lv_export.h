@@ -23,16 +23,21 @@ extern "C" {
  * `formats` (an OR of LV_EXPORT_* flags) into OUTDIR. Each file is written under
  * "<name>.tmp" and renamed when complete. OEM files are written only for planet-world
  * missions over the Earth and only for bodies that have rows above 100 km; a flat-world
- * mission gets none (not an error).
+ * mission gets none (not an error). Times are the epoch plus SI seconds, written as UTC with
+ * its leap seconds (ERFA): 23:59:60.ffffff inside one (CZML, OEM), 23:59:59.999999 in KML,
+ * whose xsd:dateTime has no second 60 (docs/exports.md, "Times").
  * Errors: LV_ERR_IO when a file cannot be read or written (names the path and the system's
  * reason); LV_ERR_INPUT for a malformed summary.json ("path:line: ...") or body CSV
- * ("path:line: ..."), or a summary and CSV that disagree; LV_ERR_NOMEM. */
+ * ("path:line: ..."), a summary and CSV that disagree, an epoch that is no UTC instant
+ * (23:59:60 of a day without a leap second) or times past the year 9999; LV_ERR_NOMEM. */
 LV_API lv_status lv_export_run(const char *outdir, unsigned formats, lv_err *err);
 
 /* What an export request did: one item per file written, and one per requested format or
- * body that got no file, saying why ("oem: flat world: no orbit to describe"). */
+ * body that got no file, saying why ("oem: flat world: no orbit to describe"); and an item
+ * "utc" without a file when the written UTC times lie past ERFA's leap-second table (or
+ * before 1960), saying how far they can be off. */
 typedef struct lv_export_item {
-    char format[8];  /* "czml", "kml", "oem" */
+    char format[8];  /* "czml", "kml", "oem"; "utc" for the note on the times */
     char file[256];  /* the file written in OUTDIR ("mission.czml"), or "" */
     char note[256];  /* why nothing was written, or what the file leaves out; "" */
 } lv_export_item;

@@ -55,7 +55,8 @@ typedef struct lv_mission_info {
     const char *name;
     const char *description; /* NULL when the file has none */
     const char *path;        /* the mission file */
-    const char *epoch;       /* ISO 8601 UTC of mission time 0, or NULL */
+    const char *epoch;       /* ISO 8601 UTC of mission time 0 as written (23:59:60 only on
+                                a leap-second day), or NULL; t counts SI seconds from it */
     int flat_world;          /* 1: flat world (the paper's test case), 0: planet */
     const char *planet;      /* "earth", "moon", "mars"; NULL on a flat world */
     double site_lat, site_lon; /* rad: a flat world's origin on the WGS-84 Earth */

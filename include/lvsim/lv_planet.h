@@ -4,8 +4,11 @@
  * Frames (ECI, ECEF, geodetic, geocentric, NED, body), their axes, origins, signs and
  * angle ranges are defined once, in docs/frames.md; the gravity models and the
  * coefficient file format in docs/gravity.md. SI units and radians everywhere:
- * positions in m, velocities in m/s, accelerations in m/s^2, `t` in seconds since
- * the mission epoch. Vectors are `double[3]` (x, y, z or north, east, down);
+ * positions in m, velocities in m/s, accelerations in m/s^2, `t` in SI seconds since
+ * the mission epoch (a leap second inside the mission is one more second like any other).
+ * The epoch's date never enters the physics: ECEF is ECI turned by theta0 + omega t, so
+ * theta(0) = theta0 whatever the date (no GMST or Earth rotation angle of the epoch).
+ * Vectors are `double[3]` (x, y, z or north, east, down);
  * matrices are row-major `double[3][3]`, and C_a_b maps b-frame components to a.
  */
 #ifndef LVSIM_LV_PLANET_H

@@ -11,11 +11,13 @@
 extern "C" {
 #endif
 
-/* Writes OUTDIR/summary.json (per phase: start and end time, why it ended, events,
- * statistics, the hand-off, the final state, its files; per body: the phases it flies in and
- * its merged trajectory file) and OUTDIR/body_<stage>.csv for every stage that flew (needs
- * the run's rows: lv_run_options.no_rows = 0). Each file is written under a temporary name
- * and renamed. Errors: LV_ERR_IO naming the file, LV_ERR_NOMEM. */
+/* Writes OUTDIR/summary.json (the epoch and "time": TAI - UTC at the epoch, the UTC of the
+ * first start and the last end, the leap seconds between with their mission times, a note
+ * when the dates lie past ERFA's leap-second table; per phase: start and end time, why it
+ * ended, events, statistics, the hand-off, the final state, its files; per body: the phases
+ * it flies in and its merged trajectory file) and OUTDIR/body_<stage>.csv for every stage
+ * that flew (needs the run's rows: lv_run_options.no_rows = 0). Each file is written under a
+ * temporary name and renamed. Errors: LV_ERR_IO naming the file, LV_ERR_NOMEM. */
 LV_API lv_status lv_run_write_summary(const lv_run *r, const char *outdir, lv_err *err);
 
 /* The same, choosing the files (lvsim run --outputs): LV_SUMMARY_JSON (summary.json; it names

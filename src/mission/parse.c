@@ -20,6 +20,7 @@
 #include "core/status.h"
 #include "core/table_unit.h"
 #include "core/units.h"
+#include "core/utc.h"
 #include "lvsim/lv_planet.h"
 #include "mission/dispersion.h"
 #include "mission/parse_kit.h"
@@ -2161,9 +2162,10 @@ fail:
 /* ---- the file ------------------------------------------------------------------------- */
 
 /* NULL when `s` is a UTC instant written "YYYY-MM-DDThh:mm:ss[.f...]Z" that exists in the
- * proleptic Gregorian calendar; otherwise why not. A leap second (23:59:60) is refused: mission
- * time counts SI seconds from the epoch and the exports convert to UTC without a table of leap
- * seconds, so an epoch inside one could not be placed exactly. */
+ * proleptic Gregorian calendar and in UTC; otherwise why not. A second 60 exists only in a leap
+ * second, 23:59:60 of a day that ended with one (ERFA's table of them, core/utc.h): mission
+ * time counts SI seconds from the epoch, and the exports place the epoch and every later
+ * instant with the same table. */
 static const char *epoch_check(const char *s)
 {
     static const char *const form = "an ISO 8601 UTC time like 2026-03-01T12:00:00Z expected";
@@ -2204,11 +2206,12 @@ static const char *epoch_check(const char *s)
         return "the hour must be 00 to 23";
     if (v[4] > 59)
         return "the minute must be 00 to 59";
-    if (v[5] == 60)
-        return "a leap second (:60) cannot be an epoch: mission time counts SI seconds and the "
-               "exports convert to UTC without a leap-second table; use :59 or the next minute";
-    if (v[5] > 59)
-        return "the second must be 00 to 59";
+    if (v[5] > 60)
+        return "the second must be 00 to 59 (60 only in a leap second)";
+    lv_tai tai;
+    if (v[5] == 60 && lv_utc_parse(s, &tai) == LV_UTC_NO_LEAP)
+        return "no leap second here: a second 60 exists only as 23:59:60 at the end of a day "
+               "that had one (IERS Bulletin C, e.g. 2016-12-31T23:59:60Z)";
     return NULL;
 }
 

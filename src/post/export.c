@@ -1,7 +1,8 @@
 /* export.c - trajectory exports from a results folder: reads summary.json and the merged
  * body_<stage>.csv files back (post/results.h), then hands them to the CZML, KML and CCSDS OEM
  * writers (export_czml.c, export_kml.c, export_oem.c). Post-processing only: nothing is rerun.
- * Civil-date arithmetic: H. Hinnant, "chrono-Compatible Low-Level Date Algorithms". */
+ * Times: the epoch on the TAI scale plus SI seconds, written back as UTC with its leap seconds
+ * (core/utc.h, ERFA). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -20,73 +21,21 @@
 
 /* ------------------------------------------------------------------ time -- */
 
-/* Days since 1970-01-01 of a proleptic Gregorian date. */
-static long long days_from_civil(long long y, int m, int d)
+lv_tai lv_ex_ticks(const lv_ex_run *r, double t)
 {
-    y -= m <= 2;
-    const long long era = (y >= 0 ? y : y - 399) / 400;
-    const long long yoe = y - era * 400;
-    const long long doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
-    const long long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    return era * 146097 + doe - 719468;
-}
-
-static void civil_from_days(long long z, long long *y, int *m, int *d)
-{
-    z += 719468;
-    const long long era = (z >= 0 ? z : z - 146096) / 146097;
-    const long long doe = z - era * 146097;
-    const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-    const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    const long long mp = (5 * doy + 2) / 153;
-    *d = (int)(doy - (153 * mp + 2) / 5 + 1);
-    *m = (int)(mp < 10 ? mp + 3 : mp - 9);
-    *y = yoe + era * 400 + (*m <= 2);
-}
-
-/* "YYYY-MM-DDThh:mm:ss[.f...]Z" (the mission parser's rule) -> microseconds since 1970. */
-static int parse_epoch(const char *s, long long *us)
-{
-    int y, mo, d, h, mi, n = 0;
-    if (sscanf(s, "%4d-%2d-%2dT%2d:%2d:%n", &y, &mo, &d, &h, &mi, &n) != 5 || n == 0)
-        return -1;
-    char *end;
-    const double sec = strtod(s + n, &end);
-    if (end == s + n || strcmp(end, "Z") != 0 || mo < 1 || mo > 12 || d < 1 || d > 31 ||
-        h < 0 || h > 23 || mi < 0 || mi > 59 || !(sec >= 0.0 && sec < 61.0))
-        return -1;
-    const long long whole = days_from_civil(y, mo, d) * 86400LL + h * 3600LL + mi * 60LL;
-    *us = whole * 1000000LL + llround(sec * 1e6);
-    return 0;
-}
-
-long long lv_ex_ticks(const lv_ex_run *r, double t)
-{
-    return r->epoch_us + llround(t * 1e6);
+    return lv_utc_add(r->epoch, t);
 }
 
 void lv_ex_iso(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap)
 {
-    const long long us = lv_ex_ticks(r, t);
-    long long s = us / 1000000LL, frac = us % 1000000LL;
-    if (frac < 0) {
-        frac += 1000000LL;
-        s -= 1;
-    }
-    long long days = s / 86400LL, sod = s % 86400LL;
-    if (sod < 0) {
-        sod += 86400LL;
-        days -= 1;
-    }
-    long long y;
-    int mo, d;
-    civil_from_days(days, &y, &mo, &d);
-    const int h = (int)(sod / 3600), mi = (int)(sod / 60 % 60), sec = (int)(sod % 60);
-    if (frac == 0)
-        snprintf(buf, cap, "%04lld-%02d-%02dT%02d:%02d:%02d%s", y, mo, d, h, mi, sec, suffix);
-    else
-        snprintf(buf, cap, "%04lld-%02d-%02dT%02d:%02d:%02d.%06lld%s", y, mo, d, h, mi, sec, frac,
-                 suffix);
+    (void)lv_utc_format(lv_ex_ticks(r, t), 0, suffix, buf, cap, NULL);
+}
+
+int lv_ex_iso_no60(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap)
+{
+    int in_leap = 0;
+    (void)lv_utc_format(lv_ex_ticks(r, t), 1, suffix, buf, cap, &in_leap);
+    return in_leap;
 }
 
 /* --------------------------------------------------------------- helpers -- */
@@ -179,7 +128,12 @@ static lv_status check_summary(lv_ex_run *r, const lv_results *res, lv_err *err)
     if (res->mission == NULL || res->epoch == NULL || res->world == NULL)
         return lv_fail(err, LV_ERR_INPUT, "%s: not an lvsim summary: 'mission', 'epoch', "
                        "'world', 'phases' or 'bodies' missing", path);
-    if (parse_epoch(res->epoch, &r->epoch_us) != 0)
+    const int js = lv_utc_parse(res->epoch, &r->epoch);
+    if (js == LV_UTC_NO_LEAP)
+        return lv_fail(err, LV_ERR_INPUT, "%s: epoch '%.40s': no leap second at that time (a "
+                       "second 60 exists only as 23:59:60 of a day that ended with one)", path,
+                       res->epoch);
+    if (js < 0)
         return lv_fail(err, LV_ERR_INPUT, "%s: epoch '%.40s': ISO 8601 UTC time like "
                        "2026-03-01T12:00:00Z expected", path, res->epoch);
     if (res->n_phases == 0)
@@ -205,6 +159,15 @@ static lv_status check_summary(lv_ex_run *r, const lv_results *res, lv_err *err)
     }
     if (!(r->t0 <= r->t1))
         return lv_fail(err, LV_ERR_INPUT, "%s: no phase is done: nothing to export", path);
+    char a[48], b[48];
+    if (lv_utc_format(lv_ex_ticks(r, r->t0), 0, "Z", a, sizeof a, NULL) == LV_UTC_BAD ||
+        lv_utc_format(lv_ex_ticks(r, r->t1), 0, "Z", b, sizeof b, NULL) == LV_UTC_BAD ||
+        fabs(r->t0) > 1e10 || fabs(r->t1) > 1e10)
+        return lv_fail(err, LV_ERR_INPUT, "%s: phase times %.17g .. %.17g s after the epoch "
+                       "'%s' leave the years 0000-9999 that UTC text can be written in", path,
+                       r->t0, r->t1, res->epoch);
+    lv_utc_note(lv_ex_ticks(r, r->t0), lv_ex_ticks(r, r->t1), r->time_note,
+                sizeof r->time_note);
     for (size_t i = 0; i < res->n_bodies; i++)
         if (res->bodies[i].trajectory == NULL)
             return lv_fail(err, LV_ERR_INPUT, "%s: bodies[%zu]: 'name' or 'trajectory' (a file "
@@ -414,13 +377,20 @@ LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_e
             lv_ex_report(&r, "czml", path, NULL);
     }
     if (st == LV_OK && (formats & LV_EXPORT_KML)) {
+        size_t n_no60 = 0;
         snprintf(path, sizeof path, "%s/mission.kml", outdir);
-        st = lv_ex_write_kml(&r, path, err);
-        if (st == LV_OK)
+        st = lv_ex_write_kml(&r, path, &n_no60, err);
+        if (st == LV_OK && n_no60 > 0)
+            lv_ex_report(&r, "kml", path, "%zu time%s inside a leap second written as "
+                         "23:59:59.999999 (KML's xsd:dateTime has no second 60)", n_no60,
+                         n_no60 == 1 ? "" : "s");
+        else if (st == LV_OK)
             lv_ex_report(&r, "kml", path, NULL);
     }
     if (st == LV_OK && (formats & LV_EXPORT_OEM))
         st = lv_ex_write_oem(&r, err);
+    if (st == LV_OK && r.time_note[0] != '\0') /* the times written may be off: said once */
+        lv_ex_report(&r, "utc", NULL, "%s", r.time_note);
     run_free(&r);
     lv_results_free(res);
     return st;

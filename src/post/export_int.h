@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "core/utc.h"
 #include "lvsim/lv_status.h"
 #include "post/results.h"
 
@@ -40,7 +41,8 @@ typedef struct lv_ex_body {
 typedef struct lv_ex_run {
     const char *outdir;
     const char *mission; /* summary "mission" */
-    long long epoch_us;  /* summary "epoch": UTC microseconds since 1970-01-01T00:00:00Z */
+    lv_tai epoch;        /* summary "epoch" on the TAI scale (core/utc.h) */
+    char time_note[256]; /* lv_utc_note over the done phases' span, or "" */
     int flat;            /* world "flat" (no OEM) */
     const char *planet;  /* summary "planet" when given, else NULL (Earth assumed, checked) */
     const lv_ex_phase *phases; /* the results' phases; every done one has finite times */
@@ -59,11 +61,14 @@ void lv_ex_report(const lv_ex_run *r, const char *format, const char *file, cons
 #endif
     ;
 
-/* Time t (s since the epoch) as whole microseconds since 1970 (the resolution of every
+/* Time t (SI seconds since the epoch) as whole TAI microseconds (the resolution of every
  * written time) and as ISO 8601 UTC text "YYYY-MM-DDThh:mm:ss[.ffffff]" + suffix ("Z" or ""),
- * fraction only when not zero. buf: at least 48 bytes. */
-long long lv_ex_ticks(const lv_ex_run *r, double t);
+ * fraction only when not zero, leap seconds counted: an instant inside one is 23:59:60.ffffff.
+ * lv_ex_iso_no60 writes such an instant as 23:59:59.999999 (KML's xsd:dateTime has no second
+ * 60) and returns 1 for it. buf: at least 48 bytes. docs/exports.md, "Times". */
+lv_tai lv_ex_ticks(const lv_ex_run *r, double t);
 void lv_ex_iso(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap);
+int lv_ex_iso_no60(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap);
 
 /* Geodetic position of body b at time t inside track k (linear between rows; clamped). */
 void lv_ex_locate(const lv_ex_body *b, const lv_ex_track *k, double t, double *lat, double *lon,
@@ -82,7 +87,8 @@ const char *lv_ex_event_label(const lv_ex_event *e);
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
 lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);
-lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err);
+/* *n_no60: how many written instants fell inside a leap second (written 23:59:59.999999). */
+lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err);
 /* Writes OUTDIR/<body>.oem for the bodies with orbital portions (docs/exports.md). */
 lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err);
 

@@ -1,6 +1,8 @@
 /* export_kml.c - mission.kml (OGC KML 2.2 with the Google gx: extension, for Google Earth): one
  * Folder per body, a gx:Track per phase (when/gx:coord, altitudeMode absolute), a Style per
- * phase colour, Placemarks for phase starts and events. Text from the mission is escaped. */
+ * phase colour, Placemarks for phase starts and events. Text from the mission is escaped. Times
+ * are xsd:dateTime, which has no second 60: an instant inside a leap second is written as
+ * 23:59:59.999999 (docs/exports.md, "Times"). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -48,28 +50,30 @@ static void put_style(FILE *f, const lv_ex_run *r, size_t p)
             r->phases[p].index, colour, colour);
 }
 
-static void put_track(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv_ex_track *k)
+static void put_track(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv_ex_track *k,
+                      size_t *n_no60)
 {
     const lv_ex_phase *ph = &r->phases[k->phase];
-    char when[48];
+    char when[48], last[48];
     fputs("    <Placemark>\n      <name>", f);
     put_text(f, b->name);
     fputs(": ", f);
     put_text(f, ph->name);
     fprintf(f, "</name>\n      <styleUrl>#phase-%d</styleUrl>\n      <gx:Track>\n"
                "        <altitudeMode>absolute</altitudeMode>\n", ph->index);
-    /* The schema wants every <when> before the first <gx:coord>. Rows that fall on the same
-     * microsecond (the resolution of the written times) are written once. */
+    /* The schema wants every <when> before the first <gx:coord>. Rows whose written time is
+     * the same (the same microsecond, or the same leap second: 23:59:59.999999) are written
+     * once, the first of them. */
     for (int pass = 0; pass < 2; pass++) {
-        long long last = 0;
+        last[0] = '\0';
         for (size_t i = 0; i < k->n; i++) {
             const lv_ex_row *row = &b->rows[k->first + i];
-            const long long tick = lv_ex_ticks(r, row->t);
-            if (i > 0 && tick == last)
+            const int leap = lv_ex_iso_no60(r, row->t, "Z", when, sizeof when);
+            if (strcmp(when, last) == 0)
                 continue;
-            last = tick;
+            memcpy(last, when, sizeof last);
             if (pass == 0) {
-                lv_ex_iso(r, row->t, "Z", when, sizeof when);
+                *n_no60 += (size_t)leap;
                 fprintf(f, "        <when>%s</when>\n", when);
             } else {
                 fprintf(f, "        <gx:coord>%.10f %.10f %.4f</gx:coord>\n", row->lon * RAD2DEG,
@@ -81,14 +85,14 @@ static void put_track(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv
 }
 
 static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv_ex_track *k,
-                       double t, const char *text)
+                       double t, const char *text, size_t *n_no60)
 {
     const lv_ex_phase *ph = &r->phases[k->phase];
     double lat, lon, h;
     char t_a[48], t_b[48];
     lv_ex_locate(b, k, t, &lat, &lon, &h);
-    lv_ex_iso(r, t, "Z", t_a, sizeof t_a);
-    lv_ex_iso(r, r->t1, "Z", t_b, sizeof t_b);
+    *n_no60 += (size_t)lv_ex_iso_no60(r, t, "Z", t_a, sizeof t_a);
+    *n_no60 += (size_t)lv_ex_iso_no60(r, r->t1, "Z", t_b, sizeof t_b);
     fputs("    <Placemark>\n      <name>", f);
     put_text(f, text);
     fputs("</name>\n      <description>", f);
@@ -101,9 +105,10 @@ static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const l
             ph->index, lon * RAD2DEG, lat * RAD2DEG, h);
 }
 
-lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
+lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err)
 {
     char epoch[48];
+    *n_no60 = 0;
     lv_atomic out;
     lv_status st = lv_atomic_open(&out, path, err);
     if (st != LV_OK)
@@ -115,7 +120,20 @@ lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
           "xmlns:gx=\"http://www.google.com/kml/ext/2.2\">\n<Document>\n  <name>", f);
     put_text(f, r->mission);
     fprintf(f, "</name>\n  <open>1</open>\n  <description>lvsim trajectories, mission epoch %s "
-               "(UTC); one folder per body, one track per phase</description>\n", epoch);
+               "(UTC); one folder per body, one track per phase", epoch);
+    /* the leap seconds of the span, whose instants xsd:dateTime cannot hold, and the table */
+    lv_tai leaps[4];
+    const size_t n_leap = lv_utc_leaps(lv_ex_ticks(r, r->t0), lv_ex_ticks(r, r->t1), leaps, 4);
+    for (size_t i = 0; i < n_leap && i < 4; i++) {
+        char w[48];
+        (void)lv_utc_format(leaps[i], 0, "Z", w, sizeof w, NULL);
+        fprintf(f, "; leap second %s: its instants are written as 23:59:59.999999Z", w);
+    }
+    if (r->time_note[0] != '\0') {
+        fputs("; ", f);
+        put_text(f, r->time_note);
+    }
+    fputs("</description>\n", f);
     for (size_t p = 0; p < r->n_phases; p++)
         if (r->phases[p].done)
             put_style(f, r, p);
@@ -125,17 +143,17 @@ lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, lv_err *err)
         put_text(f, b->name);
         fputs("</name>\n", f);
         for (size_t i = 0; i < b->n_tracks; i++)
-            put_track(f, r, b, &b->tracks[i]);
+            put_track(f, r, b, &b->tracks[i], n_no60);
         /* The markers of this body's phases: start, then the events (as in the CZML). */
         for (size_t i = 0; i < b->n_tracks; i++) {
             const lv_ex_track *k = &b->tracks[i];
             const lv_ex_phase *ph = &r->phases[k->phase];
             char text[300];
             lv_ex_marker_label(r, k->phase, 0, text, sizeof text);
-            put_marker(f, r, b, k, ph->t_start, text);
+            put_marker(f, r, b, k, ph->t_start, text, n_no60);
             for (size_t j = 0; j < ph->n_events; j++) {
                 lv_ex_marker_label(r, k->phase, j + 1, text, sizeof text);
-                put_marker(f, r, b, k, ph->events[j].t, text);
+                put_marker(f, r, b, k, ph->events[j].t, text, n_no60);
             }
         }
         fputs("  </Folder>\n", f);

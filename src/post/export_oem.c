@@ -1,6 +1,8 @@
 /* export_oem.c - <stage>.oem: CCSDS Orbit Ephemeris Message 2.0, KVN (CCSDS 502.0-B-2,
  * sections 5 and 7: header, META_START/META_STOP blocks, data lines "epoch x y z x_dot y_dot
- * z_dot" in km and km/s) for the parts of a body's flight above 100 km, Earth-fixed. */
+ * z_dot" in km and km/s) for the parts of a body's flight above 100 km, Earth-fixed. Epochs are
+ * UTC with its leap seconds: CCSDS ASCII time code A (301.0-B-4, section 3.5) writes an instant
+ * inside one as 23:59:60.ffffff. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -126,7 +128,24 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
                "COMMENT lvsim %s trajectory export, mission ", LVSIM_VERSION);
     put_value(f, r->mission);
     fprintf(f, "\nCOMMENT Earth-fixed WGS-84 positions and velocities relative to the rotating "
-               "Earth; no polar motion\nCREATION_DATE = %s\nORIGINATOR = LVSIM\n", created);
+               "Earth; no polar motion\n");
+    /* the leap seconds inside the file's span (epochs count them), the table's limits */
+    const lv_tai a = lv_ex_ticks(r, b->rows[0].t), z = lv_ex_ticks(r, b->rows[b->n_rows - 1].t);
+    lv_tai leaps[4];
+    const size_t n_leap = lv_utc_leaps(a, z, leaps, 4);
+    for (size_t i = 0; i < n_leap && i < 4; i++) {
+        char w[48];
+        (void)lv_utc_format(leaps[i], 0, "", w, sizeof w, NULL);
+        fprintf(f, "COMMENT leap second %s inside the span: TAI - UTC %.0f s before, %.0f s "
+                   "after\n", w, lv_utc_tai_minus_utc(leaps[i] - 1000000),
+                lv_utc_tai_minus_utc(leaps[i] + 1000000));
+    }
+    if (r->time_note[0] != '\0') {
+        fputs("COMMENT ", f);
+        put_value(f, r->time_note);
+        fputc('\n', f);
+    }
+    fprintf(f, "CREATION_DATE = %s\nORIGINATOR = LVSIM\n", created);
     size_t seg = 0;
     for (size_t i = 0; i < n;) {
         size_t j = i;

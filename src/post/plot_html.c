@@ -467,6 +467,20 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const
     esc(f, s->file ? s->file : "?");
     fputs("</code>; epoch ", f);
     esc(f, s->epoch ? s->epoch : "?");
+    /* summary.json "time": the leap seconds inside the mission (t counts them, as SI seconds)
+     * and the note when ERFA's table cannot vouch for its dates */
+    const cJSON *tm = cJSON_GetObjectItemCaseSensitive(s->json, "time"), *ls;
+    cJSON_ArrayForEach(ls, cJSON_GetObjectItemCaseSensitive(tm, "leap_seconds"))
+    {
+        fputs(" (leap second ", f);
+        esc(f, jstr(ls, "utc") ? jstr(ls, "utc") : "?");
+        fprintf(f, " at t = %.3f s)", jnum(ls, "t"));
+    }
+    if (jstr(tm, "note") != NULL) {
+        fputs(" (", f);
+        esc(f, jstr(tm, "note"));
+        fputc(')', f);
+    }
     fputs("; world ", f);
     esc(f, s->world ? s->world : "?");
     fputs("; lvsim ", f);

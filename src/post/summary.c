@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "core/utc.h"
 #include "io/atomic.h"
 #include "io/numfmt.h"
 #include "lvsim/lv_mission.h"
@@ -204,6 +205,50 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     return o;
 }
 
+/* "time": how t maps to UTC over the span of the phases that ran (docs/exports.md, "Times"):
+ * TAI - UTC at the epoch, the UTC of the first start and last end, the leap seconds between
+ * (UTC and t of their start), the note when ERFA's table cannot vouch for the span. */
+static void time_json(cJSON *root, const lv_run *run, size_t n_phases, const char *epoch)
+{
+    lv_tai e;
+    if (lv_utc_parse(epoch, &e) < 0) /* the parser checked it: not reached */
+        return;
+    char buf[320];
+    cJSON *o = cJSON_AddObjectToObject(root, "time");
+    snprintf(buf, sizeof buf, "SI seconds since the epoch; UTC counts the leap seconds of "
+             "ERFA %s's table", lv_utc_erfa_version());
+    cJSON_AddStringToObject(o, "t", buf);
+    cJSON_AddNumberToObject(o, "tai_minus_utc", lv_utc_tai_minus_utc(e));
+    double t0 = INFINITY, t1 = -INFINITY;
+    for (size_t k = 0; k < n_phases; k++) {
+        const lv_phase_result *r = lv_run_result(run, k);
+        if ((r->state == LV_PHASE_DONE || r->state == LV_PHASE_FAILED) &&
+            isfinite(r->t_start) && isfinite(r->t_end)) {
+            t0 = fmin(t0, r->t_start);
+            t1 = fmax(t1, fmax(r->t_start, r->t_end));
+        }
+    }
+    if (!(t0 <= t1))
+        return;
+    const lv_tai a = lv_utc_add(e, t0), b = lv_utc_add(e, t1);
+    lv_utc_format(a, 0, "Z", buf, sizeof buf, NULL);
+    cJSON_AddStringToObject(o, "start", buf);
+    lv_utc_format(b, 0, "Z", buf, sizeof buf, NULL);
+    cJSON_AddStringToObject(o, "end", buf);
+    cJSON *leaps = cJSON_AddArrayToObject(o, "leap_seconds");
+    lv_tai s[8];
+    const size_t n = lv_utc_leaps(a, b, s, 8);
+    for (size_t i = 0; i < n && i < 8; i++) {
+        cJSON *l = cJSON_CreateObject();
+        lv_utc_format(s[i], 0, "Z", buf, sizeof buf, NULL);
+        cJSON_AddStringToObject(l, "utc", buf);
+        cJSON_AddNumberToObject(l, "t", (double)(s[i] - e) / 1e6);
+        cJSON_AddItemToArray(leaps, l);
+    }
+    if (lv_utc_note(a, b, buf, sizeof buf))
+        cJSON_AddStringToObject(o, "note", buf);
+}
+
 lv_status lv_run_write_summary(const lv_run *run, const char *outdir, lv_err *err)
 {
     return lv_run_write_summary_files(run, outdir, LV_SUMMARY_JSON | LV_SUMMARY_BODIES, err);
@@ -227,6 +272,7 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
         all_done &= lv_run_result(run, k)->state == LV_PHASE_DONE;
     cJSON_AddStringToObject(root, "status", all_done ? "ok" : "failed");
     cJSON_AddStringToObject(root, "epoch", mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
+    time_json(root, run, mi.n_phases, mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
     cJSON_AddStringToObject(root, "world", mi.flat_world ? "flat" : "planet");
     if (!mi.flat_world)
         cJSON_AddStringToObject(root, "planet", mi.planet);

@@ -71,7 +71,9 @@ def parse_iso(text):
 
 
 def at(epoch, t):
-    """The instant t seconds after epoch, to the microsecond (lvsim's written resolution)."""
+    """The instant t seconds after epoch, to the microsecond (lvsim's written resolution).
+    Python's datetime knows no leap second: right for the folders checked here (2026, none
+    inside them); a span across one is checked by test_export.c (leap_second.yaml)."""
     return epoch + dt.timedelta(microseconds=round(t * 1e6))
 
 

@@ -197,6 +197,173 @@ static void names_folder(const char *paper)
     free(kml);
 }
 
+/* Line of `text` that starts with `prefix`, as a fresh string (up to its newline), or NULL. */
+static char *line_of(const char *text, const char *prefix)
+{
+    for (const char *p = text; p != NULL && *p; p = strchr(p, '\n') ? strchr(p, '\n') + 1 : NULL)
+        if (strncmp(p, prefix, strlen(prefix)) == 0) {
+            const size_t n = strchr(p, '\n') ? (size_t)(strchr(p, '\n') - p) : strlen(p);
+            char *l = malloc(n + 1);
+            memcpy(l, p, n);
+            l[n] = '\0';
+            return l;
+        }
+    return NULL;
+}
+
+static int has_line(const char *text, const char *prefix)
+{
+    char *l = text ? line_of(text, prefix) : NULL;
+    free(l);
+    return l != NULL;
+}
+
+static size_t count_of(const char *text, const char *what)
+{
+    size_t n = 0;
+    for (const char *p = text; p != NULL && (p = strstr(p, what)) != NULL; p += strlen(what))
+        n++;
+    return n;
+}
+
+/* A coast across the leap second 2016-12-31T23:59:60Z (tests/missions/leap_second.yaml: epoch
+ * 23:55:00 UTC, rows every 0.5 s to t = 600 s). The answers follow from the IERS list alone:
+ * t = 300 s is 23:59:60 (the leap second), t = 301 s is 2017-01-01T00:00:00 and t = 600 s is
+ * 00:04:59, one second before epoch + t without the leap second (00:00:01, 00:05:00). */
+static void test_leap_second(void)
+{
+    const char *dir = "export_out/leap";
+    if (run_mission("tests/missions/leap_second.yaml", dir) != 0)
+        return;
+    lv_err err = {0};
+    lv_export_report rep;
+    CHECK_OK(lv_export_run_report(dir, LV_EXPORT_ALL, &rep, &err), &err);
+    int kml_note = 0;
+    for (size_t i = 0; i < rep.n; i++)
+        kml_note |= strcmp(rep.items[i].format, "kml") == 0 &&
+                    strstr(rep.items[i].note, "inside a leap second written as "
+                                              "23:59:59.999999") != NULL;
+    CHECK(kml_note);
+    lv_export_report_clear(&rep);
+
+    /* OEM (CCSDS 502.0-B-2; time code A of 301.0-B-4 has a second 60): the rows around the
+     * leap second, the phase boundary at t = 400 s and the last row */
+    char *oem = slurp(dir, "sat.oem");
+    CHECK(oem != NULL);
+    CHECK(has_line(oem, "2016-12-31T23:59:59.500000 "));                      /* t = 299.5 */
+    CHECK(has_line(oem, "2016-12-31T23:59:60 "));                             /* t = 300 */
+    CHECK(has_line(oem, "2016-12-31T23:59:60.500000 "));                      /* t = 300.5 */
+    CHECK(has_line(oem, "2017-01-01T00:00:00 "));                             /* t = 301 */
+    CHECK(has_line(oem, "2017-01-01T00:01:39 "));                             /* t = 400 */
+    CHECK(has_line(oem, "2017-01-01T00:04:59 "));                             /* t = 600 */
+    CHECK(!has_line(oem, "2017-01-01T00:05:00 "));
+    CHECK(has_line(oem, "STOP_TIME = 2017-01-01T00:04:59"));
+    CHECK(has_line(oem, "COMMENT leap second 2016-12-31T23:59:60 inside the span: TAI - UTC "
+                        "36 s before, 37 s after"));
+    /* the row at t = 301 s is the one 2 s after t = 299 s: the same position as the CSV's */
+    char *csv = slurp(dir, "body_sat.csv");
+    CHECK(csv != NULL && has_line(csv, "301,coast,"));
+    free(csv);
+    free(oem);
+
+    /* KML: xsd:dateTime has no second 60, so the leap second's rows are one <when>,
+     * 23:59:59.999999Z (the first of them kept); after it the same 1 s shift as the OEM */
+    char *kml = slurp(dir, "mission.kml");
+    CHECK(kml != NULL);
+    CHECK(count_of(kml, "<when>2016-12-31T23:59:59.999999Z</when>") == 1);
+    CHECK(count_of(kml, "<when>2016-12-31T23:59:59.500000Z</when>") == 1);
+    CHECK(count_of(kml, "<when>2017-01-01T00:00:00Z</when>") == 1);
+    CHECK(count_of(kml, "<when>2017-01-01T00:04:59Z</when>") == 1);
+    CHECK(count_of(kml, "23:59:60") == 1); /* only in the description, as text */
+    CHECK(count_of(kml, "00:05:00") == 0);
+    CHECK(count_of(kml, "<begin>2017-01-01T00:01:39Z</begin><end>2017-01-01T00:04:59Z</end>") == 1);
+    free(kml);
+
+    /* CZML: Cesium's JulianDate reads the epoch (and intervals) as UTC with leap seconds and
+     * adds the samples' seconds on the TAI scale: the epoch and the SI-second offsets as they
+     * are, the intervals' ends shifted like the OEM's */
+    check_czml(dir, 2, "2016-12-31T23:55:00Z/2017-01-01T00:04:59Z");
+    char *czml = slurp(dir, "mission.czml");
+    cJSON *doc = czml ? cJSON_Parse(czml) : NULL;
+    free(czml);
+    const cJSON *tr = cJSON_GetArrayItem(doc, 2); /* track/sat/coast2 */
+    const cJSON *pos = cJSON_GetObjectItem(tr, "position");
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(tr, "id")), "track/sat/coast2") == 0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(pos, "epoch")),
+                 "2016-12-31T23:55:00Z") == 0);
+    const cJSON *smp = cJSON_GetObjectItem(pos, "cartographicDegrees");
+    CHECK(cJSON_GetArraySize(smp) > 4);
+    CHECK_CLOSE(cJSON_GetArrayItem(smp, 0)->valuedouble, 400.0, 0.0);
+    int marker = 0; /* coast2's start marker: from t = 400 s (00:01:39, not 00:01:40) on */
+    const cJSON *p;
+    cJSON_ArrayForEach(p, doc)
+    {
+        const char *id = cJSON_GetStringValue(cJSON_GetObjectItem(p, "id"));
+        const char *av = cJSON_GetStringValue(cJSON_GetObjectItem(p, "availability"));
+        marker += id != NULL && strcmp(id, "event/coast2/0") == 0 && av != NULL &&
+                  strcmp(av, "2017-01-01T00:01:39Z/2017-01-01T00:04:59Z") == 0;
+    }
+    CHECK(marker == 1);
+    cJSON_Delete(doc);
+
+    /* summary.json: the same instants and the leap second at t = 300 s */
+    char *text = slurp(dir, "summary.json");
+    cJSON *sum = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    const cJSON *tm = cJSON_GetObjectItem(sum, "time");
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(sum, "epoch")),
+                 "2016-12-31T23:55:00Z") == 0);
+    CHECK_CLOSE(cJSON_GetNumberValue(cJSON_GetObjectItem(tm, "tai_minus_utc")), 36.0, 0.0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(tm, "start")),
+                 "2016-12-31T23:55:00Z") == 0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(tm, "end")),
+                 "2017-01-01T00:04:59Z") == 0);
+    const cJSON *leaps = cJSON_GetObjectItem(tm, "leap_seconds");
+    CHECK(cJSON_GetArraySize(leaps) == 1);
+    const cJSON *l0 = cJSON_GetArrayItem(leaps, 0);
+    CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(l0, "utc")), "2016-12-31T23:59:60Z") ==
+          0);
+    CHECK_CLOSE(cJSON_GetNumberValue(cJSON_GetObjectItem(l0, "t")), 300.0, 0.0);
+    CHECK(cJSON_GetObjectItem(tm, "note") == NULL); /* 2016 is inside ERFA's table */
+    CHECK_CLOSE(mission_end(dir), 600.0, 1e-9);
+    cJSON_Delete(sum);
+
+    /* An epoch inside the leap second (edited into a copy of the summary): t = 0.5 s is
+     * 23:59:60.5, t = 1 s the new year; a second 60 where there was none is refused. */
+    const char *at60 = "export_out/leap60";
+    mkdir(at60, 0777);
+    copy_file(dir, at60, "summary.json");
+    copy_file(dir, at60, "body_sat.csv");
+    replace_in(at60, "summary.json", "\"2016-12-31T23:55:00Z\"", "\"2016-12-31T23:59:60Z\"");
+    CHECK_OK(lv_export_run(at60, LV_EXPORT_OEM, &err), &err);
+    oem = slurp(at60, "sat.oem");
+    CHECK(oem != NULL && has_line(oem, "START_TIME = 2016-12-31T23:59:60"));
+    CHECK(oem != NULL && has_line(oem, "2016-12-31T23:59:60.500000 "));
+    CHECK(oem != NULL && has_line(oem, "2017-01-01T00:00:00 "));
+    CHECK(oem != NULL && has_line(oem, "2017-01-01T00:09:59 ")); /* t = 600 s */
+    free(oem);
+    replace_in(at60, "summary.json", "\"2016-12-31T23:59:60Z\"", "\"2016-12-30T23:59:60Z\"");
+    CHECK_FAILS(lv_export_run(at60, LV_EXPORT_OEM, &err), &err, LV_ERR_INPUT,
+                "export_out/leap60/summary.json: epoch '2016-12-30T23:59:60Z': no leap second");
+
+    /* Past ERFA's table (its dubious years: five after its release): said, not hidden */
+    replace_in(at60, "summary.json", "\"2016-12-30T23:59:60Z\"", "\"2200-06-30T23:55:00Z\"");
+    CHECK_OK(lv_export_run_report(at60, LV_EXPORT_ALL, &rep, &err), &err);
+    int utc_note = 0;
+    for (size_t i = 0; i < rep.n; i++)
+        utc_note |= strcmp(rep.items[i].format, "utc") == 0 && rep.items[i].file[0] == '\0' &&
+                    strstr(rep.items[i].note, "leap-second table") != NULL;
+    CHECK(utc_note);
+    lv_export_report_clear(&rep);
+    oem = slurp(at60, "sat.oem");
+    CHECK(oem != NULL && has_line(oem, "COMMENT UTC from "));
+    free(oem);
+    /* ... and past the year 9999, which the text cannot hold: refused (t = 600 s is 10000) */
+    replace_in(at60, "summary.json", "\"2200-06-30T23:55:00Z\"", "\"9999-12-31T23:55:00Z\"");
+    CHECK_FAILS(lv_export_run(at60, LV_EXPORT_CZML, &err), &err, LV_ERR_INPUT,
+                "leave the years 0000-9999");
+}
+
 int main(void)
 {
     lv_err err = {0};
@@ -238,6 +405,8 @@ int main(void)
         CHECK_OK(lv_export_run(dof3, LV_EXPORT_OEM, &err), &err);
         CHECK(!exists(dof3, "upper.oem.tmp"));
     }
+
+    test_leap_second();
 
     /* Errors: no summary.json (the path is named); unknown flags. */
     mkdir("export_out/empty", 0777);

@@ -561,23 +561,33 @@ static void test_unflyable(void)
 {
 #define TWO_STAGES "stages:\n  - {name: s1, dry_mass: 1, propellant_mass: 1}\n" \
                    "  - {name: s2, dry_mass: 1, propellant_mass: 1}\n" /* lines 2-4 */
-    /* epochs: no 30 February, no hour -1, nothing after the Z, no leap second */
+    /* epochs: no 30 February, no hour -1, nothing after the Z, no second 60 on a day without
+     * a leap second (IERS Bulletin C 52: the last one was 2016-12-31T23:59:60Z) */
     BAD("mission: {name: t, epoch: 2026-02-30T12:00:00Z}\n" STAGES PHASE,
         "bad.yaml:1:27: mission: epoch: '2026-02-30T12:00:00Z': no such day in that month");
     BAD("mission: {name: t, epoch: 2026-03-01T-1:00:00Z}\n" STAGES PHASE,
         "bad.yaml:1:27: mission: epoch: '2026-03-01T-1:00:00Z': an ISO 8601 UTC time like");
     BAD("mission: {name: t, epoch: 2026-03-01T12:00:00Zx}\n" STAGES PHASE,
         "bad.yaml:1:27: mission: epoch: '2026-03-01T12:00:00Zx': text after the Z");
-    BAD("mission: {name: t, epoch: 2016-12-31T23:59:60Z}\n" STAGES PHASE,
-        "bad.yaml:1:27: mission: epoch: '2016-12-31T23:59:60Z': a leap second (:60) cannot be");
+    BAD("mission: {name: t, epoch: 2016-12-30T23:59:60Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2016-12-30T23:59:60Z': no leap second here");
+    BAD("mission: {name: t, epoch: 2016-12-31T23:58:60Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2016-12-31T23:58:60Z': no leap second here");
+    BAD("mission: {name: t, epoch: 2016-12-31T23:59:61Z}\n" STAGES PHASE,
+        "bad.yaml:1:27: mission: epoch: '2016-12-31T23:59:61Z': the second must be 00 to 59");
     BAD("mission: {name: t, epoch: 2026-03-01T12:00:00+01:00}\n" STAGES PHASE,
         "bad.yaml:1:27: mission: epoch: '2026-03-01T12:00:00+01:00': the time must end with Z");
-    /* 29 February of a leap year and a fraction of a second are fine */
-    {
-        const char *ok = "mission: {name: t, epoch: 2024-02-29T23:59:59.25Z}\n" STAGES PHASE;
+    /* 29 February of a leap year, a fraction of a second, and the leap seconds of 2016-12-31
+     * and 2015-06-30 are fine */
+    static const char *const good[] = {"2024-02-29T23:59:59.25Z", "2016-12-31T23:59:60Z",
+                                       "2015-06-30T23:59:60.5Z"};
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        char ok[512];
+        snprintf(ok, sizeof ok, "mission: {name: t, epoch: %s}\n" STAGES PHASE, good[i]);
         lv_err err;
         lv_mission_def *m = NULL;
         CHECK_OK(lv_mission_def_parse(ok, strlen(ok), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+        CHECK(m != NULL && m->epoch != NULL && strcmp(m->epoch, good[i]) == 0);
         lv_mission_def_free(m);
     }
     /* a child carries only its parent's stages */
