@@ -215,7 +215,7 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
             ko.output_interval = w->o.output_interval;
             ko.outdir = dir;
             if (mkdir_p(dir) != 0)
-                return lv_fail(err, LV_ERR_IO, "cannot create '%s': %s", dir, strerror(errno));
+                return lv_fail(err, LV_ERR_IO, "cannot create '%s': %s", dir, LV_STRERROR(errno));
             if (lv_run_create(m, &kr, &kerr) == LV_OK &&
                 lv_run_disperse(kr, w->o.seed, run, NULL, &kerr) == LV_OK) {
                 lv_run_execute(kr, &ko, &kerr);

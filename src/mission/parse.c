@@ -434,7 +434,7 @@ static lv_status regular_file(const lv_pctx *c, const lv_ynode *at, const char *
     struct stat sb;
     if (stat(path, &sb) != 0)
         return lv_pk_fail(c, at, "%s: %s: cannot read '%s': %s", what, key, path,
-                          errno == ENOENT ? "no such file" : "cannot access the file");
+                          LV_STRERROR(errno));
     if (!S_ISREG(sb.st_mode))
         return lv_pk_fail(c, at, "%s: %s: '%s' is not a regular file", what, key, path);
     return LV_OK;
@@ -1006,7 +1006,7 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
     struct stat sb;
     if (stat(*file_out, &sb) != 0)
         return lv_pk_fail(c, at, "%s: %s: cannot read '%s': %s", what, key->text, *file_out,
-                    errno == ENOENT ? "no such file" : "cannot access the file");
+                          LV_STRERROR(errno));
     if (!S_ISREG(sb.st_mode))
         return lv_pk_fail(c, at, "%s: %s: '%s' is not a regular file", what, key->text,
                           *file_out);
@@ -2304,8 +2304,8 @@ lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *er
     *out = NULL;
     f = fopen(path, "rb");
     if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file%s", path,
-                       errno == ENOENT ? ": no such file" : "");
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file: %s", path,
+                       LV_STRERROR(errno));
     for (;;) {
         if (len == cap) {
             cap = cap ? 2 * cap : 4096;
@@ -2322,7 +2322,7 @@ lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *er
             break;
     }
     if (ferror(f)) {
-        st = lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(errno ? errno : EIO));
         goto fail;
     }
     const char *slash = strrchr(path, '/');

@@ -629,7 +629,7 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
     const lv_mission_def *d = r->m->def;
     if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
-                       strerror(errno));
+                       LV_STRERROR(errno));
     /* the dispersed tables with this run's factors (phase builds only read them) */
     lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, &r->tables, err);
     if (tst != LV_OK)

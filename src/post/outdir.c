@@ -45,13 +45,6 @@ struct lv_outdir {
     size_t n_files;
 };
 
-static const char *why(int e, char *buf, size_t cap)
-{
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "error %d", e);
-    return buf;
-}
-
 static void iso_now(char *buf, size_t cap)
 {
     time_t t = time(NULL);
@@ -119,7 +112,7 @@ static lv_status mkdir_p(const char *dir, lv_err *err)
         struct stat sb;
         if (mkdir(buf, 0777) != 0 && errno != EEXIST)
             return lv_fail(err, LV_ERR_IO, "cannot create folder '%s': %s", buf,
-                           why(errno, text, sizeof text));
+                           lv_strerror(errno, text, sizeof text));
         if (stat(buf, &sb) != 0 || !S_ISDIR(sb.st_mode))
             return lv_fail(err, LV_ERR_INPUT, "'%s' is a file, not a folder", buf);
         buf[i] = ch;
@@ -145,7 +138,7 @@ static lv_status set_names(lv_outdir *od, const char *outdir, lv_err *err)
         if (realpath(path, real) == NULL) {
             char text[128];
             return lv_fail(err, LV_ERR_INPUT, "results folder '%s' is a link that leads nowhere: %s",
-                           outdir, why(errno, text, sizeof text));
+                           outdir, lv_strerror(errno, text, sizeof text));
         }
         snprintf(path, sizeof path, "%s", real);
         n = strlen(path);
@@ -205,7 +198,7 @@ static lv_status take_lock(lv_outdir *od, lv_err *err)
         if (fd < 0)
             return lv_fail(err, errno == EACCES || errno == EROFS ? LV_ERR_INPUT : LV_ERR_IO,
                            "cannot write in '%s' (the lock file %s): %s", od->parent, od->lock,
-                           why(errno, text, sizeof text));
+                           lv_strerror(errno, text, sizeof text));
         if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
             const int e = errno;
             char pid[32] = "";
@@ -213,7 +206,7 @@ static lv_status take_lock(lv_outdir *od, lv_err *err)
             close(fd);
             if (e != EWOULDBLOCK)
                 return lv_fail(err, LV_ERR_IO, "%s: cannot lock: %s", od->lock,
-                               why(e, text, sizeof text));
+                               lv_strerror(e, text, sizeof text));
             pid[got > 0 ? got : 0] = '\0';
             pid[strcspn(pid, "\n")] = '\0';
             return lv_fail(err, LV_ERR_INPUT,
@@ -265,7 +258,7 @@ static lv_status clean_stale(lv_outdir *od, lv_err *err)
         if (rm_tree(path) != 0) {
             char text[128];
             st = lv_fail(err, LV_ERR_IO, "cannot remove the stale staging folder '%s': %s",
-                         path, why(errno, text, sizeof text));
+                         path, lv_strerror(errno, text, sizeof text));
             break;
         }
         char **grown = realloc(od->stale, (od->n_stale + 1) * sizeof *grown);
@@ -345,7 +338,7 @@ lv_status lv_outdir_begin(const char *outdir, const char *mission_file, lv_outdi
         const int e = errno;
         st = lv_fail(err, e == EACCES || e == EROFS ? LV_ERR_INPUT : LV_ERR_IO,
                      "cannot write in '%s' (for the results folder '%s'): %s", od->parent,
-                     od->final, why(e, text, sizeof text));
+                     od->final, lv_strerror(e, text, sizeof text));
         od->staging[0] = '\0';
         goto fail;
     }
@@ -463,7 +456,7 @@ static lv_status write_manifest(lv_outdir *od, const lv_outdir_record *rec, lv_e
     char *json = NULL;
     if (walk(dir, "", &l) != 0) {
         st = lv_fail(err, errno == ENOMEM ? LV_ERR_NOMEM : LV_ERR_IO,
-                     "cannot list the files of '%s': %s", dir, why(errno, text, sizeof text));
+                     "cannot list the files of '%s': %s", dir, lv_strerror(errno, text, sizeof text));
         goto fail;
     }
     qsort(l.names, l.n, sizeof *l.names, by_name);
@@ -615,7 +608,7 @@ lv_status lv_outdir_commit(lv_outdir *od, const lv_outdir_record *rec, lv_err *e
         }
         if (rc != 0)
             st = lv_fail(err, LV_ERR_IO, "cannot replace '%s' by '%s': %s", od->final,
-                         od->staging, why(errno, text, sizeof text));
+                         od->staging, lv_strerror(errno, text, sizeof text));
         else if (od->staging[0] != '\0')
             rm_tree(od->staging); /* the old results; a failure leaves a stale folder that the
                                      next writer removes */

@@ -416,5 +416,36 @@ YAML
 expect 2 "the converged values make a mission that does not load, not written" -- "$lvsim" target "$work/two.yaml" -o "$work/two_conv.yaml"
 [ ! -e "$work/two_conv.yaml" ] && [ ! -e "$work/two_conv.yaml.tmp" ] && pass=$((pass + 1)) || { echo "FAIL: an unloadable converged file was left"; fails=$((fails + 1)); }
 
+# Issue 22, item 6: no silent wrong answer from the known classes. Each refusal names the
+# file:line:column (a mission file) or the option (the command line) and exits 2; check and
+# run refuse the same files.
+mission="$src/examples/paper-test-case/mission.yaml"
+refused() { # refused PATTERN MISSION: check and run both exit 2 with PATTERN; run writes nothing
+  expect 2 "$1" -- "$lvsim" check "$2"
+  rm -rf "$work/refused"
+  expect 2 "$1" -- "$lvsim" run "$2" -o "$work/refused" -q --no-plots
+  [ ! -e "$work/refused" ] && pass=$((pass + 1)) || { echo "FAIL: run of refused $2 wrote"; fails=$((fails + 1)); }
+}
+# (4) a system error names the system's reason (lv_strerror, the one helper), never "error 2"
+ln -s "$work/nowhere/x" "$work/dangling"
+expect 2 "results folder '$work/dangling' is a link that leads nowhere: No such file or directory$" -- \
+  "$lvsim" run "$mission" -o "$work/dangling" -q --no-plots
+cp -R "$src/examples/sounding-rocket" "$work/sr"
+touch "$work/sr/plain"
+sed 's|CD: cd_mach.csv|CD: plain/cd_mach.csv|' "$work/sr/mission.yaml" > "$work/sr/under_file.yaml"
+line=$(grep -n "CD: plain/cd_mach.csv" "$work/sr/under_file.yaml" | cut -d: -f1)
+refused "under_file.yaml:$line:[0-9]+: .*cannot read '$work/sr/plain/cd_mach.csv': Not a directory$" "$work/sr/under_file.yaml"
+if [ "$(id -u)" -ne 0 ]; then
+  mkdir "$work/ro" && chmod 0500 "$work/ro"
+  expect 2 "cannot write in '$work/ro' \(the lock file .*\): Permission denied$" -- \
+    "$lvsim" run "$mission" -o "$work/ro/out" -q --no-plots
+  chmod 0700 "$work/ro"
+  chmod 000 "$work/sr/cd_mach.csv"
+  refused "cd_mach.csv: cannot open: Permission denied" "$work/sr/mission.yaml"
+  chmod 0600 "$work/sr/cd_mach.csv"
+else
+  echo "skip: as root, file permissions do not stop lvsim: the read-only results parent and the unreadable table are not tried"
+fi
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -252,7 +252,7 @@ static void test_planet_and_defaults(void)
     CHECK(lv_mission_def_param(NULL, "start_h", 3.0) == 3.0);
     m = NULL;
     CHECK_FAILS(lv_mission_def_load(LV_MISSION_DIR "/no_such.yaml", &m, &err), &err, LV_ERR_IO,
-                "no_such.yaml: cannot open the mission file: no such file");
+                "no_such.yaml: cannot open the mission file: No such file or directory");
     CHECK(m == NULL);
 }
 
@@ -534,7 +534,7 @@ static void test_engines(void)
         "bad.yaml:7:19: stage 's1', engine 'e': table: " LV_MISSION_DIR "/data/bad_order.csv:5:");
     BAD(ENG("{name: e, table: data/missing.csv}"),
         "bad.yaml:7:26: stage 's1', engine 'e': table: cannot read '" LV_MISSION_DIR
-        "/data/missing.csv': no such file");
+        "/data/missing.csv': No such file or directory");
     BAD(ENG("{name: e, table: data}"),
         "bad.yaml:7:26: stage 's1', engine 'e': table: '" LV_MISSION_DIR "/data' is not a "
         "regular file");
