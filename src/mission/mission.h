@@ -18,6 +18,7 @@
 
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_planet.h"
+#include "lvsim/lv_sim.h"
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 
@@ -265,5 +266,7 @@ void lv_range_text(lv_range r, char *text, size_t cap);
 #define LV_RANGE_ANY ((lv_range){-HUGE_VAL, HUGE_VAL, 0, 0})
 #define LV_RANGE_POS ((lv_range){0.0, HUGE_VAL, 1, 0})      /* > 0 */
 #define LV_RANGE_NONNEG ((lv_range){0.0, HUGE_VAL, 0, 0})   /* >= 0 */
+/* A relative integration tolerance: what lv_simulate accepts (lv_sim.h). */
+#define LV_RANGE_TOLERANCE ((lv_range){LV_TOLERANCE_MIN, LV_TOLERANCE_MAX, 0, 0})
 
 #endif

@@ -1620,7 +1620,7 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
     lv_slot *out[3] = { &ph->tolerance, &ph->output_interval, &ph->fixed_step };
     for (int j = 0; j < 3; j++) {
         snprintf(slot, sizeof slot, "%s.integrator.%s", phase, nkeys[j]);
-        const lv_range r = j == 0 ? LV_RANGE_POS : LV_RANGE_NONNEG;
+        const lv_range r = j == 0 ? LV_RANGE_TOLERANCE : LV_RANGE_NONNEG;
         if ((v = lv_pk_get(n, nkeys[j])) != NULL)
             st = lv_pk_slot(c, v, what, nkeys[j], slot, units[j], r, 0, out[j]);
         else

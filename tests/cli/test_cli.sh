@@ -42,7 +42,7 @@ expect 0 "time += 4.515236" -- "$lvsim" simulate free_fall --stop 10 --tolerance
 expect 0 '"ok":[[:space:]]*true' -- "$lvsim" simulate oscillator --json --format none --final x
 expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
-expect 2 "unknown integration method 'rk45'" -- "$lvsim" simulate oscillator --method rk45 --format none
+expect 2 "--method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got .rk45." -- "$lvsim" simulate oscillator --method rk45 --format none
 expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator --stop -1 --format none
 expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
 # A run that fails in the integrator exits 3 and names model, time and reason.
@@ -446,6 +446,26 @@ if [ "$(id -u)" -ne 0 ]; then
 else
   echo "skip: as root, file permissions do not stop lvsim: the read-only results parent and the unreadable table are not tried"
 fi
+# (1) tolerances within [1e-14, 0.1] (lv_sim.h) wherever they enter: a phase (the reproduction:
+# tolerance 10 put the sounding rocket's apogee 5 times too high), and every option
+sed 's/integrator: {output_interval: 0.5}/integrator: {output_interval: 0.5, tolerance: 10}/' \
+  "$src/examples/sounding-rocket/mission.yaml" > "$work/sr/tol10.yaml"
+line=$(grep -n "tolerance: 10}" "$work/sr/tol10.yaml" | cut -d: -f1)
+refused "tol10.yaml:$line:[0-9]+: phase 'boost', integrator: tolerance must be >= 1e-14 and <= 0.1, found 10$" "$work/sr/tol10.yaml"
+expect 0 "^boost\.integrator\.tolerance +1e-06 +- +>= 1e-14 and <= 0\.1 +default$" -- "$lvsim" params "$src/examples/sounding-rocket/mission.yaml"
+for t in 0 -1 10 1e-15; do
+  expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '$t'$" -- "$lvsim" compare "$mission" --tolerance "$t"
+  expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '$t'$" -- "$lvsim" simulate free_fall --tolerance "$t" --format none
+done
+mc_mission="$src/tests/missions/mc/correlated.yaml"
+expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '10'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --tolerance 10
+expect 2 "^lvsim: --method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got 'rk45'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --method rk45
+expect 2 "^lvsim: --method needs an integration method .*, got 'rk45'$" -- "$lvsim" compare "$mission" --method rk45
+expect 2 "^lvsim: --output-interval needs seconds > 0, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --output-interval 0
+expect 2 "^lvsim: --interval needs seconds > 0, got '-1'$" -- "$lvsim" compare "$mission" --interval -1
+[ ! -e "$work/mc" ] && pass=$((pass + 1)) || { echo "FAIL: a refused mc wrote $work/mc"; fails=$((fails + 1)); }
+expect 2 "^lvsim: --interval: '-1' s must be >= 0" -- "$lvsim" simulate free_fall --interval -1 --format none
+expect 0 "tolerance 0.1: ok" -- "$lvsim" simulate free_fall --tolerance 0.1 --format none
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

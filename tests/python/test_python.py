@@ -824,6 +824,7 @@ def test_disperse_and_execute_reproduce_a_campaign_run_bit_for_bit(tmp_path):
 @pytest.mark.parametrize("kw,word", [
     (dict(tolerance=-1), "tolerance"), (dict(tolerance=0), "tolerance"),
     (dict(tolerance=float("nan")), "tolerance"), (dict(tolerance=float("inf")), "tolerance"),
+    (dict(tolerance=10), "tolerance"), (dict(tolerance=1e-15), "tolerance"),
     (dict(output_interval=-1), "output_interval"),
     (dict(output_interval=float("nan")), "output_interval"),
     (dict(output_interval="x"), "output_interval"), (dict(threads=-1), "threads"),

@@ -500,7 +500,7 @@ static void test_values(void)
         "'dassl'?");
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, "
         "integrator: {tolerance: 0}}\n",
-        "bad.yaml:5:82: phase 'P1', integrator: tolerance must be > 0, found 0");
+        "bad.yaml:5:82: phase 'P1', integrator: tolerance must be >= 1e-14 and <= 0.1, found 0");
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, "
         "integrator: {output_interval: 1, intervals: 10}}\n",
         "bad.yaml:5:91: phase 'P1', integrator: give either 'intervals' or 'output_interval'");

