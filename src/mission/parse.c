@@ -67,17 +67,18 @@ int lv_range_holds(lv_range r, double v)
     return 1;
 }
 
+/* Ten digits: a bound such as pi/2 rad reads 1.570796327, not 1.5708 (which it is not). */
 void lv_range_text(lv_range r, char *text, size_t cap)
 {
     const int lo = isfinite(r.lo), hi = isfinite(r.hi);
     if (!lo && !hi)
         snprintf(text, cap, "finite");
     else if (lo && !hi)
-        snprintf(text, cap, "%s %g", r.lo_open ? ">" : ">=", r.lo);
+        snprintf(text, cap, "%s %.10g", r.lo_open ? ">" : ">=", r.lo);
     else if (!lo)
-        snprintf(text, cap, "%s %g", r.hi_open ? "<" : "<=", r.hi);
+        snprintf(text, cap, "%s %.10g", r.hi_open ? "<" : "<=", r.hi);
     else
-        snprintf(text, cap, "%s %g and %s %g", r.lo_open ? ">" : ">=", r.lo,
+        snprintf(text, cap, "%s %.10g and %s %.10g", r.lo_open ? ">" : ">=", r.lo,
                  r.hi_open ? "<" : "<=", r.hi);
 }
 
@@ -1471,8 +1472,10 @@ static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
                        : e->kind == LV_END_TIME ? "s"
                        : e->kind == LV_END_VAR  ? (e->deg ? "rad" : "")
                                                 : "m";
-    const lv_range range = e->kind == LV_END_SPEED ? LV_RANGE_NONNEG
-                           : e->kind == LV_END_TIME ? (lv_range){1e-9, HUGE_VAL, 0, 0} /* the clock tells it from 0 */
+    /* a time the clock tells from 0; an end on a variable takes its variable's range when the
+     * model is built (mission.c) */
+    const lv_range range = e->kind == LV_END_SPEED  ? LV_RANGE_NONNEG
+                           : e->kind == LV_END_TIME ? (lv_range){1e-9, HUGE_VAL, 0, 0}
                                                     : LV_RANGE_ANY;
     if (v == NULL)
         return lv_pk_slot_default(c, slot, unit, 0.0, range, &e->value);
@@ -1675,6 +1678,7 @@ static lv_status parse_set(const lv_pctx *c, const lv_ynode *n, const char *phas
                 return lv_pk_fail(c, k, "%s: '%s' set twice (line %d)", what, base,
                             ph->set_locs[j].line);
         snprintf(slot, sizeof slot, "%s.set.%s", phase, base);
+        /* its variable's range once the model is built (mission.c) */
         if ((st = lv_pk_slot(c, v, what, k->text, slot, "", LV_RANGE_ANY, deg,
                              &ph->set_values[i])) != LV_OK)
             return st;

@@ -466,6 +466,16 @@ expect 2 "^lvsim: --interval needs seconds > 0, got '-1'$" -- "$lvsim" compare "
 [ ! -e "$work/mc" ] && pass=$((pass + 1)) || { echo "FAIL: a refused mc wrote $work/mc"; fails=$((fails + 1)); }
 expect 2 "^lvsim: --interval: '-1' s must be >= 0" -- "$lvsim" simulate free_fall --interval -1 --format none
 expect 0 "tolerance 0.1: ok" -- "$lvsim" simulate free_fall --tolerance 0.1 --format none
+# (2) every angle has the range of its kind (docs/mission-format.md, "Angle ranges"): the
+# reproduction's theta_deg: 1e300, as a parameter and as a phase's set:
+cp -R "$src/examples/paper-test-case" "$work/ang"
+sed 's/start_theta_deg: 0$/start_theta_deg: 1e300/' "$src/examples/paper-test-case/mission.yaml" > "$work/ang/theta.yaml"
+line=$(grep -n "start_theta_deg: 1e300" "$work/ang/theta.yaml" | cut -d: -f1)
+refused "theta.yaml:$line:20: parameters: start_theta_deg must be >= -90 and <= 90 deg, found 1e\+300$" "$work/ang/theta.yaml"
+sed 's/    from: P1$/    from: P1\n    set: {theta_deg: 1e300}/' "$src/examples/paper-test-case/mission.yaml" > "$work/ang/set.yaml"
+line=$(grep -n "theta_deg: 1e300" "$work/ang/set.yaml" | head -1 | cut -d: -f1)
+refused "set.yaml:$line:22: phase 'P2', set: theta_deg must be >= -720 and <= 720 deg, found 1e\+300$" "$work/ang/set.yaml"
+expect 0 "^start_fpa +1\.570796327 +rad +>= -1\.570796327 and <= 1\.570796327 +31$" -- "$lvsim" params "$mission"
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -137,9 +137,112 @@ static void test_tolerance(void)
     lv_mission_free(m);
 }
 
+/* ---- (2) angles ------------------------------------------------------------------------- */
+
+/* A flat6 body (the paper's test case, one stage); `%s` the phase's extra keys. */
+#define FLAT_HEAD                                                                            \
+    "mission: {name: flat}\n"                                                                \
+    "parameters: {start_z: 0, start_vel: 0, start_fpa_deg: 90}\n"                            \
+    "stages: [{name: s, dry_mass: 100, propellant_mass: 100,\n"                              \
+    "          engines: [{name: e, thrust_vac: 5000, isp_vac: 200}]}]\n"                      \
+    "phases:\n"
+
+/* Every angle key and slot has a range of its kind (mission.h: LV_RANGE_LAT, _TURN,
+ * _AERO_ANGLE, _ANGLE, _RATE), refused where it is written, in the unit it is written in. */
+static void test_angles(void)
+{
+    /* the parameter set: a flight-path angle within +-90 deg, a heading a turn either way */
+    BAD("fpa_huge",
+        "mission: {name: ball}\n"
+        "environment: {world: planet, atmosphere: none}\n"
+        "parameters: {start_h: 10, start_vel: 100, start_fpa_deg: 1e300, start_chi_deg: 90}\n"
+        "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact]}]\n",
+        "3:58: parameters: start_fpa_deg must be >= -90 and <= 90 deg, found 1e+300");
+    BAD("chi_big",
+        "mission: {name: ball}\n"
+        "environment: {world: planet, atmosphere: none}\n"
+        "parameters: {start_h: 10, start_vel: 100, start_fpa_deg: 45, start_chi: 7}\n"
+        "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact]}]\n",
+        "3:73: parameters: start_chi must be >= -6.283185307 and <= 6.283185307 rad, found 7");
+    BAD("lon_big",
+        "mission: {name: ball}\n"
+        "environment: {world: planet, atmosphere: none}\n"
+        "parameters: {start_lon_deg: -361, start_vel: 100, start_fpa_deg: 45}\n"
+        "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact]}]\n",
+        "3:29: parameters: start_lon_deg must be >= -360 and <= 360 deg, found -361");
+    /* set: NAME_deg is an angle (two turns), then its variable's own kind */
+    BAD("set_theta", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, set: {theta_deg: 1e300}}\n",
+        "6:74: phase 'p', set: theta_deg must be >= -720 and <= 720 deg, found 1e+300");
+    BAD("set_theta_rad", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, set: {theta: 100}}\n",
+        "6:70: phase 'p', set: theta must be >= -12.56637061 and <= 12.56637061 rad, found 100");
+    BAD("set_rate", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, set: {q: 70}}\n",
+        "6:66: phase 'p', set: q must be >= -62.83185307 and <= 62.83185307 rad/s, found 70");
+    BAD("set_param", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, set: {start_fpa_deg: 91}}\n",
+        "6:78: phase 'p', set: start_fpa_deg must be >= -90 and <= 90 deg, found 91");
+    /* an end on an angle or a rate */
+    BAD("end_angle", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, end: [{theta_deg: 1000}]}\n",
+        "6:75: phase 'p', end: theta_deg must be >= -720 and <= 720 deg, found 1000");
+    BAD("end_rate", FLAT_HEAD
+        "  - {name: p, model: flat6, stages: [s], stop_time: 10, end: [{q: 100}]}\n",
+        "6:67: phase 'p', end: q must be >= -62.83185307 and <= 62.83185307 rad/s, found 100");
+    /* the phase types' own angle keys */
+    BAD("alpha", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, inputs: {alpha_deg: 200}}\n",
+        "6:80: phase 'p', inputs: alpha_deg must be >= -180 and <= 180 deg, found 200");
+    BAD("bank", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, inputs: {mu_deg: -400}}\n",
+        "6:77: phase 'p', inputs: mu_deg must be >= -360 and <= 360 deg, found -400");
+    BAD("heading", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100,\n"
+        "     guidance: {law: gravity_turn, kick_deg: 1, kick_time: 5, heading_deg: 1e6}}\n",
+        "7:76: phase 'p', guidance 'gravity_turn': heading_deg must be >= -360 and <= 360 deg, "
+        "found 1e+06");
+    BAD("roll", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100,\n"
+        "     guidance: {law: attitude, pitch_deg: 10, heading_deg: 90, roll_deg: 1e300}}\n",
+        "7:74: phase 'p', guidance 'attitude': roll_deg must be >= -360 and <= 360 deg");
+    BAD("target_lon", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100,\n"
+        "     guidance: {law: attitude, pitch_deg: 10, target_lat_deg: 5, target_lon_deg: 400}}\n",
+        "7:82: phase 'p', guidance 'attitude': target_lon_deg must be >= -360 and <= 360 deg");
+    /* a run is held to the same rules */
+    lv_mission *m = GOOD("angles_ok", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact],\n"
+        "     set: {start_chi_deg: 360}, inputs: {alpha_deg: -180}}\n");
+    lv_err err = {LV_OK, ""};
+    lv_run *r = NULL;
+    if (m != NULL && lv_run_create(m, &r, &err) == LV_OK) {
+        CHECK_FAILS(lv_run_set(r, "start_fpa_deg", 95.0, &err), &err, LV_ERR_INPUT,
+                    "start_fpa");
+        CHECK_FAILS(lv_run_set(r, "start_fpa", 1e300, &err), &err, LV_ERR_INPUT, "start_fpa");
+        CHECK_FAILS(lv_run_set(r, "p.set.start_chi_deg", 1e300, &err), &err, LV_ERR_INPUT,
+                    "p.set.start_chi");
+        CHECK_FAILS(lv_run_set(r, "p.inputs.alpha", 4.0, &err), &err, LV_ERR_INPUT,
+                    "p.inputs.alpha");
+        CHECK_OK(lv_run_set(r, "start_fpa_deg", -90.0, &err), &err);
+        size_t i;
+        int deg;
+        lv_param_info pi;
+        CHECK_OK(lv_mission_param_find(m, "p.set.start_chi", &i, &deg, &err), &err);
+        lv_mission_param_info(m, i, &pi);
+        CHECK(strcmp(pi.rule, ">= -6.283185307 and <= 6.283185307") == 0);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     mkdir(OUT, 0777);
     test_tolerance();
+    test_angles();
     return check_report("test_mission_valid");
 }
