@@ -476,6 +476,13 @@ sed 's/    from: P1$/    from: P1\n    set: {theta_deg: 1e300}/' "$src/examples/
 line=$(grep -n "theta_deg: 1e300" "$work/ang/set.yaml" | head -1 | cut -d: -f1)
 refused "set.yaml:$line:22: phase 'P2', set: theta_deg must be >= -720 and <= 720 deg, found 1e\+300$" "$work/ang/set.yaml"
 expect 0 "^start_fpa +1\.570796327 +rad +>= -1\.570796327 and <= 1\.570796327 +31$" -- "$lvsim" params "$mission"
+# (3) no start under the ground: a built-in model's domain (h >= 0) and a phase's impact end
+expect 2 "^lvsim: model 'free_fall': the start state at t = 0 s is outside the model's domain: h = -1 m is below its lower bound 0 m" -- \
+  "$lvsim" simulate free_fall --set h=-1 --format none
+expect 2 "h = -3 m is below its lower bound 0 m" -- "$lvsim" simulate vertical_ascent --set h0=-3 --format none
+shot 800 | sed 's/start_h: 0,/start_h: -1,/' > "$work/under.yaml"
+line=$(grep -n "name: flight" "$work/under.yaml" | cut -d: -f1)
+refused "under.yaml:$line:5: phase 'flight': initialisation failed at t = 0 s: the start altitude h = -1 m is below the level 0 m of its end 'impact'" "$work/under.yaml"
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

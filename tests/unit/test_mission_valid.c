@@ -239,10 +239,123 @@ static void test_angles(void)
     lv_mission_free(m);
 }
 
+/* ---- (3) starts under the ground ---------------------------------------------------------- */
+
+/* The built-in models' domain (h >= 0: the ground their impact is on): `lvsim simulate
+ * free_fall --set h=-1` no longer starts under the ground and misses its impact. */
+static void test_models_below_ground(void)
+{
+    lv_err err = {LV_OK, ""};
+    lv_sim_settings s;
+    const char *names[1];
+    double values[1];
+    const struct {
+        const lv_model_def *m;
+        const char *name;
+        double value;
+        const char *want;
+    } bad[] = {
+        {&lv_model_free_fall, "h", -1.0, "model 'free_fall': the start state at t = 0 s is "
+         "outside the model's domain: h = -1 m is below its lower bound 0 m: the body is under "
+         "the ground"},
+        {&lv_model_free_fall, "h0", -0.5, "h = -0.5 m is below its lower bound 0 m"},
+        {&lv_model_vertical_ascent, "h0", -5.0, "model 'vertical_ascent': the start state at "
+         "t = 0 s is outside the model's domain: h = -5 m"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        names[0] = bad[i].name;
+        values[0] = bad[i].value;
+        s.n_initial = 1;
+        s.initial_names = names;
+        s.initial_values = values;
+        CHECK_FAILS(lv_simulate(bad[i].m, NULL, &s, NULL, NULL, &err), &err, LV_ERR_INPUT,
+                    bad[i].want);
+    }
+    /* from 100 m the domain changes nothing: the impact ends the run, at sqrt(2 h / g) =
+     * 4.5152364098573 s (g = 9.81), as an event, not as leaving the domain */
+    lv_sim_settings_default(&s);
+    s.result_file = NULL;
+    s.stop_time = 10.0;
+    s.tolerance = 1e-10;
+    const char *fin[] = {"time", "h"};
+    double out[2];
+    s.n_final = 2;
+    s.final_names = fin;
+    for (int meth = 0; meth < 3; meth++) {
+        s.method = meth == 0 ? "dassl" : meth == 1 ? "cvode-adams" : "dopri5";
+        lv_sim_report rep;
+        CHECK_OK(lv_simulate(&lv_model_free_fall, NULL, &s, out, &rep, &err), &err);
+        CHECK(rep.reason == LV_STOP_EVENT && strcmp(rep.stop_name, "impact") == 0);
+        CHECK_CLOSE(out[0], sqrt(2.0 * 100.0 / 9.81), 1e-6);
+        CHECK_CLOSE(out[1], 0.0, 1e-6);
+        lv_sim_report_clear(&rep);
+    }
+}
+
+/* A phase with an impact end may not start below the end's level (more than 1 mm: a parent's
+ * located impact is on it): dof3 (the parameter and a set:), flat6, a raised ground. */
+static void test_phases_below_ground(void)
+{
+    BAD("dof3_under",
+        "mission: {name: ball}\n"
+        "environment: {world: planet, atmosphere: none}\n"
+        "parameters: {start_h: -1, start_vel: 100, start_fpa_deg: 45, start_chi_deg: 90}\n"
+        "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact]}\n",
+        "6:5: phase 'p': initialisation failed at t = 0 s: the start altitude h = -1 m is "
+        "below the level 0 m of its end 'impact': the vehicle would start under the ground");
+    BAD("dof3_set_under", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact],\n"
+        "     set: {start_h: -1}}\n",
+        "6:5: phase 'p': initialisation failed at t = 0 s: the start altitude h = -1 m");
+    BAD("dof3_raised", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [{impact: 50}]}\n",
+        "6:5: phase 'p': initialisation failed at t = 0 s: the start altitude h = 10 m is "
+        "below the level 50 m of its end 'impact'");
+    BAD("flat_under",
+        "mission: {name: flat}\n"
+        "parameters: {start_z: -1, start_vel: 10, start_fpa_deg: 90}\n"
+        "stages: [{name: s, dry_mass: 100, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 10, end: [impact]}]\n",
+        "4:10: phase 'p': initialisation failed at t = 0 s: the start altitude z = -1 m is "
+        "below the level 0 m of its end 'impact'");
+    /* on the level, within 1 mm: a launch from the ground (the impact then 1 um below) */
+    lv_mission *m = GOOD("dof3_on",
+        "mission: {name: ball}\n"
+        "environment: {world: planet, atmosphere: none}\n"
+        "parameters: {start_h: -0.0005, start_vel: 100, start_fpa_deg: 45, start_chi_deg: 90}\n"
+        "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 100, end: [impact]}\n");
+    lv_mission_free(m);
+    /* a child that starts where its parent left the ball, some 530 m under the ground (the
+     * parent has no impact end; over a flat ground 100 sin45 t - g t^2 / 2 = -548 m at 20 s):
+     * refused at run time, named */
+    m = GOOD("dof3_child", BALL_HEAD
+        "  - {name: p, model: dof3, stages: [ball], stop_time: 20}\n"
+        "  - {name: c, model: dof3, stages: [ball], from: p, stop_time: 100, end: [impact]}\n");
+    lv_err err = {LV_OK, ""};
+    lv_run *r = NULL;
+    if (m != NULL && lv_run_create(m, &r, &err) == LV_OK) {
+        CHECK(lv_run_execute(r, NULL, &err) == LV_ERR_SOLVER);
+        const lv_phase_result *c = lv_run_result(r, 1);
+        CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE && c->state == LV_PHASE_FAILED);
+        CHECK(strstr(c->error, "phase 'c'") != NULL &&
+              strstr(c->error, "below the level 0 m of its end 'impact'") != NULL);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     mkdir(OUT, 0777);
     test_tolerance();
     test_angles();
+    test_models_below_ground();
+    test_phases_below_ground();
     return check_report("test_mission_valid");
 }
