@@ -1539,6 +1539,9 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
         if ((st = lv_pk_text(c, output, what, "output", &name)) != LV_OK ||
             (st = lv_pk_need(c, n, what, "value", &v)) != LV_OK)
             return st;
+        if (output->len > 255)
+            return lv_pk_fail(c, output, "%s: output: a variable name of 1 to 255 characters "
+                              "expected", what);
         e->kind = LV_END_VAR;
         char base[256];
         e->deg = strip_deg(name, base, sizeof base);
@@ -2216,6 +2219,26 @@ static const char *epoch_check(const char *s)
     return NULL;
 }
 
+/* The mission's `key` (a scalar) holds at most `max` bytes and, with `line`, no control
+ * character: what every result file copies stays bounded and one line (an OEM header, a CSV
+ * title). */
+static lv_status text_bounded(const lv_pctx *c, const lv_ynode *v, const char *key, size_t max,
+                              int line)
+{
+    if (v->kind != LV_YNODE_SCALAR)
+        return LV_OK; /* lv_pk_text says what it is */
+    if (v->len > max)
+        return lv_pk_fail(c, v, "mission: %s of %zu bytes: at most %zu (it is copied into every "
+                          "result file)", key, v->len, max);
+    for (size_t i = 0; line && i < v->len; i++) {
+        const unsigned char ch = (unsigned char)v->text[i];
+        if (ch < 0x20 || ch == 0x7f)
+            return lv_pk_fail(c, v, "mission: %s: one line of text without control characters "
+                              "(byte %zu is 0x%02x)", key, i + 1, ch);
+    }
+    return LV_OK;
+}
+
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
@@ -2233,6 +2256,7 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         (st = lv_pk_need(c, root, "top level", "mission", &info)) != LV_OK ||
         (st = lv_pk_check_map(c, info, "mission", mkeys)) != LV_OK ||
         (st = lv_pk_need(c, info, "mission", "name", &v)) != LV_OK ||
+        (st = text_bounded(c, v, "name", LV_MISSION_NAME_MAX, 1)) != LV_OK ||
         (st = get_str(c, v, "mission", "name", &m->name)) != LV_OK)
         return st;
     if ((v = lv_pk_get(info, "epoch")) != NULL) {
@@ -2247,7 +2271,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
             return lv_pk_nomem(c);
     }
     if ((v = lv_pk_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
-        (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK)
+        ((st = text_bounded(c, v, "description", LV_DESCRIPTION_MAX, 0)) != LV_OK ||
+         (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK))
         return st;
     if ((st = parse_env(c, lv_pk_get(root, "environment"))) != LV_OK ||
         (st = parse_params(c, lv_pk_get(root, "parameters"))) != LV_OK)

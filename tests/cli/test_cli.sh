@@ -483,6 +483,10 @@ expect 2 "h = -3 m is below its lower bound 0 m" -- "$lvsim" simulate vertical_a
 shot 800 | sed 's/start_h: 0,/start_h: -1,/' > "$work/under.yaml"
 line=$(grep -n "name: flight" "$work/under.yaml" | cut -d: -f1)
 refused "under.yaml:$line:5: phase 'flight': initialisation failed at t = 0 s: the start altitude h = -1 m is below the level 0 m of its end 'impact'" "$work/under.yaml"
+# (5) names: a 10 MB mission name was copied into 7 result files; at most 256 bytes now
+python3 -c "print('mission: {name: ' + 'x' * 10485760 + '}')" > "$work/bigname.yaml"
+sed -n '/^stages:/,$p' "$mission" | sed "s|table: stage1.csv|table: $src/examples/paper-test-case/stage1.csv|; s|table: stage2.csv|table: $src/examples/paper-test-case/stage2.csv|; s|file: stage3.mat|file: $src/examples/paper-test-case/stage3.mat|" >> "$work/bigname.yaml"
+refused "bigname.yaml:1:17: mission: name of 10485760 bytes: at most 256 \(it is copied into every result file\)$" "$work/bigname.yaml"
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

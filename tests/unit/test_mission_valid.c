@@ -350,6 +350,65 @@ static void test_phases_below_ground(void)
     lv_mission_free(m);
 }
 
+/* ---- (5) names and descriptions -------------------------------------------------------- */
+
+/* A mission with name `name` (n bytes of `ch`) and description of d bytes, flow style. */
+static char *named_mission(size_t n, char ch, size_t d)
+{
+    char *y = malloc(n + d + 512);
+    if (y == NULL)
+        return NULL;
+    size_t k = (size_t)sprintf(y, "mission: {name: ");
+    memset(y + k, ch, n);
+    k += n;
+    k += (size_t)sprintf(y + k, ", description: x");
+    memset(y + k, 'd', d > 0 ? d - 1 : 0);
+    k += d > 0 ? d - 1 : 0;
+    sprintf(y + k, "}\nstages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+                   "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n");
+    return y;
+}
+
+/* The mission's name at most 256 bytes on one line, its description at most 4 KiB: a 10 MB
+ * name was copied into seven result files. Stage, engine and phase names: 64 characters. */
+static void test_names(void)
+{
+    char *y = named_mission(10u << 20, 'n', 1);
+    if (y != NULL)
+        BAD("name_10mb", y, "1:17: mission: name of 10485760 bytes: at most 256 (it is copied "
+            "into every result file)");
+    free(y);
+    remove(OUT "/name_10mb.yaml");
+    y = named_mission(257, 'n', 1);
+    if (y != NULL)
+        BAD("name_257", y, "1:17: mission: name of 257 bytes: at most 256");
+    free(y);
+    y = named_mission(256, 'n', 4096);
+    lv_mission *m = y != NULL ? GOOD("name_256", y) : NULL;
+    if (m != NULL) {
+        lv_mission_info info;
+        lv_mission_get_info(m, &info);
+        CHECK(strlen(info.name) == 256 && strlen(info.description) == 4096);
+    }
+    lv_mission_free(m);
+    free(y);
+    y = named_mission(8, 'n', 4097);
+    if (y != NULL)
+        BAD("desc_4097", y, "1:40: mission: description of 4097 bytes: at most 4096");
+    free(y);
+    BAD("name_newline",
+        "mission: {name: \"two\\nlines\"}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
+        "1:17: mission: name: one line of text without control characters (byte 4 is 0x0a)");
+    BAD("phase_65",
+        "mission: {name: m}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p12345678901234567890123456789012345678901234567890123456789012345,\n"
+        "          model: flat6, stages: [s], stop_time: 1}]\n",
+        "3:17: phase #1: name 'p123456789012345678901234567890123456789' must be 1 to 64");
+}
+
 int main(void)
 {
     mkdir(OUT, 0777);
@@ -357,5 +416,6 @@ int main(void)
     test_angles();
     test_models_below_ground();
     test_phases_below_ground();
+    test_names();
     return check_report("test_mission_valid");
 }
