@@ -487,6 +487,10 @@ refused "under.yaml:$line:5: phase 'flight': initialisation failed at t = 0 s: t
 python3 -c "print('mission: {name: ' + 'x' * 10485760 + '}')" > "$work/bigname.yaml"
 sed -n '/^stages:/,$p' "$mission" | sed "s|table: stage1.csv|table: $src/examples/paper-test-case/stage1.csv|; s|table: stage2.csv|table: $src/examples/paper-test-case/stage2.csv|; s|file: stage3.mat|file: $src/examples/paper-test-case/stage3.mat|" >> "$work/bigname.yaml"
 refused "bigname.yaml:1:17: mission: name of 10485760 bytes: at most 256 \(it is copied into every result file\)$" "$work/bigname.yaml"
+# (6) a targeting scale within [1e-4, 1] x (max - min): 1e-9 gave a false NOT MET
+shot 800 | sed 's/scale: 1}/scale: 1.0e-9}/' > "$work/scale.yaml"
+expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" check "$work/scale.yaml"
+expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" target "$work/scale.yaml"
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -17,6 +17,8 @@
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_sim.h"
+#include "lvsim/lv_target.h"
+#include "lvsim/lv_units.h"
 
 #define OUT "valid_out"
 
@@ -409,6 +411,77 @@ static void test_names(void)
         "3:17: phase #1: name 'p123456789012345678901234567890123456789' must be 1 to 64");
 }
 
+/* ---- (6) targeting scales ---------------------------------------------------------------- */
+
+/* A drag-free shot over flat ground that must land 800 m away, its angle in [5, 60] deg at
+ * scale `scale` (%s): the closed form gamma = asin(800 g / v^2) / 2 = 25.83871 deg. */
+static void shot(char *buf, size_t cap, const char *scale)
+{
+    snprintf(buf, cap,
+             "mission: {name: shot}\n"
+             "environment:\n  world: planet\n"
+             "  planet: {name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}\n"
+             "  atmosphere: none\n"
+             "parameters: {start_h: 0, start_vel: 100, start_fpa_deg: 20, start_chi_deg: 90}\n"
+             "stages: [{name: ball, dry_mass: 1, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - {name: flight, model: dof3, stages: [ball], stop_time: 100, end: [impact],\n"
+             "     integrator: {tolerance: 1.0e-10}}\n"
+             "targeting:\n"
+             "  variables: [{name: start_fpa_deg, min: 5, max: 60, scale: %s}]\n"
+             "  constraints: [{final: flight.downrange, equal: 800, tolerance: 0.001}]\n",
+             scale);
+}
+
+/* A scale far from its bounds' width made the solvers answer a false NOT MET (1e-9 and 1e9
+ * deg for this shot); it is held to [1e-4, 1] x (max - min), and at both ends of that range
+ * Newton meets the shot's closed form. */
+static void test_target_scale(void)
+{
+    char y[2048];
+    shot(y, sizeof y, "1.0e-9");
+    BAD("scale_tiny", y, "12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside "
+        "[0.0055, 55], 0.0001 to 1 times max - min");
+    shot(y, sizeof y, "1.0e9");
+    BAD("scale_huge", y, "12:61: targeting: variable 'start_fpa_deg': scale 1e+09 is outside");
+    shot(y, sizeof y, "-1");
+    BAD("scale_neg", y, "12:61: targeting: variable 'start_fpa_deg': scale -1 is outside");
+    const double gamma = 0.5 * asin(800.0 * 9.80665 / 1e4) / LV_DEG;
+    const char *edges[] = {"0.0055", "55"};
+    for (int e = 0; e < 2; e++) {
+        char name[32];
+        snprintf(name, sizeof name, "scale_edge%d", e);
+        shot(y, sizeof y, edges[e]);
+        lv_mission *m = GOOD(name, y);
+        lv_target *t = NULL;
+        lv_err err = {LV_OK, ""};
+        const lv_target_result *res = NULL;
+        if (m != NULL && lv_target_create(m, &t, &err) == LV_OK) {
+            lv_target_settings s;
+            lv_target_settings_default(&s);
+            CHECK_OK(lv_target_solve(t, &s, &res, &err), &err);
+            /* the tolerance 1e-3 m over dR/dgamma = 1274 m/rad: 4.5e-5 deg */
+            CHECK(res != NULL && res->converged);
+            if (res != NULL)
+                CHECK_CLOSE(res->x[0], gamma, 5e-5);
+            /* the API holds the same rule: NAN is the default, any other value is checked */
+            lv_target *u = NULL;
+            CHECK_OK(lv_target_create_empty(m, &u, &err), &err);
+            CHECK_FAILS(lv_target_add_var(u, "start_fpa_deg", 5, 60, NAN, 1e-9, NAN, &err), &err,
+                        LV_ERR_INPUT, "variable 'start_fpa_deg': scale 1e-09 deg is outside "
+                        "[0.0055, 55]");
+            CHECK_FAILS(lv_target_add_var(u, "start_fpa_deg", 5, 60, NAN, 0.0, NAN, &err), &err,
+                        LV_ERR_INPUT, "scale 0 deg is outside");
+            CHECK_FAILS(lv_target_add_var(u, "start_fpa_deg", 5, 60, NAN, NAN, -1.0, &err), &err,
+                        LV_ERR_INPUT, "step -1 deg must be > 0");
+            CHECK_OK(lv_target_add_var(u, "start_fpa_deg", 5, 60, NAN, NAN, NAN, &err), &err);
+            lv_target_free(u);
+        }
+        lv_target_free(t);
+        lv_mission_free(m);
+    }
+}
+
 int main(void)
 {
     mkdir(OUT, 0777);
@@ -417,5 +490,6 @@ int main(void)
     test_models_below_ground();
     test_phases_below_ground();
     test_names();
+    test_target_scale();
     return check_report("test_mission_valid");
 }
