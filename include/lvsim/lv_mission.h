@@ -185,7 +185,8 @@ typedef struct lv_phase_result {
 
 typedef struct lv_run_options {
     const char *outdir;   /* result files go here (created); NULL: no files */
-    int threads;          /* worker threads for independent branches (0: 2) */
+    int threads;          /* worker threads for independent branches (0: 2; at most 16 are
+                             used) */
     /* Called after each phase, from the thread that ran it, under the run's lock. */
     void (*on_phase)(const lv_run *r, size_t k, const lv_phase_result *res, void *user);
     void *user;           /* passed to on_phase and progress */

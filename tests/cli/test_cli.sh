@@ -491,6 +491,16 @@ refused "bigname.yaml:1:17: mission: name of 10485760 bytes: at most 256 \(it is
 shot 800 | sed 's/scale: 1}/scale: 1.0e-9}/' > "$work/scale.yaml"
 expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" check "$work/scale.yaml"
 expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" target "$work/scale.yaml"
+# (7) every numeric option held to its range, refused (not replaced) naming the option
+expect 2 "^lvsim: --threads needs a count from 1 to 16 \(the most a run uses\), got '17'$" -- "$lvsim" run "$mission" -o "$work/thr" --threads 17
+[ ! -e "$work/thr" ] && pass=$((pass + 1)) || { echo "FAIL: a refused run wrote $work/thr"; fails=$((fails + 1)); }
+expect 2 "^lvsim: --max-rows needs a whole number >= 1, got '0'$" -- "$lvsim" check "$mission" --max-rows 0
+expect 2 "^lvsim: -j needs a thread count 1..256, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" -j 0
+expect 2 "^lvsim: --restarts needs an integer from 0 to 100, got '-1'$" -- "$lvsim" target "$work/shot.yaml" --restarts -1
+expect 2 "^lvsim: --max-steps: '0' is not a positive count$" -- "$lvsim" simulate free_fall --max-steps 0 --format none
+expect 2 "outside the valid range" -- "$lvsim" atmosphere -6000
+expect 2 "latitude 91 deg must be within \[-90, 90\]" -- "$lvsim" gravity 91 0 0
+expect 2 "longitude 400 deg within \[-360, 360\]" -- "$lvsim" gravity 0 400 0
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
