@@ -249,7 +249,7 @@ static lv_status find_phase_var(const lv_phase_def *ph, const lv_model_def *md, 
 }
 
 /* The range of a `set:` override or a variable end once its variable is known (the parser took
- * any number, or an angle for NAME_deg): a root parameter of the phase's type its own
+ * any finite number): a root parameter of the phase's type its own
  * (start_lat within +-90 deg), any other angle two turns either way, a rate 10 rev/s; other
  * units keep `cur` (docs/mission-format.md, "Angle ranges"). */
 static lv_range var_range(const lv_phase_type *t, const char *name, const char *unit,

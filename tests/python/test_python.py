@@ -839,6 +839,15 @@ def test_bad_execute_options_are_refused_up_front(kw, word):
     r.close(); m.close()
 
 
+def test_simulate_holds_the_library_ranges():
+    # issue 22: a tolerance of 10 ran (87 % off), free fall from under the ground missed its
+    # impact; both are refused by lv_simulate itself, so Python callers get the same rule
+    with pytest.raises(lvsim.LvsimError, match=r"tolerance must be >= 1e-14 and <= 0\.1"):
+        lvsim.simulate("free_fall", tolerance=10)
+    with pytest.raises(lvsim.LvsimError, match="h = -1 m is below its lower bound 0 m"):
+        lvsim.simulate("free_fall", initial={"h": -1.0})
+
+
 def test_max_rows_refuses_a_huge_output_before_running():
     m = lvsim.Mission(DEMO)
     r = m.create_run()
