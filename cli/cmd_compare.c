@@ -91,10 +91,14 @@ static int compare_run(const cli_cmd *self, int argc, char **argv)
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
+            if (a[2] == 'm' && !parse_method_option(self, a, v))
+                return EXIT_INPUT;
             if (a[2] == 'm')
                 method = v;
-            else if (!parse_double(v, a[2] == 't' ? &tol : &dt))
-                return usage_error(self, "not a finite number:", v);
+            else if (a[2] == 't' && !parse_tolerance_option(self, a, v, &tol))
+                return EXIT_INPUT;
+            else if (a[2] == 'i' && !parse_interval_option(self, a, v, &dt))
+                return EXIT_INPUT;
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (path != NULL) {
@@ -105,8 +109,6 @@ static int compare_run(const cli_cmd *self, int argc, char **argv)
     }
     if (path == NULL)
         return usage_error(self, "compare needs a mission file", NULL);
-    if (!(dt > 0.0))
-        return usage_error(self, "--interval must be > 0", NULL);
     lv_compare_report rep;
     lv_err err;
     lv_mission *m = NULL;
@@ -135,7 +137,8 @@ const cli_cmd cli_cmd_compare = {
     "\n"
     "options:\n"
     "  --method M              integration method of both runs (default: each phase's own)\n"
-    "  --tolerance TOL         relative tolerance of both runs (default: each phase's own)\n"
+    "  --tolerance TOL         relative tolerance of both runs, 1e-14 to 0.1 (default: each\n"
+    "                          phase's own)\n"
     "  --interval DT           output interval of both runs [s], > 0 (default 1)\n"
     "  --json                  print the comparison as one JSON object\n",
     compare_run,

@@ -117,13 +117,15 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
                 if (!parse_u64(v, &keep))
                     return usage_error(self, "--keep-runs needs a count >= 0, got", v);
             } else if (strcmp(a, "--method") == 0) {
+                if (!parse_method_option(self, a, v))
+                    return EXIT_INPUT;
                 method = v;
             } else if (strcmp(a, "--tolerance") == 0) {
-                if (!parse_double(v, &tol) || !(tol > 0.0))
-                    return usage_error(self, "--tolerance needs a number > 0, got", v);
+                if (!parse_tolerance_option(self, a, v, &tol))
+                    return EXIT_INPUT;
             } else if (strcmp(a, "--output-interval") == 0) {
-                if (!parse_double(v, &dt_out) || !(dt_out > 0.0))
-                    return usage_error(self, "--output-interval needs seconds > 0, got", v);
+                if (!parse_interval_option(self, a, v, &dt_out))
+                    return EXIT_INPUT;
             } else {
                 outdir = v;
             }
@@ -283,7 +285,8 @@ const cli_cmd cli_cmd_mc = {
     "                          did not write: they are kept, never replaced\n"
     "  --keep-runs K           runs 0 .. K-1 also write their result files to DIR/runs/\n"
     "                          run_<i>/ (phases, summary.json) (default 0)\n"
-    "  --method M, --tolerance T   every phase's integration method / tolerance\n"
+    "  --method M, --tolerance T   every phase's integration method / tolerance (1e-14 to\n"
+    "                          0.1)\n"
     "  --output-interval S     every phase's output grid (default none: start and end only)\n"
     "  --no-plots              statistics without plots/ and index.html\n"
     "  --no-stats              the database only\n",

@@ -35,7 +35,14 @@ static void print_params(const char *path, const lv_mission *m)
 {
     const size_t n = lv_mission_param_count(m);
     printf("# mission '%s' (%s): %zu parameters\n", lv_mission_name(m), path, n);
-    printf("# %-30s %16s  %-8s %-10s %s\n", "name", "value", "unit", "allowed", "line");
+    int w = 10; /* the allowed-values column: as wide as its widest rule */
+    for (size_t i = 0; i < n; i++) {
+        lv_param_info p;
+        lv_mission_param_info(m, i, &p);
+        if ((int)strlen(p.rule) > w)
+            w = (int)strlen(p.rule);
+    }
+    printf("# %-30s %16s  %-8s %-*s %s\n", "name", "value", "unit", w, "allowed", "line");
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);
@@ -44,7 +51,7 @@ static void print_params(const char *path, const lv_mission *m)
             snprintf(line, sizeof line, "%d", p.line);
         else
             snprintf(line, sizeof line, "default");
-        printf("%-32s %16.10g  %-8s %-10s %s\n", p.name, p.value, p.unit[0] ? p.unit : "-",
+        printf("%-32s %16.10g  %-8s %-*s %s\n", p.name, p.value, p.unit[0] ? p.unit : "-", w,
                p.rule, line);
     }
 }

@@ -211,8 +211,10 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
                     return usage_error(self, "-o needs a folder name; got an empty one", NULL);
                 outdir = v;
             } else if (a[2] == 't') {
-                if (!parse_int(v, &threads) || threads < 1)
-                    return usage_error(self, "--threads needs a count >= 1, got", v);
+                /* lv_run_execute uses at most 16: more would be replaced silently */
+                if (!parse_int(v, &threads) || threads < 1 || threads > 16)
+                    return usage_error(self, "--threads needs a count from 1 to 16 (the most "
+                                             "a run uses), got", v);
             } else if (!parse_count(v, &max_rows)) {
                 return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
             }
@@ -488,7 +490,7 @@ const cli_cmd cli_cmd_run = {
     "  --force                 OUTDIR may hold files lvsim did not write: they are kept\n"
     "                          (never replaced; a run whose results have a file of the\n"
     "                          same name is refused), lvsim's own files are replaced\n"
-    "  --threads N             worker threads for independent branches, >= 1 (default 2)\n"
+    "  --threads N             worker threads for independent branches, 1 to 16 (default 2)\n"
     "  --max-rows N            output rows one phase may write (default 1e6)\n"
     "  --json                  print summary.json instead of the table\n"
     "  --no-plots              skip plots/ and index.html\n"

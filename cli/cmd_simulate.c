@@ -121,6 +121,17 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
                 rc = EXIT_INPUT;
                 goto out;
             }
+            /* held to the ranges lv_simulate takes (a mission phase's integrator keys) */
+            if (strcmp(a, "--tolerance") == 0 && !parse_tolerance_option(self, a, val, &v)) {
+                rc = EXIT_INPUT;
+                goto out;
+            }
+            if ((strcmp(a, "--interval") == 0 || strcmp(a, "--fixed-step") == 0) && v < 0.0) {
+                fprintf(stderr, "lvsim: %s: '%s' s must be >= 0 (0: %s)\n", a, val,
+                        a[2] == 'i' ? "the --intervals grid" : "the output interval");
+                rc = EXIT_INPUT;
+                goto out;
+            }
             if (strcmp(a, "--start") == 0) s.start_time = v;
             else if (strcmp(a, "--stop") == 0) s.stop_time = v;
             else if (strcmp(a, "--interval") == 0) s.output_interval = v;
@@ -141,6 +152,10 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             }
             s.max_steps = n;
         } else if (strcmp(a, "--method") == 0) {
+            if (!parse_method_option(self, a, val)) {
+                rc = EXIT_INPUT;
+                goto out;
+            }
             s.method = val;
         } else if (strcmp(a, "-o") == 0) {
             s.result_file = val;
@@ -230,7 +245,7 @@ const cli_cmd cli_cmd_simulate = {
     "  --intervals N           output grid: number of intervals (default 500)\n"
     "  --interval DT           output grid: interval [s]; wins over --intervals (default 0)\n"
     "  --method M              dassl | cvode-adams | dopri5 | rk4 | euler (default dassl)\n"
-    "  --tolerance TOL         relative tolerance (default 1e-4)\n"
+    "  --tolerance TOL         relative tolerance, 1e-14 to 0.1 (default 1e-4)\n"
     "  --fixed-step H          step of rk4 and euler [s] (default: the output interval)\n"
     "  --max-steps N           internal steps allowed in total (default 1e6)\n"
     "  --set NAME=VALUE        start value of a state or parameter, SI (repeatable)\n"

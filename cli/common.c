@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 int exit_code_for(lv_status st)
@@ -137,6 +138,51 @@ int parse_count(const char *s, double *out)
         return 0;
     *out = v;
     return 1;
+}
+
+int parse_tolerance_option(const cli_cmd *cmd, const char *opt, const char *v, double *out)
+{
+    double x;
+    if (parse_double(v, &x) && x >= LV_TOLERANCE_MIN && x <= LV_TOLERANCE_MAX) {
+        *out = x;
+        return 1;
+    }
+    char what[160];
+    snprintf(what, sizeof what, "%s needs a relative tolerance from %g to %g (the range of a "
+             "phase's integrator tolerance), got", opt, LV_TOLERANCE_MIN, LV_TOLERANCE_MAX);
+    usage_error(cmd, what, v);
+    return 0;
+}
+
+int parse_method_option(const cli_cmd *cmd, const char *opt, const char *v)
+{
+    char what[160];
+    size_t n = 0;
+    n += (size_t)snprintf(what, sizeof what, "%s needs an integration method (", opt);
+    for (const char *const *m = lv_sim_methods(); *m != NULL; m++) {
+        if (strcasecmp(*m, v) == 0)
+            return 1;
+        if (n < sizeof what)
+            n += (size_t)snprintf(what + n, sizeof what - n, "%s%s",
+                                  m == lv_sim_methods() ? "" : ", ", *m);
+    }
+    if (n < sizeof what)
+        snprintf(what + n, sizeof what - n, "), got");
+    usage_error(cmd, what, v);
+    return 0;
+}
+
+int parse_interval_option(const cli_cmd *cmd, const char *opt, const char *v, double *out)
+{
+    double x;
+    if (parse_double(v, &x) && x > 0.0) {
+        *out = x;
+        return 1;
+    }
+    char what[96];
+    snprintf(what, sizeof what, "%s needs seconds > 0, got", opt);
+    usage_error(cmd, what, v);
+    return 0;
 }
 
 void human_bytes(double b, char *buf, size_t cap)

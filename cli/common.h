@@ -47,6 +47,16 @@ int load_mission(const char *path, lv_mission **m);
 /* A whole number >= 1 up to 1e15 ("1000000", "1e6"); 1 on success, 0 otherwise. */
 int parse_count(const char *s, double *out);
 
+/* Options that override a mission key are held to that key's range (docs/cli.md): refused,
+ * never replaced. Each returns 1 with the value, or prints "lvsim: OPT needs ..., got 'V'"
+ * with cmd's usage (usage_error) and returns 0; the caller then exits 2.
+ *   a relative tolerance within [LV_TOLERANCE_MIN, LV_TOLERANCE_MAX] (integrator.tolerance) */
+int parse_tolerance_option(const cli_cmd *cmd, const char *opt, const char *v, double *out);
+/*   an integration method of lv_sim_methods(), any case (integrator.method) */
+int parse_method_option(const cli_cmd *cmd, const char *opt, const char *v);
+/*   seconds > 0 (integrator.output_interval) */
+int parse_interval_option(const cli_cmd *cmd, const char *opt, const char *v, double *out);
+
 /* The default of --max-rows: output rows one phase may write (docs/cli.md). */
 #define CLI_DEFAULT_MAX_ROWS 1e6
 

@@ -52,7 +52,8 @@ typedef struct lv_campaign_options {
     uint64_t keep_runs;   /* runs < keep_runs also write result files (phases, summary.json) */
     const char *keep_dir; /* ... into keep_dir/run_<i> (required with keep_runs) */
     const char *method;   /* non-NULL: every phase integrates with it (lv_run_options) */
-    double tolerance;     /* > 0: every phase's tolerance */
+    double tolerance;     /* nonzero: every phase's tolerance, within [LV_TOLERANCE_MIN,
+                             LV_TOLERANCE_MAX] (lv_sim.h; out of range: LV_ERR_INPUT) */
     double output_interval; /* > 0: the output grid of every phase (s); 0: none (only start
                                and end: the fastest; the phases' own grid for kept runs) */
     /* called from the calling thread about every 0.25 s and once at the end */

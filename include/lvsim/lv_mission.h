@@ -197,13 +197,16 @@ typedef struct lv_phase_result {
 
 typedef struct lv_run_options {
     const char *outdir;   /* result files go here (created); NULL: no files */
-    int threads;          /* worker threads for independent branches (0: 2) */
+    int threads;          /* worker threads for independent branches (0: 2; at most 16 are
+                             used) */
     /* Called after each phase, from the thread that ran it, under the run's lock. */
     void (*on_phase)(const lv_run *r, size_t k, const lv_phase_result *res, void *user);
     void *user;           /* passed to on_phase and progress */
-    double output_interval; /* > 0: overrides every phase's output grid (s), e.g. to compare */
-    const char *method;   /* non-NULL: every phase integrates with this method */
-    double tolerance;     /* > 0: every phase uses this tolerance */
+    double output_interval; /* > 0: overrides every phase's output grid (s), e.g. to compare;
+                               0: each phase's own */
+    const char *method;   /* non-NULL: every phase integrates with this method (lv_sim_methods) */
+    double tolerance;     /* nonzero: every phase uses this tolerance, within [LV_TOLERANCE_MIN,
+                             LV_TOLERANCE_MAX] (lv_sim.h); 0: each phase's own */
     /* Called with the mission time reached in phase k at every output row, from the thread
      * that runs it; nonzero cancels the run (the phase fails with LV_ERR_CANCELLED). */
     int (*progress)(const lv_run *r, size_t k, double t, void *user);
@@ -228,7 +231,10 @@ typedef struct lv_run_options {
  * failed), and its descendants; the others keep their results. Independent branches run in
  * parallel threads; a failing phase stops only its descendants. Returns LV_OK when all
  * succeeded, LV_ERR_SOLVER when some failed (their results say why; the others are
- * complete), LV_ERR_CANCELLED, LV_ERR_IO when the output folder cannot be made. */
+ * complete), LV_ERR_CANCELLED, LV_ERR_IO when the output folder cannot be made, LV_ERR_INPUT
+ * (nothing runs) for options out of range: a tolerance outside [LV_TOLERANCE_MIN,
+ * LV_TOLERANCE_MAX] (not 0), a negative or non-finite output_interval, an unknown method,
+ * negative threads. */
 LV_API lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err);
 /* How many phases the last lv_run_execute simulated. */
 LV_API size_t lv_run_simulated(const lv_run *r);
@@ -371,8 +377,9 @@ typedef struct lv_compare_report {
 } lv_compare_report;
 
 /* Runs the mission sequentially and as one end-to-end model (flat6 missions whose phases
- * split the stack at their ends), both with `method`/`tolerance` (NULL/0: each phase's own)
- * and the output interval `dt` (s), and compares every body at common output times. */
+ * split the stack at their ends), both with `method`/`tolerance` (NULL/0: each phase's own;
+ * otherwise as lv_run_options: LV_ERR_INPUT out of range) and the output interval `dt` (s,
+ * > 0), and compares every body at common output times. */
 LV_API lv_status lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
                                     double dt, lv_compare_report *rep, lv_err *err);
 

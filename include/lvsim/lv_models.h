@@ -7,6 +7,8 @@
  *   vertical_ascent  1-D rocket in uniform gravity: constant thrust and mass flow
  *                    until burnout (state event m = m_final), coast, apogee, impact
  *   free_fall        1-D fall in uniform gravity, stops at ground impact
+ *                    (both: domain h >= 0, so a start below the ground - h or h0 < 0 - is
+ *                    LV_ERR_INPUT naming h, its value and the bound, not a missed impact)
  *   oscillator       harmonic oscillator x'' = -omega^2 x
  *   kepler           two-body orbit r'' = -mu r/|r|^3, periapsis passages as events
  */

@@ -12,7 +12,8 @@
  *   "dopri5"      Dormand-Prince 5(4), ARKODE ERKStep, adaptive
  *   "rk4"         classical Runge-Kutta 4, ARKODE ERKStep, fixed step
  *   "euler"       explicit Euler, ARKODE ERKStep, fixed step
- * Tolerances: rtol = tolerance; atol_i = tolerance * nominal_i per state.
+ * Tolerances: rtol = tolerance; atol_i = tolerance * nominal_i per state. The tolerance lies in
+ * [LV_TOLERANCE_MIN, LV_TOLERANCE_MAX] (docs/integration.md, "Tolerance range").
  *
  * Events at one instant are handled in this order (docs/result-files.md):
  *   1. all state events located at that instant, in one on_event() call
@@ -34,6 +35,15 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* The relative tolerances lv_simulate accepts (others: LV_ERR_INPUT naming the range), and with
+ * it every mission phase, run option, campaign and command-line option that sets one. Below
+ * 1e-14 (45 units of double round-off, SUNDIALS' unit roundoff 2.2e-16) no method gets more
+ * accurate (dopri5's Kepler energy error stays at 1.0e-12 from 1e-14 down) and CVODE and ARKODE
+ * stop with "too much accuracy requested" from about 1e-16; above 0.1 the error estimate no
+ * longer bounds anything (the sounding-rocket example: its apogee 5 times too high at 1). */
+#define LV_TOLERANCE_MIN 1e-14
+#define LV_TOLERANCE_MAX 0.1
 
 /* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats). */
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
@@ -57,7 +67,8 @@ typedef struct lv_sim_settings {
     int number_of_intervals; /* output intervals (default 0: 500 unless output_interval) */
     double output_interval;  /* s (default 0); takes precedence when > 0 */
     const char *method;      /* see above (default "dassl") */
-    double tolerance;        /* relative tolerance (default 1e-4), > 0 */
+    double tolerance;        /* relative tolerance (default 1e-4), in [LV_TOLERANCE_MIN,
+                                LV_TOLERANCE_MAX] */
     double fixed_step;       /* s, rk4/euler (default 0: the output interval) */
     const char *result_file; /* path without extension ("dsres"); NULL: no file */
     unsigned result_formats; /* LV_RESULT_MAT | LV_RESULT_CSV (default both) */

@@ -77,8 +77,9 @@ LV_API lv_status lv_target_create_empty(const lv_mission *m, lv_target **out, lv
 LV_API void lv_target_free(lv_target *t); /* accepts NULL */
 
 /* A variable: a run parameter by name, values in the name's unit. start NAN: the mission
- * file's value; scale NAN or <= 0: (hi - lo) / 10; step NAN or <= 0: from the scale (see
- * docs/targeting.md). lo < hi within the parameter's allowed values, lo <= start <= hi. */
+ * file's value; scale NAN: (hi - lo) / 10, else within [1e-4, 1] x (hi - lo); step NAN: from
+ * the scale, else > 0 and < (hi - lo) / 2 (see docs/targeting.md). lo < hi within the
+ * parameter's allowed values, lo <= start <= hi. Out of range: LV_ERR_INPUT naming it. */
 LV_API lv_status lv_target_add_var(lv_target *t, const char *name, double lo, double hi,
                                    double start, double scale, double step, lv_err *err);
 /* A constraint on final value "PHASE.NAME" (time, a state or output of the phase's model;

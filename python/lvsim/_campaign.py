@@ -78,8 +78,9 @@ class Campaign:
             tol = 0.0
         else:
             tol = real_arg(tolerance, "tolerance")
-            if not (tol > 0.0 and math.isfinite(tol)):
-                raise InputError(f"tolerance must be > 0 and finite, got {tolerance!r}")
+            if not _lib.LV_TOLERANCE_MIN <= tol <= _lib.LV_TOLERANCE_MAX:
+                raise InputError(f"tolerance must be from {_lib.LV_TOLERANCE_MIN:g} to "
+                                 f"{_lib.LV_TOLERANCE_MAX:g}, got {tolerance!r}")
         if isinstance(output_interval, str) and output_interval == "ends":
             oi = 0.0  # lv_campaign_options: 0 is start and end rows only
         elif output_interval is None or isinstance(output_interval, str):

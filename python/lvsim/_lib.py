@@ -25,6 +25,8 @@ LV_OK = 0
 STATUS_NAMES = {0: "LV_OK", -1: "LV_ERR_NOMEM", -2: "LV_ERR_INPUT", -3: "LV_ERR_SOLVER",
                 -4: "LV_ERR_IO", -5: "LV_ERR_NOTFOUND", -6: "LV_ERR_CANCELLED"}
 
+LV_TOLERANCE_MIN = 1e-14  # lv_sim.h: the relative tolerances lv_simulate accepts
+LV_TOLERANCE_MAX = 0.1
 LV_RESULT_MAT = 1
 LV_RESULT_CSV = 2
 LV_RUN_NO_PHASE_FILES = 0x100

@@ -829,7 +829,7 @@ class Run:
             grid; "ends": only each phase's start and end rows, the fastest, as Monte Carlo
             campaigns run (Campaign.run's default): run.disperse(seed, i);
             run.execute(output_interval="ends") gives campaign run i's finals bit for bit.
-        method (one of lvsim.METHODS), tolerance (> 0): override every phase's.
+        method (one of lvsim.METHODS), tolerance (1e-14 to 0.1): override every phase's.
         keep_rows: keep each phase's rows in memory (PhaseResult rows, Run.body); False is
             faster when only finals are read.
             A phase that ran with other method, tolerance, output_interval or keep_rows than
@@ -886,8 +886,9 @@ class Run:
                 raise InputError(f"unknown method {method!r}; methods: {', '.join(METHODS)}")
         if tolerance is not None:
             tolerance = real_arg(tolerance, "tolerance")
-            if not (tolerance > 0.0 and math.isfinite(tolerance)):
-                raise InputError(f"tolerance must be > 0 and finite, got {tolerance!r}")
+            if not _lib.LV_TOLERANCE_MIN <= tolerance <= _lib.LV_TOLERANCE_MAX:
+                raise InputError(f"tolerance must be from {_lib.LV_TOLERANCE_MIN:g} to "
+                                 f"{_lib.LV_TOLERANCE_MAX:g}, got {tolerance!r}")
         if not isinstance(keep_rows, (bool, np.bool_)):
             raise TypeError(f"keep_rows must be True or False, not {keep_rows!r}")
         keep_rows = bool(keep_rows)

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -368,6 +369,22 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
                        "'dispersions:' section (docs/monte-carlo.md)", lv_mission_name(m));
     if (o->keep_runs > 0 && o->keep_dir == NULL)
         return lv_fail(err, LV_ERR_INPUT, "campaign: keep_runs needs keep_dir");
+    /* the overrides of every phase's settings: out of range is refused, not replaced */
+    if (o->tolerance != 0.0 && !(o->tolerance >= LV_TOLERANCE_MIN && o->tolerance <= LV_TOLERANCE_MAX))
+        return lv_fail(err, LV_ERR_INPUT, "campaign: tolerance must be >= %g and <= %g, or 0 for "
+                       "each phase's own (got %g)", LV_TOLERANCE_MIN, LV_TOLERANCE_MAX,
+                       o->tolerance);
+    if (!(o->output_interval >= 0.0) || !isfinite(o->output_interval))
+        return lv_fail(err, LV_ERR_INPUT, "campaign: output_interval must be > 0 s, or 0 (got %g)",
+                       o->output_interval);
+    if (o->method != NULL) {
+        const char *const *mn = lv_sim_methods();
+        while (*mn != NULL && strcasecmp(*mn, o->method) != 0)
+            mn++;
+        if (*mn == NULL)
+            return lv_fail(err, LV_ERR_INPUT, "campaign: unknown integration method '%s'",
+                           o->method);
+    }
     lv_campaign *c = calloc(1, sizeof *c);
     lv_run *r = NULL;
     if (c == NULL)

@@ -1,5 +1,5 @@
-/* status.c - status strings and error-record formatting. */
-#define _POSIX_C_SOURCE 200809L /* strerror_r, the XSI form (this file defines no _GNU_SOURCE) */
+/* status.c - status strings, error-record formatting and the system's error texts. */
+#define _POSIX_C_SOURCE 200809L /* strerror_r: the XSI variant (int); never _GNU_SOURCE here */
 
 #include "core/status.h"
 
@@ -60,9 +60,12 @@ lv_status lv_fail_prefix(lv_err *err, lv_status code, const char *fmt, ...)
 
 const char *lv_strerror(int e, char *buf, size_t cap)
 {
-    if (cap == 0)
+    if (buf == NULL || cap == 0)
         return "";
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "system error %d", e);
+    /* XSI: 0 or an error number. Held in an int so that the GNU variant (char *, what a file
+     * with _GNU_SOURCE gets, whose result is never 0) cannot compile here. */
+    const int rc = strerror_r(e, buf, cap);
+    if (rc != 0 || buf[0] == '\0')
+        snprintf(buf, cap, "error %d", e);
     return buf;
 }

@@ -2,6 +2,8 @@
 #ifndef LV_CORE_STATUS_H
 #define LV_CORE_STATUS_H
 
+#include <stddef.h>
+
 #include "lvsim/lv_status.h"
 
 #if defined(__GNUC__)
@@ -16,9 +18,14 @@ lv_status lv_fail(lv_err *err, lv_status code, const char *fmt, ...) LV_PRINTF(3
 /* Prefix an existing message: "prefix: old message". Returns err->code (or code). */
 lv_status lv_fail_prefix(lv_err *err, lv_status code, const char *fmt, ...) LV_PRINTF(3, 4);
 
-/* The system's text for errno value e ("Permission denied"), written into buf (strerror_r in
- * its XSI form: no buffer shared between threads, and the same in files that define
- * _GNU_SOURCE); returns buf. */
+/* The system's text for errno value `e` ("Permission denied") in buf[cap], returned; the one
+ * helper behind every system error message of the libraries. Thread-safe (strerror_r, built
+ * as the XSI variant in status.c whatever feature macros the caller defines; "error E" only
+ * for a value the system has no text for). */
+#define LV_STRERROR_MAX 128
 const char *lv_strerror(int e, char *buf, size_t cap);
+/* The same into a buffer that lives until the end of the enclosing block, for a message
+ * argument: lv_fail(err, LV_ERR_IO, "%s: %s", path, LV_STRERROR(errno)). */
+#define LV_STRERROR(e) lv_strerror((e), (char[LV_STRERROR_MAX]){0}, LV_STRERROR_MAX)
 
 #endif

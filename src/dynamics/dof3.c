@@ -409,8 +409,10 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
     /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
      * below its weight) has no crossing from above to find: its impact is 1 micrometre below
-     * where it starts. */
-    lv_flight_ends_start(&s->m->fe, kin.h);
+     * where it starts; one that starts below it is refused. */
+    char why[320];
+    if (lv_flight_ends_start(&s->m->fe, kin.h, why, sizeof why) != 0)
+        return fail_inst(s, "%s", why);
     s->r0_unit[0] = kin.r_ecef.x / rn;
     s->r0_unit[1] = kin.r_ecef.y / rn;
     s->r0_unit[2] = kin.r_ecef.z / rn;

@@ -841,7 +841,9 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
         s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
     if (s->m->steers)
         lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
-    lv_flight_ends_start(&s->m->fe, kin.h);
+    char why[320];
+    if (lv_flight_ends_start(&s->m->fe, kin.h, why, sizeof why) != 0)
+        return fail_inst(s, "%s", why);
     return 0;
 }
 

@@ -80,13 +80,21 @@ void lv_flight_ends_clear(lv_flight_ends *fe)
     memset(fe, 0, sizeof *fe);
 }
 
-void lv_flight_ends_start(lv_flight_ends *fe, double h0)
+int lv_flight_ends_start(lv_flight_ends *fe, double h0, char *why, size_t cap)
 {
     for (size_t i = 0; i < fe->n; i++) {
         const lv_dof3_end *e = &fe->ends[i];
+        if (e->kind == LV_DOF3_END_IMPACT && h0 < e->value - LV_FLIGHT_ENDS_BELOW_TOL) {
+            snprintf(why, cap, "the start altitude h = %.9g m is below the level %g m of its "
+                     "end '%s': the vehicle would start under the ground it is to hit, and "
+                     "never cross it (start higher, or give the ground's level: {impact: %.6g})",
+                     h0, e->value, e->name, h0);
+            return 1;
+        }
         fe->off[i] = e->kind == LV_DOF3_END_IMPACT && h0 <= e->value ? e->value - h0 + 1e-6
                                                                       : 0.0;
     }
+    return 0;
 }
 
 void lv_flight_ends_eval(const lv_flight_ends *fe, const lv_flight_world *w, lv_flight_kin *kin,

@@ -30,9 +30,15 @@ lv_status lv_flight_ends_init(lv_flight_ends *fe, const char *model, const lv_do
                               size_t n, lv_err *err);
 void lv_flight_ends_clear(lv_flight_ends *fe); /* frees; fe may be zeroed */
 
-/* At the start (geodetic altitude h0 [m]): a vehicle that starts on its impact level and
- * sinks has no crossing from above to find: its impact is 1 micrometre below the start. */
-void lv_flight_ends_start(lv_flight_ends *fe, double h0);
+/* Below an impact end's level by more than this at the start [m]: under the ground. */
+#define LV_FLIGHT_ENDS_BELOW_TOL 1e-3
+
+/* At the start (geodetic altitude h0 [m]): a vehicle that starts on its impact level (within
+ * LV_FLIGHT_ENDS_BELOW_TOL: a parent's located impact) and sinks has no crossing from above to
+ * find: its impact is 1 micrometre below the start. One that starts further below an impact
+ * end's level would start under the ground it is to hit and never cross it: returns 1 with
+ * the reason in why[cap] (naming the altitude, the end and its level); 0 otherwise. */
+int lv_flight_ends_start(lv_flight_ends *fe, double h0, char *why, size_t cap);
 
 /* g[0..n): the ends' event functions at ECI r, v [m, m/s]; kin holds lv_flight_to_ecef of
  * them (its geodetic altitude is computed here when an end needs it). */

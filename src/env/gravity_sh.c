@@ -348,7 +348,8 @@ static lv_status read_gfc_stream(lv_gravity *g, FILE *fp, const char *path, int 
         g->snm[k] = s;
     }
     if (ferror(fp)) {
-        st = lv_fail(err, LV_ERR_IO, "%s:%d: read error", path, lineno);
+        st = lv_fail(err, LV_ERR_IO, "%s:%d: cannot read: %s", path, lineno,
+                     LV_STRERROR(errno ? errno : EIO));
         goto fail;
     }
     /* Degrees 0 and 1 may be left out (C00 = 1, degree 1 = 0 in a geocentric
@@ -487,7 +488,7 @@ lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, in
     char *bytes = slurp(path, &size);
     if (bytes == NULL)
         return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
-                       strerror(errno));
+                       LV_STRERROR(errno));
     const gfc_entry *e = gfc_find(path, degree, order, bytes, size);
     if (e != NULL) { /* read before, the same bytes: the same coefficients */
         free(bytes);
@@ -508,7 +509,7 @@ lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, in
         const int e_no = errno;
         free(bytes);
         return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
-                       strerror(e_no));
+                       LV_STRERROR(e_no));
     }
     lv_status st = read_gfc_stream(g, fp, path, degree, order, err); /* closes fp */
     if (st == LV_OK && size > 0)

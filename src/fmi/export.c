@@ -241,7 +241,7 @@ static lv_status read_file(const char *path, char **out, size_t *len, lv_err *er
 {
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+        return lv_fail(err, LV_ERR_IO, "cannot read '%s': %s", path, LV_STRERROR(errno));
     char *buf = NULL;
     size_t n = 0, cap = 0;
     for (;;) {
@@ -260,11 +260,11 @@ static lv_status read_file(const char *path, char **out, size_t *len, lv_err *er
         if (got == 0)
             break;
     }
-    const int bad = ferror(fp);
+    const int bad = ferror(fp), e = errno;
     fclose(fp);
     if (bad) {
         free(buf);
-        return lv_fail(err, LV_ERR_IO, "read error on '%s'", path);
+        return lv_fail(err, LV_ERR_IO, "cannot read '%s': %s", path, LV_STRERROR(e ? e : EIO));
     }
     *out = buf;
     *len = n;
@@ -298,7 +298,7 @@ static lv_status plan_resources(const lv_mission *m, res_file *rf, size_t n, lv_
                            "there, so name it relative to the mission file", mpath, f);
         if (realpath(f, rf[i].real) == NULL)
             return lv_fail(err, LV_ERR_IO, "%s: cannot find data file '%s': %s", mpath, f,
-                           strerror(errno));
+                           LV_STRERROR(errno));
     }
     /* the deepest folder that holds them all */
     char common[PATH_MAX];
@@ -724,7 +724,7 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     }
     za = NULL;
     if (rename(tmp, fmu_path) != 0) {
-        st = lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", fmu_path, strerror(errno));
+        st = lv_fail(err, LV_ERR_IO, "cannot write '%s': %s", fmu_path, LV_STRERROR(errno));
         unlink(tmp);
         goto out;
     }

@@ -859,8 +859,15 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
                     stopTime, t0);
     if (toleranceDefined && (!(tolerance > 0.0) || !isfinite(tolerance)))
         return FAIL(f, "fmi2SetupExperiment: tolerance %g is not > 0", tolerance);
+    /* Co-Simulation: lvsim's integrator uses it, held to lv_simulate's range (Model Exchange:
+     * the importer's integrator, not ours) */
+    if (toleranceDefined && f->type == fmi2CoSimulation &&
+        !(tolerance >= LV_TOLERANCE_MIN && tolerance <= LV_TOLERANCE_MAX))
+        return FAIL(f, "fmi2SetupExperiment: tolerance %g is outside [%g, %g], the relative "
+                    "tolerances lvsim's integrator accepts", tolerance, LV_TOLERANCE_MIN,
+                    LV_TOLERANCE_MAX);
     if (toleranceDefined)
-        f->tol = tolerance; /* Co-Simulation: lvsim's integrator uses it */
+        f->tol = tolerance;
     f->stop_defined = stopTimeDefined != 0;
     f->t_stop = stopTimeDefined ? stopTime : INFINITY;
     f->t = f->t_start = t0;

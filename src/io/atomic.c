@@ -1,8 +1,6 @@
 /* atomic.c - write "<path>.tmp", then rename it to "<path>": the one place where lvsim's
  * writers finish a file (atomic.h). rename(2) replaces the target in one step on POSIX file
  * systems, so a reader sees the old complete file or the new complete one. */
-#define _POSIX_C_SOURCE 200809L /* strerror_r (XSI) */
-
 #include "io/atomic.h"
 
 #include <errno.h>
@@ -14,18 +12,10 @@
 
 #include "core/status.h"
 
-/* The system's text for errno value e (strerror_r: no shared buffer between threads). */
-static const char *why(int e, char *buf, size_t cap)
-{
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "error %d", e);
-    return buf;
-}
-
 static lv_status io_fail(const lv_atomic *a, const char *what, int e, lv_err *err)
 {
     char text[128];
-    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", a->tmp, what, why(e, text, sizeof text));
+    return lv_fail(err, LV_ERR_IO, "%s: %s: %s", a->tmp, what, lv_strerror(e, text, sizeof text));
 }
 
 /* tmp = path + ".tmp", or path + ".tmp.<pid>.<k>" when a file of that name exists already (a
@@ -132,7 +122,7 @@ lv_status lv_atomic_commit_as(lv_atomic *a, const char *target, lv_err *err)
         char text[128];
         const int e = errno;
         st = lv_fail(err, LV_ERR_IO, "%s: cannot rename to '%s': %s", a->tmp, target,
-                     why(e, text, sizeof text));
+                     lv_strerror(e, text, sizeof text));
     }
     if (st != LV_OK && !a->keep)
         remove(a->tmp);

@@ -32,7 +32,7 @@ static lv_status io_error(const csv_sink *s, const char *what, int e, lv_err *er
 {
     char why[128];
     return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.file.tmp, what,
-                   lv_sink_strerror(e, why, sizeof why));
+                   lv_strerror(e, why, sizeof why));
 }
 
 /* Writes `text` as one CSV field, quoted when it holds a comma, quote or line break. */

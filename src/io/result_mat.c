@@ -51,7 +51,7 @@ static lv_status io_error(const mat_sink *s, const char *what, int e, lv_err *er
 {
     char why[128];
     return lv_fail(err, LV_ERR_IO, "%s: %s: %s", s->paths.file.tmp, what,
-                   lv_sink_strerror(e != 0 ? e : EIO, why, sizeof why));
+                   lv_strerror(e != 0 ? e : EIO, why, sizeof why));
 }
 
 /* MOPT type code of precision p (T = 1 for text): M = 0 little-endian, 1 big-endian IEEE. */

@@ -2,7 +2,6 @@
  * name, the temporary-file protocol (write "<path>.tmp", rename when closed: io/atomic.c),
  * checks of the result description and rows. See docs/result-files.md.
  */
-#define _POSIX_C_SOURCE 200809L /* strerror_r (XSI) */
 
 #include "io/sink.h"
 
@@ -52,15 +51,6 @@ lv_status lv_result_failed_path(const char *path, char *buf, size_t cap, lv_err 
     memcpy(buf + stem_len, tag, sizeof tag - 1);
     memcpy(buf + stem_len + sizeof tag - 1, path + stem_len, len - stem_len + 1);
     return LV_OK;
-}
-
-const char *lv_sink_strerror(int e, char *buf, size_t cap)
-{
-    if (cap == 0)
-        return "";
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "error %d", e);
-    return buf;
 }
 
 lv_status lv_sink_paths_init(lv_sink_paths *p, const char *path, lv_err *err)

@@ -44,9 +44,6 @@ lv_status lv_sink_check_row(const char *path, size_t row, double t, double t_pre
  * description) or "" into a new malloc'd string; NULL when out of memory. */
 char *lv_sink_describe(const char *description, const char *unit);
 
-/* The system's text for errno value `e` (thread-safe). */
-const char *lv_sink_strerror(int e, char *buf, size_t cap);
-
 /* Growable array of doubles, one row of `width` values at a time. */
 typedef struct lv_rowbuf {
     double *v;

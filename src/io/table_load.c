@@ -174,7 +174,7 @@ static lv_status read_file(const char *path, char **text, size_t *len, lv_err *e
     char *buf = NULL;
     size_t n = 0, cap = 0;
     if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, LV_STRERROR(errno));
     for (;;) {
         if (cap - n < 4096) {
             cap = cap ? 2 * cap : 65536;
@@ -191,11 +191,11 @@ static lv_status read_file(const char *path, char **text, size_t *len, lv_err *e
         if (got == 0)
             break;
     }
-    const int bad = ferror(fp);
+    const int bad = ferror(fp), e = errno;
     fclose(fp);
     if (bad) {
         free(buf);
-        return lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
     }
     buf[n] = '\0';
     *text = buf;

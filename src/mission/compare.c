@@ -80,6 +80,10 @@ lv_status lv_mission_compare(const lv_mission *m, const char *method, double tol
     double *t_sep = NULL;
     lv_status st;
     const lv_phase_def *root = &d->phases[0];
+    if (!(dt > 0.0) || !isfinite(dt)) {
+        st = lv_fail(err, LV_ERR_INPUT, "compare: the output interval must be > 0 s (got %g)", dt);
+        goto done;
+    }
     if (d->env.world != LV_WORLD_FLAT || strcmp(root->type->name, "flat6") != 0 ||
         root->parent >= 0) {
         st = lv_fail(err, LV_ERR_INPUT, "compare: '%s' is not a flat-world (flat6) mission",

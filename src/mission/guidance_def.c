@@ -86,8 +86,10 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
 {
     static const char *const frames[] = {"aero", "local", "inertial", NULL};
     const lv_range any = LV_RANGE_ANY, nonneg = LV_RANGE_NONNEG;
-    const lv_range lat = {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};   /* [-90, 90] deg */
-    const lv_range half = {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};  /* pitch, alpha: [-90, 90] deg */
+    const lv_range lat = LV_RANGE_LAT;                      /* [-90, 90] deg */
+    const lv_range half = LV_RANGE_LAT;                     /* pitch, alpha: [-90, 90] deg */
+    const lv_range turn = LV_RANGE_TURN;  /* longitudes, headings, roll, bank: [-360, 360] deg */
+    const lv_range aero = LV_RANGE_AERO_ANGLE;              /* sideslip: [-180, 180] deg */
     const lv_range kick = {0.0, 0.5 * LV_PI, 0, 0};          /* [0, 90] deg */
     const lv_range gain = {0.0, 100.0, 1, 0};                /* (0, 100] */
     const char *G = "guidance";
@@ -117,7 +119,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
     g->bank_max = g->gain = g->n_max = g->hq_max = g->alpha = g->pitch = LV_NO_SLOT;
     if ((st = num(c, n, what, phase, G, "target_lat", "rad", lat, 0, NAN, &g->target_lat)) !=
             LV_OK ||
-        (st = num(c, n, what, phase, G, "target_lon", "rad", any, 0, NAN, &g->target_lon)) !=
+        (st = num(c, n, what, phase, G, "target_lon", "rad", turn, 0, NAN, &g->target_lon)) !=
             LV_OK)
         return st;
     if ((g->target_lat == LV_NO_SLOT) != (g->target_lon == LV_NO_SLOT))
@@ -147,9 +149,14 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
                                   "inertial" : "aero", frames[g->frame], mine[0], mine[1],
                                   mine[2]);
         }
-        for (int i = 0; i < 3; i++) /* pitch (and alpha) within +-90 deg; the others any */
-            if ((st = num(c, n, what, phase, G, mine[i], "rad", i == 0 ? half : any, 0, 0.0,
-                          &g->angle[i])) != LV_OK)
+        /* pitch (and alpha) within +-90 deg, sideslip +-180 deg, heading, roll and bank a turn
+         * either way */
+        for (int i = 0; i < 3; i++)
+            if ((st = num(c, n, what, phase, G, mine[i], "rad",
+                          i == 0                                  ? half
+                          : i == 1 && g->frame == LV_FRAME_AERO ? aero
+                                                                  : turn,
+                          0, 0.0, &g->angle[i])) != LV_OK)
                 return st;
         if ((v = lv_pk_get(n, "table")) != NULL) {
             if ((st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
@@ -164,7 +171,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
         if ((st = num(c, n, what, phase, G, "rise_time", "s", nonneg, 0, 0.0, &g->rise_time)) ||
             (st = num(c, n, what, phase, G, "kick", "rad", kick, 1, 0.0, &g->kick)) ||
             (st = num(c, n, what, phase, G, "kick_time", "s", nonneg, 1, 0.0, &g->kick_time)) ||
-            (st = num(c, n, what, phase, G, "heading", "rad", any, 1, 0.0, &g->heading)))
+            (st = num(c, n, what, phase, G, "heading", "rad", turn, 1, 0.0, &g->heading)))
             return st;
         if (c->m->slots[g->kick].value > 0.0 && !(c->m->slots[g->kick_time].value > 0.0))
             return lv_pk_fail(c, lv_pk_get(n, "kick_time"), "%s: a kick needs kick_time > 0 s",
@@ -191,7 +198,7 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
             (st = num(c, n, what, phase, G, "b", "1/s", any, 1, 0.0, &g->b)) ||
             (st = num(c, n, what, phase, G, "c", "", cpos, bilinear, NAN, &g->c)) ||
             (st = num(c, n, what, phase, G, "d", "1/s", any, bilinear, NAN, &g->d)) ||
-            (st = num(c, n, what, phase, G, "heading", "rad", any, 1, 0.0, &g->heading)))
+            (st = num(c, n, what, phase, G, "heading", "rad", turn, 1, 0.0, &g->heading)))
             return st;
         return LV_OK;
     }

@@ -248,11 +248,53 @@ static lv_status find_phase_var(const lv_phase_def *ph, const lv_model_def *md, 
     return st;
 }
 
+/* The range of a `set:` override or a variable end once its variable is known (the parser took
+ * any finite number): a root parameter of the phase's type its own
+ * (start_lat within +-90 deg), any other angle two turns either way, a rate 10 rev/s; other
+ * units keep `cur` (docs/mission-format.md, "Angle ranges"). */
+static lv_range var_range(const lv_phase_type *t, const char *name, const char *unit,
+                          lv_range cur)
+{
+    for (size_t i = 0; t->mission_param_ranges != NULL && i < t->n_mission_params; i++)
+        if (strcmp(t->mission_params[i].name, name) == 0)
+            return t->mission_param_ranges[i];
+    if (strcmp(unit, "rad") == 0)
+        return LV_RANGE_ANGLE;
+    if (strcmp(unit, "rad/s") == 0)
+        return LV_RANGE_RATE;
+    return cur;
+}
+
+/* Slot s of phase `ph` takes range r (and the rule `lvsim params` shows); the file's value is
+ * held to it where it is written: "phase 'P', WHERE: KEY must be ..., found V". */
+static lv_status narrow_slot(lv_mission *m, const lv_phase_def *ph, lv_slot s, lv_range r,
+                             const char *where, const char *var, int deg, lv_err *err)
+{
+    lv_mission_def *d = m->def;
+    lv_slot_def *sd = &d->slots[s];
+    sd->range = r;
+    lv_range_text(r, m->rules[s], sizeof m->rules[s]);
+    if (lv_range_holds(r, sd->value))
+        return LV_OK;
+    lv_range shown = r; /* the rule in the unit the value is written in */
+    if (deg) {
+        shown.lo /= LV_DEG;
+        shown.hi /= LV_DEG;
+    }
+    char rule[96];
+    lv_range_text(shown, rule, sizeof rule);
+    const char *u = deg ? "deg" : sd->unit;
+    return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s', %s: %s%s must be %s%s%s, found %g",
+                   d->path, sd->loc.line, sd->loc.column, ph->name, where, var, deg ? "_deg" : "",
+                   rule, u[0] ? " " : "", u, deg ? sd->value / LV_DEG : sd->value);
+}
+
 /* An end on a variable names a state, derivative or output of the phase's model (a parameter
- * never crosses); its slot takes the variable's unit; `_deg` only for an angle. */
-static lv_status check_var_end(lv_mission_def *d, const lv_phase_def *ph, const lv_end_def *e,
+ * never crosses); its slot takes the variable's unit and range; `_deg` only for an angle. */
+static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_end_def *e,
                                const lv_model_def *md, lv_err *err)
 {
+    lv_mission_def *d = m->def;
     if (e->kind != LV_END_VAR)
         return LV_OK;
     lv_var_kind kind;
@@ -281,6 +323,10 @@ static lv_status check_var_end(lv_mission_def *d, const lv_phase_def *ph, const 
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     free(sd->unit);
     sd->unit = u;
+    if (strcmp(unit, "rad") == 0 || strcmp(unit, "rad/s") == 0)
+        return narrow_slot(m, ph, e->value, strcmp(unit, "rad") == 0 ? LV_RANGE_ANGLE
+                                                                     : LV_RANGE_RATE,
+                           "end", e->var, e->deg, err);
     return LV_OK;
 }
 
@@ -342,9 +388,13 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
             }
             free(sd->unit);
             sd->unit = unit;
+            const lv_range r = var_range(ph->type, ph->set_names[i], var->unit, sd->range);
+            if ((st = narrow_slot(m, ph, ph->set_values[i], r, "set", ph->set_names[i],
+                                  ph->set_deg != NULL && ph->set_deg[i], err)) != LV_OK)
+                break;
         }
         for (size_t j = 0; j < ph->n_ends && st == LV_OK; j++)
-            st = check_var_end(d, ph, &ph->ends[j], md, err);
+            st = check_var_end(m, ph, &ph->ends[j], md, err);
         for (size_t j = 0; j < d->n_params; j++) {
             lv_var_kind kind;
             size_t idx;

@@ -18,8 +18,10 @@
 
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_planet.h"
+#include "lvsim/lv_sim.h"
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
+#include "lvsim/lv_units.h"
 
 /* Where a value came from in the mission file, for messages after parsing. */
 typedef struct lv_src_loc {
@@ -265,5 +267,21 @@ void lv_range_text(lv_range r, char *text, size_t cap);
 #define LV_RANGE_ANY ((lv_range){-HUGE_VAL, HUGE_VAL, 0, 0})
 #define LV_RANGE_POS ((lv_range){0.0, HUGE_VAL, 1, 0})      /* > 0 */
 #define LV_RANGE_NONNEG ((lv_range){0.0, HUGE_VAL, 0, 0})   /* >= 0 */
+/* A relative integration tolerance: what lv_simulate accepts (lv_sim.h). */
+#define LV_RANGE_TOLERANCE ((lv_range){LV_TOLERANCE_MIN, LV_TOLERANCE_MAX, 0, 0})
+
+/* Angles (rad) and rates (rad/s) by kind: every angle of a mission file takes one, so that a
+ * value no vehicle has (theta_deg: 1e300) is refused where it is written (docs/mission-format.md,
+ * "Angle ranges"). In degrees: */
+#define LV_RANGE_LAT ((lv_range){-0.5 * LV_PI, 0.5 * LV_PI, 0, 0})  /* [-90, 90]: latitudes,
+                                                    flight-path angles, a 3-2-1 pitch */
+#define LV_RANGE_TURN ((lv_range){-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}) /* [-360, 360]: longitudes,
+                                                    headings, yaw, roll and bank angles */
+#define LV_RANGE_AERO_ANGLE ((lv_range){-LV_PI, LV_PI, 0, 0})     /* [-180, 180]: angle of
+                                                    attack, sideslip */
+#define LV_RANGE_ANGLE ((lv_range){-4.0 * LV_PI, 4.0 * LV_PI, 0, 0}) /* [-720, 720]: any other
+                                                    angle (two turns either way) */
+#define LV_RANGE_RATE ((lv_range){-20.0 * LV_PI, 20.0 * LV_PI, 0, 0}) /* [-3600, 3600] deg/s:
+                                                    10 rev/s (LV_DOF6_RATE_MAX) */
 
 #endif

@@ -68,17 +68,18 @@ int lv_range_holds(lv_range r, double v)
     return 1;
 }
 
+/* Ten digits: a bound such as pi/2 rad reads 1.570796327, not 1.5708 (which it is not). */
 void lv_range_text(lv_range r, char *text, size_t cap)
 {
     const int lo = isfinite(r.lo), hi = isfinite(r.hi);
     if (!lo && !hi)
         snprintf(text, cap, "finite");
     else if (lo && !hi)
-        snprintf(text, cap, "%s %g", r.lo_open ? ">" : ">=", r.lo);
+        snprintf(text, cap, "%s %.10g", r.lo_open ? ">" : ">=", r.lo);
     else if (!lo)
-        snprintf(text, cap, "%s %g", r.hi_open ? "<" : "<=", r.hi);
+        snprintf(text, cap, "%s %.10g", r.hi_open ? "<" : "<=", r.hi);
     else
-        snprintf(text, cap, "%s %g and %s %g", r.lo_open ? ">" : ">=", r.lo,
+        snprintf(text, cap, "%s %.10g and %s %.10g", r.lo_open ? ">" : ">=", r.lo,
                  r.hi_open ? "<" : "<=", r.hi);
 }
 
@@ -435,7 +436,7 @@ static lv_status regular_file(const lv_pctx *c, const lv_ynode *at, const char *
     struct stat sb;
     if (stat(path, &sb) != 0)
         return lv_pk_fail(c, at, "%s: %s: cannot read '%s': %s", what, key, path,
-                          errno == ENOENT ? "no such file" : "cannot access the file");
+                          LV_STRERROR(errno));
     if (!S_ISREG(sb.st_mode))
         return lv_pk_fail(c, at, "%s: %s: '%s' is not a regular file", what, key, path);
     return LV_OK;
@@ -1007,7 +1008,7 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
     struct stat sb;
     if (stat(*file_out, &sb) != 0)
         return lv_pk_fail(c, at, "%s: %s: cannot read '%s': %s", what, key->text, *file_out,
-                    errno == ENOENT ? "no such file" : "cannot access the file");
+                          LV_STRERROR(errno));
     if (!S_ISREG(sb.st_mode))
         return lv_pk_fail(c, at, "%s: %s: '%s' is not a regular file", what, key->text,
                           *file_out);
@@ -1472,8 +1473,10 @@ static lv_status end_slot(const lv_pctx *c, const lv_ynode *v, const char *what,
                        : e->kind == LV_END_TIME ? "s"
                        : e->kind == LV_END_VAR  ? (e->deg ? "rad" : "")
                                                 : "m";
-    const lv_range range = e->kind == LV_END_SPEED ? LV_RANGE_NONNEG
-                           : e->kind == LV_END_TIME ? (lv_range){1e-9, HUGE_VAL, 0, 0} /* the clock tells it from 0 */
+    /* a time the clock tells from 0; an end on a variable takes its variable's range when the
+     * model is built (mission.c) */
+    const lv_range range = e->kind == LV_END_SPEED  ? LV_RANGE_NONNEG
+                           : e->kind == LV_END_TIME ? (lv_range){1e-9, HUGE_VAL, 0, 0}
                                                     : LV_RANGE_ANY;
     if (v == NULL)
         return lv_pk_slot_default(c, slot, unit, 0.0, range, &e->value);
@@ -1537,6 +1540,9 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
         if ((st = lv_pk_text(c, output, what, "output", &name)) != LV_OK ||
             (st = lv_pk_need(c, n, what, "value", &v)) != LV_OK)
             return st;
+        if (output->len > 255)
+            return lv_pk_fail(c, output, "%s: output: a variable name of 1 to 255 characters "
+                              "expected", what);
         e->kind = LV_END_VAR;
         char base[256];
         e->deg = strip_deg(name, base, sizeof base);
@@ -1621,7 +1627,7 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
     lv_slot *out[3] = { &ph->tolerance, &ph->output_interval, &ph->fixed_step };
     for (int j = 0; j < 3; j++) {
         snprintf(slot, sizeof slot, "%s.integrator.%s", phase, nkeys[j]);
-        const lv_range r = j == 0 ? LV_RANGE_POS : LV_RANGE_NONNEG;
+        const lv_range r = j == 0 ? LV_RANGE_TOLERANCE : LV_RANGE_NONNEG;
         if ((v = lv_pk_get(n, nkeys[j])) != NULL)
             st = lv_pk_slot(c, v, what, nkeys[j], slot, units[j], r, 0, out[j]);
         else
@@ -1676,6 +1682,7 @@ static lv_status parse_set(const lv_pctx *c, const lv_ynode *n, const char *phas
                 return lv_pk_fail(c, k, "%s: '%s' set twice (line %d)", what, base,
                             ph->set_locs[j].line);
         snprintf(slot, sizeof slot, "%s.set.%s", phase, base);
+        /* its variable's range once the model is built (mission.c) */
         if ((st = lv_pk_slot(c, v, what, k->text, slot, "", LV_RANGE_ANY, deg,
                              &ph->set_values[i])) != LV_OK)
             return st;
@@ -2215,6 +2222,26 @@ static const char *epoch_check(const char *s)
     return NULL;
 }
 
+/* The mission's `key` (a scalar) holds at most `max` bytes and, with `line`, no control
+ * character: what every result file copies stays bounded and one line (an OEM header, a CSV
+ * title). */
+static lv_status text_bounded(const lv_pctx *c, const lv_ynode *v, const char *key, size_t max,
+                              int line)
+{
+    if (v->kind != LV_YNODE_SCALAR)
+        return LV_OK; /* lv_pk_text says what it is */
+    if (v->len > max)
+        return lv_pk_fail(c, v, "mission: %s of %zu bytes: at most %zu (it is copied into every "
+                          "result file)", key, v->len, max);
+    for (size_t i = 0; line && i < v->len; i++) {
+        const unsigned char ch = (unsigned char)v->text[i];
+        if (ch < 0x20 || ch == 0x7f)
+            return lv_pk_fail(c, v, "mission: %s: one line of text without control characters "
+                              "(byte %zu is 0x%02x)", key, i + 1, ch);
+    }
+    return LV_OK;
+}
+
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
@@ -2232,6 +2259,7 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         (st = lv_pk_need(c, root, "top level", "mission", &info)) != LV_OK ||
         (st = lv_pk_check_map(c, info, "mission", mkeys)) != LV_OK ||
         (st = lv_pk_need(c, info, "mission", "name", &v)) != LV_OK ||
+        (st = text_bounded(c, v, "name", LV_MISSION_NAME_MAX, 1)) != LV_OK ||
         (st = get_str(c, v, "mission", "name", &m->name)) != LV_OK)
         return st;
     if ((v = lv_pk_get(info, "epoch")) != NULL) {
@@ -2246,7 +2274,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
             return lv_pk_nomem(c);
     }
     if ((v = lv_pk_get(info, "description")) != NULL && !lv_yaml_is_null(v) &&
-        (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK)
+        ((st = text_bounded(c, v, "description", LV_DESCRIPTION_MAX, 0)) != LV_OK ||
+         (st = get_str(c, v, "mission", "description", &m->description)) != LV_OK))
         return st;
     if ((st = parse_env(c, lv_pk_get(root, "environment"))) != LV_OK ||
         (st = parse_params(c, lv_pk_get(root, "parameters"))) != LV_OK)
@@ -2307,8 +2336,8 @@ lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *er
     *out = NULL;
     f = fopen(path, "rb");
     if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file%s", path,
-                       errno == ENOENT ? ": no such file" : "");
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file: %s", path,
+                       LV_STRERROR(errno));
     for (;;) {
         if (len == cap) {
             cap = cap ? 2 * cap : 4096;
@@ -2325,7 +2354,7 @@ lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *er
             break;
     }
     if (ferror(f)) {
-        st = lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(errno ? errno : EIO));
         goto fail;
     }
     const char *slash = strrchr(path, '/');

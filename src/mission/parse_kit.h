@@ -14,6 +14,10 @@
 #include "mission/yaml_tree.h"
 
 #define LV_NAME_MAX 64 /* stage, engine and phase names: [A-Za-z0-9_-], engines also '.' */
+/* The mission's name and description are copied into every result file (summary.json, the
+ * exports, the report, the manifest): bounded, in bytes of UTF-8 (docs/mission-format.md). */
+#define LV_MISSION_NAME_MAX 256     /* one line: no control characters */
+#define LV_DESCRIPTION_MAX 4096
 #define LV_WHAT_MAX 160 /* "phase 'P2', inputs" */
 
 typedef struct lv_pctx {

@@ -34,12 +34,12 @@ static const lv_var mission_params[] = {
 };
 
 static const lv_range mission_param_ranges[] = {
-    {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, /* start_lat in [-90, 90] deg */
-    {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {-HUGE_VAL, HUGE_VAL, 0, 0},       /* start_h: the model's domain decides */
-    {0.0, HUGE_VAL, 0, 0},             /* start_vel >= 0 */
-    {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {-HUGE_VAL, HUGE_VAL, 0, 0},
+    LV_RANGE_LAT,                /* start_lat in [-90, 90] deg */
+    LV_RANGE_TURN,               /* start_lon in [-360, 360] deg */
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, /* start_h: the model's domain and the impact end decide */
+    {0.0, HUGE_VAL, 0, 0},       /* start_vel >= 0 */
+    LV_RANGE_LAT,                /* start_fpa in [-90, 90] deg */
+    LV_RANGE_TURN,               /* start_chi in [-360, 360] deg */
 };
 
 static const lv_traj_col traj[] = {
@@ -105,7 +105,10 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
         if (v != NULL && vd != NULL)
             return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
                               names[k], deg);
-        const lv_range r = k == 3 ? LV_RANGE_NONNEG : LV_RANGE_ANY;
+        /* alpha, beta within [-180, 180] deg, the bank mu within a turn either way */
+        const lv_range r = k == 3   ? LV_RANGE_NONNEG
+                           : k == 2 ? LV_RANGE_TURN
+                                    : LV_RANGE_AERO_ANGLE;
         if (v == NULL && vd == NULL && (k < 3 ? steered : throttle_elsewhere)) {
             cfg->u[k] = LV_NO_SLOT;
             continue;

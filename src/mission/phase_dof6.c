@@ -52,8 +52,8 @@ static const lv_var mission_params[] = {
 };
 
 static const lv_range mission_param_ranges[] = {
-    {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {0.0, HUGE_VAL, 0, 0},             {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    LV_RANGE_LAT,          LV_RANGE_TURN, {-HUGE_VAL, HUGE_VAL, 0, 0}, /* lat, lon, h */
+    {0.0, HUGE_VAL, 0, 0}, LV_RANGE_LAT,  LV_RANGE_TURN,               /* vel, fpa, chi */
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
     {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},

@@ -30,11 +30,14 @@ static const lv_var mission_params[] = {
 };
 
 static const lv_range mission_param_ranges[] = {
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {0.0, HUGE_VAL, 0, 0}, /* start_vel >= 0 */
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0},
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, {-HUGE_VAL, HUGE_VAL, 0, 0}, /* start_x, start_y */
+    {-HUGE_VAL, HUGE_VAL, 0, 0}, /* start_z: the model's domain and the impact end decide */
+    {0.0, HUGE_VAL, 0, 0},       /* start_vel >= 0 */
+    LV_RANGE_LAT,                /* start_fpa in [-90, 90] deg */
+    LV_RANGE_TURN, LV_RANGE_TURN, /* start_chi, start_psi in [-360, 360] deg */
+    LV_RANGE_LAT,                 /* start_theta: a 3-2-1 pitch, [-90, 90] deg */
+    LV_RANGE_TURN,                /* start_phi */
+    LV_RANGE_RATE, LV_RANGE_RATE, LV_RANGE_RATE, /* p, q, r within 10 rev/s */
 };
 
 /* Merged trajectories: the states, the stage mass (written by the summary), and where the

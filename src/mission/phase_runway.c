@@ -157,9 +157,11 @@ static lv_status parse_roll(const lv_pctx *c, const lv_ynode *phase, const char 
                               "its parent ended", what, key);
         if (v == NULL && vd == NULL && (to != NULL ? required_to[k] : required_la[k]))
             return lv_pk_fail(c, n, "%s: '%s' is missing", what, angle[k] ? deg : key);
-        /* angles of attack on the wheels within +-90 deg (the thrust points forwards) */
+        /* angles of attack on the wheels within +-90 deg (the thrust points forwards), the
+         * rotation rate >= 0 within 10 rev/s (LV_RANGE_RATE) */
         const lv_range r = k == R_VROT || k == R_VSTOP ? LV_RANGE_POS
-                           : k == R_AG || k == R_AROT ? (lv_range){-0.5 * LV_PI, 0.5 * LV_PI, 0, 0}
+                           : k == R_AG || k == R_AROT ? LV_RANGE_LAT
+                           : k == R_RATE              ? (lv_range){0.0, 20.0 * LV_PI, 0, 0}
                            : k == R_S0                ? LV_RANGE_ANY
                                                       : LV_RANGE_NONNEG;
         snprintf(slot, sizeof slot, "%s.%s.%s", name, mode, names[k]);

@@ -19,6 +19,7 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "core/units.h"
+#include "integrate/integrator.h"
 #include "lvsim/lv_dispersion.h"
 #include "lvsim/lv_io.h"
 #include "mission/dispersion.h"
@@ -297,7 +298,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
     s->stop_time = v[ph->t_stop];
     s->method = opt && opt->method ? opt->method : (ph->method ? ph->method : "dassl");
-    s->tolerance = opt && opt->tolerance > 0.0 ? opt->tolerance : v[ph->tolerance];
+    s->tolerance = opt && opt->tolerance != 0.0 ? opt->tolerance : v[ph->tolerance];
     s->number_of_intervals = ph->intervals;
     s->output_interval = v[ph->output_interval];
     s->fixed_step = v[ph->fixed_step];
@@ -624,12 +625,40 @@ static void *worker(void *arg)
     return NULL;
 }
 
+/* The options that override every phase's settings: a value out of range is refused, never
+ * replaced by the phases' own (only 0 / NULL mean "each phase's own"). */
+static lv_status check_options(const lv_run_options *opt, lv_err *err)
+{
+    if (opt == NULL)
+        return LV_OK;
+    if (opt->tolerance != 0.0 &&
+        !(opt->tolerance >= LV_TOLERANCE_MIN && opt->tolerance <= LV_TOLERANCE_MAX))
+        return lv_fail(err, LV_ERR_INPUT, "run options: tolerance must be >= %g and <= %g, or 0 "
+                       "for each phase's own (got %g)", LV_TOLERANCE_MIN, LV_TOLERANCE_MAX,
+                       opt->tolerance);
+    if (!(opt->output_interval >= 0.0) || !isfinite(opt->output_interval))
+        return lv_fail(err, LV_ERR_INPUT, "run options: output_interval must be > 0 s, or 0 for "
+                       "each phase's own grid (got %g)", opt->output_interval);
+    if (opt->threads < 0)
+        return lv_fail(err, LV_ERR_INPUT, "run options: threads must be >= 0 (0: 2), got %d",
+                       opt->threads);
+    if (opt->method != NULL) {
+        lv_method mth;
+        if (lv_method_parse(opt->method, &mth, err) != LV_OK)
+            return lv_fail_prefix(err, LV_ERR_INPUT, "run options");
+    }
+    return LV_OK;
+}
+
 lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
 {
     const lv_mission_def *d = r->m->def;
+    lv_status ost = check_options(opt, err);
+    if (ost != LV_OK)
+        return ost;
     if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
-                       strerror(errno));
+                       LV_STRERROR(errno));
     /* the dispersed tables with this run's factors (phase builds only read them) */
     lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, &r->tables, err);
     if (tst != LV_OK)

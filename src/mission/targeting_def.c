@@ -72,8 +72,13 @@ static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tva
         return lv_pk_fail(c, x, "%s: max %g must be greater than min %g", what, v->hi, v->lo);
     if ((x = lv_pk_get(n, "start")) != NULL)
         v->start_loc = loc_of(x);
-    if ((x = lv_pk_get(n, "scale")) != NULL && !(v->scale > 0.0))
-        return lv_pk_fail(c, x, "%s: scale must be > 0, found %g", what, v->scale);
+    const double w = v->hi - v->lo;
+    if ((x = lv_pk_get(n, "scale")) != NULL && !lv_tscale_ok(v->scale, w))
+        return lv_pk_fail(c, x, "%s: scale %g is outside [%g, %g], %g to %g times max - min: a "
+                          "typical change of the variable, in which it is solved for and from "
+                          "which its difference steps follow (default (max - min) / 10)", what,
+                          v->scale, LV_TSCALE_REL_MIN * w, LV_TSCALE_REL_MAX * w,
+                          LV_TSCALE_REL_MIN, LV_TSCALE_REL_MAX);
     if ((x = lv_pk_get(n, "step")) != NULL && !(v->step > 0.0))
         return lv_pk_fail(c, x, "%s: step must be > 0, found %g", what, v->step);
     if (x != NULL && !(v->step < 0.5 * (v->hi - v->lo)))
@@ -316,10 +321,18 @@ lv_status lv_targeting_resolve_var(const lv_mission *m, const char *name, double
         return lv_fail(err, LV_ERR_INPUT, "variable '%s': the %s %.10g %s is outside [%g, %g]%s",
                        name, given ? "start" : "start (the mission file's value)", start, unit,
                        lo, hi, given ? "" : ": give a start");
-    if (!(scale > 0.0) || !isfinite(scale))
-        scale = (hi - lo) / 10.0;
-    if (!(step > 0.0) || !isfinite(step))
-        step = NAN;
+    /* NAN: the defaults; any other value is held to its rule, never replaced */
+    const double w = hi - lo;
+    if (isnan(scale))
+        scale = w / 10.0;
+    else if (!lv_tscale_ok(scale, w))
+        return lv_fail(err, LV_ERR_INPUT, "variable '%s': scale %g %s is outside [%g, %g], %g "
+                       "to %g times max - min (NAN: (max - min) / 10)", name, scale, unit,
+                       LV_TSCALE_REL_MIN * w, LV_TSCALE_REL_MAX * w, LV_TSCALE_REL_MIN,
+                       LV_TSCALE_REL_MAX);
+    if (!isnan(step) && !(step > 0.0 && step < 0.5 * w))
+        return lv_fail(err, LV_ERR_INPUT, "variable '%s': step %g %s must be > 0 and less than "
+                       "half the range max - min = %g (NAN: from the scale)", name, step, unit, w);
     *out = (lv_tvar){i, deg, lo, hi, start, scale, step};
     return LV_OK;
 }

@@ -15,6 +15,22 @@
 #include "mission/mission.h"
 #include "mission/parse_kit.h"
 
+/* A variable's scale (the size of a typical change, in which it is solved for and from which
+ * its difference steps follow) lies within [LV_TSCALE_REL_MIN, LV_TSCALE_REL_MAX] x (max - min):
+ * beyond, the solvers answer "NOT MET" for a problem they solve at the default scale (measured,
+ * the closed-form shot of test_target: Newton fails from 1e-6 x (max - min) down, where the
+ * steps drown in the finals' round-off, COBYLA from 10 x (max - min) up, whose first simplex
+ * leaves the bounds). The examples use 4e-4 to 0.1. */
+#define LV_TSCALE_REL_MIN 1e-4
+#define LV_TSCALE_REL_MAX 1.0
+/* 1 when scale lies in that range for bounds max - min = w (a written 0.0055 for w = 55 is in:
+ * the bounds allow 1e-9 of round-off) */
+static inline int lv_tscale_ok(double scale, double w)
+{
+    return scale >= LV_TSCALE_REL_MIN * w * (1.0 - 1e-9) &&
+           scale <= LV_TSCALE_REL_MAX * w * (1.0 + 1e-9);
+}
+
 /* A variable resolved against a mission: the parameter and its unit. */
 typedef struct lv_tvar {
     size_t slot;        /* the parameter's index */

@@ -98,6 +98,24 @@ static lv_event_action asc_event(double t, double *x, const double *p, const int
     return LV_EVENT_CONTINUE;
 }
 
+/* The domain of both 1-D models: above the ground, where the impact is (h = 0). A start below
+ * it is refused by lv_simulate with the value and the bound; the run never gets there, since
+ * the impact (the same function) ends it first. */
+static const lv_domain_def ground_domain[] = {
+    {"h", "m", 0.0,
+     "the body is under the ground, where its impact (h falls through 0) ends the run: start "
+     "at h >= 0"},
+};
+
+static int ground_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)t;
+    (void)p;
+    (void)inst;
+    q[0] = x[0]; /* h: state 0 of both */
+    return 0;
+}
+
 static int asc_outputs_fn(double t, const double *x, const double *p, double *y, void *inst)
 {
     (void)t;
@@ -126,6 +144,9 @@ const lv_model_def lv_model_vertical_ascent = {
     .event_g = asc_g,
     .on_event = asc_event,
     .outputs_fn = asc_outputs_fn,
+    .n_domain = 1,
+    .domain = ground_domain,
+    .domain_q = ground_q,
 };
 
 /* ---- free fall ------------------------------------------------------------------ */
@@ -182,6 +203,9 @@ const lv_model_def lv_model_free_fall = {
     .start = ff_start,
     .rhs = ff_rhs,
     .event_g = ff_g, /* no on_event: the first event ends the run */
+    .n_domain = 1,
+    .domain = ground_domain,
+    .domain_q = ground_q,
 };
 
 /* ---- harmonic oscillator ----------------------------------------------------------- */

@@ -480,6 +480,17 @@ static int flat6_init(double t0, const double *x, const double *p, void *inst)
     (void)t0;
     (void)p;
     lv_flat6 *s = inst;
+    s->why[0] = '\0';
+    /* below an impact end's level (beyond a parent's located impact, 1 mm) the body would start
+     * under the ground it is to hit and never cross it */
+    for (size_t k = 0; k < s->n_ends; k++)
+        if (s->ends[k].kind == LV_FLAT_END_IMPACT && x[LV_FLAT_Z] < s->ends[k].value - 1e-3) {
+            snprintf(s->why, sizeof s->why, "the start altitude z = %.9g m is below the level "
+                     "%g m of its end '%s': the body would start under the ground it is to hit, "
+                     "and never cross it (start higher, or give the ground's level: {impact: "
+                     "%.6g})", x[LV_FLAT_Z], s->ends[k].value, s->event_names[k], x[LV_FLAT_Z]);
+            return 1;
+        }
     s->m_burnout = x[LV_FLAT_M] - s->stages[0].prop_mass;
     s->burning = s->stages[0].prop_mass > 0.0 && s->stages[0].n_engines > 0;
     for (size_t e = 0; e < s->stages[0].n_engines; e++)

@@ -76,7 +76,7 @@ static lv_status make_dir(const char *path, lv_err *err)
         return lv_fail(err, LV_ERR_IO, "cannot create directory '%s': a file of that name exists",
                        path);
     }
-    return lv_fail(err, LV_ERR_IO, "cannot create directory '%s': %s", path, strerror(errno));
+    return lv_fail(err, LV_ERR_IO, "cannot create directory '%s': %s", path, LV_STRERROR(errno));
 }
 
 lv_status lv_plot_run(const char *outdir, lv_err *err)

@@ -47,20 +47,13 @@ static int bare_name(const char *s)
     return s[0] != '\0' && strchr(s, '/') == NULL && strcmp(s, ".") != 0 && strcmp(s, "..") != 0;
 }
 
-static const char *why(int e, char *buf, size_t cap)
-{
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "error %d", e);
-    return buf;
-}
-
 /* Whole file into a NUL-terminated buffer. */
 static lv_status slurp(const char *path, char **out, lv_err *err)
 {
     char text[128];
     FILE *f = fopen(path, "rb");
     if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, why(errno, text, sizeof text));
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, lv_strerror(errno, text, sizeof text));
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     while (buf != NULL) {
@@ -76,13 +69,13 @@ static lv_status slurp(const char *path, char **out, lv_err *err)
         buf = nb;
         cap *= 2;
     }
-    const int bad = ferror(f);
+    const int bad = ferror(f), e = errno;
     fclose(f);
     if (buf == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
     if (bad) {
         free(buf);
-        return lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
     }
     buf[n] = '\0';
     *out = buf;
@@ -510,7 +503,7 @@ lv_status lv_results_load(const lv_results *r, const char *file, const lv_result
     FILE *f = fopen(path, "r");
     if (f == NULL) {
         lv_status st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path,
-                               why(errno, reason, sizeof reason));
+                               lv_strerror(errno, reason, sizeof reason));
         lv_results_table_free(t);
         return st;
     }
@@ -582,7 +575,7 @@ lv_status lv_results_load(const lv_results *r, const char *file, const lv_result
         t->n_rows++;
     }
     if (ferror(f)) {
-        st = lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(errno ? errno : EIO));
         goto fail;
     }
     if (t->cols == NULL) {

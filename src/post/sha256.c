@@ -15,21 +15,13 @@
 #include "core/status.h"
 #include "lvsim/lv_outdir.h"
 
-/* The system's text for errno value e (strerror_r: no shared buffer between threads). */
-static const char *why(int e, char *buf, size_t cap)
-{
-    if (strerror_r(e, buf, cap) != 0)
-        snprintf(buf, cap, "error %d", e);
-    return buf;
-}
-
 lv_status lv_sha256_file(const char *path, char hex[65], unsigned long long *bytes, lv_err *err)
 {
     char text[128];
     hex[0] = '\0';
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, why(errno, text, sizeof text));
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, lv_strerror(errno, text, sizeof text));
     struct sha256_ctx ctx;
     sha256_init(&ctx);
     unsigned char buf[1 << 16];
@@ -43,7 +35,7 @@ lv_status lv_sha256_file(const char *path, char hex[65], unsigned long long *byt
     const int e = errno;
     fclose(fp);
     if (bad)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, why(e ? e : EIO, text, sizeof text));
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, lv_strerror(e ? e : EIO, text, sizeof text));
     unsigned char d[SHA256_DIGEST_SIZE];
     sha256_digest(&ctx, sizeof d, d);
     for (size_t i = 0; i < sizeof d; i++)

@@ -312,9 +312,9 @@ static lv_status check_settings(const lv_model_def *d, const lv_sim_settings *s,
     if (s->stop_time < s->start_time)
         return lv_fail(err, LV_ERR_INPUT, "model '%s': stopTime %g s is before startTime %g s", mn,
                        s->stop_time, s->start_time);
-    if (!(s->tolerance > 0.0) || !isfinite(s->tolerance))
-        return lv_fail(err, LV_ERR_INPUT, "model '%s': tolerance must be > 0 (got %g)", mn,
-                       s->tolerance);
+    if (!(s->tolerance >= LV_TOLERANCE_MIN && s->tolerance <= LV_TOLERANCE_MAX))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': tolerance must be >= %g and <= %g (got %g)",
+                       mn, LV_TOLERANCE_MIN, LV_TOLERANCE_MAX, s->tolerance);
     if (s->number_of_intervals < 0)
         return lv_fail(err, LV_ERR_INPUT, "model '%s': numberOfIntervals must be >= 0 (got %d)",
                        mn, s->number_of_intervals);

@@ -31,7 +31,7 @@ static lv_status read_all(const char *path, char **out, size_t *len, lv_err *err
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, LV_STRERROR(errno));
     size_t cap = 4096, n = 0;
     char *s = malloc(cap);
     while (s != NULL) {
@@ -50,13 +50,13 @@ static lv_status read_all(const char *path, char **out, size_t *len, lv_err *err
             cap *= 2;
         }
     }
-    const int bad = ferror(f);
+    const int bad = ferror(f), e = errno;
     fclose(f);
     if (s == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     if (bad) {
         free(s);
-        return lv_fail(err, LV_ERR_IO, "%s: read error", path);
+        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
     }
     s[n] = '\0';
     *out = s;
@@ -455,7 +455,7 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
     }
     fwrite(text + at, 1, len - at, a.fp);
     if (fflush(a.fp) != 0) {
-        st = lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", a.tmp, strerror(errno));
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", a.tmp, LV_STRERROR(errno));
         goto done;
     }
 

@@ -48,7 +48,7 @@ expect 0 "result: $work/ff.mat, $work/ff.csv" -- "$lvsim" simulate free_fall --s
 expect 0 '"ok":[[:space:]]*true' -- "$lvsim" simulate oscillator --json --format none --final x
 expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
-expect 2 "unknown integration method 'rk45'" -- "$lvsim" simulate oscillator --method rk45 --format none
+expect 2 "--method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got .rk45." -- "$lvsim" simulate oscillator --method rk45 --format none
 expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator --stop -1 --format none
 expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
 # A run that fails in the integrator exits 3 and names model, time and reason.
@@ -430,6 +430,92 @@ targeting:
 YAML
 expect 2 "the converged values make a mission that does not load, not written" -- "$lvsim" target "$work/two.yaml" -o "$work/two_conv.yaml"
 [ ! -e "$work/two_conv.yaml" ] && [ ! -e "$work/two_conv.yaml.tmp" ] && pass=$((pass + 1)) || { echo "FAIL: an unloadable converged file was left"; fails=$((fails + 1)); }
+
+# Issue 22, item 6: no silent wrong answer from the known classes. Each refusal names the
+# file:line:column (a mission file) or the option (the command line) and exits 2; check and
+# run refuse the same files.
+mission="$src/examples/paper-test-case/mission.yaml"
+refused() { # refused PATTERN MISSION: check and run both exit 2 with PATTERN; run writes nothing
+  expect 2 "$1" -- "$lvsim" check "$2"
+  rm -rf "$work/refused"
+  expect 2 "$1" -- "$lvsim" run "$2" -o "$work/refused" -q --no-plots
+  [ ! -e "$work/refused" ] && pass=$((pass + 1)) || { echo "FAIL: run of refused $2 wrote"; fails=$((fails + 1)); }
+}
+# (4) a system error names the system's reason (lv_strerror, the one helper), never "error 2"
+ln -s "$work/nowhere/x" "$work/dangling"
+expect 2 "results folder '$work/dangling' is a link that leads nowhere: No such file or directory$" -- \
+  "$lvsim" run "$mission" -o "$work/dangling" -q --no-plots
+cp -R "$src/examples/sounding-rocket" "$work/sr"
+touch "$work/sr/plain"
+sed 's|CD: cd_mach.csv|CD: plain/cd_mach.csv|' "$work/sr/mission.yaml" > "$work/sr/under_file.yaml"
+line=$(grep -n "CD: plain/cd_mach.csv" "$work/sr/under_file.yaml" | cut -d: -f1)
+refused "under_file.yaml:$line:[0-9]+: .*cannot read '$work/sr/plain/cd_mach.csv': Not a directory$" "$work/sr/under_file.yaml"
+if [ "$(id -u)" -ne 0 ]; then
+  mkdir "$work/ro" && chmod 0500 "$work/ro"
+  expect 2 "cannot write in '$work/ro' \(the lock file .*\): Permission denied$" -- \
+    "$lvsim" run "$mission" -o "$work/ro/out" -q --no-plots
+  chmod 0700 "$work/ro"
+  chmod 000 "$work/sr/cd_mach.csv"
+  refused "cd_mach.csv: cannot open: Permission denied" "$work/sr/mission.yaml"
+  chmod 0600 "$work/sr/cd_mach.csv"
+else
+  echo "skip: as root, file permissions do not stop lvsim: the read-only results parent and the unreadable table are not tried"
+fi
+# (1) tolerances within [1e-14, 0.1] (lv_sim.h) wherever they enter: a phase (the reproduction:
+# tolerance 10 put the sounding rocket's apogee 5 times too high), and every option
+sed 's/integrator: {output_interval: 0.5}/integrator: {output_interval: 0.5, tolerance: 10}/' \
+  "$src/examples/sounding-rocket/mission.yaml" > "$work/sr/tol10.yaml"
+line=$(grep -n "tolerance: 10}" "$work/sr/tol10.yaml" | cut -d: -f1)
+refused "tol10.yaml:$line:[0-9]+: phase 'boost', integrator: tolerance must be >= 1e-14 and <= 0.1, found 10$" "$work/sr/tol10.yaml"
+expect 0 "^boost\.integrator\.tolerance +1e-06 +- +>= 1e-14 and <= 0\.1 +default$" -- "$lvsim" params "$src/examples/sounding-rocket/mission.yaml"
+for t in 0 -1 10 1e-15; do
+  expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '$t'$" -- "$lvsim" compare "$mission" --tolerance "$t"
+  expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '$t'$" -- "$lvsim" simulate free_fall --tolerance "$t" --format none
+done
+mc_mission="$src/tests/missions/mc/correlated.yaml"
+expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '10'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --tolerance 10
+expect 2 "^lvsim: --method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got 'rk45'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --method rk45
+expect 2 "^lvsim: --method needs an integration method .*, got 'rk45'$" -- "$lvsim" compare "$mission" --method rk45
+expect 2 "^lvsim: --output-interval needs seconds > 0, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --output-interval 0
+expect 2 "^lvsim: --interval needs seconds > 0, got '-1'$" -- "$lvsim" compare "$mission" --interval -1
+[ ! -e "$work/mc" ] && pass=$((pass + 1)) || { echo "FAIL: a refused mc wrote $work/mc"; fails=$((fails + 1)); }
+expect 2 "^lvsim: --interval: '-1' s must be >= 0" -- "$lvsim" simulate free_fall --interval -1 --format none
+expect 0 "tolerance 0.1: ok" -- "$lvsim" simulate free_fall --tolerance 0.1 --format none
+# (2) every angle has the range of its kind (docs/mission-format.md, "Angle ranges"): the
+# reproduction's theta_deg: 1e300, as a parameter and as a phase's set:
+cp -R "$src/examples/paper-test-case" "$work/ang"
+sed 's/start_theta_deg: 0$/start_theta_deg: 1e300/' "$src/examples/paper-test-case/mission.yaml" > "$work/ang/theta.yaml"
+line=$(grep -n "start_theta_deg: 1e300" "$work/ang/theta.yaml" | cut -d: -f1)
+refused "theta.yaml:$line:20: parameters: start_theta_deg must be >= -90 and <= 90 deg, found 1e\+300$" "$work/ang/theta.yaml"
+sed 's/    from: P1$/    from: P1\n    set: {theta_deg: 1e300}/' "$src/examples/paper-test-case/mission.yaml" > "$work/ang/set.yaml"
+line=$(grep -n "theta_deg: 1e300" "$work/ang/set.yaml" | head -1 | cut -d: -f1)
+refused "set.yaml:$line:22: phase 'P2', set: theta_deg must be >= -720 and <= 720 deg, found 1e\+300$" "$work/ang/set.yaml"
+expect 0 "^start_fpa +1\.570796327 +rad +>= -1\.570796327 and <= 1\.570796327 +31$" -- "$lvsim" params "$mission"
+# (3) no start under the ground: a built-in model's domain (h >= 0) and a phase's impact end
+expect 2 "^lvsim: model 'free_fall': the start state at t = 0 s is outside the model's domain: h = -1 m is below its lower bound 0 m" -- \
+  "$lvsim" simulate free_fall --set h=-1 --format none
+expect 2 "h = -3 m is below its lower bound 0 m" -- "$lvsim" simulate vertical_ascent --set h0=-3 --format none
+shot 800 | sed 's/start_h: 0,/start_h: -1,/' > "$work/under.yaml"
+line=$(grep -n "name: flight" "$work/under.yaml" | cut -d: -f1)
+refused "under.yaml:$line:5: phase 'flight': initialisation failed at t = 0 s: the start altitude h = -1 m is below the level 0 m of its end 'impact'" "$work/under.yaml"
+# (5) names: a 10 MB mission name was copied into 7 result files; at most 256 bytes now
+python3 -c "print('mission: {name: ' + 'x' * 10485760 + '}')" > "$work/bigname.yaml"
+sed -n '/^stages:/,$p' "$mission" | sed "s|table: stage1.csv|table: $src/examples/paper-test-case/stage1.csv|; s|table: stage2.csv|table: $src/examples/paper-test-case/stage2.csv|; s|file: stage3.mat|file: $src/examples/paper-test-case/stage3.mat|" >> "$work/bigname.yaml"
+refused "bigname.yaml:1:17: mission: name of 10485760 bytes: at most 256 \(it is copied into every result file\)$" "$work/bigname.yaml"
+# (6) a targeting scale within [1e-4, 1] x (max - min): 1e-9 gave a false NOT MET
+shot 800 | sed 's/scale: 1}/scale: 1.0e-9}/' > "$work/scale.yaml"
+expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" check "$work/scale.yaml"
+expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is outside \[0.0055, 55\]" -- "$lvsim" target "$work/scale.yaml"
+# (7) every numeric option held to its range, refused (not replaced) naming the option
+expect 2 "^lvsim: --threads needs a count from 1 to 16 \(the most a run uses\), got '17'$" -- "$lvsim" run "$mission" -o "$work/thr" --threads 17
+[ ! -e "$work/thr" ] && pass=$((pass + 1)) || { echo "FAIL: a refused run wrote $work/thr"; fails=$((fails + 1)); }
+expect 2 "^lvsim: --max-rows needs a whole number >= 1, got '0'$" -- "$lvsim" check "$mission" --max-rows 0
+expect 2 "^lvsim: -j needs a thread count 1..256, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" -j 0
+expect 2 "^lvsim: --restarts needs an integer from 0 to 100, got '-1'$" -- "$lvsim" target "$work/shot.yaml" --restarts -1
+expect 2 "^lvsim: --max-steps: '0' is not a positive count$" -- "$lvsim" simulate free_fall --max-steps 0 --format none
+expect 2 "outside the valid range" -- "$lvsim" atmosphere -6000
+expect 2 "latitude 91 deg must be within \[-90, 90\]" -- "$lvsim" gravity 91 0 0
+expect 2 "longitude 400 deg within \[-360, 360\]" -- "$lvsim" gravity 0 400 0
 
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -824,6 +824,7 @@ def test_disperse_and_execute_reproduce_a_campaign_run_bit_for_bit(tmp_path):
 @pytest.mark.parametrize("kw,word", [
     (dict(tolerance=-1), "tolerance"), (dict(tolerance=0), "tolerance"),
     (dict(tolerance=float("nan")), "tolerance"), (dict(tolerance=float("inf")), "tolerance"),
+    (dict(tolerance=10), "tolerance"), (dict(tolerance=1e-15), "tolerance"),
     (dict(output_interval=-1), "output_interval"),
     (dict(output_interval=float("nan")), "output_interval"),
     (dict(output_interval="x"), "output_interval"), (dict(threads=-1), "threads"),
@@ -836,6 +837,15 @@ def test_bad_execute_options_are_refused_up_front(kw, word):
     assert "liftoff" not in str(e.value) and "phase '" not in str(e.value)
     assert set(r.states.values()) == {"pending"}  # nothing ran
     r.close(); m.close()
+
+
+def test_simulate_holds_the_library_ranges():
+    # issue 22: a tolerance of 10 ran (87 % off), free fall from under the ground missed its
+    # impact; both are refused by lv_simulate itself, so Python callers get the same rule
+    with pytest.raises(lvsim.LvsimError, match=r"tolerance must be >= 1e-14 and <= 0\.1"):
+        lvsim.simulate("free_fall", tolerance=10)
+    with pytest.raises(lvsim.LvsimError, match="h = -1 m is below its lower bound 0 m"):
+        lvsim.simulate("free_fall", initial={"h": -1.0})
 
 
 def test_max_rows_refuses_a_huge_output_before_running():

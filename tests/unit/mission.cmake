@@ -41,3 +41,6 @@ lv_add_unit_test(test_target unit/test_target.c)
 # analytic Isp scatter, table dispersions, bad inputs (tests/missions/mc).
 lv_add_unit_test(test_campaign unit/test_campaign.c)
 target_link_libraries(test_campaign PRIVATE lvsim_post_static PkgConfig::SQLITE3)
+# No silent wrong answer (issue 22, item 6): tolerances, angles, starts below the ground, name
+# lengths and targeting scales refused where they enter, with file:line:column or the rule.
+lv_add_unit_test(test_mission_valid unit/test_mission_valid.c)

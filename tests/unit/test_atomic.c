@@ -2,6 +2,7 @@
  * a file under the final name. Works in atomic_out/ of the test directory. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "core/status.h"
 #include "io/atomic.h"
 
 #define OUT "atomic_out"
@@ -153,6 +155,19 @@ static void test_never_truncates(void)
     CHECK(strcmp(text_of(OUT "/replica/orig.txt", buf, sizeof buf), "replaced\n") == 0);
 }
 
+/* lv_strerror, the one helper of every system error message: the C library's text (glibc,
+ * C locale; POSIX names the errors, glibc's string.h the texts), never "error 13" for a value
+ * it knows; its buffer bounded. */
+static void test_strerror(void)
+{
+    char buf[LV_STRERROR_MAX], tiny[4];
+    CHECK(strcmp(lv_strerror(EACCES, buf, sizeof buf), "Permission denied") == 0);
+    CHECK(strcmp(lv_strerror(ENOENT, buf, sizeof buf), "No such file or directory") == 0);
+    CHECK(strcmp(LV_STRERROR(ENOTDIR), "Not a directory") == 0);
+    CHECK(strlen(lv_strerror(EACCES, tiny, sizeof tiny)) < sizeof tiny);
+    CHECK(strcmp(lv_strerror(EACCES, buf, 0), "") == 0);
+}
+
 /* Errors name the temporary file and the system's reason. */
 static void test_errors(void)
 {
@@ -218,6 +233,7 @@ int main(void)
     test_release();
     test_by_name();
     test_never_truncates();
+    test_strerror();
     test_errors();
     return check_report("test_atomic");
 }

@@ -647,7 +647,7 @@ static void test_refused(void)
                     "already a variable (line 14)");
     snprintf(buf, sizeof buf, V("{name: start_fpa_deg, min: 5, max: 44, scale: 0}") C("%s"),
              ok_con);
-    load_fails(buf, "scale must be > 0, found 0");
+    load_fails(buf, "scale 0 is outside [0.0039, 39], 0.0001 to 1 times max - min");
     snprintf(buf, sizeof buf, V("%s") C("{final: flihgt.downrange, equal: 800, tolerance: 1}"),
              ok_var);
     load_fails(buf, "target_bad.yaml:16:15: targeting: constraint: 'flihgt.downrange': mission "
