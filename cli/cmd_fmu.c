@@ -54,7 +54,7 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
     int code = load_mission(path, &m);
     if (code != EXIT_OK)
         return code;
-    code = check_output_bound(m, max_rows, 0.0, 0);
+    code = check_output_bound_as(m, max_rows, 0.0, 0, "fmu", 1);
     lv_mission_free(m);
     if (code != EXIT_OK)
         return code;

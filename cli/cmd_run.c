@@ -313,7 +313,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     const unsigned phase_files = outputs & (OUT_MAT | OUT_CSV);
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
                           .user = &ui, .progress = on_progress,
-                          .no_rows = !(outputs & OUT_BODY),
+                          .no_rows = !(outputs & OUT_BODY), .max_rows = max_rows,
                           .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
                                             : (phase_files & OUT_MAT ? LV_RESULT_MAT : 0u) |
                                                   (phase_files & OUT_CSV ? LV_RESULT_CSV : 0u)};

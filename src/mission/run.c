@@ -306,6 +306,8 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         s->number_of_intervals = 0;
     }
     s->result_file = NULL;
+    s->stop = opt ? opt->stop : NULL;
+    s->max_rows = opt && opt->max_rows > 0.0 ? opt->max_rows : 0.0;
     c->mass_book = NAN;
     if (par != NULL) {
         c->mass_book = 0.0;
@@ -627,6 +629,12 @@ static void *worker(void *arg)
 lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
 {
     const lv_mission_def *d = r->m->def;
+    if (opt && !(opt->max_rows >= 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "mission '%s': max_rows must be >= 0 (0: no limit), "
+                       "got %g", d->name, opt->max_rows);
+    lv_status cst = lv_run_check_output(r, opt, err); /* nothing runs past the limit */
+    if (cst != LV_OK)
+        return cst;
     if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
                        strerror(errno));
