@@ -15,6 +15,7 @@
 
 #include <mpi.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -573,6 +574,10 @@ lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campa
         st = worker_rank(w, threads, o, err);
     for (int i = 0; i < made; i++)
         lv_mc_worker_free(w[i]);
+    /* the campaign is over: a signal now ends the process as usual (mpirun, when rank 0
+     * exits with 130, terminates the other ranks, which may still be finalizing) */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     MPI_Barrier(MPI_COMM_WORLD);
     MPI_Finalize();
     return st;
