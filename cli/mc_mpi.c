@@ -279,11 +279,12 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
     lv_campaign *c = NULL;
     lv_status st = lv_campaign_open(m, o, &c, err);
     if (st != LV_OK) {
-        /* tell the others there is nothing to do */
+        /* tell the others there is nothing to do, then their one TAG_STOP */
         for (int r = 1; r < world; r++) {
             uint64_t dummy;
             MPI_Recv(&dummy, 0, MPI_BYTE, r, TAG_REQ, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
             MPI_Send(&dummy, 0, MPI_UINT64_T, r, TAG_WORK, MPI_COMM_WORLD);
+            MPI_Send(NULL, 0, MPI_BYTE, r, TAG_STOP, MPI_COMM_WORLD);
         }
         return st;
     }
