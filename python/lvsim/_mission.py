@@ -847,8 +847,8 @@ class Run:
             (SimulationError, "row limit") if it reaches max_rows rows before an end fires.
             None: no limit.
 
-        Ctrl-C (SIGINT) while it runs, from the main thread: every branch stops at its next
-        output row and KeyboardInterrupt is raised; the phases completed before keep their
+        Ctrl-C (SIGINT) while it runs, from the main thread: every branch stops within an
+        integrator step and KeyboardInterrupt is raised; the phases completed before keep their
         results, the interrupted ones are left failed (cancelled) and run at the next
         execute().
 
@@ -931,7 +931,7 @@ class Run:
         if want is not None:
             opt.want = ctypes.cast(want, POINTER(c_ubyte))
         # the stop flag (lv_run_options.stop): set by Ctrl-C or by an exception in
-        # `progress`, it stops every branch at its next output row, at no cost until then
+        # `progress`, it stops every branch within an integrator step, at no cost until then
         cb_state = {}
         stop = c_int(0)
         opt.stop = ctypes.pointer(stop)
@@ -1012,7 +1012,7 @@ class Run:
         """lv_run_execute, stoppable by Ctrl-C. From the main thread (the only one Python
         delivers SIGINT to) the C call runs in a helper thread while this one waits: SIGINT
         sets the C run's stop flag (`stop`, lv_run_options.stop), which cancels every running
-        phase at its next output row and starts no other; once the run has stopped (the run
+        phase within an integrator step and starts no other; once the run has stopped (the run
         consistent), KeyboardInterrupt is raised."""
         if threading.current_thread() is not threading.main_thread():
             return lib.lv_run_execute(h, byref(opt), byref(err))
