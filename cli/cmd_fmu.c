@@ -91,8 +91,9 @@ const cli_cmd cli_cmd_fmu = {
     "                           data files; an existing .fmu of that name is replaced)\n"
     "  --model-identifier ID    the FMU's modelIdentifier, a C identifier (default: the mission's\n"
     "                           and the phase's names, e.g. kourou_leo_ascent)\n"
-    "  --max-rows N             output rows one phase may write (default 1e6), as 'lvsim check'\n"
-    "                           and 'run': the FMU's stepSize is the phase's output interval\n"
+    "  --max-rows N             output rows one phase may write by its stop time (default 1e6),\n"
+    "                           end events or not: the FMU's stepSize is the phase's output\n"
+    "                           interval, and an importer samples it up to stopTime\n"
     "Each option may be given once.\n"
     "Exit codes: 2 bad input (unknown phase, unwritable path, an output that is an input),\n"
     "3 an ancestor phase failed.\n",
