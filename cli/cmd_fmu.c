@@ -57,7 +57,7 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
     int code = load_mission(path, &m);
     if (code != EXIT_OK)
         return code;
-    code = check_output_bound(m, max_rows, 0.0, 0);
+    code = check_output_bound_as(m, max_rows, 0.0, 0, "fmu", 1);
     lv_err err;
     /* never an input; an existing file only with --force (lv_output_check) */
     if (code == EXIT_OK && lv_output_check(out, m, force ? LV_OUTPUT_REPLACE : 0u, &err) != LV_OK)
@@ -98,8 +98,9 @@ const cli_cmd cli_cmd_fmu = {
     "  --force                  replace an existing FILE.fmu (never an input)\n"
     "  --model-identifier ID    the FMU's modelIdentifier, a C identifier (default: the mission's\n"
     "                           and the phase's names, e.g. kourou_leo_ascent)\n"
-    "  --max-rows N             output rows one phase may write (default 1e6), as 'lvsim check'\n"
-    "                           and 'run': the FMU's stepSize is the phase's output interval\n"
+    "  --max-rows N             output rows one phase may write by its stop time (default 1e6),\n"
+    "                           end events or not: the FMU's stepSize is the phase's output\n"
+    "                           interval, and an importer samples it up to stopTime\n"
     "Each option may be given once.\n"
     "Exit codes: 2 bad input (unknown phase, unwritable path, an output that is an input),\n"
     "3 an ancestor phase failed.\n",

@@ -19,12 +19,24 @@
 #include "lvsim/lv_dispersion.h"
 #include "mc.h"
 
+/* The campaign's stop flag (lv_campaign_options.stop): the first SIGINT or SIGTERM sets it
+ * and every running run is cancelled within an integrator step; the handler is reset by that
+ * first signal (SA_RESETHAND), so a second one ends the process as usual. */
 static volatile int stop_flag = 0;
 
 static void on_signal(int sig)
 {
     (void)sig;
     stop_flag = 1;
+}
+
+/* Under mpirun only rank 0 reports what every rank finds the same (the estimate, a refusal). */
+static int is_rank0(void)
+{
+    const char *v = getenv("OMPI_COMM_WORLD_RANK");
+    if (v == NULL)
+        v = getenv("PMI_RANK");
+    return v == NULL || atoi(v) == 0;
 }
 
 typedef struct bar {
@@ -37,6 +49,10 @@ static void fmt_time(double s, char *buf, size_t cap)
 {
     if (!isfinite(s) || s < 0) {
         snprintf(buf, cap, "--:--");
+        return;
+    }
+    if (s >= 360000.0) { /* beyond 100 hours: days, never an overflowing clock */
+        snprintf(buf, cap, "%.3g days", s / 86400.0);
         return;
     }
     const long t = (long)(s + 0.5);
@@ -88,18 +104,76 @@ static int parse_u64(const char *s, uint64_t *out)
     return 1;
 }
 
+/* What the campaign will compute and store, before anything is made: the rows of a run (and
+ * of a kept run) against --max-rows, as lv_campaign_open holds them (lv_run_check_output);
+ * the database, the kept runs' files and the statistics' memory against the machine
+ * (lv_campaign_check_size). The estimate goes to stderr, a refusal too (rank 0 only: every
+ * rank finds the same); returns 0, or 2 refused (1 out of memory). */
+static int check_bounds(const lv_mission *m, const lv_campaign_options *o, int stats)
+{
+    const int say = is_rank0();
+    lv_err err;
+    lv_run *r = NULL;
+    lv_status st = lv_run_create(m, &r, &err);
+    const char *ctx = "mc";
+    char nctx[48];
+    lv_run_options ro = {0};
+    ro.max_rows = o->max_rows;
+    ro.output_interval = o->output_interval > 0.0 ? o->output_interval : 1e300; /* the records */
+    if (st == LV_OK)
+        st = lv_run_check_output(r, &ro, &err);
+    if (st == LV_OK && o->keep_runs > 0) {
+        ro.output_interval = o->output_interval; /* 0: each phase's own grid */
+        ctx = "mc --keep-runs";
+        st = lv_run_check_output(r, &ro, &err);
+    }
+    lv_run_free(r);
+    lv_campaign_size z;
+    if (st == LV_OK) {
+        snprintf(nctx, sizeof nctx, "mc -n %llu", (unsigned long long)o->n_runs);
+        ctx = nctx;
+        st = lv_campaign_check_size(m, o, stats, &z, &err);
+    }
+    if (st != LV_OK) {
+        if (say)
+            fprintf(stderr, "lvsim: %s: %s\n", ctx, err.msg);
+        return exit_code_for_input(st);
+    }
+    if (!say)
+        return EXIT_OK;
+    char rows[32], stop[64] = "", db[32], mem[32], kept[32];
+    snprintf(rows, sizeof rows, z.rows_per_run < 1e7 ? "%.0f" : "%.3g", z.rows_per_run);
+    if (z.rows_by_stop > z.rows_per_run)
+        snprintf(stop, sizeof stop, z.rows_by_stop < 1e7 ? " (%.0f by the stop times)"
+                                                         : " (%.3g by the stop times)",
+                 z.rows_by_stop);
+    human_bytes(z.db_bytes, db, sizeof db);
+    human_bytes(z.stats_bytes, mem, sizeof mem);
+    human_bytes(z.kept_bytes, kept, sizeof kept);
+    fprintf(stderr, "mc: estimate: up to %s output rows a run%s, a database of about %s%s%s%s\n",
+            rows, stop, db, stats ? ", statistics in about " : "", stats ? mem : "",
+            stats ? " of memory" : "");
+    if (z.rows_by_stop > z.rows_per_run)
+        fprintf(stderr, "mc: note: a phase with an end event that does not fire within "
+                "--max-rows %.*g rows fails there\n", o->max_rows < 1e7 ? 7 : 3, o->max_rows);
+    if (o->keep_runs > 0)
+        fprintf(stderr, "mc: estimate: the kept runs' files about %s (phases with an end event "
+                "not counted)\n", kept);
+    return EXIT_OK;
+}
+
 static int run_mc(const cli_cmd *self, int argc, char **argv)
 {
     const char *path = NULL, *outdir = "lvsim-mc", *method = NULL;
     uint64_t n = 0, seed = 0, keep = 0;
     int threads = 1, seed_given = 0, resume = 0, force = 0, plots = 1, stats = 1;
-    double tol = 0.0, dt_out = 0.0;
+    double tol = 0.0, dt_out = 0.0, max_rows = CLI_DEFAULT_MAX_ROWS;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "-n") == 0 || strcmp(a, "-j") == 0 || strcmp(a, "--threads") == 0 ||
             strcmp(a, "--seed") == 0 || strcmp(a, "-o") == 0 || strcmp(a, "--keep-runs") == 0 ||
             strcmp(a, "--method") == 0 || strcmp(a, "--tolerance") == 0 ||
-            strcmp(a, "--output-interval") == 0) {
+            strcmp(a, "--output-interval") == 0 || strcmp(a, "--max-rows") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
@@ -126,6 +200,9 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
             } else if (strcmp(a, "--output-interval") == 0) {
                 if (!parse_interval_option(self, a, v, &dt_out))
                     return EXIT_INPUT;
+            } else if (strcmp(a, "--max-rows") == 0) {
+                if (!parse_count(v, &max_rows))
+                    return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
             } else {
                 outdir = v;
             }
@@ -171,6 +248,18 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
      * replica that replaces it at the end. Rank 0 alone owns it. */
     static const char *const live[] = {"campaign.db", "campaign.db-wal", "campaign.db-shm",
                                        "campaign.db-journal", "runs", NULL};
+    snprintf(db, sizeof db, "%s/campaign.db", outdir);
+    {
+        lv_campaign_options bo; /* the bounds, before anything is made */
+        lv_campaign_options_default(&bo);
+        bo.n_runs = n, bo.threads = threads, bo.db_path = db, bo.resume = resume;
+        bo.keep_runs = keep, bo.output_interval = dt_out, bo.max_rows = max_rows;
+        const int code = check_bounds(m, &bo, stats);
+        if (code != EXIT_OK) {
+            lv_mission_free(m);
+            return code;
+        }
+    }
     lv_outdir *od = NULL;
     if (mc_mpi_env_rank() == 0) {
         st = lv_outdir_open_live(outdir, path, force ? LV_OUTDIR_FORCE : 0u, live, &od, &err);
@@ -199,6 +288,7 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     o.method = method;
     o.tolerance = tol;
     o.output_interval = dt_out;
+    o.max_rows = max_rows;
     bar b = { isatty(2), -1e9, 0 };
     o.progress = show_progress;
     o.user = &b;
@@ -206,6 +296,7 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
+    sa.sa_flags = SA_RESETHAND; /* a second signal ends the process */
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     lv_campaign_progress prog;
@@ -272,6 +363,13 @@ const cli_cmd cli_cmd_mc = {
     "ellipses.csv, outcomes.csv, sensitivity.csv, footprint.kml, plots/ and index.html.\n"
     "Under 'mpirun -np K lvsim mc ...' rank 0 owns the database and hands out runs in\n"
     "chunks to every rank (itself included).\n"
+    "Before anything runs it estimates a run's output rows (refusing, as 'lvsim check', a\n"
+    "phase only its stop time ends beyond --max-rows; a phase with an end event that reaches\n"
+    "it fails in that run), the database's size and the statistics' memory, and refuses\n"
+    "(exit 2) a run count whose database would not fit the free disk space or whose\n"
+    "statistics would not fit the machine's memory. Ctrl-C or SIGTERM stops it within a\n"
+    "second: the runs under way are cancelled and not stored, the database stays\n"
+    "consistent, --resume continues it (exit 130).\n"
     "\n"
     "options:\n"
     "  -n N                    runs 0 .. N-1 (required)\n"
@@ -288,6 +386,7 @@ const cli_cmd cli_cmd_mc = {
     "  --method M, --tolerance T   every phase's integration method / tolerance (1e-14 to\n"
     "                          0.1)\n"
     "  --output-interval S     every phase's output grid (default none: start and end only)\n"
+    "  --max-rows N            output rows a phase of a run may compute (default 1e6)\n"
     "  --no-plots              statistics without plots/ and index.html\n"
     "  --no-stats              the database only\n",
     run_mc,

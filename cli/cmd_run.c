@@ -301,7 +301,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     const unsigned phase_files = outputs & (OUT_MAT | OUT_CSV);
     lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
                           .user = &ui, .progress = on_progress,
-                          .no_rows = !(outputs & OUT_BODY),
+                          .no_rows = !(outputs & OUT_BODY), .max_rows = max_rows,
                           .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
                                             : (phase_files & OUT_MAT ? LV_RESULT_MAT : 0u) |
                                                   (phase_files & OUT_CSV ? LV_RESULT_CSV : 0u)};
@@ -469,9 +469,10 @@ const cli_cmd cli_cmd_run = {
     "run every phase of a mission; results, exports, plots, report",
     "MISSION.yaml [-o OUTDIR] [--force] [--threads N] [--max-rows N] [--outputs LIST]\n"
     "            [--json] [--no-plots] [--quiet]",
-    "Validates the mission (as 'lvsim check'), refuses a phase that would write more than\n"
-    "--max-rows rows, runs every phase in dependency order, independent branches in\n"
-    "parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
+    "Validates the mission (as 'lvsim check'), refuses a phase that only its stop time ends\n"
+    "and that would write more than --max-rows rows (a phase with an end event that reaches\n"
+    "the limit fails there as it runs), runs every phase in dependency order, independent\n"
+    "branches in parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
     "and .csv, body_<stage>.csv, summary.json, the exports (mission.czml, mission.kml,\n"
     "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
     "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"

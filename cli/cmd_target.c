@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,7 +18,17 @@
 
 #include "cli.h"
 #include "common.h"
-#include "progress.h"
+
+/* The solve's stop flag (lv_target_settings.stop): the first SIGINT or SIGTERM sets it and
+ * the evaluation under way is cancelled within an integrator step; the handler is reset by
+ * that first signal (SA_RESETHAND), so a second one ends the process as usual. */
+static volatile int stop_flag = 0;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_flag = 1;
+}
 
 typedef struct target_ui {
     int quiet, tty;
@@ -116,7 +127,7 @@ static int on_evaluation(const lv_target *t, const lv_target_eval *ev, void *use
 {
     (void)t;
     target_ui *ui = user;
-    if (progress_interrupted())
+    if (stop_flag)
         return 1; /* Ctrl-C: the solve ends with the best point so far */
     const double now = wall_now();
     if (!ui->tty || now - ui->drawn < 0.1)
@@ -213,12 +224,14 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     int force = 0;
     lv_target_settings set;
     lv_target_settings_default(&set);
+    double max_rows = CLI_DEFAULT_MAX_ROWS;
     target_ui ui = {0, isatty(2), 0, 0.0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "-o") == 0 || strcmp(a, "--method") == 0 ||
             strcmp(a, "--differences") == 0 || strcmp(a, "--max-iter") == 0 ||
-            strcmp(a, "--threads") == 0 || strcmp(a, "--restarts") == 0) {
+            strcmp(a, "--threads") == 0 || strcmp(a, "--restarts") == 0 ||
+            strcmp(a, "--max-rows") == 0) {
             const char *v = option_value(argc, argv, &i);
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
@@ -241,6 +254,9 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
                     set.method = (lv_target_method)k;
                 else
                     set.differences = (lv_target_diff)k;
+            } else if (strcmp(a, "--max-rows") == 0) {
+                if (!parse_count(v, &max_rows))
+                    return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
             } else {
                 /* counts as the file's keys take them: an integer, also written 1e3 */
                 const int r = strcmp(a, "--restarts") == 0, mi = strcmp(a, "--max-iter") == 0;
@@ -310,6 +326,13 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         lv_mission_free(m);
         return print_err("lvsim target", &err, EXIT_INPUT);
     }
+    /* the start point's rows, as `lvsim check` estimates them; a trial point's are held to
+     * the same limit as it runs (a point refused or stopped by it fails) */
+    const int bcode = check_output_bound(m, max_rows, 0.0, 0);
+    if (bcode != EXIT_OK) {
+        lv_mission_free(m);
+        return bcode;
+    }
     lv_target *t = NULL;
     if ((st = lv_target_create(m, &t, &err)) != LV_OK) {
         lv_mission_free(m);
@@ -323,17 +346,28 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         return usage_error(self, "--method newton meets constraints and optimises no cost; the "
                            "mission has a cost: use auto, slsqp or cobyla", NULL);
     }
-    progress_catch_signals(); /* Ctrl-C: the best point so far, nothing written */
+    struct sigaction sa; /* Ctrl-C, SIGTERM: the best point so far, nothing written */
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
     set.on_iteration = on_iteration;
     set.on_evaluation = on_evaluation;
     set.user = &ui;
+    set.stop = &stop_flag;
+    set.max_rows = max_rows;
     print_problem(m, t, path, ui.quiet);
     fflush(stdout);
     const lv_target_result *res = NULL;
     st = lv_target_solve(t, &set, &res, &err);
     clear_progress(&ui);
     int code = EXIT_OK;
-    if (st != LV_OK) {
+    if (st == LV_ERR_CANCELLED) { /* before the start point was evaluated: no point */
+        fprintf(stderr, "lvsim: interrupted before the start point was evaluated%s\n",
+                out != NULL ? "; nothing written" : "");
+        code = 130;
+    } else if (st != LV_OK) {
         code = print_err("lvsim", &err, exit_code_for(st));
     } else {
         print_result(t, res);
@@ -365,7 +399,7 @@ const cli_cmd cli_cmd_target = {
     "target",
     "solve a mission's targeting section: meet constraints, optimise a cost",
     "MISSION.yaml [-o CONVERGED.yaml [--force]] [--method M] [--differences D] "
-    "[--max-iter N] [--restarts N] [--threads N] [-q]",
+    "[--max-iter N] [--restarts N] [--threads N] [--max-rows N] [-q]",
     "Varies the run parameters listed under the mission's `targeting:` section within their\n"
     "bounds until the phases' final values meet the constraints (damped Newton /\n"
     "Levenberg-Marquardt with finite-difference sensitivities) and, with a cost, optimises\n"
@@ -375,8 +409,11 @@ const cli_cmd cli_cmd_target = {
     "the variables, the constraints' finals with their residuals, the cost) and a progress\n"
     "line on a terminal; then the converged values, or the best point and the constraints\n"
     "that fail (NOT MET, exit 3; NOT CONVERGED when they are met but the optimiser did not\n"
-    "reach its stopping test, exit 3). Ctrl-C stops it with the best point so far (exit\n"
-    "130, nothing written). docs/targeting.md.\n"
+    "reach its stopping test, exit 3). Before it starts, the start point's output rows are\n"
+    "estimated as 'lvsim check' does (a phase only its stop time ends refused beyond\n"
+    "--max-rows, exit 2); a trial point whose phase reaches the limit fails. Ctrl-C or\n"
+    "SIGTERM stops it within a second, inside a long evaluation too, with the best point so\n"
+    "far (exit 130, nothing written). docs/targeting.md.\n"
     "\n"
     "options:\n"
     "  -o CONVERGED.yaml       write the mission with the converged values (comments and\n"
@@ -394,6 +431,7 @@ const cli_cmd cli_cmd_target = {
     "                          gains (default: the file's, else 0)\n"
     "  --threads N             worker threads: sensitivities in parallel, each on a run of\n"
     "                          its own; independent branches of one evaluation (default 2)\n"
+    "  --max-rows N            output rows a phase of an evaluation may compute (default 1e6)\n"
     "  -q, --quiet             no iterations, no progress line: the result only\n",
     target_run,
 };

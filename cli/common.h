@@ -60,11 +60,18 @@ int parse_interval_option(const cli_cmd *cmd, const char *opt, const char *v, do
 /* The default of --max-rows: output rows one phase may write (docs/cli.md). */
 #define CLI_DEFAULT_MAX_ROWS 1e6
 
-/* Estimates every phase's output (lv_run_estimate_output with output_interval) and refuses
- * a phase beyond max_rows: prints "lvsim: phase ...: up to N rows ..." naming the phase,
- * rows, bytes and the limit to stderr and returns 2. list: also prints each phase's
- * estimate to stdout. Returns 0, 2, or 1 out of memory. */
+/* Estimates every phase's output (lv_run_estimate_output with output_interval) and refuses,
+ * as lv_run_execute with lv_run_options.max_rows would (lv_run_check_output), a phase that
+ * only its stop time ends and that would write more than max_rows rows: prints "lvsim: phase
+ * ...: up to N rows ..." naming the phase, rows, bytes and the limit to stderr and returns 2.
+ * A phase with end events is not refused here: the run stops it at max_rows. list: also
+ * prints each phase's estimate to stdout. Returns 0, 2, or 1 out of memory. */
 int check_output_bound(const lv_mission *m, double max_rows, double output_interval, int list);
+/* The same, the message prefixed "lvsim: CONTEXT: " (context NULL: "lvsim: "); strict: a
+ * phase with end events is refused too when its stop time allows more than max_rows rows
+ * (where nothing holds the limit as it runs: an FMU's importer). */
+int check_output_bound_as(const lv_mission *m, double max_rows, double output_interval, int list,
+                          const char *context, int strict);
 
 /* "12.3 MB", "512 B": a byte count for people. */
 void human_bytes(double bytes, char *buf, size_t cap);

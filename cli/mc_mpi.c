@@ -4,11 +4,18 @@
  * more (dynamic load balancing; one request kept ahead, so a rank never waits for work), runs
  * it on its threads and sends the records back; rank 0 stores them (lv_campaign_store), so the
  * database is the threaded run's, whatever K. Only the main thread of a rank calls MPI
- * (MPI_THREAD_FUNNELED): rank 0's runs go to its worker threads. */
+ * (MPI_THREAD_FUNNELED): rank 0's runs go to its worker threads, another rank's to a thread
+ * while its main thread listens.
+ * Stopping (a signal on any rank, or an error on rank 0): a rank that is signalled asks rank 0
+ * to stop (TAG_STOPREQ); rank 0 then hands out no more work and tells every other rank
+ * (TAG_STOP), whose running runs are cancelled within an integrator step and not stored (the
+ * records of the runs they finished are). Every other rank receives exactly one TAG_STOP:
+ * when the campaign stops, or at its normal end. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <mpi.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,7 +62,12 @@ static lv_status mc_fail(lv_err *err, lv_status code, const char *msg)
     return code;
 }
 
-enum { TAG_REQ = 1, TAG_WORK = 2, TAG_RECS = 3 };
+enum { TAG_REQ = 1, TAG_WORK = 2, TAG_RECS = 3, TAG_STOP = 4, TAG_STOPREQ = 5 };
+
+static int stop_up(const lv_campaign_options *o)
+{
+    return o->stop != NULL && __atomic_load_n(o->stop, __ATOMIC_RELAXED) != 0;
+}
 
 int mc_mpi_world_size(void)
 {
@@ -86,7 +98,8 @@ typedef struct chunk_job {
     int threads;
     const uint64_t *runs;
     size_t n, next;
-    lv_bytes *out;        /* [n] each run's record */
+    const lv_campaign_options *o; /* its stop flag: no run starts after it */
+    lv_bytes *out;        /* [n] each run's record (none for a run the stop cut short) */
     lv_status st;
     lv_err err;
     pthread_mutex_t lock;
@@ -98,7 +111,8 @@ static void *chunk_thread(void *arg)
     lv_mc_worker *w = ((void **)arg)[1];
     for (;;) {
         pthread_mutex_lock(&j->lock);
-        const size_t i = j->st == LV_OK && j->next < j->n ? j->next++ : (size_t)-1;
+        const size_t i = j->st == LV_OK && j->next < j->n && !stop_up(j->o) ? j->next++
+                                                                             : (size_t)-1;
         pthread_mutex_unlock(&j->lock);
         if (i == (size_t)-1)
             break;
@@ -107,7 +121,9 @@ static void *chunk_thread(void *arg)
         lv_err err;
         lv_status st = lv_mc_worker_run(w, j->runs[i], &rec, &len, &err);
         pthread_mutex_lock(&j->lock);
-        if (st != LV_OK && j->st == LV_OK) {
+        if (st == LV_ERR_CANCELLED) {
+            /* stopped: no record, the run stays to do */
+        } else if (st != LV_OK && j->st == LV_OK) {
             j->st = st;
             j->err = err;
         } else if (st == LV_OK) {
@@ -121,9 +137,9 @@ static void *chunk_thread(void *arg)
 }
 
 /* Runs `runs` on the workers' threads; the records, each preceded by its length, go to *batch
- * (u64 count first). */
-static lv_status run_chunk(lv_mc_worker **w, int threads, const uint64_t *runs, size_t n,
-                           lv_bytes *batch, lv_err *err)
+ * (u64 count first): those of the runs done (the stop may leave some out). */
+static lv_status run_chunk(lv_mc_worker **w, int threads, const lv_campaign_options *o,
+                           const uint64_t *runs, size_t n, lv_bytes *batch, lv_err *err)
 {
     chunk_job j;
     memset(&j, 0, sizeof j);
@@ -131,6 +147,7 @@ static lv_status run_chunk(lv_mc_worker **w, int threads, const uint64_t *runs, 
     j.threads = threads;
     j.runs = runs;
     j.n = n;
+    j.o = o;
     j.out = calloc(n + 1, sizeof *j.out);
     if (j.out == NULL)
         return mc_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -155,7 +172,10 @@ static lv_status run_chunk(lv_mc_worker **w, int threads, const uint64_t *runs, 
         *err = j.err;
     batch->n = 0;
     batch->nomem = 0;
-    put_u64(batch, n);
+    uint64_t have = 0;
+    for (size_t i = 0; i < n; i++)
+        have += j.out[i].n > 0;
+    put_u64(batch, have);
     for (size_t i = 0; i < n; i++) {
         put(batch, j.out[i].p, j.out[i].n);
         if ((j.out[i].nomem || batch->nomem) && st == LV_OK)
@@ -171,6 +191,7 @@ static lv_status run_chunk(lv_mc_worker **w, int threads, const uint64_t *runs, 
 typedef struct local_ctx {
     lv_mc_worker **w;
     int threads;
+    const lv_campaign_options *o;
     pthread_mutex_t lock;
     /* work handed to this rank's own threads */
     uint64_t *runs;
@@ -205,7 +226,7 @@ static void *local_thread(void *arg)
         lc->busy = 1;
         pthread_mutex_unlock(&lc->lock);
         lv_err err;
-        lv_status st = run_chunk(lc->w, lc->threads, runs, n, &batch, &err);
+        lv_status st = run_chunk(lc->w, lc->threads, lc->o, runs, n, &batch, &err);
         free(runs);
         pthread_mutex_lock(&lc->lock);
         while (lc->has_done) { /* the writer has not taken the last one yet */
@@ -266,17 +287,16 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
     lv_campaign *c = NULL;
     lv_status st = lv_campaign_open(m, o, &c, err);
     if (st != LV_OK) {
-        /* tell the others there is nothing to do */
+        /* tell the others there is nothing to do, then their one TAG_STOP */
         for (int r = 1; r < world; r++) {
             uint64_t dummy;
             MPI_Recv(&dummy, 0, MPI_BYTE, r, TAG_REQ, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
             MPI_Send(&dummy, 0, MPI_UINT64_T, r, TAG_WORK, MPI_COMM_WORLD);
+            MPI_Send(NULL, 0, MPI_BYTE, r, TAG_STOP, MPI_COMM_WORLD);
         }
         return st;
     }
-    const uint64_t *todo;
-    const size_t n_todo = lv_campaign_todo(c, &todo);
-    size_t next = 0;
+    uint64_t work[64]; /* a chunk for another rank */
     const int threads = o->threads > 0 ? o->threads : 1;
     fprintf(stderr, "mc: mission '%s', %llu runs, seed %llu, %d ranks x %d thread%s -> %s\n",
             lv_mission_name(m), (unsigned long long)o->n_runs, (unsigned long long)o->seed, world,
@@ -285,6 +305,7 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
     memset(&lc, 0, sizeof lc);
     lc.w = w;
     lc.threads = threads;
+    lc.o = o;
     pthread_mutex_init(&lc.lock, NULL);
     pthread_t tid;
     const int local = pthread_create(&tid, NULL, local_thread, &lc) == 0;
@@ -297,21 +318,25 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
     size_t buf_cap = 0;
     /* the chunk size: about 8 chunks per worker thread over what is left, 1 .. 64 runs */
     const size_t total_threads = (size_t)world * (size_t)threads;
+    int stop_sent = 0;
     for (;;) {
-        const int stopping = st != LV_OK || (o->stop && *o->stop);
-        size_t want = (n_todo - next) / (8 * total_threads);
+        const int stopping = st != LV_OK || stop_up(o);
+        if (stopping && !stop_sent) { /* the other ranks cancel their running runs */
+            for (int r = 1; r < world; r++)
+                MPI_Send(NULL, 0, MPI_BYTE, r, TAG_STOP, MPI_COMM_WORLD);
+            stop_sent = 1;
+        }
+        const uint64_t left = lv_campaign_todo_count(c);
+        uint64_t want = left / (8 * total_threads);
         want = want < 1 ? 1 : want > 64 ? 64 : want;
         /* the local threads */
         pthread_mutex_lock(&lc.lock);
         if (!lc.has_work && !lc.no_more) {
-            if (next < n_todo && !stopping) {
-                const size_t k = n_todo - next < want ? n_todo - next : want;
-                lc.runs = malloc(k * sizeof *lc.runs);
+            if (left > 0 && !stopping) {
+                lc.runs = malloc((size_t)want * sizeof *lc.runs);
                 if (lc.runs != NULL) {
-                    memcpy(lc.runs, todo + next, k * sizeof *lc.runs);
-                    lc.n_runs = k;
+                    lc.n_runs = lv_campaign_todo_next(c, lc.runs, (size_t)want);
                     lc.has_work = 1;
-                    next += k;
                 }
             } else {
                 lc.no_more = 1;
@@ -355,15 +380,16 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
                      MPI_STATUS_IGNORE);
             if (ms.MPI_TAG == TAG_REQ) {
                 size_t k = 0;
-                if (next < n_todo && !stopping) {
-                    k = n_todo - next < want ? n_todo - next : want;
+                if (!stopping && lv_campaign_todo_count(c) > 0) {
+                    k = lv_campaign_todo_next(c, work, (size_t)want);
                     outstanding++;
                 } else {
                     finished_ranks++;
                 }
-                MPI_Send(todo + next, (int)k, MPI_UINT64_T, ms.MPI_SOURCE, TAG_WORK,
-                         MPI_COMM_WORLD);
-                next += k;
+                MPI_Send(work, (int)k, MPI_UINT64_T, ms.MPI_SOURCE, TAG_WORK, MPI_COMM_WORLD);
+            } else if (ms.MPI_TAG == TAG_STOPREQ) { /* a signal on that rank: stop all */
+                if (o->stop != NULL)
+                    *o->stop = 1;
             } else if (ms.MPI_TAG == TAG_RECS) {
                 outstanding--;
                 if (st == LV_OK)
@@ -388,6 +414,9 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
         if (done)
             break;
     }
+    if (!stop_sent) /* every other rank waits for its one TAG_STOP */
+        for (int r = 1; r < world; r++)
+            MPI_Send(NULL, 0, MPI_BYTE, r, TAG_STOP, MPI_COMM_WORLD);
     if (local)
         pthread_join(tid, NULL);
     pthread_mutex_destroy(&lc.lock);
@@ -409,7 +438,61 @@ static lv_status rank0(const lv_mission *m, const lv_campaign_options *o, int wo
 
 /* ---- the other ranks -------------------------------------------------------------------------- */
 
-static lv_status worker_rank(lv_mc_worker **w, int threads, lv_err *err)
+/* A chunk run by a thread while the rank's main thread listens to rank 0. */
+typedef struct remote_job {
+    lv_mc_worker **w;
+    int threads;
+    const lv_campaign_options *o;
+    const uint64_t *runs;
+    size_t n;
+    lv_bytes *batch;
+    lv_status st;
+    lv_err err;
+    int done;             /* under lock */
+    pthread_mutex_t lock;
+} remote_job;
+
+static void *remote_thread(void *arg)
+{
+    remote_job *rj = arg;
+    lv_err err;
+    const lv_status st = run_chunk(rj->w, rj->threads, rj->o, rj->runs, rj->n, rj->batch, &err);
+    pthread_mutex_lock(&rj->lock);
+    rj->st = st;
+    rj->err = err;
+    rj->done = 1;
+    pthread_mutex_unlock(&rj->lock);
+    return NULL;
+}
+
+/* Rank 0's TAG_STOP, if it came: then the runs of this rank stop too. */
+static void poll_stop(const lv_campaign_options *o, int *got_stop)
+{
+    int flag = 0;
+    if (*got_stop)
+        return;
+    MPI_Iprobe(0, TAG_STOP, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+    if (flag) {
+        MPI_Recv(NULL, 0, MPI_BYTE, 0, TAG_STOP, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        *got_stop = 1;
+        if (o->stop != NULL)
+            *o->stop = 1;
+    }
+}
+
+/* A signal on this rank: rank 0 is asked, once, to stop the campaign (only while a chunk
+ * runs or just after it, before its records go: rank 0 then still listens). */
+
+static void poll_signal(const lv_campaign_options *o, int got_stop, int *asked)
+{
+    if (!*asked && !got_stop && stop_up(o)) {
+        MPI_Send(NULL, 0, MPI_BYTE, 0, TAG_STOPREQ, MPI_COMM_WORLD);
+        *asked = 1;
+    }
+}
+
+static lv_status worker_rank(lv_mc_worker **w, int threads, const lv_campaign_options *o,
+                             lv_err *err)
 {
     uint64_t *cur = malloc(64 * sizeof *cur), *nxt = malloc(64 * sizeof *nxt);
     lv_bytes batch = { 0 };
@@ -417,7 +500,7 @@ static lv_status worker_rank(lv_mc_worker **w, int threads, lv_err *err)
     if (cur == NULL || nxt == NULL)
         MPI_Abort(MPI_COMM_WORLD, 1);
     MPI_Status ms;
-    int n = 0;
+    int n = 0, got_stop = 0, asked = 0;
     MPI_Send(NULL, 0, MPI_BYTE, 0, TAG_REQ, MPI_COMM_WORLD);
     MPI_Recv(cur, 64, MPI_UINT64_T, 0, TAG_WORK, MPI_COMM_WORLD, &ms);
     MPI_Get_count(&ms, MPI_UINT64_T, &n);
@@ -426,9 +509,30 @@ static lv_status worker_rank(lv_mc_worker **w, int threads, lv_err *err)
         MPI_Request req;
         MPI_Send(NULL, 0, MPI_BYTE, 0, TAG_REQ, MPI_COMM_WORLD);
         MPI_Irecv(nxt, 64, MPI_UINT64_T, 0, TAG_WORK, MPI_COMM_WORLD, &req);
-        st = run_chunk(w, threads, cur, (size_t)n, &batch, err);
+        remote_job rj = { w, threads, o, cur, (size_t)n, &batch, LV_OK, { 0 }, 0,
+                          PTHREAD_MUTEX_INITIALIZER };
+        pthread_t tid;
+        if (pthread_create(&tid, NULL, remote_thread, &rj) != 0) {
+            remote_thread(&rj);
+        } else {
+            for (int done = 0; !done;) { /* listen while the chunk runs */
+                poll_stop(o, &got_stop);
+                poll_signal(o, got_stop, &asked);
+                pthread_mutex_lock(&rj.lock);
+                done = rj.done;
+                pthread_mutex_unlock(&rj.lock);
+                if (!done)
+                    nap(200000);
+            }
+            pthread_join(tid, NULL);
+        }
+        poll_signal(o, got_stop, &asked); /* a signal that cut the chunk's last run short */
+        pthread_mutex_destroy(&rj.lock);
+        st = rj.st;
         if (st != LV_OK) {
-            fprintf(stderr, "lvsim: rank: %s\n", err ? err->msg : "error");
+            fprintf(stderr, "lvsim: rank: %s\n", rj.err.msg);
+            if (err)
+                *err = rj.err;
             MPI_Abort(MPI_COMM_WORLD, 1);
         }
         MPI_Send(batch.p, (int)batch.n, MPI_BYTE, 0, TAG_RECS, MPI_COMM_WORLD);
@@ -442,6 +546,11 @@ static lv_status worker_rank(lv_mc_worker **w, int threads, lv_err *err)
         uint64_t *t = cur;
         cur = nxt;
         nxt = t;
+    }
+    while (!got_stop) { /* rank 0's one TAG_STOP, when it stopped or at the end */
+        poll_stop(o, &got_stop);
+        if (!got_stop)
+            nap(200000);
     }
     free(cur);
     free(nxt);
@@ -471,9 +580,13 @@ lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campa
     if (rank == 0)
         st = rank0(m, o, world, w, out, err);
     else
-        st = worker_rank(w, threads, err);
+        st = worker_rank(w, threads, o, err);
     for (int i = 0; i < made; i++)
         lv_mc_worker_free(w[i]);
+    /* the campaign is over: a signal now ends the process as usual (mpirun, when rank 0
+     * exits with 130, terminates the other ranks, which may still be finalizing) */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     MPI_Barrier(MPI_COMM_WORLD);
     MPI_Finalize();
     return st;

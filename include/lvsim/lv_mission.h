@@ -219,10 +219,20 @@ typedef struct lv_run_options {
      * outside them whose inputs changed is left PENDING for a later execute. */
     const unsigned char *want;
     /* NULL, or a flag another thread (a signal handler) may set nonzero to stop the run: each
-     * running phase is cancelled at its next output row, and no phase starts after (they
+     * running phase is cancelled within one integrator step (lv_sim_settings.stop: read at
+     * every right-hand side evaluation and output row), and no phase starts after (they
      * fail with LV_ERR_CANCELLED, "stopped"); lv_run_execute returns LV_ERR_CANCELLED. Costs
      * no callback: bindings use it for Ctrl-C. */
     const volatile int *stop;
+    /* > 0: the most output rows one phase may write (its output grid's points; the two rows
+     * of each event instant are not counted). Before anything runs, lv_run_execute refuses
+     * (LV_ERR_INPUT, lv_run_check_output) a phase to run that only its stop time (or a `time`
+     * end) can end and whose grid over its longest possible duration has more rows; a phase
+     * with other ends (burnout, altitude, ...) is not refused for a generous stop_time but
+     * stopped as it runs: when it reaches max_rows rows before an end fires it fails
+     * (LV_ERR_SOLVER, the phase, the time reached, the rows and the limit; its files kept as
+     * *.failed.*). 0: no limit. */
+    double max_rows;
 } lv_run_options;
 
 #define LV_RUN_NO_PHASE_FILES 0x100u /* lv_run_options.result_formats: no phase files */
@@ -261,9 +271,11 @@ LV_API const lv_result *lv_run_rows(const lv_run *r, size_t k);
 /* ---- output size, before running --------------------------------------------------------- */
 
 /* What phase k will write at most with the run's current values: its output grid over its
- * longest possible duration (its stop time minus its start_time, or minus the end of its
- * parent when that is done in this run, else minus the parent's earliest start). Each
- * event instant adds two rows more (not counted). */
+ * longest possible duration: its stop time, or its first `time` end when that comes earlier,
+ * minus its start_time, or minus the end of its parent when that is done and up to date in
+ * this run, else minus the parent's earliest start. Each event instant adds two rows more
+ * (not counted). The other ends (burnout, altitude, speed, apogee, impact, a variable's
+ * crossing) are not estimated: when they fire is known only by running. */
 typedef struct lv_output_estimate {
     double duration;   /* s */
     double rows;       /* output grid points */
@@ -271,10 +283,22 @@ typedef struct lv_output_estimate {
     double bytes_mat;  /* the .mat file's data: 8 bytes a value (and the run's rows in
                           memory when it keeps them: lv_run_options.no_rows = 0) */
     double bytes_csv;  /* the .csv file: about 22 bytes a value (%.17g and a comma) */
+    int bounded;       /* 1: rows is a bound known now: only the stop time (or a `time` end)
+                          ends the phase; 0: it has other ends, which may end it earlier, and
+                          rows is what its stop time allows (lv_run_options.max_rows is then
+                          enforced as it runs) */
 } lv_output_estimate;
 /* `output_interval` > 0: the grid lv_run_options.output_interval would impose. */
 LV_API lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interval,
                                         lv_output_estimate *out, lv_err *err);
+
+/* The up-front half of opt->max_rows (lv_run_options; nothing runs): LV_ERR_INPUT for the
+ * first phase lv_run_execute(r, opt) would run (opt->want and their ancestors; every phase
+ * when want is NULL) that is bounded (lv_output_estimate.bounded) and whose grid, with
+ * opt->output_interval, has more than opt->max_rows rows. The message names the phase, its
+ * rows and mission time (as "1.4e+11 rows", "140 s"), columns, bytes, the limit, and what to
+ * do. LV_OK when none is, when opt is NULL or opt->max_rows is 0. */
+LV_API lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err *err);
 
 /* ---- the bodies: each stage's trajectory across the phases it flies in ------------------ */
 

@@ -92,6 +92,18 @@ typedef struct lv_sim_settings {
 
     size_t n_stops;            /* ends of the run besides the model's own events */
     const lv_sim_stop *stops;  /* [n_stops], borrowed until the simulation ends */
+
+    /* Optional: a flag another thread (a signal handler) may set nonzero to stop the run. It
+     * is read at every right-hand side evaluation and output row, so a run stops within one
+     * integrator step (LV_ERR_CANCELLED, "cancelled at t = ..."; the sinks keep the rows
+     * written and are closed as failed). Borrowed; NULL: none. */
+    const volatile int *stop;
+    /* > 0: the most output-grid rows the run may write (the start row and every grid point,
+     * not the two rows of each event instant). The run that would write one more, because
+     * neither stop_time nor an end of it came first, fails at once (LV_ERR_SOLVER) with a
+     * message naming the time reached, the rows and the limit; the sinks keep the rows and
+     * are closed as failed. 0 (default): no limit. */
+    double max_rows;
 } lv_sim_settings;
 
 /* Dymola's defaults: start 0, stop 1, 500 intervals, dassl, 1e-4, "dsres". */

@@ -173,6 +173,14 @@ typedef struct lv_target_settings {
      * (sensitivities); nonzero stops the solve (LV_ERR_CANCELLED). */
     int (*on_evaluation)(const lv_target *t, const lv_target_eval *ev, void *user);
     void *user;
+    /* NULL, or a flag another thread (a signal handler) may set nonzero to stop the solve:
+     * every evaluation under way is cancelled within one integrator step
+     * (lv_run_options.stop) and none starts after; the result is the best point so far, as
+     * when on_evaluation stops it. */
+    const volatile int *stop;
+    /* > 0: lv_run_options.max_rows of every evaluation (the phases' rows, although none are
+     * kept: they cost time): a trial point whose phase is refused or stopped by it fails. */
+    double max_rows;
 } lv_target_settings;
 
 /* All zero: the file's settings (or the defaults) and no callbacks. */
@@ -203,7 +211,8 @@ typedef struct lv_target_result {
 LV_API lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
                                  const lv_target_result **out, lv_err *err);
 
-/* The run holding the last point evaluated (the result's point after a solve): its phases'
+/* The run holding the last point evaluated (the result's point after a solve; after a
+ * cancelled one the last point tried, whose phases may have been cut short): its phases'
  * results and finals (lv_run_result, lv_run_final). Owned by t. */
 LV_API lv_run *lv_target_run(lv_target *t);
 

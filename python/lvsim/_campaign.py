@@ -10,7 +10,7 @@ from ctypes import byref, c_char_p, c_int, c_void_p, pointer
 
 from . import _lib
 from ._lib import enc, int_arg, path_arg, real_arg, U64_MAX
-from .errors import InputError, LvsimError, check
+from .errors import InputError, LvsimError, OutputLimitError, check
 
 
 class Campaign:
@@ -43,7 +43,7 @@ class Campaign:
     @classmethod
     def run(cls, mission, n_runs, db_path, *, seed=None, threads=1, resume=False,
             overwrite=False, keep_runs=0, keep_dir=None, method=None, tolerance=None,
-            output_interval="ends", progress=None):
+            output_interval="ends", progress=None, max_rows=1e6):
         """Runs runs 0 .. n_runs-1 of `mission` (lv_campaign_run) into the SQLite database
         `db_path`: seed (None: the file's `seed:`, else 1, as `lvsim mc`), threads (C
         worker threads), resume (continue a database of the same campaign), overwrite
@@ -54,7 +54,13 @@ class Campaign:
         run.disperse(seed, i); run.execute(output_interval=..., method=..., tolerance=...)
         reproduces run i bit for bit. progress(dict) is called about every 0.25 s from the
         calling thread (total, done, failed, rate, eta); returning True stops the campaign
-        (CancelledError, the runs done are kept). Failed runs are outcomes, not errors;
+        within an integrator step of every running run (CancelledError; the runs done are
+        kept, a run cut short is not stored: resume=True runs it). max_rows (default 1e6, as
+        `lvsim mc --max-rows`; None: no limit): the output rows a phase of a run may compute
+        (Run.execute's): a phase only its stop time ends beyond it is refused before
+        anything runs (OutputLimitError), one with end events that reaches it fails in that
+        run. A campaign whose database would not fit the free disk space is refused before
+        anything runs (InputError, the sizes named). Failed runs are outcomes, not errors;
         LvsimError for the campaign itself (an existing database without overwrite or
         resume, one of another campaign); TypeError/ValueError for bad arguments."""
         from ._mission import METHODS
@@ -97,6 +103,30 @@ class Campaign:
         o.db_path, o.keep_dir, o.method = keep
         o.resume, o.overwrite, o.keep_runs = int(bool(resume)), int(bool(overwrite)), keep_runs
         o.tolerance, o.output_interval = tol, oi
+        if max_rows is not None:
+            max_rows = real_arg(max_rows, "max_rows")
+            if not max_rows >= 1:
+                raise InputError(f"max_rows must be >= 1 (or None: no limit), got {max_rows!r}")
+            o.max_rows = max_rows
+        err = _lib.lv_err()
+        # the bounds before anything runs: the rows of a run (lv_run_check_output, as
+        # lv_campaign_open holds them) and the database against the free disk space
+        if o.max_rows > 0.0:
+            r = c_void_p()
+            check(_lib.lib.lv_run_create(mission._handle(), byref(r), byref(err)), err)
+            try:
+                ro = _lib.lv_run_options()
+                ro.max_rows = o.max_rows
+                for ro.output_interval in ((oi if oi > 0.0 else 1e300),) + \
+                        ((oi,) if keep_runs > 0 else ()):
+                    if _lib.lib.lv_run_check_output(r, byref(ro), byref(err)) != _lib.LV_OK:
+                        raise OutputLimitError(err.msg.decode("utf-8", "replace"), -2)
+            finally:
+                _lib.lib.lv_run_free(r)
+        if post.lv_campaign_check_size(mission._handle(), byref(o), 0, None,
+                                       byref(err)) != _lib.LV_OK:
+            raise InputError(err.msg.decode("utf-8", "replace").replace("(-n)", "(n_runs)"),
+                             -2)
         stop = c_int(0)
         o.stop = pointer(stop)
         state = {}
@@ -114,7 +144,6 @@ class Campaign:
             cb = _lib.CAMPAIGN_PROGRESS_FN(_p)
             o.progress = cb
         out = _lib.lv_campaign_progress()
-        err = _lib.lv_err()
         st = post.lv_campaign_run(mission._handle(), byref(o), byref(out), byref(err))
         if "exc" in state:
             raise state["exc"]

@@ -123,7 +123,7 @@ class lv_run_options(Structure):
                 ("user", c_void_p), ("output_interval", c_double), ("method", c_char_p),
                 ("tolerance", c_double), ("progress", RUN_PROGRESS_FN), ("no_rows", c_int),
                 ("result_formats", c_uint), ("want", POINTER(c_ubyte)),
-                ("stop", POINTER(c_int))]
+                ("stop", POINTER(c_int)), ("max_rows", c_double)]
 
 
 class lv_body_traj(Structure):
@@ -155,7 +155,8 @@ class lv_sim_settings(Structure):
                 ("max_steps", c_long), ("max_step_size", c_double),
                 ("n_sinks", c_size_t), ("sinks", POINTER(lv_sink)),
                 ("progress", SIM_PROGRESS_FN), ("progress_user", c_void_p),
-                ("n_stops", c_size_t), ("stops", POINTER(lv_sim_stop))]
+                ("n_stops", c_size_t), ("stops", POINTER(lv_sim_stop)),
+                ("stop", POINTER(c_int)), ("max_rows", c_double)]
 
 
 # ---- targeting (lv_target.h) --------------------------------------------------------------
@@ -198,7 +199,8 @@ class lv_target_settings(Structure):
     _fields_ = [("method", c_int), ("differences", c_int), ("max_iterations", c_int),
                 ("xtol", c_double), ("ftol", c_double), ("restarts", c_int),
                 ("threads", c_int), ("on_iteration", TARGET_ITER_FN),
-                ("on_evaluation", TARGET_EVAL_FN), ("user", c_void_p)]
+                ("on_evaluation", TARGET_EVAL_FN), ("user", c_void_p),
+                ("stop", POINTER(c_int)), ("max_rows", c_double)]
 
 
 class lv_target_result(Structure):
@@ -236,12 +238,12 @@ class lv_campaign_options(Structure):
                 ("keep_runs", c_uint64), ("keep_dir", c_char_p), ("method", c_char_p),
                 ("tolerance", c_double), ("output_interval", c_double),
                 ("progress", CAMPAIGN_PROGRESS_FN), ("user", c_void_p),
-                ("stop", POINTER(c_int))]
+                ("stop", POINTER(c_int)), ("max_rows", c_double)]
 
 
 class lv_output_estimate(Structure):
     _fields_ = [("duration", c_double), ("rows", c_double), ("n_signals", c_size_t),
-                ("bytes_mat", c_double), ("bytes_csv", c_double)]
+                ("bytes_mat", c_double), ("bytes_csv", c_double), ("bounded", c_int)]
 
 
 class lv_outdir_record(Structure):
@@ -344,6 +346,8 @@ def post():
         _proto(_post, "lv_campaign_run", c_int, c_void_p, POINTER(lv_campaign_options),
                POINTER(lv_campaign_progress), POINTER(lv_err))
         _proto(_post, "lv_campaign_stats", c_int, c_char_p, c_char_p, POINTER(lv_err))
+        _proto(_post, "lv_campaign_check_size", c_int, c_void_p, POINTER(lv_campaign_options),
+               c_int, c_void_p, POINTER(lv_err))
         _proto(_post, "lv_outdir_begin", c_int, c_char_p, c_char_p, c_uint, POINTER(c_void_p),
                POINTER(lv_err))
         _proto(_post, "lv_outdir_open_live", c_int, c_char_p, c_char_p, c_uint,
@@ -388,6 +392,7 @@ _proto(lib, "lv_run_invalidate", c_int, P, c_size_t, E)
 _proto(lib, "lv_run_stale", c_int, P, c_size_t)
 _proto(lib, "lv_run_estimate_output", c_int, P, c_size_t, c_double, POINTER(lv_output_estimate),
        E)
+_proto(lib, "lv_run_check_output", c_int, P, POINTER(lv_run_options), E)
 _proto(lib, "lv_sim_methods", POINTER(c_char_p))
 _proto(lib, "lv_run_result", POINTER(lv_phase_result), P, c_size_t)
 _proto(lib, "lv_run_final", c_int, P, c_size_t, c_char_p, POINTER(c_double), E)

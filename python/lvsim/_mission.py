@@ -839,13 +839,16 @@ class Run:
         check: raise SimulationError when a phase fails (the others keep their results);
             False: return normally, see .failed.
         max_rows: the most output rows one phase may keep or write (default 1e6, as the
-            CLI's --max-rows): with keep_rows=True or an outdir, a phase whose output grid
-            over its longest possible duration is larger raises OutputLimitError before
-            anything runs (keep_rows=False without outdir keeps no rows: no limit). None: no
-            limit.
+            CLI's --max-rows), with keep_rows=True or an outdir (keep_rows=False without
+            outdir keeps no rows: no limit). A phase that only its stop time ends and whose
+            output grid over its longest possible duration is larger raises
+            OutputLimitError before anything runs; a phase with end events (burnout,
+            altitude, ...) is not refused for a generous stop time but fails
+            (SimulationError, "row limit") if it reaches max_rows rows before an end fires.
+            None: no limit.
 
-        Ctrl-C (SIGINT) while it runs, from the main thread: every branch stops at its next
-        output row and KeyboardInterrupt is raised; the phases completed before keep their
+        Ctrl-C (SIGINT) while it runs, from the main thread: every branch stops within an
+        integrator step and KeyboardInterrupt is raised; the phases completed before keep their
         results, the interrupted ones are left failed (cancelled) and run at the next
         execute().
 
@@ -921,10 +924,15 @@ class Run:
         if tolerance is not None:
             opt.tolerance = tolerance
         opt.no_rows = 0 if keep_rows else 1
+        # the row limit holds where rows are kept or written (rows that are neither cost only
+        # time): refused before anything runs for a phase only its stop time ends, enforced
+        # as it runs for one with end events (lv_run_options.max_rows)
+        if max_rows is not None and (keep_rows or outdir is not None):
+            opt.max_rows = max_rows
         if want is not None:
             opt.want = ctypes.cast(want, POINTER(c_ubyte))
         # the stop flag (lv_run_options.stop): set by Ctrl-C or by an exception in
-        # `progress`, it stops every branch at its next output row, at no cost until then
+        # `progress`, it stops every branch within an integrator step, at no cost until then
         cb_state = {}
         stop = c_int(0)
         opt.stop = ctypes.pointer(stop)
@@ -951,8 +959,8 @@ class Run:
                     _check(lib.lv_run_invalidate(h, k, byref(err)), err)
             if outdir is not None:  # a complete results folder: every phase, written anew
                 _check(lib.lv_run_invalidate(h, _lib.LV_RUN_ALL_PHASES, byref(err)), err)
-            if max_rows is not None and (keep_rows or outdir is not None):
-                self._check_rows(want, oi, max_rows)
+            if opt.max_rows > 0.0 and lib.lv_run_check_output(h, byref(opt), byref(err)) != 0:
+                raise OutputLimitError(err.msg.decode("utf-8", "replace"), -2)
             od = None
             if outdir is not None:
                 post = _lib.post()
@@ -1005,7 +1013,7 @@ class Run:
         """lv_run_execute, stoppable by Ctrl-C. From the main thread (the only one Python
         delivers SIGINT to) the C call runs in a helper thread while this one waits: SIGINT
         sets the C run's stop flag (`stop`, lv_run_options.stop), which cancels every running
-        phase at its next output row and starts no other; once the run has stopped (the run
+        phase within an integrator step and starts no other; once the run has stopped (the run
         consistent), KeyboardInterrupt is raised."""
         if threading.current_thread() is not threading.main_thread():
             return lib.lv_run_execute(h, byref(opt), byref(err))
@@ -1047,33 +1055,6 @@ class Run:
         if got:
             raise got[0]
         return box["st"]
-
-    def _check_rows(self, want, oi, max_rows):
-        """OutputLimitError when a phase to run (all, or `want` and their ancestors) could
-        write more than max_rows rows with output interval `oi` (0: its own)."""
-        m = self.mission
-        ks = range(len(m.phases))
-        if want is not None:
-            need = set()
-            for k in ks:
-                j = k if want[k] else None
-                while j is not None and j not in need:
-                    need.add(j)
-                    par = m.phases[j].parent
-                    j = None if par is None else m.phase_index(par)
-            ks = sorted(need)
-        for k in ks:
-            e = _lib.lv_output_estimate()
-            err = _err()
-            check(lib.lv_run_estimate_output(self._h, k, oi, byref(e), byref(err)), err)
-            if e.rows > max_rows:
-                raise OutputLimitError(
-                    f"phase {k + 1} '{m.phases[k].name}' would write up to {e.rows:.0f} rows "
-                    f"({e.duration:.6g} s of mission time, {e.n_signals} columns: "
-                    f"{e.bytes_mat / 1e6:.3g} MB of .mat, {e.bytes_csv / 1e6:.3g} MB of .csv, "
-                    f"and as much memory) - more than max_rows={max_rows:.0f}. Give it a larger "
-                    f"output_interval, an earlier stop_time or an end event, or allow it with "
-                    f"max_rows={math.ceil(e.rows)}", -2)
 
     def invalidate(self, phase=None):
         """Marks `phase` (None: every phase) to be simulated again at the next execute(),

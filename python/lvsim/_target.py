@@ -241,8 +241,9 @@ class Target:
 
     @property
     def run(self):
-        """The run holding the last point evaluated (after a solve: the result's point), as
-        a Run (owned by the target; valid until it is closed). LvsimError before solve()."""
+        """The run holding the last point evaluated (after a solve: the result's point; after
+        a cancelled one the last point tried, whose phases may have been cut short), as a Run
+        (owned by the target; valid until it is closed). LvsimError before solve()."""
         with self._lock:
             h = lib.lv_target_run(self._handle())
             if not h or self._result is None:

@@ -11,7 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "campaign/campaign_int.h"
 #include "core/status.h"
@@ -98,6 +100,142 @@ void lv_campaign_options_default(lv_campaign_options *o)
     o->threads = 1;
 }
 
+/* ---- the size of a campaign, before it runs ---------------------------------------------------- */
+
+/* The database's bytes, as SQLite 3.40 stores the campaign's rows (measured on the examples:
+ * dof3-branch 1.73 kB a run for 3 phases of 56 finals and 7 inputs, estimated 1.84 kB;
+ * isp_scatter 202 B for one phase of 20 finals, estimated 292 B: zeros and whole numbers
+ * take less than 9 bytes). */
+#define DB_ROW_BYTES 16.0    /* a row beyond its values: cell header, key, text columns */
+#define DB_VALUE_BYTES 9.0   /* a REAL and its type byte */
+#define DB_EVENT_BYTES 30.0  /* an event's row */
+#define DB_SURE_FRACTION 0.5 /* of the estimate, what is refused against the free space */
+
+lv_status lv_campaign_estimate(const lv_mission *m, const lv_campaign_options *o,
+                               lv_campaign_size *out, lv_err *err)
+{
+    memset(out, 0, sizeof *out);
+    if (o == NULL || o->n_runs == 0)
+        return lv_fail(err, LV_ERR_INPUT, "campaign: at least one run is needed");
+    lv_run *r = NULL;
+    lv_status st = lv_run_create(m, &r, err);
+    if (st != LV_OK)
+        return st;
+    const double N = (double)o->n_runs, nd = (double)lv_mission_disp_count(m);
+    const double K = (double)(o->keep_runs < o->n_runs ? o->keep_runs : o->n_runs);
+    /* per run: the runs row (status, message, the inputs); the statistics hold the inputs,
+     * a status byte, and four work arrays of doubles (stats.c, plot.c) */
+    double db_run = DB_ROW_BYTES + 8.0 + DB_VALUE_BYTES * nd;
+    double mem_run = 8.0 * nd + 1.0 + 4.0 * 8.0;
+    double kept_files = 0.0, kept_rows = 0.0;
+    for (size_t k = 0; k < lv_mission_phase_count(m) && st == LV_OK; k++) {
+        const double nf = (double)lv_run_result(r, k)->n_final;
+        lv_output_estimate e, ek;
+        st = lv_run_estimate_output(r, k, o->output_interval > 0.0 ? o->output_interval : 1e300,
+                                    &e, err);
+        if (st == LV_OK)
+            st = lv_run_estimate_output(r, k, o->output_interval, &ek, err);
+        if (st != LV_OK)
+            break;
+        /* a phase with ends computes at most max_rows rows (the limit as it runs) */
+        out->rows_per_run += !e.bounded && o->max_rows > 0.0 ? fmin(e.rows, o->max_rows) : e.rows;
+        out->rows_by_stop += e.rows;
+        /* its row: state, end, t_end, steps, rhs evaluations, error, the finals; an end's
+         * event */
+        db_run += DB_ROW_BYTES + 24.0 + DB_VALUE_BYTES * (1.0 + nf) +
+                  (e.bounded ? 0.0 : DB_EVENT_BYTES);
+        /* in the statistics: the finals, the row index, run, state, end and error */
+        mem_run += 8.0 * nf + 8.0 + 8.0 + 1.0 + 16.0 + 32.0;
+        /* the kept runs: only what is known now (a phase with ends may write less than its
+         * stop time allows, and never more than max_rows rows) */
+        if (ek.bounded) {
+            kept_files += ek.bytes_mat + ek.bytes_csv;
+            kept_rows += ek.bytes_mat;
+        }
+    }
+    lv_run_free(r);
+    if (st != LV_OK)
+        return st;
+    out->db_bytes = N * db_run;
+    out->stats_bytes = N * mem_run;
+    out->kept_bytes = K * kept_files;
+    const double busy = fmin(K, (double)(o->threads > 0 ? o->threads : 1));
+    out->kept_memory = busy * kept_rows;
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    out->mem_total = pages > 0 && page > 0 ? (double)pages * (double)page : NAN;
+    out->disk_free = NAN;
+    /* the database's folder, or the nearest folder above it that exists (it may be made
+     * only when the campaign starts) */
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", o->db_path != NULL ? o->db_path : "");
+    for (int depth = 0; o->db_path != NULL && depth < 64; depth++) {
+        char *slash = strrchr(dir, '/');
+        if (slash == dir)
+            dir[1] = '\0';
+        else if (slash != NULL)
+            *slash = '\0';
+        else
+            snprintf(dir, sizeof dir, ".");
+        struct statvfs fs;
+        if (statvfs(dir, &fs) == 0) {
+            out->disk_free = (double)fs.f_bavail * (double)fs.f_frsize;
+            break;
+        }
+        if (strcmp(dir, ".") == 0 || strcmp(dir, "/") == 0)
+            break;
+    }
+    return LV_OK;
+}
+
+lv_status lv_campaign_check_size(const lv_mission *m, const lv_campaign_options *o, int stats,
+                                 lv_campaign_size *out, lv_err *err)
+{
+    lv_campaign_size z;
+    lv_status st = lv_campaign_estimate(m, o, &z, err);
+    if (out != NULL)
+        *out = z;
+    if (st != LV_OK)
+        return st;
+    /* what a resumed database holds already needs no more room */
+    double have = 0.0;
+    struct stat sb;
+    if (o->resume && o->db_path != NULL && stat(o->db_path, &sb) == 0)
+        have = (double)sb.st_size;
+    const double disk = fmax(0.0, z.db_bytes - have) + z.kept_bytes;
+    /* the database's estimate may be high by half (zeros are short): refused only when even
+     * half of it would not fit */
+    const int over_disk = DB_SURE_FRACTION * fmax(0.0, z.db_bytes - have) + z.kept_bytes >
+                          z.disk_free, over_stats = stats && z.stats_bytes > z.mem_total,
+              over_kept = z.kept_memory > z.mem_total;
+    if (!over_disk && !over_stats && !over_kept)
+        return LV_OK;
+    char n[32], a[32], b[32], c[32], msg[LV_ERR_MSG_MAX];
+    size_t at = 0;
+    msg[0] = '\0';
+    lv_fmt_count((double)o->n_runs, n, sizeof n);
+    if (over_disk)
+        at += (size_t)snprintf(msg + at, sizeof msg - at, "; its database%s would need about "
+                               "%s (%s a run) and the file system of %s has %s free",
+                               z.kept_bytes > 0.0 ? " and kept runs" : "",
+                               lv_fmt_bytes(disk, a, sizeof a),
+                               lv_fmt_bytes(z.db_bytes / (double)o->n_runs, b, sizeof b),
+                               o->db_path, lv_fmt_bytes(z.disk_free, c, sizeof c));
+    if (over_stats && at < sizeof msg)
+        at += (size_t)snprintf(msg + at, sizeof msg - at, "; its statistics would need %s of "
+                               "memory (%s a run) and this machine has %s",
+                               lv_fmt_bytes(z.stats_bytes, a, sizeof a),
+                               lv_fmt_bytes(z.stats_bytes / (double)o->n_runs, b, sizeof b),
+                               lv_fmt_bytes(z.mem_total, c, sizeof c));
+    if (over_kept && at < sizeof msg)
+        snprintf(msg + at, sizeof msg - at, "; its kept runs would hold %s of rows in memory "
+                 "at once and this machine has %s", lv_fmt_bytes(z.kept_memory, a, sizeof a),
+                 lv_fmt_bytes(z.mem_total, c, sizeof c));
+    return lv_fail(err, LV_ERR_INPUT, "a campaign of %s runs is too large%s: run fewer (-n)%s%s",
+                   n, msg,
+                   over_stats ? ", or skip the statistics (--no-stats)" : "",
+                   over_kept ? ", keep fewer runs or give them a larger output interval" : "");
+}
+
 /* ---- the worker: one run to one record -------------------------------------------------------- */
 
 struct lv_mc_worker {
@@ -136,6 +274,12 @@ lv_status lv_mc_worker_create(const lv_mission *m, const lv_campaign_options *o,
     }
     *out = w;
     return LV_OK;
+}
+
+/* The campaign's stop flag is up. */
+static int stopped(const lv_campaign_options *o)
+{
+    return o->stop != NULL && __atomic_load_n(o->stop, __ATOMIC_RELAXED) != 0;
 }
 
 /* The end a done phase reached: the event's name, or "stop_time". */
@@ -179,11 +323,17 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
         ro.method = w->o.method;
         ro.tolerance = w->o.tolerance;
         ro.output_interval = w->o.output_interval > 0.0 ? w->o.output_interval : 1e300;
+        ro.stop = w->o.stop;
+        ro.max_rows = w->o.max_rows;
         char dir[4096];
         const int keep = run < w->o.keep_runs && w->o.keep_dir != NULL;
         st = lv_run_execute(w->run, &ro, &rerr);
         if (st == LV_ERR_NOMEM || st == LV_ERR_IO)
             return lv_fail(err, st, "run %llu: %s", (unsigned long long)run, rerr.msg);
+        /* cut short by the stop: no record (a resumed campaign runs it again); a run that
+         * failed while the stop was up may owe its failure to it: the same */
+        if (st == LV_ERR_CANCELLED || (st != LV_OK && stopped(&w->o)))
+            return lv_fail(err, LV_ERR_CANCELLED, "run %llu: stopped", (unsigned long long)run);
         if (st != LV_OK) {
             status = LV_MC_FAILED;
             msg = rerr.msg;
@@ -206,16 +356,24 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
             ko.output_interval = w->o.output_interval;
             ko.outdir = lv_outdir_path(kod);
             lv_status rst = LV_ERR_INPUT;
+            int cut = 0;
             if (lv_run_create(m, &kr, &kerr) == LV_OK &&
                 lv_run_disperse(kr, w->o.seed, run, NULL, &kerr) == LV_OK) {
                 rst = lv_run_execute(kr, &ko, &kerr);
-                if (lv_run_write_summary(kr, ko.outdir, &kerr) != LV_OK)
+                cut = rst == LV_ERR_CANCELLED || (rst != LV_OK && stopped(&w->o));
+                if (!cut && lv_run_write_summary(kr, ko.outdir, &kerr) != LV_OK)
                     rst = LV_ERR_IO;
             }
-            const lv_outdir_record krec = {"mc", rst == LV_OK ? "ok" : "failed", mi.name, 0, NULL};
-            kst = lv_outdir_commit(kod, &krec, &kerr);
-            lv_outdir_free(kod);
+            if (!cut) {
+                const lv_outdir_record krec = {"mc", rst == LV_OK ? "ok" : "failed", mi.name, 0,
+                                               NULL};
+                kst = lv_outdir_commit(kod, &krec, &kerr);
+            }
+            lv_outdir_free(kod); /* cut short: not committed, the folder as it was */
             lv_run_free(kr);
+            if (cut) /* its files would be incomplete: the run is done again on resume */
+                return lv_fail(err, LV_ERR_CANCELLED, "run %llu: stopped",
+                               (unsigned long long)run);
             if (kst != LV_OK)
                 return lv_fail(err, kst == LV_ERR_NOMEM ? kst : LV_ERR_IO, "run %llu: %s",
                                (unsigned long long)run, kerr.msg);
@@ -270,8 +428,7 @@ typedef struct rec_node {
 typedef struct pool {
     const lv_mission *m;
     const lv_campaign_options *o;
-    const uint64_t *todo;
-    size_t n_todo, next;
+    lv_campaign *c;       /* hands out the runs to do (under `lock`) */
     rec_node *head, *tail;
     int active;           /* workers still running */
     lv_status st;         /* the first worker error */
@@ -288,14 +445,19 @@ static void *pool_worker(void *arg)
     lv_status st = lv_mc_worker_create(p->m, p->o, &w, &err);
     for (;;) {
         pthread_mutex_lock(&p->lock);
-        const int stop = st != LV_OK || p->st != LV_OK || (p->o->stop && *p->o->stop);
-        const size_t i = p->next < p->n_todo && !stop ? p->next++ : (size_t)-1;
+        const int stop = st != LV_OK || p->st != LV_OK || stopped(p->o);
+        uint64_t run = 0;
+        const size_t got = stop ? 0 : lv_campaign_todo_next(p->c, &run, 1);
         pthread_mutex_unlock(&p->lock);
-        if (i == (size_t)-1)
+        if (got == 0)
             break;
         const void *rec;
         size_t len;
-        st = lv_mc_worker_run(w, p->todo[i], &rec, &len, &err);
+        st = lv_mc_worker_run(w, run, &rec, &len, &err);
+        if (st == LV_ERR_CANCELLED) { /* stopped: not stored, not an error */
+            st = LV_OK;
+            break;
+        }
         if (st != LV_OK)
             break;
         rec_node *n = malloc(sizeof *n + len);
@@ -345,7 +507,8 @@ lv_status lv_campaign_run(const lv_mission *m, const lv_campaign_options *o,
     memset(&p, 0, sizeof p);
     p.m = m;
     p.o = o;
-    p.n_todo = lv_campaign_todo(c, &p.todo);
+    p.c = c;
+    const uint64_t n_todo = lv_campaign_todo_count(c);
     pthread_mutex_init(&p.lock, NULL);
     pthread_cond_init(&p.cv, NULL);
     int nt = o->threads > 0 ? o->threads : 1;
@@ -353,7 +516,7 @@ lv_status lv_campaign_run(const lv_mission *m, const lv_campaign_options *o,
         nt = 256;
     pthread_t tid[256];
     int started = 0;
-    for (int i = 0; i < nt && (size_t)i < (p.n_todo ? p.n_todo : 1); i++) {
+    for (int i = 0; i < nt && (uint64_t)i < (n_todo ? n_todo : 1); i++) {
         pthread_mutex_lock(&p.lock);
         p.active++;
         pthread_mutex_unlock(&p.lock);
@@ -365,7 +528,7 @@ lv_status lv_campaign_run(const lv_mission *m, const lv_campaign_options *o,
             pthread_mutex_unlock(&p.lock);
         }
     }
-    if (started == 0 && p.n_todo > 0)
+    if (started == 0 && n_todo > 0)
         st = lv_fail(err, LV_ERR_NOMEM, "cannot start a worker thread");
     /* the writer: this thread stores what the workers made, a batch per transaction */
     double last_prog = now_s(), last_commit = last_prog;

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <sqlite3.h>
 
@@ -87,6 +88,30 @@ void lv_mc_data_free(lv_mc_data *d)
     free(d);
 }
 
+/* What lv_mc_data_load and the statistics' work arrays hold for N runs of n_in inputs: per
+ * run the inputs, a status byte and four doubles; per phase and run the row index, the
+ * finals, state, run, end and error (two small strings); NAN when a table cannot be read. */
+static double memory_needed(sqlite3 *db, double N, double n_in)
+{
+    double per_run = 8.0 * n_in + 1.0 + 32.0;
+    sqlite3_stmt *s = NULL, *t = NULL;
+    if (sqlite3_prepare_v2(db, "SELECT tbl FROM phases", -1, &s, NULL) != SQLITE_OK)
+        return NAN;
+    while (sqlite3_step(s) == SQLITE_ROW) {
+        char sql[256];
+        snprintf(sql, sizeof sql, "SELECT * FROM \"%s\"", (const char *)sqlite3_column_text(s, 0));
+        if (sqlite3_prepare_v2(db, sql, -1, &t, NULL) != SQLITE_OK) {
+            sqlite3_finalize(s);
+            return NAN;
+        }
+        const int nc = sqlite3_column_count(t);
+        sqlite3_finalize(t);
+        per_run += 8.0 * (nc > 7 ? nc - 7 : 0) + 8.0 + 1.0 + 8.0 + 8.0 + 64.0;
+    }
+    sqlite3_finalize(s);
+    return N * per_run;
+}
+
 /* Sets `what` on failure. */
 lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
 {
@@ -132,6 +157,18 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
     sqlite3_finalize(s);
     s = NULL;
     const size_t N = d->n_runs;
+    /* every run's values are held at once: refused beyond the machine's memory */
+    const double need = memory_needed(db, (double)N, (double)d->n_in);
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    const double have = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+    if (need > have) {
+        char n[32], a[32], b[32];
+        st = lv_fail(err, LV_ERR_INPUT, "%s: the statistics of its %s runs would need %s of "
+                     "memory and this machine has %s: compute them for a smaller campaign",
+                     db_path, lv_fmt_count((double)N, n, sizeof n),
+                     lv_fmt_bytes(need, a, sizeof a), lv_fmt_bytes(have, b, sizeof b));
+        goto fail;
+    }
     d->in = malloc((N * d->n_in + 1) * sizeof *d->in);
     d->run_status = calloc(N + 1, 1);
     if (d->in == NULL || d->run_status == NULL)
@@ -259,6 +296,8 @@ const char *lv_mc_cause(const char *error)
         return "left the model's domain";
     if (strstr(error, "cancel"))
         return "cancelled";
+    if (strstr(error, "row limit"))
+        return "row limit";
     if (strstr(error, "must be") || strstr(error, "outside") || strstr(error, "invalid"))
         return "input out of range";
     if (strstr(error, "CVODE") || strstr(error, "ARKODE") || strstr(error, "integrat") ||

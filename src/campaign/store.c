@@ -28,8 +28,12 @@ struct lv_campaign {
     sqlite3_stmt **ins_phase; /* [n_phases] */
     size_t n_phases, n_disp;
     size_t *n_final;          /* [n_phases] */
-    uint64_t *todo;
-    size_t n_todo;
+    /* the runs not stored when it was opened, as ranges [gap[2i], gap[2i+1]) ascending: as
+     * many as there are holes between stored runs, never a list of n_runs */
+    uint64_t *gap;
+    size_t n_gaps, gap_at;    /* the range handed out next */
+    uint64_t next_run;        /* its next run */
+    uint64_t n_todo;          /* runs not stored and not handed out yet */
     uint64_t done, this_session, failed;
     int in_tx;
     double t0;
@@ -333,6 +337,24 @@ static lv_status prepare_inserts(lv_campaign *c, const lv_run *r, lv_err *err)
     return LV_OK;
 }
 
+/* Appends the runs [lo, hi) to the ranges to do. */
+static lv_status add_gap(lv_campaign *c, size_t *cap, uint64_t lo, uint64_t hi, lv_err *err)
+{
+    if (c->n_gaps == *cap) {
+        const size_t nc = *cap ? 2 * *cap : 16;
+        uint64_t *g = realloc(c->gap, 2 * nc * sizeof *g);
+        if (g == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        c->gap = g;
+        *cap = nc;
+    }
+    c->gap[2 * c->n_gaps] = lo;
+    c->gap[2 * c->n_gaps + 1] = hi;
+    c->n_gaps++;
+    c->n_todo += hi - lo;
+    return LV_OK;
+}
+
 lv_status lv_campaign_close(lv_campaign *c, lv_err *err)
 {
     if (c == NULL)
@@ -352,7 +374,7 @@ lv_status lv_campaign_close(lv_campaign *c, lv_err *err)
         st = lv_fail(err, LV_ERR_IO, "%s: cannot close", c->o.db_path);
     free(c->ins_phase);
     free(c->n_final);
-    free(c->todo);
+    free(c->gap);
     free(c);
     return st;
 }
@@ -403,6 +425,19 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
     }
     if ((st = lv_run_create(m, &r, err)) != LV_OK)
         goto fail;
+    /* the row limit, up front, as every run will hold it (lv_mc_worker_run's options) */
+    if (o->max_rows > 0.0) {
+        lv_run_options ro = {0};
+        ro.max_rows = o->max_rows;
+        ro.output_interval = o->output_interval > 0.0 ? o->output_interval : 1e300;
+        if ((st = lv_run_check_output(r, &ro, err)) != LV_OK)
+            goto fail;
+        ro.output_interval = o->output_interval;
+        if (o->keep_runs > 0 && (st = lv_run_check_output(r, &ro, err)) != LV_OK) {
+            lv_fail_prefix(err, st, "the kept runs (each phase's own output grid)");
+            goto fail;
+        }
+    }
     const int exists = access(o->db_path, F_OK) == 0;
     if (exists && !o->resume && !o->overwrite) {
         st = lv_fail(err, LV_ERR_INPUT, "%s exists: continue it with --resume, or replace it "
@@ -477,38 +512,32 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
     if ((st = meta_put(c, "n_runs", nbuf, err)) != LV_OK ||
         (st = prepare_inserts(c, r, err)) != LV_OK)
         goto fail;
-    /* which runs are stored already */
-    unsigned char *have = calloc((size_t)o->n_runs, 1);
+    /* which runs are stored already: the holes between them (in run order) are to do */
     sqlite3_stmt *s = NULL;
-    if (have == NULL) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto fail;
-    }
-    if (sqlite3_prepare_v2(c->db, "SELECT run, status FROM runs", -1, &s, NULL) != SQLITE_OK) {
-        free(have);
+    if (sqlite3_prepare_v2(c->db, "SELECT run, status FROM runs ORDER BY run", -1, &s, NULL) !=
+        SQLITE_OK) {
         st = db_fail(c, err, "runs");
         goto fail;
     }
-    while (sqlite3_step(s) == SQLITE_ROW) {
+    uint64_t from = 0; /* the first run not known to be stored */
+    size_t cap = 0;
+    while (st == LV_OK && sqlite3_step(s) == SQLITE_ROW) {
         const sqlite3_int64 i = sqlite3_column_int64(s, 0);
-        if (i >= 0 && (uint64_t)i < o->n_runs && !have[i]) {
-            have[i] = 1;
-            c->done++;
-            const char *stt = (const char *)sqlite3_column_text(s, 1);
-            c->failed += stt != NULL && strcmp(stt, "ok") != 0;
-        }
+        if (i < 0 || (uint64_t)i >= o->n_runs)
+            continue;
+        if ((uint64_t)i > from)
+            st = add_gap(c, &cap, from, (uint64_t)i, err);
+        from = (uint64_t)i + 1;
+        c->done++;
+        const char *stt = (const char *)sqlite3_column_text(s, 1);
+        c->failed += stt != NULL && strcmp(stt, "ok") != 0;
     }
     sqlite3_finalize(s);
-    c->todo = malloc(((size_t)(o->n_runs - c->done) + 1) * sizeof *c->todo);
-    if (c->todo == NULL) {
-        free(have);
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    if (st == LV_OK && from < o->n_runs)
+        st = add_gap(c, &cap, from, o->n_runs, err);
+    if (st != LV_OK)
         goto fail;
-    }
-    for (uint64_t i = 0; i < o->n_runs; i++)
-        if (!have[i])
-            c->todo[c->n_todo++] = i;
-    free(have);
+    c->next_run = c->n_gaps > 0 ? c->gap[0] : 0;
     lv_run_free(r);
     *out = c;
     return LV_OK;
@@ -518,10 +547,21 @@ fail:
     return st;
 }
 
-size_t lv_campaign_todo(const lv_campaign *c, const uint64_t **runs)
+uint64_t lv_campaign_todo_count(const lv_campaign *c) { return c->n_todo; }
+
+size_t lv_campaign_todo_next(lv_campaign *c, uint64_t *runs, size_t cap)
 {
-    *runs = c->todo;
-    return c->n_todo;
+    size_t n = 0;
+    while (n < cap && c->gap_at < c->n_gaps) {
+        if (c->next_run >= c->gap[2 * c->gap_at + 1]) {
+            if (++c->gap_at < c->n_gaps)
+                c->next_run = c->gap[2 * c->gap_at];
+            continue;
+        }
+        runs[n++] = c->next_run++;
+        c->n_todo--;
+    }
+    return n;
 }
 
 static void bind_real(sqlite3_stmt *s, int i, double v)

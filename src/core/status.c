@@ -4,6 +4,7 @@
 #include "core/status.h"
 
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -17,6 +18,35 @@ const char *lv_status_str(lv_status st)
     }
 #undef LV_STATUS_CASE_
     return "unknown status";
+}
+
+/* ---- numbers in messages: never 301 digits ---- */
+
+char *lv_fmt_count(double n, char *buf, size_t cap)
+{
+    if (n < 1e7 && n > -1e7)
+        snprintf(buf, cap, "%.0f", n);
+    else
+        snprintf(buf, cap, "%.3g", n);
+    return buf;
+}
+
+char *lv_fmt_bytes(double b, char *buf, size_t cap)
+{
+    static const char *const unit[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
+    size_t u = 0;
+    double x = b;
+    while (x >= 1000.0 && u + 1 < sizeof unit / sizeof unit[0]) {
+        x /= 1000.0;
+        u++;
+    }
+    if (u == 0)
+        snprintf(buf, cap, "%.0f B", b);
+    else if (x >= 1000.0) /* beyond exabytes: the bytes in exponent form */
+        snprintf(buf, cap, "%.3g B", b);
+    else
+        snprintf(buf, cap, "%.3g %s", x, unit[u]);
+    return buf;
 }
 
 lv_status lv_fail(lv_err *err, lv_status code, const char *fmt, ...)

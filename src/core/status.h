@@ -12,6 +12,11 @@
 #define LV_PRINTF(a, b)
 #endif
 
+/* Numbers for messages, never 301 digits: a count exact below ten million, else "1.4e+11";
+ * bytes as "12.3 MB", "512 B" (beyond exabytes "5.04e+35 B"). Return buf. */
+char *lv_fmt_count(double n, char *buf, size_t cap);
+char *lv_fmt_bytes(double bytes, char *buf, size_t cap);
+
 /* Fill `err` (may be NULL) with `code` and a formatted message; returns `code`. */
 lv_status lv_fail(lv_err *err, lv_status code, const char *fmt, ...) LV_PRINTF(3, 4);
 

@@ -1,11 +1,14 @@
 /* atomic.c - write "<path>.tmp", then rename it to "<path>": the one place where lvsim's
  * writers finish a file (atomic.h). rename(2) replaces the target in one step on POSIX file
- * systems, so a reader sees the old complete file or the new complete one. */
+ * systems, so a reader sees the old complete file or the new complete one; the temporary file
+ * is created exclusively, so it never replaces anything itself. */
+#define _POSIX_C_SOURCE 200809L /* lstat, fdopen, O_CLOEXEC */
+
 #include "io/atomic.h"
 
 #include <errno.h>
-#include <stdio.h>
 #include <fcntl.h>
+#include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -307,6 +307,8 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         s->number_of_intervals = 0;
     }
     s->result_file = NULL;
+    s->stop = opt ? opt->stop : NULL;
+    s->max_rows = opt && opt->max_rows > 0.0 ? opt->max_rows : 0.0;
     c->mass_book = NAN;
     if (par != NULL) {
         c->mass_book = 0.0;
@@ -642,6 +644,9 @@ static lv_status check_options(const lv_run_options *opt, lv_err *err)
     if (opt->threads < 0)
         return lv_fail(err, LV_ERR_INPUT, "run options: threads must be >= 0 (0: 2), got %d",
                        opt->threads);
+    if (!(opt->max_rows >= 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "run options: max_rows must be >= 0 (0: no limit), "
+                       "got %g", opt->max_rows);
     if (opt->method != NULL) {
         lv_method mth;
         if (lv_method_parse(opt->method, &mth, err) != LV_OK)
@@ -656,6 +661,9 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
     lv_status ost = check_options(opt, err);
     if (ost != LV_OK)
         return ost;
+    lv_status cst = lv_run_check_output(r, opt, err); /* nothing runs past the limit */
+    if (cst != LV_OK)
+        return cst;
     if (opt && opt->outdir && mkdir_p(opt->outdir) != 0)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
                        LV_STRERROR(errno));

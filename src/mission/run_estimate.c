@@ -1,8 +1,11 @@
 /* run_estimate.c - how much a phase will write, at most, before it runs: rows from its
- * output grid and its longest possible duration, bytes from the rows and its columns. The
- * CLI refuses a mission beyond a limit (lvsim check/run --max-rows) instead of filling the
- * disk and the memory for hours. Reads the plan and the run's values only. */
+ * output grid and its longest possible duration (its stop time, or a `time` end), bytes from
+ * the rows and its columns; and the up-front half of lv_run_options.max_rows: a phase that
+ * nothing but that duration can end is refused beyond the limit before anything runs, one
+ * with other ends (burnout, altitude, ...) is left to the run, which stops it at the limit
+ * (sim/simulate.c). Reads the plan and the run's values only. */
 #include <math.h>
+#include <stdio.h>
 
 #include "core/status.h"
 #include "lvsim/lv_mission.h"
@@ -10,9 +13,12 @@
 
 /* lv_simulate's grid without output_interval or number_of_intervals (sim/simulate.c). */
 #define GRID_DEFAULT_INTERVALS 500
+/* The largest row count worth suggesting as a limit (lvsim --max-rows takes up to 1e15). */
+#define LIMIT_SUGGEST_MAX 1e15
 
 /* Earliest time phase k can start: its start_time, or its parent's end when the parent is
- * done in this run, or its parent's earliest start (a phase ends after it starts). */
+ * done and up to date in this run, or its parent's earliest start (a phase ends after it
+ * starts). */
 static double earliest_start(const lv_run *r, size_t k)
 {
     const lv_mission_def *d = lv_run_mission(r)->def;
@@ -24,7 +30,8 @@ static double earliest_start(const lv_run *r, size_t k)
         if (ph->parent < 0)
             return 0.0;
         const lv_phase_result *pr = lv_run_result(r, (size_t)ph->parent);
-        if (pr->state == LV_PHASE_DONE && isfinite(pr->t_end))
+        if (pr->state == LV_PHASE_DONE && isfinite(pr->t_end) &&
+            !lv_run_stale(r, (size_t)ph->parent))
             return pr->t_end;
         k = (size_t)ph->parent;
     }
@@ -42,7 +49,16 @@ lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interv
     const lv_phase_plan *pl = &m->plan[k];
     const double *v = lv_run_vals(r);
     const double t0 = earliest_start(r, k), tf = v[ph->t_stop];
-    const double span = tf - t0;
+    double span = tf - t0;
+    /* a `time` end is a bound as exact as the stop time; any other end fires when it fires */
+    int bounded = 1;
+    for (size_t i = 0; i < ph->n_ends; i++) {
+        const lv_end_def *e = &ph->ends[i];
+        if (e->kind == LV_END_TIME && e->value != LV_NO_SLOT)
+            span = fmin(span, v[e->value]);
+        else
+            bounded = 0;
+    }
     const double dt = output_interval > 0.0 ? output_interval : v[ph->output_interval];
     double intervals;
     if (!(span > 0.0))
@@ -56,5 +72,79 @@ lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interv
     out->n_signals = pl->n_final + pl->n_states; /* time, states, outputs + derivatives */
     out->bytes_mat = out->rows * (double)out->n_signals * 8.0;
     out->bytes_csv = out->rows * (double)out->n_signals * 22.0;
+    out->bounded = bounded;
+    return LV_OK;
+}
+
+/* The smallest number of three significant digits >= n: a limit that allows n rows and
+ * reads back as written ("1.24e+09" for 1233999999). */
+static double round_up3(double n)
+{
+    if (n < 1e7)
+        return ceil(n);
+    const double q = pow(10.0, floor(log10(n)) - 2.0);
+    double up = ceil(n / q) * q;
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.3g", up);
+    if (sscanf(buf, "%lf", &up) != 1 || up < n) /* the decimal rounding went below n */
+        up += q;
+    return up;
+}
+
+lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err *err)
+{
+    if (opt == NULL || !(opt->max_rows > 0.0))
+        return LV_OK;
+    const lv_mission_def *d = lv_run_mission(r)->def;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        if (opt->want != NULL) { /* wanted, or an ancestor of a wanted phase */
+            int needed = 0;
+            for (size_t j = 0; j < d->n_phases && !needed; j++)
+                for (int a = opt->want[j] ? (int)j : -1; a >= 0 && !needed;
+                     a = d->phases[a].parent)
+                    needed = (size_t)a == k;
+            if (!needed)
+                continue;
+        }
+        const lv_phase_result *res = lv_run_result(r, k);
+        if (res->state == LV_PHASE_DONE && !lv_run_stale(r, k))
+            continue; /* it will not run */
+        lv_output_estimate e;
+        lv_status st = lv_run_estimate_output(r, k, opt->output_interval, &e, err);
+        if (st != LV_OK)
+            return st;
+        if (!e.bounded || e.rows <= opt->max_rows)
+            continue;
+        const lv_phase_def *ph = &d->phases[k];
+        char rows[32], lim[32], mat[32], csv[32], grid[64], raise[128];
+        lv_fmt_count(e.rows, rows, sizeof rows);
+        lv_fmt_count(opt->max_rows, lim, sizeof lim);
+        lv_fmt_bytes(e.bytes_mat, mat, sizeof mat);
+        lv_fmt_bytes(e.bytes_csv, csv, sizeof csv);
+        const double dt = opt->output_interval > 0.0 ? opt->output_interval
+                                                     : lv_run_vals(r)[ph->output_interval];
+        if (dt > 0.0)
+            snprintf(grid, sizeof grid, ", a row every %.3g s", dt);
+        else
+            grid[0] = '\0';
+        int time_end = 0;
+        for (size_t i = 0; i < ph->n_ends; i++)
+            time_end |= ph->ends[i].kind == LV_END_TIME;
+        if (e.rows <= LIMIT_SUGGEST_MAX) {
+            char up[32];
+            lv_fmt_count(round_up3(e.rows), up, sizeof up);
+            snprintf(raise, sizeof raise, ", or raise the limit to %s rows (max_rows; lvsim "
+                     "--max-rows %s)", up, up);
+        } else {
+            raise[0] = '\0';
+        }
+        return lv_fail(err, LV_ERR_INPUT,
+                       "phase %zu '%s' would write up to %s rows (%.3g s of mission time%s; "
+                       "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than "
+                       "the limit of %s rows per phase, and nothing but its %s ends it. Give "
+                       "it a larger output interval, an earlier stop_time or an end event%s",
+                       k + 1, ph->name, rows, e.duration, grid, e.n_signals, mat, csv, lim,
+                       time_end ? "stop_time or time end" : "stop_time", raise);
+    }
     return LV_OK;
 }

@@ -70,6 +70,8 @@ typedef struct sim_run {
     int bad_seen;
     int rhs_rc;       /* last nonzero return of the model's rhs, and when */
     double rhs_rc_t;
+    const volatile int *stop; /* lv_sim_settings.stop, or NULL */
+    int cancelled;    /* the rhs saw the stop flag: the integrator's failure is a cancel */
 
     /* result layout */
     size_t n_signals;
@@ -93,6 +95,11 @@ typedef struct sim_run {
 static int sim_rhs(double t, const double *x, double *xdot, void *user)
 {
     sim_run *r = user;
+    /* a stop asked for: an unrecoverable failure ends the integrator's call within its step */
+    if (r->stop != NULL && __atomic_load_n(r->stop, __ATOMIC_RELAXED) != 0) {
+        r->cancelled = 1;
+        return -1;
+    }
     int rc = r->def->rhs(t, x, r->p, xdot, r->inst);
     r->rhs_rc = rc; /* the last evaluation's outcome: a failure message names its reason */
     if (rc != 0) {
@@ -330,6 +337,9 @@ static lv_status check_settings(const lv_model_def *d, const lv_sim_settings *s,
     if (s->max_steps < 0)
         return lv_fail(err, LV_ERR_INPUT, "model '%s': max steps must be >= 0 (got %ld)", mn,
                        s->max_steps);
+    if (!(s->max_rows >= 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': max rows must be >= 0 (got %g)", mn,
+                       s->max_rows);
     if ((s->n_initial > 0 && (s->initial_names == NULL || s->initial_values == NULL)) ||
         (s->n_final > 0 && s->final_names == NULL) || (s->n_sinks > 0 && s->sinks == NULL))
         return lv_fail(err, LV_ERR_INPUT, "model '%s': name/value arrays are NULL", mn);
@@ -634,6 +644,9 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
             lv_err row_err;
             if (t > r->row[0])
                 emit_row(r, t, &row_err);
+            if (r->cancelled)
+                return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s",
+                               d->name, t);
             if (r->bad_seen)
                 return lv_fail_prefix(err, st, "model '%s': der(%s) is not finite at t = %.9g s",
                                       d->name, d->states[r->bad_index].name, r->bad_t);
@@ -756,10 +769,22 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
                                t);
             S->t_te = next;
         } else if (t == t_grid) {
+            /* grid rows 0 .. k - 1 are written: one more would pass the limit */
+            if (s->max_rows > 0.0 && (double)S->k >= s->max_rows) {
+                char lim[32];
+                lv_fmt_count(s->max_rows, lim, sizeof lim);
+                return lv_fail(err, LV_ERR_SOLVER,
+                               "model '%s': stopped at t = %.9g s by the row limit: %s output "
+                               "rows (max_rows) and no end of the run reached; give it a "
+                               "larger output interval, an earlier stop_time or an end that "
+                               "fires, or raise the limit (max_rows; lvsim --max-rows)",
+                               d->name, t, lim);
+            }
             if ((st = emit_row(r, t, err)) != LV_OK)
                 return st;
             S->k++;
-            if (s->progress != NULL && s->progress(t, s->progress_user) != 0)
+            if ((s->progress != NULL && s->progress(t, s->progress_user) != 0) ||
+                (r->stop != NULL && __atomic_load_n(r->stop, __ATOMIC_RELAXED) != 0))
                 return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s",
                                d->name, t);
         }
@@ -847,6 +872,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
     r->def = d;
     r->inst = inst;
     r->rep = rep;
+    r->stop = s->stop;
     r->nx = d->n_states;
     r->np = d->n_params;
     r->ny = d->n_outputs;

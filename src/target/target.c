@@ -352,14 +352,19 @@ static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const doub
         }
     }
     if (p->ok) {
-        const lv_run_options opt = {.threads = threads, .no_rows = 1, .want = t->want};
+        const lv_run_options opt = {.threads = threads, .no_rows = 1, .want = t->want,
+                                    .stop = t->set.stop, .max_rows = t->set.max_rows};
         lv_status st = lv_run_execute(r, &opt, &e);
         (*runs)++;
         *phases += lv_run_simulated(r);
         if (st == LV_ERR_CANCELLED || st == LV_ERR_NOMEM || st == LV_ERR_IO)
             return lv_fail(err, st, "%s", e.msg);
-        if (point_failed(t, r, p->why, sizeof p->why))
+        if (st == LV_ERR_INPUT) { /* refused before it ran (the row limit): a failed point */
             p->ok = 0;
+            snprintf(p->why, sizeof p->why, "%s", e.msg);
+        } else if (point_failed(t, r, p->why, sizeof p->why)) {
+            p->ok = 0;
+        }
     }
     p->worst = p->merit = p->ok ? 0.0 : INFINITY;
     for (size_t i = 0; i < t->mc; i++) {
@@ -403,6 +408,9 @@ static int threads_of(const lv_target *t) { return t->set.threads > 0 ? t->set.t
 /* The on_evaluation callback (serialised: sensitivities call it from their workers). */
 static lv_status announce(lv_target *t, const char *purpose, const char *var, lv_err *err)
 {
+    if (t->set.stop != NULL && __atomic_load_n(t->set.stop, __ATOMIC_RELAXED) != 0)
+        return lv_fail(err, LV_ERR_CANCELLED, "targeting stopped at iteration %zu",
+                       t->iteration);
     if (t->set.on_evaluation == NULL)
         return LV_OK;
     const lv_target_eval ev = {t->iteration, purpose, var, t->runs, t->phases, tg_wall(t)};
@@ -848,15 +856,14 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         }
         break;
     }
-    /* cancelled (on_evaluation returned nonzero): the best point so far is the result, not
-     * converged; the callback is not asked again for the result's run */
+    /* cancelled (on_evaluation returned nonzero, or the stop flag cut an evaluation short):
+     * the best point so far is the result, not converged, and not evaluated again */
     int cancelled = 0;
     if (st == LV_ERR_CANCELLED && p.ok) {
         cancelled = 1;
         conv = 0;
         snprintf(reason, sizeof reason, "cancelled at iteration %zu: the best point so far",
                  t->iteration);
-        t->set.on_evaluation = NULL;
         st = LV_OK;
     }
     /* not met, the variables moved by a scale or more and no final moved by more than 1e-6
@@ -878,17 +885,27 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
     free(x0);
     if (st != LV_OK)
         goto done;
-    /* the run holds the result's point */
-    tg_point q;
-    if (tg_point_init(t, &q) != LV_OK) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        goto done;
+    /* the run holds the result's point (a cancelled solve stops at once: it holds the last
+     * point evaluated) */
+    if (!cancelled) {
+        tg_point q;
+        if (tg_point_init(t, &q) != LV_OK) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        t->solver = "result";
+        st = tg_eval(t, p.x, "point", NULL, &q, err);
+        tg_point_free(&q);
+        if (st == LV_ERR_CANCELLED) { /* stopped now: the point is known all the same */
+            cancelled = 1;
+            conv = 0;
+            snprintf(reason, sizeof reason, "cancelled at iteration %zu: the best point so far",
+                     t->iteration);
+            st = LV_OK;
+        }
+        if (st != LV_OK)
+            goto done;
     }
-    t->solver = "result";
-    st = tg_eval(t, p.x, "point", NULL, &q, err);
-    tg_point_free(&q);
-    if (st != LV_OK)
-        goto done;
     memcpy(t->res_x, p.x, t->n * sizeof *t->res_x);
     memcpy(t->res_f, p.f, t->mc * sizeof *t->res_f);
     memcpy(t->res_r, p.r, t->mc * sizeof *t->res_r);

@@ -3,6 +3,8 @@
 # contents (sqlite3 .dump) with -j 1, -j 2 and, with MPI=1, `mpirun -np 2`; a campaign killed
 # with SIGKILL and resumed ends with the contents of an uninterrupted one; `lvsim check` and
 # `lvsim mc` refuse the same bad dispersions with the same file:line:column; exit codes.
+# Issue 22: dense grids and run counts refused or estimated before anything runs; SIGINT and
+# SIGTERM end a campaign within a second inside a long run, and --resume completes it.
 set -u
 lvsim="$1"; src="$2"; mpi="${3:-0}"
 work=$(mktemp -d)
@@ -11,6 +13,9 @@ fails=0; pass=0
 ok() { pass=$((pass + 1)); }
 bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
 dump() { sqlite3 "$1" .dump; }
+# runs stored so far in a campaign's database being written; read-only, so that the probe
+# never creates the file before lvsim does (it would then be "an existing database")
+stored_runs() { [ -s "$1" ] && sqlite3 -readonly "$1" "SELECT count(*) FROM runs" 2>/dev/null || echo 0; }
 mission="$src/examples/dof3-branch/mission.yaml"
 isp="$src/tests/missions/mc/isp_scatter.yaml"
 
@@ -24,6 +29,36 @@ if [ "$mpi" = 1 ]; then
   grep -q "2 ranks" "$work/np2.log" && ok || bad "mpirun: no '2 ranks' line"
   if cmp -s <(dump "$work/j1/campaign.db") <(dump "$work/np2/campaign.db"); then ok
   else bad "mpirun -np 2 and -j 1 databases differ"; fi
+  # SIGINT on rank 0 inside long runs (issue 22): rank 0 stops handing out work and tells the
+  # other rank, whose run is cancelled; the ranks end within a second, mpirun (OpenMPI aborts a
+  # job whose rank exits non-zero) about a second after; the database is consistent and
+  # --resume completes it as an uninterrupted campaign
+  long="$src/tests/missions/mc/long_run.yaml"
+  "$lvsim" mc "$long" -n 4 -j 2 -o "$work/long_full" --no-stats >/dev/null 2>&1 || bad "long runs, uninterrupted"
+  mpirun "${extra[@]}" --oversubscribe -np 2 "$lvsim" mc "$long" -n 4 -j 1 -o "$work/long_np2" \
+    --no-stats >"$work/long_np2.log" 2>&1 &
+  mp=$!
+  for _ in $(seq 1 600); do  # the first chunks stored, the next runs under way
+    sleep 0.05
+    stored=$(stored_runs "$work/long_np2/campaign.db")
+    [ "${stored:-0}" -ge 1 ] && break
+  done
+  sleep 0.3
+  r0=""
+  for c in $(pgrep -P $mp); do  # rank 0: the child of mpirun whose environment says so
+    tr '\0' '\n' < "/proc/$c/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=0" && r0=$c
+  done
+  t0=$(date +%s.%N)
+  [ -n "$r0" ] && kill -INT "$r0"
+  wait $mp; rc=$?
+  dt=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+  echo "SIGINT on rank 0 ($r0): mpirun exit $rc after $dt s"
+  [ -n "$r0" ] && [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 5.0) }' && ok \
+    || { bad "SIGINT on rank 0: mpirun exit $rc after $dt s (want 130)"; cat "$work/long_np2.log"; }
+  grep -q "lvsim: campaign stopped (continue with --resume)" "$work/long_np2.log" && ok || { bad "rank 0 did not stop cleanly"; cat "$work/long_np2.log"; }
+  [ "$(sqlite3 "$work/long_np2/campaign.db" "PRAGMA integrity_check")" = ok ] && ok || bad "database not consistent"
+  "$lvsim" mc "$long" -n 4 -j 2 -o "$work/long_np2" --resume --no-stats >"$work/long_np2.resume.log" 2>&1 || { bad "resume after mpirun"; cat "$work/long_np2.resume.log"; }
+  cmp -s <(dump "$work/long_full/campaign.db") <(dump "$work/long_np2/campaign.db") && ok || bad "stopped under mpirun + resumed differs from uninterrupted"
   echo "test_mc (mpi): $pass passed, $fails failed"
   [ "$fails" -eq 0 ]; exit
 fi
@@ -61,7 +96,7 @@ pid=$!
 stored=0
 for _ in $(seq 1 400); do
   sleep 0.05
-  stored=$(sqlite3 "$work/killed/campaign.db" "SELECT count(*) FROM runs" 2>/dev/null || echo 0)
+  stored=$(stored_runs "$work/killed/campaign.db")
   [ "${stored:-0}" -ge 500 ] && break
 done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
@@ -70,6 +105,59 @@ if [ "$stored" -gt 0 ] && [ "$stored" -lt $N ]; then ok; else bad "kill -9 left 
 "$lvsim" mc "$isp" -n $N -j 1 -o "$work/killed" --resume --no-stats >"$work/resume.log" 2>&1 || bad "resume"
 grep -q "$((N - stored)) this session" "$work/resume.log" && ok || { bad "resume should run the $((N - stored)) missing runs"; cat "$work/resume.log"; }
 cmp -s <(dump "$work/full/campaign.db") <(dump "$work/killed/campaign.db") && ok || bad "killed + resumed differs from uninterrupted"
+
+# Bounds before anything runs (issue 22): a dense output grid on a phase only its stop time
+# ends is refused with the rows in readable form, before DIR is made; on phases with an end
+# event it is estimated, and a phase that reaches --max-rows fails in that run (an outcome)
+sed 's/    end: \[burnout\]//; s/stop_time: 200/stop_time: 100/' "$isp" > "$work/open.yaml"
+out=$("$lvsim" mc "$work/open.yaml" --output-interval 1e-9 -n 10 -o "$work/dense" 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "lvsim: mc: phase 1 'burn' would write up to 1e+11 rows (100 s of mission time, a row every 1e-09 s; .*more than the limit of 1000000 rows per phase" <<<"$out" \
+  && [ ! -e "$work/dense" ] && ok || bad "dense grid on an open phase: exit $rc: $out"
+out=$("$lvsim" mc "$mission" --output-interval 1e-9 -n 2 -o "$work/dense2" --no-stats 2>&1); rc=$?
+[ "$rc" -eq 0 ] && grep -q "mc: estimate: up to 3000000 output rows a run (5.4e+12 by the stop times)" <<<"$out" \
+  && grep -q "a phase with an end event that does not fire within --max-rows 1000000 rows fails there" <<<"$out" \
+  && ok || bad "dense grid with end events: exit $rc: $out"
+n=$(sqlite3 "$work/dense2/campaign.db" "SELECT count(*) FROM phase_ascent WHERE state = 'failed' AND error LIKE '%by the row limit: 1000000 output rows%'")
+[ "$n" = 2 ] && ok || bad "the dense runs should fail at the row limit ($n of 2)"
+# a run count whose database cannot fit: refused with the sizes, exit 2, nothing made
+out=$("$lvsim" mc "$mission" -n 99999999999 -o "$work/huge" 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "lvsim: mc -n 99999999999: a campaign of 1e+11 runs is too large; its database would need about .* TB (.* kB a run) and the file system of .* has .* free; its statistics would need .* TB of memory .* and this machine has .*: run fewer (-n), or skip the statistics (--no-stats)" <<<"$out" \
+  && [ ! -e "$work/huge" ] && ok || bad "-n 99999999999: exit $rc: $out"
+
+# Ctrl-C and SIGTERM inside a run of several seconds (long_run.yaml: about 2.7 s of CPU a run,
+# start and end rows only): the campaign ends within a second (130), the runs done are
+# stored, the one cut short is not, the database is consistent, and --resume ends with the
+# contents of an uninterrupted campaign
+long="$src/tests/missions/mc/long_run.yaml"
+"$lvsim" mc "$long" -n 3 -j 2 -o "$work/long_full" --no-stats >/dev/null 2>&1 || bad "long runs, uninterrupted"
+now() { date +%s.%N; }
+for sig in INT TERM; do
+  d="$work/long_$sig"
+  "$lvsim" mc "$long" -n 3 -j 1 -o "$d" --no-stats >"$d.log" 2>&1 &
+  pid=$!
+  stored=0
+  for _ in $(seq 1 600); do  # the first run stored, the second under way
+    sleep 0.05
+    stored=$(stored_runs "$d/campaign.db")
+    [ "${stored:-0}" -ge 1 ] && break
+  done
+  sleep 0.3
+  t0=$(now); kill -$sig $pid; wait $pid; rc=$?; t1=$(now)
+  dt=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
+  echo "SIG$sig: exit $rc after $dt s"
+  [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 1.0) }' && ok || bad "SIG$sig: exit $rc after $dt s (want 130 within 1 s)"
+  grep -q "lvsim: campaign stopped: 1 of 3 runs stored (continue with resume)" "$d.log" && ok || bad "SIG$sig: $(tail -1 "$d.log")"
+  [ "$(sqlite3 "$d/campaign.db" "PRAGMA integrity_check")" = ok ] && ok || bad "SIG$sig: database not consistent"
+  for t in runs phase_burn phase_coast1 phase_coast2 events; do  # only whole runs, as stored uninterrupted
+    extra=$(sqlite3 "$d/campaign.db" "ATTACH '$work/long_full/campaign.db' AS f; SELECT count(*) FROM (SELECT * FROM main.\"$t\" EXCEPT SELECT * FROM f.\"$t\")")
+    [ "$extra" = 0 ] && ok || bad "SIG$sig: $extra rows of $t differ from the uninterrupted campaign"
+  done
+  n=$(sqlite3 "$d/campaign.db" "SELECT count(*) FROM phase_coast2")
+  [ "$n" = 1 ] && ok || bad "SIG$sig: $n runs' phases stored (want the 1 run done)"
+  "$lvsim" mc "$long" -n 3 -j 2 -o "$d" --resume --no-stats >"$d.resume.log" 2>&1 || bad "SIG$sig: resume"
+  grep -q "2 this session" "$d.resume.log" && ok || bad "SIG$sig: resume should run the 2 missing runs: $(tail -1 "$d.resume.log")"
+  cmp -s <(dump "$work/long_full/campaign.db") <(dump "$d/campaign.db") && ok || bad "SIG$sig: stopped + resumed differs from uninterrupted"
+done
 
 # bad dispersions: check and mc say the same, with the position
 cat > "$work/bad.yaml" <<'YAML'

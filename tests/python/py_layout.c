@@ -64,7 +64,7 @@ int main(void)
     F(lv_run_options, on_phase); F(lv_run_options, user); F(lv_run_options, output_interval);
     F(lv_run_options, method); F(lv_run_options, tolerance); F(lv_run_options, progress);
     F(lv_run_options, no_rows); F(lv_run_options, result_formats); F(lv_run_options, want);
-    F(lv_run_options, stop);
+    F(lv_run_options, stop); F(lv_run_options, max_rows);
     S(lv_body_traj); F(lv_body_traj, stage); F(lv_body_traj, n_rows); F(lv_body_traj, n_cols);
     F(lv_body_traj, names); F(lv_body_traj, units); F(lv_body_traj, values);
     F(lv_body_traj, phase);
@@ -81,6 +81,7 @@ int main(void)
     F(lv_sim_settings, max_step_size); F(lv_sim_settings, n_sinks); F(lv_sim_settings, sinks);
     F(lv_sim_settings, progress); F(lv_sim_settings, progress_user);
     F(lv_sim_settings, n_stops); F(lv_sim_settings, stops);
+    F(lv_sim_settings, stop); F(lv_sim_settings, max_rows);
     S(lv_target_var_info); F(lv_target_var_info, name); F(lv_target_var_info, unit);
     F(lv_target_var_info, param); F(lv_target_var_info, deg); F(lv_target_var_info, lo);
     F(lv_target_var_info, hi); F(lv_target_var_info, start); F(lv_target_var_info, scale);
@@ -105,6 +106,7 @@ int main(void)
     F(lv_target_settings, ftol); F(lv_target_settings, restarts);
     F(lv_target_settings, threads); F(lv_target_settings, on_iteration);
     F(lv_target_settings, on_evaluation); F(lv_target_settings, user);
+    F(lv_target_settings, stop); F(lv_target_settings, max_rows);
     S(lv_target_result); F(lv_target_result, converged); F(lv_target_result, cancelled);
     F(lv_target_result, reason); F(lv_target_result, method); F(lv_target_result, n_vars);
     F(lv_target_result, n_cons); F(lv_target_result, x); F(lv_target_result, finals);
@@ -127,9 +129,10 @@ int main(void)
     F(lv_campaign_options, method); F(lv_campaign_options, tolerance);
     F(lv_campaign_options, output_interval); F(lv_campaign_options, progress);
     F(lv_campaign_options, user); F(lv_campaign_options, stop);
+    F(lv_campaign_options, max_rows);
     S(lv_output_estimate); F(lv_output_estimate, duration); F(lv_output_estimate, rows);
     F(lv_output_estimate, n_signals); F(lv_output_estimate, bytes_mat);
-    F(lv_output_estimate, bytes_csv);
+    F(lv_output_estimate, bytes_csv); F(lv_output_estimate, bounded);
     S(lv_outdir_record); F(lv_outdir_record, command); F(lv_outdir_record, status);
     F(lv_outdir_record, mission_name); F(lv_outdir_record, n_notes); F(lv_outdir_record, notes);
     return 0;

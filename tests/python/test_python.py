@@ -863,6 +863,55 @@ def test_max_rows_refuses_a_huge_output_before_running():
     r.close(); m.close()
 
 
+NEVER = """\
+mission: {name: never}
+environment: {world: flat, g: 1.0e-9}
+stages:
+  - {name: s, dry_mass: 100, propellant_mass: 0}
+phases:
+  - {name: coast, model: flat6, stages: [s], stop_time: 1.0e30, end: [{altitude: 1.0e9}],
+     integrator: {output_interval: 1.0}}
+"""
+
+
+def test_max_rows_holds_as_a_phase_with_an_end_runs(tmp_path):
+    # the library's one check (lv_run_check_output): a phase with end events is not refused
+    # for a generous stop time; one whose end never fires stops at max_rows as it runs: at
+    # t = 50 s with a row every second, kept as failed
+    p = tmp_path / "never.yaml"
+    p.write_text(NEVER)
+    m = lvsim.Mission(str(p))
+    r = m.create_run()
+    with pytest.raises(lvsim.SimulationError, match=r"stopped at t = 50 s by the row limit: "
+                                                   r"50 output rows") as e:
+        r.execute(max_rows=50)
+    assert r.state("coast") == "failed" and "max_rows" in str(e.value)
+    r.close(); m.close()
+    # dof3-branch with stop times of 1e30 s: the ends (burnout, impact) come first
+    text = open(BRANCH).read()
+    for a, b in (("stop_time: 400", "stop_time: 1.0e30"), ("stop_time: 2000", "stop_time: 2.0e30"),
+                 ("stop_time: 3000", "stop_time: 3.0e30")):
+        text = text.replace(a, b)
+    for f in ("wind.csv", "aero_ascent.csv", "aero_descent.csv"):
+        shutil.copy(os.path.join(os.path.dirname(BRANCH), f), tmp_path / f)
+    (tmp_path / "generous.yaml").write_text(text)
+    m = lvsim.Mission(str(tmp_path / "generous.yaml"))
+    r = m.create_run()
+    r.execute()
+    assert r.ok and abs(r.result("ascent").t_end - 137.906) < 1e-3
+    r.close(); m.close()
+
+
+def test_campaign_bounds_before_it_runs(tmp_path):
+    m = lvsim.Mission(BRANCH)
+    with pytest.raises(lvsim.InputError, match=r"a campaign of 1e\+11 runs is too large; its "
+                                              r"database would need about .* TB") as e:
+        m.monte_carlo(10**11, tmp_path / "huge.db")
+    assert "(n_runs)" in str(e.value)
+    assert not (tmp_path / "huge.db").exists()
+    m.close()
+
+
 CTRL_C = r"""
 import json, os, signal, sys, threading, time
 import lvsim

@@ -342,6 +342,98 @@ static void test_bad_inputs(void)
     }
 }
 
+/* The runs to do are the holes between stored runs, handed out in order, whatever n_runs:
+ * a campaign of 10^12 runs opens without a list of them (8 TB as uint64). The size estimate
+ * is linear in the run count and close to what SQLite stores. */
+static void test_todo_and_size(void)
+{
+    lv_mission *m = load("isp_scatter.yaml");
+    if (m == NULL)
+        return;
+    const char *db = "test_campaign_todo.db";
+    remove(db);
+    lv_campaign_options o;
+    lv_campaign_options_default(&o);
+    o.n_runs = 50;
+    o.seed = 2026;
+    o.db_path = db;
+    lv_campaign_progress p;
+    lv_err err;
+    CHECK_OK(lv_campaign_run(m, &o, &p, &err), &err);
+    sqlite3 *h = NULL;
+    CHECK(sqlite3_open(db, &h) == SQLITE_OK);
+    CHECK(sqlite3_exec(h, "DELETE FROM runs WHERE run IN (0, 1, 7, 8, 9, 30, 49)", NULL, NULL,
+                       NULL) == SQLITE_OK);
+    sqlite3_close(h);
+    o.resume = 1;
+    lv_campaign *c = NULL;
+    CHECK_OK(lv_campaign_open(m, &o, &c, &err), &err);
+    if (c != NULL) {
+        static const uint64_t want[] = {0, 1, 7, 8, 9, 30, 49};
+        uint64_t got[8];
+        size_t n = 0, k;
+        CHECK(lv_campaign_todo_count(c) == 7);
+        while ((k = lv_campaign_todo_next(c, got + n, n + 3 <= 8 ? 3 : 8 - n)) > 0)
+            n += k;
+        CHECK(n == 7 && memcmp(got, want, sizeof want) == 0);
+        CHECK(lv_campaign_todo_count(c) == 0);
+        CHECK_OK(lv_campaign_close(c, &err), &err);
+    }
+    CHECK_OK(lv_campaign_run(m, &o, &p, &err), &err);
+    CHECK(p.done == 50 && p.this_session == 7);
+    /* 10^12 runs: nothing of that size is allocated when it opens */
+    const char *big = "test_campaign_big.db";
+    remove(big);
+    lv_campaign_options ob = o;
+    ob.resume = 0;
+    ob.n_runs = 1000000000000ULL;
+    ob.db_path = big;
+    c = NULL;
+    CHECK_OK(lv_campaign_open(m, &ob, &c, &err), &err);
+    if (c != NULL) {
+        uint64_t got[4];
+        CHECK(lv_campaign_todo_count(c) == 1000000000000ULL);
+        CHECK(lv_campaign_todo_next(c, got, 4) == 4 && got[0] == 0 && got[3] == 3);
+        CHECK(lv_campaign_todo_count(c) == 1000000000000ULL - 4);
+        lv_campaign_close(c, NULL);
+        /* its statistics would hold 10^12 runs' values: refused before reading them */
+        CHECK(lv_campaign_stats(big, ".", &err) == LV_ERR_INPUT);
+        CHECK(strstr(err.msg, "the statistics of its 1e+12 runs would need") != NULL);
+    }
+    remove(big);
+    /* ... but refused before it runs: its database would not fit any disk */
+    lv_campaign_size z;
+    CHECK(lv_campaign_check_size(m, &ob, 1, &z, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "a campaign of 1e+12 runs is too large; its database would need "
+                          "about") != NULL);
+    CHECK(strstr(err.msg, "its statistics would need") != NULL);
+    printf("refused: %s\n", err.msg);
+    /* the estimate: linear in the runs, and the size SQLite stored for 50 within a factor 2
+     * (9 bytes a value, zeros take less) */
+    lv_campaign_size z50, z100;
+    o.resume = 0;
+    CHECK_OK(lv_campaign_estimate(m, &o, &z50, &err), &err);
+    o.n_runs = 100;
+    CHECK_OK(lv_campaign_estimate(m, &o, &z100, &err), &err);
+    CHECK_REL(z100.db_bytes, 2.0 * z50.db_bytes, 1e-12);
+    CHECK_REL(z100.stats_bytes, 2.0 * z50.stats_bytes, 1e-12);
+    CHECK(z50.rows_per_run == 2.0); /* one phase, start and end rows */
+    CHECK(z50.mem_total > 0.0 && z50.disk_free > 0.0);
+    CHECK_OK(lv_campaign_check_size(m, &o, 1, NULL, &err), &err);
+    FILE *f = fopen(db, "rb");
+    long bytes = 0;
+    if (f != NULL && fseek(f, 0, SEEK_END) == 0)
+        bytes = ftell(f);
+    if (f != NULL)
+        fclose(f);
+    /* the stored size beyond the schema's few pages (measured: 5 pages of 4 kB for 0 runs) */
+    const double per_run = ((double)bytes - 5.0 * 4096.0) / 50.0;
+    printf("database: %.0f B a run stored, %.0f B estimated\n", per_run, z50.db_bytes / 50.0);
+    CHECK(per_run > 0.5 * z50.db_bytes / 50.0 && per_run < 2.0 * z50.db_bytes / 50.0);
+    remove(db);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     test_generator();
@@ -350,5 +442,6 @@ int main(void)
     test_isp_scatter();
     test_table_scale();
     test_bad_inputs();
+    test_todo_and_size();
     return check_report("test_campaign");
 }

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "lvsim/lv_mission.h"
@@ -279,10 +280,145 @@ static void test_invalidate_stale(void)
     lv_mission_free(m);
 }
 
+/* ---- (d) the row limit: refused up front, or held as the phase runs --------------------- */
+
+/* No run of digits longer than a count written exactly below ten million: "1e+30", never
+ * 1000000000000000019884624838656. */
+static int readable(const char *msg)
+{
+    int run = 0;
+    for (const char *c = msg; *c; c++) {
+        run = *c >= '0' && *c <= '9' ? run + 1 : 0;
+        if (run > 8)
+            return 0;
+    }
+    return 1;
+}
+
+static void test_row_limit(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    lv_err err;
+    CHECK_OK(lv_mission_load(mission_path(), &m, &err), &err);
+    if (m == NULL)
+        return;
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    const size_t p1 = phase(m, "P1"), p2 = phase(m, "P2"), p4 = phase(m, "P4");
+    /* P1: 0 .. 140 s, a row every 0.5 s: 140 / 0.5 + 1 = 281 rows, only its stop time ends
+     * it. P4 (the booster's fall, end: [impact], a row every 2 s) starts after P1, at 0 s at
+     * the earliest before P1 ran: 1500 / 2 + 1 = 751 rows by its stop time, not a bound. */
+    lv_output_estimate e;
+    CHECK_OK(lv_run_estimate_output(r, p1, 0.0, &e, &err), &err);
+    CHECK(e.rows == 281.0 && e.bounded == 1);
+    CHECK_CLOSE(e.duration, 140.0, 0.0);
+    CHECK_OK(lv_run_estimate_output(r, p4, 0.0, &e, &err), &err);
+    CHECK(e.rows == 751.0 && e.bounded == 0);
+    /* P2, 0 .. 280 s at 0.5 s: 561 rows, refused above 300 before anything runs */
+    lv_run_options opt = {.threads = 1, .no_rows = 1, .max_rows = 300.0};
+    CHECK(lv_run_check_output(r, &opt, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "phase 2 'P2' would write up to 561 rows (280 s of mission time, a "
+                          "row every 0.5 s;") != NULL);
+    CHECK(strstr(err.msg, "more than the limit of 300 rows per phase") != NULL);
+    CHECK(strstr(err.msg, "raise the limit to 561 rows") != NULL);
+    CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_INPUT);
+    CHECK(lv_run_result(r, p1)->state == LV_PHASE_PENDING); /* nothing ran */
+    /* wanted P4 only: P1 (281) is within the limit, P4 is not refused for its stop time */
+    unsigned char want[N_PHASES] = {0};
+    want[p4] = 1;
+    opt.want = want;
+    CHECK_OK(lv_run_check_output(r, &opt, &err), &err);
+    (void)p2;
+    /* ... but held as it runs: every phase at a row every 0.5 s (P1 still 281 rows), P4 stops
+     * when it would write row 301, at t = 140 + 300 * 0.5 = 290 s, before its impact (594.6 s:
+     * `lvsim run` of the example) */
+    opt.output_interval = 0.5;
+    CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_SOLVER);
+    const lv_phase_result *res = lv_run_result(r, p4);
+    CHECK(lv_run_result(r, p1)->state == LV_PHASE_DONE);
+    CHECK(res->state == LV_PHASE_FAILED);
+    CHECK(strstr(res->error, "phase 'P4': stopped at t = 290 s by the row limit: 300 output "
+                             "rows") != NULL);
+    printf("row limit as it runs: %s\n", res->error);
+    /* without the limit it reaches its impact: a limit of exactly its rows lets it */
+    opt.max_rows = 0.0;
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    const double t0 = res->t_start, t1 = res->t_end;
+    CHECK(res->end_index == 0); /* the impact */
+    const double rows = floor((t1 - t0) / 0.5) + 1.0; /* grid rows t0 + 0.5 k <= t1 */
+    lv_run_invalidate(r, p4, &err);
+    opt.max_rows = rows;
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(res->state == LV_PHASE_DONE && res->t_end == t1);
+    lv_run_invalidate(r, p4, &err);
+    opt.max_rows = rows - 1.0;
+    CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_SOLVER);
+    CHECK(res->state == LV_PHASE_FAILED);
+    lv_run_free(r);
+    lv_mission_free(m);
+
+    /* a generous stop time: refused with a readable count when only it ends the phase; a
+     * `time` end bounds the phase as exactly (100 s: 101 rows); burnout does not, and is
+     * accepted */
+    char dir[] = "/tmp/lv_rows_XXXXXX", path[64];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/m.yaml", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f == NULL)
+        return;
+    fputs("mission: {name: rows}\n"
+          "environment: {world: flat, g: 9.81}\n"
+          "parameters: {start_theta_deg: 90}\n"
+          "stages:\n"
+          "  - {name: s1, dry_mass: 1000, propellant_mass: 4000,\n"
+          "     engines: [{name: e1, thrust_vac: 100000, isp_vac: 300}]}\n"
+          "  - {name: s2, dry_mass: 1000, propellant_mass: 4000,\n"
+          "     engines: [{name: e2, thrust_vac: 100000, isp_vac: 300}]}\n"
+          "  - {name: s3, dry_mass: 1000, propellant_mass: 4000,\n"
+          "     engines: [{name: e3, thrust_vac: 100000, isp_vac: 300}]}\n"
+          "phases:\n"
+          "  - {name: timed, model: flat6, stages: [s1], stop_time: 1e30, end: [{time: 100}],\n"
+          "     integrator: {output_interval: 1.0}}\n"
+          "  - {name: burn, model: flat6, stages: [s2], stop_time: 1e30, end: [burnout],\n"
+          "     integrator: {output_interval: 1.0}}\n"
+          "  - {name: open, model: flat6, stages: [s3], stop_time: 1e30,\n"
+          "     integrator: {output_interval: 1.0}}\n",
+          f);
+    fclose(f);
+    CHECK_OK(lv_mission_load(path, &m, &err), &err);
+    if (m != NULL) {
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK_OK(lv_run_estimate_output(r, 0, 0.0, &e, &err), &err);
+        CHECK(e.rows == 101.0 && e.bounded == 1 && e.duration == 100.0);
+        CHECK_OK(lv_run_estimate_output(r, 1, 0.0, &e, &err), &err);
+        CHECK(e.rows == 1e30 + 1.0 && e.bounded == 0);
+        unsigned char w2[3] = {1, 1, 0};
+        lv_run_options o2 = {.threads = 1, .no_rows = 1, .max_rows = 1e6, .want = w2};
+        CHECK_OK(lv_run_check_output(r, &o2, &err), &err);
+        /* the burn ends at burnout, t = m_p Isp g0 / F = 4000 * 300 * 9.80665 / 1e5 s */
+        CHECK_OK(lv_run_execute(r, &o2, &err), &err);
+        CHECK_CLOSE(lv_run_result(r, 1)->t_end, 4000.0 * 300.0 * 9.80665 / 1e5, 1e-6);
+        CHECK_CLOSE(lv_run_result(r, 0)->t_end, 100.0, 0.0);
+        o2.want = NULL;
+        CHECK(lv_run_check_output(r, &o2, &err) == LV_ERR_INPUT);
+        CHECK(strstr(err.msg, "phase 3 'open' would write up to 1e+30 rows (1e+30 s of mission "
+                              "time") != NULL);
+        CHECK(readable(err.msg));
+        CHECK(strstr(err.msg, "raise the limit") == NULL); /* beyond any sensible limit */
+        printf("refused: %s\n", err.msg);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
 int main(void)
 {
     test_dirty_phases();
     test_threads_vs_fresh();
     test_invalidate_stale();
+    test_row_limit();
     return check_report("test_run");
 }

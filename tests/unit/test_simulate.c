@@ -1,9 +1,13 @@
 /* test_simulate.c - lv_simulate against closed-form solutions, event semantics and
  * bad input. Every reference value is derived in the comment next to it. */
+#define _POSIX_C_SOURCE 200809L /* nanosleep, clock_gettime */
+
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "check.h"
@@ -956,6 +960,119 @@ static void test_event_state(void)
     }
 }
 
+/* ---- the row limit and the stop flag (issue 22) ----------------------------------------- */
+/* The oscillator has no event: its grid from 0 to T every dt has T/dt + 1 rows (start row and
+ * every grid point). With max_rows R < T/dt + 1 the run fails when it would write row R + 1,
+ * at t = R dt, with exactly R rows in the sink; with max_rows = T/dt + 1 it completes. */
+static void test_row_limit(void)
+{
+    const double T = 1000.0, dt = 1.0;
+    for (int pass = 0; pass < 2; pass++) {
+        const double R = pass == 0 ? 100.0 : T / dt + 1.0;
+        lv_result *res = NULL;
+        lv_sink mem;
+        lv_err err;
+        CHECK_OK(lv_sink_memory_create(&res, &mem, &err), &err);
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = "dopri5";
+        s.tolerance = 1e-6;
+        s.stop_time = T;
+        s.output_interval = dt;
+        s.max_rows = R;
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        lv_sim_report rep;
+        const lv_status st = lv_simulate(&lv_model_oscillator, NULL, &s, NULL, &rep, &err);
+        if (pass == 0) {
+            CHECK(st == LV_ERR_SOLVER);
+            CHECK(lv_result_rows(res) == 100);
+            CHECK_CLOSE(rep.end_time, R * dt, 1e-9);
+            CHECK(strstr(err.msg, "stopped at t = 100 s by the row limit: 100 output rows") !=
+                  NULL);
+            CHECK(strstr(err.msg, "--max-rows") != NULL);
+            printf("row limit: %s\n", err.msg);
+        } else {
+            CHECK(st == LV_OK);
+            CHECK(lv_result_rows(res) == 1001);
+            CHECK(rep.reason == LV_STOP_TIME);
+        }
+        lv_sim_report_clear(&rep);
+        lv_sink_destroy(&mem);
+        lv_result_free(res);
+    }
+    /* a negative limit is bad input */
+    lv_sim_settings s;
+    lv_sim_settings_default(&s);
+    s.result_file = NULL;
+    s.max_rows = -1.0;
+    lv_err err;
+    CHECK(lv_simulate(&lv_model_oscillator, NULL, &s, NULL, NULL, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "max rows must be >= 0") != NULL);
+}
+
+typedef struct stopper {
+    volatile int flag;
+    double delay; /* s */
+} stopper;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void *stop_later(void *arg)
+{
+    stopper *p = arg;
+    struct timespec ts = {0, (long)(p->delay * 1e9)};
+    nanosleep(&ts, NULL);
+    __atomic_store_n(&p->flag, 1, __ATOMIC_RELAXED);
+    return NULL;
+}
+
+/* lv_sim_settings.stop is read at every right-hand side evaluation: a run with no output row
+ * between its start and its end (one interval) stops within a step of the flag, not at its
+ * end. 1e8 rk4 steps of 1 us take seconds; the flag comes after 0.2 s. */
+static void test_stop_flag(void)
+{
+    for (int pass = 0; pass < 2; pass++) {
+        stopper p = {pass == 0 ? 1 : 0, 0.2};
+        lv_sim_settings s;
+        lv_sim_settings_default(&s);
+        s.result_file = NULL;
+        s.method = "rk4";
+        s.fixed_step = 1e-6;
+        s.max_steps = 200000000L;
+        s.stop_time = 100.0;
+        s.number_of_intervals = 1;
+        s.stop = &p.flag;
+        pthread_t tid;
+        const int threaded = pass == 1 && pthread_create(&tid, NULL, stop_later, &p) == 0;
+        CHECK(pass == 0 || threaded);
+        const double t0 = now_s();
+        lv_sim_report rep;
+        lv_err err;
+        const lv_status st = lv_simulate(&lv_model_oscillator, NULL, &s, NULL, &rep, &err);
+        const double wall = now_s() - t0;
+        if (threaded)
+            pthread_join(tid, NULL);
+        CHECK(st == LV_ERR_CANCELLED);
+        CHECK(strstr(err.msg, "cancelled at t = ") != NULL);
+        CHECK(rep.end_time < s.stop_time);
+        if (pass == 0) {
+            CHECK(rep.end_time == 0.0); /* set before it began: not one step taken */
+        } else {
+            CHECK(wall < p.delay + 0.5); /* the flag's delay, then a step */
+            printf("stop flag after %.2f s: returned after %.3f s at t = %.6g s of %g\n",
+                   p.delay, wall, rep.end_time, s.stop_time);
+        }
+        lv_sim_report_clear(&rep);
+    }
+}
+
 int main(void)
 {
     test_vertical_ascent();
@@ -971,5 +1088,7 @@ int main(void)
     test_result_files();
     test_stepping();
     test_event_state();
+    test_row_limit();
+    test_stop_flag();
     return check_report("test_simulate");
 }
