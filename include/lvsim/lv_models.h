@@ -23,7 +23,8 @@ extern "C" {
 
 /* Instance data of the built-in models: the discrete mode. */
 typedef struct lv_basic_inst {
-    int engine_on; /* vertical_ascent: 1 while burning */
+    int engine_on;   /* vertical_ascent: 1 while burning */
+    const char *why; /* why the last start or init failed (a static text), or NULL */
 } lv_basic_inst;
 
 /* State indices. */

@@ -53,9 +53,19 @@ static int asc_rhs(double t, const double *x, const double *p, double *xdot, voi
     return 0;
 }
 
+static const char *basic_why(const void *inst)
+{
+    return inst != NULL ? ((const lv_basic_inst *)inst)->why : NULL;
+}
+
 static int asc_start(const double *p, double *x, void *inst)
 {
-    (void)inst;
+    lv_basic_inst *s = inst;
+    s->why = NULL;
+    if (!(p[P_ASC_M_FINAL] > 0.0) || !(p[P_ASC_MDOT] > 0.0) || !(p[P_ASC_THRUST] >= 0.0)) {
+        s->why = "m_final and mdot must be > 0 and thrust >= 0";
+        return 1;
+    }
     x[LV_ASC_H] = p[P_ASC_H0];
     x[LV_ASC_V] = p[P_ASC_V0];
     x[LV_ASC_M] = p[P_ASC_M0];
@@ -66,6 +76,11 @@ static int asc_init(double t0, const double *x, const double *p, void *inst)
 {
     (void)t0;
     lv_basic_inst *s = inst;
+    s->why = NULL;
+    if (!(x[LV_ASC_M] > 0.0)) {
+        s->why = "the mass m must be > 0 kg";
+        return 1;
+    }
     s->engine_on = x[LV_ASC_M] > p[P_ASC_M_FINAL];
     return 0;
 }
@@ -147,6 +162,7 @@ const lv_model_def lv_model_vertical_ascent = {
     .n_domain = 1,
     .domain = ground_domain,
     .domain_q = ground_q,
+    .last_error = basic_why,
 };
 
 /* ---- free fall ------------------------------------------------------------------ */
@@ -308,9 +324,13 @@ static int kep_rhs(double t, const double *x, const double *p, double *xdot, voi
 /* Periapsis on +x, velocity along +y: r_p = a(1-e), v_p = sqrt(mu (1+e) / (a (1-e))). */
 static int kep_start(const double *p, double *x, void *inst)
 {
-    (void)inst;
+    lv_basic_inst *s = inst;
     const double mu = p[P_KEP_MU], a = p[P_KEP_A], e = p[P_KEP_E];
-    if (!(a > 0.0) || !(e >= 0.0 && e < 1.0) || !(mu > 0.0))
+    s->why = !(a > 0.0)                  ? "the semi-major axis a must be > 0 m"
+             : !(e >= 0.0 && e < 1.0)    ? "the eccentricity e must be >= 0 and < 1 (an ellipse)"
+             : !(mu > 0.0)               ? "mu must be > 0 m^3/s^2"
+                                         : NULL;
+    if (s->why != NULL)
         return 1;
     memset(x, 0, LV_KEP_N * sizeof *x);
     x[LV_KEP_RX] = a * (1.0 - e);
@@ -361,6 +381,8 @@ const lv_model_def lv_model_kepler = {
     .event_g = kep_g,
     .on_event = kep_event,
     .outputs_fn = kep_out,
+    .inst_size = sizeof(lv_basic_inst),
+    .last_error = basic_why,
 };
 
 /* ---- registry ----------------------------------------------------------------------- */

@@ -382,10 +382,12 @@ static lv_status apply_initial(sim_run *r, const lv_sim_settings *s, lv_err *err
         if (pass == 0) {
             for (size_t i = 0; i < r->nx; i++)
                 r->x[i] = d->states[i].start;
-            if (d->start != NULL && d->start(r->p, r->x, r->inst) != 0)
+            if (d->start != NULL && d->start(r->p, r->x, r->inst) != 0) {
+                const char *why = d->last_error ? d->last_error(r->inst) : NULL;
                 return lv_fail(err, LV_ERR_INPUT,
-                               "model '%s': start values cannot be computed from the parameters",
-                               d->name);
+                               "model '%s': start values cannot be computed from the parameters"
+                               "%s%s", d->name, why && why[0] ? ": " : "", why ? why : "");
+            }
         }
     }
     for (size_t i = 0; i < r->nx; i++)
@@ -596,7 +598,67 @@ struct lv_sim {
     lv_status fail_st;  /* SIM_FAILED: the status and message of the failure */
     lv_err fail;
     double cpu;         /* s, thread CPU spent inside this simulation's calls */
+    int start_roots;    /* r->roots holds event functions that are 0 at the start and move
+                           through 0 in their direction: they fire at the start */
 };
+
+/* An event function exactly 0 at the start is one the integrator never reports (CVODE masks a
+ * root at t0 until the function leaves 0, and leaving it is no crossing): a free fall from
+ * h = 0, a burnout with no propellant. Which way each such function moves is probed with one
+ * classical RK4 step of the model's own right-hand side (second order in the state, so a body
+ * at rest on the ground that gravity pulls down is seen falling), of length 1e-6 of the run or
+ * of its first output interval; a function that then lies on its event's side (below 0 for a
+ * falling event, above for a rising one, either for both) fires at the start, in the same
+ * order and with the same handling as any event. Returns 0, or -1 when the model cannot be
+ * evaluated there (then nothing fires: the run's first step reports the failure). */
+static int probe_start_roots(lv_sim *S)
+{
+    sim_run *r = &S->r;
+    const size_t ng = r->ng + r->nd + r->ns_root, nx = r->nx;
+    if (ng == 0)
+        return 0;
+    const double t0 = S->t, span = S->s.stop_time - t0;
+    double h = 1e-6 * (S->grid.dt > 0.0 && S->grid.dt < span ? S->grid.dt : span);
+    if (!(h > 0.0) || !isfinite(h))
+        return 0;
+    double *g0 = calloc(2 * ng + 6 * nx, sizeof *g0);
+    if (g0 == NULL)
+        return -1;
+    double *g1 = g0 + ng, *k1 = g1 + ng, *k2 = k1 + nx, *k3 = k2 + nx, *k4 = k3 + nx,
+           *xt = k4 + nx, *x1 = xt + nx;
+    int rc = sim_g(t0, r->x, g0, r), any = 0;
+    for (size_t i = 0; rc == 0 && i < ng; i++)
+        any |= g0[i] == 0.0;
+    if (rc == 0 && any) {
+        const lv_model_def *d = r->def;
+        rc = d->rhs(t0, r->x, r->p, k1, r->inst);
+        for (size_t i = 0; i < nx; i++)
+            xt[i] = r->x[i] + 0.5 * h * k1[i];
+        rc = rc ? rc : d->rhs(t0 + 0.5 * h, xt, r->p, k2, r->inst);
+        for (size_t i = 0; i < nx; i++)
+            xt[i] = r->x[i] + 0.5 * h * k2[i];
+        rc = rc ? rc : d->rhs(t0 + 0.5 * h, xt, r->p, k3, r->inst);
+        for (size_t i = 0; i < nx; i++)
+            xt[i] = r->x[i] + h * k3[i];
+        rc = rc ? rc : d->rhs(t0 + h, xt, r->p, k4, r->inst);
+        for (size_t i = 0; i < nx; i++)
+            x1[i] = r->x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        rc = rc ? rc : sim_g(t0 + h, x1, g1, r);
+        for (size_t i = 0; rc == 0 && i < ng; i++) {
+            const int dir = g1[i] < 0.0 ? -1 : g1[i] > 0.0 ? 1 : 0;
+            const int want = r->g_dir[i];
+            r->roots[i] = g0[i] == 0.0 && dir != 0 && (want == 0 || want == dir) ? dir : 0;
+            S->start_roots |= r->roots[i] != 0;
+        }
+    }
+    free(g0);
+    if (rc != 0) {
+        memset(r->roots, 0, ng * sizeof *r->roots);
+        S->start_roots = 0;
+        return -1;
+    }
+    return 0;
+}
 
 /* Ends the run as failed: keeps the message for lv_sim_finish and the caller. */
 static lv_status sim_failed(lv_sim *S, lv_status st, lv_err *err)
@@ -636,7 +698,14 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
             tout = t_adv;
         lv_integ_result res;
         double t = S->t;
-        st = lv_integ_advance(ig, tout, &t, r->x, &res, r->roots, err);
+        const int at_start = S->start_roots; /* events that fire at the start: no step */
+        if (at_start) {
+            S->start_roots = 0;
+            res = LV_INTEG_ROOT;
+            st = LV_OK;
+        } else {
+            st = lv_integ_advance(ig, tout, &t, r->x, &res, r->roots, err);
+        }
         S->t = t;
         rep->end_time = t;
         if (st != LV_OK) {
@@ -667,7 +736,8 @@ static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
         int state_event = (res == LV_INTEG_ROOT);
         int time_event = (t >= S->t_te);
         if (state_event || time_event) {
-            if ((st = emit_row(r, t, err)) != LV_OK) /* just before the event */
+            /* just before the event (at the start: the start row is that row) */
+            if (!at_start && (st = emit_row(r, t, err)) != LV_OK)
                 return st;
             lv_event_action action = LV_EVENT_CONTINUE;
             int domain_left = -1; /* a bound of the domain crossed at t */
@@ -976,6 +1046,9 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             st = lv_fail(err, LV_ERR_INPUT, "model '%s': next time event %g is not after t = %g",
                          d->name, S->t_te, S->t);
             goto fail;
+        }
+        if (probe_start_roots(S) != 0 && !S->start_roots) {
+            /* the model cannot be evaluated near the start: its first step says why */
         }
     } else {
         rep->reason = LV_STOP_TIME;

@@ -519,6 +519,13 @@ expect 0 "^start_fpa +1\.570796327 +rad +>= -1\.570796327 and <= 1\.570796327 +3
 expect 2 "^lvsim: model 'free_fall': the start state at t = 0 s is outside the model's domain: h = -1 m is below its lower bound 0 m" -- \
   "$lvsim" simulate free_fall --set h=-1 --format none
 expect 2 "h = -3 m is below its lower bound 0 m" -- "$lvsim" simulate vertical_ascent --set h0=-3 --format none
+# a start the model cannot take says why, as bad input (exit 2, not a solver failure)
+expect 2 "model 'vertical_ascent': initialisation failed at t = 0 s: the mass m must be > 0 kg" -- \
+  "$lvsim" simulate vertical_ascent --set m=-5 --format none
+expect 2 "model 'kepler': start values cannot be computed from the parameters: the eccentricity e must be >= 0 and < 1" -- \
+  "$lvsim" simulate kepler --set e=1.5 --format none
+# a start on the ground, falling: the impact at t = 0 (not a fall through the ground)
+expect 0 "ok at t = 0 s \(impact\)" -- "$lvsim" simulate free_fall --set h=0 --stop 3 --format none
 shot 800 | sed 's/start_h: 0,/start_h: -1,/' > "$work/under.yaml"
 line=$(grep -n "name: flight" "$work/under.yaml" | cut -d: -f1)
 refused "under.yaml:$line:5: phase 'flight': initialisation failed at t = 0 s: the start altitude h = -1 m is below the level 0 m of its end 'impact'" "$work/under.yaml"

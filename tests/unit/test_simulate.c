@@ -187,6 +187,49 @@ static void test_free_fall(void)
     }
 }
 
+/* An end exactly at the start: a free fall from h = 0 is an impact at t = 0 (at rest: gravity
+ * pulls it down, h = -g t^2 / 2), one thrown up at v0 from h = 0 lands at t = 2 v0 / g (a
+ * rising start leaves h = 0 away from the event: no impact at the start); every method. The
+ * integrator alone never reports a root at the start (CVODE masks a function that is 0 at
+ * t0), so without the start probe both runs fell through the ground to stop_time. */
+static void test_event_at_start(void)
+{
+    const double g = 9.81, v0 = 3.0;
+    for (int k = 0; k < N_METHODS; k++) {
+        for (int up = 0; up <= 1; up++) {
+            lv_sim_settings s;
+            lv_sim_settings_default(&s);
+            s.result_file = NULL;
+            s.method = methods[k];
+            s.tolerance = 1e-8;
+            s.stop_time = 3.0;
+            s.fixed_step = 1e-3;
+            const char *init[] = {"h0", "v0"};
+            const double val[] = {0.0, up ? v0 : 0.0};
+            s.initial_names = init;
+            s.initial_values = val;
+            s.n_initial = 2;
+            const char *fin[] = {"time", "h"};
+            double out[2];
+            s.n_final = 2;
+            s.final_names = fin;
+            lv_sim_report rep;
+            lv_err err;
+            CHECK_OK(lv_simulate(&lv_model_free_fall, NULL, &s, out, &rep, &err), &err);
+            CHECK(rep.reason == LV_STOP_EVENT && strcmp(rep.stop_name, "impact") == 0);
+            CHECK(rep.stats.state_events == 1);
+            const double t_ref = up ? 2.0 * v0 / g : 0.0;
+            const double tol = strcmp(s.method, "euler") == 0 ? 2e-3 : 1e-6;
+            CHECK_CLOSE(out[0], t_ref, tol);
+            if (!up) {
+                CHECK(out[0] == 0.0 && out[1] == 0.0 && rep.stats.steps == 0);
+                CHECK(rep.stats.output_rows == 2); /* the start row and the event's after */
+            }
+            lv_sim_report_clear(&rep);
+        }
+    }
+}
+
 /* ---- (3) harmonic oscillator over 100 periods ---------------------------------------- */
 /* x(t) = cos(w t) from x0 = 1, v0 = 0. After 100 periods x = 1, v = 0.
  * Adaptive methods: the local tolerance does not bound the global error; phase errors
@@ -287,7 +330,8 @@ static void test_fixed_step_recurrences(void)
 
 /* ---- (4) Kepler orbit over 10 revolutions --------------------------------------------- */
 /* Energy -mu/(2a) and angular momentum sqrt(mu a (1 - e^2)) are conserved; the period
- * is 2 pi sqrt(a^3/mu) (Kepler's third law); periapsis passages come once a period. */
+ * is 2 pi sqrt(a^3/mu) (Kepler's third law); periapsis passages come once a period, the
+ * first at the start. */
 static void test_kepler(void)
 {
     const double mu = 3.986004418e14, a = 7.0e6, e = 0.1;
@@ -299,7 +343,7 @@ static void test_kepler(void)
         s.result_file = NULL;
         s.method = methods[k];
         s.tolerance = 1e-10;
-        s.stop_time = 10.0 * T + 0.5 * T; /* ten periapsis passages after the start */
+        s.stop_time = 10.0 * T + 0.5 * T; /* the start's and ten periapsis passages after it */
         s.number_of_intervals = 200;
         const char *fin[] = {"energy", "h"};
         double out[2];
@@ -308,10 +352,13 @@ static void test_kepler(void)
         lv_sim_report rep;
         lv_err err;
         CHECK_OK(lv_simulate(&lv_model_kepler, NULL, &s, out, &rep, &err), &err);
-        CHECK(rep.stats.state_events == 10);
+        /* the start is a periapsis (r.v = 0, rising): a passage at t = 0, then one a period
+         * (an event function that is 0 at the start and moves in its direction fires there) */
+        CHECK(rep.stats.state_events == 11);
+        CHECK(rep.n_event_log > 0 && rep.event_log[0].t == 0.0);
         double worst_T = 0.0;
         for (size_t i = 0; i < rep.n_event_log; i++)
-            worst_T = fmax(worst_T, fabs(rep.event_log[i].t - (double)(i + 1) * T));
+            worst_T = fmax(worst_T, fabs(rep.event_log[i].t - (double)i * T));
         /* Drift per revolution within C * tol: C = 1e3 for BDF (which is dissipative on
          * orbits; measured 350), 1e2 for Adams and DOPRI5 (measured 13 and 2). The k-th
          * periapsis time drifts with the energy error: dT/T = 3/2 dE/E. */
@@ -1078,6 +1125,7 @@ int main(void)
     test_vertical_ascent();
     test_far_output_grid();
     test_free_fall();
+    test_event_at_start();
     test_oscillator();
     test_fixed_step_recurrences();
     test_kepler();
