@@ -1046,6 +1046,67 @@ done:
     return st;
 }
 
+/* A MAT v4 file (no v5 header: "IM" or "MI" at byte 126) is a run of variables, each a header
+ * of five int32 (type MOPT, rows, columns, imaginary flag, name length) then the name and the
+ * data (MAT-File Format, The MathWorks, "Level 4 MAT-files"). libmatio allocates what a header
+ * claims before it reads: a 60-byte file claiming a 1.7 GB name made it allocate and clear
+ * 1.7 GB (found by fuzz/fuzz_tables.c). So every header must be a v4 one and claim no more
+ * bytes than the file has after it, before libmatio opens the file; a partial header at the
+ * end is where libmatio stops reading, and is left to it. */
+static lv_status mat_v4_check(const char *path, lv_err *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL)
+        return LV_OK; /* Mat_Open says it cannot open it */
+    unsigned char h[128];
+    lv_status st = LV_OK;
+    if (fseek(fp, 0, SEEK_END) != 0) {
+        fclose(fp);
+        return LV_OK;
+    }
+    const long end = ftell(fp);
+    if (end >= 128 && fseek(fp, 0, SEEK_SET) == 0 && fread(h, 1, 128, fp) == 128 &&
+        ((h[126] == 'I' && h[127] == 'M') || (h[126] == 'M' && h[127] == 'I'))) {
+        fclose(fp); /* v5, v7, v7.3 */
+        return LV_OK;
+    }
+    static const unsigned elsize[6] = {8, 4, 4, 2, 2, 1}; /* by P: double .. uint8 */
+    long off = 0;
+    while (end - off >= 20 && fseek(fp, off, SEEK_SET) == 0 && fread(h, 1, 20, fp) == 20) {
+        uint32_t w[5], t = (uint32_t)h[0] | (uint32_t)h[1] << 8 | (uint32_t)h[2] << 16 |
+                              (uint32_t)h[3] << 24;
+        const int big = t > 4052u; /* M = 1: big-endian */
+        for (int i = 0; i < 5; i++) {
+            const unsigned char *b = h + 4 * i;
+            w[i] = big ? (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3]
+                       : (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
+                             (uint32_t)b[3] << 24;
+        }
+        t = w[0];
+        const unsigned m = t / 1000, o = t / 100 % 10, prec = t / 10 % 10, kind = t % 10;
+        const uint64_t left = (uint64_t)(end - off - 20);
+        if (t > 4052u || m > 4 || o != 0 || prec > 5 || kind > 2 || w[3] > 1 || w[4] < 1 ||
+            w[1] > INT32_MAX || w[2] > INT32_MAX || w[4] > INT32_MAX) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s: not a MAT file: no v5 header, and bytes %ld.. "
+                         "are not a MAT v4 variable header (type %u, %u x %u, imaginary %u, "
+                         "name of %u bytes)", path, off, (unsigned)t, (unsigned)w[1],
+                         (unsigned)w[2], (unsigned)w[3], (unsigned)w[4]);
+            break;
+        }
+        const uint64_t per = elsize[prec] * (w[3] ? 2u : 1u); /* bytes per cell */
+        if (w[4] > left || (w[1] > 0 && w[2] > (left - w[4]) / per / w[1])) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s: truncated MAT v4 file: the variable at byte %ld "
+                         "(%u x %u of %u-byte values, a name of %u bytes) is longer than the "
+                         "%llu bytes after its header", path, off, (unsigned)w[1],
+                         (unsigned)w[2], (unsigned)per, (unsigned)w[4], (unsigned long long)left);
+            break;
+        }
+        off += 20 + (long)w[4] + (long)((uint64_t)w[1] * w[2] * per);
+    }
+    fclose(fp);
+    return st;
+}
+
 static lv_status mat_load_quiet(const char *path, const char *var, const lv_table_opts *opts,
                                 lv_table_spec_fn fn, void *user, lv_err *err)
 {
@@ -1058,6 +1119,8 @@ static lv_status mat_load_quiet(const char *path, const char *var, const lv_tabl
     opts = opts_or_default(opts);
     if (strlen(var) > 60)
         return lv_fail(err, LV_ERR_INPUT, "%s: variable name '%.60s...' too long", path, var);
+    if ((st = mat_v4_check(path, err)) != LV_OK)
+        return st;
     s.mat = Mat_Open(path, MAT_ACC_RDONLY);
     if (s.mat == NULL)
         return lv_fail(err, LV_ERR_IO, "%s: cannot open as a MAT file (v4, v5, v7, v7.3)", path);

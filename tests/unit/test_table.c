@@ -1063,6 +1063,61 @@ static void test_mat73_foreign(void)
     remove(file);
 }
 
+/* MAT v4 files whose headers claim more than the file holds (fuzz/fuzz_tables.c: a 60-byte
+ * file claiming a 1.75 GB name made libmatio allocate and clear it), or that are no MAT file
+ * at all: refused before libmatio reads them, naming the byte; a well-formed v4 file of the
+ * same variable still loads (header: type 0 = little-endian doubles, 2 x 2, real, name of 2
+ * bytes "t\0", then 4 doubles column-major: t = 0, 1; y = 5, 7). */
+static void write_bytes(const char *path, const void *b, size_t n)
+{
+    FILE *fp = fopen(path, "wb");
+    CHECK(fp != NULL && fwrite(b, 1, n, fp) == n);
+    if (fp != NULL)
+        fclose(fp);
+}
+
+static void test_mat_v4_malformed(void)
+{
+    lv_err err = { 0 };
+    lv_table *t = NULL;
+    unsigned char f[20 + 2 + 32];
+    const int32_t head[5] = { 0, 2, 2, 0, 2 };
+    const double v[4] = { 0, 1, 5, 7 };
+    memcpy(f, head, sizeof head);
+    memcpy(f + 20, "t", 2);
+    memcpy(f + 22, v, sizeof v);
+    write_bytes("tab_v4_ok.mat", f, sizeof f);
+    CHECK_OK(lv_table_load_mat("tab_v4_ok.mat", "t", NULL, &t, &err), &err);
+    double y = 0;
+    if (t != NULL)
+        CHECK_OK(lv_table_eval1(t, NULL, 0.5, &y, &err), &err);
+    CHECK_CLOSE(y, 6.0, 0.0); /* halfway between 5 and 7 */
+    lv_table_free(t);
+    t = NULL;
+    /* the fuzzer's file: a name length of 0x68740000 bytes */
+    const int32_t huge[5] = { 0, 4, 3, 0, 0x68740000 };
+    memcpy(f, huge, sizeof huge);
+    write_bytes("tab_v4_huge.mat", f, sizeof f);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_huge.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v4_huge.mat: truncated MAT v4 file: the variable at byte 0 (4 x 3 of "
+                "8-byte values, a name of 1752432640 bytes) is longer than the 34 bytes after "
+                "its header");
+    CHECK(t == NULL);
+    /* data beyond the end: 1000 x 1000 doubles in 34 bytes */
+    const int32_t big[5] = { 0, 1000, 1000, 0, 2 };
+    memcpy(f, big, sizeof big);
+    write_bytes("tab_v4_big.mat", f, sizeof f);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_big.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "the variable at byte 0 (1000 x 1000 of 8-byte values, a name of 2 bytes)");
+    /* text, not a MAT file */
+    static const char text[] = "t [s], y [1]\n0, 1\n1, 2\n0, 0\n";
+    write_bytes("tab_text.mat", text, sizeof text - 1);
+    CHECK_FAILS(lv_table_load_mat("tab_text.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_text.mat: not a MAT file: no v5 header, and bytes 0.. are not a MAT v4 "
+                "variable header");
+    CHECK(t == NULL);
+}
+
 int main(void)
 {
     test_exact();
@@ -1079,5 +1134,6 @@ int main(void)
     test_mat();
     test_mat_struct();
     test_mat73_foreign();
+    test_mat_v4_malformed();
     return check_report("test_table");
 }
