@@ -1118,6 +1118,46 @@ static void test_mat_v4_malformed(void)
     CHECK(t == NULL);
 }
 
+/* The same for v5 (a matrix written by libmatio, then its headers changed as the fuzzer
+ * did): a dimensions element claiming 1.2 GB in a 176-byte matrix, which libmatio turned into
+ * a 2.4 GB allocation, and dimensions of 65535 x 65535 in a matrix of 48 data bytes. */
+static void patch_u32(const char *path, long off, uint32_t v)
+{
+    FILE *fp = fopen(path, "r+b");
+    CHECK(fp != NULL && fseek(fp, off, SEEK_SET) == 0 && fwrite(&v, 4, 1, fp) == 1);
+    if (fp != NULL)
+        fclose(fp);
+}
+
+static void test_mat_v5_malformed(void)
+{
+    static const double combi[6] = { 0, 1, 2, 10, 20, 30 }; /* [t, y], 3 rows */
+    static const char *const files[] = { "tab_v5_dims.mat", "tab_v5_cells.mat" };
+    for (int i = 0; i < 2; i++) {
+        mat_t *mat = Mat_CreateVer(files[i], NULL, MAT_FT_MAT5);
+        CHECK(mat != NULL);
+        if (mat == NULL)
+            return;
+        size_t d[2] = { 3, 2 };
+        mat_put(mat, "t", 2, d, (double *)combi, MAT_COMPRESSION_NONE);
+        Mat_Close(mat);
+    }
+    lv_err err = { 0 };
+    lv_table *t = NULL;
+    CHECK_FAILS(lv_table_load_mat(files[0], "nope", NULL, &t, &err), &err, LV_ERR_NOTFOUND, "t");
+    /* byte 128: the matrix's tag; 136: its flags (16 bytes); 152: the dimensions' tag */
+    patch_u32(files[0], 156, 0x47450603u);
+    CHECK_FAILS(lv_table_load_mat(files[0], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_dims.mat: malformed MAT file: the element at byte 152 (a matrix at "
+                "byte 128) claims 1195705859 bytes, 72 are left");
+    patch_u32(files[1], 160, 65535u);
+    patch_u32(files[1], 164, 65535u);
+    CHECK_FAILS(lv_table_load_mat(files[1], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_cells.mat: malformed MAT file: the array at byte 152 (a matrix at byte "
+                "128) claims 4294836225 values, more than its 80 bytes hold");
+    CHECK(t == NULL);
+}
+
 int main(void)
 {
     test_exact();
@@ -1135,5 +1175,6 @@ int main(void)
     test_mat_struct();
     test_mat73_foreign();
     test_mat_v4_malformed();
+    test_mat_v5_malformed();
     return check_report("test_table");
 }
