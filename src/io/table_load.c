@@ -1193,7 +1193,7 @@ static lv_status mat_check(const char *path, lv_err *err)
                                              : (uint32_t)h[125] << 8 | h[124]) : 0;
         if (!v5)
             st = mat_v4_check(&w);
-        else if (version == 0x0100) /* v5, v7; 0x0200: v7.3, HDF5's own format */
+        else if (version != 0x0200) /* v5, v7 (libmatio takes any version but v7.3's) */
             st = mat_v5_elements(&w, 128, w.end, 0, "the file");
     }
     fclose(w.fp);

@@ -1120,7 +1120,8 @@ static void test_mat_v4_malformed(void)
 
 /* The same for v5 (a matrix written by libmatio, then its headers changed as the fuzzer
  * did): a dimensions element claiming 1.2 GB in a 176-byte matrix, which libmatio turned into
- * a 2.4 GB allocation, and dimensions of 65535 x 65535 in a matrix of 48 data bytes. */
+ * a 2.4 GB allocation, dimensions of 65535 x 65535 in a matrix of 48 data bytes, a small
+ * element of more than 4 bytes. */
 static void patch_u32(const char *path, long off, uint32_t v)
 {
     FILE *fp = fopen(path, "r+b");
@@ -1132,8 +1133,9 @@ static void patch_u32(const char *path, long off, uint32_t v)
 static void test_mat_v5_malformed(void)
 {
     static const double combi[6] = { 0, 1, 2, 10, 20, 30 }; /* [t, y], 3 rows */
-    static const char *const files[] = { "tab_v5_dims.mat", "tab_v5_cells.mat" };
-    for (int i = 0; i < 2; i++) {
+    static const char *const files[] = { "tab_v5_dims.mat", "tab_v5_cells.mat",
+                                         "tab_v5_small.mat" };
+    for (int i = 0; i < 3; i++) {
         mat_t *mat = Mat_CreateVer(files[i], NULL, MAT_FT_MAT5);
         CHECK(mat != NULL);
         if (mat == NULL)
@@ -1155,6 +1157,13 @@ static void test_mat_v5_malformed(void)
     CHECK_FAILS(lv_table_load_mat(files[1], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
                 "tab_v5_cells.mat: malformed MAT file: the array at byte 152 (a matrix at byte "
                 "128) claims 4294836225 values, more than its 80 bytes hold");
+    /* another version than 0x0100 (libmatio reads it as v5 all the same) and a small element
+     * of 28004 bytes where the matrix was: libmatio then took 2.1 GB */
+    patch_u32(files[2], 124, 0x4d49652eu); /* version 0x652e, then "IM" */
+    patch_u32(files[2], 128, 28004u << 16 | 9u);
+    CHECK_FAILS(lv_table_load_mat(files[2], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_small.mat: malformed MAT file: the small element at byte 128 (the file) "
+                "claims 28004 bytes (4 at most)");
     CHECK(t == NULL);
 }
 
