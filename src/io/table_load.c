@@ -814,6 +814,9 @@ static lv_status mat_combi(mat_src *s, const char *var, const mat_arr *a,
                        "nor an N-D array with vectors '%s_x1', '%s_x2', ..",
                        s->path, var, a->rank, a->dims[1], var, var);
     const size_t m = a->dims[0], no = a->dims[1] - 1;
+    if (m == 0) /* no values: the column count alone, however large, would size the names */
+        return lv_fail(err, LV_ERR_INPUT, "%s: variable '%s' is 0 x %zu: a table needs rows "
+                       "(breakpoints)", s->path, var, a->dims[1]);
     double *y = malloc((m * no > 0 ? m * no : 1) * sizeof *y);
     char (*cn)[24] = calloc(no, sizeof *cn);
     const char **cp = calloc(no, sizeof *cp);

@@ -1109,6 +1109,13 @@ static void test_mat_v4_malformed(void)
     write_bytes("tab_v4_big.mat", f, sizeof f);
     CHECK_FAILS(lv_table_load_mat("tab_v4_big.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
                 "the variable at byte 0 (1000 x 1000 of 8-byte values, a name of 2 bytes)");
+    /* 0 rows, 813838679 columns: no data, yet 19.5 GB of output names were allocated */
+    const int32_t empty[5] = { 0, 0, 813838679, 0, 2 };
+    memcpy(f, empty, sizeof empty);
+    write_bytes("tab_v4_empty.mat", f, 22);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_empty.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v4_empty.mat: variable 't' is 0 x 813838679: a table needs rows");
+    CHECK(t == NULL);
     /* text, not a MAT file */
     static const char text[] = "t [s], y [1]\n0, 1\n1, 2\n0, 0\n";
     write_bytes("tab_text.mat", text, sizeof text - 1);
