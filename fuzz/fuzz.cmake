@@ -1,11 +1,11 @@
-# libFuzzer targets, one per input surface (fuzz/README.md): the mission parser, the table files
+# libFuzzer targets, one per input surface (docs/fuzzing.md): the mission parser, the table files
 # (CSV, MAT; atmosphere, wind, aerodynamic and thrust tables, gravity coefficients), the
 # command line's arguments, an FMU's fmi2 calls and the results-folder reader. Built with clang
 # whatever compiler the project uses, from clang-compiled copies of the library's sources
 # (build/fuzz/obj/, one object per source, header dependencies tracked), all by the one target
 # lv_fuzz; a bounded run of each is a ctest `fuzz_<name>` (labels fuzz and no-asan: the ASan
 # suite, built with gcc, skips them). Only when clang's libFuzzer runtime is available
-# (Debian: clang, libclang-rt-14-dev). `make fuzz` runs each longer. Included from
+# (Debian: clang, libclang-rt-14-dev). `make fuzz` runs each longer (docs/fuzzing.md). From
 # tests/unit/mission.cmake.
 find_program(LV_CLANG NAMES clang-14 clang)
 if(LV_CLANG AND NOT DEFINED LV_HAVE_LIBFUZZER)

@@ -3,8 +3,9 @@
  * exit code and never exits). The arguments are the input's lines; the files they can name are
  * the fixtures of a private temporary folder, the working directory during the call: a small
  * mission with a `targeting:` and a `dispersions:` section (m.yaml), one without air that
- * `lvsim compare` takes (e.yaml), a results folder with a staged viewer (out/), a table (t.csv). Any command line must give an exit code of
- * docs/cli.md (0, 1, 2, 3, 130), never a crash, a leak, a hang or a sanitizer report.
+ * `lvsim compare` takes (e.yaml), a results folder with a staged viewer (out/), a table
+ * (t.csv). Any command line must give an exit code of docs/cli.md (0, 1, 2, 3, 130), never a
+ * crash, a leak, a hang or a sanitizer report.
  *
  * What would run long, write, or leave the process is replaced at link time (-Wl,--wrap,
  * fuzz/fuzz.cmake) by a failure saying so: results folders (lv_outdir_begin, lv_outdir_open),
