@@ -163,8 +163,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     check_status(st, &err);
     if ((st == LV_OK) != (res != NULL))
         __builtin_trap();
-    if (res == NULL)
+    if (res == NULL) {
+        empty(dir);
         return 0;
+    }
     /* the CSV under every name the summary gives (checked bare names: inside the folder) */
     for (size_t k = 0; k < res->n_phases; k++)
         if (res->phases[k].csv != NULL)
@@ -213,5 +215,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lv_results_free(res);
     /* lvsim export: reads the folder again, itself */
     check_status(lv_export_run(dir, LV_EXPORT_ALL, &err), &err);
+    empty(dir); /* nothing left behind should the process end without atexit (a crash) */
     return 0;
 }

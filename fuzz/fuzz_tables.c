@@ -348,5 +348,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         break;
     }
     }
+    unlink(path); /* nothing left behind should the process end without atexit (a crash) */
     return 0;
 }
