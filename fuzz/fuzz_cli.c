@@ -209,7 +209,7 @@ int __wrap_execv(const char *path, char *const argv[])
 
 /* ---- the folder -------------------------------------------------------------------------- */
 
-static char dir[64];
+static char dir[4200];
 static int home = -1; /* the working directory before (libFuzzer's relative paths) */
 
 static const char mission_yaml[] =
@@ -315,7 +315,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     const char *tmp = getenv("TMPDIR");
     snprintf(dir, sizeof dir, "%s/lvsim-fuzz-cli-XXXXXX",
-             tmp != NULL && strlen(tmp) < 30 ? tmp : "/tmp");
+             tmp != NULL && tmp[0] != '\0' && strlen(tmp) < 4096 ? tmp : "/tmp");
     if (mkdtemp(dir) == NULL || (home = open(".", O_RDONLY | O_DIRECTORY)) < 0 ||
         chdir(dir) != 0) {
         perror("fuzz_cli: the temporary folder");

@@ -30,7 +30,7 @@
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static char dir[64]; /* the private folder */
+static char dir[4200]; /* the private folder */
 
 /* Everything in `d` removed (files, and plots/ one level down). */
 static void empty(const char *d)
@@ -67,7 +67,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     const char *tmp = getenv("TMPDIR");
     snprintf(dir, sizeof dir, "%s/lvsim-fuzz-results-XXXXXX",
-             tmp != NULL && strlen(tmp) < 30 ? tmp : "/tmp");
+             tmp != NULL && tmp[0] != '\0' && strlen(tmp) < 4096 ? tmp : "/tmp");
     if (mkdtemp(dir) == NULL) {
         perror("fuzz_results: mkdtemp");
         abort();
@@ -196,7 +196,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (st == LV_OK) {
         lv_plot_fig10_refs(&d);
         lv_plot_find_sites(&d);
-        char pdir[128];
+        char pdir[4300];
         snprintf(pdir, sizeof pdir, "%s/plots", dir);
         if (mkdir(pdir, 0777) != 0)
             abort();

@@ -34,13 +34,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 enum { R_TABLE, R_ATMO, R_WIND, R_GRAVITY, R_ENGINE, R_AERO, R_ENV, R_CONTROL };
 
-static char dir[64];      /* the private folder: one process, one folder */
-static char path[128];    /* its table file */
+static char dir[4200];      /* the private folder: one process, one folder */
+static char path[4300];   /* its table file */
 
 static void cleanup(void)
 {
     static const char *const names[] = {"t.csv", "t.mat", "t.gfc"};
-    char p[160];
+    char p[4300];
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         snprintf(p, sizeof p, "%s/%s", dir, names[i]);
         unlink(p);
@@ -54,7 +54,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     const char *tmp = getenv("TMPDIR");
     snprintf(dir, sizeof dir, "%s/lvsim-fuzz-tables-XXXXXX",
-             tmp != NULL && strlen(tmp) < 30 ? tmp : "/tmp");
+             tmp != NULL && tmp[0] != '\0' && strlen(tmp) < 4096 ? tmp : "/tmp");
     if (mkdtemp(dir) == NULL) {
         perror("fuzz_tables: mkdtemp");
         abort();
