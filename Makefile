@@ -43,12 +43,17 @@ bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done
 	@bench/whole_process.py --lvsim $(BUILD)/lvsim
 
-# The mission-parser fuzzer (libFuzzer, clang) for FUZZ_TIME seconds (default 60).
+# The fuzz targets (libFuzzer, clang; docs/fuzzing.md), each for FUZZ_TIME seconds (default
+# 60); FUZZ_TARGETS picks some of them.
+FUZZ_TARGETS ?= mission tables cli fmu results
 .PHONY: fuzz
 fuzz: deps
 	cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLV_BUILD_BENCH=OFF
-	cmake --build build-fuzz -j $(JOBS) --target fuzz_mission
-	fuzz/run.sh build-fuzz/fuzz/fuzz_mission $(or $(FUZZ_TIME),60)
+	cmake --build build-fuzz -j $(JOBS) --target lv_fuzz
+	@for t in $(FUZZ_TARGETS); do \
+	  echo "== fuzz_$$t, $(or $(FUZZ_TIME),60) s"; \
+	  fuzz/run.sh build-fuzz/fuzz/fuzz_$$t $(or $(FUZZ_TIME),60) || exit 1; \
+	done
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

@@ -19,6 +19,10 @@ struct cli_cmd {
     int (*run)(const cli_cmd *self, int argc, char **argv);
 };
 
+/* The whole command line (argv[0] the program, argv[1] the command): dispatches to the
+ * command and returns its exit code; never exits (main.c's main() returns it). */
+int cli_main(int argc, char **argv);
+
 /* One per file cli/cmd_<name>.c (models and vars: cmd_models.c). */
 extern const cli_cmd cli_cmd_models;
 extern const cli_cmd cli_cmd_vars;

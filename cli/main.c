@@ -1,7 +1,8 @@
 /* main.c - the lvsim command line: looks the command up in the table (cli.h) and runs it;
  * `help`, `--help` and `version`. Every usage and help text comes from the table entries,
  * each command's in its own cli/cmd_<name>.c. Exit codes: 0 ok, 1 internal error, 2 bad
- * input, 3 simulation failure (docs/cli.md).
+ * input, 3 simulation failure (docs/cli.md). main() is cli_main(), which returns the exit
+ * code and never exits, so a program (fuzz/fuzz_cli.c) can call it.
  */
 #include <stdio.h>
 #include <string.h>
@@ -138,7 +139,7 @@ static int version_run(const cli_cmd *self, int argc, char **argv)
     return EXIT_OK;
 }
 
-int main(int argc, char **argv)
+int cli_main(int argc, char **argv)
 {
     if (argc < 2) {
         print_overview(stderr);
@@ -160,3 +161,7 @@ int main(int argc, char **argv)
         }
     return c->run(c, argc - 2, argv + 2);
 }
+
+#ifndef LV_CLI_NO_MAIN /* the fuzz target fuzz/fuzz_cli.c calls cli_main itself */
+int main(int argc, char **argv) { return cli_main(argc, argv); }
+#endif

@@ -24,7 +24,7 @@ pkgs=(
   python3-setuptools python3-wheel python3-pip python3-venv  # pip install build/python (no index)
   libplplot-dev plplot-driver-cairo libplplot-data fonts-dejavu-core  # plots: PNG/SVG, coastlines
   libpng-dev                           # plots: PNG files written with fast settings
-  clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest fuzz_mission)
+  clang libclang-rt-14-dev             # make fuzz: libFuzzer (ctest -L fuzz)
   chromium                             # headless browser for the viewer test (ctest test_viewer)
   python3                              # lvsim view serves with python3's http.server
   git ca-certificates                  # the fresh-clone test; npm's registry over https

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <pthread.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -222,7 +223,7 @@ static lv_status read_gfc_stream(lv_gravity *g, FILE *fp, const char *path, int 
     lv_status st = LV_OK;
     unsigned char *seen = NULL;
     char line[GFC_LINE_MAX];
-    int lineno = 0, rc, file_max = -1, in_head = 1;
+    int lineno = 0, rc, file_max = -1, max_line = 0, in_head = 1;
     double gm = NAN, radius = NAN;
 
     /* Header (ICGEM format 2.0 section 3): "key value" lines up to end_of_head. */
@@ -252,6 +253,7 @@ static lv_status read_gfc_stream(lv_gravity *g, FILE *fp, const char *path, int 
                 st = lv_fail(err, LV_ERR_INPUT, "%s:%d: bad max_degree '%s'", path, lineno, val);
                 goto fail;
             }
+            max_line = lineno;
         } else if (strcmp(key, "norm") == 0) {
             if (strcmp(val, "fully_normalized") != 0) {
                 st = lv_fail(err, LV_ERR_INPUT,
@@ -283,6 +285,33 @@ static lv_status read_gfc_stream(lv_gravity *g, FILE *fp, const char *path, int 
                      "%s: requested degree %d, order %d: need order <= degree <= max_degree %d",
                      path, degree, order, file_max);
         goto fail;
+    }
+    /* The arrays are sized by the degree before a data line is read (fuzz/fuzz_tables.c:
+     * max_degree 70920 in an 800-byte file asked for 260 GB). A coefficient takes a line
+     * "gfc n m C S" of 11 bytes at least; a degree for which the rest of the file does not
+     * hold even a byte per coefficient is refused now, which keeps the arrays (about 100
+     * bytes per coefficient) within about 100 times the file's size, and leaves a file that
+     * is merely short to the line-by-line checks below, which name the missing line. */
+    {
+        const long here = ftell(fp);
+        long end = -1;
+        if (here >= 0 && fseek(fp, 0, SEEK_END) == 0)
+            end = ftell(fp);
+        if (end < 0 || fseek(fp, here, SEEK_SET) != 0) {
+            st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
+            goto fail;
+        }
+        uint64_t need = 0; /* the (n, m) lines with 2 <= n <= degree, m <= min(n, order) */
+        for (int n = 2; n <= degree; n++)
+            need += (uint64_t)(n < order ? n : order) + 1;
+        if (need > (uint64_t)(end - here)) {
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "%s:%d: max_degree %d: degree %d, order %d needs %llu 'gfc' lines; the "
+                         "%ld bytes after end_of_head cannot hold them",
+                         path, max_line, file_max, degree, order, (unsigned long long)need,
+                         end - here);
+            goto fail;
+        }
     }
     st = lv_gravity_sh_alloc(g, degree, order, err);
     if (st != LV_OK)

@@ -814,6 +814,9 @@ static lv_status mat_combi(mat_src *s, const char *var, const mat_arr *a,
                        "nor an N-D array with vectors '%s_x1', '%s_x2', ..",
                        s->path, var, a->rank, a->dims[1], var, var);
     const size_t m = a->dims[0], no = a->dims[1] - 1;
+    if (m == 0) /* no values: the column count alone, however large, would size the names */
+        return lv_fail(err, LV_ERR_INPUT, "%s: variable '%s' is 0 x %zu: a table needs rows "
+                       "(breakpoints)", s->path, var, a->dims[1]);
     double *y = malloc((m * no > 0 ? m * no : 1) * sizeof *y);
     char (*cn)[24] = calloc(no, sizeof *cn);
     const char **cp = calloc(no, sizeof *cp);
@@ -1046,6 +1049,160 @@ done:
     return st;
 }
 
+/* What libmatio allocates comes from the file's own headers, read before the data they
+ * announce: a file of a few hundred bytes could claim gigabytes (found by fuzz/fuzz_tables.c:
+ * a v4 name of 1.75 GB, a v5 dimensions element of 1.2 GB that became a 2.4 GB array). So the
+ * headers are walked first, and the file is refused when one claims more than the file holds
+ * (MAT-File Format, The MathWorks, R2023a: "Level 4 MAT-files" and "Level 5 MAT-file
+ * format"). Every allocation libmatio then makes is a few times the file's size. */
+typedef struct mat_walk {
+    FILE *fp;
+    const char *path;
+    int big;      /* big-endian */
+    long end;     /* the file's size */
+    lv_err *err;
+} mat_walk;
+
+static uint32_t get_u32(const unsigned char *b, int big)
+{
+    return big ? (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3]
+               : (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
+                     (uint32_t)b[3] << 24;
+}
+
+/* A v4 file: a run of variables, each five int32 (type MOPT, rows, columns, imaginary flag,
+ * name length), the name and the data. A partial header at the end is where libmatio stops
+ * reading, and is left to it. */
+static lv_status mat_v4_check(mat_walk *w)
+{
+    static const unsigned elsize[6] = {8, 4, 4, 2, 2, 1}; /* by P: double .. uint8 */
+    unsigned char h[20];
+    long off = 0;
+    while (w->end - off >= 20 && fseek(w->fp, off, SEEK_SET) == 0 &&
+           fread(h, 1, 20, w->fp) == 20) {
+        const int big = get_u32(h, 0) > 4052u; /* M = 1: big-endian */
+        uint32_t v[5];
+        for (int i = 0; i < 5; i++)
+            v[i] = get_u32(h + 4 * i, big);
+        const uint32_t t = v[0];
+        const uint64_t left = (uint64_t)(w->end - off - 20);
+        if (t > 4052u || t / 100 % 10 != 0 || t / 10 % 10 > 5 || t % 10 > 2 || v[3] > 1 ||
+            v[4] < 1 || v[1] > INT32_MAX || v[2] > INT32_MAX || v[4] > INT32_MAX)
+            return lv_fail(w->err, LV_ERR_INPUT, "%s: not a MAT file: no v5 header, and bytes "
+                           "%ld.. are not a MAT v4 variable header (type %u, %u x %u, imaginary "
+                           "%u, name of %u bytes)", w->path, off, (unsigned)t, (unsigned)v[1],
+                           (unsigned)v[2], (unsigned)v[3], (unsigned)v[4]);
+        const uint64_t per = elsize[t / 10 % 10] * (v[3] ? 2u : 1u); /* bytes per value */
+        if (v[4] > left || (v[1] > 0 && v[2] > (left - v[4]) / per / v[1]))
+            return lv_fail(w->err, LV_ERR_INPUT, "%s: truncated MAT v4 file: the variable at "
+                           "byte %ld (%u x %u of %u-byte values, a name of %u bytes) is longer "
+                           "than the %llu bytes after its header", w->path, off, (unsigned)v[1],
+                           (unsigned)v[2], (unsigned)per, (unsigned)v[4],
+                           (unsigned long long)left);
+        off += 20 + (long)v[4] + (long)((uint64_t)v[1] * v[2] * per);
+    }
+    return LV_OK;
+}
+
+/* The data elements of a v5 file in [off, end): each tag (type, size; or the small format:
+ * size in the upper 16 bits, data in the next 4 bytes) within its container; a matrix's
+ * elements in turn, and its dimensions' product within the matrix's size, each value taking a
+ * byte at least (a sparse matrix: its nzmax). Compressed elements (v7) are checked for their
+ * size only. */
+static lv_status mat_v5_elements(mat_walk *w, long off, long end, int depth, const char *in)
+{
+    unsigned char tag[8];
+    int k = 0; /* position in a matrix: flags, dimensions, name, the rest */
+    uint32_t cls = 0, nzmax = 0, fnlen = 0;
+    uint64_t cells = 0;
+    while (end - off >= 8) {
+        if (fseek(w->fp, off, SEEK_SET) != 0 || fread(tag, 1, 8, w->fp) != 8)
+            return LV_OK; /* libmatio reports the short read */
+        uint32_t type = get_u32(tag, w->big), n = get_u32(tag + 4, w->big);
+        long size = 8 + (long)n + (long)((8u - n % 8u) % 8u); /* padded to 8 bytes */
+        if (type >> 16 != 0) { /* small data element */
+            n = type >> 16;
+            type &= 0xffffu;
+            size = 8;
+            if (n > 4)
+                return lv_fail(w->err, LV_ERR_INPUT, "%s: malformed MAT file: the small "
+                               "element at byte %ld (%s) claims %u bytes (4 at most)", w->path,
+                               off, in, (unsigned)n);
+        } else if ((uint64_t)n > (uint64_t)(end - off - 8)) {
+            return lv_fail(w->err, LV_ERR_INPUT, "%s: malformed MAT file: the element at byte %ld "
+                           "(%s) claims %u bytes, %ld are left", w->path, off, in, (unsigned)n,
+                           end - off - 8);
+        }
+        if (type == 15u) /* miCOMPRESSED: not padded */
+            size = 8 + (long)n;
+        if (depth > 0 && k == 0 && n >= 8 && size > 8) { /* array flags: class, nzmax */
+            unsigned char f[8];
+            if (fread(f, 1, 8, w->fp) == 8) {
+                cls = get_u32(f, w->big) & 0xffu;
+                nzmax = get_u32(f + 4, w->big);
+            }
+        } else if (depth > 0 && k == 1 && type == 5u && size > 8) { /* dimensions, miINT32 */
+            cells = 1;
+            for (uint32_t i = 0; i + 4 <= n; i += 4) { /* the product, saturated */
+                unsigned char d[4];
+                if (fread(d, 1, 4, w->fp) != 4)
+                    break;
+                const uint32_t di = get_u32(d, w->big);
+                cells = di != 0 && cells > UINT64_MAX / di ? UINT64_MAX : cells * di;
+            }
+            /* a cell or struct holds a matrix element (8 bytes at least) per value */
+            const uint64_t need = cls == 5u ? nzmax : cls == 1u || cls == 2u ? 8 * cells : cells;
+            if (cells > (uint64_t)(end - off) || need > (uint64_t)(end - off))
+                return lv_fail(w->err, LV_ERR_INPUT, "%s: malformed MAT file: the array at byte "
+                               "%ld (%s) claims %llu values, more than its %ld bytes hold",
+                               w->path, off, in, (unsigned long long)cells, end - off);
+        } else if (depth > 0 && (cls == 2u || cls == 3u) && k == (cls == 2u ? 3 : 4)) {
+            unsigned char d[4]; /* struct: field name length, small or not */
+            fnlen = n != 4 ? 0 : size == 8 ? get_u32(tag + 4, w->big)
+                               : fread(d, 1, 4, w->fp) == 4 ? get_u32(d, w->big) : 0;
+        } else if (depth > 0 && (cls == 2u || cls == 3u) && k == (cls == 2u ? 4 : 5) &&
+                   fnlen > 0 && cells * (n / fnlen) > (uint64_t)(end - off) / 8) {
+            return lv_fail(w->err, LV_ERR_INPUT, "%s: malformed MAT file: the struct at byte %ld "
+                           "(%s) claims %llu values of %u fields, more than its %ld bytes hold",
+                           w->path, off, in, (unsigned long long)cells, (unsigned)(n / fnlen),
+                           end - off);
+        }
+        if (type == 14u && depth < 8) { /* miMATRIX: its elements */
+            char what[96];
+            snprintf(what, sizeof what, "a matrix at byte %ld", off);
+            lv_status st = mat_v5_elements(w, off + 8, off + 8 + (long)n, depth + 1, what);
+            if (st != LV_OK)
+                return st;
+        }
+        off += size;
+        k++;
+    }
+    return LV_OK;
+}
+
+static lv_status mat_check(const char *path, lv_err *err)
+{
+    mat_walk w = {fopen(path, "rb"), path, 0, 0, err};
+    if (w.fp == NULL)
+        return LV_OK; /* Mat_Open says it cannot open it */
+    unsigned char h[128];
+    lv_status st = LV_OK;
+    if (fseek(w.fp, 0, SEEK_END) == 0 && (w.end = ftell(w.fp)) >= 0) {
+        const int v5 = w.end >= 128 && fseek(w.fp, 0, SEEK_SET) == 0 &&
+                       fread(h, 1, 128, w.fp) == 128 &&
+                       ((h[126] == 'I' && h[127] == 'M') || (h[126] == 'M' && h[127] == 'I'));
+        w.big = v5 && h[126] == 'M';
+        const uint32_t version = v5 ? (w.big ? (uint32_t)h[124] << 8 | h[125]
+                                             : (uint32_t)h[125] << 8 | h[124]) : 0;
+        if (!v5)
+            st = mat_v4_check(&w);
+        else if (version != 0x0200) /* v5, v7 (libmatio takes any version but v7.3's) */
+            st = mat_v5_elements(&w, 128, w.end, 0, "the file");
+    }
+    fclose(w.fp);
+    return st;
+}
+
 static lv_status mat_load_quiet(const char *path, const char *var, const lv_table_opts *opts,
                                 lv_table_spec_fn fn, void *user, lv_err *err)
 {
@@ -1058,6 +1215,8 @@ static lv_status mat_load_quiet(const char *path, const char *var, const lv_tabl
     opts = opts_or_default(opts);
     if (strlen(var) > 60)
         return lv_fail(err, LV_ERR_INPUT, "%s: variable name '%.60s...' too long", path, var);
+    if ((st = mat_check(path, err)) != LV_OK)
+        return st;
     s.mat = Mat_Open(path, MAT_ACC_RDONLY);
     if (s.mat == NULL)
         return lv_fail(err, LV_ERR_IO, "%s: cannot open as a MAT file (v4, v5, v7, v7.3)", path);

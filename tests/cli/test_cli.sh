@@ -99,7 +99,8 @@ grep -qx "lvsim viewer, CesiumJS 0.0.7" "$work/run/viewer/VERSION" && [ -f "$wor
   && [ -f "$work/run/viewer/cesium/Cesium.js" ] && pass=$((pass + 1)) \
   || { echo "FAIL: staged viewer in $work/run/viewer"; fails=$((fails + 1)); }
 # lvsim view: a busy --port exits 2 naming it (no Python traceback); without --port it serves
-# on a free port and says where (the server is python3 on lvsim's own socket)
+# on a free port and says where, with its token (the server is python3 on lvsim's own socket;
+# the server itself: tests/viewer/test_view_server.py)
 /usr/bin/python3 -c 'import socket, sys, time
 s = socket.socket(); s.bind(("127.0.0.1", 0)); s.listen(1)
 print(s.getsockname()[1], flush=True); time.sleep(20)' > "$work/busy.port" &
@@ -113,7 +114,7 @@ kill "$busy_pid" 2> /dev/null; wait "$busy_pid" 2> /dev/null
 env LVSIM_DATA="$work/data" "$lvsim" view "$work/run" > "$work/view.out" 2>&1 &
 view_pid=$!
 for _ in $(seq 100); do grep -q "^lvsim view: http" "$work/view.out" && break; sleep 0.05; done
-url=$(sed -n 's|^lvsim view: \(http://127.0.0.1:[0-9]*\)/viewer/ .*|\1|p' "$work/view.out")
+url=$(sed -n 's|^lvsim view: \(http://127.0.0.1:[0-9]*/[0-9a-f]*\)/viewer/ .*|\1|p' "$work/view.out")
 code=$(/usr/bin/python3 -c "import sys, urllib.request, time
 for i in range(50):
     try:

@@ -448,7 +448,21 @@ static void test_errors(void)
     expect_file_error("gfc 2 0 1e-3 0\ngfc 2 2 1e-6 0\n", 2, ":8: end of file: coefficient (2, 1) missing");
     expect_file_error("gfc 2 0 1e-3 0\n", 4, "requested degree 4");
 
+    /* a max_degree the file cannot begin to hold (fuzz_tables: 70920, the arrays 260 GB)
+     * is refused at its line before anything is allocated */
     FILE *fp = fopen("test_gravity_bad.gfc", "w");
+    fputs("earth_gravity_constant 3.986004415e14\nradius 6378136.3\nmax_degree 70920\n"
+          "end_of_head\ngfc 2 0 -0.484165143790815e-03 0.0\n", fp);
+    fclose(fp);
+    lv_gravity_config huge = {"sh", 0, 0, "test_gravity_bad.gfc"};
+    CHECK_FAILS(lv_gravity_create(&e, &huge, &g, &err), &err, LV_ERR_INPUT,
+                "test_gravity_bad.gfc:3: max_degree 70920: degree 70920, order 70920 needs "
+                "2514929578 'gfc' lines; the 35 bytes after end_of_head cannot hold them");
+    huge.degree = 4; /* a degree it could hold: the line-by-line checks */
+    CHECK_FAILS(lv_gravity_create(&e, &huge, &g, &err), &err, LV_ERR_INPUT,
+                "test_gravity_bad.gfc:5: end of file: coefficient (2, 1) missing");
+
+    fp = fopen("test_gravity_bad.gfc", "w");
     fputs("radius 6378136.3\nmax_degree 2\nend_of_head\n", fp);
     fclose(fp);
     lv_gravity_config hdr = {"sh", 0, 0, "test_gravity_bad.gfc"};

@@ -1063,6 +1063,117 @@ static void test_mat73_foreign(void)
     remove(file);
 }
 
+/* MAT v4 files whose headers claim more than the file holds (fuzz/fuzz_tables.c: a 60-byte
+ * file claiming a 1.75 GB name made libmatio allocate and clear it), or that are no MAT file
+ * at all: refused before libmatio reads them, naming the byte; a well-formed v4 file of the
+ * same variable still loads (header: type 0 = little-endian doubles, 2 x 2, real, name of 2
+ * bytes "t\0", then 4 doubles column-major: t = 0, 1; y = 5, 7). */
+static void write_bytes(const char *path, const void *b, size_t n)
+{
+    FILE *fp = fopen(path, "wb");
+    CHECK(fp != NULL && fwrite(b, 1, n, fp) == n);
+    if (fp != NULL)
+        fclose(fp);
+}
+
+static void test_mat_v4_malformed(void)
+{
+    lv_err err = { 0 };
+    lv_table *t = NULL;
+    unsigned char f[20 + 2 + 32];
+    const int32_t head[5] = { 0, 2, 2, 0, 2 };
+    const double v[4] = { 0, 1, 5, 7 };
+    memcpy(f, head, sizeof head);
+    memcpy(f + 20, "t", 2);
+    memcpy(f + 22, v, sizeof v);
+    write_bytes("tab_v4_ok.mat", f, sizeof f);
+    CHECK_OK(lv_table_load_mat("tab_v4_ok.mat", "t", NULL, &t, &err), &err);
+    double y = 0;
+    if (t != NULL)
+        CHECK_OK(lv_table_eval1(t, NULL, 0.5, &y, &err), &err);
+    CHECK_CLOSE(y, 6.0, 0.0); /* halfway between 5 and 7 */
+    lv_table_free(t);
+    t = NULL;
+    /* the fuzzer's file: a name length of 0x68740000 bytes */
+    const int32_t huge[5] = { 0, 4, 3, 0, 0x68740000 };
+    memcpy(f, huge, sizeof huge);
+    write_bytes("tab_v4_huge.mat", f, sizeof f);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_huge.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v4_huge.mat: truncated MAT v4 file: the variable at byte 0 (4 x 3 of "
+                "8-byte values, a name of 1752432640 bytes) is longer than the 34 bytes after "
+                "its header");
+    CHECK(t == NULL);
+    /* data beyond the end: 1000 x 1000 doubles in 34 bytes */
+    const int32_t big[5] = { 0, 1000, 1000, 0, 2 };
+    memcpy(f, big, sizeof big);
+    write_bytes("tab_v4_big.mat", f, sizeof f);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_big.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "the variable at byte 0 (1000 x 1000 of 8-byte values, a name of 2 bytes)");
+    /* 0 rows, 813838679 columns: no data, yet 19.5 GB of output names were allocated */
+    const int32_t empty[5] = { 0, 0, 813838679, 0, 2 };
+    memcpy(f, empty, sizeof empty);
+    write_bytes("tab_v4_empty.mat", f, 22);
+    CHECK_FAILS(lv_table_load_mat("tab_v4_empty.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v4_empty.mat: variable 't' is 0 x 813838679: a table needs rows");
+    CHECK(t == NULL);
+    /* text, not a MAT file */
+    static const char text[] = "t [s], y [1]\n0, 1\n1, 2\n0, 0\n";
+    write_bytes("tab_text.mat", text, sizeof text - 1);
+    CHECK_FAILS(lv_table_load_mat("tab_text.mat", "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_text.mat: not a MAT file: no v5 header, and bytes 0.. are not a MAT v4 "
+                "variable header");
+    CHECK(t == NULL);
+}
+
+/* The same for v5 (a matrix written by libmatio, then its headers changed as the fuzzer
+ * did): a dimensions element claiming 1.2 GB in a 176-byte matrix, which libmatio turned into
+ * a 2.4 GB allocation, dimensions of 65535 x 65535 in a matrix of 48 data bytes, a small
+ * element of more than 4 bytes. */
+static void patch_u32(const char *path, long off, uint32_t v)
+{
+    FILE *fp = fopen(path, "r+b");
+    CHECK(fp != NULL && fseek(fp, off, SEEK_SET) == 0 && fwrite(&v, 4, 1, fp) == 1);
+    if (fp != NULL)
+        fclose(fp);
+}
+
+static void test_mat_v5_malformed(void)
+{
+    static const double combi[6] = { 0, 1, 2, 10, 20, 30 }; /* [t, y], 3 rows */
+    static const char *const files[] = { "tab_v5_dims.mat", "tab_v5_cells.mat",
+                                         "tab_v5_small.mat" };
+    for (int i = 0; i < 3; i++) {
+        mat_t *mat = Mat_CreateVer(files[i], NULL, MAT_FT_MAT5);
+        CHECK(mat != NULL);
+        if (mat == NULL)
+            return;
+        size_t d[2] = { 3, 2 };
+        mat_put(mat, "t", 2, d, (double *)combi, MAT_COMPRESSION_NONE);
+        Mat_Close(mat);
+    }
+    lv_err err = { 0 };
+    lv_table *t = NULL;
+    CHECK_FAILS(lv_table_load_mat(files[0], "nope", NULL, &t, &err), &err, LV_ERR_NOTFOUND, "t");
+    /* byte 128: the matrix's tag; 136: its flags (16 bytes); 152: the dimensions' tag */
+    patch_u32(files[0], 156, 0x47450603u);
+    CHECK_FAILS(lv_table_load_mat(files[0], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_dims.mat: malformed MAT file: the element at byte 152 (a matrix at "
+                "byte 128) claims 1195705859 bytes, 72 are left");
+    patch_u32(files[1], 160, 65535u);
+    patch_u32(files[1], 164, 65535u);
+    CHECK_FAILS(lv_table_load_mat(files[1], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_cells.mat: malformed MAT file: the array at byte 152 (a matrix at byte "
+                "128) claims 4294836225 values, more than its 80 bytes hold");
+    /* another version than 0x0100 (libmatio reads it as v5 all the same) and a small element
+     * of 28004 bytes where the matrix was: libmatio then took 2.1 GB */
+    patch_u32(files[2], 124, 0x4d49652eu); /* version 0x652e, then "IM" */
+    patch_u32(files[2], 128, 28004u << 16 | 9u);
+    CHECK_FAILS(lv_table_load_mat(files[2], "t", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "tab_v5_small.mat: malformed MAT file: the small element at byte 128 (the file) "
+                "claims 28004 bytes (4 at most)");
+    CHECK(t == NULL);
+}
+
 int main(void)
 {
     test_exact();
@@ -1079,5 +1190,7 @@ int main(void)
     test_mat();
     test_mat_struct();
     test_mat73_foreign();
+    test_mat_v4_malformed();
+    test_mat_v5_malformed();
     return check_report("test_table");
 }

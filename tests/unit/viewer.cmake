@@ -14,3 +14,8 @@ if(LV_NODE)
 else()
   message(STATUS "node not found: test_viewer not registered (the viewer's test needs Node.js >= 18)")
 endif()
+# `lvsim view`'s server over HTTP: the token, the Host check, no listing, no symlink out of
+# the folder, no '..', GET and HEAD only, nothing written (a stand-in CesiumJS: a few seconds).
+add_test(NAME test_view_server COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/viewer/test_view_server.py
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(test_view_server PROPERTIES TIMEOUT 60 LABELS viewer)

@@ -2,7 +2,8 @@
 // test_viewer.js - end-to-end test of the 3-D viewer in headless Chromium (Debian's chromium,
 // driven by playwright-core; no browser download). Stages the fixture run (and, when LVSIM is
 // the CLI and it has `export`, a real run of examples/dof3-branch) with viewer/stage.sh, serves
-// it from 127.0.0.1 with Node's http module, and checks: no console error, no failed or
+// it with `lvsim view` at the URL it prints (token and all; Node's http module when LVSIM is not
+// set), and checks: no console error, no failed or
 // outside request, a track per body, the phase table, the event list, a moving clock and a
 // screenshot that is not blank. Exit 0 pass, 1 fail, 77 skip (only when chromium cannot start).
 // Env: LV_SOURCE_DIR, LVSIM, CHROMIUM (default /usr/bin/chromium), LV_VIEWER_OUT (default
@@ -12,7 +13,7 @@ const fs = require('fs');
 const http = require('http');
 const path = require('path');
 const zlib = require('zlib');
-const { execFileSync, spawnSync } = require('child_process');
+const { execFileSync, spawn, spawnSync } = require('child_process');
 
 const SRC = path.resolve(process.env.LV_SOURCE_DIR || path.join(__dirname, '..', '..'));
 const OUT = path.resolve(process.env.LV_VIEWER_OUT || 'viewer');
@@ -53,6 +54,26 @@ function serve(root) {
     }
   });
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+}
+
+// ---- or `lvsim view DIR` (the site already staged: it only serves), at the URL it prints -----
+const servers = [];   // ended however the test ends
+process.on('exit', () => { for (const c of servers) if (c.exitCode === null) c.kill('SIGINT'); });
+function lvsimView(dir) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(process.env.LVSIM, ['view', dir], { stdio: ['ignore', 'pipe', 'pipe'] });
+    servers.push(child);
+    let out = '';
+    const timer = setTimeout(() => { child.kill('SIGINT'); reject(new Error(`lvsim view ${dir}: no URL in 20 s: ${out}`)); }, 20000);
+    const onData = (d) => {
+      out += d;
+      const m = /^lvsim view: (http:\/\/127\.0\.0\.1:\d+\/[0-9a-f]+\/)viewer\/ /m.exec(out);
+      if (m) { clearTimeout(timer); resolve({ base: m[1], close: () => child.kill('SIGINT') }); }
+    };
+    child.stdout.on('data', onData);
+    child.stderr.on('data', onData);
+    child.on('exit', (code) => { clearTimeout(timer); reject(new Error(`lvsim view ${dir} exited ${code}: ${out}`)); });
+  });
 }
 
 // ---- PNG decoding (8-bit RGB/RGBA, non-interlaced: what Chromium writes) ----------------------
@@ -157,8 +178,17 @@ function sites() {
 async function testSite(browser, site) {
   const summary = JSON.parse(fs.readFileSync(path.join(site.dir, 'summary.json'), 'utf8'));
   const czml = JSON.parse(fs.readFileSync(path.join(site.dir, 'mission.czml'), 'utf8'));
-  const server = await serve(site.dir);
-  const origin = `http://127.0.0.1:${server.address().port}`;
+  // served by `lvsim view` when LVSIM is the CLI (every request then carries its token: the
+  // page's relative URLs keep it), else by Node
+  let server, base;
+  if (process.env.LVSIM) {
+    const v = await lvsimView(site.dir);
+    server = v; base = v.base;
+  } else {
+    server = await serve(site.dir);
+    base = `http://127.0.0.1:${server.address().port}/`;
+  }
+  const origin = base.replace(/\/$/, '');
   const problems = { console: [], failed: [], outside: [], count: 0 };
   const context = await browser.newContext({ viewport: { width: 1280, height: 720 } });
   // Anything not for our server is recorded and aborted: the test makes no outside traffic.
@@ -179,7 +209,7 @@ async function testSite(browser, site) {
   page.on('response', (r) => { if (r.status() >= 400) problems.failed.push(`${r.url()}: HTTP ${r.status()}`); });
 
   const t0 = Date.now();
-  await page.goto(`${origin}/viewer/index.html`);
+  await page.goto(`${base}viewer/`);
   try {
     await page.waitForFunction(() => window.lvsim && (window.lvsim.error ||
       (window.lvsim.ready && window.viewer.scene.globe.tilesLoaded)), null, { timeout: 90000 });
