@@ -23,6 +23,7 @@
 
 #include <cjson/cJSON.h>
 
+#include "fuzz_util.h"
 #include "lvsim/lv_export.h"
 #include "post/plot.h"
 #include "post/results.h"
@@ -65,25 +66,9 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/lvsim-fuzz-results-XXXXXX",
-             tmp != NULL && tmp[0] != '\0' && strlen(tmp) < 4096 ? tmp : "/tmp");
-    if (mkdtemp(dir) == NULL) {
-        perror("fuzz_results: mkdtemp");
-        abort();
-    }
+    lv_fuzz_tempdir(dir, sizeof dir, "results");
     atexit(cleanup);
     return 0;
-}
-
-/* The contract of every fallible call: a terminated message on failure (shown with
- * LV_FUZZ_VERBOSE set, to see where a seed goes). */
-static void check_status(lv_status st, const lv_err *err)
-{
-    if (st != LV_OK && memchr(err->msg, '\0', sizeof err->msg) == NULL)
-        __builtin_trap();
-    if (st != LV_OK && getenv("LV_FUZZ_VERBOSE") != NULL)
-        fprintf(stderr, "status %d: %s\n", (int)st, err->msg);
 }
 
 static void write_file(const char *name, const uint8_t *data, size_t size)
@@ -98,57 +83,6 @@ static void write_file(const char *name, const uint8_t *data, size_t size)
     fclose(fp);
 }
 
-/* plot.c's load(): the phase CSVs and the body trajectories into d. */
-static lv_status load(lv_plot_data *d, lv_err *err)
-{
-    const lv_results *res = d->res;
-    d->flat = res->flat;
-    d->phases = calloc(res->n_phases + 1, sizeof *d->phases);
-    d->bodies = calloc(res->n_bodies + 1, sizeof *d->bodies);
-    if (d->phases == NULL || d->bodies == NULL)
-        abort();
-    d->n_phases = res->n_phases;
-    d->n_bodies = res->n_bodies;
-    for (size_t k = 0; k < res->n_phases; k++) {
-        const lv_results_phase *ph = &res->phases[k];
-        lv_plot_phase *p = &d->phases[k];
-        p->name = ph->name;
-        p->done = ph->done;
-        p->t0 = ph->t_start;
-        p->t1 = ph->t_end;
-        if (ph->csv == NULL || (!p->done && !lv_results_exists(res, ph->csv)))
-            continue;
-        lv_status st = lv_results_load(res, ph->csv, NULL, &p->csv, err);
-        if (st != LV_OK)
-            return st;
-        if (lv_results_table_col(p->csv, "time") != 0)
-            return LV_ERR_INPUT;
-    }
-    for (size_t i = 0; i < res->n_bodies; i++) {
-        const lv_results_body *rb = &res->bodies[i];
-        lv_plot_body *b = &d->bodies[i];
-        b->name = rb->name;
-        b->n = rb->n_phases;
-        b->phase = rb->phases;
-        if (rb->trajectory == NULL)
-            continue;
-        lv_status st = lv_results_load(res, rb->trajectory, NULL, &b->traj, err);
-        if (st != LV_OK)
-            return st;
-    }
-    return LV_OK;
-}
-
-static void data_free(lv_plot_data *d)
-{
-    for (size_t k = 0; d->phases != NULL && k < d->n_phases; k++)
-        lv_results_table_free(d->phases[k].csv);
-    for (size_t b = 0; d->bodies != NULL && b < d->n_bodies; b++)
-        lv_results_table_free(d->bodies[b].traj);
-    free(d->phases);
-    free(d->bodies);
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     const uint8_t *nul = memchr(data, '\0', size);
@@ -160,7 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lv_err err;
     lv_results *res = NULL;
     lv_status st = lv_results_open(dir, &res, &err);
-    check_status(st, &err);
+    lv_fuzz_check_status(st, &err);
     if ((st == LV_OK) != (res != NULL))
         __builtin_trap();
     if (res == NULL) {
@@ -180,7 +114,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (size_t i = 0; i < res->n_bodies; i++) {
         lv_results_table *t = NULL;
         st = lv_results_load(res, res->bodies[i].trajectory, &spec, &t, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if (t != NULL) {
             for (size_t r = 0; r < t->n_rows && r < 4; r++)
                 for (size_t c = 0; c < t->n_cols; c++)
@@ -191,8 +125,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* lvsim plot up to the figures: Figure 10's data, the sites, the key figures, the report */
     lv_plot_data d = {.res = res, .outdir = dir, .v_max = NAN, .m_0 = NAN};
-    st = load(&d, &err);
-    check_status(st, &err);
+    st = lv_plot_data_load(&d, &err);
+    lv_fuzz_check_status(st, &err);
     if (st == LV_OK) {
         lv_plot_fig10_refs(&d);
         lv_plot_find_sites(&d);
@@ -201,20 +135,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (mkdir(pdir, 0777) != 0)
             abort();
         st = lv_plot_fig10_write(&d, pdir, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         cJSON *keys = NULL;
         st = lv_plot_keys(&d, &keys, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         lv_plot_list list; /* nothing drawn */
         memset(&list, 0, sizeof list);
         if (st == LV_OK)
-            check_status(lv_plot_html_write(&d, &list, keys, &err), &err);
+            lv_fuzz_check_status(lv_plot_html_write(&d, &list, keys, &err), &err);
         cJSON_Delete(keys);
     }
-    data_free(&d);
+    lv_plot_data_free(&d);
     lv_results_free(res);
     /* lvsim export: reads the folder again, itself */
-    check_status(lv_export_run(dir, LV_EXPORT_ALL, &err), &err);
+    lv_fuzz_check_status(lv_export_run(dir, LV_EXPORT_ALL, &err), &err);
     empty(dir); /* nothing left behind should the process end without atexit (a crash) */
     return 0;
 }

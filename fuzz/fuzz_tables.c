@@ -22,6 +22,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_util.h"
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_table.h"
@@ -52,26 +53,9 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/lvsim-fuzz-tables-XXXXXX",
-             tmp != NULL && tmp[0] != '\0' && strlen(tmp) < 4096 ? tmp : "/tmp");
-    if (mkdtemp(dir) == NULL) {
-        perror("fuzz_tables: mkdtemp");
-        abort();
-    }
+    lv_fuzz_tempdir(dir, sizeof dir, "tables");
     atexit(cleanup);
     return 0;
-}
-
-/* The contract of every fallible call: a terminated message on failure. */
-/* The contract of every fallible call: a terminated message on failure (shown with
- * LV_FUZZ_VERBOSE set, to see where a seed goes). */
-static void check_status(lv_status st, const lv_err *err)
-{
-    if (st != LV_OK && memchr(err->msg, '\0', sizeof err->msg) == NULL)
-        __builtin_trap();
-    if (st != LV_OK && getenv("LV_FUZZ_VERBOSE") != NULL)
-        fprintf(stderr, "status %d: %s\n", (int)st, err->msg);
 }
 
 /* A loaded table evaluated at every breakpoint, between them, outside and at NaN. */
@@ -92,17 +76,17 @@ static void probe_table(const lv_table *t)
     }
     for (size_t i = 0; i < n0 && i < 64; i++) {
         x[0] = b0[i];
-        check_status(lv_table_eval(t, &cur, x, y, &err), &err);
+        lv_fuzz_check_status(lv_table_eval(t, &cur, x, y, &err), &err);
         if (i + 1 < n0) {
             x[0] = 0.5 * (b0[i] + b0[i + 1]);
-            check_status(lv_table_eval(t, &cur, x, y, &err), &err);
+            lv_fuzz_check_status(lv_table_eval(t, &cur, x, y, &err), &err);
         }
         (void)lv_table_next_breakpoint(t, 0, b0[i]);
     }
     const double outside[] = {b0[0] - 1.0, b0[n0 - 1] + 1.0, -INFINITY, NAN};
     for (size_t i = 0; i < 4; i++) {
         x[0] = outside[i];
-        check_status(lv_table_eval(t, NULL, x, y, &err), &err);
+        lv_fuzz_check_status(lv_table_eval(t, NULL, x, y, &err), &err);
     }
     const double scale = 2.0, bias = -1.0;
     double sc[8], bi[8];
@@ -111,15 +95,15 @@ static void probe_table(const lv_table *t)
     lv_table *a = NULL;
     if (no <= 8) {
         const lv_status st = lv_table_create_affine(t, sc, bi, &a, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if (st == LV_OK) {
             x[0] = b0[0];
-            check_status(lv_table_eval(a, NULL, x, y, &err), &err);
+            lv_fuzz_check_status(lv_table_eval(a, NULL, x, y, &err), &err);
         }
         lv_table_free(a);
     }
     size_t k;
-    check_status(lv_table_out_index(t, "thrust", &k, &err), &err);
+    lv_fuzz_check_status(lv_table_out_index(t, "thrust", &k, &err), &err);
     (void)lv_table_name(t);
     (void)lv_table_axis_name(t, nd);
     (void)lv_table_out_unit(t, no);
@@ -270,7 +254,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case R_TABLE: {
         lv_table *t = NULL;
         st = lv_table_load(path, v, &opts, &t, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if ((st == LV_OK) != (t != NULL))
             __builtin_trap();
         if (t != NULL)
@@ -281,12 +265,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case R_ATMO: {
         lv_atmo *a = NULL;
         st = lv_atmo_create_table(path, v, &a, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if (a != NULL) {
             lv_atmo_state s;
             const double h[] = {-1e3, 0.0, 1e4, 86e3, 1e6, NAN};
             for (size_t i = 0; i < sizeof h / sizeof h[0]; i++)
-                check_status(lv_atmo_eval(a, h[i], &s, &err), &err);
+                lv_fuzz_check_status(lv_atmo_eval(a, h[i], &s, &err), &err);
         }
         lv_atmo_free(a);
         break;
@@ -294,17 +278,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case R_WIND: {
         lv_wind *w = NULL;
         st = lv_wind_create_table_opts(path, v, &opts, &w, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if (w != NULL) {
             double lo, hi, vned[3];
             lv_wind_range(w, &lo, &hi);
             const double h[] = {lo, hi, 0.5 * (lo + hi), lo - 1.0, hi + 1.0, NAN};
             lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
             for (size_t i = 0; i < sizeof h / sizeof h[0]; i++)
-                check_status(lv_wind_eval(w, &cur, h[i], vned, &err), &err);
+                lv_fuzz_check_status(lv_wind_eval(w, &cur, h[i], vned, &err), &err);
             const double bias[3] = {1.0, -1.0, 0.5};
             lv_wind *a = NULL;
-            check_status(lv_wind_create_affine(w, 1.5, bias, &a, &err), &err);
+            lv_fuzz_check_status(lv_wind_create_affine(w, 1.5, bias, &a, &err), &err);
             lv_wind_free(a);
         }
         lv_wind_free(w);
@@ -317,7 +301,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const lv_gravity_config cfg = {"sh", degree, order <= degree ? order : 0, path};
         lv_gravity *g = NULL;
         st = lv_gravity_create(&earth, &cfg, &g, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if (g != NULL) {
             double *ws = calloc(lv_gravity_ws_size(g) + 1, sizeof *ws);
             const double r[3] = {7.0e6, 1.0e5, -2.0e5};
@@ -334,13 +318,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         mission_text(text, sizeof text, reader, variant, ref, mat, var);
         lv_mission_def *m = NULL;
         st = lv_mission_def_parse(text, strlen(text), "fuzz.yaml", dir, &m, &err);
-        check_status(st, &err);
+        lv_fuzz_check_status(st, &err);
         if ((st == LV_OK) != (m != NULL))
             __builtin_trap();
         if (m != NULL) {
             lv_mission *mission = NULL;
             st = lv_mission_from_def(m, &mission, &err);
-            check_status(st, &err);
+            lv_fuzz_check_status(st, &err);
             if ((st == LV_OK) != (mission != NULL))
                 __builtin_trap();
             lv_mission_free(mission);

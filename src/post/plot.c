@@ -15,7 +15,7 @@
 #include "lvsim/lv_plot.h"
 #include "post/plot.h"
 
-static void data_free(lv_plot_data *d)
+void lv_plot_data_free(lv_plot_data *d)
 {
     for (size_t k = 0; d->phases != NULL && k < d->n_phases; k++)
         lv_results_table_free(d->phases[k].csv);
@@ -25,8 +25,7 @@ static void data_free(lv_plot_data *d)
     free(d->bodies);
 }
 
-/* The phase CSVs (a failed phase may have left none) and the body trajectories. */
-static lv_status load(lv_plot_data *d, lv_err *err)
+lv_status lv_plot_data_load(lv_plot_data *d, lv_err *err)
 {
     const lv_results *res = d->res;
     d->flat = res->flat;
@@ -95,7 +94,7 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     lv_status st = lv_results_open(outdir, &res, err);
     d.res = res;
     if (st == LV_OK)
-        st = load(&d, err);
+        st = lv_plot_data_load(&d, err);
     if (st == LV_OK) {
         lv_plot_fig10_refs(&d);
         lv_plot_find_sites(&d);
@@ -111,7 +110,7 @@ lv_status lv_plot_run(const char *outdir, lv_err *err)
     if (st == LV_OK)
         st = lv_plot_html_write(&d, list, keys, err);
     cJSON_Delete(keys);
-    data_free(&d);
+    lv_plot_data_free(&d);
     lv_results_free(res);
     free(list);
     return st;

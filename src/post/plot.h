@@ -98,6 +98,11 @@ static inline int lv_plot_is_vehicle(const lv_plot_data *d, size_t b, size_t k)
            strcmp(ph->stages[0], d->bodies[b].name) == 0;
 }
 
+/* The phase CSVs (a failed phase may have left none) and the body trajectories of d->res
+ * into d (plot.c); lv_plot_data_free releases what it loaded (also after a failure). */
+lv_status lv_plot_data_load(lv_plot_data *d, lv_err *err);
+void lv_plot_data_free(lv_plot_data *d);
+
 /* Sets d->v_max and d->m_0 from the bodies' phase files (plot_series.c). */
 void lv_plot_fig10_refs(lv_plot_data *d);
 
