@@ -152,7 +152,8 @@ static int man_load(const char *dir, manifest *m)
         m->files[m->n_files].sha = sha->valuestring;
         m->n_files++;
     }
-    qsort(m->files, m->n_files, sizeof *m->files, by_man_name);
+    if (m->n_files > 1)
+        qsort(m->files, m->n_files, sizeof *m->files, by_man_name);
     cJSON *live = cJSON_GetObjectItemCaseSensitive(root, "live");
     m->live = cJSON_IsArray(live) ? live : NULL;
     m->root = root;
@@ -321,7 +322,7 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
         n++;
     }
     closedir(d);
-    if (rc == 0)
+    if (rc == 0 && n > 1)
         qsort(names, n, sizeof *names, by_cstr);
     int any_foreign = 0;
     for (size_t i = 0; rc >= 0 && i < n; i++) {
@@ -634,7 +635,7 @@ static lv_status set_names(lv_outdir *od, const char *outdir, lv_err *err)
     if (strlen(base) > NAME_MAX - 20)
         return lv_fail(err, LV_ERR_INPUT, "results folder name '%s' is too long", base);
     snprintf(od->final, sizeof od->final, "%s", path);
-    snprintf(od->base, sizeof od->base, "%s", base);
+    snprintf(od->base, sizeof od->base, "%.*s", (int)(sizeof od->base - 1), base); /* fits */
     if (slash == NULL)
         snprintf(od->parent, sizeof od->parent, ".");
     else if (slash == path)
@@ -1141,7 +1142,8 @@ static int index_build(const od_list *l, inode_index *ix)
     for (size_t i = 0; i < l->n; i++)
         if (l->e[i].kind == E_FILE)
             ix->e[ix->n++] = &l->e[i];
-    qsort(ix->e, ix->n, sizeof *ix->e, by_inode);
+    if (ix->n > 1)
+        qsort(ix->e, ix->n, sizeof *ix->e, by_inode);
     return 0;
 }
 
@@ -1224,7 +1226,8 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
                      "cannot list the files of '%s': %s", dir, why(errno, text, sizeof text));
         goto fail;
     }
-    qsort(l.names, l.n, sizeof *l.names, by_cstr);
+    if (l.n > 1)
+        qsort(l.names, l.n, sizeof *l.names, by_cstr);
     snprintf(path, sizeof path, "%s/%s", dir, MANIFEST);
     /* adding to a folder (open, live): its manifest is kept and its history extended */
     if (od->mode != MODE_BEGIN && man_load(od->final, &prev) == 1) {
