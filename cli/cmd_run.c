@@ -403,16 +403,15 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
             n_notes++;
         }
     }
-    /* a signal during the post-processing: what was written is kept, marked failed */
-    if (!interrupted && progress_interrupted()) {
-        interrupted = 1;
-        if (n_notes < sizeof note_buf / sizeof note_buf[0]) {
-            snprintf(note_buf[n_notes], sizeof note_buf[0],
-                     "interrupted (SIGINT or SIGTERM) during the post-processing: exports, plots "
-                     "or the report may be missing");
-            notes[n_notes] = note_buf[n_notes];
-            n_notes++;
-        }
+    /* a signal during the post-processing: the simulation is complete (summary.json says how
+     * it ended, and so does the manifest's status); the note says what may be missing */
+    const int post_interrupted = !interrupted && progress_interrupted();
+    if (post_interrupted && n_notes < sizeof note_buf / sizeof note_buf[0]) {
+        snprintf(note_buf[n_notes], sizeof note_buf[0],
+                 "interrupted (SIGINT or SIGTERM) during the post-processing: exports, plots or "
+                 "the report may be missing");
+        notes[n_notes] = note_buf[n_notes];
+        n_notes++;
     }
     serr.code = post_st;
     snprintf(serr.msg, sizeof serr.msg, "%s", n_post > 0 ? post_msg[0] : "");
@@ -440,13 +439,17 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
         }
         if (cst == LV_OK)
             print_kept(od);
-        if (interrupted) {
-            if (cst == LV_OK)
+        if (interrupted || post_interrupted) {
+            if (cst != LV_OK)
+                fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
+                        lv_outdir_final(od));
+            else if (interrupted)
                 fprintf(stderr, "lvsim: interrupted: '%s' holds the phases that ended, marked "
                         "failed\n", lv_outdir_final(od));
             else
-                fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
-                        lv_outdir_final(od));
+                fprintf(stderr, "lvsim: interrupted: '%s' holds the complete simulation; "
+                        "exports, plots or the report may be missing (lvsim export, lvsim plot "
+                        "make them)\n", lv_outdir_final(od));
             code = 130;
         } else if (run_st != LV_OK) {
             print_err("lvsim", &err, 0);

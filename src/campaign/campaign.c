@@ -365,7 +365,8 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
                     rst = LV_ERR_IO;
             }
             if (!cut) {
-                const lv_outdir_record krec = {"mc", rst == LV_OK ? "ok" : "failed", mi.name, 0,
+                /* a run's results folder (the campaign's own manifest says "mc") */
+                const lv_outdir_record krec = {"run", rst == LV_OK ? "ok" : "failed", mi.name, 0,
                                                NULL};
                 kst = lv_outdir_commit(kod, &krec, &kerr);
             }

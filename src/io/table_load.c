@@ -1196,8 +1196,14 @@ static lv_status mat_check(const char *path, lv_err *err)
                                              : (uint32_t)h[125] << 8 | h[124]) : 0;
         if (!v5)
             st = mat_v4_check(&w);
-        else if (version != 0x0200) /* v5, v7 (libmatio takes any version but v7.3's) */
+        else if (version == 0x0100) /* v5, v7 */
             st = mat_v5_elements(&w, 128, w.end, 0, "the file");
+        else if (version != 0x0200) /* v7.3 (HDF5) aside, no other version exists; libmatio
+                                       reads such a file as v4, whose headers are not checked
+                                       against the v5 ones (fuzz: a 1.9 GB v4 name) */
+            st = lv_fail(err, LV_ERR_INPUT, "%s: not a MAT file: a v5 header with version "
+                         "0x%04x (MATLAB writes 0x0100, and 0x0200 for v7.3)", path,
+                         (unsigned)version);
     }
     fclose(w.fp);
     return st;

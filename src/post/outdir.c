@@ -47,6 +47,18 @@ static void iso_now(char *buf, size_t cap)
         snprintf(buf, cap, "unknown");
 }
 
+static lv_status nomem(lv_err *err) { return lv_fail(err, LV_ERR_NOMEM, "out of memory"); }
+
+/* `s` for a message: control characters (a name holding an escape sequence) as '?',
+ * truncated to cap. */
+static void printable(const char *s, char *out, size_t cap)
+{
+    size_t n = 0;
+    for (; s[n] != '\0' && n + 1 < cap; n++)
+        out[n] = (unsigned char)s[n] < 0x20 || s[n] == 0x7f ? '?' : s[n];
+    out[n] = '\0';
+}
+
 /* "a/b", or the one that is not empty. Returns 0, or -1 when it does not fit. */
 static int join(char *buf, size_t cap, const char *a, const char *b)
 {
@@ -111,6 +123,16 @@ static char *read_all(const char *path, size_t limit)
     return buf;
 }
 
+/* 64 lowercase hex digits: a SHA-256 as lvsim writes it. */
+static int is_sha256_hex(const char *s)
+{
+    size_t n = 0;
+    for (; s[n] != '\0'; n++)
+        if (!((s[n] >= '0' && s[n] <= '9') || (s[n] >= 'a' && s[n] <= 'f')))
+            return 0;
+    return n == 64;
+}
+
 /* Loads DIR/manifest.json when lvsim wrote it: a JSON object with "lvsim" (the version that
  * wrote it) and "files", each {name, bytes, sha256}. Returns 1 (m filled), 0 (none or not
  * lvsim's: m zeroed), -1 (out of memory). */
@@ -128,7 +150,10 @@ static int man_load(const char *dir, manifest *m)
     cJSON *root = cJSON_Parse(text);
     free(text);
     const cJSON *files = cJSON_GetObjectItemCaseSensitive(root, "files");
-    if (!cJSON_IsObject(root) || !cJSON_IsString(cJSON_GetObjectItemCaseSensitive(root, "lvsim")) ||
+    const cJSON *ver = cJSON_GetObjectItemCaseSensitive(root, "lvsim");
+    if (!cJSON_IsObject(root) || !cJSON_IsString(ver) || ver->valuestring[0] == '\0' ||
+        !cJSON_IsString(cJSON_GetObjectItemCaseSensitive(root, "command")) ||
+        !cJSON_IsString(cJSON_GetObjectItemCaseSensitive(root, "status")) ||
         !cJSON_IsArray(files)) {
         cJSON_Delete(root);
         return 0;
@@ -145,7 +170,8 @@ static int man_load(const char *dir, manifest *m)
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(f, "name");
         const cJSON *bytes = cJSON_GetObjectItemCaseSensitive(f, "bytes");
         const cJSON *sha = cJSON_GetObjectItemCaseSensitive(f, "sha256");
-        if (!cJSON_IsString(name) || !cJSON_IsNumber(bytes) || !cJSON_IsString(sha))
+        if (!cJSON_IsString(name) || !cJSON_IsNumber(bytes) || !cJSON_IsString(sha) ||
+            !is_sha256_hex(sha->valuestring) || !(bytes->valuedouble >= 0.0))
             continue; /* an entry lvsim would not write proves nothing */
         m->files[m->n_files].name = name->valuestring;
         m->files[m->n_files].bytes = bytes->valuedouble;
@@ -258,27 +284,40 @@ static int staging_is_lvsims(const char *path)
     return lv;
 }
 
-/* A lock file lvsim left (".NAME.lock" starting with "lvsim ", or empty). */
-static int lock_is_lvsims(const char *path, const char *name, const struct stat *sb)
+/* A lock file lvsim left: ".NAME.lock" holding exactly "lvsim <pid>\n" (what take_lock
+ * writes; empty too when `empty_ok`: the moment between its creation and the write). */
+static int lock_is_lvsims(const char *path, const char *name, const struct stat *sb,
+                          int empty_ok)
 {
     const size_t n = strlen(name);
-    if (name[0] != '.' || n < 6 || strcmp(name + n - 5, ".lock") != 0)
+    if (name[0] != '.' || n < 6 || strcmp(name + n - 5, ".lock") != 0 || !S_ISREG(sb->st_mode))
         return 0;
     if (sb->st_size == 0)
-        return 1;
-    char buf[8] = "";
+        return empty_ok;
+    if (sb->st_size > 40)
+        return 0;
+    char buf[48] = "";
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
         return 0;
-    const size_t got = fread(buf, 1, sizeof LOCK_MAGIC - 1, fp);
+    const size_t got = fread(buf, 1, sizeof buf - 1, fp);
     fclose(fp);
-    return got == sizeof LOCK_MAGIC - 1 && memcmp(buf, LOCK_MAGIC, got) == 0;
+    buf[got] = '\0';
+    const size_t lm = sizeof LOCK_MAGIC - 1;
+    if (got < lm + 2 || memcmp(buf, LOCK_MAGIC, lm) != 0 || buf[got - 1] != '\n')
+        return 0;
+    for (size_t i = lm; i + 1 < got; i++)
+        if (buf[i] < '0' || buf[i] > '9')
+            return 0;
+    return 1;
 }
 
 typedef struct survey_ctx {
     const char *root; /* the folder surveyed */
+    dev_t dev;        /* its device: every entry must be on it */
     od_list *l;
     int hashed;       /* files hashed because they were newer than their manifest */
+    char *bad;        /* the entry a failure is about (relative), or NULL */
 } survey_ctx;
 
 static int by_cstr(const void *a, const void *b)
@@ -297,8 +336,13 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
         return -1;
     }
     DIR *d = opendir(dir);
-    if (d == NULL)
+    if (d == NULL) {
+        const int e = errno;
+        if (c->bad == NULL)
+            c->bad = strdup(rel);
+        errno = e;
         return -1;
+    }
     char **names = NULL;
     size_t n = 0, cap = 0;
     struct dirent *de;
@@ -328,9 +372,28 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
     for (size_t i = 0; rc >= 0 && i < n; i++) {
         char r[PATH_MAX], full[PATH_MAX];
         struct stat sb;
-        if (join(r, sizeof r, rel, names[i]) != 0 || join(full, sizeof full, c->root, r) != 0 ||
-            lstat(full, &sb) != 0)
-            continue; /* gone meanwhile, or a name too long to be anyone's result */
+        if (join(r, sizeof r, rel, names[i]) != 0 || join(full, sizeof full, c->root, r) != 0) {
+            /* a name lvsim cannot hold: never taken for "not there" */
+            c->bad = strdup(names[i]);
+            errno = ENAMETOOLONG;
+            rc = -1;
+            break;
+        }
+        if (lstat(full, &sb) != 0) {
+            const int e = errno;
+            if (e == ENOENT)
+                continue; /* gone meanwhile */
+            c->bad = strdup(r);
+            errno = e;
+            rc = -1; /* a folder that cannot be searched: its files are not seen */
+            break;
+        }
+        if (sb.st_dev != c->dev) {
+            c->bad = strdup(r);
+            errno = EXDEV;
+            rc = -1; /* a mount point: its files could not be kept by a link */
+            break;
+        }
         const char *mname = r + mrel_len + (mrel_len ? 1 : 0); /* relative to m's folder */
         od_entry *e = list_add(c->l, r, &sb);
         if (e == NULL) {
@@ -402,7 +465,7 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
                 }
                 if (e->owner == OWNED)
                     snprintf(e->sha, sizeof e->sha, "%s", mf->sha);
-            } else if (lock_is_lvsims(full, names[i], &sb) ||
+            } else if (lock_is_lvsims(full, names[i], &sb, 0) ||
                        (strcmp(names[i], MARKER) == 0 && sb.st_size == 0)) {
                 e->owner = JUNK; /* a stale lock; the marker of an exchange cut short */
             } else {
@@ -425,19 +488,37 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
 static lv_status survey_dir(const char *dir, od_list *l, int *is_lvsim, lv_err *err)
 {
     manifest m;
+    struct stat rs;
+    if (stat(dir, &rs) != 0) {
+        char text[128];
+        return lv_fail(err, LV_ERR_IO, "cannot read the folder '%s': %s", dir,
+                       why(errno, text, sizeof text));
+    }
     const int lv = man_load(dir, &m);
     if (lv < 0)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    survey_ctx c = {dir, l, 0};
+    survey_ctx c = {dir, rs.st_dev, l, 0, NULL};
     const int rc = survey(&c, "", &m, 0, 0);
     man_free(&m);
     *is_lvsim = lv == 1;
     if (rc < 0) {
-        char text[128];
+        char text[128], name[256];
         const int e = errno;
+        printable(c.bad != NULL ? c.bad : "", name, sizeof name);
+        free(c.bad);
         list_free(l);
-        return lv_fail(err, e == ENOMEM ? LV_ERR_NOMEM : LV_ERR_IO,
-                       "cannot read the folder '%s': %s", dir, why(e, text, sizeof text));
+        if (e == ENOMEM)
+            return nomem(err);
+        if (e == EXDEV)
+            return lv_fail(err, LV_ERR_INPUT,
+                           "'%s/%s' is on another file system (a mount point): lvsim keeps the "
+                           "files of a results folder by hard links and replaces it with one "
+                           "rename, which a mount point cannot take; move it out, or write "
+                           "elsewhere", dir, name);
+        return lv_fail(err, e == EACCES || e == ENAMETOOLONG || e == ELOOP ? LV_ERR_INPUT : LV_ERR_IO,
+                       "cannot read the folder '%s'%s%s%s: %s: lvsim replaces nothing it cannot "
+                       "see", dir, name[0] ? " (at '" : "", name, name[0] ? "')" : "",
+                       why(e, text, sizeof text));
     }
     return LV_OK;
 }
@@ -457,7 +538,9 @@ static void foreign_names(const od_list *l, char *buf, size_t cap, size_t *count
         top = e->kind == E_DIR ? e->name : top;
         total++;
         if (shown < NAMES_IN_MESSAGE && len + 1 < cap) {
-            const int w = snprintf(buf + len, cap - len, "%s%s%s%s%s", shown ? ", " : "", e->name,
+            char pname[256];
+            printable(e->name, pname, sizeof pname);
+            const int w = snprintf(buf + len, cap - len, "%s%s%s%s%s", shown ? ", " : "", pname,
                                    e->kind == E_DIR ? "/" : "",
                                    strcmp(e->reason, "not written by lvsim") ? ": " : "",
                                    strcmp(e->reason, "not written by lvsim") ? e->reason : "");
@@ -553,11 +636,13 @@ struct lv_outdir {
     size_t n_stale;
     char **kept;            /* files lvsim did not write, carried into the new folder */
     size_t n_kept;
+    char **dir_rel;         /* folders carried into the staging folder, in the order made */
+    mode_t *dir_mode;       /* and the modes they get just before the exchange */
+    size_t n_dirs;
     lv_outdir_file *files;  /* after commit */
     size_t n_files;
 };
 
-static lv_status nomem(lv_err *err) { return lv_fail(err, LV_ERR_NOMEM, "out of memory"); }
 
 static int strv_add(char ***v, size_t *n, const char *s)
 {
@@ -594,7 +679,10 @@ static lv_status mkdir_p(const char *dir, lv_err *err)
         if (mkdir(buf, 0777) != 0 && errno != EEXIST) /* the umask decides the mode */
             return lv_fail(err, errno == EACCES || errno == EROFS ? LV_ERR_INPUT : LV_ERR_IO,
                            "cannot create folder '%s': %s", buf, why(errno, text, sizeof text));
-        if (stat(buf, &sb) != 0 || !S_ISDIR(sb.st_mode))
+        if (stat(buf, &sb) != 0)
+            return lv_fail(err, LV_ERR_INPUT, "cannot use folder '%s': %s", buf,
+                           why(errno, text, sizeof text));
+        if (!S_ISDIR(sb.st_mode))
             return lv_fail(err, LV_ERR_INPUT, "'%s' is a file, not a folder", buf);
         buf[i] = ch;
     }
@@ -631,7 +719,7 @@ static lv_status set_names(lv_outdir *od, const char *outdir, lv_err *err)
         return lv_fail(err, LV_ERR_INPUT,
                        "'%s' cannot be a results folder (it would be replaced as a whole): name "
                        "a folder of its own, e.g. '%s/lvsim-out'",
-                       outdir, path);
+                       outdir, strcmp(path, "/") == 0 ? "" : path);
     if (strlen(base) > NAME_MAX - 20)
         return lv_fail(err, LV_ERR_INPUT, "results folder name '%s' is too long", base);
     snprintf(od->final, sizeof od->final, "%s", path);
@@ -663,7 +751,7 @@ static lv_status take_lock(lv_outdir *od, lv_err *err)
                            why(errno, text, sizeof text));
         struct stat ls;
         if (fstat(fd, &ls) != 0 || !S_ISREG(ls.st_mode) ||
-            (ls.st_size > 0 && !lock_is_lvsims(od->lock, strrchr(od->lock, '/') + 1, &ls))) {
+            !lock_is_lvsims(od->lock, strrchr(od->lock, '/') + 1, &ls, 1)) {
             close(fd);
             return lv_fail(err, LV_ERR_INPUT,
                            "'%s' beside the results folder is not lvsim's lock file: it is left "
@@ -748,7 +836,9 @@ static lv_status clean_stale(lv_outdir *od, lv_err *err)
 /* ---- staging ----------------------------------------------------------------------------- */
 
 /* Creates parent/.base.staging-XXXXXX with mkdir(0777) (so the umask decides its mode, as for
- * any folder the user creates; mkdtemp would make it 0700) and its marker. */
+ * any folder the user creates; mkdtemp would make it 0700) and its marker. When it replaces an
+ * existing folder it takes that folder's group and set-group-ID bit at once, so that what is
+ * written into it gets the group a shared folder gives (the exact mode comes at the exchange). */
 static lv_status make_staging(lv_outdir *od, lv_err *err)
 {
     static const char digits[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
@@ -770,6 +860,14 @@ static lv_status make_staging(lv_outdir *od, lv_err *err)
             const int fd = open(marker, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
             if (fd >= 0)
                 close(fd);
+            struct stat sb, ss;
+            if (stat(od->final, &sb) == 0 && S_ISDIR(sb.st_mode) && stat(od->staging, &ss) == 0) {
+                if (ss.st_gid != sb.st_gid && chown(od->staging, (uid_t)-1, sb.st_gid) != 0) {
+                    /* not a member of that group: the caller's */
+                }
+                if (sb.st_mode & S_ISGID)
+                    chmod(od->staging, (ss.st_mode & 07777) | S_ISGID);
+            }
             return LV_OK;
         }
         if (errno != EEXIST) {
@@ -784,9 +882,16 @@ static lv_status make_staging(lv_outdir *od, lv_err *err)
     return lv_fail(err, LV_ERR_IO, "cannot create a staging folder in '%s'", od->parent);
 }
 
-/* Gives the staging folder the mode (and, where allowed, the owner) of the folder it replaces. */
-static void copy_folder_mode(const lv_outdir *od)
+/* Gives the staging folder the mode (and, where allowed, the owner) of the folder it replaces,
+ * and the folders carried into it theirs (deepest first: a read-only folder is filled before
+ * it becomes read-only). */
+static void apply_modes(const lv_outdir *od)
 {
+    for (size_t i = od->n_dirs; i-- > 0;) {
+        char dst[sizeof od->staging + PATH_MAX];
+        if (join(dst, sizeof dst, od->staging, od->dir_rel[i]) == 0)
+            chmod(dst, od->dir_mode[i]);
+    }
     struct stat sb;
     if (stat(od->final, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return;
@@ -798,56 +903,48 @@ static void copy_folder_mode(const lv_outdir *od)
     chmod(od->staging, sb.st_mode & 07777);
 }
 
-/* Puts entry e of `from` at the same name in `to`: a folder with its mode, a file as a hard
- * link (its data, owner and mode stay the user's), a link or a pipe recreated. Returns 0, or
- * -1 with errno. */
-static int carry(const char *from, const char *to, const od_entry *e)
+/* Puts entry e of `from` at the same name in `to`: a folder made (owner kept where allowed; its
+ * mode recorded for apply_modes), anything else as a hard link of itself (linkat without
+ * following: a file, a link, a pipe or a socket stays the very same inode, with its data,
+ * owner and mode). Returns 0, or -1 with errno. */
+static int carry(lv_outdir *od, const char *from, const char *to, const od_entry *e)
 {
     char src[PATH_MAX], dst[PATH_MAX + NAME_MAX + 32];
     if (join(src, sizeof src, from, e->name) != 0 || join(dst, sizeof dst, to, e->name) != 0) {
         errno = ENAMETOOLONG;
         return -1;
     }
-    switch (e->kind) {
-    case E_DIR:
-        if (mkdir(dst, 0700) != 0 && errno != EEXIST)
-            return -1;
-        if (chown(dst, e->sb.st_uid, e->sb.st_gid) != 0) {
-        }
-        return chmod(dst, e->sb.st_mode & 07777);
-    case E_FILE:
-        return link(src, dst);
-    case E_LINK: {
-        char target[PATH_MAX];
-        const ssize_t n = readlink(src, target, sizeof target - 1);
-        if (n < 0)
-            return -1;
-        target[n] = '\0';
-        if (symlink(target, dst) != 0)
-            return -1;
-        if (lchown(dst, e->sb.st_uid, e->sb.st_gid) != 0) {
-        }
-        return 0;
+    if (e->kind != E_DIR)
+        return linkat(AT_FDCWD, src, AT_FDCWD, dst, 0);
+    struct stat sb;
+    const int made = mkdir(dst, 0700) == 0;
+    if (!made && (errno != EEXIST || lstat(dst, &sb) != 0 || !S_ISDIR(sb.st_mode)))
+        return -1;
+    if (!made)
+        return 0; /* a writer made it: its mode stays */
+    if (chown(dst, e->sb.st_uid, e->sb.st_gid) != 0) {
     }
-    case E_FIFO:
-        if (mkfifo(dst, e->sb.st_mode & 07777) != 0)
-            return -1;
-        if (chown(dst, e->sb.st_uid, e->sb.st_gid) != 0) {
-        }
-        return 0;
-    default:
-        errno = ENOTSUP;
+    char **g = realloc(od->dir_rel, (od->n_dirs + 1) * sizeof *g);
+    mode_t *gm = g != NULL ? realloc(od->dir_mode, (od->n_dirs + 1) * sizeof *gm) : NULL;
+    if (g != NULL)
+        od->dir_rel = g;
+    if (gm == NULL || (g[od->n_dirs] = strdup(e->name)) == NULL) {
+        errno = ENOMEM;
         return -1;
     }
+    od->dir_mode = gm;
+    od->dir_mode[od->n_dirs++] = e->sb.st_mode & 07777;
+    return 0;
 }
 
 static lv_status carry_fail(const lv_outdir *od, const od_entry *e, lv_err *err)
 {
-    char text[128];
+    char text[128], name[256];
     const int en = errno;
+    printable(e->name, name, sizeof name);
     return lv_fail(err, en == ENOMEM ? LV_ERR_NOMEM : LV_ERR_IO,
                    "cannot keep '%s/%s' in the new results folder (%s%s): nothing was replaced",
-                   od->final, e->name,
+                   od->final, name,
                    en == EXDEV ? "it lies on another file system: " : "", why(en, text, sizeof text));
 }
 
@@ -861,7 +958,7 @@ static lv_status replicate(lv_outdir *od, lv_err *err)
         const od_entry *e = &l.e[i];
         if (e->owner == JUNK)
             continue;
-        if (carry(od->final, od->staging, e) != 0)
+        if (carry(od, od->final, od->staging, e) != 0)
             st = carry_fail(od, e, err);
     }
     list_free(&l);
@@ -906,11 +1003,47 @@ static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_e
         return lv_fail(err, LV_ERR_INPUT,
                        "'%s' is a file, not a folder: name a folder for the results", od->final);
     *exists = 1;
+    /* a mount point cannot be exchanged with a folder beside it (EBUSY, EXDEV) */
+    struct stat ps;
+    if (stat(od->parent, &ps) == 0 && ps.st_dev != sb.st_dev)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "'%s' is a mount point: lvsim replaces a results folder as a whole with "
+                       "one rename beside it, which a mount point cannot take; use a folder "
+                       "inside it (e.g. '%s/results')", od->final, od->final);
+    /* the current folder (or one holding it) would leave the shell in a deleted folder */
+    char cwd[PATH_MAX], real[PATH_MAX];
+    if (getcwd(cwd, sizeof cwd) != NULL && realpath(od->final, real) != NULL) {
+        const size_t lr = strlen(real);
+        if (strncmp(cwd, real, lr) == 0 && (cwd[lr] == '\0' || cwd[lr] == '/' || lr == 1))
+            return lv_fail(err, LV_ERR_INPUT,
+                           "'%s' is the current folder or holds it: a results folder is "
+                           "replaced as a whole, which would leave this shell in a deleted "
+                           "folder; run lvsim from outside it", od->final);
+    }
     od_list l = {0};
     int lv = 0;
     lv_status st = survey_dir(od->final, &l, &lv, err);
     if (st != LV_OK)
         return st;
+    /* a campaign's folder and a run's are not each other's */
+    manifest top;
+    if (lv && man_load(od->final, &top) == 1) {
+        const char *cmd = cJSON_GetObjectItemCaseSensitive(top.root, "command")->valuestring;
+        if (od->mode == MODE_LIVE && strcmp(cmd, "mc") != 0)
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "'%s' is the results folder of 'lvsim %s', not a Monte Carlo "
+                         "campaign's: a campaign would mix into it; choose another folder",
+                         od->final, cmd);
+        else if (od->mode == MODE_BEGIN && strcmp(cmd, "mc") == 0)
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "'%s' is a Monte Carlo campaign's folder (lvsim mc): a run would "
+                         "replace its database; choose another folder", od->final);
+        man_free(&top);
+        if (st != LV_OK) {
+            list_free(&l);
+            return st;
+        }
+    }
     size_t n_foreign = 0, n_any = 0;
     char names[600];
     foreign_names(&l, names, sizeof names, &n_foreign);
@@ -928,8 +1061,8 @@ static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_e
         st = lv_fail(err, LV_ERR_INPUT,
                      "'%s' holds %zu file%s lvsim did not write (%s): lvsim replaces only what "
                      "its manifest.json lists, so the folder is left alone; name a new or empty "
-                     "folder, an earlier results folder, or add --force to replace lvsim's "
-                     "files and keep these",
+                     "folder, an earlier results folder, or add --force (Python: force=True) to "
+                     "replace lvsim's files and keep these",
                      od->final, n_foreign, n_foreign == 1 ? "" : "s", names);
     for (size_t i = 0; st == LV_OK && i < l.n; i++) {
         const od_entry *e = &l.e[i];
@@ -1140,7 +1273,7 @@ static int index_build(const od_list *l, inode_index *ix)
     if (ix->e == NULL)
         return -1;
     for (size_t i = 0; i < l->n; i++)
-        if (l->e[i].kind == E_FILE)
+        if (l->e[i].kind != E_DIR || l->e[i].owner == JUNK)
             ix->e[ix->n++] = &l->e[i];
     if (ix->n > 1)
         qsort(ix->e, ix->n, sizeof *ix->e, by_inode);
@@ -1192,7 +1325,7 @@ static int walk(const char *root, const char *rel, const inode_index *old, file_
             rc = walk(root, sub, old, l);
         } else if (S_ISREG(sb.st_mode)) {
             const od_entry *o = same_file(old, &sb);
-            if (o == NULL || o->owner == OWNED)
+            if (o == NULL || o->owner != FOREIGN)
                 rc = flist_add(l, sub);
         }
     }
@@ -1355,37 +1488,32 @@ fail:
 
 /* Brings the user's files into the staging folder and refuses the commit where lvsim would
  * replace one: every FOREIGN entry of OUTDIR (surveyed now, under the lock) must be in the
- * staging folder as itself (the same file) or is carried there now; an OWNED entry is
- * carried only when the staging folder is a replica (open) and lacks it... never: lvsim
- * removed it there. */
+ * staging folder as itself (the same inode; a folder as a folder) or is carried there now.
+ * OWNED entries are not carried: lvsim replaced them, or removed them in a replica. */
 static lv_status carry_foreign(lv_outdir *od, const od_list *l, lv_err *err)
 {
     for (size_t i = 0; i < l->n; i++) {
         const od_entry *e = &l->e[i];
         if (e->owner != FOREIGN)
             continue;
-        char sp[sizeof od->staging + PATH_MAX];
+        char sp[sizeof od->staging + PATH_MAX], name[256];
         struct stat sb;
+        printable(e->name, name, sizeof name);
         if (join(sp, sizeof sp, od->staging, e->name) != 0)
-            return lv_fail(err, LV_ERR_INPUT, "'%s/%s': name too long", od->final, e->name);
+            return lv_fail(err, LV_ERR_INPUT, "'%s/%s': name too long", od->final, name);
         if (lstat(sp, &sb) == 0) {
-            int same;
-            switch (e->kind) {
-            case E_DIR: same = S_ISDIR(sb.st_mode); break;
-            case E_FILE: same = sb.st_dev == e->sb.st_dev && sb.st_ino == e->sb.st_ino; break;
-            case E_LINK: same = S_ISLNK(sb.st_mode); break;
-            case E_FIFO: same = S_ISFIFO(sb.st_mode); break;
-            default: same = 0;
-            }
+            const int same = e->kind == E_DIR ? S_ISDIR(sb.st_mode)
+                                              : sb.st_dev == e->sb.st_dev &&
+                                                    sb.st_ino == e->sb.st_ino;
             if (!same)
                 return lv_fail(err, LV_ERR_INPUT,
                                "'%s/%s' is %s, and the new results have a file of that name: "
                                "nothing was replaced; move it away or write elsewhere",
-                               od->final, e->name,
+                               od->final, name,
                                strcmp(e->reason, "not written by lvsim") == 0
                                    ? "not lvsim's"
                                    : "lvsim's file changed since it wrote it");
-        } else if (carry(od->final, od->staging, e) != 0) {
+        } else if (carry(od, od->final, od->staging, e) != 0) {
             return carry_fail(od, e, err);
         }
         if (e->kind != E_DIR && strv_add(&od->kept, &od->n_kept, e->name) != 0)
@@ -1394,17 +1522,93 @@ static lv_status carry_foreign(lv_outdir *od, const od_list *l, lv_err *err)
     return LV_OK;
 }
 
+/* The old folder after the exchange, emptied without losing anything: every entry the last
+ * survey saw (`known`, by inode: lvsim's replaced files, the user's now linked into OUTDIR,
+ * lvsim's leftovers) is unlinked; anything else - a file the user saved into OUTDIR between
+ * that survey and the exchange - is moved into the new OUTDIR at its name (or NAME.kept-N
+ * when the new folder has that name) and counted as kept. Returns 0, or -1 when something
+ * could not be moved (then the old folder, holding it, is left with its marker removed:
+ * never taken for a stale staging folder). */
+static int empty_old(lv_outdir *od, const char *old, const char *rel, const inode_index *known)
+{
+    char dir[sizeof od->staging + PATH_MAX];
+    if (join(dir, sizeof dir, old, rel) != 0)
+        return -1;
+    if (rel[0] != '\0' && chmod(dir, 0700) != 0) {
+        /* a read-only folder must be writable to be emptied; fails below if it is not ours */
+    }
+    DIR *d = opendir(dir);
+    if (d == NULL)
+        return -1;
+    int rc = 0;
+    struct dirent *de;
+    while ((de = readdir(d)) != NULL) {
+        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0 ||
+            (rel[0] == '\0' && strcmp(de->d_name, MARKER) == 0))
+            continue;
+        char r[PATH_MAX], full[sizeof dir + NAME_MAX + 2];
+        struct stat sb;
+        if (join(r, sizeof r, rel, de->d_name) != 0 || join(full, sizeof full, old, r) != 0 ||
+            lstat(full, &sb) != 0) {
+            rc = -1;
+            continue;
+        }
+        if (S_ISDIR(sb.st_mode)) {
+            const od_entry *k = same_file(known, &sb);
+            if (k != NULL && k->owner == JUNK) { /* a stale staging folder: lvsim's whole */
+                if (rm_tree(full) != 0)
+                    rc = -1;
+            } else if (empty_old(od, old, r, known) != 0 || rmdir(full) != 0) {
+                rc = -1;
+            }
+            continue;
+        }
+        if (same_file(known, &sb) != NULL) {
+            if (unlink(full) != 0)
+                rc = -1;
+            continue;
+        }
+        /* a late arrival: into the new folder */
+        char dst[PATH_MAX + 32], parent[PATH_MAX + 32];
+        int moved = 0;
+        for (int k = 0; k < 100 && !moved; k++) {
+            const int w = k == 0 ? snprintf(dst, sizeof dst, "%s/%s", od->final, r)
+                                 : snprintf(dst, sizeof dst, "%s/%s.kept-%d", od->final, r, k);
+            if (w < 0 || (size_t)w >= sizeof dst)
+                break;
+            snprintf(parent, sizeof parent, "%s", dst);
+            char *sl = strrchr(parent, '/');
+            if (sl != NULL) {
+                *sl = '\0';
+                lv_err ignored;
+                mkdir_p(parent, &ignored);
+            }
+            struct stat ds;
+            if (lstat(dst, &ds) == 0)
+                continue;
+            moved = rename(full, dst) == 0;
+            if (!moved)
+                break;
+            strv_add(&od->kept, &od->n_kept, dst + strlen(od->final) + 1);
+        }
+        if (!moved)
+            rc = -1;
+    }
+    closedir(d);
+    return rc;
+}
+
 /* One step: OUTDIR gets the staging folder, the staging name the old folder, which is then
- * removed. The old folder is marked first, so that a kill in between leaves a staging folder
- * the next writer may remove. */
-static lv_status exchange(lv_outdir *od, lv_err *err)
+ * emptied (empty_old). The old folder is marked first, so that a kill in between leaves a
+ * staging folder the next writer may remove. */
+static lv_status exchange(lv_outdir *od, const inode_index *known, lv_err *err)
 {
     char text[128], marker[sizeof od->staging + 32], old_marker[PATH_MAX + 32];
     struct stat sb;
     int rc;
     snprintf(marker, sizeof marker, "%s/" MARKER, od->staging);
     unlink(marker);
-    copy_folder_mode(od); /* now: a read-only folder's mode would have kept lvsim from writing */
+    apply_modes(od); /* now: a read-only folder's mode would have kept lvsim from writing */
     if (lstat(od->final, &sb) == 0) {
         int marked = 0;
         if (join(old_marker, sizeof old_marker, od->final, MARKER) == 0) {
@@ -1435,7 +1639,19 @@ static lv_status exchange(lv_outdir *od, lv_err *err)
             return lv_fail(err, LV_ERR_IO, "cannot replace '%s': %s", od->final,
                            why(e, text, sizeof text));
         }
-        rm_tree(od->staging); /* the old results; a failure leaves a marked stale folder */
+        if (chmod(od->staging, 0700) != 0) {
+        }
+        if (empty_old(od, od->staging, "", known) == 0) {
+            char m[sizeof od->staging + 32];
+            snprintf(m, sizeof m, "%s/" MARKER, od->staging);
+            unlink(m);
+            rmdir(od->staging);
+        } else {
+            /* what could not be moved stays there: unmarked, so never removed as stale */
+            char m[sizeof od->staging + 32];
+            snprintf(m, sizeof m, "%s/" MARKER, od->staging);
+            unlink(m);
+        }
     } else if (rename(od->staging, od->final) != 0) {
         return lv_fail(err, LV_ERR_IO, "cannot create '%s': %s", od->final,
                        why(errno, text, sizeof text));
@@ -1457,14 +1673,25 @@ lv_status lv_outdir_commit(lv_outdir *od, const lv_outdir_record *rec, lv_err *e
         if ((st = survey_dir(od->final, &l, &lv, err)) == LV_OK)
             st = write_manifest(od, od->final, rec, &l, err);
     } else {
-        if (stat(od->final, &sb) == 0 && S_ISDIR(sb.st_mode))
+        const int exists = stat(od->final, &sb) == 0 && S_ISDIR(sb.st_mode);
+        /* the manifest first (its hashing takes time), then a fresh survey, the user's files
+         * carried and the exchange at once after it; what arrives later still is kept by
+         * empty_old */
+        if (exists)
+            st = survey_dir(od->final, &l, &lv, err);
+        if (st == LV_OK)
+            st = write_manifest(od, od->staging, rec, &l, err);
+        list_free(&l);
+        if (st == LV_OK && exists)
             st = survey_dir(od->final, &l, &lv, err);
         if (st == LV_OK)
             st = carry_foreign(od, &l, err);
+        inode_index known = {NULL, 0};
+        if (st == LV_OK && index_build(&l, &known) != 0)
+            st = nomem(err);
         if (st == LV_OK)
-            st = write_manifest(od, od->staging, rec, &l, err);
-        if (st == LV_OK)
-            st = exchange(od, err);
+            st = exchange(od, &known, err);
+        free(known.e);
     }
     list_free(&l);
     od->committed = st == LV_OK;
@@ -1482,6 +1709,8 @@ void lv_outdir_free(lv_outdir *od)
     strv_free(od->stale, od->n_stale);
     strv_free(od->kept, od->n_kept);
     strv_free(od->live, od->n_live);
+    strv_free(od->dir_rel, od->n_dirs);
+    free(od->dir_mode);
     for (size_t i = 0; i < od->n_files; i++)
         free((char *)od->files[i].name);
     free(od->files);

@@ -162,7 +162,10 @@ fi
 verify "$kill_dir" --mission "$slow/mission.yaml" --status ok
 
 # ---- SIGTERM (Ctrl-C) during the simulation: exit 130, the phases that ended, marked failed
-"$lvsim" run "$slow/mission.yaml" -o "$kill_dir" -q > "$work/term.log" 2>&1 &
+# (a finer grid: the signal lands while the phases run, not in the post-processing)
+sed 's/output_interval: 0.05/output_interval: 0.002/; s/output_interval: 0.2/output_interval: 0.01/' \
+  "$slow/mission.yaml" > "$slow/slower.yaml"
+"$lvsim" run "$slow/slower.yaml" -o "$kill_dir" -q --max-rows 1e7 > "$work/term.log" 2>&1 &
 victim=$!
 pids+=("$victim")
 # once its staging folder exists it is running, with its signal handlers in place
@@ -171,7 +174,7 @@ kill -TERM "$victim"
 wait "$victim"; rc=$?
 [ "$rc" -eq 130 ] && grep -q "interrupted: '$kill_dir' holds the phases that ended, marked failed" "$work/term.log" && ok \
   || fail "SIGTERM: exit $rc: $(cat "$work/term.log")"
-verify "$kill_dir" --mission "$slow/mission.yaml" --status failed
+verify "$kill_dir" --mission "$slow/slower.yaml" --status failed
 grep -q '"interrupted (SIGINT or SIGTERM)' "$kill_dir/manifest.json" && ok || fail "no interruption note in the manifest"
 grep -q '"status":[[:space:]]*"failed"' "$kill_dir/summary.json" && ok || fail "summary.json of an interrupted run not marked failed"
 ! ls -a "$work" | grep -q "^\.killed\.staging-" && ok || fail "an interrupted run left its staging folder"
@@ -232,6 +235,81 @@ expect 0 "^kept 1 file lvsim did not write in $mcd/" -- "$lvsim" mc "$dof3" -n 4
 [ "$(cat "$mcd/readme.txt")" = keep ] && [ -s "$mcd/stats.json" ] && ok || fail "mc --force: $(ls "$mcd")"
 verify "$mcd" --foreign readme.txt
 expect 0 "statistics:" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --resume
+# ---- the breaker's cases (issue 22) -----------------------------------------------------
+# lock-like files of the user's are the user's, at any depth
+lk="$work/lk"
+"$lvsim" run "$dof3" -o "$lk" -q --no-plots > /dev/null 2>&1 && ok || fail "run into $lk"
+: > "$lk/.job.lock"; echo "lvsim 12 my notes" > "$lk/.notes.lock"
+expect 2 "holds 2 files lvsim did not write \(.job.lock, .notes.lock\)" -- "$lvsim" run "$dof3" -o "$lk" -q --no-plots
+expect 0 "^kept 2 files" -- "$lvsim" run "$dof3" -o "$lk" -q --no-plots --force
+[ -e "$lk/.job.lock" ] && [ "$(cat "$lk/.notes.lock")" = "lvsim 12 my notes" ] && ok || fail "lock-like user files lost"
+# a manifest that is not lvsim's (a hash that is no SHA-256) proves nothing
+mkdir -p "$work/fg" && echo "ten bytes" > "$work/fg/thesis.tex"
+echo '{"lvsim":"x","command":"run","status":"ok","files":[{"name":"thesis.tex","bytes":10,"sha256":"not-a-hash"}]}' > "$work/fg/manifest.json"
+expect 2 "lvsim did not write" -- "$lvsim" run "$dof3" -o "$work/fg" -q --no-plots
+[ -s "$work/fg/thesis.tex" ] && ok || fail "a forged manifest made a user's file lvsim's"
+# a name too long for a path lvsim can hold is never taken for "not there"
+deep="$work/deep"; mkdir -p "$deep"; "$lvsim" run "$dof3" -o "$deep" -q --no-plots --outputs summary > /dev/null 2>&1
+p="$deep"; while [ ${#p} -lt 3900 ]; do p="$p/$(printf 'd%.0s' $(seq 200))"; done
+mkdir -p "$p" && (cd "$p" && echo keep > "$(printf 'f%.0s' $(seq 240))") # a path > PATH_MAX
+expect 2 "cannot read the folder '$deep'.*File name too long" -- "$lvsim" run "$dof3" -o "$deep" -q --no-plots --force
+find "$deep" -name 'fff*' | grep -q . && ok || fail "a file under a long path was lost"
+rm -rf "$deep"
+# a pipe and a socket of the user's are kept as themselves (inode, mode)
+sp="$work/sp"
+"$lvsim" run "$dof3" -o "$sp" -q --no-plots --outputs summary > /dev/null 2>&1
+mkfifo -m 0666 "$sp/pipe"
+"$py" -c "import socket,sys; s=socket.socket(socket.AF_UNIX); s.bind(sys.argv[1])" "$sp/sock"
+before=$(stat -c '%i %a' "$sp/pipe" "$sp/sock")
+expect 0 "^kept 2 files" -- "$lvsim" run "$dof3" -o "$sp" -q --no-plots --outputs summary --force
+[ "$before" = "$(stat -c '%i %a' "$sp/pipe" "$sp/sock")" ] && ok || fail "pipe/socket changed: $before -> $(stat -c '%i %a' "$sp/pipe" "$sp/sock")"
+# a campaign's folder and a run's folder are not each other's
+expect 2 "is the results folder of 'lvsim run', not a Monte Carlo campaign's" -- "$lvsim" mc "$dof3" -n 3 -o "$sp" --no-stats
+expect 2 "is a Monte Carlo campaign's folder \(lvsim mc\): a run would replace its database" -- "$lvsim" run "$dof3" -o "$mcd" -q
+# the current folder (or one holding it) is refused
+(cd "$sp" && "$lvsim" run "$dof3" -o "$PWD" -q --no-plots > "$work/cwd.log" 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "is the current folder or holds it" "$work/cwd.log" && ok || fail "-o \$PWD: exit $rc: $(cat "$work/cwd.log")"
+# names with control characters are shown as '?', never sent raw to the terminal
+esc="$work/esc"; mkdir -p "$esc"; echo x > "$esc/$(printf 'a\033[2Jb')"
+out_esc=$("$lvsim" run "$dof3" -o "$esc" -q --no-plots 2>&1)
+grep -q 'a?\[2Jb' <<<"$out_esc" && ! grep -q $'\033' <<<"$out_esc" && ok || fail "control characters in a message: $(cat -v <<<"$out_esc")"
+# a link loop on the way is named as such
+ln -s loop2 "$work/loop1"; ln -s loop1 "$work/loop2"
+expect 2 "cannot use folder '$work/loop1': Too many levels of symbolic links" -- "$lvsim" run "$dof3" -o "$work/loop1/x" -q
+# a mount point (a container's volume) is refused before anything runs
+if [ "$(id -u)" -eq 0 ] && mkdir -p "$work/mnt" && mount -t tmpfs none "$work/mnt" 2> /dev/null; then
+  expect 2 "is a mount point: .* use a folder inside it" -- "$lvsim" run "$dof3" -o "$work/mnt" -q
+  expect 0 "^results: $work/mnt/results/" -- "$lvsim" run "$dof3" -o "$work/mnt/results" --no-plots
+  umount "$work/mnt"
+else
+  echo "skip: no tmpfs mount here (not root): the mount-point case is not tried"
+fi
+# as a user: a folder that user cannot search is not taken for empty; a read-only folder of
+# the user's is kept with its files and mode; a set-group-ID folder's group reaches the files
+if [ "$(id -u)" -eq 0 ] && command -v runuser > /dev/null; then
+  ww=$(mktemp -d); chmod 0777 "$ww"
+  nb() { runuser -u nobody -- "$@"; }
+  nb "$lvsim" run "$dof3" -o "$ww/n" -q --no-plots --outputs summary > /dev/null 2>&1
+  nb mkdir "$ww/n/priv"; nb sh -c "echo secret > '$ww/n/priv/s.txt'"; chmod 0600 "$ww/n/priv"
+  nb "$lvsim" run "$dof3" -o "$ww/n" -q --no-plots --outputs summary --force > "$work/nb.log" 2>&1; rc=$?
+  chmod 0700 "$ww/n/priv"
+  [ "$rc" -eq 2 ] && grep -q "cannot read the folder .*priv.*Permission denied" "$work/nb.log" && [ -s "$ww/n/priv/s.txt" ] \
+    && ok || fail "unsearchable folder: exit $rc, $(cat "$work/nb.log")"
+  nb mkdir "$ww/n/ro"; nb sh -c "echo k > '$ww/n/ro/k.txt'"; chmod 0555 "$ww/n/ro"; rm -rf "$ww/n/priv"
+  nb "$lvsim" run "$dof3" -o "$ww/n" -q --no-plots --outputs summary --force > "$work/nb.log" 2>&1; rc=$?
+  [ "$rc" -eq 0 ] && [ -s "$ww/n/ro/k.txt" ] && [ "$(stat -c %a "$ww/n/ro")" = 555 ] && ok \
+    || fail "read-only user folder as nobody: exit $rc, $(cat "$work/nb.log")"
+  mkdir "$ww/g" && chgrp nogroup "$ww/g" && chmod 2777 "$ww/g"
+  nb "$lvsim" run "$dof3" -o "$ww/g/r" -q --no-plots --outputs summary > /dev/null 2>&1
+  chmod 2775 "$ww/g/r"; chgrp nogroup "$ww/g/r"
+  nb "$lvsim" run "$dof3" -o "$ww/g/r" -q --no-plots --outputs summary > /dev/null 2>&1
+  [ "$(stat -c %G "$ww/g/r/summary.json")" = nogroup ] && [ "$(stat -c %a "$ww/g/r")" = 2775 ] && ok \
+    || fail "set-group-ID folder: $(stat -c '%G %a' "$ww/g/r" "$ww/g/r/summary.json")"
+  chmod -R u+w "$ww"; rm -rf "$ww"
+else
+  echo "skip: not root or no runuser: the other user's cases are not tried"
+fi
+
 # modes follow the umask; a replaced folder keeps its mode
 for mask in 022 077; do
   (umask $mask; "$lvsim" run "$dof3" -o "$work/mode$mask" -q --no-plots > /dev/null 2>&1)
