@@ -70,4 +70,37 @@ lv_status lv_pk_slot(const lv_pctx *c, const lv_ynode *v, const char *what, cons
 lv_status lv_pk_slot_default(const lv_pctx *c, const char *name, const char *unit, double value,
                              lv_range range, lv_slot *out);
 
+/* ---- the parser's smaller tools, for the types' own keys too --------------------------- */
+
+char *lv_pk_strdup(const char *s); /* a malloc'ed copy, NULL: out of memory */
+/* "a mapping", "a list", "nothing", "'text'" or "the string \"text\"" for messages (in buf). */
+const char *lv_pk_describe(const lv_ynode *n, char *buf, size_t cap);
+/* A whole number >= min. */
+lv_status lv_pk_int(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                    int min, int *out);
+/* A non-empty string, copied into *out (owned by the caller). */
+lv_status lv_pk_str(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
+                    char **out);
+/* 1 when s is a name of at most LV_NAME_MAX characters [A-Za-z0-9_-] (and '.' with allow_dot). */
+int lv_pk_valid_name(const char *s, int allow_dot);
+/* A valid name (lv_pk_valid_name), copied into *out. */
+lv_status lv_pk_name(const lv_pctx *c, const lv_ynode *v, const char *what, int allow_dot,
+                     char **out);
+/* "stage 'stage1'" when the list item has a usable name, else "stage #2" (1-based k + 1). */
+void lv_pk_label(const lv_ynode *item, const char *kind, size_t k, char *buf, size_t cap);
+lv_src_loc lv_pk_loc(const lv_ynode *n); /* the node's line and column */
+/* Copies `key` without a trailing "_deg" into buf; returns 1 if it had one. */
+int lv_pk_strip_deg(const char *key, char *buf, size_t cap);
+
+/* `rel` against the mission's directory (unless absolute), noted in the mission's list of the
+ * files it reads (an FMU or any other package of the mission carries them). NULL: out of
+ * memory. */
+char *lv_pk_resolve_file(const lv_pctx *c, const char *rel);
+/* {<file_key>: path, var: name} of a table read later by its model (atmosphere, wind). */
+lv_status lv_pk_table_file(const lv_pctx *c, const lv_ynode *n, const char *what,
+                           const char *file_key, char **file, char **var);
+/* Only regular files: a device or a FIFO could block the parser forever. */
+lv_status lv_pk_regular_file(const lv_pctx *c, const lv_ynode *at, const char *what,
+                             const char *key, const char *path);
+
 #endif

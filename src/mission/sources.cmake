@@ -3,6 +3,12 @@
 list(APPEND LV_SOURCES
   src/mission/yaml_tree.c
   src/mission/parse.c
+  src/mission/parse_env.c
+  src/mission/parse_kit.c
+  src/mission/parse_params.c
+  src/mission/parse_phase.c
+  src/mission/parse_tree.c
+  src/mission/parse_vehicle.c
   src/mission/env.c
   src/mission/aero_def.c
   src/mission/guidance_def.c

@@ -1,0 +1,391 @@
+/* parse_env.c - a mission file's `environment:` (world, planet, gravity, atmosphere, wind) into
+ * the definition's lv_env_def, its numbers as slots "environment.<...>". Format:
+ * docs/mission-format.md ("environment"); models: docs/atmosphere.md, gravity.md, wind.md. */
+
+#include "mission/mission.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mission/parse_int.h"
+
+static const char *const planet_presets[] = { "earth", "moon", "mars", NULL };
+
+/* planet: {name, base, radius, flattening, gm, rotation_rate(_deg), r_ref, zonal,
+ * coefficients}: a planet by its constants (docs/mission-format.md). Written numbers are
+ * slots "environment.planet.<key>" ("environment.planet.J2" ... for the zonal list). */
+static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_def *e,
+                                  int *earth)
+{
+    static const char *const keys[] = { "name", "base", "radius", "flattening", "gm",
+                                        "rotation_rate", "rotation_rate_deg", "r_ref", "zonal",
+                                        "coefficients", NULL };
+    const char *what = "environment, planet";
+    lv_planet_def *pd = &e->pdef;
+    const lv_ynode *v;
+    lv_status st;
+    size_t i;
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    pd->custom = 1;
+    pd->loc = lv_pk_loc(n);
+    memset(&pd->base, 0, sizeof pd->base);
+    if ((v = lv_pk_get(n, "base")) != NULL) {
+        if ((st = lv_pk_enum(c, v, what, "base", planet_presets, &i)) != LV_OK ||
+            (st = lv_planet_by_name(planet_presets[i], &pd->base, NULL)) != LV_OK)
+            return st;
+        pd->has_base = 1;
+        *earth = i == 0;
+    } else {
+        const char *req[] = { "radius", "gm" };
+        for (size_t k = 0; k < 2; k++)
+            if (lv_pk_get(n, req[k]) == NULL)
+                return lv_pk_fail(c, n, "%s: missing required key '%s' (or give 'base: earth', "
+                                  "'moon' or 'mars' to start from a preset's constants)", what,
+                                  req[k]);
+    }
+    const char *name = "custom";
+    if ((v = lv_pk_get(n, "name")) != NULL) {
+        if ((st = lv_pk_text(c, v, what, "name", &name)) != LV_OK)
+            return st;
+        if (!lv_pk_valid_name(name, 0) || strlen(name) >= LV_PLANET_NAME_MAX)
+            return lv_pk_fail(c, v, "%s: name '%.40s' must be 1 to %d letters, digits, '_' or "
+                              "'-'", what, name, LV_PLANET_NAME_MAX - 1);
+        for (i = 0; planet_presets[i] != NULL; i++)
+            if (strcmp(name, planet_presets[i]) == 0)
+                return lv_pk_fail(c, v, "%s: name '%s' is a preset's; a planet given by its "
+                                  "constants needs a name of its own (exports take '%s' for "
+                                  "the preset)", what, name, name);
+    }
+    snprintf(pd->base.name, sizeof pd->base.name, "%s", name);
+    if ((e->planet = lv_pk_strdup(name)) == NULL)
+        return lv_pk_nomem(c);
+
+    /* the constants; ranges hold any planet (the Sun: a = 7e8 m, GM = 1.3e20 m^3/s^2) */
+    static const lv_range r_len = { 0.0, 1e10, 1, 0 }, r_gm = { 0.0, 1e21, 1, 0 },
+                          r_f = { 0.0, 1.0, 0, 1 }, r_w = { -1.0, 1.0, 0, 0 },
+                          r_j = { -1.0, 1.0, 1, 1 };
+    const struct {
+        const char *key, *unit;
+        lv_range range;
+        lv_slot *slot;
+    } num[] = {
+        { "radius", "m", r_len, &pd->radius },
+        { "flattening", "", r_f, &pd->flattening },
+        { "gm", "m^3/s^2", r_gm, &pd->gm },
+        { "rotation_rate", "rad/s", r_w, &pd->rotation_rate },
+        { "r_ref", "m", r_len, &pd->r_ref },
+    };
+    for (size_t k = 0; k < sizeof num / sizeof num[0]; k++) {
+        char slot[64];
+        *num[k].slot = LV_NO_SLOT;
+        snprintf(slot, sizeof slot, "environment.planet.%s", num[k].key);
+        const lv_ynode *vd = NULL;
+        v = lv_pk_get(n, num[k].key);
+        if (num[k].slot == &pd->rotation_rate && (vd = lv_pk_get(n, "rotation_rate_deg")) != NULL &&
+            v != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, "rotation_rate_deg"), "%s: 'rotation_rate' and "
+                              "'rotation_rate_deg' given both", what);
+        if (v == NULL && vd == NULL)
+            continue;
+        if ((st = lv_pk_slot(c, v ? v : vd, what, v ? num[k].key : "rotation_rate_deg", slot,
+                             num[k].unit, num[k].range, vd != NULL, num[k].slot)) != LV_OK)
+            return st;
+    }
+    if ((v = lv_pk_get(n, "zonal")) != NULL) {
+        if (v->kind != LV_YNODE_SEQ && !lv_yaml_is_null(v))
+            return lv_pk_fail(c, v, "%s: zonal: a list [J2, J3, ...] expected", what);
+        pd->zonal_given = 1;
+        pd->n_zonal = v->kind == LV_YNODE_SEQ ? v->n : 0;
+        if (pd->n_zonal > LV_GRAVITY_ZONAL_MAX - 1)
+            return lv_pk_fail(c, v, "%s: zonal: %zu coefficients; at most %d (J2 .. J%d)", what,
+                              pd->n_zonal, LV_GRAVITY_ZONAL_MAX - 1, LV_GRAVITY_ZONAL_MAX);
+        if (pd->n_zonal > 0 && (pd->zonal = calloc(pd->n_zonal, sizeof *pd->zonal)) == NULL)
+            return lv_pk_nomem(c);
+        for (size_t k = 0; k < pd->n_zonal; k++) {
+            char slot[64], key[16];
+            snprintf(key, sizeof key, "J%zu", k + 2);
+            snprintf(slot, sizeof slot, "environment.planet.%s", key);
+            if ((st = lv_pk_slot(c, v->kids[k], what, key, slot, "", r_j, 0, &pd->zonal[k])) !=
+                LV_OK)
+                return st;
+        }
+    }
+    if ((v = lv_pk_get(n, "coefficients")) != NULL) {
+        const char *rel;
+        if ((st = lv_pk_text(c, v, what, "coefficients", &rel)) != LV_OK)
+            return st;
+        if ((pd->coef_file = lv_pk_resolve_file(c, rel)) == NULL)
+            return lv_pk_nomem(c);
+        if ((st = lv_pk_regular_file(c, v, what, "coefficients", pd->coef_file)) != LV_OK)
+            return st;
+    }
+    /* the planet as the file gives it must hold together (lv_planet_check: the rotation) */
+    lv_planet p = pd->base;
+    const lv_mission_def *m = c->m;
+    if (pd->radius != LV_NO_SLOT) p.a = m->slots[pd->radius].value;
+    if (pd->flattening != LV_NO_SLOT) p.f = m->slots[pd->flattening].value;
+    if (pd->gm != LV_NO_SLOT) p.gm = m->slots[pd->gm].value;
+    if (pd->rotation_rate != LV_NO_SLOT) p.omega = m->slots[pd->rotation_rate].value;
+    p.r_ref = pd->r_ref != LV_NO_SLOT ? m->slots[pd->r_ref].value : pd->has_base ? p.r_ref : p.a;
+    lv_err perr;
+    if (lv_planet_check(&p, &perr) != LV_OK)
+        return lv_pk_fail(c, n, "%s: %s", what, perr.msg);
+    return LV_OK;
+}
+
+/* atmosphere: us76 | exp | none | {table: path, var: name} | {model: exp, rho0, scale_height,
+ * temperature} (the exponential model's parameters: slots "environment.atmosphere.<key>"). */
+static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t deflt,
+                                  lv_env_def *e)
+{
+    static const char *const atmos[] = { "us76", "exp", "none", NULL };
+    static const char *const keys[] = { "table", "var", "model", "rho0", "scale_height",
+                                        "temperature", NULL };
+    static const char *const pkeys[3] = { "rho0", "scale_height", "temperature" };
+    static const char *const punit[3] = { "kg/m^3", "m", "K" };
+    const char *what = "environment, atmosphere";
+    size_t i = deflt;
+    lv_status st;
+    for (size_t k = 0; k < 3; k++)
+        e->atmo_par[k] = LV_NO_SLOT;
+    if (v != NULL && v->kind == LV_YNODE_MAP) {
+        if ((st = lv_pk_check_map(c, v, what, keys)) != LV_OK)
+            return st;
+        const lv_ynode *mv = lv_pk_get(v, "model");
+        if (lv_pk_get(v, "table") != NULL) { /* {table: path, var: name}: from a file */
+            if (mv != NULL)
+                return lv_pk_fail(c, lv_pk_key(v, "model"), "%s: give either 'table' (a file) "
+                                  "or 'model', not both", what);
+            for (size_t k = 0; k < 3; k++)
+                if (lv_pk_get(v, pkeys[k]) != NULL)
+                    return lv_pk_fail(c, lv_pk_key(v, pkeys[k]), "%s: '%s' belongs to model: "
+                                      "exp", what, pkeys[k]);
+            if ((st = lv_pk_table_file(c, v, what, "table", &e->atmo_file, &e->atmo_var)) != LV_OK ||
+                (st = lv_pk_regular_file(c, lv_pk_get(v, "table"), what, "table", e->atmo_file)) !=
+                    LV_OK)
+                return st;
+            e->atmosphere = lv_pk_strdup("table");
+            return e->atmosphere != NULL ? LV_OK : lv_pk_nomem(c);
+        }
+        if (lv_pk_get(v, "var") != NULL)
+            return lv_pk_fail(c, lv_pk_key(v, "var"), "%s: 'var' goes with 'table'", what);
+        if ((st = lv_pk_need(c, v, what, "model", &mv)) != LV_OK ||
+            (st = lv_pk_enum(c, mv, what, "model", atmos, &i)) != LV_OK)
+            return st;
+        for (size_t k = 0; k < 3; k++) {
+            const lv_ynode *pv = lv_pk_get(v, pkeys[k]);
+            if (pv == NULL)
+                continue;
+            if (i != 1)
+                return lv_pk_fail(c, lv_pk_key(v, pkeys[k]), "%s: '%s' belongs to model: exp "
+                                  "(this is %s)", what, pkeys[k], atmos[i]);
+            char slot[64];
+            snprintf(slot, sizeof slot, "environment.atmosphere.%s", pkeys[k]);
+            if ((st = lv_pk_slot(c, pv, what, pkeys[k], slot, punit[k], LV_RANGE_POS, 0,
+                                 &e->atmo_par[k])) != LV_OK)
+                return st;
+        }
+    } else if (v != NULL && (st = lv_pk_enum(c, v, "environment", "atmosphere", atmos, &i)) !=
+                                LV_OK) {
+        return st;
+    }
+    e->atmosphere = lv_pk_strdup(atmos[i]);
+    return e->atmosphere != NULL ? LV_OK : lv_pk_nomem(c);
+}
+
+/* wind: path | {file: path, var, interp, extrap} | {north, east, down}: a table over
+ * altitude or a constant (slots "environment.wind.north" ...), docs/wind.md. */
+static lv_status parse_wind(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
+{
+    static const char *const keys[] = { "file", "var", "interp", "extrap", "north", "east",
+                                        "down", NULL };
+    static const char *const comp[3] = { "north", "east", "down" };
+    static const char *const interps[] = { "linear", "pchip", NULL };
+    static const char *const extraps[] = { "clamp", "error", "linear", NULL };
+    static const lv_extrap extrap_of[] = { LV_EXTRAP_CLAMP, LV_EXTRAP_ERROR, LV_EXTRAP_LINEAR };
+    static const lv_range r_wind = { -500.0, 500.0, 0, 0 }; /* m/s: beyond any jet stream */
+    const char *what = "environment, wind";
+    lv_status st;
+    size_t i;
+    e->wind_interp = LV_INTERP_LINEAR;
+    e->wind_extrap = LV_EXTRAP_CLAMP;
+    e->wind_loc = lv_pk_loc(v);
+    if (v->kind != LV_YNODE_MAP) {
+        const char *rel;
+        if ((st = lv_pk_text(c, v, "environment", "wind", &rel)) != LV_OK)
+            return st;
+        if ((e->wind_file = lv_pk_resolve_file(c, rel)) == NULL)
+            return lv_pk_nomem(c);
+        return lv_pk_regular_file(c, v, "environment", "wind", e->wind_file);
+    }
+    if ((st = lv_pk_check_map(c, v, what, keys)) != LV_OK)
+        return st;
+    const lv_ynode *f = lv_pk_get(v, "file"), *o;
+    for (size_t k = 0; k < 3; k++) {
+        const lv_ynode *cv = lv_pk_get(v, comp[k]);
+        if (cv != NULL && f != NULL)
+            return lv_pk_fail(c, lv_pk_key(v, comp[k]), "%s: give either 'file' (a table) or "
+                              "the constant components north, east[, down], not both", what);
+    }
+    if (f != NULL) {
+        if ((st = lv_pk_table_file(c, v, what, "file", &e->wind_file, &e->wind_var)) != LV_OK ||
+            (st = lv_pk_regular_file(c, f, what, "file", e->wind_file)) != LV_OK)
+            return st;
+        if ((o = lv_pk_get(v, "interp")) != NULL) {
+            if ((st = lv_pk_enum(c, o, what, "interp", interps, &i)) != LV_OK)
+                return st;
+            e->wind_interp = i == 0 ? LV_INTERP_LINEAR : LV_INTERP_PCHIP;
+        }
+        if ((o = lv_pk_get(v, "extrap")) != NULL) {
+            if ((st = lv_pk_enum(c, o, what, "extrap", extraps, &i)) != LV_OK)
+                return st;
+            e->wind_extrap = extrap_of[i];
+        }
+        return LV_OK;
+    }
+    const char *tkeys[] = { "var", "interp", "extrap" };
+    for (size_t k = 0; k < 3; k++)
+        if (lv_pk_get(v, tkeys[k]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(v, tkeys[k]), "%s: '%s' goes with 'file' (a wind "
+                              "table)", what, tkeys[k]);
+    e->wind_const = 1;
+    for (size_t k = 0; k < 3; k++) {
+        char slot[64];
+        e->wind_ned[k] = LV_NO_SLOT;
+        snprintf(slot, sizeof slot, "environment.wind.%s", comp[k]);
+        if (k < 2 && (st = lv_pk_need(c, v, what, comp[k], &o)) != LV_OK)
+            return st;
+        if ((o = lv_pk_get(v, comp[k])) != NULL &&
+            (st = lv_pk_slot(c, o, what, comp[k], slot, "m/s", r_wind, 0, &e->wind_ned[k])) !=
+                LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
+lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
+{
+    static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere",
+                                        "wind", "site_lat_deg", "site_lon_deg", NULL };
+    static const char *const worlds[] = { "flat", "planet", NULL };
+    const char *what = "environment";
+    lv_env_def *e = &c->m->env;
+    const lv_ynode *v;
+    size_t i = 0;
+    lv_status st;
+
+    e->world = LV_WORLD_FLAT;
+    e->pdef.radius = e->pdef.flattening = e->pdef.gm = LV_NO_SLOT;
+    e->pdef.rotation_rate = e->pdef.r_ref = LV_NO_SLOT;
+    for (size_t k = 0; k < 3; k++)
+        e->atmo_par[k] = e->wind_ned[k] = LV_NO_SLOT;
+    e->wind_interp = LV_INTERP_LINEAR;
+    e->wind_extrap = LV_EXTRAP_CLAMP;
+    if (n != NULL && !lv_yaml_is_null(n)) {
+        st = lv_pk_check_map(c, n, what, keys);
+        if (st != LV_OK)
+            return st;
+        e->loc = lv_pk_loc(n);
+        if ((v = lv_pk_get(n, "world")) != NULL) {
+            st = lv_pk_enum(c, v, what, "world", worlds, &i);
+            if (st != LV_OK)
+                return st;
+            e->world = i == 0 ? LV_WORLD_FLAT : LV_WORLD_PLANET;
+        }
+    } else {
+        n = NULL;
+    }
+    const int flat = e->world == LV_WORLD_FLAT;
+    e->gravity_loc = e->atmo_loc = e->wind_loc = e->loc;
+
+    e->g = LV_NO_SLOT;
+    if ((v = lv_pk_get(n, "g")) != NULL) {
+        if (!flat)
+            return lv_pk_fail(c, lv_pk_key(n, "g"), "%s: 'g' applies to world: flat only (a planet "
+                        "world takes its gravity from 'planet' and 'gravity')", what);
+        if ((st = lv_pk_slot(c, v, what, "g", "environment.g", "m/s^2", LV_RANGE_POS, 0,
+                             &e->g)) != LV_OK)
+            return st;
+    } else if (flat && (st = lv_pk_slot_default(c, "environment.g", "m/s^2", 9.81, LV_RANGE_POS,
+                                                &e->g)) != LV_OK) {
+        return st;
+    }
+    /* Where the flat world's origin lies on the Earth, for maps and the globe view. */
+    const char *skeys[] = { "site_lat_deg", "site_lon_deg" };
+    double *sval[] = { &e->site_lat, &e->site_lon };
+    for (size_t k = 0; k < 2; k++) {
+        if ((v = lv_pk_get(n, skeys[k])) == NULL)
+            continue;
+        if (!flat)
+            return lv_pk_fail(c, lv_pk_key(n, skeys[k]), "%s: '%s' applies to world: flat only (a "
+                        "planet world starts at the parameters start_lat, start_lon)", what,
+                        skeys[k]);
+        if ((st = lv_pk_num(c, v, what, skeys[k], sval[k])) != LV_OK)
+            return st;
+        if (fabs(*sval[k]) > (k == 0 ? 90.0 : 360.0))
+            return lv_pk_fail(c, v, "%s: %s = %g is out of range", what, skeys[k], *sval[k]);
+        *sval[k] *= LV_DEG;
+    }
+    const char *pkeys[] = { "planet", "gravity" };
+    for (size_t k = 0; k < 2; k++)
+        if (flat && lv_pk_get(n, pkeys[k]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, pkeys[k]), "%s: '%s' applies to world: planet only",
+                        what, pkeys[k]);
+
+    int earth = 0; /* US76 is an Earth atmosphere: the default on the Earth only */
+    if (!flat) {
+        lv_planet_def *pd = &e->pdef;
+        if ((v = lv_pk_get(n, "planet")) != NULL && v->kind == LV_YNODE_MAP) {
+            if ((st = parse_planet_map(c, v, e, &earth)) != LV_OK)
+                return st;
+        } else {
+            i = 0;
+            if (v != NULL && (st = lv_pk_enum(c, v, what, "planet", planet_presets, &i)) != LV_OK)
+                return st;
+            if ((e->planet = lv_pk_strdup(planet_presets[i])) == NULL)
+                return lv_pk_nomem(c);
+            earth = i == 0;
+        }
+        /* gravity: checked here, where its position is known */
+        lv_gravity_config gc;
+        lv_err gerr;
+        if ((v = lv_pk_get(n, "gravity")) != NULL) {
+            if ((st = lv_pk_str(c, v, what, "gravity", &e->gravity)) != LV_OK)
+                return st;
+            if (lv_gravity_parse_spec(e->gravity, &gc, &gerr) != LV_OK)
+                return lv_pk_fail(c, v, "%s: gravity: %s", what, gerr.msg);
+            e->gravity_loc = lv_pk_loc(v);
+        } else {
+            e->gravity = lv_pk_strdup(!pd->custom ? "j2" : pd->coef_file != NULL ? "sh" : "zonal");
+            if (e->gravity == NULL)
+                return lv_pk_nomem(c);
+            (void)lv_gravity_parse_spec(e->gravity, &gc, NULL);
+        }
+        const int sh = strcmp(gc.model, "sh") == 0;
+        const lv_ynode *at = v != NULL ? v : n;
+        if (pd->coef_file != NULL && !sh)
+            return lv_pk_fail(c, at, "%s: gravity '%s' does not use the planet's coefficient "
+                              "file (only 'sh' does)", what, e->gravity);
+        if (sh && pd->coef_file == NULL && !earth)
+            return lv_pk_fail(c, at, "%s: gravity '%s' would read the shipped EGM2008 "
+                              "coefficients, which are the Earth's; give this planet's own "
+                              "file: planet: {..., coefficients: file.gfc}", what, e->gravity);
+    }
+    v = lv_pk_get(n, "atmosphere");
+    if (v != NULL)
+        e->atmo_loc = lv_pk_loc(v);
+    if ((st = parse_atmosphere(c, v, earth ? 0 : 2, e)) != LV_OK)
+        return st;
+    /* wind: a table of north/east(/down) components over altitude, or a constant */
+    if ((v = lv_pk_get(n, "wind")) != NULL && !lv_yaml_is_null(v)) {
+        if ((st = parse_wind(c, v, e)) != LV_OK)
+            return st;
+        if (strcmp(e->atmosphere, "none") == 0)
+            return lv_pk_fail(c, lv_pk_key(n, "wind"), "%s: a wind moves air, and there is "
+                              "none (atmosphere: none%s): give an atmosphere, or no wind", what,
+                              lv_pk_get(n, "atmosphere") != NULL ? "" : ", the default here");
+    }
+    return LV_OK;
+}
