@@ -41,6 +41,9 @@ typedef struct lv_err {
 
 /* Short English text for a status code ("invalid input"). Never NULL. */
 LV_API const char *lv_status_str(lv_status st);
+/* The code's name as in this header ("LV_ERR_INPUT"), NULL for a number that is no status:
+ * bindings build their list of statuses from it instead of re-typing LV_STATUS_LIST. */
+LV_API const char *lv_status_name(lv_status st);
 
 /* The library's version, LVSIM_VERSION of the headers it was built from ("0.1.0"). */
 LV_API const char *lv_version(void);

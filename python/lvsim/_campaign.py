@@ -30,12 +30,12 @@ class Campaign:
                 setattr(self, f, getattr(progress, f))
             return
         if not os.path.isfile(self.db_path):
-            raise LvsimError(f"{self.db_path}: no such campaign database", -5)
+            raise LvsimError(f"{self.db_path}: no such campaign database", _lib.LV_ERR_NOTFOUND)
         try:
             _, meta = self._query("SELECT key, value FROM campaign WHERE key = 'n_runs'")
             _, counts = self._query("SELECT COUNT(*), COALESCE(SUM(status != 'ok'), 0) FROM runs")
         except sqlite3.DatabaseError as e:
-            raise LvsimError(f"{self.db_path}: not a campaign database ({e})", -2) from None
+            raise LvsimError(f"{self.db_path}: not a campaign database ({e})", _lib.LV_ERR_INPUT) from None
         self.done, self.failed = int(counts[0][0]), int(counts[0][1])
         self.total = int(meta[0][1]) if meta else self.done
         self.this_session, self.elapsed, self.rate, self.eta = 0, 0.0, 0.0, 0.0
@@ -120,7 +120,7 @@ class Campaign:
                 for ro.output_interval in ((oi if oi > 0.0 else 1e300),) + \
                         ((oi,) if keep_runs > 0 else ()):
                     if _lib.lib.lv_run_check_output(r, byref(ro), byref(err)) != _lib.LV_OK:
-                        raise OutputLimitError(err.msg.decode("utf-8", "replace"), -2)
+                        raise OutputLimitError(err.msg.decode("utf-8", "replace"), _lib.LV_ERR_INPUT)
             finally:
                 _lib.lib.lv_run_free(r)
         if post.lv_campaign_check_size(mission._handle(), byref(o), 0, None,
@@ -205,6 +205,6 @@ class Campaign:
         cols, rows = self._query("SELECT name, tbl FROM phases")
         tables = {n: t for n, t in rows}
         if name not in tables:
-            raise LvsimError(f"campaign has no phase '{name}'; phases: {', '.join(tables)}", -5)
+            raise LvsimError(f"campaign has no phase '{name}'; phases: {', '.join(tables)}", _lib.LV_ERR_NOTFOUND)
         tbl = tables[name].replace('"', '""')
         return self._frame(*self._query(f'SELECT * FROM "{tbl}" ORDER BY run'))

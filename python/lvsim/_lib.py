@@ -4,8 +4,10 @@
 The structures are written by hand, in the headers' order: ctypes has no header parser, and
 Debian ships no cffi/ctypesgen that would read them at build time without a compiler at import
 time. tests/python/test_python.py checks every mirrored structure's size and field offsets
-against a C program compiled from the real headers (tests/python/py_layout.c), so a header
-change that is not made here too fails the suite.
+against a C program compiled from the real headers (tests/python/py_layout.c), and
+tests/python/check_signatures.py every function prototype set here against the headers' LV_API
+declarations, so a header change that is not made here too fails the suite. The status codes
+are not re-typed: they come from the library (lv_status_name).
 
 Calls go through ctypes.CDLL, which releases the GIL for the duration of every foreign call
 (ctypes.PyDLL would hold it): a mission run in one Python thread lets the others go on.
@@ -19,11 +21,6 @@ from . import _paths
 
 LV_ERR_MSG_MAX = 512
 LV_EVENT_NAME_MAX = 96
-
-# lv_status (lv_status.h)
-LV_OK = 0
-STATUS_NAMES = {0: "LV_OK", -1: "LV_ERR_NOMEM", -2: "LV_ERR_INPUT", -3: "LV_ERR_SOLVER",
-                -4: "LV_ERR_IO", -5: "LV_ERR_NOTFOUND", -6: "LV_ERR_CANCELLED"}
 
 LV_TOLERANCE_MIN = 1e-14  # lv_sim.h: the relative tolerances lv_simulate accepts
 LV_TOLERANCE_MAX = 0.1
@@ -370,6 +367,15 @@ def _proto(dll, name, restype, *argtypes):
 E = POINTER(lv_err)
 P = c_void_p
 _proto(lib, "lv_status_str", c_char_p, c_int)
+_proto(lib, "lv_status_name", c_char_p, c_int)
+
+# lv_status (lv_status.h), from the library, not re-typed: {code: "LV_ERR_INPUT", ...} (the
+# codes are 0 and small negative numbers), and the codes the package tests by name.
+STATUS_NAMES = {code: lib.lv_status_name(code).decode() for code in range(-64, 1)
+                if lib.lv_status_name(code) is not None}
+_code = {name: code for code, name in STATUS_NAMES.items()}
+LV_OK, LV_ERR_INPUT, LV_ERR_SOLVER = _code["LV_OK"], _code["LV_ERR_INPUT"], _code["LV_ERR_SOLVER"]
+LV_ERR_NOTFOUND, LV_ERR_CANCELLED = _code["LV_ERR_NOTFOUND"], _code["LV_ERR_CANCELLED"]
 _proto(lib, "lv_mission_load", c_int, c_char_p, POINTER(c_void_p), E)
 _proto(lib, "lv_mission_free", None, P)
 _proto(lib, "lv_mission_get_info", None, P, POINTER(lv_mission_info))

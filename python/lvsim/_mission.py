@@ -418,7 +418,7 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
     integration is an Outcome with ok False and its message."""
     ptr = lib.lv_models_find(name_arg(model, "model"))
     if not ptr:
-        raise LvsimError(f"no built-in model '{model}'; models: {', '.join(models())}", -5)
+        raise LvsimError(f"no built-in model '{model}'; models: {', '.join(models())}", _lib.LV_ERR_NOTFOUND)
     base = _lib.lv_sim_settings()
     lib.lv_sim_settings_default(byref(base))
     base.result_file = None
@@ -433,7 +433,7 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
     lib.lv_sim_report_clear(byref(rep))
     if exc is not None:
         raise exc
-    if st != _lib.LV_OK and st != -3:  # bad inputs raise (and a cancel); a failed run is an outcome
+    if st != _lib.LV_OK and st != _lib.LV_ERR_SOLVER:  # bad inputs raise (and a cancel); a failed run is an outcome
         check(st, err)
     return o
 
@@ -594,7 +594,7 @@ class Mission:
             raise TypeError(f"phase must be a name (str), an index (int) or a Phase, not {phase!r}")
         if isinstance(phase, (int, np.integer)):
             if not 0 <= phase < len(self.phases):
-                raise LvsimError(f"phase index {phase} out of range (0..{len(self.phases) - 1})", -2)
+                raise LvsimError(f"phase index {phase} out of range (0..{len(self.phases) - 1})", _lib.LV_ERR_INPUT)
             return int(phase)
         if isinstance(phase, Phase):
             return phase.index
@@ -614,13 +614,13 @@ class Mission:
                             f"{type(stage).__name__} ({stage!r})")
         if isinstance(stage, (int, np.integer)):
             if not 0 <= stage < len(self.stages):
-                raise LvsimError(f"stage index {stage} out of range (0..{len(self.stages) - 1})", -2)
+                raise LvsimError(f"stage index {stage} out of range (0..{len(self.stages) - 1})", _lib.LV_ERR_INPUT)
             return int(stage)
         name_arg(stage, "stage name")
         try:
             return self.stages.index(stage)
         except ValueError:
-            raise LvsimError(f"no stage '{stage}'; stages: {', '.join(self.stages)}", -5) from None
+            raise LvsimError(f"no stage '{stage}'; stages: {', '.join(self.stages)}", _lib.LV_ERR_NOTFOUND) from None
 
     def parameter(self, name):
         """The Parameter `name`; ParameterError (LV_ERR_NOTFOUND, with suggestions).
@@ -960,7 +960,7 @@ class Run:
             if outdir is not None:  # a complete results folder: every phase, written anew
                 _check(lib.lv_run_invalidate(h, _lib.LV_RUN_ALL_PHASES, byref(err)), err)
             if opt.max_rows > 0.0 and lib.lv_run_check_output(h, byref(opt), byref(err)) != 0:
-                raise OutputLimitError(err.msg.decode("utf-8", "replace"), -2)
+                raise OutputLimitError(err.msg.decode("utf-8", "replace"), _lib.LV_ERR_INPUT)
             od = None
             if outdir is not None:
                 post = _lib.post()
@@ -979,7 +979,7 @@ class Run:
                                 and not lib.lv_run_stale(h, k):
                             self._ran_with[k] = key
                 if od is not None:
-                    interrupted = "exc" in cb_state or stop.value or st == -6
+                    interrupted = "exc" in cb_state or stop.value or st == _lib.LV_ERR_CANCELLED
                     if not interrupted:
                         rec = _lib.lv_outdir_record()
                         rec.command = b"python"
@@ -996,7 +996,7 @@ class Run:
                     post.lv_outdir_free(od)  # uncommitted: staging removed, outdir untouched
         if "exc" in cb_state:
             raise cb_state["exc"]
-        if st == -3:  # LV_ERR_SOLVER: some phases failed, the others are complete
+        if st == _lib.LV_ERR_SOLVER:  # some phases failed, the others are complete
             if check:
                 failed = self.failed
                 skipped = [p.name for p in m.phases if self.state(p.index) == "skipped"]
@@ -1120,7 +1120,7 @@ class Run:
         if lib.lv_run_result(h, k).contents.state == 1 and lib.lv_run_stale(h, k):
             raise LvsimError(f"phase '{self.mission.phases[k].name}' is stale: an input "
                              "changed since it ran (set() without execute()); call "
-                             "execute() first", -2)
+                             "execute() first", _lib.LV_ERR_INPUT)
 
     def dataframe(self, phase):
         """Phase `phase`'s rows as a pandas DataFrame (units in df.attrs["units"]).
@@ -1167,11 +1167,11 @@ class Run:
                 if not lib.lv_run_rows(h, k):
                     raise LvsimError(f"stage '{m.stages[s]}': phase '{m.phases[k].name}' kept "
                                      "no rows (execute(keep_rows=False)); execute("
-                                     "keep_rows=True) for its trajectory", -2)
+                                     "keep_rows=True) for its trajectory", _lib.LV_ERR_INPUT)
                 if lib.lv_run_stale(h, k):
                     raise LvsimError(f"stage '{m.stages[s]}': phase '{m.phases[k].name}' is "
                                      "stale (an input changed since it ran); call execute() "
-                                     "first", -2)
+                                     "first", _lib.LV_ERR_INPUT)
             b = POINTER(_lib.lv_body_traj)()
             err = _err()
             check(lib.lv_run_body_trajectory(self._handle(), s, byref(b), byref(err)), err)
@@ -1327,7 +1327,7 @@ class PhaseCall:
             for i in range(n0):
                 fin[i] = vals[i]
             o = _outcome(st, err, rep, want, vals[n0:], rows)
-            if exc is not None or (st != _lib.LV_OK and st != -3):
+            if exc is not None or (st != _lib.LV_OK and st != _lib.LV_ERR_SOLVER):
                 # bad inputs (an unknown start-value name...), a cancel, an exception in
                 # progress: nothing recorded, the call is spent either way
                 lib.lv_sim_report_clear(byref(rep))

@@ -117,7 +117,7 @@ class Target:
         angle in degrees): kind "equal", "min" or "max" `value`, met within `tol` > 0."""
         b = name_arg(final, "constraint final")
         if kind not in KINDS:
-            raise LvsimError(f"constraint kind '{kind}': equal, min or max", -2)
+            raise LvsimError(f"constraint kind '{kind}': equal, min or max", _lib.LV_ERR_INPUT)
         value, tol = real_arg(value, "value"), real_arg(tol, "tol")
         with self._lock:
             err = _lib.lv_err()
@@ -190,11 +190,11 @@ class Target:
         lib.lv_target_settings_default(byref(s))
         if method is not None:
             if method not in METHODS:
-                raise LvsimError(f"method '{method}': {', '.join(METHODS)}", -2)
+                raise LvsimError(f"method '{method}': {', '.join(METHODS)}", _lib.LV_ERR_INPUT)
             s.method = METHODS[method]
         if differences is not None:
             if differences not in DIFFERENCES:
-                raise LvsimError(f"differences '{differences}': {', '.join(DIFFERENCES)}", -2)
+                raise LvsimError(f"differences '{differences}': {', '.join(DIFFERENCES)}", _lib.LV_ERR_INPUT)
             s.differences = DIFFERENCES[differences]
         s.max_iterations, s.xtol, s.ftol = int(max_iterations), float(xtol), float(ftol)
         s.restarts, s.threads = int(restarts), int(threads)
@@ -247,7 +247,7 @@ class Target:
         with self._lock:
             h = lib.lv_target_run(self._handle())
             if not h or self._result is None:
-                raise LvsimError("the target has evaluated no point yet: solve() first", -2)
+                raise LvsimError("the target has evaluated no point yet: solve() first", _lib.LV_ERR_INPUT)
             if self._run is None or self._run._h is None or self._run._h.value != h:
                 self._run = _TargetRun(self, c_void_p(h))
             return self._run
@@ -260,11 +260,11 @@ class Target:
         names = [v["name"] for v in self.variables]
         if x is None:
             if self._result is None:
-                raise LvsimError("no point to write: solve() first or pass x", -2)
+                raise LvsimError("no point to write: solve() first or pass x", _lib.LV_ERR_INPUT)
             x = self._result.x
         missing = [n for n in names if n not in x]
         if missing:
-            raise LvsimError(f"x has no value for {', '.join(missing)}", -2)
+            raise LvsimError(f"x has no value for {', '.join(missing)}", _lib.LV_ERR_INPUT)
         arr = (c_double * max(1, len(names)))(*[float(x[n]) for n in names])
         worst = c_double()
         err = _lib.lv_err()

@@ -11,7 +11,7 @@ class LvsimError(Exception):
     "LV_ERR_NOTFOUND", "LV_ERR_SOLVER", "LV_ERR_NOMEM", "LV_ERR_CANCELLED"), `code` its
     number, `message` the library's text (also str(exc))."""
 
-    def __init__(self, message, code=-2):
+    def __init__(self, message, code=_lib.LV_ERR_INPUT):
         super().__init__(message)
         self.message = message
         self.code = code
@@ -29,7 +29,7 @@ class MissionError(LvsimError):
     # ending in a YAML/CSV extension or not, matched lazily from the left up to that point
     _pos = re.compile(r"^(?P<file>[^\n]+?):(?P<line>\d+):(?:(?P<column>\d+):)? ")
 
-    def __init__(self, message, code=-2):
+    def __init__(self, message, code=_lib.LV_ERR_INPUT):
         super().__init__(message, code)
         m = self._pos.match(message)
         self.file = m.group("file") if m else None
@@ -80,6 +80,6 @@ def check(status, err, cls=LvsimError):
     msg = err.msg.decode("utf-8", "replace") if err is not None else ""
     if not msg:
         msg = _lib.text(_lib.lib.lv_status_str(status))
-    if status == -6:
+    if status == _lib.LV_ERR_CANCELLED:
         raise CancelledError(msg, status)
     raise cls(msg, status)

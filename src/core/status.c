@@ -20,6 +20,18 @@ const char *lv_status_str(lv_status st)
     return "unknown status";
 }
 
+const char *lv_status_name(lv_status st)
+{
+#define LV_STATUS_CASE_(name, value, text) \
+    case name:                             \
+        return #name;
+    switch (st) {
+        LV_STATUS_LIST(LV_STATUS_CASE_)
+    }
+#undef LV_STATUS_CASE_
+    return NULL;
+}
+
 /* ---- numbers in messages: never 301 digits ---- */
 
 char *lv_fmt_count(double n, char *buf, size_t cap)

@@ -38,6 +38,13 @@ add_test(NAME test_python
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(test_python PROPERTIES ENVIRONMENT "${_py_env}" TIMEOUT 600)
 
+# The package's ctypes prototypes against the public headers' LV_API declarations (the
+# structures' layouts are checked by py_layout.c in test_python).
+add_test(NAME test_python_signatures
+         COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_signatures.py
+                 ${PROJECT_SOURCE_DIR}/include)
+set_tests_properties(test_python_signatures PROPERTIES ENVIRONMENT "${_py_env}" TIMEOUT 60)
+
 add_test(NAME test_python_doc
          COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/run_doc.py ${PROJECT_SOURCE_DIR}
                  docs/python.md README.md
