@@ -227,7 +227,8 @@ typedef struct lv_run_options {
     /* > 0: the most output rows one phase may write (its output grid's points; the two rows
      * of each event instant are not counted). Before anything runs, lv_run_execute refuses
      * (LV_ERR_INPUT, lv_run_check_output) a phase to run that only its stop time (or a `time`
-     * end) can end and whose grid over its longest possible duration has more rows; a phase
+     * end) can end and whose grid over its longest possible duration has more rows (a child
+     * whose parent has not run: as it is about to start, when its start is known); a phase
      * with other ends (burnout, altitude, ...) is not refused for a generous stop_time but
      * stopped as it runs: when it reaches max_rows rows before an end fires it fails
      * (LV_ERR_SOLVER, the phase, the time reached, the rows and the limit; its files kept as
@@ -284,20 +285,25 @@ typedef struct lv_output_estimate {
                           memory when it keeps them: lv_run_options.no_rows = 0) */
     double bytes_csv;  /* the .csv file: about 22 bytes a value (%.17g and a comma) */
     int bounded;       /* 1: rows is a bound known now: only the stop time (or a `time` end)
-                          ends the phase; 0: it has other ends, which may end it earlier, and
-                          rows is what its stop time allows (lv_run_options.max_rows is then
-                          enforced as it runs) */
+                          ends the phase and its start is known; 0: it has other ends, which
+                          may end it earlier, and rows is what its stop time allows
+                          (lv_run_options.max_rows is then enforced as it runs), or it is a
+                          child whose parent has not run, counted from the parent's earliest
+                          start (its rows are checked when it is about to start) */
 } lv_output_estimate;
 /* `output_interval` > 0: the grid lv_run_options.output_interval would impose. */
 LV_API lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interval,
                                         lv_output_estimate *out, lv_err *err);
 
-/* The up-front half of opt->max_rows (lv_run_options; nothing runs): LV_ERR_INPUT for the
- * first phase lv_run_execute(r, opt) would run (opt->want and their ancestors; every phase
- * when want is NULL) that is bounded (lv_output_estimate.bounded) and whose grid, with
- * opt->output_interval, has more than opt->max_rows rows. The message names the phase, its
- * rows and mission time (as "1.4e+11 rows", "140 s"), columns, bytes, the limit, and what to
- * do. LV_OK when none is, when opt is NULL or opt->max_rows is 0. */
+/* The up-front half of opt->max_rows (lv_run_options; nothing runs): LV_ERR_INPUT when a
+ * phase lv_run_execute(r, opt) would run (opt->want and their ancestors; every phase when
+ * want is NULL) is bounded (lv_output_estimate.bounded) and its grid, with
+ * opt->output_interval, has more than opt->max_rows rows. The message names the first such
+ * phase, its rows and mission time (as "1.4e+11 rows", "140 s"), columns, bytes, the limit,
+ * the other phases over it, and a limit that allows them all. LV_OK when none is, when opt is
+ * NULL or opt->max_rows is 0. A child phase whose parent has not run yet is checked the same
+ * way by lv_run_execute as it is about to start (its start, the parent's end, known then); it
+ * fails then with this message, and is not simulated. */
 LV_API lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err *err);
 
 /* ---- the bodies: each stage's trajectory across the phases it flies in ------------------ */

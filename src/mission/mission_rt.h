@@ -60,6 +60,12 @@ size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out);
 /* The run's value of every slot [n_slots] (run.c). */
 const double *lv_run_vals(const lv_run *r);
 
+/* lv_run_check_output for phase k alone, as it is about to run (its parent has ended, so a
+ * child's rows are known): LV_ERR_INPUT with the same message beyond opt->max_rows
+ * (run_estimate.c). */
+lv_status lv_run_check_phase_output(const lv_run *r, size_t k, const lv_run_options *opt,
+                                    lv_err *err);
+
 /* 1 if phase k carries stage s. */
 int lv_mission_phase_has_stage(const lv_mission_def *d, size_t k, size_t s);
 

@@ -517,8 +517,11 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
 {
     const lv_phase_def *ph = &r->m->def->phases[k];
     lv_phase_call *c = NULL;
+    /* a child's rows are known once its parent has ended: refused now beyond the limit */
     lv_status st = stop_requested(opt) ? lv_fail(err, LV_ERR_CANCELLED, "stopped before it began")
-                                       : prepare(r, k, opt, &c, err);
+                                       : lv_run_check_phase_output(r, k, opt, err);
+    if (st == LV_OK)
+        st = prepare(r, k, opt, &c, err);
     if (st != LV_OK) {
         pthread_mutex_lock(&r->lock);
         run_phase *p = &r->ph[k];

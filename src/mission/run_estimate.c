@@ -18,11 +18,13 @@
 
 /* Earliest time phase k can start: its start_time, or its parent's end when the parent is
  * done and up to date in this run, or its parent's earliest start (a phase ends after it
- * starts). */
-static double earliest_start(const lv_run *r, size_t k)
+ * starts). *known: 1 when that is when it starts (the first two), 0 when it is only a lower
+ * bound (a child before its parent ran). */
+static double earliest_start(const lv_run *r, size_t k, int *known)
 {
     const lv_mission_def *d = lv_run_mission(r)->def;
     const double *v = lv_run_vals(r);
+    *known = 1;
     for (int depth = 0; depth <= (int)d->n_phases; depth++) {
         const lv_phase_def *ph = &d->phases[k];
         if (ph->t_start != LV_NO_SLOT)
@@ -33,6 +35,7 @@ static double earliest_start(const lv_run *r, size_t k)
         if (pr->state == LV_PHASE_DONE && isfinite(pr->t_end) &&
             !lv_run_stale(r, (size_t)ph->parent))
             return pr->t_end;
+        *known = 0;
         k = (size_t)ph->parent;
     }
     return 0.0;
@@ -48,10 +51,13 @@ lv_status lv_run_estimate_output(const lv_run *r, size_t k, double output_interv
     const lv_phase_def *ph = &d->phases[k];
     const lv_phase_plan *pl = &m->plan[k];
     const double *v = lv_run_vals(r);
-    const double t0 = earliest_start(r, k), tf = v[ph->t_stop];
+    int known;
+    const double t0 = earliest_start(r, k, &known), tf = v[ph->t_stop];
     double span = tf - t0;
-    /* a `time` end is a bound as exact as the stop time; any other end fires when it fires */
-    int bounded = 1;
+    /* a `time` end is a bound as exact as the stop time; any other end fires when it fires;
+     * a child whose parent has not run yet starts when the parent ends: its rows are known
+     * then (lv_run_check_phase_output, as it is about to start) */
+    int bounded = known;
     for (size_t i = 0; i < ph->n_ends; i++) {
         const lv_end_def *e = &ph->ends[i];
         if (e->kind == LV_END_TIME && e->value != LV_NO_SLOT)
@@ -91,11 +97,70 @@ static double round_up3(double n)
     return up;
 }
 
+/* The refusal of phase k, when it is bounded and its grid has more than max_rows rows: what
+ * lv_run_check_output says of it. 0: within the limit (or not bounded now), 1: over it (*rows
+ * set), -1: error. */
+static int over_limit(const lv_run *r, size_t k, const lv_run_options *opt, double *rows,
+                      lv_err *err)
+{
+    lv_output_estimate e;
+    if (lv_run_estimate_output(r, k, opt->output_interval, &e, err) != LV_OK)
+        return -1;
+    *rows = e.rows;
+    return e.bounded && e.rows > opt->max_rows;
+}
+
+/* The message for phase k over the limit; `also`: the other phases over it ("", or "; phases
+ * 3 'P3' (2.81e+09 rows) ... are over it too"), `need`: the largest row count of them all. */
+static lv_status refuse(const lv_run *r, size_t k, const lv_run_options *opt, const char *also,
+                        double need, lv_err *err)
+{
+    const lv_mission_def *d = lv_run_mission(r)->def;
+    lv_output_estimate e;
+    lv_status st = lv_run_estimate_output(r, k, opt->output_interval, &e, err);
+    if (st != LV_OK)
+        return st;
+    const lv_phase_def *ph = &d->phases[k];
+    char rows[32], lim[32], mat[32], csv[32], grid[64], raise[160];
+    lv_fmt_count(e.rows, rows, sizeof rows);
+    lv_fmt_count(opt->max_rows, lim, sizeof lim);
+    lv_fmt_bytes(e.bytes_mat, mat, sizeof mat);
+    lv_fmt_bytes(e.bytes_csv, csv, sizeof csv);
+    const double dt = opt->output_interval > 0.0 ? opt->output_interval
+                                                 : lv_run_vals(r)[ph->output_interval];
+    if (dt > 0.0)
+        snprintf(grid, sizeof grid, ", a row every %.3g s", dt);
+    else
+        grid[0] = '\0';
+    int time_end = 0;
+    for (size_t i = 0; i < ph->n_ends; i++)
+        time_end |= ph->ends[i].kind == LV_END_TIME;
+    if (need <= LIMIT_SUGGEST_MAX) {
+        char up[32];
+        lv_fmt_count(round_up3(need), up, sizeof up);
+        snprintf(raise, sizeof raise, ", or raise the limit to %s rows (max_rows; lvsim "
+                 "--max-rows %s)", up, up);
+    } else {
+        raise[0] = '\0';
+    }
+    return lv_fail(err, LV_ERR_INPUT,
+                   "phase %zu '%s' would write up to %s rows (%.3g s of mission time%s; "
+                   "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than "
+                   "the limit of %s rows per phase, and nothing but its %s ends it%s. Give "
+                   "it a larger output interval, an earlier stop_time or an end event%s",
+                   k + 1, ph->name, rows, e.duration, grid, e.n_signals, mat, csv, lim,
+                   time_end ? "stop_time or time end" : "stop_time", also, raise);
+}
+
 lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err *err)
 {
     if (opt == NULL || !(opt->max_rows > 0.0))
         return LV_OK;
     const lv_mission_def *d = lv_run_mission(r)->def;
+    long first = -1;
+    double need = 0.0;
+    char list[192] = "";
+    size_t n_also = 0, used = 0;
     for (size_t k = 0; k < d->n_phases; k++) {
         if (opt->want != NULL) { /* wanted, or an ancestor of a wanted phase */
             int needed = 0;
@@ -109,42 +174,41 @@ lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err
         const lv_phase_result *res = lv_run_result(r, k);
         if (res->state == LV_PHASE_DONE && !lv_run_stale(r, k))
             continue; /* it will not run */
-        lv_output_estimate e;
-        lv_status st = lv_run_estimate_output(r, k, opt->output_interval, &e, err);
-        if (st != LV_OK)
-            return st;
-        if (!e.bounded || e.rows <= opt->max_rows)
+        double rows;
+        const int over = over_limit(r, k, opt, &rows, err);
+        if (over < 0)
+            return LV_ERR_INPUT;
+        if (!over)
             continue;
-        const lv_phase_def *ph = &d->phases[k];
-        char rows[32], lim[32], mat[32], csv[32], grid[64], raise[128];
-        lv_fmt_count(e.rows, rows, sizeof rows);
-        lv_fmt_count(opt->max_rows, lim, sizeof lim);
-        lv_fmt_bytes(e.bytes_mat, mat, sizeof mat);
-        lv_fmt_bytes(e.bytes_csv, csv, sizeof csv);
-        const double dt = opt->output_interval > 0.0 ? opt->output_interval
-                                                     : lv_run_vals(r)[ph->output_interval];
-        if (dt > 0.0)
-            snprintf(grid, sizeof grid, ", a row every %.3g s", dt);
-        else
-            grid[0] = '\0';
-        int time_end = 0;
-        for (size_t i = 0; i < ph->n_ends; i++)
-            time_end |= ph->ends[i].kind == LV_END_TIME;
-        if (e.rows <= LIMIT_SUGGEST_MAX) {
-            char up[32];
-            lv_fmt_count(round_up3(e.rows), up, sizeof up);
-            snprintf(raise, sizeof raise, ", or raise the limit to %s rows (max_rows; lvsim "
-                     "--max-rows %s)", up, up);
-        } else {
-            raise[0] = '\0';
+        need = fmax(need, rows);
+        if (first < 0) {
+            first = (long)k;
+            continue;
         }
-        return lv_fail(err, LV_ERR_INPUT,
-                       "phase %zu '%s' would write up to %s rows (%.3g s of mission time%s; "
-                       "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than "
-                       "the limit of %s rows per phase, and nothing but its %s ends it. Give "
-                       "it a larger output interval, an earlier stop_time or an end event%s",
-                       k + 1, ph->name, rows, e.duration, grid, e.n_signals, mat, csv, lim,
-                       time_end ? "stop_time or time end" : "stop_time", raise);
+        char n[32];
+        lv_fmt_count(rows, n, sizeof n);
+        if (used < sizeof list)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%zu '%s' (%s rows)",
+                                     n_also ? ", " : "", k + 1, d->phases[k].name, n);
+        n_also++;
     }
-    return LV_OK;
+    if (first < 0)
+        return LV_OK;
+    char also[224] = "";
+    if (n_also > 0)
+        snprintf(also, sizeof also, "; phase%s %s %s over it too", n_also > 1 ? "s" : "", list,
+                 n_also > 1 ? "are" : "is");
+    return refuse(r, (size_t)first, opt, also, need, err);
+}
+
+lv_status lv_run_check_phase_output(const lv_run *r, size_t k, const lv_run_options *opt,
+                                    lv_err *err)
+{
+    if (opt == NULL || !(opt->max_rows > 0.0))
+        return LV_OK;
+    double rows;
+    const int over = over_limit(r, k, opt, &rows, err);
+    if (over < 0)
+        return LV_ERR_INPUT;
+    return over ? refuse(r, k, opt, "", rows, err) : LV_OK;
 }

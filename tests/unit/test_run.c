@@ -314,21 +314,54 @@ static void test_row_limit(void)
     CHECK_CLOSE(e.duration, 140.0, 0.0);
     CHECK_OK(lv_run_estimate_output(r, p4, 0.0, &e, &err), &err);
     CHECK(e.rows == 751.0 && e.bounded == 0);
-    /* P2, 0 .. 280 s at 0.5 s: 561 rows, refused above 300 before anything runs */
-    lv_run_options opt = {.threads = 1, .no_rows = 1, .max_rows = 300.0};
+    /* P1 refused above its 281 rows before anything runs */
+    lv_run_options opt = {.threads = 1, .no_rows = 1, .max_rows = 280.0};
     CHECK(lv_run_check_output(r, &opt, &err) == LV_ERR_INPUT);
-    CHECK(strstr(err.msg, "phase 2 'P2' would write up to 561 rows (280 s of mission time, a "
+    CHECK(strstr(err.msg, "phase 1 'P1' would write up to 281 rows (140 s of mission time, a "
                           "row every 0.5 s;") != NULL);
-    CHECK(strstr(err.msg, "more than the limit of 300 rows per phase") != NULL);
-    CHECK(strstr(err.msg, "raise the limit to 561 rows") != NULL);
+    CHECK(strstr(err.msg, "more than the limit of 280 rows per phase") != NULL);
+    CHECK(strstr(err.msg, "raise the limit to 281 rows") != NULL);
     CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_INPUT);
     CHECK(lv_run_result(r, p1)->state == LV_PHASE_PENDING); /* nothing ran */
+    /* P2 at a row every 0.25 s: it starts when P1 ends (140 s) and stops at 280 s: 140 / 0.25
+     * + 1 = 561 rows. Before P1 ran its start is not known: not refused up front (counted from
+     * 0 s it would be 1121 rows, the estimate issue 22's breaker saw refuse runs that fit) ...
+     */
+    CHECK_OK(lv_run_set(r, "P2.integrator.output_interval", 0.25, &err), &err);
+    CHECK_OK(lv_run_estimate_output(r, p2, 0.0, &e, &err), &err);
+    CHECK(e.rows == 1121.0 && e.bounded == 0);
+    opt.max_rows = 300.0;
+    CHECK_OK(lv_run_check_output(r, &opt, &err), &err);
+    /* ... but as it is about to start, when P1 has ended: refused then, not simulated */
+    CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_SOLVER);
+    CHECK(lv_run_result(r, p1)->state == LV_PHASE_DONE);
+    CHECK(lv_run_result(r, p2)->state == LV_PHASE_FAILED);
+    CHECK(lv_run_result(r, p2)->report.stats.steps == 0);
+    CHECK(strstr(lv_run_result(r, p2)->error, "phase 2 'P2' would write up to 561 rows (140 s "
+                                              "of mission time, a row every 0.25 s;") != NULL);
+    /* once P1 has run, the up-front check knows P2's start too */
+    CHECK_OK(lv_run_estimate_output(r, p2, 0.0, &e, &err), &err);
+    CHECK(e.rows == 561.0 && e.bounded == 1);
+    CHECK(lv_run_check_output(r, &opt, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "phase 2 'P2' would write up to 561 rows") != NULL);
+    /* a limit of 561 lets it run: 561 rows, as counted (P2 wanted alone: its child P3 would
+     * write 641 rows, 280 .. 600 s at 0.5 s) */
+    opt.max_rows = 561.0;
+    unsigned char want2[N_PHASES] = {0};
+    want2[p2] = 1;
+    opt.want = want2;
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+    CHECK(lv_run_result(r, p2)->state == LV_PHASE_DONE);
+    CHECK(lv_run_result(r, p2)->report.stats.output_rows >= 561); /* + its events' rows */
+    opt.want = NULL;
+    lv_run_free(r); /* a fresh run: nothing ran */
+    CHECK_OK(lv_run_create(m, &r, &err), &err);
+    opt.max_rows = 300.0;
     /* wanted P4 only: P1 (281) is within the limit, P4 is not refused for its stop time */
     unsigned char want[N_PHASES] = {0};
     want[p4] = 1;
     opt.want = want;
     CHECK_OK(lv_run_check_output(r, &opt, &err), &err);
-    (void)p2;
     /* ... but held as it runs: every phase at a row every 0.5 s (P1 still 281 rows), P4 stops
      * when it would write row 301, at t = 140 + 300 * 0.5 = 290 s, before its impact (594.6 s:
      * `lvsim run` of the example) */
