@@ -29,7 +29,7 @@ int main(int argc, char **argv)
         double cpu_e = INFINITY, cpu_s = INFINITY;
         for (int r = 0; r < reps; r++) {
             lv_err err;
-            if (lv_mission_compare(m, methods[i], 1e-7, 1.0, &rep, &err) != LV_OK) {
+            if (lv_mission_compare(m, methods[i], 1e-7, 1.0, 0.0, &rep, &err) != LV_OK) {
                 fprintf(stderr, "bench_mission: %s\n", err.msg);
                 lv_mission_free(m);
                 return 1;

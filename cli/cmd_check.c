@@ -37,9 +37,14 @@ static int check_run(const cli_cmd *self, int argc, char **argv)
     int code = load_mission(path, &m);
     if (code != EXIT_OK)
         return code;
-    printf("%s: mission '%s' is valid: %zu phases\n", path, lv_mission_name(m),
-           lv_mission_phase_count(m));
-    code = check_output_bound(m, max_rows, 0.0, !quiet);
+    /* the row limit first: a file refused for it is not called valid */
+    code = check_output_bound(m, max_rows, 0.0, 0);
+    if (code == EXIT_OK) {
+        printf("%s: mission '%s' is valid: %zu phases\n", path, lv_mission_name(m),
+               lv_mission_phase_count(m));
+        if (!quiet)
+            code = check_output_bound(m, max_rows, 0.0, 1);
+    }
     lv_mission_free(m);
     return code;
 }

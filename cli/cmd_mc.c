@@ -156,9 +156,20 @@ static int check_bounds(const lv_mission *m, const lv_campaign_options *o, int s
     if (z.rows_by_stop > z.rows_per_run)
         fprintf(stderr, "mc: note: a phase with an end event that does not fire within "
                 "--max-rows %.*g rows fails there\n", o->max_rows < 1e7 ? 7 : 3, o->max_rows);
-    if (o->keep_runs > 0)
-        fprintf(stderr, "mc: estimate: the kept runs' files about %s (phases with an end event "
-                "not counted)\n", kept);
+    if (o->keep_runs > 0 && z.kept_bytes_max > z.kept_bytes) {
+        char kmax[32], dfree[32];
+        human_bytes(z.kept_bytes_max, kmax, sizeof kmax);
+        fprintf(stderr, "mc: estimate: the kept runs' files about %s, up to %s where phases "
+                "with end events run to their stop times or the row limit\n", kept, kmax);
+        if (z.kept_bytes_max > z.disk_free) {
+            human_bytes(z.disk_free, dfree, sizeof dfree);
+            fprintf(stderr, "mc: warning: that is more than the %s free where the campaign "
+                    "writes; keep fewer runs (--keep-runs), give them a larger output interval "
+                    "or a lower --max-rows\n", dfree);
+        }
+    } else if (o->keep_runs > 0) {
+        fprintf(stderr, "mc: estimate: the kept runs' files about %s\n", kept);
+    }
     return EXIT_OK;
 }
 

@@ -228,10 +228,14 @@ int check_output_bound_as(const lv_mission *m, double max_rows, double output_in
         fmt_rows(e.rows, rows, sizeof rows);
         human_bytes(e.bytes_mat, mat, sizeof mat);
         human_bytes(e.bytes_csv, csv, sizeof csv);
+        lv_phase_info pi;
+        lv_mission_phase_info(m, k, &pi);
         if (list)
             printf("%-3zu %-12s %12s %8zu %11s %11s  %s\n", k + 1, lv_mission_phase_name(m, k),
                    rows, e.n_signals, mat, csv,
-                   e.bounded ? "stop time" : "an end event: rows limited as it runs");
+                   e.bounded         ? "stop time"
+                   : pi.parent >= 0 ? "its parent's end or an end event: checked as it runs"
+                                    : "an end event: rows limited as it runs");
         if (strict && !e.bounded && e.rows > max_rows) {
             char lim[32];
             fmt_rows(max_rows, lim, sizeof lim);

@@ -150,14 +150,17 @@ lv_status __wrap_lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *er
 }
 
 lv_status __real_lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
-                                    double dt, lv_compare_report *rep, lv_err *err);
+                                    double dt, double max_rows, lv_compare_report *rep,
+                                    lv_err *err);
 lv_status __wrap_lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
-                                    double dt, lv_compare_report *rep, lv_err *err);
+                                    double dt, double max_rows, lv_compare_report *rep,
+                                    lv_err *err);
 lv_status __wrap_lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
-                                    double dt, lv_compare_report *rep, lv_err *err)
+                                    double dt, double max_rows, lv_compare_report *rep,
+                                    lv_err *err)
 {
     if ((dt == 0.0 || dt >= 0.1) && (tolerance == 0.0 || tolerance >= 1e-10))
-        return __real_lv_mission_compare(m, method, tolerance, dt, rep, err);
+        return __real_lv_mission_compare(m, method, tolerance, dt, max_rows, rep, err);
     memset(rep, 0, sizeof *rep);
     return WRAP_FAIL(err, "lv_mission_compare on a fine grid or a tight tolerance");
 }

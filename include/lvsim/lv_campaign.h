@@ -91,8 +91,11 @@ typedef struct lv_campaign_size {
                              inputs and finals as doubles, per phase its outcome, and their
                              work arrays */
     double kept_bytes;    /* the kept runs' files (o->keep_runs): every phase's .mat and .csv
-                             at most, with the grid they run with (o->output_interval, else
-                             each phase's own) */
+                             that only its stop time ends, at most, with the grid they run
+                             with (o->output_interval, else each phase's own) */
+    double kept_bytes_max; /* the same with every phase: one with end events (or a child,
+                             whose start is known when it runs) at what its stop time allows,
+                             and no more than o->max_rows rows (the limit as it runs) */
     double kept_memory;   /* memory of o->threads kept runs at once: their rows */
     double mem_total;     /* bytes of physical memory of this machine (sysconf), or NAN */
     double disk_free;     /* bytes free to an unprivileged user in the folder of o->db_path

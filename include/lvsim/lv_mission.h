@@ -409,9 +409,14 @@ typedef struct lv_compare_report {
 /* Runs the mission sequentially and as one end-to-end model (flat6 missions whose phases
  * split the stack at their ends), both with `method`/`tolerance` (NULL/0: each phase's own;
  * otherwise as lv_run_options: LV_ERR_INPUT out of range) and the output interval `dt` (s,
- * > 0), and compares every body at common output times. */
+ * > 0), and compares every body at every output time of its sequential phases (each phase's
+ * grid starts at its own start), the end-to-end model read there by its integrator's
+ * interpolation; event and separation instants are left out. The sequential rows are held in
+ * memory: `max_rows` (> 0; 0: no limit) bounds each phase's as lv_run_options.max_rows does,
+ * before anything runs and as it runs. A failed phase's message is the error's. */
 LV_API lv_status lv_mission_compare(const lv_mission *m, const char *method, double tolerance,
-                                    double dt, lv_compare_report *rep, lv_err *err);
+                                    double dt, double max_rows, lv_compare_report *rep,
+                                    lv_err *err);
 
 #ifdef __cplusplus
 }

@@ -127,7 +127,7 @@ lv_status lv_campaign_estimate(const lv_mission *m, const lv_campaign_options *o
      * a status byte, and four work arrays of doubles (stats.c, plot.c) */
     double db_run = DB_ROW_BYTES + 8.0 + DB_VALUE_BYTES * nd;
     double mem_run = 8.0 * nd + 1.0 + 4.0 * 8.0;
-    double kept_files = 0.0, kept_rows = 0.0;
+    double kept_files = 0.0, kept_rows = 0.0, kept_max = 0.0;
     for (size_t k = 0; k < lv_mission_phase_count(m) && st == LV_OK; k++) {
         const double nf = (double)lv_run_result(r, k)->n_final;
         lv_output_estimate e, ek;
@@ -152,6 +152,9 @@ lv_status lv_campaign_estimate(const lv_mission *m, const lv_campaign_options *o
             kept_files += ek.bytes_mat + ek.bytes_csv;
             kept_rows += ek.bytes_mat;
         }
+        const double rows_max = !ek.bounded && o->max_rows > 0.0 ? fmin(ek.rows, o->max_rows)
+                                                                 : ek.rows;
+        kept_max += (ek.bytes_mat + ek.bytes_csv) / ek.rows * rows_max;
     }
     lv_run_free(r);
     if (st != LV_OK)
@@ -159,6 +162,7 @@ lv_status lv_campaign_estimate(const lv_mission *m, const lv_campaign_options *o
     out->db_bytes = N * db_run;
     out->stats_bytes = N * mem_run;
     out->kept_bytes = K * kept_files;
+    out->kept_bytes_max = K * kept_max;
     const double busy = fmin(K, (double)(o->threads > 0 ? o->threads : 1));
     out->kept_memory = busy * kept_rows;
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);

@@ -527,9 +527,11 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         run_phase *p = &r->ph[k];
         phase_clear(p);
         p->res.state = LV_PHASE_FAILED;
-        char named[80];
+        char named[80], numbered[96];
         snprintf(named, sizeof named, "phase '%.60s'", ph->name);
-        if (strstr(err->msg, named) != NULL) /* "FILE:L:C: phase 'P': ..." names it already */
+        snprintf(numbered, sizeof numbered, "phase %zu '%.60s'", k + 1, ph->name);
+        if (strstr(err->msg, named) != NULL || strstr(err->msg, numbered) != NULL)
+            /* "FILE:L:C: phase 'P': ..." or "phase 3 'P' would ..." names it already */
             snprintf(p->res.error, sizeof p->res.error, "%.490s", err->msg);
         else
             snprintf(p->res.error, sizeof p->res.error, "%s: %.430s", named, err->msg);

@@ -97,23 +97,58 @@ static double round_up3(double n)
     return up;
 }
 
-/* The refusal of phase k, when it is bounded and its grid has more than max_rows rows: what
- * lv_run_check_output says of it. 0: within the limit (or not bounded now), 1: over it (*rows
- * set), -1: error. */
+/* The latest time phase k (a child) can start when its parent has not run: its parent's
+ * stop time (a phase ends by its stop time at the latest). */
+static double latest_start(const lv_run *r, size_t k)
+{
+    const lv_mission_def *d = lv_run_mission(r)->def;
+    const int par = d->phases[k].parent;
+    return par >= 0 ? lv_run_vals(r)[d->phases[par].t_stop] : NAN;
+}
+
+/* The refusal of phase k, when only its stop time (or a `time` end) ends it and its grid has
+ * more than max_rows rows: what lv_run_check_output says of it. A child whose parent has not
+ * run is over the limit already when the rows from its parent's stop time (its latest start)
+ * are. 0: within the limit (or not known now), 1: over it (*rows: the rows counted, *least:
+ * 1 when they are the fewest it can write), -1: error. */
 static int over_limit(const lv_run *r, size_t k, const lv_run_options *opt, double *rows,
-                      lv_err *err)
+                      int *least, lv_err *err)
 {
     lv_output_estimate e;
     if (lv_run_estimate_output(r, k, opt->output_interval, &e, err) != LV_OK)
         return -1;
     *rows = e.rows;
-    return e.bounded && e.rows > opt->max_rows;
+    *least = 0;
+    if (e.bounded)
+        return e.rows > opt->max_rows;
+    const lv_mission_def *d = lv_run_mission(r)->def;
+    const lv_phase_def *ph = &d->phases[k];
+    int known;
+    earliest_start(r, k, &known);
+    for (size_t i = 0; i < ph->n_ends; i++)
+        if (ph->ends[i].kind != LV_END_TIME)
+            return 0; /* other ends: held as it runs */
+    if (known)
+        return 0;
+    /* the fewest rows: from the latest start to the stop time (or a time end) */
+    const double *v = lv_run_vals(r);
+    double tf = v[ph->t_stop];
+    for (size_t i = 0; i < ph->n_ends; i++)
+        if (ph->ends[i].value != LV_NO_SLOT)
+            tf = fmin(tf, v[ph->ends[i].value]);
+    const double dt = opt->output_interval > 0.0 ? opt->output_interval : v[ph->output_interval];
+    const double span = tf - latest_start(r, k);
+    if (!(dt > 0.0) || !(span > 0.0))
+        return 0;
+    *rows = floor(span / dt + 1e-9) + 1.0;
+    *least = 1;
+    return *rows > opt->max_rows;
 }
 
 /* The message for phase k over the limit; `also`: the other phases over it ("", or "; phases
  * 3 'P3' (2.81e+09 rows) ... are over it too"), `need`: the largest row count of them all. */
 static lv_status refuse(const lv_run *r, size_t k, const lv_run_options *opt, const char *also,
-                        double need, lv_err *err)
+                        double own, double need, int least, lv_err *err)
 {
     const lv_mission_def *d = lv_run_mission(r)->def;
     lv_output_estimate e;
@@ -143,6 +178,16 @@ static lv_status refuse(const lv_run *r, size_t k, const lv_run_options *opt, co
     } else {
         raise[0] = '\0';
     }
+    if (least) { /* a child before its parent ran: the fewest rows it can write */
+        lv_fmt_count(own, rows, sizeof rows);
+        return lv_fail(err, LV_ERR_INPUT,
+                       "phase %zu '%s' would write at least %s rows (from its parent's stop "
+                       "time to its own%s; %zu columns) - more than the limit of %s rows per "
+                       "phase, and nothing but its %s ends it%s. Give it a larger output "
+                       "interval, an earlier stop_time or an end event%s",
+                       k + 1, ph->name, rows, grid, e.n_signals, lim,
+                       time_end ? "stop_time or time end" : "stop_time", also, raise);
+    }
     return lv_fail(err, LV_ERR_INPUT,
                    "phase %zu '%s' would write up to %s rows (%.3g s of mission time%s; "
                    "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than "
@@ -158,7 +203,8 @@ lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err
         return LV_OK;
     const lv_mission_def *d = lv_run_mission(r)->def;
     long first = -1;
-    double need = 0.0;
+    int first_least = 0;
+    double need = 0.0, first_rows = 0.0;
     char list[192] = "";
     size_t n_also = 0, used = 0;
     for (size_t k = 0; k < d->n_phases; k++) {
@@ -175,7 +221,8 @@ lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err
         if (res->state == LV_PHASE_DONE && !lv_run_stale(r, k))
             continue; /* it will not run */
         double rows;
-        const int over = over_limit(r, k, opt, &rows, err);
+        int least;
+        const int over = over_limit(r, k, opt, &rows, &least, err);
         if (over < 0)
             return LV_ERR_INPUT;
         if (!over)
@@ -183,6 +230,8 @@ lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err
         need = fmax(need, rows);
         if (first < 0) {
             first = (long)k;
+            first_least = least;
+            first_rows = rows;
             continue;
         }
         char n[32];
@@ -198,7 +247,7 @@ lv_status lv_run_check_output(const lv_run *r, const lv_run_options *opt, lv_err
     if (n_also > 0)
         snprintf(also, sizeof also, "; phase%s %s %s over it too", n_also > 1 ? "s" : "", list,
                  n_also > 1 ? "are" : "is");
-    return refuse(r, (size_t)first, opt, also, need, err);
+    return refuse(r, (size_t)first, opt, also, first_rows, need, first_least, err);
 }
 
 lv_status lv_run_check_phase_output(const lv_run *r, size_t k, const lv_run_options *opt,
@@ -207,8 +256,9 @@ lv_status lv_run_check_phase_output(const lv_run *r, size_t k, const lv_run_opti
     if (opt == NULL || !(opt->max_rows > 0.0))
         return LV_OK;
     double rows;
-    const int over = over_limit(r, k, opt, &rows, err);
+    int least;
+    const int over = over_limit(r, k, opt, &rows, &least, err);
     if (over < 0)
         return LV_ERR_INPUT;
-    return over ? refuse(r, k, opt, "", rows, err) : LV_OK;
+    return over ? refuse(r, k, opt, "", rows, rows, least, err) : LV_OK;
 }

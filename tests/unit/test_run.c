@@ -320,31 +320,28 @@ static void test_row_limit(void)
     CHECK(strstr(err.msg, "phase 1 'P1' would write up to 281 rows (140 s of mission time, a "
                           "row every 0.5 s;") != NULL);
     CHECK(strstr(err.msg, "more than the limit of 280 rows per phase") != NULL);
-    CHECK(strstr(err.msg, "raise the limit to 281 rows") != NULL);
+    /* and its children, at least from P1's stop time: P2 140 .. 280 s, P3 280 .. 600 s */
+    CHECK(strstr(err.msg, "phases 2 'P2' (281 rows), 3 'P3' (641 rows) are over it too") !=
+          NULL);
+    CHECK(strstr(err.msg, "raise the limit to 641 rows") != NULL);
     CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_INPUT);
     CHECK(lv_run_result(r, p1)->state == LV_PHASE_PENDING); /* nothing ran */
-    /* P2 at a row every 0.25 s: it starts when P1 ends (140 s) and stops at 280 s: 140 / 0.25
-     * + 1 = 561 rows. Before P1 ran its start is not known: not refused up front (counted from
-     * 0 s it would be 1121 rows, the estimate issue 22's breaker saw refuse runs that fit) ...
-     */
+    /* P2 at a row every 0.25 s: it starts when P1 ends, at 140 s at the latest (P1's stop
+     * time: only it ends P1), and stops at 280 s: at least 140 / 0.25 + 1 = 561 rows, known
+     * before P1 runs (counted from 0 s, its earliest start, it would be 1121 rows: the count
+     * issue 22's breaker saw refuse runs that fit, in the wrong direction) */
     CHECK_OK(lv_run_set(r, "P2.integrator.output_interval", 0.25, &err), &err);
     CHECK_OK(lv_run_estimate_output(r, p2, 0.0, &e, &err), &err);
     CHECK(e.rows == 1121.0 && e.bounded == 0);
+    opt.max_rows = 700.0;
+    CHECK_OK(lv_run_check_output(r, &opt, &err), &err); /* P3 has 641 rows at 0.5 s */
     opt.max_rows = 300.0;
-    CHECK_OK(lv_run_check_output(r, &opt, &err), &err);
-    /* ... but as it is about to start, when P1 has ended: refused then, not simulated */
-    CHECK(lv_run_execute(r, &opt, &err) == LV_ERR_SOLVER);
-    CHECK(lv_run_result(r, p1)->state == LV_PHASE_DONE);
-    CHECK(lv_run_result(r, p2)->state == LV_PHASE_FAILED);
-    CHECK(lv_run_result(r, p2)->report.stats.steps == 0);
-    CHECK(strstr(lv_run_result(r, p2)->error, "phase 2 'P2' would write up to 561 rows (140 s "
-                                              "of mission time, a row every 0.25 s;") != NULL);
-    /* once P1 has run, the up-front check knows P2's start too */
-    CHECK_OK(lv_run_estimate_output(r, p2, 0.0, &e, &err), &err);
-    CHECK(e.rows == 561.0 && e.bounded == 1);
     CHECK(lv_run_check_output(r, &opt, &err) == LV_ERR_INPUT);
-    CHECK(strstr(err.msg, "phase 2 'P2' would write up to 561 rows") != NULL);
-    /* a limit of 561 lets it run: 561 rows, as counted (P2 wanted alone: its child P3 would
+    CHECK(strstr(err.msg, "phase 2 'P2' would write at least 561 rows (from its parent's stop "
+                          "time to its own, a row every 0.25 s;") != NULL);
+    CHECK(strstr(err.msg, "phase 3 'P3' (641 rows) is over it too") != NULL);
+    CHECK(strstr(err.msg, "raise the limit to 641 rows") != NULL);
+    /* a limit of 561 lets it run, P2 wanted alone: 561 rows, as counted (its child P3 would
      * write 641 rows, 280 .. 600 s at 0.5 s) */
     opt.max_rows = 561.0;
     unsigned char want2[N_PHASES] = {0};
@@ -353,6 +350,8 @@ static void test_row_limit(void)
     CHECK_OK(lv_run_execute(r, &opt, &err), &err);
     CHECK(lv_run_result(r, p2)->state == LV_PHASE_DONE);
     CHECK(lv_run_result(r, p2)->report.stats.output_rows >= 561); /* + its events' rows */
+    CHECK_OK(lv_run_estimate_output(r, p2, 0.0, &e, &err), &err); /* now from P1's end */
+    CHECK(e.rows == 561.0 && e.bounded == 1);
     opt.want = NULL;
     lv_run_free(r); /* a fresh run: nothing ran */
     CHECK_OK(lv_run_create(m, &r, &err), &err);
@@ -410,13 +409,19 @@ static void test_row_limit(void)
           "     engines: [{name: e2, thrust_vac: 100000, isp_vac: 300}]}\n"
           "  - {name: s3, dry_mass: 1000, propellant_mass: 4000,\n"
           "     engines: [{name: e3, thrust_vac: 100000, isp_vac: 300}]}\n"
+          "  - {name: s4, dry_mass: 1000, propellant_mass: 4000,\n"
+          "     engines: [{name: e4, thrust_vac: 100000, isp_vac: 300}]}\n"
           "phases:\n"
           "  - {name: timed, model: flat6, stages: [s1], stop_time: 1e30, end: [{time: 100}],\n"
           "     integrator: {output_interval: 1.0}}\n"
           "  - {name: burn, model: flat6, stages: [s2], stop_time: 1e30, end: [burnout],\n"
           "     integrator: {output_interval: 1.0}}\n"
           "  - {name: open, model: flat6, stages: [s3], stop_time: 1e30,\n"
-          "     integrator: {output_interval: 1.0}}\n",
+          "     integrator: {output_interval: 1.0}}\n"
+          "  - {name: burn2, model: flat6, stages: [s4], stop_time: 300, end: [burnout],\n"
+          "     integrator: {output_interval: 1.0}}\n"
+          "  - {name: after, model: flat6, stages: [s4], from: burn2, stop_time: 400,\n"
+          "     integrator: {output_interval: 0.5}}\n",
           f);
     fclose(f);
     CHECK_OK(lv_mission_load(path, &m, &err), &err);
@@ -426,7 +431,7 @@ static void test_row_limit(void)
         CHECK(e.rows == 101.0 && e.bounded == 1 && e.duration == 100.0);
         CHECK_OK(lv_run_estimate_output(r, 1, 0.0, &e, &err), &err);
         CHECK(e.rows == 1e30 + 1.0 && e.bounded == 0);
-        unsigned char w2[3] = {1, 1, 0};
+        unsigned char w2[5] = {1, 1, 0, 0, 0};
         lv_run_options o2 = {.threads = 1, .no_rows = 1, .max_rows = 1e6, .want = w2};
         CHECK_OK(lv_run_check_output(r, &o2, &err), &err);
         /* the burn ends at burnout, t = m_p Isp g0 / F = 4000 * 300 * 9.80665 / 1e5 s */
@@ -440,6 +445,28 @@ static void test_row_limit(void)
         CHECK(readable(err.msg));
         CHECK(strstr(err.msg, "raise the limit") == NULL); /* beyond any sensible limit */
         printf("refused: %s\n", err.msg);
+        /* `after` starts when burn2 ends (burnout at 117.7 s, not its stop time 300 s): at
+         * least (400 - 300) / 0.5 + 1 = 201 rows before burn2 runs, its true count known only
+         * then: (400 - 117.68) / 0.5 -> 565 intervals, 566 rows. Under a limit of 400, burn2
+         * (118 rows) runs, and `after` is refused as it would start, unsimulated; burn2's
+         * results stay. */
+        lv_run_free(r);
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        unsigned char w3[5] = {0, 0, 0, 0, 1};
+        lv_run_options o3 = {.threads = 1, .no_rows = 1, .max_rows = 400.0, .want = w3};
+        CHECK_OK(lv_run_check_output(r, &o3, &err), &err);
+        CHECK(lv_run_execute(r, &o3, &err) == LV_ERR_SOLVER);
+        CHECK(lv_run_result(r, 3)->state == LV_PHASE_DONE);
+        CHECK(lv_run_result(r, 4)->state == LV_PHASE_FAILED);
+        CHECK(lv_run_result(r, 4)->report.stats.steps == 0);
+        CHECK(strstr(lv_run_result(r, 4)->error, "phase 5 'after' would write up to 566 rows") !=
+              NULL);
+        CHECK(strstr(lv_run_result(r, 4)->error, "phase 'after': phase 5") == NULL);
+        o3.max_rows = 200.0; /* below its fewest rows: refused before anything runs */
+        CHECK(lv_run_check_output(r, &o3, &err) == LV_ERR_INPUT);
+        o3.max_rows = 566.0;
+        CHECK_OK(lv_run_execute(r, &o3, &err), &err);
+        CHECK(lv_run_result(r, 4)->state == LV_PHASE_DONE);
         lv_run_free(r);
         lv_mission_free(m);
     }
