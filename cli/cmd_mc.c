@@ -6,7 +6,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,17 +17,6 @@
 #include "lvsim/lv_campaign.h"
 #include "lvsim/lv_dispersion.h"
 #include "mc.h"
-
-/* The campaign's stop flag (lv_campaign_options.stop): the first SIGINT or SIGTERM sets it
- * and every running run is cancelled within an integrator step; the handler is reset by that
- * first signal (SA_RESETHAND), so a second one ends the process as usual. */
-static volatile int stop_flag = 0;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_flag = 1;
-}
 
 /* Under mpirun only rank 0 reports what every rank finds the same (the estimate, a refusal). */
 static int is_rank0(void)
@@ -303,13 +291,8 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     bar b = { isatty(2), -1e9, 0 };
     o.progress = show_progress;
     o.user = &b;
-    o.stop = &stop_flag;
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sa.sa_flags = SA_RESETHAND; /* a second signal ends the process */
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    o.stop = &cli_stop_flag; /* every running run cancelled within an integrator step */
+    cli_catch_stop();
     lv_campaign_progress prog;
     memset(&prog, 0, sizeof prog);
     int rank0 = 1;
@@ -329,7 +312,7 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     if (st != LV_OK) { /* the folder stays as it is, its manifest saying "incomplete" */
         lv_outdir_free(od);
         print_err("lvsim", &err, 0);
-        return st == LV_ERR_CANCELLED ? 130 : exit_code_for(st);
+        return exit_code_for(st);
     }
     printf("mc: %llu runs in %s (%llu this session in %.2f s: %.1f runs/s), %llu with a failed "
            "phase or an input out of range\n", (unsigned long long)prog.done, db,

@@ -246,7 +246,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
     const int can_plot = (outputs & (OUT_SUMMARY | OUT_BODY | OUT_CSV)) ==
                          (OUT_SUMMARY | OUT_BODY | OUT_CSV);
     plots = plots && can_plot;
-    progress_catch_signals(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
+    cli_catch_stop(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
     lv_mission *m;
     int code = load_mission(path, &m);
     if (code != EXIT_OK)

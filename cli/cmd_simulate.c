@@ -3,9 +3,11 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "common.h"
@@ -65,6 +67,47 @@ static void print_report(const lv_model_def *m, const lv_sim_settings *s, lv_sta
         printf("  result: %s%s.%s\n", s->result_file, fail, fm == LV_RESULT_MAT ? "mat" : "csv");
 }
 
+/* -o PATH names files PATH.mat and PATH.csv: PATH must be a file name that can take them
+ * (not empty, not ending in '/', not an existing device, pipe or socket such as /dev/null). */
+static int check_result_stem(const char *path)
+{
+    const size_t n = strlen(path);
+    struct stat sb;
+    if (n == 0 || path[n - 1] == '/') {
+        fprintf(stderr, "lvsim: -o '%s': give a file path without extension (PATH.mat and "
+                "PATH.csv are written), or --format none to write nothing\n", path);
+        return EXIT_INPUT;
+    }
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "lvsim: -o '%s' is a device, pipe or socket: PATH.mat and PATH.csv would "
+                "be written next to it; use --format none to write nothing\n", path);
+        return EXIT_INPUT;
+    }
+    return EXIT_OK;
+}
+
+/* The output grid's rows, before anything runs: refused beyond max_rows when only the stop time
+ * ends the run (the model has no events); a model with events is held to max_rows as it runs. */
+static int check_grid_rows(const lv_model_def *m, const lv_sim_settings *s, double max_rows)
+{
+    const double span = s->stop_time - s->start_time;
+    double rows;
+    if (s->output_interval > 0.0)
+        rows = ceil(span / s->output_interval - 1e-9) + 1.0;
+    else
+        rows = (s->number_of_intervals > 0 ? s->number_of_intervals : 500) + 1.0;
+    if (!(span > 0.0) || m->n_events > 0 || !(rows > max_rows))
+        return EXIT_OK;
+    char r[32], l[32];
+    snprintf(r, sizeof r, rows < 1e7 ? "%.0f" : "%.3g", rows);
+    snprintf(l, sizeof l, max_rows < 1e7 ? "%.0f" : "%.3g", max_rows);
+    fprintf(stderr, "lvsim: model '%s' would write %s rows (%.3g s%s) - more than the limit of "
+            "%s rows, and nothing but --stop ends it; give a larger --interval, fewer "
+            "--intervals or an earlier --stop, or raise the limit with --max-rows\n", m->name, r,
+            span, s->output_interval > 0.0 ? " at the --interval" : "", l);
+    return EXIT_INPUT;
+}
+
 static int simulate_run(const cli_cmd *self, int argc, char **argv)
 {
     if (argc < 1 || is_option(argv[0]))
@@ -77,6 +120,7 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
     lv_sim_settings_default(&s);
     int json = 0, force = 0;
     int rc = EXIT_OK;
+    double max_rows = CLI_DEFAULT_MAX_ROWS;
     size_t cap = (size_t)argc;
     char **set_names = calloc(cap, sizeof *set_names);
     double *set_values = calloc(cap, sizeof *set_values);
@@ -91,7 +135,8 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
         const char *a = argv[i];
         static const char *const with_value[] = {
             "--start", "--stop", "--interval", "--tolerance", "--fixed-step", "--intervals",
-            "--method", "-o", "--format", "--set", "--final", "--max-steps", NULL};
+            "--method", "-o", "--format", "--set", "--final", "--max-steps", "--max-rows",
+            NULL};
         int known = 0;
         for (size_t k = 0; with_value[k] != NULL; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -143,6 +188,11 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
                 rc = EXIT_INPUT;
                 goto out;
             }
+        } else if (strcmp(a, "--max-rows") == 0) {
+            if (!parse_count(val, &max_rows)) {
+                rc = usage_error(self, "--max-rows needs a whole number >= 1, got", val);
+                goto out;
+            }
         } else if (strcmp(a, "--max-steps") == 0) {
             int n;
             if (!parse_int(val, &n) || n == 0) {
@@ -158,6 +208,8 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             }
             s.method = val;
         } else if (strcmp(a, "-o") == 0) {
+            if ((rc = check_result_stem(val)) != EXIT_OK)
+                goto out;
             s.result_file = val;
         } else if (strcmp(a, "--format") == 0) {
             s.result_formats = 0;
@@ -209,6 +261,13 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
     s.initial_names = (const char *const *)set_names;
     s.initial_values = set_values;
     s.final_names = final_names;
+    /* bounded: the output grid's rows before anything runs when nothing but the stop time
+     * ends the run (a model without events), and as it runs otherwise (lv_sim_settings) */
+    s.max_rows = max_rows;
+    if ((rc = check_grid_rows(m, &s, max_rows)) != EXIT_OK)
+        goto out;
+    s.stop = &cli_stop_flag; /* Ctrl-C, SIGTERM: cancelled within a step, files marked failed */
+    cli_catch_stop();
 
     lv_sim_report rep;
     lv_err err;
@@ -248,6 +307,8 @@ const cli_cmd cli_cmd_simulate = {
     "  --tolerance TOL         relative tolerance, 1e-14 to 0.1 (default 1e-4)\n"
     "  --fixed-step H          step of rk4 and euler [s] (default: the output interval)\n"
     "  --max-steps N           internal steps allowed in total (default 1e6)\n"
+    "  --max-rows N            output rows allowed (default 1e6): a model without events is\n"
+    "                          refused beyond it before it runs, one with events stopped there\n"
     "  --set NAME=VALUE        start value of a state or parameter, SI (repeatable)\n"
     "  --final NAME            print this variable's final value, or 'time' (repeatable)\n"
     "  -o PATH                 result file path without extension (default dsres); an\n"
@@ -257,6 +318,6 @@ const cli_cmd cli_cmd_simulate = {
     "  --json                  print the report as one JSON object\n"
     "\n"
     "A run the integrator cannot finish exits 3; its partial results are kept as\n"
-    "PATH.failed.mat/.csv.\n",
+    "PATH.failed.mat/.csv. Ctrl-C or SIGTERM stops the run there too (exit 130).\n",
     simulate_run,
 };

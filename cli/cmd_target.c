@@ -8,7 +8,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,17 +17,6 @@
 
 #include "cli.h"
 #include "common.h"
-
-/* The solve's stop flag (lv_target_settings.stop): the first SIGINT or SIGTERM sets it and
- * the evaluation under way is cancelled within an integrator step; the handler is reset by
- * that first signal (SA_RESETHAND), so a second one ends the process as usual. */
-static volatile int stop_flag = 0;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_flag = 1;
-}
 
 typedef struct target_ui {
     int quiet, tty;
@@ -127,7 +115,7 @@ static int on_evaluation(const lv_target *t, const lv_target_eval *ev, void *use
 {
     (void)t;
     target_ui *ui = user;
-    if (stop_flag)
+    if (cli_stop_flag)
         return 1; /* Ctrl-C: the solve ends with the best point so far */
     const double now = wall_now();
     if (!ui->tty || now - ui->drawn < 0.1)
@@ -346,16 +334,11 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         return usage_error(self, "--method newton meets constraints and optimises no cost; the "
                            "mission has a cost: use auto, slsqp or cobyla", NULL);
     }
-    struct sigaction sa; /* Ctrl-C, SIGTERM: the best point so far, nothing written */
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sa.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    cli_catch_stop(); /* Ctrl-C, SIGTERM: the best point so far, nothing written */
     set.on_iteration = on_iteration;
     set.on_evaluation = on_evaluation;
     set.user = &ui;
-    set.stop = &stop_flag;
+    set.stop = &cli_stop_flag;
     set.max_rows = max_rows;
     print_problem(m, t, path, ui.quiet);
     fflush(stdout);

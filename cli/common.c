@@ -7,6 +7,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -18,6 +19,7 @@ int exit_code_for(lv_status st)
     case LV_OK: return EXIT_OK;
     case LV_ERR_SOLVER: return EXIT_SIM;
     case LV_ERR_NOMEM: return EXIT_INTERNAL;
+    case LV_ERR_CANCELLED: return EXIT_STOPPED; /* Ctrl-C, SIGTERM: 128 + SIGINT, as shells */
     default: return EXIT_INPUT;
     }
 }
@@ -297,4 +299,25 @@ void print_kept(const lv_outdir *od)
 int check_output_bound(const lv_mission *m, double max_rows, double output_interval, int list)
 {
     return check_output_bound_as(m, max_rows, output_interval, list, NULL, 0);
+}
+
+/* ---- stopping ------------------------------------------------------------------------------ */
+
+volatile int cli_stop_flag = 0; /* the one piece of process state: a handler sets a flag */
+
+static void on_stop_signal(int sig)
+{
+    (void)sig;
+    cli_stop_flag = 1;
+}
+
+void cli_catch_stop(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sa.sa_flags = SA_RESETHAND; /* a second signal ends the process */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
 }

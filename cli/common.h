@@ -10,7 +10,7 @@
 #include "cli.h"
 #include "lvsim/lvsim.h"
 
-enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3 };
+enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3, EXIT_STOPPED = 130 };
 
 /* The exit code of a library status: LV_ERR_SOLVER 3, LV_ERR_NOMEM 1, any other error 2. */
 int exit_code_for(lv_status st);
@@ -86,5 +86,13 @@ void restage(char *msg, size_t cap, const char *stage, const char *final);
 /* After a commit with LV_OUTDIR_FORCE: "kept N files lvsim did not write in OUTDIR/: a, b"
  * on stdout (nothing when none). */
 void print_kept(const lv_outdir *od);
+
+/* Ctrl-C (SIGINT) and SIGTERM stop the command: the first one sets cli_stop_flag (given as
+ * lv_run_options.stop, lv_sim_settings.stop, lv_campaign_options.stop, lv_target_settings.stop:
+ * what runs is cancelled within an integrator step, and the command ends as it documents);
+ * the handler is reset by that first signal (SA_RESETHAND), so a second one ends the process
+ * as usual. */
+void cli_catch_stop(void);
+extern volatile int cli_stop_flag;
 
 #endif

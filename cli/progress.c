@@ -5,30 +5,16 @@
 
 #include "progress.h"
 
+#include "common.h"
+
 #include <math.h>
 #include <pthread.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
-/* The one piece of process state: a signal handler can only set a flag. */
-static volatile sig_atomic_t g_interrupted = 0;
-
-static void on_signal(int sig)
-{
-    g_interrupted = 1;
-    signal(sig, SIG_DFL); /* a second Ctrl-C ends the process */
-}
-
-void progress_catch_signals(void)
-{
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-}
-
-int progress_interrupted(void) { return g_interrupted != 0; }
+int progress_interrupted(void) { return cli_stop_flag != 0; }
 
 typedef struct phase_prog {
     int running;

@@ -34,9 +34,8 @@ void progress_print_end(cli_progress *p);
 void progress_step_begin(cli_progress *p, const char *what);
 void progress_step_end(cli_progress *p);
 
-/* Ctrl-C (SIGINT) and SIGTERM: the first sets the flag that progress_phase returns and
- * progress_interrupted reads; a second one ends the process as usual. */
-void progress_catch_signals(void);
+/* 1 once Ctrl-C (SIGINT) or SIGTERM came (cli_catch_stop, common.h): progress_phase returns
+ * it too. */
 int progress_interrupted(void);
 
 #endif

@@ -53,6 +53,26 @@ expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator
 expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
 # A run that fails in the integrator exits 3 and names model, time and reason.
 expect 3 "model 'oscillator': at t = .* too much work" -- "$lvsim" simulate oscillator --stop 1000 --max-steps 50 --format none
+# simulate bounded and stoppable (issue 22's breaker: --interval 1e-12 wrote 82 GB until the
+# disk was full, -o "" and -o /dev/null were taken): a model without events is refused beyond
+# --max-rows before it runs, one with events stopped there with its files marked failed
+expect 2 "give a file path without extension" -- "$lvsim" simulate free_fall -o ""
+expect 2 "'/dev/null' is a device, pipe or socket" -- "$lvsim" simulate free_fall -o /dev/null
+[ ! -e /dev/null.mat ] && pass=$((pass + 1)) || { echo "FAIL: simulate wrote /dev/null.mat"; fails=$((fails + 1)); }
+expect 2 "model 'oscillator' would write 1e\+10 rows \(10 s at the --interval\) - more than the limit of 1000000 rows" -- "$lvsim" simulate oscillator --interval 1e-9 --stop 10
+expect 3 "stopped at t = 1e-06 s by the row limit: 1000 output rows" -- "$lvsim" simulate free_fall --interval 1e-9 --stop 10 --max-rows 1000 -o "$work/ffrows"
+[ -e "$work/ffrows.failed.mat" ] && pass=$((pass + 1)) || { echo "FAIL: the row limit left no ffrows.failed.mat"; fails=$((fails + 1)); }
+"$lvsim" simulate free_fall --interval 1e-7 --stop 100 --max-rows 1e12 --format none > "$work/ffint.out" 2>&1 &
+pid=$!
+sleep 0.5
+t0=$(date +%s.%N); kill -INT $pid; wait $pid; rc=$?
+dt=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+echo "simulate: SIGINT: exit $rc after $dt s"
+if [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 1.0) }' && grep -q "cancelled at t =" "$work/ffint.out"; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: simulate interrupted: exit $rc after $dt s (want 130 within 1 s)"; cat "$work/ffint.out"; fails=$((fails + 1))
+fi
 # US Standard Atmosphere 1976: sea level 288.15 K, 101325 Pa, 1.2250 kg/m3, 340.294 m/s
 expect 0 "^0 288.15 101325 1.22499[0-9]* 340.294" -- "$lvsim" atmosphere 0
 expect 0 "^# us76: altitude \[m\]" -- "$lvsim" atmosphere 0 1000
