@@ -14,6 +14,7 @@
 
 #include "core/status.h"
 #include "env/gravity_impl.h"
+#include "io/readfile.h"
 
 lv_status lv_gravity_sh_alloc(lv_gravity *g, int degree, int order, lv_err *err)
 {
@@ -428,37 +429,6 @@ static pthread_mutex_t gfc_lock = PTHREAD_MUTEX_INITIALIZER;
 static gfc_entry *gfc_cache[GFC_CACHE_MAX]; /* guarded by gfc_lock; entries immutable */
 static size_t gfc_count;
 
-/* The whole file, or NULL with errno set. */
-static char *slurp(const char *path, size_t *size)
-{
-    FILE *fp = fopen(path, "rb");
-    if (fp == NULL)
-        return NULL;
-    size_t cap = 65536, n = 0;
-    char *buf = malloc(cap);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - n, fp);
-        if (n < cap)
-            break;
-        char *grown = realloc(buf, 2 * cap);
-        if (grown == NULL) {
-            free(buf);
-            buf = NULL;
-            errno = ENOMEM;
-            break;
-        }
-        buf = grown;
-        cap *= 2;
-    }
-    if (buf != NULL && ferror(fp)) {
-        free(buf);
-        buf = NULL;
-        errno = EIO;
-    }
-    fclose(fp);
-    *size = n;
-    return buf;
-}
 
 static const gfc_entry *gfc_find(const char *path, int degree, int order, const char *bytes,
                                  size_t size)
@@ -514,10 +484,11 @@ lv_status lv_gravity_sh_read_gfc(lv_gravity *g, const char *path, int degree, in
                                  lv_err *err)
 {
     size_t size = 0;
-    char *bytes = slurp(path, &size);
-    if (bytes == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open gravity coefficient file: %s", path,
-                       LV_STRERROR(errno));
+    char *bytes = NULL;
+    lv_status rst = lv_read_file(path, LV_GRAVITY_FILE_MAX, "gravity coefficient file", &bytes,
+                                 &size, err);
+    if (rst != LV_OK)
+        return rst;
     const gfc_entry *e = gfc_find(path, degree, order, bytes, size);
     if (e != NULL) { /* read before, the same bytes: the same coefficients */
         free(bytes);

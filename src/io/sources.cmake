@@ -8,4 +8,5 @@ list(APPEND LV_SOURCES
   src/io/matio_dl.c
   src/io/hdf5_dl.c
   src/io/table_load.c
-  src/io/atomic.c)
+  src/io/atomic.c
+  src/io/readfile.c)

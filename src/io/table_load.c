@@ -19,6 +19,7 @@
 #include "core/names.h"
 #include "core/status.h"
 #include "io/hdf5_dl.h"
+#include "io/readfile.h"
 #include "io/table_load.h"
 #include "lvsim/lv_table.h"
 
@@ -168,40 +169,6 @@ static lv_status parse_label(const csv_ctx *c, const csv_field *f, char *name, c
     return LV_OK;
 }
 
-static lv_status read_file(const char *path, char **text, size_t *len, lv_err *err)
-{
-    FILE *fp = fopen(path, "rb");
-    char *buf = NULL;
-    size_t n = 0, cap = 0;
-    if (fp == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, LV_STRERROR(errno));
-    for (;;) {
-        if (cap - n < 4096) {
-            cap = cap ? 2 * cap : 65536;
-            char *b = realloc(buf, cap + 1);
-            if (b == NULL) {
-                free(buf);
-                fclose(fp);
-                return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
-            }
-            buf = b;
-        }
-        const size_t got = fread(buf + n, 1, cap - n, fp);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    const int bad = ferror(fp), e = errno;
-    fclose(fp);
-    if (bad) {
-        free(buf);
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
-    }
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
-    return LV_OK;
-}
 
 /* Next non-blank, non-comment line: fields in f, count in *nf (0 at end of file). */
 static lv_status next_line(csv_ctx *c, const char **pos, const char *end, csv_field *f,
@@ -286,7 +253,7 @@ static lv_status csv_load(const char *path, const lv_table_opts *opts, lv_table_
 
     opts = opts_or_default(opts);
     file_stem(path, stem, sizeof stem);
-    st = read_file(path, &text, &len, err);
+    st = lv_read_file(path, LV_TABLE_FILE_MAX, "a table file", &text, &len, err);
     if (st != LV_OK)
         return st;
     st = LV_ERR_NOMEM;
@@ -1221,7 +1188,8 @@ static lv_status mat_load_quiet(const char *path, const char *var, const lv_tabl
     opts = opts_or_default(opts);
     if (strlen(var) > 60)
         return lv_fail(err, LV_ERR_INPUT, "%s: variable name '%.60s...' too long", path, var);
-    if ((st = mat_check(path, err)) != LV_OK)
+    if ((st = lv_file_size_check(path, LV_TABLE_FILE_MAX, "a table file", err)) != LV_OK ||
+        (st = mat_check(path, err)) != LV_OK)
         return st;
     s.mat = Mat_Open(path, MAT_ACC_RDONLY);
     if (s.mat == NULL)

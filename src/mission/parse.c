@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "core/utc.h"
+#include "io/readfile.h"
 #include "mission/dispersion.h"
 #include "mission/parse_int.h"
 #include "mission/phase_type.h"
@@ -182,36 +183,15 @@ fail:
 lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *err)
 {
     char *text = NULL, *dir = NULL;
-    size_t len = 0, cap = 0;
-    FILE *f = NULL;
+    size_t len = 0;
     lv_status st;
 
     if (out == NULL || path == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_mission_def_load: NULL argument");
     *out = NULL;
-    f = fopen(path, "rb");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open the mission file: %s", path,
-                       LV_STRERROR(errno));
-    for (;;) {
-        if (len == cap) {
-            cap = cap ? 2 * cap : 4096;
-            char *t = realloc(text, cap);
-            if (t == NULL) {
-                st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
-                goto fail;
-            }
-            text = t;
-        }
-        const size_t got = fread(text + len, 1, cap - len, f);
-        len += got;
-        if (got == 0)
-            break;
-    }
-    if (ferror(f)) {
-        st = lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(errno ? errno : EIO));
-        goto fail;
-    }
+    if ((st = lv_read_file(path, LV_MISSION_FILE_MAX, "the mission file", &text, &len, err)) !=
+        LV_OK)
+        return st;
     const char *slash = strrchr(path, '/');
     const size_t nd = slash == NULL ? 1 : (slash == path ? 1 : (size_t)(slash - path));
     if ((dir = malloc(nd + 1)) == NULL) {
@@ -222,8 +202,6 @@ lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *er
     dir[nd] = '\0';
     st = lv_mission_def_parse(text, len, path, dir, out, err);
 fail:
-    if (f != NULL)
-        fclose(f);
     free(text);
     free(dir);
     return st;

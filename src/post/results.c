@@ -16,6 +16,7 @@
 
 #include "core/status.h"
 #include "io/numparse.h"
+#include "io/readfile.h"
 
 /* ---------------------------------------------------------------- helpers -- */
 
@@ -47,40 +48,6 @@ static int bare_name(const char *s)
     return s[0] != '\0' && strchr(s, '/') == NULL && strcmp(s, ".") != 0 && strcmp(s, "..") != 0;
 }
 
-/* Whole file into a NUL-terminated buffer. */
-static lv_status slurp(const char *path, char **out, lv_err *err)
-{
-    char text[128];
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, lv_strerror(errno, text, sizeof text));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (n < cap - 1)
-            break;
-        char *nb = realloc(buf, cap * 2);
-        if (nb == NULL) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    const int bad = ferror(f), e = errno;
-    fclose(f);
-    if (buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", path);
-    if (bad) {
-        free(buf);
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
-    }
-    buf[n] = '\0';
-    *out = buf;
-    return LV_OK;
-}
 
 /* ---------------------------------------------------------------- summary -- */
 
@@ -246,7 +213,8 @@ lv_status lv_results_open(const char *outdir, lv_results **out, lv_err *err)
     }
     const char *path = r->summary_path;
     char *text = NULL;
-    lv_status st = slurp(path, &text, err);
+    size_t text_len;
+    lv_status st = lv_read_file(path, LV_SUMMARY_FILE_MAX, NULL, &text, &text_len, err);
     if (st != LV_OK)
         goto fail;
     const char *stop = NULL;

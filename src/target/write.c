@@ -17,6 +17,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "io/readfile.h"
 #include "lvsim/lv_units.h"
 #include "mission/yaml_tree.h"
 #include "target/target_int.h"
@@ -27,42 +28,6 @@ typedef struct edit {
     char *long_text; /* a path: replaces text when set (owned) */
 } edit;
 
-static lv_status read_all(const char *path, char **out, size_t *len, lv_err *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL)
-        return lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", path, LV_STRERROR(errno));
-    size_t cap = 4096, n = 0;
-    char *s = malloc(cap);
-    while (s != NULL) {
-        const size_t got = fread(s + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0)
-            break;
-        if (n + 1 == cap) {
-            char *g = realloc(s, 2 * cap);
-            if (g == NULL) {
-                free(s);
-                s = NULL;
-                break;
-            }
-            s = g;
-            cap *= 2;
-        }
-    }
-    const int bad = ferror(f), e = errno;
-    fclose(f);
-    if (s == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    if (bad) {
-        free(s);
-        return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, LV_STRERROR(e ? e : EIO));
-    }
-    s[n] = '\0';
-    *out = s;
-    *len = n;
-    return LV_OK;
-}
 
 /* Byte offset of (line, column), both 1-based, column in characters (UTF-8); SIZE_MAX when
  * the file has no such place. */
@@ -387,7 +352,7 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
      * existing file: lvsim target refuses one without --force) */
     if ((st = lv_output_check(path, t->m, LV_OUTPUT_REPLACE, err)) != LV_OK)
         return st;
-    if ((st = read_all(d->path, &text, &len, err)) != LV_OK)
+    if ((st = lv_read_file(d->path, LV_MISSION_FILE_MAX, "the mission file", &text, &len, err)) != LV_OK)
         return st;
     edits = calloc(2 * t->n + 1, sizeof *edits);
     fref = calloc(t->mc + 1, sizeof *fref);

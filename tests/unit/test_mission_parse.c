@@ -2,8 +2,13 @@
  * expected structure (SI, degrees converted, parents before children, tables loaded from
  * CSV and .mat relative to the file); every class of bad input gives LV_ERR_INPUT at the
  * exact line and column. Files: tests/missions (LV_MISSION_DIR). */
+#define _POSIX_C_SOURCE 200809L /* ftruncate, fileno */
+
 #include <matio.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "lvsim/lv_table.h"
@@ -254,6 +259,45 @@ static void test_planet_and_defaults(void)
     CHECK_FAILS(lv_mission_def_load(LV_MISSION_DIR "/no_such.yaml", &m, &err), &err, LV_ERR_IO,
                 "no_such.yaml: cannot open the mission file: No such file or directory");
     CHECK(m == NULL);
+}
+
+/* A file of `size` bytes that holds nothing (sparse: no disk space, no time to make). */
+static int sparse_file(const char *path, off_t size)
+{
+    FILE *f = fopen(path, "w");
+    if (f == NULL)
+        return 0;
+    const int ok = ftruncate(fileno(f), size) == 0;
+    fclose(f);
+    return ok;
+}
+
+/* What is read whole is refused beyond its size before anything is allocated (issue 22's
+ * breaker: a sparse 3 GB table took 54 s and 3.1 GB of memory before its error, a 2 GB mission
+ * 30 s and 2.1 GB): a mission file beyond 16 MiB, a CSV or MAT table beyond 1 GiB. */
+static void test_file_sizes(void)
+{
+    lv_mission_def *m = NULL;
+    lv_err err;
+    const char *big = "big_mission.yaml";
+    CHECK(sparse_file(big, (off_t)(16 << 20) + 1));
+    CHECK_FAILS(lv_mission_def_load(big, &m, &err), &err, LV_ERR_INPUT,
+                "big_mission.yaml: 16.8 MB; at most 16.8 MB are read (the mission file)");
+    CHECK(m == NULL);
+    CHECK(sparse_file(big, (off_t)(16 << 20))); /* exactly the limit: read (and refused as YAML) */
+    CHECK_FAILS(lv_mission_def_load(big, &m, &err), &err, LV_ERR_INPUT, "big_mission.yaml:");
+    CHECK(strstr(err.msg, "at most") == NULL);
+    remove(big);
+    lv_table *t = NULL;
+    CHECK(sparse_file("big_table.csv", ((off_t)1 << 30) + 1));
+    CHECK_FAILS(lv_table_load_csv("big_table.csv", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "big_table.csv: 1.07 GB; at most 1.07 GB are read (a table file)");
+    remove("big_table.csv");
+    CHECK(sparse_file("big_table.mat", ((off_t)3 << 30)));
+    CHECK_FAILS(lv_table_load_mat("big_table.mat", "x", NULL, &t, &err), &err, LV_ERR_INPUT,
+                "big_table.mat: 3.22 GB; at most 1.07 GB are read (a table file)");
+    remove("big_table.mat");
+    CHECK(t == NULL);
 }
 
 /* A .mat table written here with libmatio, relative to the directory given to parse(). */
@@ -798,6 +842,7 @@ static void test_environment(void)
 
 int main(void)
 {
+    test_file_sizes();
     test_unflyable();
     test_paper_branch();
     test_planet_and_defaults();

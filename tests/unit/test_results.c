@@ -128,7 +128,7 @@ static void test_summary_errors(void)
     lv_results *r = NULL;
     remove(DIR "/summary.json");
     CHECK_FAILS(lv_results_open(DIR, &r, &err), &err, LV_ERR_IO,
-                DIR "/summary.json: cannot read: No such file or directory");
+                DIR "/summary.json: cannot open: No such file or directory");
     CHECK_FAILS(lv_results_open("", &r, &err), &err, LV_ERR_INPUT, "no folder");
     broken("\"from\": null,", "\"from\": nul,", LV_ERR_INPUT, DIR "/summary.json:5: malformed JSON");
     broken("\"phases\"", "\"phasen\"", LV_ERR_INPUT, "no 'phases' or 'bodies' array");
