@@ -292,7 +292,8 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             return usage_error(self, "-o names the file to write (CONVERGED.yaml), not a folder:",
                                out);
         if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-            fprintf(stderr, "lvsim: -o %s: the folder '%s' does not exist\n", out, dir);
+            fprintf(stderr, "lvsim: -o %s: '%s' %s\n", out, dir,
+                    stat(dir, &sb) == 0 ? "is a file, not a folder" : "does not exist");
             return EXIT_INPUT;
         }
         if (access(dir, W_OK) != 0) {

@@ -77,8 +77,9 @@ enum { LV_OUTPUT_REPLACE = 1u /* an existing file may be replaced (the CLI's --f
 /* Whether a command may write the file `path` of its own (a converged mission, an FMU, a
  * result file named by the user): refuses an empty name, a folder, a path that is the
  * mission file of `m` or one of its data files (compared by device and inode, so any
- * spelling of the path; m NULL: no mission) - always, whatever the flags -, and an existing
- * file unless LV_OUTPUT_REPLACE (then only a regular file). A missing file is fine (its
+ * spelling of the path; m NULL: no mission) and a symbolic link (dangling or not) - always,
+ * whatever the flags -, and an existing file unless LV_OUTPUT_REPLACE (then only a regular
+ * file). A missing file is fine (its
  * folder is the writer's to check). Errors: LV_ERR_INPUT naming the path and what to do. */
 LV_API lv_status lv_output_check(const char *path, const lv_mission *m, unsigned flags,
                                  lv_err *err);

@@ -573,11 +573,11 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     else
         *sl = '\0';
     if (stat(outdir, &sb) != 0 || !S_ISDIR(sb.st_mode))
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': folder '%s' does not exist",
-                       fmu_path, outdir);
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': '%s' %s", fmu_path, outdir,
+                       stat(outdir, &sb) == 0 ? "is a file, not a folder" : "does not exist");
     if (access(outdir, W_OK) != 0)
-        return lv_fail(err, LV_ERR_IO, "cannot write '%s': folder '%s' is not writable",
-                       fmu_path, outdir);
+        return lv_fail(err, LV_ERR_IO, "cannot write '%s': folder '%s': %s", fmu_path, outdir,
+                       LV_STRERROR(errno));
     if (stat(fmu_path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return lv_fail(err, LV_ERR_IO, "cannot write '%s': it is a folder", fmu_path);
     if ((st = refuse_inputs(mission_path, fmu_path, err)) != LV_OK)

@@ -19,10 +19,21 @@ lv_status lv_output_check(const char *path, const lv_mission *m, unsigned flags,
     if (path[n - 1] == '/')
         return lv_fail(err, LV_ERR_INPUT, "'%s' names a folder: name the file to write", path);
     struct stat so;
+    /* a symbolic link is the user's, dangling or not: never replaced by a file (the rename
+     * that writes the output would replace the link itself); one to an input is named as
+     * that input below */
+    const int link = lstat(path, &so) == 0 && S_ISLNK(so.st_mode);
+    static const char *const link_msg = "'%s' is a symbolic link: lvsim does not replace it, "
+                                        "also with --force; name another file";
     if (stat(path, &so) != 0) {
+        if (link)
+            return lv_fail(err, LV_ERR_INPUT, link_msg, path);
         if (errno == ENOENT)
             return LV_OK; /* a missing folder on the way is the writer's error, with its name */
         char text[128];
+        if (errno == ENOTDIR) /* "notes.yaml/out.yaml": a file where the folder should be */
+            return lv_fail(err, LV_ERR_INPUT, "'%s': a part of its folder is a file, not a "
+                           "folder", path);
         return lv_fail(err, LV_ERR_INPUT, "'%s': %s", path, lv_strerror(errno, text, sizeof text));
     }
     if (S_ISDIR(so.st_mode))
@@ -37,6 +48,8 @@ lv_status lv_output_check(const char *path, const lv_mission *m, unsigned flags,
                            "another output",
                            path, i == 0 ? "file" : "data file", in);
     }
+    if (link)
+        return lv_fail(err, LV_ERR_INPUT, link_msg, path);
     if (!(flags & LV_OUTPUT_REPLACE))
         return lv_fail(err, LV_ERR_INPUT,
                        "'%s' exists: lvsim does not replace a file it cannot prove it wrote; "

@@ -452,7 +452,16 @@ expect 2 "the mission has no \`targeting:\` section" -- "$lvsim" target "$src/ex
 expect 2 "--method: auto, newton, slsqp or cobyla expected, got 'simplex'" -- "$lvsim" target "$work/shot.yaml" --method simplex
 expect 0 "^usage: lvsim target MISSION.yaml" -- "$lvsim" target --help
 # -o is checked before the solve; the counts take the file's ranges
-expect 2 "the folder '$work/no-such-dir' does not exist" -- "$lvsim" target "$work/shot.yaml" -o "$work/no-such-dir/c.yaml"
+expect 2 "'$work/no-such-dir' does not exist" -- "$lvsim" target "$work/shot.yaml" -o "$work/no-such-dir/c.yaml"
+# a symbolic link is the user's, dangling or not: never replaced by an output (issue 22's
+# breaker: target, fmu and simulate turned a dangling link into a regular file, exit 0)
+ln -s "$work/nowhere.yaml" "$work/dang.yaml"
+expect 2 "'$work/dang.yaml' is a symbolic link: lvsim does not replace it" -- "$lvsim" target "$work/shot.yaml" -o "$work/dang.yaml" --force
+ln -s "$work/nowhere.mat" "$work/dsim.mat"
+expect 2 "'$work/dsim.mat' is a symbolic link" -- "$lvsim" simulate free_fall --stop 1 -o "$work/dsim" --format mat
+[ -L "$work/dang.yaml" ] && [ -L "$work/dsim.mat" ] && pass=$((pass + 1)) || { echo "FAIL: a dangling link was replaced"; fails=$((fails + 1)); }
+touch "$work/plain.yaml"
+expect 2 "'$work/plain.yaml' is a file, not a folder" -- "$lvsim" target "$work/shot.yaml" -o "$work/plain.yaml/c.yaml"
 expect 2 "not a folder" -- "$lvsim" target "$work/shot.yaml" -o "$work"
 expect 2 "\-\-restarts needs an integer from 0 to 100, got '101'" -- "$lvsim" target "$work/shot.yaml" --restarts 101
 expect 0 "^converged" -- "$lvsim" target "$work/shot.yaml" --max-iter 1e3 -q
