@@ -42,8 +42,20 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
     const char *stage = lv_outdir_path(od);
     lv_export_report rep;
     st = lv_export_run_report(stage, formats ? formats : LV_EXPORT_ALL, &rep, &err);
-    if (st != LV_OK)
+    if (st != LV_OK) { /* nothing committed: the folder stays as it was, its manifest too */
         restage(err.msg, sizeof err.msg, stage, lv_outdir_final(od));
+        lv_export_report_clear(&rep);
+        lv_outdir_free(od);
+        return print_err("lvsim export", &err, exit_code_for_input(st));
+    }
+    lv_err merr;
+    const lv_outdir_record rec = {"export", "ok", NULL, 0, NULL};
+    lv_status mst = lv_outdir_commit(od, &rec, &merr);
+    if (mst != LV_OK) { /* what it wrote was not committed: not reported as written */
+        lv_export_report_clear(&rep);
+        lv_outdir_free(od);
+        return print_err("lvsim export", &merr, exit_code_for_input(mst));
+    }
     size_t written = 0;
     for (size_t i = 0; i < rep.n; i++) {
         const lv_export_item *it = &rep.items[i];
@@ -59,14 +71,7 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
         }
     }
     lv_export_report_clear(&rep);
-    lv_err merr;
-    const lv_outdir_record rec = {"export", st == LV_OK ? "ok" : "failed", NULL, 0, NULL};
-    lv_status mst = lv_outdir_commit(od, &rec, &merr);
     lv_outdir_free(od);
-    if (st != LV_OK)
-        return print_err("lvsim export", &err, exit_code_for_input(st));
-    if (mst != LV_OK)
-        return print_err("lvsim export", &merr, exit_code_for_input(mst));
     if (written == 0)
         printf("export: no file written\n");
     return EXIT_OK;
@@ -82,7 +87,7 @@ const cli_cmd cli_cmd_export = {
     "wrote or why it wrote nothing (an OEM of a flat-world flight, a body that never\n"
     "leaves the atmosphere). Updates OUTDIR/manifest.json. Exits 2 when the folder has no\n"
     "summary.json, is in use by another lvsim, or a file is malformed (named with its\n"
-    "line).\n"
+    "line); the folder is then left as it was.\n"
     "\n"
     "options:\n"
     "  --format F              czml, kml, oem, comma-separated (default: all three)\n",

@@ -259,6 +259,14 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
             return code;
         }
     }
+    /* refused before DIR is opened (which writes its manifest at once): a command refused
+     * leaves the folder as it was */
+    if (!resume && !force && access(db, F_OK) == 0) {
+        fprintf(stderr, "lvsim: %s exists: continue it with --resume, or replace it with "
+                "--force\n", db);
+        lv_mission_free(m);
+        return EXIT_INPUT;
+    }
     lv_outdir *od = NULL;
     if (mc_mpi_env_rank() == 0) {
         st = lv_outdir_open_live(outdir, path, force ? LV_OUTDIR_FORCE : 0u, live, &od, &err);
@@ -309,8 +317,11 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
         lv_outdir_free(od);
         return st == LV_OK ? EXIT_OK : exit_code_for(st);
     }
-    if (st != LV_OK) { /* the folder stays as it is, its manifest saying "incomplete" */
-        lv_outdir_free(od);
+    if (st != LV_OK) { /* the folder stays as it is, its manifest saying "incomplete" ... */
+        if (st == LV_ERR_INPUT && prog.this_session == 0)
+            lv_outdir_discard(od); /* ... or as it was, when refused before any run */
+        else
+            lv_outdir_free(od);
         print_err("lvsim", &err, 0);
         return exit_code_for(st);
     }

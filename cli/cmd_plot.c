@@ -25,12 +25,14 @@ static int plot_run(const cli_cmd *self, int argc, char **argv)
         restage(err.msg, sizeof err.msg, lv_outdir_path(od), lv_outdir_final(od));
     progress_step_end(prog);
     progress_free(prog);
+    if (st != LV_OK) { /* nothing committed: the folder stays as it was, its manifest too */
+        lv_outdir_free(od);
+        return print_err("lvsim plot", &err, exit_code_for_input(st));
+    }
     lv_err merr;
-    const lv_outdir_record rec = {"plot", st == LV_OK ? "ok" : "failed", NULL, 0, NULL};
+    const lv_outdir_record rec = {"plot", "ok", NULL, 0, NULL};
     lv_status mst = lv_outdir_commit(od, &rec, &merr);
     lv_outdir_free(od);
-    if (st != LV_OK)
-        return print_err("lvsim plot", &err, exit_code_for_input(st));
     if (mst != LV_OK)
         return print_err("lvsim plot", &merr, exit_code_for_input(mst));
     printf("plots in %s/plots/, report %s/index.html\n", argv[0], argv[0]);

@@ -238,8 +238,8 @@ static int view_run(const cli_cmd *self, int argc, char **argv)
                 }
             }
         }
-        const lv_outdir_record rec = {"view", code == EXIT_OK ? "ok" : "failed", NULL, 0, NULL};
-        if (lv_outdir_commit(od, &rec, &err) != LV_OK && code == EXIT_OK)
+        const lv_outdir_record rec = {"view", "ok", NULL, 0, NULL};
+        if (code == EXIT_OK && lv_outdir_commit(od, &rec, &err) != LV_OK) /* failed: untouched */
             code = print_err("lvsim view", &err, EXIT_INPUT);
         lv_outdir_free(od);
         if (code != EXIT_OK)

@@ -137,6 +137,11 @@ LV_API const lv_outdir_file *lv_outdir_files(const lv_outdir *od);
 /* Releases the folder: when not committed, the staging folder is removed and OUTDIR is left
  * as it was; the lock is released. Accepts NULL. */
 LV_API void lv_outdir_free(lv_outdir *od);
+/* For a live folder whose command was refused before it wrote anything (a campaign whose
+ * database does not match its options): the manifest that lv_outdir_open_live wrote is
+ * replaced by the one the folder had (none: removed; a folder the open made is removed when
+ * empty), then as lv_outdir_free. Other folders: lv_outdir_free. Accepts NULL. */
+LV_API void lv_outdir_discard(lv_outdir *od);
 
 /* SHA-256 (FIPS 180-4) of a file as 64 lowercase hex digits and a NUL, and its size.
  * Errors: LV_ERR_IO "path: cannot read: reason". */

@@ -602,7 +602,7 @@ lv_status lv_campaign_run(const lv_mission *m, const lv_campaign_options *o,
     pthread_cond_destroy(&p.cv);
     if (st == LV_OK && o->stop && *o->stop && prog.done < prog.total)
         st = lv_fail(err, LV_ERR_CANCELLED, "campaign stopped: %llu of %llu runs stored "
-                     "(continue with resume)", (unsigned long long)prog.done,
+                     "(the database is consistent: resume it to continue)", (unsigned long long)prog.done,
                      (unsigned long long)prog.total);
     return st;
 }

@@ -506,6 +506,19 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
                              "the same options", o->db_path, keys[i], v, mine[i]);
                 goto fail;
             }
+        /* a campaign grows, it does not shrink: its statistics would leave stored runs out */
+        sqlite3_stmt *q = NULL;
+        sqlite3_int64 last = -1;
+        if (sqlite3_prepare_v2(c->db, "SELECT MAX(run) FROM runs", -1, &q, NULL) == SQLITE_OK &&
+            sqlite3_step(q) == SQLITE_ROW && sqlite3_column_type(q, 0) != SQLITE_NULL)
+            last = sqlite3_column_int64(q, 0);
+        sqlite3_finalize(q);
+        if (last >= 0 && (uint64_t)last >= o->n_runs) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s holds runs up to run %lld: resume with -n %lld "
+                         "or more (a campaign grows, it is not cut short)", o->db_path,
+                         (long long)last, (long long)last + 1);
+            goto fail;
+        }
     }
     char nbuf[32];
     snprintf(nbuf, sizeof nbuf, "%llu", (unsigned long long)o->n_runs);

@@ -27,6 +27,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "io/readfile.h"
 #include "lvsim/lv_outdir.h"
 #include "lvsim/lvsim.h"
 
@@ -641,6 +642,9 @@ struct lv_outdir {
     size_t n_dirs;
     lv_outdir_file *files;  /* after commit */
     size_t n_files;
+    char *prev_manifest;    /* MODE_LIVE: the manifest before the open wrote its own, and */
+    size_t prev_len;        /* its length (lv_outdir_discard); NULL: there was none */
+    int made;               /* MODE_LIVE: OUTDIR was made by the open */
 };
 
 
@@ -1160,6 +1164,12 @@ static lv_status open_folder(const char *outdir, const char *mission_file, unsig
             st = lv_fail(err, LV_ERR_IO, "cannot create folder '%s': %s", od->final,
                          why(errno, text, sizeof text));
         }
+        od->made = !exists;
+        char mpath[PATH_MAX + 32];
+        snprintf(mpath, sizeof mpath, "%s/%s", od->final, MANIFEST);
+        if (st == LV_OK && exists && access(mpath, F_OK) == 0) /* put back by a discard */
+            st = lv_read_file(mpath, LV_SUMMARY_FILE_MAX, NULL, &od->prev_manifest,
+                              &od->prev_len, err);
         od_list l = {0};
         int lv = 0;
         if (st == LV_OK)
@@ -1699,10 +1709,29 @@ lv_status lv_outdir_commit(lv_outdir *od, const lv_outdir_record *rec, lv_err *e
     return st;
 }
 
+void lv_outdir_discard(lv_outdir *od)
+{
+    if (od != NULL && od->mode == MODE_LIVE && od->staging[0] == '\0' && !od->committed) {
+        char mpath[PATH_MAX + 32];
+        snprintf(mpath, sizeof mpath, "%s/%s", od->final, MANIFEST);
+        lv_atomic a;
+        if (od->prev_manifest == NULL)
+            remove(mpath);
+        else if (lv_atomic_open(&a, mpath, NULL) == LV_OK) {
+            fwrite(od->prev_manifest, 1, od->prev_len, a.fp);
+            lv_atomic_commit(&a, NULL); /* on failure: the open's own manifest stays */
+        }
+        if (od->made)
+            rmdir(od->final); /* only when empty: anything else stays */
+    }
+    lv_outdir_free(od);
+}
+
 void lv_outdir_free(lv_outdir *od)
 {
     if (od == NULL)
         return;
+    free(od->prev_manifest);
     if (od->staging[0] != '\0')
         rm_tree(od->staging); /* hard links only: the user's files stay in OUTDIR */
     release_lock(od);

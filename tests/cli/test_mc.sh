@@ -78,9 +78,20 @@ done
 grep -q '^"booster",impact,east_m,north_m,48,' "$work/j2/ellipses.csv" && ok || bad "booster impact ellipse"
 grep -q "<coordinates>" "$work/j2/footprint.kml" && ok || bad "KML coordinates"
 
-# an existing database: refused without --resume or --force
+# an existing database: refused without --resume or --force, the folder left as it was (its
+# manifest too: issue 22's breaker saw a refused mc mark a finished campaign 'incomplete')
+man_before=$(sha256sum < "$work/j2/manifest.json")
 "$lvsim" mc "$mission" -n 48 -o "$work/j2" --no-stats >"$work/exists.log" 2>&1; rc=$?
 [ "$rc" -eq 2 ] && grep -q "exists: continue it with --resume" "$work/exists.log" && ok || bad "existing db: exit $rc"
+[ "$man_before" = "$(sha256sum < "$work/j2/manifest.json")" ] && ok || bad "a refused mc changed the manifest"
+# a campaign grows, it is not cut short on resume (its statistics would leave runs out)
+"$lvsim" mc "$mission" -n 20 -o "$work/j2" --resume --no-stats >"$work/shrink.log" 2>&1; rc=$?
+[ "$rc" -eq 2 ] && grep -q "holds runs up to run 47: resume with -n 48 or more" "$work/shrink.log" && ok || { bad "resume with fewer runs: exit $rc"; cat "$work/shrink.log"; }
+[ "$man_before" = "$(sha256sum < "$work/j2/manifest.json")" ] && ok || bad "a refused resume changed the manifest"
+# export and plot of a campaign folder (no summary.json) fail and leave it as it was
+"$lvsim" export "$work/j2" >"$work/exp.log" 2>&1; rc=$?
+"$lvsim" plot "$work/j2" >>"$work/exp.log" 2>&1; rc2=$?
+[ "$rc" -eq 2 ] && [ "$rc2" -eq 2 ] && [ "$man_before" = "$(sha256sum < "$work/j2/manifest.json")" ] && ok || { bad "failed export/plot: exit $rc $rc2 or the manifest changed"; cat "$work/exp.log"; }
 # resuming a complete campaign runs nothing and changes nothing
 "$lvsim" mc "$mission" -n 48 -o "$work/j1" --resume --no-stats >/dev/null 2>&1 || bad "resume complete"
 cmp -s <(dump "$work/j1/campaign.db") <(dump "$work/j2/campaign.db") && ok || bad "resume changed a complete db"
@@ -146,7 +157,7 @@ for sig in INT TERM; do
   dt=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
   echo "SIG$sig: exit $rc after $dt s"
   [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 1.0) }' && ok || bad "SIG$sig: exit $rc after $dt s (want 130 within 1 s)"
-  grep -q "lvsim: campaign stopped: 1 of 3 runs stored (continue with resume)" "$d.log" && ok || bad "SIG$sig: $(tail -1 "$d.log")"
+  grep -q "lvsim: campaign stopped: 1 of 3 runs stored (the database is consistent: resume it to continue)" "$d.log" && ok || bad "SIG$sig: $(tail -1 "$d.log")"
   [ "$(sqlite3 "$d/campaign.db" "PRAGMA integrity_check")" = ok ] && ok || bad "SIG$sig: database not consistent"
   for t in runs phase_burn phase_coast1 phase_coast2 events; do  # only whole runs, as stored uninterrupted
     extra=$(sqlite3 "$d/campaign.db" "ATTACH '$work/long_full/campaign.db' AS f; SELECT count(*) FROM (SELECT * FROM main.\"$t\" EXCEPT SELECT * FROM f.\"$t\")")
