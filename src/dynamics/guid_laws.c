@@ -11,36 +11,30 @@
 #include "core/status.h"
 #include "dynamics/guid_kit.h"
 
-extern const lv_law lv_law_inputs;           /* guid_inputs.c */
-extern const lv_law lv_law_attitude;         /* guid_attitude.c */
-extern const lv_law lv_law_gravity_turn;     /* guid_gravity_turn.c */
-extern const lv_law lv_law_linear_tangent;   /* guid_tangent.c */
-extern const lv_law lv_law_bilinear_tangent; /* guid_tangent.c */
-extern const lv_law lv_law_heading;          /* guid_heading.c */
-extern const lv_law lv_law_retrograde;       /* guid_retrograde.c */
-extern const lv_law lv_law_boostback;        /* guid_boostback.c */
-extern const lv_law lv_law_nominal;          /* thr_nominal.c */
-extern const lv_law lv_law_landing;          /* thr_landing.c */
-extern const lv_law lv_law_off;              /* thr_off.c */
+/* The laws, one line each: X(name) is lv_law_<name>, defined in the file named beside it.
+ * The order is the one messages and listings use. */
+#define STEERING_LAWS(X)                                                                       \
+    X(inputs)           /* guid_inputs.c: no law, the model's inputs */                        \
+    X(attitude)         /* guid_attitude.c */                                                  \
+    X(gravity_turn)     /* guid_gravity_turn.c */                                              \
+    X(linear_tangent)   /* guid_tangent.c */                                                   \
+    X(bilinear_tangent) /* guid_tangent.c */                                                   \
+    X(heading)          /* guid_heading.c */                                                   \
+    X(retrograde)       /* guid_retrograde.c */                                                \
+    X(boostback)        /* guid_boostback.c */
+#define THROTTLE_LAWS(X)                                                                       \
+    X(nominal)          /* thr_nominal.c */                                                    \
+    X(landing)          /* thr_landing.c */                                                    \
+    X(off)              /* thr_off.c */
 
-static const lv_law *const steering_laws[] = {
-    &lv_law_inputs,
-    &lv_law_attitude,
-    &lv_law_gravity_turn,
-    &lv_law_linear_tangent,
-    &lv_law_bilinear_tangent,
-    &lv_law_heading,
-    &lv_law_retrograde,
-    &lv_law_boostback,
-    NULL,
-};
-
-static const lv_law *const throttle_laws[] = {
-    &lv_law_nominal,
-    &lv_law_landing,
-    &lv_law_off,
-    NULL,
-};
+#define DECLARE(name) extern const lv_law lv_law_##name;
+STEERING_LAWS(DECLARE)
+THROTTLE_LAWS(DECLARE)
+#define ENTRY(name) &lv_law_##name,
+static const lv_law *const steering_laws[] = {STEERING_LAWS(ENTRY) NULL};
+static const lv_law *const throttle_laws[] = {THROTTLE_LAWS(ENTRY) NULL};
+#undef DECLARE
+#undef ENTRY
 
 /* The keys every steering law takes (offsets into lv_steering). */
 static const lv_law_key steering_common[] = {
