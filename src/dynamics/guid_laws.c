@@ -21,6 +21,7 @@
     X(bilinear_tangent) /* guid_tangent.c */                                                   \
     X(heading)          /* guid_heading.c */                                                   \
     X(retrograde)       /* guid_retrograde.c */                                                \
+    X(prograde)         /* guid_prograde.c */                                                  \
     X(boostback)        /* guid_boostback.c */
 #define THROTTLE_LAWS(X)                                                                       \
     X(nominal)          /* thr_nominal.c */                                                    \

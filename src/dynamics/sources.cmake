@@ -9,6 +9,7 @@ list(APPEND LV_SOURCES
   src/dynamics/guid_tangent.c
   src/dynamics/guid_heading.c
   src/dynamics/guid_retrograde.c
+  src/dynamics/guid_prograde.c
   src/dynamics/guid_boostback.c
   src/dynamics/thr_nominal.c
   src/dynamics/thr_landing.c
