@@ -179,7 +179,8 @@ static lv_status law_key(lv_law_kind kind, const lv_law *law, const char *key, l
     static const char *const type_words[] = {"number", "table", "choice"};
     if (k->type != type)
         return lv_fail(err, LV_ERR_INPUT, "%s law '%s': key '%s' is a %s, not a %s", kw,
-                       law->name, k->name, type_words[k->type], type_words[type]);
+                       law != NULL ? law->name : "(none)", k->name, type_words[k->type],
+                       type_words[type]);
     *out = k;
     return LV_OK;
 }

@@ -356,6 +356,11 @@ static void test_api(void)
     CHECK(strcmp(lv_throttle_law(&none), "nominal") == 0);
     CHECK(lv_throttle_set(&none, "g_limit", 3.0, &err) == LV_ERR_INPUT &&
           strstr(err.msg, "lv_throttle_init first"));
+    lv_steering zero = {0}; /* law NULL: the inputs; the common keys only */
+    CHECK_OK(lv_steering_set(&zero, "target_lon_deg", 90.0, &err), &err);
+    CHECK(zero.target_lon == 90.0 * LV_DEG);
+    CHECK(lv_steering_set_table(&zero, "target_lat", NULL, &err) == LV_ERR_INPUT &&
+          strstr(err.msg, "key 'target_lat' is a number, not a table"));
 }
 
 /* A 3-DoF model of one engine made with steering s and throttle t: its status, *err. */
