@@ -170,31 +170,42 @@ lv_status lv_guid_law_check(const lv_law *law, const void *par, int has_aero, lv
     return st == LV_OK ? LV_OK : lv_fail_prefix(err, st, "%s '%s'", kw, law->name);
 }
 
+/* The law of a configuration (given: its law, NULL: the kind's default `dflt`) and its
+ * parameters (the default law's defaults), checked: the law, across keys, ranges. */
+static lv_status resolve(lv_law_kind kind, const lv_law *given, const lv_law_par *par,
+                         const char *dflt, int has_aero, const lv_law **law, lv_law_par *out,
+                         lv_err *err)
+{
+    *law = given != NULL ? given : lv_guid_law_find(kind, dflt);
+    if ((*law)->kind != kind)
+        return lv_fail(err, LV_ERR_INPUT, "%s: '%s' is a %s law", kind_word(kind),
+                       (*law)->name, kind == LV_LAW_STEERING ? "throttle" : "steering");
+    if (given != NULL)
+        *out = *par;
+    else
+        lv_guid_par_defaults(*law, out);
+    lv_law_at at;
+    return lv_guid_law_check(*law, out, has_aero, &at, err);
+}
+
 lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet, int has_aero,
                        lv_err *err)
 {
     memset(g, 0, sizeof *g);
-    g->law = s->law != NULL ? s->law : lv_guid_law_find(LV_LAW_STEERING, "inputs");
-    if (g->law->kind != LV_LAW_STEERING)
-        return lv_fail(err, LV_ERR_INPUT, "guidance: '%s' is a throttle law", g->law->name);
-    if (s->law != NULL)
-        g->par = s->par;
-    else
-        lv_guid_par_defaults(g->law, &g->par);
+    lv_status st = resolve(LV_LAW_STEERING, s->law, &s->par, "inputs", has_aero, &g->law,
+                           &g->par, err);
+    if (st != LV_OK)
+        return st;
     size_t n_common;
     const lv_law_key *common = lv_laws_common_keys(LV_LAW_STEERING, &n_common);
     for (size_t i = 0; i < n_common; i++) {
-        lv_status st = check_number(g->law, &common[i], s, err);
+        st = check_number(g->law, &common[i], s, err);
         if (st == LV_OK && isnan(num_at(s, &common[i]))) /* the model puts its start there */
             st = lv_fail(err, LV_ERR_INPUT, "guidance '%s': %s is not set", g->law->name,
                          common[i].name);
         if (st != LV_OK)
             return st;
     }
-    lv_law_at at;
-    lv_status st = lv_guid_law_check(g->law, &g->par, has_aero, &at, err);
-    if (st != LV_OK)
-        return st;
     g->need_alpha = g->need_beta = 1; /* lv_dof3 narrows them down */
     if (g->law->init != NULL && (st = g->law->init(g, err)) != LV_OK)
         return lv_fail_prefix(err, st, "guidance '%s'", g->law->name);
@@ -209,15 +220,8 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
 lv_status lv_thr_init(lv_thr *t, const lv_throttle_cfg *cfg, lv_err *err)
 {
     memset(t, 0, sizeof *t);
-    t->law = cfg->law != NULL ? cfg->law : lv_guid_law_find(LV_LAW_THROTTLE, "nominal");
-    if (t->law->kind != LV_LAW_THROTTLE)
-        return lv_fail(err, LV_ERR_INPUT, "throttle: '%s' is a steering law", t->law->name);
-    if (cfg->law != NULL)
-        t->par = cfg->par;
-    else
-        lv_guid_par_defaults(t->law, &t->par);
-    lv_law_at at;
-    lv_status st = lv_guid_law_check(t->law, &t->par, 1, &at, err);
+    lv_status st = resolve(LV_LAW_THROTTLE, cfg->law, &cfg->par, "nominal", 1, &t->law, &t->par,
+                           err);
     if (st == LV_OK && t->law->thr_init != NULL && (st = t->law->thr_init(t, err)) != LV_OK)
         return lv_fail_prefix(err, st, "throttle '%s'", t->law->name);
     return st;
