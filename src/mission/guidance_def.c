@@ -264,10 +264,10 @@ static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char 
     snprintf(what, sizeof what, "phase '%s', guidance", phase);
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {law: gravity_turn, ...} expected", what);
-    const char *words[32];
-    const lv_law *laws[32];
+    const char *words[65];
+    const lv_law *laws[64];
     size_t nw = 0;
-    for (const lv_law *const *l = lv_guid_laws(LV_LAW_STEERING); *l != NULL && nw < 31; l++)
+    for (const lv_law *const *l = lv_guid_laws(LV_LAW_STEERING); *l != NULL && nw < 64; l++)
         if ((*l)->form == LV_LAW_FORM_NAMED)
             laws[nw] = *l, words[nw++] = (*l)->name;
     words[nw] = NULL;
