@@ -171,16 +171,20 @@ int main(void)
     /* the attitude controller (PID, actuators) holding a steering law's attitude */
     cfg.controller = (lv_dof6_controller){LV_DOF6_CTL_PID, {1.5, 1.5}, {1.2, 1.2}, {0.3, 0.3},
                                           6.0 * DEG, 20.0 * DEG, 0.05};
-    cfg.steering.law = LV_STEER_GRAVITY_TURN;
-    cfg.steering.rise_time = 5.0;
-    cfg.steering.kick = 3.0 * DEG;
-    cfg.steering.kick_time = 10.0;
-    cfg.steering.heading = 1.2;
+    lv_steering *st = &cfg.steering;
+    if (lv_steering_init(st, "gravity_turn", &err) != LV_OK ||
+        lv_steering_set(st, "rise_time", 5.0, &err) != LV_OK ||
+        lv_steering_set(st, "kick", 3.0 * DEG, &err) != LV_OK ||
+        lv_steering_set(st, "kick_time", 10.0, &err) != LV_OK ||
+        lv_steering_set(st, "heading", 1.2, &err) != LV_OK)
+        goto fail;
     const double ns1 = bench(&cfg);
-    cfg.steering.law = LV_STEER_TANGENT;
-    cfg.steering.frame = LV_FRAME_LOCAL;
-    cfg.steering.a = 1.0;
-    cfg.steering.b = -0.004;
+    if (lv_steering_init(st, "linear_tangent", &err) != LV_OK ||
+        lv_steering_set_choice(st, "frame", "local", &err) != LV_OK ||
+        lv_steering_set(st, "a", 1.0, &err) != LV_OK ||
+        lv_steering_set(st, "b", -0.004, &err) != LV_OK ||
+        lv_steering_set(st, "heading", 1.2, &err) != LV_OK)
+        goto fail;
     const double ns2 = bench(&cfg);
     if (ns1 < 0.0 || ns2 < 0.0)
         goto fail;

@@ -13,6 +13,7 @@
 
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_guidance.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_table.h"
 
@@ -115,40 +116,48 @@ int main(void)
     }
 #define ADD(nm) (cases[n_cases].name = (nm), cases[n_cases].steer = base, \
                  cases[n_cases].thr = thr0, &cases[n_cases++])
+#define LAW(b, law) ok &= lv_steering_init(&(b)->steer, law, &err) == LV_OK
+#define SET(b, key, v) ok &= lv_steering_set(&(b)->steer, key, v, &err) == LV_OK
+#define THR(b, law) ok &= lv_throttle_init(&(b)->thr, law, &err) == LV_OK
+#define TSET(b, key, v) ok &= lv_throttle_set(&(b)->thr, key, v, &err) == LV_OK
     bench_case *b;
+    int ok = 1;
     ADD("inputs alpha, beta, mu (baseline)");
-    b = ADD("inputs from a table over time");
-    b->steer.law = LV_STEER_INPUTS; /* the table is set below: cfg.inputs */
+    b = ADD("inputs from a table over time"); /* the table is set below: cfg.inputs */
     b = ADD("attitude, local frame");
-    b->steer.law = LV_STEER_ATTITUDE, b->steer.frame = LV_FRAME_LOCAL;
-    b->steer.angle[0] = 60 * DEGR, b->steer.angle[1] = 90 * DEGR;
+    LAW(b, "attitude"), SET(b, "pitch_deg", 60), SET(b, "heading_deg", 90);
     b = ADD("attitude, inertial frame");
-    b->steer.law = LV_STEER_ATTITUDE, b->steer.frame = LV_FRAME_INERTIAL;
-    b->steer.angle[0] = 60 * DEGR, b->steer.angle[1] = 90 * DEGR;
+    LAW(b, "attitude"), SET(b, "pitch_deg", 60), SET(b, "heading_deg", 90);
+    ok &= lv_steering_set_choice(&b->steer, "frame", "inertial", &err) == LV_OK;
     b = ADD("attitude, pitch table over time");
-    b->steer.law = LV_STEER_ATTITUDE, b->steer.frame = LV_FRAME_LOCAL, b->steer.table = att_tab;
-    b->steer.angle[1] = 90 * DEGR;
+    LAW(b, "attitude"), SET(b, "heading_deg", 90);
+    ok &= lv_steering_set_table(&b->steer, "table", att_tab, &err) == LV_OK;
     b = ADD("gravity turn, during the kick");
-    b->steer.law = LV_STEER_GRAVITY_TURN, b->steer.kick = 10 * DEGR, b->steer.kick_time = 1e6;
-    b->steer.heading = 90 * DEGR;
+    LAW(b, "gravity_turn"), SET(b, "kick_deg", 10), SET(b, "kick_time", 1e6);
+    SET(b, "heading_deg", 90);
     b = ADD("gravity turn, alpha = 0");
-    b->steer.law = LV_STEER_GRAVITY_TURN, b->steer.heading = 90 * DEGR;
+    LAW(b, "gravity_turn"), SET(b, "kick", 0), SET(b, "kick_time", 0), SET(b, "heading_deg", 90);
     b = ADD("linear tangent, inertial frame");
-    b->steer.law = LV_STEER_TANGENT, b->steer.frame = LV_FRAME_INERTIAL, b->steer.a = 2.0;
-    b->steer.b = -0.01, b->steer.heading = 90 * DEGR;
+    LAW(b, "linear_tangent"), SET(b, "a", 2.0), SET(b, "b", -0.01), SET(b, "heading_deg", 90);
     b = ADD("heading (bank to turn), n_max");
-    b->steer.law = LV_STEER_HEADING, b->steer.alpha = 5 * DEGR, b->steer.n_max = 3.0;
-    b->steer.target_lat = 0.3, b->steer.target_lon = -1.0;
+    LAW(b, "heading"), SET(b, "alpha_deg", 5), SET(b, "n_max", 3.0);
+    SET(b, "target_lat", 0.3), SET(b, "target_lon", -1.0);
     b = ADD("retrograde");
-    b->steer.law = LV_STEER_RETROGRADE;
+    LAW(b, "retrograde");
     b = ADD("boostback");
-    b->steer.law = LV_STEER_BOOSTBACK, b->steer.pitch = 5 * DEGR;
+    LAW(b, "boostback"), SET(b, "pitch_deg", 5);
     b = ADD("throttle: g-limit");
-    b->thr.g_limit = 3.0;
+    TSET(b, "g_limit", 3.0);
     b = ADD("throttle: max-q (and g-limit)");
-    b->thr.q_max = 30000.0, b->thr.g_limit = 3.0;
+    TSET(b, "q_max", 30000.0), TSET(b, "g_limit", 3.0);
     b = ADD("throttle: landing, retrograde");
-    b->steer.law = LV_STEER_RETROGRADE, b->thr.law = LV_THROTTLE_LANDING;
+    LAW(b, "retrograde"), THR(b, "landing");
+    if (!ok)
+        goto fail;
+#undef LAW
+#undef SET
+#undef THR
+#undef TSET
 #undef ADD
 
     for (int ci = 0; ci < n_cases; ci++) {

@@ -26,6 +26,7 @@ int cli_main(int argc, char **argv);
 /* One per file cli/cmd_<name>.c (models and vars: cmd_models.c). */
 extern const cli_cmd cli_cmd_models;
 extern const cli_cmd cli_cmd_vars;
+extern const cli_cmd cli_cmd_laws;
 extern const cli_cmd cli_cmd_simulate;
 extern const cli_cmd cli_cmd_run;
 extern const cli_cmd cli_cmd_mc;

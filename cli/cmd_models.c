@@ -76,7 +76,21 @@ static void print_type_extras(const char *name)
         printf("# phase keys of its own:");
         for (size_t j = 0; t.keys != NULL && t.keys[j] != NULL; j++)
             printf(" %s", t.keys[j]);
-        printf("%s\n# end conditions ('end:'):", t.keys && t.keys[0] ? "" : " none");
+        printf("%s\n", t.keys && t.keys[0] ? "" : " none");
+        for (size_t j = 0; t.keys != NULL && t.keys[j] != NULL; j++) /* the laws' sections */
+            for (int kind = 0; kind < 2; kind++) {
+                if (strcmp(t.keys[j], kind == LV_LAW_STEERING ? "guidance" : "throttle") != 0)
+                    continue;
+                printf("# '%s:' laws ('lvsim laws'):", t.keys[j]);
+                for (size_t li = 0; li < lv_laws_count(); li++) {
+                    lv_law_info l;
+                    if (lv_laws_get(li, &l, NULL) == LV_OK && l.kind == (lv_law_kind)kind &&
+                        l.form != LV_LAW_FORM_NONE)
+                        printf(" %s", l.name);
+                }
+                printf("\n");
+            }
+        printf("# end conditions ('end:'):");
         for (size_t j = 0; t.ends == NULL && j < lv_phase_types_end_count(); j++)
             printf(" %s", lv_phase_types_end_name(j));
         for (size_t j = 0; t.ends != NULL && t.ends[j] != NULL; j++)

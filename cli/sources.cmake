@@ -4,6 +4,7 @@ add_executable(lvsim_cli
   cli/main.c
   cli/common.c
   cli/cmd_models.c
+  cli/cmd_laws.c
   cli/cmd_simulate.c
   cli/cmd_run.c
   cli/cmd_mc.c

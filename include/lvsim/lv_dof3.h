@@ -91,9 +91,11 @@ typedef struct lv_dof3_config {
      * limits. Its breakpoints are time events. Borrowed. */
     const lv_table *inputs;
 
-    /* Steering and throttle laws (lv_guidance.h). steering.law LV_STEER_INPUTS (default):
-     * the inputs above. Any other law replaces alpha, beta, mu and the inputs table's
-     * angles. steering.target_lat/lon NAN (default): the start point (start_lat/lon).
+    /* Steering and throttle laws (lv_guidance.h: lv_steering_init, lv_steering_set,
+     * lv_throttle_init, lv_throttle_set). Steering "inputs" (default): the inputs above. Any
+     * other law replaces alpha, beta, mu and the inputs table's angles. steering.target_lat/lon
+     * NAN (default): the start point (start_lat/lon). Throttle "nominal" (default): the
+     * throttle above (the law's key "value" is a mission file's; here `throttle` gives it).
      * Tables borrowed. */
     lv_steering steering;
     lv_throttle_cfg throttle_law;
@@ -105,8 +107,8 @@ typedef struct lv_dof3_config {
 
 /* Earth (lv_planet_earth), no gravity (must be set), no atmosphere, m0 = 1000 kg,
  * propellant 0, no engines, no aero, all start values and inputs 0 except throttle 1,
- * stop_at_burnout 0, no ends; steering: the inputs (target: the start point, gain 1,
- * bank_max 45 deg, tangent c = 1), throttle law: nominal without limits (q_gain 1/s). */
+ * stop_at_burnout 0, no ends; steering: "inputs" (target: the start point), throttle law:
+ * "nominal" without limits. */
 LV_API void lv_dof3_config_default(lv_dof3_config *cfg);
 
 typedef struct lv_dof3 lv_dof3;

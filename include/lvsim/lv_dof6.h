@@ -158,11 +158,12 @@ typedef struct lv_dof6_config {
      * Borrowed. */
     const lv_table *inputs;
 
-    /* Steering law (lv_guidance.h): law LV_STEER_INPUTS (default): none. Otherwise the
-     * commanded attitude, its Euler angles and the attitude error are outputs; with a
-     * controller the gimbal angles come from it (the inputs' gimbal angles are then unused).
-     * target_lat/lon NAN: the start point. The heading law's n_max and q_max are refused (the
-     * load-factor limit is a 3-DoF device). */
+    /* Steering law (lv_guidance.h: lv_steering_init, lv_steering_set): "inputs" (default):
+     * none. Otherwise the commanded attitude, its Euler angles and the attitude error are
+     * outputs; with a controller the gimbal angles come from it (the inputs' gimbal angles are
+     * then unused). target_lat/lon NAN: the start point. Keys that act in 3-DoF models only
+     * (LV_KEY_DOF3: the heading law's n_max and q_max, a load-factor limit) are refused away
+     * from their defaults. */
     lv_steering steering;
     lv_dof6_controller controller; /* kind NONE: gimbal angles from the inputs */
 

@@ -1,10 +1,19 @@
-/* lv_guidance.h - steering and throttle laws of the 3-DoF model (lv_dof3.h).
+/* lv_guidance.h - steering and throttle laws of the flight models (lv_dof3.h, lv_dof6.h).
  *
  * A steering law gives the vehicle's attitude (its body axes: thrust acts along body x) at
- * every instant; a throttle law the throttle c_s. Equations, frames and the source of each
- * law: docs/guidance.md. All angles in radians, times in seconds, SI throughout.
+ * every instant; a throttle law the throttle c_s. Each law is a registered object with a
+ * table of its keys (name, unit, range, default, description): a model's configuration names
+ * the law and sets its keys by name, and the same table drives the mission files' `guidance:`
+ * and `throttle:` keys, `lvsim laws`, the documentation and the Python package. Equations,
+ * frames and the source of each law: docs/guidance.md. All values SI: angles in radians
+ * (a key NAME_deg takes degrees where the functions below say so), times in seconds.
  *
- * Attitude frames:
+ *     lv_steering s;
+ *     lv_steering_init(&s, "gravity_turn", &err);      required keys NAN, the others defaults
+ *     lv_steering_set(&s, "kick_deg", 3.0, &err);      or "kick", 3.0 * LV_DEG
+ *     lv_steering_set(&s, "kick_time", 10.0, &err);    ... then cfg.steering = s
+ *
+ * Attitude frames (the key `frame` of the laws that take one):
  *   LV_FRAME_AERO      angle of attack alpha, sideslip beta and bank mu about the
  *                      air-relative velocity (the paper's inputs; Stevens & Lewis sec. 2.3).
  *   LV_FRAME_LOCAL     pitch theta, heading (yaw) psi and roll phi of the body axes relative
@@ -18,6 +27,9 @@
 #ifndef LVSIM_LV_GUIDANCE_H
 #define LVSIM_LV_GUIDANCE_H
 
+#include <stddef.h>
+
+#include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 
 #ifdef __cplusplus
@@ -30,81 +42,116 @@ typedef enum lv_att_frame {
     LV_FRAME_INERTIAL = 2
 } lv_att_frame;
 
-typedef enum lv_steer_law {
-    /* The model's parameters alpha, beta, mu (aerodynamic frame), or the `inputs` control
-     * table over time that replaces them (lv_dof3_config.inputs): the paper's inputs. */
-    LV_STEER_INPUTS = 0,
-    /* Constant angles in `frame` (angle[0..2]: alpha, beta, mu or theta, psi, phi), or from
-     * `table` over time, altitude, speed or Mach (axis named "time"/"t" [s, mission time],
-     * "altitude"/"h" [m], "speed"/"v_rel" [m/s], "mach"), outputs named "alpha", "beta",
-     * "mu" (aero) or "pitch", "heading", "roll" (local, inertial) in rad, and "throttle";
-     * an angle the table does not give keeps its constant. */
-    LV_STEER_ATTITUDE = 1,
-    /* Vertical rise for rise_time, a pitch-over of `kick` at a constant rate over
-     * kick_time in the plane of `heading` (local frame), then zero angle of attack, sideslip
-     * and bank (thrust along the air-relative velocity): the gravity turn. Times from the
-     * phase's start; both breakpoints are time events. */
-    LV_STEER_GRAVITY_TURN = 2,
-    /* Bilinear tangent: tan theta = (a + b tau) / (c + d tau), tau = t - phase start, in
-     * `frame` (local or inertial), heading `heading`, roll 0. Linear tangent: c = 1, d = 0. */
-    LV_STEER_TANGENT = 3,
-    /* Bank to turn toward the target: mu = clamp(gain (bearing - chi_air), +-bank_max),
-     * alpha = `alpha` or from `alpha_table` over Mach (output "alpha"), beta 0; with
-     * n_max > 0, alpha is scaled down smoothly so that the lift load factor L / (m g0)
-     * stays below n_max; with q_max > 0 that limit yields as the dynamic pressure rises to
-     * q_max. Needs an aerodynamic dataset. */
-    LV_STEER_HEADING = 4,
-    /* Body x against the air-relative velocity (alpha = 180 deg, beta = mu = 0): entry and
-     * landing burns. */
-    LV_STEER_RETROGRADE = 5,
-    /* Body x toward the target over the local horizon: heading = the bearing to the target,
-     * pitch `pitch` above the horizon (local frame). */
-    LV_STEER_BOOSTBACK = 6
-} lv_steer_law;
+/* ---- the registered laws and their keys ------------------------------------------------ */
 
+typedef struct lv_law lv_law; /* a registered law (its functions are the library's own) */
+
+typedef enum lv_law_kind { LV_LAW_STEERING = 0, LV_LAW_THROTTLE = 1 } lv_law_kind;
+
+/* How a mission file writes a law. */
+typedef enum lv_law_form {
+    LV_LAW_FORM_NONE = 0,   /* not written: the model's inputs (no `guidance:`) */
+    LV_LAW_FORM_NAMED = 1,  /* `guidance: {law: NAME, KEY: ..}` */
+    LV_LAW_FORM_KEYS = 2,   /* `throttle: {KEY: ..}`: its keys directly (the nominal law) */
+    LV_LAW_FORM_NESTED = 3, /* `throttle: {NAME: {KEY: ..}}` */
+    LV_LAW_FORM_WORD = 4    /* `throttle: NAME` (a law without keys) */
+} lv_law_form;
+
+typedef enum lv_key_type {
+    LV_KEY_NUMBER = 0, /* a double: a run parameter "<phase>.guidance.<key>" in a mission */
+    LV_KEY_TABLE = 1,  /* a table (const lv_table *, borrowed); a file gives its path */
+    LV_KEY_CHOICE = 2  /* one of `choices` (an int, its index) */
+} lv_key_type;
+
+#define LV_KEY_ANGLE 1u    /* an angle (rad): NAME_deg takes degrees */
+#define LV_KEY_OPTIONAL 2u /* absent: no run parameter; the law takes `dflt`, which may lie
+                              outside the range and then means "none" (0: no limit) */
+#define LV_KEY_DOF3 4u     /* acts in 3-DoF phases only (a 6-DoF phase refuses it) */
+
+/* One key of a law. Required: a NUMBER with dflt NAN and without LV_KEY_OPTIONAL (unless the
+ * table `instead_of` replaces it). */
+typedef struct lv_law_key {
+    const char *name;          /* "kick" */
+    lv_key_type type;
+    const char *unit;          /* SI: "rad", "s", "Pa", "1/s", "" (dimensionless) */
+    double lo, hi;             /* NUMBER: allowed values lo <= v <= hi (< with the flags) */
+    int lo_open, hi_open;
+    double dflt;               /* NUMBER: the default (NAN: required); CHOICE: its index */
+    unsigned flags;            /* LV_KEY_ANGLE, LV_KEY_OPTIONAL, LV_KEY_DOF3 */
+    unsigned frames;           /* bits 1 << lv_att_frame: the key applies in those frames
+                                  only (the law's CHOICE key "frame"); 0: always */
+    const char *instead_of;    /* NUMBER: the TABLE key that replaces it when given, or NULL */
+    const char *needs;         /* the key applies only when key `needs` is given, or NULL */
+    const char *const *choices; /* CHOICE: the words, NULL-terminated */
+    size_t offset;             /* where the value lives in the law's parameters */
+    const char *description;   /* one line */
+} lv_law_key;
+
+typedef struct lv_law_info {
+    const char *name;        /* "gravity_turn": the word a mission file writes */
+    const char *description; /* one line */
+    lv_law_kind kind;
+    lv_law_form form;
+    const char *needs_aero;  /* why the law needs an aerodynamic dataset, or NULL */
+    size_t n_keys;
+    const lv_law_key *keys;  /* [n_keys], in the order files list them */
+} lv_law_info;
+
+/* The registered laws, steering laws first, in registry order: i = 0 .. count - 1. */
+LV_API size_t lv_laws_count(void);
+LV_API lv_status lv_laws_get(size_t i, lv_law_info *out, lv_err *err);
+/* The keys every law of `kind` takes besides its own (steering: target_lat, target_lon). */
+LV_API const lv_law_key *lv_laws_common_keys(lv_law_kind kind, size_t *n);
+
+/* ---- a model's steering and throttle law ---------------------------------------------------- */
+
+#define LV_LAW_PAR_MAX 32 /* doubles of room for a law's parameters */
+typedef union lv_law_par {
+    double d[LV_LAW_PAR_MAX];
+    const void *p; /* alignment */
+} lv_law_par;
+
+/* A steering law with its parameters. law NULL: the model's inputs (as "inputs"). */
 typedef struct lv_steering {
-    lv_steer_law law;
-    lv_att_frame frame;     /* ATTITUDE (any), TANGENT (local or inertial) */
-    double angle[3];        /* rad, ATTITUDE: alpha, beta, mu | pitch, heading, roll */
-    const lv_table *table;  /* ATTITUDE: optional, borrowed (see above) */
-    double rise_time;       /* s, GRAVITY_TURN, >= 0 */
-    double kick;            /* rad, GRAVITY_TURN: pitch-over angle, in [0, pi/2] */
-    double kick_time;       /* s, GRAVITY_TURN, >= 0 (0 with kick 0: straight to alpha 0) */
-    double heading;         /* rad, GRAVITY_TURN and TANGENT: heading (yaw) of the plane */
-    double a, b, c, d;      /* TANGENT: -, 1/s, -, 1/s; c + d tau must stay > 0 */
-    double target_lat;      /* rad, geodetic: HEADING, BOOSTBACK and the target outputs */
+    const lv_law *law;
+    double target_lat;      /* rad, geodetic: the heading and boostback laws' target and the
+                               target outputs; NAN: the start point */
     double target_lon;      /* rad */
-    double bank_max;        /* rad, HEADING, in (0, pi/2] */
-    double gain;            /* HEADING: bank per heading error (rad/rad), > 0 */
-    double n_max;           /* HEADING: lift load-factor limit [g0], a soft saturation
-                               (docs/guidance.md); 0: none */
-    double q_max;           /* Pa, HEADING with n_max: above q_max / 2 the load-factor limit
-                               yields, at q_max the schedule's alpha is back; 0: none */
-    double alpha;           /* rad, HEADING: angle of attack when no alpha_table */
-    const lv_table *alpha_table; /* HEADING: optional, 1 axis "mach", output "alpha" [rad] */
-    double pitch;           /* rad, BOOSTBACK: pitch above the local horizon */
+    lv_law_par par;         /* the law's keys: set them with the functions below */
 } lv_steering;
 
-/* Throttle laws act on the throttle of the steering (the parameter "throttle" or the
- * table's): c_s = min(c_nominal, c_g, c_q) clamped into each engine's limits, or the
- * landing law's value; c_g keeps the axial load factor (thrust + axial aerodynamic
- * force) / (m g0) at g_limit; c_q makes the dynamic pressure obey dq/dt <= q_gain (q_max -
- * q), so that q approaches q_max without crossing it (docs/guidance.md). */
-typedef enum lv_throttle_law {
-    LV_THROTTLE_NOMINAL = 0, /* the nominal throttle with the limits below */
-    LV_THROTTLE_LANDING = 1, /* a constant deceleration to land_speed at land_altitude:
-                                a_up = (v_down^2 - land_speed^2) / (2 (h - land_altitude)) */
-    LV_THROTTLE_OFF = 2      /* engines off: a coast, no propellant burnt */
-} lv_throttle_law;
-
+/* A throttle law with its parameters. law NULL: "nominal" without limits. */
 typedef struct lv_throttle_cfg {
-    lv_throttle_law law;
-    double g_limit;       /* axial load factor limit [g0]; 0: none */
-    double q_max;         /* Pa; 0: none */
-    double q_gain;        /* 1/s, > 0 with q_max (default 1) */
-    double land_altitude; /* m, geodetic, LANDING */
-    double land_speed;    /* m/s, >= 0, LANDING: touchdown speed */
+    const lv_law *law;
+    lv_law_par par;
 } lv_throttle_cfg;
+
+/* Sets s to steering law `law` ("gravity_turn"; "inputs": none) with every key at its
+ * default (required keys NAN, tables NULL) and the target at the start point (NAN).
+ * LV_ERR_NOTFOUND for an unknown name (the message lists the laws). */
+LV_API lv_status lv_steering_init(lv_steering *s, const char *law, lv_err *err);
+/* Number key `key` of the law (or target_lat, target_lon) = value, SI; "NAME_deg" for an
+ * angle takes degrees. LV_ERR_NOTFOUND for a key the law does not have (with suggestions),
+ * LV_ERR_INPUT for a table or choice key. Ranges are checked when the model is created. */
+LV_API lv_status lv_steering_set(lv_steering *s, const char *key, double value, lv_err *err);
+/* The value of number key `key` (SI; "NAME_deg": degrees). */
+LV_API lv_status lv_steering_get(const lv_steering *s, const char *key, double *value,
+                                 lv_err *err);
+/* Table key `key` (attitude's "table", heading's "alpha_table") = t (borrowed; NULL: none). */
+LV_API lv_status lv_steering_set_table(lv_steering *s, const char *key, const lv_table *t,
+                                       lv_err *err);
+/* Choice key `key` ("frame") = `word` ("local"). */
+LV_API lv_status lv_steering_set_choice(lv_steering *s, const char *key, const char *word,
+                                        lv_err *err);
+/* The law's name ("inputs" for law NULL). */
+LV_API const char *lv_steering_law(const lv_steering *s);
+
+/* The same for a throttle law ("nominal", "landing", "off"). */
+LV_API lv_status lv_throttle_init(lv_throttle_cfg *t, const char *law, lv_err *err);
+LV_API lv_status lv_throttle_set(lv_throttle_cfg *t, const char *key, double value, lv_err *err);
+LV_API lv_status lv_throttle_get(const lv_throttle_cfg *t, const char *key, double *value,
+                                 lv_err *err);
+LV_API const char *lv_throttle_law(const lv_throttle_cfg *t);
 
 #ifdef __cplusplus
 }

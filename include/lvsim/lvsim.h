@@ -24,6 +24,7 @@
 #include "lvsim/lv_plot.h"
 #include "lvsim/lv_outdir.h"
 #include "lvsim/lv_vehicle.h"
+#include "lvsim/lv_guidance.h"
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_dof6.h"
 

@@ -14,7 +14,8 @@ column's unit travels with it. Documentation: docs/python.md.
     run.set("us.propellant_mass", 50000); run.execute()   # only the affected phases rerun
 
 Classes: Mission, Run, PhaseResult, Trajectory, Table, PhaseCall, Outcome, Model, Target,
-Campaign. Functions: simulate (a built-in model, the paper's Code 1), models. Exceptions:
+Campaign, Law. Functions: simulate (a built-in model, the paper's Code 1), models, laws (the
+steering and throttle laws with their keys, as the library registers them). Exceptions:
 LvsimError, MissionError, ParameterError, SimulationError, CancelledError.
 """
 from ._paths import VERSION as __version__
@@ -25,6 +26,7 @@ from ._mission import (Dispersion, Event, Mission, Model, Outcome, Parameter, Ph
                        simulate, METHODS)
 from ._target import Target, TargetResult
 from ._campaign import Campaign
+from ._laws import Law, LawKey, common_keys, laws
 
 library_path = None
 
@@ -39,7 +41,8 @@ library_path = _library_path()
 
 __all__ = ["Mission", "Run", "PhaseResult", "Trajectory", "Table", "PhaseCall", "Outcome",
            "Model", "Variable", "Phase", "Parameter", "Dispersion", "Event", "Target",
-           "TargetResult", "Campaign", "simulate", "models", "LvsimError", "MissionError",
+           "TargetResult", "Campaign", "simulate", "models", "laws", "common_keys", "Law",
+           "LawKey", "LvsimError", "MissionError",
            "ParameterError", "SimulationError", "CancelledError", "InputError", "OutputLimitError",
            "METHODS", "library_path",
            "__version__"]

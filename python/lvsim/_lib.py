@@ -248,13 +248,26 @@ class lv_outdir_record(Structure):
                 ("n_notes", c_size_t), ("notes", POINTER(c_char_p))]
 
 
+class lv_law_key(Structure):  # lv_guidance.h: a key of a steering or throttle law
+    _fields_ = [("name", c_char_p), ("type", c_int), ("unit", c_char_p), ("lo", c_double),
+                ("hi", c_double), ("lo_open", c_int), ("hi_open", c_int), ("dflt", c_double),
+                ("flags", c_uint), ("frames", c_uint), ("instead_of", c_char_p),
+                ("needs", c_char_p), ("choices", POINTER(c_char_p)), ("offset", c_size_t),
+                ("description", c_char_p)]
+
+
+class lv_law_info(Structure):
+    _fields_ = [("name", c_char_p), ("description", c_char_p), ("kind", c_int), ("form", c_int),
+                ("needs_aero", c_char_p), ("n_keys", c_size_t), ("keys", POINTER(lv_law_key))]
+
+
 # The structures the layout test compares with the C compiler's view of the headers.
 MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_param_info,
             lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
             lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
             lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
             lv_target_settings, lv_target_result, lv_disp_info, lv_campaign_progress,
-            lv_campaign_options, lv_output_estimate, lv_outdir_record]
+            lv_campaign_options, lv_output_estimate, lv_outdir_record, lv_law_key, lv_law_info]
 # lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
 PARTIAL = [lv_model_def]
 
@@ -537,3 +550,6 @@ def np_bool_types():
 def enc(s, what="name"):
     """A name argument -> bytes (name_arg); None stays NULL (an optional argument)."""
     return None if s is None else name_arg(s, what)
+_proto(lib, "lv_laws_count", c_size_t)
+_proto(lib, "lv_laws_get", c_int, c_size_t, POINTER(lv_law_info), E)
+_proto(lib, "lv_laws_common_keys", POINTER(lv_law_key), c_int, POINTER(c_size_t))

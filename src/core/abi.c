@@ -41,6 +41,8 @@ static const struct {
     T(lv_campaign_progress),
     T(lv_campaign_options),
     T(lv_outdir_record),
+    T(lv_law_key),
+    T(lv_law_info),
 };
 #undef T
 

@@ -166,7 +166,7 @@ struct lv_dof3 {
     int steers;                  /* a steering law other than the inputs (lv_guidance.h) */
     lv_guid guid;
     int throttles;               /* a throttle law with an effect (limits, landing) */
-    lv_throttle_cfg thr;
+    lv_thr thr;
     double c_min, c_max;         /* the throttle range every engine accepts */
     double p_ae;                 /* m^2: the engines' exit areas */
     int stop_at_burnout;
@@ -215,7 +215,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
     if (lv_flight_aero(aero, &pt->kin, &pt->air, &pt->ctl, &pt->ax, pt->coef, &pt->f_aero, err) !=
         0)
         return 1;
-    if (m->guid.s.law == LV_STEER_HEADING && m->guid.s.n_max > 0.0) {
+    if (m->guid.limits_alpha) {
         const double alpha = pt->ctl.u[LV_CTRL_ALPHA];
         const double lim = lv_guid_alpha_limited(&m->guid, alpha,
                                                  -lv_v3_dot(pt->f_aero, pt->ax.zw), mass,
@@ -253,7 +253,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
             .h = pt->kin.h,
             .v_down = lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
             .h_dot = -lv_v3_dot(pt->kin.v_rel, pt->kin.d_ax),
-            .drho_dh = m->thr.q_max > 0.0 ? lv_flight_drho_dh(w, pt->kin.h, pt->air.rho) : 0.0,
+            .drho_dh = m->thr.reads_drho ? lv_flight_drho_dh(w, pt->kin.h, pt->air.rho) : 0.0,
         };
         pt->ctl.u[LV_CTRL_THROTTLE] =
             lv_guid_throttle(&m->thr, pt->ctl.u[LV_CTRL_THROTTLE], &in, &pt->air);
@@ -397,7 +397,7 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
      * the start mass carries (a payload set by the user is not burnt) */
     s->m_burnout = x[LV_X3_M] - p[P_PROP];
     s->burned_out = 0;
-    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0 && s->m->thr.law != LV_THROTTLE_OFF;
+    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0 && !s->m->thr.engines_off;
     for (int k = 0; k < 3; k++)
         s->trig.ang[k] = NAN;
     lv_flight_kin kin;
@@ -582,12 +582,8 @@ void lv_dof3_config_default(lv_dof3_config *cfg)
     cfg->planet = lv_planet_earth();
     cfg->m0 = 1000.0;
     cfg->throttle = 1.0;
-    cfg->steering.target_lat = NAN; /* the start point */
-    cfg->steering.target_lon = NAN;
-    cfg->steering.gain = 1.0;
-    cfg->steering.bank_max = 45.0 * LV_DEG;
-    cfg->steering.c = 1.0;
-    cfg->throttle_law.q_gain = 1.0;
+    lv_steering_init(&cfg->steering, "inputs", NULL); /* target: the start point */
+    lv_throttle_init(&cfg->throttle_law, "nominal", NULL);
 }
 
 /* The steering and throttle laws (lv_guidance.h) for engines m->eng. */
@@ -598,10 +594,10 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
         st.target_lat = cfg->start_lat;
         st.target_lon = cfg->start_lon;
     }
-    m->steers = st.law != LV_STEER_INPUTS;
     lv_status rc = lv_guid_init(&m->guid, &st, &cfg->planet, cfg->aero != NULL, err);
     if (rc != LV_OK)
         return lv_fail_prefix(err, rc, "dof3");
+    m->steers = lv_guid_steers(&m->guid);
     /* the angles of attack and sideslip an attitude gives are computed in the right-hand side
      * only when an aerodynamic table reads them */
     m->guid.need_alpha = m->guid.need_beta = 0;
@@ -610,19 +606,9 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
             m->guid.need_alpha |= m->aero.tab[i].input[d] == LV_AERO_IN_ALPHA;
             m->guid.need_beta |= m->aero.tab[i].input[d] == LV_AERO_IN_BETA;
         }
-    const lv_throttle_cfg *t = &cfg->throttle_law;
-    if ((unsigned)t->law > LV_THROTTLE_OFF)
-        return lv_fail(err, LV_ERR_INPUT, "dof3: unknown throttle law %d", (int)t->law);
-    if (!(t->g_limit >= 0.0) || !isfinite(t->g_limit) || !(t->q_max >= 0.0) ||
-        !isfinite(t->q_max) || (t->q_max > 0.0 && !(t->q_gain > 0.0 && isfinite(t->q_gain))))
-        return lv_fail(err, LV_ERR_INPUT, "dof3: throttle: g_limit = %g, q_max = %g Pa must be "
-                       ">= 0 (0: none) and q_gain = %g 1/s > 0", t->g_limit, t->q_max, t->q_gain);
-    if (t->law == LV_THROTTLE_LANDING &&
-        (!isfinite(t->land_altitude) || !(t->land_speed >= 0.0) || !isfinite(t->land_speed)))
-        return lv_fail(err, LV_ERR_INPUT, "dof3: landing throttle: altitude %g m must be finite "
-                       "and speed %g m/s >= 0", t->land_altitude, t->land_speed);
-    m->thr = *t;
-    m->throttles = t->law == LV_THROTTLE_LANDING || t->g_limit > 0.0 || t->q_max > 0.0;
+    if ((rc = lv_thr_init(&m->thr, &cfg->throttle_law, err)) != LV_OK)
+        return lv_fail_prefix(err, rc, "dof3");
+    m->throttles = m->thr.active;
     m->c_min = 0.0;
     m->c_max = HUGE_VAL;
     for (size_t i = 0; i < m->n_eng; i++) {
@@ -794,11 +780,8 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
                 goto fail;
             }
     /* a constant throttle (not a table's, not with the engines off) within the limits */
-    size_t tk;
-    m->const_throttle =
-        m->inputs.k[U_THR] < 0 && cfg->throttle_law.law != LV_THROTTLE_OFF &&
-        !(cfg->steering.law == LV_STEER_ATTITUDE && cfg->steering.table != NULL &&
-          lv_table_out_index(cfg->steering.table, "throttle", &tk, NULL) == LV_OK);
+    m->const_throttle = m->inputs.k[U_THR] < 0 && !lv_thr_engines_off(&cfg->throttle_law) &&
+                        !lv_guid_gives_throttle(&cfg->steering);
     if (m->const_throttle) {
         for (size_t i = 0; i < m->n_eng; i++) {
             if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {

@@ -1069,11 +1069,7 @@ void lv_dof6_config_default(lv_dof6_config *cfg)
     cfg->throttle = 1.0;
     for (int i = 0; i < 3; i++)
         cfg->mass.inertia_full[i] = cfg->mass.inertia_empty[i] = 1.0;
-    cfg->steering.target_lat = NAN; /* the start point */
-    cfg->steering.target_lon = NAN;
-    cfg->steering.gain = 1.0;
-    cfg->steering.bank_max = 45.0 * LV_DEG;
-    cfg->steering.c = 1.0;
+    lv_steering_init(&cfg->steering, "inputs", NULL); /* target: the start point */
 }
 
 /* The steering law and the attitude controller (lv_dof6.h; docs/models.md, "Attitude
@@ -1085,18 +1081,18 @@ static lv_status setup_control(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *er
         st.target_lat = cfg->start_lat;
         st.target_lon = cfg->start_lon;
     }
-    m->steers = st.law != LV_STEER_INPUTS;
+    m->steers = lv_guid_cfg_steers(&st);
     const lv_dof6_controller *c = &cfg->controller;
     if ((unsigned)c->kind > LV_DOF6_CTL_PID)
         return lv_fail(err, LV_ERR_INPUT, "dof6: controller: unknown kind %d", (int)c->kind);
     if (c->kind != LV_DOF6_CTL_NONE && !m->steers)
         return lv_fail(err, LV_ERR_INPUT, "dof6: the attitude controller needs a steering law: "
-                       "the attitude it holds (steering.law is LV_STEER_INPUTS)");
+                       "the attitude it holds (the steering law is 'inputs')");
     if (m->steers) {
-        if (st.law == LV_STEER_HEADING && (st.n_max > 0.0 || st.q_max > 0.0))
-            return lv_fail(err, LV_ERR_INPUT, "dof6: guidance 'heading': n_max and q_max limit "
-                           "the 3-DoF model's commanded angle of attack; a 6-DoF body flies the "
-                           "attitude its controller reaches: give neither");
+        const lv_law_key *k3 = lv_guid_dof3_key(&st);
+        if (k3 != NULL)
+            return lv_fail(err, LV_ERR_INPUT, "dof6: guidance '%s': %s %s: give none",
+                           lv_steering_law(&st), k3->name, st.law->dof3_why);
         lv_status rc = lv_guid_init(&m->guid, &st, &cfg->planet, cfg->aero != NULL, err);
         if (rc != LV_OK)
             return lv_fail_prefix(err, rc, "dof6");

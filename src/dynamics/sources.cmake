@@ -2,6 +2,18 @@ list(APPEND LV_SOURCES
   src/dynamics/flight.c
   src/dynamics/flight_ends.c
   src/dynamics/guidance.c
+  src/dynamics/guid_laws.c
+  src/dynamics/guid_inputs.c
+  src/dynamics/guid_attitude.c
+  src/dynamics/guid_gravity_turn.c
+  src/dynamics/guid_tangent.c
+  src/dynamics/guid_heading.c
+  src/dynamics/guid_retrograde.c
+  src/dynamics/guid_prograde.c
+  src/dynamics/guid_boostback.c
+  src/dynamics/thr_nominal.c
+  src/dynamics/thr_landing.c
+  src/dynamics/thr_off.c
   src/dynamics/dof3.c
   src/dynamics/dof6.c
   src/dynamics/runway.c

@@ -1,4 +1,7 @@
-/* guidance_def.c - `guidance:` and `throttle:` of a 3-DoF phase (guidance_def.h). */
+/* guidance_def.c - `guidance:` and `throttle:` of a phase (guidance_def.h): a generic reader of
+ * the registered laws' key tables (src/dynamics/guid_laws.c). It knows the file's shapes
+ * (`{law: NAME, ..}`; the throttle's `off`, `{KEY: ..}`, `{NAME: {..}}`) and no law.
+ */
 #include "mission/guidance_def.h"
 
 #include <math.h>
@@ -9,302 +12,367 @@
 #include "dynamics/guidance.h"
 #include "lvsim/lv_units.h"
 
-/* The laws as written in a file; linear_tangent and bilinear_tangent are one law. */
-static const char *const law_words[] = {"attitude", "gravity_turn", "linear_tangent",
-                                        "bilinear_tangent", "heading", "retrograde",
-                                        "boostback", NULL};
-static const lv_steer_law law_of[] = {LV_STEER_ATTITUDE, LV_STEER_GRAVITY_TURN,
-                                      LV_STEER_TANGENT, LV_STEER_TANGENT, LV_STEER_HEADING,
-                                      LV_STEER_RETROGRADE, LV_STEER_BOOSTBACK};
+#define KNOWN_MAX (2 * LV_LAW_KEYS_MAX + 8)
 
-/* The keys each law takes besides `law` and the target (angles also as NAME_deg). */
-static const char *const law_keys[][10] = {
-    {"frame", "pitch", "heading", "roll", "alpha", "beta", "mu", "table", NULL},
-    {"rise_time", "kick", "kick_time", "heading", NULL},
-    {"a", "b", "heading", "frame", NULL},
-    {"a", "b", "c", "d", "heading", "frame", NULL},
-    {"bank_max", "gain", "n_max", "q_max", "alpha", "alpha_table", NULL},
-    {NULL},
-    {"pitch", NULL},
-};
-static const char *const angle_keys[] = {"pitch", "heading", "roll", "alpha", "beta", "mu",
-                                         "kick", "bank_max", "target_lat", "target_lon", NULL};
+/* The keys of a law's mapping (with the _deg forms of angles), NULL-terminated: `first`
+ * (may be NULL), the kind's common keys, the law's keys, then `extra` (NULL-terminated, may be
+ * NULL). deg[] holds the _deg names. */
+typedef struct known_keys {
+    const char *keys[KNOWN_MAX + 1];
+    char deg[KNOWN_MAX][48];
+    size_t n, nd;
+} known_keys;
 
-static int is_angle(const char *key)
+static void known_add(known_keys *kk, const lv_law_key *k)
 {
-    for (size_t i = 0; angle_keys[i] != NULL; i++)
-        if (strcmp(angle_keys[i], key) == 0)
-            return 1;
+    if (kk->n + 2 > KNOWN_MAX)
+        return;
+    kk->keys[kk->n++] = k->name;
+    if (k->flags & LV_KEY_ANGLE) {
+        snprintf(kk->deg[kk->nd], sizeof kk->deg[0], "%s_deg", k->name);
+        kk->keys[kk->n++] = kk->deg[kk->nd++];
+    }
+}
+
+static void known_make(known_keys *kk, const char *first, const lv_law *law,
+                       const char *const *extra)
+{
+    kk->n = kk->nd = 0;
+    if (first != NULL)
+        kk->keys[kk->n++] = first;
+    size_t nc;
+    const lv_law_key *common = lv_laws_common_keys(law->kind, &nc);
+    for (size_t i = 0; i < nc; i++)
+        known_add(kk, &common[i]);
+    for (size_t i = 0; i < law->n_keys; i++)
+        known_add(kk, &law->keys[i]);
+    for (size_t i = 0; extra != NULL && extra[i] != NULL && kk->n < KNOWN_MAX; i++)
+        kk->keys[kk->n++] = extra[i];
+    kk->keys[kk->n] = NULL;
+}
+
+/* The key node of key k as written (NAME or NAME_deg), or NULL; *text its name. */
+static const lv_ynode *written(const lv_ynode *n, const lv_law_key *k, const char **text)
+{
+    const lv_ynode *key = lv_pk_key(n, k->name);
+    if (key == NULL && (k->flags & LV_KEY_ANGLE)) {
+        char deg[48];
+        snprintf(deg, sizeof deg, "%s_deg", k->name);
+        key = lv_pk_key(n, deg);
+    }
+    if (text != NULL)
+        *text = key != NULL ? key->text : k->name;
+    return key;
+}
+
+/* The value node of key `name` of law (or a common key) as written, or NULL. */
+static const lv_ynode *value_of(const lv_ynode *n, const lv_law *law, const char *name)
+{
+    int deg, common;
+    const lv_law_key *k = lv_guid_key_find(law, law->kind, name, &deg, &common);
+    const lv_ynode *key = k != NULL ? written(n, k, NULL) : NULL;
+    return key != NULL ? lv_pk_get(n, key->text) : NULL;
+}
+
+/* Number key k of map n as slot "<phase>.<group>.<name>" (or NAME_deg in degrees); absent:
+ * its default (a slot), nothing (optional), or an error (required). */
+static lv_status num(const lv_pctx *c, const lv_ynode *n, const char *what, const char *phase,
+                     const char *group, const lv_law_key *k, int required, lv_slot *out)
+{
+    char deg[48], slot[LV_NAME_MAX + 96];
+    snprintf(deg, sizeof deg, "%s_deg", k->name);
+    snprintf(slot, sizeof slot, "%s.%s.%s", phase, group, k->name);
+    const int ang = (k->flags & LV_KEY_ANGLE) != 0;
+    const lv_range range = {k->lo, k->hi, (unsigned char)k->lo_open, (unsigned char)k->hi_open};
+    const lv_ynode *v = lv_pk_get(n, k->name), *vd = ang ? lv_pk_get(n, deg) : NULL;
+    *out = LV_NO_SLOT;
+    if (v != NULL && vd != NULL)
+        return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what, k->name,
+                          deg);
+    if (v != NULL || vd != NULL)
+        return lv_pk_slot(c, v ? v : vd, what, v ? k->name : deg, slot, k->unit, range,
+                          vd != NULL, out);
+    if (required)
+        return lv_pk_fail(c, n, "%s: '%s' is required%s", what, ang ? deg : k->name,
+                          ang ? " (or the same in rad without _deg)" : "");
+    if ((k->flags & LV_KEY_OPTIONAL) || isnan(k->dflt))
+        return LV_OK;
+    return lv_pk_slot_default(c, slot, k->unit, k->dflt, range, out);
+}
+
+/* The words of a frame mask: "aero", "local or inertial". */
+static void mask_words(unsigned mask, const char *const *words, char *buf, size_t cap)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (unsigned i = 0; words[i] != NULL && i < 32; i++)
+        if ((mask & (1u << i)) && used < cap)
+            used += (size_t)snprintf(buf + used, cap - used, "%s%s", used ? " or " : "",
+                                     words[i]);
+}
+
+/* The law's frame: the value of its choice key (0 without one). */
+static int frame_of(const lv_law_def *d)
+{
+    for (size_t i = 0; i < d->law->n_keys; i++)
+        if (d->law->keys[i].type == LV_KEY_CHOICE)
+            return d->choice[i];
     return 0;
 }
 
-/* `key` (or `key_deg` for an angle) of map n as slot "<phase>.<group>.<key>"; absent: the
- * default `def` (NAN: no slot, or an error when `required`). */
-static lv_status num(const lv_pctx *c, const lv_ynode *n, const char *what, const char *phase,
-                     const char *group, const char *key, const char *unit, lv_range range,
-                     int required, double def, lv_slot *out)
+/* A 3-DoF key (LV_KEY_DOF3) written in another model's phase. */
+static lv_status refuse_dof3(const lv_pctx *c, const lv_ynode *n, const char *what,
+                             const lv_law *law)
 {
-    char deg[48], slot[LV_NAME_MAX + 64];
-    snprintf(deg, sizeof deg, "%s_deg", key);
-    snprintf(slot, sizeof slot, "%s.%s.%s", phase, group, key);
-    const int ang = is_angle(key);
-    const lv_ynode *v = lv_pk_get(n, key), *vd = ang ? lv_pk_get(n, deg) : NULL;
-    *out = LV_NO_SLOT;
-    if (v != NULL && vd != NULL)
-        return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what, key, deg);
-    if (v != NULL || vd != NULL)
-        return lv_pk_slot(c, v ? v : vd, what, v ? key : deg, slot, unit, range, vd != NULL, out);
-    if (required)
-        return lv_pk_fail(c, n, "%s: '%s' is required%s", what, ang ? deg : key,
-                          ang ? " (or the same in rad without _deg)" : "");
-    if (isnan(def))
-        return LV_OK;
-    return lv_pk_slot_default(c, slot, unit, def, range, out);
+    for (size_t i = 0; i < law->n_keys; i++) {
+        const char *text;
+        const lv_ynode *key = written(n, &law->keys[i], &text);
+        if (key != NULL && (law->keys[i].flags & LV_KEY_DOF3))
+            return lv_pk_fail(c, key, "%s: '%s' %s: not in a dof6 phase", what, text,
+                              law->dof3_why);
+    }
+    return LV_OK;
 }
 
-/* The keys of law `w` (with their _deg forms), `law` and the target, NULL-terminated. */
-static void allowed_keys(size_t w, const char **keys, char (*deg)[48], size_t cap)
+/* Keys written that do not apply in the frame chosen (k->frames). */
+static lv_status refuse_frames(const lv_pctx *c, const lv_ynode *n, const char *what,
+                               const lv_law_def *d)
 {
-    size_t n = 0, nd = 0;
-    keys[n++] = "law";
-    static const char *const common[] = {"target_lat", "target_lon", NULL};
-    for (int pass = 0; pass < 2; pass++) {
-        const char *const *list = pass == 0 ? common : law_keys[w];
-        for (size_t i = 0; list[i] != NULL && n + 2 < cap; i++) {
-            keys[n++] = list[i];
-            if (is_angle(list[i])) {
-                snprintf(deg[nd], 48, "%s_deg", list[i]);
-                keys[n++] = deg[nd++];
-            }
+    const lv_law *law = d->law;
+    const lv_law_key *fk = NULL; /* the law's choice key (its frame) */
+    const int frame = frame_of(d);
+    for (size_t i = 0; i < law->n_keys; i++)
+        if (law->keys[i].type == LV_KEY_CHOICE)
+            fk = &law->keys[i];
+    for (size_t i = 0; i < law->n_keys; i++) {
+        const lv_law_key *k = &law->keys[i];
+        const char *text;
+        const lv_ynode *key = written(n, k, &text);
+        if (key == NULL || fk == NULL || k->frames == 0 || (k->frames & (1u << frame)))
+            continue;
+        char its[64], takes[128] = "";
+        mask_words(k->frames, fk->choices, its, sizeof its);
+        size_t used = 0;
+        for (size_t j = 0; j < law->n_keys; j++)
+            if (law->keys[j].frames & (1u << frame) && used < sizeof takes)
+                used += (size_t)snprintf(takes + used, sizeof takes - used, "%s%s",
+                                         used ? ", " : "", law->keys[j].name);
+        return lv_pk_fail(c, key, "%s: '%s' is an angle of the %s frame; frame %s takes %s",
+                          what, text, its, fk->choices[frame], takes);
+    }
+    return LV_OK;
+}
+
+/* The law's values from the file (m: the slots' values) or a run (vals). */
+static void make_par(const lv_law_def *d, const double *vals, const lv_mission_def *m,
+                     lv_law_par *par)
+{
+    lv_guid_par_defaults(d->law, par);
+    for (size_t i = 0; i < d->law->n_keys; i++) {
+        const lv_law_key *k = &d->law->keys[i];
+        char *at = (char *)par->d + k->offset;
+        if (k->type == LV_KEY_NUMBER && d->slot[i] != LV_NO_SLOT) {
+            const double v = vals != NULL ? vals[d->slot[i]] : m->slots[d->slot[i]].value;
+            memcpy(at, &v, sizeof v);
+        } else if (k->type == LV_KEY_CHOICE) {
+            memcpy(at, &d->choice[i], sizeof d->choice[i]);
+        } else if (k->type == LV_KEY_TABLE) {
+            const lv_table *t = d->table[i];
+            memcpy(at, &t, sizeof t);
         }
     }
-    keys[n] = NULL;
+}
+
+/* The keys of law d->law in map n (keys already checked): choices, numbers as slots of
+ * `group`, tables; then the law's own check on the file's values. */
+static lv_status parse_keys(const lv_pctx *c, const lv_ynode *n, const char *what,
+                            const char *phase, const char *group, int dof3, lv_law_def *d)
+{
+    const lv_law *law = d->law;
+    lv_status st;
+    for (size_t i = 0; i < law->n_keys; i++) {
+        const lv_law_key *k = &law->keys[i];
+        d->slot[i] = LV_NO_SLOT;
+        d->choice[i] = k->type == LV_KEY_CHOICE ? (int)k->dflt : 0;
+        const lv_ynode *v = lv_pk_get(n, k->name);
+        size_t idx;
+        if (k->type == LV_KEY_CHOICE && v != NULL) {
+            if ((st = lv_pk_enum(c, v, what, k->name, k->choices, &idx)) != LV_OK)
+                return st;
+            d->choice[i] = (int)idx;
+        }
+    }
+    if ((st = refuse_frames(c, n, what, d)) != LV_OK)
+        return st;
+    for (size_t i = 0; i < law->n_keys; i++) {
+        const lv_law_key *k = &law->keys[i];
+        if (k->type != LV_KEY_NUMBER)
+            continue;
+        if (k->frames != 0 && !(k->frames & (1u << frame_of(d))))
+            continue; /* another frame's (refused above when written) */
+        const lv_ynode *alt = k->instead_of != NULL ? lv_pk_key(n, k->instead_of) : NULL;
+        if (alt != NULL) {
+            if (written(n, k, NULL) != NULL)
+                return lv_pk_fail(c, alt, "%s: %s and %s given both", what, k->name,
+                                  k->instead_of);
+            continue;
+        }
+        if (k->needs != NULL && value_of(n, law, k->needs) == NULL) {
+            const lv_ynode *key = written(n, k, NULL);
+            if (key != NULL)
+                return lv_pk_fail(c, key, "%s: %s applies to %s", what, k->name, k->needs);
+            continue;
+        }
+        const int required = isnan(k->dflt) && !(k->flags & LV_KEY_OPTIONAL);
+        if ((st = num(c, n, what, phase, group, k, required, &d->slot[i])) != LV_OK)
+            return st;
+    }
+    for (size_t i = 0; i < law->n_keys; i++) {
+        const lv_law_key *k = &law->keys[i];
+        const lv_ynode *v = lv_pk_get(n, k->name);
+        if (k->type == LV_KEY_TABLE && v != NULL &&
+            (st = lv_pk_table(c, lv_pk_key(n, k->name), v, what, LV_EXTRAP_CLAMP,
+                              &d->table_file[i], &d->table_var[i], &d->table[i])) != LV_OK)
+            return st;
+    }
+    if (law->check == NULL)
+        return dof3 ? LV_OK : refuse_dof3(c, n, what, law);
+    lv_law_par par;
+    make_par(d, NULL, c->m, &par);
+    lv_law_at at = {NULL, LV_AT_MAP};
+    if ((st = law->check(&par, &at, c->err)) == LV_OK)
+        return dof3 ? LV_OK : refuse_dof3(c, n, what, law);
+    char msg[sizeof c->err->msg];
+    snprintf(msg, sizeof msg, "%s", c->err->msg);
+    const lv_ynode *node = NULL;
+    if (at.key != NULL) {
+        int deg, common;
+        const lv_law_key *k = lv_guid_key_find(law, law->kind, at.key, &deg, &common);
+        const lv_ynode *key = k != NULL ? written(n, k, NULL) : NULL;
+        node = key == NULL ? NULL : at.node == LV_AT_KEY ? key : lv_pk_get(n, key->text);
+    }
+    return lv_pk_fail(c, node != NULL ? node : n, "%s: %s", what, msg);
 }
 
 static lv_status parse_steering(const lv_pctx *c, const lv_ynode *n, const char *phase,
-                                int has_aero, lv_guidance_def *g)
+                                int has_aero, int dof3, lv_guidance_def *g)
 {
-    static const char *const frames[] = {"aero", "local", "inertial", NULL};
-    const lv_range any = LV_RANGE_ANY, nonneg = LV_RANGE_NONNEG;
-    const lv_range lat = LV_RANGE_LAT;                      /* [-90, 90] deg */
-    const lv_range half = LV_RANGE_LAT;                     /* pitch, alpha: [-90, 90] deg */
-    const lv_range turn = LV_RANGE_TURN;  /* longitudes, headings, roll, bank: [-360, 360] deg */
-    const lv_range aero = LV_RANGE_AERO_ANGLE;              /* sideslip: [-180, 180] deg */
-    const lv_range kick = {0.0, 0.5 * LV_PI, 0, 0};          /* [0, 90] deg */
-    const lv_range gain = {0.0, 100.0, 1, 0};                /* (0, 100] */
-    const char *G = "guidance";
     char what[LV_WHAT_MAX];
     const lv_ynode *v;
-    size_t w = 0, fi = 0;
+    size_t w = 0;
     lv_status st;
     snprintf(what, sizeof what, "phase '%s', guidance", phase);
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {law: gravity_turn, ...} expected", what);
+    const char *words[65];
+    const lv_law *laws[64];
+    size_t nw = 0;
+    for (const lv_law *const *l = lv_guid_laws(LV_LAW_STEERING); *l != NULL && nw < 64; l++)
+        if ((*l)->form == LV_LAW_FORM_NAMED)
+            laws[nw] = *l, words[nw++] = (*l)->name;
+    words[nw] = NULL;
     if ((st = lv_pk_check_map(c, n, what, NULL)) != LV_OK ||
         (st = lv_pk_need(c, n, what, "law", &v)) != LV_OK ||
-        (st = lv_pk_enum(c, v, what, "law", law_words, &w)) != LV_OK)
+        (st = lv_pk_enum(c, v, what, "law", words, &w)) != LV_OK)
         return st;
-    const char *keys[40];
-    char deg[20][48];
-    allowed_keys(w, keys, deg, 40);
-    snprintf(what, sizeof what, "phase '%s', guidance '%s'", phase, law_words[w]);
-    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+    const lv_law *law = laws[w];
+    known_keys kk;
+    known_make(&kk, "law", law, NULL);
+    snprintf(what, sizeof what, "phase '%s', guidance '%s'", phase, law->name);
+    if ((st = lv_pk_check_map(c, n, what, kk.keys)) != LV_OK)
         return st;
-    g->given = 1;
-    g->law = law_of[w];
-    for (int i = 0; i < 3; i++)
-        g->angle[i] = LV_NO_SLOT;
-    g->rise_time = g->kick = g->kick_time = g->heading = LV_NO_SLOT;
-    g->a = g->b = g->c = g->d = LV_NO_SLOT;
-    g->bank_max = g->gain = g->n_max = g->hq_max = g->alpha = g->pitch = LV_NO_SLOT;
-    if ((st = num(c, n, what, phase, G, "target_lat", "rad", lat, 0, NAN, &g->target_lat)) !=
-            LV_OK ||
-        (st = num(c, n, what, phase, G, "target_lon", "rad", turn, 0, NAN, &g->target_lon)) !=
-            LV_OK)
-        return st;
+    g->steer.law = law;
+    size_t nc;
+    const lv_law_key *common = lv_laws_common_keys(LV_LAW_STEERING, &nc);
+    lv_slot *target[2] = {&g->target_lat, &g->target_lon};
+    for (size_t i = 0; i < nc && i < 2; i++)
+        if ((st = num(c, n, what, phase, "guidance", &common[i], 0, target[i])) != LV_OK)
+            return st;
     if ((g->target_lat == LV_NO_SLOT) != (g->target_lon == LV_NO_SLOT))
         return lv_pk_fail(c, n, "%s: give both target_lat and target_lon (or neither: the "
                           "launch site)", what);
-    if (g->target_lat != LV_NO_SLOT && fabs(c->m->slots[g->target_lat].value) > 0.5 * LV_PI)
-        return lv_pk_fail(c, lv_pk_get(n, "target_lat") ? lv_pk_get(n, "target_lat")
-                                                         : lv_pk_get(n, "target_lat_deg"),
-                          "%s: target_lat must be within [-90, 90] deg", what);
-    if ((v = lv_pk_get(n, "frame")) != NULL &&
-        (st = lv_pk_enum(c, v, what, "frame", frames, &fi)) != LV_OK)
-        return st;
-    switch (g->law) {
-    case LV_STEER_ATTITUDE: {
-        g->frame = v != NULL ? (lv_att_frame)fi : LV_FRAME_LOCAL;
-        static const char *const aero_k[3] = {"alpha", "beta", "mu"};
-        static const char *const att_k[3] = {"pitch", "heading", "roll"};
-        const char *const *mine = g->frame == LV_FRAME_AERO ? aero_k : att_k;
-        const char *const *other = g->frame == LV_FRAME_AERO ? att_k : aero_k;
-        for (int i = 0; i < 3; i++) {
-            char od[48];
-            snprintf(od, sizeof od, "%s_deg", other[i]);
-            const lv_ynode *k = lv_pk_key(n, other[i]) ? lv_pk_key(n, other[i]) : lv_pk_key(n, od);
-            if (k != NULL)
-                return lv_pk_fail(c, k, "%s: '%s' is an angle of the %s frame; frame %s takes %s, "
-                                  "%s, %s", what, k->text, g->frame == LV_FRAME_AERO ? "local or "
-                                  "inertial" : "aero", frames[g->frame], mine[0], mine[1],
-                                  mine[2]);
-        }
-        /* pitch (and alpha) within +-90 deg, sideslip +-180 deg, heading, roll and bank a turn
-         * either way */
-        for (int i = 0; i < 3; i++)
-            if ((st = num(c, n, what, phase, G, mine[i], "rad",
-                          i == 0                                  ? half
-                          : i == 1 && g->frame == LV_FRAME_AERO ? aero
-                                                                  : turn,
-                          0, 0.0, &g->angle[i])) != LV_OK)
-                return st;
-        if ((v = lv_pk_get(n, "table")) != NULL) {
-            if ((st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
-                                  &g->table_file, &g->table_var, &g->table)) != LV_OK)
-                return st;
-            if ((st = lv_guid_table_check(g->table, g->law, g->frame, NULL, c->err)) != LV_OK)
-                return lv_pk_fail(c, v, "%s: %s", what, c->err->msg);
-        }
-        return LV_OK;
-    }
-    case LV_STEER_GRAVITY_TURN:
-        if ((st = num(c, n, what, phase, G, "rise_time", "s", nonneg, 0, 0.0, &g->rise_time)) ||
-            (st = num(c, n, what, phase, G, "kick", "rad", kick, 1, 0.0, &g->kick)) ||
-            (st = num(c, n, what, phase, G, "kick_time", "s", nonneg, 1, 0.0, &g->kick_time)) ||
-            (st = num(c, n, what, phase, G, "heading", "rad", turn, 1, 0.0, &g->heading)))
-            return st;
-        if (c->m->slots[g->kick].value > 0.0 && !(c->m->slots[g->kick_time].value > 0.0))
-            return lv_pk_fail(c, lv_pk_get(n, "kick_time"), "%s: a kick needs kick_time > 0 s",
-                              what);
-        for (int i = 0; i < 2; i++) { /* durations the integrator's clock can tell from 0 */
-            const lv_slot sl = i == 0 ? g->rise_time : g->kick_time;
-            const double dt = c->m->slots[sl].value;
-            if (dt > 0.0 && dt < 1e-9)
-                return lv_pk_fail(c, lv_pk_get(n, i == 0 ? "rise_time" : "kick_time"),
-                                  "%s: %s = %g s: give 0 or at least 1e-9 s", what,
-                                  i == 0 ? "rise_time" : "kick_time", dt);
-        }
-        return LV_OK;
-    case LV_STEER_TANGENT: {
-        const int bilinear = w == 3;
-        g->frame = v != NULL ? (lv_att_frame)fi : LV_FRAME_INERTIAL;
-        if (g->frame == LV_FRAME_AERO)
-            return lv_pk_fail(c, v, "%s: the pitch is measured in the local or the inertial "
-                              "frame", what);
-        /* c >= 0: the denominator c + d tau is not negative at the phase's start (theta
-         * within +-90 deg; c = 0 starts vertical); linear tangent: no c, d (1, 0) */
-        const lv_range cpos = LV_RANGE_NONNEG;
-        if ((st = num(c, n, what, phase, G, "a", "", any, 1, 0.0, &g->a)) ||
-            (st = num(c, n, what, phase, G, "b", "1/s", any, 1, 0.0, &g->b)) ||
-            (st = num(c, n, what, phase, G, "c", "", cpos, bilinear, NAN, &g->c)) ||
-            (st = num(c, n, what, phase, G, "d", "1/s", any, bilinear, NAN, &g->d)) ||
-            (st = num(c, n, what, phase, G, "heading", "rad", turn, 1, 0.0, &g->heading)))
-            return st;
-        return LV_OK;
-    }
-    case LV_STEER_HEADING: {
-        if (!has_aero)
-            return lv_pk_fail(c, lv_pk_get(n, "law"), "%s: the heading law banks the lift "
-                              "vector: the phase needs an aerodynamic dataset (aero:)", what);
-        const lv_range bank = {0.0, 0.5 * LV_PI, 1, 0};
-        if ((st = num(c, n, what, phase, G, "bank_max", "rad", bank, 0, 45.0 * LV_DEG,
-                      &g->bank_max)) ||
-            (st = num(c, n, what, phase, G, "gain", "", gain, 0, 1.0, &g->gain)) ||
-            (st = num(c, n, what, phase, G, "n_max", "", nonneg, 0, 0.0, &g->n_max)) ||
-            (st = num(c, n, what, phase, G, "q_max", "Pa", nonneg, 0, 0.0, &g->hq_max)))
-            return st;
-        if (c->m->slots[g->hq_max].value > 0.0 && !(c->m->slots[g->n_max].value > 0.0))
-            return lv_pk_fail(c, lv_pk_get(n, "q_max"), "%s: q_max releases the load-factor "
-                              "limit as q rises: it needs n_max > 0", what);
-        const lv_ynode *at = lv_pk_get(n, "alpha_table");
-        if (at != NULL && (lv_pk_get(n, "alpha") || lv_pk_get(n, "alpha_deg")))
-            return lv_pk_fail(c, lv_pk_key(n, "alpha_table"), "%s: alpha and alpha_table given "
-                              "both", what);
-        if ((st = num(c, n, what, phase, G, "alpha", "rad", half, at == NULL,
-                      at == NULL ? 0.0 : NAN, &g->alpha)))
-            return st;
-        if (at != NULL) {
-            if ((st = lv_pk_table(c, lv_pk_key(n, "alpha_table"), at, what, LV_EXTRAP_CLAMP,
-                                  &g->table_file, &g->table_var, &g->table)) != LV_OK)
-                return st;
-            if ((st = lv_guid_table_check(g->table, g->law, LV_FRAME_AERO, NULL, c->err)) !=
-                LV_OK)
-                return lv_pk_fail(c, at, "%s: %s", what, c->err->msg);
-        }
-        return LV_OK;
-    }
-    case LV_STEER_BOOSTBACK:
-        return num(c, n, what, phase, G, "pitch", "rad", half, 0, 0.0, &g->pitch);
-    default:
-        return LV_OK;
-    }
+    if (law->needs_aero != NULL && !has_aero)
+        return lv_pk_fail(c, v, "%s: the %s law %s: the phase needs an aerodynamic dataset "
+                          "(aero:)", what, law->name, law->needs_aero);
+    return parse_keys(c, n, what, phase, "guidance", dof3, &g->steer);
+}
+
+/* The throttle laws written as a word (`throttle: off`), as the nominal's keys, nested. */
+static const lv_law *throttle_form(lv_law_form form, size_t i)
+{
+    for (const lv_law *const *l = lv_guid_laws(LV_LAW_THROTTLE); *l != NULL; l++)
+        if ((*l)->form == form && i-- == 0)
+            return *l;
+    return NULL;
 }
 
 static lv_status parse_throttle(const lv_pctx *c, const lv_ynode *n, const char *phase,
                                 lv_guidance_def *g)
 {
-    static const char *const tkeys[] = {"value", "g_limit", "q_max", "q_gain", "landing", NULL};
-    static const char *const lkeys[] = {"altitude", "speed", NULL};
-    const char *T = "throttle";
-    char what[LV_WHAT_MAX];
+    char what[LV_WHAT_MAX], words[128] = "";
     lv_status st;
     snprintf(what, sizeof what, "phase '%s', throttle", phase);
-    g->thr_given = 1;
-    g->thr_value = g->g_limit = g->q_max = g->q_gain = LV_NO_SLOT;
-    g->land_altitude = g->land_speed = LV_NO_SLOT;
-    if (n->kind == LV_YNODE_SCALAR && strcmp(n->text, "off") == 0) {
-        g->thr_law = LV_THROTTLE_OFF;
-        return LV_OK;
+    size_t used = 0;
+    const lv_law *l;
+    for (size_t i = 0; (l = throttle_form(LV_LAW_FORM_WORD, i)) != NULL; i++) {
+        if (n->kind == LV_YNODE_SCALAR && strcmp(n->text, l->name) == 0) {
+            g->thr.law = l;
+            return LV_OK;
+        }
+        if (used < sizeof words)
+            used += (size_t)snprintf(words + used, sizeof words - used, "'%s' or ", l->name);
     }
     if (n->kind != LV_YNODE_MAP)
-        return lv_pk_fail(c, n, "%s: 'off' or a mapping such as {g_limit: 4.5, q_max: 35000} "
-                          "expected", what);
-    if ((st = lv_pk_check_map(c, n, what, tkeys)) != LV_OK)
+        return lv_pk_fail(c, n, "%s: %sa mapping such as {g_limit: 4.5, q_max: 35000} expected",
+                          what, words);
+    const lv_law *keys_law = throttle_form(LV_LAW_FORM_KEYS, 0);
+    const char *nested[16];
+    size_t nn = 0;
+    for (; nn < 15 && (l = throttle_form(LV_LAW_FORM_NESTED, nn)) != NULL; nn++)
+        nested[nn] = l->name;
+    nested[nn] = NULL;
+    known_keys kk;
+    known_make(&kk, NULL, keys_law, nested);
+    if ((st = lv_pk_check_map(c, n, what, kk.keys)) != LV_OK)
         return st;
-    const lv_range nonneg = LV_RANGE_NONNEG, pos = LV_RANGE_POS, any = LV_RANGE_ANY;
-    const lv_ynode *land = lv_pk_get(n, "landing");
-    if (land != NULL) {
-        for (size_t i = 0; tkeys[i] != NULL; i++)
-            if (strcmp(tkeys[i], "landing") != 0 && lv_pk_get(n, tkeys[i]) != NULL)
-                return lv_pk_fail(c, lv_pk_key(n, tkeys[i]), "%s: the landing law sets the "
-                                  "throttle itself: '%s' does not go with it", what, tkeys[i]);
-        char lwhat[LV_WHAT_MAX + 16];
-        snprintf(lwhat, sizeof lwhat, "%s, landing", what);
-        if (land->kind != LV_YNODE_MAP)
-            return lv_pk_fail(c, land, "%s: a mapping {altitude: m, speed: m/s} expected", lwhat);
-        if ((st = lv_pk_check_map(c, land, lwhat, lkeys)) != LV_OK)
+    for (size_t i = 0; i < nn; i++) {
+        const lv_ynode *sub = lv_pk_get(n, nested[i]);
+        if (sub == NULL)
+            continue;
+        l = throttle_form(LV_LAW_FORM_NESTED, i);
+        for (size_t j = 0; kk.keys[j] != NULL; j++)
+            if (strcmp(kk.keys[j], l->name) != 0 && lv_pk_get(n, kk.keys[j]) != NULL)
+                return lv_pk_fail(c, lv_pk_key(n, kk.keys[j]), "%s: the %s law sets the "
+                                  "throttle itself: '%s' does not go with it", what, l->name,
+                                  kk.keys[j]);
+        char lwhat[LV_WHAT_MAX + 16], shape[160] = "";
+        snprintf(lwhat, sizeof lwhat, "%s, %s", what, l->name);
+        size_t su = 0;
+        for (size_t j = 0; j < l->n_keys && su < sizeof shape; j++)
+            su += (size_t)snprintf(shape + su, sizeof shape - su, "%s%s: %s", j ? ", " : "",
+                                   l->keys[j].name, l->keys[j].unit[0] ? l->keys[j].unit : "-");
+        if (sub->kind != LV_YNODE_MAP)
+            return lv_pk_fail(c, sub, "%s: a mapping {%s} expected", lwhat, shape);
+        known_keys lk;
+        known_make(&lk, NULL, l, NULL);
+        if ((st = lv_pk_check_map(c, sub, lwhat, lk.keys)) != LV_OK)
             return st;
-        g->thr_law = LV_THROTTLE_LANDING;
-        char pre[LV_NAME_MAX + 16];
-        snprintf(pre, sizeof pre, "%s", phase);
-        if ((st = num(c, land, lwhat, pre, "throttle.landing", "altitude", "m", any, 0, 0.0,
-                      &g->land_altitude)) ||
-            (st = num(c, land, lwhat, pre, "throttle.landing", "speed", "m/s", nonneg, 0, 0.0,
-                      &g->land_speed)))
-            return st;
-        return LV_OK;
+        char group[64];
+        snprintf(group, sizeof group, "throttle.%s", l->name);
+        g->thr.law = l;
+        return parse_keys(c, sub, lwhat, phase, group, 1, &g->thr);
     }
-    g->thr_law = LV_THROTTLE_NOMINAL;
-    if ((st = num(c, n, what, phase, T, "value", "", nonneg, 0, NAN, &g->thr_value)) ||
-        (st = num(c, n, what, phase, T, "g_limit", "", pos, 0, NAN, &g->g_limit)) ||
-        (st = num(c, n, what, phase, T, "q_max", "Pa", pos, 0, NAN, &g->q_max)))
-        return st;
-    if (g->q_max == LV_NO_SLOT && lv_pk_get(n, "q_gain") != NULL)
-        return lv_pk_fail(c, lv_pk_key(n, "q_gain"), "%s: q_gain applies to q_max", what);
-    const lv_range qg = {0.0, 100.0, 1, 0}; /* (0, 100] 1/s */
-    if (g->q_max != LV_NO_SLOT &&
-        (st = num(c, n, what, phase, T, "q_gain", "1/s", qg, 0, 1.0, &g->q_gain)))
-        return st;
-    return LV_OK;
+    g->thr.law = keys_law;
+    return parse_keys(c, n, what, phase, "throttle", 1, &g->thr);
 }
 
 lv_status lv_guidance_def_parse(const lv_pctx *c, const lv_ynode *guidance,
                                 const lv_ynode *throttle, const char *phase, int has_aero,
-                                lv_guidance_def *g)
+                                int dof3, lv_guidance_def *g)
 {
     lv_status st;
     if (guidance != NULL && !lv_yaml_is_null(guidance) &&
-        (st = parse_steering(c, guidance, phase, has_aero, g)) != LV_OK)
+        (st = parse_steering(c, guidance, phase, has_aero, dof3, g)) != LV_OK)
         return st;
     if (throttle != NULL && !lv_yaml_is_null(throttle) &&
         (st = parse_throttle(c, throttle, phase, g)) != LV_OK)
@@ -312,52 +380,65 @@ lv_status lv_guidance_def_parse(const lv_pctx *c, const lv_ynode *guidance,
     return LV_OK;
 }
 
-static double val(const double *vals, lv_slot s, double def)
-{
-    return s == LV_NO_SLOT ? def : vals[s];
-}
-
 void lv_guidance_def_make(const lv_guidance_def *g, const double *vals, lv_steering *s,
                           lv_throttle_cfg *t)
 {
-    if (g->given) {
-        s->law = g->law;
-        s->frame = g->frame;
-        for (int i = 0; i < 3; i++)
-            s->angle[i] = val(vals, g->angle[i], 0.0);
-        s->table = g->law == LV_STEER_ATTITUDE ? g->table : NULL;
-        s->alpha_table = g->law == LV_STEER_HEADING ? g->table : NULL;
-        s->rise_time = val(vals, g->rise_time, 0.0);
-        s->kick = val(vals, g->kick, 0.0);
-        s->kick_time = val(vals, g->kick_time, 0.0);
-        s->heading = val(vals, g->heading, 0.0);
-        s->a = val(vals, g->a, 0.0);
-        s->b = val(vals, g->b, 0.0);
-        s->c = val(vals, g->c, 1.0);
-        s->d = val(vals, g->d, 0.0);
-        s->target_lat = val(vals, g->target_lat, NAN);
-        s->target_lon = val(vals, g->target_lon, NAN);
-        s->bank_max = val(vals, g->bank_max, s->bank_max);
-        s->gain = val(vals, g->gain, s->gain);
-        s->n_max = val(vals, g->n_max, 0.0);
-        s->q_max = val(vals, g->hq_max, 0.0);
-        s->alpha = val(vals, g->alpha, 0.0);
-        s->pitch = val(vals, g->pitch, 0.0);
+    if (g->steer.law != NULL) {
+        s->law = g->steer.law;
+        make_par(&g->steer, vals, NULL, &s->par);
+        s->target_lat = g->target_lat == LV_NO_SLOT ? NAN : vals[g->target_lat];
+        s->target_lon = g->target_lon == LV_NO_SLOT ? NAN : vals[g->target_lon];
     }
-    if (g->thr_given) {
-        t->law = g->thr_law;
-        t->g_limit = val(vals, g->g_limit, 0.0);
-        t->q_max = val(vals, g->q_max, 0.0);
-        t->q_gain = val(vals, g->q_gain, 1.0);
-        t->land_altitude = val(vals, g->land_altitude, 0.0);
-        t->land_speed = val(vals, g->land_speed, 0.0);
+    if (g->thr.law != NULL) {
+        t->law = g->thr.law;
+        make_par(&g->thr, vals, NULL, &t->par);
+    }
+}
+
+int lv_guidance_def_gives_throttle(const lv_guidance_def *g)
+{
+    if (g->steer.law == NULL || g->steer.law->gives_throttle == NULL)
+        return 0;
+    lv_law_par par; /* the tables are what matters: the defaults for the numbers */
+    lv_law_def d = g->steer;
+    for (size_t i = 0; i < LV_LAW_KEYS_MAX; i++)
+        d.slot[i] = LV_NO_SLOT;
+    make_par(&d, NULL, NULL, &par);
+    return g->steer.law->gives_throttle(&par);
+}
+
+lv_slot lv_guidance_def_throttle_value(const lv_guidance_def *g)
+{
+    for (size_t i = 0; g->thr.law != NULL && i < g->thr.law->n_keys; i++)
+        if (strcmp(g->thr.law->keys[i].name, "value") == 0)
+            return g->thr.slot[i];
+    return LV_NO_SLOT;
+}
+
+const lv_law *lv_guidance_def_throttle_fixed(const lv_guidance_def *g, char *is, size_t is_cap,
+                                             char *written_as, size_t written_cap)
+{
+    const lv_law *l = g->thr.law;
+    if (l == NULL || l->form == LV_LAW_FORM_KEYS)
+        return NULL;
+    const int word = l->form == LV_LAW_FORM_WORD;
+    snprintf(is, is_cap, word ? "%s" : "the %s law's", l->name);
+    snprintf(written_as, written_cap, word ? "%s" : "{%s: ..}", l->name);
+    return l;
+}
+
+static void law_def_clear(lv_law_def *d)
+{
+    for (size_t i = 0; i < LV_LAW_KEYS_MAX; i++) {
+        free(d->table_file[i]);
+        free(d->table_var[i]);
+        lv_table_free(d->table[i]);
     }
 }
 
 void lv_guidance_def_clear(lv_guidance_def *g)
 {
-    free(g->table_file);
-    free(g->table_var);
-    lv_table_free(g->table);
+    law_def_clear(&g->steer);
+    law_def_clear(&g->thr);
     memset(g, 0, sizeof *g);
 }

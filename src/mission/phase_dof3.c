@@ -172,16 +172,16 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     lv_status st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
     if (st == LV_OK)
         st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), lv_pk_get(n, "throttle"),
-                                   ph->name, cfg->aero.present, &cfg->guid);
-    size_t tk;
-    const int table_thr = st == LV_OK && cfg->guid.given &&
-                          cfg->guid.law == LV_STEER_ATTITUDE && cfg->guid.table != NULL &&
-                          lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK;
-    const int thr_elsewhere = table_thr || (cfg->guid.thr_given &&
-                                            (cfg->guid.thr_law != LV_THROTTLE_NOMINAL ||
-                                             cfg->guid.thr_value != LV_NO_SLOT));
+                                   ph->name, cfg->aero.present, 1, &cfg->guid);
+    char thr_is[64], thr_written[64];
+    const lv_law *thr_fixed = lv_guidance_def_throttle_fixed(&cfg->guid, thr_is, sizeof thr_is,
+                                                             thr_written, sizeof thr_written);
+    const int table_thr = st == LV_OK && lv_guidance_def_gives_throttle(&cfg->guid);
+    const int thr_elsewhere = table_thr || thr_fixed != NULL ||
+                              lv_guidance_def_throttle_value(&cfg->guid) != LV_NO_SLOT;
     if (st == LV_OK)
-        st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg->guid.given, thr_elsewhere,
+        st = parse_inputs(c, lv_pk_get(n, "inputs"), ph->name, cfg->guid.steer.law != NULL,
+                          thr_elsewhere,
                           cfg);
     if (st == LV_OK)
         st = parse_separation(c, lv_pk_get(n, "separation"), n, ph->name, cfg);
@@ -190,7 +190,7 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     /* one source for each input: a guidance law steers instead of the inputs' angles, a
      * throttle value replaces the inputs' throttle */
     const lv_ynode *in = lv_pk_get(n, "inputs");
-    if (cfg->guid.given && in != NULL && in->kind == LV_YNODE_MAP) {
+    if (cfg->guid.steer.law != NULL && in != NULL && in->kind == LV_YNODE_MAP) {
         static const char *const angles[] = {"alpha", "beta", "mu", "alpha_deg", "beta_deg",
                                              "mu_deg", "table", NULL};
         for (size_t i = 0; angles[i] != NULL; i++)
@@ -214,13 +214,10 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
         return lv_pk_fail(c, in_thr != NULL ? in_thr : thr_val, "phase '%s': the attitude "
                           "table gives the throttle (its output 'throttle'): give it once",
                           ph->name);
-    if (cfg->guid.thr_given && cfg->guid.thr_law != LV_THROTTLE_NOMINAL &&
-        (in_thr != NULL || table_thr))
+    if (thr_fixed != NULL && (in_thr != NULL || table_thr))
         return lv_pk_fail(c, in_thr != NULL ? in_thr : lv_pk_key(n, "throttle"),
                           "phase '%s': the throttle is '%s' (throttle: %s): a throttle %s has no "
-                          "effect", ph->name, cfg->guid.thr_law == LV_THROTTLE_OFF ? "off"
-                          : "the landing law's", cfg->guid.thr_law == LV_THROTTLE_OFF ? "off"
-                          : "{landing: ..}", in_thr != NULL ? "in inputs" : "in the attitude table");
+                          "effect", ph->name, thr_is, thr_written, in_thr != NULL ? "in inputs" : "in the attitude table");
     return LV_OK;
 }
 
@@ -356,14 +353,14 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.alpha = pc->u[0] != LV_NO_SLOT ? bc->vals[pc->u[0]] : 0.0;
     cfg.beta = pc->u[1] != LV_NO_SLOT ? bc->vals[pc->u[1]] : 0.0;
     cfg.mu = pc->u[2] != LV_NO_SLOT ? bc->vals[pc->u[2]] : 0.0;
-    cfg.throttle = pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT
-                       ? bc->vals[pc->guid.thr_value]
+    const lv_slot thr_value = lv_guidance_def_throttle_value(&pc->guid);
+    cfg.throttle = thr_value != LV_NO_SLOT  ? bc->vals[thr_value]
                    : pc->u[3] != LV_NO_SLOT ? bc->vals[pc->u[3]]
                                             : 1.0;
     /* a throttle nobody wrote is full throttle: the most every engine accepts (1 unless an
      * engine's throttle_max is lower) */
     const lv_slot_def *ts = pc->u[3] != LV_NO_SLOT ? &d->slots[pc->u[3]] : NULL;
-    if (!(pc->guid.thr_given && pc->guid.thr_value != LV_NO_SLOT) &&
+    if (thr_value == LV_NO_SLOT &&
         (ts == NULL || (ts->loc.line == 0 && cfg.throttle == ts->value)))
         for (size_t e = 0; e < ne; e++)
             if (s->engines[e].throttle_max < cfg.throttle)

@@ -278,7 +278,7 @@ static lv_status parse_controller(const lv_pctx *c, const lv_ynode *phase_n, con
         return LV_OK;
     char what[LV_WHAT_MAX];
     snprintf(what, sizeof what, "phase '%s', controller", phase);
-    if (!cfg->guid.given)
+    if (cfg->guid.steer.law == NULL)
         return lv_pk_fail(c, lv_pk_key(phase_n, "controller"), "%s: the controller holds the "
                           "attitude a steering law commands: the phase needs `guidance:` "
                           "(docs/guidance.md)", what);
@@ -445,7 +445,7 @@ static lv_status dof6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
         st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
     if (st == LV_OK)
         st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), NULL, ph->name,
-                                   cfg->aero.present, &cfg->guid);
+                                   cfg->aero.present, 0, &cfg->guid);
     if (st == LV_OK)
         st = parse_controller(c, n, lv_pk_get(n, "controller"), ph->name, cfg);
     if (st == LV_OK)
@@ -456,21 +456,9 @@ static lv_status dof6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
         st = parse_transition(c, n, lv_pk_get(n, "transition"), ph->name, cfg);
     if (st != LV_OK)
         return st;
-    const lv_ynode *g = lv_pk_get(n, "guidance");
-    /* the heading law's load-factor limit acts on the 3-DoF model's commanded alpha only */
-    if (cfg->guid.given && cfg->guid.law == LV_STEER_HEADING) {
-        const lv_ynode *k = lv_pk_key(g, "n_max") ? lv_pk_key(g, "n_max") : lv_pk_key(g, "q_max");
-        if (k != NULL)
-            return lv_pk_fail(c, k, "phase '%s', guidance 'heading': '%s' limits the commanded "
-                              "angle of attack of a 3-DoF phase; a 6-DoF body flies the attitude "
-                              "its controller reaches: not in a dof6 phase", ph->name, k->text);
-    }
     /* one source for the throttle: inputs (constant, table) or the attitude table */
-    size_t tk;
     const lv_ynode *in = lv_pk_get(n, "inputs");
-    if (cfg->guid.given && cfg->guid.law == LV_STEER_ATTITUDE && cfg->guid.table != NULL &&
-        lv_table_out_index(cfg->guid.table, "throttle", &tk, NULL) == LV_OK && in != NULL &&
-        in->kind == LV_YNODE_MAP) {
+    if (lv_guidance_def_gives_throttle(&cfg->guid) && in != NULL && in->kind == LV_YNODE_MAP) {
         size_t ik;
         const lv_ynode *k = lv_pk_key(in, "throttle");
         if (k == NULL && cfg->inputs != NULL &&

@@ -35,6 +35,15 @@ expect 0 "^derivative +der\(vz\) +m/s/s " -- "$lvsim" vars flat6
 expect 2 "unknown model 'dof4'; mission model types: flat6 dof3 runway dof6; built-in models: vertical_ascent" -- "$lvsim" vars dof4
 expect 0 "^parameter +thrust +N" -- "$lvsim" vars vertical_ascent
 expect 2 "unknown model 'nope'" -- "$lvsim" vars nope
+# lvsim laws: the registered laws with their keys (lv_laws_get), and the types that take them
+expect 0 "^# 'guidance:' laws \('lvsim laws'\): attitude gravity_turn linear_tangent" -- "$lvsim" vars dof3
+expect 0 "^# 'throttle:' laws \('lvsim laws'\): nominal landing off" -- "$lvsim" vars dof3
+expect 0 "^gravity_turn: vertical rise" -- "$lvsim" laws
+expect 0 "^  kick\[_deg\] +rad +\[0, 90\] deg +required " -- "$lvsim" laws gravity_turn
+expect 0 "^  q_gain +1/s +\(0, 100\] 1/s +1 1/s .*\(with q_max\)" -- "$lvsim" laws nominal
+expect 0 "^\| \| .bank_max. \(._deg.\) \| rad \| \(0, 90\] deg \| 45 deg \|" -- "$lvsim" laws --markdown
+expect 2 "unknown law 'gravity'; the laws: inputs attitude gravity_turn" -- "$lvsim" laws gravity
+expect 2 "laws takes at most one law name" -- "$lvsim" laws heading off
 expect 2 "unknown command 'fly'" -- "$lvsim" fly
 # Free fall from 100 m: impact at sqrt(2 h / g) = 4.51523641 s (g = 9.81)
 expect 0 "time += 4.515236" -- "$lvsim" simulate free_fall --stop 10 --tolerance 1e-10 --method dopri5 --final time -o "$work/ff"
@@ -230,7 +239,7 @@ fi
 # take no arguments, answers --help, -h and `lvsim help CMD` with exit 0 and its own usage line,
 # on stdout; `lvsim help` lists every command with its one-line summary.
 mission="$src/examples/paper-test-case/mission.yaml"
-commands="models vars simulate run check params compare export plot view atmosphere gravity help version"
+commands="models vars laws simulate run check params compare export plot view atmosphere gravity help version"
 for c in $commands; do
   expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" --help
   expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" -h
@@ -256,7 +265,7 @@ expect 2 "unknown command 'plto'; did you mean 'plot'\?" -- "$lvsim" plto
 expect 2 "unknown command 'param'; did you mean 'params'\?" -- "$lvsim" param
 expect 2 "did you mean 'atmosphere'" -- "$lvsim" atmo
 # an unknown option is named, with the command's help to see
-for c in models vars run check params compare export plot view atmosphere gravity version; do
+for c in models vars laws run check params compare export plot view atmosphere gravity version; do
   expect 2 "unknown option '--bogus'" -- "$lvsim" "$c" --bogus
   expect 2 "^\(see 'lvsim help $c'\)" -- "$lvsim" "$c" --bogus
 done

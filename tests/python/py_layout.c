@@ -15,6 +15,14 @@
 
 int main(void)
 {
+    S(lv_law_key); F(lv_law_key, name); F(lv_law_key, type); F(lv_law_key, unit);
+    F(lv_law_key, lo); F(lv_law_key, hi); F(lv_law_key, lo_open); F(lv_law_key, hi_open);
+    F(lv_law_key, dflt); F(lv_law_key, flags); F(lv_law_key, frames);
+    F(lv_law_key, instead_of); F(lv_law_key, needs); F(lv_law_key, choices);
+    F(lv_law_key, offset); F(lv_law_key, description);
+    S(lv_law_info); F(lv_law_info, name); F(lv_law_info, description); F(lv_law_info, kind);
+    F(lv_law_info, form); F(lv_law_info, needs_aero); F(lv_law_info, n_keys);
+    F(lv_law_info, keys);
     S(lv_err); F(lv_err, code); F(lv_err, msg);
     S(lv_var); F(lv_var, name); F(lv_var, unit); F(lv_var, description); F(lv_var, start);
     F(lv_var, nominal);

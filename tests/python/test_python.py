@@ -1151,3 +1151,55 @@ def test_second_breaker_arguments():
         with pytest.raises(lvsim.LvsimError, match="stale"):
             f()
     assert r.result("us-ascent").stale  # the old rows stay readable, marked
+
+
+# ---- the steering and throttle laws, as the library registers them ---------------------------
+
+def test_laws_come_from_the_library():
+    laws = lvsim.laws()
+    # `lvsim laws` and the package list the same laws, in the same order (both ask lv_laws_get)
+    out = subprocess.run([LVSIM, "laws"], check=True, capture_output=True, text=True).stdout
+    listed = [line.split(":")[0] for line in out.splitlines()
+              if line[:1].isalpha() and ": " in line and not line.startswith("every")]
+    assert listed == list(laws)
+    assert list(lvsim.laws("throttle")) == ["nominal", "landing", "off"]
+    # the gravity turn of docs/guidance.md: rise_time (0 s), kick_deg, kick_time (s), heading_deg
+    gt = laws["gravity_turn"]
+    assert gt.kind == "steering" and gt.form == "named"
+    assert [k.name for k in gt.keys] == ["rise_time", "kick", "kick_time", "heading"]
+    kick = gt.key("kick_deg")
+    assert kick is gt.key("kick") and kick.angle and kick.unit == "rad" and kick.required
+    assert kick.holds(math.pi / 2) and not kick.holds(math.pi / 2 + 1e-12) and not kick.holds(-0.1)
+    assert gt.key("rise_time").default == 0.0 and not gt.key("rise_time").required
+    with pytest.raises(KeyError, match="no key 'pitch'"):
+        gt.key("pitch")
+    att = laws["attitude"]
+    assert att.key("frame").choices == ["aero", "local", "inertial"]
+    assert att.key("frame").default == "local" and att.key("alpha").frames == ["aero"]
+    assert laws["heading"].needs_aero and laws["heading"].key("alpha").instead_of == "alpha_table"
+    assert laws["nominal"].key("q_gain").needs == "q_max"
+    assert laws["off"].form == "word" and laws["off"].keys == []
+    with pytest.raises(ValueError):
+        lvsim.laws("engine")
+    # every guidance and throttle run parameter of the examples is a key of a law, in its unit
+    # and within its range (the parser made the slots from the same tables)
+    common = {k.name: k for k in lvsim.common_keys("steering")}
+    seen = 0
+    for mission in (DEMO, LEO_TARGETED, os.path.join(ROOT, "examples", "kourou-rtls",
+                                                     "mission.yaml")):
+        m = lvsim.Mission(mission)
+        for p in m.parameters:
+            for section, kind in ((".guidance.", "steering"), (".throttle.", "throttle")):
+                if section not in p.name:
+                    continue
+                rest = p.name.split(section, 1)[1].split(".")
+                if len(rest) == 2:  # throttle.landing.altitude: a nested law's key
+                    keys = [laws[rest[0]].key(rest[1])]
+                else:
+                    keys = [k for law in lvsim.laws(kind).values() for k in law.keys
+                            if k.name == rest[0]] + ([common[rest[0]]] if rest[0] in common else [])
+                assert keys, p.name
+                assert any(k.unit == p.unit and k.holds(p.value) for k in keys), p.name
+                seen += 1
+        m.close()
+    assert seen >= 20

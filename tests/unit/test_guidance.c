@@ -132,7 +132,8 @@ static double gt_t(double n, double v0, double b0, double b, double g)
     return C / g * (F - F0);
 }
 
-static void test_gravity_turn(void)
+/* `guidance`: the gravity turn after its kick, or the prograde law: the same attitude */
+static void test_gravity_turn(const char *guidance)
 {
     /* m = 1100 kg, T = n m g0 with n = 2; Isp 1e9 s burns 2e-6 kg/s: T/m constant to 1e-7 */
     const double n = 2.0, v0 = 100.0, b0 = 10.0 * DEG, b1 = 45.0 * DEG;
@@ -144,9 +145,9 @@ static void test_gravity_turn(void)
              "          engines: [{thrust_vac: %.17g, isp_vac: 1.0e9}]}]\n"
              "phases:\n"
              "  - {name: turn, model: dof3, stages: [s], stop_time: 200,\n"
-             "     guidance: {law: gravity_turn, kick_deg: 0, kick_time: 0, heading_deg: 90},\n"
+             "     guidance: %s,\n"
              "     integrator: {tolerance: 1.0e-10}, end: [{fpa_deg: 45}]}\n",
-             v0, n * 1100.0 * G0);
+             v0, n * 1100.0 * G0, guidance);
     lv_mission *m;
     lv_run *r = run_text("gt.yaml", yaml, &m);
     if (r == NULL)
@@ -156,7 +157,7 @@ static void test_gravity_turn(void)
      * rad, which moves the 45 deg point by dv/db x/R = 1000 m/s/rad x 8e-7 (1.5e-6 of v):
      * together below 1e-5 */
     const double v_ref = gt_v(n, v0, b0, b1), t_ref = gt_t(n, v0, b0, b1, G0);
-    printf("gravity turn to 45 deg: v %.6f m/s (closed form %.6f), t %.6f s (%.6f)\n",
+    printf("%s to 45 deg: v %.6f m/s (closed form %.6f), t %.6f s (%.6f)\n", guidance,
            final(r, 0, "v_rel"), v_ref, lv_run_result(r, 0)->t_end, t_ref);
     CHECK_REL(final(r, 0, "v_rel"), v_ref, 1e-5);
     CHECK_REL(lv_run_result(r, 0)->t_end, t_ref, 1e-5);
@@ -676,7 +677,8 @@ static void test_target_outputs(void)
 
 int main(void)
 {
-    test_gravity_turn();
+    test_gravity_turn("{law: gravity_turn, kick_deg: 0, kick_time: 0, heading_deg: 90}");
+    test_gravity_turn("{law: prograde}");
     test_linear_tangent();
     test_throttle_limits();
     test_landing();

@@ -1,0 +1,23 @@
+/* guid_retrograde.c - steering law `retrograde`: body x against the air-relative velocity
+ * (alpha = 180 deg, beta = mu = 0): entry and landing burns (docs/guidance.md).
+ */
+#include "dynamics/guid_kit.h"
+
+static int attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_kin *k,
+                    const lv_flight_air *a, double fpa0, double chi0, int full,
+                    lv_flight_controls *c, lv_flight_axes *ax, lv_err *err)
+{
+    (void)g, (void)t, (void)full, (void)err;
+    static const double back[3] = {LV_PI, 0.0, 0.0};
+    lv_guid_aero_angles(rt, k, a, back, fpa0, chi0, c, ax);
+    return 0;
+}
+
+const lv_law lv_law_retrograde = {
+    .name = "retrograde",
+    .description = "body x against the air-relative velocity (alpha = 180 deg, beta = mu = "
+                   "0): entry and landing burns",
+    .kind = LV_LAW_STEERING,
+    .form = LV_LAW_FORM_NAMED,
+    .attitude = attitude,
+};
