@@ -29,8 +29,11 @@
  * beside OUTDIR, on the same file system: the replacement is one renameat2 RENAME_EXCHANGE
  * (a reader sees the old complete folder or the new complete one, never a mix, never none),
  * and a run killed at any point leaves OUTDIR as it was plus a staging folder that the next
- * writer removes (and reports: lv_outdir_stale) - only when it is provably lvsim's (empty,
- * marked by lvsim while it fills it, or holding an lvsim manifest).
+ * writer removes (and reports: lv_outdir_stale) - only when it is provably lvsim's (empty, or
+ * marked by lvsim while it fills it or holding an lvsim manifest, and holding nothing but
+ * hard links of OUTDIR's files and the names lvsim writes: docs/result-files.md). With
+ * LV_OUTDIR_FORCE a user's file of a name the command writes (summary.json for a run,
+ * stats.json for a campaign, ...) is refused when the folder is opened, not at the commit.
  *
  * Permissions. A new folder is created with mode 0777 less the umask, as any folder the user
  * makes; a folder replaced keeps its mode (and, where the system allows, its owner and group).

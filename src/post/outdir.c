@@ -14,6 +14,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <fnmatch.h>
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -261,8 +262,63 @@ static int is_staging_name(const char *name)
     return name[0] == '.' && tag != NULL && strlen(tag) == sizeof STAGING_TAG - 1 + 6;
 }
 
+/* The names lvsim writes at the top of a run's results folder (lvsim run, lv_outdir_begin)
+ * and of a campaign's (lvsim mc, lv_outdir_open_live); the folders whose contents are all its
+ * own (plots, the staged viewer, a campaign's kept runs). fnmatch(3) patterns. */
+static const char *const run_names[] = {"summary.json", "index.html", "body_*.csv",
+                                        "phase_*.mat", "phase_*.csv", "mission.czml",
+                                        "mission.kml", "*.oem", NULL};
+static const char *const mc_names[] = {"stats.json", "stats.csv", "ellipses.csv", "outcomes.csv",
+                                       "sensitivity.csv", "footprint.kml", "index.html", NULL};
+static const char *const own_folders[] = {"plots", "viewer", "runs", NULL};
+
+static int matches(const char *const *patterns, const char *name)
+{
+    for (size_t i = 0; patterns[i] != NULL; i++)
+        if (fnmatch(patterns[i], name, 0) == 0)
+            return 1;
+    return 0;
+}
+
+/* 1 when every file under `path` (depth levels at most) is lvsim's to remove: a hard link of
+ * another file (the replica of a results folder: its data stays in OUTDIR), a name lvsim
+ * writes (or one of its temporary files), or anything in one of lvsim's own folders. */
+static int all_removable(const char *path, int depth, int in_own)
+{
+    DIR *d = opendir(path);
+    if (d == NULL || depth > MAX_DEPTH) {
+        if (d != NULL)
+            closedir(d);
+        return 0;
+    }
+    int ok = 1;
+    struct dirent *e;
+    while (ok && (e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        char full[PATH_MAX];
+        struct stat sb;
+        if (snprintf(full, sizeof full, "%s/%s", path, e->d_name) >= (int)sizeof full ||
+            lstat(full, &sb) != 0) {
+            ok = 0;
+            break;
+        }
+        if (S_ISDIR(sb.st_mode))
+            ok = all_removable(full, depth + 1,
+                               in_own || (depth == 0 && matches(own_folders, e->d_name)));
+        else
+            ok = in_own || sb.st_nlink > 1 || strcmp(e->d_name, MARKER) == 0 ||
+                 strcmp(e->d_name, MANIFEST) == 0 || matches(run_names, e->d_name) ||
+                 matches(mc_names, e->d_name) || fnmatch("*.tmp*", e->d_name, 0) == 0;
+    }
+    closedir(d);
+    return ok;
+}
+
 /* A staging folder lvsim may remove: empty, marked as being filled by lvsim, or holding an
- * lvsim manifest (a folder replaced by an exchange, whose removal was cut short). */
+ * lvsim manifest (a folder replaced by an exchange, whose removal was cut short) - and in
+ * the last two cases holding nothing but what lvsim writes there (all_removable: a user's
+ * file put into a folder that looks like lvsim's is never removed with it). */
 static int staging_is_lvsims(const char *path)
 {
     DIR *d = opendir(path);
@@ -277,12 +333,16 @@ static int staging_is_lvsims(const char *path)
         marked |= strcmp(e->d_name, MARKER) == 0;
     }
     closedir(d);
-    if (empty || marked)
+    if (empty)
         return 1;
-    manifest m;
-    const int lv = man_load(path, &m) == 1;
-    man_free(&m);
-    return lv;
+    if (!marked) {
+        manifest m;
+        const int lv = man_load(path, &m) == 1;
+        man_free(&m);
+        if (!lv)
+            return 0;
+    }
+    return all_removable(path, 0, 0);
 }
 
 /* A lock file lvsim left: ".NAME.lock" holding exactly "lvsim <pid>\n" (what take_lock
@@ -1073,6 +1133,10 @@ static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_e
         int reserved = strcmp(e->name, MANIFEST) == 0;
         for (size_t k = 0; k < od->n_live; k++)
             reserved |= strcmp(e->name, od->live[k]) == 0;
+        /* a name the command writes: with force the user's files are kept, and this one it
+         * would have to replace - refused now, not after the whole run */
+        if (strchr(e->name, '/') == NULL && od->mode != MODE_OPEN)
+            reserved |= matches(od->mode == MODE_LIVE ? mc_names : run_names, e->name);
         if (e->owner == FOREIGN && reserved)
             st = lv_fail(err, LV_ERR_INPUT,
                          "'%s/%s' is %s and lvsim must write a file of that name: it is left "

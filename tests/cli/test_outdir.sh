@@ -190,8 +190,9 @@ echo '{"from": "another tool"}' > "$decoy/summary.json"
 before=$(snap "$decoy")
 expect 2 "holds 3 files lvsim did not write \(figures/, summary.json, thesis.tex\)" -- "$lvsim" run "$paper" -o "$decoy" -q
 [ "$before" = "$(snap "$decoy")" ] && ok || fail "a refused run changed the decoy folder"
-# --force, and the run writes a summary.json: refused at the end, the folder as it was
-expect 2 "summary.json' is not lvsim's, and the new results have a file of that name: nothing was replaced" \
+# --force, and a user's summary.json, a name every run writes: refused before the run (not
+# after it, at the commit: issue 22's breaker), the folder as it was
+expect 2 "summary.json' is not lvsim's and lvsim must write a file of that name" \
   -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots --force
 [ "$before" = "$(snap "$decoy")" ] && ok || fail "a refused --force run changed the decoy folder"
 ! ls -a "$work" | grep -q "^\.thesis\." && ok || fail "a refused run left a staging folder or lock"
@@ -205,7 +206,7 @@ verify "$decoy" --status ok --foreign "thesis.tex,figures/f1.pdf"
 grep -qF "$(echo "$before" | grep thesis.tex)" <<<"$(snap "$decoy")" && ok || fail "thesis.tex changed"
 # a file of lvsim's the user changed since is the user's
 echo ' ' >> "$decoy/summary.json"
-expect 2 "summary.json' is lvsim's file changed since it wrote it, and the new results have a file of that name" \
+expect 2 "summary.json' is lvsim's file changed since it wrote it and lvsim must write a file of that name" \
   -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots --force
 expect 2 "summary.json: changed since lvsim wrote it" -- "$lvsim" run "$paper" -o "$decoy" -q --no-plots
 grep -q ' $' "$decoy/summary.json" && ok || fail "the user's change to summary.json was lost"
@@ -228,7 +229,8 @@ expect 2 "is not a results folder of lvsim" -- "$lvsim" export "$decoy/figures"
 mcd="$work/mcdir"
 mkdir -p "$mcd" && echo '{"mine": 1}' > "$mcd/stats.json" && echo "mine" > "$mcd/outcomes.csv"
 expect 2 "holds 2 files lvsim did not write" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --no-stats
-expect 2 "csv' is not lvsim's, and the new results have a file of that name" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --force
+expect 2 "(stats.json|outcomes.csv)' is not lvsim's and lvsim must write a file of that name" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --force
+[ ! -e "$mcd/campaign.db" ] && [ ! -e "$mcd/manifest.json" ] && ok || fail "a refused mc --force ran: $(ls "$mcd")"
 [ "$(cat "$mcd/stats.json")" = '{"mine": 1}' ] && [ "$(cat "$mcd/outcomes.csv")" = mine ] && ok || fail "mc changed the user's files"
 rm "$mcd/stats.json" "$mcd/outcomes.csv"; echo "keep" > "$mcd/readme.txt"
 expect 0 "^kept 1 file lvsim did not write in $mcd/" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --force
@@ -236,6 +238,16 @@ expect 0 "^kept 1 file lvsim did not write in $mcd/" -- "$lvsim" mc "$dof3" -n 4
 verify "$mcd" --foreign readme.txt
 expect 0 "statistics:" -- "$lvsim" mc "$dof3" -n 4 -o "$mcd" --resume
 # ---- the breaker's cases (issue 22) -----------------------------------------------------
+# a stale staging folder is removed only when all it holds is what lvsim writes there: the
+# marker proves the folder, not a user's file put into it
+mkdir -p "$work/.o6.staging-ABCDEF" "$work/.o7.staging-ABCDEF/plots"
+touch "$work/.o6.staging-ABCDEF/.lvsim-staging" "$work/.o7.staging-ABCDEF/.lvsim-staging"
+echo precious > "$work/.o6.staging-ABCDEF/thesis.tex"
+echo '{}' > "$work/.o7.staging-ABCDEF/summary.json"; echo png > "$work/.o7.staging-ABCDEF/plots/a.png"
+"$lvsim" run "$dof3" -o "$work/o6" -q --no-plots --outputs summary > /dev/null 2>&1 && ok || fail "run -o o6"
+[ "$(cat "$work/.o6.staging-ABCDEF/thesis.tex" 2>/dev/null)" = precious ] && ok || fail "a user's file in a marked staging folder was removed"
+expect 0 "removed '.o7.staging-ABCDEF'" -- "$lvsim" run "$dof3" -o "$work/o7" -q --no-plots --outputs summary
+[ ! -e "$work/.o7.staging-ABCDEF" ] && ok || fail "lvsim's own stale staging folder was kept"
 # lock-like files of the user's are the user's, at any depth
 lk="$work/lk"
 "$lvsim" run "$dof3" -o "$lk" -q --no-plots > /dev/null 2>&1 && ok || fail "run into $lk"

@@ -246,14 +246,27 @@ static void test_decoy(void)
     CHECK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err) == LV_ERR_INPUT);
     CHECK(strstr(err.msg, "'" ROOT "/decoy/manifest.json' is not lvsim's") != NULL);
     remove(ROOT "/decoy/manifest.json");
-    /* force, and the results have a summary.json: refused at commit, nothing changed */
+    /* force, and a user's summary.json, a name every run writes: refused before the work,
+     * not at the commit after it (issue 22's breaker), nothing changed */
+    CHECK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err) == LV_ERR_INPUT && a == NULL);
+    CHECK(strstr(err.msg, "'" ROOT "/decoy/summary.json' is not lvsim's and lvsim must write a "
+                          "file of that name") != NULL);
+    after = snapshot(dec);
+    CHECK(after != NULL && strcmp(before, after) == 0);
+    free(after);
+    remove(ROOT "/decoy/summary.json");
+    put(ROOT "/decoy/notes.txt", "mine");
+    free(before);
+    before = snapshot(dec);
+    /* force, and the results have a file of the user's name after all: refused at commit,
+     * nothing changed */
     CHECK_OK(lv_outdir_begin(dec, NULL, LV_OUTDIR_FORCE, &a, &err), &err);
     char path[4200];
-    snprintf(path, sizeof path, "%s/summary.json", lv_outdir_path(a));
+    snprintf(path, sizeof path, "%s/notes.txt", lv_outdir_path(a));
     put(path, "{\"lvsim\": 1}");
     const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
     CHECK(lv_outdir_commit(a, &ok, &err) == LV_ERR_INPUT);
-    CHECK(strstr(err.msg, "'" ROOT "/decoy/summary.json' is not lvsim's, and the new results "
+    CHECK(strstr(err.msg, "'" ROOT "/decoy/notes.txt' is not lvsim's, and the new results "
                           "have a file of that name: nothing was replaced") != NULL);
     lv_outdir_free(a);
     after = snapshot(dec);
@@ -417,17 +430,29 @@ static void test_live(void)
     put(ROOT "/mine2/campaign.db", "not lvsim's");
     CHECK(lv_outdir_open_live(ROOT "/mine2", NULL, LV_OUTDIR_FORCE, live, &a, &err) == LV_ERR_INPUT);
     CHECK(strstr(err.msg, "campaign.db' is not lvsim's") != NULL);
+    /* a user's stats.json, a name a campaign writes: refused before the campaign runs, also
+     * with force (issue 22's breaker: the whole campaign ran, then the commit refused) */
     put(ROOT "/mine2/stats.json", "mine");
     remove(ROOT "/mine2/campaign.db");
     CHECK(lv_outdir_open_live(ROOT "/mine2", NULL, 0, live, &a, &err) == LV_ERR_INPUT);
+    CHECK(lv_outdir_open_live(ROOT "/mine2", NULL, LV_OUTDIR_FORCE, live, &a, &err) ==
+          LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "mine2/stats.json' is not lvsim's and lvsim must write a file of that "
+                          "name") != NULL);
+    char *kept = slurp(ROOT "/mine2/stats.json");
+    CHECK(kept != NULL && strcmp(kept, "mine") == 0 && !exists(ROOT "/mine2/manifest.json"));
+    free(kept);
+    /* a user's file of another name, then a result of that name after all: the commit
+     * refuses, the user's file stays */
+    rename(ROOT "/mine2/stats.json", ROOT "/mine2/notes.csv");
     CHECK_OK(lv_outdir_open_live(ROOT "/mine2", NULL, LV_OUTDIR_FORCE, live, &a, &err), &err);
     CHECK_OK(lv_outdir_stage(a, &err), &err);
-    snprintf(path, sizeof path, "%s/stats.json", lv_outdir_path(a));
+    snprintf(path, sizeof path, "%s/notes.csv", lv_outdir_path(a));
     remove(path);
     put(path, "{}");
     CHECK(lv_outdir_commit(a, &ok, &err) == LV_ERR_INPUT); /* would replace the user's */
     lv_outdir_free(a);
-    char *kept = slurp(ROOT "/mine2/stats.json");
+    kept = slurp(ROOT "/mine2/notes.csv");
     CHECK(kept != NULL && strcmp(kept, "mine") == 0);
     free(kept);
 }
