@@ -101,7 +101,7 @@ static int check_grid_rows(const lv_model_def *m, const lv_sim_settings *s, doub
     char r[32], l[32];
     snprintf(r, sizeof r, rows < 1e7 ? "%.0f" : "%.3g", rows);
     snprintf(l, sizeof l, max_rows < 1e7 ? "%.0f" : "%.3g", max_rows);
-    fprintf(stderr, "lvsim: model '%s' would write %s rows (%.3g s%s) - more than the limit of "
+    fprintf(stderr, "lvsim: model '%s' would write %s rows (%.6g s%s) - more than the limit of "
             "%s rows, and nothing but --stop ends it; give a larger --interval, fewer "
             "--intervals or an earlier --stop, or raise the limit with --max-rows\n", m->name, r,
             span, s->output_interval > 0.0 ? " at the --interval" : "", l);
@@ -272,8 +272,21 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
     lv_sim_report rep;
     lv_err err;
     lv_status st = lv_simulate(m, NULL, &s, finals, &rep, &err);
-    if (st != LV_OK)
+    if (st != LV_OK) {
+        /* the settings' names are Dymola's (initialNames[k]): the option that gave them */
+        char opt[32];
+        int k = -1;
+        if (sscanf(err.msg, "initialNames[%d]:", &k) == 1 && k >= 0 && (size_t)k < s.n_initial) {
+            snprintf(opt, sizeof opt, "initialNames[%d]", k);
+            restage(err.msg, sizeof err.msg, opt, "--set");
+        }
         fprintf(stderr, "lvsim: %s\n", err.msg);
+    }
+    if (exit_code_for(st) == EXIT_INPUT && rep.stats.output_rows == 0 && !json) { /* refused */
+        lv_sim_report_clear(&rep);
+        rc = EXIT_INPUT;
+        goto out;
+    }
     if (json)
         rc = print_json(report_json(m, &s, st, &err, &rep, finals));
     else

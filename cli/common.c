@@ -62,6 +62,9 @@ const char *option_value(int argc, char **argv, int *i)
 
 int parse_double(const char *s, double *out)
 {
+    /* a decimal number as written: not strtod's hexadecimal ("0x10" is 16) or leading space */
+    if (s[strspn(s, "0123456789+-.eE")] != '\0')
+        return 0;
     char *end;
     errno = 0;
     double v = strtod(s, &end);
@@ -242,7 +245,7 @@ int check_output_bound_as(const lv_mission *m, double max_rows, double output_in
             char lim[32];
             fmt_rows(max_rows, lim, sizeof lim);
             fprintf(stderr, "lvsim: %s%sphase %zu '%s' could write up to %s rows by its stop "
-                    "time (%.3g s of mission time) - more than the limit of %s rows per phase; "
+                    "time (%.6g s of mission time) - more than the limit of %s rows per phase; "
                     "its end events may come earlier, but nothing holds the limit as it runs "
                     "there. Give it a larger output interval or an earlier stop_time, or allow "
                     "it with --max-rows\n", context ? context : "", context ? ": " : "", k + 1,

@@ -325,7 +325,8 @@ lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
         if ((st = lv_pk_num(c, v, what, skeys[k], sval[k])) != LV_OK)
             return st;
         if (fabs(*sval[k]) > (k == 0 ? 90.0 : 360.0))
-            return lv_pk_fail(c, v, "%s: %s = %g is out of range", what, skeys[k], *sval[k]);
+            return lv_pk_fail(c, v, "%s: %s = %g is out of range [%g, %g] deg", what, skeys[k],
+                              *sval[k], k == 0 ? -90.0 : -360.0, k == 0 ? 90.0 : 360.0);
         *sval[k] *= LV_DEG;
     }
     const char *pkeys[] = { "planet", "gravity" };

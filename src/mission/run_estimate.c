@@ -189,7 +189,7 @@ static lv_status refuse(const lv_run *r, size_t k, const lv_run_options *opt, co
                        time_end ? "stop_time or time end" : "stop_time", also, raise);
     }
     return lv_fail(err, LV_ERR_INPUT,
-                   "phase %zu '%s' would write up to %s rows (%.3g s of mission time%s; "
+                   "phase %zu '%s' would write up to %s rows (%.6g s of mission time%s; "
                    "%zu columns: %s of .mat, %s of .csv, and as much memory) - more than "
                    "the limit of %s rows per phase, and nothing but its %s ends it%s. Give "
                    "it a larger output interval, an earlier stop_time or an end event%s",

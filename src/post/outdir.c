@@ -265,11 +265,12 @@ static int is_staging_name(const char *name)
 /* The names lvsim writes at the top of a run's results folder (lvsim run, lv_outdir_begin)
  * and of a campaign's (lvsim mc, lv_outdir_open_live); the folders whose contents are all its
  * own (plots, the staged viewer, a campaign's kept runs). fnmatch(3) patterns. */
-static const char *const run_names[] = {"summary.json", "index.html", "body_*.csv",
-                                        "phase_*.mat", "phase_*.csv", "mission.czml",
-                                        "mission.kml", "*.oem", NULL};
+static const char *const run_names[] = {"summary.json", "index.html", "key_figures.json",
+                                        "body_*.csv", "phase_*.mat", "phase_*.csv",
+                                        "mission.czml", "mission.kml", "*.oem", NULL};
 static const char *const mc_names[] = {"stats.json", "stats.csv", "ellipses.csv", "outcomes.csv",
-                                       "sensitivity.csv", "footprint.kml", "index.html", NULL};
+                                       "sensitivity.csv", "footprint.kml", "index.html",
+                                       "campaign.db", "campaign.db-journal", NULL};
 static const char *const own_folders[] = {"plots", "viewer", "runs", NULL};
 
 static int matches(const char *const *patterns, const char *name)

@@ -57,6 +57,13 @@ expect 0 "result: $work/ff.mat, $work/ff.csv" -- "$lvsim" simulate free_fall --s
 expect 0 '"ok":[[:space:]]*true' -- "$lvsim" simulate oscillator --json --format none --final x
 expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
+# numbers as written: strtod's hexadecimal ("0x10" = 16) and leading blanks are refused
+expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop 0x10 --format none
+expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop " 1" --format none
+# a refused --set names the option, not Dymola's initialNames[k], and prints no report
+out=$("$lvsim" simulate free_fall --set h=-1 --format none 2>&1); rc=$?
+[ "$rc" -eq 2 ] && grep -q "h = -1 m is below its lower bound 0 m" <<<"$out" && ! grep -q "initialNames\|steps" <<<"$out" \
+  && pass=$((pass + 1)) || { echo "FAIL: simulate --set h=-1: exit $rc: $out"; fails=$((fails + 1)); }
 expect 2 "--method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got .rk45." -- "$lvsim" simulate oscillator --method rk45 --format none
 expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator --stop -1 --format none
 expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
