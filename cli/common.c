@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -308,10 +309,26 @@ int check_output_bound(const lv_mission *m, double max_rows, double output_inter
 
 volatile int cli_stop_flag = 0; /* the one piece of process state: a handler sets a flag */
 
+/* What a command that has not stopped CLI_STOP_GRACE_S seconds after the signal does: ends
+ * now, as a second Ctrl-C would (async-signal-safe: write and _exit only). */
+static void on_stop_overdue(int sig)
+{
+    (void)sig;
+    static const char msg[] = "\nlvsim: not stopped within " CLI_STOP_GRACE_TEXT " s of the "
+                              "signal: ended now (what it was writing is left unfinished, "
+                              "never in place of a finished result)\n";
+    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+    _exit(EXIT_STOPPED);
+}
+
 static void on_stop_signal(int sig)
 {
     (void)sig;
     cli_stop_flag = 1;
+    /* the flag is read between integrator steps; a library call that never returns to them
+     * (SUNDIALS stuck on an absurd scale: issue 22's breaker) must not keep the process */
+    alarm(CLI_STOP_GRACE_S);
 }
 
 void cli_catch_stop(void)
@@ -323,4 +340,9 @@ void cli_catch_stop(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    struct sigaction od;
+    memset(&od, 0, sizeof od);
+    od.sa_handler = on_stop_overdue;
+    sigemptyset(&od.sa_mask);
+    sigaction(SIGALRM, &od, NULL);
 }

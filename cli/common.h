@@ -93,6 +93,10 @@ void print_kept(const lv_outdir *od);
  * the handler is reset by that first signal (SA_RESETHAND), so a second one ends the process
  * as usual. */
 void cli_catch_stop(void);
+/* A command still running this long after the first signal ends at once with EXIT_STOPPED
+ * (SIGALRM; what it was writing is left as a temporary or staging file, as after kill -9). */
+#define CLI_STOP_GRACE_S 5
+#define CLI_STOP_GRACE_TEXT "5"
 extern volatile int cli_stop_flag;
 
 #endif

@@ -89,6 +89,18 @@ if [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 1.0) }' && grep -q "c
 else
   echo "FAIL: simulate interrupted: exit $rc after $dt s (want 130 within 1 s)"; cat "$work/ffint.out"; fails=$((fails + 1))
 fi
+# a command stuck where it cannot see the signal (SUNDIALS on an absurd scale: issue 22's
+# breaker, F2) still ends within the 5 s grace of the first SIGINT, exit 130
+"$lvsim" simulate free_fall --format none --stop 1e300 --set h=1e300 > "$work/ffstuck.out" 2>&1 &
+pid=$!
+sleep 0.3
+t0=$(date +%s.%N); kill -INT $pid; wait $pid; rc=$?
+dt=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+if [ "$rc" -eq 130 ] && awk -v d="$dt" 'BEGIN { exit !(d < 7.0) }'; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: a stuck simulate: exit $rc after $dt s (want 130 within the 5 s grace)"; cat "$work/ffstuck.out"; fails=$((fails + 1))
+fi
 # US Standard Atmosphere 1976: sea level 288.15 K, 101325 Pa, 1.2250 kg/m3, 340.294 m/s
 expect 0 "^0 288.15 101325 1.22499[0-9]* 340.294" -- "$lvsim" atmosphere 0
 expect 0 "^# us76: altitude \[m\]" -- "$lvsim" atmosphere 0 1000
