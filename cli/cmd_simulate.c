@@ -72,7 +72,21 @@ static void print_report(const lv_model_def *m, const lv_sim_settings *s, lv_sta
 static int check_result_stem(const char *path)
 {
     const size_t n = strlen(path);
+    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    const char *dot = strrchr(base, '.');
     struct stat sb;
+    if (strcmp(base, ".") == 0 || strcmp(base, "..") == 0 ||
+        (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))) {
+        fprintf(stderr, "lvsim: -o '%s' is a folder: give a file path without extension in it "
+                "(e.g. '%s%sdsres': PATH.mat and PATH.csv are written)\n", path, path,
+                n > 0 && path[n - 1] == '/' ? "" : "/");
+        return EXIT_INPUT;
+    }
+    if (dot != NULL && (strcmp(dot, ".mat") == 0 || strcmp(dot, ".csv") == 0)) {
+        fprintf(stderr, "lvsim: -o '%s': give the path without its extension ('%.*s'): "
+                "PATH.mat and PATH.csv are written\n", path, (int)(dot - path), path);
+        return EXIT_INPUT;
+    }
     if (n == 0 || path[n - 1] == '/') {
         fprintf(stderr, "lvsim: -o '%s': give a file path without extension (PATH.mat and "
                 "PATH.csv are written), or --format none to write nothing\n", path);

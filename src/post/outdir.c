@@ -787,6 +787,13 @@ static lv_status set_names(lv_outdir *od, const char *outdir, lv_err *err)
                        outdir, strcmp(path, "/") == 0 ? "" : path);
     if (strlen(base) > NAME_MAX - 20)
         return lv_fail(err, LV_ERR_INPUT, "results folder name '%s' is too long", base);
+    /* its staging folder's files (phase_<k>_<name>.failed.mat.tmp..., plots/, viewer/...)
+     * must fit PATH_MAX too: refused now, not as a phase failing at its first row */
+    enum { ROOM = 300 };
+    if (n > PATH_MAX - ROOM)
+        return lv_fail(err, LV_ERR_INPUT,
+                       "results folder path of %zu bytes is too long: lvsim needs room for the "
+                       "names of its files under it (at most %d bytes)", n, PATH_MAX - ROOM);
     snprintf(od->final, sizeof od->final, "%s", path);
     snprintf(od->base, sizeof od->base, "%.*s", (int)(sizeof od->base - 1), base); /* fits */
     if (slash == NULL)

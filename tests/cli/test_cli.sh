@@ -73,6 +73,11 @@ expect 3 "model 'oscillator': at t = .* too much work" -- "$lvsim" simulate osci
 # disk was full, -o "" and -o /dev/null were taken): a model without events is refused beyond
 # --max-rows before it runs, one with events stopped there with its files marked failed
 expect 2 "give a file path without extension" -- "$lvsim" simulate free_fall -o ""
+# -o names a stem: a folder or a name with the extension is refused, not turned into
+# "..mat" or "x.mat.mat" (issue 22's breaker)
+expect 2 "'\.' is a folder: give a file path without extension in it" -- "$lvsim" simulate free_fall -o .
+expect 2 "give the path without its extension \('$work/x'\)" -- "$lvsim" simulate free_fall -o "$work/x.mat"
+[ ! -e "$work/x.mat.mat" ] && [ ! -e ..mat ] && pass=$((pass + 1)) || { echo "FAIL: simulate wrote x.mat.mat or ..mat"; fails=$((fails + 1)); }
 expect 2 "'/dev/null' is a device, pipe or socket" -- "$lvsim" simulate free_fall -o /dev/null
 [ ! -e /dev/null.mat ] && pass=$((pass + 1)) || { echo "FAIL: simulate wrote /dev/null.mat"; fails=$((fails + 1)); }
 expect 2 "model 'oscillator' would write 1e\+10 rows \(10 s at the --interval\) - more than the limit of 1000000 rows" -- "$lvsim" simulate oscillator --interval 1e-9 --stop 10

@@ -362,5 +362,11 @@ done
 fm="$work/fm"; mkdir -p "$fm"; echo '{"not": "lvsim"}' > "$fm/manifest.json"
 out=$("$lvsim" run "$dof3" -o "$fm" -q --no-plots 2>&1); rc=$?
 [ "$rc" -eq 2 ] && ! grep -q -- "--force" <<<"$out" && ok || fail "foreign manifest.json: exit $rc: $out"
+# a path that leaves no room for the files' names is refused up front (exit 2), not as a
+# phase failing at its first row (exit 3: issue 22's breaker)
+deep="$work/deep"; seg=$(printf 'd%.0s' $(seq 200))
+for _ in $(seq 19); do deep="$deep/$seg"; done
+mkdir -p "$deep"
+expect 2 "results folder path of [0-9]+ bytes is too long" -- "$lvsim" run "$dof3" -o "$deep/out" -q --no-plots
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
