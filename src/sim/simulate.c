@@ -610,7 +610,12 @@ struct lv_sim {
  * of its first output interval; a function that then lies on its event's side (below 0 for a
  * falling event, above for a rising one, either for both) fires at the start, in the same
  * order and with the same handling as any event. Returns 0, or -1 when the model cannot be
- * evaluated there (then nothing fires: the run's first step reports the failure). */
+ * evaluated there (then nothing fires: the run's first step reports the failure). A function
+ * within TINY_G of 0 that the probe step takes across 0 fires at the start the same way. */
+/* An event function this close to 0 at the start is taken as on its surface when the probe
+ * step crosses it (CVODE resolves no root closer to t0 than ~100 ulp of the step). */
+#define TINY_G 1e-100
+
 static int probe_start_roots(lv_sim *S)
 {
     sim_run *r = &S->r;
@@ -628,7 +633,7 @@ static int probe_start_roots(lv_sim *S)
            *xt = k4 + nx, *x1 = xt + nx;
     int rc = sim_g(t0, r->x, g0, r), any = 0;
     for (size_t i = 0; rc == 0 && i < ng; i++)
-        any |= g0[i] == 0.0;
+        any |= g0[i] == 0.0 || fabs(g0[i]) < TINY_G;
     if (rc == 0 && any) {
         const lv_model_def *d = r->def;
         rc = d->rhs(t0, r->x, r->p, k1, r->inst);
@@ -647,7 +652,11 @@ static int probe_start_roots(lv_sim *S)
         for (size_t i = 0; rc == 0 && i < ng; i++) {
             const int dir = g1[i] < 0.0 ? -1 : g1[i] > 0.0 ? 1 : 0;
             const int want = r->g_dir[i];
-            r->roots[i] = g0[i] == 0.0 && dir != 0 && (want == 0 || want == dir) ? dir : 0;
+            /* 0 at the start, or so close to it that the crossing lies within the probe
+             * step, where the integrator's root check cannot resolve it from t0 (a free
+             * fall from h = 1e-300 m: issue 22's breaker) */
+            const int at_start = g0[i] == 0.0 || (fabs(g0[i]) < TINY_G && g0[i] * dir < 0.0);
+            r->roots[i] = at_start && dir != 0 && (want == 0 || want == dir) ? dir : 0;
             S->start_roots |= r->roots[i] != 0;
         }
     }
