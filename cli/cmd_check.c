@@ -20,7 +20,7 @@ static int check_run(const cli_cmd *self, int argc, char **argv)
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
             if (!parse_count(v, &max_rows))
-                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = 1;
         } else if (is_option(a)) {

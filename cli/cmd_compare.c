@@ -91,7 +91,7 @@ static int compare_run(const cli_cmd *self, int argc, char **argv)
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
             if (!parse_count(v, &max_rows))
-                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
         } else if (strcmp(a, "--method") == 0 || strcmp(a, "--tolerance") == 0 ||
                    strcmp(a, "--interval") == 0) {
             const char *v = option_value(argc, argv, &i);

@@ -34,7 +34,7 @@ static int fmu_run(const cli_cmd *self, int argc, char **argv)
             }
             *slot = v;
             if (slot == &rows && !parse_count(v, &max_rows))
-                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (path != NULL) {

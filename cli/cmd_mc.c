@@ -179,8 +179,9 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
             if (v == NULL)
                 return usage_error(self, "missing value for option", a);
             if (strcmp(a, "-n") == 0) {
-                if (!parse_u64(v, &n) || n == 0)
-                    return usage_error(self, "-n needs a run count >= 1, got", v);
+                double c; /* 10000 or 1e4, as --max-rows */
+                if (parse_u64(v, &n) ? n == 0 : !(parse_count(v, &c) && (n = (uint64_t)c) > 0))
+                    return usage_error(self, "-n needs a whole run count >= 1, got", v);
             } else if (strcmp(a, "-j") == 0 || strcmp(a, "--threads") == 0) {
                 if (!parse_int(v, &threads) || threads < 1 || threads > 256)
                     return usage_error(self, "-j needs a thread count 1..256, got", v);
@@ -203,7 +204,7 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
                     return EXIT_INPUT;
             } else if (strcmp(a, "--max-rows") == 0) {
                 if (!parse_count(v, &max_rows))
-                    return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                    return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
             } else {
                 outdir = v;
             }

@@ -216,7 +216,7 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
                     return usage_error(self, "--threads needs a count from 1 to 16 (the most "
                                              "a run uses), got", v);
             } else if (!parse_count(v, &max_rows)) {
-                return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
             }
         } else if (strcmp(a, "--json") == 0) {
             json = 1;

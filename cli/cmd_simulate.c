@@ -3,6 +3,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -204,13 +205,19 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
             }
         } else if (strcmp(a, "--max-rows") == 0) {
             if (!parse_count(val, &max_rows)) {
-                rc = usage_error(self, "--max-rows needs a whole number >= 1, got", val);
+                rc = usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", val);
                 goto out;
             }
         } else if (strcmp(a, "--max-steps") == 0) {
             int n;
-            if (!parse_int(val, &n) || n == 0) {
-                fprintf(stderr, "lvsim: --max-steps: '%s' is not a positive count\n", val);
+            double c; /* 100000 or 1e5, as --max-rows */
+            if (!parse_int(val, &n) && parse_count(val, &c) && c <= INT_MAX)
+                n = (int)c;
+            else if (!parse_int(val, &n))
+                n = 0;
+            if (n <= 0) {
+                fprintf(stderr, "lvsim: --max-steps: '%s' is not a whole count from 1 to %d\n",
+                        val, INT_MAX);
                 rc = EXIT_INPUT;
                 goto out;
             }

@@ -244,7 +244,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
                     set.differences = (lv_target_diff)k;
             } else if (strcmp(a, "--max-rows") == 0) {
                 if (!parse_count(v, &max_rows))
-                    return usage_error(self, "--max-rows needs a whole number >= 1, got", v);
+                    return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
             } else {
                 /* counts as the file's keys take them: an integer, also written 1e3 */
                 const int r = strcmp(a, "--restarts") == 0, mi = strcmp(a, "--max-iter") == 0;

@@ -57,6 +57,10 @@ expect 0 "result: $work/ff.mat, $work/ff.csv" -- "$lvsim" simulate free_fall --s
 expect 0 '"ok":[[:space:]]*true' -- "$lvsim" simulate oscillator --json --format none --final x
 expect 2 "did you mean 'thrust'" -- "$lvsim" simulate vertical_ascent --set thrus=1 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
+# counts as --max-rows takes them: 1e1 runs, 1e9 steps (issue 22's breaker)
+expect 0 "ok at t = 1 s" -- "$lvsim" simulate free_fall --max-steps 1e9 --format none
+expect 2 "--max-steps: '3e9' is not a whole count from 1 to 2147483647" -- "$lvsim" simulate free_fall --max-steps 3e9 --format none
+expect 2 "-n needs a whole run count >= 1, got '1.5'" -- "$lvsim" mc "$(dirname "$0")/../../examples/dof3-branch/mission.yaml" -n 1.5 -o "$work/mcn"
 # numbers as written: strtod's hexadecimal ("0x10" = 16) and leading blanks are refused
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop 0x10 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop " 1" --format none
@@ -217,7 +221,7 @@ expect 2 "phase 1 'P1' would write up to 281 rows" -- "$lvsim" run "$mission" -o
 cp -R "$src/examples/paper-test-case" "$work/huge"
 sed -i 's/output_interval: 0.5/output_interval: 1.0e-7/' "$work/huge/mission.yaml"
 expect 2 "phase 1 'P1' would write up to 1.4e\\+09 rows .*370 GB of .mat, 1.02 TB of .csv.*--max-rows 3.21e\\+09\\)" -- "$lvsim" check "$work/huge/mission.yaml"
-expect 2 "--max-rows needs a whole number >= 1, got '1.5'" -- "$lvsim" check "$mission" --max-rows 1.5
+expect 2 "--max-rows needs a whole number from 1 to 1e15, got '1.5'" -- "$lvsim" check "$mission" --max-rows 1.5
 # a generous stop_time with end: [burnout] (issue 22): the stop time bounds nothing worth
 # refusing, the end comes first; check and run accept it (dof3-branch's ascent burns out at
 # 137.9 s whatever its stop time), the table says the limit holds as it runs
@@ -609,10 +613,10 @@ expect 2 "scale.yaml:12:61: targeting: variable 'start_fpa_deg': scale 1e-09 is 
 # (7) every numeric option held to its range, refused (not replaced) naming the option
 expect 2 "^lvsim: --threads needs a count from 1 to 16 \(the most a run uses\), got '17'$" -- "$lvsim" run "$mission" -o "$work/thr" --threads 17
 [ ! -e "$work/thr" ] && pass=$((pass + 1)) || { echo "FAIL: a refused run wrote $work/thr"; fails=$((fails + 1)); }
-expect 2 "^lvsim: --max-rows needs a whole number >= 1, got '0'$" -- "$lvsim" check "$mission" --max-rows 0
+expect 2 "^lvsim: --max-rows needs a whole number from 1 to 1e15, got '0'$" -- "$lvsim" check "$mission" --max-rows 0
 expect 2 "^lvsim: -j needs a thread count 1..256, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" -j 0
 expect 2 "^lvsim: --restarts needs an integer from 0 to 100, got '-1'$" -- "$lvsim" target "$work/shot.yaml" --restarts -1
-expect 2 "^lvsim: --max-steps: '0' is not a positive count$" -- "$lvsim" simulate free_fall --max-steps 0 --format none
+expect 2 "^lvsim: --max-steps: '0' is not a whole count from 1 to 2147483647$" -- "$lvsim" simulate free_fall --max-steps 0 --format none
 expect 2 "outside the valid range" -- "$lvsim" atmosphere -6000
 expect 2 "latitude 91 deg must be within \[-90, 90\]" -- "$lvsim" gravity 91 0 0
 expect 2 "longitude 400 deg within \[-360, 360\]" -- "$lvsim" gravity 0 400 0
