@@ -207,8 +207,15 @@ static int view_run(const cli_cmd *self, int argc, char **argv)
     if (dir == NULL)
         return usage_error(self, "view needs a results folder (lvsim run -o OUTDIR)", NULL);
     if (!file_exists(dir, "summary.json")) {
-        fprintf(stderr, "lvsim view: %s/summary.json not found: run a mission first "
-                        "(lvsim run MISSION.yaml -o %s)\n", dir, dir);
+        /* suggest the run only where it would be accepted: a new folder (not '.', a system
+         * folder or a campaign's, which lvsim run refuses) */
+        if (file_exists(dir, "stats.json"))
+            fprintf(stderr, "lvsim view: '%s' is a Monte Carlo campaign's folder: its report is "
+                            "%s/index.html; the 3D view shows one run's results folder "
+                            "(lvsim run MISSION.yaml -o DIR)\n", dir, dir);
+        else
+            fprintf(stderr, "lvsim view: '%s' is not a results folder (no summary.json): "
+                            "give the folder of a run (lvsim run MISSION.yaml -o DIR)\n", dir);
         return EXIT_INPUT;
     }
     lv_err err;

@@ -61,6 +61,8 @@ expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop abc
 expect 0 "ok at t = 1 s" -- "$lvsim" simulate free_fall --max-steps 1e9 --format none
 expect 2 "--max-steps: '3e9' is not a whole count from 1 to 2147483647" -- "$lvsim" simulate free_fall --max-steps 3e9 --format none
 expect 2 "-n needs a whole run count >= 1, got '1.5'" -- "$lvsim" mc "$(dirname "$0")/../../examples/dof3-branch/mission.yaml" -n 1.5 -o "$work/mcn"
+# view of a folder that is no run's names what it is, suggesting no command lvsim refuses
+expect 2 "'/etc' is not a results folder \(no summary.json\): give the folder of a run" -- "$lvsim" view /etc
 # numbers as written: strtod's hexadecimal ("0x10" = 16) and leading blanks are refused
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop 0x10 --format none
 expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop " 1" --format none
