@@ -88,6 +88,7 @@ const cli_cmd cli_cmd_export = {
     "line); the folder is then left as it was.\n"
     "\n"
     "options:\n"
-    "  --format F              czml, kml, oem, comma-separated (default: all three)\n",
+    "  --format F              exports, comma-separated (lvsim formats exports: czml,\n"
+    "                          kml, oem; default: all)\n",
     export_run,
 };

@@ -248,7 +248,7 @@ fi
 # take no arguments, answers --help, -h and `lvsim help CMD` with exit 0 and its own usage line,
 # on stdout; `lvsim help` lists every command with its one-line summary.
 mission="$src/examples/paper-test-case/mission.yaml"
-commands="models vars laws simulate run check params compare export plot view atmosphere gravity help version"
+commands="models vars laws simulate run check params compare export formats plot view atmosphere gravity help version"
 for c in $commands; do
   expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" --help
   expect 0 "^usage: lvsim $c( |\$)" -- "$lvsim" "$c" -h
@@ -274,13 +274,17 @@ expect 2 "unknown command 'plto'; did you mean 'plot'\?" -- "$lvsim" plto
 expect 2 "unknown command 'param'; did you mean 'params'\?" -- "$lvsim" param
 expect 2 "did you mean 'atmosphere'" -- "$lvsim" atmo
 # an unknown option is named, with the command's help to see
-for c in models vars laws run check params compare export plot view atmosphere gravity version; do
+for c in models vars laws run check params compare export formats plot view atmosphere gravity version; do
   expect 2 "unknown option '--bogus'" -- "$lvsim" "$c" --bogus
   expect 2 "^\(see 'lvsim help $c'\)" -- "$lvsim" "$c" --bogus
 done
 expect 2 "^\(see 'lvsim help simulate'\)" -- "$lvsim" simulate oscillator --bogus
 expect 2 "unexpected argument 'extra'" -- "$lvsim" run "$mission" extra
 expect 2 "models takes no arguments; got 'extra'" -- "$lvsim" models extra
+# lvsim formats: the registered result formats and exports (one table each in the libraries)
+expect 0 "^  csv +\.csv +CSV" -- "$lvsim" formats results
+expect 0 "^  oem +<stage>\.oem +CCSDS OEM" -- "$lvsim" formats
+expect 2 "expected 'results' or 'exports', got 'pdf'" -- "$lvsim" formats pdf
 
 # lvsim params: the run parameters, with their values and lines in the mission file; angles
 # in rad (start_fpa_deg: 90 -> pi/2); per-phase defaults the file does not write.
