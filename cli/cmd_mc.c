@@ -2,9 +2,11 @@
  * the mission loaded once, its runs on a thread pool (or across MPI ranks under mpirun), a
  * progress bar, the SQLite database, then statistics, figures, the report and KML.
  */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* dladdr */
 
+#include <dlfcn.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -397,14 +399,66 @@ const cli_cmd cli_cmd_mc = {
     run_mc,
 };
 
-#ifndef LV_WITH_MPI
-int mc_mpi_world_size(void) { return 1; }
-int mc_mpi_env_rank(void) { return 0; }
+int mc_mpi_world_size(void)
+{
+    const char *v = getenv("OMPI_COMM_WORLD_SIZE");
+    if (v == NULL)
+        v = getenv("PMI_SIZE");
+    return v != NULL && atoi(v) > 1 ? atoi(v) : 1;
+}
+
+int mc_mpi_env_rank(void)
+{
+    const char *v = getenv("OMPI_COMM_WORLD_RANK");
+    if (v == NULL)
+        v = getenv("PMI_RANK");
+    return v != NULL ? atoi(v) : 0;
+}
+
+static lv_status mc_fail(lv_err *err, lv_status code, const char *what, const char *why)
+{
+    if (err != NULL) {
+        err->code = code;
+        snprintf(err->msg, sizeof err->msg, "%s%s", what, why);
+    }
+    return code;
+}
 
 lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
                      int *rank0, lv_err *err)
 {
-    *rank0 = 1;
-    return lv_campaign_run(m, o, out, err);
-}
+    if (mc_mpi_world_size() == 1) {
+        *rank0 = 1;
+        return lv_campaign_run(m, o, out, err);
+    }
+    *rank0 = mc_mpi_env_rank() == 0;
+#ifndef LV_WITH_MPI
+    return mc_fail(err, LV_ERR_INPUT,
+                   "started by mpirun, but this lvsim was built without MPI (the build found no "
+                   "MPI library: install libopenmpi-dev and rebuild)", "");
+#else
+    /* the module beside liblvsim_post: <libdir>/lvsim/lvsim_mpi.so (as its figures' module) */
+    Dl_info info;
+    char lib[PATH_MAX], path[PATH_MAX + 32];
+    void *anchor;
+    lv_status (*in_post)(const lv_mission *, const lv_campaign_options *,
+                         lv_campaign_progress *, lv_err *) = lv_campaign_run;
+    memcpy(&anchor, &in_post, sizeof anchor); /* an address inside liblvsim_post */
+    if (dladdr(anchor, &info) == 0 || info.dli_fname == NULL ||
+        realpath(info.dli_fname, lib) == NULL)
+        return mc_fail(err, LV_ERR_IO,
+                       "cannot tell where liblvsim_post is, so not where lvsim_mpi.so is", "");
+    char *slash = strrchr(lib, '/');
+    if (slash != NULL)
+        *slash = '\0';
+    snprintf(path, sizeof path, "%s/lvsim/lvsim_mpi.so", lib);
+    /* RTLD_GLOBAL: Open MPI's components, loaded by MPI_Init, resolve symbols of libmpi */
+    void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
+    void *sym = h != NULL ? dlsym(h, "lv_mc_mpi_run") : NULL;
+    if (sym == NULL)
+        return mc_fail(err, LV_ERR_IO, "cannot load the MPI module: ", dlerror());
+    lv_mc_mpi_run_fn fn;
+    memcpy(&fn, &sym, sizeof fn); /* POSIX: the pointer dlsym returns names the function */
+    return fn(m, o, out, rank0, err);
 #endif
+}

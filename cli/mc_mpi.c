@@ -1,5 +1,6 @@
 /* mc_mpi.c - `mpirun -np K lvsim mc ...`: one campaign across K ranks (built only when MPI
- * is found; OpenMPI from Debian). Rank 0 opens the database and owns the list of runs still
+ * is found; OpenMPI from Debian), as the module lvsim_mpi.so that `lvsim mc` loads only when
+ * mpirun started it (cmd_mc.c): the MPI libraries are not loaded by any other command. Rank 0 opens the database and owns the list of runs still
  * to do; every rank, rank 0 included, asks for a chunk of run indices when it is ready for
  * more (dynamic load balancing; one request kept ahead, so a rank never waits for work), runs
  * it on its threads and sends the records back; rank 0 stores them (lv_campaign_store), so the
@@ -67,22 +68,6 @@ enum { TAG_REQ = 1, TAG_WORK = 2, TAG_RECS = 3, TAG_STOP = 4, TAG_STOPREQ = 5 };
 static int stop_up(const lv_campaign_options *o)
 {
     return o->stop != NULL && __atomic_load_n(o->stop, __ATOMIC_RELAXED) != 0;
-}
-
-int mc_mpi_world_size(void)
-{
-    const char *v = getenv("OMPI_COMM_WORLD_SIZE");
-    if (v == NULL)
-        v = getenv("PMI_SIZE");
-    return v != NULL && atoi(v) > 1 ? atoi(v) : 1;
-}
-
-int mc_mpi_env_rank(void)
-{
-    const char *v = getenv("OMPI_COMM_WORLD_RANK");
-    if (v == NULL)
-        v = getenv("PMI_RANK");
-    return v != NULL ? atoi(v) : 0;
 }
 
 static void nap(long ns)
@@ -558,8 +543,9 @@ static lv_status worker_rank(lv_mc_worker **w, int threads, const lv_campaign_op
     return st;
 }
 
-lv_status mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
-                     int *is_rank0, lv_err *err)
+__attribute__((visibility("default"))) lv_status
+lv_mc_mpi_run(const lv_mission *m, const lv_campaign_options *o, lv_campaign_progress *out,
+              int *is_rank0, lv_err *err)
 {
     int provided = 0, rank = 0, world = 1;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);

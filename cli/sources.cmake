@@ -26,9 +26,20 @@ set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRE
 target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m)
 lv_set_warnings(lvsim_cli)
 # `mpirun -np K lvsim mc`: only when MPI is found (cmake/lv_deps.cmake); the plain build needs
-# none. Without it cmd_mc.c runs every campaign on threads.
+# none. The MPI side (cli/mc_mpi.c) is the module lvsim_mpi.so, beside the figures' module,
+# which cmd_mc.c loads only when mpirun started the process: no other command loads Open MPI
+# (its libraries were a seventh of every lvsim start, issue 24). Without it cmd_mc.c runs
+# every campaign on threads.
 if(MPI_C_FOUND)
-  target_sources(lvsim_cli PRIVATE cli/mc_mpi.c)
+  include(GNUInstallDirs)
+  add_library(lvsim_mpi MODULE cli/mc_mpi.c)
+  set_target_properties(lvsim_mpi PROPERTIES PREFIX "" OUTPUT_NAME lvsim_mpi
+    C_VISIBILITY_PRESET hidden LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/lvsim)
+  target_include_directories(lvsim_mpi PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_SOURCE_DIR}/cli)
+  target_link_libraries(lvsim_mpi PRIVATE lvsim_post lvsim MPI::MPI_C Threads::Threads)
+  target_link_options(lvsim_mpi PRIVATE ${LV_NO_UNDEFINED})
+  lv_set_warnings(lvsim_mpi)
   target_compile_definitions(lvsim_cli PRIVATE LV_WITH_MPI)
-  target_link_libraries(lvsim_cli PRIVATE MPI::MPI_C)
+  add_dependencies(lvsim_cli lvsim_mpi)
 endif()
+target_link_libraries(lvsim_cli PRIVATE ${CMAKE_DL_LIBS})

@@ -18,6 +18,8 @@ pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/
 pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip) # src/fmi only: the FMU archive
+# SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
+pkg_check_modules(SQLITE3 REQUIRED IMPORTED_TARGET sqlite3)
 # ERFA (Debian: liberfa-dev; the IAU SOFA algorithms): UTC with its leap seconds, the mission
 # epoch (src/core/utc.c, in liblvsim and in liblvsim_post's helpers).
 pkg_check_modules(ERFA REQUIRED IMPORTED_TARGET erfa)
@@ -29,40 +31,52 @@ find_path(LV_FASTFLOAT_INCLUDE fast_float/fast_float.h REQUIRED)
 add_library(lv_fastfloat INTERFACE)
 target_include_directories(lv_fastfloat INTERFACE ${LV_FASTFLOAT_INCLUDE})
 
+# lv_soname(VAR LIB HINTS): the SONAME of the shared library LIB found (objdump -p), for the
+# libraries lvsim loads with dlopen() the first time it needs them (src/io/dl_lib.h).
+function(lv_soname var lib hints)
+  set(so "lib${lib}.so")
+  find_library(LV_${var}_LIB NAMES ${lib} HINTS ${hints})
+  if(LV_${var}_LIB AND CMAKE_OBJDUMP)
+    execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_${var}_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
+    if(_lv_od MATCHES "SONAME +([^ \n]+)")
+      set(so "${CMAKE_MATCH_1}")
+    endif()
+  endif()
+  message(STATUS "lib${lib}, loaded at run time: ${so}")
+  set(${var} "${so}" PARENT_SCOPE)
+endfunction()
+
 # libmatio is not linked but loaded when a MAT file is first read or written (src/io/matio_dl.c:
 # its HDF5 build brings ~40 libraries that cost ~5 ms at every start). Its header is used; its
 # SONAME, read from the library found, is what matio_dl.c opens.
-set(LV_MATIO_SONAME "libmatio.so")
-find_library(LV_MATIO_LIB NAMES matio HINTS ${MATIO_LIBRARY_DIRS})
-if(LV_MATIO_LIB AND CMAKE_OBJDUMP)
-  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_MATIO_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
-  if(_lv_od MATCHES "SONAME +([^ \n]+)")
-    set(LV_MATIO_SONAME "${CMAKE_MATCH_1}")
-  endif()
-endif()
-message(STATUS "libmatio, loaded at run time: ${LV_MATIO_SONAME}")
+lv_soname(LV_MATIO_SONAME matio "${MATIO_LIBRARY_DIRS}")
 add_library(lv_matio_headers INTERFACE)
 target_include_directories(lv_matio_headers INTERFACE ${MATIO_INCLUDE_DIRS})
 target_compile_definitions(lv_matio_headers INTERFACE LV_MATIO_SONAME="${LV_MATIO_SONAME}")
 # HDF5 the same way (src/io/hdf5_dl.c): only a MAT v7.3 variable libmatio cannot classify needs
 # it. Its headers are used; the SONAME of the library found is what hdf5_dl.c opens.
-set(LV_HDF5_SONAME "libhdf5_serial.so")
 find_library(LV_HDF5_LIB NAMES hdf5_serial hdf5 HINTS ${HDF5_LIBRARY_DIRS})
-if(LV_HDF5_LIB AND CMAKE_OBJDUMP)
-  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${LV_HDF5_LIB} OUTPUT_VARIABLE _lv_od ERROR_QUIET)
-  if(_lv_od MATCHES "SONAME +([^ \n]+)")
-    set(LV_HDF5_SONAME "${CMAKE_MATCH_1}")
-  endif()
-endif()
-message(STATUS "HDF5, loaded at run time: ${LV_HDF5_SONAME}")
+get_filename_component(_lv_hdf5_name "${LV_HDF5_LIB}" NAME_WE)
+string(REGEX REPLACE "^lib" "" _lv_hdf5_name "${_lv_hdf5_name}")
+lv_soname(LV_HDF5_SONAME "${_lv_hdf5_name}" "${HDF5_LIBRARY_DIRS}")
 target_include_directories(lv_matio_headers INTERFACE ${HDF5_INCLUDE_DIRS})
 target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_SONAME}")
+# The libraries only some commands need, loaded on first use the same way (issue 24: together
+# about half of the instructions `lvsim --version` spent loading): NLopt (src/target/nlopt_dl.c,
+# an optimiser), SQLite (src/campaign/sqlite_dl.c, a campaign), libzip (src/fmi/zip_dl.c, an
+# FMU archive; it brings OpenSSL's libcrypto). Their headers are used, never their libraries.
+lv_soname(LV_NLOPT_SONAME nlopt "${NLOPT_LIBRARY_DIRS}")
+lv_soname(LV_SQLITE3_SONAME sqlite3 "${SQLITE3_LIBRARY_DIRS}")
+lv_soname(LV_ZIP_SONAME zip "${LIBZIP_LIBRARY_DIRS}")
+add_library(lv_dl_headers INTERFACE)
+target_include_directories(lv_dl_headers INTERFACE ${NLOPT_INCLUDE_DIRS} ${SQLITE3_INCLUDE_DIRS}
+  ${LIBZIP_INCLUDE_DIRS})
+target_compile_definitions(lv_dl_headers INTERFACE LV_NLOPT_SONAME="${LV_NLOPT_SONAME}"
+  LV_SQLITE3_SONAME="${LV_SQLITE3_SONAME}" LV_ZIP_SONAME="${LV_ZIP_SONAME}")
 
 # Random123 (Debian: librandom123-dev, header-only): the Philox4x32-10 counter-based generator
 # of the dispersions (src/mission/dispersion.c).
 find_path(RANDOM123_INCLUDE_DIR Random123/philox.h REQUIRED)
-# SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
-pkg_check_modules(SQLITE3 REQUIRED IMPORTED_TARGET sqlite3)
 # OpenMPI (Debian: libopenmpi-dev, openmpi-bin), optional: `mpirun -np K lvsim mc` when found.
 option(LV_WITH_MPI "Build lvsim mc with MPI when an MPI library is found" ON)
 if(LV_WITH_MPI)
@@ -74,14 +88,14 @@ add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers PkgConfig::YAML PkgConfig::NLOPT PkgConfig::ERFA Threads::Threads
+  lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
   dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE PkgConfig::SQLITE3
-  PkgConfig::LIBZIP PkgConfig::ERFA
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE lv_dl_headers
+  PkgConfig::ERFA
   Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)

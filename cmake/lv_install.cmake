@@ -88,6 +88,10 @@ endif()
 if(TARGET lvsim_fmu)
   install(TARGETS lvsim_fmu LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/lvsim)
 endif()
+# The MPI side of `lvsim mc`, where cmd_mc.c looks for it: <libdir>/lvsim/lvsim_mpi.so.
+if(TARGET lvsim_mpi)
+  install(TARGETS lvsim_mpi LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/lvsim)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lvsim DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
 

@@ -968,7 +968,11 @@ class Run:
             if outdir is not None:
                 post = _lib.post()
                 od = c_void_p()
-                _check(post.lv_outdir_begin(outdir, path_arg(m.path), 0, byref(od), byref(err)), err)
+                st = post.lv_outdir_begin(outdir, path_arg(m.path), 0, byref(od), byref(err))
+                # the CLI's --force has no counterpart here: a user's files are never replaced
+                err.msg = err.msg.replace(b", or add --force to replace lvsim's files and keep "
+                                          b"these", b"")
+                _check(st, err)
                 stage = post.lv_outdir_path(od)
                 keep.append(stage)
                 opt.outdir = stage

@@ -4,6 +4,7 @@
 list(APPEND LV_POST_SOURCES
   src/campaign/campaign.c
   src/campaign/store.c
+  src/campaign/sqlite_dl.c
   src/campaign/stats.c
   src/campaign/mc_geom.c
   src/campaign/plot.c)

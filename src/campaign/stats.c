@@ -17,6 +17,7 @@
 
 #include <sqlite3.h>
 
+#include "campaign/sqlite_dl.h"
 #include "campaign/mc_data.h"
 #include "core/status.h"
 #include "io/atomic.h"
@@ -124,7 +125,7 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     if (sqlite3_open_v2(db_path, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
         st = lv_fail(err, LV_ERR_IO, "%s: cannot open: %s", db_path,
-                     db ? sqlite3_errmsg(db) : "?");
+                     db ? sqlite3_errmsg(db) : lv_sqlite_error() ? lv_sqlite_error() : "?");
         goto fail;
     }
     char v[4096];

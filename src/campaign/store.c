@@ -14,6 +14,7 @@
 
 #include <sqlite3.h>
 
+#include "campaign/sqlite_dl.h"
 #include "campaign/campaign_int.h"
 #include "core/status.h"
 #include "lvsim/lv_dispersion.h"
@@ -49,7 +50,9 @@ static double now_s(void)
 static lv_status db_fail(lv_campaign *c, lv_err *err, const char *what)
 {
     return lv_fail(err, LV_ERR_IO, "%s: %s: %s", c->o.db_path, what,
-                   c->db ? sqlite3_errmsg(c->db) : "cannot open");
+                   c->db                  ? sqlite3_errmsg(c->db)
+                   : lv_sqlite_error() ? lv_sqlite_error()
+                                       : "cannot open");
 }
 
 static lv_status exec(lv_campaign *c, const char *sql, lv_err *err)

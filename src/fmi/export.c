@@ -23,6 +23,7 @@
 
 #include "core/status.h"
 #include "fmi/fmu_phase.h"
+#include "fmi/zip_dl.h"
 #include "lvsim/lv_fmu.h"
 #include "lvsim/lvsim.h"
 
@@ -693,6 +694,12 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     }
 
     int zerr = 0;
+    const char *no_zip = lv_zip_error(); /* loaded now, the first time it is needed */
+    if (no_zip != NULL) {
+        st = lv_fail(err, LV_ERR_IO, "cannot write '%s': libzip cannot be loaded: %s", fmu_path,
+                     no_zip);
+        goto out;
+    }
     if ((za = zip_open(tmp, ZIP_CREATE | ZIP_TRUNCATE, &zerr)) == NULL) {
         zip_error_t ze;
         zip_error_init_with_code(&ze, zerr);

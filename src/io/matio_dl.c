@@ -5,27 +5,22 @@
  * links them: most of what `lvsim check` or a run that writes no .mat file cost. liblvsim
  * therefore does not link libmatio: the MAT functions lvsim calls (result_mat.c, table_load.c)
  * are defined here, with matio's own signatures (matio.h), and forward to the library, which
- * is opened with dlopen() once per process (pthread_once) the first time one of them is
- * called. The table of entry points is computed once and read-only after; a process that
- * never touches a MAT file never loads libmatio. When the library cannot be loaded each call
- * fails as matio itself reports failure (NULL, -1), and lv_matio_error() says why.
- * Adding a matio function lvsim uses: one line in MATIO_FUNCS. Not exported. */
+ * is opened with dlopen() the first time one of them is called (io/dl_lib.h). When the
+ * library cannot be loaded each call fails as matio itself reports failure (NULL, -1), and
+ * lv_matio_error() says why. Adding a matio function lvsim uses: one line in MATIO_FUNCS. */
 #define _GNU_SOURCE
 
-#include <dlfcn.h>
 #include <matio.h>
-#include <pthread.h>
-#include <stdio.h>
-#include <string.h>
 
+#include "io/dl_lib.h"
 #include "io/matio_dl.h"
 
 #ifndef LV_MATIO_SONAME
 #define LV_MATIO_SONAME "libmatio.so.11" /* set by cmake/lv_deps.cmake from the library found */
 #endif
 
-/* X(return type, name, parameters, arguments, value on failure) */
-#define MATIO_FUNCS(X)                                                                        \
+/* X(return type, name, parameters, arguments, value on failure); V(name, ...) for void */
+#define MATIO_FUNCS(X, V)                                                                     \
     X(mat_t *, Mat_CreateVer, (const char *a, const char *b, enum mat_ft c), (a, b, c), NULL) \
     X(int, Mat_Close, (mat_t *a), (a), -1)                                                    \
     X(mat_t *, Mat_Open, (const char *a, int b), (a, b), NULL)                                \
@@ -36,60 +31,14 @@
       (a, b, c, d, e, f, g), NULL)                                                            \
     X(matvar_t *, Mat_VarRead, (mat_t *a, const char *b), (a, b), NULL)                       \
     X(matvar_t *, Mat_VarReadNextInfo, (mat_t *a), (a), NULL)                                 \
-    X(int, Mat_VarWrite, (mat_t *a, matvar_t *b, enum matio_compression c), (a, b, c), -1) \
+    X(int, Mat_VarWrite, (mat_t *a, matvar_t *b, enum matio_compression c), (a, b, c), -1)   \
     X(enum mat_ft, Mat_GetVersion, (mat_t *a), (a), MAT_FT_UNDEFINED)                         \
     X(unsigned, Mat_VarGetNumberOfFields, (matvar_t *a), (a), 0)                              \
     X(char *const *, Mat_VarGetStructFieldnames, (const matvar_t *a), (a), NULL)              \
     X(matvar_t *, Mat_VarGetStructFieldByIndex, (matvar_t *a, size_t b, size_t c), (a, b, c), \
-      NULL)
+      NULL)                                                                                   \
+    V(Mat_VarFree, (matvar_t * a), (a))
 
-#define FIELD(ret, name, params, args, fail) ret(*name) params;
-static struct {
-    MATIO_FUNCS(FIELD)
-    void (*Mat_VarFree)(matvar_t *);
-} fn;
-static pthread_once_t once = PTHREAD_ONCE_INIT;
-static int loaded;    /* written once, in load() */
-static char why[256]; /* written once, in load(): why the library could not be loaded */
+LV_DL_LIBRARY(LV_MATIO_SONAME, MATIO_FUNCS)
 
-static void load(void)
-{
-    void *h = dlopen(LV_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
-    if (h == NULL) {
-        snprintf(why, sizeof why, "%s", dlerror());
-        return;
-    }
-    int ok = 1;
-#define RESOLVE(ret, name, params, args, fail)                                               \
-    {                                                                                         \
-        void *sym = dlsym(h, #name);                                                          \
-        ok &= sym != NULL;                                                                    \
-        memcpy(&fn.name, &sym, sizeof sym); /* POSIX: dlsym's pointer names the function */ \
-    }
-    MATIO_FUNCS(RESOLVE)
-    RESOLVE(void, Mat_VarFree, (matvar_t * a), (a), )
-    if (!ok)
-        snprintf(why, sizeof why, "%s lacks a function lvsim needs", LV_MATIO_SONAME);
-    loaded = ok;
-}
-
-#define FORWARD(ret, name, params, args, fail)                                                \
-    ret name params                                                                           \
-    {                                                                                         \
-        pthread_once(&once, load);                                                            \
-        return loaded ? fn.name args : fail;                                                  \
-    }
-MATIO_FUNCS(FORWARD)
-
-void Mat_VarFree(matvar_t *v)
-{
-    pthread_once(&once, load);
-    if (loaded)
-        fn.Mat_VarFree(v);
-}
-
-const char *lv_matio_error(void)
-{
-    pthread_once(&once, load);
-    return loaded ? NULL : why;
-}
+const char *lv_matio_error(void) { return dl_error(); }

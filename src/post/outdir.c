@@ -1076,6 +1076,15 @@ static lv_status set_mission(lv_outdir *od, const char *mission_file, lv_err *er
 
 /* OUTDIR's state before writing: *exists; refuses a file, a folder with files lvsim did not
  * write (unless LV_OUTDIR_FORCE), and names lvsim must write that belong to the user. */
+/* 1 when `name` is in the list as a file lvsim did not write */
+static int foreign_named(const od_list *l, const char *name)
+{
+    for (size_t i = 0; i < l->n; i++)
+        if (l->e[i].owner == FOREIGN && strcmp(l->e[i].name, name) == 0)
+            return 1;
+    return 0;
+}
+
 static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_err *err)
 {
     struct stat sb;
@@ -1144,9 +1153,20 @@ static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_e
         st = lv_fail(err, LV_ERR_INPUT,
                      "'%s' holds %zu file%s lvsim did not write (%s): lvsim replaces only what "
                      "its manifest.json lists, so the folder is left alone; name a new or empty "
-                     "folder, an earlier results folder, or add --force (Python: force=True) to "
-                     "replace lvsim's files and keep these",
-                     od->final, n_foreign, n_foreign == 1 ? "" : "s", names);
+                     "folder, an earlier results folder%s",
+                     od->final, n_foreign, n_foreign == 1 ? "" : "s", names,
+                     foreign_named(&l, MANIFEST) ? "" /* --force would refuse it too */
+                                                 : ", or add --force to replace lvsim's files "
+                                                   "and keep these");
+    /* export, plot, view read lvsim's files: one changed since lvsim wrote it would make
+     * figures or exports that the manifest then vouches for */
+    for (size_t i = 0; st == LV_OK && od->mode == MODE_OPEN && i < l.n; i++)
+        if (l.e[i].owner == FOREIGN && strcmp(l.e[i].reason, "not written by lvsim") != 0)
+            st = lv_fail(err, LV_ERR_INPUT,
+                         "'%s/%s' changed since lvsim wrote it (its size or SHA-256 differs "
+                         "from manifest.json), and what lvsim adds to the folder is made from "
+                         "its files: put lvsim's file back, or run the mission again",
+                         od->final, l.e[i].name);
     for (size_t i = 0; st == LV_OK && i < l.n; i++) {
         const od_entry *e = &l.e[i];
         int reserved = strcmp(e->name, MANIFEST) == 0;

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "target/nlopt_dl.h"
 #include "core/status.h"
 #include "target/target_int.h"
 
@@ -263,7 +264,9 @@ lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_i
     c.opt = nlopt_create(alg == LV_TARGET_SLSQP ? NLOPT_LD_SLSQP : NLOPT_LN_COBYLA,
                          (unsigned)n);
     if (c.opt == NULL) {
-        st = lv_fail(err, LV_ERR_NOMEM, "out of memory (nlopt_create)");
+        const char *why = lv_nlopt_error();
+        st = why != NULL ? lv_fail(err, LV_ERR_IO, "NLopt cannot be loaded: %s", why)
+                         : lv_fail(err, LV_ERR_NOMEM, "out of memory (nlopt_create)");
         goto done;
     }
     nlopt_set_lower_bounds(c.opt, lo);

@@ -5,4 +5,5 @@ list(APPEND LV_SOURCES
   src/target/target.c
   src/target/newton.c
   src/target/optimize.c
+  src/target/nlopt_dl.c
   src/target/write.c)

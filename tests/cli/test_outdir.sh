@@ -346,5 +346,21 @@ chmod 0750 "$work/mode077"
 (umask 077; "$lvsim" run "$dof3" -o "$work/mode077" -q --no-plots > /dev/null 2>&1)
 [ "$(stat -c %a "$work/mode077")" = 750 ] && ok || fail "a rerun changed the folder's mode to $(stat -c %a "$work/mode077")"
 
+# a file lvsim wrote and the user changed since (same size, newer): export, plot and view
+# read lvsim's files, so they refuse rather than make - and vouch for - exports from it
+# (issue 22's breaker, F4: export dropped it from the manifest and used it, exit 0)
+chg="$work/chg"
+"$lvsim" run "$dof3" -o "$chg" -q --no-plots > /dev/null 2>&1 && ok || fail "run into $chg"
+body=$(ls "$chg"/body_*.csv | head -1)
+sed -i '3s/[0-9]/7/' "$body"; touch "$body"
+before=$(snap "$chg")
+for c in export plot; do
+  expect 2 "$(basename "$body")' changed since lvsim wrote it" -- "$lvsim" $c "$chg"
+done
+[ "$before" = "$(snap "$chg")" ] && ok || fail "a refused export changed $chg"
+# a foreign manifest.json: --force would refuse it too, so it is not suggested
+fm="$work/fm"; mkdir -p "$fm"; echo '{"not": "lvsim"}' > "$fm/manifest.json"
+out=$("$lvsim" run "$dof3" -o "$fm" -q --no-plots 2>&1); rc=$?
+[ "$rc" -eq 2 ] && ! grep -q -- "--force" <<<"$out" && ok || fail "foreign manifest.json: exit $rc: $out"
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]

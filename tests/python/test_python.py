@@ -992,8 +992,9 @@ def test_outdir_never_mixes_two_runs(tmp_path):
     foreign = tmp_path / "mine"
     foreign.mkdir()
     (foreign / "thesis.tex").write_text("keep me")
-    with pytest.raises(lvsim.LvsimError, match="mine"):
+    with pytest.raises(lvsim.LvsimError, match="mine") as refused:
         r.execute(outdir=foreign)
+    assert "--force" not in str(refused.value)  # the CLI's option, none here
     assert _files(foreign) == ["thesis.tex"]
     # an exception in progress: the folder is left as it was
     before = (out / "phase_3_p3.csv").read_bytes()

@@ -7,6 +7,9 @@ add_test(NAME test_formats_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_for
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
          $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post> $<TARGET_FILE:lvsim_plot>)
+# The libraries only some commands need are loaded by those commands alone (src/io/dl_lib.h).
+add_test(NAME test_lazy_libs COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_lazy_libs.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 # Run-atomic results folders: manifest checked by tests/python/check_manifest.py, path errors,
 # the lock, concurrent runs, kill -9 at random points, SIGTERM (about 20 s).
 add_test(NAME test_outdir COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_outdir.sh
