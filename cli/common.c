@@ -161,28 +161,24 @@ int parse_tolerance_option(const cli_cmd *cmd, const char *opt, const char *v, d
 
 unsigned name_list_add(name_list *l, const char *name)
 {
-    if (l->n >= NAME_LIST_MAX) /* not reached: 32 flags of an unsigned */
+    if (l->n >= NAME_LIST_MAX) /* not reached: 31 flags */
         return 0u;
     l->names[l->n] = name;
     return 1u << l->n++;
 }
 
-unsigned name_list_add_results(name_list *l)
+void name_list_add_results(name_list *l)
 {
-    const unsigned first = l->n < NAME_LIST_MAX ? 1u << l->n : 0u;
     const char *name;
     for (size_t i = 0; (name = lv_result_format_info(i, NULL, NULL)) != NULL; i++)
         name_list_add(l, name);
-    return first;
 }
 
-unsigned name_list_add_exports(name_list *l)
+void name_list_add_exports(name_list *l)
 {
-    const unsigned first = l->n < NAME_LIST_MAX ? 1u << l->n : 0u;
     const char *name;
     for (size_t i = 0; (name = lv_export_format_info(i, NULL, NULL)) != NULL; i++)
         name_list_add(l, name);
-    return first;
 }
 
 void name_list_join(const name_list *l, size_t first, size_t n, char *buf, size_t cap)

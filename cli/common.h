@@ -49,15 +49,15 @@ int parse_count(const char *s, double *out);
 
 /* Format lists (`simulate --format`, `run --outputs`, `export --format`): the one parser.
  * The words a list may hold, in flag order (names[i] is bit i), from the library's tables. */
-#define NAME_LIST_MAX 32
+#define NAME_LIST_MAX 31 /* bits of an unsigned, 1u << n still defined */
 typedef struct name_list {
     const char *names[NAME_LIST_MAX];
     size_t n;
 } name_list;
 /* Appends the result formats (lv_result_format_info: "mat", "csv") or the exports
- * (lv_export_format_info: "czml", "kml", "oem") to *l; returns the bit of the first added. */
-unsigned name_list_add_results(name_list *l);
-unsigned name_list_add_exports(name_list *l);
+ * (lv_export_format_info: "czml", "kml", "oem") to *l, in their tables' order. */
+void name_list_add_results(name_list *l);
+void name_list_add_exports(name_list *l);
 /* Appends one word; returns its bit. */
 unsigned name_list_add(name_list *l, const char *name);
 /* "a, b and c" of names [first, first + n) of *l into buf. */
