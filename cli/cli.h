@@ -35,6 +35,7 @@ extern const cli_cmd cli_cmd_target;
 extern const cli_cmd cli_cmd_params;
 extern const cli_cmd cli_cmd_compare;
 extern const cli_cmd cli_cmd_export;
+extern const cli_cmd cli_cmd_formats;
 extern const cli_cmd cli_cmd_plot;
 extern const cli_cmd cli_cmd_view;
 extern const cli_cmd cli_cmd_atmosphere;

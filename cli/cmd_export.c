@@ -17,12 +17,10 @@ static int export_run(const cli_cmd *self, int argc, char **argv)
             const char *f = option_value(argc, argv, &i);
             if (f == NULL)
                 return usage_error(self, "missing value for option", a);
-            if (strstr(f, "czml")) formats |= LV_EXPORT_CZML;
-            if (strstr(f, "kml")) formats |= LV_EXPORT_KML;
-            if (strstr(f, "oem")) formats |= LV_EXPORT_OEM;
-            if (formats == 0)
-                return usage_error(self, "--format takes czml, kml, oem (comma-separated), got",
-                                   f);
+            name_list exports = {{0}, 0};
+            name_list_add_exports(&exports);
+            if (!parse_name_list(self, a, "export", &exports, 0, f, &formats))
+                return EXIT_INPUT;
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (dir != NULL) {
@@ -90,6 +88,7 @@ const cli_cmd cli_cmd_export = {
     "line); the folder is then left as it was.\n"
     "\n"
     "options:\n"
-    "  --format F              czml, kml, oem, comma-separated (default: all three)\n",
+    "  --format F              exports, comma-separated (lvsim formats exports: czml,\n"
+    "                          kml, oem; default: all)\n",
     export_run,
 };

@@ -4,7 +4,9 @@
  * is replaced as a whole at the end, failed runs included (marked in manifest.json and
  * summary.json), so it never mixes two runs. Progress on stderr (progress.h).
  */
+#include <ctype.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -138,9 +140,13 @@ static void print_results(const lv_outdir *od)
         if (!has_prefix(f[i].name, "phase_") && !has_prefix(f[i].name, "body_") &&
             strchr(f[i].name, '/') == NULL)
             printf(", %s", f[i].name);
-    if (n_phase > 0)
-        printf(", %zu phase files (phase_<k>_<name>.mat, .csv%s)", n_phase,
-               n_failed ? "; *.failed.* for failed phases" : "");
+    if (n_phase > 0) { /* "phase_<k>_<name>.mat, .csv": the result formats' extensions */
+        printf(", %zu phase files (phase_<k>_<name>", n_phase);
+        const char *ext;
+        for (size_t i = 0; lv_result_format_info(i, &ext, NULL) != NULL; i++)
+            printf("%s%s", i ? ", " : "", ext);
+        printf("%s)", n_failed ? "; *.failed.* for failed phases" : "");
+    }
     if (n_body > 0)
         printf(", %zu body trajectories (body_<stage>.csv)", n_body);
     if (n_plots > 0)
@@ -150,320 +156,394 @@ static void print_results(const lv_outdir *od)
     printf("\n");
 }
 
-/* What `run` writes (--outputs): the phase files, the summary and bodies, the exports. */
-enum {
-    OUT_MAT = 1u, OUT_CSV = 2u, OUT_BODY = 4u, OUT_SUMMARY = 8u,
-    OUT_CZML = 16u, OUT_KML = 32u, OUT_OEM = 64u,
-    OUT_ALL = 127u
-};
-static const struct {
-    const char *name;
-    unsigned flag;
-} out_names[] = {{"mat", OUT_MAT},         {"csv", OUT_CSV},   {"body", OUT_BODY},
-                 {"summary", OUT_SUMMARY}, {"czml", OUT_CZML}, {"kml", OUT_KML},
-                 {"oem", OUT_OEM}};
+/* What `run` writes (--outputs): its words are the result formats (each phase's files, from
+ * lv_result_format_info), "body", "summary" and the exports (lv_export_format_info), in this
+ * order; word i is bit i of run_args.outputs. The result formats come first, so their bits
+ * are the library's LV_RESULT_* flags. */
+typedef struct run_outputs {
+    name_list words;
+    size_t n_results;    /* words [0, n_results): the result formats */
+    unsigned body, summary;
+    size_t first_export; /* words [first_export, words.n): the exports */
+    unsigned results, exports; /* the masks of both ranges */
+    unsigned csv;        /* the bit of "csv" (the plots read it); 0 if not registered */
+} run_outputs;
 
-/* "mat,csv,summary" -> flags; "none" -> 0. Returns 0 and names the bad word in *bad. */
-static int parse_outputs(const char *list, unsigned *out, char *bad, size_t cap)
+static void outputs_init(run_outputs *o)
 {
-    *out = 0;
-    if (strcmp(list, "none") == 0)
-        return 1;
-    const char *p = list;
-    while (1) {
-        const char *comma = strchr(p, ',');
-        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        unsigned f = 0;
-        for (size_t i = 0; i < sizeof out_names / sizeof out_names[0]; i++)
-            if (strlen(out_names[i].name) == len && strncmp(out_names[i].name, p, len) == 0)
-                f = out_names[i].flag;
-        if (f == 0) {
-            snprintf(bad, cap, "%.*s", (int)len, p);
-            return 0;
+    memset(o, 0, sizeof *o);
+    name_list_add_results(&o->words);
+    o->n_results = o->words.n;
+    o->results = (1u << o->n_results) - 1u;
+    o->body = name_list_add(&o->words, "body");
+    o->summary = name_list_add(&o->words, "summary");
+    o->first_export = o->words.n;
+    name_list_add_exports(&o->words);
+    o->exports = ((1u << o->words.n) - 1u) & ~((1u << o->first_export) - 1u);
+    for (size_t i = 0; i < o->n_results; i++)
+        if (strcmp(o->words.names[i], "csv") == 0)
+            o->csv = 1u << i;
+}
+
+/* The command line of `run`. */
+typedef struct run_args {
+    const char *path, *outdir;
+    int json, threads, plots, quiet, force;
+    double max_rows;
+    unsigned outputs; /* bits of run_outputs.words */
+} run_args;
+
+/* Everything one `lvsim run` holds; run_close frees it. */
+typedef struct run_job {
+    run_args a;
+    run_outputs o;
+    lv_mission *m;
+    lv_outdir *od;     /* NULL with --outputs none: nothing is written, not even OUTDIR */
+    const char *stage; /* od's staging folder, where the run and post-processing write */
+    lv_run *run;
+    run_ui ui;
+    lv_err err;        /* why the run failed */
+    lv_status run_st;
+    int interrupted;   /* Ctrl-C or SIGTERM during the run */
+    const char *notes[8]; /* the manifest's notes */
+    size_t n_notes;
+    char note_buf[5][LV_ERR_MSG_MAX + 32];
+    lv_status post_st; /* the first post-processing failure */
+    char post_msg[3][LV_ERR_MSG_MAX];
+    size_t n_post;
+    lv_export_report xr;
+} run_job;
+
+/* Reads the options into j->a. Returns EXIT_OK or a usage error's exit code. */
+static int parse_args(const cli_cmd *self, int argc, char **argv, run_job *j)
+{
+    run_args *a = &j->a;
+    *a = (run_args){NULL, "lvsim-out", 0, 2, 1, 0, 0, CLI_DEFAULT_MAX_ROWS,
+                    (1u << j->o.words.n) - 1u};
+    for (int i = 0; i < argc; i++) {
+        const char *arg = argv[i];
+        if (strcmp(arg, "-o") == 0 || strcmp(arg, "--threads") == 0 ||
+            strcmp(arg, "--max-rows") == 0 || strcmp(arg, "--outputs") == 0) {
+            const char *v = option_value(argc, argv, &i);
+            if (v == NULL)
+                return usage_error(self, "missing value for option", arg);
+            if (strcmp(arg, "--outputs") == 0) {
+                if (!parse_name_list(self, arg, "output", &j->o.words, 1, v, &a->outputs))
+                    return EXIT_INPUT;
+            } else if (arg[1] == 'o') {
+                if (v[0] == '\0')
+                    return usage_error(self, "-o needs a folder name; got an empty one", NULL);
+                a->outdir = v;
+            } else if (arg[2] == 't') {
+                /* lv_run_execute uses at most 16: more would be replaced silently */
+                if (!parse_int(v, &a->threads) || a->threads < 1 || a->threads > 16)
+                    return usage_error(self, "--threads needs a count from 1 to 16 (the most "
+                                             "a run uses), got", v);
+            } else if (!parse_count(v, &a->max_rows)) {
+                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
+            }
+        } else if (strcmp(arg, "--json") == 0) {
+            a->json = 1;
+        } else if (strcmp(arg, "--no-plots") == 0) {
+            a->plots = 0;
+        } else if (strcmp(arg, "--force") == 0) {
+            a->force = 1;
+        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "-q") == 0) {
+            a->quiet = 1;
+        } else if (is_option(arg)) {
+            return usage_error(self, "unknown option", arg);
+        } else if (a->path != NULL) {
+            return usage_error(self, "unexpected argument", arg);
+        } else {
+            a->path = arg;
         }
-        *out |= f;
-        if (comma == NULL)
-            return 1;
-        p = comma + 1;
     }
+    if (a->path == NULL)
+        return usage_error(self, "run needs a mission file", NULL);
+    return EXIT_OK;
+}
+
+/* The exports and the plots read the results folder: they need what they read. Turns the
+ * plots off when their inputs are not written. Returns EXIT_OK or a usage error's code. */
+static int check_outputs(const cli_cmd *self, run_job *j)
+{
+    const run_outputs *o = &j->o;
+    const unsigned out = j->a.outputs, needs = o->summary | o->body;
+    if ((out & o->exports) && (out & needs) != needs) {
+        char names[256], what[320];
+        name_list_join(&o->words, o->first_export, o->words.n - o->first_export, names,
+                       sizeof names);
+        snprintf(what, sizeof what, "--outputs: %s read summary and body; add them", names);
+        return usage_error(self, what, NULL);
+    }
+    if (j->a.json && !(out & o->summary))
+        return usage_error(self, "--json prints summary.json: --outputs needs summary", NULL);
+    const unsigned plot_needs = needs | o->csv;
+    j->a.plots = j->a.plots && o->csv != 0 && (out & plot_needs) == plot_needs;
+    return EXIT_OK;
+}
+
+/* Loads the mission, checks its output bound, begins OUTDIR's staging folder (not with
+ * --outputs none) and creates the run and its progress. Returns EXIT_OK or the exit code,
+ * the error printed. */
+static int run_open(run_job *j)
+{
+    int code = load_mission(j->a.path, &j->m);
+    if (code != EXIT_OK)
+        return code;
+    if ((code = check_output_bound(j->m, j->a.max_rows, 0.0, 0)) != EXIT_OK)
+        return code;
+    const size_t n = lv_mission_phase_count(j->m);
+    lv_err err;
+    lv_status st = LV_OK;
+    if (j->a.outputs != 0)
+        st = lv_outdir_begin(j->a.outdir, j->a.path, j->a.force ? LV_OUTDIR_FORCE : 0u, &j->od,
+                             &err);
+    if (st != LV_OK)
+        return print_err("lvsim", &err, st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT);
+    for (size_t i = 0; j->od != NULL && i < lv_outdir_stale_count(j->od); i++)
+        fprintf(stderr, "lvsim: removed '%s', the unfinished folder of an interrupted run\n",
+                lv_outdir_stale(j->od, i));
+    j->stage = j->od != NULL ? lv_outdir_path(j->od) : NULL;
+    j->ui = (run_ui){progress_new(n, j->a.quiet), !j->a.json, 0, calloc(n + 1, 1), 12};
+    for (size_t k = 0; k < n; k++) {
+        const int len = (int)strlen(lv_mission_phase_name(j->m, k));
+        j->ui.wname = len > j->ui.wname ? len : j->ui.wname;
+    }
+    if (j->ui.ended == NULL) {
+        fprintf(stderr, "lvsim: out of memory\n");
+        return EXIT_INTERNAL;
+    }
+    if ((st = lv_run_create(j->m, &j->run, &err)) != LV_OK) {
+        print_err("lvsim", &err, 0);
+        return exit_code_for(st);
+    }
+    return EXIT_OK;
+}
+
+static void run_close(run_job *j)
+{
+    lv_export_report_clear(&j->xr);
+    lv_run_free(j->run);
+    progress_free(j->ui.prog);
+    free(j->ui.ended);
+    lv_outdir_free(j->od);
+    lv_mission_free(j->m);
+}
+
+/* "mission 'NAME': N phases -> OUTDIR/" and the table's header (not with --json). */
+static void print_header(const run_job *j)
+{
+    if (j->a.json)
+        return;
+    const size_t n = lv_mission_phase_count(j->m);
+    const int w = j->ui.wname;
+    if (j->od != NULL)
+        printf("mission '%s': %zu phases -> %s/\n", lv_mission_name(j->m), n,
+               lv_outdir_final(j->od));
+    else
+        printf("mission '%s': %zu phases (nothing written)\n", lv_mission_name(j->m), n);
+    printf("%-3s %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", "#", w, "phase", w, "from",
+           "t0 [s]", "t1 [s]", END_W, "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
+    fflush(stdout);
+}
+
+/* Runs every phase into the staging folder, printing the table as phases end; then the rows
+ * on_phase could not print yet: phases never run (skipped, pending) and those after them. */
+static void run_phases(run_job *j)
+{
+    /* rows are kept in memory only for the body files, which are merged from them */
+    const unsigned phase_files = j->a.outputs & j->o.results; /* = LV_RESULT_* flags */
+    lv_run_options opt = {.outdir = j->stage, .threads = j->a.threads, .on_phase = on_phase,
+                          .user = &j->ui, .progress = on_progress,
+                          .no_rows = !(j->a.outputs & j->o.body), .max_rows = j->a.max_rows,
+                          .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
+                                                             : phase_files};
+    j->run_st = lv_run_execute(j->run, &opt, &j->err);
+    progress_print_begin(j->ui.prog);
+    while (j->ui.table && j->ui.next < lv_mission_phase_count(j->m))
+        print_row(j->run, j->ui.next++, j->ui.wname);
+    progress_print_end(j->ui.prog);
+    /* Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
+     * folder marked failed; no exports or plots (a second signal ends the process at once and
+     * leaves OUTDIR as it was) */
+    j->interrupted = progress_interrupted();
+}
+
+/* A note of the manifest (at most 5). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void add_note(run_job *j, const char *fmt, ...)
+{
+    if (j->n_notes >= sizeof j->note_buf / sizeof j->note_buf[0])
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(j->note_buf[j->n_notes], sizeof j->note_buf[0], fmt, ap);
+    va_end(ap);
+    j->notes[j->n_notes] = j->note_buf[j->n_notes];
+    j->n_notes++;
+}
+
+/* A failed post-processing step: the first failure decides the exit code. */
+static void post_failed(run_job *j, lv_status st, const char *step, const lv_err *e)
+{
+    j->post_st = j->post_st != LV_OK ? j->post_st : st;
+    snprintf(j->post_msg[j->n_post++], sizeof j->post_msg[0], "%s%.480s", step, e->msg);
+}
+
+/* summary.json and the body trajectories; then, if they were written, the exports and the
+ * plots, each step on its own: an export that cannot be made (no phase done) does not keep
+ * the report of a failed run from being written. Post-processing reads the staging folder,
+ * as `lvsim export` and `lvsim plot` do. */
+static void post_process(run_job *j)
+{
+    const unsigned out = j->a.outputs;
+    const unsigned summary = (out & j->o.summary ? LV_SUMMARY_JSON : 0u) |
+                             (out & j->o.body ? LV_SUMMARY_BODIES : 0u);
+    lv_err e;
+    lv_status st = LV_OK;
+    if (summary != 0) {
+        progress_step_begin(j->ui.prog, "summary.json and body trajectories");
+        st = lv_run_write_summary_files(j->run, j->stage, summary, &e);
+        progress_step_end(j->ui.prog);
+    }
+    if (st != LV_OK) {
+        post_failed(j, st, "", &e);
+        return;
+    }
+    const unsigned exports = (out & j->o.exports) >> j->o.first_export; /* LV_EXPORT_* */
+    if (exports && !progress_interrupted()) {
+        char step[160] = "exports ("; /* "exports (CZML, KML, OEM)" */
+        const size_t n = j->o.words.n - j->o.first_export;
+        size_t used = strlen(step);
+        for (size_t i = 0; i < n && used < sizeof step; i++)
+            used += (size_t)snprintf(step + used, sizeof step - used, "%s%s", i ? ", " : "",
+                                     j->o.words.names[j->o.first_export + i]);
+        for (char *c = step + strlen("exports ("); *c != '\0'; c++)
+            *c = (char)toupper((unsigned char)*c);
+        if (used + 1 < sizeof step)
+            strcat(step, ")");
+        progress_step_begin(j->ui.prog, step);
+        st = lv_export_run_report(j->stage, exports, &j->xr, &e);
+        progress_step_end(j->ui.prog);
+        if (st != LV_OK)
+            post_failed(j, st, "exports: ", &e);
+    }
+    if (j->a.plots && !progress_interrupted()) {
+        progress_step_begin(j->ui.prog, "plots and index.html");
+        st = lv_plot_run(j->stage, &e);
+        progress_step_end(j->ui.prog);
+        if (st != LV_OK)
+            post_failed(j, st, "plots: ", &e);
+    }
+}
+
+/* Writes manifest.json and replaces OUTDIR with the staging folder; prints what was written
+ * and why it failed. Returns the exit code. */
+static int commit(run_job *j)
+{
+    /* messages name files in the staging folder: name them where they will be */
+    for (size_t i = 0; i < j->n_post; i++) {
+        restage(j->post_msg[i], sizeof j->post_msg[0], j->stage, lv_outdir_final(j->od));
+        add_note(j, "post-processing: %.500s", j->post_msg[i]);
+    }
+    /* a signal during the post-processing: the simulation is complete (summary.json says how
+     * it ended, and so does the manifest's status); the note says what may be missing */
+    const int post_interrupted = !j->interrupted && progress_interrupted();
+    if (post_interrupted)
+        add_note(j, "interrupted (SIGINT or SIGTERM) during the post-processing: exports, "
+                    "plots or the report may be missing");
+    const int ok = j->run_st == LV_OK && j->post_st == LV_OK && !j->interrupted;
+    const lv_outdir_record rec = {"run", ok ? "ok" : "failed", lv_mission_name(j->m),
+                                  j->n_notes, j->notes};
+    progress_step_begin(j->ui.prog, "manifest.json");
+    lv_err cerr;
+    lv_status cst = lv_outdir_commit(j->od, &rec, &cerr);
+    progress_step_end(j->ui.prog);
+    if (j->a.json && cst == LV_OK)
+        print_file(lv_outdir_final(j->od), "summary.json");
+    for (size_t i = 0; i < j->n_post; i++)
+        fprintf(stderr, "lvsim: %s\n", j->post_msg[i]);
+    for (size_t i = 0; i < j->xr.n && !j->a.json; i++)
+        if (j->xr.items[i].file[0] == '\0')
+            printf("export %s: %s\n", j->xr.items[i].format, j->xr.items[i].note);
+    int code = EXIT_OK;
+    if (cst != LV_OK) {
+        print_err("lvsim", &cerr, 0);
+        code = cst == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
+    } else if (!j->a.json) {
+        print_results(j->od);
+    }
+    if (cst == LV_OK)
+        print_kept(j->od);
+    if (j->interrupted || post_interrupted) {
+        if (cst != LV_OK)
+            fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
+                    lv_outdir_final(j->od));
+        else if (j->interrupted)
+            fprintf(stderr, "lvsim: interrupted: '%s' holds the phases that ended, marked "
+                    "failed\n", lv_outdir_final(j->od));
+        else
+            fprintf(stderr, "lvsim: interrupted: '%s' holds the complete simulation; "
+                    "exports, plots or the report may be missing (lvsim export, lvsim plot "
+                    "make them)\n", lv_outdir_final(j->od));
+        return 130;
+    }
+    if (j->run_st != LV_OK) {
+        print_err("lvsim", &j->err, 0);
+        return exit_code_for(j->run_st);
+    }
+    if (code == EXIT_OK && j->post_st != LV_OK)
+        return j->post_st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
+    return code;
+}
+
+/* --outputs none: the table was all; the exit code of the run. */
+static int finish_in_memory(run_job *j)
+{
+    if (j->interrupted)
+        return 130;
+    if (j->run_st != LV_OK) {
+        print_err("lvsim", &j->err, 0);
+        return exit_code_for(j->run_st);
+    }
+    return EXIT_OK;
 }
 
 static int run_run(const cli_cmd *self, int argc, char **argv)
 {
-    const char *path = NULL, *outdir = "lvsim-out";
-    int json = 0, threads = 2, plots = 1, quiet = 0, force = 0;
-    double max_rows = CLI_DEFAULT_MAX_ROWS;
-    unsigned outputs = OUT_ALL;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--threads") == 0 ||
-            strcmp(a, "--max-rows") == 0 || strcmp(a, "--outputs") == 0) {
-            const char *v = option_value(argc, argv, &i);
-            if (v == NULL)
-                return usage_error(self, "missing value for option", a);
-            char bad[64];
-            if (strcmp(a, "--outputs") == 0) {
-                if (!parse_outputs(v, &outputs, bad, sizeof bad))
-                    return usage_error(self, "--outputs: unknown output (mat, csv, body, "
-                                             "summary, czml, kml, oem, none)", bad);
-            } else if (a[1] == 'o') {
-                if (v[0] == '\0')
-                    return usage_error(self, "-o needs a folder name; got an empty one", NULL);
-                outdir = v;
-            } else if (a[2] == 't') {
-                /* lv_run_execute uses at most 16: more would be replaced silently */
-                if (!parse_int(v, &threads) || threads < 1 || threads > 16)
-                    return usage_error(self, "--threads needs a count from 1 to 16 (the most "
-                                             "a run uses), got", v);
-            } else if (!parse_count(v, &max_rows)) {
-                return usage_error(self, "--max-rows needs a whole number from 1 to 1e15, got", v);
-            }
-        } else if (strcmp(a, "--json") == 0) {
-            json = 1;
-        } else if (strcmp(a, "--no-plots") == 0) {
-            plots = 0;
-        } else if (strcmp(a, "--force") == 0) {
-            force = 1;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = 1;
-        } else if (is_option(a)) {
-            return usage_error(self, "unknown option", a);
-        } else if (path != NULL) {
-            return usage_error(self, "unexpected argument", a);
+    run_job *j = calloc(1, sizeof *j);
+    if (j == NULL) {
+        fprintf(stderr, "lvsim: out of memory\n");
+        return EXIT_INTERNAL;
+    }
+    outputs_init(&j->o);
+    int code = parse_args(self, argc, argv, j);
+    if (code == EXIT_OK)
+        code = check_outputs(self, j);
+    if (code == EXIT_OK) {
+        cli_catch_stop(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
+        code = run_open(j);
+    }
+    if (code == EXIT_OK) {
+        print_header(j);
+        run_phases(j);
+        if (j->od == NULL) {
+            code = finish_in_memory(j);
         } else {
-            path = a;
+            if (j->interrupted)
+                add_note(j, "interrupted (SIGINT or SIGTERM): the phases that ended are "
+                            "complete, the others failed or not run; no exports or plots");
+            if (j->run_st != LV_OK)
+                add_note(j, "run: %s", j->err.msg);
+            post_process(j);
+            code = commit(j);
         }
     }
-    if (path == NULL)
-        return usage_error(self, "run needs a mission file", NULL);
-    /* The exports and the plots read the results folder: they need what they read. */
-    const unsigned exports = outputs & (OUT_CZML | OUT_KML | OUT_OEM);
-    if (exports && (outputs & (OUT_SUMMARY | OUT_BODY)) != (OUT_SUMMARY | OUT_BODY))
-        return usage_error(self, "--outputs: czml, kml and oem read summary and body; add them",
-                           NULL);
-    if (json && !(outputs & OUT_SUMMARY))
-        return usage_error(self, "--json prints summary.json: --outputs needs summary", NULL);
-    const int can_plot = (outputs & (OUT_SUMMARY | OUT_BODY | OUT_CSV)) ==
-                         (OUT_SUMMARY | OUT_BODY | OUT_CSV);
-    plots = plots && can_plot;
-    cli_catch_stop(); /* from here on Ctrl-C cancels: OUTDIR is left as it was */
-    lv_mission *m;
-    int code = load_mission(path, &m);
-    if (code != EXIT_OK)
-        return code;
-    if ((code = check_output_bound(m, max_rows, 0.0, 0)) != EXIT_OK) {
-        lv_mission_free(m);
-        return code;
-    }
-    const size_t n = lv_mission_phase_count(m);
-    lv_err err;
-    lv_outdir *od = NULL; /* none with --outputs none: nothing is written, not even OUTDIR */
-    lv_status st = outputs != 0
-                       ? lv_outdir_begin(outdir, path, force ? LV_OUTDIR_FORCE : 0u, &od, &err)
-                       : LV_OK;
-    if (st != LV_OK) {
-        lv_mission_free(m);
-        return print_err("lvsim", &err, st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT);
-    }
-    for (size_t i = 0; od != NULL && i < lv_outdir_stale_count(od); i++)
-        fprintf(stderr, "lvsim: removed '%s', the unfinished folder of an interrupted run\n",
-                lv_outdir_stale(od, i));
-    const char *stage = od != NULL ? lv_outdir_path(od) : NULL;
-    run_ui ui = {progress_new(n, quiet), !json, 0, calloc(n + 1, 1), 12};
-    for (size_t k = 0; k < n; k++) {
-        const int len = (int)strlen(lv_mission_phase_name(m, k));
-        ui.wname = len > ui.wname ? len : ui.wname;
-    }
-    lv_run *run = NULL;
-    if (ui.ended == NULL || (st = lv_run_create(m, &run, &err)) != LV_OK) {
-        if (ui.ended == NULL)
-            fprintf(stderr, "lvsim: out of memory\n");
-        else
-            print_err("lvsim", &err, 0);
-        progress_free(ui.prog);
-        free(ui.ended);
-        lv_outdir_free(od);
-        lv_mission_free(m);
-        return ui.ended == NULL ? EXIT_INTERNAL : exit_code_for(st);
-    }
-    if (!json) {
-        if (od != NULL)
-            printf("mission '%s': %zu phases -> %s/\n", lv_mission_name(m), n,
-                   lv_outdir_final(od));
-        else
-            printf("mission '%s': %zu phases (nothing written)\n", lv_mission_name(m), n);
-        printf("%-3s %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", "#", ui.wname, "phase",
-               ui.wname, "from", "t0 [s]", "t1 [s]", END_W, "end", "steps", "rhs", "sev", "tev",
-               "cpu [ms]", "status");
-        fflush(stdout);
-    }
-    /* rows are kept in memory only for the body files, which are merged from them */
-    const unsigned phase_files = outputs & (OUT_MAT | OUT_CSV);
-    lv_run_options opt = {.outdir = stage, .threads = threads, .on_phase = on_phase,
-                          .user = &ui, .progress = on_progress,
-                          .no_rows = !(outputs & OUT_BODY), .max_rows = max_rows,
-                          .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
-                                            : (phase_files & OUT_MAT ? LV_RESULT_MAT : 0u) |
-                                                  (phase_files & OUT_CSV ? LV_RESULT_CSV : 0u)};
-    lv_status run_st = lv_run_execute(run, &opt, &err);
-    /* the rows on_phase could not print yet: phases never run (skipped, pending) and those
-     * after them */
-    progress_print_begin(ui.prog);
-    while (ui.table && ui.next < n)
-        print_row(run, ui.next++, ui.wname);
-    progress_print_end(ui.prog);
-    /* what never ran (skipped by a failed ancestor) is printed by on_phase too; nothing left.
-     * Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
-     * folder marked failed; no exports or plots (a second signal ends the process at once and
-     * leaves OUTDIR as it was) */
-    int interrupted = progress_interrupted();
-    if (od == NULL && interrupted) {
-        lv_run_free(run);
-        progress_free(ui.prog);
-        free(ui.ended);
-        lv_mission_free(m);
-        return 130;
-    }
-    if (od == NULL) { /* --outputs none: the table was all */
-        if (run_st != LV_OK) {
-            print_err("lvsim", &err, 0);
-            code = exit_code_for(run_st);
-        }
-        lv_run_free(run);
-        progress_free(ui.prog);
-        free(ui.ended);
-        lv_mission_free(m);
-        return code;
-    }
-    /* post-processing reads the staging folder, as `lvsim export` and `lvsim plot` do */
-    const char *notes[8];
-    size_t n_notes = 0;
-    char note_buf[5][LV_ERR_MSG_MAX + 32];
-    if (interrupted) {
-        snprintf(note_buf[n_notes], sizeof note_buf[0],
-                 "interrupted (SIGINT or SIGTERM): the phases that ended are complete, the "
-                 "others failed or not run; no exports or plots");
-        notes[n_notes] = note_buf[n_notes];
-        n_notes++;
-    }
-    if (run_st != LV_OK) {
-        snprintf(note_buf[n_notes], sizeof note_buf[0], "run: %s", err.msg);
-        notes[n_notes] = note_buf[n_notes];
-        n_notes++;
-    }
-    /* each step on its own: an export that cannot be made (no phase done) does not keep the
-     * report of a failed run from being written; the first failure decides the exit code */
-    lv_err serr, e;
-    lv_status post_st = LV_OK, st1;
-    lv_export_report xr = {0};
-    char post_msg[3][LV_ERR_MSG_MAX];
-    size_t n_post = 0;
-    const unsigned summary = (outputs & OUT_SUMMARY ? LV_SUMMARY_JSON : 0u) |
-                             (outputs & OUT_BODY ? LV_SUMMARY_BODIES : 0u);
-    st1 = LV_OK;
-    if (summary != 0) {
-        progress_step_begin(ui.prog, "summary.json and body trajectories");
-        st1 = lv_run_write_summary_files(run, stage, summary, &e);
-        progress_step_end(ui.prog);
-    }
-    if (st1 != LV_OK) {
-        post_st = st1;
-        snprintf(post_msg[n_post++], sizeof post_msg[0], "%.480s", e.msg);
-    } else {
-        st1 = LV_OK;
-        if (exports && !progress_interrupted()) {
-            progress_step_begin(ui.prog, "exports (CZML, KML, OEM)");
-            st1 = lv_export_run_report(stage,
-                                       (outputs & OUT_CZML ? LV_EXPORT_CZML : 0u) |
-                                           (outputs & OUT_KML ? LV_EXPORT_KML : 0u) |
-                                           (outputs & OUT_OEM ? LV_EXPORT_OEM : 0u),
-                                       &xr, &e);
-            progress_step_end(ui.prog);
-        }
-        if (st1 != LV_OK) {
-            post_st = post_st != LV_OK ? post_st : st1;
-            snprintf(post_msg[n_post++], sizeof post_msg[0], "exports: %.480s", e.msg);
-        }
-        if (plots && !progress_interrupted()) {
-            progress_step_begin(ui.prog, "plots and index.html");
-            st1 = lv_plot_run(stage, &e);
-            progress_step_end(ui.prog);
-            if (st1 != LV_OK) {
-                post_st = post_st != LV_OK ? post_st : st1;
-                snprintf(post_msg[n_post++], sizeof post_msg[0], "plots: %.480s", e.msg);
-            }
-        }
-    }
-    /* messages name files in the staging folder: name them where they will be */
-    for (size_t i = 0; i < n_post; i++) {
-        restage(post_msg[i], sizeof post_msg[0], stage, lv_outdir_final(od));
-        if (n_notes < sizeof note_buf / sizeof note_buf[0]) {
-            snprintf(note_buf[n_notes], sizeof note_buf[0], "post-processing: %.500s", post_msg[i]);
-            notes[n_notes] = note_buf[n_notes];
-            n_notes++;
-        }
-    }
-    /* a signal during the post-processing: the simulation is complete (summary.json says how
-     * it ended, and so does the manifest's status); the note says what may be missing */
-    const int post_interrupted = !interrupted && progress_interrupted();
-    if (post_interrupted && n_notes < sizeof note_buf / sizeof note_buf[0]) {
-        snprintf(note_buf[n_notes], sizeof note_buf[0],
-                 "interrupted (SIGINT or SIGTERM) during the post-processing: exports, plots or "
-                 "the report may be missing");
-        notes[n_notes] = note_buf[n_notes];
-        n_notes++;
-    }
-    serr.code = post_st;
-    snprintf(serr.msg, sizeof serr.msg, "%s", n_post > 0 ? post_msg[0] : "");
-    {
-        const lv_outdir_record rec = {"run",
-                                      run_st == LV_OK && post_st == LV_OK && !interrupted ? "ok"
-                                                                                         : "failed",
-                                      lv_mission_name(m), n_notes, notes};
-        progress_step_begin(ui.prog, "manifest.json");
-        lv_err cerr;
-        lv_status cst = lv_outdir_commit(od, &rec, &cerr);
-        progress_step_end(ui.prog);
-        if (json && cst == LV_OK)
-            print_file(lv_outdir_final(od), "summary.json");
-        for (size_t i = 0; i < n_post; i++)
-            fprintf(stderr, "lvsim: %s\n", post_msg[i]);
-        for (size_t i = 0; i < xr.n && !json; i++)
-            if (xr.items[i].file[0] == '\0')
-                printf("export %s: %s\n", xr.items[i].format, xr.items[i].note);
-        if (cst != LV_OK) {
-            print_err("lvsim", &cerr, 0);
-            code = cst == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
-        } else if (!json) {
-            print_results(od);
-        }
-        if (cst == LV_OK)
-            print_kept(od);
-        if (interrupted || post_interrupted) {
-            if (cst != LV_OK)
-                fprintf(stderr, "lvsim: interrupted: '%s' was left as it was\n",
-                        lv_outdir_final(od));
-            else if (interrupted)
-                fprintf(stderr, "lvsim: interrupted: '%s' holds the phases that ended, marked "
-                        "failed\n", lv_outdir_final(od));
-            else
-                fprintf(stderr, "lvsim: interrupted: '%s' holds the complete simulation; "
-                        "exports, plots or the report may be missing (lvsim export, lvsim plot "
-                        "make them)\n", lv_outdir_final(od));
-            code = 130;
-        } else if (run_st != LV_OK) {
-            print_err("lvsim", &err, 0);
-            code = exit_code_for(run_st);
-        } else if (code == EXIT_OK && post_st != LV_OK) {
-            code = post_st == LV_ERR_NOMEM ? EXIT_INTERNAL : EXIT_INPUT;
-        }
-    }
-    lv_export_report_clear(&xr);
-    lv_run_free(run);
-    progress_free(ui.prog);
-    free(ui.ended);
-    lv_outdir_free(od);
-    lv_mission_free(m);
+    run_close(j);
+    free(j);
     return code;
 }
 
@@ -498,9 +578,10 @@ const cli_cmd cli_cmd_run = {
     "  --max-rows N            output rows one phase may write (default 1e6)\n"
     "  --json                  print summary.json instead of the table\n"
     "  --no-plots              skip plots/ and index.html\n"
-    "  --outputs LIST          what to write, comma-separated: mat, csv (each phase's\n"
-    "                          files), body (body_<stage>.csv), summary (summary.json),\n"
-    "                          czml, kml, oem (the exports; they need body and summary);\n"
+    "  --outputs LIST          what to write, comma-separated: the result formats mat,\n"
+    "                          csv (each phase's files), body (body_<stage>.csv), summary\n"
+    "                          (summary.json), the exports czml, kml, oem (they need body\n"
+    "                          and summary; 'lvsim formats' lists both kinds);\n"
     "                          'none' writes nothing, not even OUTDIR (a run in memory:\n"
     "                          the table only). Default: all of them. Plots are drawn only\n"
     "                          when csv, body and summary are written.\n"

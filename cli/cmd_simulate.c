@@ -61,11 +61,12 @@ static void print_report(const lv_model_def *m, const lv_sim_settings *s, lv_sta
         printf("  %-16s = %.12g\n", s->final_names[i], finals[i]);
     /* exactly the files written: each format asked for, under its failed name if it failed */
     const unsigned fm = s->result_file != NULL && rep->stats.output_rows > 0 ? s->result_formats : 0;
-    const char *fail = st == LV_OK ? "" : ".failed";
-    if (fm == (LV_RESULT_MAT | LV_RESULT_CSV))
-        printf("  result: %s%s.mat, %s%s.csv\n", s->result_file, fail, s->result_file, fail);
-    else if (fm != 0)
-        printf("  result: %s%s.%s\n", s->result_file, fail, fm == LV_RESULT_MAT ? "mat" : "csv");
+    const char *fail = st == LV_OK ? "" : ".failed", *ext;
+    for (size_t i = 0, n = 0; lv_result_format_info(i, &ext, NULL) != NULL; i++)
+        if (fm & (1u << i))
+            printf("%s%s%s%s", n++ ? ", " : "  result: ", s->result_file, fail, ext);
+    if (fm != 0)
+        printf("\n");
 }
 
 /* -o PATH names files PATH.mat and PATH.csv: PATH must be a file name that can take them
@@ -233,16 +234,14 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
                 goto out;
             s.result_file = val;
         } else if (strcmp(a, "--format") == 0) {
-            s.result_formats = 0;
-            if (strstr(val, "mat")) s.result_formats |= LV_RESULT_MAT;
-            if (strstr(val, "csv")) s.result_formats |= LV_RESULT_CSV;
-            if (strcmp(val, "none") == 0)
-                s.result_file = NULL; /* and result_formats 0: -o after it writes nothing */
-            else if (s.result_formats == 0) {
-                fprintf(stderr, "lvsim: --format: '%s': use mat, csv, mat,csv or none\n", val);
+            name_list formats = {{0}, 0};
+            name_list_add_results(&formats);
+            if (!parse_name_list(self, a, "format", &formats, 1, val, &s.result_formats)) {
                 rc = EXIT_INPUT;
                 goto out;
             }
+            if (s.result_formats == 0) /* none */
+                s.result_file = NULL; /* and result_formats 0: -o after it writes nothing */
         } else if (strcmp(a, "--set") == 0) {
             const char *eq = strchr(val, '=');
             double v;
@@ -265,14 +264,17 @@ static int simulate_run(const cli_cmd *self, int argc, char **argv)
     /* the result files it may write (a failed run's under .failed): none replaces a file
      * lvsim cannot prove it wrote, unless --force (lv_output_check) */
     if (s.result_file != NULL) {
-        static const char *const kinds[] = {".mat", ".csv", ".failed.mat", ".failed.csv"};
-        for (size_t k = 0; k < 4; k++) {
-            const unsigned fmt = k % 2 == 0 ? LV_RESULT_MAT : LV_RESULT_CSV;
-            if (!(s.result_formats & fmt))
+        size_t n = 0; /* the final names of every format, then the failed ones */
+        while (lv_result_format_info(n, NULL, NULL) != NULL)
+            n++;
+        for (size_t k = 0; k < 2 * n; k++) {
+            const char *ext;
+            lv_result_format_info(k % n, &ext, NULL);
+            if (!(s.result_formats & (1u << (k % n))))
                 continue;
             char name[4200];
             lv_err cerr;
-            snprintf(name, sizeof name, "%s%s", s.result_file, kinds[k]);
+            snprintf(name, sizeof name, "%s%s%s", s.result_file, k < n ? "" : ".failed", ext);
             if (lv_output_check(name, NULL, force ? LV_OUTPUT_REPLACE : 0u, &cerr) != LV_OK) {
                 rc = print_err("lvsim", &cerr, EXIT_INPUT);
                 goto out;
@@ -348,7 +350,8 @@ const cli_cmd cli_cmd_simulate = {
     "  -o PATH                 result file path without extension (default dsres); an\n"
     "                          existing PATH.mat or .csv is refused unless --force\n"
     "  --force                 replace existing result files\n"
-    "  --format F              mat, csv, mat,csv or none (default mat,csv)\n"
+    "  --format F              result formats, comma-separated (lvsim formats: mat, csv),\n"
+    "                          or none (default: all)\n"
     "  --json                  print the report as one JSON object\n"
     "\n"
     "A run the integrator cannot finish exits 3; its partial results are kept as\n"

@@ -160,6 +160,74 @@ int parse_tolerance_option(const cli_cmd *cmd, const char *opt, const char *v, d
     return 0;
 }
 
+unsigned name_list_add(name_list *l, const char *name)
+{
+    if (l->n >= NAME_LIST_MAX) /* not reached: 31 flags */
+        return 0u;
+    l->names[l->n] = name;
+    return 1u << l->n++;
+}
+
+void name_list_add_results(name_list *l)
+{
+    const char *name;
+    for (size_t i = 0; (name = lv_result_format_info(i, NULL, NULL)) != NULL; i++)
+        name_list_add(l, name);
+}
+
+void name_list_add_exports(name_list *l)
+{
+    const char *name;
+    for (size_t i = 0; (name = lv_export_format_info(i, NULL, NULL)) != NULL; i++)
+        name_list_add(l, name);
+}
+
+void name_list_join(const name_list *l, size_t first, size_t n, char *buf, size_t cap)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < n && first + i < l->n && used < cap; i++)
+        used += (size_t)snprintf(buf + used, cap - used, "%s%s",
+                                 i == 0 ? "" : i + 1 == n ? " and " : ", ", l->names[first + i]);
+}
+
+int parse_name_list(const cli_cmd *cmd, const char *opt, const char *what, const name_list *l,
+                    int allow_none, const char *list, unsigned *out)
+{
+    *out = 0;
+    if (allow_none && strcmp(list, "none") == 0)
+        return 1;
+    for (const char *p = list;;) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        size_t i = 0;
+        while (i < l->n && !(strlen(l->names[i]) == len && strncmp(l->names[i], p, len) == 0))
+            i++;
+        if (i == l->n && allow_none && len == 4 && strncmp(p, "none", 4) == 0) {
+            char msg[160];
+            snprintf(msg, sizeof msg, "%s: 'none' stands alone, not in a list", opt);
+            usage_error(cmd, msg, list);
+            return 0;
+        }
+        if (i == l->n) {
+            char msg[512]; /* "--format: unknown format 'xmatx' (known: mat, csv, none)" */
+            size_t used = (size_t)snprintf(msg, sizeof msg, "%s: unknown %s '%.*s' (known: ", opt,
+                                           what, (int)(len < 100 ? len : 100), p);
+            for (size_t k = 0; k < l->n && used < sizeof msg; k++)
+                used += (size_t)snprintf(msg + used, sizeof msg - used, "%s%s", k ? ", " : "",
+                                         l->names[k]);
+            if (used < sizeof msg)
+                snprintf(msg + used, sizeof msg - used, "%s)", allow_none ? ", none" : "");
+            usage_error(cmd, msg, NULL);
+            return 0;
+        }
+        *out |= 1u << i;
+        if (comma == NULL)
+            return 1;
+        p = comma + 1;
+    }
+}
+
 int parse_method_option(const cli_cmd *cmd, const char *opt, const char *v)
 {
     char what[160];

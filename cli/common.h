@@ -47,6 +47,27 @@ int load_mission(const char *path, lv_mission **m);
 /* A whole number >= 1 up to 1e15 ("1000000", "1e6"); 1 on success, 0 otherwise. */
 int parse_count(const char *s, double *out);
 
+/* Format lists (`simulate --format`, `run --outputs`, `export --format`): the one parser.
+ * The words a list may hold, in flag order (names[i] is bit i), from the library's tables. */
+#define NAME_LIST_MAX 31 /* bits of an unsigned, 1u << n still defined */
+typedef struct name_list {
+    const char *names[NAME_LIST_MAX];
+    size_t n;
+} name_list;
+/* Appends the result formats (lv_result_format_info: "mat", "csv") or the exports
+ * (lv_export_format_info: "czml", "kml", "oem") to *l, in their tables' order. */
+void name_list_add_results(name_list *l);
+void name_list_add_exports(name_list *l);
+/* Appends one word; returns its bit. */
+unsigned name_list_add(name_list *l, const char *name);
+/* "a, b and c" of names [first, first + n) of *l into buf. */
+void name_list_join(const name_list *l, size_t first, size_t n, char *buf, size_t cap);
+/* Parses LIST, comma-separated words each exactly one of l's names (or "none" alone, when
+ * allow_none: 0), into *out (bit i for names[i]). Returns 1, or prints "lvsim: OPT: unknown
+ * WHAT 'WORD' (known: a, b, c, none)" with cmd's usage (usage_error) and returns 0. */
+int parse_name_list(const cli_cmd *cmd, const char *opt, const char *what, const name_list *l,
+                    int allow_none, const char *list, unsigned *out);
+
 /* Options that override a mission key are held to that key's range (docs/cli.md): refused,
  * never replaced. Each returns 1 with the value, or prints "lvsim: OPT needs ..., got 'V'"
  * with cmd's usage (usage_error) and returns 0; the caller then exits 2.

@@ -13,6 +13,7 @@ add_executable(lvsim_cli
   cli/cmd_params.c
   cli/cmd_compare.c
   cli/cmd_export.c
+  cli/cmd_formats.c
   cli/cmd_fmu.c
   cli/cmd_plot.c
   cli/cmd_view.c

@@ -8,19 +8,28 @@
 #ifndef LVSIM_LV_EXPORT_H
 #define LVSIM_LV_EXPORT_H
 
+#include <stddef.h>
+
 #include "lvsim/lv_status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+/* The flag of export i of lv_export_format_info() is 1u << i: */
 #define LV_EXPORT_CZML 1u /* OUTDIR/mission.czml */
 #define LV_EXPORT_KML 2u  /* OUTDIR/mission.kml */
 #define LV_EXPORT_OEM 4u  /* OUTDIR/<stage>.oem per body with an orbital portion (Earth only) */
-#define LV_EXPORT_ALL (LV_EXPORT_CZML | LV_EXPORT_KML | LV_EXPORT_OEM)
+#define LV_EXPORT_ALL (~0u) /* every registered export */
+
+/* The registered exports, by position i = 0, 1, ... (flag 1u << i): its name ("czml": the
+ * word of `lvsim export --format`, `lvsim run --outputs` and lv_export_item.format), and, when
+ * the pointers are not NULL, the files it writes in OUTDIR ("mission.czml", "<stage>.oem") and
+ * a one-line description. NULL when i is past the last export. Strings are static. */
+LV_API const char *lv_export_format_info(size_t i, const char **files, const char **description);
 
 /* Reads OUTDIR/summary.json and the body CSVs it lists, then writes the formats selected by
- * `formats` (an OR of LV_EXPORT_* flags) into OUTDIR. Each file is written under
+ * `formats` (an OR of LV_EXPORT_* flags; LV_EXPORT_ALL: every one) into OUTDIR. Each file is written under
  * "<name>.tmp" and renamed when complete. OEM files are written only for planet-world
  * missions over the Earth and only for bodies that have rows above 100 km; a flat-world
  * mission gets none (not an error). Times are the epoch plus SI seconds, written as UTC with

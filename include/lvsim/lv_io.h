@@ -62,6 +62,13 @@ LV_API lv_status lv_sink_mat_create(const char *path, lv_sink *out, lv_err *err)
 /* CSV with a "name [unit]" header at `path` (should end in .csv). */
 LV_API lv_status lv_sink_csv_create(const char *path, lv_sink *out, lv_err *err);
 
+/* The result-file formats a run writes per phase, by position i = 0, 1, ... (its flag in
+ * lv_sim_settings.result_formats and lv_run_options.result_formats is 1u << i: LV_RESULT_MAT
+ * is "mat", LV_RESULT_CSV "csv"): its name ("mat": the word of `--format`, `--outputs` and of
+ * summary.json's "files"), and, when the pointers are not NULL, its extension (".mat") and a
+ * one-line description. NULL when i is past the last format. Strings are static. */
+LV_API const char *lv_result_format_info(size_t i, const char **ext, const char **description);
+
 /* In-memory result (for post-processing and tests). */
 typedef struct lv_result lv_result;
 LV_API lv_status lv_sink_memory_create(lv_result **result, lv_sink *out, lv_err *err);

@@ -45,7 +45,8 @@ extern "C" {
 #define LV_TOLERANCE_MIN 1e-14
 #define LV_TOLERANCE_MAX 0.1
 
-/* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats). */
+/* Result files of a run (lv_sim_settings.result_formats, lv_run_options.result_formats): the
+ * flag of format i of lv_result_format_info() (lv_io.h) is 1u << i. */
 enum { LV_RESULT_MAT = 1u, LV_RESULT_CSV = 2u };
 
 /* A condition that ends the run - a phase's end on any of the model's variables: the variable

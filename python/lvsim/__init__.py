@@ -14,8 +14,9 @@ column's unit travels with it. Documentation: docs/python.md.
     run.set("us.propellant_mass", 50000); run.execute()   # only the affected phases rerun
 
 Classes: Mission, Run, PhaseResult, Trajectory, Table, PhaseCall, Outcome, Model, Target,
-Campaign, Law. Functions: simulate (a built-in model, the paper's Code 1), models, laws (the
-steering and throttle laws with their keys, as the library registers them). Exceptions:
+Campaign, Law, Format. Functions: simulate (a built-in model, the paper's Code 1), models, laws
+(the steering and throttle laws with their keys, as the library registers them), formats (the
+result formats and exports, likewise). Exceptions:
 LvsimError, MissionError, ParameterError, SimulationError, CancelledError.
 """
 from ._paths import VERSION as __version__
@@ -27,6 +28,7 @@ from ._mission import (Dispersion, Event, Mission, Model, Outcome, Parameter, Ph
 from ._target import Target, TargetResult
 from ._campaign import Campaign
 from ._laws import Law, LawKey, common_keys, laws
+from ._formats import Format, formats
 
 library_path = None
 
@@ -42,7 +44,7 @@ library_path = _library_path()
 __all__ = ["Mission", "Run", "PhaseResult", "Trajectory", "Table", "PhaseCall", "Outcome",
            "Model", "Variable", "Phase", "Parameter", "Dispersion", "Event", "Target",
            "TargetResult", "Campaign", "simulate", "models", "laws", "common_keys", "Law",
-           "LawKey", "LvsimError", "MissionError",
+           "LawKey", "formats", "Format", "LvsimError", "MissionError",
            "ParameterError", "SimulationError", "CancelledError", "InputError", "OutputLimitError",
            "METHODS", "library_path",
            "__version__"]

@@ -24,8 +24,6 @@ LV_EVENT_NAME_MAX = 96
 
 LV_TOLERANCE_MIN = 1e-14  # lv_sim.h: the relative tolerances lv_simulate accepts
 LV_TOLERANCE_MAX = 0.1
-LV_RESULT_MAT = 1
-LV_RESULT_CSV = 2
 LV_RUN_NO_PHASE_FILES = 0x100
 LV_RUN_ALL_PHASES = (1 << (8 * ctypes.sizeof(c_size_t))) - 1
 
@@ -353,6 +351,8 @@ def post():
     if _post is None:
         _post = _load(_paths.POST_SONAME)
         _proto(_post, "lv_campaign_options_default", None, POINTER(lv_campaign_options))
+        _proto(_post, "lv_export_format_info", c_char_p, c_size_t, POINTER(c_char_p),
+               POINTER(c_char_p))
         _proto(_post, "lv_campaign_run", c_int, c_void_p, POINTER(lv_campaign_options),
                POINTER(lv_campaign_progress), POINTER(lv_err))
         _proto(_post, "lv_campaign_stats", c_int, c_char_p, c_char_p, POINTER(lv_err))
@@ -381,6 +381,24 @@ E = POINTER(lv_err)
 P = c_void_p
 _proto(lib, "lv_status_str", c_char_p, c_int)
 _proto(lib, "lv_status_name", c_char_p, c_int)
+_proto(lib, "lv_result_format_info", c_char_p, c_size_t, POINTER(c_char_p), POINTER(c_char_p))
+
+
+def format_table(info):
+    """A format table of the library, [(name, file, description), ...] in flag order (entry i
+    is the flag 1 << i): lv_result_format_info (file: the extension, ".mat") or
+    lv_export_format_info (file: what it writes, "mission.czml")."""
+    out = []
+    f, d = c_char_p(), c_char_p()
+    while True:
+        name = info(len(out), ctypes.byref(f), ctypes.byref(d))
+        if name is None:
+            return out
+        out.append((name.decode(), f.value.decode(), d.value.decode()))
+
+
+# The result formats a run writes per phase (lv_io.h), from the library, not re-typed.
+RESULT_FORMATS = format_table(lib.lv_result_format_info)
 
 # lv_status (lv_status.h), from the library, not re-typed: {code: "LV_ERR_INPUT", ...} (the
 # codes are 0 and small negative numbers), and the codes the package tests by name.

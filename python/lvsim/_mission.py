@@ -201,9 +201,9 @@ class PhaseResult(Table):
         self.result_files = []
         if stem:
             failed = self.state == "failed"
-            for bit, ext in ((_lib.LV_RESULT_MAT, "mat"), (_lib.LV_RESULT_CSV, "csv")):
-                if r.result_formats & bit:
-                    self.result_files.append(f"{stem}.failed.{ext}" if failed else f"{stem}.{ext}")
+            for i, (_, ext, _) in enumerate(_lib.RESULT_FORMATS):
+                if r.result_formats & (1 << i):
+                    self.result_files.append(f"{stem}.failed{ext}" if failed else f"{stem}{ext}")
 
     @property
     def ok(self):
@@ -807,7 +807,7 @@ class Run:
             return {d.name: vals[j] for j, d in enumerate(self.mission.dispersions)}
 
     # ---- executing ----
-    def execute(self, phases=None, *, until=None, outdir=None, formats=("mat", "csv"),
+    def execute(self, phases=None, *, until=None, outdir=None, formats=None,
                 threads=0, output_interval=None, method=None, tolerance=None,
                 keep_rows=True, progress=None, check=True, max_rows=DEFAULT_MAX_ROWS):
         """Simulates the phases whose inputs changed (all, the first time), and those whose
@@ -822,8 +822,8 @@ class Run:
             manifest.json; so a folder never mixes two runs. `outdir` may exist only empty or
             as an lvsim results folder (anything else: LvsimError); an interrupted or
             cancelled run leaves it as it was; a run with failed phases is kept, marked
-            "failed" in the manifest. None: no files. formats: which of "mat", "csv" (empty:
-            none).
+            "failed" in the manifest. None: no files. formats: which result formats, names of
+            lvsim.formats("results") ("mat", "csv"); None: all of them; empty: none.
         threads: worker threads for independent branches (0: 2).
         output_interval: None: each phase's own output grid; a number > 0 (s): every phase's
             grid; "ends": only each phase's start and end rows, the fastest, as Monte Carlo
@@ -906,12 +906,15 @@ class Run:
         fm = 0
         if outdir is not None:
             outdir = path_arg(outdir, "outdir")
-            if isinstance(formats, str):
+            names = [name for name, _, _ in _lib.RESULT_FORMATS]
+            if formats is None:
+                formats = names
+            elif isinstance(formats, str):
                 formats = [formats]
-            for f in formats or ():
-                if f not in ("mat", "csv"):
-                    raise InputError(f"unknown result format {f!r} (mat, csv)")
-                fm |= _lib.LV_RESULT_MAT if f == "mat" else _lib.LV_RESULT_CSV
+            for f in formats:
+                if f not in names:
+                    raise InputError(f"unknown result format {f!r} ({', '.join(names)})")
+                fm |= 1 << names.index(f)
         key = (method, tolerance, oi, keep_rows)
 
         opt = _lib.lv_run_options()

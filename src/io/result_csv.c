@@ -184,3 +184,8 @@ lv_status lv_sink_csv_create(const char *path, lv_sink *out, lv_err *err)
     out->self = s;
     return LV_OK;
 }
+
+/* docs/result-files.md */
+const lv_result_format lv_result_format_csv = {
+    "csv", ".csv", "CSV: a \"name [unit]\" header line, one line per output row",
+    lv_sink_csv_create};

@@ -331,3 +331,8 @@ lv_status lv_sink_mat_create(const char *path, lv_sink *out, lv_err *err)
     out->self = s;
     return LV_OK;
 }
+
+/* docs/result-files.md */
+const lv_result_format lv_result_format_mat = {
+    "mat", ".mat", "MAT v4, Dymola/OpenModelica dsres layout: every signal and the parameters",
+    lv_sink_mat_create};

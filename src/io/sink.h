@@ -44,6 +44,28 @@ lv_status lv_sink_check_row(const char *path, size_t row, double t, double t_pre
  * description) or "" into a new malloc'd string; NULL when out of memory. */
 char *lv_sink_describe(const char *description, const char *unit);
 
+/* A result-file format a run writes per phase (lv_sim_settings.result_formats): one file
+ * src/io/result_<name>.c defines its sink and this descriptor, one line in the table of
+ * io/result_formats.c registers it. Its flag is 1u << (its position in the table): the order of
+ * the table is the public flags' (LV_RESULT_MAT, LV_RESULT_CSV; lv_sim.h). */
+typedef struct lv_result_format {
+    const char *name;        /* "mat": the word of --format/--outputs and of summary.json's
+                                "files"; at most 7 characters */
+    const char *ext;         /* ".mat": the file is "<stem><ext>", "<stem>.failed<ext>" */
+    const char *description; /* one line, for `lvsim formats`, the docs and Python */
+    lv_status (*create)(const char *path, lv_sink *out, lv_err *err); /* the sink at `path` */
+} lv_result_format;
+
+extern const lv_result_format lv_result_format_mat; /* io/result_mat.c */
+extern const lv_result_format lv_result_format_csv; /* io/result_csv.c */
+
+/* The registered formats, NULL-terminated (io/result_formats.c). */
+extern const lv_result_format *const lv_result_formats[];
+
+/* Number of registered formats and the OR of their flags. */
+size_t lv_result_format_count(void);
+unsigned lv_result_format_mask(void);
+
 /* Growable array of doubles, one row of `width` values at a time. */
 typedef struct lv_rowbuf {
     double *v;

@@ -5,6 +5,7 @@ list(APPEND LV_SOURCES
   src/io/numfmt.cc
   src/io/numparse.cc
   src/io/result_mat.c
+  src/io/result_formats.c
   src/io/matio_dl.c
   src/io/hdf5_dl.c
   src/io/table_load.c

@@ -20,6 +20,7 @@
 #include "core/status.h"
 #include "core/units.h"
 #include "integrate/integrator.h"
+#include "io/sink.h"
 #include "lvsim/lv_dispersion.h"
 #include "lvsim/lv_io.h"
 #include "mission/dispersion.h"
@@ -544,8 +545,8 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
     if (opt && opt->outdir && !(formats & LV_RUN_NO_PHASE_FILES)) {
         snprintf(stem, sizeof stem, "%s/phase_%zu_%s", opt->outdir, k + 1, ph->name);
         c->s.result_file = stem;
-        if (formats & (LV_RESULT_MAT | LV_RESULT_CSV))
-            c->s.result_formats = formats & (LV_RESULT_MAT | LV_RESULT_CSV);
+        if (formats & lv_result_format_mask())
+            c->s.result_formats = formats & lv_result_format_mask();
     }
     progress_ctx pc = {r, k, opt};
     if (opt && (opt->progress || opt->stop)) {

@@ -1,6 +1,7 @@
 /* export.c - trajectory exports from a results folder: reads summary.json and the merged
  * body_<stage>.csv files back (post/results.h), then hands them to the CZML, KML and CCSDS OEM
- * writers (export_czml.c, export_kml.c, export_oem.c). Post-processing only: nothing is rerun.
+ * writers (export_czml.c, export_kml.c, export_oem.c), registered in the table below
+ * (docs/architecture.md, "An export"). Post-processing only: nothing is rerun.
  * Times: the epoch on the TAI scale plus SI seconds, written back as UTC with its leap seconds
  * (core/utc.h, ERFA). */
 #define _POSIX_C_SOURCE 200809L
@@ -17,7 +18,33 @@
 #include "post/export_int.h"
 #include "lvsim/lv_export.h"
 
-#define PATH_CAP 4352
+/* ------------------------------------------------------------- the table -- */
+
+/* One line per export (its writer and descriptor in export_<name>.c); flag 1u << position. */
+const lv_ex_format *const lv_ex_formats[] = {
+    &lv_ex_czml, /* LV_EXPORT_CZML */
+    &lv_ex_kml,  /* LV_EXPORT_KML */
+    &lv_ex_oem,  /* LV_EXPORT_OEM */
+    NULL};
+
+size_t lv_ex_format_count(void)
+{
+    size_t n = 0;
+    while (lv_ex_formats[n] != NULL)
+        n++;
+    return n;
+}
+
+LV_API const char *lv_export_format_info(size_t i, const char **files, const char **description)
+{
+    if (i >= lv_ex_format_count())
+        return NULL;
+    if (files != NULL)
+        *files = lv_ex_formats[i]->files;
+    if (description != NULL)
+        *description = lv_ex_formats[i]->description;
+    return lv_ex_formats[i]->name;
+}
 
 /* ------------------------------------------------------------------ time -- */
 
@@ -326,7 +353,10 @@ LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_e
 {
     if (rep != NULL)
         memset(rep, 0, sizeof *rep);
-    if (outdir == NULL || (formats & ~(unsigned)LV_EXPORT_ALL) != 0)
+    const unsigned known = (1u << lv_ex_format_count()) - 1u;
+    if (formats == LV_EXPORT_ALL)
+        formats = known;
+    if (outdir == NULL || (formats & ~known) != 0)
         return lv_fail(err, LV_ERR_INPUT, "lv_export_run: %s",
                        outdir == NULL ? "no folder" : "unknown format flag");
     lv_results *res = NULL;
@@ -369,26 +399,9 @@ LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_e
             st = lv_fail(err, LV_ERR_INPUT, "%s: no rows of phase '%s'", r.bodies[b].path,
                          r.phases[i].name);
     }
-    char path[PATH_CAP];
-    if (st == LV_OK && (formats & LV_EXPORT_CZML)) {
-        snprintf(path, sizeof path, "%s/mission.czml", outdir);
-        st = lv_ex_write_czml(&r, path, err);
-        if (st == LV_OK)
-            lv_ex_report(&r, "czml", path, NULL);
-    }
-    if (st == LV_OK && (formats & LV_EXPORT_KML)) {
-        size_t n_no60 = 0;
-        snprintf(path, sizeof path, "%s/mission.kml", outdir);
-        st = lv_ex_write_kml(&r, path, &n_no60, err);
-        if (st == LV_OK && n_no60 > 0)
-            lv_ex_report(&r, "kml", path, "%zu time%s inside a leap second written as "
-                         "23:59:59.999999 (KML's xsd:dateTime has no second 60)", n_no60,
-                         n_no60 == 1 ? "" : "s");
-        else if (st == LV_OK)
-            lv_ex_report(&r, "kml", path, NULL);
-    }
-    if (st == LV_OK && (formats & LV_EXPORT_OEM))
-        st = lv_ex_write_oem(&r, err);
+    for (size_t i = 0; lv_ex_formats[i] != NULL && st == LV_OK; i++)
+        if (formats & (1u << i))
+            st = lv_ex_formats[i]->write(&r, err);
     if (st == LV_OK && r.time_note[0] != '\0') /* the times written may be off: said once */
         lv_ex_report(&r, "utc", NULL, "%s", r.time_note);
     run_free(&r);

@@ -158,8 +158,10 @@ static cJSON *marker_packet(const lv_ex_run *r, size_t p, size_t j, double t, co
     return o;
 }
 
-lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
+static lv_status write_czml(const lv_ex_run *r, lv_err *err)
 {
+    char path[LV_EX_PATH_CAP];
+    snprintf(path, sizeof path, "%s/mission.czml", r->outdir);
     cJSON *doc = cJSON_CreateArray();
     if (doc == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -194,5 +196,11 @@ lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err)
         st = lv_atomic_commit(&out, err);
     }
     cJSON_free(text);
+    if (st == LV_OK)
+        lv_ex_report(r, "czml", path, NULL);
     return st;
 }
+
+const lv_ex_format lv_ex_czml = {
+    "czml", "mission.czml", "mission.czml",
+    "CZML for CesiumJS: every body's track, phase colours, event markers", write_czml};

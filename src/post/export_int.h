@@ -11,6 +11,8 @@
 #include "lvsim/lv_status.h"
 #include "post/results.h"
 
+#define LV_EX_PATH_CAP 4352 /* bytes of a file path in OUTDIR */
+
 typedef struct lv_ex_row {
     double t;                  /* s, mission time */
     double lat, lon, h;        /* rad, rad, m: WGS-84 geodetic */
@@ -86,10 +88,29 @@ const char *lv_ex_event_label(const lv_ex_event *e);
  * else "P2 start"), k >= 1 its events by their names (lv_ex_event_label). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
-lv_status lv_ex_write_czml(const lv_ex_run *r, const char *path, lv_err *err);
-/* *n_no60: how many written instants fell inside a leap second (written 23:59:59.999999). */
-lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err);
-/* Writes OUTDIR/<body>.oem for the bodies with orbital portions (docs/exports.md). */
-lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err);
+/* An export: one file src/post/export_<name>.c defines its writer and this descriptor, one line
+ * in the table of export.c registers it. Its flag in lv_export_run's `formats` is 1u << (its
+ * position in the table): the order of the table is the public flags' (LV_EXPORT_CZML, ..). */
+typedef struct lv_ex_format {
+    const char *name;        /* "czml": the word of --format/--outputs and lv_export_item.format;
+                                at most 7 characters */
+    const char *files;       /* what it writes in OUTDIR, as the docs say it: "mission.czml",
+                                "<stage>.oem" */
+    const char *pattern;     /* the same as an fnmatch(3) pattern, for the results folder's
+                                ownership (outdir.c): "mission.czml", "*.oem" */
+    const char *description; /* one line, for `lvsim formats`, the docs and Python */
+    /* Writes its files into r->outdir (through io/atomic.h) and reports each one, or why none
+     * was written, with lv_ex_report. */
+    lv_status (*write)(const lv_ex_run *r, lv_err *err);
+} lv_ex_format;
+
+extern const lv_ex_format lv_ex_czml; /* export_czml.c */
+extern const lv_ex_format lv_ex_kml;  /* export_kml.c */
+extern const lv_ex_format lv_ex_oem;  /* export_oem.c: OUTDIR/<body>.oem for the bodies with
+                                         orbital portions (docs/exports.md) */
+
+/* The registered exports, NULL-terminated (export.c), and their number. */
+extern const lv_ex_format *const lv_ex_formats[];
+size_t lv_ex_format_count(void);
 
 #endif

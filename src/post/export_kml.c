@@ -105,7 +105,8 @@ static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const l
             ph->index, lon * RAD2DEG, lat * RAD2DEG, h);
 }
 
-lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err)
+/* *n_no60: how many written instants fell inside a leap second (written 23:59:59.999999). */
+static lv_status write_file(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err)
 {
     char epoch[48];
     *n_no60 = 0;
@@ -161,3 +162,22 @@ lv_status lv_ex_write_kml(const lv_ex_run *r, const char *path, size_t *n_no60, 
     fputs("</Document>\n</kml>\n", f);
     return lv_atomic_commit(&out, err);
 }
+
+static lv_status write_kml(const lv_ex_run *r, lv_err *err)
+{
+    char path[LV_EX_PATH_CAP];
+    size_t n_no60 = 0;
+    snprintf(path, sizeof path, "%s/mission.kml", r->outdir);
+    lv_status st = write_file(r, path, &n_no60, err);
+    if (st == LV_OK && n_no60 > 0)
+        lv_ex_report(r, "kml", path, "%zu time%s inside a leap second written as "
+                     "23:59:59.999999 (KML's xsd:dateTime has no second 60)", n_no60,
+                     n_no60 == 1 ? "" : "s");
+    else if (st == LV_OK)
+        lv_ex_report(r, "kml", path, NULL);
+    return st;
+}
+
+const lv_ex_format lv_ex_kml = {
+    "kml", "mission.kml", "mission.kml",
+    "KML 2.2 for Google Earth: a folder per body, a track per phase, event markers", write_kml};

@@ -161,7 +161,7 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
     return st;
 }
 
-lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err)
+static lv_status write_oem(const lv_ex_run *r, lv_err *err)
 {
     if (r->flat) {
         lv_ex_report(r, "oem", NULL, "not written: a flat-world mission has no orbit to "
@@ -187,3 +187,7 @@ lv_status lv_ex_write_oem(const lv_ex_run *r, lv_err *err)
     }
     return st;
 }
+
+const lv_ex_format lv_ex_oem = {
+    "oem", "<stage>.oem", "*.oem",
+    "CCSDS OEM 2.0 (KVN): each body's orbital portions above 100 km, Earth only", write_oem};

@@ -31,6 +31,7 @@
 #include "io/readfile.h"
 #include "lvsim/lv_outdir.h"
 #include "lvsim/lvsim.h"
+#include "post/export_int.h"
 
 #define MANIFEST "manifest.json"
 #define STAGING_TAG ".staging-"
@@ -266,8 +267,7 @@ static int is_staging_name(const char *name)
  * and of a campaign's (lvsim mc, lv_outdir_open_live); the folders whose contents are all its
  * own (plots, the staged viewer, a campaign's kept runs). fnmatch(3) patterns. */
 static const char *const run_names[] = {"summary.json", "index.html", "key_figures.json",
-                                        "body_*.csv", "phase_*.mat", "phase_*.csv",
-                                        "mission.czml", "mission.kml", "*.oem", NULL};
+                                        "body_*.csv", NULL};
 static const char *const mc_names[] = {"stats.json", "stats.csv", "ellipses.csv", "outcomes.csv",
                                        "sensitivity.csv", "footprint.kml", "index.html",
                                        "campaign.db", "campaign.db-journal", NULL};
@@ -277,6 +277,24 @@ static int matches(const char *const *patterns, const char *name)
 {
     for (size_t i = 0; patterns[i] != NULL; i++)
         if (fnmatch(patterns[i], name, 0) == 0)
+            return 1;
+    return 0;
+}
+
+/* A name a run writes: run_names, a phase's result file "phase_*<ext>" of a registered result
+ * format (lv_io.h), or an export's files (export_int.h). */
+static int is_run_name(const char *name)
+{
+    if (matches(run_names, name))
+        return 1;
+    const char *ext;
+    for (size_t i = 0; lv_result_format_info(i, &ext, NULL) != NULL; i++) {
+        const size_t n = strlen(name), m = strlen(ext);
+        if (strncmp(name, "phase_", 6) == 0 && n >= 6 + m && strcmp(name + n - m, ext) == 0)
+            return 1;
+    }
+    for (size_t i = 0; lv_ex_formats[i] != NULL; i++)
+        if (fnmatch(lv_ex_formats[i]->pattern, name, 0) == 0)
             return 1;
     return 0;
 }
@@ -309,7 +327,7 @@ static int all_removable(const char *path, int depth, int in_own)
                                in_own || (depth == 0 && matches(own_folders, e->d_name)));
         else
             ok = in_own || sb.st_nlink > 1 || strcmp(e->d_name, MARKER) == 0 ||
-                 strcmp(e->d_name, MANIFEST) == 0 || matches(run_names, e->d_name) ||
+                 strcmp(e->d_name, MANIFEST) == 0 || is_run_name(e->d_name) ||
                  matches(mc_names, e->d_name) || fnmatch("*.tmp*", e->d_name, 0) == 0;
     }
     closedir(d);
@@ -1164,7 +1182,7 @@ static lv_status check_existing(lv_outdir *od, int need_lvsim, int *exists, lv_e
         /* a name the command writes: with force the user's files are kept, and this one it
          * would have to replace - refused now, not after the whole run */
         if (strchr(e->name, '/') == NULL && od->mode != MODE_OPEN)
-            reserved |= matches(od->mode == MODE_LIVE ? mc_names : run_names, e->name);
+            reserved |= od->mode == MODE_LIVE ? matches(mc_names, e->name) : is_run_name(e->name);
         if (e->owner == FOREIGN && reserved)
             st = lv_fail(err, LV_ERR_INPUT,
                          "'%s/%s' is %s and lvsim must write a file of that name: it is left "

@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "io/atomic.h"
+#include "lvsim/lv_io.h"
 #include "lvsim/lv_units.h"
 #include "post/plot.h"
 
@@ -271,17 +272,21 @@ static void file_list(FILE *f, const lv_results *res)
     }
     for (size_t k = 0; k < res->n_phases; k++) {
         const lv_results_phase *ph = &res->phases[k];
-        if (ph->mat == NULL && ph->csv == NULL)
-            continue;
-        fputs("<li>phase ", f);
-        esc(f, ph->name);
-        fputs(": ", f);
-        if (ph->mat != NULL)
-            link_to(f, ph->mat, ph->mat);
-        fputs(", ", f);
-        if (ph->csv != NULL)
-            link_to(f, ph->csv, ph->csv);
-        fputs("</li>\n", f);
+        int n = 0; /* its result files, one per format written: "a.mat, a.csv" */
+        for (size_t i = 0; lv_result_format_info(i, NULL, NULL) != NULL; i++) {
+            if (ph->files[i] == NULL)
+                continue;
+            if (n++ == 0) {
+                fputs("<li>phase ", f);
+                esc(f, ph->name);
+                fputs(": ", f);
+            } else {
+                fputs(", ", f);
+            }
+            link_to(f, ph->files[i], ph->files[i]);
+        }
+        if (n > 0)
+            fputs("</li>\n", f);
     }
     fputs("</ul>\n", f);
 }

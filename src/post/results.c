@@ -17,6 +17,7 @@
 #include "core/status.h"
 #include "io/numparse.h"
 #include "io/readfile.h"
+#include "lvsim/lv_io.h"
 
 /* ---------------------------------------------------------------- helpers -- */
 
@@ -115,13 +116,19 @@ static lv_status read_phase(lv_results *r, const cJSON *pj, size_t i, lv_err *er
     p->cpu_time = json_num(stats, "cpu_time");
 
     const cJSON *files = cJSON_GetObjectItemCaseSensitive(pj, "files");
-    p->csv = json_str(files, "csv");
-    p->mat = json_str(files, "mat");
-    lv_status st = file_name(r, "phase", p->name, "files.csv", p->csv, err);
-    if (st == LV_OK)
-        st = file_name(r, "phase", p->name, "files.mat", p->mat, err);
-    if (st != LV_OK)
-        return st;
+    const char *fmt;
+    for (size_t k = 0; (fmt = lv_result_format_info(k, NULL, NULL)) != NULL; k++) {
+        if (k >= LV_RESULTS_MAX_FORMATS) /* not reached: test_results.c */
+            return lv_fail(err, LV_ERR_INPUT, "more result formats than LV_RESULTS_MAX_FORMATS");
+        char key[16];
+        snprintf(key, sizeof key, "files.%s", fmt);
+        p->files[k] = json_str(files, fmt);
+        lv_status st = file_name(r, "phase", p->name, key, p->files[k], err);
+        if (st != LV_OK)
+            return st;
+        if (strcmp(fmt, "csv") == 0)
+            p->csv = p->files[k];
+    }
 
     const cJSON *ev = cJSON_GetObjectItemCaseSensitive(pj, "events");
     if (!cJSON_IsArray(ev))

@@ -12,6 +12,9 @@
 
 struct cJSON;
 
+/* Room for the registered result formats (lv_io.h; test_results.c checks it suffices). */
+#define LV_RESULTS_MAX_FORMATS 8
+
 /* Strings are borrowed from the parsed summary and live as long as their lv_results. A value
  * the summary does not give reads as NULL (strings) or NAN (numbers). */
 
@@ -41,7 +44,9 @@ typedef struct lv_results_phase {
     size_t n_events;
     const char **stages;    /* stages it carries: fewer than its parent's = a separation */
     size_t n_stages;
-    const char *csv, *mat;  /* files.csv, files.mat: its result files, names in OUTDIR; NULL */
+    const char *files[LV_RESULTS_MAX_FORMATS]; /* files.<name> per result format i
+                             * (lv_result_format_info(i)): names in OUTDIR; NULL when missing */
+    const char *csv;        /* files.csv (its files[i]): the table the plots read; NULL */
     double steps, rhs_evals, state_events, time_events; /* stats: counts; NAN when missing */
     double cpu_time;        /* stats.cpu_time, s; NAN when missing */
 } lv_results_phase;

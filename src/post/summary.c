@@ -193,14 +193,12 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         const char *base = strrchr(r->result_stem, '/');
         base = base ? base + 1 : r->result_stem;
         const char *fail = r->state == LV_PHASE_DONE ? "" : ".failed";
-        if (r->result_formats & LV_RESULT_MAT) {
-            snprintf(buf, sizeof buf, "%s%s.mat", base, fail);
-            cJSON_AddStringToObject(files, "mat", buf);
-        }
-        if (r->result_formats & LV_RESULT_CSV) {
-            snprintf(buf, sizeof buf, "%s%s.csv", base, fail);
-            cJSON_AddStringToObject(files, "csv", buf);
-        }
+        const char *name, *ext;
+        for (size_t i = 0; (name = lv_result_format_info(i, &ext, NULL)) != NULL; i++)
+            if (r->result_formats & (1u << i)) { /* "mat": "phase_1_ascent.mat" */
+                snprintf(buf, sizeof buf, "%s%s%s", base, fail, ext);
+                cJSON_AddStringToObject(files, name, buf);
+            }
     }
     return o;
 }

@@ -1154,6 +1154,33 @@ def test_second_breaker_arguments():
     assert r.result("us-ascent").stale  # the old rows stay readable, marked
 
 
+# ---- the result formats and exports, as the libraries register them --------------------------
+
+def test_formats_come_from_the_library(tmp_path):
+    fm = lvsim.formats()
+    # `lvsim formats` and the package list the same formats, in the same order (both ask
+    # lv_result_format_info and lv_export_format_info)
+    out = subprocess.run([LVSIM, "formats"], check=True, capture_output=True, text=True).stdout
+    listed = [line.split()[0] for line in out.splitlines() if line.startswith("  ")]
+    assert listed == list(fm)
+    # the order of LV_RESULT_MAT, _CSV and LV_EXPORT_CZML, _KML, _OEM (later ones may follow)
+    assert list(lvsim.formats("results"))[:2] == ["mat", "csv"]
+    assert list(lvsim.formats("exports"))[:3] == ["czml", "kml", "oem"]
+    assert fm["mat"].file == ".mat" and fm["oem"].file == "<stage>.oem" and fm["kml"].description
+    with pytest.raises(ValueError):
+        lvsim.formats("figures")
+    # a run's files: one per registered result format by default, named by its extension
+    m = lvsim.Mission(PAPER)
+    r = m.run(outdir=tmp_path / "o", keep_rows=False)
+    res = r.result(0)
+    exts = [f.file for f in lvsim.formats("results").values()]
+    assert [os.path.splitext(f)[1] for f in res.result_files] == exts
+    assert all(os.path.exists(f) for f in res.result_files)
+    with pytest.raises(lvsim.LvsimError, match=r"unknown result format 'xmatx' \(mat, csv"):
+        r.execute(outdir=tmp_path / "x", formats=["xmatx"])
+    r.close(); m.close()
+
+
 # ---- the steering and throttle laws, as the library registers them ---------------------------
 
 def test_laws_come_from_the_library():

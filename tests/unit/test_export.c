@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <cjson/cJSON.h>
+#include <fnmatch.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "lvsim/lv_export.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
+#include "post/export_int.h"
 
 static char path_buf[4096];
 static const char *src_path(const char *rel)
@@ -364,6 +366,51 @@ static void test_leap_second(void)
                 "leave the years 0000-9999");
 }
 
+/* The contract of every registered export (export.c's table): a name of at most 7 lowercase
+ * letters or digits, unique (the words of --format and --outputs); flag 1u << position (the
+ * public LV_EXPORT_* agree); lv_export_format_info says the same; exported alone from the dof3
+ * results folder (every export has something to write there) it reports under its own name
+ * only, and each file it reports exists and matches its `pattern`, which outdir.c uses to
+ * tell lvsim's files from the user's. */
+static void check_registry(const char *dir)
+{
+    const size_t n = lv_ex_format_count();
+    CHECK(n >= 3 && lv_export_format_info(n, NULL, NULL) == NULL);
+    CHECK(strcmp(lv_ex_formats[0]->name, "czml") == 0 && LV_EXPORT_CZML == 1u << 0);
+    CHECK(strcmp(lv_ex_formats[1]->name, "kml") == 0 && LV_EXPORT_KML == 1u << 1);
+    CHECK(strcmp(lv_ex_formats[2]->name, "oem") == 0 && LV_EXPORT_OEM == 1u << 2);
+    for (size_t i = 0; i < n; i++) {
+        const lv_ex_format *f = lv_ex_formats[i];
+        const char *files = NULL, *desc = NULL;
+        CHECK(lv_export_format_info(i, &files, &desc) == f->name && files == f->files &&
+              desc == f->description);
+        const size_t len = strlen(f->name);
+        CHECK(len >= 1 && len < sizeof ((lv_export_item *)0)->format &&
+              strspn(f->name, "abcdefghijklmnopqrstuvwxyz0123456789") == len);
+        CHECK(f->pattern != NULL && f->files != NULL && f->write != NULL && desc[0] != '\0');
+        for (size_t j = 0; j < i; j++)
+            CHECK(strcmp(f->name, lv_ex_formats[j]->name) != 0);
+        lv_export_report rep;
+        lv_err err = {0};
+        CHECK_OK(lv_export_run_report(dir, 1u << i, &rep, &err), &err);
+        size_t written = 0;
+        for (size_t k = 0; k < rep.n; k++) {
+            const lv_export_item *it = &rep.items[k];
+            CHECK(strcmp(it->format, f->name) == 0 || strcmp(it->format, "utc") == 0);
+            if (it->file[0] == '\0')
+                continue;
+            written++;
+            CHECK(exists(dir, it->file) && fnmatch(f->pattern, it->file, 0) == 0);
+        }
+        if (written == 0)
+            fprintf(stderr, "export '%s' wrote nothing into %s\n", f->name, dir);
+        CHECK(written > 0);
+        lv_export_report_clear(&rep);
+    }
+    lv_err err = {0};
+    CHECK_FAILS(lv_export_run(dir, 1u << n, &err), &err, LV_ERR_INPUT, "unknown format flag");
+}
+
 int main(void)
 {
     lv_err err = {0};
@@ -396,6 +443,7 @@ int main(void)
         CHECK(exists(dof3, "mission.kml"));
         CHECK(exists(dof3, "upper.oem"));
         CHECK(exists(dof3, "core.oem"));
+        check_registry(dof3);
         char iv[100];
         const double t1 = mission_end(dof3);
         CHECK_CLOSE(t1, 663.9018, 0.01);

@@ -20,7 +20,9 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "io/sink.h"
 #include "lvsim/lv_io.h"
+#include "lvsim/lv_sim.h"
 
 #define OUT "io_out"
 
@@ -551,6 +553,52 @@ static void test_disk_full(void)
     signal(SIGXFSZ, old_handler);
 }
 
+/* The contract of every registered result format (io/result_formats.c): a name of at most 7
+ * lowercase letters or digits and an extension ".xyz", both unique; flag 1u << position (the
+ * public LV_RESULT_* constants agree); lv_result_format_info says the same; its sink, made
+ * through the descriptor, writes "<stem><ext>" for a complete run and "<stem>.failed<ext>"
+ * for a failed one - the names summary.json gives (post/summary.c) and `lvsim simulate`
+ * checks before it writes. */
+static void test_registry(void)
+{
+    const size_t n = lv_result_format_count();
+    CHECK(n >= 2 && n < 32 && lv_result_format_mask() == (1u << n) - 1u);
+    CHECK(strcmp(lv_result_formats[0]->name, "mat") == 0 && LV_RESULT_MAT == 1u << 0);
+    CHECK(strcmp(lv_result_formats[1]->name, "csv") == 0 && LV_RESULT_CSV == 1u << 1);
+    CHECK(lv_result_format_info(n, NULL, NULL) == NULL);
+    for (size_t i = 0; i < n; i++) {
+        const lv_result_format *f = lv_result_formats[i];
+        const char *ext = NULL, *desc = NULL;
+        CHECK(lv_result_format_info(i, &ext, &desc) == f->name && ext == f->ext &&
+              desc == f->description);
+        const size_t len = strlen(f->name);
+        CHECK(len >= 1 && len <= 7 &&
+              strspn(f->name, "abcdefghijklmnopqrstuvwxyz0123456789") == len);
+        CHECK(f->ext[0] == '.' && strlen(f->ext) >= 2 && strchr(f->ext, '/') == NULL);
+        CHECK(f->description != NULL && f->description[0] != '\0' && f->create != NULL);
+        for (size_t j = 0; j < i; j++)
+            CHECK(strcmp(f->name, lv_result_formats[j]->name) != 0 &&
+                  strcmp(f->ext, lv_result_formats[j]->ext) != 0);
+        for (int failed = 0; failed <= 1; failed++) {
+            char path[256], want[256];
+            snprintf(path, sizeof path, OUT "/registry_%d%s", failed, f->ext);
+            snprintf(want, sizeof want, OUT "/registry_%d%s%s", failed, failed ? ".failed" : "",
+                     f->ext);
+            remove(want);
+            lv_sink s = {0};
+            lv_err err;
+            CHECK_OK(f->create(path, &s, &err), &err);
+            if (s.vt == NULL)
+                continue;
+            CHECK_OK(run_sink(&s, 11, failed ? "stopped" : NULL, &err), &err);
+            lv_sink_destroy(&s);
+            if (!exists(want))
+                fprintf(stderr, "format '%s': no file %s\n", f->name, want);
+            CHECK(exists(want));
+        }
+    }
+}
+
 int main(void)
 {
     if (mkdir(OUT, 0755) != 0 && errno != EEXIST) {
@@ -564,5 +612,6 @@ int main(void)
     test_mat_streams();
     test_errors();
     test_disk_full();
+    test_registry();
     return check_report("test_io");
 }

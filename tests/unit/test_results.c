@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "check.h"
+#include "lvsim/lv_io.h"
 #include "post/results.h"
 
 #define DIR "results_out"
@@ -26,6 +27,17 @@ static int write_text(const char *path, const char *text)
 static int same(const char *a, const char *b)
 {
     return a != NULL && b != NULL && strcmp(a, b) == 0;
+}
+
+/* Position of result format `name` in the registry (lv_io.h); aborts the test when absent. */
+static size_t format_index(const char *name)
+{
+    const char *f;
+    for (size_t i = 0; (f = lv_result_format_info(i, NULL, NULL)) != NULL; i++)
+        if (strcmp(f, name) == 0)
+            return i;
+    fprintf(stderr, "result format '%s' not registered\n", name);
+    exit(1);
 }
 
 static const char summary[] =
@@ -77,7 +89,10 @@ static void test_summary(void)
         CHECK(same(a->events[1].kind, "state") && a->events[1].direction == -1.0);
     }
     CHECK(a->n_stages == 2 && same(a->stages[0], "s1") && same(a->stages[1], "s2"));
-    CHECK(same(a->csv, "ascent.csv") && same(a->mat, "ascent.mat"));
+    /* files.<name> per registered result format, room for each of them */
+    CHECK(lv_result_format_info(LV_RESULTS_MAX_FORMATS, NULL, NULL) == NULL);
+    CHECK(same(a->csv, "ascent.csv") && same(a->files[format_index("csv")], "ascent.csv"));
+    CHECK(same(a->files[format_index("mat")], "ascent.mat"));
     CHECK(a->steps == 40.0 && a->rhs_evals == 90.0 && a->state_events == 1.0);
     CHECK(a->time_events == 1.0 && a->cpu_time == 0.002);
 
@@ -90,7 +105,8 @@ static void test_summary(void)
     /* Nothing but name, index, from, state: NULL and NAN for the rest; an unknown parent. */
     CHECK(same(l->name, "later") && l->index == 3 && same(l->from, "nowhere") && l->parent == -1);
     CHECK(!l->done && isnan(l->t_start) && isnan(l->t_end) && l->end_reason == NULL);
-    CHECK(l->csv == NULL && l->mat == NULL && l->model == NULL && l->n_events == 0);
+    CHECK(l->csv == NULL && l->files[format_index("mat")] == NULL && l->model == NULL &&
+          l->n_events == 0);
 
     CHECK(same(r->bodies[0].name, "s2") && same(r->bodies[0].trajectory, "body_s2.csv"));
     CHECK(r->bodies[0].n_phases == 2 && r->bodies[0].phases[0] == 0 &&
