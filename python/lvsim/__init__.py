@@ -22,9 +22,10 @@ LvsimError, MissionError, ParameterError, SimulationError, CancelledError.
 from ._paths import VERSION as __version__
 from .errors import (CancelledError, InputError, LvsimError, MissionError, OutputLimitError,
                      ParameterError, SimulationError)
-from ._mission import (Dispersion, Event, Mission, Model, Outcome, Parameter, Phase,
-                       PhaseCall, PhaseResult, Run, Table, Trajectory, Variable, models,
-                       simulate, METHODS)
+from ._results import Dispersion, Event, Parameter, Phase, PhaseResult, Table, Trajectory
+from ._simulate import METHODS, Model, Outcome, PhaseCall, Variable, models, simulate
+from ._run import Run
+from ._mission import Mission
 from ._target import Target, TargetResult
 from ._campaign import Campaign
 from ._laws import Law, LawKey, common_keys, laws

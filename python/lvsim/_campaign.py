@@ -63,7 +63,7 @@ class Campaign:
         anything runs (InputError, the sizes named). Failed runs are outcomes, not errors;
         LvsimError for the campaign itself (an existing database without overwrite or
         resume, one of another campaign); TypeError/ValueError for bad arguments."""
-        from ._mission import METHODS
+        from ._simulate import METHODS
         post = _lib.post()
         o = _lib.lv_campaign_options()
         post.lv_campaign_options_default(byref(o))

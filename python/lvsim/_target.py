@@ -6,7 +6,7 @@ from ctypes import POINTER, byref, c_double, c_void_p
 
 from . import _lib
 from ._lib import lib, name_arg, path_arg, real_arg, text
-from ._mission import Run
+from ._run import Run
 from .errors import LvsimError, check
 
 METHODS = {"auto": 0, "newton": 1, "slsqp": 2, "cobyla": 3}
