@@ -678,14 +678,10 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
     };
-    lv_flight_def_callbacks(&m->def, &m->fe, m->domain);
-    lv_flight_core_set(&m->core, &m->world, &m->fe, LV_X3_RX, LV_X3_VX, LV_X3_M);
-    m->core.inputs = m->inputs.table;
-    m->core.eng = m->eng;
-    m->core.n_eng = m->n_eng;
-    m->core.guid = m->steers ? &m->guid : NULL;
-    m->core.stop_at_burnout = m->stop_at_burnout;
-    m->inst.rt.core = &m->core;
+    m->core = (lv_flight_core){&m->world, &m->fe, LV_X3_RX, LV_X3_VX, LV_X3_M, m->inputs.table,
+                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                               m->stop_at_burnout};
+    lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     for (int k = 0; k < 3; k++)
         m->inst.trig.ang[k] = NAN;

@@ -1348,14 +1348,10 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .outputs_fn = dof6_outputs,
         .abs_error = abs_error,
     };
-    lv_flight_def_callbacks(&m->def, &m->fe, m->domain);
-    lv_flight_core_set(&m->core, &m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M);
-    m->core.inputs = m->inputs;
-    m->core.eng = m->eng;
-    m->core.n_eng = m->n_eng;
-    m->core.guid = m->steers ? &m->guid : NULL;
-    m->core.stop_at_burnout = m->stop_at_burnout;
-    m->inst.rt.core = &m->core;
+    m->core = (lv_flight_core){&m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M, m->inputs,
+                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                               m->stop_at_burnout};
+    lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
         goto fail;

@@ -33,22 +33,11 @@ lv_domain_def lv_flight_domain(int has_atmo)
                    "end ends the phase on the ground"};
 }
 
-void lv_flight_core_set(lv_flight_core *c, const lv_flight_world *world, lv_flight_ends *fe,
-                        size_t i_r, size_t i_v, size_t i_m)
-{
-    memset(c, 0, sizeof *c);
-    c->world = world;
-    c->fe = fe;
-    c->i_r = i_r;
-    c->i_v = i_v;
-    c->i_m = i_m;
-}
-
-void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_ends *fe,
+void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
                              const lv_domain_def *domain)
 {
-    def->n_events = 1 + fe->n;
-    def->events = fe->events;
+    def->n_events = 1 + core->fe->n;
+    def->events = core->fe->events;
     def->event_g = lv_flight_event_g;
     def->on_event = lv_flight_on_event;
     def->next_time_event = lv_flight_next_time_event_cb;
@@ -57,6 +46,7 @@ void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_ends *fe,
     def->domain = domain;
     def->domain_q = lv_flight_domain_q;
     def->last_error = lv_flight_last_error_cb;
+    rt->core = core;
 }
 
 static int is_time_axis(const char *name)

@@ -55,12 +55,9 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
  * lowest ground of the Earth, Moon and Mars). */
 lv_domain_def lv_flight_domain(int has_atmo);
 
-/* c = the parts of a built model the callbacks read. */
-void lv_flight_core_set(lv_flight_core *c, const lv_flight_world *world, lv_flight_ends *fe,
-                        size_t i_r, size_t i_v, size_t i_m);
-
-/* The shared callbacks into def (with fe's events: 1 + fe->n) and the domain (one quantity). */
-void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_ends *fe,
+/* The shared callbacks into def (with the events of core->fe: 1 + fe->n) and the domain (one
+ * quantity); rt (the model's instance template) reads core. */
+void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
                              const lv_domain_def *domain);
 
 /* An inputs table over time: one axis named "time" (or "t") in s. `model` prefixes the

@@ -25,32 +25,9 @@ static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "se
 static const char *const from_types[] = {"runway", "dof6", NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
-enum { MP_LAT, MP_LON, MP_H, MP_VEL, MP_FPA, MP_CHI };
-static const lv_var mission_params[] = {
-    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
-    {"start_lon", "rad", "Initial longitude", 0, 0},
-    {"start_h", "m", "Initial geodetic altitude", 0, 0},
-    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
-    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
-    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
-};
+static const lv_var mission_params[] = {LV_KIT_START_PARAMS};
+static const lv_range mission_param_ranges[] = {LV_KIT_START_RANGES};
 
-static const lv_range mission_param_ranges[] = {
-    LV_RANGE_LAT,                /* start_lat in [-90, 90] deg */
-    LV_RANGE_TURN,               /* start_lon in [-360, 360] deg */
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, /* start_h: the model's domain and the impact end decide */
-    {0.0, HUGE_VAL, 0, 0},       /* start_vel >= 0 */
-    LV_RANGE_LAT,                /* start_fpa in [-90, 90] deg */
-    LV_RANGE_TURN,               /* start_chi in [-360, 360] deg */
-};
-
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* ---- the phase's own keys ------------------------------------------------------------ */
 
@@ -266,12 +243,12 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     const size_t ne = prop0 > 0.0 ? lv_kit_engines(bc, bottom, s->kit.engines) : 0;
     cfg.n_engines = ne;
     cfg.engines = s->kit.engines;
-    cfg.start_lat = lv_kit_param(bc, MP_LAT, 0.0);
-    cfg.start_lon = lv_kit_param(bc, MP_LON, 0.0);
-    cfg.start_h = lv_kit_param(bc, MP_H, 0.0);
-    cfg.start_vel = lv_kit_param(bc, MP_VEL, 0.0);
-    cfg.start_fpa = lv_kit_param(bc, MP_FPA, 0.0);
-    cfg.start_chi = lv_kit_param(bc, MP_CHI, 0.0);
+    cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
+    cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
+    cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);
+    cfg.start_vel = lv_kit_param(bc, LV_KIT_START_VEL, 0.0);
+    cfg.start_fpa = lv_kit_param(bc, LV_KIT_START_FPA, 0.0);
+    cfg.start_chi = lv_kit_param(bc, LV_KIT_START_CHI, 0.0);
     cfg.n_ends = lv_kit_flight_ends(bc, &s->kit, &cfg.stop_at_burnout);
     cfg.ends = s->kit.ends;
     /* an input without a slot does not act (a guidance law steers, the throttle comes from
@@ -368,8 +345,8 @@ const lv_phase_type lv_phase_type_dof3 = {
     .cfg_free = dof3_cfg_free,
     .build = dof3_build,
     .free_self = dof3_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = dof3_handoff,
 };

@@ -36,16 +36,11 @@ static const char *const root_only[] = {"start_h",   "start_vel", "start_psi", "
  * (dof6_handoff). */
 static const char *const from_types[] = {"dof3", NULL};
 
-/* The model's parameters that are the mission's shared parameter set (lv_dof6.h). */
-enum { MP_LAT, MP_LON, MP_H, MP_VEL, MP_FPA, MP_CHI };
+/* The model's parameters that are the mission's shared parameter set (lv_dof6.h): a start over
+ * the planet, and the paper's Table 1, 6-DoF: the same as a root phase's `attitude:` and
+ * `rates:` */
 static const lv_var mission_params[] = {
-    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
-    {"start_lon", "rad", "Initial longitude", 0, 0},
-    {"start_h", "m", "Initial geodetic altitude", 0, 0},
-    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
-    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
-    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
-    /* the paper's Table 1, 6-DoF: the same as a root phase's `attitude:` and `rates:` */
+    LV_KIT_START_PARAMS,
     {"start_psi", "rad", "Initial yaw attitude (3-2-1 Euler angles relative to NED)", 0, 0},
     {"start_theta", "rad", "Initial pitch attitude (3-2-1 Euler angles relative to NED)", 0, 0},
     {"start_phi", "rad", "Initial roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
@@ -55,20 +50,12 @@ static const lv_var mission_params[] = {
 };
 
 static const lv_range mission_param_ranges[] = {
-    LV_RANGE_LAT,          LV_RANGE_TURN, {-HUGE_VAL, HUGE_VAL, 0, 0}, /* lat, lon, h */
-    {0.0, HUGE_VAL, 0, 0}, LV_RANGE_LAT,  LV_RANGE_TURN,               /* vel, fpa, chi */
+    LV_KIT_START_RANGES,
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
     {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
 };
 
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* ---- the phase's own keys ------------------------------------------------------------ */
 
@@ -674,12 +661,12 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.n_engines = ne;
     cfg.engines = s->kit.engines;
     cfg.engine_geom = s->geom;
-    cfg.start_lat = lv_kit_param(bc, MP_LAT, 0.0);
-    cfg.start_lon = lv_kit_param(bc, MP_LON, 0.0);
-    cfg.start_h = lv_kit_param(bc, MP_H, 0.0);
-    cfg.start_vel = lv_kit_param(bc, MP_VEL, 0.0);
-    cfg.start_fpa = lv_kit_param(bc, MP_FPA, 0.0);
-    cfg.start_chi = lv_kit_param(bc, MP_CHI, 0.0);
+    cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
+    cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
+    cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);
+    cfg.start_vel = lv_kit_param(bc, LV_KIT_START_VEL, 0.0);
+    cfg.start_fpa = lv_kit_param(bc, LV_KIT_START_FPA, 0.0);
+    cfg.start_chi = lv_kit_param(bc, LV_KIT_START_CHI, 0.0);
     cfg.start_psi = lv_kit_val(bc, pc->att[A_PSI], 0.0);
     cfg.start_theta = lv_kit_val(bc, pc->att[A_THETA], 0.0);
     cfg.start_phi = lv_kit_val(bc, pc->att[A_PHI], 0.0);
@@ -867,8 +854,8 @@ const lv_phase_type lv_phase_type_dof6 = {
     .cfg_free = dof6_cfg_free,
     .build = dof6_build,
     .free_self = dof6_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = dof6_handoff,
     .check = dof6_check_set,

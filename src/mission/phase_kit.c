@@ -7,6 +7,14 @@
 
 #include "core/status.h"
 
+const lv_traj_col lv_kit_planet_traj[LV_KIT_PLANET_TRAJ_N] = {
+    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
+    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
+    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
+    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
+    {"q_dyn", "Pa", "q_dyn"},
+};
+
 double lv_kit_val(const lv_build_ctx *bc, lv_slot s, double fallback)
 {
     return s == LV_NO_SLOT ? fallback : bc->vals[s];

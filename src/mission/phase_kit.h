@@ -22,6 +22,32 @@
 #include "mission/aero_def.h"
 #include "mission/phase_type.h"
 
+/* ---- what a type over the planet declares --------------------------------------------- */
+
+/* The columns of a body's merged trajectory over the planet (body_<stage>.csv) from a model
+ * with the flight models' states and outputs (r_eci_*, v_eci_*, m; lat, lon, h, v_rel, mach,
+ * q_dyn): what the exports read (time, lat, lon, h, the ECI state) and more. */
+#define LV_KIT_PLANET_TRAJ_N 13
+extern const lv_traj_col lv_kit_planet_traj[LV_KIT_PLANET_TRAJ_N];
+
+/* The mission parameters of a start over the planet, in this order (lv_kit_param's i), and
+ * their ranges: the rows of a type's mission_params and mission_param_ranges. */
+enum { LV_KIT_START_LAT, LV_KIT_START_LON, LV_KIT_START_H, LV_KIT_START_VEL, LV_KIT_START_FPA,
+       LV_KIT_START_CHI, LV_KIT_START_N };
+#define LV_KIT_START_PARAMS                                                                      \
+    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},                                     \
+    {"start_lon", "rad", "Initial longitude", 0, 0},                                             \
+    {"start_h", "m", "Initial geodetic altitude", 0, 0},                                         \
+    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},                 \
+    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0,   \
+     0},                                                                                         \
+    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0}
+/* lat in [-90, 90] deg, lon within a turn, h: the model's domain and the impact end decide,
+ * vel >= 0, fpa in [-90, 90] deg, chi within a turn */
+#define LV_KIT_START_RANGES                                                                      \
+    LV_RANGE_LAT, LV_RANGE_TURN, {-HUGE_VAL, HUGE_VAL, 0, 0}, {0.0, HUGE_VAL, 0, 0},             \
+        LV_RANGE_LAT, LV_RANGE_TURN
+
 /* ---- values ------------------------------------------------------------------------------ */
 
 /* The run's value of slot s; `fallback` where there is no slot (LV_NO_SLOT: a key the phase

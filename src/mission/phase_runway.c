@@ -23,13 +23,6 @@ static const char *const from_types[] = {"dof3", NULL};
 /* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
 static const char *const ends[] = {"burnout", "speed", NULL};
 
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* Touchdown tolerances of the hand-off from a dof3 phase (runway_handoff). */
 #define TOUCHDOWN_HEIGHT_MAX 10.0 /* m above or below the runway plane */
@@ -357,8 +350,8 @@ const lv_phase_type lv_phase_type_runway = {
     .cfg_free = runway_cfg_free,
     .build = runway_build,
     .free_self = runway_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = runway_handoff,
 };
