@@ -164,6 +164,10 @@ struct lv_phase_type {
     const char *const *root_only_params;
 };
 
+/* The type whose model compare.c flies end to end (the paper's flat-world test case): a study
+ * made for one model names its type by this object, never by a string. */
+extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
+
 /* The registered types, NULL-terminated (phase_types.c). */
 const lv_phase_type *const *lv_phase_types(void);
 

@@ -4,7 +4,7 @@
 
 #include "core/status.h"
 
-extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
+/* lv_phase_type_flat6 (phase_flat6.c) is declared in phase_type.h */
 extern const lv_phase_type lv_phase_type_dof3;  /* phase_dof3.c */
 extern const lv_phase_type lv_phase_type_runway; /* phase_runway.c */
 extern const lv_phase_type lv_phase_type_dof6;  /* phase_dof6.c */
