@@ -2,7 +2,9 @@
  * exported). The parser, the mission, the run and the summary know no model by name: they
  * ask the phase's type to parse its own keys, to build its model from a run's values, and
  * to name the columns of the bodies' merged trajectories. A new model type is one file that
- * defines an lv_phase_type and one line in phase_types.c (docs/architecture.md).
+ * defines an lv_phase_type (its build made of the kit, phase_kit.h) and one line in
+ * phase_types.c; tests/unit/test_phase_types.c checks the contracts every type keeps with the
+ * merge, the exports and the other types (docs/architecture.md, "How to add a phase type").
  */
 #ifndef LV_MISSION_PHASE_TYPE_H
 #define LV_MISSION_PHASE_TYPE_H
