@@ -584,31 +584,9 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     m->domain[0] = lv_flight_domain(cfg->atmo != NULL);
 
     /* vehicle */
-    if (cfg->n_engines > 0) {
-        if (cfg->engines == NULL) {
-            st = lv_fail(err, LV_ERR_INPUT, "dof3: n_engines = %zu but engines is NULL",
-                         cfg->n_engines);
-            goto fail;
-        }
-        m->eng = calloc(cfg->n_engines, sizeof *m->eng);
-        if (m->eng == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-        size_t nbuf = 1;
-        for (size_t i = 0; i < cfg->n_engines; i++) {
-            if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
-                goto fail;
-            m->n_eng = i + 1;
-            if (m->eng[i].n_out > nbuf)
-                nbuf = m->eng[i].n_out;
-        }
-        m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
-        if (m->eng_buf == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-    }
+    if ((st = lv_flight_engines_init("dof3", cfg->engines, cfg->n_engines, &m->eng, &m->n_eng,
+                                     &m->eng_buf, err)) != LV_OK)
+        goto fail;
     if (cfg->aero != NULL) {
         if ((st = lv_aero_init(&m->aero, cfg->aero, err)) != LV_OK) {
             lv_fail_prefix(err, st, "dof3");

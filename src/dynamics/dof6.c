@@ -1224,38 +1224,24 @@ static lv_status setup_aero(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
     return LV_OK;
 }
 
+/* The engines (flight_model.h) and each one's position and misalignment on the body. */
 static lv_status setup_engines(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
 {
-    lv_status st;
-    if (cfg->n_engines == 0)
-        return LV_OK;
-    if (cfg->engines == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "dof6: n_engines = %zu but engines is NULL",
-                       cfg->n_engines);
-    m->eng = calloc(cfg->n_engines, sizeof *m->eng);
-    m->geom = calloc(cfg->n_engines, sizeof *m->geom);
-    if (m->eng == NULL || m->geom == NULL)
+    lv_status st = lv_flight_engines_init("dof6", cfg->engines, cfg->n_engines, &m->eng,
+                                          &m->n_eng, &m->eng_buf, err);
+    if (st != LV_OK || m->n_eng == 0)
+        return st;
+    if ((m->geom = calloc(m->n_eng, sizeof *m->geom)) == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    size_t nbuf = 1;
-    for (size_t i = 0; i < cfg->n_engines; i++) {
-        if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
-            return st;
-        m->n_eng = i + 1;
-        if (m->eng[i].n_out > nbuf)
-            nbuf = m->eng[i].n_out;
-        if (cfg->engine_geom != NULL) {
-            const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
-            if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
-                !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
-                return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m "
-                               "and misalignment (%g, %g) rad must be finite", m->eng[i].name,
-                               g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
-            m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
-        }
+    for (size_t i = 0; cfg->engine_geom != NULL && i < m->n_eng; i++) {
+        const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
+        if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
+            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m and "
+                           "misalignment (%g, %g) rad must be finite", m->eng[i].name,
+                           g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
+        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
     }
-    m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
-    if (m->eng_buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     return LV_OK;
 }
 

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/table_unit.h"
@@ -20,6 +21,29 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
     if (!isfinite(propellant) || propellant < 0.0 || !(propellant < m0))
         return lv_fail(err, LV_ERR_INPUT, "%s: propellant = %g kg (must be >= 0 and less than "
                        "the start mass m0 = %g kg)", model, propellant, m0);
+    return LV_OK;
+}
+
+lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
+                                 lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err)
+{
+    if (n == 0)
+        return LV_OK;
+    if (engines == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: n_engines = %zu but engines is NULL", model, n);
+    if ((*eng = calloc(n, sizeof **eng)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    size_t nbuf = 1;
+    for (size_t i = 0; i < n; i++) {
+        lv_status st = lv_engine_init(&(*eng)[i], &engines[i], i, err);
+        if (st != LV_OK)
+            return st;
+        *n_eng = i + 1;
+        if ((*eng)[i].n_out > nbuf)
+            nbuf = (*eng)[i].n_out;
+    }
+    if ((*eng_buf = malloc(nbuf * sizeof **eng_buf)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     return LV_OK;
 }
 

@@ -50,6 +50,13 @@ typedef struct lv_flight_rt {
  * LV_ERR_INPUT naming the model ("dof3: start mass m0 = -1 kg (must be > 0)") otherwise. */
 lv_status lv_flight_check_mass(const char *model, double m0, double propellant, lv_err *err);
 
+/* The engines of a configuration: *eng = [n] initialised from engines[n] (lv_engine_init),
+ * *n_eng the number initialised (also after an error, for the caller's free), *eng_buf
+ * scratch for their tables; nothing when n = 0. LV_ERR_INPUT naming the model ("dof3:
+ * n_engines = 2 but engines is NULL") or the engine, LV_ERR_NOMEM. */
+lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
+                                 lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err);
+
 /* The domain of a model over the planet: the geodetic altitude "h" above the atmosphere's
  * floor (US76: -5 km), or 20 km below the ellipsoid without an atmosphere (deeper than the
  * lowest ground of the Earth, Moon and Mars). */
