@@ -6,9 +6,9 @@
  * (event 0 the burnout, then the named ends of flight_ends.h) and their handler, the domain's
  * quantity, the time events of the inputs table, engines and steering law, the last error.
  *
- * A model's object holds an lv_flight_core (filled by lv_flight_core_set once the model is
- * built); its instance block begins with an lv_flight_rt that points to it, so that the
- * callbacks below take the instance as it is. */
+ * A model's object holds an lv_flight_core (one literal once the model is built); its
+ * instance block begins with an lv_flight_rt that points to it (lv_flight_def_callbacks), so
+ * that the callbacks below take the instance as it is. */
 #ifndef LV_DYNAMICS_FLIGHT_MODEL_H
 #define LV_DYNAMICS_FLIGHT_MODEL_H
 

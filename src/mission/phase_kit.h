@@ -2,10 +2,12 @@
  * does alike, written once. A type's build is then its own model's configuration between
  * lv_kit_begin and lv_kit_done:
  *
- *     s = calloc(1, sizeof *s);                          s->kit is an lv_kit_model
- *     lv_kit_begin(bc, &s->kit, sizeof *s->ends, 1, 1, err)      env, engines, ends
- *     cfg.start_lat = lv_kit_param(bc, 0, 0.0);          mission parameters (slots)
- *     n = lv_kit_engines(bc, bottom, s->kit.engines);    the bottom stage's engines
+ *     s = calloc(1, sizeof *s);                       s->kit: an lv_kit_model
+ *     lv_kit_begin(bc, &s->kit, 1, sizeof(lv_dof3_end), 1, err);   env, engines, ends
+ *     lv_kit_world(&s->kit, &cfg.planet, &cfg.gravity, &cfg.atmo, &cfg.wind, &cfg.wind_user);
+ *     cfg.m0 = lv_kit_stack_mass(bc, 0);              kg, the phase's stages
+ *     cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);     mission parameters
+ *     cfg.n_engines = lv_kit_engines(bc, bottom, s->kit.engines);  the bottom stage's
  *     cfg.n_ends = lv_kit_flight_ends(bc, &s->kit, &cfg.stop_at_burnout);
  *     lv_xxx_create(&cfg, &s->model, err);
  *     lv_kit_done(&s->kit, lv_xxx_def(s->model), lv_xxx_inst(s->model), s, out);
