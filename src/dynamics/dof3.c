@@ -14,6 +14,7 @@
 #include "core/vec3.h"
 #include "dynamics/flight.h"
 #include "dynamics/flight_ends.h"
+#include "dynamics/flight_model.h"
 #include "dynamics/guidance.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof3.h"
@@ -132,16 +133,10 @@ static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
 
 
 typedef struct dof3_inst {
+    lv_flight_rt rt;      /* burnout book, start point, steering state, messages (first) */
     lv_dof3 *m;           /* NULL in a block lv_simulate zeroed itself */
-    int engines_on;       /* mode: 1 while propellant remains */
-    int burned_out;       /* the propellant is gone */
-    double m_burnout;     /* kg: the start mass minus the burning stage's propellant */
     lv_table_cursor in_cur;
-    double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
     lv_flight_trig_cache trig; /* cosines and sines of alpha, beta, mu */
-    lv_guid_rt guid;      /* the steering law's start frame, cursors, trigonometry */
-    char msg[LV_ERR_MSG_MAX];
-    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 } dof3_inst;
 
 struct lv_dof3 {
@@ -150,6 +145,7 @@ struct lv_dof3 {
     lv_var states[LV_X3_N];
     lv_var params[P_N];
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
+    lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
     lv_flight_world world;       /* planet, gravity, atmosphere, wind */
     lv_domain_def domain[1];     /* the altitude floor */
@@ -203,7 +199,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
     const double mass = x[LV_X3_M];
     lv_aero *aero = m->has_aero ? &m->aero : NULL;
     if (m->steers) {
-        if (lv_guid_attitude(&m->guid, &s->guid, t, &pt->kin, &pt->air, p[P_THR], p[P_FPA],
+        if (lv_guid_attitude(&m->guid, &s->rt.guid, t, &pt->kin, &pt->air, p[P_THR], p[P_FPA],
                              p[P_CHI], full, &pt->ctl, &pt->ax, err) != 0)
             return 1;
     } else {
@@ -231,7 +227,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
         }
     }
     pt->g_ecef = lv_flight_gravity(w, m->grav_ws, &pt->kin);
-    if (m->throttles && s->engines_on) {
+    if (m->throttles && s->rt.engines_on) {
         double t_full, md_full;
         lv_flight_controls at_full = pt->ctl;
         at_full.u[LV_CTRL_THROTTLE] = 1.0;
@@ -258,7 +254,7 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
         pt->ctl.u[LV_CTRL_THROTTLE] =
             lv_guid_throttle(&m->thr, pt->ctl.u[LV_CTRL_THROTTLE], &in, &pt->air);
     }
-    if (lv_flight_thrust(m->eng, m->n_eng, s->engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
+    if (lv_flight_thrust(m->eng, m->n_eng, s->rt.engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
                          &pt->thrust, &pt->mdot, err) != 0)
         return 1;
     pt->f_sum = lv_v3_add(lv_v3_scale(pt->ax.xb, pt->thrust), pt->f_aero);
@@ -289,7 +285,7 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
                                 err) != 0)
         return 1;
     lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
-    if (lv_flight_thrust(m->eng, m->n_eng, s->engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
+    if (lv_flight_thrust(m->eng, m->n_eng, s->rt.engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
                          &pt->thrust, &pt->mdot, err) != 0 ||
         lv_flight_aero(m->has_aero ? &m->aero : NULL, &pt->kin, &pt->air, &pt->ctl, &pt->ax,
                        pt->coef, &pt->f_aero, err) != 0)
@@ -303,7 +299,7 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
 
 static void note(dof3_inst *s, const lv_err *e)
 {
-    snprintf(s->msg, sizeof s->msg, "%s", e->msg);
+    snprintf(s->rt.msg, sizeof s->rt.msg, "%s", e->msg);
 }
 
 static int dof3_rhs(double t, const double *x, const double *p, double *xdot, void *inst)
@@ -327,33 +323,12 @@ static int dof3_rhs(double t, const double *x, const double *p, double *xdot, vo
     return 0;
 }
 
-static int fail_inst(dof3_inst *s, const char *fmt, ...) LV_PRINTF(2, 3);
-static int fail_inst(dof3_inst *s, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(s->msg, sizeof s->msg, fmt, ap);
-    va_end(ap);
-    return -1;
-}
-
 /* Checks the parameters a run can change by name. */
 static int check_params(dof3_inst *s, const double *p)
 {
-    const lv_dof3 *m = s->m;
-    if (!(fabs(p[P_LAT]) <= 0.5 * LV_PI))
-        return fail_inst(s, "start_lat = %g rad is outside [-pi/2, pi/2]", p[P_LAT]);
-    if (!(p[P_VEL] >= 0.0))
-        return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
-    if (!(p[P_PROP] >= 0.0))
-        return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
-    if (m->const_throttle)
-        for (size_t i = 0; i < m->n_eng; i++)
-            if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max)) {
-                return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
-                                 p[P_THR], m->eng[i].thr_min, m->eng[i].thr_max, m->eng[i].name);
-            }
-    return 0;
+    if (lv_flight_check_start(&s->rt, p[P_LAT], p[P_VEL], p[P_PROP]) != 0)
+        return -1;
+    return s->m->const_throttle ? lv_flight_check_throttle(&s->rt, p[P_THR]) : 0;
 }
 
 /* Position and velocity from the geodetic start values (the paper's userPar). */
@@ -362,21 +337,11 @@ static int dof3_start(const double *p, double *x, void *inst)
     dof3_inst *s = inst;
     if (s == NULL || s->m == NULL)
         return -1; /* not an lv_dof3 instance */
-    s->msg[0] = '\0';
+    s->rt.msg[0] = '\0';
     if (check_params(s, p) != 0)
         return -1;
-    const lv_planet *pl = &s->m->world.planet;
-    double r_ecef[3], v_ned[3], C[3][3], v_ecef[3], r_eci[3], v_eci[3];
-    lv_frames_geodetic_to_ecef(pl, p[P_LAT], p[P_LON], p[P_H], r_ecef);
-    lv_frames_ned_from_fpa(p[P_VEL], p[P_FPA], p[P_CHI], v_ned);
-    lv_frames_C_ned_ecef(p[P_LAT], p[P_LON], C);
-    for (int i = 0; i < 3; i++) /* v_ecef = C_ned_ecef^T v_ned */
-        v_ecef[i] = C[0][i] * v_ned[0] + C[1][i] * v_ned[1] + C[2][i] * v_ned[2];
-    lv_frames_ecef_to_eci(pl, p[P_T0], r_ecef, v_ecef, r_eci, v_eci);
-    for (int i = 0; i < 3; i++) {
-        x[LV_X3_RX + i] = r_eci[i];
-        x[LV_X3_VX + i] = v_eci[i];
-    }
+    lv_flight_start_state(&s->m->world.planet, p[P_LAT], p[P_LON], p[P_H], p[P_VEL], p[P_FPA],
+                          p[P_CHI], p[P_T0], x + LV_X3_RX, x + LV_X3_VX);
     return 0; /* the mass keeps the start value of state "m" */
 }
 
@@ -385,103 +350,20 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     dof3_inst *s = inst;
     if (s == NULL || s->m == NULL)
         return -1;
-    s->msg[0] = '\0';
+    s->rt.msg[0] = '\0';
     if (check_params(s, p) != 0)
         return -1;
-    if (!(x[LV_X3_M] > 0.0))
-        return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X3_M]);
-    if (!(p[P_PROP] < x[LV_X3_M]))
-        return fail_inst(s, "the propellant %g kg is not less than the start mass %g kg",
-                         p[P_PROP], x[LV_X3_M]);
-    /* the propellant book: burnout when the burning stage's propellant is gone, whatever else
-     * the start mass carries (a payload set by the user is not burnt) */
-    s->m_burnout = x[LV_X3_M] - p[P_PROP];
-    s->burned_out = 0;
-    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0 && !s->m->thr.engines_off;
     for (int k = 0; k < 3; k++)
         s->trig.ang[k] = NAN;
+    /* the propellant book: burnout when the burning stage's propellant is gone, whatever else
+     * the start mass carries (a payload set by the user is not burnt) */
+    if (lv_flight_book(&s->rt, x[LV_X3_M], p[P_PROP], s->m->n_eng > 0 && !s->m->thr.engines_off))
+        return -1;
     lv_flight_kin kin;
-    lv_flight_to_ecef(&s->m->world, t0, r_of(x), v_of(x), &kin);
-    const double rn = lv_v3_norm(kin.r_ecef);
-    if (!(rn > 0.0))
-        return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
-    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
-    lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
-    /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
-     * below its weight) has no crossing from above to find: its impact is 1 micrometre below
-     * where it starts; one that starts below it is refused. */
-    char why[320];
-    if (lv_flight_ends_start(&s->m->fe, kin.h, why, sizeof why) != 0)
-        return fail_inst(s, "%s", why);
-    s->r0_unit[0] = kin.r_ecef.x / rn;
-    s->r0_unit[1] = kin.r_ecef.y / rn;
-    s->r0_unit[2] = kin.r_ecef.z / rn;
+    if (lv_flight_start(&s->rt, t0, x, &kin) != 0)
+        return -1;
+    lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin);
     return 0;
-}
-
-static int dof3_g(double t, const double *x, const double *p, double *g, void *inst)
-{
-    (void)p;
-    const dof3_inst *s = inst;
-    const lv_dof3 *m = s->m;
-    /* burnout: disarmed (a constant) once the engines are off */
-    g[0] = s->engines_on ? x[LV_X3_M] - s->m_burnout : 1.0;
-    if (m->fe.n == 0)
-        return 0;
-    lv_flight_kin kin;
-    lv_flight_to_ecef(&m->world, t, x + LV_X3_RX, x + LV_X3_VX, &kin);
-    lv_flight_ends_eval(&m->fe, &m->world, &kin, x + LV_X3_RX, x + LV_X3_VX, g + 1);
-    return 0;
-}
-
-/* The model's domain: the geodetic altitude above its floor (dof3_create). */
-static int dof3_domain_q(double t, const double *x, const double *p, double *q, void *inst)
-{
-    (void)p;
-    const dof3_inst *s = inst;
-    lv_flight_kin kin;
-    lv_flight_to_ecef(&s->m->world, t, r_of(x), v_of(x), &kin);
-    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
-    q[0] = kin.h;
-    return 0;
-}
-
-static lv_event_action dof3_on_event(double t, double *x, const double *p, const int *fired,
-                                     void *inst)
-{
-    (void)t, (void)x, (void)p;
-    dof3_inst *s = inst;
-    const lv_dof3 *m = s->m;
-    lv_event_action act = LV_EVENT_CONTINUE;
-    if (fired[0]) { /* propellant gone: engines off, a new initial value problem */
-        s->engines_on = 0;
-        s->burned_out = 1;
-        act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
-    }
-    for (size_t i = 0; i < m->fe.n; i++)
-        if (fired[1 + i] && m->fe.ends[i].stop)
-            act = LV_EVENT_STOP;
-    return act;
-}
-
-static double dof3_next_time_event(double t, const double *p, void *inst)
-{
-    (void)p;
-    const dof3_inst *s = inst;
-    const lv_dof3 *m = s->m;
-    return lv_flight_next_time_event(m->inputs.table, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                                     &s->guid, t);
-}
-
-/* The time events at t by their source: the inputs table's, the steering law's or an engine
- * table's breakpoint. */
-static const char *dof3_time_event_name(double t, const double *p, void *inst)
-{
-    (void)p;
-    dof3_inst *s = inst;
-    const lv_dof3 *m = s->m;
-    return lv_flight_time_event_label(m->inputs.table, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                                      &s->guid, t, s->tev, sizeof s->tev);
 }
 
 /* Flight-path angle and heading of an ECEF vector in the local NED frame. */
@@ -539,12 +421,12 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_LIFT] = -lv_v3_dot(pt.f_aero, ax->zw);
     y[O_SIDE] = lv_v3_dot(pt.f_aero, ax->yw);
     y[O_MDOT] = pt.mdot;
-    y[O_ENGINE_ON] = s->engines_on;
+    y[O_ENGINE_ON] = s->rt.engines_on;
     for (int i = 0; i < U_N; i++)
         y[O_ALPHA + i] = pt.ctl.u[i];
-    if (!s->engines_on) /* engines off (burnt out, a coast): no throttle */
+    if (!s->rt.engines_on) /* engines off (burnt out, a coast): no throttle */
         y[O_THR] = 0.0;
-    const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
+    const lv_vec3 u0 = {s->rt.r0_unit[0], s->rt.r0_unit[1], s->rt.r0_unit[2]};
     const double rn = lv_v3_norm(k->r_ecef);
     const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / rn);
     y[O_DOWNRANGE] =
@@ -561,17 +443,10 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_APO] = el.r_apo - m->world.planet.a;
     y[O_PERI] = el.r_peri - m->world.planet.a;
     lv_guid_euler_local(k, ax, &y[O_THETA], &y[O_PSI], &y[O_PHI]);
-    y[O_PROP_LEFT] = s->burned_out || mass < s->m_burnout ? 0.0 : mass - s->m_burnout;
+    y[O_PROP_LEFT] = s->rt.burned_out || mass < s->rt.m_burnout ? 0.0 : mass - s->rt.m_burnout;
     lv_guid_target(&m->guid, k, m->world.planet.a, lv_v3_dot(pt.g_ecef, k->d_ax),
                    &y[O_TGT_DIST], &y[O_TGT_BEAR], &y[O_TGT_OVER]);
     return 0;
-}
-
-/* Why the last callback failed (a table out of range, the atmosphere, a bad parameter). */
-static const char *dof3_last_error_cb(const void *inst)
-{
-    const dof3_inst *s = inst;
-    return s != NULL && s->msg[0] != '\0' ? s->msg : NULL;
 }
 
 /* ---- construction ---------------------------------------------------------------------- */
@@ -627,11 +502,6 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
     return LV_OK;
 }
 
-static int is_time_axis(const char *name)
-{
-    return strcmp(name, "time") == 0 || strcmp(name, "t") == 0;
-}
-
 static lv_status check_finite(const char *what, double v, const char *unit, lv_err *err)
 {
     if (!isfinite(v))
@@ -645,13 +515,8 @@ static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
         m->inputs.k[k] = -1;
     if (tab == NULL)
         return LV_OK;
-    if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
-        return lv_fail(err, LV_ERR_INPUT,
-                       "dof3: input table '%s' must have exactly one axis named 'time' (has %zu, "
-                       "the first named '%s')",
-                       lv_table_name(tab), lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
     int any = 0;
-    lv_status st = lv_table_expect_unit(tab, 1, 0, "s", "dof3: inputs", err);
+    lv_status st = lv_flight_check_inputs_table("dof3", tab, err);
     if (st != LV_OK)
         return st;
     for (int k = 0; k < U_N; k++) {
@@ -691,16 +556,8 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "dof3");
 
     /* masses and start values */
-    if (!isfinite(cfg->m0) || !(cfg->m0 > 0.0)) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof3: start mass m0 = %g kg (must be > 0)", cfg->m0);
-        goto fail;
-    }
-    if (!isfinite(cfg->propellant) || cfg->propellant < 0.0 || !(cfg->propellant < cfg->m0)) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof3: propellant = %g kg (must be >= 0 and less than "
-                     "the start mass m0 = %g kg)", cfg->propellant, cfg->m0);
-        goto fail;
-    }
-    if ((st = check_finite("start_lon", cfg->start_lon, "rad", err)) != LV_OK ||
+    if ((st = lv_flight_check_mass("dof3", cfg->m0, cfg->propellant, err)) != LV_OK ||
+        (st = check_finite("start_lon", cfg->start_lon, "rad", err)) != LV_OK ||
         (st = check_finite("start_h", cfg->start_h, "m", err)) != LV_OK ||
         (st = check_finite("start_fpa", cfg->start_fpa, "rad", err)) != LV_OK ||
         (st = check_finite("start_chi", cfg->start_chi, "rad", err)) != LV_OK ||
@@ -724,41 +581,12 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     if ((st = lv_flight_world_setup(&m->world, "dof3", &cfg->planet, cfg->gravity, cfg->atmo,
                                     cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    /* The domain: above the atmosphere's floor (US76: -5 km), or 20 km below the ellipsoid on
-     * a planet without atmosphere (deeper than the lowest ground of the Earth, Moon and Mars). */
-    m->domain[0] = (lv_domain_def){
-        "h", "m", cfg->atmo != NULL ? LV_ATMO_ALT_MIN : -20e3,
-        cfg->atmo != NULL ? "the vehicle is under the ground (below the floor of the "
-                            "atmosphere model); an `impact` end ends the phase on the ground"
-                          : "the vehicle is under the ground (20 km below the ellipsoid); an "
-                            "`impact` end ends the phase on the ground"};
+    m->domain[0] = lv_flight_domain(cfg->atmo != NULL);
 
     /* vehicle */
-    if (cfg->n_engines > 0) {
-        if (cfg->engines == NULL) {
-            st = lv_fail(err, LV_ERR_INPUT, "dof3: n_engines = %zu but engines is NULL",
-                         cfg->n_engines);
-            goto fail;
-        }
-        m->eng = calloc(cfg->n_engines, sizeof *m->eng);
-        if (m->eng == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-        size_t nbuf = 1;
-        for (size_t i = 0; i < cfg->n_engines; i++) {
-            if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
-                goto fail;
-            m->n_eng = i + 1;
-            if (m->eng[i].n_out > nbuf)
-                nbuf = m->eng[i].n_out;
-        }
-        m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
-        if (m->eng_buf == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-    }
+    if ((st = lv_flight_engines_init("dof3", cfg->engines, cfg->n_engines, &m->eng, &m->n_eng,
+                                     &m->eng_buf, err)) != LV_OK)
+        goto fail;
     if (cfg->aero != NULL) {
         if ((st = lv_aero_init(&m->aero, cfg->aero, err)) != LV_OK) {
             lv_fail_prefix(err, st, "dof3");
@@ -818,26 +646,20 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .n_states = LV_X3_N,
         .n_params = P_N,
         .n_outputs = O_N,
-        .n_events = 1 + m->fe.n,
         .states = m->states,
         .params = m->params,
         .outputs = output_vars,
-        .events = m->fe.events,
         .inst_size = sizeof(dof3_inst),
         .start = dof3_start,
         .init = dof3_init,
         .rhs = dof3_rhs,
-        .event_g = dof3_g,
-        .on_event = dof3_on_event,
-        .next_time_event = dof3_next_time_event,
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
-        .n_domain = 1,
-        .domain = m->domain,
-        .domain_q = dof3_domain_q,
-        .last_error = dof3_last_error_cb,
-        .time_event_name = dof3_time_event_name,
     };
+    m->core = (lv_flight_core){&m->world, &m->fe, LV_X3_RX, LV_X3_VX, LV_X3_M, m->inputs.table,
+                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                               m->stop_at_burnout};
+    lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     for (int k = 0; k < 3; k++)
         m->inst.trig.ang[k] = NAN;
@@ -867,4 +689,4 @@ const lv_model_def *lv_dof3_def(const lv_dof3 *m) { return &m->def; }
 
 void *lv_dof3_inst(lv_dof3 *m) { return &m->inst; }
 
-const char *lv_dof3_last_error(const lv_dof3 *m) { return m->inst.msg; }
+const char *lv_dof3_last_error(const lv_dof3 *m) { return m->inst.rt.msg; }

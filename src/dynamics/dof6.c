@@ -18,6 +18,7 @@
 #include "core/vec3.h"
 #include "dynamics/flight.h"
 #include "dynamics/flight_ends.h"
+#include "dynamics/flight_model.h"
 #include "dynamics/guidance.h"
 #include "dynamics/orbit.h"
 #include "lvsim/lv_dof6.h"
@@ -186,15 +187,9 @@ static const char *const input_names[U_N] = {"gimbal_pitch", "gimbal_yaw", "thro
 
 
 typedef struct dof6_inst {
+    lv_flight_rt rt;      /* burnout book, start point, steering state, messages (first) */
     lv_dof6 *m;           /* NULL in a block lv_simulate zeroed itself */
-    int engines_on;
-    int burned_out;
-    double m_burnout;     /* kg */
     lv_table_cursor in_cur;
-    double r0_unit[3];    /* ECEF unit vector of the start point (downrange) */
-    lv_guid_rt guid;      /* the steering law's start frame, cursors, trigonometry */
-    char msg[LV_ERR_MSG_MAX];
-    char tev[LV_EVENT_NAME_MAX];
 } dof6_inst;
 
 typedef struct eng6 {
@@ -211,6 +206,7 @@ struct lv_dof6 {
     size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
     lv_var params[P_N];
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
+    lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
     lv_flight_world world;
     lv_domain_def domain[1];
@@ -497,7 +493,7 @@ static int command_rate(lv_dof6 *m, dof6_inst *s, double t, const double *x, con
 {
     const lv_flight_world *w = &m->world;
     double h = CMD_RATE_DT;
-    if (lv_guid_next_time_event(&m->guid, &s->guid, t) - t < h)
+    if (lv_guid_next_time_event(&m->guid, &s->rt.guid, t) - t < h)
         h = -h;
     const double r[3] = {x[LV_X6_RX] + h * x[LV_X6_VX], x[LV_X6_RY] + h * x[LV_X6_VY],
                          x[LV_X6_RZ] + h * x[LV_X6_VZ]};
@@ -527,7 +523,7 @@ static int command_rate(lv_dof6 *m, dof6_inst *s, double t, const double *x, con
         }
         ah.v_air_n = lv_v3_norm(ah.v_air);
     }
-    if (lv_guid_attitude(&m->guid, &s->guid, t + h, &kh, &ah, pt->u[U_THR], p[P_FPA], p[P_CHI],
+    if (lv_guid_attitude(&m->guid, &s->rt.guid, t + h, &kh, &ah, pt->u[U_THR], p[P_FPA], p[P_CHI],
                          0, &cc, &ch, err) != 0)
         return 1;
     lv_vec3 w_e = lv_v3_scale(body_to_ecef(&pt->cmd, attitude_error(&pt->cmd, &ch)), 1.0 / h);
@@ -581,7 +577,7 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
     const lv_vec3 w_b = {x[LV_X6_P], x[LV_X6_Q], x[LV_X6_R]};
     if (m->steers) {
         lv_flight_controls cc;
-        if (lv_guid_attitude(&m->guid, &s->guid, t, k, &pt->air, pt->u[U_THR], p[P_FPA],
+        if (lv_guid_attitude(&m->guid, &s->rt.guid, t, k, &pt->air, pt->u[U_THR], p[P_FPA],
                              p[P_CHI], full, &cc, &pt->cmd, err) != 0)
             return 1;
         pt->u[U_THR] = cc.u[LV_CTRL_THROTTLE]; /* an attitude table's throttle */
@@ -596,7 +592,7 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
     /* 4a: engines, each at its gimbal point */
     pt->mdot = 0.0;
     pt->f_thrust_b = pt->m_thrust_b = lv_v3(0.0, 0.0, 0.0);
-    if (s->engines_on) {
+    if (s->rt.engines_on) {
         for (size_t i = 0; i < m->n_eng; i++) {
             double f, md;
             if (lv_engine_eval(&m->eng[i], t, pt->u[U_THR], pt->air.p_amb, m->eng_buf, &f, &md,
@@ -677,7 +673,7 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
 
 /* ---- callbacks ------------------------------------------------------------------------ */
 
-static void note(dof6_inst *s, const lv_err *e) { snprintf(s->msg, sizeof s->msg, "%s", e->msg); }
+static void note(dof6_inst *s, const lv_err *e) { snprintf(s->rt.msg, sizeof s->rt.msg, "%s", e->msg); }
 
 static int dof6_rhs(double t, const double *x, const double *p, double *xdot, void *inst)
 {
@@ -713,38 +709,18 @@ static int dof6_rhs(double t, const double *x, const double *p, double *xdot, vo
     return 0;
 }
 
-static int fail_inst(dof6_inst *s, const char *fmt, ...) LV_PRINTF(2, 3);
-static int fail_inst(dof6_inst *s, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(s->msg, sizeof s->msg, fmt, ap);
-    va_end(ap);
-    return -1;
-}
-
 static int check_params(dof6_inst *s, const double *p)
 {
-    const lv_dof6 *m = s->m;
-    if (!(fabs(p[P_LAT]) <= 0.5 * LV_PI))
-        return fail_inst(s, "start_lat = %g rad is outside [-pi/2, pi/2]", p[P_LAT]);
-    if (!(p[P_VEL] >= 0.0))
-        return fail_inst(s, "start_vel = %g m/s is negative", p[P_VEL]);
-    if (!(p[P_PROP] >= 0.0))
-        return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
+    if (lv_flight_check_start(&s->rt, p[P_LAT], p[P_VEL], p[P_PROP]) != 0)
+        return -1;
     for (int i = P_PSI; i <= P_RR; i++)
         if (!isfinite(p[i]))
-            return fail_inst(s, "%s = %g is not finite", param_tpl[i].name, p[i]);
+            return lv_flight_fail(&s->rt, "%s = %g is not finite", param_tpl[i].name, p[i]);
     for (int i = P_RP; i <= P_RR; i++)
         if (!(fabs(p[i]) <= LV_DOF6_RATE_MAX))
-            return fail_inst(s, "%s = %g rad/s is outside [-%g, %g] rad/s (10 rev/s)",
-                             param_tpl[i].name, p[i], LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX);
-    if (m->const_throttle)
-        for (size_t i = 0; i < m->n_eng; i++)
-            if (!(p[P_THR] >= m->eng[i].thr_min && p[P_THR] <= m->eng[i].thr_max))
-                return fail_inst(s, "throttle = %g is outside the limits [%g, %g] of engine '%s'",
-                                 p[P_THR], m->eng[i].thr_min, m->eng[i].thr_max, m->eng[i].name);
-    return 0;
+            return lv_flight_fail(&s->rt, "%s = %g rad/s is outside [-%g, %g] rad/s (10 rev/s)",
+                                  param_tpl[i].name, p[i], LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX);
+    return s->m->const_throttle ? lv_flight_check_throttle(&s->rt, p[P_THR]) : 0;
 }
 
 void lv_dof6_quat_from_euler(const lv_planet *pl, double t, double lat, double lon, double psi,
@@ -768,21 +744,12 @@ static int dof6_start(const double *p, double *x, void *inst)
     dof6_inst *s = inst;
     if (s == NULL || s->m == NULL)
         return -1;
-    s->msg[0] = '\0';
+    s->rt.msg[0] = '\0';
     if (check_params(s, p) != 0)
         return -1;
     const lv_planet *pl = &s->m->world.planet;
-    double r_ecef[3], v_ned[3], C[3][3], v_ecef[3], r_eci[3], v_eci[3];
-    lv_frames_geodetic_to_ecef(pl, p[P_LAT], p[P_LON], p[P_H], r_ecef);
-    lv_frames_ned_from_fpa(p[P_VEL], p[P_FPA], p[P_CHI], v_ned);
-    lv_frames_C_ned_ecef(p[P_LAT], p[P_LON], C);
-    for (int i = 0; i < 3; i++)
-        v_ecef[i] = C[0][i] * v_ned[0] + C[1][i] * v_ned[1] + C[2][i] * v_ned[2];
-    lv_frames_ecef_to_eci(pl, p[P_T0], r_ecef, v_ecef, r_eci, v_eci);
-    for (int i = 0; i < 3; i++) {
-        x[LV_X6_RX + i] = r_eci[i];
-        x[LV_X6_VX + i] = v_eci[i];
-    }
+    lv_flight_start_state(pl, p[P_LAT], p[P_LON], p[P_H], p[P_VEL], p[P_FPA], p[P_CHI], p[P_T0],
+                          x + LV_X6_RX, x + LV_X6_VX);
     lv_dof6_quat_from_euler(pl, p[P_T0], p[P_LAT], p[P_LON], p[P_PSI], p[P_THETA], p[P_PHI],
                             x + LV_X6_QW);
     x[LV_X6_P] = p[P_RP];
@@ -798,22 +765,19 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     dof6_inst *s = inst;
     if (s == NULL || s->m == NULL)
         return -1;
-    s->msg[0] = '\0';
+    s->rt.msg[0] = '\0';
     if (check_params(s, p) != 0)
         return -1;
-    if (!(x[LV_X6_M] > 0.0))
-        return fail_inst(s, "start mass m = %g kg is not positive", x[LV_X6_M]);
-    if (!(p[P_PROP] < x[LV_X6_M]))
-        return fail_inst(s, "the propellant %g kg is not less than the start mass %g kg",
-                         p[P_PROP], x[LV_X6_M]);
+    if (lv_flight_book(&s->rt, x[LV_X6_M], p[P_PROP], s->m->n_eng > 0) != 0)
+        return -1;
     const double qn = sqrt(x[LV_X6_QW] * x[LV_X6_QW] + x[LV_X6_QX] * x[LV_X6_QX] +
                            x[LV_X6_QY] * x[LV_X6_QY] + x[LV_X6_QZ] * x[LV_X6_QZ]);
     if (!(fabs(qn - 1.0) < 1e-6))
-        return fail_inst(s, "start quaternion (%g, %g, %g, %g) has norm %.9g, not 1 (within "
+        return lv_flight_fail(&s->rt, "start quaternion (%g, %g, %g, %g) has norm %.9g, not 1 (within "
                          "1e-6)", x[LV_X6_QW], x[LV_X6_QX], x[LV_X6_QY], x[LV_X6_QZ], qn);
     for (int i = LV_X6_P; i <= LV_X6_R; i++)
         if (!(fabs(x[i]) <= LV_DOF6_RATE_MAX))
-            return fail_inst(s, "start body rate %s = %g rad/s is outside [-%g, %g] rad/s (10 "
+            return lv_flight_fail(&s->rt, "start body rate %s = %g rad/s is outside [-%g, %g] rad/s (10 "
                              "rev/s)", state_tpl[i].name, x[i], LV_DOF6_RATE_MAX,
                              LV_DOF6_RATE_MAX);
     /* the actuators within the deflection limit; the integrals' share of the command, ki int,
@@ -823,91 +787,17 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
         const double ki = i >= X_IP ? s->m->ctl.ki[i - X_IP] : 1.0;
         const double share = i >= X_IP ? ki * x[i] : x[i];
         if (!isfinite(x[i]) || !(fabs(share) <= s->m->ctl.limit) || (ki == 0.0 && x[i] != 0.0))
-            return fail_inst(s, "start %s = %g %s: must be finite%s", ctl_state_tpl[i - LV_X6_N].name,
+            return lv_flight_fail(&s->rt, "start %s = %g %s: must be finite%s", ctl_state_tpl[i - LV_X6_N].name,
                              x[i], ctl_state_tpl[i - LV_X6_N].unit,
                              i <= X_AY ? " and within the controller's deflection limit"
                                        : ", |ki int| within the deflection limit (0 with ki = 0)");
     }
-    s->m_burnout = x[LV_X6_M] - p[P_PROP];
-    s->burned_out = 0;
-    s->engines_on = s->m->n_eng > 0 && p[P_PROP] > 0.0;
     lv_flight_kin kin;
-    lv_flight_to_ecef(&s->m->world, t0, x + LV_X6_RX, x + LV_X6_VX, &kin);
-    const double rn = lv_v3_norm(kin.r_ecef);
-    if (!(rn > 0.0))
-        return fail_inst(s, "start position is the planet's centre (|r| = %g m)", rn);
-    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
-    for (int i = 0; i < 3; i++)
-        s->r0_unit[i] = (i == 0 ? kin.r_ecef.x : i == 1 ? kin.r_ecef.y : kin.r_ecef.z) / rn;
+    if (lv_flight_start(&s->rt, t0, x, &kin) != 0)
+        return -1;
     if (s->m->steers)
-        lv_guid_start(&s->m->guid, &s->guid, t0, &kin);
-    char why[320];
-    if (lv_flight_ends_start(&s->m->fe, kin.h, why, sizeof why) != 0)
-        return fail_inst(s, "%s", why);
+        lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin);
     return 0;
-}
-
-static int dof6_g(double t, const double *x, const double *p, double *g, void *inst)
-{
-    (void)p;
-    const dof6_inst *s = inst;
-    const lv_dof6 *m = s->m;
-    g[0] = s->engines_on ? x[LV_X6_M] - s->m_burnout : 1.0;
-    if (m->fe.n == 0)
-        return 0;
-    lv_flight_kin kin;
-    lv_flight_to_ecef(&m->world, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
-    lv_flight_ends_eval(&m->fe, &m->world, &kin, x + LV_X6_RX, x + LV_X6_VX, g + 1);
-    return 0;
-}
-
-static int dof6_domain_q(double t, const double *x, const double *p, double *q, void *inst)
-{
-    (void)p;
-    const dof6_inst *s = inst;
-    lv_flight_kin kin;
-    lv_flight_to_ecef(&s->m->world, t, x + LV_X6_RX, x + LV_X6_VX, &kin);
-    lv_flight_geodetic(&s->m->world, &kin, 0, 0);
-    q[0] = kin.h;
-    return 0;
-}
-
-static lv_event_action dof6_on_event(double t, double *x, const double *p, const int *fired,
-                                     void *inst)
-{
-    (void)t, (void)x, (void)p;
-    dof6_inst *s = inst;
-    const lv_dof6 *m = s->m;
-    lv_event_action act = LV_EVENT_CONTINUE;
-    if (fired[0]) {
-        s->engines_on = 0;
-        s->burned_out = 1;
-        act = m->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
-    }
-    for (size_t i = 0; i < m->fe.n; i++)
-        if (fired[1 + i] && m->fe.ends[i].stop)
-            act = LV_EVENT_STOP;
-    return act;
-}
-
-static double dof6_next_time_event(double t, const double *p, void *inst)
-{
-    (void)p;
-    const dof6_inst *s = inst;
-    const lv_dof6 *m = s->m;
-    return lv_flight_next_time_event(m->inputs, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                                     &s->guid, t);
-}
-
-/* The time events at t by their source: the inputs table's, the steering law's or an engine
- * table's breakpoint. */
-static const char *dof6_time_event_name(double t, const double *p, void *inst)
-{
-    (void)p;
-    dof6_inst *s = inst;
-    const lv_dof6 *m = s->m;
-    return lv_flight_time_event_label(m->inputs, m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                                      &s->guid, t, s->tev, sizeof s->tev);
 }
 
 static int dof6_outputs(double t, const double *x, const double *p, double *y, void *inst)
@@ -943,7 +833,7 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_PAMB] = pt.air.p_amb;
     y[O_THRUST] = lv_v3_norm(pt.f_thrust_b);
     y[O_MDOT] = pt.mdot;
-    y[O_ENGINE_ON] = s->engines_on;
+    y[O_ENGINE_ON] = s->rt.engines_on;
     /* aerodynamic force in wind axes: x_w, y_w, z_w in body components (eq. 2.3-6) */
     const double ca = cos(pt.alpha), sa = sin(pt.alpha), cb = cos(pt.beta), sb = sin(pt.beta);
     const lv_vec3 xw_b = {ca * cb, sb, sa * cb}, yw_b = {-ca * sb, cb, -sa * sb},
@@ -987,8 +877,8 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
                       x[LV_X6_QY] * x[LV_X6_QY] + x[LV_X6_QZ] * x[LV_X6_QZ]);
     y[O_GP] = pt.u[U_GP];
     y[O_GY] = pt.u[U_GY];
-    y[O_THR] = s->engines_on ? pt.u[U_THR] : 0.0;
-    y[O_PROP_LEFT] = s->burned_out || mass < s->m_burnout ? 0.0 : mass - s->m_burnout;
+    y[O_THR] = s->rt.engines_on ? pt.u[U_THR] : 0.0;
+    y[O_PROP_LEFT] = s->rt.burned_out || mass < s->rt.m_burnout ? 0.0 : mass - s->rt.m_burnout;
     lv_orbit_elem el;
     const double rv[3] = {x[LV_X6_RX], x[LV_X6_RY], x[LV_X6_RZ]};
     const double vv[3] = {v_eci.x, v_eci.y, v_eci.z};
@@ -1009,7 +899,7 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     lv_frames_fpa_from_ned(ned_i, NULL, &y[O_FPA_I], &y[O_CHI_I]);
     y[O_ACC] = lv_v3_norm(pt.a_eci);
     y[O_ACC_SENSED] = lv_v3_norm(f_spec);
-    const lv_vec3 u0 = {s->r0_unit[0], s->r0_unit[1], s->r0_unit[2]};
+    const lv_vec3 u0 = {s->rt.r0_unit[0], s->rt.r0_unit[1], s->rt.r0_unit[2]};
     const lv_vec3 u1 = lv_v3_scale(k->r_ecef, 1.0 / lv_v3_norm(k->r_ecef)); /* as lv_dof3 */
     y[O_DOWNRANGE] =
         m->world.planet.a * atan2(lv_v3_norm(lv_v3_cross(u0, u1)), lv_v3_dot(u0, u1));
@@ -1051,12 +941,6 @@ void lv_dof6_rates_from_trajectory(lv_dof6 *m, double t, const double *x, const 
     w_body[0] = C.m[0][0] * w_eci.x + C.m[1][0] * w_eci.y + C.m[2][0] * w_eci.z;
     w_body[1] = C.m[0][1] * w_eci.x + C.m[1][1] * w_eci.y + C.m[2][1] * w_eci.z;
     w_body[2] = C.m[0][2] * w_eci.x + C.m[1][2] * w_eci.y + C.m[2][2] * w_eci.z;
-}
-
-static const char *dof6_last_error_cb(const void *inst)
-{
-    const dof6_inst *s = inst;
-    return s != NULL && s->msg[0] != '\0' ? s->msg : NULL;
 }
 
 /* ---- construction ---------------------------------------------------------------------- */
@@ -1126,23 +1010,13 @@ static lv_status setup_control(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *er
     return LV_OK;
 }
 
-static int is_time_axis(const char *name)
-{
-    return strcmp(name, "time") == 0 || strcmp(name, "t") == 0;
-}
-
 static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
 {
     for (int k = 0; k < U_N; k++)
         m->in_k[k] = -1;
     if (tab == NULL)
         return LV_OK;
-    if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
-        return lv_fail(err, LV_ERR_INPUT,
-                       "dof6: input table '%s' must have exactly one axis named 'time' (has %zu, "
-                       "the first named '%s')",
-                       lv_table_name(tab), lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
-    lv_status st = lv_table_expect_unit(tab, 1, 0, "s", "dof6: inputs", err);
+    lv_status st = lv_flight_check_inputs_table("dof6", tab, err);
     if (st != LV_OK)
         return st;
     int any = 0;
@@ -1350,38 +1224,24 @@ static lv_status setup_aero(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
     return LV_OK;
 }
 
+/* The engines (flight_model.h) and each one's position and misalignment on the body. */
 static lv_status setup_engines(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *err)
 {
-    lv_status st;
-    if (cfg->n_engines == 0)
-        return LV_OK;
-    if (cfg->engines == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "dof6: n_engines = %zu but engines is NULL",
-                       cfg->n_engines);
-    m->eng = calloc(cfg->n_engines, sizeof *m->eng);
-    m->geom = calloc(cfg->n_engines, sizeof *m->geom);
-    if (m->eng == NULL || m->geom == NULL)
+    lv_status st = lv_flight_engines_init("dof6", cfg->engines, cfg->n_engines, &m->eng,
+                                          &m->n_eng, &m->eng_buf, err);
+    if (st != LV_OK || m->n_eng == 0)
+        return st;
+    if ((m->geom = calloc(m->n_eng, sizeof *m->geom)) == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    size_t nbuf = 1;
-    for (size_t i = 0; i < cfg->n_engines; i++) {
-        if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
-            return st;
-        m->n_eng = i + 1;
-        if (m->eng[i].n_out > nbuf)
-            nbuf = m->eng[i].n_out;
-        if (cfg->engine_geom != NULL) {
-            const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
-            if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
-                !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
-                return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m "
-                               "and misalignment (%g, %g) rad must be finite", m->eng[i].name,
-                               g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
-            m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
-        }
+    for (size_t i = 0; cfg->engine_geom != NULL && i < m->n_eng; i++) {
+        const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
+        if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
+            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m and "
+                           "misalignment (%g, %g) rad must be finite", m->eng[i].name,
+                           g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
+        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
     }
-    m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
-    if (m->eng_buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     return LV_OK;
 }
 
@@ -1393,15 +1253,8 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     if (m == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "dof6");
-    if (!isfinite(cfg->m0) || !(cfg->m0 > 0.0)) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof6: start mass m0 = %g kg (must be > 0)", cfg->m0);
+    if ((st = lv_flight_check_mass("dof6", cfg->m0, cfg->propellant, err)) != LV_OK)
         goto fail;
-    }
-    if (!isfinite(cfg->propellant) || cfg->propellant < 0.0 || !(cfg->propellant < cfg->m0)) {
-        st = lv_fail(err, LV_ERR_INPUT, "dof6: propellant = %g kg (must be >= 0 and less than "
-                     "the start mass m0 = %g kg)", cfg->propellant, cfg->m0);
-        goto fail;
-    }
     const double fin[] = {cfg->start_lon, cfg->start_h, cfg->start_fpa, cfg->start_chi,
                           cfg->start_time, cfg->start_psi, cfg->start_theta, cfg->start_phi,
                           cfg->start_p, cfg->start_q, cfg->start_r, cfg->gimbal_pitch,
@@ -1425,9 +1278,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     if ((st = lv_flight_world_setup(&m->world, "dof6", &cfg->planet, cfg->gravity, cfg->atmo,
                                     cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    m->domain[0] = (lv_domain_def){
-        "h", "m", cfg->atmo != NULL ? LV_ATMO_ALT_MIN : -20e3,
-        "the vehicle is under the ground; an `impact` end ends the phase on the ground"};
+    m->domain[0] = lv_flight_domain(cfg->atmo != NULL);
 
     if ((st = setup_mass(m, cfg, err)) != LV_OK || (st = setup_engines(m, cfg, err)) != LV_OK ||
         (st = setup_aero(m, cfg, err)) != LV_OK || (st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
@@ -1473,26 +1324,20 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .n_states = m->n_states,
         .n_params = P_N,
         .n_outputs = m->n_outputs,
-        .n_events = 1 + m->fe.n,
         .states = m->states,
         .params = m->params,
         .outputs = m->outputs,
-        .events = m->fe.events,
         .inst_size = sizeof(dof6_inst),
         .start = dof6_start,
         .init = dof6_init,
         .rhs = dof6_rhs,
-        .event_g = dof6_g,
-        .on_event = dof6_on_event,
-        .next_time_event = dof6_next_time_event,
         .outputs_fn = dof6_outputs,
         .abs_error = abs_error,
-        .n_domain = 1,
-        .domain = m->domain,
-        .domain_q = dof6_domain_q,
-        .last_error = dof6_last_error_cb,
-        .time_event_name = dof6_time_event_name,
     };
+    m->core = (lv_flight_core){&m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M, m->inputs,
+                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
+                               m->stop_at_burnout};
+    lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
         goto fail;
@@ -1522,4 +1367,4 @@ const lv_model_def *lv_dof6_def(const lv_dof6 *m) { return &m->def; }
 
 void *lv_dof6_inst(lv_dof6 *m) { return &m->inst; }
 
-const char *lv_dof6_last_error(const lv_dof6 *m) { return m->inst.msg; }
+const char *lv_dof6_last_error(const lv_dof6 *m) { return m->inst.rt.msg; }

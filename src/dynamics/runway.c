@@ -14,6 +14,7 @@
 #include "core/units.h"
 #include "core/vec3.h"
 #include "dynamics/flight.h"
+#include "dynamics/flight_model.h"
 #include "lvsim/lv_runway.h"
 #include "vehicle/vehicle.h"
 
@@ -625,37 +626,18 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
     if ((st = lv_flight_world_setup(&m->world, "runway", &cfg->planet, cfg->gravity, cfg->atmo,
                                     cfg->wind, cfg->wind_user, &m->grav_ws, NULL, err)) != LV_OK)
         goto fail;
-    const size_t n_eng = cfg->mode == LV_RUNWAY_TAKEOFF ? cfg->n_engines : 0;
-    if (n_eng > 0) {
-        if (cfg->engines == NULL) {
-            st = lv_fail(err, LV_ERR_INPUT, "runway: n_engines = %zu but engines is NULL", n_eng);
+    /* a landing roll-out's engines are off */
+    if ((st = lv_flight_engines_init("runway", cfg->engines,
+                                     cfg->mode == LV_RUNWAY_TAKEOFF ? cfg->n_engines : 0, &m->eng,
+                                     &m->n_eng, &m->eng_buf, err)) != LV_OK)
+        goto fail;
+    for (size_t i = 0; i < m->n_eng; i++)
+        if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
+            st = lv_fail(err, LV_ERR_INPUT, "runway: throttle = %g is outside the limits [%g, "
+                         "%g] of engine '%s'", cfg->throttle, m->eng[i].thr_min,
+                         m->eng[i].thr_max, m->eng[i].name);
             goto fail;
         }
-        m->eng = calloc(n_eng, sizeof *m->eng);
-        if (m->eng == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-        size_t nbuf = 1;
-        for (size_t i = 0; i < n_eng; i++) {
-            if ((st = lv_engine_init(&m->eng[i], &cfg->engines[i], i, err)) != LV_OK)
-                goto fail;
-            m->n_eng = i + 1;
-            if (m->eng[i].n_out > nbuf)
-                nbuf = m->eng[i].n_out;
-            if (!(cfg->throttle >= m->eng[i].thr_min && cfg->throttle <= m->eng[i].thr_max)) {
-                st = lv_fail(err, LV_ERR_INPUT, "runway: throttle = %g is outside the limits "
-                             "[%g, %g] of engine '%s'", cfg->throttle, m->eng[i].thr_min,
-                             m->eng[i].thr_max, m->eng[i].name);
-                goto fail;
-            }
-        }
-        m->eng_buf = malloc(nbuf * sizeof *m->eng_buf);
-        if (m->eng_buf == NULL) {
-            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
-    }
     if (cfg->aero != NULL) {
         if ((st = lv_aero_init(&m->aero, cfg->aero, err)) != LV_OK) {
             lv_fail_prefix(err, st, "runway");

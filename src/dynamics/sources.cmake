@@ -1,6 +1,7 @@
 list(APPEND LV_SOURCES
   src/dynamics/flight.c
   src/dynamics/flight_ends.c
+  src/dynamics/flight_model.c
   src/dynamics/guidance.c
   src/dynamics/guid_laws.c
   src/dynamics/guid_inputs.c

@@ -17,6 +17,7 @@
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_units.h"
 #include "mission/mission_rt.h"
+#include "mission/phase_type.h"
 
 /* Separation time of body k from body k+1: the end of the phase that carries both and whose
  * children split them. */
@@ -98,7 +99,7 @@ lv_status lv_mission_compare(const lv_mission *m, const char *method, double tol
         st = lv_fail(err, LV_ERR_INPUT, "compare: the output interval must be > 0 s (got %g)", dt);
         goto done;
     }
-    if (d->env.world != LV_WORLD_FLAT || strcmp(root->type->name, "flat6") != 0 ||
+    if (d->env.world != LV_WORLD_FLAT || root->type != &lv_phase_type_flat6 ||
         root->parent >= 0) {
         st = lv_fail(err, LV_ERR_INPUT, "compare: '%s' is not a flat-world (flat6) mission",
                      d->path);

@@ -254,6 +254,7 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->name);
         if (ph->type != NULL && ph->type->cfg_free != NULL)
             ph->type->cfg_free(ph->type_cfg);
+        free(ph->params);
         free(ph->stages);
         free(ph->stage_locs);
         for (size_t j = 0; j < ph->n_ends; j++)

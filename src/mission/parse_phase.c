@@ -11,6 +11,7 @@
 
 #include "core/names.h"
 #include "mission/parse_int.h"
+#include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
 /* ---- phases --------------------------------------------------------------------------- */
@@ -366,6 +367,8 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         (st = lv_pk_enum(c, v, what, "model", models, &i)) != LV_OK)
         return st;
     ph->type = lv_phase_types()[i];
+    if ((st = lv_kit_resolve_params(c->m, ph, c->err)) != LV_OK)
+        return st;
     if (ph->type->world != world)
         return lv_pk_fail(c, v, "%s: model %s needs environment world: %s (this mission's world is "
                     "%s)", what, models[i], world == LV_WORLD_FLAT ? "planet" : "flat",

@@ -14,6 +14,7 @@
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
 #include "mission/guidance_def.h"
+#include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
 static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
@@ -24,31 +25,9 @@ static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "se
 static const char *const from_types[] = {"runway", "dof6", NULL};
 
 /* The model's parameters that are the mission's shared parameter set (lv_dof3.h). */
-static const lv_var mission_params[] = {
-    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
-    {"start_lon", "rad", "Initial longitude", 0, 0},
-    {"start_h", "m", "Initial geodetic altitude", 0, 0},
-    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
-    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
-    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
-};
+static const lv_var mission_params[] = {LV_KIT_START_PARAMS};
+static const lv_range mission_param_ranges[] = {LV_KIT_START_RANGES};
 
-static const lv_range mission_param_ranges[] = {
-    LV_RANGE_LAT,                /* start_lat in [-90, 90] deg */
-    LV_RANGE_TURN,               /* start_lon in [-360, 360] deg */
-    {-HUGE_VAL, HUGE_VAL, 0, 0}, /* start_h: the model's domain and the impact end decide */
-    {0.0, HUGE_VAL, 0, 0},       /* start_vel >= 0 */
-    LV_RANGE_LAT,                /* start_fpa in [-90, 90] deg */
-    LV_RANGE_TURN,               /* start_chi in [-360, 360] deg */
-};
-
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* ---- the phase's own keys ------------------------------------------------------------ */
 
@@ -224,14 +203,8 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
 /* ---- the model ---------------------------------------------------------------------------- */
 
 typedef struct dof3_self {
-    lv_phase_model pm;
+    lv_kit_model kit; /* environment, engines, ends (phase_kit.h) */
     lv_dof3 *model;
-    lv_phase_env env;   /* planet, gravity, atmosphere, wind of this run (borrowed by model) */
-    lv_aero_config aero;
-    lv_wind_user wind;  /* the wind table and this simulation's cursor */
-    lv_engine_config *engines;
-    lv_dof3_end *ends;
-    int *event_end;
 } dof3_self;
 
 static void dof3_free_self(void *p)
@@ -240,27 +213,8 @@ static void dof3_free_self(void *p)
     if (s == NULL)
         return;
     lv_dof3_free(s->model);
-    lv_phase_env_clear(&s->env);
-    free(s->engines);
-    free(s->ends);
-    free(s->event_end);
+    lv_kit_clear(&s->kit);
     free(s);
-}
-
-static const lv_dof3_end_kind dof3_end_of[] = {
-    [LV_END_ALTITUDE] = LV_DOF3_END_ALTITUDE, [LV_END_SPEED] = LV_DOF3_END_SPEED_REL,
-    [LV_END_APOGEE] = LV_DOF3_END_APOGEE, [LV_END_IMPACT] = LV_DOF3_END_IMPACT};
-
-static double val(const lv_build_ctx *bc, lv_slot s) { return s == LV_NO_SLOT ? 0.0 : bc->vals[s]; }
-
-/* The run's value of the mission parameter `name`, or `fallback` when the file has none. */
-static double param(const lv_build_ctx *bc, const char *name, double fallback)
-{
-    const lv_mission_def *d = bc->def;
-    for (size_t i = 0; i < d->n_params; i++)
-        if (strcmp(d->param_names[i], name) == 0)
-            return bc->vals[d->param_values[i]];
-    return fallback;
 }
 
 /* The stages are one mass point; the bottom stage's engines burn. */
@@ -271,118 +225,58 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     const dof3_cfg *pc = ph->type_cfg;
     const lv_stage_def *bottom = &d->stages[ph->stages[0]];
     *out = NULL;
-    if (bc->env == NULL || bc->env->gravity == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "model 'dof3' needs a planet world");
-    size_t n_all = 0; /* `count` identical engines are `count` engine configurations */
-    for (size_t e = 0; e < bottom->n_engines; e++)
-        n_all += (size_t)(bottom->engines[e].count > 0 ? bottom->engines[e].count : 1);
     dof3_self *s = calloc(1, sizeof *s);
-    if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
-        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
-        (s->event_end = calloc(ph->n_ends + 1, sizeof *s->event_end)) == NULL) {
-        dof3_free_self(s);
+    if (s == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    }
-    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    lv_status st = lv_kit_begin(bc, &s->kit, 1, sizeof(lv_dof3_end), 1, err);
     if (st != LV_OK) {
-        dof3_free_self(s);
+        free(s);
         return st;
     }
     lv_dof3_config cfg;
     lv_dof3_config_default(&cfg);
     cfg.name = ph->name;
-    cfg.planet = s->env.planet;
-    cfg.gravity = s->env.gravity;
-    cfg.atmo = s->env.atmo;
-    if (s->env.wind != NULL) {
-        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
-        cfg.wind = lv_wind_fn_table;
-        cfg.wind_user = &s->wind;
-    }
-    double m0 = 0.0;
-    for (size_t i = 0; i < ph->n_stages; i++) {
-        const size_t si = ph->stages[i];
-        m0 += val(bc, d->stages[si].dry_mass) + bc->prop[si];
-    }
+    lv_kit_world(&s->kit, &cfg.planet, &cfg.gravity, &cfg.atmo, &cfg.wind, &cfg.wind_user);
     const double prop0 = bc->prop[ph->stages[0]];
-    cfg.m0 = m0;
+    cfg.m0 = lv_kit_stack_mass(bc, 0);
     cfg.propellant = prop0;
-    size_t ne = 0;
-    for (size_t e = 0; prop0 > 0.0 && e < bottom->n_engines; e++) {
-        const lv_engine_def *ed = &bottom->engines[e];
-        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
-            lv_engine_config *ec = &s->engines[ne++];
-            lv_engine_config_default(ec);
-            ec->name = ed->name;
-            ec->thrust_vac = val(bc, ed->thrust_vac);
-            ec->isp_vac = val(bc, ed->isp_vac);
-            ec->mdot = val(bc, ed->mdot);
-            ec->exit_area = val(bc, ed->exit_area);
-            ec->throttle_min = val(bc, ed->throttle_min);
-            ec->throttle_max = val(bc, ed->throttle_max);
-            ec->table = lv_build_table(bc, ed->table);
-        }
-    }
+    const size_t ne = prop0 > 0.0 ? lv_kit_engines(bc, bottom, s->kit.engines) : 0;
     cfg.n_engines = ne;
-    cfg.engines = s->engines;
-    cfg.start_lat = param(bc, "start_lat", 0.0);
-    cfg.start_lon = param(bc, "start_lon", 0.0);
-    cfg.start_h = param(bc, "start_h", 0.0);
-    cfg.start_vel = param(bc, "start_vel", 0.0);
-    cfg.start_fpa = param(bc, "start_fpa", 0.0);
-    cfg.start_chi = param(bc, "start_chi", 0.0);
-    size_t n_ends = 0;
-    s->event_end[0] = -1; /* event 0: burnout (a phase end when the phase lists it) */
-    for (size_t j = 0; j < ph->n_ends; j++) {
-        const lv_end_def *e = &ph->ends[j];
-        if (e->kind == LV_END_VAR || e->kind == LV_END_TIME)
-            continue; /* a stop condition of the simulation (run.c) */
-        if (e->kind == LV_END_BURNOUT) {
-            cfg.stop_at_burnout = 1;
-            s->event_end[0] = (int)j;
-            continue;
-        }
-        s->event_end[1 + n_ends] = (int)j;
-        s->ends[n_ends++] =
-            (lv_dof3_end){e->name, dof3_end_of[e->kind], val(bc, e->value), e->direction, 1};
-    }
-    cfg.n_ends = n_ends;
-    cfg.ends = s->ends;
+    cfg.engines = s->kit.engines;
+    cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
+    cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
+    cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);
+    cfg.start_vel = lv_kit_param(bc, LV_KIT_START_VEL, 0.0);
+    cfg.start_fpa = lv_kit_param(bc, LV_KIT_START_FPA, 0.0);
+    cfg.start_chi = lv_kit_param(bc, LV_KIT_START_CHI, 0.0);
+    cfg.n_ends = lv_kit_flight_ends(bc, &s->kit, &cfg.stop_at_burnout);
+    cfg.ends = s->kit.ends;
     /* an input without a slot does not act (a guidance law steers, the throttle comes from
      * elsewhere): its default */
-    cfg.alpha = pc->u[0] != LV_NO_SLOT ? bc->vals[pc->u[0]] : 0.0;
-    cfg.beta = pc->u[1] != LV_NO_SLOT ? bc->vals[pc->u[1]] : 0.0;
-    cfg.mu = pc->u[2] != LV_NO_SLOT ? bc->vals[pc->u[2]] : 0.0;
+    cfg.alpha = lv_kit_val(bc, pc->u[0], 0.0);
+    cfg.beta = lv_kit_val(bc, pc->u[1], 0.0);
+    cfg.mu = lv_kit_val(bc, pc->u[2], 0.0);
     const lv_slot thr_value = lv_guidance_def_throttle_value(&pc->guid);
-    cfg.throttle = thr_value != LV_NO_SLOT  ? bc->vals[thr_value]
-                   : pc->u[3] != LV_NO_SLOT ? bc->vals[pc->u[3]]
-                                            : 1.0;
+    cfg.throttle = lv_kit_val(bc, thr_value, lv_kit_val(bc, pc->u[3], 1.0));
     /* a throttle nobody wrote is full throttle: the most every engine accepts (1 unless an
      * engine's throttle_max is lower) */
     const lv_slot_def *ts = pc->u[3] != LV_NO_SLOT ? &d->slots[pc->u[3]] : NULL;
     if (thr_value == LV_NO_SLOT &&
         (ts == NULL || (ts->loc.line == 0 && cfg.throttle == ts->value)))
         for (size_t e = 0; e < ne; e++)
-            if (s->engines[e].throttle_max < cfg.throttle)
-                cfg.throttle = s->engines[e].throttle_max;
+            if (s->kit.engines[e].throttle_max < cfg.throttle)
+                cfg.throttle = s->kit.engines[e].throttle_max;
     cfg.inputs = pc->inputs;
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &cfg.throttle_law);
     /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an
      * output of the dataset's table, or 0 */
-    if (pc->aero.present) {
-        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
-        cfg.aero = &s->aero;
-    }
+    cfg.aero = lv_kit_aero(bc, &pc->aero, &s->kit);
     st = lv_dof3_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         dof3_free_self(s);
         return st;
     }
-    s->pm.def = lv_dof3_def(s->model);
-    s->pm.inst = lv_dof3_inst(s->model);
-    s->pm.event_end = s->event_end;
-    s->pm.self = s;
-    *out = &s->pm;
+    lv_kit_done(&s->kit, lv_dof3_def(s->model), lv_dof3_inst(s->model), s, out);
     return LV_OK;
 }
 
@@ -421,16 +315,16 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
         if ((iv[i] = lv_names_find(names, n, vnames[i])) == (size_t)-1)
             return lv_fail(err, LV_ERR_INPUT, "separation: the velocity '%s' is not handed over "
                            "from the parent", vnames[i]);
-    const double dv = val(bc, pc->sep_dv[0]);
+    const double dv = lv_kit_val(bc, pc->sep_dv[0], 0.0);
     const double ct = cos(f[1]), st = sin(f[1]), cp = cos(f[2]), sp = sin(f[2]);
-    const double dv_ned[3] = {dv * ct * cp + val(bc, pc->sep_dv[1]),
-                              dv * ct * sp + val(bc, pc->sep_dv[2]),
-                              -dv * st + val(bc, pc->sep_dv[3])};
+    const double dv_ned[3] = {dv * ct * cp + lv_kit_val(bc, pc->sep_dv[1], 0.0),
+                              dv * ct * sp + lv_kit_val(bc, pc->sep_dv[2], 0.0),
+                              -dv * st + lv_kit_val(bc, pc->sep_dv[3], 0.0)};
     double C[3][3], dv_ecef[3], zero[3] = {0.0, 0.0, 0.0}, r_eci[3], dv_eci[3];
     lv_frames_C_ned_ecef(f[3], f[4], C);
     for (int i = 0; i < 3; i++)
         dv_ecef[i] = C[0][i] * dv_ned[0] + C[1][i] * dv_ned[1] + C[2][i] * dv_ned[2];
-    lv_frames_ecef_to_eci(&s->env.planet, f[0], zero, dv_ecef, r_eci, dv_eci);
+    lv_frames_ecef_to_eci(&s->kit.env.planet, f[0], zero, dv_ecef, r_eci, dv_eci);
     for (int i = 0; i < 3; i++)
         values[iv[i]] += dv_eci[i];
     return LV_OK;
@@ -451,8 +345,8 @@ const lv_phase_type lv_phase_type_dof3 = {
     .cfg_free = dof3_cfg_free,
     .build = dof3_build,
     .free_self = dof3_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = dof3_handoff,
 };

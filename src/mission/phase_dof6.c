@@ -20,6 +20,7 @@
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
 #include "mission/guidance_def.h"
+#include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
 static const char *const keys[] = {"attitude", "rates",    "inputs",     "aero",
@@ -35,14 +36,11 @@ static const char *const root_only[] = {"start_h",   "start_vel", "start_psi", "
  * (dof6_handoff). */
 static const char *const from_types[] = {"dof3", NULL};
 
+/* The model's parameters that are the mission's shared parameter set (lv_dof6.h): a start over
+ * the planet, and the paper's Table 1, 6-DoF: the same as a root phase's `attitude:` and
+ * `rates:` */
 static const lv_var mission_params[] = {
-    {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
-    {"start_lon", "rad", "Initial longitude", 0, 0},
-    {"start_h", "m", "Initial geodetic altitude", 0, 0},
-    {"start_vel", "m/s", "Initial speed relative to the rotating planet", 0, 0},
-    {"start_fpa", "rad", "Initial flight-path angle of the relative velocity, up positive", 0, 0},
-    {"start_chi", "rad", "Initial heading of the relative velocity, from north to east", 0, 0},
-    /* the paper's Table 1, 6-DoF: the same as a root phase's `attitude:` and `rates:` */
+    LV_KIT_START_PARAMS,
     {"start_psi", "rad", "Initial yaw attitude (3-2-1 Euler angles relative to NED)", 0, 0},
     {"start_theta", "rad", "Initial pitch attitude (3-2-1 Euler angles relative to NED)", 0, 0},
     {"start_phi", "rad", "Initial roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
@@ -52,20 +50,12 @@ static const lv_var mission_params[] = {
 };
 
 static const lv_range mission_param_ranges[] = {
-    LV_RANGE_LAT,          LV_RANGE_TURN, {-HUGE_VAL, HUGE_VAL, 0, 0}, /* lat, lon, h */
-    {0.0, HUGE_VAL, 0, 0}, LV_RANGE_LAT,  LV_RANGE_TURN,               /* vel, fpa, chi */
+    LV_KIT_START_RANGES,
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
     {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
     {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0}, {-LV_DOF6_RATE_MAX, LV_DOF6_RATE_MAX, 0, 0},
 };
 
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* ---- the phase's own keys ------------------------------------------------------------ */
 
@@ -603,16 +593,10 @@ static const char *dof6_handoff_rule(const lv_phase_def *ph)
 /* ---- the model ---------------------------------------------------------------------------- */
 
 typedef struct dof6_self {
-    lv_phase_model pm;
+    lv_kit_model kit; /* environment, engines, ends (phase_kit.h) */
     lv_dof6 *model;
-    lv_phase_env env;
-    lv_aero_config aero;
     lv_dof6_moments mom;
-    lv_wind_user wind;
-    lv_engine_config *engines;
     lv_dof6_engine_geom *geom;
-    lv_dof3_end *ends;
-    int *event_end;
 } dof6_self;
 
 static void dof6_free_self(void *p)
@@ -621,30 +605,9 @@ static void dof6_free_self(void *p)
     if (s == NULL)
         return;
     lv_dof6_free(s->model);
-    lv_phase_env_clear(&s->env);
-    free(s->engines);
+    lv_kit_clear(&s->kit);
     free(s->geom);
-    free(s->ends);
-    free(s->event_end);
     free(s);
-}
-
-static const lv_dof3_end_kind end_of[] = {
-    [LV_END_ALTITUDE] = LV_DOF3_END_ALTITUDE, [LV_END_SPEED] = LV_DOF3_END_SPEED_REL,
-    [LV_END_APOGEE] = LV_DOF3_END_APOGEE, [LV_END_IMPACT] = LV_DOF3_END_IMPACT};
-
-static double val(const lv_build_ctx *bc, lv_slot s, double fallback)
-{
-    return s == LV_NO_SLOT ? fallback : bc->vals[s];
-}
-
-static double param(const lv_build_ctx *bc, const char *name, double fallback)
-{
-    const lv_mission_def *d = bc->def;
-    for (size_t i = 0; i < d->n_params; i++)
-        if (strcmp(d->param_names[i], name) == 0)
-            return bc->vals[d->param_values[i]];
-    return fallback;
 }
 
 static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
@@ -655,49 +618,30 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     const lv_stage_def *bottom = &d->stages[ph->stages[0]];
     const lv_rigid_body_def *rb = &bottom->rigid;
     *out = NULL;
-    if (bc->env == NULL || bc->env->gravity == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "model 'dof6' needs a planet world");
-    size_t n_all = 0;
-    for (size_t e = 0; e < bottom->n_engines; e++)
-        n_all += (size_t)(bottom->engines[e].count > 0 ? bottom->engines[e].count : 1);
     dof6_self *s = calloc(1, sizeof *s);
-    if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
-        (s->geom = calloc(n_all + 1, sizeof *s->geom)) == NULL ||
-        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
-        (s->event_end = calloc(ph->n_ends + 1, sizeof *s->event_end)) == NULL) {
+    if (s == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_status st = lv_kit_begin(bc, &s->kit, 1, sizeof(lv_dof3_end), 1, err);
+    if (st != LV_OK) {
+        free(s);
+        return st;
+    }
+    if ((s->geom = calloc(lv_kit_engine_count(bottom) + 1, sizeof *s->geom)) == NULL) {
         dof6_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    }
-    lv_status st = lv_phase_env_get(bc, &s->env, err);
-    if (st != LV_OK) {
-        dof6_free_self(s);
-        return st;
     }
     lv_dof6_config cfg;
     lv_dof6_config_default(&cfg);
     cfg.name = ph->name;
-    cfg.planet = s->env.planet;
-    cfg.gravity = s->env.gravity;
-    cfg.atmo = s->env.atmo;
-    if (s->env.wind != NULL) {
-        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
-        cfg.wind = lv_wind_fn_table;
-        cfg.wind_user = &s->wind;
-    }
+    lv_kit_world(&s->kit, &cfg.planet, &cfg.gravity, &cfg.atmo, &cfg.wind, &cfg.wind_user);
     /* the stack: its mass now, and with the bottom stage's propellant full and gone */
-    double m0 = 0.0, m_upper = 0.0;
-    for (size_t i = 0; i < ph->n_stages; i++) {
-        const size_t si = ph->stages[i];
-        m0 += val(bc, d->stages[si].dry_mass, 0.0) + bc->prop[si];
-        if (i > 0)
-            m_upper += val(bc, d->stages[si].dry_mass, 0.0) + bc->prop[si];
-    }
+    const double m_upper = lv_kit_stack_mass(bc, 1);
     const double prop0 = bc->prop[ph->stages[0]];
-    cfg.m0 = m0;
+    cfg.m0 = lv_kit_stack_mass(bc, 0);
     cfg.propellant = prop0;
-    cfg.mass.m_full = val(bc, bottom->dry_mass, 0.0) + val(bc, bottom->propellant_mass, 0.0) +
-                      m_upper;
-    cfg.mass.m_empty = cfg.mass.m_full - val(bc, bottom->propellant_mass, 0.0);
+    cfg.mass.m_full = lv_kit_val(bc, bottom->dry_mass, 0.0) +
+                      lv_kit_val(bc, bottom->propellant_mass, 0.0) + m_upper;
+    cfg.mass.m_empty = cfg.mass.m_full - lv_kit_val(bc, bottom->propellant_mass, 0.0);
     for (int i = 0; i < 6; i++) {
         cfg.mass.inertia_full[i] = bc->vals[rb->inertia_full[i]];
         cfg.mass.inertia_empty[i] = bc->vals[rb->inertia_empty[i]];
@@ -706,50 +650,37 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         cfg.mass.cg_full[i] = bc->vals[rb->cg_full[i]];
         cfg.mass.cg_empty[i] = bc->vals[rb->cg_empty[i]];
     }
-    size_t ne = 0;
-    for (size_t e = 0; prop0 > 0.0 && e < bottom->n_engines; e++) {
-        const lv_engine_def *ed = &bottom->engines[e];
-        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
-            lv_engine_config *ec = &s->engines[ne];
-            lv_engine_config_default(ec);
-            ec->name = ed->name;
-            ec->thrust_vac = val(bc, ed->thrust_vac, 0.0);
-            ec->isp_vac = val(bc, ed->isp_vac, 0.0);
-            ec->mdot = val(bc, ed->mdot, 0.0);
-            ec->exit_area = val(bc, ed->exit_area, 0.0);
-            ec->throttle_min = val(bc, ed->throttle_min, 0.0);
-            ec->throttle_max = val(bc, ed->throttle_max, 1.0);
-            ec->table = lv_build_table(bc, ed->table);
-            lv_dof6_engine_geom *g = &s->geom[ne++];
-            for (int i = 0; i < 3; i++)
-                g->pos[i] = bc->vals[rb->engine_pos[i]];
-            g->mis_pitch = bc->vals[rb->mis_pitch];
-            g->mis_yaw = bc->vals[rb->mis_yaw];
-        }
+    /* every engine at the stage's gimbal point, with its misalignment */
+    const size_t ne = prop0 > 0.0 ? lv_kit_engines(bc, bottom, s->kit.engines) : 0;
+    for (size_t e = 0; e < ne; e++) {
+        for (int i = 0; i < 3; i++)
+            s->geom[e].pos[i] = bc->vals[rb->engine_pos[i]];
+        s->geom[e].mis_pitch = bc->vals[rb->mis_pitch];
+        s->geom[e].mis_yaw = bc->vals[rb->mis_yaw];
     }
     cfg.n_engines = ne;
-    cfg.engines = s->engines;
+    cfg.engines = s->kit.engines;
     cfg.engine_geom = s->geom;
-    cfg.start_lat = param(bc, "start_lat", 0.0);
-    cfg.start_lon = param(bc, "start_lon", 0.0);
-    cfg.start_h = param(bc, "start_h", 0.0);
-    cfg.start_vel = param(bc, "start_vel", 0.0);
-    cfg.start_fpa = param(bc, "start_fpa", 0.0);
-    cfg.start_chi = param(bc, "start_chi", 0.0);
-    cfg.start_psi = val(bc, pc->att[A_PSI], 0.0);
-    cfg.start_theta = val(bc, pc->att[A_THETA], 0.0);
-    cfg.start_phi = val(bc, pc->att[A_PHI], 0.0);
-    cfg.start_p = val(bc, pc->att[A_P], 0.0);
-    cfg.start_q = val(bc, pc->att[A_Q], 0.0);
-    cfg.start_r = val(bc, pc->att[A_R], 0.0);
-    cfg.gimbal_pitch = val(bc, pc->u[U_GP], 0.0);
-    cfg.gimbal_yaw = val(bc, pc->u[U_GY], 0.0);
-    cfg.throttle = val(bc, pc->u[U_THR], 1.0);
+    cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
+    cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
+    cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);
+    cfg.start_vel = lv_kit_param(bc, LV_KIT_START_VEL, 0.0);
+    cfg.start_fpa = lv_kit_param(bc, LV_KIT_START_FPA, 0.0);
+    cfg.start_chi = lv_kit_param(bc, LV_KIT_START_CHI, 0.0);
+    cfg.start_psi = lv_kit_val(bc, pc->att[A_PSI], 0.0);
+    cfg.start_theta = lv_kit_val(bc, pc->att[A_THETA], 0.0);
+    cfg.start_phi = lv_kit_val(bc, pc->att[A_PHI], 0.0);
+    cfg.start_p = lv_kit_val(bc, pc->att[A_P], 0.0);
+    cfg.start_q = lv_kit_val(bc, pc->att[A_Q], 0.0);
+    cfg.start_r = lv_kit_val(bc, pc->att[A_R], 0.0);
+    cfg.gimbal_pitch = lv_kit_val(bc, pc->u[U_GP], 0.0);
+    cfg.gimbal_yaw = lv_kit_val(bc, pc->u[U_GY], 0.0);
+    cfg.throttle = lv_kit_val(bc, pc->u[U_THR], 1.0);
     const lv_slot_def *ts = &d->slots[pc->u[U_THR]]; /* always a slot (default 1) */
     if (ts->loc.line == 0) /* a throttle nobody wrote: the most every engine accepts */
         for (size_t e = 0; e < ne; e++)
-            if (s->engines[e].throttle_max < cfg.throttle)
-                cfg.throttle = s->engines[e].throttle_max;
+            if (s->kit.engines[e].throttle_max < cfg.throttle)
+                cfg.throttle = s->kit.engines[e].throttle_max;
     cfg.inputs = pc->inputs;
     lv_throttle_cfg thr_unused = {0};
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &thr_unused);
@@ -757,35 +688,17 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         lv_dof6_controller *k = &cfg.controller;
         k->kind = (lv_dof6_ctl_kind)pc->ctl;
         for (int a = 0; a < 2; a++) {
-            k->kp[a] = val(bc, pc->gain[a][G_KP], 0.0);
-            k->kd[a] = val(bc, pc->gain[a][G_KD], 0.0);
-            k->ki[a] = val(bc, pc->gain[a][G_KI], 0.0);
+            k->kp[a] = lv_kit_val(bc, pc->gain[a][G_KP], 0.0);
+            k->kd[a] = lv_kit_val(bc, pc->gain[a][G_KD], 0.0);
+            k->ki[a] = lv_kit_val(bc, pc->gain[a][G_KI], 0.0);
         }
-        k->limit = val(bc, pc->ctl_num[C_LIM], 0.0);
-        k->rate_limit = val(bc, pc->ctl_num[C_RATE], 0.0);
-        k->tau = val(bc, pc->ctl_num[C_TAU], 0.0);
+        k->limit = lv_kit_val(bc, pc->ctl_num[C_LIM], 0.0);
+        k->rate_limit = lv_kit_val(bc, pc->ctl_num[C_RATE], 0.0);
+        k->tau = lv_kit_val(bc, pc->ctl_num[C_TAU], 0.0);
     }
-    size_t n_ends = 0;
-    s->event_end[0] = -1;
-    for (size_t j = 0; j < ph->n_ends; j++) {
-        const lv_end_def *e = &ph->ends[j];
-        if (e->kind == LV_END_VAR || e->kind == LV_END_TIME)
-            continue;
-        if (e->kind == LV_END_BURNOUT) {
-            cfg.stop_at_burnout = 1;
-            s->event_end[0] = (int)j;
-            continue;
-        }
-        s->event_end[1 + n_ends] = (int)j;
-        s->ends[n_ends++] =
-            (lv_dof3_end){e->name, end_of[e->kind], val(bc, e->value, 0.0), e->direction, 1};
-    }
-    cfg.n_ends = n_ends;
-    cfg.ends = s->ends;
-    if (pc->aero.present) {
-        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
-        cfg.aero = &s->aero;
-    }
+    cfg.n_ends = lv_kit_flight_ends(bc, &s->kit, &cfg.stop_at_burnout);
+    cfg.ends = s->kit.ends;
+    cfg.aero = lv_kit_aero(bc, &pc->aero, &s->kit);
     if (pc->has_moments) {
         lv_dof6_moments *mo = &s->mom;
         static const char *const cn[3] = {"Cl", "Cm", "Cn"};
@@ -811,11 +724,7 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         dof6_free_self(s);
         return st;
     }
-    s->pm.def = lv_dof6_def(s->model);
-    s->pm.inst = lv_dof6_inst(s->model);
-    s->pm.event_end = s->event_end;
-    s->pm.self = s;
-    *out = &s->pm;
+    lv_kit_done(&s->kit, lv_dof6_def(s->model), lv_dof6_inst(s->model), s, out);
     return LV_OK;
 }
 
@@ -867,7 +776,7 @@ static lv_status dof6_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
         phi = 0.0;
     }
     double q[4];
-    lv_dof6_quat_from_euler(&s->env.planet, pvalues[it], pvalues[ila], pvalues[ilo], psi, theta,
+    lv_dof6_quat_from_euler(&s->kit.env.planet, pvalues[it], pvalues[ila], pvalues[ilo], psi, theta,
                             phi, q);
     for (int i = 0; i < 4; i++) {
         const size_t j = lv_names_find(names, n, qn[i]);
@@ -945,8 +854,8 @@ const lv_phase_type lv_phase_type_dof6 = {
     .cfg_free = dof6_cfg_free,
     .build = dof6_build,
     .free_self = dof6_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = dof6_handoff,
     .check = dof6_check_set,

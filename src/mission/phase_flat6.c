@@ -11,6 +11,7 @@
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_units.h"
 #include "mission/aero_def.h"
+#include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
 /* The model's parameters that are the mission's shared parameter set (lv_flat.h). */
@@ -109,14 +110,10 @@ static const lv_flat_end_kind flat_end_of[] = {
 
 /* What one built model owns. */
 typedef struct flat6_self {
-    lv_phase_model pm;
+    lv_kit_model kit; /* atmosphere and wind of this run, ends (phase_kit.h) */
     lv_flat6 *model;
-    lv_phase_env env;     /* atmosphere and wind of this run (borrowed by the model) */
-    lv_aero_config aero;
     lv_flat_stage *stages;
     lv_flat_engine *engines;
-    lv_flat_end *ends;
-    int *event_end;
 } flat6_self;
 
 static void flat6_free_self(void *p)
@@ -125,15 +122,11 @@ static void flat6_free_self(void *p)
     if (s == NULL)
         return;
     lv_flat6_free(s->model);
-    lv_phase_env_clear(&s->env);
+    lv_kit_clear(&s->kit);
     free(s->stages);
     free(s->engines);
-    free(s->ends);
-    free(s->event_end);
     free(s);
 }
-
-static double val(const lv_build_ctx *bc, lv_slot s) { return s == LV_NO_SLOT ? 0.0 : bc->vals[s]; }
 
 /* The stages carried, each with its engines; the bottom stage burns. */
 static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
@@ -142,13 +135,19 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
     const lv_phase_def *ph = &d->phases[bc->k];
     *out = NULL;
     flat6_self *s = calloc(1, sizeof *s);
+    if (s == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    /* event 0: the bottom stage's burnout stops the engines; a `burnout` end is an end */
+    lv_status st = lv_kit_begin(bc, &s->kit, 0, sizeof(lv_flat_end), 1, err);
+    if (st != LV_OK) {
+        free(s);
+        return st;
+    }
     size_t n_eng = 0;
     for (size_t i = 0; i < ph->n_stages; i++)
         n_eng += d->stages[ph->stages[i]].n_engines;
-    if (s == NULL || (s->stages = calloc(ph->n_stages, sizeof *s->stages)) == NULL ||
-        (s->engines = calloc(n_eng + 1, sizeof *s->engines)) == NULL ||
-        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
-        (s->event_end = calloc(ph->n_ends + 1, sizeof *s->event_end)) == NULL) {
+    if ((s->stages = calloc(ph->n_stages, sizeof *s->stages)) == NULL ||
+        (s->engines = calloc(n_eng + 1, sizeof *s->engines)) == NULL) {
         flat6_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -158,54 +157,38 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
         const lv_stage_def *sd = &d->stages[si];
         for (size_t e = 0; e < sd->n_engines; e++) {
             const lv_engine_def *ed = &sd->engines[e];
-            double thrust = val(bc, ed->thrust_vac), mdot = val(bc, ed->mdot);
+            double thrust = lv_kit_val(bc, ed->thrust_vac, 0.0);
+            double mdot = lv_kit_val(bc, ed->mdot, 0.0);
             if (ed->table == NULL && !(mdot > 0.0) && ed->isp_vac != LV_NO_SLOT)
-                mdot = thrust / (val(bc, ed->isp_vac) * LV_G0);
-            s->engines[e0 + e] = (lv_flat_engine){lv_build_table(bc, ed->table), ed->thrust_out, ed->mdot_out, thrust,
-                                                  mdot, ed->count};
+                mdot = thrust / (lv_kit_val(bc, ed->isp_vac, 0.0) * LV_G0);
+            s->engines[e0 + e] = (lv_flat_engine){lv_build_table(bc, ed->table), ed->thrust_out,
+                                                  ed->mdot_out, thrust, mdot, ed->count};
         }
-        s->stages[i] = (lv_flat_stage){sd->name, val(bc, sd->dry_mass), bc->prop[si],
-                                       sd->n_engines, s->engines + e0};
+        s->stages[i] = (lv_flat_stage){sd->name, lv_kit_val(bc, sd->dry_mass, 0.0),
+                                       bc->prop[si], sd->n_engines, s->engines + e0};
         e0 += sd->n_engines;
     }
-    s->event_end[0] = -1; /* event 0: the bottom stage's burnout stops the engines */
-    size_t n_ends = 0;    /* events 1..: the model's own ends in order (an end on any variable
-                             or a time is a stop condition of the simulation: run.c) */
-    for (size_t j = 0; j < ph->n_ends; j++) {
-        const lv_end_def *e = &ph->ends[j];
-        if (e->kind == LV_END_VAR || e->kind == LV_END_TIME)
-            continue;
-        s->ends[n_ends] = (lv_flat_end){flat_end_of[e->kind], val(bc, e->value), e->direction};
-        s->event_end[1 + n_ends++] = (int)j;
-    }
-    lv_status st = lv_phase_env_get(bc, &s->env, err);
-    if (st != LV_OK) {
-        flat6_free_self(s);
-        return st;
-    }
+    const size_t n_ends = lv_kit_ends(bc, &s->kit, 0, NULL);
+    lv_flat_end *ends = s->kit.ends;
+    for (size_t i = 0; i < n_ends; i++)
+        ends[i] = (lv_flat_end){flat_end_of[s->kit.end[i].def->kind], s->kit.end[i].value,
+                                s->kit.end[i].def->direction};
     const flat6_cfg *pc = ph->type_cfg;
     lv_flat6_config cfg = {.name = ph->name,
-                           .g = val(bc, d->env.g),
+                           .g = lv_kit_val(bc, d->env.g, 0.0),
                            .n_stages = ph->n_stages,
                            .stages = s->stages,
                            .n_ends = n_ends,
-                           .ends = s->ends,
-                           .atmo = s->env.atmo,
-                           .wind = s->env.wind};
-    if (pc != NULL && pc->aero.present) {
-        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
-        cfg.aero = &s->aero;
-    }
+                           .ends = ends,
+                           .atmo = s->kit.env.atmo,
+                           .wind = s->kit.env.wind,
+                           .aero = pc != NULL ? lv_kit_aero(bc, &pc->aero, &s->kit) : NULL};
     st = lv_flat6_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         flat6_free_self(s);
         return st;
     }
-    s->pm.def = lv_flat6_def(s->model);
-    s->pm.inst = lv_flat6_inst(s->model);
-    s->pm.event_end = s->event_end;
-    s->pm.self = s;
-    *out = &s->pm;
+    lv_kit_done(&s->kit, lv_flat6_def(s->model), lv_flat6_inst(s->model), s, out);
     return LV_OK;
 }
 

@@ -15,6 +15,7 @@
 #include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
+#include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
 static const char *const keys[] = {"runway", "takeoff", "landing", "aero", NULL};
@@ -22,13 +23,6 @@ static const char *const from_types[] = {"dof3", NULL};
 /* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
 static const char *const ends[] = {"burnout", "speed", NULL};
 
-static const lv_traj_col traj[] = {
-    {"r_eci_x", "m", "r_eci_x"}, {"r_eci_y", "m", "r_eci_y"}, {"r_eci_z", "m", "r_eci_z"},
-    {"v_eci_x", "m/s", "v_eci_x"}, {"v_eci_y", "m/s", "v_eci_y"}, {"v_eci_z", "m/s", "v_eci_z"},
-    {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
-    {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
-    {"q_dyn", "Pa", "q_dyn"},
-};
 
 /* Touchdown tolerances of the hand-off from a dof3 phase (runway_handoff). */
 #define TOUCHDOWN_HEIGHT_MAX 10.0 /* m above or below the runway plane */
@@ -205,14 +199,8 @@ static lv_status runway_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def 
 /* ---- the model ---------------------------------------------------------------------------- */
 
 typedef struct runway_self {
-    lv_phase_model pm;
+    lv_kit_model kit; /* environment, engines, ends (phase_kit.h) */
     lv_runway *model;
-    lv_phase_env env;
-    lv_aero_config aero;
-    lv_wind_user wind;
-    lv_engine_config *engines;
-    lv_runway_end *ends;
-    int *event_end;
 } runway_self;
 
 static void runway_free_self(void *p)
@@ -221,16 +209,8 @@ static void runway_free_self(void *p)
     if (s == NULL)
         return;
     lv_runway_free(s->model);
-    lv_phase_env_clear(&s->env);
-    free(s->engines);
-    free(s->ends);
-    free(s->event_end);
+    lv_kit_clear(&s->kit);
     free(s);
-}
-
-static double val(const lv_build_ctx *bc, lv_slot s, double fallback)
-{
-    return s == LV_NO_SLOT ? fallback : bc->vals[s];
 }
 
 static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err *err)
@@ -240,107 +220,55 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     const runway_cfg *pc = ph->type_cfg;
     const lv_stage_def *bottom = &d->stages[ph->stages[0]];
     *out = NULL;
-    if (bc->env == NULL || bc->env->gravity == NULL)
-        return lv_fail(err, LV_ERR_INPUT, "model 'runway' needs a planet world");
-    size_t n_all = 0;
-    for (size_t e = 0; e < bottom->n_engines; e++)
-        n_all += (size_t)(bottom->engines[e].count > 0 ? bottom->engines[e].count : 1);
     runway_self *s = calloc(1, sizeof *s);
-    if (s == NULL || (s->engines = calloc(n_all + 1, sizeof *s->engines)) == NULL ||
-        (s->ends = calloc(ph->n_ends + 1, sizeof *s->ends)) == NULL ||
-        (s->event_end = calloc(ph->n_ends + 4, sizeof *s->event_end)) == NULL) {
-        runway_free_self(s);
+    if (s == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    }
-    lv_status st = lv_phase_env_get(bc, &s->env, err);
+    /* its own events: burnout, rotation, lift-off or stop, at rest */
+    lv_status st = lv_kit_begin(bc, &s->kit, 1, sizeof(lv_runway_end), 4, err);
     if (st != LV_OK) {
-        runway_free_self(s);
+        free(s);
         return st;
     }
     lv_runway_config cfg;
     lv_runway_config_default(&cfg);
     cfg.name = ph->name;
-    cfg.planet = s->env.planet;
-    cfg.gravity = s->env.gravity;
-    cfg.atmo = s->env.atmo;
-    if (s->env.wind != NULL) {
-        s->wind = (lv_wind_user)LV_WIND_USER_INIT(s->env.wind);
-        cfg.wind = lv_wind_fn_table;
-        cfg.wind_user = &s->wind;
-    }
+    lv_kit_world(&s->kit, &cfg.planet, &cfg.gravity, &cfg.atmo, &cfg.wind, &cfg.wind_user);
     cfg.mode = pc->mode;
-    double m0 = 0.0;
-    for (size_t i = 0; i < ph->n_stages; i++) {
-        const size_t si = ph->stages[i];
-        m0 += bc->vals[d->stages[si].dry_mass] + bc->prop[si];
-    }
     const double prop0 = bc->prop[ph->stages[0]];
-    cfg.m0 = m0;
+    cfg.m0 = lv_kit_stack_mass(bc, 0);
     cfg.propellant = prop0;
-    size_t ne = 0;
-    for (size_t e = 0; pc->mode == LV_RUNWAY_TAKEOFF && prop0 > 0.0 && e < bottom->n_engines;
-         e++) {
-        const lv_engine_def *ed = &bottom->engines[e];
-        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
-            lv_engine_config *ec = &s->engines[ne++];
-            lv_engine_config_default(ec);
-            ec->name = ed->name;
-            ec->thrust_vac = val(bc, ed->thrust_vac, 0.0);
-            ec->isp_vac = val(bc, ed->isp_vac, 0.0);
-            ec->mdot = val(bc, ed->mdot, 0.0);
-            ec->exit_area = val(bc, ed->exit_area, 0.0);
-            ec->throttle_min = val(bc, ed->throttle_min, 0.0);
-            ec->throttle_max = val(bc, ed->throttle_max, 1.0);
-            ec->table = lv_build_table(bc, ed->table);
-        }
-    }
-    cfg.n_engines = ne;
-    cfg.engines = s->engines;
+    /* a landing roll-out's engines are off */
+    cfg.n_engines = pc->mode == LV_RUNWAY_TAKEOFF && prop0 > 0.0
+                        ? lv_kit_engines(bc, bottom, s->kit.engines)
+                        : 0;
+    cfg.engines = s->kit.engines;
     cfg.runway_lat = bc->vals[pc->geo[G_LAT]];
     cfg.runway_lon = bc->vals[pc->geo[G_LON]];
     cfg.runway_h = bc->vals[pc->geo[G_H]];
     cfg.runway_heading = bc->vals[pc->geo[G_HDG]];
-    cfg.mu = val(bc, pc->roll[R_MU], 0.0);
-    cfg.alpha_ground = val(bc, pc->roll[R_AG], 0.0);
-    cfg.v_rot = val(bc, pc->roll[R_VROT], cfg.v_rot);
-    cfg.alpha_rot = val(bc, pc->roll[R_AROT], cfg.alpha_ground);
-    cfg.rotation_rate = val(bc, pc->roll[R_RATE], 0.0);
-    cfg.v_stop = val(bc, pc->roll[R_VSTOP], cfg.v_stop);
-    cfg.start_distance = val(bc, pc->roll[R_S0], 0.0);
-    cfg.start_speed = val(bc, pc->roll[R_V0], 0.0);
-    cfg.throttle = val(bc, pc->roll[R_THR], 1.0);
-    size_t n_ends = 0;
-    s->event_end[0] = -1; /* burnout, rotation, liftoff/stop, at rest: the roll's own */
-    s->event_end[1] = -1;
-    s->event_end[2] = -1;
-    s->event_end[3] = -1;
-    for (size_t j = 0; j < ph->n_ends; j++) {
-        const lv_end_def *e = &ph->ends[j];
-        if (e->kind == LV_END_BURNOUT) {
-            cfg.stop_at_burnout = 1;
-            s->event_end[0] = (int)j;
-        } else if (e->kind == LV_END_SPEED) {
-            s->event_end[4 + n_ends] = (int)j;
-            s->ends[n_ends++] = (lv_runway_end){e->name, val(bc, e->value, 0.0), e->direction};
-        }
-        /* variables and time: stop conditions of the simulation (run.c) */
-    }
-    cfg.n_ends = n_ends;
-    cfg.ends = s->ends;
-    if (pc->aero.present) {
-        lv_aero_def_config(&pc->aero, bc->vals, &s->aero);
-        cfg.aero = &s->aero;
-    }
+    cfg.mu = lv_kit_val(bc, pc->roll[R_MU], 0.0);
+    cfg.alpha_ground = lv_kit_val(bc, pc->roll[R_AG], 0.0);
+    cfg.v_rot = lv_kit_val(bc, pc->roll[R_VROT], cfg.v_rot);
+    cfg.alpha_rot = lv_kit_val(bc, pc->roll[R_AROT], cfg.alpha_ground);
+    cfg.rotation_rate = lv_kit_val(bc, pc->roll[R_RATE], 0.0);
+    cfg.v_stop = lv_kit_val(bc, pc->roll[R_VSTOP], cfg.v_stop);
+    cfg.start_distance = lv_kit_val(bc, pc->roll[R_S0], 0.0);
+    cfg.start_speed = lv_kit_val(bc, pc->roll[R_V0], 0.0);
+    cfg.throttle = lv_kit_val(bc, pc->roll[R_THR], 1.0);
+    /* the ends a roll takes (runway_parse): burnout, and speeds */
+    cfg.n_ends = lv_kit_ends(bc, &s->kit, 1, &cfg.stop_at_burnout);
+    lv_runway_end *rw_ends = s->kit.ends;
+    for (size_t i = 0; i < cfg.n_ends; i++)
+        rw_ends[i] = (lv_runway_end){s->kit.end[i].def->name, s->kit.end[i].value,
+                                     s->kit.end[i].def->direction};
+    cfg.ends = rw_ends;
+    cfg.aero = lv_kit_aero(bc, &pc->aero, &s->kit);
     st = lv_runway_create(&cfg, &s->model, err);
     if (st != LV_OK) {
         runway_free_self(s);
         return st;
     }
-    s->pm.def = lv_runway_def(s->model);
-    s->pm.inst = lv_runway_inst(s->model);
-    s->pm.event_end = s->event_end;
-    s->pm.self = s;
-    *out = &s->pm;
+    lv_kit_done(&s->kit, lv_runway_def(s->model), lv_runway_inst(s->model), s, out);
     return LV_OK;
 }
 
@@ -379,7 +307,7 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
         f[i] = pvalues[j];
     }
     /* ECI -> ECEF with the relative velocity: the inverse of lv_frames_ecef_to_eci */
-    const lv_planet *pl = &s->env.planet;
+    const lv_planet *pl = &s->kit.env.planet;
     const double th = pl->theta0 + pl->omega * f[0], c = cos(th), sn = sin(th);
     const double vx = f[4] + pl->omega * f[2], vy = f[5] - pl->omega * f[1];
     const double r[3] = {c * f[1] + sn * f[2], -sn * f[1] + c * f[2], f[3]};
@@ -422,8 +350,8 @@ const lv_phase_type lv_phase_type_runway = {
     .cfg_free = runway_cfg_free,
     .build = runway_build,
     .free_self = runway_free_self,
-    .n_traj = sizeof traj / sizeof traj[0],
-    .traj = traj,
+    .n_traj = LV_KIT_PLANET_TRAJ_N,
+    .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = runway_handoff,
 };

@@ -2,7 +2,9 @@
  * exported). The parser, the mission, the run and the summary know no model by name: they
  * ask the phase's type to parse its own keys, to build its model from a run's values, and
  * to name the columns of the bodies' merged trajectories. A new model type is one file that
- * defines an lv_phase_type and one line in phase_types.c (docs/architecture.md).
+ * defines an lv_phase_type (its build made of the kit, phase_kit.h) and one line in
+ * phase_types.c; tests/unit/test_phase_types.c checks the contracts every type keeps with the
+ * merge, the exports and the other types (docs/architecture.md, "How to add a phase type").
  */
 #ifndef LV_MISSION_PHASE_TYPE_H
 #define LV_MISSION_PHASE_TYPE_H
@@ -163,6 +165,10 @@ struct lv_phase_type {
      * refused where the file writes it. */
     const char *const *root_only_params;
 };
+
+/* The type whose model compare.c flies end to end (the paper's flat-world test case): a study
+ * made for one model names its type by this object, never by a string. */
+extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
 
 /* The registered types, NULL-terminated (phase_types.c). */
 const lv_phase_type *const *lv_phase_types(void);

@@ -4,13 +4,14 @@
 
 #include "core/status.h"
 
-extern const lv_phase_type lv_phase_type_flat6; /* phase_flat6.c */
-extern const lv_phase_type lv_phase_type_dof3;  /* phase_dof3.c */
-extern const lv_phase_type lv_phase_type_runway; /* phase_runway.c */
-extern const lv_phase_type lv_phase_type_dof6;  /* phase_dof6.c */
+/* The registered types in the order `lvsim models` lists them: one name a type, whose object
+ * lv_phase_type_<name> its file src/mission/phase_<name>.c defines. */
+#define LV_PHASE_TYPE_LIST(X) X(flat6) X(dof3) X(runway) X(dof6)
 
-static const lv_phase_type *const types[] = {&lv_phase_type_flat6, &lv_phase_type_dof3,
-                                             &lv_phase_type_runway, &lv_phase_type_dof6, NULL};
+#define LV_DECLARE_TYPE(n) extern const lv_phase_type lv_phase_type_##n;
+LV_PHASE_TYPE_LIST(LV_DECLARE_TYPE)
+#define LV_TYPE_ENTRY(n) &lv_phase_type_##n,
+static const lv_phase_type *const types[] = {LV_PHASE_TYPE_LIST(LV_TYPE_ENTRY) NULL};
 
 const lv_phase_type *const *lv_phase_types(void) { return types; }
 

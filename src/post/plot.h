@@ -113,11 +113,11 @@ void lv_plot_fig10_refs(lv_plot_data *d);
  * temporary file. Errors: LV_ERR_IO, LV_ERR_NOMEM. */
 lv_status lv_plot_fig10_write(const lv_plot_data *d, const char *plotdir, lv_err *err);
 
-/* Fills d->sites (plot_series.c): every runway phase's runway (a phase of model "runway"
- * whose file has 'distance', 'lat', 'lon', 'heading': the threshold found by extrapolating
- * its rows' positions back to distance 0), then the launch site (the first row of the
- * earliest phase with 'lat' and 'lon') unless a runway's threshold is within 0.01 deg (about
- * 1 km on the Earth) of it.
+/* Fills d->sites (plot_series.c): every runway phase's runway (a phase whose file has
+ * 'distance', 'normal_force', 'lat', 'lon', 'heading': one that rolls on a runway; the
+ * threshold found by extrapolating its rows' positions back to distance 0), then the launch
+ * site (the first row of the earliest phase with 'lat' and 'lon') unless a runway's threshold
+ * is within 0.01 deg (about 1 km on the Earth) of it.
  * Nothing on a flat world. */
 void lv_plot_find_sites(lv_plot_data *d);
 

@@ -116,17 +116,19 @@ lv_status lv_plot_fig10_write(const lv_plot_data *d, const char *plotdir, lv_err
     return lv_atomic_commit(&out, err);
 }
 
-/* The runway of a runway phase from its rows, or 0. Along the runway, latitude and longitude
- * are linear in the distance from the threshold to well below a metre over a few km: the
- * threshold is where the line through the first row and the farthest row meets distance 0. */
-static int runway_site(const lv_plot_phase *ph, const char *model, lv_plot_site *s)
+/* The runway of a phase that rolls on one (its rows have the distance along the runway and
+ * the runway's normal force on the wheels: the runway model's state and output) from its
+ * rows, or 0. Along the runway, latitude and longitude are linear in the distance from the
+ * threshold to well below a metre over a few km: the threshold is where the line through the
+ * first row and the farthest row meets distance 0. */
+static int runway_site(const lv_plot_phase *ph, lv_plot_site *s)
 {
     const lv_results_table *t = ph->csv;
-    if (t == NULL || model == NULL || strcmp(model, "runway") != 0 || t->n_rows == 0)
+    if (t == NULL || t->n_rows == 0)
         return 0;
     const long kd = first_col(t, "distance", NULL), klat = first_col(t, "lat", NULL),
                klon = first_col(t, "lon", NULL), khdg = first_col(t, "heading", NULL);
-    if (kd < 0 || klat < 0 || klon < 0 || khdg < 0)
+    if (kd < 0 || klat < 0 || klon < 0 || khdg < 0 || first_col(t, "normal_force", NULL) < 0)
         return 0;
     size_t far = 0;
     for (size_t r = 1; r < t->n_rows; r++)
@@ -167,7 +169,7 @@ void lv_plot_find_sites(lv_plot_data *d)
         return;
     for (size_t k = 0; k < d->n_phases && d->n_sites < LV_PLOT_MAX_SITES; k++) {
         lv_plot_site s;
-        if (!runway_site(&d->phases[k], d->res->phases[k].model, &s))
+        if (!runway_site(&d->phases[k], &s))
             continue;
         int same = 0; /* one runway, one site: the same threshold and heading */
         for (size_t j = 0; j < d->n_sites && !same; j++) {

@@ -1,0 +1,244 @@
+/* flight_model.c - what the flight models over the planet share (flight_model.h): mass and
+ * domain set-up, the start from geodetic values, the instance's start, and the callbacks of
+ * the burnout and the named ends, the domain and the time events. */
+#include "dynamics/flight_model.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/table_unit.h"
+#include "core/units.h"
+
+/* ---- construction ------------------------------------------------------------------------ */
+
+lv_status lv_flight_check_mass(const char *model, double m0, double propellant, lv_err *err)
+{
+    if (!isfinite(m0) || !(m0 > 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "%s: start mass m0 = %g kg (must be > 0)", model, m0);
+    if (!isfinite(propellant) || propellant < 0.0 || !(propellant < m0))
+        return lv_fail(err, LV_ERR_INPUT, "%s: propellant = %g kg (must be >= 0 and less than "
+                       "the start mass m0 = %g kg)", model, propellant, m0);
+    return LV_OK;
+}
+
+lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
+                                 lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err)
+{
+    if (n == 0)
+        return LV_OK;
+    if (engines == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "%s: n_engines = %zu but engines is NULL", model, n);
+    if ((*eng = calloc(n, sizeof **eng)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    size_t nbuf = 1;
+    for (size_t i = 0; i < n; i++) {
+        lv_status st = lv_engine_init(&(*eng)[i], &engines[i], i, err);
+        if (st != LV_OK)
+            return st;
+        *n_eng = i + 1;
+        if ((*eng)[i].n_out > nbuf)
+            nbuf = (*eng)[i].n_out;
+    }
+    if ((*eng_buf = malloc(nbuf * sizeof **eng_buf)) == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    return LV_OK;
+}
+
+lv_domain_def lv_flight_domain(int has_atmo)
+{
+    return (lv_domain_def){
+        "h", "m", has_atmo ? LV_ATMO_ALT_MIN : -20e3,
+        has_atmo ? "the vehicle is under the ground (below the floor of the atmosphere model); "
+                   "an `impact` end ends the phase on the ground"
+                 : "the vehicle is under the ground (20 km below the ellipsoid); an `impact` "
+                   "end ends the phase on the ground"};
+}
+
+void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
+                             const lv_domain_def *domain)
+{
+    def->n_events = 1 + core->fe->n;
+    def->events = core->fe->events;
+    def->event_g = lv_flight_event_g;
+    def->on_event = lv_flight_on_event;
+    def->next_time_event = lv_flight_next_time_event_cb;
+    def->time_event_name = lv_flight_time_event_name_cb;
+    def->n_domain = 1;
+    def->domain = domain;
+    def->domain_q = lv_flight_domain_q;
+    def->last_error = lv_flight_last_error_cb;
+    rt->core = core;
+}
+
+static int is_time_axis(const char *name)
+{
+    return strcmp(name, "time") == 0 || strcmp(name, "t") == 0;
+}
+
+lv_status lv_flight_check_inputs_table(const char *model, const lv_table *tab, lv_err *err)
+{
+    if (lv_table_n_dims(tab) != 1 || !is_time_axis(lv_table_axis_name(tab, 0)))
+        return lv_fail(err, LV_ERR_INPUT,
+                       "%s: input table '%s' must have exactly one axis named 'time' (has %zu, "
+                       "the first named '%s')",
+                       model, lv_table_name(tab), lv_table_n_dims(tab),
+                       lv_table_axis_name(tab, 0));
+    char what[64];
+    snprintf(what, sizeof what, "%s: inputs", model);
+    return lv_table_expect_unit(tab, 1, 0, "s", what, err);
+}
+
+/* ---- an instance ------------------------------------------------------------------------- */
+
+int lv_flight_fail(lv_flight_rt *rt, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(rt->msg, sizeof rt->msg, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int lv_flight_check_start(lv_flight_rt *rt, double lat, double vel, double prop)
+{
+    if (!(fabs(lat) <= 0.5 * LV_PI))
+        return lv_flight_fail(rt, "start_lat = %g rad is outside [-pi/2, pi/2]", lat);
+    if (!(vel >= 0.0))
+        return lv_flight_fail(rt, "start_vel = %g m/s is negative", vel);
+    if (!(prop >= 0.0))
+        return lv_flight_fail(rt, "propellant = %g kg is negative", prop);
+    return 0;
+}
+
+int lv_flight_check_throttle(lv_flight_rt *rt, double c)
+{
+    const lv_flight_core *k = rt->core;
+    for (size_t i = 0; i < k->n_eng; i++)
+        if (!(c >= k->eng[i].thr_min && c <= k->eng[i].thr_max))
+            return lv_flight_fail(rt, "throttle = %g is outside the limits [%g, %g] of engine "
+                                  "'%s'", c, k->eng[i].thr_min, k->eng[i].thr_max,
+                                  k->eng[i].name);
+    return 0;
+}
+
+void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h, double vel,
+                           double fpa, double chi, double t0, double *r, double *v)
+{
+    double r_ecef[3], v_ned[3], C[3][3], v_ecef[3];
+    lv_frames_geodetic_to_ecef(pl, lat, lon, h, r_ecef);
+    lv_frames_ned_from_fpa(vel, fpa, chi, v_ned);
+    lv_frames_C_ned_ecef(lat, lon, C);
+    for (int i = 0; i < 3; i++) /* v_ecef = C_ned_ecef^T v_ned */
+        v_ecef[i] = C[0][i] * v_ned[0] + C[1][i] * v_ned[1] + C[2][i] * v_ned[2];
+    lv_frames_ecef_to_eci(pl, t0, r_ecef, v_ecef, r, v);
+}
+
+int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines)
+{
+    if (!(m > 0.0))
+        return lv_flight_fail(rt, "start mass m = %g kg is not positive", m);
+    if (!(prop < m))
+        return lv_flight_fail(rt, "the propellant %g kg is not less than the start mass %g kg",
+                              prop, m);
+    rt->m_burnout = m - prop;
+    rt->burned_out = 0;
+    rt->engines_on = engines && prop > 0.0;
+    return 0;
+}
+
+int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin)
+{
+    const lv_flight_core *k = rt->core;
+    lv_flight_to_ecef(k->world, t0, x + k->i_r, x + k->i_v, kin);
+    const double rn = lv_v3_norm(kin->r_ecef);
+    if (!(rn > 0.0))
+        return lv_flight_fail(rt, "start position is the planet's centre (|r| = %g m)", rn);
+    lv_flight_geodetic(k->world, kin, 0, 0);
+    rt->r0_unit[0] = kin->r_ecef.x / rn;
+    rt->r0_unit[1] = kin->r_ecef.y / rn;
+    rt->r0_unit[2] = kin->r_ecef.z / rn;
+    /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
+     * below its weight) has no crossing from above to find: its impact is 1 micrometre below
+     * where it starts; one that starts below it is refused. */
+    char why[320];
+    if (lv_flight_ends_start(k->fe, kin->h, why, sizeof why) != 0)
+        return lv_flight_fail(rt, "%s", why);
+    return 0;
+}
+
+/* ---- the callbacks ----------------------------------------------------------------------- */
+
+int lv_flight_event_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    (void)p;
+    const lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    /* burnout: disarmed (a constant) once the engines are off */
+    g[0] = rt->engines_on ? x[k->i_m] - rt->m_burnout : 1.0;
+    if (k->fe->n == 0)
+        return 0;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(k->world, t, x + k->i_r, x + k->i_v, &kin);
+    lv_flight_ends_eval(k->fe, k->world, &kin, x + k->i_r, x + k->i_v, g + 1);
+    return 0;
+}
+
+lv_event_action lv_flight_on_event(double t, double *x, const double *p, const int *fired,
+                                   void *inst)
+{
+    (void)t, (void)x, (void)p;
+    lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    lv_event_action act = LV_EVENT_CONTINUE;
+    if (fired[0]) { /* propellant gone: engines off, a new initial value problem */
+        rt->engines_on = 0;
+        rt->burned_out = 1;
+        act = k->stop_at_burnout ? LV_EVENT_STOP : LV_EVENT_RESTART;
+    }
+    for (size_t i = 0; i < k->fe->n; i++)
+        if (fired[1 + i] && k->fe->ends[i].stop)
+            act = LV_EVENT_STOP;
+    return act;
+}
+
+/* The model's domain: the geodetic altitude above its floor (lv_flight_domain). */
+int lv_flight_domain_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)p;
+    const lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(k->world, t, x + k->i_r, x + k->i_v, &kin);
+    lv_flight_geodetic(k->world, &kin, 0, 0);
+    q[0] = kin.h;
+    return 0;
+}
+
+double lv_flight_next_time_event_cb(double t, const double *p, void *inst)
+{
+    (void)p;
+    const lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    return lv_flight_next_time_event(k->inputs, k->eng, k->n_eng, k->guid, &rt->guid, t);
+}
+
+/* The time events at t by their source: the inputs table's, the steering law's or an engine
+ * table's breakpoint. */
+const char *lv_flight_time_event_name_cb(double t, const double *p, void *inst)
+{
+    (void)p;
+    lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    return lv_flight_time_event_label(k->inputs, k->eng, k->n_eng, k->guid, &rt->guid, t,
+                                      rt->tev, sizeof rt->tev);
+}
+
+/* Why the last callback failed (a table out of range, the atmosphere, a bad parameter). */
+const char *lv_flight_last_error_cb(const void *inst)
+{
+    const lv_flight_rt *rt = inst;
+    return rt != NULL && rt->msg[0] != '\0' ? rt->msg : NULL;
+}

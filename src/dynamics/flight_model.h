@@ -1,0 +1,112 @@
+/* flight_model.h - what the flight models over the planet (the 3-DoF point, dof3.c, and the
+ * 6-DoF rigid body, dof6.c) share besides the right-hand side's pieces (flight.h): the
+ * checks of a configuration's mass, the domain (the geodetic altitude above a floor), the
+ * start from geodetic values (the paper's userPar), the propellant book and the start checks
+ * of an instance, and the callbacks of lv_model_def that read only those: the state events
+ * (event 0 the burnout, then the named ends of flight_ends.h) and their handler, the domain's
+ * quantity, the time events of the inputs table, engines and steering law, the last error.
+ *
+ * A model's object holds an lv_flight_core (one literal once the model is built); its
+ * instance block begins with an lv_flight_rt that points to it (lv_flight_def_callbacks), so
+ * that the callbacks below take the instance as it is. */
+#ifndef LV_DYNAMICS_FLIGHT_MODEL_H
+#define LV_DYNAMICS_FLIGHT_MODEL_H
+
+#include <stddef.h>
+
+#include "core/status.h"
+#include "dynamics/flight.h"
+#include "dynamics/flight_ends.h"
+#include "dynamics/guidance.h"
+#include "lvsim/lv_model.h"
+
+/* The model's parts the shared callbacks read (borrowed from the model's object). */
+typedef struct lv_flight_core {
+    const lv_flight_world *world; /* planet, gravity, atmosphere, wind */
+    lv_flight_ends *fe;           /* burnout (event 0) and the named ends */
+    size_t i_r, i_v, i_m;         /* states: ECI position and velocity (3 each), mass */
+    const lv_table *inputs;       /* the inputs' table over time, or NULL */
+    const lv_engine *eng;         /* [n_eng] */
+    size_t n_eng;
+    const lv_guid *guid;          /* the steering law whose time events count, or NULL */
+    int stop_at_burnout;          /* 1: burnout ends the phase; 0: engines off, go on */
+} lv_flight_core;
+
+/* The first member of a flight model's instance block. */
+typedef struct lv_flight_rt {
+    const lv_flight_core *core; /* NULL in a block lv_simulate zeroed itself */
+    int engines_on;             /* mode: 1 while propellant remains */
+    int burned_out;             /* the propellant is gone */
+    double m_burnout;           /* kg: the start mass minus the burning stage's propellant */
+    double r0_unit[3];          /* ECEF unit vector of the start point (downrange) */
+    lv_guid_rt guid;            /* the steering law's start frame, cursors, trigonometry */
+    char msg[LV_ERR_MSG_MAX];   /* why the last callback failed */
+    char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
+} lv_flight_rt;
+
+/* ---- construction ------------------------------------------------------------------------ */
+
+/* The start mass m0 > 0 [kg] and the burning stage's propellant 0 <= propellant < m0 [kg];
+ * LV_ERR_INPUT naming the model ("dof3: start mass m0 = -1 kg (must be > 0)") otherwise. */
+lv_status lv_flight_check_mass(const char *model, double m0, double propellant, lv_err *err);
+
+/* The engines of a configuration: *eng = [n] initialised from engines[n] (lv_engine_init),
+ * *n_eng the number initialised (also after an error, for the caller's free), *eng_buf
+ * scratch for their tables; nothing when n = 0. LV_ERR_INPUT naming the model ("dof3:
+ * n_engines = 2 but engines is NULL") or the engine, LV_ERR_NOMEM. */
+lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
+                                 lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err);
+
+/* The domain of a model over the planet: the geodetic altitude "h" above the atmosphere's
+ * floor (US76: -5 km), or 20 km below the ellipsoid without an atmosphere (deeper than the
+ * lowest ground of the Earth, Moon and Mars). */
+lv_domain_def lv_flight_domain(int has_atmo);
+
+/* The shared callbacks into def (with the events of core->fe: 1 + fe->n) and the domain (one
+ * quantity); rt (the model's instance template) reads core. */
+void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
+                             const lv_domain_def *domain);
+
+/* An inputs table over time: one axis named "time" (or "t") in s. `model` prefixes the
+ * messages. LV_ERR_INPUT otherwise. */
+lv_status lv_flight_check_inputs_table(const char *model, const lv_table *tab, lv_err *err);
+
+/* ---- an instance ------------------------------------------------------------------------ */
+
+/* Records the reason in rt->msg; returns -1 (a callback's failure). */
+int lv_flight_fail(lv_flight_rt *rt, const char *fmt, ...) LV_PRINTF(2, 3);
+
+/* The start checks every flight model makes of its parameters: start_lat in [-pi/2, pi/2],
+ * start_vel >= 0, propellant >= 0 [rad, m/s, kg]; 0, or -1 with the reason in rt->msg. */
+int lv_flight_check_start(lv_flight_rt *rt, double lat, double vel, double prop);
+
+/* A constant throttle c within every engine's limits; 0, or -1 with the reason. */
+int lv_flight_check_throttle(lv_flight_rt *rt, double c);
+
+/* ECI position r[3] [m] and velocity v[3] [m/s] at mission time t0 [s] of a vehicle at
+ * geodetic lat, lon [rad], h [m] moving at `vel` [m/s] relative to the rotating planet with
+ * flight-path angle fpa and heading chi [rad] (NED). */
+void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h, double vel,
+                           double fpa, double chi, double t0, double *r, double *v);
+
+/* The propellant book at the start: a positive mass m above the propellant `prop` [kg];
+ * burnout when the propellant is gone, whatever else the mass carries; the engines on when
+ * `engines` and prop > 0. 0, or -1 with the reason in rt->msg. */
+int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines);
+
+/* The instance's start at t0 from state x: a position away from the planet's centre (kin:
+ * its kinematics with the geodetic position), the start point for the downrange, the named
+ * ends' start (lv_flight_ends_start). 0, or -1 with the reason in rt->msg. */
+int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin);
+
+/* ---- the callbacks (lv_model_def; inst: an instance block beginning with lv_flight_rt) ---- */
+
+int lv_flight_event_g(double t, const double *x, const double *p, double *g, void *inst);
+lv_event_action lv_flight_on_event(double t, double *x, const double *p, const int *fired,
+                                   void *inst);
+int lv_flight_domain_q(double t, const double *x, const double *p, double *q, void *inst);
+double lv_flight_next_time_event_cb(double t, const double *p, void *inst);
+const char *lv_flight_time_event_name_cb(double t, const double *p, void *inst);
+const char *lv_flight_last_error_cb(const void *inst);
+
+#endif
