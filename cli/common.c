@@ -395,7 +395,12 @@ static void on_stop_signal(int sig)
     (void)sig;
     cli_stop_flag = 1;
     /* the flag is read between integrator steps; a library call that never returns to them
-     * (SUNDIALS stuck on an absurd scale: issue 22's breaker) must not keep the process */
+     * (SUNDIALS stuck on an absurd scale: issue 22's breaker) must not keep the process.
+     * SIGALRM is taken only now (sigaction and alarm are async-signal-safe): until a stop is
+     * asked for, the process's alarm stays whoever's it is (libFuzzer's per-input timeout) */
+    static struct sigaction od; /* zeroed: no flags, an empty mask */
+    od.sa_handler = on_stop_overdue;
+    sigaction(SIGALRM, &od, NULL);
     alarm(CLI_STOP_GRACE_S);
 }
 
@@ -408,9 +413,4 @@ void cli_catch_stop(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
-    struct sigaction od;
-    memset(&od, 0, sizeof od);
-    od.sa_handler = on_stop_overdue;
-    sigemptyset(&od.sa_mask);
-    sigaction(SIGALRM, &od, NULL);
 }
