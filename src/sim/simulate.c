@@ -31,7 +31,8 @@ void lv_sim_settings_default(lv_sim_settings *s)
 
 const char *const *lv_sim_methods(void)
 {
-    static const char *const names[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler", NULL};
+    static const char *const names[] = {"dassl", "cvode-adams", "dopri5", "rk4",  "euler",
+                                        "dp5",   "dop853",      "auto",   NULL};
     return names;
 }
 
