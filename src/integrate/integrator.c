@@ -521,13 +521,13 @@ void lv_integ_method_used(const lv_integ *ig, char *used, size_t used_cap, char 
     const char *ex = lv_method_name(LV_METHOD_AUTO_EXPLICIT);
     if (ig->erk == NULL) {
         snprintf(used, used_cap, "%s", lv_method_name(LV_METHOD_BDF));
-        snprintf(why, why_cap, "auto: declared stiff by the model");
+        snprintf(why, why_cap, "declared stiff by the model");
     } else if (ig->bdf != NULL) {
         snprintf(used, used_cap, "%s, then %s", ex, lv_method_name(LV_METHOD_BDF));
-        snprintf(why, why_cap, "auto: stiff at t = %.6g s (Hairer's test)", ig->t_switch);
+        snprintf(why, why_cap, "stiff at t = %.6g s (Hairer's test)", ig->t_switch);
     } else {
         snprintf(used, used_cap, "%s", ex);
-        snprintf(why, why_cap, "auto: not stiff");
+        snprintf(why, why_cap, "not stiff");
     }
 }
 

@@ -1111,6 +1111,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : S->grid.dt,
             .max_step = s->max_step_size,
             .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
+            .stiff = d->stiff,
         };
         if ((st = lv_integ_create(&prob, s->start_time, r->x, &S->ig, err)) != LV_OK) {
             lv_fail_prefix(err, st, "model '%s'", d->name);
@@ -1316,6 +1317,12 @@ lv_status lv_sim_finish(lv_sim *S, double *final_values, lv_sim_report *rep_out,
         rep->stats.nonlin_fails = is.nonlin_fails;
         rep->stats.g_evals = is.g_evals;
         rep->stats.restarts = is.restarts;
+        lv_integ_method_used(S->ig, rep->method_used, sizeof rep->method_used, rep->method_why,
+                             sizeof rep->method_why);
+    } else { /* stop_time == start_time: nothing integrated */
+        snprintf(rep->method_used, sizeof rep->method_used, "%s",
+                 S->s.method != NULL ? S->s.method : "dassl");
+        snprintf(rep->method_why, sizeof rep->method_why, "no integration (zero length)");
     }
     if (S->state == SIM_FINISHED) {
         read_finals(r, &S->s, S->refs, rep->end_time, final_values);

@@ -64,7 +64,7 @@ expect 2 "is not a finite number" -- "$lvsim" simulate oscillator --stop " 1" --
 out=$("$lvsim" simulate free_fall --set h=-1 --format none 2>&1); rc=$?
 [ "$rc" -eq 2 ] && grep -q "h = -1 m is below its lower bound 0 m" <<<"$out" && ! grep -q "initialNames\|steps" <<<"$out" \
   && pass=$((pass + 1)) || { echo "FAIL: simulate --set h=-1: exit $rc: $out"; fails=$((fails + 1)); }
-expect 2 "--method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got .rk45." -- "$lvsim" simulate oscillator --method rk45 --format none
+expect 2 "--method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler, dp5, dop853, auto\), got .rk45." -- "$lvsim" simulate oscillator --method rk45 --format none
 expect 2 "stopTime -1 s is before startTime 0 s" -- "$lvsim" simulate oscillator --stop -1 --format none
 expect 2 "unknown option '--bogus'" -- "$lvsim" simulate oscillator --bogus
 # A run that fails in the integrator exits 3 and names model, time and reason.
@@ -546,7 +546,7 @@ for t in 0 -1 10 1e-15; do
 done
 mc_mission="$src/tests/missions/mc/correlated.yaml"
 expect 2 "^lvsim: --tolerance needs a relative tolerance from 1e-14 to 0.1 .*, got '10'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --tolerance 10
-expect 2 "^lvsim: --method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler\), got 'rk45'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --method rk45
+expect 2 "^lvsim: --method needs an integration method \(dassl, cvode-adams, dopri5, rk4, euler, dp5, dop853, auto\), got 'rk45'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --method rk45
 expect 2 "^lvsim: --method needs an integration method .*, got 'rk45'$" -- "$lvsim" compare "$mission" --method rk45
 expect 2 "^lvsim: --output-interval needs seconds > 0, got '0'$" -- "$lvsim" mc "$mc_mission" -n 2 -o "$work/mc" --output-interval 0
 expect 2 "^lvsim: --interval needs seconds > 0, got '-1'$" -- "$lvsim" compare "$mission" --interval -1

@@ -541,7 +541,7 @@ static void test_values(void)
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, "
         "integrator: {method: dasl}}\n",
         "bad.yaml:5:79: phase 'P1', integrator: method: unknown value 'dasl'; did you mean "
-        "'dassl'?");
+        "'dassl' or 'dp5'?");
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, "
         "integrator: {tolerance: 0}}\n",
         "bad.yaml:5:82: phase 'P1', integrator: tolerance must be >= 1e-14 and <= 0.1, found 0");
