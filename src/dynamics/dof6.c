@@ -1492,6 +1492,10 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .domain_q = dof6_domain_q,
         .last_error = dof6_last_error_cb,
         .time_event_name = dof6_time_event_name,
+        /* an attitude controller drives first-order actuator lags (tau: 0.05 s in the
+         * examples): stiff for an explicit method, so "auto" integrates with BDF (measured on
+         * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
+        .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
     };
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
