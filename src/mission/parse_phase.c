@@ -185,7 +185,7 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
     /* lv_sim_methods(), then Dymola's name for DOP853 (read as "dop853") */
     static const char *const methods[] = { "dassl", "cvode-adams", "dopri5", "rk4", "euler",
                                            "dp5", "dop853", "auto", "dopri853", NULL };
-    enum { METHOD_DEFAULT = 0, METHOD_DOPRI853 = 8 };
+    enum { METHOD_DEFAULT = 7 /* LV_PHASE_METHOD_DEFAULT, "auto" */, METHOD_DOPRI853 = 8 };
     static const char *const nkeys[3] = { "tolerance", "output_interval", "fixed_step" };
     static const char *const units[3] = { "", "s", "s" };
     static const double defaults[3] = { 1e-6, 0.0, 0.0 };

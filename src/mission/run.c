@@ -129,7 +129,8 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
         }
         p->res.name = ph->name;
-        snprintf(p->method, sizeof p->method, "%s", ph->method ? ph->method : "dassl");
+        snprintf(p->method, sizeof p->method, "%s",
+                 ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);
         p->res.method = p->method;
         p->res.n_final = pl->n_final;
         p->res.final_names = (const char *const *)pl->final_names;
@@ -299,7 +300,8 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     lv_sim_settings_default(s);
     s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
     s->stop_time = v[ph->t_stop];
-    s->method = opt && opt->method ? opt->method : (ph->method ? ph->method : "dassl");
+    s->method = opt && opt->method ? opt->method
+                                   : (ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);
     s->tolerance = opt && opt->tolerance != 0.0 ? opt->tolerance : v[ph->tolerance];
     s->number_of_intervals = ph->intervals;
     s->output_interval = v[ph->output_interval];
