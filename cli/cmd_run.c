@@ -57,15 +57,16 @@ static void print_row(const lv_run *run, size_t k, int w)
     const lv_sim_report *rep = &r->report;
     /* skipped, pending, or failed before its simulation started (no times): dashes */
     if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING || isnan(r->t_start)) {
-        printf("%-3zu %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", k + 1, w, r->name, w,
-               parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", END_W,
-               "-", "-", "-", "-", "-", "-", phase_state_name(r->state));
+        printf("%-3zu %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %-11s %s\n", k + 1, w, r->name,
+               w, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", END_W,
+               "-", "-", "-", "-", "-", "-", "-", phase_state_name(r->state));
         return;
     }
-    printf("%-3zu %-*s %-*s %9.3f %9.3f  %-*s %7ld %8ld %4ld %4ld %9.2f  %s\n", k + 1, w,
+    /* the method that ran; for "auto" with why ("dop853: not stiff") */
+    printf("%-3zu %-*s %-*s %9.3f %9.3f  %-*s %7ld %8ld %4ld %4ld %9.2f  %-11s %s\n", k + 1, w,
            r->name, w, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", r->t_start,
            r->t_end, END_W, end_word(r), rep->stats.steps, rep->stats.rhs_evals,
-           rep->stats.state_events, rep->stats.time_events, 1e3 * rep->stats.cpu_time,
+           rep->stats.state_events, rep->stats.time_events, 1e3 * rep->stats.cpu_time, r->method,
            phase_state_name(r->state));
 }
 
@@ -343,8 +344,9 @@ static void print_header(const run_job *j)
                lv_outdir_final(j->od));
     else
         printf("mission '%s': %zu phases (nothing written)\n", lv_mission_name(j->m), n);
-    printf("%-3s %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %s\n", "#", w, "phase", w, "from",
-           "t0 [s]", "t1 [s]", END_W, "end", "steps", "rhs", "sev", "tev", "cpu [ms]", "status");
+    printf("%-3s %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %-11s %s\n", "#", w, "phase", w,
+           "from", "t0 [s]", "t1 [s]", END_W, "end", "steps", "rhs", "sev", "tev", "cpu [ms]",
+           "method", "status");
     fflush(stdout);
 }
 

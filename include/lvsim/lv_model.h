@@ -151,6 +151,12 @@ struct lv_model_def {
      * t = 481 s", "separation of stage2"). Called at `t` before on_time_event(); the text
      * may live in `inst` (it is copied at once). NULL (or no function): "time event". */
     const char *(*time_event_name)(double t, const double *p, void *inst);
+
+    /* Optional: nonzero when the model is stiff by construction (runway friction, fast
+     * actuator lags: eigenvalues far beyond 1 / the steps an explicit method would take). The
+     * method "auto" then integrates it with BDF ("dassl") from the start, instead of an
+     * explicit method until Hairer's stiffness test fires (docs/integration.md). */
+    int stiff;
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -12,6 +12,12 @@
  *   "dopri5"      Dormand-Prince 5(4), ARKODE ERKStep, adaptive
  *   "rk4"         classical Runge-Kutta 4, ARKODE ERKStep, fixed step
  *   "euler"       explicit Euler, ARKODE ERKStep, fixed step
+ *   "dp5"         Dormand-Prince 5(4), lvsim's own (src/integrate/erk.c), 4th-order dense
+ *                 output, Hairer's stiffness test
+ *   "dop853"      DOP853 8(5,3), lvsim's own, 7th-order dense output (alias "dopri853")
+ *   "auto"        dop853 while the problem is not stiff; CVODE BDF ("dassl") from where
+ *                 Hairer's stiffness test finds it stiff, or from the start for a model that
+ *                 declares itself stiff (lv_model_def.stiff); report.method_used/_why say which
  * Tolerances: rtol = tolerance; atol_i = tolerance * nominal_i per state. The tolerance lies in
  * [LV_TOLERANCE_MIN, LV_TOLERANCE_MAX] (docs/integration.md, "Tolerance range").
  *
@@ -154,6 +160,11 @@ typedef struct lv_sim_report {
     size_t n_states;          /* number of continuous states */
     size_t n_event_log;       /* events handled, in order */
     lv_event_record *event_log; /* owned; free with lv_sim_report_clear() */
+    char method_used[LV_EVENT_NAME_MAX]; /* the method(s) that ran: "dassl", "dop853", for
+                                            "auto" e.g. "dop853, then dassl" */
+    char method_why[LV_EVENT_NAME_MAX];  /* why: "chosen" (named in the settings), or for
+                                            "auto": "not stiff", "stiff at t = 12.5 s (Hairer's
+                                            test)", "declared stiff by the model" */
 } lv_sim_report;
 
 LV_API void lv_sim_report_clear(lv_sim_report *rep);

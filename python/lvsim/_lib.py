@@ -88,7 +88,9 @@ class lv_sim_report(Structure):
     _fields_ = [("stats", lv_sim_stats), ("reason", c_int), ("end_time", c_double),
                 ("stop_event", c_int), ("stop_name", c_char * LV_EVENT_NAME_MAX),
                 ("n_states", c_size_t), ("n_event_log", c_size_t),
-                ("event_log", POINTER(lv_event_record))]
+                ("event_log", POINTER(lv_event_record)),
+                ("method_used", c_char * LV_EVENT_NAME_MAX),
+                ("method_why", c_char * LV_EVENT_NAME_MAX)]
 
 
 class lv_phase_result(Structure):

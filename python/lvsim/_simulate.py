@@ -203,8 +203,9 @@ def simulate(model, *, start_time=0.0, stop_time=1.0, number_of_intervals=None,
              result_file=None, initial=None, finals=(), rows=True, progress=None):
     """lv_simulate of a built-in model by name (the paper's Code 1, Dymola's
     simulateExtendedModel): integrates from `start_time` to `stop_time` (s) with `method`
-    ("dassl" default, "cvode-adams", "dopri5", "rk4", "euler") at relative `tolerance`
-    (default 1e-4), output every `output_interval` s or `number_of_intervals` (default 500),
+    ("dassl" default, "cvode-adams", "dopri5", "rk4", "euler", "dp5", "dop853", "auto") at
+    relative `tolerance` (default 1e-4), output every `output_interval` s or
+    `number_of_intervals` (default 500),
     start values `initial` (dict: states or parameters by name, SI), and returns an Outcome
     with the values of `finals` (names: "time", states, derivatives "der(h)", parameters,
     outputs) at the end. `result_file` (a path without extension) also writes .mat and .csv.

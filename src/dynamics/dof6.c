@@ -1333,6 +1333,10 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .rhs = dof6_rhs,
         .outputs_fn = dof6_outputs,
         .abs_error = abs_error,
+        /* an attitude controller drives first-order actuator lags (tau: 0.05 s in the
+         * examples): stiff for an explicit method, so "auto" integrates with BDF (measured on
+         * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
+        .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
     };
     m->core = (lv_flight_core){&m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M, m->inputs,
                                m->eng, m->n_eng, m->steers ? &m->guid : NULL,

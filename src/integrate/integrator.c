@@ -1,8 +1,12 @@
 /* integrator.c - SUNDIALS 6.x (SUNContext API) behind lv_integ: CVODE for BDF and
  * Adams, ARKODE ERKStep for Dormand-Prince 5(4), classical RK4 and explicit Euler.
  * Root finding and stop times are SUNDIALS' own (CVodeRootInit, CVodeSetStopTime).
+ * lvsim's own explicit methods dp5 and dop853 (erk.c) and "auto" (one of them, then CVODE BDF
+ * once the problem is found stiff) are dispatched from here.
  */
 #include "integrate/integrator.h"
+
+#include "integrate/erk.h"
 
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
@@ -43,7 +47,20 @@ struct lv_integ {
     double memo_t;
     double *memo_x, *memo_f;  /* [n] each */
     long n_step, n_dense, n_reused;
+    /* dp5, dop853, auto: lvsim's own explicit integrator; auto: CVODE BDF once stiff */
+    lv_erk *erk;
+    lv_integ *bdf;
+    double t_switch;          /* auto: where BDF took over (NAN: from the start or never) */
 };
+
+/* The explicit method of "auto": measured on the example missions and bench_flight
+ * (docs/integration.md, "auto"). */
+#define LV_METHOD_AUTO_EXPLICIT LV_METHOD_DOP853
+
+static int is_own(lv_method m)
+{
+    return m == LV_METHOD_DP5 || m == LV_METHOD_DOP853 || m == LV_METHOD_AUTO;
+}
 
 /* ---- methods ------------------------------------------------------------------ */
 
@@ -54,14 +71,16 @@ static const struct {
     {"dassl", LV_METHOD_BDF},        {"bdf", LV_METHOD_BDF},       {"cvode-bdf", LV_METHOD_BDF},
     {"cvode-adams", LV_METHOD_ADAMS}, {"adams", LV_METHOD_ADAMS},  {"dopri5", LV_METHOD_DOPRI5},
     {"dopri45", LV_METHOD_DOPRI5},   {"rk4", LV_METHOD_RK4},       {"rungekutta", LV_METHOD_RK4},
-    {"euler", LV_METHOD_EULER},
+    {"euler", LV_METHOD_EULER},       {"dp5", LV_METHOD_DP5},       {"dop853", LV_METHOD_DOP853},
+    {"dopri853", LV_METHOD_DOP853},  {"auto", LV_METHOD_AUTO},
 };
+#define LV_METHOD_LIST "dassl, cvode-adams, dopri5, rk4, euler, dp5, dop853, auto"
 
 lv_status lv_method_parse(const char *name, lv_method *out, lv_err *err)
 {
     if (name == NULL || name[0] == '\0')
-        return lv_fail(err, LV_ERR_INPUT, "integration method is empty; use one of dassl, "
-                                          "cvode-adams, dopri5, rk4, euler");
+        return lv_fail(err, LV_ERR_INPUT, "integration method is empty; use one of "
+                                          LV_METHOD_LIST);
     for (size_t i = 0; i < sizeof method_names / sizeof method_names[0]; i++) {
         if (strcasecmp(name, method_names[i].name) == 0) {
             *out = method_names[i].m;
@@ -69,15 +88,13 @@ lv_status lv_method_parse(const char *name, lv_method *out, lv_err *err)
         }
     }
     return lv_fail(err, LV_ERR_INPUT,
-                   "unknown integration method '%s'; use one of dassl, cvode-adams, dopri5, rk4, "
-                   "euler",
-                   name);
+                   "unknown integration method '%s'; use one of " LV_METHOD_LIST, name);
 }
 
 const char *lv_method_name(lv_method m)
 {
-    static const char *const names[LV_METHOD_COUNT] = {"dassl", "cvode-adams", "dopri5", "rk4",
-                                                       "euler"};
+    static const char *const names[LV_METHOD_COUNT] = {
+        "dassl", "cvode-adams", "dopri5", "rk4", "euler", "dp5", "dop853", "auto"};
     return (m >= 0 && m < LV_METHOD_COUNT) ? names[m] : "?";
 }
 
@@ -273,6 +290,23 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         memcpy(ig->g_dir, p->g_dir, p->n_g * sizeof *ig->g_dir);
     ig->p.atol = ig->atol;
     ig->p.g_dir = ig->g_dir;
+    ig->t_switch = NAN;
+
+    if (is_own(p->method)) {
+        ig->is_cvode = 0;
+        if (p->method == LV_METHOD_AUTO && p->stiff) {
+            lv_integ_problem pb = ig->p;
+            pb.method = LV_METHOD_BDF;
+            st = lv_integ_create(&pb, t0, x0, &ig->bdf, err);
+        } else {
+            const lv_method m = p->method == LV_METHOD_AUTO ? LV_METHOD_AUTO_EXPLICIT : p->method;
+            st = lv_erk_create(&ig->p, m == LV_METHOD_DOP853, t0, x0, &ig->erk, err);
+        }
+        if (st != LV_OK)
+            goto fail;
+        *out = ig;
+        return LV_OK;
+    }
 
     if (SUNContext_Create(NULL, &ig->ctx) != 0) {
         st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create SUNDIALS context");
@@ -413,6 +447,8 @@ void lv_integ_free(lv_integ *ig)
     free(ig->rtol_v);
     free(ig->g_dir);
     free(ig->memo_x);
+    lv_erk_free(ig->erk);
+    lv_integ_free(ig->bdf);
     free(ig);
 }
 
@@ -448,8 +484,59 @@ static void raw_stats(const lv_integ *ig, lv_integ_stats *s)
     }
 }
 
+/* dp5, dop853, auto: the explicit integrator's and BDF's counts added */
+static void own_stats(const lv_integ *ig, lv_integ_stats *st)
+{
+    lv_integ_stats a = {0}, b = {0};
+    if (ig->erk != NULL)
+        lv_erk_get_stats(ig->erk, &a);
+    if (ig->bdf != NULL)
+        lv_integ_get_stats(ig->bdf, &b);
+    st->steps = a.steps + b.steps;
+    st->rhs_evals = a.rhs_evals + b.rhs_evals;
+    st->jac_evals = a.jac_evals + b.jac_evals;
+    st->err_test_fails = a.err_test_fails + b.err_test_fails;
+    st->nonlin_fails = a.nonlin_fails + b.nonlin_fails;
+    st->g_evals = a.g_evals + b.g_evals;
+    st->restarts = ig->acc.restarts;
+    st->rhs_step = a.rhs_step + b.rhs_step;
+    st->rhs_dense = a.rhs_dense + b.rhs_dense;
+    st->rhs_reused = a.rhs_reused + b.rhs_reused;
+}
+
+void lv_integ_method_used(const lv_integ *ig, char *used, size_t used_cap, char *why,
+                          size_t why_cap)
+{
+    const char *name = lv_method_name(ig->p.method);
+    char dummy[8];
+    if (why == NULL) {
+        why = dummy;
+        why_cap = sizeof dummy;
+    }
+    if (ig->p.method != LV_METHOD_AUTO) {
+        snprintf(used, used_cap, "%s", name);
+        snprintf(why, why_cap, "chosen");
+        return;
+    }
+    const char *ex = lv_method_name(LV_METHOD_AUTO_EXPLICIT);
+    if (ig->erk == NULL) {
+        snprintf(used, used_cap, "%s", lv_method_name(LV_METHOD_BDF));
+        snprintf(why, why_cap, "declared stiff by the model");
+    } else if (ig->bdf != NULL) {
+        snprintf(used, used_cap, "%s, then %s", ex, lv_method_name(LV_METHOD_BDF));
+        snprintf(why, why_cap, "stiff at t = %.6g s (Hairer's test)", ig->t_switch);
+    } else {
+        snprintf(used, used_cap, "%s", ex);
+        snprintf(why, why_cap, "not stiff");
+    }
+}
+
 void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st)
 {
+    if (is_own(ig->p.method)) {
+        own_stats(ig, st);
+        return;
+    }
     lv_integ_stats cur;
     raw_stats(ig, &cur);
     st->steps = ig->acc.steps + cur.steps;
@@ -469,6 +556,13 @@ lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err)
     if (!(tstop > ig->t))
         return lv_fail(err, LV_ERR_SOLVER, "integrator: stop time %.17g is not after t = %.17g",
                        tstop, ig->t);
+    if (is_own(ig->p.method)) {
+        lv_status st = ig->bdf != NULL ? lv_integ_set_stop_time(ig->bdf, tstop, err)
+                                       : lv_erk_set_stop_time(ig->erk, tstop, err);
+        if (st == LV_OK)
+            ig->tstop = tstop;
+        return st;
+    }
     int flag = ig->is_cvode ? CVodeSetStopTime(ig->mem, tstop) : ERKStepSetStopTime(ig->mem, tstop);
     if (flag < 0)
         return lv_fail(err, LV_ERR_SOLVER, "integrator: cannot set stop time %.17g: %s", tstop,
@@ -514,9 +608,50 @@ static long current_steps(const lv_integ *ig)
     return ig->acc.steps + n;
 }
 
+/* auto: the explicit method found the problem stiff at (t, x): CVODE BDF from there, with the
+ * stop time and the steps left. */
+static lv_status switch_to_bdf(lv_integ *ig, double t, const double *x, lv_err *err)
+{
+    lv_integ_stats a;
+    lv_erk_get_stats(ig->erk, &a);
+    lv_integ_problem pb = ig->p;
+    pb.method = LV_METHOD_BDF;
+    pb.max_steps = ig->p.max_steps - a.steps > 1 ? ig->p.max_steps - a.steps : 1;
+    lv_status st = lv_integ_create(&pb, t, x, &ig->bdf, err);
+    if (st == LV_OK && !isnan(ig->tstop))
+        st = lv_integ_set_stop_time(ig->bdf, ig->tstop, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "at t = %.9g s: switching from %s to BDF (stiff)", t,
+                              lv_method_name(LV_METHOD_AUTO_EXPLICIT));
+    ig->t_switch = t;
+    return LV_OK;
+}
+
+static lv_status own_advance(lv_integ *ig, double tout, double *t, double *x,
+                             lv_integ_result *res, int *roots, lv_err *err)
+{
+    lv_status st;
+    if (ig->bdf == NULL) {
+        int r = LV_INTEG_REACHED;
+        st = lv_erk_advance(ig->erk, tout, ig->p.method == LV_METHOD_AUTO, t, x, &r, roots, err);
+        ig->t = *t;
+        if (st != LV_OK || r != LV_ERK_STIFF) {
+            *res = (lv_integ_result)r;
+            return st;
+        }
+        if ((st = switch_to_bdf(ig, *t, x, err)) != LV_OK)
+            return st;
+    }
+    st = lv_integ_advance(ig->bdf, tout, t, x, res, roots, err);
+    ig->t = *t;
+    return st;
+}
+
 lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_integ_result *res,
                            int *roots, lv_err *err)
 {
+    if (is_own(ig->p.method))
+        return own_advance(ig, tout, t, x, res, roots, err);
     /* SUNDIALS limits steps per call; ours is a total for the run. */
     long remaining = ig->p.max_steps - current_steps(ig);
     if (remaining <= 0)
@@ -557,6 +692,17 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
 lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
 {
     ig->memo_ok = 0; /* a discontinuity: the model's mode or parameters may have changed */
+    if (is_own(ig->p.method)) {
+        /* auto stays with BDF once the problem was found stiff */
+        lv_status st = ig->bdf != NULL ? lv_integ_restart(ig->bdf, t, x, err)
+                                       : lv_erk_restart(ig->erk, t, x, err);
+        if (st != LV_OK)
+            return st;
+        ig->acc.restarts++;
+        ig->t = t;
+        ig->tstop = NAN;
+        return LV_OK;
+    }
     memcpy(N_VGetArrayPointer(ig->y), x, ig->p.n * sizeof(double));
     int flag;
     if (ig->is_cvode) {

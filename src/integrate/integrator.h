@@ -1,5 +1,7 @@
-/* integrator.h - one interface over SUNDIALS CVODE (BDF, Adams) and ARKODE ERKStep
- * (Dormand-Prince, RK4, Euler) with root finding and stop times.
+/* integrator.h - one interface over SUNDIALS CVODE (BDF, Adams), ARKODE ERKStep
+ * (Dormand-Prince, RK4, Euler) and lvsim's own explicit Runge-Kutta methods (erk.c:
+ * Dormand-Prince 5(4) "dp5", DOP853 "dop853"), with root finding and stop times, and "auto":
+ * an explicit method until Hairer's stiffness test fires, then CVODE's BDF.
  *
  * This is the only module that includes SUNDIALS headers. It knows nothing
  * about models, names or files: a plain ODE x' = f(t, x) with event functions.
@@ -17,6 +19,11 @@ typedef enum lv_method {
     LV_METHOD_DOPRI5,    /* "dopri5": ARKODE ERK Dormand-Prince 5(4), adaptive */
     LV_METHOD_RK4,       /* "rk4": ARKODE ERK classical RK4, fixed step */
     LV_METHOD_EULER,     /* "euler": ARKODE ERK explicit Euler, fixed step */
+    LV_METHOD_DP5,       /* "dp5": lvsim's Dormand-Prince 5(4), 4th-order dense output */
+    LV_METHOD_DOP853,    /* "dop853" ("dopri853"): lvsim's DOP853, 7th-order dense output */
+    LV_METHOD_AUTO,      /* "auto": the explicit method (LV_METHOD_AUTO_EXPLICIT) while the
+                            problem is not stiff, CVODE BDF from where Hairer's test finds it
+                            stiff (or from the start when the problem says so: stiff) */
     LV_METHOD_COUNT
 } lv_method;
 
@@ -46,6 +53,9 @@ typedef struct lv_integ_problem {
     double fixed_step;     /* rk4/euler: > 0 */
     double max_step;       /* 0: unlimited */
     long max_steps;        /* total internal steps allowed, > 0 */
+    int stiff;             /* auto: the model declares itself stiff: BDF from the start */
+    double init_step;      /* dp5, dop853: the first step after a start or restart; 0: the
+                              heuristic of HNW I, II.4 */
 } lv_integ_problem;
 
 typedef struct lv_integ lv_integ;
@@ -86,5 +96,11 @@ lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
 
 /* Cumulative over restarts. */
 void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st);
+
+/* What ran and why, for reports: `used` gets the method's name ("dop853", "dassl", or for auto
+ * "dop853, then dassl"), `why` (may be NULL) the reason ("chosen"; auto: "not stiff",
+ * "stiff at t = 12.5 s (Hairer's test)", "declared stiff by the model"). */
+void lv_integ_method_used(const lv_integ *ig, char *used, size_t used_cap, char *why,
+                          size_t why_cap);
 
 #endif

@@ -1,1 +1,1 @@
-list(APPEND LV_SOURCES src/integrate/integrator.c)
+list(APPEND LV_SOURCES src/integrate/integrator.c src/integrate/erk.c)

@@ -197,7 +197,7 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     s.result_file = NULL;
     s.start_time = ph->t_start != LV_NO_SLOT ? m->defaults[ph->t_start] : 0.0;
     s.stop_time = m->defaults[ph->t_stop];
-    s.method = ph->method ? ph->method : "dassl";
+    s.method = ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT;
     s.tolerance = m->defaults[ph->tolerance];
     s.output_interval = m->defaults[ph->output_interval];
     s.number_of_intervals = ph->intervals;
@@ -574,7 +574,7 @@ void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out)
 {
     const lv_phase_def *ph = &m->def->phases[k];
     *out = (lv_phase_info){ph->name,     ph->type->name, ph->parent,
-                           ph->n_stages, ph->stages,     ph->method ? ph->method : "dassl",
+                           ph->n_stages, ph->stages,     ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT,
                            ph->file_index, NULL};
     if (ph->parent >= 0 && m->def->phases[ph->parent].type != ph->type &&
         ph->type->handoff_rule != NULL)

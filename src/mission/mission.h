@@ -203,7 +203,7 @@ typedef struct lv_phase_def {
     lv_slot t_stop;       /* s; the fixed stop time or the time limit of the phase */
     size_t n_ends;        /* events that end the phase before t_stop */
     lv_end_def *ends;
-    char *method;         /* integrator, default "dassl" */
+    char *method;         /* integrator, default LV_PHASE_METHOD_DEFAULT */
     lv_slot tolerance;    /* default 1e-6 */
     int intervals;        /* numberOfIntervals (0: use output_interval or 500) */
     lv_slot output_interval; /* s, default 0 */
@@ -271,6 +271,9 @@ void lv_range_text(lv_range r, char *text, size_t cap);
 #define LV_RANGE_POS ((lv_range){0.0, HUGE_VAL, 1, 0})      /* > 0 */
 #define LV_RANGE_NONNEG ((lv_range){0.0, HUGE_VAL, 0, 0})   /* >= 0 */
 /* A relative integration tolerance: what lv_simulate accepts (lv_sim.h). */
+/* A phase's integration method when its file names none (issue 24: the explicit method while
+ * the phase is not stiff, then BDF; docs/integration.md, "auto"). */
+#define LV_PHASE_METHOD_DEFAULT "auto"
 #define LV_RANGE_TOLERANCE ((lv_range){LV_TOLERANCE_MIN, LV_TOLERANCE_MAX, 0, 0})
 
 /* Angles (rad) and rates (rad/s) by kind: every angle of a mission file takes one, so that a

@@ -183,14 +183,16 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
 {
     static const char *const keys[] = { "method", "tolerance", "intervals", "output_interval",
                                         "fixed_step", NULL };
+    /* lv_sim_methods(), then Dymola's name for DOP853 (read as "dop853") */
     static const char *const methods[] = { "dassl", "cvode-adams", "dopri5", "rk4", "euler",
-                                           NULL };
+                                           "dp5", "dop853", "auto", "dopri853", NULL };
+    enum { METHOD_DEFAULT = 7 /* LV_PHASE_METHOD_DEFAULT, "auto" */, METHOD_DOPRI853 = 8 };
     static const char *const nkeys[3] = { "tolerance", "output_interval", "fixed_step" };
     static const char *const units[3] = { "", "s", "s" };
     static const double defaults[3] = { 1e-6, 0.0, 0.0 };
     char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 48];
     const lv_ynode *v;
-    size_t i = 0;
+    size_t i = METHOD_DEFAULT;
     lv_status st;
 
     snprintf(what, sizeof what, "phase '%s', integrator", phase);
@@ -202,6 +204,8 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
     if ((v = lv_pk_get(n, "method")) != NULL &&
         (st = lv_pk_enum(c, v, what, "method", methods, &i)) != LV_OK)
         return st;
+    if (i == METHOD_DOPRI853)
+        i = 6;
     if ((ph->method = lv_pk_strdup(methods[i])) == NULL)
         return lv_pk_nomem(c);
     lv_slot *out[3] = { &ph->tolerance, &ph->output_interval, &ph->fixed_step };

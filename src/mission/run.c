@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "core/names.h"
@@ -37,7 +38,8 @@ typedef struct run_phase {
     double *set_values;   /* [n_set]: this run's overrides */
     lv_result *rows;      /* in-memory rows, or NULL */
     char *stem;
-    char method[32];      /* the integration method it ran with */
+    char method[2 * LV_EVENT_NAME_MAX + 16]; /* the integration method it ran with; for "auto",
+                                               what ran and why: "auto (dop853: not stiff)" */
     lv_handoff_notes notes; /* what its hand-off absorbed (res.absorbed_* point here) */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
@@ -128,7 +130,8 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
         }
         p->res.name = ph->name;
-        snprintf(p->method, sizeof p->method, "%s", ph->method ? ph->method : "dassl");
+        snprintf(p->method, sizeof p->method, "%s",
+                 ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);
         p->res.method = p->method;
         p->res.n_final = pl->n_final;
         p->res.final_names = (const char *const *)pl->final_names;
@@ -298,7 +301,8 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     lv_sim_settings_default(s);
     s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
     s->stop_time = v[ph->t_stop];
-    s->method = opt && opt->method ? opt->method : (ph->method ? ph->method : "dassl");
+    s->method = opt && opt->method ? opt->method
+                                   : (ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);
     s->tolerance = opt && opt->tolerance != 0.0 ? opt->tolerance : v[ph->tolerance];
     s->number_of_intervals = ph->intervals;
     s->output_interval = v[ph->output_interval];
@@ -407,7 +411,11 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     p->res.t_start = c->s.start_time;
     p->res.t_end = p->res.report.end_time;
     p->res.t_stop = c->s.stop_time;
-    snprintf(p->method, sizeof p->method, "%s", c->s.method);
+    if (strcasecmp(c->s.method, "auto") != 0 || p->res.report.method_used[0] == '\0')
+        snprintf(p->method, sizeof p->method, "%s", c->s.method);
+    else /* auto: what ran, and why */
+        snprintf(p->method, sizeof p->method, "%s (%s: %s)", c->s.method,
+                 p->res.report.method_used, p->res.report.method_why);
     p->res.method = p->method;
     p->res.tolerance = c->s.tolerance;
     p->res.n_copied = pl->n_copied;

@@ -31,7 +31,8 @@ void lv_sim_settings_default(lv_sim_settings *s)
 
 const char *const *lv_sim_methods(void)
 {
-    static const char *const names[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler", NULL};
+    static const char *const names[] = {"dassl", "cvode-adams", "dopri5", "rk4",  "euler",
+                                        "dp5",   "dop853",      "auto",   NULL};
     return names;
 }
 
@@ -679,6 +680,234 @@ static lv_status sim_failed(lv_sim *S, lv_status st, lv_err *err)
     return st;
 }
 
+/* The integrator's stop time: the next time event or stop_time, given when it changed. */
+static lv_status set_stop_target(lv_sim *S, lv_err *err)
+{
+    const double tf = S->s.stop_time;
+    double target = S->t_te < tf ? S->t_te : tf;
+    if (target != S->tstop_set) {
+        lv_status st = lv_integ_set_stop_time(S->ig, target, err);
+        if (st != LV_OK)
+            return st;
+        S->tstop_set = target;
+    }
+    return LV_OK;
+}
+
+/* The next integrator return: one lv_integ_advance to the nearest of the next grid time
+ * (*t_grid), the stop time and t_adv, or the events that fire at the start (no step). */
+static lv_status advance_to_next(lv_sim *S, double t_adv, double *t, double *t_grid,
+                                 lv_integ_result *res, int *at_start, lv_err *err)
+{
+    *t_grid = grid_time(&S->grid, S->k);
+    double tout = *t_grid < S->tstop_set ? *t_grid : S->tstop_set;
+    if (t_adv < tout)
+        tout = t_adv;
+    *t = S->t;
+    *at_start = S->start_roots;
+    if (*at_start) {
+        S->start_roots = 0;
+        *res = LV_INTEG_ROOT;
+        return LV_OK;
+    }
+    return lv_integ_advance(S->ig, tout, t, S->r.x, res, S->r.roots, err);
+}
+
+/* The integrator failed at t: the last accepted state is written as the result's final row,
+ * and the message says why in the model's terms (cancel, a non-finite derivative, the
+ * right-hand side's own failure and reason), else the integrator's. */
+static lv_status integration_failed(sim_run *r, double t, lv_status st, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    lv_err row_err;
+    if (t > r->row[0])
+        emit_row(r, t, &row_err);
+    if (r->cancelled)
+        return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s", d->name, t);
+    if (r->bad_seen)
+        return lv_fail_prefix(err, st, "model '%s': der(%s) is not finite at t = %.9g s", d->name,
+                              d->states[r->bad_index].name, r->bad_t);
+    const char *why = d->last_error ? d->last_error(r->inst) : NULL;
+    if (r->rhs_rc < 0)
+        return lv_fail_prefix(err, st, "model '%s': right-hand side returned %d at t = %.9g s%s%s",
+                              d->name, r->rhs_rc, r->rhs_rc_t, why ? ": " : "", why ? why : "");
+    /* a state the model could not accept (it said why): the reason first */
+    if (r->rhs_rc > 0 && why != NULL && why[0] != '\0')
+        return lv_fail_prefix(err, st,
+                              "model '%s': the right-hand side cannot be evaluated at "
+                              "t = %.9g s: %s",
+                              d->name, r->rhs_rc_t, why);
+    return lv_fail_prefix(err, st, "model '%s'", d->name);
+}
+
+/* The model's own state events at t (r->roots[0 .. ng-1]): counted and logged in index order,
+ * then its handler; *action raised to what it asks. */
+static lv_status model_state_events(sim_run *r, double t, lv_event_action *action, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    lv_sim_report *rep = r->rep;
+    int first = -1;
+    for (size_t i = 0; i < r->ng; i++) {
+        if (r->roots[i] == 0)
+            continue;
+        if (first < 0)
+            first = (int)i;
+        rep->stats.state_events++;
+        if (log_event(r, t, 1, (int)i, r->roots[i], d->events[i].name) != LV_OK)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    lv_event_action a =
+        d->on_event ? d->on_event(t, r->x, r->p, r->roots, r->inst) : LV_EVENT_STOP;
+    if (a == LV_EVENT_STOP && *action != LV_EVENT_STOP) {
+        rep->stop_event = first;
+        snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
+                 first >= 0 ? d->events[first].name : "event");
+    }
+    if (a > *action)
+        *action = a;
+    return LV_OK;
+}
+
+/* The run's stop conditions that hold at t: crossings located by the integrator, then times
+ * reached; the first one names the stop. */
+static lv_status stop_conditions(sim_run *r, const lv_sim_settings *s, double t, int state_event,
+                                 int time_event, lv_event_action *action, lv_err *err)
+{
+    lv_sim_report *rep = r->rep;
+    for (size_t j = 0; j < r->ns; j++) {
+        const stop_ref *sr = &r->stops[j];
+        const int hit = sr->is_time ? (time_event && t == sr->value)
+                                    : (state_event && r->roots[r->ng + r->nd + sr->root] != 0);
+        if (!hit)
+            continue;
+        const int dir = sr->is_time ? 0 : r->roots[r->ng + r->nd + sr->root];
+        if (sr->is_time)
+            rep->stats.time_events++;
+        else
+            rep->stats.state_events++;
+        if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir, s->stops[j].name) != LV_OK)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        if (*action != LV_EVENT_STOP) {
+            rep->stop_event = (int)(r->ng + j);
+            snprintf(rep->stop_name, sizeof rep->stop_name, "%s", s->stops[j].name);
+            *action = LV_EVENT_STOP;
+        }
+    }
+    return LV_OK;
+}
+
+/* The model's own time event at t: counted, logged, its handler (none: a restart). */
+static lv_status model_time_event(sim_run *r, double t, lv_event_action *action, lv_err *err)
+{
+    const lv_model_def *d = r->def;
+    lv_sim_report *rep = r->rep;
+    rep->stats.time_events++;
+    const char *tev = d->time_event_name ? d->time_event_name(t, r->p, r->inst) : NULL;
+    if (log_event(r, t, 0, -1, 0, tev) != LV_OK)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    /* Without a handler a time event is a kink: restart the integrator. */
+    lv_event_action a =
+        d->on_time_event ? d->on_time_event(t, r->x, r->p, r->inst) : LV_EVENT_RESTART;
+    if (a == LV_EVENT_STOP && *action != LV_EVENT_STOP)
+        snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
+                 rep->event_log[rep->n_event_log - 1].name);
+    if (a > *action)
+        *action = a;
+    return LV_OK;
+}
+
+/* Everything that happens at an event instant t: the row just before, the model's state
+ * events, the stop conditions, the model's time event, in that order; a domain left or a
+ * non-finite state after the handlers fails the run; a restart; the row just after; the run
+ * ends on a stop, else the next time event is scheduled. *done is set when the run ended. */
+static lv_status handle_events(lv_sim *S, double t, double t_grid, int state_event,
+                               int time_event, int at_start, int *done, lv_err *err)
+{
+    sim_run *r = &S->r;
+    const lv_model_def *d = r->def;
+    lv_status st;
+    /* just before the event (at the start: the start row is that row) */
+    if (!at_start && (st = emit_row(r, t, err)) != LV_OK)
+        return st;
+    lv_event_action action = LV_EVENT_CONTINUE;
+    int domain_left = -1; /* a bound of the domain crossed at t */
+    for (size_t i = 0; state_event && i < r->nd; i++)
+        if (r->roots[r->ng + i] != 0 && domain_left < 0)
+            domain_left = (int)i;
+    int model_event = 0;
+    for (size_t i = 0; state_event && i < r->ng; i++)
+        model_event |= r->roots[i] != 0;
+    if (model_event && (st = model_state_events(r, t, &action, err)) != LV_OK)
+        return st;
+    if ((st = stop_conditions(r, &S->s, t, state_event, time_event, &action, err)) != LV_OK)
+        return st;
+    if (time_event && t >= r->t_model_te && (st = model_time_event(r, t, &action, err)) != LV_OK)
+        return st;
+    lv_integ_forget(S->ig); /* a handler ran: the model's mode may differ now */
+    /* leaving the domain ends the run as failed, unless one of the model's own ends
+     * (an `impact` end at the same instant) ended it */
+    if (domain_left >= 0 && action != LV_EVENT_STOP) {
+        double qv = NAN;
+        if (d->domain_q(t, r->x, r->p, r->q, r->inst) == 0)
+            qv = r->q[domain_left];
+        return domain_fail(r, (size_t)domain_left, t, qv, 0, err);
+    }
+    for (size_t i = 0; i < r->nx; i++)
+        if (!isfinite(r->x[i]))
+            return lv_fail(err, LV_ERR_SOLVER,
+                           "model '%s': event handler at t = %.9g s made '%s' = %g", d->name, t,
+                           d->states[i].name, r->x[i]);
+    if (action == LV_EVENT_RESTART) {
+        if ((st = lv_integ_restart(S->ig, t, r->x, err)) != LV_OK)
+            return lv_fail_prefix(err, st, "model '%s'", d->name);
+        S->tstop_set = NAN;
+    }
+    if ((st = emit_row(r, t, err)) != LV_OK) /* just after the event */
+        return st;
+    if (t == t_grid)
+        S->k++; /* the event rows stand for this grid point */
+    if (action == LV_EVENT_STOP) {
+        r->rep->reason = LV_STOP_EVENT;
+        S->state = SIM_FINISHED;
+        *done = 1;
+        return LV_OK;
+    }
+    double next = next_time_event(r, t);
+    if (!(next > t))
+        return lv_fail(err, LV_ERR_INPUT, "model '%s': next time event %g is not after t = %g",
+                       d->name, next, t);
+    S->t_te = next;
+    return LV_OK;
+}
+
+/* The row of output grid point k at t, within the row limit; then the progress callback and the
+ * stop flag may cancel the run. */
+static lv_status grid_row(lv_sim *S, double t, lv_err *err)
+{
+    sim_run *r = &S->r;
+    const lv_sim_settings *s = &S->s;
+    lv_status st;
+    /* grid rows 0 .. k - 1 are written: one more would pass the limit */
+    if (s->max_rows > 0.0 && (double)S->k >= s->max_rows) {
+        char lim[32];
+        lv_fmt_count(s->max_rows, lim, sizeof lim);
+        return lv_fail(err, LV_ERR_SOLVER,
+                       "model '%s': stopped at t = %.9g s by the row limit: %s output "
+                       "rows (max_rows) and no end of the run reached; give it a "
+                       "larger output interval, an earlier stop_time or an end that "
+                       "fires, or raise the limit (max_rows; lvsim --max-rows)",
+                       r->def->name, t, lim);
+    }
+    if ((st = emit_row(r, t, err)) != LV_OK)
+        return st;
+    S->k++;
+    if ((s->progress != NULL && s->progress(t, s->progress_user) != 0) ||
+        (r->stop != NULL && __atomic_load_n(r->stop, __ATOMIC_RELAXED) != 0))
+        return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s", r->def->name,
+                       t);
+    return LV_OK;
+}
+
 /* Integrates until t_adv, an event that stops the run, or stop_time. Writes the rows of
  * the output grid and of every event instant on the way. With t_adv >= stop_time this is
  * exactly the loop of a whole run: an earlier t_adv only adds an interpolated return of
@@ -687,185 +916,31 @@ static lv_status sim_failed(lv_sim *S, lv_status st, lv_err *err)
 static lv_status run_loop(lv_sim *S, double t_adv, lv_err *err)
 {
     sim_run *r = &S->r;
-    const lv_model_def *d = r->def;
     lv_sim_report *rep = r->rep;
-    const lv_sim_settings *s = &S->s;
-    lv_integ *ig = S->ig;
-    const double tf = s->stop_time;
-    lv_status st;
-
+    const double tf = S->s.stop_time;
     for (;;) {
-        double target = S->t_te < tf ? S->t_te : tf;
-        if (target != S->tstop_set) {
-            if ((st = lv_integ_set_stop_time(ig, target, err)) != LV_OK)
-                return st;
-            S->tstop_set = target;
-        }
-        double t_grid = grid_time(&S->grid, S->k);
-        double tout = t_grid < target ? t_grid : target;
-        if (t_adv < tout)
-            tout = t_adv;
+        double t, t_grid;
         lv_integ_result res;
-        double t = S->t;
-        const int at_start = S->start_roots; /* events that fire at the start: no step */
-        if (at_start) {
-            S->start_roots = 0;
-            res = LV_INTEG_ROOT;
-            st = LV_OK;
-        } else {
-            st = lv_integ_advance(ig, tout, &t, r->x, &res, r->roots, err);
-        }
+        int at_start;
+        lv_status st = set_stop_target(S, err);
+        if (st != LV_OK)
+            return st;
+        st = advance_to_next(S, t_adv, &t, &t_grid, &res, &at_start, err);
         S->t = t;
         rep->end_time = t;
-        if (st != LV_OK) {
-            /* Keep the last accepted state as the result's final row. */
-            lv_err row_err;
-            if (t > r->row[0])
-                emit_row(r, t, &row_err);
-            if (r->cancelled)
-                return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s",
-                               d->name, t);
-            if (r->bad_seen)
-                return lv_fail_prefix(err, st, "model '%s': der(%s) is not finite at t = %.9g s",
-                                      d->name, d->states[r->bad_index].name, r->bad_t);
-            const char *why = d->last_error ? d->last_error(r->inst) : NULL;
-            if (r->rhs_rc < 0)
-                return lv_fail_prefix(err, st,
-                                      "model '%s': right-hand side returned %d at t = %.9g s%s%s",
-                                      d->name, r->rhs_rc, r->rhs_rc_t, why ? ": " : "",
-                                      why ? why : "");
-            /* a state the model could not accept (it said why): the reason first */
-            if (r->rhs_rc > 0 && why != NULL && why[0] != '\0')
-                return lv_fail_prefix(err, st,
-                                      "model '%s': the right-hand side cannot be evaluated at "
-                                      "t = %.9g s: %s",
-                                      d->name, r->rhs_rc_t, why);
-            return lv_fail_prefix(err, st, "model '%s'", d->name);
-        }
-        int state_event = (res == LV_INTEG_ROOT);
-        int time_event = (t >= S->t_te);
+        if (st != LV_OK)
+            return integration_failed(r, t, st, err);
+        const int state_event = (res == LV_INTEG_ROOT);
+        const int time_event = (t >= S->t_te);
         if (state_event || time_event) {
-            /* just before the event (at the start: the start row is that row) */
-            if (!at_start && (st = emit_row(r, t, err)) != LV_OK)
+            int done = 0;
+            if ((st = handle_events(S, t, t_grid, state_event, time_event, at_start, &done,
+                                    err)) != LV_OK)
                 return st;
-            lv_event_action action = LV_EVENT_CONTINUE;
-            int domain_left = -1; /* a bound of the domain crossed at t */
-            for (size_t i = 0; state_event && i < r->nd; i++)
-                if (r->roots[r->ng + i] != 0 && domain_left < 0)
-                    domain_left = (int)i;
-            int model_event = 0;
-            for (size_t i = 0; state_event && i < r->ng; i++)
-                model_event |= r->roots[i] != 0;
-            if (model_event) {
-                int first = -1;
-                for (size_t i = 0; i < r->ng; i++) {
-                    if (r->roots[i] == 0)
-                        continue;
-                    if (first < 0)
-                        first = (int)i;
-                    rep->stats.state_events++;
-                    if (log_event(r, t, 1, (int)i, r->roots[i], d->events[i].name) != LV_OK)
-                        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-                }
-                lv_event_action a = d->on_event ? d->on_event(t, r->x, r->p, r->roots, r->inst)
-                                                : LV_EVENT_STOP;
-                if (a == LV_EVENT_STOP && action != LV_EVENT_STOP) {
-                    rep->stop_event = first;
-                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
-                             first >= 0 ? d->events[first].name : "event");
-                }
-                if (a > action)
-                    action = a;
-            }
-            /* the run's stop conditions: crossings, then times reached */
-            for (size_t j = 0; j < r->ns; j++) {
-                const stop_ref *sr = &r->stops[j];
-                const int hit = sr->is_time ? (time_event && t == sr->value)
-                                            : (state_event && r->roots[r->ng + r->nd + sr->root] != 0);
-                if (!hit)
-                    continue;
-                const int dir = sr->is_time ? 0 : r->roots[r->ng + r->nd + sr->root];
-                if (sr->is_time)
-                    rep->stats.time_events++;
-                else
-                    rep->stats.state_events++;
-                if (log_event(r, t, !sr->is_time, (int)(r->ng + j), dir,
-                              s->stops[j].name) != LV_OK)
-                    return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-                if (action != LV_EVENT_STOP) {
-                    rep->stop_event = (int)(r->ng + j);
-                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s", s->stops[j].name);
-                    action = LV_EVENT_STOP;
-                }
-            }
-            int model_time_event = time_event && t >= r->t_model_te;
-            if (model_time_event) {
-                rep->stats.time_events++;
-                const char *tev = d->time_event_name ? d->time_event_name(t, r->p, r->inst) : NULL;
-                if (log_event(r, t, 0, -1, 0, tev) != LV_OK)
-                    return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-                /* Without a handler a time event is a kink: restart the integrator. */
-                lv_event_action a =
-                    d->on_time_event ? d->on_time_event(t, r->x, r->p, r->inst) : LV_EVENT_RESTART;
-                if (a == LV_EVENT_STOP && action != LV_EVENT_STOP)
-                    snprintf(rep->stop_name, sizeof rep->stop_name, "%s",
-                             rep->event_log[rep->n_event_log - 1].name);
-                if (a > action)
-                    action = a;
-            }
-            lv_integ_forget(ig); /* a handler ran: the model's mode may differ now */
-            /* leaving the domain ends the run as failed, unless one of the model's own ends
-             * (an `impact` end at the same instant) ended it */
-            if (domain_left >= 0 && action != LV_EVENT_STOP) {
-                double qv = NAN;
-                if (d->domain_q(t, r->x, r->p, r->q, r->inst) == 0)
-                    qv = r->q[domain_left];
-                return domain_fail(r, (size_t)domain_left, t, qv, 0, err);
-            }
-            for (size_t i = 0; i < r->nx; i++)
-                if (!isfinite(r->x[i]))
-                    return lv_fail(err, LV_ERR_SOLVER,
-                                   "model '%s': event handler at t = %.9g s made '%s' = %g",
-                                   d->name, t, d->states[i].name, r->x[i]);
-            if (action == LV_EVENT_RESTART) {
-                if ((st = lv_integ_restart(ig, t, r->x, err)) != LV_OK)
-                    return lv_fail_prefix(err, st, "model '%s'", d->name);
-                S->tstop_set = NAN;
-            }
-            if ((st = emit_row(r, t, err)) != LV_OK) /* just after the event */
-                return st;
-            if (t == t_grid)
-                S->k++; /* the event rows stand for this grid point */
-            if (action == LV_EVENT_STOP) {
-                rep->reason = LV_STOP_EVENT;
-                S->state = SIM_FINISHED;
+            if (done)
                 return LV_OK;
-            }
-            double next = next_time_event(r, t);
-            if (!(next > t))
-                return lv_fail(err, LV_ERR_INPUT,
-                               "model '%s': next time event %g is not after t = %g", d->name, next,
-                               t);
-            S->t_te = next;
-        } else if (t == t_grid) {
-            /* grid rows 0 .. k - 1 are written: one more would pass the limit */
-            if (s->max_rows > 0.0 && (double)S->k >= s->max_rows) {
-                char lim[32];
-                lv_fmt_count(s->max_rows, lim, sizeof lim);
-                return lv_fail(err, LV_ERR_SOLVER,
-                               "model '%s': stopped at t = %.9g s by the row limit: %s output "
-                               "rows (max_rows) and no end of the run reached; give it a "
-                               "larger output interval, an earlier stop_time or an end that "
-                               "fires, or raise the limit (max_rows; lvsim --max-rows)",
-                               d->name, t, lim);
-            }
-            if ((st = emit_row(r, t, err)) != LV_OK)
-                return st;
-            S->k++;
-            if ((s->progress != NULL && s->progress(t, s->progress_user) != 0) ||
-                (r->stop != NULL && __atomic_load_n(r->stop, __ATOMIC_RELAXED) != 0))
-                return lv_fail(err, LV_ERR_CANCELLED, "model '%s': cancelled at t = %.9g s",
-                               d->name, t);
+        } else if (t == t_grid && (st = grid_row(S, t, err)) != LV_OK) {
+            return st;
         }
         if (t >= tf) {
             rep->reason = LV_STOP_TIME;
@@ -1045,6 +1120,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             .fixed_step = s->fixed_step > 0.0 ? s->fixed_step : S->grid.dt,
             .max_step = s->max_step_size,
             .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
+            .stiff = d->stiff,
         };
         if ((st = lv_integ_create(&prob, s->start_time, r->x, &S->ig, err)) != LV_OK) {
             lv_fail_prefix(err, st, "model '%s'", d->name);
@@ -1250,6 +1326,12 @@ lv_status lv_sim_finish(lv_sim *S, double *final_values, lv_sim_report *rep_out,
         rep->stats.nonlin_fails = is.nonlin_fails;
         rep->stats.g_evals = is.g_evals;
         rep->stats.restarts = is.restarts;
+        lv_integ_method_used(S->ig, rep->method_used, sizeof rep->method_used, rep->method_why,
+                             sizeof rep->method_why);
+    } else { /* stop_time == start_time: nothing integrated */
+        snprintf(rep->method_used, sizeof rep->method_used, "%s",
+                 S->s.method != NULL ? S->s.method : "dassl");
+        snprintf(rep->method_why, sizeof rep->method_why, "no integration (zero length)");
     }
     if (S->state == SIM_FINISHED) {
         read_finals(r, &S->s, S->refs, rep->end_time, final_values);

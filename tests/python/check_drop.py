@@ -176,7 +176,7 @@ def main():
         table(lvsim, work, ref)
         return
     fails = 0
-    # the default (no method given: dassl, tolerance 1e-6), then every method at its default
+    # the default (no method given: auto, tolerance 1e-6), then every method at its default
     for method in (None, "dassl", "cvode-adams", "dopri5", "rk4"):
         rows = run(lvsim, work, method)
         assert len(rows) == len(ref), (method, len(rows), len(ref))

@@ -53,6 +53,7 @@ int main(void)
     F(lv_event_record, index); F(lv_event_record, direction); F(lv_event_record, name);
     S(lv_sim_report); F(lv_sim_report, stats); F(lv_sim_report, reason);
     F(lv_sim_report, end_time); F(lv_sim_report, stop_event); F(lv_sim_report, stop_name);
+    F(lv_sim_report, method_used); F(lv_sim_report, method_why);
     F(lv_sim_report, n_states); F(lv_sim_report, n_event_log); F(lv_sim_report, event_log);
     S(lv_phase_result); F(lv_phase_result, name); F(lv_phase_result, state);
     F(lv_phase_result, error); F(lv_phase_result, t_start); F(lv_phase_result, t_end);

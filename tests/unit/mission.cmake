@@ -25,6 +25,12 @@ lv_add_unit_test(test_checks unit/test_checks.c)
 add_test(NAME test_drop
   COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_drop.py
           $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/drop_out)
+# The defaults meet the field's references (issue 24, item 3): a circular orbit after 10
+# revolutions within 1 m of the closed form, a sphere with drag over rotating WGS-84 within 1 mm
+# of a SciPy DOP853 1e-13 reference (tests/data), a torque-free body's energy and |H| to 1e-8.
+add_test(NAME test_defaults
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_defaults.py
+          $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/defaults_out)
 # A phase ends on any variable of its model or after a duration (issue 12).
 lv_add_unit_test(test_ends unit/test_ends.c)
 # Guidance laws against known answers (issue 12): gravity turn, linear tangent, throttle

@@ -16,7 +16,8 @@
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_sim.h"
 
-static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler"};
+static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler", "dp5",
+                                       "dop853", "auto"};
 
 /* The oscillator x'' = -w^2 x over 10 periods with `intervals` output intervals; with a
  * memory sink when `rows` is not NULL. Returns the largest |x - cos(w t)| over the rows. */
@@ -77,6 +78,8 @@ static void test_split(void)
             CHECK(st->rhs_evals_steps >= st->steps);
             if (strcmp(methods[k], "dopri5") == 0)
                 CHECK(st->rhs_evals_output <= st->steps); /* once per step at most */
+            else if (strcmp(methods[k], "dop853") == 0 || strcmp(methods[k], "auto") == 0)
+                CHECK(st->rhs_evals_output <= 3 * st->steps); /* 3 extra stages per step */
             else
                 CHECK(st->rhs_evals_output == 0); /* CVODE, rk4 (cubic), euler: free */
         }
@@ -87,7 +90,8 @@ static void test_split(void)
                methods[k], few.stats.steps, many.stats.steps, few.stats.rhs_evals_steps,
                many.stats.rhs_evals_steps, few.stats.rhs_evals_output,
                many.stats.rhs_evals_output, e_few, e_many);
-        if (strcmp(methods[k], "dopri5") == 0) {
+        if (strcmp(methods[k], "dopri5") == 0 || strcmp(methods[k], "dp5") == 0 ||
+            strcmp(methods[k], "dop853") == 0) {
             /* the dense output is as accurate as the steps (degree-4 Hermite): the error at
              * 20,000 output times stays within a few times the one at the 11 grid points */
             CHECK(e_many < 1e-7 && e_many < 10.0 * e_few + 1e-9);

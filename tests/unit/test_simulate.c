@@ -16,7 +16,8 @@
 #include "lvsim/lv_sim.h"
 #include "lvsim/lv_table.h"
 
-static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler"};
+static const char *const methods[] = {"dassl", "cvode-adams", "dopri5", "rk4", "euler", "dp5",
+                                       "dop853", "auto"};
 #define N_METHODS 5
 
 /* A far output grid: stop_time 1e30 with the default 500 intervals puts the rows 2e27 s
