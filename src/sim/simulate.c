@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "integrate/integrator.h"
+#include "io/sink.h"
 #include "lvsim/lv_sim.h"
 
 #define LV_DEFAULT_INTERVALS 500
@@ -26,7 +27,7 @@ void lv_sim_settings_default(lv_sim_settings *s)
     s->method = "dassl";
     s->tolerance = 1e-4;
     s->result_file = "dsres";
-    s->result_formats = LV_RESULT_MAT | LV_RESULT_CSV;
+    s->result_formats = lv_result_format_mask(); /* every registered format */
 }
 
 const char *const *lv_sim_methods(void)
@@ -81,7 +82,7 @@ typedef struct sim_run {
     char **owned; /* strings made for der(x) names and units */
     size_t n_owned;
 
-    lv_sink own_sinks[2];
+    lv_sink own_sinks[32]; /* one per registered result format (flags of an unsigned) */
     size_t n_own_sinks;
     lv_sink **sinks; /* own + borrowed */
     size_t n_sinks;
@@ -450,26 +451,21 @@ static lv_status resolve_stops(sim_run *r, const lv_sim_settings *s, lv_err *err
 
 static lv_status open_sinks(sim_run *r, const lv_sim_settings *s, lv_err *err)
 {
-    size_t n = s->n_sinks + 2;
+    size_t n = s->n_sinks + lv_result_format_count();
     r->sinks = calloc(n, sizeof *r->sinks);
     if (r->sinks == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     if (s->result_file != NULL && s->result_file[0] != '\0') {
-        static const struct {
-            unsigned flag;
-            const char *ext;
-            lv_status (*create)(const char *, lv_sink *, lv_err *);
-        } kinds[] = {{LV_RESULT_MAT, ".mat", lv_sink_mat_create},
-                     {LV_RESULT_CSV, ".csv", lv_sink_csv_create}};
-        for (size_t k = 0; k < 2; k++) {
-            if (!(s->result_formats & kinds[k].flag))
+        for (size_t k = 0; lv_result_formats[k] != NULL; k++) {
+            const lv_result_format *f = lv_result_formats[k];
+            if (!(s->result_formats & (1u << k)))
                 continue;
-            size_t len = strlen(s->result_file) + 5;
+            size_t len = strlen(s->result_file) + strlen(f->ext) + 1;
             char *path = malloc(len);
             if (path == NULL)
                 return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-            snprintf(path, len, "%s%s", s->result_file, kinds[k].ext);
-            lv_status st = kinds[k].create(path, &r->own_sinks[r->n_own_sinks], err);
+            snprintf(path, len, "%s%s", s->result_file, f->ext);
+            lv_status st = f->create(path, &r->own_sinks[r->n_own_sinks], err);
             free(path);
             if (st != LV_OK)
                 return st;
