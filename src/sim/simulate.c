@@ -630,7 +630,7 @@ static int probe_start_roots(lv_sim *S)
            *xt = k4 + nx, *x1 = xt + nx;
     int rc = sim_g(t0, r->x, g0, r), any = 0;
     for (size_t i = 0; rc == 0 && i < ng; i++)
-        any |= g0[i] == 0.0 || fabs(g0[i]) < TINY_G;
+        any |= fabs(g0[i]) < TINY_G; /* 0 included */
     if (rc == 0 && any) {
         const lv_model_def *d = r->def;
         rc = d->rhs(t0, r->x, r->p, k1, r->inst);
@@ -652,7 +652,7 @@ static int probe_start_roots(lv_sim *S)
             /* 0 at the start, or so close to it that the crossing lies within the probe
              * step, where the integrator's root check cannot resolve it from t0 (a free
              * fall from h = 1e-300 m: issue 22's breaker) */
-            const int at_start = g0[i] == 0.0 || (fabs(g0[i]) < TINY_G && g0[i] * dir < 0.0);
+            const int at_start = fabs(g0[i]) < TINY_G && g0[i] * dir <= 0.0;
             r->roots[i] = at_start && dir != 0 && (want == 0 || want == dir) ? dir : 0;
             S->start_roots |= r->roots[i] != 0;
         }
