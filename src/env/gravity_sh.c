@@ -15,6 +15,7 @@
 #include "core/status.h"
 #include "env/gravity_impl.h"
 #include "io/readfile.h"
+#include "io/numparse.h"
 
 lv_status lv_gravity_sh_alloc(lv_gravity *g, int degree, int order, lv_err *err)
 {
@@ -182,8 +183,9 @@ static int parse_real(const char *tok, double *out)
         return 0;
     for (size_t i = 0; i <= n; i++)
         buf[i] = (tok[i] == 'D' || tok[i] == 'd') ? 'e' : tok[i];
-    char *end = NULL;
-    errno = 0;
+    if (lv_numparse_field(buf, n, out) == 0) /* a normal number: fast_float (io/numparse.h) */
+        return 1;
+    char *end = NULL; /* the rest with strtod: an underflow reads as 0 or subnormal here */
     double v = strtod(buf, &end);
     if (end == buf || *end != '\0' || !isfinite(v))
         return 0;

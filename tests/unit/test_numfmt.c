@@ -3,7 +3,9 @@
  * run writes; the digits are the fewest that do (checked against %.{p}g for p = 1..17); the
  * layout is %.17g's (plain decimal for exponents -4..16, else d.ddde+XX); special values.
  * lv_numparse_double (src/io/numparse.h) gives strtod's value and end on all of these and on
- * the odd texts strtod accepts or refuses. */
+ * the odd texts strtod accepts or refuses; lv_numparse_field follows the input tables' strtod
+ * rule (whole field, finite, no ERANGE) on the same. */
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -148,9 +150,70 @@ static void test_parse(void)
     CHECK(bad == 0);
 }
 
+/* The input tables' old rule, the reference for lv_numparse_field: strtod of the field alone,
+ * the whole field consumed, finite, no ERANGE (src/io/table_load.c before fast_float). */
+static int field_by_strtod(const char *s, size_t len, double *v)
+{
+    char buf[64];
+    if (len == 0 || len >= sizeof buf)
+        return -1;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    char *end = NULL;
+    errno = 0;
+    const double d = strtod(buf, &end);
+    if (end != buf + len || !isfinite(d) || errno == ERANGE)
+        return -1;
+    *v = d;
+    return 0;
+}
+
+static int field_same(const char *s, size_t len)
+{
+    double a = 42.0, b = 42.0;
+    const int ra = field_by_strtod(s, len, &a), rb = lv_numparse_field(s, len, &b);
+    const int ok = ra == rb && same_bits(a, b);
+    if (!ok)
+        fprintf(stderr, "lv_numparse_field('%.*s') = %d %a, strtod's rule %d %a\n", (int)len, s,
+                rb, b, ra, a);
+    return ok;
+}
+
+static void test_field(void)
+{
+    const char *odd[] = {"0", "-0", "0.0", "1", "-2.5", ".5", "-.5", "5.", "1e5", "1E+05",
+                         "1e-400", "1e-310", "4.9406564584124654e-324", "1e400", "-1e400",
+                         "nan", "inf", "-inf", "+2", "0x1p3", "1e", "1e+", "abc", "-", ".",
+                         "1.5 ", " 1.5", "1,5", "1d5", "2.2250738585072014e-308",
+                         "1.7976931348623157e308", "1.7976931348623159e308",
+                         "123456789012345678901234567890", "0.30000000000000004",
+                         "000000000000000000000000000000000000000000000000000000000000001"};
+    for (size_t i = 0; i < sizeof odd / sizeof odd[0]; i++)
+        CHECK(field_same(odd[i], strlen(odd[i])));
+    /* a field inside a longer line: only its bytes count */
+    const char *line = "12.5,7";
+    CHECK(field_same(line, 4));
+    CHECK(field_same(line, 2));
+    CHECK(field_same(line, 6));
+    char buf[64];
+    long bad = 0;
+    for (long i = 0; i < 300000 && bad <= 5; i++) {
+        const double v = (i & 1) ? gen_bits() : gen_physical();
+        if (i % 3 == 0)
+            snprintf(buf, sizeof buf, "%.17g", v);
+        else if (i % 3 == 1)
+            snprintf(buf, sizeof buf, "%.6g", v); /* as a hand-written table holds them */
+        else
+            lv_numfmt_double(v, buf);
+        bad += !field_same(buf, strlen(buf));
+    }
+    CHECK(bad == 0);
+}
+
 int main(void)
 {
     test_parse();
+    test_field();
     char buf[LV_NUMFMT_MAX];
     /* layout: the one of %.17g, with the fewest digits */
     const struct {
