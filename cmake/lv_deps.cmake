@@ -68,6 +68,18 @@ target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_
 lv_soname(LV_NLOPT_SONAME nlopt "${NLOPT_LIBRARY_DIRS}")
 lv_soname(LV_SQLITE3_SONAME sqlite3 "${SQLITE3_LIBRARY_DIRS}")
 lv_soname(LV_ZIP_SONAME zip "${LIBZIP_LIBRARY_DIRS}")
+# SUNDIALS the same way (src/integrate/cvode_dl.c, arkode_dl.c): a phase integrates with lvsim's
+# own Runge-Kutta methods unless it is stiff, and linking CVODE and ARKODE cost every process
+# about 806,000 instructions of loading. Debian's libsundials_cvode carries the serial vector,
+# the dense matrix and solvers and the context; its headers are used, never the libraries.
+lv_soname(LV_CVODE_SONAME sundials_cvode "")
+lv_soname(LV_ARKODE_SONAME sundials_arkode "")
+add_library(lv_sundials_headers INTERFACE)
+target_include_directories(lv_sundials_headers INTERFACE
+  $<TARGET_PROPERTY:SUNDIALS::cvode_shared,INTERFACE_INCLUDE_DIRECTORIES>
+  $<TARGET_PROPERTY:SUNDIALS::arkode_shared,INTERFACE_INCLUDE_DIRECTORIES>)
+target_compile_definitions(lv_sundials_headers INTERFACE LV_CVODE_SONAME="${LV_CVODE_SONAME}"
+  LV_ARKODE_SONAME="${LV_ARKODE_SONAME}")
 add_library(lv_dl_headers INTERFACE)
 target_include_directories(lv_dl_headers INTERFACE ${NLOPT_INCLUDE_DIRS} ${SQLITE3_INCLUDE_DIRS}
   ${LIBZIP_INCLUDE_DIRS})
@@ -86,9 +98,7 @@ endif()
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
-  SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
-  SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
+  lv_sundials_headers lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
   dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 

@@ -40,7 +40,8 @@ if(LV_HAVE_LIBFUZZER)
            -fno-sanitize-recover=undefined -ffp-contract=off)
   set(_warn -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wformat=2)
   set(_cflags -std=c11 ${_san} ${_warn} -Wstrict-prototypes -Wmissing-prototypes
-              -DLV_MATIO_SONAME="${LV_MATIO_SONAME}" -DLV_HDF5_SONAME="${LV_HDF5_SONAME}")
+              -DLV_MATIO_SONAME="${LV_MATIO_SONAME}" -DLV_HDF5_SONAME="${LV_HDF5_SONAME}"
+              -DLV_CVODE_SONAME="${LV_CVODE_SONAME}" -DLV_ARKODE_SONAME="${LV_ARKODE_SONAME}")
   set(_cxxflags -std=c++17 ${_san} ${_warn} -fno-exceptions -fno-rtti)
 
   # _lv_fuzz_objects(OUT SET DEFS sources...): each source compiled once into
@@ -98,11 +99,7 @@ if(LV_HAVE_LIBFUZZER)
       DEPENDS ${_${_o}} VERBATIM)
   endforeach()
 
-  set(_libs ${YAML_LINK_LIBRARIES} ${NLOPT_LINK_LIBRARIES}
-      $<TARGET_FILE:SUNDIALS::cvode_shared> $<TARGET_FILE:SUNDIALS::arkode_shared>
-      $<TARGET_FILE:SUNDIALS::nvecserial_shared> $<TARGET_FILE:SUNDIALS::sunmatrixdense_shared>
-      $<TARGET_FILE:SUNDIALS::sunlinsoldense_shared>
-      $<TARGET_FILE:SUNDIALS::sunnonlinsolfixedpoint_shared> ${ERFA_LINK_LIBRARIES}
+  set(_libs ${YAML_LINK_LIBRARIES} ${NLOPT_LINK_LIBRARIES} ${ERFA_LINK_LIBRARIES}
       -ldl -lpthread -lm)
   set(_post_libs ${CJSON_LINK_LIBRARIES} ${NETTLE_LINK_LIBRARIES} ${SQLITE3_LINK_LIBRARIES}
       ${LIBZIP_LINK_LIBRARIES})

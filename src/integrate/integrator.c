@@ -23,6 +23,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include "core/status.h"
+#include "integrate/sundials_dl.h"
 
 struct lv_integ {
     lv_integ_problem p;
@@ -309,6 +310,15 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         return LV_OK;
     }
 
+    /* SUNDIALS is loaded on first use (integrate/cvode_dl.c): say why it cannot be */
+    const char *why = lv_cvode_error();
+    if (why == NULL && !ig->is_cvode)
+        why = lv_arkode_error();
+    if (why != NULL) {
+        st = lv_fail(err, LV_ERR_IO, "integrator: method '%s' needs SUNDIALS: %s",
+                     lv_method_name(p->method), why);
+        goto fail;
+    }
     if (SUNContext_Create(NULL, &ig->ctx) != 0) {
         st = lv_fail(err, LV_ERR_NOMEM, "integrator: cannot create SUNDIALS context");
         goto fail;
