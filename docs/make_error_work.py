@@ -75,7 +75,8 @@ def measure():
                           file=sys.stderr)
                     continue
                 rows.append({"mission": name, "method": method, "tolerance": "%g" % tol,
-                             "error_m": "%.3e" % err, "cpu_ms": "%.4f" % (1e3 * statistics.median(cpu)),
+                             "error_m": "%.3e" % err,
+                             "cpu_ms": "%.4f" % (1e3 * statistics.median(cpu)),
                              "cpu_min_ms": "%.4f" % (1e3 * min(cpu)), "rhs": rhs,
                              "steps": steps})
                 print(" ".join(str(v) for v in rows[-1].values()), file=sys.stderr)

@@ -30,7 +30,7 @@ DOP853 in src/integrate/erk.c nor with BDF) at tolerance 1e-13 in every phase; w
 cannot finish (two-stage-6dof's boost: the step limit of 1e6), at 1e-12. It is checked by a
 second independent method, CVODE's Adams-Moulton (`cvode-adams`, variable order 1-12,
 fixed-point iteration) at the same tolerances: each phase's differences between the two are
-stored beside it (`agreement`), and every bound here is asserted to be at least 10 times them.
+stored beside it (`agreement`), and no bound here is below 10 times them.
 
 What is compared, per phase (each phase starts from its parent's finals as flown by the same
 settings, so a phase's error includes its ancestors'):
@@ -66,7 +66,8 @@ REFERENCE = os.path.join(ROOT, "tests", "data", "examples_reference.json")
 DOC = os.path.join(ROOT, "docs", "integration.md")
 
 REQUIRED = {"position": 1.0, "time": 1e-3}
-# Below these a difference is round-off of the stop rules and the hand-offs, not accuracy.
+# No bound below these: a millimetre, 10 um/s, a gram, a microsecond, a nanoradian (what no user
+# of these missions reads; the default runs' smallest errors are round-off, 1e-12 s and below).
 FLOORS = {"position": 1e-3, "velocity": 1e-5, "mass": 1e-3, "time": 1e-6,
           "attitude": 1e-9, "rates": 1e-9}
 QUANTITIES = ("position", "velocity", "mass", "time", "attitude", "rates")
