@@ -306,7 +306,7 @@ def check(lvsim, work, table):
                 cells = ["%.1e" % d[q] if q in d else "-" for q in QUANTITIES]
                 own = differences(written[ex][name], r)["position"]
                 print("| %s | %s | %s | %s | %.0e | %.1e |" % (
-                    ex, name, ph["method"].replace("auto ", ""), " | ".join(cells),
+                    ex, name, ph["method"].replace("auto (", "").rstrip(")"), " | ".join(cells),
                     r["agreement"]["position"], own))
                 continue
             n += 1
