@@ -204,7 +204,7 @@ typedef struct lv_phase_def {
     size_t n_ends;        /* events that end the phase before t_stop */
     lv_end_def *ends;
     char *method;         /* integrator, default LV_PHASE_METHOD_DEFAULT */
-    lv_slot tolerance;    /* default 1e-6 */
+    lv_slot tolerance;    /* default 1e-9 (docs/integration.md) */
     int intervals;        /* numberOfIntervals (0: use output_interval or 500) */
     lv_slot output_interval; /* s, default 0 */
     lv_slot fixed_step;   /* s, default 0 */

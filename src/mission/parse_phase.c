@@ -189,7 +189,7 @@ static lv_status parse_integrator(const lv_pctx *c, const lv_ynode *n, const cha
     enum { METHOD_DEFAULT = 7 /* LV_PHASE_METHOD_DEFAULT, "auto" */, METHOD_DOPRI853 = 8 };
     static const char *const nkeys[3] = { "tolerance", "output_interval", "fixed_step" };
     static const char *const units[3] = { "", "s", "s" };
-    static const double defaults[3] = { 1e-6, 0.0, 0.0 };
+    static const double defaults[3] = { 1e-9, 0.0, 0.0 };
     char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 48];
     const lv_ynode *v;
     size_t i = METHOD_DEFAULT;

@@ -15,7 +15,7 @@ against a stored reference flown by an independent method at 1e-13 (issue 24).
 "The defaults": each example's mission.yaml with the `method` and `tolerance` of every phase's
 `integrator:` removed (its output grid kept), i.e. what a mission that says nothing about its
 integration gets: `auto` (lvsim's DOP853, CVODE BDF once stiff or for a model declared stiff) at
-1e-6 (docs/integration.md, "Accuracy at the default settings"). The examples as written set
+1e-9 (docs/integration.md, "Accuracy at the default settings"). The examples as written set
 their own methods and tolerances; nothing else is changed. Each mission is run as `lvsim run`
 runs it (a targeted mission with the values written in it, a Monte Carlo mission's nominal),
 and the finals are summary.json's `phases[].final` (docs/result-files.md).
