@@ -65,6 +65,55 @@ int lv_ex_iso_no60(const lv_ex_run *r, double t, const char *suffix, char *buf, 
     return in_leap;
 }
 
+#define US_PER_S 1000000LL
+#define CLOCK_SPAN (86399LL * US_PER_S) /* microseconds of a day written from the cache */
+
+int lv_ex_clock_iso(const lv_ex_run *r, lv_ex_clock *c, double t, int no60, const char *suffix,
+                    char *buf, size_t cap)
+{
+    const lv_tai tai = lv_ex_ticks(r, t);
+    const size_t ns = strlen(suffix);
+    if (c->ok && tai >= c->day0 && tai - c->day0 < CLOCK_SPAN && cap >= 28 + ns) {
+        const long long in_day = tai - c->day0;
+        const int s = (int)(in_day / US_PER_S), us = (int)(in_day % US_PER_S);
+        const int f[3] = {s / 3600, s / 60 % 60, s % 60};
+        char *p = buf;
+        memcpy(p, c->date, 10);
+        p += 10;
+        *p++ = 'T';
+        for (int k = 0; k < 3; k++) {
+            if (k > 0)
+                *p++ = ':';
+            *p++ = (char)('0' + f[k] / 10);
+            *p++ = (char)('0' + f[k] % 10);
+        }
+        if (us != 0) {
+            *p++ = '.';
+            for (int k = 5, v = us; k >= 0; k--, v /= 10)
+                p[k] = (char)('0' + v % 10);
+            p += 6;
+        }
+        memcpy(p, suffix, ns + 1);
+        return 0;
+    }
+    int in_leap = 0;
+    const int st = lv_utc_format(tai, no60, suffix, buf, cap, &in_leap);
+    c->ok = 0;
+    /* "YYYY-MM-DDThh:mm:ss[.ffffff]": read back its time of day */
+    if (st == LV_UTC_BAD || in_leap || strlen(buf) < 19 + ns || buf[10] != 'T')
+        return in_leap;
+    const int hh = atoi(buf + 11), mm = atoi(buf + 14), ss = atoi(buf + 17);
+    const int us = buf[19] == '.' ? atoi(buf + 20) : 0;
+    const double dat = lv_utc_tai_minus_utc(tai);
+    if (ss >= 60 || dat != floor(dat))
+        return in_leap;
+    c->day0 = tai - ((hh * 60LL + mm) * 60LL + ss) * US_PER_S - us;
+    memcpy(c->date, buf, 10);
+    c->date[10] = '\0';
+    c->ok = 1;
+    return in_leap;
+}
+
 /* --------------------------------------------------------------- helpers -- */
 
 const lv_ex_track *lv_ex_track_of(const lv_ex_body *b, size_t p)

@@ -72,6 +72,21 @@ lv_tai lv_ex_ticks(const lv_ex_run *r, double t);
 void lv_ex_iso(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap);
 int lv_ex_iso_no60(const lv_ex_run *r, double t, const char *suffix, char *buf, size_t cap);
 
+/* The same text as lv_ex_iso (no60 0) or lv_ex_iso_no60 (no60 1; the return value is its
+ * in-leap flag) for the many times of a trajectory, without ERFA for each: `c` remembers the
+ * UTC day of the last call that went through lv_utc_format, and a later time in the first
+ * 86399 s of that day is written from it by arithmetic on whole microseconds. Only where TAI -
+ * UTC is a whole number of seconds (1972 on, and before 1960 where lvsim takes it as 0): a
+ * day's seconds then are SI seconds and a leap second can only come after 23:59:59, which is
+ * never cached (docs/exports.md, "Times"). A zeroed lv_ex_clock is an empty one. */
+typedef struct lv_ex_clock {
+    lv_tai day0;   /* TAI microseconds at 00:00:00 UTC of the cached day */
+    int ok;        /* 1: day0 and date hold a day */
+    char date[12]; /* "YYYY-MM-DD" */
+} lv_ex_clock;
+int lv_ex_clock_iso(const lv_ex_run *r, lv_ex_clock *c, double t, int no60, const char *suffix,
+                    char *buf, size_t cap);
+
 /* Geodetic position of body b at time t inside track k (linear between rows; clamped). */
 void lv_ex_locate(const lv_ex_body *b, const lv_ex_track *k, double t, double *lat, double *lon,
                   double *h);
@@ -87,6 +102,18 @@ const char *lv_ex_event_label(const lv_ex_event *e);
 /* Label of marker k of phase p: k = 0 its start ("separation (P2)" where the stack splits,
  * else "P2 start"), k >= 1 its events by their names (lv_ex_event_label). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
+
+/* JSON as cJSON_Print writes it (export_czml.c, which streams its document with them).
+ * lv_ex_json_number: d into buf (LV_EX_JSON_NUM_CAP bytes) as cJSON 1.7.15's print_number does:
+ * "null" for NaN and infinities, else "%1.15g", or "%1.17g" when the 15 digits do not read
+ * back within cJSON's compare_double (integers thus as "%d" writes them, -0.0 as "-0", as
+ * Debian's cJSON 1.7.15 does: test_export checks against it); `decimal_point` (the
+ * locale's, localeconv) written as '.'. Returns the length. lv_ex_json_string: s quoted and
+ * escaped as print_string_ptr does: \" \\ \b \f \n \r \t, other bytes below 0x20 as
+ * \u00XX, every other byte (UTF-8) as it is; NULL as "". */
+#define LV_EX_JSON_NUM_CAP 32
+size_t lv_ex_json_number(double d, char decimal_point, char *buf);
+void lv_ex_json_string(FILE *f, const char *s);
 
 /* An export: one file src/post/export_<name>.c defines its writer and this descriptor, one line
  * in the table of export.c registers it. Its flag in lv_export_run's `formats` is 1u << (its

@@ -65,10 +65,11 @@ static void put_track(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const lv
      * the same (the same microsecond, or the same leap second: 23:59:59.999999) are written
      * once, the first of them. */
     for (int pass = 0; pass < 2; pass++) {
+        lv_ex_clock clock = {0};
         last[0] = '\0';
         for (size_t i = 0; i < k->n; i++) {
             const lv_ex_row *row = &b->rows[k->first + i];
-            const int leap = lv_ex_iso_no60(r, row->t, "Z", when, sizeof when);
+            const int leap = lv_ex_clock_iso(r, &clock, row->t, 1, "Z", when, sizeof when);
             if (strcmp(when, last) == 0)
                 continue;
             memcpy(last, when, sizeof last);

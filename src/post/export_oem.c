@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -28,32 +29,59 @@ static void put_value(FILE *f, const char *s)
         fputc((unsigned char)*s < 0x20 ? ' ' : *s, f);
 }
 
-typedef struct oem_pt {
-    const lv_ex_row *row;
-    double r_ecef[3], v_ecef[3]; /* m, m/s */
-} oem_pt;
-
-/* ECEF position from the row's geodetic coordinates; velocity relative to the rotating Earth
- * from the ECI state (docs/frames.md F3); the two positions checked against each other. */
-static void ecef_state(const lv_planet *earth, const lv_ex_row *row, oem_pt *pt,
-                       double *mismatch)
+/* ECEF state of one row: position from its geodetic coordinates, velocity relative to the
+ * rotating Earth from its ECI state (docs/frames.md F3); *mismatch: how far the row's ECI
+ * position, rotated, lies from that position. */
+static void ecef_state(const lv_planet *earth, const lv_ex_row *row, double r_ecef[3],
+                       double v_ecef[3], double *mismatch)
 {
     double r_rot[3];
-    lv_frames_geodetic_to_ecef(earth, row->lat, row->lon, row->h, pt->r_ecef);
-    lv_frames_eci_to_ecef(earth, row->t, row->r_eci, row->v_eci, r_rot, pt->v_ecef);
-    const double dx = r_rot[0] - pt->r_ecef[0], dy = r_rot[1] - pt->r_ecef[1],
-                 dz = r_rot[2] - pt->r_ecef[2];
+    lv_frames_geodetic_to_ecef(earth, row->lat, row->lon, row->h, r_ecef);
+    lv_frames_eci_to_ecef(earth, row->t, row->r_eci, row->v_eci, r_rot, v_ecef);
+    const double dx = r_rot[0] - r_ecef[0], dy = r_rot[1] - r_ecef[1], dz = r_rot[2] - r_ecef[2];
     *mismatch = sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-static void put_segment(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const oem_pt *pts,
-                        size_t n, size_t seg, size_t n_seg)
+/* The rows an OEM is made of: body b's rows, all phases, one per written microsecond (at a
+ * phase boundary the child's first row repeats the parent's last: skipped). next_row gives
+ * the first such row after such a row i (i = SIZE_MAX: the first, row 0), b->n_rows at the
+ * end. Nothing is stored: the file is written as the rows are read. */
+static size_t next_row(const lv_ex_run *r, const lv_ex_body *b, size_t i)
 {
+    if (i == SIZE_MAX)
+        return 0;
+    const lv_tai last = lv_ex_ticks(r, b->rows[i].t);
+    for (i++; i < b->n_rows; i++)
+        if (lv_ex_ticks(r, b->rows[i].t) > last)
+            return i;
+    return b->n_rows;
+}
+
+/* A portion: rows from `first` while at or above 100 km; its last row in *end_row, the row
+ * after it (the next portion's search start) returned, and its number of rows in *n. */
+static size_t portion(const lv_ex_run *r, const lv_ex_body *b, size_t first, size_t *end_row,
+                      size_t *n)
+{
+    size_t i = first, k = 0;
+    *end_row = first;
+    while (i < b->n_rows && b->rows[i].h >= OEM_H_MIN) {
+        *end_row = i;
+        k++;
+        i = next_row(r, b, i);
+    }
+    *n = k;
+    return i;
+}
+
+static void put_segment(FILE *f, const lv_ex_run *r, const lv_ex_body *b, size_t first,
+                        size_t end_row, size_t seg, size_t n_seg)
+{
+    const lv_planet earth = lv_planet_earth();
     char t_a[48], t_b[48];
-    lv_ex_iso(r, pts[0].row->t, "", t_a, sizeof t_a);
-    lv_ex_iso(r, pts[n - 1].row->t, "", t_b, sizeof t_b);
+    lv_ex_iso(r, b->rows[first].t, "", t_a, sizeof t_a);
+    lv_ex_iso(r, b->rows[end_row].t, "", t_b, sizeof t_b);
     fprintf(f, "\nMETA_START\nCOMMENT portion %zu of %zu above 100 km, mission time %.6f .. "
-               "%.6f s\n", seg, n_seg, pts[0].row->t, pts[n - 1].row->t);
+               "%.6f s\n", seg, n_seg, b->rows[first].t, b->rows[end_row].t);
     fputs("OBJECT_NAME = ", f);
     put_value(f, b->name);
     fputs("\nOBJECT_ID = ", f);
@@ -63,29 +91,29 @@ static void put_segment(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const 
     fprintf(f, "\nCENTER_NAME = EARTH\nREF_FRAME = ITRF2000\nTIME_SYSTEM = UTC\n"
                "START_TIME = %s\nSTOP_TIME = %s\nINTERPOLATION = HERMITE\n"
                "INTERPOLATION_DEGREE = 3\nMETA_STOP\n\n", t_a, t_b);
-    for (size_t i = 0; i < n; i++) {
-        lv_ex_iso(r, pts[i].row->t, "", t_a, sizeof t_a);
-        fprintf(f, "%s %.6f %.6f %.6f %.9f %.9f %.9f\n", t_a, pts[i].r_ecef[0] / 1e3,
-                pts[i].r_ecef[1] / 1e3, pts[i].r_ecef[2] / 1e3, pts[i].v_ecef[0] / 1e3,
-                pts[i].v_ecef[1] / 1e3, pts[i].v_ecef[2] / 1e3);
+    lv_ex_clock clock = {0};
+    for (size_t i = first; i <= end_row; i = next_row(r, b, i)) {
+        double r_ecef[3], v_ecef[3], off;
+        ecef_state(&earth, &b->rows[i], r_ecef, v_ecef, &off);
+        lv_ex_clock_iso(r, &clock, b->rows[i].t, 0, "", t_a, sizeof t_a);
+        fprintf(f, "%s %.6f %.6f %.6f %.9f %.9f %.9f\n", t_a, r_ecef[0] / 1e3, r_ecef[1] / 1e3,
+                r_ecef[2] / 1e3, v_ecef[0] / 1e3, v_ecef[1] / 1e3, v_ecef[2] / 1e3);
     }
 }
 
-/* Body b: the rows (all phases, one per written microsecond) and their segments above
- * 100 km of at least two rows. Writes OUTDIR/<body>.oem when there is one. */
-static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts, lv_err *err)
+/* Body b: its rows (next_row) checked, then its portions above 100 km of at least two rows
+ * counted ("portion k of n"); OUTDIR/<body>.oem written when there is one, each row's state
+ * computed again as it is written. */
+static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, lv_err *err)
 {
     const lv_planet earth = lv_planet_earth();
-    size_t n = 0;
-    long long last = 0;
-    for (size_t i = 0; i < b->n_rows; i++) {
+    double h_max = -INFINITY;
+    for (size_t i = next_row(r, b, SIZE_MAX); i < b->n_rows;
+         i = next_row(r, b, i)) {
         const lv_ex_row *row = &b->rows[i];
-        const long long tick = lv_ex_ticks(r, row->t);
-        if (n > 0 && tick <= last) /* a phase boundary: the child's first row is the same */
-            continue;
-        double off;
-        ecef_state(&earth, row, &pts[n], &off);
-        if (n == 0 && !(off <= EARTH_TOL_M)) { /* another planet: no OEM */
+        double r_ecef[3], v_ecef[3], off;
+        ecef_state(&earth, row, r_ecef, v_ecef, &off);
+        if (i == 0 && !(off <= EARTH_TOL_M)) { /* another planet: no OEM */
             lv_ex_report(r, "oem", NULL, "%s: not written: its positions do not lie on the "
                          "WGS-84 Earth (OEM files are Earth-fixed)", b->name);
             return LV_OK;
@@ -93,21 +121,16 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
         if (!(off <= ROW_TOL_M))
             return lv_fail(err, LV_ERR_INPUT, "%s:%zu: r_eci and lat/lon/h disagree by %.3g m",
                            b->path, row->line, off);
-        pts[n++].row = row;
-        last = tick;
+        h_max = fmax(h_max, row->h);
     }
     size_t n_seg = 0;
-    for (size_t i = 0; i < n;) { /* count the segments first: "portion k of n" */
-        size_t j = i;
-        while (j < n && pts[j].row->h >= OEM_H_MIN)
-            j++;
-        n_seg += j - i >= 2;
-        i = j > i ? j : i + 1;
+    for (size_t i = next_row(r, b, SIZE_MAX); i < b->n_rows;) {
+        size_t end_row, n;
+        const size_t j = portion(r, b, i, &end_row, &n);
+        n_seg += n >= 2;
+        i = n > 0 ? j : next_row(r, b, i);
     }
     if (n_seg == 0) {
-        double h_max = -INFINITY;
-        for (size_t i = 0; i < n; i++)
-            h_max = fmax(h_max, pts[i].row->h);
         lv_ex_report(r, "oem", NULL, "%s: not written: never above 100 km (highest %.1f km)",
                      b->name, fabs(h_max) < 50.0 ? 0.0 : h_max / 1e3); /* no "-0.0" */
         return LV_OK;
@@ -147,15 +170,14 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, oem_pt *pts
     }
     fprintf(f, "CREATION_DATE = %s\nORIGINATOR = LVSIM\n", created);
     size_t seg = 0;
-    for (size_t i = 0; i < n;) {
-        size_t j = i;
-        while (j < n && pts[j].row->h >= OEM_H_MIN)
-            j++;
-        if (j - i >= 2)
-            put_segment(f, r, b, pts + i, j - i, ++seg, n_seg);
-        i = j > i ? j : i + 1;
+    for (size_t i = next_row(r, b, SIZE_MAX); i < b->n_rows;) {
+        size_t end_row, n;
+        const size_t j = portion(r, b, i, &end_row, &n);
+        if (n >= 2)
+            put_segment(f, r, b, i, end_row, ++seg, n_seg);
+        i = n > 0 ? j : next_row(r, b, i);
     }
-    st = lv_atomic_commit(&out, err);
+    st = lv_atomic_commit(&out, err); /* checks that every write reached the file */
     if (st == LV_OK)
         lv_ex_report(r, "oem", path, "%zu portion%s above 100 km", n_seg, n_seg == 1 ? "" : "s");
     return st;
@@ -179,11 +201,7 @@ static lv_status write_oem(const lv_ex_run *r, lv_err *err)
         if (!b->has_eci)
             return lv_fail(err, LV_ERR_INPUT, "%s: no r_eci_x .. v_eci_z columns for the OEM "
                            "export of a planet-world mission", b->path);
-        oem_pt *pts = malloc(b->n_rows * sizeof *pts);
-        if (pts == NULL)
-            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-        st = write_body(r, b, pts, err);
-        free(pts);
+        st = write_body(r, b, err);
     }
     return st;
 }

@@ -7,6 +7,7 @@
 
 #include <cjson/cJSON.h>
 #include <fnmatch.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -175,6 +176,133 @@ static void replace_in(const char *dir, const char *file, const char *from, cons
     free(s);
 }
 
+/* The CZML is laid out as cJSON_Print lays out the document it holds (the writer streams it
+ * in that layout: export_czml.c): cJSON (an independent JSON implementation) parses the file
+ * and prints it again byte for byte; `track_id`, when given, is the id of one of its packets
+ * (names from the mission, escaped and read back). */
+static void check_czml_layout(const char *dir, const char *track_id)
+{
+    char *text = slurp(dir, "mission.czml");
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    char *again = doc ? cJSON_Print(doc) : NULL;
+    CHECK(again != NULL);
+    if (again != NULL) {
+        const size_t n = strlen(again);
+        CHECK(strlen(text) == n + 1 && strncmp(text, again, n) == 0 && text[n] == '\n');
+    }
+    if (track_id != NULL) {
+        int found = 0;
+        const cJSON *p;
+        cJSON_ArrayForEach(p, doc)
+        {
+            const char *id = cJSON_GetStringValue(cJSON_GetObjectItem(p, "id"));
+            found += id != NULL && strcmp(id, track_id) == 0;
+        }
+        CHECK(found == 1);
+    }
+    cJSON_free(again);
+    cJSON_Delete(doc);
+    free(text);
+}
+
+/* lv_ex_json_number and lv_ex_json_string against cJSON 1.7 itself (the reference: the CZML
+ * was cJSON_Print's before it was streamed): numbers of every kind (integers, int overflow,
+ * 15- and 17-digit values, subnormals, NaN and infinities, random bit patterns), strings
+ * with every escape, control characters and UTF-8. */
+static void test_json_as_cjson(void)
+{
+    const double fixed[] = {0.0, -0.0, 1.0, -1.0, 8.0, 255.0, 0.5, 0.1, 1.0 / 3.0,
+                            100.00000000011187, -52.775, 5.2359999997184534, 1e15, 1e16,
+                            1e17, 123456789012345.6, 2147483647.0, 2147483648.0,
+                            -2147483648.0, -2147483649.0, 2147483647.5, 1e300, -1e-300,
+                            4.9e-324, 2.2250738585072014e-308, 1e-5, 1.5e-4, NAN, INFINITY,
+                            -INFINITY, 1089.0782, 0.1 + 0.2};
+    int bad = 0;
+    unsigned long long x = 0x9e3779b97f4a7c15ULL; /* xorshift64 (Marsaglia 2003) */
+    for (int i = 0; i < 20000; i++) {
+        double d;
+        if (i < (int)(sizeof fixed / sizeof fixed[0])) {
+            d = fixed[i];
+        } else {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            if (i % 2) { /* any bit pattern */
+                memcpy(&d, &x, sizeof d);
+            } else { /* trajectory-like: |d| < 1e6, few to 17 digits */
+                d = (double)(x >> 11) / 9007199254740992.0 * 2e6 - 1e6;
+                if (i % 4 == 0)
+                    d = (double)(long long)(d * 1000.0) / 1000.0;
+            }
+        }
+        char mine[LV_EX_JSON_NUM_CAP];
+        const size_t n = lv_ex_json_number(d, '.', mine);
+        cJSON *num = cJSON_CreateNumber(d);
+        char *ref = cJSON_PrintUnformatted(num);
+        if (ref == NULL || strlen(ref) != n || strcmp(ref, mine) != 0) {
+            if (bad++ < 5)
+                fprintf(stderr, "  %.17g: '%s', cJSON '%s'\n", d, mine, ref ? ref : "?");
+        }
+        cJSON_free(ref);
+        cJSON_Delete(num);
+    }
+    CHECK(bad == 0);
+
+    const char *strs[] = {"", "plain", "q\"uote", "back\\slash", "\b\f\n\r\t", "\x01\x1f\x7f",
+                          "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x80", "/slash", "\xff"};
+    for (size_t i = 0; i < sizeof strs / sizeof strs[0]; i++) {
+        char buf[256] = {0};
+        FILE *f = fmemopen(buf, sizeof buf - 1, "w");
+        CHECK(f != NULL);
+        if (f == NULL)
+            continue;
+        lv_ex_json_string(f, strs[i]);
+        fclose(f);
+        cJSON *str = cJSON_CreateString(strs[i]);
+        char *ref = cJSON_PrintUnformatted(str);
+        CHECK(ref != NULL && strcmp(ref, buf) == 0);
+        if (ref != NULL && strcmp(ref, buf) != 0)
+            fprintf(stderr, "  string %zu: %s, cJSON %s\n", i, buf, ref);
+        cJSON_free(ref);
+        cJSON_Delete(str);
+    }
+}
+
+/* lv_ex_clock_iso against lv_ex_iso / lv_ex_iso_no60 (lv_utc_format, ERFA for every call):
+ * one time every 0.1234567 s (and on whole seconds) across the leap second at the end of
+ * 2016 (23:59:60 in the one, 23:59:59.999999 in the other), across a midnight of 1965 (TAI -
+ * UTC a fraction of a second: never cached) and of 1955 (before UTC: TAI - UTC taken as 0). */
+static void test_clock(void)
+{
+    static const char *const epochs[] = {"2016-12-31T23:59:00Z", "1965-06-30T23:59:30Z",
+                                         "1955-01-01T23:59:30Z"};
+    int bad = 0;
+    for (size_t e = 0; e < sizeof epochs / sizeof epochs[0]; e++) {
+        lv_ex_run r;
+        memset(&r, 0, sizeof r);
+        CHECK(lv_utc_parse(epochs[e], &r.epoch) >= 0);
+        for (int no60 = 0; no60 < 2; no60++) {
+            lv_ex_clock c = {0};
+            for (int i = 0; i < 1500; i++) {
+                const double t = i % 3 == 0 ? (double)(i / 3) : i * 0.1234567;
+                char a[48], b[48];
+                const int la = lv_ex_clock_iso(&r, &c, t, no60, "Z", a, sizeof a);
+                int lb = 0;
+                if (no60)
+                    lb = lv_ex_iso_no60(&r, t, "Z", b, sizeof b);
+                else
+                    lv_ex_iso(&r, t, "Z", b, sizeof b);
+                if (strcmp(a, b) != 0 || la != lb) {
+                    if (bad++ < 5)
+                        fprintf(stderr, "  %s + %.7f s: '%s' (%d), expected '%s' (%d)\n",
+                                epochs[e], t, a, la, b, lb);
+                }
+            }
+        }
+    }
+    CHECK(bad == 0);
+}
+
 /* A copy of the paper folder whose mission and phase P4 carry XML and CSV metacharacters:
  * the phase name `P4, <&> "q" 's'` is a quoted CSV field. check_exports.py parses the KML. */
 static void names_folder(const char *paper)
@@ -189,8 +317,12 @@ static void names_folder(const char *paper)
     replace_in(dir, "summary.json", "\"P4\"", "\"P4, <&> \\\"q\\\" 's'\"");
     replace_in(dir, "summary.json", "\"paper-test-case\"",
                "\"paper & <test> \\\"case\\\" 'x'\"");
+    /* P3: a JSON quote and backslash, UTF-8 letters (e acute, n tilde) */
+    replace_in(dir, "body_stage3.csv", ",P3,", ",\"P3 \"\"\xc3\xa9\"\" \\ \xc3\xb1\",");
+    replace_in(dir, "summary.json", "\"P3\"", "\"P3 \\\"\xc3\xa9\\\" \\\\ \xc3\xb1\"");
     lv_err err = {0};
     CHECK_OK(lv_export_run(dir, LV_EXPORT_ALL, &err), &err);
+    check_czml_layout(dir, "track/stage3/P3 \"\xc3\xa9\" \\ \xc3\xb1");
     char *kml = slurp(dir, "mission.kml");
     CHECK(kml != NULL && strstr(kml, "<name>paper &amp; &lt;test&gt; &quot;case&quot; "
                                      "&apos;x&apos;</name>") != NULL);
@@ -431,6 +563,7 @@ int main(void)
         CHECK_CLOSE(t1, 1089.0782, 0.01);
         mission_interval(t1, iv, sizeof iv);
         check_czml(paper, 8, iv);
+        check_czml_layout(paper, NULL);
         names_folder(paper);
     }
 
@@ -449,12 +582,15 @@ int main(void)
         CHECK_CLOSE(t1, 663.9018, 0.01);
         mission_interval(t1, iv, sizeof iv);
         check_czml(dof3, 4, iv);
+        check_czml_layout(dof3, NULL);
         /* One format alone, rewritten in place. */
         CHECK_OK(lv_export_run(dof3, LV_EXPORT_OEM, &err), &err);
         CHECK(!exists(dof3, "upper.oem.tmp"));
     }
 
     test_leap_second();
+    test_json_as_cjson();
+    test_clock();
 
     /* Errors: no summary.json (the path is named); unknown flags. */
     mkdir("export_out/empty", 0777);
