@@ -661,6 +661,8 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.n_engines = ne;
     cfg.engines = s->kit.engines;
     cfg.engine_geom = s->geom;
+    cfg.terms = (lv_dof6_terms){rb->jet_damping, rb->inertia_rate,
+                                (lv_dof6_damping_frame)rb->rate_damping_frame};
     cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
     cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
     cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);
