@@ -65,8 +65,9 @@ typedef struct lv_dof6_mass {
 
 /* Where one engine is and how its thrust is directed (body axes, structural origin). */
 typedef struct lv_dof6_engine_geom {
-    double pos[3];            /* m, gimbal point (the thrust's point of action; the nozzle
-                                 exit for the jet damping) */
+    double pos[3];            /* m, gimbal point (the thrust's point of action; the jet
+                                 damping takes the exhaust to leave there: docs/models.md,
+                                 "Rigid-body terms") */
     double mis_pitch;         /* rad, misalignment added to the pitch gimbal angle */
     double mis_yaw;           /* rad, misalignment added to the yaw gimbal angle */
 } lv_dof6_engine_geom;
@@ -75,7 +76,8 @@ typedef struct lv_dof6_engine_geom {
  *   L = q S b (Cl + Clp p' b / (2V)),  M = q S c (Cm + Cmq q' c / (2V)),
  *   N = q S b (Cn + Cnr r' b / (2V))
  * with p', q', r' the body rates relative to the atmosphere (inertial rates minus the planet's
- * rotation) and V the air-relative speed; S is the force set's s_ref. Cl, Cm, Cn are constants
+ * rotation; the inertial rates with terms.rate_damping_frame LV_DOF6_DAMPING_INERTIAL) and V
+ * the air-relative speed; S is the force set's s_ref. Cl, Cm, Cn are constants
  * or outputs of tables over "mach", "alpha", "beta", "altitude" (output names default to "Cl",
  * "Cm", "Cn" when a table has several). */
 typedef struct lv_dof6_moments {

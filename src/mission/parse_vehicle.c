@@ -285,15 +285,18 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
     if (lv_pk_get(rb, "inertia_full") == NULL)
         return lv_pk_fail(c, rb, "%s: 'inertia_full' is missing (at least {xx, yy, zz} in kg "
                           "m^2)", what);
+    if ((st = parse_rigid_terms(c, rb, s->name, r)) != LV_OK)
+        return st;
     const lv_ynode *eng = lv_pk_get(stage_n, "engines");
     const lv_ynode *ep = lv_pk_get(rb, "engine_position");
     if (eng != NULL && eng->kind == LV_YNODE_SEQ && eng->n > 0 &&
         (ep == NULL || lv_yaml_is_null(ep) ||
          (ep->kind == LV_YNODE_MAP && lv_pk_get(ep, "x") == NULL)))
         return lv_pk_fail(c, ep != NULL ? ep : rb, "%s: 'engine_position%s' is missing: the "
-                          "stage has engines, and their thrust moment and jet damping act at "
-                          "their gimbal point (m, body x from the structural origin; no "
-                          "default is guessed)", what, ep != NULL ? ".x" : "");
+                          "stage has engines, and their thrust moment%s act%s at their gimbal "
+                          "point (m, body x from the structural origin; no default is guessed)",
+                          what, ep != NULL ? ".x" : "",
+                          r->jet_damping ? " and jet damping" : "", r->jet_damping ? "" : "s");
     r->present = 1;
     r->loc = lv_pk_loc(rb);
     const double need[6] = {NAN, NAN, NAN, 0.0, 0.0, 0.0}, zero[3] = {0.0, 0.0, 0.0};
@@ -320,7 +323,7 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
         return st;
     r->mis_pitch = mis[0];
     r->mis_yaw = mis[1];
-    return parse_rigid_terms(c, rb, s->name, r);
+    return LV_OK;
 }
 
 static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)

@@ -281,7 +281,12 @@ static void test_mission_keys(void)
         "engines");
     BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
         "                 engine_position: {y: 0}}\n" PHASE,
-        "bad.yaml:11:35: stage 's1', rigid_body: 'engine_position.x' is missing");
+        "bad.yaml:11:35: stage 's1', rigid_body: 'engine_position.x' is missing: the stage has "
+        "engines, and their thrust moment and jet damping act at");
+    BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
+        "                 terms: {jet_damping: off}}\n" PHASE,
+        "bad.yaml:10:17: stage 's1', rigid_body: 'engine_position' is missing: the stage has "
+        "engines, and their thrust moment acts at");
     BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
         "                 engine_position: {x: -0.5}, terms: {jet_damping: no}}\n" PHASE,
         "bad.yaml:11:67: stage 's1', rigid_body, terms: jet_damping");
