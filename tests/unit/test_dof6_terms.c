@@ -120,6 +120,73 @@ static void test_closed_form(void)
     lv_gravity_free(g);
 }
 
+/* ---- (1b) the jet damping's vector form, an engine off the axis ------------------------- */
+/* An asymmetric body (100, 200, 300 kg m^2) spinning at w0 = (0.3, 0.2, -0.1) rad/s, its CG at
+ * the origin, one engine at r_e = (-2, 0.3, -0.4) m thrusting T = 1 kN along +x in vacuum. The
+ * thrust moment output is r_e x F + M_jet with F = (T, 0, 0):
+ *   r_e x F = (0, r_z T, -r_y T),   M_jet = -mdot r_e x (w x r_e) = -mdot (|r_e|^2 w - (r_e.w) r_e)
+ * (the vector triple product expanded: the model computes the cross products), evaluated with
+ * the rates the same run reports at its end (1e-3 s); without jet damping r_e x F alone. */
+static void test_jet_vector(void)
+{
+    lv_err err;
+    lv_planet pl = lv_planet_earth();
+    pl.omega = 0.0;
+    lv_gravity *g = pointmass(&pl);
+    const double T = 1e3, isp = 300.0, re[3] = {-2.0, 0.3, -0.4};
+    const double mdot = T / (isp * LV_G0);
+    for (int jd = 0; jd < 2; jd++) {
+        lv_dof6_config cfg;
+        lv_dof6_config_default(&cfg);
+        cfg.planet = pl;
+        cfg.gravity = g;
+        cfg.m0 = 1000.0;
+        cfg.propellant = 400.0;
+        cfg.start_h = 2.0e6;
+        cfg.start_vel = 7000.0;
+        cfg.start_p = 0.3;
+        cfg.start_q = 0.2;
+        cfg.start_r = -0.1;
+        for (int i = 0; i < 3; i++) {
+            cfg.mass.inertia_full[i] = 100.0 * (i + 1);
+            cfg.mass.inertia_empty[i] = 60.0 * (i + 1);
+        }
+        lv_engine_config ec;
+        lv_engine_config_default(&ec);
+        ec.thrust_vac = T;
+        ec.isp_vac = isp;
+        const lv_dof6_engine_geom eg = {{re[0], re[1], re[2]}, 0.0, 0.0};
+        cfg.n_engines = 1;
+        cfg.engines = &ec;
+        cfg.engine_geom = &eg;
+        cfg.terms.jet_damping = jd;
+        lv_dof6 *m = NULL;
+        CHECK_OK(lv_dof6_create(&cfg, &m, &err), &err);
+        if (m == NULL)
+            continue;
+        const char *fin[] = {"p", "q", "r", "L_thrust", "M_thrust", "N_thrust", "mdot", "cg_x"};
+        double out[8];
+        CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 1e-3, 1e-11, 8, fin, out, &err), &err);
+        const double w[3] = {out[0], out[1], out[2]};
+        const double r2 = re[0] * re[0] + re[1] * re[1] + re[2] * re[2];
+        const double rw = re[0] * w[0] + re[1] * w[1] + re[2] * w[2];
+        const double mt[3] = {0.0, re[2] * T, -re[1] * T};
+        CHECK_REL(out[6], mdot, 1e-12);
+        CHECK_CLOSE(out[7], 0.0, 0.0);
+        for (int i = 0; i < 3; i++) {
+            const double ref = mt[i] - jd * mdot * (r2 * w[i] - rw * re[i]);
+            CHECK_CLOSE(out[3 + i], ref, 1e-12 * (fabs(mt[i]) + 1.0));
+        }
+        if (jd)
+            printf("jet damping, engine off the axis: M_thrust - r_e x F = (%.9g, %.9g, %.9g) N m "
+                   "(-mdot (|r|^2 w - (r.w) r) = (%.9g, %.9g, %.9g))\n", out[3] - mt[0],
+                   out[4] - mt[1], out[5] - mt[2], -mdot * (r2 * w[0] - rw * re[0]),
+                   -mdot * (r2 * w[1] - rw * re[1]), -mdot * (r2 * w[2] - rw * re[2]));
+        lv_dof6_free(m);
+    }
+    lv_gravity_free(g);
+}
+
 /* ---- (2) the frame of the rate damping: air or inertial ----------------------------------- */
 /* A body at 45 deg N flying at 200 m/s relative to the rotating Earth (no wind) along its x axis
  * (psi = chi = 30 deg, theta = fpa = 0: alpha = beta = 0), through air of constant density
@@ -358,6 +425,7 @@ static void test_mission_keys(void)
 int main(void)
 {
     test_closed_form();
+    test_jet_vector();
     test_damping_frame();
     test_config_errors();
     test_mission_keys();
