@@ -65,9 +65,7 @@ typedef struct lv_dof6_mass {
 
 /* Where one engine is and how its thrust is directed (body axes, structural origin). */
 typedef struct lv_dof6_engine_geom {
-    double pos[3];            /* m, gimbal point (the thrust's point of action; the jet
-                                 damping takes the exhaust to leave there: docs/models.md,
-                                 "Rigid-body terms") */
+    double pos[3];            /* m, gimbal point (the thrust's point of action) */
     double mis_pitch;         /* rad, misalignment added to the pitch gimbal angle */
     double mis_yaw;           /* rad, misalignment added to the yaw gimbal angle */
 } lv_dof6_engine_geom;
@@ -161,6 +159,9 @@ typedef struct lv_dof6_config {
     const lv_dof6_engine_geom *engine_geom; /* [n_engines], copied; required with engines:
                                              the thrust moment and the jet damping act at
                                              their positions (no default position) */
+    const double *engine_exit;            /* [3 n_engines] m, copied: each engine's nozzle
+                                             exit centre, where the jet damping's exhaust
+                                             leaves; NULL: at its position (engine_geom) */
     const lv_aero_config *aero;           /* copied; NULL: no aerodynamic force or moment */
     const lv_dof6_moments *moments;       /* copied; NULL: no aerodynamic moment (the force
                                              acts through the CG) */

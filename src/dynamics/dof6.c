@@ -198,6 +198,7 @@ typedef struct dof6_inst {
 
 typedef struct eng6 {
     lv_vec3 pos;             /* m, body, structural origin */
+    lv_vec3 exit;            /* m, the nozzle exit (pos when not given) */
     double mis_pitch, mis_yaw; /* rad */
 } eng6;
 
@@ -610,8 +611,9 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
             const lv_vec3 r_e = lv_v3_sub(g->pos, pt->mp.cg);
             pt->f_thrust_b = lv_v3_add(pt->f_thrust_b, fi);
             pt->m_thrust_b = lv_v3_add(pt->m_thrust_b, lv_v3_cross(r_e, fi));
-            if (m->terms.jet_damping)
-                pt->m_thrust_b = lv_v3_add(pt->m_thrust_b, jet_damping(md, r_e, w_b));
+            if (m->terms.jet_damping) /* the exhaust leaves at the nozzle exit */
+                pt->m_thrust_b = lv_v3_add(pt->m_thrust_b,
+                                           jet_damping(md, lv_v3_sub(g->exit, pt->mp.cg), w_b));
             pt->mdot += md;
         }
     }
@@ -1251,12 +1253,16 @@ static lv_status setup_engines(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *er
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < m->n_eng; i++) {
         const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
+        const double *ex = cfg->engine_exit != NULL ? cfg->engine_exit + 3 * i : g->pos;
         if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
-            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
-            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m and "
-                           "misalignment (%g, %g) rad must be finite", m->eng[i].name,
-                           g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
-        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
+            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw) || !isfinite(ex[0]) ||
+            !isfinite(ex[1]) || !isfinite(ex[2]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m, "
+                           "nozzle exit (%g, %g, %g) m and misalignment (%g, %g) rad must be "
+                           "finite", m->eng[i].name, g->pos[0], g->pos[1], g->pos[2], ex[0],
+                           ex[1], ex[2], g->mis_pitch, g->mis_yaw);
+        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), lv_v3(ex[0], ex[1], ex[2]),
+                            g->mis_pitch, g->mis_yaw};
     }
     return LV_OK;
 }

@@ -258,7 +258,8 @@ static lv_status parse_rigid_terms(const lv_pctx *c, const lv_ynode *rb, const c
 }
 
 /* rigid_body: {inertia_full: {xx, yy, zz, xy, xz, yz}, inertia_empty: {..}, cg_full: {x, y, z},
- * cg_empty: {..}, engine_position: {x, y, z}, misalignment: {pitch_deg, yaw_deg}, terms: {..}}:
+ * cg_empty: {..}, engine_position: {x, y, z}, nozzle_exit: {x, y, z}, misalignment: {pitch_deg,
+ * yaw_deg}, terms: {..}}:
  * the 6-DoF data of the stack this stage drives (lv_rigid_body_def). inertia_full's xx, yy, zz
  * are required, and engine_position's x (y, z default to 0) when the stage has engines: the
  * thrust moment and the jet damping act there, and no position is guessed; the empty values
@@ -267,7 +268,8 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
                                   lv_stage_def *s)
 {
     static const char *const keys[] = {"inertia_full", "inertia_empty", "cg_full", "cg_empty",
-                                       "engine_position", "misalignment", "terms", NULL};
+                                       "engine_position", "nozzle_exit", "misalignment",
+                                       "terms", NULL};
     static const char *const ic[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
     static const char *const xyz[3] = {"x", "y", "z"};
     static const char *const py[2] = {"pitch", "yaw"};
@@ -323,6 +325,15 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
         return st;
     r->mis_pitch = mis[0];
     r->mis_yaw = mis[1];
+    /* nozzle_exit: {x, y, z}, all three written (where the jet damping's exhaust leaves) */
+    const lv_ynode *ne = lv_pk_get(rb, "nozzle_exit");
+    if (ne == NULL || lv_yaml_is_null(ne))
+        return LV_OK;
+    const double need3[3] = {NAN, NAN, NAN};
+    if ((st = parse_rigid_vec(c, rb, s->name, "nozzle_exit", xyz, 3, "m", LV_RANGE_ANY, need3, 0,
+                              r->nozzle_exit)) != LV_OK)
+        return st;
+    r->has_exit = 1;
     return LV_OK;
 }
 

@@ -126,16 +126,20 @@ static void test_closed_form(void)
  * thrust moment output is r_e x F + M_jet with F = (T, 0, 0):
  *   r_e x F = (0, r_z T, -r_y T),   M_jet = -mdot r_e x (w x r_e) = -mdot (|r_e|^2 w - (r_e.w) r_e)
  * (the vector triple product expanded: the model computes the cross products), evaluated with
- * the rates the same run reports at its end (1e-3 s); without jet damping r_e x F alone. */
+ * the rates the same run reports at its end (1e-3 s); without jet damping r_e x F alone. Third
+ * case: the nozzle exit given 0.7 m aft of the gimbal point, r_x = (-2.7, 0.3, -0.4) m: the
+ * jet damping with r_x in place of r_e, the thrust moment still about r_e. */
 static void test_jet_vector(void)
 {
     lv_err err;
     lv_planet pl = lv_planet_earth();
     pl.omega = 0.0;
     lv_gravity *g = pointmass(&pl);
-    const double T = 1e3, isp = 300.0, re[3] = {-2.0, 0.3, -0.4};
+    const double T = 1e3, isp = 300.0, re[3] = {-2.0, 0.3, -0.4}, rx[3] = {-2.7, 0.3, -0.4};
     const double mdot = T / (isp * LV_G0);
-    for (int jd = 0; jd < 2; jd++) {
+    for (int cs = 0; cs < 3; cs++) {
+        const int jd = cs > 0;
+        const double *r = cs == 2 ? rx : re;
         lv_dof6_config cfg;
         lv_dof6_config_default(&cfg);
         cfg.planet = pl;
@@ -159,6 +163,7 @@ static void test_jet_vector(void)
         cfg.n_engines = 1;
         cfg.engines = &ec;
         cfg.engine_geom = &eg;
+        cfg.engine_exit = cs == 2 ? rx : NULL;
         cfg.terms.jet_damping = jd;
         lv_dof6 *m = NULL;
         CHECK_OK(lv_dof6_create(&cfg, &m, &err), &err);
@@ -168,20 +173,21 @@ static void test_jet_vector(void)
         double out[8];
         CHECK_OK(run(lv_dof6_def(m), lv_dof6_inst(m), 1e-3, 1e-11, 8, fin, out, &err), &err);
         const double w[3] = {out[0], out[1], out[2]};
-        const double r2 = re[0] * re[0] + re[1] * re[1] + re[2] * re[2];
-        const double rw = re[0] * w[0] + re[1] * w[1] + re[2] * w[2];
+        const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+        const double rw = r[0] * w[0] + r[1] * w[1] + r[2] * w[2];
         const double mt[3] = {0.0, re[2] * T, -re[1] * T};
         CHECK_REL(out[6], mdot, 1e-12);
         CHECK_CLOSE(out[7], 0.0, 0.0);
         for (int i = 0; i < 3; i++) {
-            const double ref = mt[i] - jd * mdot * (r2 * w[i] - rw * re[i]);
+            const double ref = mt[i] - jd * mdot * (r2 * w[i] - rw * r[i]);
             CHECK_CLOSE(out[3 + i], ref, 1e-12 * (fabs(mt[i]) + 1.0));
         }
         if (jd)
-            printf("jet damping, engine off the axis: M_thrust - r_e x F = (%.9g, %.9g, %.9g) N m "
-                   "(-mdot (|r|^2 w - (r.w) r) = (%.9g, %.9g, %.9g))\n", out[3] - mt[0],
-                   out[4] - mt[1], out[5] - mt[2], -mdot * (r2 * w[0] - rw * re[0]),
-                   -mdot * (r2 * w[1] - rw * re[1]), -mdot * (r2 * w[2] - rw * re[2]));
+            printf("jet damping, engine off the axis%s: M_thrust - r_e x F = (%.9g, %.9g, %.9g) "
+                   "N m (-mdot (|r|^2 w - (r.w) r) = (%.9g, %.9g, %.9g))\n",
+                   cs == 2 ? ", exit aft" : "", out[3] - mt[0], out[4] - mt[1], out[5] - mt[2],
+                   -mdot * (r2 * w[0] - rw * r[0]), -mdot * (r2 * w[1] - rw * r[1]),
+                   -mdot * (r2 * w[2] - rw * r[2]));
         lv_dof6_free(m);
     }
     lv_gravity_free(g);
@@ -366,6 +372,9 @@ static void test_mission_keys(void)
     BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
         "                 engine_position: {x: -0.5}, terms: off}\n" PHASE,
         "bad.yaml:11:53: stage 's1', rigid_body, terms: a mapping");
+    BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
+        "                 engine_position: {x: -0.5}, nozzle_exit: {x: -1}}\n" PHASE,
+        "bad.yaml:11:59: stage 's1', rigid_body, nozzle_exit: 'y' is missing");
     /* a stage without engines needs no position */
     {
         static const char ok[] =
@@ -386,16 +395,18 @@ static void test_mission_keys(void)
     static const char *const onoff[2] = {"off", "on"};
     const double mdot = 1e5 / (300.0 * LV_G0), idot = -40.0 * mdot / 400.0;
     const double x = (100.0 + idot * 8.0) / 100.0;
-    for (int combo = 0; combo < 4; combo++) {
-        const int A = combo & 1, B = (combo >> 1) & 1;
+    /* combo 4: both on, with the nozzle exit at x = -1 m (l = 1 m for the jet damping) */
+    for (int combo = 0; combo < 5; combo++) {
+        const int A = combo == 4 ? 1 : combo & 1, B = combo == 4 ? 1 : (combo >> 1) & 1;
+        const double l2 = combo == 4 ? 1.0 : 0.25;
         char yaml[2048];
         snprintf(yaml, sizeof yaml,
                  HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
                  "                 inertia_empty: {xx: 60, yy: 60, zz: 60},\n"
-                 "                 engine_position: {x: -0.5},\n"
+                 "                 engine_position: {x: -0.5},%s\n"
                  "                 terms: {inertia_rate: %s, jet_damping: %s,\n"
                  "                         rate_damping_frame: inertial}}\n" PHASE,
-                 onoff[A], onoff[B]);
+                 combo == 4 ? " nozzle_exit: {x: -1, y: 0, z: 0}," : "", onoff[A], onoff[B]);
         FILE *f = fopen("test_dof6_terms.yaml", "w");
         CHECK(f != NULL);
         if (f == NULL)
@@ -414,7 +425,7 @@ static void test_mission_keys(void)
             CHECK_OK(lv_run_final(r, 0, "p", &p, &err), &err);
             CHECK_OK(lv_run_final(r, 0, "q", &q, &err), &err);
             CHECK_REL(p, 0.3 * pow(x, -(double)A), 1e-8);
-            CHECK_REL(q, 0.2 * pow(x, -(A + B * mdot * 0.25 / idot)), 1e-8);
+            CHECK_REL(q, 0.2 * pow(x, -(A + B * mdot * l2 / idot)), 1e-8);
         }
         lv_run_free(r);
         lv_mission_free(m);
