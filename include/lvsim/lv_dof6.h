@@ -65,8 +65,7 @@ typedef struct lv_dof6_mass {
 
 /* Where one engine is and how its thrust is directed (body axes, structural origin). */
 typedef struct lv_dof6_engine_geom {
-    double pos[3];            /* m, gimbal point (the thrust's point of action; the nozzle
-                                 exit for the jet damping) */
+    double pos[3];            /* m, gimbal point (the thrust's point of action) */
     double mis_pitch;         /* rad, misalignment added to the pitch gimbal angle */
     double mis_yaw;           /* rad, misalignment added to the yaw gimbal angle */
 } lv_dof6_engine_geom;
@@ -75,7 +74,8 @@ typedef struct lv_dof6_engine_geom {
  *   L = q S b (Cl + Clp p' b / (2V)),  M = q S c (Cm + Cmq q' c / (2V)),
  *   N = q S b (Cn + Cnr r' b / (2V))
  * with p', q', r' the body rates relative to the atmosphere (inertial rates minus the planet's
- * rotation) and V the air-relative speed; S is the force set's s_ref. Cl, Cm, Cn are constants
+ * rotation; the inertial rates with terms.rate_damping_frame LV_DOF6_DAMPING_INERTIAL) and V
+ * the air-relative speed; S is the force set's s_ref. Cl, Cm, Cn are constants
  * or outputs of tables over "mach", "alpha", "beta", "altitude" (output names default to "Cl",
  * "Cm", "Cn" when a table has several). */
 typedef struct lv_dof6_moments {
@@ -122,6 +122,27 @@ typedef enum lv_dof6_rates_rule {
     LV_DOF6_RATES_CURVATURE = 1 /* the angular velocity of the velocity relative to the planet */
 } lv_dof6_rates_rule;
 
+/* The rigid-body terms that published models and check cases treat differently, each
+ * switchable (docs/models.md, "Rigid-body terms"). lv_dof6_config_default sets the defaults:
+ * jet damping on, the inertia-rate term on, rate damping against the air.
+ *   jet_damping         M_jd = -sum_e mdot_e r_e x (w x r_e), r_e = engine position - CG
+ *                       (Thomson ch. 8; Zipfel sec. 9.2): 1 on, 0 off
+ *   inertia_rate        -I' w in Euler's equation, I' = dI/dt as propellant is used
+ *                       (Thomson ch. 8; Eke & Mao 2000): 1 on, 0 off
+ *   rate_damping_frame  the body rates the damping derivatives Clp, Cmq, Cnr multiply: the
+ *                       rates relative to the air that turns with the planet
+ *                       (w - C_body_eci (0, 0, omega)), or relative to inertial space (w) */
+typedef enum lv_dof6_damping_frame {
+    LV_DOF6_DAMPING_AIR = 0,
+    LV_DOF6_DAMPING_INERTIAL = 1
+} lv_dof6_damping_frame;
+
+typedef struct lv_dof6_terms {
+    int jet_damping;                    /* 1 (default): on */
+    int inertia_rate;                   /* 1 (default): on */
+    lv_dof6_damping_frame rate_damping_frame; /* LV_DOF6_DAMPING_AIR (default) */
+} lv_dof6_terms;
+
 typedef struct lv_dof6_config {
     const char *name;          /* model name in reports; copied; NULL: "dof6" */
     lv_planet planet;          /* copied */
@@ -135,8 +156,12 @@ typedef struct lv_dof6_config {
     lv_dof6_mass mass;         /* mass properties (m_full 0: m0 and m0 - propellant) */
     size_t n_engines;
     const lv_engine_config *engines;      /* [n_engines], copied (tables borrowed) */
-    const lv_dof6_engine_geom *engine_geom; /* [n_engines], copied; NULL: every engine on the
-                                             x axis at the structural origin, aligned */
+    const lv_dof6_engine_geom *engine_geom; /* [n_engines], copied; required with engines:
+                                             the thrust moment and the jet damping act at
+                                             their positions (no default position) */
+    const double *engine_exit;            /* [3 n_engines] m, copied: each engine's nozzle
+                                             exit centre, where the jet damping's exhaust
+                                             leaves; NULL: at its position (engine_geom) */
     const lv_aero_config *aero;           /* copied; NULL: no aerodynamic force or moment */
     const lv_dof6_moments *moments;       /* copied; NULL: no aerodynamic moment (the force
                                              acts through the CG) */
@@ -170,12 +195,14 @@ typedef struct lv_dof6_config {
     int stop_at_burnout;
     size_t n_ends;
     const lv_dof3_end *ends;   /* [n_ends], copied: the end kinds of lv_dof3.h */
+
+    lv_dof6_terms terms;       /* the switchable rigid-body terms (above) */
 } lv_dof6_config;
 
 /* Earth, no gravity (must be set), vacuum, m0 = 1000 kg, propellant 0, mass properties of a
  * unit sphere's inertia (1 kg m^2 about every axis) with the CG at the origin, no engines, no
  * aero, every start value and input 0 except throttle 1 and the quaternion of psi = theta =
- * phi = 0; no steering law, no controller. */
+ * phi = 0; no steering law, no controller; the rigid-body terms' defaults (lv_dof6_terms). */
 LV_API void lv_dof6_config_default(lv_dof6_config *cfg);
 
 typedef struct lv_dof6 lv_dof6;

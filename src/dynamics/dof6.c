@@ -4,8 +4,12 @@
  * Rigid-body equations: Stevens, Lewis & Johnson, Aircraft Control and Simulation, 3rd ed.,
  * sec. 1.7-1.8 (quaternion kinematics eq. 1.8-15, Euler's equations eq. 1.7-18); variable mass:
  * Thomson, Introduction to Space Dynamics (Dover, 1986), ch. 8; quaternion norm control:
- * Zipfel, Modeling and Simulation of Aerospace Vehicle Dynamics, 2nd ed., sec. 4.3.
- * Equations and the terms kept: docs/models.md, "6-DoF rigid body". */
+ * Zipfel, Modeling and Simulation of Aerospace Vehicle Dynamics, 2nd ed., sec. 4.3; the
+ * mass-variation moments (jet damping, inertia rate) as in F. O. Eke and T. C. Mao, "On the
+ * dynamics of variable mass systems", Int. J. Mech. Eng. Educ. 30 (2002) 123-137, their
+ * equation of attitude motion with a point nozzle exit and no internal flow.
+ * Equations, the switchable terms and their defaults: docs/models.md, "6-DoF rigid body",
+ * "Rigid-body terms". */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -194,6 +198,7 @@ typedef struct dof6_inst {
 
 typedef struct eng6 {
     lv_vec3 pos;             /* m, body, structural origin */
+    lv_vec3 exit;            /* m, the nozzle exit (pos when not given) */
     double mis_pitch, mis_yaw; /* rad */
 } eng6;
 
@@ -231,6 +236,7 @@ struct lv_dof6 {
     int steers;                  /* a steering law gives the commanded attitude */
     lv_guid guid;
     lv_dof6_controller ctl;      /* kind NONE: gimbal angles from the inputs */
+    lv_dof6_terms terms;         /* the switchable rigid-body terms (lv_dof6.h) */
 
     dof6_inst inst;
 };
@@ -347,10 +353,11 @@ static lv_vec3 solve3(const lv_mat3 *A, lv_vec3 b)
                  (c02 * b.x + c12 * b.y + c22 * b.z) / det);
 }
 
-/* Euler's equations of a body of varying mass (Thomson ch. 8; docs/models.md):
+/* Euler's equations of a body of varying mass (Thomson ch. 8; Eke & Mao 2002; docs/models.md):
  *   I w' = M - w x (I w) - I' w
- * with I' = dI/dt the change of the inertia tensor as propellant is used; the jet damping
- * moment is part of M (jet_damping). */
+ * with I' = dI/dt the change of the inertia tensor as propellant is used (the caller passes
+ * a zero I' with the term `inertia_rate` off); the jet damping moment is part of M
+ * (jet_damping). */
 static lv_vec3 euler_rate(const lv_mat3 *I, const lv_mat3 *I_dot, lv_vec3 w, lv_vec3 M)
 {
     const lv_vec3 Iw = lv_m3_mul_v3(I, w);
@@ -603,8 +610,10 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
                                                       pt->u[U_GY] + g->mis_yaw), f);
             const lv_vec3 r_e = lv_v3_sub(g->pos, pt->mp.cg);
             pt->f_thrust_b = lv_v3_add(pt->f_thrust_b, fi);
-            pt->m_thrust_b = lv_v3_add(pt->m_thrust_b,
-                                       lv_v3_add(lv_v3_cross(r_e, fi), jet_damping(md, r_e, w_b)));
+            pt->m_thrust_b = lv_v3_add(pt->m_thrust_b, lv_v3_cross(r_e, fi));
+            if (m->terms.jet_damping) /* the exhaust leaves at the nozzle exit */
+                pt->m_thrust_b = lv_v3_add(pt->m_thrust_b,
+                                           jet_damping(md, lv_v3_sub(g->exit, pt->mp.cg), w_b));
             pt->mdot += md;
         }
     }
@@ -632,8 +641,10 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
             if (lv_aero_coefs(&m->mom, pt->air.mach, pt->alpha, pt->beta, k->h, cm, err) !=
                 LV_OK)
                 return 1;
-            /* rates relative to the atmosphere: w - C_body_eci (0, 0, omega) */
-            const double om = w->planet.omega;
+            /* the rates the damping derivatives multiply (terms.rate_damping_frame): relative
+             * to the atmosphere, w - C_body_eci (0, 0, omega), or to inertial space, w */
+            const double om =
+                m->terms.rate_damping_frame == LV_DOF6_DAMPING_AIR ? w->planet.omega : 0.0;
             const lv_vec3 w_r = lv_v3(w_b.x - om * pt->C_eci_body.m[2][0],
                                       w_b.y - om * pt->C_eci_body.m[2][1],
                                       w_b.z - om * pt->C_eci_body.m[2][2]);
@@ -651,9 +662,10 @@ static int point_eval(lv_dof6 *m, dof6_inst *s, double t, const double *x, const
     pt->a_eci = lv_flight_accel_eci(w, m->grav_ws, k, f_ecef, mass, &pt->g_ecef);
     const double span = m->mp.m_full - m->mp.m_empty;
     lv_mat3 I_dot = pt->mp.dI_ds; /* dI/dt = dI/ds ds/dt, ds/dt = mdot / span */
+    const double ds_dt = span > 0.0 && m->terms.inertia_rate ? pt->mdot / span : 0.0;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
-            I_dot.m[i][j] *= span > 0.0 ? pt->mdot / span : 0.0;
+            I_dot.m[i][j] *= ds_dt;
     pt->w_dot = euler_rate(&pt->mp.I, &I_dot, w_b, lv_v3_add(pt->m_thrust_b, pt->m_aero_b));
     /* 6: the controller's gimbal commands (they drive the actuators, not this point's forces) */
     if (m->steers && m->ctl.kind != LV_DOF6_CTL_NONE) {
@@ -953,6 +965,7 @@ void lv_dof6_config_default(lv_dof6_config *cfg)
     cfg->throttle = 1.0;
     for (int i = 0; i < 3; i++)
         cfg->mass.inertia_full[i] = cfg->mass.inertia_empty[i] = 1.0;
+    cfg->terms = (lv_dof6_terms){1, 1, LV_DOF6_DAMPING_AIR};
     lv_steering_init(&cfg->steering, "inputs", NULL); /* target: the start point */
 }
 
@@ -1231,16 +1244,25 @@ static lv_status setup_engines(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *er
                                           &m->n_eng, &m->eng_buf, err);
     if (st != LV_OK || m->n_eng == 0)
         return st;
+    if (cfg->engine_geom == NULL) /* no default position: the moments depend on it */
+        return lv_fail(err, LV_ERR_INPUT, "dof6: %zu engine(s) without their position "
+                       "(engine_geom NULL): the thrust moment%s act%s at it", m->n_eng,
+                       cfg->terms.jet_damping ? " and the jet damping" : "",
+                       cfg->terms.jet_damping ? "" : "s");
     if ((m->geom = calloc(m->n_eng, sizeof *m->geom)) == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    for (size_t i = 0; cfg->engine_geom != NULL && i < m->n_eng; i++) {
+    for (size_t i = 0; i < m->n_eng; i++) {
         const lv_dof6_engine_geom *g = &cfg->engine_geom[i];
+        const double *ex = cfg->engine_exit != NULL ? cfg->engine_exit + 3 * i : g->pos;
         if (!isfinite(g->pos[0]) || !isfinite(g->pos[1]) || !isfinite(g->pos[2]) ||
-            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw))
-            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m and "
-                           "misalignment (%g, %g) rad must be finite", m->eng[i].name,
-                           g->pos[0], g->pos[1], g->pos[2], g->mis_pitch, g->mis_yaw);
-        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), g->mis_pitch, g->mis_yaw};
+            !isfinite(g->mis_pitch) || !isfinite(g->mis_yaw) || !isfinite(ex[0]) ||
+            !isfinite(ex[1]) || !isfinite(ex[2]))
+            return lv_fail(err, LV_ERR_INPUT, "dof6: engine '%s': position (%g, %g, %g) m, "
+                           "nozzle exit (%g, %g, %g) m and misalignment (%g, %g) rad must be "
+                           "finite", m->eng[i].name, g->pos[0], g->pos[1], g->pos[2], ex[0],
+                           ex[1], ex[2], g->mis_pitch, g->mis_yaw);
+        m->geom[i] = (eng6){lv_v3(g->pos[0], g->pos[1], g->pos[2]), lv_v3(ex[0], ex[1], ex[2]),
+                            g->mis_pitch, g->mis_yaw};
     }
     return LV_OK;
 }
@@ -1294,6 +1316,16 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
                 goto fail;
             }
     m->stop_at_burnout = cfg->stop_at_burnout != 0;
+    if ((cfg->terms.jet_damping != 0 && cfg->terms.jet_damping != 1) ||
+        (cfg->terms.inertia_rate != 0 && cfg->terms.inertia_rate != 1) ||
+        (cfg->terms.rate_damping_frame != LV_DOF6_DAMPING_AIR &&
+         cfg->terms.rate_damping_frame != LV_DOF6_DAMPING_INERTIAL)) {
+        st = lv_fail(err, LV_ERR_INPUT, "dof6: terms: jet_damping = %d, inertia_rate = %d (0 or "
+                     "1), rate_damping_frame = %d (0 air, 1 inertial)", cfg->terms.jet_damping,
+                     cfg->terms.inertia_rate, (int)cfg->terms.rate_damping_frame);
+        goto fail;
+    }
+    m->terms = cfg->terms;
     if ((st = setup_ends(m, cfg, err)) != LV_OK || (st = setup_control(m, cfg, err)) != LV_OK)
         goto fail;
 

@@ -140,8 +140,15 @@ typedef struct lv_rigid_body_def {
     lv_slot inertia_empty[6];     /* kg m^2 (default: the full values as written) */
     lv_slot cg_full[3];           /* m (default 0) */
     lv_slot cg_empty[3];          /* m (default: the full values as written) */
-    lv_slot engine_pos[3];        /* m, the engines' gimbal point (default 0) */
+    lv_slot engine_pos[3];        /* m, the engines' gimbal point (required with engines;
+                                     0 without: no thrust acts there) */
     lv_slot mis_pitch, mis_yaw;   /* rad, thrust misalignment (default 0) */
+    int has_exit;                 /* `nozzle_exit:` given */
+    lv_slot nozzle_exit[3];       /* m, the engines' nozzle exit centre (jet damping); with
+                                     has_exit 0 the jet damping takes engine_pos */
+    /* `terms:` the switchable rigid-body terms (lv_dof6_terms; docs/models.md, "Rigid-body
+     * terms"): 1 on / 0 off; rate_damping_frame 0 air, 1 inertial. Defaults 1, 1, 0. */
+    int jet_damping, inertia_rate, rate_damping_frame;
     lv_src_loc loc;
 } lv_rigid_body_def;
 

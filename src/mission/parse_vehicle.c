@@ -225,14 +225,51 @@ static lv_status parse_rigid_vec(const lv_pctx *c, const lv_ynode *rb, const cha
     return LV_OK;
 }
 
+/* rigid_body.terms: {jet_damping: on|off, inertia_rate: on|off, rate_damping_frame:
+ * air|inertial}: the switchable rigid-body terms (docs/models.md, "Rigid-body terms"); a key
+ * not written takes its default (on, on, air). */
+static lv_status parse_rigid_terms(const lv_pctx *c, const lv_ynode *rb, const char *stage,
+                                   lv_rigid_body_def *r)
+{
+    static const char *const keys[] = {"jet_damping", "inertia_rate", "rate_damping_frame",
+                                       NULL};
+    static const char *const onoff[] = {"off", "on", NULL};
+    static const char *const frames[] = {"air", "inertial", NULL};
+    r->jet_damping = r->inertia_rate = 1;
+    r->rate_damping_frame = 0;
+    const lv_ynode *n = lv_pk_get(rb, "terms");
+    if (n == NULL || lv_yaml_is_null(n))
+        return LV_OK;
+    char what[LV_WHAT_MAX];
+    snprintf(what, sizeof what, "stage '%s', rigid_body, terms", stage);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {jet_damping: on, inertia_rate: on, "
+                          "rate_damping_frame: air} expected", what);
+    lv_status st = lv_pk_check_map(c, n, what, keys);
+    int *const dst[3] = {&r->jet_damping, &r->inertia_rate, &r->rate_damping_frame};
+    for (int k = 0; k < 3 && st == LV_OK; k++) {
+        const lv_ynode *v = lv_pk_get(n, keys[k]);
+        size_t idx;
+        if (v != NULL && (st = lv_pk_enum(c, v, what, keys[k], k < 2 ? onoff : frames, &idx)) ==
+                             LV_OK)
+            *dst[k] = (int)idx;
+    }
+    return st;
+}
+
 /* rigid_body: {inertia_full: {xx, yy, zz, xy, xz, yz}, inertia_empty: {..}, cg_full: {x, y, z},
- * cg_empty: {..}, engine_position: {x, y, z}, misalignment: {pitch_deg, yaw_deg}}: the 6-DoF
- * data of the stack this stage drives (lv_rigid_body_def). inertia_full's xx, yy, zz are
- * required; the empty values default to the full ones as written, the rest to 0. */
-static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, lv_stage_def *s)
+ * cg_empty: {..}, engine_position: {x, y, z}, nozzle_exit: {x, y, z}, misalignment: {pitch_deg,
+ * yaw_deg}, terms: {..}}:
+ * the 6-DoF data of the stack this stage drives (lv_rigid_body_def). inertia_full's xx, yy, zz
+ * are required, and engine_position's x (y, z default to 0) when the stage has engines: the
+ * thrust moment and the jet damping act there, and no position is guessed; the empty values
+ * default to the full ones as written, the rest to 0. */
+static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv_ynode *stage_n,
+                                  lv_stage_def *s)
 {
     static const char *const keys[] = {"inertia_full", "inertia_empty", "cg_full", "cg_empty",
-                                       "engine_position", "misalignment", NULL};
+                                       "engine_position", "nozzle_exit", "misalignment",
+                                       "terms", NULL};
     static const char *const ic[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
     static const char *const xyz[3] = {"x", "y", "z"};
     static const char *const py[2] = {"pitch", "yaw"};
@@ -250,6 +287,18 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, lv_stage
     if (lv_pk_get(rb, "inertia_full") == NULL)
         return lv_pk_fail(c, rb, "%s: 'inertia_full' is missing (at least {xx, yy, zz} in kg "
                           "m^2)", what);
+    if ((st = parse_rigid_terms(c, rb, s->name, r)) != LV_OK)
+        return st;
+    const lv_ynode *eng = lv_pk_get(stage_n, "engines");
+    const lv_ynode *ep = lv_pk_get(rb, "engine_position");
+    if (eng != NULL && eng->kind == LV_YNODE_SEQ && eng->n > 0 &&
+        (ep == NULL || lv_yaml_is_null(ep) ||
+         (ep->kind == LV_YNODE_MAP && lv_pk_get(ep, "x") == NULL)))
+        return lv_pk_fail(c, ep != NULL ? ep : rb, "%s: 'engine_position%s' is missing: the "
+                          "stage has engines, and their thrust moment%s act%s at their gimbal "
+                          "point (m, body x from the structural origin; no default is guessed)",
+                          what, ep != NULL ? ".x" : "",
+                          r->jet_damping ? " and jet damping" : "", r->jet_damping ? "" : "s");
     r->present = 1;
     r->loc = lv_pk_loc(rb);
     const double need[6] = {NAN, NAN, NAN, 0.0, 0.0, 0.0}, zero[3] = {0.0, 0.0, 0.0};
@@ -276,6 +325,15 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, lv_stage
         return st;
     r->mis_pitch = mis[0];
     r->mis_yaw = mis[1];
+    /* nozzle_exit: {x, y, z}, all three written (where the jet damping's exhaust leaves) */
+    const lv_ynode *ne = lv_pk_get(rb, "nozzle_exit");
+    if (ne == NULL || lv_yaml_is_null(ne))
+        return LV_OK;
+    const double need3[3] = {NAN, NAN, NAN};
+    if ((st = parse_rigid_vec(c, rb, s->name, "nozzle_exit", xyz, 3, "m", LV_RANGE_ANY, need3, 0,
+                              r->nozzle_exit)) != LV_OK)
+        return st;
+    r->has_exit = 1;
     return LV_OK;
 }
 
@@ -308,7 +366,7 @@ static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         (st = lv_pk_slot(c, v, what, "propellant_mass", slot, "kg", LV_RANGE_NONNEG, 0,
                          &s->propellant_mass)) != LV_OK)
         return st;
-    if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), s)) != LV_OK)
+    if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), n, s)) != LV_OK)
         return st;
 
     v = lv_pk_get(n, "engines");

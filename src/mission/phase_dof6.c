@@ -597,6 +597,7 @@ typedef struct dof6_self {
     lv_dof6 *model;
     lv_dof6_moments mom;
     lv_dof6_engine_geom *geom;
+    double *exit;     /* [3 n_engines] m, the nozzle exits (rigid_body.nozzle_exit) */
 } dof6_self;
 
 static void dof6_free_self(void *p)
@@ -607,6 +608,7 @@ static void dof6_free_self(void *p)
     lv_dof6_free(s->model);
     lv_kit_clear(&s->kit);
     free(s->geom);
+    free(s->exit);
     free(s);
 }
 
@@ -626,7 +628,8 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         free(s);
         return st;
     }
-    if ((s->geom = calloc(lv_kit_engine_count(bottom) + 1, sizeof *s->geom)) == NULL) {
+    if ((s->geom = calloc(lv_kit_engine_count(bottom) + 1, sizeof *s->geom)) == NULL ||
+        (s->exit = calloc(3 * lv_kit_engine_count(bottom) + 3, sizeof *s->exit)) == NULL) {
         dof6_free_self(s);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -657,10 +660,15 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
             s->geom[e].pos[i] = bc->vals[rb->engine_pos[i]];
         s->geom[e].mis_pitch = bc->vals[rb->mis_pitch];
         s->geom[e].mis_yaw = bc->vals[rb->mis_yaw];
+        for (int i = 0; rb->has_exit && i < 3; i++)
+            s->exit[3 * e + i] = bc->vals[rb->nozzle_exit[i]];
     }
     cfg.n_engines = ne;
     cfg.engines = s->kit.engines;
     cfg.engine_geom = s->geom;
+    cfg.engine_exit = rb->has_exit ? s->exit : NULL;
+    cfg.terms = (lv_dof6_terms){rb->jet_damping, rb->inertia_rate,
+                                (lv_dof6_damping_frame)rb->rate_damping_frame};
     cfg.start_lat = lv_kit_param(bc, LV_KIT_START_LAT, 0.0);
     cfg.start_lon = lv_kit_param(bc, LV_KIT_START_LON, 0.0);
     cfg.start_h = lv_kit_param(bc, LV_KIT_START_H, 0.0);

@@ -7,6 +7,9 @@ lv_add_unit_test(test_runway unit/test_runway.c)
 # precession, rate damping, quaternion norm, free fall equal to dof3's, thrust moments).
 lv_add_unit_test(test_dof6 unit/test_dof6.c)
 target_link_libraries(test_dof6 PRIVATE lvsim_post_static) # summary.json's transitions
+# The 6-DoF model's switchable rigid-body terms (jet damping, inertia rate, the frame of the
+# rate damping) against closed forms, and their mission keys.
+lv_add_unit_test(test_dof6_terms unit/test_dof6_terms.c)
 # The registered steering and throttle laws: each law's contract (and laws broken on purpose
 # failing it), the C API that sets a law's keys by name, and the models' refusals.
 lv_add_unit_test(test_laws unit/test_laws.c)

@@ -1447,10 +1447,11 @@ static void test_control_errors(void)
     LOAD_BAD(HEAD0 "  - {name: s1, dry_mass: 20000, propellant_mass: 100000,\n"
              "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 300}],\n"
              "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
-             "                  inertia_empty: {xx: 1.0e5, yy: 1.0e5, zz: 3.0e5}}}\n"
+             "                  inertia_empty: {xx: 1.0e5, yy: 1.0e5, zz: 3.0e5},\n"
+             "                  engine_position: {x: -30}}}\n"
              "phases:\n"
              "  - {name: P, model: dof6, stages: [s1], stop_time: 10}\n",
-             "bad.yaml:11:5: phase 'P': dof6: the inertia tensor (empty) has the principal "
+             "bad.yaml:12:5: phase 'P': dof6: the inertia tensor (empty) has the principal "
              "moments 100000, 100000, 300000 kg m^2: the two smaller add up to less than the "
              "largest");
     /* the default root attitude is what `lvsim vars dof6` lists: psi = theta = phi = 0 */
