@@ -215,12 +215,19 @@ struct lv_erk {
     int rejected;    /* the last attempt was rejected: no increase of h */
     int iasti, nonsti, stiff; /* stiffness test counters, the verdict */
     double t_stiff;
+    /* The event functions at the end of the last accepted step, evaluated once per step
+     * (g_end_ok). A step over which none of them changes sign against g_lo (step_clear) needs
+     * no evaluation at the returns inside it: as in CVODE, a function is sampled at the steps'
+     * ends, and a sign change is searched for only in a step that shows one. */
+    int g_end_ok, step_clear;
     long steps, rhs_step, rhs_dense, fails, g_evals;
     /* arrays, one allocation */
     double *y, *yold, *ynew, *ysti, *ytmp, *sk;
     double *k[ERK_MAX_STAGES];
     double *rc[ERK_MAX_RC];
-    double *g_lo, *g_b, *g_m; /* [ng] at t_lo, at the bracket's right end, at an iterate */
+    double *g_lo, *g_b, *g_m; /* [ng] at t_lo (in a clear step: at its start), at the
+                               * bracket's right end, at an iterate */
+    double *g_end;            /* [ng] at the step's end t (g_end_ok) */
     double *x_b, *x_m;        /* [n] states there */
     double *mem;
 };
@@ -262,7 +269,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->ng = p->n_g;
     const size_t n = e->n, ng = e->ng;
     const size_t nk = (size_t)e->tab->s_dense, nrc = dop853 ? 8 : 5;
-    const size_t total = n * (6 + nk + nrc + 2) + 3 * ng;
+    const size_t total = n * (6 + nk + nrc + 2) + 4 * ng;
     e->mem = calloc(total ? total : 1, sizeof *e->mem);
     if (e->mem == NULL) {
         free(e);
@@ -284,6 +291,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->g_lo = m, m += ng;
     e->g_b = m, m += ng;
     e->g_m = m, m += ng;
+    e->g_end = m, m += ng;
     lv_status st = lv_erk_restart(e, t0, x0, err);
     if (st != LV_OK) {
         lv_erk_free(e);
@@ -336,6 +344,7 @@ lv_status lv_erk_set_stop_time(lv_erk *e, double tstop, lv_err *err)
         e->fsal = 0;
         e->have_step = 0;
         e->dense_ready = 0;
+        e->g_end_ok = 0;
         if (e->h > e->h_old)
             e->h = e->h_old;
     }
@@ -386,6 +395,7 @@ lv_status lv_erk_restart(lv_erk *e, double t, const double *x, lv_err *err)
     memcpy(e->y, x, e->n * sizeof *x);
     e->t = e->t_lo = t;
     e->have_step = e->dense_ready = e->fsal = 0;
+    e->g_end_ok = 0;
     e->has_tstop = 0;
     e->facold = 1e-4;
     e->rejected = 0;
@@ -584,6 +594,7 @@ static lv_status rk_step(lv_erk *e, lv_err *err)
             e->t = t_end;
             e->have_step = 1;
             e->dense_ready = 0;
+            e->g_end_ok = 0;
             e->fsal = 1;
             e->h = hnew;
             return LV_OK;
@@ -765,11 +776,22 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
         if (e->t_lo < e->t) {
             /* the part of the last step not yet returned: (t_lo, min(t_n, tend)] */
             const double thi = e->t < tend ? e->t : tend;
+            if (e->ng > 0 && !e->g_end_ok) { /* once per step: at its end, where x = y */
+                if (call_g(e, e->t, e->y, e->g_end) != 0)
+                    return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: event function failed "
+                                   "[%s]", e->t, name);
+                e->g_end_ok = 1;
+                e->step_clear = 1;
+                for (size_t i = 0; i < e->ng && e->step_clear; i++)
+                    e->step_clear = !crosses(e, i, e->g_lo[i], e->g_end[i]);
+            }
             if (dense_eval(e, thi, e->x_b) != 0)
                 return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: right-hand side failed in "
                                "the dense output [%s]", e->t_lo, name);
-            if (e->ng > 0) {
-                if (call_g(e, thi, e->x_b, e->g_b) != 0)
+            if (e->ng > 0 && !e->step_clear) {
+                if (thi == e->t)
+                    memcpy(e->g_b, e->g_end, e->ng * sizeof *e->g_b);
+                else if (call_g(e, thi, e->x_b, e->g_b) != 0)
                     return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: event function failed "
                                    "[%s]", thi, name);
                 int any = 0;
@@ -794,6 +816,9 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
                     return LV_OK;
                 }
                 memcpy(e->g_lo, e->g_b, e->ng * sizeof *e->g_lo);
+            } else if (e->ng > 0 && thi == e->t) {
+                /* a clear step returned to its end: g_lo is at t_lo again */
+                memcpy(e->g_lo, e->g_end, e->ng * sizeof *e->g_lo);
             }
             e->t_lo = thi;
             if (thi == tend) {
