@@ -2,8 +2,11 @@
  * optimiser's inner loop) pays it: create the 3-DoF model, simulate a vertical flight to
  * apogee (about 200 s, 400 rows at a 0.5 s grid) into an in-memory result, free everything.
  * The environment (WGS-84 Earth, J2 gravity, US76) is created once, as a loaded mission
- * shares it. Issue 11's target: <= 100 us per flight with the same steps; RocketPy needs about
- * 14 ms in-process for such a flight (the issue's figure; not measured here).
+ * shares it. Issue 11's target: <= 100 us per flight with the same steps, issue 24's: <= 80 us
+ * with the default method; RocketPy needs about 14 ms in-process for such a flight (the issue's
+ * figure; not measured here). bench/instr_flight.py counts the instructions of one flight with
+ * callgrind (bench_flight METHOD 1 1 rows|norows) and splits them (steps against the rhs, rows,
+ * events, dense output, set-up).
  *
  * Printed, per integration method (CPU time of this thread, best of several rounds of many
  * flights so a busy machine distorts less):
