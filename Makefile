@@ -42,6 +42,7 @@ test-valgrind: deps build
 bench: deps build
 	@for b in $(BUILD)/bench/bench_*; do [ -x "$$b" ] && "$$b"; done
 	@bench/whole_process.py --lvsim $(BUILD)/lvsim
+	@if command -v valgrind >/dev/null; then bench/instr_flight.py $(BUILD)/bench/bench_flight; fi
 
 # The fuzz targets (libFuzzer, clang; docs/fuzzing.md), each for FUZZ_TIME seconds (default
 # 60); FUZZ_TARGETS picks some of them.

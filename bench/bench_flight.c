@@ -2,8 +2,11 @@
  * optimiser's inner loop) pays it: create the 3-DoF model, simulate a vertical flight to
  * apogee (about 200 s, 400 rows at a 0.5 s grid) into an in-memory result, free everything.
  * The environment (WGS-84 Earth, J2 gravity, US76) is created once, as a loaded mission
- * shares it. Issue 11's target: <= 100 us per flight with the same steps; RocketPy needs about
- * 14 ms in-process for such a flight (the issue's figure; not measured here).
+ * shares it. Issue 11's target: <= 100 us per flight with the same steps, issue 24's: <= 80 us
+ * with the default method; RocketPy needs about 14 ms in-process for such a flight (the issue's
+ * figure; not measured here). bench/instr_flight.py counts the instructions of one flight with
+ * callgrind (bench_flight METHOD 1 1 rows|norows) and splits them (steps against the rhs, rows,
+ * events, dense output, set-up).
  *
  * Printed, per integration method (CPU time of this thread, best of several rounds of many
  * flights so a busy machine distorts less):
@@ -139,30 +142,38 @@ int main(int argc, char **argv)
         return 1;
     }
     const flight_env env = {grav, atmo};
-    /* bench_flight [METHOD [FLIGHTS [ROUNDS]]]: one method only (for a profiler) */
+    /* bench_flight [METHOD [FLIGHTS [ROUNDS [rows|norows]]]]: one method only; with the fourth
+     * argument only that half and no reference flight (for a profiler: bench/instr_flight.py) */
     const char *methods[] = {"dassl", "dopri5", "cvode-adams", "dp5", "dop853", "auto"};
     size_t n_methods = sizeof methods / sizeof methods[0];
     if (argc > 1) {
         methods[0] = argv[1];
         n_methods = 1;
     }
-    const int flights = argc > 2 ? atoi(argv[2]) : 200, rounds = argc > 3 ? atoi(argv[3]) : 5;
+    int flights = argc > 2 ? atoi(argv[2]) : 200;
+    const int rounds = argc > 3 ? atoi(argv[3]) : 5;
+    int rows_first = 1, rows_last = 0;
+    if (argc > 4) {
+        rows_first = rows_last = strcmp(argv[4], "rows") == 0 ? 1 : 0;
+        if (!rows_first && strcmp(argv[4], "norows") != 0)
+            flights = 0; /* refused below */
+    }
     if (flights < 1 || rounds < 1) {
-        fprintf(stderr, "usage: bench_flight [METHOD [FLIGHTS [ROUNDS]]]\n");
+        fprintf(stderr, "usage: bench_flight [METHOD [FLIGHTS [ROUNDS [rows|norows]]]]\n");
         return 2;
     }
     printf("# one flight in-process: lv_dof3_create + lv_simulate (vertical, to apogee, 0.5 s "
            "grid, memory sink) + free;\n# CPU us per flight, best of %d rounds of %d flights\n",
            rounds, flights);
-    flight_out ref = {0};
-    if (fly(&env, "dop853", 1e-12, 1, &ref, &err) != 0) {
+    flight_out ref = {.h_apogee = NAN};
+    if (argc <= 4 && fly(&env, "dop853", 1e-12, 1, &ref, &err) != 0) {
         fprintf(stderr, "bench_flight: reference: %s\n", err.msg);
         return 1;
     }
     printf("%-12s %10s %10s %10s %8s %7s %7s %6s %9s %8s %9s\n", "method", "flight", "sim",
            "outside", "outside%", "steps", "rhs", "rows", "apogee_t", "x dassl", "dh_apo[m]");
     int rc = 0;
-    for (int rows = 1; rows >= 0 && rc == 0; rows--) {
+    for (int rows = rows_first; rows >= rows_last && rc == 0; rows--) {
         double best_dassl = NAN;
         if (!rows)
             printf("# the same flights without a sink: rows counted, not evaluated (integration "

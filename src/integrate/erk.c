@@ -195,6 +195,34 @@ static const rk_tab tab_dop853 = {
     dop853_c, dop853_a, dop853_b,
 };
 
+/* A linear combination of stages, sum_j w_j k_j, with the tableau's zero weights left out:
+ * its nonzero weights and their stages in ascending order, gathered once when the integrator
+ * is created (the sums below are those of the tableau's rows, term for term). */
+typedef struct rk_sum {
+    int n;
+    int j[ERK_MAX_STAGES];
+    double w[ERK_MAX_STAGES];
+} rk_sum;
+
+static void rk_sum_init(rk_sum *sm, const double *w, int len)
+{
+    sm->n = 0;
+    for (int j = 0; j < len; j++)
+        if (w[j] != 0.0) {
+            sm->j[sm->n] = j;
+            sm->w[sm->n++] = w[j];
+        }
+}
+
+/* sum_j w_j k_j[m] */
+static double rk_sum_at(const rk_sum *sm, double *const *k, size_t m)
+{
+    double acc = 0.0;
+    for (int q = 0; q < sm->n; q++)
+        acc += sm->w[q] * k[sm->j[q]][m];
+    return acc;
+}
+
 /* ---- the integrator's state ------------------------------------------------------ */
 
 struct lv_erk {
@@ -215,12 +243,22 @@ struct lv_erk {
     int rejected;    /* the last attempt was rejected: no increase of h */
     int iasti, nonsti, stiff; /* stiffness test counters, the verdict */
     double t_stiff;
+    /* The event functions at the end of the last accepted step, evaluated once per step
+     * (g_end_ok). A step over which none of them changes sign against g_lo (step_clear) needs
+     * no evaluation at the returns inside it: as in CVODE, a function is sampled at the steps'
+     * ends, and a sign change is searched for only in a step that shows one. */
+    int g_end_ok, step_clear;
     long steps, rhs_step, rhs_dense, fails, g_evals;
     /* arrays, one allocation */
     double *y, *yold, *ynew, *ysti, *ytmp, *sk;
     double *k[ERK_MAX_STAGES];
     double *rc[ERK_MAX_RC];
-    double *g_lo, *g_b, *g_m; /* [ng] at t_lo, at the bracket's right end, at an iterate */
+    double *g_lo, *g_b, *g_m; /* [ng] at t_lo (in a clear step: at its start), at the
+                               * bracket's right end, at an iterate */
+    double *g_end;            /* [ng] at the step's end t (g_end_ok) */
+    /* the tableau's sums without their zero terms (rk_sum): stage arguments (rows of a), the
+     * solution (b), dp5's error estimate (e), the dense output's coefficients (d) */
+    rk_sum a_sum[ERK_MAX_STAGES], b_sum, e_sum, d_sum[4];
     double *x_b, *x_m;        /* [n] states there */
     double *mem;
 };
@@ -262,7 +300,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->ng = p->n_g;
     const size_t n = e->n, ng = e->ng;
     const size_t nk = (size_t)e->tab->s_dense, nrc = dop853 ? 8 : 5;
-    const size_t total = n * (6 + nk + nrc + 2) + 3 * ng;
+    const size_t total = n * (6 + nk + nrc + 2) + 4 * ng;
     e->mem = calloc(total ? total : 1, sizeof *e->mem);
     if (e->mem == NULL) {
         free(e);
@@ -284,6 +322,17 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->g_lo = m, m += ng;
     e->g_b = m, m += ng;
     e->g_m = m, m += ng;
+    e->g_end = m, m += ng;
+    for (size_t i = 1; i < nk; i++)
+        rk_sum_init(&e->a_sum[i], e->tab->a + i * ERK_MAX_STAGES, (int)i);
+    rk_sum_init(&e->b_sum, e->tab->b, e->tab->s);
+    if (dop853) {
+        for (int r = 0; r < 4; r++)
+            rk_sum_init(&e->d_sum[r], dop853_d[r], 16);
+    } else {
+        rk_sum_init(&e->e_sum, dp5_e, 7);
+        rk_sum_init(&e->d_sum[0], dp5_d, 7);
+    }
     lv_status st = lv_erk_restart(e, t0, x0, err);
     if (st != LV_OK) {
         lv_erk_free(e);
@@ -336,6 +385,7 @@ lv_status lv_erk_set_stop_time(lv_erk *e, double tstop, lv_err *err)
         e->fsal = 0;
         e->have_step = 0;
         e->dense_ready = 0;
+        e->g_end_ok = 0;
         if (e->h > e->h_old)
             e->h = e->h_old;
     }
@@ -386,6 +436,7 @@ lv_status lv_erk_restart(lv_erk *e, double t, const double *x, lv_err *err)
     memcpy(e->y, x, e->n * sizeof *x);
     e->t = e->t_lo = t;
     e->have_step = e->dense_ready = e->fsal = 0;
+    e->g_end_ok = 0;
     e->has_tstop = 0;
     e->facold = 1e-4;
     e->rejected = 0;
@@ -411,28 +462,17 @@ static int rk_stages(lv_erk *e, double h, double t_end)
     const size_t n = e->n;
     const int s = T->s;
     for (int i = 1; i < s; i++) {
-        const double *ai = T->a + (size_t)i * ERK_MAX_STAGES;
         double *arg = (i == s - 1) ? e->ysti : e->ytmp;
-        for (size_t m = 0; m < n; m++) {
-            double acc = 0.0;
-            for (int j = 0; j < i; j++)
-                if (ai[j] != 0.0)
-                    acc += ai[j] * e->k[j][m];
-            arg[m] = e->y[m] + h * acc;
-        }
+        for (size_t m = 0; m < n; m++)
+            arg[m] = e->y[m] + h * rk_sum_at(&e->a_sum[i], e->k, m);
         /* a stage at c = 1 is at t_end exactly: the stop time is never passed by round-off */
         const double ti = T->c[i] == 1.0 ? t_end : e->t + T->c[i] * h;
         const int rc = call_f(e, ti, arg, e->k[i], 0);
         if (rc != 0)
             return rc;
     }
-    for (size_t m = 0; m < n; m++) {
-        double acc = 0.0;
-        for (int j = 0; j < s; j++)
-            if (T->b[j] != 0.0)
-                acc += T->b[j] * e->k[j][m];
-        e->ynew[m] = e->y[m] + h * acc;
-    }
+    for (size_t m = 0; m < n; m++)
+        e->ynew[m] = e->y[m] + h * rk_sum_at(&e->b_sum, e->k, m);
     /* the FSAL stage at t + h: exactly the stop time when the step ends there */
     return call_f(e, t_end, e->ynew, e->k[s], 0);
 }
@@ -447,10 +487,7 @@ static double rk_error(lv_erk *e, double h)
         e->sk[i] = e->p.atol[i] + rtol_of(e, i) * fmax(fabs(e->y[i]), fabs(e->ynew[i]));
     if (!e->dop853) {
         for (size_t i = 0; i < n; i++) {
-            double d = 0.0;
-            for (int j = 0; j < 7; j++)
-                if (dp5_e[j] != 0.0)
-                    d += dp5_e[j] * e->k[j][i];
+            double d = rk_sum_at(&e->e_sum, e->k, i);
             d = h * d / e->sk[i];
             err += d * d;
         }
@@ -584,6 +621,7 @@ static lv_status rk_step(lv_erk *e, lv_err *err)
             e->t = t_end;
             e->have_step = 1;
             e->dense_ready = 0;
+            e->g_end_ok = 0;
             e->fsal = 1;
             e->h = hnew;
             return LV_OK;
@@ -607,14 +645,8 @@ static int dense_prepare(lv_erk *e)
     const double *y0 = e->yold, *y1 = e->y, *k0 = e->k[0], *ks = e->k[s];
     if (e->dop853) {
         for (int i = 13; i < 16; i++) {
-            const double *ai = dop853_a + (size_t)i * ERK_MAX_STAGES;
-            for (size_t m = 0; m < n; m++) {
-                double acc = 0.0;
-                for (int j = 0; j < i; j++)
-                    if (ai[j] != 0.0)
-                        acc += ai[j] * e->k[j][m];
-                e->ytmp[m] = y0[m] + h * acc;
-            }
+            for (size_t m = 0; m < n; m++)
+                e->ytmp[m] = y0[m] + h * rk_sum_at(&e->a_sum[i], e->k, m);
             const int rc = call_f(e, e->t_old + dop853_c[i] * h, e->ytmp, e->k[i], 1);
             if (rc != 0)
                 return rc;
@@ -629,21 +661,11 @@ static int dense_prepare(lv_erk *e)
     }
     if (e->dop853) {
         for (int r = 0; r < 4; r++)
-            for (size_t m = 0; m < n; m++) {
-                double acc = 0.0;
-                for (int j = 0; j < 16; j++)
-                    if (dop853_d[r][j] != 0.0)
-                        acc += dop853_d[r][j] * e->k[j][m];
-                e->rc[4 + r][m] = h * acc;
-            }
+            for (size_t m = 0; m < n; m++)
+                e->rc[4 + r][m] = h * rk_sum_at(&e->d_sum[r], e->k, m);
     } else {
-        for (size_t m = 0; m < n; m++) {
-            double acc = 0.0;
-            for (int j = 0; j < 7; j++)
-                if (dp5_d[j] != 0.0)
-                    acc += dp5_d[j] * e->k[j][m];
-            e->rc[4][m] = h * acc;
-        }
+        for (size_t m = 0; m < n; m++)
+            e->rc[4][m] = h * rk_sum_at(&e->d_sum[0], e->k, m);
     }
     e->dense_ready = 1;
     return 0;
@@ -765,11 +787,22 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
         if (e->t_lo < e->t) {
             /* the part of the last step not yet returned: (t_lo, min(t_n, tend)] */
             const double thi = e->t < tend ? e->t : tend;
+            if (e->ng > 0 && !e->g_end_ok) { /* once per step: at its end, where x = y */
+                if (call_g(e, e->t, e->y, e->g_end) != 0)
+                    return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: event function failed "
+                                   "[%s]", e->t, name);
+                e->g_end_ok = 1;
+                e->step_clear = 1;
+                for (size_t i = 0; i < e->ng && e->step_clear; i++)
+                    e->step_clear = !crosses(e, i, e->g_lo[i], e->g_end[i]);
+            }
             if (dense_eval(e, thi, e->x_b) != 0)
                 return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: right-hand side failed in "
                                "the dense output [%s]", e->t_lo, name);
-            if (e->ng > 0) {
-                if (call_g(e, thi, e->x_b, e->g_b) != 0)
+            if (e->ng > 0 && !e->step_clear) {
+                if (thi == e->t)
+                    memcpy(e->g_b, e->g_end, e->ng * sizeof *e->g_b);
+                else if (call_g(e, thi, e->x_b, e->g_b) != 0)
                     return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: event function failed "
                                    "[%s]", thi, name);
                 int any = 0;
@@ -794,6 +827,9 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
                     return LV_OK;
                 }
                 memcpy(e->g_lo, e->g_b, e->ng * sizeof *e->g_lo);
+            } else if (e->ng > 0 && thi == e->t) {
+                /* a clear step returned to its end: g_lo is at t_lo again */
+                memcpy(e->g_lo, e->g_end, e->ng * sizeof *e->g_lo);
             }
             e->t_lo = thi;
             if (thi == tend) {

@@ -405,14 +405,52 @@ typedef struct final_ref {
     int is_time;
 } final_ref;
 
+/* The variable after (kind, index) in lv_model_find's order (states, parameters, outputs), if
+ * it is named `name`; prev NULL: the first. Names are unique across kinds (lv_model_validate),
+ * so a hit is lv_model_find's answer. */
+static int next_var_is(const lv_model_def *d, const final_ref *prev, const char *name,
+                       final_ref *out)
+{
+    const lv_var *vars[3] = {d->states, d->params, d->outputs};
+    const size_t n[3] = {d->n_states, d->n_params, d->n_outputs};
+    const lv_var_kind kinds[3] = {LV_VAR_STATE, LV_VAR_PARAMETER, LV_VAR_OUTPUT};
+    int k = 0;
+    size_t i = 0;
+    if (prev != NULL) {
+        while (k < 3 && kinds[k] != prev->kind)
+            k++;
+        i = prev->index + 1;
+    }
+    while (k < 3 && i >= n[k]) {
+        k++;
+        i = 0;
+    }
+    if (k == 3 || name == NULL || strcmp(vars[k][i].name, name) != 0)
+        return 0;
+    out->kind = kinds[k];
+    out->index = i;
+    return 1;
+}
+
 static lv_status resolve_finals(const lv_model_def *d, const lv_sim_settings *s, final_ref *refs,
                                 lv_err *err)
 {
+    const final_ref *prev = NULL; /* the last variable found: the finals of a mission's phase
+                                   * are its model's variables in order (every state and
+                                   * output), so the next one is tried first - a lookup of
+                                   * each name among ~60 cost ~2,200 string comparisons at
+                                   * every simulation's set-up */
     for (size_t i = 0; i < s->n_final; i++) {
         refs[i].is_time = s->final_names[i] != NULL && strcmp(s->final_names[i], "time") == 0;
         if (refs[i].is_time)
             continue;
+        if (next_var_is(d, prev, s->final_names[i], &refs[i])) {
+            prev = &refs[i];
+            continue;
+        }
         lv_status st = lv_model_find(d, s->final_names[i], &refs[i].kind, &refs[i].index, err);
+        if (st == LV_OK && refs[i].kind != LV_VAR_DERIVATIVE)
+            prev = &refs[i];
         if (st != LV_OK)
             return lv_fail_prefix(err, st, "finalNames[%zu]", i);
     }

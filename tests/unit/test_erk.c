@@ -7,7 +7,9 @@
  *   - the order of convergence (error against step size at fixed steps: slopes 5 and 8) and of
  *     the dense output (one step's interpolation error at mid-step: 5 and 8);
  *   - events: a drag-free ball's apogee and impact against the closed-form times, two
- *     functions crossing at one instant, direction, no second report;
+ *     functions crossing at one instant, direction, no second report; the zeros of cos t
+ *     (x'' = -x) through a fine output grid, found at pi/2 + k pi with the event function
+ *     evaluated at the steps' ends, not at every output time;
  *   - stop time hit exactly, max_steps, stiffness detection on Van der Pol (mu = 1000, HNW II,
  *     IV.1) and none on an orbit; auto switching to BDF there.
  */
@@ -342,6 +344,65 @@ static void test_events(void)
     }
 }
 
+/* x'' = -x from (1, 0): x = (cos t, -sin t); g = x0 crosses zero at pi/2 + k pi. */
+static int osc(double t, const double *x, double *f, void *u)
+{
+    (void)t;
+    (void)u;
+    f[0] = x[1];
+    f[1] = -x[0];
+    return 0;
+}
+static int osc_g(double t, const double *x, double *g, void *u)
+{
+    (void)t;
+    (void)u;
+    g[0] = x[0];
+    return 0;
+}
+
+/* A grid of 1000 output times over 10 s: the three zeros of cos t are found at pi/2 + k pi
+ * (the closed form) in both directions, and the event function is evaluated at the steps'
+ * ends and in the steps that hold a crossing, not at every output time (before issue 24's
+ * speed work: once per output time, >= 1000 evaluations). */
+static void test_event_sampling(void)
+{
+    const lv_method ms[3] = {LV_METHOD_DP5, LV_METHOD_DOP853, LV_METHOD_AUTO};
+    for (int k = 0; k < 3; k++) {
+        double atol[2] = {1e-10, 1e-10}, x0[2] = {1.0, 0.0}, x[2], t = 0.0;
+        lv_integ_problem p = {.n = 2, .n_g = 1, .rhs = osc, .g = osc_g, .method = ms[k],
+                              .rtol = 1e-10, .atol = atol, .max_steps = 100000};
+        lv_integ *ig = NULL;
+        lv_err err;
+        lv_integ_result res;
+        int roots[1], n_roots = 0, n_out = 0;
+        CHECK_OK(lv_integ_create(&p, 0.0, x0, &ig, &err), &err);
+        CHECK_OK(lv_integ_set_stop_time(ig, 10.0, &err), &err);
+        for (int i = 1; i <= 1000;) {
+            const double to = 0.01 * i;
+            CHECK_OK(lv_integ_advance(ig, to, &t, x, &res, roots, &err), &err);
+            if (res == LV_INTEG_ROOT) {
+                const double t_exact = 0.5 * M_PI + n_roots * M_PI;
+                CHECK_CLOSE(t, t_exact, 1e-9);
+                CHECK(roots[0] == (n_roots % 2 == 0 ? -1 : 1)); /* falling, rising, falling */
+                n_roots++;
+            } else {
+                CHECK(t == to);
+                CHECK_CLOSE(x[0], cos(to), 1e-8);
+                n_out++;
+                i++;
+            }
+        }
+        lv_integ_stats st;
+        lv_integ_get_stats(ig, &st);
+        printf("event sampling %s: %d roots, %d outputs, %ld steps, %ld event evaluations\n",
+               lv_method_name(ms[k]), n_roots, n_out, st.steps, st.g_evals);
+        CHECK(n_roots == 3 && n_out == 1000);
+        CHECK(st.g_evals < n_out / 3);
+        lv_integ_free(ig);
+    }
+}
+
 /* A run that continues after an event (no restart): the function is not reported again, and
  * a restart at the root with the function exactly 0 is no new event either. */
 static void test_event_continue(void)
@@ -497,6 +558,7 @@ int main(void)
     test_order();
     test_dense_order();
     test_events();
+    test_event_sampling();
     test_event_continue();
     test_stop_and_limits();
     test_stiffness();
