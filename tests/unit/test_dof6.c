@@ -887,8 +887,15 @@ static void test_mission_handoffs(void)
      * in the dof6 phase's first row (the 3-DoF's body axes C_body_wind = R2(alpha) R3(-beta)
      * after the bank about the velocity, docs/models.md): a check of the attitude mapping, not
      * only of the Euler angles' round trip. */
+    /* from an 80 deg path angle: from 89 deg, alpha 5 deg turns the velocity through the
+     * vertical within 1.2 s, where the local-horizon angles are undefined and the 3-DoF force
+     * direction flips back and forth (1e6 steps at tolerance 1e-9; issue 27's domain guards) */
     r = run_text("test_dof6_angles.yaml",
-                 HEAD0 STAGE_RB "phases:\n"
+                 "mission: {name: six}\n"
+                 "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+                 "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 0, start_vel: 1,\n"
+                 "             start_fpa_deg: 80, start_chi_deg: 90}\n"
+                 "stages:\n" STAGE_RB "phases:\n"
                  "  - {name: up, model: dof3, stages: [s1], stop_time: 30,\n"
                  "     inputs: {alpha_deg: 5, beta_deg: 2, mu_deg: 10},\n"
                  "     aero: {s_ref: 10, CD: 0.3, CL: 0.5}}\n"
