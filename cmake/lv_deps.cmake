@@ -15,7 +15,8 @@ pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
-pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
+pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # SHA-256: src/io/atomic.c (every file
+# written, hashed as it goes out), src/post (the manifest), src/fmi
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip) # src/fmi only: the FMU archive
 # SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
@@ -88,7 +89,7 @@ add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
   SUNDIALS::cvode_shared SUNDIALS::arkode_shared SUNDIALS::nvecserial_shared
   SUNDIALS::sunmatrixdense_shared SUNDIALS::sunlinsoldense_shared SUNDIALS::sunnonlinsolfixedpoint_shared
-  lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
+  lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA PkgConfig::NETTLE Threads::Threads
   dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
@@ -99,4 +100,4 @@ target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE 
   Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)
-target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG m)
+target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG PkgConfig::NETTLE m)

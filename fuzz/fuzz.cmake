@@ -103,6 +103,7 @@ if(LV_HAVE_LIBFUZZER)
       $<TARGET_FILE:SUNDIALS::nvecserial_shared> $<TARGET_FILE:SUNDIALS::sunmatrixdense_shared>
       $<TARGET_FILE:SUNDIALS::sunlinsoldense_shared>
       $<TARGET_FILE:SUNDIALS::sunnonlinsolfixedpoint_shared> ${ERFA_LINK_LIBRARIES}
+      ${NETTLE_LINK_LIBRARIES}
       -ldl -lpthread -lm)
   set(_post_libs ${CJSON_LINK_LIBRARIES} ${NETTLE_LINK_LIBRARIES} ${SQLITE3_LINK_LIBRARIES}
       ${LIBZIP_LINK_LIBRARIES})
