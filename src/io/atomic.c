@@ -186,6 +186,12 @@ lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err)
     return LV_OK;
 }
 
+void lv_atomic_hash_at_commit(lv_atomic *a)
+{
+    if (a != NULL && a->stream != NULL)
+        a->stream->in_order = 0;
+}
+
 static void to_hex(const uint8_t *d, size_t n, char *hex)
 {
     static const char digits[] = "0123456789abcdef";

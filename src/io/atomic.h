@@ -53,6 +53,12 @@ lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err);
  * On failure nothing is left open. */
 lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err);
 
+/* For a writer that will seek back and rewrite what it wrote (the MAT sink patches its header
+ * at close): the stream stops hashing as it writes, since that digest would be thrown away,
+ * and lv_atomic_commit hashes the finished file once from the open descriptor. Without this
+ * call such a file is hashed twice (the same digest). After lv_atomic_open. */
+void lv_atomic_hash_at_commit(lv_atomic *a);
+
 /* Creates tmp empty and closes it (after lv_atomic_init): an unwritable folder fails here,
  * before a library that writes tmp by name gets to it. Errors: LV_ERR_IO as lv_atomic_open. */
 lv_status lv_atomic_reserve(lv_atomic *a, lv_err *err);

@@ -21,7 +21,8 @@
  * hashes bytes as they are written, in file order, but the patch at close rewrites t0, tf and
  * N in the first few kB after every row has been hashed, and SHA-256 has no way to replace
  * bytes already hashed (each 64-byte block's chaining value depends on all bytes before it).
- * So the stream's running digest is given up at the patch, and lv_atomic_commit (via
+ * So the stream does not hash as it writes (lv_atomic_hash_at_commit: that digest would be
+ * thrown away), and lv_atomic_commit (via
  * lv_sink_paths_commit) hashes the finished file once, before closing it, with pread() from
  * the still-open descriptor: the rows just written, from the page cache, in the closing thread
  * (a branch's or a campaign's phases close in parallel). That is one hashing pass over the
@@ -227,6 +228,7 @@ static lv_status mat_open(void *self, const lv_result_info *info, lv_err *err)
     st = lv_atomic_open(&s->paths.file, NULL, err);
     if (st != LV_OK)
         return st;
+    lv_atomic_hash_at_commit(&s->paths.file); /* close() patches the head: see the top */
     enum { BUF = 1 << 16 };
     s->buf = malloc(BUF);
     if (s->buf != NULL)

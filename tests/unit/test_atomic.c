@@ -323,6 +323,23 @@ static void test_digest_seek(void)
     CHECK_OK(lv_atomic_commit(&a, &err), &err);
     CHECK(strcmp(a.sha256, SHA_448) == 0 && recorded(OUT "/patched.txt", SHA_448));
 
+    /* the same, announced (the MAT sink): hashed once, at commit */
+    remove(OUT "/patched2.txt");
+    CHECK_OK(lv_atomic_open(&a, OUT "/patched2.txt", &err), &err);
+    lv_atomic_hash_at_commit(&a);
+    fputs("xbcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq", a.fp);
+    fseek(a.fp, 0, SEEK_SET);
+    fputc('a', a.fp);
+    CHECK_OK(lv_atomic_commit(&a, &err), &err);
+    CHECK(strcmp(a.sha256, SHA_448) == 0 && recorded(OUT "/patched2.txt", SHA_448));
+    /* announced, and not patched after all: the same digest */
+    remove(OUT "/plain2.txt");
+    CHECK_OK(lv_atomic_open(&a, OUT "/plain2.txt", &err), &err);
+    lv_atomic_hash_at_commit(&a);
+    fputs("abc", a.fp);
+    CHECK_OK(lv_atomic_commit(&a, &err), &err);
+    CHECK(strcmp(a.sha256, SHA_ABC) == 0 && recorded(OUT "/plain2.txt", SHA_ABC));
+
     /* a seek that moves nowhere (to the end, before writing on) keeps the running digest */
     remove(OUT "/nowhere.txt");
     CHECK_OK(lv_atomic_open(&a, OUT "/nowhere.txt", &err), &err);
