@@ -85,7 +85,7 @@ static int create_tmp(lv_atomic *a, int access, lv_err *err)
 
 /* ---- the hashing stream --------------------------------------------------------------- */
 
-enum { STREAM_BUF = 1 << 16 }; /* bytes: the stream's buffer, one write(2) and one hash update */
+enum { REHASH_BUF = 1 << 18 }; /* bytes read at a time when a file is hashed at commit */
 
 struct lv_atomic_stream {
     int fd;
@@ -94,7 +94,6 @@ struct lv_atomic_stream {
     uint64_t hashed; /* bytes [0, hashed) of the file are in ctx, in order */
     uint64_t pos;    /* the descriptor's offset */
     struct sha256_ctx ctx;
-    char buf[STREAM_BUF]; /* the FILE's buffer (setvbuf) */
 };
 
 /* fopencookie's write: the bytes go to the file and, when they continue the hashed ones (no
@@ -181,8 +180,7 @@ lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err)
         free(s);
         return io_fail(a, "cannot create", e, err);
     }
-    setvbuf(a->fp, s->buf, _IOFBF, sizeof s->buf);
-    a->stream = s;
+    a->stream = s; /* stdio's own buffer (BUFSIZ), or the caller's setvbuf() */
     return LV_OK;
 }
 
@@ -204,9 +202,8 @@ static void to_hex(const uint8_t *d, size_t n, char *hex)
 
 /* After the last write (fflush'ed), before the close: a->sha256 and the record on the file.
  * A stream written in one pass has its digest already; otherwise the file is hashed from the
- * descriptor, still open: what was just written, from the page cache (the stream's buffer,
- * empty after the flush, serves for reading). Anything unexpected (a failing fstat or pread)
- * leaves no digest: the manifest then reads the file itself. */
+ * descriptor, still open: what was just written, from the page cache. Anything unexpected (a
+ * failing fstat, malloc or pread) leaves no digest: the manifest then reads the file itself. */
 static void finish_digest(lv_atomic *a)
 {
     lv_atomic_stream *s = a->stream;
@@ -215,18 +212,24 @@ static void finish_digest(lv_atomic *a)
         return;
     const uint64_t size = (uint64_t)sb.st_size;
     if (!s->in_order || s->hashed != size) {
+        uint8_t *buf = malloc(REHASH_BUF);
+        if (buf == NULL)
+            return;
         sha256_init(&s->ctx);
         uint64_t at = 0;
         while (at < size) {
-            const size_t want = size - at < sizeof s->buf ? (size_t)(size - at) : sizeof s->buf;
-            const ssize_t got = pread(s->fd, s->buf, want, (off_t)at);
+            const size_t want = size - at < REHASH_BUF ? (size_t)(size - at) : REHASH_BUF;
+            const ssize_t got = pread(s->fd, buf, want, (off_t)at);
             if (got < 0 && errno == EINTR)
                 continue;
             if (got <= 0)
-                return;
-            sha256_update(&s->ctx, (size_t)got, (const uint8_t *)s->buf);
+                break;
+            sha256_update(&s->ctx, (size_t)got, buf);
             at += (uint64_t)got;
         }
+        free(buf);
+        if (at != size)
+            return;
     }
     uint8_t d[SHA256_DIGEST_SIZE];
     sha256_digest(&s->ctx, sizeof d, d);

@@ -47,8 +47,9 @@ lv_status lv_atomic_init(lv_atomic *a, const char *path, lv_err *err);
 
 /* lv_atomic_init (path NULL: the names an earlier lv_atomic_init gave), then creates tmp for
  * writing, exclusively (O_EXCL: an existing file is never truncated; in a hard-linked replica
- * of a results folder that would change the original): a->fp, a stream with a 64 KiB buffer
- * (a caller may setvbuf() its own before writing) that hashes what it writes (commit). Errors:
+ * of a results folder that would change the original): a->fp, a stream (stdio's buffer of
+ * BUFSIZ bytes; the caller may setvbuf() a larger one before writing) that hashes what it
+ * writes (commit). Errors:
  * LV_ERR_INPUT as above; LV_ERR_NOMEM; LV_ERR_IO "<tmp>: cannot create: <reason>".
  * On failure nothing is left open. */
 lv_status lv_atomic_open(lv_atomic *a, const char *path, lv_err *err);
