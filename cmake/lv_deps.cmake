@@ -15,7 +15,8 @@ pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
-pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # src/post only: SHA-256 of the manifest
+pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # SHA-256: src/io/atomic.c (every file
+# written, hashed as it goes out), src/post (the manifest), src/fmi
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)   # src/post only: the figures' PNG files
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip) # src/fmi only: the FMU archive
 # SQLite 3 (Debian: libsqlite3-dev): the Monte Carlo campaign database (src/campaign).
@@ -80,6 +81,12 @@ target_include_directories(lv_sundials_headers INTERFACE
   $<TARGET_PROPERTY:SUNDIALS::arkode_shared,INTERFACE_INCLUDE_DIRECTORIES>)
 target_compile_definitions(lv_sundials_headers INTERFACE LV_CVODE_SONAME="${LV_CVODE_SONAME}"
   LV_ARKODE_SONAME="${LV_ARKODE_SONAME}")
+# Nettle the same way (src/io/nettle_dl.c): only a process that writes a file hashes; linked,
+# its loading cost every process ~333,000 instructions. Its header is used, never the library.
+lv_soname(LV_NETTLE_SONAME nettle "${NETTLE_LIBRARY_DIRS}")
+add_library(lv_nettle_headers INTERFACE)
+target_include_directories(lv_nettle_headers INTERFACE ${NETTLE_INCLUDE_DIRS})
+target_compile_definitions(lv_nettle_headers INTERFACE LV_NETTLE_SONAME="${LV_NETTLE_SONAME}")
 add_library(lv_dl_headers INTERFACE)
 target_include_directories(lv_dl_headers INTERFACE ${NLOPT_INCLUDE_DIRS} ${SQLITE3_INCLUDE_DIRS}
   ${LIBZIP_INCLUDE_DIRS})
@@ -98,15 +105,15 @@ endif()
 # The core library, liblvsim.
 add_library(lv_deps INTERFACE)
 target_link_libraries(lv_deps INTERFACE
-  lv_sundials_headers lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
+  lv_sundials_headers lv_nettle_headers lv_matio_headers lv_dl_headers PkgConfig::YAML PkgConfig::ERFA Threads::Threads
   dragonbox::dragonbox lv_fastfloat ${CMAKE_DL_LIBS} m)
 target_include_directories(lv_deps INTERFACE ${RANDOM123_INCLUDE_DIR})
 
 # The post-processing library, liblvsim_post (src/post): cJSON; dlopen for its figures' module.
 add_library(lv_post_deps INTERFACE)
-target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON PkgConfig::NETTLE lv_dl_headers
+target_link_libraries(lv_post_deps INTERFACE PkgConfig::CJSON lv_nettle_headers lv_dl_headers
   PkgConfig::ERFA
   Threads::Threads ${CMAKE_DL_LIBS} m)
 # The figures' module, lvsim_plot.so (src/post/plot_draw.c): never PLplot in liblvsim_post.
 add_library(lv_plot_deps INTERFACE)
-target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG m)
+target_link_libraries(lv_plot_deps INTERFACE PkgConfig::CJSON PkgConfig::PLPLOT PkgConfig::PNG lv_nettle_headers m)

@@ -101,7 +101,7 @@ if(LV_HAVE_LIBFUZZER)
 
   set(_libs ${YAML_LINK_LIBRARIES} ${NLOPT_LINK_LIBRARIES} ${ERFA_LINK_LIBRARIES}
       -ldl -lpthread -lm)
-  set(_post_libs ${CJSON_LINK_LIBRARIES} ${NETTLE_LINK_LIBRARIES} ${SQLITE3_LINK_LIBRARIES}
+  set(_post_libs ${CJSON_LINK_LIBRARIES} ${SQLITE3_LINK_LIBRARIES}
       ${LIBZIP_LINK_LIBRARIES})
 
   # _lv_fuzz_target(NAME HARNESS DEFS... -- LINK...): build/fuzz/fuzz_NAME

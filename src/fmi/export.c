@@ -21,6 +21,7 @@
 #include <nettle/sha2.h>
 #include <zip.h>
 
+#include "io/nettle_dl.h"
 #include "core/status.h"
 #include "fmi/fmu_phase.h"
 #include "fmi/zip_dl.h"
@@ -563,6 +564,10 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
         return lv_fail(err, LV_ERR_IO, "the FMU binary '%s' is missing (built with lvsim as "
                        "<libdir>/lvsim/%s; reinstall, or build the target lvsim_fmu)", binary,
                        LV_FMU_MODULE);
+    const char *why = lv_nettle_error(); /* the resources' SHA-256 (io/nettle_dl.c) */
+    if (why != NULL)
+        return lv_fail(err, LV_ERR_IO, "cannot export an FMU: its resources' SHA-256 needs "
+                       "Nettle: %s", why);
     /* the output's folder must exist and be writable before the phases run */
     char outdir[PATH_MAX];
     snprintf(outdir, sizeof outdir, "%s", fmu_path);

@@ -28,6 +28,7 @@
 
 #define FMI2_EXPORT __attribute__((visibility("default")))
 #define LV_FMI2_DECLARE_FUNCTIONS
+#include "io/nettle_dl.h"
 #include "fmi/fmi2.h"
 #include "fmi/fmu_phase.h"
 #include "lvsim/lv_sim.h"
@@ -442,6 +443,8 @@ static void config_free(fmu_config *c)
 /* The SHA-256 of a file in hex; -1 when it cannot be read. */
 static int sha256_hex(const char *path, char hex[65])
 {
+    if (lv_nettle_error() != NULL) /* Nettle is loaded on first use: io/nettle_dl.c */
+        return -1;
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
         return -1;

@@ -16,6 +16,20 @@
  * placeholders, row() appends, close() patches the three numbers in place and appends
  * lvsim_failure for a failed run. MAT v4 is a plain sequence of (20-byte header, name,
  * data), written here directly: libmatio's MAT4 writer needs a matrix whole in memory.
+ *
+ * Its SHA-256 (the results folder's manifest, docs/result-files.md): the stream of io/atomic.c
+ * hashes bytes as they are written, in file order, but the patch at close rewrites t0, tf and
+ * N in the first few kB after every row has been hashed, and SHA-256 has no way to replace
+ * bytes already hashed (each 64-byte block's chaining value depends on all bytes before it).
+ * So the stream does not hash as it writes (lv_atomic_hash_at_commit: that digest would be
+ * thrown away), and lv_atomic_commit (via
+ * lv_sink_paths_commit) hashes the finished file once, before closing it, with pread() from
+ * the still-open descriptor: the rows just written, from the page cache, in the closing thread
+ * (a branch's or a campaign's phases close in parallel). That is one hashing pass over the
+ * file, as before, moved from the manifest's commit into close(); keeping the header in
+ * memory would spare reading back only those few kB. No layout with the three numbers at the
+ * end exists in dsres (OpenModelica's reader wants N in data_2's header), and hashing the
+ * rows before t0, tf and N are known is impossible for the same chaining reason.
  */
 #define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 
@@ -214,6 +228,7 @@ static lv_status mat_open(void *self, const lv_result_info *info, lv_err *err)
     st = lv_atomic_open(&s->paths.file, NULL, err);
     if (st != LV_OK)
         return st;
+    lv_atomic_hash_at_commit(&s->paths.file); /* close() patches the head: see the top */
     enum { BUF = 1 << 16 };
     s->buf = malloc(BUF);
     if (s->buf != NULL)

@@ -1455,8 +1455,12 @@ static int walk(const char *root, const char *rel, const inode_index *old, file_
 
 /* DIR/manifest.json: lvsim's identification, the command, status, mission, times, notes,
  * the history of commands that changed the folder (from OUTDIR's manifest), the live names
- * and every file lvsim wrote with its size and SHA-256 (the SHA-256 of `old` reused for a
- * file that is still the same one OUTDIR's manifest vouched for). */
+ * and every file lvsim wrote with its size and SHA-256. A file's SHA-256 is read, in this
+ * order, from: `old`, for a file that is still the same one OUTDIR's manifest vouched for;
+ * the record lv_atomic_commit left on a file written through its stream, hashed as its bytes
+ * went out (lv_atomic_digest: the same inode, size and mtime as when it was closed); else the
+ * file itself (lv_sha256_file: files libraries wrote by name - PLplot's SVGs, a campaign's
+ * SQLite database -, a file changed since, a file system without extended attributes). */
 static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_record *rec,
                                 const od_list *old, lv_err *err)
 {
@@ -1568,6 +1572,10 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
         if (o != NULL && o->sha[0] != '\0' && o->sb.st_size == sb.st_size &&
             o->sb.st_mtim.tv_sec == sb.st_mtim.tv_sec && o->sb.st_mtim.tv_nsec == sb.st_mtim.tv_nsec) {
             snprintf(hex, sizeof hex, "%s", o->sha); /* the same file the manifest vouched for */
+            bytes = (unsigned long long)sb.st_size;
+        } else if (lv_atomic_digest(fpath, &sb, hex)) {
+            /* written through lv_atomic's stream, hashed as it went out, unchanged since
+             * (the same inode, size and mtime): not read again */
             bytes = (unsigned long long)sb.st_size;
         } else if ((st = lv_sha256_file(fpath, hex, &bytes, err)) != LV_OK) {
             goto fail;

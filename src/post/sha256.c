@@ -13,12 +13,16 @@
 #include <string.h>
 
 #include "core/status.h"
+#include "io/nettle_dl.h"
 #include "lvsim/lv_outdir.h"
 
 lv_status lv_sha256_file(const char *path, char hex[65], unsigned long long *bytes, lv_err *err)
 {
     char text[128];
     hex[0] = '\0';
+    const char *why = lv_nettle_error(); /* loaded on first use: io/nettle_dl.c */
+    if (why != NULL)
+        return lv_fail(err, LV_ERR_IO, "%s: cannot compute its SHA-256: %s", path, why);
     FILE *fp = fopen(path, "rb");
     if (fp == NULL)
         return lv_fail(err, LV_ERR_IO, "%s: cannot read: %s", path, lv_strerror(errno, text, sizeof text));

@@ -12,7 +12,7 @@ ok() { pass=$((pass + 1)); echo "ok: $*"; }
 bad() { fail=$((fail + 1)); echo "FAILED: $*"; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-lazy='libmatio|libhdf5|libzip|libcrypto|libsqlite3|libnlopt|libmpi|libopen-pal|libplplot|libsundials'
+lazy='libmatio|libhdf5|libzip|libcrypto|libsqlite3|libnlopt|libmpi|libopen-pal|libplplot|libsundials|libnettle'
 loaded() { LD_DEBUG=files "$@" 2>&1 >/dev/null | sed -n 's/.*file=\([^ ]*\).*generating link map.*/\1/p' | sort -u; }
 mission="$src/examples/dof3-branch/mission.yaml"
 # kourou-leo's phases name no method (auto: lvsim's own DOP853); dof3-branch's ask for dassl and
@@ -40,5 +40,8 @@ grep -q "libsundials_arkode" <<<"$libs" && ok "lvsim simulate --method dopri5 lo
 libs=$(loaded "$lvsim" simulate free_fall --stop 1 -o "$work/ff3" --method dop853)
 grep -q "libsundials" <<<"$libs" && bad "lvsim simulate --method dop853 loads SUNDIALS" \
   || ok "lvsim simulate --method dop853 loads no SUNDIALS library"
+libs=$(loaded "$lvsim" run "$src/examples/sounding-rocket/mission.yaml" -o "$work/run" --no-plots -q)
+grep -q "libnettle" <<<"$libs" && ok "lvsim run loads Nettle (the manifest's SHA-256)" \
+  || bad "lvsim run: Nettle not among: $libs"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

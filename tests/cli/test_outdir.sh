@@ -15,7 +15,9 @@
 #     survives `run -o` byte for byte; --force keeps the user's files and refuses a run whose
 #     results would replace one; a file of lvsim's changed since is the user's; export and
 #     mc keep the user's files; modes follow the umask (022, 077) and a replaced folder keeps
-#     its mode.
+#     its mode;
+#   - the digest of every file written through lvsim's stream is the one computed as it was
+#     written (its record, src/io/atomic.h) and equals hashlib's, after a run and a campaign.
 # Bounded: about 20 s. Prints "N passed, M failed".
 set -u
 lvsim="$1"
@@ -58,6 +60,20 @@ expect 0 "^results: $out/" -- "$lvsim" run "$dof3" -o "$out/" -q --no-plots
 verify "$out" --mission "$dof3" --status ok --name dof3-branch
 ls "$out" | grep -q "phase_1_P1" && fail "files of the first mission remain: $(ls "$out")" || ok
 [ ! -e "$out/plots" ] && [ ! -e "$out/mission.kml.tmp" ] && ok || fail "old plots/ remain"
+
+# ---- digests computed as the files were written (src/io/atomic.h): every file written through
+# lvsim's stream carries the digest of its bytes (the manifest's, without reading it again),
+# equal to hashlib's; the figures PLplot writes by name (SVG; the campaign's PNGs) and the
+# campaign's database are read for the manifest. A run with plots, and a campaign of 3 runs on
+# 2 threads keeping each run's files.
+streamed='*.csv,*.mat,*.json,*.czml,*.kml,*.oem,*.html'
+expect 0 "^results: $work/dg/" -- "$lvsim" run "$paper" -o "$work/dg" -q
+verify "$work/dg" --mission "$paper" --status ok --stream "$streamed,plots/*.png"
+expect 0 "statistics:" -- "$lvsim" mc "$dof3" -n 3 -j 2 --keep-runs 3 -o "$work/dgmc"
+verify "$work/dgmc" --stream "$streamed"
+for r in 0 1 2; do verify "$work/dgmc/runs/run_$r" --stream "$streamed"; done
+[ -f "$work/dgmc/runs/run_2/phase_1_ascent.mat" ] && ok || fail "mc --keep-runs: $(ls "$work/dgmc/runs/run_2")"
+rm -rf "$work/dg" "$work/dgmc"
 
 # ---- a failed run is committed too, marked; every phase has its row; no staging name shown
 cat > "$work/fail.yaml" <<YAML

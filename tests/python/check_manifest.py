@@ -2,7 +2,7 @@
 """check_manifest.py - an independent check of a results folder against its manifest.json.
 
 Usage: check_manifest.py OUTDIR [--mission FILE] [--status ok|failed] [--name MISSION_NAME]
-                          [--foreign NAME,NAME...]
+                          [--foreign NAME,NAME...] [--stream PATTERN,PATTERN...]
 
 Checks, with Python's own hashlib and os.walk (nothing of lvsim):
   - manifest.json parses and lists exactly the regular files under OUTDIR (manifest.json
@@ -12,9 +12,17 @@ Checks, with Python's own hashlib and os.walk (nothing of lvsim):
     it names is in the manifest (one run's files, not a mix of two);
   - with --mission: the manifest's mission SHA-256 is the file's; --status, --name: the
     manifest says so; --foreign: these files (the user's, kept by --force) are in OUTDIR and
-    not in the manifest.
+    not in the manifest;
+  - every file that carries lvsim's record of the digest computed as it was written
+    (extended attribute user.lvsim.sha256: "<sha256> <bytes> <st_dev> <st_ino> <s>.<ns>",
+    src/io/atomic.h) for its current identity has the digest hashlib computes; with
+    --stream: every listed file whose name matches one of these fnmatch patterns carries
+    such a record (it was written through lvsim's hashing stream and not read again for the
+    manifest; skipped where the file system has no user extended attributes).
 Exit 0 when every check passes; otherwise the failures, one a line, and exit 1.
 """
+import errno
+import fnmatch
 import hashlib
 import json
 import os
@@ -27,6 +35,38 @@ def sha256(path):
         for chunk in iter(lambda: f.read(1 << 16), b""):
             h.update(chunk)
     return h.hexdigest()
+
+
+def record(path):
+    """lvsim's digest record on path when it names the file as it is now, else None."""
+    try:
+        rec = os.getxattr(path, "user.lvsim.sha256", follow_symlinks=False).decode()
+    except OSError:
+        return None
+    parts = rec.split(" ")
+    st = os.lstat(path)
+    if len(parts) != 5 or "." not in parts[4]:
+        return None
+    sec, nsec = parts[4].split(".")
+    if (int(parts[1]), int(parts[2]), int(parts[3]), int(sec) * 10**9 + int(nsec)) != \
+            (st.st_size, st.st_dev, st.st_ino, st.st_mtime_ns):
+        return None
+    return parts[0]
+
+
+def xattrs_work(folder):
+    probe = os.path.join(folder, ".check_manifest_xattr_probe")
+    try:
+        open(probe, "w").close()
+        os.setxattr(probe, "user.probe", b"1")
+        return True
+    except OSError as e:
+        if e.errno in (errno.ENOTSUP, errno.EOPNOTSUPP):
+            return False
+        raise
+    finally:
+        if os.path.exists(probe):
+            os.remove(probe)
 
 
 def main(argv):
@@ -59,6 +99,9 @@ def main(argv):
                                                                  listed[name]["bytes"]))
         elif sha256(path) != listed[name]["sha256"]:
             fails.append("%s: SHA-256 differs from the manifest's" % name)
+        rec = record(path)
+        if rec is not None and rec != sha256(path):
+            fails.append("%s: its record's SHA-256 differs from the file's" % name)
         if name.endswith(".tmp") or ".staging-" in name:
             fails.append("a temporary file in the results: %s" % name)
     if "summary.json" in listed:
@@ -75,6 +118,12 @@ def main(argv):
                 if name not in listed:
                     fails.append("phase %s: its %s file %s is not in the manifest" %
                                  (ph["name"], kind, name))
+    if "--stream" in opts and xattrs_work(os.path.dirname(os.path.abspath(outdir))):
+        pats = opts["--stream"].split(",")
+        for name in sorted(found & set(listed)):
+            if any(fnmatch.fnmatch(name, p) for p in pats) and \
+                    record(os.path.join(outdir, name)) is None:
+                fails.append("%s: no digest record (not hashed as it was written)" % name)
     if "--mission" in opts and man["mission"]["sha256"] != sha256(opts["--mission"]):
         fails.append("manifest mission SHA-256 is not that of %s" % opts["--mission"])
     if "--status" in opts and man["status"] != opts["--status"]:

@@ -9,19 +9,24 @@
  * leaves OUTDIR as it was; an in-place update works in a replica and adds to the manifest's
  * history; modes follow the umask and a replaced folder keeps its mode; a live folder (a
  * campaign's) claims its names at once. SHA-256 against the FIPS 180-4 examples ("abc", the
- * empty message). The CLI's behaviour (concurrent processes, kill -9) is
+ * empty message). The manifest takes the digest a file written through lv_atomic's stream
+ * carries (io/atomic.h) while the file is unchanged, without reading it, and reads the file
+ * otherwise. The CLI's behaviour (concurrent processes, kill -9) is
  * tests/cli/test_outdir.sh. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* lsetxattr */
 
 #include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include "check.h"
+#include "io/atomic.h"
 #include "lvsim/lv_outdir.h"
 
 #define ROOT "outdir_api"
@@ -457,6 +462,97 @@ static void test_live(void)
     free(kept);
 }
 
+/* The "sha256" of `name` in the manifest text `man` ("" when not listed). */
+static const char *listed_sha(const char *man, const char *name, char out[65])
+{
+    char key[300];
+    out[0] = '\0';
+    snprintf(key, sizeof key, "\"name\":\t\"%s\"", name);
+    const char *e = man != NULL ? strstr(man, key) : NULL;
+    const char *h = e != NULL ? strstr(e, "\"sha256\":\t\"") : NULL;
+    if (h != NULL && sscanf(h + strlen("\"sha256\":\t\""), "%64[0-9a-f]", out) != 1)
+        out[0] = '\0';
+    return out;
+}
+
+/* Writes `text` to DIR/name through lv_atomic's stream. */
+static void put_atomic(const char *dir, const char *name, const char *text)
+{
+    char path[4200];
+    lv_err err;
+    lv_atomic a;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (lv_atomic_open(&a, path, &err) != LV_OK)
+        return;
+    fputs(text, a.fp);
+    CHECK_OK(lv_atomic_commit(&a, &err), &err);
+}
+
+/* Rewrites DIR/name in place with `text` (the same inode); `same_mtime`: its modification
+ * time set back to the one before (what no ordinary write does), else set 1 us apart (a write
+ * within one tick of the kernel's clock may keep it: made explicit). */
+static void rewrite(const char *dir, const char *name, const char *text, int same_mtime)
+{
+    char path[4200];
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (stat(path, &sb) != 0)
+        return;
+    FILE *f = fopen(path, "r+");
+    if (f != NULL) {
+        fputs(text, f);
+        fclose(f);
+    }
+    struct timespec t[2] = {sb.st_atim, sb.st_mtim};
+    if (!same_mtime)
+        t[1].tv_nsec = (t[1].tv_nsec + 1000) % 1000000000;
+    CHECK(utimensat(AT_FDCWD, path, t, 0) == 0);
+}
+
+/* The manifest's digest of a file written through lv_atomic's stream is the one computed as
+ * the bytes went out: "abc" (FIPS 180-2 B.1) rewritten in place to "xbc" with its mtime set
+ * back is still listed with the digest of "abc" - the file was not read again (what the record
+ * trusts, as the old manifest's reuse does: the same inode, size and mtime). Rewritten with
+ * another mtime, or written without the stream, or carrying a copied record (another inode),
+ * it is read: "xbc" rewritten to "abc" is listed with the digest of "abc". */
+static void test_recorded_digest(void)
+{
+    lv_err err;
+    lv_outdir *a = NULL;
+    const char *out = ROOT "/rec";
+    const char *abc = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad";
+    CHECK_OK(lv_outdir_begin(out, NULL, 0, &a, &err), &err);
+    if (a == NULL)
+        return;
+    const char *st = lv_outdir_path(a);
+    put_atomic(st, "as_written.txt", "abc");
+    put_atomic(st, "trusted.txt", "abc");
+    rewrite(st, "trusted.txt", "x", 1);
+    put_atomic(st, "changed.txt", "xbc");
+    rewrite(st, "changed.txt", "a", 0);
+    char path[4200], from[4200], rec[256];
+    snprintf(path, sizeof path, "%s/plain.txt", st);
+    put(path, "abc");
+    snprintf(from, sizeof from, "%s/as_written.txt", st);
+    snprintf(path, sizeof path, "%s/copied.txt", st);
+    put(path, "xbc");
+    const ssize_t n = lgetxattr(from, LV_ATOMIC_XATTR, rec, sizeof rec);
+    CHECK(n > 64 && lsetxattr(path, LV_ATOMIC_XATTR, rec, n > 0 ? (size_t)n : 0, 0) == 0);
+    const lv_outdir_record ok = {"run", "ok", NULL, 0, NULL};
+    CHECK_OK(lv_outdir_commit(a, &ok, &err), &err);
+    lv_outdir_free(a);
+    char *man = slurp(ROOT "/rec/manifest.json");
+    char h[65], xbc[65];
+    unsigned long long bytes = 0;
+    CHECK_OK(lv_sha256_file(ROOT "/rec/copied.txt", xbc, &bytes, &err), &err);
+    CHECK(strcmp(listed_sha(man, "as_written.txt", h), abc) == 0);
+    CHECK(strcmp(listed_sha(man, "trusted.txt", h), abc) == 0);
+    CHECK(strcmp(listed_sha(man, "changed.txt", h), abc) == 0);
+    CHECK(strcmp(listed_sha(man, "plain.txt", h), abc) == 0);
+    CHECK(strcmp(xbc, abc) != 0 && strcmp(listed_sha(man, "copied.txt", h), xbc) == 0);
+    free(man);
+}
+
 int main(void)
 {
     rm_rf(ROOT);
@@ -471,6 +567,7 @@ int main(void)
     test_changed_and_in_place();
     test_modes();
     test_live();
+    test_recorded_digest();
     rm_rf(ROOT);
     return check_report("test_outdir_api");
 }
