@@ -28,6 +28,9 @@
 #include "lvsim/lvsim.h"
 
 #define LV_FMU_MODULE "lvsim_fmu.so"
+/* DefaultExperiment stepSize: at most this (s), and at most this many steps (modelDescription). */
+#define LV_FMU_STEP_MAX 0.01
+#define LV_FMU_STEPS_MAX 1e6
 
 /* ---- a growing text ------------------------------------------------------------------------ */
 
@@ -435,9 +438,17 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
               "    <Category name=\"logStatusWarning\" description=\"why a call returned "
               "fmi2Warning (always reported)\"/>\n"
               "  </LogCategories>\n");
+    /* stepSize: the step a fixed-step importer integrates Model Exchange with (FMPy's Euler,
+     * the compliance checker), and what most use as their output interval too. The phase's
+     * output interval (1 s and more in the examples) made explicit Euler miss the kourou-leo
+     * ascent's burnout by 29 km (issue 27); Euler is first order, its error there ~3e4 m per
+     * second of step (tests/fmi/check_importer.py prints it): LV_FMU_STEP_MAX = 0.01 s, the
+     * output interval where that is finer, and never more than LV_FMU_STEPS_MAX steps to the
+     * phase's time limit (a 90-minute coast: 5.4e5 steps). */
     const double span = s->stop_time - s->start_time;
-    const double step = s->output_interval > 0.0 ? s->output_interval
-                        : span / (s->number_of_intervals > 0 ? s->number_of_intervals : 500);
+    const double interval = s->output_interval > 0.0 ? s->output_interval
+                            : span / (s->number_of_intervals > 0 ? s->number_of_intervals : 500);
+    const double step = fmax(fmin(interval, LV_FMU_STEP_MAX), span / LV_FMU_STEPS_MAX);
     sb_add(b, "  <DefaultExperiment startTime=\"%.17g\" stopTime=\"%.17g\" tolerance=\"%.17g\" "
               "stepSize=\"%.17g\"/>\n", s->start_time, s->stop_time, s->tolerance, step);
     sb_add(b, "  <ModelVariables>\n");

@@ -1559,9 +1559,16 @@ fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
     if (!allowed(f, "fmi2EnterContinuousTimeMode", B_EVENT) ||
         !is_me(f, "fmi2EnterContinuousTimeMode"))
         return fmi2Error;
+    /* FMI 2.0.4, 3.2.3 (the Model Exchange state machine): fmi2EnterContinuousTimeMode is
+     * allowed in Event Mode whatever eventInfo said, and fmi2Terminate is allowed in Event
+     * and Continuous-Time Mode. An importer that enters Continuous-Time Mode after the
+     * phase's end (terminateSimulation) before it calls fmi2Terminate - the compliance
+     * checker's loop does - follows the state machine: accepted. The model is still
+     * evaluated where it is asked (past its end the phase is not lvsim's any more), and
+     * fmi2CompletedIntegratorStep repeats terminateSimulation. */
     if (f->end_reached)
-        return FAIL(f, "fmi2EnterContinuousTimeMode: the phase ended at t = %.9g s ('%s'); "
-                    "call fmi2Terminate", f->t, f->end_name);
+        fmu_log(f, fmi2OK, C_EVENTS, "fmi2EnterContinuousTimeMode: the phase ended at "
+                "t = %.9g s ('%s'): terminateSimulation stays set", f->t, f->end_name);
     f->mode = M_CONT;
     return fmi2OK;
 }
@@ -1578,7 +1585,10 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStat
     if (enterEventMode == NULL || terminateSimulation == NULL)
         return FAIL(f, "fmi2CompletedIntegratorStep: NULL pointer");
     *enterEventMode = fmi2False; /* no step events: every event is a state or time event */
-    *terminateSimulation = fmi2False;
+    /* after the phase's end (a legal Continuous-Time Mode, above) the request to terminate
+     * is repeated here (FMI 2.0.4, 3.2.2: "terminateSimulation ... the environment has to
+     * call fmi2Terminate") */
+    *terminateSimulation = f->end_reached ? fmi2True : fmi2False;
     return fmi2OK;
 }
 

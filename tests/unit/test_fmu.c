@@ -272,9 +272,12 @@ static int event_iteration(me_run *m)
     return 0;
 }
 
+static int me_runs, checker_sequences; /* run_me calls; those ended the checker's way */
+
 static int run_me(fmu_lib *L, double t0, size_t nx, size_t ni, double h, me_result *res,
                   double t_save, fmi2FMUstate *saved)
 {
+    me_runs++;
     me_run m = {0};
     m.L = L;
     m.nx = nx;
@@ -375,6 +378,21 @@ static int run_me(fmu_lib *L, double t0, size_t nx, size_t ni, double h, me_resu
             res->events++;
             if (L->fmi2EnterEventMode(m.c) != fmi2OK || event_iteration(&m) != 0)
                 goto out;
+            if (m.ev.terminateSimulation && (me_runs % 2) == 1) {
+                /* every other run: the FMU compliance checker's sequence, legal by FMI 2.0.4
+                 * 3.2.3 (fmi2EnterContinuousTimeMode is allowed in Event Mode, fmi2Terminate
+                 * in Continuous-Time Mode): accepted, the request to terminate repeated by
+                 * fmi2CompletedIntegratorStep, then fmi2Terminate from Continuous-Time Mode
+                 * (below). Issue 27: both calls were refused. */
+                fmi2Boolean e2 = fmi2True, t2 = fmi2False;
+                CHECK(L->fmi2EnterContinuousTimeMode(m.c) == fmi2OK);
+                CHECK(L->fmi2CompletedIntegratorStep(m.c, fmi2True, &e2, &t2) == fmi2OK);
+                CHECK(t2 == fmi2True && e2 == fmi2False);
+                double xc[32];
+                CHECK(L->fmi2GetContinuousStates(m.c, xc, nx) == fmi2OK);
+                CHECK(memcmp(xc, m.x, nx * sizeof *xc) == 0 || m.ev.valuesOfContinuousStatesChanged);
+                checker_sequences++;
+            }
             if (m.ev.terminateSimulation)
                 break;
             if (L->fmi2EnterContinuousTimeMode(m.c) != fmi2OK)
@@ -978,5 +996,9 @@ int main(void)
         fmu_close(&A);
         fmu_close(&B);
     }
+    /* every phase above ended once the compliance checker's way (one run of two) */
+    printf("Model Exchange ends by the compliance checker's sequence: %d of %d runs\n",
+           checker_sequences, me_runs);
+    CHECK(checker_sequences >= 3);
     return check_report("test_fmu");
 }
