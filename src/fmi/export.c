@@ -468,9 +468,13 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         real_elem(b, dunits[i], NULL, 0.0, (long)i + 1);
     }
     for (size_t j = 0; j < np; j++, vr++) {
-        sb_add(b, "    <!-- index %u: parameter -->\n", vr + 1);
-        var_open(b, d->params[j].name, vr, d->params[j].description, "parameter", "fixed",
-                 "exact");
+        /* the phase's inputs (lv_fmu_phase_inputs): causality input, variability continuous,
+         * no initial (FMI 2.0.4, 2.2.7: not allowed for an input) and a start value (required:
+         * the value the phase's law gives, used until the importer sets one) */
+        const int in = fp->is_input != NULL && fp->is_input[j];
+        sb_add(b, "    <!-- index %u: %s -->\n", vr + 1, in ? "input" : "parameter");
+        var_open(b, d->params[j].name, vr, d->params[j].description, in ? "input" : "parameter",
+                 in ? "continuous" : "fixed", in ? NULL : "exact");
         real_elem(b, d->params[j].unit, &fp->p0[j], 0.0, 0);
     }
     for (size_t k = 0; k < ny; k++, vr++) {

@@ -1112,7 +1112,8 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
                         "model: it cannot be set", kind == LV_VAR_DERIVATIVE ? "der(" : "", nm,
                         kind == LV_VAR_DERIVATIVE ? ")" : "", vr[i],
                         kind == LV_VAR_OUTPUT ? "an output" : "a derivative");
-        if (f->mode != M_INSTANTIATED && f->mode != M_INIT)
+        const int input = kind == LV_VAR_PARAMETER && f->ph.is_input[idx];
+        if (f->mode != M_INSTANTIATED && f->mode != M_INIT && !input)
             return FAIL(f, "fmi2SetReal: '%s' (value reference %u) is a %s: it can be set only "
                         "before fmi2ExitInitializationMode%s", nm, vr[i],
                         kind == LV_VAR_STATE ? "state" : "fixed parameter",
@@ -1120,6 +1121,16 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
                             ? " (then with fmi2SetContinuousStates)" : "");
         if (!isfinite(value[i]))
             return FAIL(f, "fmi2SetReal: value %g for '%s' is not finite", value[i], nm);
+    }
+    if (f->sim != NULL) {
+        /* Co-Simulation after initialization: inputs only (checked above), into lvsim's
+         * simulation, which restarts its integrator there (lv_sim_set) */
+        lv_err err;
+        if (lv_sim_set(f->sim, vr, nvr, value, &err) != LV_OK)
+            return FAIL(f, "fmi2SetReal: %s", err.msg);
+        for (size_t i = 0; i < nvr; i++)
+            f->p[vr[i] - 2 * f->nx] = value[i];
+        return fmi2OK;
     }
     int start_moved = 0;
     const char *child_start = NULL;
@@ -1140,7 +1151,11 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         }
     }
     if (nvr > 0) {
-        f->init_done = 0;
+        /* before initialization the model's init() runs again for the new start; an input set
+         * in Event or Continuous-Time Mode changes the right-hand side only (the model's modes
+         * stay as they are) */
+        if (f->mode == M_INSTANTIATED || f->mode == M_INIT)
+            f->init_done = 0;
         f->eval_ok = 0;
     }
     if (start_moved && f->ph.parent < 0)
@@ -1720,8 +1735,8 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
     fmu *f = c;
     if (!allowed(f, "fmi2SetRealInputDerivatives", ~0u) || !is_cs(f, "fmi2SetRealInputDerivatives"))
         return fmi2Error;
-    return FAIL(f, "fmi2SetRealInputDerivatives: this FMU has no inputs (canInterpolateInputs is "
-                "false)%s%u", nvr > 0 ? "; value reference " : "", nvr > 0 && vr ? vr[0] : 0u);
+    return FAIL(f, "fmi2SetRealInputDerivatives: not provided (canInterpolateInputs is false: "
+                "an input holds its value over a communication step)%s%u", nvr > 0 ? "; value reference " : "", nvr > 0 && vr ? vr[0] : 0u);
 }
 
 fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

@@ -17,6 +17,7 @@ void lv_fmu_phase_close(lv_fmu_phase *fp)
     lv_mission_free(fp->mission);
     free(fp->x0);
     free(fp->p0);
+    free(fp->is_input);
     memset(fp, 0, sizeof *fp);
 }
 
@@ -114,10 +115,70 @@ lv_status lv_fmu_phase_open(const char *path, const char *phase, lv_fmu_phase *f
         lv_fail_prefix(err, st, "%s: phase '%s'", path, phase);
         goto fail;
     }
+    fp->is_input = calloc(fp->def->n_params + 1, 1);
+    if (fp->is_input == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    lv_fmu_phase_inputs(fp);
     return LV_OK;
 fail:
     lv_fmu_phase_close(fp);
     return st;
+}
+
+void lv_fmu_phase_inputs(lv_fmu_phase *fp)
+{
+    const lv_model_def *d = fp->def;
+    const size_t nx = d->n_states, np = d->n_params;
+    const size_t isz = fp->inst != NULL ? d->inst_size : 0;
+    fp->n_inputs = 0;
+    double *p = malloc((np + 1) * sizeof *p), *xa = malloc((nx + 1) * sizeof *xa),
+           *xb = malloc((nx + 1) * sizeof *xb);
+    unsigned char *inst0 = malloc(isz + 1);
+    if (p == NULL || xa == NULL || xb == NULL || inst0 == NULL)
+        goto out;
+    if (isz > 0)
+        memcpy(inst0, fp->inst, isz);
+    const double t0 = fp->s->start_time;
+    const char *phase = lv_mission_phase_name(fp->mission, fp->k);
+    /* the candidates: a run parameter "<phase>.inputs.P" exists */
+    for (size_t j = 0; j < np; j++) {
+        char slot[512];
+        size_t i;
+        int deg;
+        snprintf(slot, sizeof slot, "%s.inputs.%s", phase, d->params[j].name);
+        fp->is_input[j] = lv_mission_param_find(fp->mission, slot, &i, &deg, NULL) == LV_OK;
+    }
+    /* each candidate moved from a point where all are moved, so that one acting only beside
+     * another (the bank angle mu at zero angle of attack and sideslip) shows; a step that
+     * keeps a throttle within [0, 1] and an angle within its range */
+    memcpy(p, fp->p0, np * sizeof *p);
+    for (size_t j = 0; j < np; j++)
+        if (fp->is_input[j])
+            p[j] = fp->p0[j] > 0.5 ? fp->p0[j] - 1e-3 : fp->p0[j] + 1e-3;
+    if ((d->init != NULL && d->init(t0, fp->x0, p, fp->inst) != 0) ||
+        d->rhs(t0, fp->x0, p, xa, fp->inst) != 0) {
+        memset(fp->is_input, 0, np);
+        goto out;
+    }
+    for (size_t j = 0; j < np; j++) {
+        if (!fp->is_input[j])
+            continue;
+        const double moved = p[j];
+        p[j] = fp->p0[j];
+        const int rc = d->rhs(t0, fp->x0, p, xb, fp->inst);
+        p[j] = moved;
+        fp->is_input[j] = rc == 0 && memcmp(xa, xb, nx * sizeof *xa) != 0;
+        fp->n_inputs += fp->is_input[j];
+    }
+out:
+    if (isz > 0 && inst0 != NULL)
+        memcpy(fp->inst, inst0, isz);
+    free(p);
+    free(xa);
+    free(xb);
+    free(inst0);
 }
 
 void lv_fmu_derivative_unit(const char *unit, char *buf, size_t cap)

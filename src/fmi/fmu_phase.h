@@ -21,6 +21,8 @@ typedef struct lv_fmu_phase {
     void *inst;
     const lv_sim_settings *s;  /* the phase's settings: times, method, tolerance, stops */
     double *x0, *p0;           /* [n_states], [n_params]: the start values */
+    unsigned char *is_input;   /* [n_params]: an FMI input (lv_fmu_phase_inputs) */
+    size_t n_inputs;
 } lv_fmu_phase;
 
 /* Loads `mission_path`, runs the ancestors of phase `phase` (by name) and prepares it.
@@ -36,6 +38,16 @@ void lv_fmu_phase_close(lv_fmu_phase *fp); /* accepts a cleared one */
  * names. */
 lv_status lv_fmu_phase_start_values(const lv_model_def *def, void *inst, const lv_sim_settings *s,
                                     double *x, double *p, lv_err *err);
+
+/* The model parameters that are the phase's inputs (issue 27; the paper's controls alpha,
+ * beta, mu and the throttle c_s of a 3-DoF phase): a parameter P is an FMI input (causality
+ * "input", variability "continuous", start = its value) when the mission has the run parameter
+ * "<phase>.inputs.P" - the phase types create it only where the constant input acts: not where
+ * a steering law gives the angles, nor where a throttle law or table gives the throttle - and
+ * when moving it moves the right-hand side at the start (so an inputs table over time, which
+ * replaces the constant, leaves it a parameter). Sets fp->is_input, fp->n_inputs; the model
+ * instance's bytes are put back after. Called by lv_fmu_phase_open. */
+void lv_fmu_phase_inputs(lv_fmu_phase *fp);
 
 /* The time unit of a derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s" (as the result
  * files name them). Writes into buf[cap]. */

@@ -136,6 +136,10 @@ typedef struct reference {
     double tol, dt_out;
 } reference;
 
+/* A run parameter the next simulate_reference sets before preparing the phase (NULL: none). */
+static const char *ref_set_name;
+static double ref_set_value;
+
 /* tol > 0: instead of the phase's own tolerance. */
 static int simulate_reference(const char *mission, const char *phase, double tol, reference *ref)
 {
@@ -149,6 +153,10 @@ static int simulate_reference(const char *mission, const char *phase, double tol
     int rc = -1;
     if (lv_mission_load(path, &m, &err) != LV_OK || lv_mission_phase_find(m, phase, &k, &err) ||
         lv_run_create(m, &r, &err) != LV_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        goto out;
+    }
+    if (ref_set_name != NULL && lv_run_set(r, ref_set_name, ref_set_value, &err) != LV_OK) {
         fprintf(stderr, "%s\n", err.msg);
         goto out;
     }
@@ -956,6 +964,209 @@ static void check_phase(const char *mission, const char *phase, const char *id, 
     fmu_close(&L);
 }
 
+/* The inputs (issue 27): dof3-branch's ascent is driven by constant inputs (alpha, throttle in
+ * the mission; beta, mu at their defaults), so its FMU declares alpha, beta, mu and throttle as
+ * inputs (causality input). Checked:
+ *  - set before initialization, an input is the mission's run parameter "ascent.inputs.alpha"
+ *    changed: Co-Simulation on the output grid reproduces lv_simulate of the phase with
+ *    lv_run_set("ascent.inputs.alpha") bit for bit (lv_sim's own promise on the output grid);
+ *  - set between steps (Co-Simulation) it changes the continuation only: the states at the
+ *    instant it is set are those of the run without it, the end differs;
+ *  - in Model Exchange's Continuous-Time Mode it changes the derivatives at once, and setting
+ *    the old value back gives the old derivatives bit for bit;
+ *  - a parameter that is not an input is still refused after initialization. */
+static void check_inputs(void)
+{
+    fmu_lib L;
+    printf("inputs (dof3-branch ascent):\n");
+    if (export_fmu("examples/dof3-branch/mission.yaml", "ascent", "dof3_branch_ascent", &L) != 0) {
+        CHECK(!"export and load dof3-branch ascent");
+        return;
+    }
+    char md[PATH_MAX + 32], *x = NULL;
+    snprintf(md, sizeof md, "%s/modelDescription.xml", L.dir);
+    FILE *fp = fopen(md, "r");
+    if (fp != NULL) {
+        x = calloc(1, 1 << 20);
+        if (x != NULL)
+            CHECK(fread(x, 1, (1 << 20) - 1, fp) > 0);
+        fclose(fp);
+    }
+    CHECK(x != NULL);
+    const char *const inputs[] = {"alpha", "beta", "mu", "throttle"};
+    fmi2ValueReference vr_in[4] = {0};
+    for (int i = 0; x != NULL && i < 4; i++) {
+        char pat[64];
+        snprintf(pat, sizeof pat, "name=\"%s\" valueReference=\"", inputs[i]);
+        const char *q = strstr(x, pat);
+        CHECK(q != NULL);
+        if (q == NULL)
+            continue;
+        vr_in[i] = (fmi2ValueReference)strtoul(q + strlen(pat), NULL, 10);
+        const char *end = strchr(q, '>');
+        CHECK(end != NULL && strstr(q, "causality=\"input\"") != NULL &&
+              strstr(q, "causality=\"input\"") < end);
+    }
+    const char *pq = x ? strstr(x, "name=\"propellant\" valueReference=\"") : NULL;
+    CHECK(pq != NULL);
+    const char *pv = pq != NULL ? strstr(pq, "valueReference=\"") : NULL;
+    const fmi2ValueReference vr_prop =
+        pv != NULL ? (fmi2ValueReference)strtoul(pv + strlen("valueReference=\""), NULL, 10) : 0;
+    free(x);
+    const double alpha = 0.02; /* rad */
+    reference ref = {0};
+    ref_set_name = "ascent.inputs.alpha";
+    ref_set_value = alpha;
+    CHECK(simulate_reference("examples/dof3-branch/mission.yaml", "ascent", 0.0, &ref) == 0);
+    ref_set_name = NULL;
+    const size_t nx = ref.nx;
+    fmi2ValueReference vr_x[32];
+    for (size_t i = 0; i < nx; i++)
+        vr_x[i] = (fmi2ValueReference)i;
+    /* 1. set before initialization: lv_simulate with the run parameter, bit for bit */
+    double xe[32] = {0}, t_end = NAN;
+    fmi2Component c = L.fmi2Instantiate("in", fmi2CoSimulation, L.guid, L.uri, &callbacks,
+                                        fmi2False, fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        for (int k = 0; k < 100000; k++) {
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st == fmi2Discard) {
+                L.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
+                break;
+            }
+            CHECK(st == fmi2OK);
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        t_end = t;
+        CHECK(L.fmi2GetReal(c, vr_x, nx, xe) == fmi2OK);
+        CHECK(L.fmi2Terminate(c) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    double dmax = fabs(t_end - ref.t_end);
+    for (size_t i = 0; i < nx; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref.x_end[i]));
+    printf("  alpha = %g rad set before initialization: CS on the output grid vs lv_simulate "
+           "with ascent.inputs.alpha: max difference %g (end t = %.9g s)\n", alpha, dmax, t_end);
+    CHECK(dmax == 0.0);
+    /* 2. set between Co-Simulation steps: the continuation changes, not the past */
+    double x_at[2][32], x_fin[2][32];
+    const double t_set = ref.t0 + 20.0 * ref.dt_out;
+    for (int pass = 0; pass < 2; pass++) {
+        c = L.fmi2Instantiate("in2", fmi2CoSimulation, L.guid, L.uri, &callbacks, fmi2False,
+                              fmi2False);
+        CHECK(c != NULL);
+        if (c == NULL)
+            break;
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        int set = 0;
+        for (int k = 0; k < 100000; k++) {
+            if (!set && t >= t_set - 1e-9) {
+                CHECK(L.fmi2GetReal(c, vr_x, nx, x_at[pass]) == fmi2OK);
+                if (pass == 1) {
+                    CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+                    double v = 1.0;
+                    CHECK_ERROR_LOGGED(L.fmi2SetReal(c, &vr_prop, 1, &v), "can be set only");
+                    break; /* the instance is in Error now: a fresh one for the rest */
+                }
+                set = 1;
+            }
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st == fmi2Discard)
+                break;
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        if (pass == 0)
+            CHECK(L.fmi2GetReal(c, vr_x, nx, x_fin[0]) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    /* pass 1 again, now going on after the input was set */
+    c = L.fmi2Instantiate("in3", fmi2CoSimulation, L.guid, L.uri, &callbacks, fmi2False,
+                          fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        int set = 0;
+        for (int k = 0; k < 100000; k++) {
+            if (!set && t >= t_set - 1e-9) {
+                CHECK(L.fmi2GetReal(c, vr_x, nx, x_at[1]) == fmi2OK);
+                CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+                double a = NAN;
+                CHECK(L.fmi2GetReal(c, &vr_in[0], 1, &a) == fmi2OK && a == alpha);
+                set = 1;
+            }
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        CHECK(set);
+        CHECK(L.fmi2GetReal(c, vr_x, nx, x_fin[1]) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    CHECK(memcmp(x_at[0], x_at[1], nx * sizeof(double)) == 0);
+    double dv = 0.0;
+    for (size_t i = 3; i < 6 && i < nx; i++)
+        dv = fmax(dv, fabs(x_fin[1][i] - x_fin[0][i]));
+    printf("  alpha set at t = %g s between steps: states there identical, end velocity moved "
+           "by %g m/s\n", t_set, dv);
+    CHECK(dv > 1.0);
+    /* 3. Model Exchange, Continuous-Time Mode: derivatives follow the input at once */
+    c = L.fmi2Instantiate("in4", fmi2ModelExchange, L.guid, L.uri, &callbacks, fmi2False,
+                          fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        fmi2EventInfo ev = {0};
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2NewDiscreteStates(c, &ev) == fmi2OK);
+        CHECK(L.fmi2EnterContinuousTimeMode(c) == fmi2OK);
+        CHECK(L.fmi2SetTime(c, ref.t0 + 10.0) == fmi2OK);
+        double d0[32], d1[32], d2[32], zero = 0.0;
+        CHECK(L.fmi2GetDerivatives(c, d0, nx) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d1, nx) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &zero) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d2, nx) == fmi2OK);
+        CHECK(memcmp(d0, d1, nx * sizeof *d0) != 0);
+        CHECK(memcmp(d0, d2, nx * sizeof *d0) == 0);
+        /* the throttle too: half throttle, less thrust: a smaller mass flow */
+        const double half = 0.5;
+        CHECK(L.fmi2SetReal(c, &vr_in[3], 1, &half) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d1, nx) == fmi2OK);
+        printf("  ME: der(m) %g kg/s at throttle 1, %g at 0.5\n", d0[nx - 1], d1[nx - 1]);
+        CHECK(fabs(d1[nx - 1] - 0.5 * d0[nx - 1]) <= 1e-9 * fabs(d0[nx - 1]));
+        CHECK(L.fmi2Terminate(c) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    fmu_close(&L);
+}
+
 int main(void)
 {
     if (getenv("LV_SOURCE_DIR") == NULL) {
@@ -996,6 +1207,7 @@ int main(void)
         fmu_close(&A);
         fmu_close(&B);
     }
+    check_inputs();
     /* every phase above ended once the compliance checker's way (one run of two) */
     printf("Model Exchange ends by the compliance checker's sequence: %d of %d runs\n",
            checker_sequences, me_runs);
