@@ -395,8 +395,25 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         st = unit_note(us, d->params[j].unit, d->params[j].name, err);
     for (size_t k = 0; k < ny && st == LV_OK; k++)
         st = unit_note(us, d->outputs[k].unit, d->outputs[k].name, err);
+    /* the run parameters' units as `lvsim params` writes them ("m^2", "-"): declared where the
+     * exporter knows them in base units, left out otherwise (a unit is optional) */
+    const size_t nr = fp->n_run;
+    char(*runits)[64] = calloc(nr + 1, sizeof *runits);
+    if (runits == NULL)
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < nr && st == LV_OK; r++) {
+        lv_param_info pi;
+        lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
+        int e[U_N];
+        if (strcmp(pi.unit, "-") != 0 && strlen(pi.unit) < sizeof runits[r] &&
+            unit_parse(pi.unit, e) == 0) {
+            snprintf(runits[r], sizeof runits[r], "%s", pi.unit);
+            st = unit_note(us, pi.unit, pi.name, err);
+        }
+    }
     if (st != LV_OK) {
         free(us);
+        free(runits);
         return st;
     }
     static const char *const flags =
@@ -483,6 +500,22 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
                  "calculated");
         real_elem(b, d->outputs[k].unit, NULL, 0.0, 0);
     }
+    /* the mission's run parameters that change the phase (lv_fmu_phase_run_params): fixed
+     * parameters (FMI 2.0.4, 2.2.7: set before fmi2ExitInitializationMode), start = the
+     * mission's value */
+    for (size_t r = 0; r < nr; r++, vr++) {
+        lv_param_info pi;
+        lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
+        char desc[400];
+        snprintf(desc, sizeof desc, "run parameter of the mission (lvsim params; allowed: %s): "
+                 "setting it before fmi2ExitInitializationMode prepares the phase again, its "
+                 "ancestors run again where they read it", pi.rule ? pi.rule : "finite");
+        sb_add(b, "    <!-- index %u: run parameter -->\n", vr + 1);
+        var_open(b, pi.name, vr, desc, "parameter", "fixed", "exact");
+        const double v = pi.value;
+        real_elem(b, runits[r], &v, 0.0, 0);
+    }
+    free(runits);
     sb_add(b, "  </ModelVariables>\n  <ModelStructure>\n");
     if (ny > 0) {
         sb_add(b, "    <Outputs>\n");
@@ -602,6 +635,10 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     lv_fmu_phase fp;
     if ((st = lv_fmu_phase_open(mission_path, phase, &fp, err)) != LV_OK)
         return st;
+    if ((st = lv_fmu_phase_run_params(&fp, err)) != LV_OK) {
+        lv_fmu_phase_close(&fp);
+        return st;
+    }
     const lv_model_def *d = fp.def;
     lv_mission_info mi;
     lv_mission_get_info(fp.mission, &mi);
@@ -691,6 +728,11 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     sb_add(&cfg, "lvsim-fmu 2\nguid %s\nmission mission/%s\nphase %s\nstates %zu\n"
                  "parameters %zu\noutputs %zu\nevent_indicators %zu\n", guid, rf[0].arc, phase,
            d->n_states, d->n_params, d->n_outputs, ni);
+    for (size_t r = 0; r < fp.n_run; r++) {
+        lv_param_info rp;
+        lv_mission_param_info(fp.mission, fp.run_idx[r], &rp);
+        sb_add(&cfg, "run_parameter %s\n", rp.name);
+    }
     /* the SHA-256 of each resource file as packed: the FMU refuses edited resources */
     for (size_t i = 0; i < nf; i++) {
         struct sha256_ctx sc;

@@ -9,7 +9,10 @@
  * the end event's time included. Also: modelDescription.xml against the standard's rules
  * (tests/fmi/check_model_description.py, Python's xml.etree), FMU states saved and restored
  * (the continuation bit-identical), calls out of the state machine's order and unknown value
- * references (fmi2Error with a logged message).
+ * references (fmi2Error with a logged message); every other Model Exchange run ends the way
+ * the FMU compliance checker ends one (Continuous-Time Mode after terminateSimulation, then
+ * fmi2Terminate: FMI 2.0.4, 3.2.3); the inputs (check_inputs) and the run parameters
+ * (check_run_params) against lv_simulate with the same values set by lv_run_set.
  *
  * Tolerances (stated, with the measured differences printed): Model Exchange with RK4 at
  * h = 0.01 s against CVODE at the mission's 1e-8: end time within 1 ms, position within 1 m,
@@ -1167,6 +1170,133 @@ static void check_inputs(void)
     fmu_close(&L);
 }
 
+/* The value reference of variable `name` in an unpacked FMU's modelDescription.xml; -1. */
+static long md_vr(const fmu_lib *L, const char *name)
+{
+    char md[PATH_MAX + 32], pat[300];
+    snprintf(md, sizeof md, "%s/modelDescription.xml", L->dir);
+    FILE *fp = fopen(md, "r");
+    if (fp == NULL)
+        return -1;
+    char *x = calloc(1, 1 << 21);
+    long vr = -1;
+    if (x != NULL && fread(x, 1, (1 << 21) - 1, fp) > 0) {
+        snprintf(pat, sizeof pat, "name=\"%s\" valueReference=\"", name);
+        const char *q = strstr(x, pat);
+        if (q != NULL)
+            vr = strtol(q + strlen(pat), NULL, 10);
+    }
+    free(x);
+    fclose(fp);
+    return vr;
+}
+
+/* The run parameters (issue 27): the mission's parameters that change a phase are FMI
+ * parameters of its FMU (fixed: set before fmi2ExitInitializationMode). Checked on kourou-leo's
+ * upper-burn-1 (a child of the ascent):
+ *  - "ascent.guidance.kick" moves the ascent's burnout, so the hand-off's time: not offered
+ *    (the FMU's start time is the DefaultExperiment's); "upper-burn-1.end.altitude" is;
+ *  - set to 115 km in Instantiated, Co-Simulation on the output grid reproduces lv_simulate of
+ *    upper-burn-1 after lv_run_set("upper-burn-1.end.altitude") bit for bit, and ends later
+ *    than at the mission's 110 km;
+ *  - after initialization it is refused (fmi2Error naming it);
+ *  - fmi2Reset puts it back: the run then ends where the mission's does. */
+/* From Initialization Mode: fmi2ExitInitializationMode, fmi2DoStep by H to the phase's end. */
+static int cs_to_end(fmu_lib *L, fmi2Component c, double t0, double H, double *t_end, double *x)
+{
+    fmi2ValueReference vr_x[7] = {0, 1, 2, 3, 4, 5, 6};
+    double t = t0;
+    if (L->fmi2ExitInitializationMode(c) != fmi2OK)
+        return -1;
+    for (int k = 0; k < 100000; k++) {
+        fmi2Status st = L->fmi2DoStep(c, t, H, fmi2True);
+        if (st == fmi2Discard) {
+            L->fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
+            break;
+        }
+        if (st != fmi2OK)
+            return -1;
+        t = t0 + (k + 1) * H;
+        fmi2Boolean term = fmi2False;
+        if (L->fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+            break;
+    }
+    *t_end = t;
+    return L->fmi2GetReal(c, vr_x, 7, x) == fmi2OK ? 0 : -1;
+}
+
+static void check_run_params(void)
+{
+    fmu_lib L;
+    printf("run parameters (kourou-leo upper-burn-1):\n");
+    if (export_fmu("examples/kourou-leo/mission.yaml", "upper-burn-1", "kourou_leo_upper_burn_1",
+                   &L) != 0) {
+        CHECK(!"export and load kourou-leo upper-burn-1");
+        return;
+    }
+    CHECK(md_vr(&L, "ascent.guidance.kick") == -1);
+    const long va = md_vr(&L, "upper-burn-1.end.altitude");
+    CHECK(va >= 0);
+    if (va < 0) {
+        fmu_close(&L);
+        return;
+    }
+    const fmi2ValueReference vr_alt = (fmi2ValueReference)va;
+    const double alt = 115000.0; /* m; the mission's 110 km */
+    reference ref = {0}, ref0 = {0};
+    ref_set_name = "upper-burn-1.end.altitude";
+    ref_set_value = alt;
+    CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "upper-burn-1", 0.0, &ref) == 0);
+    ref_set_name = NULL;
+    CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "upper-burn-1", 0.0, &ref0) == 0);
+    fmi2Component c = L.fmi2Instantiate("rp", fmi2CoSimulation, L.guid, L.uri, &callbacks,
+                                        fmi2False, fmi2False);
+    CHECK(c != NULL);
+    if (c == NULL) {
+        fmu_close(&L);
+        return;
+    }
+    double alt0 = NAN, now = NAN, t_end = NAN, xe[7] = {0};
+    CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &alt0) == fmi2OK && alt0 == 110000.0);
+    CHECK(L.fmi2SetReal(c, &vr_alt, 1, &alt) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &now) == fmi2OK && now == alt);
+    CHECK(cs_to_end(&L, c, ref.t0, ref.dt_out, &t_end, xe) == 0);
+    double dmax = fabs(t_end - ref.t_end);
+    for (size_t i = 0; i < 7; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref.x_end[i]));
+    printf("  end.altitude 115 km: ends at t = %.9g s (110 km: %.9g s); CS on the output grid vs "
+           "lv_simulate with lv_run_set: max difference %g\n", t_end, ref0.t_end, dmax);
+    CHECK(dmax == 0.0);
+    CHECK(ref.t_end > ref0.t_end + 0.1);
+    {   /* after initialization (StepComplete): refused, naming it */
+        fmi2Component c2 = L.fmi2Instantiate("rp2", fmi2CoSimulation, L.guid, L.uri,
+                                             &callbacks, fmi2False, fmi2False);
+        CHECK(c2 != NULL);
+        if (c2 != NULL) {
+            CHECK(L.fmi2SetupExperiment(c2, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
+            CHECK(L.fmi2EnterInitializationMode(c2) == fmi2OK);
+            CHECK(L.fmi2ExitInitializationMode(c2) == fmi2OK);
+            CHECK_ERROR_LOGGED(L.fmi2SetReal(c2, &vr_alt, 1, &alt), "can be set only before");
+            CHECK(strstr(log_text, "upper-burn-1.end.altitude") != NULL);
+            L.fmi2FreeInstance(c2);
+        }
+    }
+    CHECK(L.fmi2Reset(c) == fmi2OK);
+    CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &now) == fmi2OK && now == alt0);
+    CHECK(cs_to_end(&L, c, ref0.t0, ref0.dt_out, &t_end, xe) == 0);
+    dmax = fabs(t_end - ref0.t_end);
+    for (size_t i = 0; i < 7; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref0.x_end[i]));
+    printf("  after fmi2Reset: max difference %g from the mission's run\n", dmax);
+    CHECK(dmax == 0.0);
+    L.fmi2FreeInstance(c);
+    fmu_close(&L);
+}
+
 int main(void)
 {
     if (getenv("LV_SOURCE_DIR") == NULL) {
@@ -1208,6 +1338,7 @@ int main(void)
         fmu_close(&B);
     }
     check_inputs();
+    check_run_params();
     /* every phase above ended once the compliance checker's way (one run of two) */
     printf("Model Exchange ends by the compliance checker's sequence: %d of %d runs\n",
            checker_sequences, me_runs);
