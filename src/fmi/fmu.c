@@ -436,7 +436,7 @@ typedef struct fmu_config {
     char sha[LV_FMU_MAX_FILES][65];   /* SHA-256 of each resource file (hex) */
     char *file[LV_FMU_MAX_FILES];     /* its path under resources/ (malloc) */
     size_t n_run;
-    char *run[LV_FMU_MAX_FILES];      /* the run parameters offered (malloc) */
+    char *run[LV_FMU_MAX_RUN];        /* the run parameters offered (malloc) */
 } fmu_config;
 
 static void config_free(fmu_config *c)
@@ -508,7 +508,7 @@ static int read_config(const char *path, fmu_config *c, char *why, size_t cap)
             c->counts[2] = atol(v);
         else if (strcmp(line, "event_indicators") == 0)
             c->counts[3] = atol(v);
-        else if (strcmp(line, "run_parameter") == 0 && c->n_run < LV_FMU_MAX_FILES) {
+        else if (strcmp(line, "run_parameter") == 0 && c->n_run < LV_FMU_MAX_RUN) {
             if ((c->run[c->n_run] = strdup(v)) == NULL) {
                 fclose(fp);
                 config_free(c);
@@ -659,14 +659,7 @@ static fmi2Status adopt_phase(fmu *f, const char *why)
     lv_err err;
     if (lv_fmu_phase_reprepare(&f->ph, &err) != LV_OK)
         return FAIL(f, "%s: the phase cannot be prepared again: %s", why, err.msg);
-    const lv_model_def *d = f->ph.def;
-    if (d->n_states != f->nx || d->n_params != f->np || d->n_outputs != f->ny ||
-        d->n_events != f->ng || d->n_domain != f->nd || f->ph.s->n_stops != f->ns ||
-        (f->ph.inst != NULL ? d->inst_size : 0) != f->inst_size)
-        return FAIL(f, "%s: the phase's model changed its variables (%zu states, %zu "
-                    "parameters, %zu outputs): not this FMU's any more", why, d->n_states,
-                    d->n_params, d->n_outputs);
-    f->d = d;
+    f->d = f->ph.def; /* the same counts (lv_fmu_phase_reprepare refuses other ones) */
     f->inst = f->ph.inst;
     if (f->inst_size > 0)
         memcpy(f->inst0, f->inst, f->inst_size);

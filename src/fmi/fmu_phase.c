@@ -135,6 +135,18 @@ lv_status lv_fmu_phase_reprepare(lv_fmu_phase *fp, lv_err *err)
     fp->x0 = fp->p0 = NULL;
     fp->is_input = NULL;
     lv_status st = prepare(fp, "the mission", lv_mission_phase_name(fp->mission, fp->k), err);
+    if (st == LV_OK) {
+        /* the FMU's variables and arrays are the old model's: the new one must match */
+        const lv_model_def *a = old.def, *b = fp->def;
+        const size_t ia = old.inst != NULL ? a->inst_size : 0;
+        const size_t ib = fp->inst != NULL ? b->inst_size : 0;
+        if (a->n_states != b->n_states || a->n_params != b->n_params ||
+            a->n_outputs != b->n_outputs || a->n_events != b->n_events ||
+            a->n_domain != b->n_domain || old.s->n_stops != fp->s->n_stops || ia != ib)
+            st = lv_fail(err, LV_ERR_INPUT, "phase '%s': the model prepared again has other "
+                         "variables, events or ends than the FMU's", lv_mission_phase_name(
+                             fp->mission, fp->k));
+    }
     const lv_fmu_phase *drop = &old;
     lv_fmu_phase failed;
     if (st != LV_OK) { /* the old model stays */
@@ -215,7 +227,7 @@ lv_status lv_fmu_phase_run_params(lv_fmu_phase *fp, lv_err *err)
             keep = q != NULL && q->state == LV_PHASE_DONE && q->t_start == t0;
         }
         lv_run_set_index(r, i, v, NULL);
-        if (keep)
+        if (keep && fp->n_run < LV_FMU_MAX_RUN)
             fp->run_idx[fp->n_run++] = i;
         if (stale)
             lv_run_execute(r, &opt, &run_err);

@@ -61,6 +61,7 @@ void lv_fmu_phase_inputs(lv_fmu_phase *fp);
  * phase that does not complete
  * on the scratch run offers none. Sets fp->run_idx, fp->n_run (export time; the FMU reads the
  * names from its resources). */
+#define LV_FMU_MAX_RUN 256 /* run parameters offered at most (the first ones in the mission) */
 lv_status lv_fmu_phase_run_params(lv_fmu_phase *fp, lv_err *err);
 
 /* The phase made ready again after lv_run_set on fp->run (a run parameter changed): the
