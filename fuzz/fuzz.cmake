@@ -82,7 +82,7 @@ if(LV_HAVE_LIBFUZZER)
 
   # liblvsim (core), liblvsim_post (post: results, exports, campaign, the FMU exporter) and the
   # CLI (its main() left out: fuzz_cli calls cli_main)
-  _lv_fuzz_objects(_core_obj lib "-DLV_BUILDING_LIBRARY" ${LV_SOURCES})
+  _lv_fuzz_objects(_core_obj lib "-DLV_BUILDING_LIBRARY" ${LV_SOURCES} ${LV_DL_SOURCES})
   _lv_fuzz_objects(_post_obj lib "-DLV_BUILDING_LIBRARY" ${LV_POST_SOURCES} src/post/plot_load.c)
   get_target_property(_cli_src lvsim_cli SOURCES)
   list(FILTER _cli_src EXCLUDE REGEX "mc_mpi\\.c$")

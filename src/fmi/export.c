@@ -29,6 +29,9 @@
 #include "lvsim/lvsim.h"
 
 #define LV_FMU_MODULE "lvsim_fmu.so"
+/* DefaultExperiment stepSize: at most this (s), and at most this many steps (modelDescription). */
+#define LV_FMU_STEP_MAX 0.01
+#define LV_FMU_STEPS_MAX 1e6
 
 /* ---- a growing text ------------------------------------------------------------------------ */
 
@@ -393,8 +396,25 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         st = unit_note(us, d->params[j].unit, d->params[j].name, err);
     for (size_t k = 0; k < ny && st == LV_OK; k++)
         st = unit_note(us, d->outputs[k].unit, d->outputs[k].name, err);
+    /* the run parameters' units as `lvsim params` writes them ("m^2", "-"): declared where the
+     * exporter knows them in base units, left out otherwise (a unit is optional) */
+    const size_t nr = fp->n_run;
+    char(*runits)[64] = calloc(nr + 1, sizeof *runits);
+    if (runits == NULL)
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < nr && st == LV_OK; r++) {
+        lv_param_info pi;
+        lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
+        int e[U_N];
+        if (strcmp(pi.unit, "-") != 0 && strlen(pi.unit) < sizeof runits[r] &&
+            unit_parse(pi.unit, e) == 0) {
+            snprintf(runits[r], sizeof runits[r], "%s", pi.unit);
+            st = unit_note(us, pi.unit, pi.name, err);
+        }
+    }
     if (st != LV_OK) {
         free(us);
+        free(runits);
         return st;
     }
     static const char *const flags =
@@ -436,9 +456,17 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
               "    <Category name=\"logStatusWarning\" description=\"why a call returned "
               "fmi2Warning (always reported)\"/>\n"
               "  </LogCategories>\n");
+    /* stepSize: the step a fixed-step importer integrates Model Exchange with (FMPy's Euler,
+     * the compliance checker), and what most use as their output interval too. The phase's
+     * output interval (1 s and more in the examples) made explicit Euler miss the kourou-leo
+     * ascent's burnout by 29 km (issue 27); Euler is first order, its error there ~3e4 m per
+     * second of step (tests/fmi/check_importer.py prints it): LV_FMU_STEP_MAX = 0.01 s, the
+     * output interval where that is finer, and never more than LV_FMU_STEPS_MAX steps to the
+     * phase's time limit (a 90-minute coast: 5.4e5 steps). */
     const double span = s->stop_time - s->start_time;
-    const double step = s->output_interval > 0.0 ? s->output_interval
-                        : span / (s->number_of_intervals > 0 ? s->number_of_intervals : 500);
+    const double interval = s->output_interval > 0.0 ? s->output_interval
+                            : span / (s->number_of_intervals > 0 ? s->number_of_intervals : 500);
+    const double step = fmax(fmin(interval, LV_FMU_STEP_MAX), span / LV_FMU_STEPS_MAX);
     sb_add(b, "  <DefaultExperiment startTime=\"%.17g\" stopTime=\"%.17g\" tolerance=\"%.17g\" "
               "stepSize=\"%.17g\"/>\n", s->start_time, s->stop_time, s->tolerance, step);
     sb_add(b, "  <ModelVariables>\n");
@@ -458,9 +486,13 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         real_elem(b, dunits[i], NULL, 0.0, (long)i + 1);
     }
     for (size_t j = 0; j < np; j++, vr++) {
-        sb_add(b, "    <!-- index %u: parameter -->\n", vr + 1);
-        var_open(b, d->params[j].name, vr, d->params[j].description, "parameter", "fixed",
-                 "exact");
+        /* the phase's inputs (lv_fmu_phase_inputs): causality input, variability continuous,
+         * no initial (FMI 2.0.4, 2.2.7: not allowed for an input) and a start value (required:
+         * the value the phase's law gives, used until the importer sets one) */
+        const int in = fp->is_input != NULL && fp->is_input[j];
+        sb_add(b, "    <!-- index %u: %s -->\n", vr + 1, in ? "input" : "parameter");
+        var_open(b, d->params[j].name, vr, d->params[j].description, in ? "input" : "parameter",
+                 in ? "continuous" : "fixed", in ? NULL : "exact");
         real_elem(b, d->params[j].unit, &fp->p0[j], 0.0, 0);
     }
     for (size_t k = 0; k < ny; k++, vr++) {
@@ -469,6 +501,22 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
                  "calculated");
         real_elem(b, d->outputs[k].unit, NULL, 0.0, 0);
     }
+    /* the mission's run parameters that change the phase (lv_fmu_phase_run_params): fixed
+     * parameters (FMI 2.0.4, 2.2.7: set before fmi2ExitInitializationMode), start = the
+     * mission's value */
+    for (size_t r = 0; r < nr; r++, vr++) {
+        lv_param_info pi;
+        lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
+        char desc[400];
+        snprintf(desc, sizeof desc, "run parameter of the mission (lvsim params; allowed: %s): "
+                 "setting it before fmi2ExitInitializationMode prepares the phase again, its "
+                 "ancestors run again where they read it", pi.rule ? pi.rule : "finite");
+        sb_add(b, "    <!-- index %u: run parameter -->\n", vr + 1);
+        var_open(b, pi.name, vr, desc, "parameter", "fixed", "exact");
+        const double v = pi.value;
+        real_elem(b, runits[r], &v, 0.0, 0);
+    }
+    free(runits);
     sb_add(b, "  </ModelVariables>\n  <ModelStructure>\n");
     if (ny > 0) {
         sb_add(b, "    <Outputs>\n");
@@ -592,6 +640,10 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     lv_fmu_phase fp;
     if ((st = lv_fmu_phase_open(mission_path, phase, &fp, err)) != LV_OK)
         return st;
+    if ((st = lv_fmu_phase_run_params(&fp, err)) != LV_OK) {
+        lv_fmu_phase_close(&fp);
+        return st;
+    }
     const lv_model_def *d = fp.def;
     lv_mission_info mi;
     lv_mission_get_info(fp.mission, &mi);
@@ -681,6 +733,11 @@ lv_status lv_fmu_export(const char *mission_path, const char *phase, const char 
     sb_add(&cfg, "lvsim-fmu 2\nguid %s\nmission mission/%s\nphase %s\nstates %zu\n"
                  "parameters %zu\noutputs %zu\nevent_indicators %zu\n", guid, rf[0].arc, phase,
            d->n_states, d->n_params, d->n_outputs, ni);
+    for (size_t r = 0; r < fp.n_run; r++) {
+        lv_param_info rp;
+        lv_mission_param_info(fp.mission, fp.run_idx[r], &rp);
+        sb_add(&cfg, "run_parameter %s\n", rp.name);
+    }
     /* the SHA-256 of each resource file as packed: the FMU refuses edited resources */
     for (size_t i = 0; i < nf; i++) {
         struct sha256_ctx sc;

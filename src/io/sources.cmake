@@ -10,5 +10,5 @@ list(APPEND LV_SOURCES
   src/io/hdf5_dl.c
   src/io/table_load.c
   src/io/atomic.c
-  src/io/nettle_dl.c
   src/io/readfile.c)
+list(APPEND LV_DL_SOURCES src/io/nettle_dl.c)

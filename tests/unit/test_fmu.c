@@ -9,7 +9,10 @@
  * the end event's time included. Also: modelDescription.xml against the standard's rules
  * (tests/fmi/check_model_description.py, Python's xml.etree), FMU states saved and restored
  * (the continuation bit-identical), calls out of the state machine's order and unknown value
- * references (fmi2Error with a logged message).
+ * references (fmi2Error with a logged message); every other Model Exchange run ends the way
+ * the FMU compliance checker ends one (Continuous-Time Mode after terminateSimulation, then
+ * fmi2Terminate: FMI 2.0.4, 3.2.3); the inputs (check_inputs) and the run parameters
+ * (check_run_params) against lv_simulate with the same values set by lv_run_set.
  *
  * Tolerances (stated, with the measured differences printed): Model Exchange with RK4 at
  * h = 0.01 s against CVODE at the mission's 1e-8: end time within 1 ms, position within 1 m,
@@ -136,6 +139,10 @@ typedef struct reference {
     double tol, dt_out;
 } reference;
 
+/* A run parameter the next simulate_reference sets before preparing the phase (NULL: none). */
+static const char *ref_set_name;
+static double ref_set_value;
+
 /* tol > 0: instead of the phase's own tolerance. */
 static int simulate_reference(const char *mission, const char *phase, double tol, reference *ref)
 {
@@ -149,6 +156,10 @@ static int simulate_reference(const char *mission, const char *phase, double tol
     int rc = -1;
     if (lv_mission_load(path, &m, &err) != LV_OK || lv_mission_phase_find(m, phase, &k, &err) ||
         lv_run_create(m, &r, &err) != LV_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        goto out;
+    }
+    if (ref_set_name != NULL && lv_run_set(r, ref_set_name, ref_set_value, &err) != LV_OK) {
         fprintf(stderr, "%s\n", err.msg);
         goto out;
     }
@@ -272,9 +283,12 @@ static int event_iteration(me_run *m)
     return 0;
 }
 
+static int me_runs, checker_sequences; /* run_me calls; those ended the checker's way */
+
 static int run_me(fmu_lib *L, double t0, size_t nx, size_t ni, double h, me_result *res,
                   double t_save, fmi2FMUstate *saved)
 {
+    me_runs++;
     me_run m = {0};
     m.L = L;
     m.nx = nx;
@@ -375,6 +389,21 @@ static int run_me(fmu_lib *L, double t0, size_t nx, size_t ni, double h, me_resu
             res->events++;
             if (L->fmi2EnterEventMode(m.c) != fmi2OK || event_iteration(&m) != 0)
                 goto out;
+            if (m.ev.terminateSimulation && (me_runs % 2) == 1) {
+                /* every other run: the FMU compliance checker's sequence, legal by FMI 2.0.4
+                 * 3.2.3 (fmi2EnterContinuousTimeMode is allowed in Event Mode, fmi2Terminate
+                 * in Continuous-Time Mode): accepted, the request to terminate repeated by
+                 * fmi2CompletedIntegratorStep, then fmi2Terminate from Continuous-Time Mode
+                 * (below). Issue 27: both calls were refused. */
+                fmi2Boolean e2 = fmi2True, t2 = fmi2False;
+                CHECK(L->fmi2EnterContinuousTimeMode(m.c) == fmi2OK);
+                CHECK(L->fmi2CompletedIntegratorStep(m.c, fmi2True, &e2, &t2) == fmi2OK);
+                CHECK(t2 == fmi2True && e2 == fmi2False);
+                double xc[32];
+                CHECK(L->fmi2GetContinuousStates(m.c, xc, nx) == fmi2OK);
+                CHECK(memcmp(xc, m.x, nx * sizeof *xc) == 0 || m.ev.valuesOfContinuousStatesChanged);
+                checker_sequences++;
+            }
             if (m.ev.terminateSimulation)
                 break;
             if (L->fmi2EnterContinuousTimeMode(m.c) != fmi2OK)
@@ -938,6 +967,336 @@ static void check_phase(const char *mission, const char *phase, const char *id, 
     fmu_close(&L);
 }
 
+/* The inputs (issue 27): dof3-branch's ascent is driven by constant inputs (alpha, throttle in
+ * the mission; beta, mu at their defaults), so its FMU declares alpha, beta, mu and throttle as
+ * inputs (causality input). Checked:
+ *  - set before initialization, an input is the mission's run parameter "ascent.inputs.alpha"
+ *    changed: Co-Simulation on the output grid reproduces lv_simulate of the phase with
+ *    lv_run_set("ascent.inputs.alpha") bit for bit (lv_sim's own promise on the output grid);
+ *  - set between steps (Co-Simulation) it changes the continuation only: the states at the
+ *    instant it is set are those of the run without it, the end differs;
+ *  - in Model Exchange's Continuous-Time Mode it changes the derivatives at once, and setting
+ *    the old value back gives the old derivatives bit for bit;
+ *  - a parameter that is not an input is still refused after initialization. */
+static void check_inputs(void)
+{
+    fmu_lib L;
+    printf("inputs (dof3-branch ascent):\n");
+    if (export_fmu("examples/dof3-branch/mission.yaml", "ascent", "dof3_branch_ascent", &L) != 0) {
+        CHECK(!"export and load dof3-branch ascent");
+        return;
+    }
+    char md[PATH_MAX + 32], *x = NULL;
+    snprintf(md, sizeof md, "%s/modelDescription.xml", L.dir);
+    FILE *fp = fopen(md, "r");
+    if (fp != NULL) {
+        x = calloc(1, 1 << 20);
+        if (x != NULL)
+            CHECK(fread(x, 1, (1 << 20) - 1, fp) > 0);
+        fclose(fp);
+    }
+    CHECK(x != NULL);
+    const char *const inputs[] = {"alpha", "beta", "mu", "throttle"};
+    fmi2ValueReference vr_in[4] = {0};
+    for (int i = 0; x != NULL && i < 4; i++) {
+        char pat[64];
+        snprintf(pat, sizeof pat, "name=\"%s\" valueReference=\"", inputs[i]);
+        const char *q = strstr(x, pat);
+        CHECK(q != NULL);
+        if (q == NULL)
+            continue;
+        vr_in[i] = (fmi2ValueReference)strtoul(q + strlen(pat), NULL, 10);
+        const char *end = strchr(q, '>');
+        CHECK(end != NULL && strstr(q, "causality=\"input\"") != NULL &&
+              strstr(q, "causality=\"input\"") < end);
+    }
+    const char *pq = x ? strstr(x, "name=\"propellant\" valueReference=\"") : NULL;
+    CHECK(pq != NULL);
+    const char *pv = pq != NULL ? strstr(pq, "valueReference=\"") : NULL;
+    const fmi2ValueReference vr_prop =
+        pv != NULL ? (fmi2ValueReference)strtoul(pv + strlen("valueReference=\""), NULL, 10) : 0;
+    free(x);
+    const double alpha = 0.02; /* rad */
+    reference ref = {0};
+    ref_set_name = "ascent.inputs.alpha";
+    ref_set_value = alpha;
+    CHECK(simulate_reference("examples/dof3-branch/mission.yaml", "ascent", 0.0, &ref) == 0);
+    ref_set_name = NULL;
+    const size_t nx = ref.nx;
+    fmi2ValueReference vr_x[32];
+    for (size_t i = 0; i < nx; i++)
+        vr_x[i] = (fmi2ValueReference)i;
+    /* 1. set before initialization: lv_simulate with the run parameter, bit for bit */
+    double xe[32] = {0}, t_end = NAN;
+    fmi2Component c = L.fmi2Instantiate("in", fmi2CoSimulation, L.guid, L.uri, &callbacks,
+                                        fmi2False, fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        for (int k = 0; k < 100000; k++) {
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st == fmi2Discard) {
+                L.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
+                break;
+            }
+            CHECK(st == fmi2OK);
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        t_end = t;
+        CHECK(L.fmi2GetReal(c, vr_x, nx, xe) == fmi2OK);
+        CHECK(L.fmi2Terminate(c) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    double dmax = fabs(t_end - ref.t_end);
+    for (size_t i = 0; i < nx; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref.x_end[i]));
+    printf("  alpha = %g rad set before initialization: CS on the output grid vs lv_simulate "
+           "with ascent.inputs.alpha: max difference %g (end t = %.9g s)\n", alpha, dmax, t_end);
+    CHECK(dmax == 0.0);
+    /* 2. set between Co-Simulation steps: the continuation changes, not the past */
+    double x_at[2][32], x_fin[2][32];
+    const double t_set = ref.t0 + 20.0 * ref.dt_out;
+    for (int pass = 0; pass < 2; pass++) {
+        c = L.fmi2Instantiate("in2", fmi2CoSimulation, L.guid, L.uri, &callbacks, fmi2False,
+                              fmi2False);
+        CHECK(c != NULL);
+        if (c == NULL)
+            break;
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        int set = 0;
+        for (int k = 0; k < 100000; k++) {
+            if (!set && t >= t_set - 1e-9) {
+                CHECK(L.fmi2GetReal(c, vr_x, nx, x_at[pass]) == fmi2OK);
+                if (pass == 1) {
+                    CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+                    double v = 1.0;
+                    CHECK_ERROR_LOGGED(L.fmi2SetReal(c, &vr_prop, 1, &v), "can be set only");
+                    break; /* the instance is in Error now: a fresh one for the rest */
+                }
+                set = 1;
+            }
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st == fmi2Discard)
+                break;
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        if (pass == 0)
+            CHECK(L.fmi2GetReal(c, vr_x, nx, x_fin[0]) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    /* pass 1 again, now going on after the input was set */
+    c = L.fmi2Instantiate("in3", fmi2CoSimulation, L.guid, L.uri, &callbacks, fmi2False,
+                          fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        double t = ref.t0;
+        int set = 0;
+        for (int k = 0; k < 100000; k++) {
+            if (!set && t >= t_set - 1e-9) {
+                CHECK(L.fmi2GetReal(c, vr_x, nx, x_at[1]) == fmi2OK);
+                CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+                double a = NAN;
+                CHECK(L.fmi2GetReal(c, &vr_in[0], 1, &a) == fmi2OK && a == alpha);
+                set = 1;
+            }
+            fmi2Status st = L.fmi2DoStep(c, t, ref.dt_out, fmi2True);
+            if (st != fmi2OK)
+                break;
+            t = ref.t0 + (k + 1) * ref.dt_out;
+            fmi2Boolean term = fmi2False;
+            if (L.fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+                break;
+        }
+        CHECK(set);
+        CHECK(L.fmi2GetReal(c, vr_x, nx, x_fin[1]) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    CHECK(memcmp(x_at[0], x_at[1], nx * sizeof(double)) == 0);
+    double dv = 0.0;
+    for (size_t i = 3; i < 6 && i < nx; i++)
+        dv = fmax(dv, fabs(x_fin[1][i] - x_fin[0][i]));
+    printf("  alpha set at t = %g s between steps: states there identical, end velocity moved "
+           "by %g m/s\n", t_set, dv);
+    CHECK(dv > 1.0);
+    /* 3. Model Exchange, Continuous-Time Mode: derivatives follow the input at once */
+    c = L.fmi2Instantiate("in4", fmi2ModelExchange, L.guid, L.uri, &callbacks, fmi2False,
+                          fmi2False);
+    CHECK(c != NULL);
+    if (c != NULL) {
+        fmi2EventInfo ev = {0};
+        CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+        CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2ExitInitializationMode(c) == fmi2OK);
+        CHECK(L.fmi2NewDiscreteStates(c, &ev) == fmi2OK);
+        CHECK(L.fmi2EnterContinuousTimeMode(c) == fmi2OK);
+        CHECK(L.fmi2SetTime(c, ref.t0 + 10.0) == fmi2OK);
+        double d0[32], d1[32], d2[32], zero = 0.0;
+        CHECK(L.fmi2GetDerivatives(c, d0, nx) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &alpha) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d1, nx) == fmi2OK);
+        CHECK(L.fmi2SetReal(c, &vr_in[0], 1, &zero) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d2, nx) == fmi2OK);
+        CHECK(memcmp(d0, d1, nx * sizeof *d0) != 0);
+        CHECK(memcmp(d0, d2, nx * sizeof *d0) == 0);
+        /* the throttle too: half throttle, less thrust: a smaller mass flow */
+        const double half = 0.5;
+        CHECK(L.fmi2SetReal(c, &vr_in[3], 1, &half) == fmi2OK);
+        CHECK(L.fmi2GetDerivatives(c, d1, nx) == fmi2OK);
+        printf("  ME: der(m) %g kg/s at throttle 1, %g at 0.5\n", d0[nx - 1], d1[nx - 1]);
+        CHECK(fabs(d1[nx - 1] - 0.5 * d0[nx - 1]) <= 1e-9 * fabs(d0[nx - 1]));
+        CHECK(L.fmi2Terminate(c) == fmi2OK);
+        L.fmi2FreeInstance(c);
+    }
+    fmu_close(&L);
+}
+
+/* The value reference of variable `name` in an unpacked FMU's modelDescription.xml; -1. */
+static long md_vr(const fmu_lib *L, const char *name)
+{
+    char md[PATH_MAX + 32], pat[300];
+    snprintf(md, sizeof md, "%s/modelDescription.xml", L->dir);
+    FILE *fp = fopen(md, "r");
+    if (fp == NULL)
+        return -1;
+    char *x = calloc(1, 1 << 21);
+    long vr = -1;
+    if (x != NULL && fread(x, 1, (1 << 21) - 1, fp) > 0) {
+        snprintf(pat, sizeof pat, "name=\"%s\" valueReference=\"", name);
+        const char *q = strstr(x, pat);
+        if (q != NULL)
+            vr = strtol(q + strlen(pat), NULL, 10);
+    }
+    free(x);
+    fclose(fp);
+    return vr;
+}
+
+/* The run parameters (issue 27): the mission's parameters that change a phase are FMI
+ * parameters of its FMU (fixed: set before fmi2ExitInitializationMode). Checked on kourou-leo's
+ * upper-burn-1 (a child of the ascent):
+ *  - "ascent.guidance.kick" moves the ascent's burnout, so the hand-off's time: not offered
+ *    (the FMU's start time is the DefaultExperiment's); "upper-burn-1.end.altitude" is;
+ *  - set to 115 km in Instantiated, Co-Simulation on the output grid reproduces lv_simulate of
+ *    upper-burn-1 after lv_run_set("upper-burn-1.end.altitude") bit for bit, and ends later
+ *    than at the mission's 110 km;
+ *  - after initialization it is refused (fmi2Error naming it);
+ *  - fmi2Reset puts it back: the run then ends where the mission's does. */
+/* From Initialization Mode: fmi2ExitInitializationMode, fmi2DoStep by H to the phase's end. */
+static int cs_to_end(fmu_lib *L, fmi2Component c, double t0, double H, double *t_end, double *x)
+{
+    fmi2ValueReference vr_x[7] = {0, 1, 2, 3, 4, 5, 6};
+    double t = t0;
+    if (L->fmi2ExitInitializationMode(c) != fmi2OK)
+        return -1;
+    for (int k = 0; k < 100000; k++) {
+        fmi2Status st = L->fmi2DoStep(c, t, H, fmi2True);
+        if (st == fmi2Discard) {
+            L->fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
+            break;
+        }
+        if (st != fmi2OK)
+            return -1;
+        t = t0 + (k + 1) * H;
+        fmi2Boolean term = fmi2False;
+        if (L->fmi2GetBooleanStatus(c, fmi2Terminated, &term) == fmi2OK && term)
+            break;
+    }
+    *t_end = t;
+    return L->fmi2GetReal(c, vr_x, 7, x) == fmi2OK ? 0 : -1;
+}
+
+static void check_run_params(void)
+{
+    fmu_lib L;
+    printf("run parameters (kourou-leo upper-burn-1):\n");
+    if (export_fmu("examples/kourou-leo/mission.yaml", "upper-burn-1", "kourou_leo_upper_burn_1",
+                   &L) != 0) {
+        CHECK(!"export and load kourou-leo upper-burn-1");
+        return;
+    }
+    CHECK(md_vr(&L, "ascent.guidance.kick") == -1);
+    const long va = md_vr(&L, "upper-burn-1.end.altitude");
+    CHECK(va >= 0);
+    if (va < 0) {
+        fmu_close(&L);
+        return;
+    }
+    const fmi2ValueReference vr_alt = (fmi2ValueReference)va;
+    const double alt = 115000.0; /* m; the mission's 110 km */
+    reference ref = {0}, ref0 = {0};
+    ref_set_name = "upper-burn-1.end.altitude";
+    ref_set_value = alt;
+    CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "upper-burn-1", 0.0, &ref) == 0);
+    ref_set_name = NULL;
+    CHECK(simulate_reference("examples/kourou-leo/mission.yaml", "upper-burn-1", 0.0, &ref0) == 0);
+    fmi2Component c = L.fmi2Instantiate("rp", fmi2CoSimulation, L.guid, L.uri, &callbacks,
+                                        fmi2False, fmi2False);
+    CHECK(c != NULL);
+    if (c == NULL) {
+        fmu_close(&L);
+        return;
+    }
+    double alt0 = NAN, now = NAN, t_end = NAN, xe[7] = {0};
+    CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref.t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &alt0) == fmi2OK && alt0 == 110000.0);
+    CHECK(L.fmi2SetReal(c, &vr_alt, 1, &alt) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &now) == fmi2OK && now == alt);
+    CHECK(cs_to_end(&L, c, ref.t0, ref.dt_out, &t_end, xe) == 0);
+    double dmax = fabs(t_end - ref.t_end);
+    for (size_t i = 0; i < 7; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref.x_end[i]));
+    printf("  end.altitude 115 km: ends at t = %.9g s (110 km: %.9g s); CS on the output grid vs "
+           "lv_simulate with lv_run_set: max difference %g\n", t_end, ref0.t_end, dmax);
+    CHECK(dmax == 0.0);
+    CHECK(ref.t_end > ref0.t_end + 0.1);
+    {   /* after initialization (StepComplete): refused, naming it */
+        fmi2Component c2 = L.fmi2Instantiate("rp2", fmi2CoSimulation, L.guid, L.uri,
+                                             &callbacks, fmi2False, fmi2False);
+        CHECK(c2 != NULL);
+        if (c2 != NULL) {
+            CHECK(L.fmi2SetupExperiment(c2, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
+            CHECK(L.fmi2EnterInitializationMode(c2) == fmi2OK);
+            CHECK(L.fmi2ExitInitializationMode(c2) == fmi2OK);
+            CHECK_ERROR_LOGGED(L.fmi2SetReal(c2, &vr_alt, 1, &alt), "can be set only before");
+            CHECK(strstr(log_text, "upper-burn-1.end.altitude") != NULL);
+            L.fmi2FreeInstance(c2);
+        }
+    }
+    CHECK(L.fmi2Reset(c) == fmi2OK);
+    CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
+    CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
+    CHECK(L.fmi2GetReal(c, &vr_alt, 1, &now) == fmi2OK && now == alt0);
+    CHECK(cs_to_end(&L, c, ref0.t0, ref0.dt_out, &t_end, xe) == 0);
+    dmax = fabs(t_end - ref0.t_end);
+    for (size_t i = 0; i < 7; i++)
+        dmax = fmax(dmax, fabs(xe[i] - ref0.x_end[i]));
+    printf("  after fmi2Reset: max difference %g from the mission's run\n", dmax);
+    CHECK(dmax == 0.0);
+    L.fmi2FreeInstance(c);
+    fmu_close(&L);
+}
+
 int main(void)
 {
     if (getenv("LV_SOURCE_DIR") == NULL) {
@@ -978,5 +1337,11 @@ int main(void)
         fmu_close(&A);
         fmu_close(&B);
     }
+    check_inputs();
+    check_run_params();
+    /* every phase above ended once the compliance checker's way (one run of two) */
+    printf("Model Exchange ends by the compliance checker's sequence: %d of %d runs\n",
+           checker_sequences, me_runs);
+    CHECK(checker_sequences >= 3);
     return check_report("test_fmu");
 }
