@@ -53,6 +53,11 @@ struct lv_integ {
     lv_erk *erk;
     lv_integ *bdf;
     double t_switch;          /* auto: where BDF took over (NAN: from the start or never) */
+    /* SUNDIALS methods: the library and its objects are set up at the first advance
+     * (sun_setup), so that a simulation created and freed without stepping - `lvsim check`
+     * trying each phase's start - never loads SUNDIALS (integrate/cvode_dl.c) */
+    int sun_ready;
+    double *x_pending;        /* [n] the state to start from until then */
 };
 
 /* The explicit method of "auto": measured on the example missions and bench_flight
@@ -310,6 +315,29 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         return LV_OK;
     }
 
+    ig->x_pending = malloc(p->n * sizeof *ig->x_pending);
+    if (ig->x_pending == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+        goto fail;
+    }
+    memcpy(ig->x_pending, x0, p->n * sizeof *ig->x_pending);
+    *out = ig;
+    return LV_OK;
+
+fail:
+    lv_integ_free(ig);
+    return st;
+}
+
+/* The SUNDIALS integrator of a dassl, cvode-adams, dopri5, rk4 or euler problem, from
+ * (ig->t, ig->x_pending) with the stop time set so far: at the first advance. On failure the
+ * objects made so far stay for lv_integ_free. */
+static lv_status sun_setup(lv_integ *ig, lv_err *err)
+{
+    lv_status st = LV_OK;
+    const lv_integ_problem *p = &ig->p;
+    const double t0 = ig->t;
+    const double *x0 = ig->x_pending;
     /* SUNDIALS is loaded on first use (integrate/cvode_dl.c): say why it cannot be */
     const char *why = lv_cvode_error();
     if (why == NULL && !ig->is_cvode)
@@ -422,11 +450,19 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
             SUNCHK(ERKStepSetNoInactiveRootWarn(ig->mem), "ARKODE root warnings");
         }
     }
-    *out = ig;
+    if (!isnan(ig->tstop)) {
+        const int flag = ig->is_cvode ? CVodeSetStopTime(ig->mem, ig->tstop)
+                                      : ERKStepSetStopTime(ig->mem, ig->tstop);
+        if (flag < 0) {
+            st = lv_fail(err, LV_ERR_SOLVER, "integrator: cannot set stop time %.17g: %s",
+                         ig->tstop, ig->sun_msg);
+            goto fail;
+        }
+    }
+    ig->sun_ready = 1;
     return LV_OK;
 
 fail:
-    lv_integ_free(ig);
     return st;
 }
 
@@ -458,6 +494,7 @@ void lv_integ_free(lv_integ *ig)
     free(ig->rtol_v);
     free(ig->g_dir);
     free(ig->memo_x);
+    free(ig->x_pending);
     lv_erk_free(ig->erk);
     lv_integ_free(ig->bdf);
     free(ig);
@@ -468,6 +505,8 @@ void lv_integ_free(lv_integ *ig)
 static void raw_stats(const lv_integ *ig, lv_integ_stats *s)
 {
     memset(s, 0, sizeof *s);
+    if (!ig->sun_ready)
+        return; /* no step yet */
     if (ig->is_cvode) {
         long nfe_ls = 0;
         CVodeGetNumSteps(ig->mem, &s->steps);
@@ -574,6 +613,10 @@ lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err)
             ig->tstop = tstop;
         return st;
     }
+    if (!ig->sun_ready) { /* set at the first advance (sun_setup) */
+        ig->tstop = tstop;
+        return LV_OK;
+    }
     int flag = ig->is_cvode ? CVodeSetStopTime(ig->mem, tstop) : ERKStepSetStopTime(ig->mem, tstop);
     if (flag < 0)
         return lv_fail(err, LV_ERR_SOLVER, "integrator: cannot set stop time %.17g: %s", tstop,
@@ -612,6 +655,8 @@ static const char *flag_meaning(int flag)
 static long current_steps(const lv_integ *ig)
 {
     long n = 0;
+    if (!ig->sun_ready)
+        return ig->acc.steps;
     if (ig->is_cvode)
         CVodeGetNumSteps(ig->mem, &n);
     else
@@ -663,6 +708,11 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
 {
     if (is_own(ig->p.method))
         return own_advance(ig, tout, t, x, res, roots, err);
+    if (!ig->sun_ready) {
+        const lv_status st = sun_setup(ig, err);
+        if (st != LV_OK)
+            return st;
+    }
     /* SUNDIALS limits steps per call; ours is a total for the run. */
     long remaining = ig->p.max_steps - current_steps(ig);
     if (remaining <= 0)
@@ -719,6 +769,13 @@ lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err)
                                        : lv_erk_restart(ig->erk, t, x, err);
         if (st != LV_OK)
             return st;
+        ig->acc.restarts++;
+        ig->t = t;
+        ig->tstop = NAN;
+        return LV_OK;
+    }
+    if (!ig->sun_ready) { /* not stepped yet: start from here (sun_setup) */
+        memcpy(ig->x_pending, x, ig->p.n * sizeof *ig->x_pending);
         ig->acc.restarts++;
         ig->t = t;
         ig->tstop = NAN;
