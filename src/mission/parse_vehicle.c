@@ -302,6 +302,10 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
     r->present = 1;
     r->loc = lv_pk_loc(rb);
     const double need[6] = {NAN, NAN, NAN, 0.0, 0.0, 0.0}, zero[3] = {0.0, 0.0, 0.0};
+    /* positions in the body frame: within 1 km of the structure's origin (the largest launch
+     * vehicles are ~120 m long); 1e300 made `run` fail at the first step with der(p) not
+     * finite and no word of the key (issue 24's breaker) */
+    const lv_range body_pos = {-1000.0, 1000.0, 0, 0};
     if ((st = parse_rigid_vec(c, rb, s->name, "inertia_full", ic, 6, "kg.m2", LV_RANGE_ANY, need,
                               0, r->inertia_full)) != LV_OK)
         return st;
@@ -310,15 +314,15 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
         full[i] = c->m->slots[r->inertia_full[i]].value;
     if ((st = parse_rigid_vec(c, rb, s->name, "inertia_empty", ic, 6, "kg.m2", LV_RANGE_ANY, full,
                               0, r->inertia_empty)) != LV_OK ||
-        (st = parse_rigid_vec(c, rb, s->name, "cg_full", xyz, 3, "m", LV_RANGE_ANY, zero, 0,
+        (st = parse_rigid_vec(c, rb, s->name, "cg_full", xyz, 3, "m", body_pos, zero, 0,
                               r->cg_full)) != LV_OK)
         return st;
     for (int i = 0; i < 3; i++)
         full[i] = c->m->slots[r->cg_full[i]].value;
     lv_slot mis[2];
-    if ((st = parse_rigid_vec(c, rb, s->name, "cg_empty", xyz, 3, "m", LV_RANGE_ANY, full, 0,
+    if ((st = parse_rigid_vec(c, rb, s->name, "cg_empty", xyz, 3, "m", body_pos, full, 0,
                               r->cg_empty)) != LV_OK ||
-        (st = parse_rigid_vec(c, rb, s->name, "engine_position", xyz, 3, "m", LV_RANGE_ANY, zero,
+        (st = parse_rigid_vec(c, rb, s->name, "engine_position", xyz, 3, "m", body_pos, zero,
                               0, r->engine_pos)) != LV_OK ||
         (st = parse_rigid_vec(c, rb, s->name, "misalignment", py, 2, "rad",
                               (lv_range){-0.1, 0.1, 0, 0}, zero, 1, mis)) != LV_OK)
@@ -330,7 +334,7 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
     if (ne == NULL || lv_yaml_is_null(ne))
         return LV_OK;
     const double need3[3] = {NAN, NAN, NAN};
-    if ((st = parse_rigid_vec(c, rb, s->name, "nozzle_exit", xyz, 3, "m", LV_RANGE_ANY, need3, 0,
+    if ((st = parse_rigid_vec(c, rb, s->name, "nozzle_exit", xyz, 3, "m", body_pos, need3, 0,
                               r->nozzle_exit)) != LV_OK)
         return st;
     r->has_exit = 1;

@@ -375,6 +375,15 @@ static void test_mission_keys(void)
     BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
         "                 engine_position: {x: -0.5}, nozzle_exit: {x: -1}}\n" PHASE,
         "bad.yaml:11:59: stage 's1', rigid_body, nozzle_exit: 'y' is missing");
+    /* positions far outside any vehicle (1e300 failed `run` at the first step, not `check`) */
+    BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
+        "                 engine_position: {x: -1e300}}\n" PHASE,
+        "bad.yaml:11:39: stage 's1', rigid_body, engine_position: x must be >= -1000 and <= 1000 m, "
+        "found -1e+300");
+    BAD(HEAD "    rigid_body: {inertia_full: {xx: 100, yy: 100, zz: 100},\n"
+        "                 engine_position: {x: -0.5}, nozzle_exit: {x: -1e5, y: 0, z: 0}}\n" PHASE,
+        "bad.yaml:11:63: stage 's1', rigid_body, nozzle_exit: x must be >= -1000 and <= 1000 m, "
+        "found -100000");
     /* a stage without engines needs no position */
     {
         static const char ok[] =
