@@ -146,6 +146,16 @@ lv_status lv_fmu_phase_reprepare(lv_fmu_phase *fp, lv_err *err)
             st = lv_fail(err, LV_ERR_INPUT, "phase '%s': the model prepared again has other "
                          "variables, events or ends than the FMU's", lv_mission_phase_name(
                              fp->mission, fp->k));
+        /* the FMU's start time is fixed (its DefaultExperiment and the importer's setup): a
+         * run parameter whose new value moves the hand-off is refused, not flown from another
+         * time. The export leaves out the ones a small change moves (lv_fmu_phase_run_params);
+         * a larger change can move others (a throttle limit that sets when a burn ends). */
+        else if (old.s->start_time != fp->s->start_time)
+            st = lv_fail(err, LV_ERR_INPUT, "phase '%s': with these parameters the phase starts "
+                         "at t = %.9g s, not at the FMU's start time %.9g s: the parameters "
+                         "that change when an earlier phase ends cannot be set in this FMU",
+                         lv_mission_phase_name(fp->mission, fp->k), fp->s->start_time,
+                         old.s->start_time);
     }
     const lv_fmu_phase *drop = &old;
     lv_fmu_phase failed;

@@ -1283,6 +1283,24 @@ static void check_run_params(void)
             L.fmi2FreeInstance(c2);
         }
     }
+    {   /* a value that moves the hand-off (the ascent's throttle floor raised from 0.04 to 0.9:
+         * its q and g limits then end the ascent 4 s later; a breaker's case) is refused, not
+         * flown from another time than the FMU's start time */
+        const long vt = md_vr(&L, "booster-engine.throttle_min");
+        CHECK(vt >= 0);
+        fmi2Component c3 = L.fmi2Instantiate("rp3", fmi2CoSimulation, L.guid, L.uri,
+                                             &callbacks, fmi2False, fmi2False);
+        CHECK(c3 != NULL);
+        if (c3 != NULL && vt >= 0) {
+            const fmi2ValueReference vr_t = (fmi2ValueReference)vt;
+            const double tmin = 0.9;
+            CHECK(L.fmi2SetupExperiment(c3, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
+            CHECK(L.fmi2EnterInitializationMode(c3) == fmi2OK);
+            CHECK_ERROR_LOGGED(L.fmi2SetReal(c3, &vr_t, 1, &tmin), "not at the FMU's start time");
+        }
+        if (c3 != NULL)
+            L.fmi2FreeInstance(c3);
+    }
     CHECK(L.fmi2Reset(c) == fmi2OK);
     CHECK(L.fmi2SetupExperiment(c, fmi2False, 0.0, ref0.t0, fmi2False, 0.0) == fmi2OK);
     CHECK(L.fmi2EnterInitializationMode(c) == fmi2OK);
