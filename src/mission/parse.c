@@ -91,9 +91,18 @@ static lv_status text_bounded(const lv_pctx *c, const lv_ynode *v, const char *k
                           "result file)", key, v->len, max);
     for (size_t i = 0; line && i < v->len; i++) {
         const unsigned char ch = (unsigned char)v->text[i];
+        const unsigned char n1 = i + 1 < v->len ? (unsigned char)v->text[i + 1] : 0;
+        const unsigned char n2 = i + 2 < v->len ? (unsigned char)v->text[i + 2] : 0;
         if (ch < 0x20 || ch == 0x7f)
             return lv_pk_fail(c, v, "mission: %s: one line of text without control characters "
                               "(byte %zu is 0x%02x)", key, i + 1, ch);
+        /* UTF-8 of the C1 controls U+0080..U+009F (NEL U+0085 is a YAML line break; CSI
+         * U+009B a terminal escape) and of the line and paragraph separators U+2028, U+2029 */
+        if ((ch == 0xc2 && n1 >= 0x80 && n1 <= 0x9f) ||
+            (ch == 0xe2 && n1 == 0x80 && (n2 == 0xa8 || n2 == 0xa9)))
+            return lv_pk_fail(c, v, "mission: %s: one line of text without control characters "
+                              "(bytes %zu.. are U+%04X)", key, i + 1,
+                              ch == 0xc2 ? (unsigned)n1 : 0x2000u + (n2 - 0x80u));
     }
     return LV_OK;
 }

@@ -403,6 +403,22 @@ static void test_names(void)
         "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
         "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
         "1:17: mission: name: one line of text without control characters (byte 4 is 0x0a)");
+    /* C1 controls and line separators in UTF-8 (a breaker: CSI, NEL, U+2028 were echoed raw) */
+    BAD("name_csi",
+        "mission: {name: \"x\\u009by\"}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
+        "1:17: mission: name: one line of text without control characters (bytes 2.. are U+009B)");
+    BAD("name_nel",
+        "mission: {name: \"x\\Ny\"}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
+        "1:17: mission: name: one line of text without control characters (bytes 2.. are U+0085)");
+    BAD("name_ls",
+        "mission: {name: \"x\\Ly\"}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
+        "1:17: mission: name: one line of text without control characters (bytes 2.. are U+2028)");
     BAD("phase_65",
         "mission: {name: m}\n"
         "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
