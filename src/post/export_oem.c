@@ -23,10 +23,19 @@
 #define ROW_TOL_M 1.0    /* m: r_eci and lat/lon/h of one row must agree to this */
 
 /* KVN values are one line: control characters become spaces. */
+/* A name in a KVN value: the ODM is ASCII text (CCSDS 502.0-B-2, 7.2: "all lines ... shall
+ * consist of ASCII characters"): a control character is written as a blank, each non-ASCII
+ * character (a UTF-8 sequence, or a stray byte) as one '_'. */
 static void put_value(FILE *f, const char *s)
 {
-    for (; *s; s++)
-        fputc((unsigned char)*s < 0x20 ? ' ' : *s, f);
+    int in_seq = 0; /* inside a non-ASCII sequence already written as '_' */
+    for (; *s; s++) {
+        const unsigned char ch = (unsigned char)*s;
+        if (ch >= 0x80 && ch < 0xc0 && in_seq)
+            continue; /* a continuation byte */
+        in_seq = ch >= 0x80;
+        fputc(ch < 0x20 || ch == 0x7f ? ' ' : ch >= 0x80 ? '_' : (int)ch, f);
+    }
 }
 
 /* ECEF state of one row: position from its geodetic coordinates, velocity relative to the

@@ -399,6 +399,23 @@ static void test_leap_second(void)
     CHECK(csv != NULL && has_line(csv, "301,coast,"));
     free(csv);
     free(oem);
+    {   /* the OEM is ASCII (CCSDS 502.0-B-2, 7.2): a mission named in UTF-8 (u umlaut, the
+         * two CJK letters of "rocket", a rocket emoji) has each character written as '_' */
+        const char *u8 = "export_out/leap_utf8";
+        mkdir(u8, 0777);
+        copy_file(dir, u8, "summary.json");
+        copy_file(dir, u8, "body_sat.csv");
+        replace_in(u8, "summary.json", "\"leap-second\"",
+                   "\"l\xc3\xbcp \xe7\x81\xab\xe7\xae\xad \xf0\x9f\x9a\x80\"");
+        CHECK_OK(lv_export_run(u8, LV_EXPORT_OEM, &err), &err);
+        char *o8 = slurp(u8, "sat.oem");
+        CHECK(o8 != NULL && has_line(o8, "OBJECT_ID = l_p __ _/sat"));
+        int ascii = o8 != NULL;
+        for (const char *q = o8; q != NULL && *q; q++)
+            ascii &= (unsigned char)*q < 0x80;
+        CHECK(ascii);
+        free(o8);
+    }
 
     /* KML: xsd:dateTime has no second 60, so the leap second's rows are one <when>,
      * 23:59:59.999999Z (the first of them kept); after it the same 1 s shift as the OEM */
