@@ -76,7 +76,19 @@ typedef struct man_file {
     const char *name; /* relative to the manifest's folder */
     double bytes;
     const char *sha;
+    const char *stamp; /* "inode:ctime" when the manifest was written (file_stamp), or NULL */
 } man_file;
+
+/* A file's identity and last status change, "st_ino:st_ctim" (seconds.nanoseconds): written
+ * into the manifest beside each digest and compared by the next command, which trusts an
+ * unchanged stamp without reading the file. Any write, truncate, utime (a modification time set
+ * back after an edit), chmod or rename of the file moves its ctime, which no call can set; a
+ * copy is another inode. Renaming the folder that holds it changes neither. */
+static void file_stamp(const struct stat *sb, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%llu:%lld.%09ld", (unsigned long long)sb->st_ino,
+             (long long)sb->st_ctim.tv_sec, (long)sb->st_ctim.tv_nsec);
+}
 
 typedef struct manifest {
     cJSON *root;           /* NULL: no manifest, or one lvsim did not write */
@@ -173,12 +185,14 @@ static int man_load(const char *dir, manifest *m)
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(f, "name");
         const cJSON *bytes = cJSON_GetObjectItemCaseSensitive(f, "bytes");
         const cJSON *sha = cJSON_GetObjectItemCaseSensitive(f, "sha256");
+        const cJSON *stamp = cJSON_GetObjectItemCaseSensitive(f, "stamp");
         if (!cJSON_IsString(name) || !cJSON_IsNumber(bytes) || !cJSON_IsString(sha) ||
             !is_sha256_hex(sha->valuestring) || !(bytes->valuedouble >= 0.0))
             continue; /* an entry lvsim would not write proves nothing */
         m->files[m->n_files].name = name->valuestring;
         m->files[m->n_files].bytes = bytes->valuedouble;
         m->files[m->n_files].sha = sha->valuestring;
+        m->files[m->n_files].stamp = cJSON_IsString(stamp) ? stamp->valuestring : NULL;
         m->n_files++;
     }
     if (m->n_files > 1)
@@ -192,7 +206,7 @@ static int man_load(const char *dir, manifest *m)
 
 static const man_file *man_find(const manifest *m, const char *name)
 {
-    const man_file key = {name, 0.0, NULL};
+    const man_file key = {name, 0.0, NULL, NULL};
     return m->n_files ? bsearch(&key, m->files, m->n_files, sizeof key, by_man_name) : NULL;
 }
 
@@ -530,9 +544,16 @@ static int survey(survey_ctx *c, const char *rel, const manifest *m, size_t mrel
             if (m->root != NULL && man_is_live(m, mname)) {
                 /* lvsim's whatever it holds (a campaign database, growing) */
             } else if (mf != NULL && mf->bytes == (double)sb.st_size) {
-                const int newer = sb.st_mtim.tv_sec > m->mtime.tv_sec ||
-                                  (sb.st_mtim.tv_sec == m->mtime.tv_sec &&
-                                   sb.st_mtim.tv_nsec > m->mtime.tv_nsec);
+                /* its stamp unchanged: the file the manifest vouched for, not read; a manifest
+                 * written before stamps vouches for a file not newer than itself (an edit with
+                 * its mtime set back went unseen there) */
+                char now[64];
+                file_stamp(&sb, now, sizeof now);
+                const int newer = mf->stamp != NULL
+                                      ? strcmp(mf->stamp, now) != 0
+                                      : sb.st_mtim.tv_sec > m->mtime.tv_sec ||
+                                            (sb.st_mtim.tv_sec == m->mtime.tv_sec &&
+                                             sb.st_mtim.tv_nsec > m->mtime.tv_nsec);
                 char hex[65];
                 if (newer) {
                     lv_err ignored;
@@ -1584,6 +1605,12 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
         cJSON_AddStringToObject(f, "name", l.names[i]);
         cJSON_AddNumberToObject(f, "bytes", (double)bytes);
         cJSON_AddStringToObject(f, "sha256", hex);
+        char stamp[64];
+        struct stat now;
+        if (lstat(fpath, &now) == 0 && (unsigned long long)now.st_size == bytes) {
+            file_stamp(&now, stamp, sizeof stamp);
+            cJSON_AddStringToObject(f, "stamp", stamp);
+        }
         cJSON_AddItemToArray(files, f);
         od->files[i].name = l.names[i]; /* moves */
         od->files[i].bytes = bytes;

@@ -374,6 +374,22 @@ for c in export plot; do
   expect 2 "$(basename "$body")' changed since lvsim wrote it" -- "$lvsim" $c "$chg"
 done
 [ "$before" = "$(snap "$chg")" ] && ok || fail "a refused export changed $chg"
+# the same edit with its modification time set back (touch -r), in the folder and in a copy
+# (cp -a: another inode) - the manifest's stamp (inode, ctime) sees both (issue 24's breaker:
+# export had trusted any listed file not newer than the manifest, exit 0); an unedited copy
+# is lvsim's and exports
+for how in inplace copy; do
+  ed="$work/ed_$how"
+  "$lvsim" run "$dof3" -o "$ed" -q --no-plots > /dev/null 2>&1 || fail "run into $ed"
+  [ "$how" = copy ] && { cp -a "$ed" "$ed.c"; ed="$ed.c"; }
+  body=$(ls "$ed"/body_*.csv | head -1)
+  cp -p "$body" "$work/ref_time"
+  sed -i '3s/[0-9]/7/' "$body"; touch -r "$work/ref_time" "$body"
+  expect 2 "$(basename "$body")' changed since lvsim wrote it" -- "$lvsim" export "$ed"
+done
+"$lvsim" run "$dof3" -o "$work/ed_orig" -q --no-plots > /dev/null 2>&1
+cp -a "$work/ed_orig" "$work/ed_orig.c"
+"$lvsim" export "$work/ed_orig.c" > /dev/null 2>&1 && ok || fail "export of an unedited cp -a copy"
 # a foreign manifest.json: --force would refuse it too, so it is not suggested
 fm="$work/fm"; mkdir -p "$fm"; echo '{"not": "lvsim"}' > "$fm/manifest.json"
 out=$("$lvsim" run "$dof3" -o "$fm" -q --no-plots 2>&1); rc=$?
