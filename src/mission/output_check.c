@@ -16,6 +16,11 @@ lv_status lv_output_check(const char *path, const lv_mission *m, unsigned flags,
     if (path == NULL || path[0] == '\0')
         return lv_fail(err, LV_ERR_INPUT, "the output file's name is empty");
     const size_t n = strlen(path);
+    for (size_t i = 0; i < n; i++) /* the messages print it on one line */
+        if ((unsigned char)path[i] < 0x20 || path[i] == 0x7f)
+            return lv_fail(err, LV_ERR_INPUT, "the output file's name holds a control character "
+                           "(byte %zu is 0x%02x): name another file", i + 1,
+                           (unsigned)(unsigned char)path[i]);
     if (path[n - 1] == '/')
         return lv_fail(err, LV_ERR_INPUT, "'%s' names a folder: name the file to write", path);
     struct stat so;

@@ -127,6 +127,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         (st = text_bounded(c, v, "name", LV_MISSION_NAME_MAX, 1)) != LV_OK ||
         (st = lv_pk_str(c, v, "mission", "name", &m->name)) != LV_OK)
         return st;
+    if (strspn(m->name, " ") == strlen(m->name)) /* it names the results, the FMU, the exports */
+        return lv_pk_fail(c, v, "mission: name: at least one character that is not a blank");
     if ((v = lv_pk_get(info, "epoch")) != NULL) {
         const char *ep;
         if ((st = lv_pk_text(c, v, "mission", "epoch", &ep)) != LV_OK)

@@ -801,6 +801,11 @@ static lv_status set_names(lv_outdir *od, const char *outdir, lv_err *err)
     size_t n = strlen(outdir);
     if (n >= sizeof od->final)
         return lv_fail(err, LV_ERR_INPUT, "results folder name of %zu bytes is too long", n);
+    for (size_t i = 0; i < n; i++) /* every message and the manifest print it on one line */
+        if ((unsigned char)outdir[i] < 0x20 || outdir[i] == 0x7f)
+            return lv_fail(err, LV_ERR_INPUT, "the results folder's name holds a control "
+                           "character (byte %zu is 0x%02x): name another folder", i + 1,
+                           (unsigned)(unsigned char)outdir[i]);
     char path[PATH_MAX];
     memcpy(path, outdir, n + 1);
     while (n > 1 && path[n - 1] == '/')

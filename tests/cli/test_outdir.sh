@@ -390,6 +390,11 @@ done
 "$lvsim" run "$dof3" -o "$work/ed_orig" -q --no-plots > /dev/null 2>&1
 cp -a "$work/ed_orig" "$work/ed_orig.c"
 "$lvsim" export "$work/ed_orig.c" > /dev/null 2>&1 && ok || fail "export of an unedited cp -a copy"
+# a control character in an output's name is refused (a breaker's `fmu -o $'a\nb.fmu'` was
+# written and printed raw)
+expect 2 "results folder's name holds a control character \(byte [0-9]+ is 0x0a\)" -- "$lvsim" run "$dof3" -o "$work/"$'a\nb' -q --no-plots
+expect 2 "output file's name holds a control character \(byte 2 is 0x09\)" -- "$lvsim" fmu "$dof3" --phase ascent -o $'a\tb.fmu'
+[ ! -e "$work/"$'a\nb' ] && [ ! -e $'a\tb.fmu' ] && ok || fail "a refused name was written"
 # a foreign manifest.json: --force would refuse it too, so it is not suggested
 fm="$work/fm"; mkdir -p "$fm"; echo '{"not": "lvsim"}' > "$fm/manifest.json"
 out=$("$lvsim" run "$dof3" -o "$fm" -q --no-plots 2>&1); rc=$?

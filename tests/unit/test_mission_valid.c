@@ -419,6 +419,11 @@ static void test_names(void)
         "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
         "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
         "1:17: mission: name: one line of text without control characters (bytes 2.. are U+2028)");
+    BAD("name_blank",
+        "mission: {name: \"   \"}\n"
+        "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+        "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n",
+        "1:17: mission: name: at least one character that is not a blank");
     BAD("phase_65",
         "mission: {name: m}\n"
         "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
