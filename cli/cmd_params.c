@@ -35,14 +35,18 @@ static void print_params(const char *path, const lv_mission *m)
 {
     const size_t n = lv_mission_param_count(m);
     printf("# mission '%s' (%s): %zu parameters\n", lv_mission_name(m), path, n);
-    int w = 10; /* the allowed-values column: as wide as its widest rule */
+    int w = 10;  /* the allowed-values column: as wide as its widest rule */
+    int wn = 32; /* the names' column likewise (a breaker: 40-character names shifted the
+                  * value column out of line) */
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);
         if ((int)strlen(p.rule) > w)
             w = (int)strlen(p.rule);
+        if ((int)strlen(p.name) > wn)
+            wn = (int)strlen(p.name);
     }
-    printf("# %-30s %16s  %-8s %-*s %s\n", "name", "value", "unit", w, "allowed", "line");
+    printf("# %-*s %16s  %-8s %-*s %s\n", wn - 2, "name", "value", "unit", w, "allowed", "line");
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);
@@ -51,7 +55,7 @@ static void print_params(const char *path, const lv_mission *m)
             snprintf(line, sizeof line, "%d", p.line);
         else
             snprintf(line, sizeof line, "default");
-        printf("%-32s %16.10g  %-8s %-*s %s\n", p.name, p.value, p.unit[0] ? p.unit : "-", w,
+        printf("%-*s %16.10g  %-8s %-*s %s\n", wn, p.name, p.value, p.unit[0] ? p.unit : "-", w,
                p.rule, line);
     }
 }
