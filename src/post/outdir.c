@@ -1594,12 +1594,13 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
         unsigned long long bytes = 0;
         struct stat sb;
         snprintf(fpath, sizeof fpath, "%s/%s", dir, l.names[i]);
-        const od_entry *o = lstat(fpath, &sb) == 0 ? same_file(&ix, &sb) : NULL;
+        const int have_sb = lstat(fpath, &sb) == 0;
+        const od_entry *o = have_sb ? same_file(&ix, &sb) : NULL;
         if (o != NULL && o->sha[0] != '\0' && o->sb.st_size == sb.st_size &&
             o->sb.st_mtim.tv_sec == sb.st_mtim.tv_sec && o->sb.st_mtim.tv_nsec == sb.st_mtim.tv_nsec) {
             snprintf(hex, sizeof hex, "%s", o->sha); /* the same file the manifest vouched for */
             bytes = (unsigned long long)sb.st_size;
-        } else if (lv_atomic_digest(fpath, &sb, hex)) {
+        } else if (have_sb && lv_atomic_digest(fpath, &sb, hex)) {
             /* written through lv_atomic's stream, hashed as it went out, unchanged since
              * (the same inode, size and mtime): not read again */
             bytes = (unsigned long long)sb.st_size;
@@ -1610,10 +1611,9 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
         cJSON_AddStringToObject(f, "name", l.names[i]);
         cJSON_AddNumberToObject(f, "bytes", (double)bytes);
         cJSON_AddStringToObject(f, "sha256", hex);
-        char stamp[64];
-        struct stat now;
-        if (lstat(fpath, &now) == 0 && (unsigned long long)now.st_size == bytes) {
-            file_stamp(&now, stamp, sizeof stamp);
+        char stamp[64]; /* the file as stat'ed above: reading it to hash moves no ctime */
+        if (have_sb && (unsigned long long)sb.st_size == bytes) {
+            file_stamp(&sb, stamp, sizeof stamp);
             cJSON_AddStringToObject(f, "stamp", stamp);
         }
         cJSON_AddItemToArray(files, f);
