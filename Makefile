@@ -24,7 +24,9 @@ demo: deps viewer
 	@scripts/build-quiet.sh $(BUILD) $(JOBS) $(CMAKE_FLAGS)
 	@scripts/demo.sh $(BUILD)
 
-test: deps build
+# The viewer's npm packages before ctest: npm runs outside any test's time limit and never
+# beside test_fresh_clone's own `npm ci` (two installs sharing ~/.npm can hang).
+test: deps viewer build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 # The whole suite under AddressSanitizer + UndefinedBehaviorSanitizer.

@@ -132,6 +132,7 @@ if(LV_BUILD_TESTS)
   # only, a failed build shows its log (~1 min; 77: skipped without npm).
   add_test(NAME test_fresh_clone
            COMMAND ${PROJECT_SOURCE_DIR}/tests/install/test_fresh_clone.sh ${PROJECT_SOURCE_DIR})
+  # RESOURCE_LOCK npm: never beside test_viewer, which may run viewer/install.sh too.
   set_tests_properties(test_fresh_clone PROPERTIES LABELS "install;no-asan" TIMEOUT 600
-                       SKIP_RETURN_CODE 77)
+                       SKIP_RETURN_CODE 77 RESOURCE_LOCK npm)
 endif()

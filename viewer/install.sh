@@ -14,8 +14,21 @@ fi
 command -v npm >/dev/null || { echo "viewer/install.sh: npm not found (Debian: apt-get install nodejs npm; scripts/install-deps.sh does)" >&2; exit 1; }
 log="$here/npm-ci.log"
 printf 'viewer/install.sh: npm ci in %s (CesiumJS, playwright-core; log %s) ... ' "$here" "$log"
-if ! npm ci --no-audit --no-fund --loglevel=error > "$log" 2>&1; then
-  echo "FAILED"; tail -n 30 "$log" >&2; exit 1
+# npm ci can hang after its downloads (npm/cli#4028; seen here once when two installs shared
+# ~/.npm): each attempt is bounded (NPM_CI_TIMEOUT seconds, default 300; a normal install takes
+# 15-40 s) and a failed or hung attempt is retried once, after `npm cache verify`.
+limit="${NPM_CI_TIMEOUT:-300}"
+attempt() { timeout --kill-after=10 "$limit" npm ci --no-audit --no-fund --loglevel=error >> "$log" 2>&1; }
+: > "$log"
+rc=0; attempt || rc=$?
+if [ "$rc" -ne 0 ]; then
+  [ "$rc" -eq 124 ] && why="no answer in $limit s" || why="exit $rc"
+  printf '%s, retrying ... ' "$why"
+  echo "--- viewer/install.sh: attempt 1 failed ($why); npm cache verify, attempt 2" >> "$log"
+  timeout 120 npm cache verify >> "$log" 2>&1 || true
+  if ! attempt; then
+    echo "FAILED"; tail -n 30 "$log" >&2; exit 1
+  fi
 fi
 echo "done"
 touch "$stamp"

@@ -10,6 +10,7 @@ if(LV_NODE)
     ENVIRONMENT "LV_SOURCE_DIR=${PROJECT_SOURCE_DIR};LVSIM=$<TARGET_FILE:lvsim_cli>;LV_VIEWER_OUT=${CMAKE_CURRENT_BINARY_DIR}/viewer"
     SKIP_RETURN_CODE 77
     TIMEOUT 300
+    RESOURCE_LOCK npm
     LABELS "viewer;no-asan")
 else()
   message(STATUS "node not found: test_viewer not registered (the viewer's test needs Node.js >= 18)")
