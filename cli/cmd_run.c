@@ -392,7 +392,7 @@ static void add_note(run_job *j, const char *fmt, ...)
 static void post_failed(run_job *j, lv_status st, const char *step, const lv_err *e)
 {
     j->post_st = j->post_st != LV_OK ? j->post_st : st;
-    snprintf(j->post_msg[j->n_post++], sizeof j->post_msg[0], "%s%.480s", step, e->msg);
+    snprintf(j->post_msg[j->n_post++], sizeof j->post_msg[0], "%s%.960s", step, e->msg);
 }
 
 /* summary.json and the body trajectories; then, if they were written, the exports and the
@@ -449,7 +449,7 @@ static int commit(run_job *j)
     /* messages name files in the staging folder: name them where they will be */
     for (size_t i = 0; i < j->n_post; i++) {
         restage(j->post_msg[i], sizeof j->post_msg[0], j->stage, lv_outdir_final(j->od));
-        add_note(j, "post-processing: %.500s", j->post_msg[i]);
+        add_note(j, "post-processing: %.1000s", j->post_msg[i]);
     }
     /* a signal during the post-processing: the simulation is complete (summary.json says how
      * it ended, and so does the manifest's status); the note says what may be missing */

@@ -61,6 +61,12 @@ typedef struct lv_event_def {
     const char *name;        /* "burnout", "impact" */
     const char *description; /* one line */
     lv_dir direction;
+    /* 1: an end of the run (its handler stops it). lv_simulate() refuses a start at which
+     * such an event with a direction (rising or falling) is already passed - g lies beyond
+     * its crossing and moves further away (probed as the start's roots are): it could fire
+     * only after turning back, so the run would go on to its stop time ("end already
+     * passed at the start"). 0: a mode change, never checked. */
+    int ends_run;
 } lv_event_def;
 
 /* What an event handler asks lv_simulate() to do next. */
@@ -80,7 +86,15 @@ typedef struct lv_domain_def {
     double lower;         /* the domain: quantity >= lower */
     const char *why;      /* what leaving it means and what to do: "the vehicle is under the
                              ground: end the phase with an `impact` end" */
+    /* 1: a guard that holds only once the quantity has been above `lower`: a start below it
+     * is accepted (a launch from rest below a speed guard) and only a crossing from above
+     * fails the run. A model that does not need the bound at (t, x) returns a large positive
+     * q there (LV_DOMAIN_OFF). 0: the start must lie inside too. */
+    int from_above;
 } lv_domain_def;
+
+/* The quantity of a domain bound that does not apply at (t, x) (see from_above). */
+#define LV_DOMAIN_OFF 1e30
 
 typedef struct lv_model_def lv_model_def;
 
@@ -141,6 +155,11 @@ struct lv_model_def {
     size_t n_domain;
     const lv_domain_def *domain;
     int (*domain_q)(double t, const double *x, const double *p, double *q, void *inst);
+
+    /* Optional. The state at (t, x) in the model's own terms, for failure messages
+     * ("h = 28887 m, v_rel = 0.01 m/s, fpa = -87.1 deg"): at most cap bytes into buf. */
+    void (*describe)(double t, const double *x, const double *p, char *buf, size_t cap,
+                     void *inst);
 
     /* Optional. Why the last callback failed ("table 'stage1' : t = 130 is outside
      * [0, 120]"), or NULL; lv_simulate() adds it to its failure message. */

@@ -32,7 +32,7 @@ extern "C" {
 typedef enum lv_status { LV_STATUS_LIST(LV_STATUS_ENUM_) } lv_status;
 #undef LV_STATUS_ENUM_
 
-#define LV_ERR_MSG_MAX 512
+#define LV_ERR_MSG_MAX 1024
 
 typedef struct lv_err {
     lv_status code;

@@ -19,7 +19,7 @@ from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c
 
 from . import _paths
 
-LV_ERR_MSG_MAX = 512
+LV_ERR_MSG_MAX = 1024
 LV_EVENT_NAME_MAX = 96
 
 LV_TOLERANCE_MIN = 1e-14  # lv_sim.h: the relative tolerances lv_simulate accepts
@@ -38,7 +38,8 @@ class lv_var(Structure):
 
 
 class lv_event_def(Structure):
-    _fields_ = [("name", c_char_p), ("description", c_char_p), ("direction", c_int)]
+    _fields_ = [("name", c_char_p), ("description", c_char_p), ("direction", c_int),
+                ("ends_run", c_int)]
 
 
 class lv_model_def(Structure):

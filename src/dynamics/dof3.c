@@ -148,7 +148,7 @@ struct lv_dof3 {
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
     lv_flight_world world;       /* planet, gravity, atmosphere, wind */
-    lv_domain_def domain[1];     /* the altitude floor */
+    lv_domain_def domain[3];     /* the altitude floor and the steering law's guards */
     double *grav_ws;
     double gm;                   /* m^3/s^2, of the gravity model (osculating elements) */
 
@@ -313,6 +313,7 @@ static int dof3_rhs(double t, const double *x, const double *p, double *xdot, vo
         note(s, &e);
         return rc;
     }
+    lv_flight_note_forces(&s->rt, pt.thrust, pt.f_sum, pt.ax.xw);
     xdot[LV_X3_RX] = x[LV_X3_VX];
     xdot[LV_X3_RY] = x[LV_X3_VY];
     xdot[LV_X3_RZ] = x[LV_X3_VZ];
@@ -581,7 +582,6 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     if ((st = lv_flight_world_setup(&m->world, "dof3", &cfg->planet, cfg->gravity, cfg->atmo,
                                     cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    m->domain[0] = lv_flight_domain(cfg->atmo != NULL);
 
     /* vehicle */
     if ((st = lv_flight_engines_init("dof3", cfg->engines, cfg->n_engines, &m->eng, &m->n_eng,
@@ -656,9 +656,13 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
     };
-    m->core = (lv_flight_core){&m->world, &m->fe, LV_X3_RX, LV_X3_VX, LV_X3_M, m->inputs.table,
-                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                               m->stop_at_burnout};
+    m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
+                               .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,
+                               .eng = m->eng, .n_eng = m->n_eng,
+                               .guid = m->steers ? &m->guid : NULL,
+                               .stop_at_burnout = m->stop_at_burnout};
+    m->core.law = &m->guid;
+    lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     for (int k = 0; k < 3; k++)

@@ -214,7 +214,7 @@ struct lv_dof6 {
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
     lv_flight_world world;
-    lv_domain_def domain[1];
+    lv_domain_def domain[3];     /* the altitude floor and the steering law's guards */
     double *grav_ws;
     double gm;
 
@@ -698,6 +698,9 @@ static int dof6_rhs(double t, const double *x, const double *p, double *xdot, vo
         note(s, &e);
         return rc;
     }
+    const double va = lv_v3_norm(pt.v_air_b);
+    lv_flight_note_forces(&s->rt, lv_v3_norm(pt.f_thrust_b), lv_v3_add(pt.f_thrust_b, pt.f_aero_b),
+                          va > 0.0 ? lv_v3_scale(pt.v_air_b, 1.0 / va) : lv_v3(1.0, 0.0, 0.0));
     xdot[LV_X6_RX] = x[LV_X6_VX];
     xdot[LV_X6_RY] = x[LV_X6_VY];
     xdot[LV_X6_RZ] = x[LV_X6_VZ];
@@ -1300,7 +1303,6 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     if ((st = lv_flight_world_setup(&m->world, "dof6", &cfg->planet, cfg->gravity, cfg->atmo,
                                     cfg->wind, cfg->wind_user, &m->grav_ws, &m->gm, err)) != LV_OK)
         goto fail;
-    m->domain[0] = lv_flight_domain(cfg->atmo != NULL);
 
     if ((st = setup_mass(m, cfg, err)) != LV_OK || (st = setup_engines(m, cfg, err)) != LV_OK ||
         (st = setup_aero(m, cfg, err)) != LV_OK || (st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
@@ -1370,9 +1372,14 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
          * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
     };
-    m->core = (lv_flight_core){&m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M, m->inputs,
-                               m->eng, m->n_eng, m->steers ? &m->guid : NULL,
-                               m->stop_at_burnout};
+    m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X6_RX,
+                               .i_v = LV_X6_VX, .i_m = LV_X6_M, .inputs = m->inputs,
+                               .eng = m->eng, .n_eng = m->n_eng,
+                               .guid = m->steers ? &m->guid : NULL,
+                               .stop_at_burnout = m->stop_at_burnout};
+    m->core.law = m->steers ? &m->guid : NULL; /* without: the inputs are the gimbal's */
+    m->core.rolls = 1;
+    lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)

@@ -34,7 +34,7 @@ lv_status lv_flight_ends_init(lv_flight_ends *fe, const char *model, const lv_do
     fe->events[0] = (lv_event_def){fe->names[0],
                                    "Propellant exhausted: m falls through the start mass minus "
                                    "the propellant",
-                                   LV_DIR_FALLING};
+                                   LV_DIR_FALLING, 0};
     for (size_t i = 0; i < n; i++) {
         const lv_dof3_end *e = &ends[i];
         if (e->kind < LV_DOF3_END_ALTITUDE || e->kind > LV_DOF3_END_IMPACT)
@@ -64,8 +64,8 @@ lv_status lv_flight_ends_init(lv_flight_ends *fe, const char *model, const lv_do
         lv_dir dir = e->direction;
         if (e->kind == LV_DOF3_END_APOGEE || e->kind == LV_DOF3_END_IMPACT)
             dir = LV_DIR_FALLING;
-        fe->events[i + 1] =
-            (lv_event_def){fe->names[i + 1], end_info[e->kind].description, dir};
+        fe->events[i + 1] = (lv_event_def){fe->names[i + 1], end_info[e->kind].description,
+                                           dir, e->stop != 0};
     }
     fe->n = n;
     return LV_OK;

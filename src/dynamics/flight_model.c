@@ -47,14 +47,37 @@ lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engi
     return LV_OK;
 }
 
-lv_domain_def lv_flight_domain(int has_atmo)
+static const char *const why_speed =
+    "the engines thrust along an attitude that follows the air-relative velocity (the aero "
+    "frame: the inputs' alpha, beta, mu; the prograde, retrograde or heading law; the gravity "
+    "turn after its kick), which has no direction at zero speed: the thrust would flip from "
+    "step to step. End the burn before (e.g. {speed: 10, direction: falling}) or steer it in "
+    "the local frame (guidance: {law: attitude, frame: local})";
+static const char *const why_vertical =
+    "the velocity turned vertical while a force normal to it acts (lift; thrust at an angle of "
+    "attack or sideslip) or a 6-DoF attitude is commanded about it, and the bank's reference, "
+    "the vertical plane through it, is undefined in vertical flight: the force would flip from "
+    "step to step. Fly through the vertical in the local frame (guidance: {law: attitude, "
+    "frame: local}) or with alpha = beta = 0 and no lift";
+void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_atmo)
 {
-    return (lv_domain_def){
+    dom[0] = (lv_domain_def){
         "h", "m", has_atmo ? LV_ATMO_ALT_MIN : -20e3,
         has_atmo ? "the vehicle is under the ground (below the floor of the atmosphere model); "
                    "an `impact` end ends the phase on the ground"
                  : "the vehicle is under the ground (20 km below the ellipsoid); an `impact` "
-                   "end ends the phase on the ground"};
+                   "end ends the phase on the ground",
+        0};
+    core->dom[0] = LV_FGUARD_H;
+    size_t n = 1;
+    const unsigned refs = core->law != NULL ? lv_guid_refs(core->law, NULL, 0.0) : 0u;
+    if (refs & LV_GREF_WIND) {
+        dom[n] = (lv_domain_def){"v_air", "m/s", LV_FLIGHT_V_GUARD, why_speed, 1};
+        core->dom[n++] = LV_FGUARD_SPEED;
+        dom[n] = (lv_domain_def){"v_air_horizontal", "m/s", LV_FLIGHT_V_GUARD, why_vertical, 1};
+        core->dom[n++] = LV_FGUARD_VERTICAL;
+    }
+    core->n_dom = n;
 }
 
 void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
@@ -66,9 +89,10 @@ void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_f
     def->on_event = lv_flight_on_event;
     def->next_time_event = lv_flight_next_time_event_cb;
     def->time_event_name = lv_flight_time_event_name_cb;
-    def->n_domain = 1;
+    def->n_domain = core->n_dom;
     def->domain = domain;
     def->domain_q = lv_flight_domain_q;
+    def->describe = lv_flight_describe;
     def->last_error = lv_flight_last_error_cb;
     rt->core = core;
 }
@@ -204,17 +228,78 @@ lv_event_action lv_flight_on_event(double t, double *x, const double *p, const i
     return act;
 }
 
-/* The model's domain: the geodetic altitude above its floor (lv_flight_domain). */
+/* The model's domain (lv_flight_domain_init): the geodetic altitude, then the guards, each
+ * LV_DOMAIN_OFF where it does not apply at (t, x). Which apply: the law's references at t
+ * (a function of t) and the latest right-hand side's forces (they change where the mode or
+ * the law's angles change). */
 int lv_flight_domain_q(double t, const double *x, const double *p, double *q, void *inst)
+{
+    (void)p;
+    const lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    const lv_flight_world *w = k->world;
+    lv_flight_kin kin;
+    lv_flight_to_ecef(w, t, x + k->i_r, x + k->i_v, &kin);
+    lv_flight_geodetic(w, &kin, 0, w->wind != NULL && k->n_dom > 1);
+    q[0] = kin.h;
+    if (k->n_dom == 1)
+        return 0;
+    const unsigned refs = lv_guid_refs(k->law, &rt->guid, t);
+    const int thrusts = rt->thrust_last > 0.0;
+    lv_vec3 v_air = kin.v_rel;
+    if ((refs & LV_GREF_WIND) && w->wind != NULL) {
+        double w_ned[3] = {0.0, 0.0, 0.0};
+        if (w->wind(t, kin.h, kin.lat, kin.lon, w_ned, w->wind_user) == 0)
+            v_air = lv_v3_sub(kin.v_rel, lv_flight_from_ned(&kin, w_ned[0], w_ned[1], w_ned[2]));
+    }
+    for (size_t i = 1; i < k->n_dom; i++) {
+        double qi = LV_DOMAIN_OFF;
+        switch ((lv_flight_guard)k->dom[i]) {
+        case LV_FGUARD_SPEED:
+            if ((refs & LV_GREF_WIND) && thrusts)
+                qi = lv_v3_norm(v_air);
+            break;
+        case LV_FGUARD_VERTICAL:
+            if ((refs & LV_GREF_WIND) && (rt->normal_last || (k->rolls && thrusts))) {
+                const double vd = lv_v3_dot(v_air, kin.d_ax);
+                qi = lv_v3_norm(lv_v3_sub(v_air, lv_v3_scale(kin.d_ax, vd)));
+            }
+            break;
+        case LV_FGUARD_H:
+            break;
+        }
+        q[i] = qi;
+    }
+    return 0;
+}
+
+void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw)
+{
+    rt->thrust_last = thrust;
+    const double fn = lv_v3_norm(f);
+    const lv_vec3 normal = lv_v3_sub(f, lv_v3_scale(xw, lv_v3_dot(f, xw)));
+    /* relative 1e-9: thrust along -x_w at alpha = 180 deg leaves sin(pi) = 1.2e-16 */
+    rt->normal_last = fn > 0.0 && lv_v3_norm(normal) > 1e-9 * fn;
+}
+
+void lv_flight_describe(double t, const double *x, const double *p, char *buf, size_t cap,
+                        void *inst)
 {
     (void)p;
     const lv_flight_rt *rt = inst;
     const lv_flight_core *k = rt->core;
     lv_flight_kin kin;
     lv_flight_to_ecef(k->world, t, x + k->i_r, x + k->i_v, &kin);
-    lv_flight_geodetic(k->world, &kin, 0, 0);
-    q[0] = kin.h;
-    return 0;
+    lv_flight_geodetic(k->world, &kin, 1, 1);
+    const double vn = lv_v3_dot(kin.v_rel, kin.n_ax), ve = lv_v3_dot(kin.v_rel, kin.e_ax);
+    const double vd = lv_v3_dot(kin.v_rel, kin.d_ax), vh = hypot(vn, ve);
+    const double fpa = atan2(-vd, vh) / LV_DEG;
+    double chi = atan2(ve, vn) / LV_DEG;
+    if (chi < 0.0)
+        chi += 360.0;
+    snprintf(buf, cap, "h = %.9g m, lat %.6f deg, lon %.6f deg, v_rel = %.6g m/s, fpa = %.4f "
+             "deg, heading %.2f deg, m = %.9g kg", kin.h, kin.lat / LV_DEG, kin.lon / LV_DEG,
+             lv_v3_norm(kin.v_rel), fpa, chi, x[k->i_m]);
 }
 
 double lv_flight_next_time_event_cb(double t, const double *p, void *inst)

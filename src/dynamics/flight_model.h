@@ -30,7 +30,24 @@ typedef struct lv_flight_core {
     size_t n_eng;
     const lv_guid *guid;          /* the steering law whose time events count, or NULL */
     int stop_at_burnout;          /* 1: burnout ends the phase; 0: engines off, go on */
+    /* the domain (lv_flight_domain_init): what each bound guards */
+    const lv_guid *law;           /* the steering law, "inputs" included: its references */
+    int rolls;                    /* 1: the attitude is a state (6-DoF): commanded about the
+                                     wind, its roll needs the vertical plane through it */
+    size_t n_dom;
+    int dom[3];                   /* lv_flight_guard of each bound */
 } lv_flight_core;
+
+/* The bounds of a flight model's domain: where its equations hold and where the attitude its
+ * steering law commands is defined (lv_flight_domain_init). */
+typedef enum lv_flight_guard {
+    LV_FGUARD_H,        /* geodetic altitude above the floor */
+    LV_FGUARD_SPEED,    /* air-relative speed while thrusting along the wind (LV_GREF_WIND) */
+    LV_FGUARD_VERTICAL  /* horizontal air-relative speed while a force normal to the wind acts
+                           (or a 6-DoF attitude is held about it) */
+} lv_flight_guard;
+
+#define LV_FLIGHT_V_GUARD 0.01 /* m/s: the speed guards' floor */
 
 /* The first member of a flight model's instance block. */
 typedef struct lv_flight_rt {
@@ -40,6 +57,8 @@ typedef struct lv_flight_rt {
     double m_burnout;           /* kg: the start mass minus the burning stage's propellant */
     double r0_unit[3];          /* ECEF unit vector of the start point (downrange) */
     lv_guid_rt guid;            /* the steering law's start frame, cursors, trigonometry */
+    double thrust_last;         /* N: the thrust of the latest right-hand side (the guards) */
+    int normal_last;            /* 1: a force normal to the air-relative velocity acted there */
     char msg[LV_ERR_MSG_MAX];   /* why the last callback failed */
     char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */
 } lv_flight_rt;
@@ -57,13 +76,28 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
 lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
                                  lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err);
 
-/* The domain of a model over the planet: the geodetic altitude "h" above the atmosphere's
- * floor (US76: -5 km), or 20 km below the ellipsoid without an atmosphere (deeper than the
- * lowest ground of the Earth, Moon and Mars). */
-lv_domain_def lv_flight_domain(int has_atmo);
+/* The domain of a model over the planet, into dom[3] and core->dom, core->n_dom (core->law
+ * and core->rolls set): the geodetic altitude "h" above the atmosphere's floor (US76: -5 km),
+ * or 20 km below the ellipsoid without an atmosphere (deeper than the lowest ground of the
+ * Earth, Moon and Mars); then the guards of the references the steering law's attitude rests
+ * on at some time of the phase (lv_guid_refs; each holds from above, LV_DOMAIN_OFF where it
+ * does not apply):
+ *   v_air >= LV_FLIGHT_V_GUARD while the attitude follows the wind and the engines thrust
+ *     (the wind axes have no direction at zero air-relative speed: the thrust would flip);
+ *   v_air_h >= LV_FLIGHT_V_GUARD, the horizontal part of the air-relative velocity, while the
+ *     attitude follows the wind and a force normal to it acts (lift, thrust at an angle of
+ *     attack) or a 6-DoF attitude is commanded about it: its bank's reference, the vertical
+ *     plane through it, is undefined in vertical flight.
+ * Without the guards such a phase chatters about the undefined reference until the step
+ * limit (issue 27): the force that flips drives the state back to where it flips. A law that
+ * steers by the bearing to a target (boostback, heading) is not guarded over the target: the
+ * vehicle flies through that point, its heading command jumps once, and the flight goes on;
+ * one that circles back onto it again and again is stopped by the step-size collapse check
+ * (integrator.h). */
+void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_atmo);
 
-/* The shared callbacks into def (with the events of core->fe: 1 + fe->n) and the domain (one
- * quantity); rt (the model's instance template) reads core. */
+/* The shared callbacks into def (with the events of core->fe: 1 + fe->n) and the domain
+ * (core->n_dom quantities); rt (the model's instance template) reads core. */
 void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_flight_rt *rt,
                              const lv_domain_def *domain);
 
@@ -105,6 +139,13 @@ int lv_flight_event_g(double t, const double *x, const double *p, double *g, voi
 lv_event_action lv_flight_on_event(double t, double *x, const double *p, const int *fired,
                                    void *inst);
 int lv_flight_domain_q(double t, const double *x, const double *p, double *q, void *inst);
+/* The guards' record of a right-hand side: its thrust [N] and total force f [N, any axes]
+ * against the unit wind axis xw (same axes), for the domain's relevance (lv_flight_domain_init). */
+void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw);
+/* The state in words for failure messages (lv_model_def.describe): altitude, air-relative
+ * speed and flight-path angle, heading, mass. */
+void lv_flight_describe(double t, const double *x, const double *p, char *buf, size_t cap,
+                        void *inst);
 double lv_flight_next_time_event_cb(double t, const double *p, void *inst);
 const char *lv_flight_time_event_name_cb(double t, const double *p, void *inst);
 const char *lv_flight_last_error_cb(const void *inst);

@@ -200,6 +200,13 @@ static int gives_throttle(const void *par)
     return p->table != NULL && lv_table_out_index(p->table, "throttle", &k, NULL) == LV_OK;
 }
 
+/* The aero frame's angles rest on the air-relative velocity; the others on NED frames. */
+static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    (void)rt, (void)t;
+    return LV_GUID_PAR(attitude_par, g)->frame == LV_FRAME_AERO ? LV_GREF_WIND : 0u;
+}
+
 const lv_law lv_law_attitude = {
     .name = "attitude",
     .description = "constant angles in a frame, or from a table over time, altitude, speed or "
@@ -216,4 +223,5 @@ const lv_law lv_law_attitude = {
     .time_event_label = time_event_label,
     .reads_atmosphere = reads_atmosphere,
     .gives_throttle = gives_throttle,
+    .refs = refs,
 };

@@ -94,6 +94,13 @@ static const char *time_event_label(const lv_guid *g, const lv_guid_rt *rt, doub
     return NULL;
 }
 
+/* The local frame until the end of the kick, the wind's direction after it. */
+static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    const gravity_turn_par *p = LV_GUID_PAR(gravity_turn_par, g);
+    return rt == NULL || t - rt->t0 >= p->rise_time + p->kick_time ? LV_GREF_WIND : 0u;
+}
+
 const lv_law lv_law_gravity_turn = {
     .name = "gravity_turn",
     .description = "vertical rise, a pitch-over (kick) at a constant rate in the plane of "
@@ -107,4 +114,5 @@ const lv_law lv_law_gravity_turn = {
     .attitude = attitude,
     .next_time_event = next_time_event,
     .time_event_label = time_event_label,
+    .refs = refs,
 };

@@ -141,6 +141,13 @@ double lv_guid_heading_alpha(double alpha, double n, double n_max, double q, dou
     return a_n + s * (alpha - a_n);
 }
 
+/* alpha and the bank about the air-relative velocity */
+static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    (void)g, (void)rt, (void)t;
+    return LV_GREF_WIND;
+}
+
 const lv_law lv_law_heading = {
     .name = "heading",
     .description = "bank to turn toward the target at a scheduled angle of attack, within "
@@ -158,4 +165,5 @@ const lv_law lv_law_heading = {
     .attitude = attitude,
     .reads_atmosphere = reads_atmosphere,
     .alpha_limited = alpha_limited,
+    .refs = refs,
 };

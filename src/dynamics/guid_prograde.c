@@ -15,10 +15,17 @@ static int attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_
     return 0;
 }
 
+static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    (void)g, (void)rt, (void)t;
+    return LV_GREF_WIND;
+}
+
 const lv_law lv_law_prograde = {
     .name = "prograde",
     .description = "body x along the air-relative velocity (alpha = beta = mu = 0)",
     .kind = LV_LAW_STEERING,
     .form = LV_LAW_FORM_NAMED,
     .attitude = attitude,
+    .refs = refs,
 };

@@ -13,6 +13,12 @@ static int attitude(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_
     return 0;
 }
 
+static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    (void)g, (void)rt, (void)t;
+    return LV_GREF_WIND;
+}
+
 const lv_law lv_law_retrograde = {
     .name = "retrograde",
     .description = "body x against the air-relative velocity (alpha = 180 deg, beta = mu = "
@@ -20,4 +26,5 @@ const lv_law lv_law_retrograde = {
     .kind = LV_LAW_STEERING,
     .form = LV_LAW_FORM_NAMED,
     .attitude = attitude,
+    .refs = refs,
 };

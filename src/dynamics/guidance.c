@@ -263,6 +263,11 @@ void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_
                           k->s_th * ax[i].x + k->c_th * ax[i].y, ax[i].z);
 }
 
+unsigned lv_guid_refs(const lv_guid *g, const lv_guid_rt *rt, double t)
+{
+    return g->law->refs != NULL ? g->law->refs(g, rt, t) : 0u;
+}
+
 double lv_guid_next_time_event(const lv_guid *g, const lv_guid_rt *rt, double t)
 {
     return g->law->next_time_event != NULL ? g->law->next_time_event(g, rt, t) : INFINITY;

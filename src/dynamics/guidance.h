@@ -68,6 +68,10 @@ struct lv_law {
     double (*alpha_limited)(const lv_guid *g, double alpha, double lift, double mass, double q);
     /* 1 when the law (its table) gives the throttle. NULL: 0. */
     int (*gives_throttle)(const void *par);
+    /* What the attitude rests on at time t (LV_GREF_*; rt NULL: at any time of the phase):
+     * the flight models' domain guards (flight_model.c) fail the phase where it is undefined.
+     * NULL: nothing beyond the local or inertial frame (defined everywhere). */
+    unsigned (*refs)(const lv_guid *g, const lv_guid_rt *rt, double t);
 
     /* ---- throttle laws ---- */
     /* Sets t->active, t->reads_drho, t->engines_off from t->par. */
@@ -78,6 +82,16 @@ struct lv_law {
     double (*throttle)(const lv_thr *t, double c_nom, const lv_thr_in *in,
                        const lv_flight_air *a);
 };
+
+/* What a steering law's attitude rests on (lv_law.refs). */
+enum {
+    /* the body axes follow the air-relative velocity (the aero frame: alpha, beta, mu, and
+     * the laws that hold them): no direction at zero air-relative speed, and the bank's
+     * reference (the vertical plane through it) none in vertical flight */
+    LV_GREF_WIND = 1u,
+};
+/* law->refs(g, rt, t), or 0 when the law has none. */
+unsigned lv_guid_refs(const lv_guid *g, const lv_guid_rt *rt, double t);
 
 /* The registered laws of `kind`, NULL-terminated (guid_laws.c), and one by name. */
 const lv_law *const *lv_guid_laws(lv_law_kind kind);

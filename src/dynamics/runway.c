@@ -572,19 +572,19 @@ static lv_status setup_events(lv_runway *m, const lv_runway_config *cfg, lv_err 
     snprintf(m->event_names[E_ROTATION], EVENT_NAME_MAX, "rotation");
     snprintf(m->event_names[E_END], EVENT_NAME_MAX, "%s", to ? "liftoff" : "stop");
     m->events[E_BURNOUT] = (lv_event_def){m->event_names[E_BURNOUT],
-                                          "Propellant exhausted", LV_DIR_FALLING};
+                                          "Propellant exhausted", LV_DIR_FALLING, 0};
     m->events[E_ROTATION] = (lv_event_def){m->event_names[E_ROTATION],
                                            "Speed rises through v_rot: the nose rises",
-                                           LV_DIR_RISING};
+                                           LV_DIR_RISING, 0};
     m->events[E_END] =
         (lv_event_def){m->event_names[E_END],
                        to ? "Lift-off: the runway's normal force falls through zero"
                           : "The speed falls through v_stop: roll-out complete",
-                       LV_DIR_FALLING};
+                       LV_DIR_FALLING, 1};
     snprintf(m->event_names[E_REST], EVENT_NAME_MAX, "at_rest");
     m->events[E_REST] = (lv_event_def){m->event_names[E_REST],
                                        "Take-off: the speed falls to 0 (an aborted take-off "
-                                       "stops on the runway)", LV_DIR_FALLING};
+                                       "stops on the runway)", LV_DIR_FALLING, 0};
     for (size_t i = 0; i < n; i++) {
         const lv_runway_end *e = &cfg->ends[i];
         const char *nm = e->name != NULL ? e->name : "speed";
@@ -606,7 +606,7 @@ static lv_status setup_events(lv_runway *m, const lv_runway_config *cfg, lv_err 
         m->ends[i].name = m->event_names[E_N0 + i];
         m->events[E_N0 + i] = (lv_event_def){m->event_names[E_N0 + i],
                                              "Ground speed crosses the configured value",
-                                             e->direction};
+                                             e->direction, 1};
     }
     m->n_ends = n;
     return LV_OK;

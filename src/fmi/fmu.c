@@ -1058,7 +1058,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
                         f->d->name, f->t, model_why(f));
         }
         for (size_t i = 0; i < f->nd; i++)
-            if (!(f->q[i] >= f->d->domain[i].lower)) {
+            if (!f->d->domain[i].from_above && !(f->q[i] >= f->d->domain[i].lower)) {
                 const lv_domain_def *b = &f->d->domain[i];
                 f->mode = M_ERROR;
                 return FAIL(f, "model '%s': the start state at t = %.9g s is outside the model's "

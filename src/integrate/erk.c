@@ -249,6 +249,7 @@ struct lv_erk {
      * ends, and a sign change is searched for only in a step that shows one. */
     int g_end_ok, step_clear;
     long steps, rhs_step, rhs_dense, fails, g_evals;
+    lv_integ_pace pace; /* the step-size collapse check (integrator.h) */
     /* arrays, one allocation */
     double *y, *yold, *ynew, *ysti, *ytmp, *sk;
     double *k[ERK_MAX_STAGES];
@@ -294,6 +295,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     if (e == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
     e->p = *p;
+    e->pace = (lv_integ_pace){t0, t0, 0, p->max_steps};
     e->dop853 = dop853;
     e->tab = dop853 ? &tab_dop853 : &tab_dp5;
     e->n = p->n;
@@ -624,6 +626,9 @@ static lv_status rk_step(lv_erk *e, lv_err *err)
             e->g_end_ok = 0;
             e->fsal = 1;
             e->h = hnew;
+            char why[LV_ERR_MSG_MAX - 16];
+            if (lv_integ_pace_collapsed(&e->pace, e->t, e->steps, why, sizeof why))
+                return lv_fail(err, LV_ERR_SOLVER, "%s [%s]", why, T->name);
             return LV_OK;
         }
         e->fails++;

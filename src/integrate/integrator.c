@@ -53,6 +53,7 @@ struct lv_integ {
     lv_erk *erk;
     lv_integ *bdf;
     double t_switch;          /* auto: where BDF took over (NAN: from the start or never) */
+    lv_integ_pace pace;       /* SUNDIALS methods: the step-size collapse check */
     /* SUNDIALS methods: the library and its objects are set up at the first advance
      * (sun_setup), so that a simulation created and freed without stepping - `lvsim check`
      * trying each phase's start - never loads SUNDIALS (integrate/cvode_dl.c) */
@@ -269,6 +270,7 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
     ig->p = *p;
     ig->t = t0;
     ig->tstop = NAN;
+    ig->pace = (lv_integ_pace){t0, t0, 0, p->max_steps};
     ig->is_cvode = (p->method == LV_METHOD_BDF || p->method == LV_METHOD_ADAMS);
     ig->atol = malloc(p->n * sizeof *ig->atol);
     ig->g_dir = calloc(p->n_g ? p->n_g : 1, sizeof *ig->g_dir);
@@ -625,6 +627,25 @@ lv_status lv_integ_set_stop_time(lv_integ *ig, double tstop, lv_err *err)
     return LV_OK;
 }
 
+int lv_integ_pace_collapsed(lv_integ_pace *pc, double t, long steps, char *msg, size_t cap)
+{
+    const long n = steps - pc->n_mark;
+    if (n < LV_INTEG_PACE_WINDOW)
+        return 0;
+    const double dt = t - pc->t_mark, age = t - pc->t0;
+    pc->t_mark = t;
+    pc->n_mark = steps;
+    if (!(dt * LV_INTEG_PACE_FACTOR * (double)pc->max_steps < (double)n * age))
+        return 0;
+    snprintf(msg, cap, "at t = %.9g s: the step size collapsed: the last %ld steps advanced "
+             "the time by %.3g s (mean step %.3g s; at that pace the %.6g s flown would take "
+             "%.2g steps, the limit is %ld): the solution changes faster than it can be "
+             "followed - a force or frame that flips from step to step, or a discontinuity "
+             "that is no event", t, n, dt, dt / (double)n, age, (double)n * age / dt,
+             pc->max_steps);
+    return 1;
+}
+
 /* Translate SUNDIALS failure flags into what an engineer reads. */
 static const char *flag_meaning(int flag)
 {
@@ -680,6 +701,7 @@ static lv_status switch_to_bdf(lv_integ *ig, double t, const double *x, lv_err *
         return lv_fail_prefix(err, st, "at t = %.9g s: switching from %s to BDF (stiff)", t,
                               lv_method_name(LV_METHOD_AUTO_EXPLICIT));
     ig->t_switch = t;
+    ig->bdf->pace.t0 = ig->pace.t0; /* the age counts from the run's start */
     return LV_OK;
 }
 
@@ -713,16 +735,6 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
         if (st != LV_OK)
             return st;
     }
-    /* SUNDIALS limits steps per call; ours is a total for the run. */
-    long remaining = ig->p.max_steps - current_steps(ig);
-    if (remaining <= 0)
-        return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: too much work (%ld steps allowed)",
-                       ig->t, ig->p.max_steps);
-    if (ig->is_cvode)
-        CVodeSetMaxNumSteps(ig->mem, remaining);
-    else
-        ERKStepSetMaxNumSteps(ig->mem, remaining);
-
     /* CVODE and ARKODE refuse a tout within two units of round-off of the time they start
      * from (CV_TOO_CLOSE), as an output time just after a restart at an event can be (the
      * grid's 3 * 0.1 after an event at 0.3; issue 22's breaker). The state there is the
@@ -733,11 +745,34 @@ lv_status lv_integ_advance(lv_integ *ig, double tout, double *t, double *x, lv_i
         *res = LV_INTEG_REACHED;
         return LV_OK;
     }
+    /* SUNDIALS limits steps per call; ours is a total for the run. The calls are cut into
+     * the windows of the step-size collapse check (lv_integ_pace_collapsed). */
     sunrealtype tret = ig->t;
-    ig->sun_msg[0] = '\0';
-    int flag = ig->is_cvode ? CVode(ig->mem, tout, ig->y, &tret, CV_NORMAL)
+    int flag;
+    for (;;) {
+        const long done = current_steps(ig), remaining = ig->p.max_steps - done;
+        if (remaining <= 0)
+            return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: too much work (%ld steps "
+                           "allowed)", ig->t, ig->p.max_steps);
+        const long window = LV_INTEG_PACE_WINDOW - (done - ig->pace.n_mark);
+        const long chunk = remaining < window ? remaining : window > 0 ? window : 1;
+        if (ig->is_cvode)
+            CVodeSetMaxNumSteps(ig->mem, chunk);
+        else
+            ERKStepSetMaxNumSteps(ig->mem, chunk);
+        ig->sun_msg[0] = '\0';
+        flag = ig->is_cvode ? CVode(ig->mem, tout, ig->y, &tret, CV_NORMAL)
                             : ERKStepEvolve(ig->mem, tout, ig->y, &tret, ARK_NORMAL);
-    ig->t = tret;
+        ig->t = tret;
+        if (flag != CV_TOO_MUCH_WORK || chunk == remaining) /* not a window's end */
+            break;
+        char why[LV_ERR_MSG_MAX - 32];
+        if (lv_integ_pace_collapsed(&ig->pace, tret, current_steps(ig), why, sizeof why)) {
+            memcpy(x, N_VGetArrayPointer(ig->y), ig->p.n * sizeof(double));
+            *t = tret;
+            return lv_fail(err, LV_ERR_SOLVER, "%s [%s]", why, lv_method_name(ig->p.method));
+        }
+    }
     memcpy(x, N_VGetArrayPointer(ig->y), ig->p.n * sizeof(double));
     *t = tret;
     if (flag < 0) {

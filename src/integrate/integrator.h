@@ -60,6 +60,31 @@ typedef struct lv_integ_problem {
 
 typedef struct lv_integ lv_integ;
 
+/* The step-size collapse check every integrator makes: at the end of each window of
+ * LV_INTEG_PACE_WINDOW accepted steps, the mean step of the window must be at least the time
+ * flown since the run's start over LV_INTEG_PACE_FACTOR times the step limit - at a slower
+ * pace, flying as long again as flown so far would take more than ten times the steps
+ * allowed. A solution that slow has met something it cannot follow - a force or frame that
+ * flips from one side to the other (a reference the model loses), a discontinuity the model
+ * does not announce as an event - and would otherwise spend the whole step limit (1e6 steps,
+ * seconds of CPU) chattering in place; it fails after a thousand steps with the time and the
+ * pace. Sound dynamics stay far from it whatever their time scale: they cannot be followed
+ * within the step limit at that pace either. */
+#define LV_INTEG_PACE_WINDOW 1000
+#define LV_INTEG_PACE_FACTOR 10.0
+
+typedef struct lv_integ_pace {
+    double t0;      /* the run's start */
+    double t_mark;  /* the time at the window's start */
+    long n_mark;    /* the accepted steps there */
+    long max_steps; /* the step limit */
+} lv_integ_pace;
+
+/* At `steps` accepted steps and time t: 1 (with the message in msg[cap]) when the window
+ * that ends here was slower than the pace floor; 0 otherwise (a window that ends here starts
+ * the next). */
+int lv_integ_pace_collapsed(lv_integ_pace *pc, double t, long steps, char *msg, size_t cap);
+
 typedef enum lv_integ_result {
     LV_INTEG_REACHED = 0, /* reached tout (or the stop time, when tout == stop time) */
     LV_INTEG_ROOT = 1     /* an event function crossed zero at *t (before tout) */

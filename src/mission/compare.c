@@ -76,7 +76,7 @@ static lv_status run_failed(const lv_run *run, lv_status st, lv_err *err)
     for (size_t k = 0; k < d->n_phases; k++) {
         const lv_phase_result *res = lv_run_result(run, k);
         if (res->state == LV_PHASE_FAILED)
-            return lv_fail(err, st, "compare: the sequential run failed: %.400s", res->error);
+            return lv_fail(err, st, "compare: the sequential run failed: %.900s", res->error);
     }
     return lv_fail_prefix(err, st, "compare: the sequential run");
 }

@@ -402,7 +402,7 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     phase_clear(p);
     p->res.state = st == LV_OK ? LV_PHASE_DONE : LV_PHASE_FAILED;
     if (st != LV_OK)
-        snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': %.430s", ph->name,
+        snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': %.940s", ph->name,
                  sim_err ? sim_err->msg : lv_status_str(st));
     if (rep != NULL) {
         p->res.report = *rep;
@@ -541,9 +541,9 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         snprintf(numbered, sizeof numbered, "phase %zu '%.60s'", k + 1, ph->name);
         if (strstr(err->msg, named) != NULL || strstr(err->msg, numbered) != NULL)
             /* "FILE:L:C: phase 'P': ..." or "phase 3 'P' would ..." names it already */
-            snprintf(p->res.error, sizeof p->res.error, "%.490s", err->msg);
+            snprintf(p->res.error, sizeof p->res.error, "%.1000s", err->msg);
         else
-            snprintf(p->res.error, sizeof p->res.error, "%s: %.430s", named, err->msg);
+            snprintf(p->res.error, sizeof p->res.error, "%s: %.940s", named, err->msg);
         p->dirty = 0;
         pthread_mutex_unlock(&r->lock);
         return st;

@@ -32,9 +32,9 @@ static const lv_var asc_outputs[] = {
     {"engine_on", "", "1 while the engine burns", 0, 0},
 };
 static const lv_event_def asc_events[LV_ASC_EV_N] = {
-    {"burnout", "Propellant exhausted: m falls through m_final", LV_DIR_FALLING},
-    {"apogee", "Vertical velocity falls through zero", LV_DIR_FALLING},
-    {"impact", "Altitude falls through zero", LV_DIR_FALLING},
+    {"burnout", "Propellant exhausted: m falls through m_final", LV_DIR_FALLING, 0},
+    {"apogee", "Vertical velocity falls through zero", LV_DIR_FALLING, 0},
+    {"impact", "Altitude falls through zero", LV_DIR_FALLING, 0},
 };
 
 /* dh/dt = v; dv/dt = F/m - g; dm/dt = -mdot (engine on), as in the paper's
@@ -119,7 +119,8 @@ static lv_event_action asc_event(double t, double *x, const double *p, const int
 static const lv_domain_def ground_domain[] = {
     {"h", "m", 0.0,
      "the body is under the ground, where its impact (h falls through 0) ends the run: start "
-     "at h >= 0"},
+     "at h >= 0",
+     0},
 };
 
 static int ground_q(double t, const double *x, const double *p, double *q, void *inst)
@@ -180,7 +181,7 @@ static const lv_var ff_params[P_FF_N] = {
     {"v0", "m/s", "Initial velocity", 0.0, 0},
 };
 static const lv_event_def ff_events[] = {
-    {"impact", "Height falls through zero", LV_DIR_FALLING},
+    {"impact", "Height falls through zero", LV_DIR_FALLING, 0},
 };
 
 static int ff_rhs(double t, const double *x, const double *p, double *xdot, void *inst)
@@ -301,7 +302,7 @@ static const lv_var kep_outputs[] = {
     {"r", "m", "Radius", 0, 0},
 };
 static const lv_event_def kep_events[] = {
-    {"periapsis", "Radial velocity r.v rises through zero", LV_DIR_RISING},
+    {"periapsis", "Radial velocity r.v rises through zero", LV_DIR_RISING, 0},
 };
 
 static int kep_rhs(double t, const double *x, const double *p, double *xdot, void *inst)

@@ -71,7 +71,7 @@ static int stage_thrust(flat_stage_rt *s, double t, double *F, double *mdot, cha
             if (lv_table_eval1(en->table, &en->cur, t, y, NULL) != LV_OK) {
                 lv_err err;
                 lv_table_eval1(en->table, NULL, t, y, &err);
-                snprintf(why, cap, "stage '%.60s': %.400s", s->name, err.msg);
+                snprintf(why, cap, "stage '%.60s': %.900s", s->name, err.msg);
                 return -1;
             }
             f += en->count * y[en->i_thrust];
@@ -343,7 +343,7 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
     const double ha = h < LV_ATMO_ALT_MAX ? h : LV_ATMO_ALT_MAX;
     if (a->atmo_model->eval(a->atmo_par, ha, &as, NULL) != LV_OK) {
         a->atmo_model->eval(a->atmo_par, ha, &as, &err);
-        snprintf(why, cap, "at t = %.9g s: %.400s", t, err.msg);
+        snprintf(why, cap, "at t = %.9g s: %.900s", t, err.msg);
         return 1;
     }
     o->a = as.a;
@@ -358,7 +358,7 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
         double w[3];
         if (lv_wind_eval(a->wind, &a->wind_cur, h, w, NULL) != LV_OK) {
             lv_wind_eval(a->wind, NULL, h, w, &err);
-            snprintf(why, cap, "at t = %.9g s: %.400s", t, err.msg);
+            snprintf(why, cap, "at t = %.9g s: %.900s", t, err.msg);
             return isnan(h) ? 1 : -1;
         }
         o->v_air[0] -= w[1]; /* NED to x east, y north, z up */
@@ -379,7 +379,7 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
             xin[d] = in[a->cd_in[d]];
         if (lv_table_eval(a->cd_tab, &a->cd_cur, xin, a->cd_y, NULL) != LV_OK) {
             lv_table_eval(a->cd_tab, NULL, xin, a->cd_y, &err);
-            snprintf(why, cap, "at t = %.9g s: aerodynamics: %.400s", t, err.msg);
+            snprintf(why, cap, "at t = %.9g s: aerodynamics: %.900s", t, err.msg);
             return isnan(o->mach) ? 1 : -1;
         }
         o->cd = a->cd_y[a->cd_k];
@@ -528,7 +528,8 @@ static int flat6_g(double t, const double *x, const double *p, double *g, void *
 static const lv_domain_def flat6_domain[] = {
     {"z", "m", -5000.0,
      "the vehicle is under the flat ground (5 km below it); an `impact` end ends the phase on "
-     "the ground"},
+     "the ground",
+     0},
 };
 
 static int flat6_domain_q(double t, const double *x, const double *p, double *q, void *inst)
@@ -664,7 +665,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
     memcpy(m->params, flat_params, sizeof flat_params);
     m->params[PF_G].start = cfg->g;
     m->events[0] = (lv_event_def){"burnout", "Bottom stage's propellant exhausted: engines stop",
-                                  LV_DIR_FALLING};
+                                  LV_DIR_FALLING, 0};
     m->n_ends = cfg->n_ends;
     for (size_t k = 0; k < cfg->n_ends; k++) {
         lv_flat_end e = cfg->ends[k];
@@ -684,7 +685,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
                      same + 1);
         else
             snprintf(m->event_names[k], sizeof m->event_names[0], "%s", end_names[e.kind]);
-        m->events[1 + k] = (lv_event_def){m->event_names[k], "Ends the phase", e.direction};
+        m->events[1 + k] = (lv_event_def){m->event_names[k], "Ends the phase", e.direction, 1};
     }
     m->def = (lv_model_def){
         .name = m->name,
@@ -998,9 +999,9 @@ lv_status lv_flat_e2e_create(const lv_flat_e2e_config *cfg, lv_flat_e2e **out, l
         m->outputs[k] = (lv_var){e2e_str(m, "%s.thrust", bn), "N",
                                  e2e_str(m, "%s: thrust of its engines", bn), 0, 0};
         m->events[2 * k] = (lv_event_def){e2e_str(m, "%s.burnout", bn),
-                                          "Stage propellant exhausted", LV_DIR_FALLING};
+                                          "Stage propellant exhausted", LV_DIR_FALLING, 0};
         m->events[2 * k + 1] = (lv_event_def){e2e_str(m, "%s.impact", bn),
-                                              "Body reaches the ground", LV_DIR_FALLING};
+                                              "Body reaches the ground", LV_DIR_FALLING, 0};
         if (k + 1 < n) {
             if (!isfinite(cfg->t_sep[k])) {
                 st = lv_fail(err, LV_ERR_INPUT, "flat_e2e: separation time %zu is %g", k + 1,

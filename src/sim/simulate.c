@@ -174,6 +174,18 @@ static int sim_g(double t, const double *x, double *g, void *user)
     return 0;
 }
 
+/* " (state at t: <the model's description>)" of the current r->x, or "" without one. */
+static void describe_state(const sim_run *r, double t, char *buf, size_t cap)
+{
+    buf[0] = '\0';
+    if (r->def->describe == NULL || cap < 32)
+        return;
+    char d[200] = "";
+    r->def->describe(t, r->x, r->p, d, sizeof d, r->inst);
+    if (d[0] != '\0')
+        snprintf(buf, cap, " (state at t = %.9g s: %s)", t, d);
+}
+
 /* The message for bound i of the domain left (q = value) at t. */
 static lv_status domain_fail(const sim_run *r, size_t i, double t, double value, int at_start,
                              lv_err *err)
@@ -185,10 +197,12 @@ static lv_status domain_fail(const sim_run *r, size_t i, double t, double value,
                        "domain: %s = %g %s is below its lower bound %g %s: %s",
                        r->def->name, t, b->quantity, value, b->unit, b->lower, b->unit, b->why);
     (void)value; /* at the located crossing the quantity is the bound */
+    char state[256];
+    describe_state(r, t, state, sizeof state);
     return lv_fail(err, LV_ERR_SOLVER,
                    "model '%s': at t = %.9g s the state left the model's domain: %s fell to its "
-                   "lower bound %g %s: %s",
-                   r->def->name, t, b->quantity, b->lower, b->unit, b->why);
+                   "lower bound %g %s: %s%s",
+                   r->def->name, t, b->quantity, b->lower, b->unit, b->why, state);
 }
 
 static double thread_cpu_seconds(void)
@@ -644,32 +658,92 @@ struct lv_sim {
  * at rest on the ground that gravity pulls down is seen falling), of length 1e-6 of the run or
  * of its first output interval; a function that then lies on its event's side (below 0 for a
  * falling event, above for a rising one, either for both) fires at the start, in the same
- * order and with the same handling as any event. Returns 0, or -1 when the model cannot be
- * evaluated there (then nothing fires: the run's first step reports the failure). A function
- * within TINY_G of 0 that the probe step takes across 0 fires at the start the same way. */
+ * order and with the same handling as any event (when the model cannot be evaluated there,
+ * nothing fires: the run's first step reports the failure). A function within TINY_G of 0
+ * that the probe step takes across 0 fires at the start the same way. The same probe finds
+ * the ends already passed at the start (passed_end). */
 /* An event function this close to 0 at the start is taken as on its surface when the probe
  * step crosses it (CVODE resolves no root closer to t0 than ~100 ulp of the step). */
 #define TINY_G 1e-100
 
-static int probe_start_roots(lv_sim *S)
+/* An end (an event with ends_run, or a crossing stop condition) with a direction whose
+ * function lies beyond its crossing at the start (g0 dir > 0) and that the probe step takes
+ * further away ((g1 - g0) dir > 0) is already passed: LV_ERR_INPUT naming it. */
+static lv_status passed_end(const lv_sim *S, const double *g0, const double *g1, lv_err *err)
+{
+    const sim_run *r = &S->r;
+    const lv_model_def *d = r->def;
+    const double t0 = S->t;
+    for (size_t k = 0; k < r->ng + r->ns; k++) {
+        const int is_stop = k >= r->ng;
+        const lv_sim_stop *sp = is_stop ? &S->s.stops[k - r->ng] : NULL;
+        if (is_stop ? r->stops[k - r->ng].is_time : !d->events[k].ends_run)
+            continue;
+        const size_t i = is_stop ? r->ng + r->nd + r->stops[k - r->ng].root : k;
+        const int dir = is_stop ? (int)sp->direction : (int)d->events[k].direction;
+        if (dir == 0 || !(g0[i] * dir > 0.0) || fabs(g0[i]) < TINY_G ||
+            !((g1[i] - g0[i]) * dir > 0.0))
+            continue;
+        const char *way = dir < 0 ? "falls" : "rises", *now = dir < 0 ? "falling" : "rising";
+        char what[200], state[256];
+        if (is_stop)
+            snprintf(what, sizeof what, "when %s %s through %g, but there %s = %g and is still %s",
+                     sp->variable, way, sp->value, sp->variable, sp->value + g0[i], now);
+        else
+            snprintf(what, sizeof what, "when its quantity %s through its value (%s), but there it "
+                     "is already %g %s it and still %s", way, d->events[k].description,
+                     fabs(g0[i]), dir < 0 ? "below" : "above", now);
+        describe_state(r, t0, state, sizeof state);
+        return lv_fail(err, LV_ERR_INPUT,
+                       "model '%s': the end '%s' is already passed at the start t = %.9g s: it "
+                       "fires %s; it could fire only after turning back, so the run would go "
+                       "on to its stop time. Check the end's value and direction against the "
+                       "state the phase starts from%s",
+                       d->name, is_stop ? sp->name : d->events[k].name, t0, what, state);
+    }
+    return LV_OK;
+}
+
+/* 1 when an end's function lies beyond its crossing at the start (passed_end probes it). */
+static int maybe_passed(const lv_sim *S, const double *g0)
+{
+    const sim_run *r = &S->r;
+    for (size_t k = 0; k < r->ng + r->ns; k++) {
+        const int is_stop = k >= r->ng;
+        if (is_stop ? r->stops[k - r->ng].is_time : !r->def->events[k].ends_run)
+            continue;
+        const size_t i = is_stop ? r->ng + r->nd + r->stops[k - r->ng].root : k;
+        const int dir = is_stop ? (int)S->s.stops[k - r->ng].direction
+                                : (int)r->def->events[k].direction;
+        if (dir != 0 && g0[i] * dir > 0.0)
+            return 1;
+    }
+    return 0;
+}
+
+/* The start's roots (above) and the ends already passed (passed_end). LV_OK also when the
+ * model cannot be evaluated near the start (nothing fires: the run's first step reports it). */
+static lv_status probe_start(lv_sim *S, lv_err *err)
 {
     sim_run *r = &S->r;
     const size_t ng = r->ng + r->nd + r->ns_root, nx = r->nx;
     if (ng == 0)
-        return 0;
+        return LV_OK;
     const double t0 = S->t, span = S->s.stop_time - t0;
     double h = 1e-6 * (S->grid.dt > 0.0 && S->grid.dt < span ? S->grid.dt : span);
     if (!(h > 0.0) || !isfinite(h))
-        return 0;
+        return LV_OK;
     double *g0 = calloc(2 * ng + 6 * nx, sizeof *g0);
     if (g0 == NULL)
-        return -1;
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     double *g1 = g0 + ng, *k1 = g1 + ng, *k2 = k1 + nx, *k3 = k2 + nx, *k4 = k3 + nx,
            *xt = k4 + nx, *x1 = xt + nx;
     int rc = sim_g(t0, r->x, g0, r), any = 0;
     for (size_t i = 0; rc == 0 && i < ng; i++)
         any |= fabs(g0[i]) < TINY_G; /* 0 included */
-    if (rc == 0 && any) {
+    const int passed = rc == 0 && maybe_passed(S, g0);
+    lv_status st = LV_OK;
+    if (rc == 0 && (any || passed)) {
         const lv_model_def *d = r->def;
         rc = d->rhs(t0, r->x, r->p, k1, r->inst);
         for (size_t i = 0; i < nx; i++)
@@ -684,7 +758,7 @@ static int probe_start_roots(lv_sim *S)
         for (size_t i = 0; i < nx; i++)
             x1[i] = r->x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
         rc = rc ? rc : sim_g(t0 + h, x1, g1, r);
-        for (size_t i = 0; rc == 0 && i < ng; i++) {
+        for (size_t i = 0; rc == 0 && any && i < ng; i++) {
             const int dir = g1[i] < 0.0 ? -1 : g1[i] > 0.0 ? 1 : 0;
             const int want = r->g_dir[i];
             /* 0 at the start, or so close to it that the crossing lies within the probe
@@ -694,14 +768,15 @@ static int probe_start_roots(lv_sim *S)
             r->roots[i] = at_start && dir != 0 && (want == 0 || want == dir) ? dir : 0;
             S->start_roots |= r->roots[i] != 0;
         }
+        if (rc == 0 && passed)
+            st = passed_end(S, g0, g1, err);
     }
     free(g0);
     if (rc != 0) {
         memset(r->roots, 0, ng * sizeof *r->roots);
         S->start_roots = 0;
-        return -1;
     }
-    return 0;
+    return st;
 }
 
 /* Ends the run as failed: keeps the message for lv_sim_finish and the caller. */
@@ -771,6 +846,14 @@ static lv_status integration_failed(sim_run *r, double t, lv_status st, lv_err *
                               "model '%s': the right-hand side cannot be evaluated at "
                               "t = %.9g s: %s",
                               d->name, r->rhs_rc_t, why);
+    /* the integrator's own failure (the step size collapsed, the step limit): where the
+     * model was, in its terms (r->x holds the last accepted state) */
+    char state[256];
+    describe_state(r, t, state, sizeof state);
+    if (state[0] != '\0' && err != NULL) {
+        const size_t len = strlen(err->msg);
+        snprintf(err->msg + len, sizeof err->msg - len, "%s", state);
+    }
     return lv_fail_prefix(err, st, "model '%s'", d->name);
 }
 
@@ -1106,7 +1189,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             goto fail;
         }
         for (size_t i = 0; i < r->nd; i++)
-            if (!(r->q[i] >= d->domain[i].lower)) {
+            if (!d->domain[i].from_above && !(r->q[i] >= d->domain[i].lower)) {
                 st = domain_fail(r, i, s->start_time, r->q[i], 1, err);
                 goto fail;
             }
@@ -1166,9 +1249,8 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
                          d->name, S->t_te, S->t);
             goto fail;
         }
-        if (probe_start_roots(S) != 0 && !S->start_roots) {
-            /* the model cannot be evaluated near the start: its first step says why */
-        }
+        if ((st = probe_start(S, err)) != LV_OK)
+            goto fail;
     } else {
         rep->reason = LV_STOP_TIME;
         snprintf(rep->stop_name, sizeof rep->stop_name, "stop_time");

@@ -27,7 +27,7 @@ int main(void)
     S(lv_var); F(lv_var, name); F(lv_var, unit); F(lv_var, description); F(lv_var, start);
     F(lv_var, nominal);
     S(lv_event_def); F(lv_event_def, name); F(lv_event_def, description);
-    F(lv_event_def, direction);
+    F(lv_event_def, direction); F(lv_event_def, ends_run);
     /* lv_model_def: the leading fields only (the package reads names and counts) */
     F(lv_model_def, name); F(lv_model_def, description); F(lv_model_def, n_states);
     F(lv_model_def, n_params); F(lv_model_def, n_outputs); F(lv_model_def, n_events);

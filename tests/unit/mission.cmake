@@ -33,6 +33,8 @@ add_test(NAME test_defaults
           $<TARGET_FILE:lvsim_cli> ${CMAKE_CURRENT_BINARY_DIR}/defaults_out)
 # A phase ends on any variable of its model or after a duration (issue 12).
 lv_add_unit_test(test_ends unit/test_ends.c)
+# a steering law losing its reference, an end behind the start: the phase fails at once
+lv_add_unit_test(test_guards unit/test_guards.c)
 # Guidance laws against known answers (issue 12): gravity turn, linear tangent, throttle
 # limits, landing burn, heading law, attitude frames; bad input.
 lv_add_unit_test(test_guidance unit/test_guidance.c)

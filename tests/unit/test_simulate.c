@@ -386,8 +386,8 @@ typedef struct order_inst {
 } order_inst;
 
 static const lv_var ord_states[] = {{"x", "m", "Ramp", 0.0, 1.0}};
-static const lv_event_def ord_events[] = {{"g0", "t = 1", LV_DIR_RISING},
-                                          {"g1", "2t = 2", LV_DIR_BOTH}};
+static const lv_event_def ord_events[] = {{"g0", "t = 1", LV_DIR_RISING, 0},
+                                          {"g1", "2t = 2", LV_DIR_BOTH, 0}};
 static int ord_rhs(double t, const double *x, const double *p, double *xd, void *inst)
 {
     (void)t, (void)x, (void)p, (void)inst;
@@ -703,6 +703,121 @@ static int nan_rhs(double t, const double *x, const double *p, double *xd, void 
 }
 static const lv_model_def nan_model = {.name = "nanrhs", .description = "RHS NaN after 0.25",
                                        .n_states = 1, .states = blow_states, .rhs = nan_rhs};
+
+
+/* x' = -sign(x) from x = 1 (a relay with no hysteresis, Filippov's classic): x reaches 0 at
+ * t = 1 and then has no classical solution - every step past it flips the derivative. An
+ * adaptive integrator shrinks its steps toward the tolerance there (1e-10: steps of ~1e-10 s)
+ * and, without the step-size collapse check, spends its whole step limit (1e6) chattering
+ * about x = 0 before t = 1.0001; with it the run fails within a few windows of 1000 steps,
+ * at t just after 1, naming the collapse (integrator.h, LV_INTEG_PACE_*). */
+static int relay_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)t, (void)p, (void)inst;
+    xd[0] = x[0] > 0.0 ? -1.0 : 1.0;
+    return 0;
+}
+static const lv_model_def relay_model = {.name = "relay", .description = "x' = -sign(x)",
+                                         .n_states = 1, .states = blow_states, .rhs = relay_rhs};
+
+static void test_step_collapse(void)
+{
+    static const char *const adaptive[] = {"dassl", "cvode-adams", "dopri5", "dp5", "dop853",
+                                           "auto"};
+    for (size_t k = 0; k < sizeof adaptive / sizeof adaptive[0]; k++) {
+        lv_sim_settings s;
+        lv_sim_report rep;
+        lv_err err;
+        base_settings(&s);
+        s.method = adaptive[k];
+        s.stop_time = 10.0;
+        s.tolerance = 1e-10;
+        lv_status st = lv_simulate(&relay_model, NULL, &s, NULL, &rep, &err);
+        printf("relay %-12s -> %ld steps, %.3f ms: %s\n", s.method, rep.stats.steps,
+               1e3 * rep.stats.cpu_time, err.msg);
+        CHECK(st == LV_ERR_SOLVER);
+        /* the collapse check, or the solver's own failure (CVODE: its error test fails
+         * repeatedly); never the step limit */
+        CHECK(strstr(err.msg, "too much work") == NULL);
+        CHECK(rep.stats.steps < 20 * 1000);
+        CHECK(rep.end_time >= 1.0 - 1e-6 && rep.end_time < 1.01);
+        lv_sim_report_clear(&rep);
+    }
+}
+
+/* An end already passed at the start is refused (lv_event_def.ends_run): x' = v (a constant
+ * parameter) from x = 1; the end "x falls through 2" with v = -1 lies behind the start and
+ * moves away; with v = +1 it lies behind but comes nearer (it can fire after x rose past 2:
+ * accepted); the end "x falls through 0.5" lies ahead (fires at t = 0.5). The same for a stop
+ * condition (lv_sim_stop). */
+static const lv_var drift_params[] = {{"v", "m/s", "Drift rate", -1.0, 1.0}};
+static const lv_var drift_states[] = {{"x", "m", "Position", 1.0, 1.0}};
+static int drift_rhs(double t, const double *x, const double *p, double *xd, void *inst)
+{
+    (void)t, (void)x, (void)inst;
+    xd[0] = p[0];
+    return 0;
+}
+static double drift_level;
+static int drift_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    (void)t, (void)p, (void)inst;
+    g[0] = x[0] - drift_level;
+    return 0;
+}
+static const lv_event_def drift_end[] = {{"low", "x falls through the level", LV_DIR_FALLING, 1}};
+static const lv_model_def drift_model = {
+    .name = "drift", .description = "x' = v", .n_states = 1, .n_params = 1, .n_events = 1,
+    .states = drift_states, .params = drift_params, .events = drift_end, .rhs = drift_rhs,
+    .event_g = drift_g};
+
+static void test_passed_end(void)
+{
+    static const struct {
+        double level, v;
+        int refused;
+    } cases[] = {{2.0, -1.0, 1}, {2.0, 1.0, 0}, {0.5, -1.0, 0}};
+    for (size_t k = 0; k < 3; k++) {
+        lv_sim_settings s;
+        lv_sim_report rep;
+        lv_err err;
+        base_settings(&s);
+        s.stop_time = 5.0;
+        const char *names[] = {"v"};
+        double vals[] = {cases[k].v};
+        s.n_initial = 1;
+        s.initial_names = names;
+        s.initial_values = vals;
+        drift_level = cases[k].level;
+        lv_status st = lv_simulate(&drift_model, NULL, &s, NULL, &rep, &err);
+        if (cases[k].refused) {
+            CHECK(st == LV_ERR_INPUT);
+            CHECK(strstr(err.msg, "the end 'low' is already passed at the start t = 0 s") != NULL);
+            printf("passed end: %s\n", err.msg);
+        } else {
+            CHECK_OK(st, &err);
+            CHECK_CLOSE(rep.end_time, cases[k].level == 0.5 ? 0.5 : 5.0, 1e-9);
+        }
+        lv_sim_report_clear(&rep);
+        /* the same as a stop condition of the event-free model */
+        lv_model_def free = drift_model;
+        free.n_events = 0;
+        free.events = NULL;
+        free.event_g = NULL;
+        lv_sim_stop stop = {"low", "x", cases[k].level, LV_DIR_FALLING};
+        s.n_stops = 1;
+        s.stops = &stop;
+        st = lv_simulate(&free, NULL, &s, NULL, &rep, &err);
+        if (cases[k].refused) {
+            CHECK(st == LV_ERR_INPUT);
+            CHECK(strstr(err.msg, "when x falls through 2, but there x = 1 and is still "
+                                  "falling") != NULL);
+        } else {
+            CHECK_OK(st, &err);
+        }
+        lv_sim_report_clear(&rep);
+    }
+}
 
 static int count_lines(const char *path)
 {
@@ -1173,6 +1288,8 @@ int main(void)
     test_output_at_event_roundoff();
     test_bad_input();
     test_integrator_failures();
+    test_step_collapse();
+    test_passed_end();
     test_result_files();
     test_stepping();
     test_event_state();

@@ -1,0 +1,243 @@
+/* test_guards.c - a phase whose steering loses its reference, or whose end lies behind its
+ * start, fails at once with the model's reason (issue 27, item 1), never by the solver's step
+ * limit after a million steps:
+ *   - a retrograde burn that brakes the stage to zero air-relative speed (the guard v_air),
+ *     at the instant the rocket equation gives;
+ *   - thrust at 5 deg angle of attack in the aero frame turning the velocity through the
+ *     vertical (the guard v_air_horizontal);
+ *   - a boost-back steering by the bearing to a target it flies over is no such case: its
+ *     heading command jumps once there and the flight goes on (no guard, no failure);
+ *   - an end already passed at the start ({speed: 900, direction: falling} below 900 m/s and
+ *     braking) is refused; one behind the start that the flight comes back to is not;
+ *   - the same flight in the local frame (no wind reference) runs through the vertical.
+ * Each failing case is asserted to cost less than 10 ms of CPU (the run's own figure). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "lvsim/lv_mission.h"
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f != NULL) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+/* Runs the one-phase mission `yaml`; returns its result (NULL when it did not load) and
+ * keeps the run in *rp for the caller to free. */
+static const lv_phase_result *run1(const char *yaml, lv_mission **mp, lv_run **rp)
+{
+    write_file("guards.yaml", yaml);
+    lv_err err;
+    *mp = NULL;
+    *rp = NULL;
+    CHECK_OK(lv_mission_load("guards.yaml", mp, &err), &err);
+    if (*mp == NULL)
+        return NULL;
+    CHECK_OK(lv_run_create(*mp, rp, &err), &err);
+    if (*rp == NULL)
+        return NULL;
+    lv_run_execute(*rp, NULL, &err);
+    return lv_run_result(*rp, 0);
+}
+
+static void done(lv_mission *m, lv_run *r)
+{
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
+/* A failed phase: its message holds `needle`, it cost < 10 ms of CPU and few steps. */
+static void check_fast_failure(const lv_phase_result *p, const char *needle, const char *what)
+{
+    CHECK(p != NULL && p->state == LV_PHASE_FAILED);
+    if (p == NULL)
+        return;
+    printf("%s: %ld steps, %.3f ms CPU, t = %.6f s: %s\n", what, p->report.stats.steps,
+           1e3 * p->report.stats.cpu_time, p->report.end_time, p->error);
+    CHECK(strstr(p->error, needle) != NULL);
+    CHECK(p->report.stats.cpu_time < 0.010);
+    CHECK(p->report.stats.steps < 2000);
+}
+
+/* A stage falling straight down at 200 m/s from 5 km over the equator, no atmosphere, brakes
+ * with its engine against the velocity (retrograde) and no end but the ground: the burn stops
+ * it above the ground, where the retrograde attitude has nothing to point against. With
+ * F = 300 kN, mdot = 100 kg/s (c = 3000 m/s), m0 = 10 t, the speed in vertical flight is
+ * v(t) = v0 - c ln(m0 / (m0 - mdot t)) + g t (Tsiolkovsky with gravity); it reaches the
+ * guard's 0.01 m/s where that is 0.01, found below by bisection with g = 9.78 m/s^2 (the
+ * equator's gravity with the centrifugal term: 9.7803 m/s^2, WGS-84's normal gravity at the
+ * equator), to within the 0.3 % that g's variation over the 5 km and the Coriolis term make. */
+static void test_brake_to_zero(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    const lv_phase_result *p = run1(
+        "mission: {name: brake}\n"
+        "environment: {world: planet, gravity: j2}\n"
+        "parameters: {start_lat_deg: 0, start_lon_deg: 0, start_h: 5000, start_vel: 200,\n"
+        "             start_fpa_deg: -90}\n"
+        "stages: [{name: s, dry_mass: 5000, propellant_mass: 5000,\n"
+        "          engines: [{thrust_vac: 300000, mdot: 100}]}]\n"
+        "phases:\n"
+        "  - {name: entry-burn, model: dof3, stages: [s], stop_time: 100,\n"
+        "     guidance: {law: retrograde}, end: [impact]}\n",
+        &m, &r);
+    check_fast_failure(p, "v_air fell to its lower bound 0.01 m/s", "brake to zero");
+    double lo = 0.0, hi = 50.0; /* v(lo) > 0.01 > v(hi) */
+    for (int i = 0; i < 200; i++) {
+        const double t = 0.5 * (lo + hi);
+        const double v = 200.0 - 3000.0 * log(10000.0 / (10000.0 - 100.0 * t)) + 9.78 * t;
+        if (v > 0.01)
+            lo = t;
+        else
+            hi = t;
+    }
+    if (p != NULL) {
+        printf("  located at %.6f s, the rocket equation %.6f s\n", p->report.end_time, lo);
+        CHECK(fabs(p->report.end_time - lo) < 3e-3 * lo);
+        CHECK(strstr(p->error, "v_rel = 0.01") != NULL); /* the state at the failure */
+    }
+    done(m, r);
+}
+
+/* Thrust/weight 1.6 at alpha = 5 deg in the aero frame (no steering law: the inputs) from
+ * 1 m/s at fpa 89 deg: the thrust's normal part turns the velocity through the vertical, where
+ * the bank's reference flips. The same flight steered in the local frame (pitch 86 deg toward
+ * the west: past the vertical, as the body was) has no wind reference and flies on through the
+ * vertical to burnout. */
+#define VERTICAL_YAML(PHASE_KEYS)                                                           \
+    "mission: {name: vertical}\n"                                                              \
+    "environment: {world: planet, gravity: j2, atmosphere: us76}\n"                             \
+    "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: 500, start_vel: 1,\n" \
+    "             start_fpa_deg: 89, start_chi_deg: 90}\n"                                      \
+    "stages: [{name: core, dry_mass: 12000, propellant_mass: 15000,\n"                         \
+    "          engines: [{thrust_vac: 4.2e5, mdot: 150}]}]\n"                                   \
+    "phases:\n"                                                                               \
+    "  - {name: ascent, model: dof3, stages: [core], stop_time: 200, end: [burnout, impact],\n"  \
+    "     " PHASE_KEYS "}\n"
+
+static void test_through_vertical(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    const lv_phase_result *p = run1(VERTICAL_YAML("inputs: {alpha_deg: 5}"), &m, &r);
+    check_fast_failure(p, "v_air_horizontal fell to its lower bound 0.01 m/s",
+                       "through the vertical, aero frame");
+    done(m, r);
+    p = run1(VERTICAL_YAML("guidance: {law: attitude, frame: local, pitch_deg: 86, "
+                           "heading_deg: 270}"),
+             &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    if (p != NULL)
+        printf("through the vertical, local frame: %s at %.3f s, %ld steps\n",
+               p->report.stop_name, p->report.end_time, p->report.stats.steps);
+    CHECK(p != NULL && strcmp(p->report.stop_name, "burnout") == 0);
+    done(m, r);
+}
+
+/* A boost-back over the equator: 50 km up, 1 km/s eastward, steering horizontally toward a
+ * target 5.6 km east on the equator. The motion stays in the equatorial plane (the Earth's
+ * rotation and J2 are symmetric about it), so the stage passes exactly over the target, where
+ * the bearing it steers by flips by 180 deg: one jump of the command, which the integrator
+ * steps through (the flight turns back and passes again); the phase runs to its stop time in
+ * a few dozen steps. */
+static void test_over_target(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    const lv_phase_result *p = run1(
+        "mission: {name: over}\n"
+        "environment: {world: planet, gravity: j2}\n"
+        "parameters: {start_lat_deg: 0, start_lon_deg: 0, start_h: 50000, start_vel: 1000,\n"
+        "             start_fpa_deg: 0, start_chi_deg: 90}\n"
+        "stages: [{name: s, dry_mass: 5000, propellant_mass: 5000,\n"
+        "          engines: [{thrust_vac: 100000, mdot: 30}]}]\n"
+        "phases:\n"
+        "  - {name: boostback, model: dof3, stages: [s], stop_time: 100, end: [impact],\n"
+        "     guidance: {law: boostback, pitch_deg: 0, target_lat_deg: 0,\n"
+        "                target_lon_deg: 0.05}}\n",
+        &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    if (p != NULL)
+        printf("over the target: %s at %.3f s, %ld steps\n", p->report.stop_name,
+               p->report.end_time, p->report.stats.steps);
+    CHECK(p != NULL && strcmp(p->report.stop_name, "stop_time") == 0 &&
+          p->report.stats.steps < 200);
+    done(m, r);
+}
+
+/* Ends behind the start: a stage falling at 500 m/s (vertical, vacuum) and braking at 2 g whose
+ * end asks for the speed to fall through 900 m/s is refused - below it and moving away; one
+ * climbing at
+ * 1.5 km/s from 80 km whose end is "the altitude falls through 100 km" is below it too but
+ * rising toward it, and ends there on the way down. */
+#define PASSED_HEAD                                                                         \
+    "mission: {name: passed}\n"                                                               \
+    "environment: {world: planet, gravity: j2}\n"                                             \
+    "parameters: {start_h: 30000, start_vel: 500, start_fpa_deg: -90}\n"                      \
+    "stages: [{name: s, dry_mass: 5000, propellant_mass: 5000,\n"                             \
+    "          engines: [{thrust_vac: 300000, mdot: 100}]}]\n"                                 \
+    "phases:\n"
+#define PASSED_BURN(FROM)                                                                   \
+    "  - {name: entry-burn, model: dof3, stages: [s], stop_time: 200,\n"                      \
+    "     guidance: {law: retrograde}, end: [{speed: 900, direction: falling}, impact]" FROM  \
+    "}\n"
+
+static void test_passed_ends(void)
+{
+    /* a root phase: refused when the mission is read (`lvsim check` as `run`), with its place */
+    write_file("guards.yaml", PASSED_HEAD PASSED_BURN(""));
+    lv_mission *m = NULL;
+    lv_run *r = NULL;
+    lv_err err;
+    CHECK(lv_mission_load("guards.yaml", &m, &err) != LV_OK && m == NULL);
+    printf("passed end, root phase: %s\n", err.msg);
+    CHECK(strstr(err.msg, "guards.yaml:7:") != NULL);
+    CHECK(strstr(err.msg, "the end 'speed' is already passed at the start t = 0 s") != NULL);
+    CHECK(strstr(err.msg, "already 400 below it and still falling") != NULL);
+    /* after a coast: found when the phase starts, from its parent's end */
+    const lv_phase_result *p =
+        run1(PASSED_HEAD
+             "  - {name: coast, model: dof3, stages: [s], stop_time: 100, throttle: off,\n"
+             "     end: [{time: 1}]}\n" PASSED_BURN(", from: coast"),
+             &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE); /* the coast */
+    p = r != NULL ? lv_run_result(r, 1) : NULL;
+    check_fast_failure(p, "the end 'speed' is already passed at the start t = 1 s",
+                       "passed end, after a coast");
+    CHECK(p != NULL && p->report.stats.steps == 0);
+    done(m, r);
+
+    p = run1("mission: {name: toward}\n"
+             "environment: {world: planet, gravity: j2}\n"
+             "parameters: {start_h: 80000, start_vel: 1500, start_fpa_deg: 80}\n"
+             "stages: [{name: s, dry_mass: 5000, propellant_mass: 0}]\n"
+             "phases:\n"
+             "  - {name: arc, model: dof3, stages: [s], stop_time: 1000,\n"
+             "     end: [{altitude: 100000, direction: falling}, impact]}\n",
+             &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE && p->end_index == 0);
+    double h = NAN;
+    if (p != NULL && p->state == LV_PHASE_DONE)
+        CHECK_OK(lv_run_final(r, 0, "h", &h, &err), &err);
+    CHECK_CLOSE(h, 100000.0, 1e-3);
+    done(m, r);
+}
+
+int main(void)
+{
+    test_brake_to_zero();
+    test_through_vertical();
+    test_over_target();
+    test_passed_ends();
+    return check_report("test_guards");
+}
