@@ -157,6 +157,15 @@ struct lv_model_def {
      * method "auto" then integrates it with BDF ("dassl") from the start, instead of an
      * explicit method until Hairer's stiffness test fires (docs/integration.md). */
     int stiff;
+
+    /* Optional: [n_params], 1 where a parameter has no effect in this configuration because
+     * something else gives the value it would set: a steering law the angle of attack, a
+     * throttle law or an input table the throttle. Result files leave such a parameter out of
+     * their parameter records (the .mat file's data_1), so that no record claims a constant
+     * that did not act; the values in effect are outputs of the model (a 3-DoF phase's
+     * alpha_in, beta_in, mu_in, throttle_in; docs/result-files.md). It stays a parameter
+     * (lv_model_find, initial values). NULL: every parameter acts. */
+    const unsigned char *param_inactive;
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -144,6 +144,7 @@ struct lv_dof3 {
     char name[64];
     lv_var states[LV_X3_N];
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive: inputs given otherwise */
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
@@ -639,6 +640,13 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
                             cfg->beta,      cfg->mu,        cfg->throttle, cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* the constant inputs that do not act, left out of the result files' parameter records:
+     * an angle a steering law or the inputs table gives, a throttle that a table, a steering
+     * law's table or an active throttle law gives, or that no engine burns with (the values in
+     * effect are the outputs alpha_in .. throttle_in) */
+    for (int k = 0; k < 3; k++)
+        m->param_inactive[P_ALPHA + k] = m->steers || m->inputs.k[k] >= 0;
+    m->param_inactive[P_THR] = !m->const_throttle || m->throttles || m->n_eng == 0;
 
     m->def = (lv_model_def){
         .name = m->name,
@@ -655,6 +663,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .rhs = dof3_rhs,
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
+        .param_inactive = m->param_inactive,
     };
     m->core = (lv_flight_core){&m->world, &m->fe, LV_X3_RX, LV_X3_VX, LV_X3_M, m->inputs.table,
                                m->eng, m->n_eng, m->steers ? &m->guid : NULL,

@@ -210,6 +210,7 @@ struct lv_dof6 {
     lv_var outputs[O_NMAX];
     size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive: inputs given otherwise */
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
@@ -1348,6 +1349,14 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
                             cfg->throttle,    cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* the constant inputs that do not act, left out of the result files' parameter records:
+     * the gimbal angles a controller or the inputs table gives, a throttle the table gives or
+     * that no engine burns with (the values in effect: gimbal_*_in, throttle_in) */
+    const int ctl = m->steers && m->ctl.kind != LV_DOF6_CTL_NONE;
+    m->param_inactive[P_GP] = ctl || m->in_k[U_GP] >= 0;
+    m->param_inactive[P_GY] = ctl || m->in_k[U_GY] >= 0;
+    m->param_inactive[P_THR] = !m->const_throttle || m->n_eng == 0 ||
+                               (m->steers && lv_guid_gives_throttle(&cfg->steering));
 
     m->def = (lv_model_def){
         .name = m->name,
@@ -1369,6 +1378,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
          * examples): stiff for an explicit method, so "auto" integrates with BDF (measured on
          * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
+        .param_inactive = m->param_inactive,
     };
     m->core = (lv_flight_core){&m->world, &m->fe, LV_X6_RX, LV_X6_VX, LV_X6_M, m->inputs,
                                m->eng, m->n_eng, m->steers ? &m->guid : NULL,
