@@ -30,7 +30,7 @@ static int models_run(const cli_cmd *self, int argc, char **argv)
 
 const cli_cmd cli_cmd_models = {
     "models",
-    "list the built-in models",
+    "list the mission model types and the built-in models",
     "",
     "Lists the mission model types (what a phase's 'model:' names: dof3, flat6) and the\n"
     "built-in models of 'lvsim simulate', one a line: name and a one-line description.\n"

@@ -5,6 +5,9 @@ add_test(NAME test_laws_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_laws_d
 # docs/result-files.md's and docs/exports.md's format tables are `lvsim formats --markdown`.
 add_test(NAME test_formats_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_formats_doc.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# docs/cli.md's command table is `lvsim help --markdown`; each command has its section.
+add_test(NAME test_help_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_help_doc.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
          $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post> $<TARGET_FILE:lvsim_plot>)
 # The libraries only some commands need are loaded by those commands alone (src/io/dl_lib.h).
