@@ -33,7 +33,8 @@ extern "C" {
 /* One named variable. Strings are static (or outlive the model). */
 typedef struct lv_var {
     const char *name;        /* e.g. "h", "body1.m", "start_lat" */
-    const char *unit;        /* SI unit string, "" for dimensionless */
+    const char *unit;        /* SI unit string, "1" for dimensionless (lv_units.h; "" means
+                                the same, written "1") */
     const char *description; /* one line */
     double start;            /* default start (state) or value (parameter) */
     double nominal;          /* states: typical magnitude, > 0 (atol = rtol * nominal) */

@@ -213,10 +213,10 @@ static char *own_string(sim_run *r, const char *a, const char *b, const char *c)
     return s;
 }
 
-/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s". */
+/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "1" (or "") -> "1/s". */
 static char *derivative_unit(sim_run *r, const char *unit)
 {
-    if (unit[0] == '\0')
+    if (unit[0] == '\0' || strcmp(unit, "1") == 0)
         return own_string(r, "1/s", "", "");
     size_t len = strlen(unit);
     if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
