@@ -40,6 +40,21 @@ bad = [p["name"] for p in json.load(sys.stdin) if p["unit"] in ("", "-")]
 sys.exit(1 if bad else 0)' && ok || bad "lvsim params --json $y: a unit '' or '-'"
 done
 
+# lvsim params is a table: on every line of every example the value ends, and the unit and the
+# allowed values start, in the same column (the names', units' and rules' widths are the
+# widest's), so that a reader or `cut` sees columns
+for y in "$src"/examples/*/mission.yaml; do
+  "$lvsim" params "$y" | "$py" -c '
+import re, sys
+lines = [l.rstrip("\n") for l in sys.stdin if not l.startswith("# mission")]
+cols = set()
+for l in lines:
+    m = re.match(r"^(#?\s*\S+\s+)(\S+)(\s+)(\S+)(\s+)", l)
+    value_end = m.end(2); unit_start = m.end(3); rule_start = m.end(5)
+    cols.add((value_end, unit_start, rule_start))
+sys.exit(0 if len(cols) == 1 else 1)' && ok || bad "lvsim params $y: the columns are not aligned"
+done
+
 # lvsim laws: a number key's unit is never "-" ("-" only for a table or a choice: no unit)
 "$lvsim" laws > "$work/laws.txt"
 n=$(awk '/^  [a-z]/ && $2 == "-" && $3 !~ /\|/ && $3 != "table"' "$work/laws.txt" | wc -l)
