@@ -117,6 +117,7 @@ struct lv_runway {
     lv_runway_mode mode;
     lv_var states[LV_XRW_N];
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive */
     size_t n_ends;
     lv_runway_end *ends;
     lv_event_def *events;
@@ -660,6 +661,9 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
                             cfg->throttle, cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* no engine (a landing roll-out's are off): the throttle does not act and is not recorded
+     * as a constant (throttle_in: 0) */
+    m->param_inactive[P_THR] = m->n_eng == 0;
     m->def = (lv_model_def){
         .name = m->name,
         .description = cfg->mode == LV_RUNWAY_TAKEOFF
@@ -683,6 +687,7 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
         .outputs_fn = rw_outputs,
         .last_error = rw_last_error,
         .time_event_name = rw_time_event_name,
+        .param_inactive = m->param_inactive,
     };
     m->inst.m = m;
     runway_frame(&m->world.planet, cfg->runway_lat, cfg->runway_lon, cfg->runway_h,
