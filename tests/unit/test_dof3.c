@@ -857,9 +857,9 @@ static void test_bad_config(void)
  * file's data_1) and the rows. */
 typedef struct capture {
     size_t np, ns, rows;
-    const char *pname[32];
+    char pname[32][48]; /* copies: the names live as long as the simulation */
     double pval[32];
-    const char *sname[128];
+    char sname[128][48];
     double v[64 * 128];
 } capture;
 
@@ -870,11 +870,11 @@ static lv_status cap_open(void *self, const lv_result_info *in, lv_err *err)
     c->np = in->n_params < 32 ? in->n_params : 32;
     c->ns = in->n_signals < 128 ? in->n_signals : 128;
     for (size_t j = 0; j < c->np; j++) {
-        c->pname[j] = in->params[j].name;
+        snprintf(c->pname[j], sizeof c->pname[j], "%s", in->params[j].name);
         c->pval[j] = in->param_values[j];
     }
     for (size_t i = 0; i < c->ns; i++)
-        c->sname[i] = in->signals[i].name;
+        snprintf(c->sname[i], sizeof c->sname[i], "%s", in->signals[i].name);
     return LV_OK;
 }
 
