@@ -27,8 +27,8 @@ static void range_text(const lv_law_key *k, int md, char *buf, size_t cap)
     }
     const int ang = (k->flags & LV_KEY_ANGLE) != 0;
     const double f = ang ? 1.0 / LV_DEG : 1.0;
-    const char *unit = ang ? " deg" : k->unit[0] ? " " : "";
-    const char *u = ang ? "" : k->unit;
+    const char *unit = ang ? " deg" : LV_UNIT_ONE(k->unit) ? "" : " ";
+    const char *u = ang ? "" : LV_UNIT_AFTER_NUMBER(k->unit);
     const int lo = isfinite(k->lo), hi = isfinite(k->hi);
     if (lo && hi)
         snprintf(buf, cap, "%c%.10g, %.10g%c%s%s", k->lo_open ? '(' : '[', k->lo * f, k->hi * f,
@@ -60,7 +60,8 @@ static void default_text(const lv_law_key *k, char *buf, size_t cap)
     } else {
         const int ang = (k->flags & LV_KEY_ANGLE) != 0;
         snprintf(buf, cap, "%.10g%s%s", ang ? k->dflt / LV_DEG : k->dflt,
-                 ang ? " deg" : k->unit[0] ? " " : "", ang ? "" : k->unit);
+                 ang ? " deg" : LV_UNIT_ONE(k->unit) ? "" : " ",
+                 ang ? "" : LV_UNIT_AFTER_NUMBER(k->unit));
     }
 }
 
@@ -91,7 +92,8 @@ static void description(const lv_law_key *k, const lv_law_info *law, char *buf, 
 
 static const char *unit_text(const lv_law_key *k)
 {
-    return k->type != LV_KEY_NUMBER ? "-" : k->unit[0] ? k->unit : "-";
+    /* a number's unit ("1" dimensionless); "-" for a choice or a table: no unit applies */
+    return k->type != LV_KEY_NUMBER ? "-" : k->unit[0] ? k->unit : LV_UNIT_DIMENSIONLESS;
 }
 
 static void print_key(const lv_law_key *k, const lv_law_info *law, int md)

@@ -30,7 +30,7 @@ static int models_run(const cli_cmd *self, int argc, char **argv)
 
 const cli_cmd cli_cmd_models = {
     "models",
-    "list the built-in models",
+    "list the mission model types and the built-in models",
     "",
     "Lists the mission model types (what a phase's 'model:' names: dof3, flat6) and the\n"
     "built-in models of 'lvsim simulate', one a line: name and a one-line description.\n"
@@ -41,7 +41,7 @@ const cli_cmd cli_cmd_models = {
 static void print_vars(const char *kind, const lv_var *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)
-        printf("%-10s %-16s %-8s %12g  %s\n", kind, v[i].name, v[i].unit[0] ? v[i].unit : "-",
+        printf("%-10s %-16s %-8s %12g  %s\n", kind, v[i].name, v[i].unit[0] ? v[i].unit : LV_UNIT_DIMENSIONLESS,
                v[i].start, v[i].description);
 }
 
@@ -70,7 +70,7 @@ static void print_type_extras(const char *name)
                      "keys give its start)\n");
         for (size_t j = 0; j < t.n_mission_params; j++) {
             const lv_var *v = &t.mission_params[j];
-            printf("%-10s %-16s %-8s %12s  %s\n", "mission", v->name, v->unit[0] ? v->unit : "-",
+            printf("%-10s %-16s %-8s %12s  %s\n", "mission", v->name, v->unit[0] ? v->unit : LV_UNIT_DIMENSIONLESS,
                    "", v->description);
         }
         printf("# phase keys of its own:");
@@ -161,7 +161,7 @@ const cli_cmd cli_cmd_vars = {
     "list a model's variables (kind, name, unit, start value)",
     "MODEL",
     "Lists every variable of a mission model type or a built-in model (see 'lvsim models'),\n"
-    "one a line: kind (state, derivative, parameter, output, event), name, unit (SI; '-'\n"
+    "one a line: kind (state, derivative, parameter, output, event), name, unit (SI; '1'\n"
     "dimensionless), default start value and description. For a mission type (dof3,\n"
     "flat6) these are the names a phase's 'set:' takes (states, parameters) and the\n"
     "columns of its result files, listed for a sample phase of one stage; before them, what\n"

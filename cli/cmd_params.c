@@ -38,6 +38,7 @@ static void print_params(const char *path, const lv_mission *m)
     int w = 10;  /* the allowed-values column: as wide as its widest rule */
     int wn = 32; /* the names' column likewise (a breaker: 40-character names shifted the
                   * value column out of line) */
+    int wu = 8;  /* and the units' (a table's unit may be longer: "kg.m^2/s^2") */
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);
@@ -45,8 +46,13 @@ static void print_params(const char *path, const lv_mission *m)
             w = (int)strlen(p.rule);
         if ((int)strlen(p.name) > wn)
             wn = (int)strlen(p.name);
+        if ((int)strlen(p.unit) > wu)
+            wu = (int)strlen(p.unit);
     }
-    printf("# %-*s %16s  %-8s %-*s %s\n", wn - 2, "name", "value", "unit", w, "allowed", "line");
+    /* %.10g of a double is at most 16 characters ("-1.234567891e-100"'s 17 with a 3-digit
+     * exponent: the column then grows by one for that line only) */
+    printf("# %-*s %16s  %-*s %-*s %s\n", wn - 2, "name", "value", wu, "unit", w, "allowed",
+           "line");
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);
@@ -55,8 +61,8 @@ static void print_params(const char *path, const lv_mission *m)
             snprintf(line, sizeof line, "%d", p.line);
         else
             snprintf(line, sizeof line, "default");
-        printf("%-*s %16.10g  %-8s %-*s %s\n", wn, p.name, p.value, p.unit[0] ? p.unit : "-", w,
-               p.rule, line);
+        printf("%-*s %16.10g  %-*s %-*s %s\n", wn, p.name, p.value, wu,
+               p.unit[0] ? p.unit : LV_UNIT_DIMENSIONLESS, w, p.rule, line);
     }
 }
 
@@ -97,7 +103,7 @@ const cli_cmd cli_cmd_params = {
     "run may vary (lv_run_set): every numeric key of the file, such as start_h,\n"
     "stage2.propellant_mass, P2.stop_time or P2.set.theta, and the per-phase defaults the\n"
     "file does not write. One a line: name, value (SI: angles in rad, the file's *_deg\n"
-    "keys converted), unit ('-' dimensionless), allowed values (may hold spaces: '> 0'),\n"
+    "keys converted), unit ('1' dimensionless), allowed values (may hold spaces: '> 0'),\n"
     "and the line of the file that writes it, or 'default'. A bad mission file exits 2.\n"
     "\n"
     "options:\n"

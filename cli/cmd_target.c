@@ -43,7 +43,7 @@ static void clear_progress(target_ui *ui)
 /* " unit", or "" for a dimensionless value */
 static const char *with_unit(const char *unit, char *buf, size_t cap)
 {
-    snprintf(buf, cap, "%s%s", unit != NULL && unit[0] ? " " : "", unit != NULL ? unit : "");
+    snprintf(buf, cap, "%s%s", LV_UNIT_ONE(unit) ? "" : " ", LV_UNIT_AFTER_NUMBER(unit));
     return buf;
 }
 

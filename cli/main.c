@@ -16,10 +16,15 @@ static int version_run(const cli_cmd *self, int argc, char **argv);
 static const cli_cmd cmd_help = {
     "help",
     "list the commands, or show one command's usage and options",
-    "[COMMAND]",
+    "[COMMAND | --markdown]",
     "Without a command: the list of commands. With one: its usage line, what it does and\n"
     "its options with their defaults and units; 'lvsim COMMAND --help' (or -h) is the\n"
-    "same. An unknown command exits 2.\n",
+    "same. An unknown command exits 2.\n"
+    "\n"
+    "options:\n"
+    "  --markdown              the list of commands as the Markdown table of docs/cli.md\n"
+    "                          (a command, its arguments before the first option, its\n"
+    "                          summary; a test compares the page with it)\n",
     help_run,
 };
 
@@ -114,10 +119,35 @@ static void print_command_help(FILE *f, const cli_cmd *c)
     fprintf(f, "%s: %s\n\n%s", c->name, c->summary, c->help);
 }
 
+/* The command list as docs/cli.md's table: `NAME ARGS` (the usage's words before the first
+ * option or optional part) and the summary; tests/cli/check_help_doc.sh compares them. */
+static void print_markdown(void)
+{
+    printf("| command | what |\n| --- | --- |\n");
+    for (const cli_cmd *const *c = commands; *c != NULL; c++) {
+        printf("| `%s", (*c)->name);
+        const char *u = (*c)->usage;
+        while (*u != '\0') {
+            while (*u == ' ' || *u == '\n')
+                u++;
+            const size_t n = strcspn(u, " \n");
+            if (n == 0 || *u == '[' || *u == '-')
+                break;
+            printf(" %.*s", (int)n, u);
+            u += n;
+        }
+        printf("` | %s |\n", (*c)->summary);
+    }
+}
+
 static int help_run(const cli_cmd *self, int argc, char **argv)
 {
     if (argc == 0) {
         print_overview(stdout);
+        return EXIT_OK;
+    }
+    if (argc == 1 && strcmp(argv[0], "--markdown") == 0) {
+        print_markdown();
         return EXIT_OK;
     }
     if (argc > 1)

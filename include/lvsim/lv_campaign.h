@@ -40,6 +40,9 @@ typedef struct lv_campaign_progress {
     double elapsed;      /* s since this call started */
     double rate;         /* runs per second in this call */
     double eta;          /* s left at that rate (NAN before the first run) */
+    uint64_t impacts;    /* stored runs where no phase failed but one fell to the ground: it
+                            ended by an `impact` end that is not its first written end (an
+                            outcome of the flight, not a failure; docs/monte-carlo.md) */
 } lv_campaign_progress;
 
 typedef struct lv_campaign_options {

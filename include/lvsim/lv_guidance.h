@@ -73,7 +73,8 @@ typedef enum lv_key_type {
 typedef struct lv_law_key {
     const char *name;          /* "kick" */
     lv_key_type type;
-    const char *unit;          /* SI: "rad", "s", "Pa", "1/s", "" (dimensionless) */
+    const char *unit;          /* SI: "rad", "s", "Pa", "1/s", "1" (dimensionless); "" for a
+                                  table or a choice (lv_units.h) */
     double lo, hi;             /* NUMBER: allowed values lo <= v <= hi (< with the flags) */
     int lo_open, hi_open;
     double dflt;               /* NUMBER: the default (NAN: required); CHOICE: its index */

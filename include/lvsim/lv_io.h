@@ -78,7 +78,7 @@ LV_API size_t lv_result_signals(const lv_result *r);
 /* Column index of a signal by name ("time", "h", "der(h)", ...) or LV_ERR_NOTFOUND. */
 LV_API lv_status lv_result_column(const lv_result *r, const char *name, size_t *col, lv_err *err);
 LV_API double lv_result_value(const lv_result *r, size_t row, size_t col);
-/* Signal col's name ("time", "h", "der(h)") and unit (SI, "" dimensionless), owned by the
+/* Signal col's name ("time", "h", "der(h)") and unit (SI, "1" dimensionless), owned by the
  * result; NULL when col >= lv_result_signals() (or the result was never opened). */
 LV_API const char *lv_result_name(const lv_result *r, size_t col);
 LV_API const char *lv_result_unit(const lv_result *r, size_t col);

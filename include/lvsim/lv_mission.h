@@ -111,7 +111,7 @@ LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *
 
 typedef struct lv_param_info {
     const char *name;  /* "start_h", "stage2.propellant_mass", "P2.set.theta" */
-    const char *unit;  /* SI; "" dimensionless */
+    const char *unit;  /* SI; "1" dimensionless (lv_units.h) */
     double value;      /* the mission file's value (or the default when the file has none) */
     int line;          /* where the file writes it; 0: not written (a default) */
     const char *rule;  /* allowed values: "finite", ">= 0", "> 0" ... */

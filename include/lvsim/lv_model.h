@@ -33,7 +33,8 @@ extern "C" {
 /* One named variable. Strings are static (or outlive the model). */
 typedef struct lv_var {
     const char *name;        /* e.g. "h", "body1.m", "start_lat" */
-    const char *unit;        /* SI unit string, "" for dimensionless */
+    const char *unit;        /* SI unit string, "1" for dimensionless (lv_units.h; "" means
+                                the same, written "1") */
     const char *description; /* one line */
     double start;            /* default start (state) or value (parameter) */
     double nominal;          /* states: typical magnitude, > 0 (atol = rtol * nominal) */
@@ -176,6 +177,15 @@ struct lv_model_def {
      * method "auto" then integrates it with BDF ("dassl") from the start, instead of an
      * explicit method until Hairer's stiffness test fires (docs/integration.md). */
     int stiff;
+
+    /* Optional: [n_params], 1 where a parameter has no effect in this configuration because
+     * something else gives the value it would set: a steering law the angle of attack, a
+     * throttle law or an input table the throttle. Result files leave such a parameter out of
+     * their parameter records (the .mat file's data_1), so that no record claims a constant
+     * that did not act; the values in effect are outputs of the model (a 3-DoF phase's
+     * alpha_in, beta_in, mu_in, throttle_in; docs/result-files.md). It stays a parameter
+     * (lv_model_find, initial values). NULL: every parameter acts. */
+    const unsigned char *param_inactive;
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -11,4 +11,14 @@
  * impulse (mdot = F / (Isp g0)), of load factors, and of the US Standard Atmosphere 1976. */
 #define LV_G0 9.80665
 
+/* Units are SI strings; a dimensionless quantity's unit is "1" (as Modelica's unit="1" and
+ * the SI Brochure, 9th ed., sec. 2.3.3, write it): the unit of every model variable, law key
+ * and run parameter, shown "1" by `lvsim vars`, `params` and `laws` and "[1]" in the result
+ * files' CSV headers and .mat descriptions (docs/result-files.md, "Units"). "" (a model of
+ * one's own) means the same and is written "1". LV_UNIT_ONE(u): 1 when u is dimensionless. */
+#define LV_UNIT_DIMENSIONLESS "1"
+#define LV_UNIT_ONE(u) ((u) == 0 || (u)[0] == '\0' || ((u)[0] == '1' && (u)[1] == '\0'))
+/* The unit as written after a number in text ("3 m/s", "0.5"): nothing for "1". */
+#define LV_UNIT_AFTER_NUMBER(u) (LV_UNIT_ONE(u) ? "" : (u))
+
 #endif

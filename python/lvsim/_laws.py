@@ -22,8 +22,8 @@ KEY_ANGLE, KEY_OPTIONAL, KEY_DOF3 = 1, 2, 4
 
 
 class LawKey:
-    """A key of a law: `name`, `type` ("number", "table", "choice"), `unit` (SI; "" when
-    dimensionless), `lo`, `hi`, `lo_open`, `hi_open` (the values allowed), `default` (SI; NaN
+    """A key of a law: `name`, `type` ("number", "table", "choice"), `unit` (SI; "1" when
+    dimensionless, "" for a table or a choice), `lo`, `hi`, `lo_open`, `hi_open` (the values allowed), `default` (SI; NaN
     when required or absent), `required`, `optional` (absent: no run parameter), `angle`
     (also taken in degrees as NAME_deg), `dof3_only`, `frames` (the frames it applies in, or
     None: all), `instead_of` (the table that replaces it), `needs` (the key it applies with),

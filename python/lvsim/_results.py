@@ -60,7 +60,7 @@ def _copy_result(res):
 
 class Table:
     """Rows of named columns with units: `names` (list of str), `units` (list of str, SI,
-    "" dimensionless), `values` (float64 ndarray of shape (rows, len(names)), row-major, a
+    "1" dimensionless), `values` (float64 ndarray of shape (rows, len(names)), row-major, a
     copy). t["h"] is a column; len(t) the row count. Event instants appear twice (the row
     before and the row after the event, same time), as in the result files."""
 
@@ -84,7 +84,7 @@ class Table:
             raise KeyError(f"no column '{name}'; columns: {', '.join(self.names)}") from None
 
     def unit(self, name):
-        """The unit of column `name` (SI; "" dimensionless)."""
+        """The unit of column `name` (SI; "1" dimensionless)."""
         self[name]
         return self.units[self._col[name]]
 
@@ -230,7 +230,7 @@ class Phase:
 
 class Parameter:
     """A run parameter (a number of the mission file a run may vary): `name`
-    ("stage2.propellant_mass", "P2.set.theta"), `unit` (SI; "" dimensionless), `value` (the
+    ("stage2.propellant_mass", "P2.set.theta"), `unit` (SI; "1" dimensionless), `value` (the
     file's value, SI), `line` (where the file writes it; 0: a default), `rule` (">= 0")."""
 
     __slots__ = ("name", "unit", "value", "line", "rule")

@@ -522,7 +522,7 @@ class Run:
                 t = b.contents
                 nr, nc = t.n_rows, t.n_cols
                 names = [text(t.names[i]) for i in range(nc)]
-                units = [text(t.units[i]) or "" for i in range(nc)]
+                units = [text(t.units[i]) or "1" for i in range(nc)]
                 if nr:
                     vals = np.ctypeslib.as_array(t.values, shape=(nr * nc,)).copy().reshape(nr, nc)
                     ph = np.ctypeslib.as_array(t.phase, shape=(nr,)).astype(np.int64)

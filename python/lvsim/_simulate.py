@@ -38,7 +38,7 @@ class Variable:
 
     def __init__(self, v, kind):
         self.name = text(v.name)
-        self.unit = text(v.unit) or ""
+        self.unit = text(v.unit) or "1"
         self.description = text(v.description) or ""
         self.start = v.start
         self.nominal = v.nominal

@@ -286,6 +286,15 @@ static int stopped(const lv_campaign_options *o)
     return o->stop != NULL && __atomic_load_n(o->stop, __ATOMIC_RELAXED) != 0;
 }
 
+/* 1 when a done phase ended by an `impact` end that is not its first written end (the end
+ * it is meant to end by: an upper stage's burnout, an orbit's periapsis): it fell to the
+ * ground. A phase whose first end is `impact` (a spent stage's fall) ended as meant. */
+static int unintended_impact(const lv_phase_result *res)
+{
+    return res->state == LV_PHASE_DONE && res->end_index > 0 &&
+           strcmp(res->report.stop_name, "impact") == 0;
+}
+
 /* The end a done phase reached: the event's name, or "stop_time". */
 static const char *end_of(const lv_phase_result *res)
 {
@@ -384,6 +393,9 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
                                (unsigned long long)run, kerr.msg);
         }
     }
+    for (size_t k = 0; ran && status == LV_MC_OK && k < np; k++)
+        if (unintended_impact(lv_run_result(w->run, k)))
+            status = LV_MC_RUN_IMPACT;
     lv_bytes_u64(b, run);
     lv_bytes_u64(b, status);
     lv_bytes_str(b, msg);
@@ -394,7 +406,7 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
     for (size_t k = 0; k < np; k++) {
         const lv_phase_result *res = lv_run_result(w->run, k);
         const lv_phase_state ps = ran ? res->state : LV_PHASE_SKIPPED;
-        lv_bytes_u64(b, (uint64_t)ps);
+        lv_bytes_u64(b, ran && unintended_impact(res) ? (uint64_t)LV_MC_IMPACT : (uint64_t)ps);
         lv_bytes_str(b, ran ? end_of(res) : "skipped");
         const int done = ps == LV_PHASE_DONE;
         lv_bytes_f64(b, ran && ps != LV_PHASE_SKIPPED ? res->t_end : NAN);

@@ -95,18 +95,22 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
     fputs("</table>\n", f);
     for (size_t k = 0; k < d->n_ph; k++) {
         const lv_mc_phase *p = &d->ph[k];
-        size_t nd = 0, nf = 0, ns = 0;
+        size_t nd = 0, nf = 0, ns = 0, ni = 0;
         for (size_t i = 0; i < p->n_rows; i++)
-            nd += p->state[i] == 1, nf += p->state[i] == 2, ns += p->state[i] == 3;
+            nd += p->state[i] == 1, nf += p->state[i] == 2, ns += p->state[i] == 3,
+                ni += p->state[i] == 4;
         fputs("<h2>Phase ", f);
         esc(f, p->name);
-        fprintf(f, "</h2>\n<p>%zu runs: %zu done, %zu failed (%.3g %%), %zu not run.", p->n_rows,
-                nd, nf, p->n_rows ? 100.0 * (double)nf / (double)p->n_rows : 0.0, ns);
+        fprintf(f, "</h2>\n<p>%zu runs: %zu done, %zu fell to the ground (an impact end not "
+                "the first written), %zu failed (%.3g %%), %zu not run.", p->n_rows, nd, ni, nf,
+                p->n_rows ? 100.0 * (double)nf / (double)p->n_rows : 0.0, ns);
         /* end reasons and causes, counted in order of first appearance */
         const char *seen[32];
         size_t cnt[32], n_seen = 0;
         for (size_t i = 0; i < p->n_rows; i++) {
-            const char *key = p->state[i] == 1 ? p->end[i] : lv_mc_cause(p->error[i]);
+            const char *key = p->state[i] == 1   ? p->end[i]
+                              : p->state[i] == 4 ? "impact (not the end meant)"
+                                                 : lv_mc_cause(p->error[i]);
             size_t q = 0;
             while (q < n_seen && strcmp(seen[q], key) != 0)
                 q++;

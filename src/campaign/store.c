@@ -19,7 +19,10 @@
 #include "core/status.h"
 #include "lvsim/lv_dispersion.h"
 
-#define LV_MC_SCHEMA 1
+/* 2: a phase's state and a run's status `impact` (a fall to the ground where another end was
+ * meant) beside done/ok */
+#define LV_MC_SCHEMA 2
+#define LV_MC_SCHEMA_TEXT "2"
 
 struct lv_campaign {
     const lv_mission *m;
@@ -35,7 +38,7 @@ struct lv_campaign {
     size_t n_gaps, gap_at;    /* the range handed out next */
     uint64_t next_run;        /* its next run */
     uint64_t n_todo;          /* runs not stored and not handed out yet */
-    uint64_t done, this_session, failed;
+    uint64_t done, this_session, failed, impacts;
     int in_tx;
     double t0;
 };
@@ -220,7 +223,7 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
     char buf[64], hash[17] = "";
     file_hash(mi.path, hash);
     snprintf(buf, sizeof buf, "%llu", (unsigned long long)c->o.seed);
-    if ((st = meta_put(c, "schema", "1", err)) != LV_OK ||
+    if ((st = meta_put(c, "schema", LV_MC_SCHEMA_TEXT, err)) != LV_OK ||
         (st = meta_put(c, "mission", mi.name, err)) != LV_OK ||
         (st = meta_put(c, "mission_file", mi.path, err)) != LV_OK ||
         (st = meta_put(c, "mission_hash", hash, err)) != LV_OK ||
@@ -482,7 +485,7 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
         lv_mission_get_info(m, &mi);
         file_hash(mi.path, hash);
         snprintf(want, sizeof want, "%llu", (unsigned long long)o->seed);
-        if (!meta_get(c, "schema", v, sizeof v) || strcmp(v, "1") != 0) {
+        if (!meta_get(c, "schema", v, sizeof v) || strcmp(v, LV_MC_SCHEMA_TEXT) != 0) {
             st = lv_fail(err, LV_ERR_INPUT, "%s is not an lvsim campaign database (schema %d)",
                          o->db_path, LV_MC_SCHEMA);
             goto fail;
@@ -546,7 +549,8 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
         from = (uint64_t)i + 1;
         c->done++;
         const char *stt = (const char *)sqlite3_column_text(s, 1);
-        c->failed += stt != NULL && strcmp(stt, "ok") != 0;
+        c->failed += stt != NULL && strcmp(stt, "ok") != 0 && strcmp(stt, "impact") != 0;
+        c->impacts += stt != NULL && strcmp(stt, "impact") == 0;
     }
     sqlite3_finalize(s);
     if (st == LV_OK && from < o->n_runs)
@@ -590,8 +594,8 @@ static void bind_real(sqlite3_stmt *s, int i, double v)
 
 lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err *err)
 {
-    static const char *const status_name[] = { "ok", "failed", "input" };
-    static const char *const state_name[] = { "pending", "done", "failed", "skipped" };
+    static const char *const status_name[] = { "ok", "failed", "input", "impact" };
+    static const char *const state_name[] = { "pending", "done", "failed", "skipped", "impact" };
     lv_rd rd = { rec, len, 0, 0 };
     lv_status st;
     if (!c->in_tx) {
@@ -603,7 +607,7 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
     size_t n;
     const char *msg = lv_rd_str(&rd, &n);
     const uint64_t nd = lv_rd_u64(&rd);
-    if (rd.bad || nd != c->n_disp || status > 2 || run >= c->o.n_runs)
+    if (rd.bad || nd != c->n_disp || status > LV_MC_RUN_IMPACT || run >= c->o.n_runs)
         return lv_fail(err, LV_ERR_INPUT, "campaign: a malformed record (run %llu)",
                        (unsigned long long)run);
     sqlite3_stmt *s = c->ins_run;
@@ -625,7 +629,7 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
         const uint64_t state = lv_rd_u64(&rd);
         const char *end = lv_rd_str(&rd, &n);
         sqlite3_bind_int64(s, 1, (sqlite3_int64)run);
-        sqlite3_bind_text(s, 2, state_name[state < 4 ? state : 0], -1, SQLITE_STATIC);
+        sqlite3_bind_text(s, 2, state_name[state <= LV_MC_IMPACT ? state : 0], -1, SQLITE_STATIC);
         sqlite3_bind_text(s, 3, end, (int)n, SQLITE_TRANSIENT);
         bind_real(s, 4, lv_rd_f64(&rd));
         sqlite3_bind_int64(s, 5, (sqlite3_int64)lv_rd_u64(&rd));
@@ -663,7 +667,8 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
                        (unsigned long long)run);
     c->done++;
     c->this_session++;
-    c->failed += status != LV_MC_OK;
+    c->failed += status == LV_MC_FAILED || status == LV_MC_INPUT;
+    c->impacts += status == LV_MC_RUN_IMPACT;
     return LV_OK;
 }
 
@@ -682,6 +687,7 @@ void lv_campaign_get_progress(const lv_campaign *c, lv_campaign_progress *p)
     p->done = c->done;
     p->this_session = c->this_session;
     p->failed = c->failed;
+    p->impacts = c->impacts;
     p->elapsed = now_s() - c->t0;
     p->rate = p->elapsed > 0.0 ? (double)c->this_session / p->elapsed : 0.0;
     p->eta = p->rate > 0.0 ? (double)(p->total - p->done) / p->rate : NAN;

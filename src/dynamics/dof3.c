@@ -66,7 +66,7 @@ static const lv_var param_tpl[P_N] = {
     {"alpha", "rad", "Angle of attack (constant input)", 0, 0},
     {"beta", "rad", "Sideslip angle (constant input)", 0, 0},
     {"mu", "rad", "Bank angle about the air-relative velocity (constant input)", 0, 0},
-    {"throttle", "", "Throttle c_s (constant input)", 1, 0},
+    {"throttle", "1", "Throttle c_s (constant input)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
 };
@@ -86,13 +86,13 @@ static const lv_var output_vars[O_N] = {
     {"heading", "rad", "Heading of the relative velocity, from north to east", 0, 0},
     {"fpa_inertial", "rad", "Flight-path angle of the inertial velocity", 0, 0},
     {"heading_inertial", "rad", "Heading of the inertial velocity", 0, 0},
-    {"mach", "", "Mach number of the air-relative velocity", 0, 0},
+    {"mach", "1", "Mach number of the air-relative velocity", 0, 0},
     {"q_dyn", "Pa", "Dynamic pressure rho V_air^2 / 2", 0, 0},
     {"rho", "kg/m3", "Air density", 0, 0},
     {"p_amb", "Pa", "Ambient pressure", 0, 0},
-    {"n_axial", "", "Axial load factor: specific force along body x / g0", 0, 0},
-    {"n_normal", "", "Normal load factor: specific force along body -z / g0", 0, 0},
-    {"n_lateral", "", "Lateral load factor: specific force along body y / g0", 0, 0},
+    {"n_axial", "1", "Axial load factor: specific force along body x / g0", 0, 0},
+    {"n_normal", "1", "Normal load factor: specific force along body -z / g0", 0, 0},
+    {"n_lateral", "1", "Lateral load factor: specific force along body y / g0", 0, 0},
     {"accel", "m/s2", "Magnitude of the inertial acceleration (gravity included)", 0, 0},
     {"accel_sensed", "m/s2", "Magnitude of the specific force (thrust + aero) / m", 0, 0},
     {"thrust", "N", "Net thrust of all engines", 0, 0},
@@ -100,16 +100,16 @@ static const lv_var output_vars[O_N] = {
     {"lift", "N", "Lift: aerodynamic force along wind -z", 0, 0},
     {"side_force", "N", "Aerodynamic force along wind +y", 0, 0},
     {"mdot", "kg/s", "Propellant mass flow of all engines (-dm/dt)", 0, 0},
-    {"engine_on", "", "1 while the engines burn", 0, 0},
+    {"engine_on", "1", "1 while the engines burn", 0, 0},
     {"alpha_in", "rad", "Angle of attack in effect (input, table, or the attitude's)", 0, 0},
     {"beta_in", "rad", "Sideslip angle in effect", 0, 0},
     {"mu_in", "rad", "Bank angle in effect (about the air-relative velocity)", 0, 0},
-    {"throttle_in", "", "Throttle in effect: commanded, or the throttle law's (before engine "
+    {"throttle_in", "1", "Throttle in effect: commanded, or the throttle law's (before engine "
      "limits)", 0, 0},
     {"downrange", "m", "Great-circle distance from the phase's start point on the sphere of radius a", 0,
      0},
     {"sma", "m", "Osculating semi-major axis", 0, 0},
-    {"ecc", "", "Osculating eccentricity", 0, 0},
+    {"ecc", "1", "Osculating eccentricity", 0, 0},
     {"inc", "rad", "Osculating inclination", 0, 0},
     {"raan", "rad", "Osculating right ascension of the ascending node (ECI)", 0, 0},
     {"argp", "rad", "Osculating argument of periapsis", 0, 0},
@@ -144,6 +144,7 @@ struct lv_dof3 {
     char name[64];
     lv_var states[LV_X3_N];
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive: inputs given otherwise */
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
@@ -639,6 +640,13 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
                             cfg->beta,      cfg->mu,        cfg->throttle, cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* the constant inputs that do not act, left out of the result files' parameter records:
+     * an angle a steering law or the inputs table gives, a throttle that a table, a steering
+     * law's table or an active throttle law gives, or that no engine burns with (the values in
+     * effect are the outputs alpha_in .. throttle_in) */
+    for (int k = 0; k < 3; k++)
+        m->param_inactive[P_ALPHA + k] = m->steers || m->inputs.k[k] >= 0;
+    m->param_inactive[P_THR] = !m->const_throttle || m->throttles || m->n_eng == 0;
 
     m->def = (lv_model_def){
         .name = m->name,
@@ -655,6 +663,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .rhs = dof3_rhs,
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
+        .param_inactive = m->param_inactive,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
                                .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,

@@ -63,10 +63,10 @@ static const lv_var state_tpl[LV_X6_N] = {
     {"v_eci_x", "m/s", "Inertial velocity, ECI x", 0.0, 1.0},
     {"v_eci_y", "m/s", "Inertial velocity, ECI y", 0.0, 1.0},
     {"v_eci_z", "m/s", "Inertial velocity, ECI z", 0.0, 1.0},
-    {"q_w", "", "Attitude quaternion body -> ECI, scalar part", 1.0, 1.0},
-    {"q_x", "", "Attitude quaternion body -> ECI, x", 0.0, 1.0},
-    {"q_y", "", "Attitude quaternion body -> ECI, y", 0.0, 1.0},
-    {"q_z", "", "Attitude quaternion body -> ECI, z", 0.0, 1.0},
+    {"q_w", "1", "Attitude quaternion body -> ECI, scalar part", 1.0, 1.0},
+    {"q_x", "1", "Attitude quaternion body -> ECI, x", 0.0, 1.0},
+    {"q_y", "1", "Attitude quaternion body -> ECI, y", 0.0, 1.0},
+    {"q_z", "1", "Attitude quaternion body -> ECI, z", 0.0, 1.0},
     {"p", "rad/s", "Roll rate: body rate relative to inertial space about body x", 0.0, 0.01},
     {"q", "rad/s", "Pitch rate: body rate relative to inertial space about body y", 0.0, 0.01},
     {"r", "rad/s", "Yaw rate: body rate relative to inertial space about body z", 0.0, 0.01},
@@ -99,7 +99,7 @@ static const lv_var param_tpl[P_N] = {
     {"start_r", "rad/s", "Initial yaw rate (relative to inertial space)", 0, 0},
     {"gimbal_pitch", "rad", "Pitch gimbal angle of every engine (constant input, without a controller)", 0, 0},
     {"gimbal_yaw", "rad", "Yaw gimbal angle of every engine (constant input, without a controller)", 0, 0},
-    {"throttle", "", "Throttle c_s (constant input)", 1, 0},
+    {"throttle", "1", "Throttle c_s (constant input)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
 };
@@ -116,19 +116,19 @@ static const lv_var output_vars[O_N] = {
     {"v_inertial", "m/s", "Inertial speed", 0, 0},
     {"fpa", "rad", "Flight-path angle of the relative velocity, up positive", 0, 0},
     {"heading", "rad", "Heading of the relative velocity, from north to east", 0, 0},
-    {"mach", "", "Mach number of the air-relative velocity", 0, 0},
+    {"mach", "1", "Mach number of the air-relative velocity", 0, 0},
     {"q_dyn", "Pa", "Dynamic pressure rho V_air^2 / 2", 0, 0},
     {"rho", "kg/m3", "Air density", 0, 0},
     {"p_amb", "Pa", "Ambient pressure", 0, 0},
     {"thrust", "N", "Net thrust of all engines (magnitude of the sum)", 0, 0},
     {"mdot", "kg/s", "Propellant mass flow of all engines (-dm/dt)", 0, 0},
-    {"engine_on", "", "1 while the engines burn", 0, 0},
+    {"engine_on", "1", "1 while the engines burn", 0, 0},
     {"drag", "N", "Drag: aerodynamic force opposite the air-relative velocity", 0, 0},
     {"lift", "N", "Lift: aerodynamic force along wind -z", 0, 0},
     {"side_force", "N", "Aerodynamic force along wind +y", 0, 0},
-    {"n_axial", "", "Axial load factor: specific force along body x / g0", 0, 0},
-    {"n_normal", "", "Normal load factor: specific force along body -z / g0", 0, 0},
-    {"n_lateral", "", "Lateral load factor: specific force along body y / g0", 0, 0},
+    {"n_axial", "1", "Axial load factor: specific force along body x / g0", 0, 0},
+    {"n_normal", "1", "Normal load factor: specific force along body -z / g0", 0, 0},
+    {"n_lateral", "1", "Lateral load factor: specific force along body y / g0", 0, 0},
     {"theta", "rad", "Pitch attitude (3-2-1 Euler angles of the body relative to NED)", 0, 0},
     {"psi", "rad", "Yaw attitude (3-2-1 Euler angles relative to NED), [0, 2 pi)", 0, 0},
     {"phi", "rad", "Roll attitude (3-2-1 Euler angles relative to NED)", 0, 0},
@@ -148,13 +148,13 @@ static const lv_var output_vars[O_N] = {
     {"I_xx", "kg.m2", "Moment of inertia about body x through the centre of mass", 0, 0},
     {"I_yy", "kg.m2", "Moment of inertia about body y through the centre of mass", 0, 0},
     {"I_zz", "kg.m2", "Moment of inertia about body z through the centre of mass", 0, 0},
-    {"quat_norm", "", "Norm of the attitude quaternion state (1 up to the drift control)", 0, 0},
+    {"quat_norm", "1", "Norm of the attitude quaternion state (1 up to the drift control)", 0, 0},
     {"gimbal_pitch_in", "rad", "Pitch gimbal angle in effect", 0, 0},
     {"gimbal_yaw_in", "rad", "Yaw gimbal angle in effect", 0, 0},
-    {"throttle_in", "", "Throttle in effect (0 with the engines off)", 0, 0},
+    {"throttle_in", "1", "Throttle in effect (0 with the engines off)", 0, 0},
     {"propellant_left", "kg", "Propellant left in the burning stage", 0, 0},
     {"sma", "m", "Osculating semi-major axis", 0, 0},
-    {"ecc", "", "Osculating eccentricity", 0, 0},
+    {"ecc", "1", "Osculating eccentricity", 0, 0},
     {"inc", "rad", "Osculating inclination", 0, 0},
     {"apo_alt", "m", "Apoapsis radius minus the equatorial radius a", 0, 0},
     {"peri_alt", "m", "Periapsis radius minus the equatorial radius a", 0, 0},
@@ -210,6 +210,7 @@ struct lv_dof6 {
     lv_var outputs[O_NMAX];
     size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive: inputs given otherwise */
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
     lv_flight_core core;         /* what the shared callbacks read (flight_model.h) */
 
@@ -1350,6 +1351,14 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
                             cfg->throttle,    cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* the constant inputs that do not act, left out of the result files' parameter records:
+     * the gimbal angles a controller or the inputs table gives, a throttle the table gives or
+     * that no engine burns with (the values in effect: gimbal_*_in, throttle_in) */
+    const int ctl = m->steers && m->ctl.kind != LV_DOF6_CTL_NONE;
+    m->param_inactive[P_GP] = ctl || m->in_k[U_GP] >= 0;
+    m->param_inactive[P_GY] = ctl || m->in_k[U_GY] >= 0;
+    m->param_inactive[P_THR] = !m->const_throttle || m->n_eng == 0 ||
+                               (m->steers && lv_guid_gives_throttle(&cfg->steering));
 
     m->def = (lv_model_def){
         .name = m->name,
@@ -1371,6 +1380,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
          * examples): stiff for an explicit method, so "auto" integrates with BDF (measured on
          * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
+        .param_inactive = m->param_inactive,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X6_RX,
                                .i_v = LV_X6_VX, .i_m = LV_X6_M, .inputs = m->inputs,

@@ -108,7 +108,7 @@ int lv_flight_air_eval(const lv_flight_world *w, double t, const lv_flight_kin *
 enum { LV_CTRL_ALPHA, LV_CTRL_BETA, LV_CTRL_MU, LV_CTRL_THROTTLE, LV_CTRL_N };
 
 typedef struct lv_flight_controls {
-    double u[LV_CTRL_N];    /* alpha, beta, mu [rad], throttle [-] */
+    double u[LV_CTRL_N];    /* alpha, beta, mu [rad], throttle [1] */
     double cs[3][2];        /* cos, sin of alpha, beta, mu */
 } lv_flight_controls;
 

@@ -14,7 +14,7 @@ typedef struct tangent_par {
 } tangent_par;
 
 #define KEY_A                                                                                  \
-    {.name = "a", .type = LV_KEY_NUMBER, .unit = "", .lo = -HUGE_VAL, .hi = HUGE_VAL,          \
+    {.name = "a", .type = LV_KEY_NUMBER, .unit = "1", .lo = -HUGE_VAL, .hi = HUGE_VAL,          \
      .dflt = NAN, .offset = offsetof(tangent_par, a),                                          \
      .description = "numerator of tan theta at the phase's start"}
 #define KEY_B                                                                                  \
@@ -36,7 +36,7 @@ static const lv_law_key linear_keys[] = {KEY_A, KEY_B, KEY_HEADING_FRAME};
 static const lv_law_key bilinear_keys[] = {
     KEY_A,
     KEY_B,
-    {.name = "c", .type = LV_KEY_NUMBER, .unit = "", .lo = 0.0, .hi = HUGE_VAL, .dflt = NAN,
+    {.name = "c", .type = LV_KEY_NUMBER, .unit = "1", .lo = 0.0, .hi = HUGE_VAL, .dflt = NAN,
      .offset = offsetof(tangent_par, c),
      .description = "denominator at the phase's start (0: vertical)"},
     {.name = "d", .type = LV_KEY_NUMBER, .unit = "1/s", .lo = -HUGE_VAL, .hi = HUGE_VAL,

@@ -12,6 +12,7 @@
 
 #include "core/status.h"
 #include "dynamics/guid_kit.h"
+#include "lvsim/lv_units.h"
 
 const char *const lv_guid_frame_words[] = {"aero", "local", "inertial", NULL};
 
@@ -124,8 +125,8 @@ static lv_status check_number(const lv_law *law, const lv_law_key *k, const void
     char rule[96];
     range_text(k, rule, sizeof rule);
     return lv_fail(err, LV_ERR_INPUT, "%s '%s': %s = %g%s%s must be %s%s%s", kw, law->name,
-                   k->name, v, k->unit[0] ? " " : "", k->unit, rule, k->unit[0] ? " " : "",
-                   k->unit);
+                   k->name, v, LV_UNIT_ONE(k->unit) ? "" : " ", LV_UNIT_AFTER_NUMBER(k->unit), rule,
+                   LV_UNIT_ONE(k->unit) ? "" : " ", LV_UNIT_AFTER_NUMBER(k->unit));
 }
 
 lv_status lv_guid_law_check(const lv_law *law, const void *par, int has_aero, lv_law_at *at,

@@ -48,7 +48,7 @@ static const lv_var param_tpl[P_N] = {
     {"runway_lon", "rad", "Longitude of the runway threshold", 0, 0},
     {"runway_h", "m", "Geodetic elevation of the runway threshold", 0, 0},
     {"runway_heading", "rad", "Runway heading, from north to east", 0, 0},
-    {"mu", "", "Rolling (take-off) or braking (landing) friction coefficient", 0, 0},
+    {"mu", "1", "Rolling (take-off) or braking (landing) friction coefficient", 0, 0},
     {"alpha_ground", "rad", "Angle of attack on all wheels", 0, 0},
     {"v_rot", "m/s", "Rotation speed (take-off)", 0, 0},
     {"alpha_rot", "rad", "Angle of attack after rotation (take-off)", 0, 0},
@@ -57,7 +57,7 @@ static const lv_var param_tpl[P_N] = {
     {"start_distance", "m", "Start distance from the threshold", 0, 0},
     {"start_speed", "m/s", "Start ground speed along the runway", 0, 0},
     {"start_time", "s", "Mission time at which the start values hold", 0, 0},
-    {"throttle", "", "Throttle c_s (constant input, take-off)", 1, 0},
+    {"throttle", "1", "Throttle c_s (constant input, take-off)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
 };
@@ -69,7 +69,7 @@ static const lv_var output_vars[O_N] = {
     {"v_rel", "m/s", "Speed relative to the rotating planet", 0, 0},
     {"fpa", "rad", "Flight-path angle of the relative velocity, up positive", 0, 0},
     {"heading", "rad", "Heading of the relative velocity, from north to east", 0, 0},
-    {"mach", "", "Mach number of the air-relative velocity", 0, 0},
+    {"mach", "1", "Mach number of the air-relative velocity", 0, 0},
     {"q_dyn", "Pa", "Dynamic pressure rho V_air^2 / 2", 0, 0},
     {"rho", "kg/m3", "Air density", 0, 0},
     {"p_amb", "Pa", "Ambient pressure", 0, 0},
@@ -80,13 +80,13 @@ static const lv_var output_vars[O_N] = {
     {"normal_force", "N", "Force of the runway on the wheels, along its normal (>= 0)", 0, 0},
     {"friction", "N", "Rolling or braking friction mu N, against the motion", 0, 0},
     {"accel", "m/s2", "Acceleration along the runway dV/dt", 0, 0},
-    {"n_axial", "", "Axial load factor: specific force (thrust + aero) along body x / g0", 0, 0},
+    {"n_axial", "1", "Axial load factor: specific force (thrust + aero) along body x / g0", 0, 0},
     {"alpha_in", "rad", "Angle of attack in effect", 0, 0},
-    {"throttle_in", "", "Throttle in effect (0 with the engines off)", 0, 0},
-    {"engine_on", "", "1 while the engines burn", 0, 0},
-    {"rotating", "", "1 from the rotation on (take-off)", 0, 0},
+    {"throttle_in", "1", "Throttle in effect (0 with the engines off)", 0, 0},
+    {"engine_on", "1", "1 while the engines burn", 0, 0},
+    {"rotating", "1", "1 from the rotation on (take-off)", 0, 0},
     {"propellant_left", "kg", "Propellant left in the burning stage", 0, 0},
-    {"lift_margin", "", "(lift + thrust normal part) / weight normal part: 1 at lift-off", 0, 0},
+    {"lift_margin", "1", "(lift + thrust normal part) / weight normal part: 1 at lift-off", 0, 0},
     {"r_eci_x", "m", "Position, ECI x (the 3-DoF model's state)", 0, 0},
     {"r_eci_y", "m", "Position, ECI y", 0, 0},
     {"r_eci_z", "m", "Position, ECI z", 0, 0},
@@ -117,6 +117,7 @@ struct lv_runway {
     lv_runway_mode mode;
     lv_var states[LV_XRW_N];
     lv_var params[P_N];
+    unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive */
     size_t n_ends;
     lv_runway_end *ends;
     lv_event_def *events;
@@ -660,6 +661,9 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
                             cfg->throttle, cfg->propellant};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    /* no engine (a landing roll-out's are off): the throttle does not act and is not recorded
+     * as a constant (throttle_in: 0) */
+    m->param_inactive[P_THR] = m->n_eng == 0;
     m->def = (lv_model_def){
         .name = m->name,
         .description = cfg->mode == LV_RUNWAY_TAKEOFF
@@ -683,6 +687,7 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
         .outputs_fn = rw_outputs,
         .last_error = rw_last_error,
         .time_event_name = rw_time_event_name,
+        .param_inactive = m->param_inactive,
     };
     m->inst.m = m;
     runway_frame(&m->world.planet, cfg->runway_lat, cfg->runway_lon, cfg->runway_h,

@@ -15,11 +15,11 @@ typedef struct nominal_par {
 } nominal_par;
 
 static const lv_law_key keys[] = {
-    {.name = "value", .type = LV_KEY_NUMBER, .unit = "", .lo = 0.0, .hi = HUGE_VAL,
+    {.name = "value", .type = LV_KEY_NUMBER, .unit = "1", .lo = 0.0, .hi = HUGE_VAL,
      .dflt = NAN, .flags = LV_KEY_OPTIONAL, .offset = offsetof(nominal_par, value),
      .description = "the nominal throttle (else inputs.throttle or the attitude table's, "
                     "default 1); in the C API lv_dof3_config.throttle"},
-    {.name = "g_limit", .type = LV_KEY_NUMBER, .unit = "", .lo = 0.0, .hi = HUGE_VAL,
+    {.name = "g_limit", .type = LV_KEY_NUMBER, .unit = "1", .lo = 0.0, .hi = HUGE_VAL,
      .lo_open = 1, .dflt = 0.0, .flags = LV_KEY_OPTIONAL,
      .offset = offsetof(nominal_par, g_limit),
      .description = "axial load factor limit (thrust + axial aerodynamic force) / (m g0)"},

@@ -171,7 +171,7 @@ typedef struct unit_set {
 
 static lv_status unit_note(unit_set *us, const char *unit, const char *var, lv_err *err)
 {
-    if (unit[0] == '\0')
+    if (LV_UNIT_ONE(unit)) /* dimensionless ("1"): no unit attribute, nothing to declare */
         return LV_OK;
     for (size_t i = 0; i < us->n; i++)
         if (strcmp(us->names[i], unit) == 0)
@@ -358,7 +358,7 @@ static void real_elem(sbuf *b, const char *unit, const double *start, double nom
                       long derivative)
 {
     sb_add(b, "      <Real");
-    if (unit[0] != '\0') {
+    if (!LV_UNIT_ONE(unit)) {
         sb_add(b, " unit=\"");
         sb_xml(b, unit);
         sb_add(b, "\"");
@@ -396,7 +396,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         st = unit_note(us, d->params[j].unit, d->params[j].name, err);
     for (size_t k = 0; k < ny && st == LV_OK; k++)
         st = unit_note(us, d->outputs[k].unit, d->outputs[k].name, err);
-    /* the run parameters' units as `lvsim params` writes them ("m^2", "-"): declared where the
+    /* the run parameters' units as `lvsim params` writes them ("m^2", "1"): declared where the
      * exporter knows them in base units, left out otherwise (a unit is optional) */
     const size_t nr = fp->n_run;
     char(*runits)[64] = calloc(nr + 1, sizeof *runits);
@@ -406,7 +406,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         lv_param_info pi;
         lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
         int e[U_N];
-        if (strcmp(pi.unit, "-") != 0 && strlen(pi.unit) < sizeof runits[r] &&
+        if (!LV_UNIT_ONE(pi.unit) && strlen(pi.unit) < sizeof runits[r] &&
             unit_parse(pi.unit, e) == 0) {
             snprintf(runits[r], sizeof runits[r], "%s", pi.unit);
             st = unit_note(us, pi.unit, pi.name, err);

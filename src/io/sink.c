@@ -138,7 +138,8 @@ lv_status lv_sink_check_row(const char *path, size_t row, double t, double t_pre
 char *lv_sink_describe(const char *description, const char *unit)
 {
     const char *d = description != NULL ? description : "";
-    const char *u = unit != NULL ? unit : "";
+    /* dimensionless: "1", shown "[1]" (lv_units.h), also for a model that wrote "" */
+    const char *u = unit != NULL && unit[0] != '\0' ? unit : "1";
     const size_t dl = strlen(d), ul = strlen(u);
     char *s = malloc(dl + ul + 4); /* ' ' '[' ']' NUL */
     if (s == NULL)

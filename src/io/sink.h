@@ -40,8 +40,8 @@ lv_status lv_sink_check_info(const lv_result_info *info, const char *path, lv_er
  * `row` is the 0-based index of this row (for the message). */
 lv_status lv_sink_check_row(const char *path, size_t row, double t, double t_prev, lv_err *err);
 
-/* "description [unit]", "description" (dimensionless), "[unit]" (no
- * description) or "" into a new malloc'd string; NULL when out of memory. */
+/* "description [unit]", or "[unit]" (no description), into a new malloc'd string; a
+ * dimensionless unit ("1", or "" / NULL) is "[1]" (lv_units.h); NULL when out of memory. */
 char *lv_sink_describe(const char *description, const char *unit);
 
 /* A result-file format a run writes per phase (lv_sim_settings.result_formats): one file

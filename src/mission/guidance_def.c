@@ -350,7 +350,9 @@ static lv_status parse_throttle(const lv_pctx *c, const lv_ynode *n, const char 
         size_t su = 0;
         for (size_t j = 0; j < l->n_keys && su < sizeof shape; j++)
             su += (size_t)snprintf(shape + su, sizeof shape - su, "%s%s: %s", j ? ", " : "",
-                                   l->keys[j].name, l->keys[j].unit[0] ? l->keys[j].unit : "-");
+                                   l->keys[j].name, l->keys[j].type != LV_KEY_NUMBER ? "-"
+                                   : l->keys[j].unit[0]                 ? l->keys[j].unit
+                                                                        : "1");
         if (sub->kind != LV_YNODE_MAP)
             return lv_pk_fail(c, sub, "%s: a mapping {%s} expected", lwhat, shape);
         known_keys lk;

@@ -14,6 +14,7 @@
 #include "core/status.h"
 #include "mission/mission_rt.h"
 #include "mission/targeting_def.h"
+#include "lvsim/lv_units.h"
 
 /* ---- plans ------------------------------------------------------------------------------- */
 
@@ -283,7 +284,7 @@ static lv_status narrow_slot(lv_mission *m, const lv_phase_def *ph, lv_slot s, l
     }
     char rule[96];
     lv_range_text(shown, rule, sizeof rule);
-    const char *u = deg ? "deg" : sd->unit;
+    const char *u = deg ? "deg" : LV_UNIT_AFTER_NUMBER(sd->unit);
     return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s', %s: %s%s must be %s%s%s, found %g",
                    d->path, sd->loc.line, sd->loc.column, ph->name, where, var, deg ? "_deg" : "",
                    rule, u[0] ? " " : "", u, deg ? sd->value / LV_DEG : sd->value);
@@ -291,6 +292,23 @@ static lv_status narrow_slot(lv_mission *m, const lv_phase_def *ph, lv_slot s, l
 
 /* An end on a variable names a state, derivative or output of the phase's model (a parameter
  * never crosses); its slot takes the variable's unit and range; `_deg` only for an angle. */
+/* The unit of a state's time derivative, as lv_simulate names it (docs/result-files.md):
+ * "1" -> "1/s", "m/s" -> "m/s2", "m/s2" -> "m/s3", "kg" -> "kg/s". */
+static const char *der_unit(const char *unit, char *buf, size_t cap)
+{
+    const size_t len = strlen(unit);
+    if (LV_UNIT_ONE(unit))
+        snprintf(buf, cap, "1/s");
+    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
+        snprintf(buf, cap, "%s2", unit);
+    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
+             unit[len - 1] < '9')
+        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
+    else
+        snprintf(buf, cap, "%s/s", unit);
+    return buf;
+}
+
 static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_end_def *e,
                                const lv_model_def *md, lv_err *err)
 {
@@ -304,12 +322,13 @@ static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_e
         st = lv_fail(err, LV_ERR_INPUT, "'%s' is a parameter of the model: constant during the "
                      "phase, it never crosses a value", e->var);
     const char *unit = NULL;
+    char dunit[72];
     if (st == LV_OK) {
         unit = kind == LV_VAR_STATE    ? md->states[idx].unit
                : kind == LV_VAR_OUTPUT ? md->outputs[idx].unit
                                        : "";
-        if (kind == LV_VAR_DERIVATIVE)
-            unit = ""; /* the derivative's unit is the state's per second: not needed here */
+        if (kind == LV_VAR_DERIVATIVE) /* the state's unit per second */
+            unit = der_unit(md->states[idx].unit, dunit, sizeof dunit);
         if (e->deg && strcmp(unit, "rad") != 0)
             st = lv_fail(err, LV_ERR_INPUT, "'%s' is not an angle (its unit is '%s'): write its "
                          "value without _deg", e->var, unit);

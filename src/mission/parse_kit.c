@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 
 #include "core/names.h"
+#include "lvsim/lv_units.h"
 #include "mission/parse_int.h"
 
 /* ---- messages ------------------------------------------------------------------------- */
@@ -121,7 +122,9 @@ lv_status lv_mission_def_add_slot(lv_mission_def *m, const char *name, const cha
         m->cap_slots = cap;
     }
     lv_slot_def *sd = &m->slots[m->n_slots];
-    *sd = (lv_slot_def){lv_pk_strdup(name), lv_pk_strdup(unit), value, range, owner, owner_index, loc};
+    /* a dimensionless number's unit is "1" (lv_units.h), however the caller wrote it */
+    *sd = (lv_slot_def){lv_pk_strdup(name), lv_pk_strdup(LV_UNIT_ONE(unit) ? "1" : unit), value,
+                        range, owner, owner_index, loc};
     if (sd->name == NULL || sd->unit == NULL) {
         free(sd->name);
         free(sd->unit);

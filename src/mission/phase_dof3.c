@@ -32,7 +32,7 @@ static const lv_range mission_param_ranges[] = {LV_KIT_START_RANGES};
 /* ---- the phase's own keys ------------------------------------------------------------ */
 
 typedef struct dof3_cfg {
-    lv_slot u[4];        /* alpha, beta, mu [rad], throttle [-]: constant inputs */
+    lv_slot u[4];        /* alpha, beta, mu [rad], throttle [1]: constant inputs */
     char *inputs_file, *inputs_var;
     lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
     lv_aero_def aero;    /* the phase's aerodynamic dataset (aero_def.h) */

@@ -195,7 +195,7 @@ static lv_status parse_start(const lv_pctx *c, const lv_ynode *n, const char *ph
 }
 
 /* inputs: {gimbal_pitch_deg, gimbal_yaw_deg, throttle, table}: constants, or a table over time
- * with outputs gimbal_pitch, gimbal_yaw [rad], throttle [-] that replace them. */
+ * with outputs gimbal_pitch, gimbal_yaw [rad], throttle [1] that replace them. */
 static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *phase,
                               dof6_cfg *cfg)
 {

@@ -23,6 +23,7 @@
 #include "integrate/integrator.h"
 #include "io/sink.h"
 #include "lvsim/lv_dispersion.h"
+#include "lvsim/lv_units.h"
 #include "lvsim/lv_io.h"
 #include "mission/dispersion.h"
 #include "mission/mission_rt.h"
@@ -165,8 +166,9 @@ static lv_status set_slot(lv_run *r, size_t i, double v, int deg, lv_err *err)
     const double x = deg ? (v == r->vals[i] / LV_DEG ? r->vals[i] : v * LV_DEG) : v;
     if (!lv_range_holds(sd->range, x))
         return lv_fail(err, LV_ERR_INPUT, "mission '%s': %s%s = %g %s: must be %s%s%s", d->name,
-                       sd->name, deg ? "_deg" : "", v, deg ? "deg" : sd->unit,
-                       r->m->rules[i], sd->unit[0] && !deg ? " " : "", deg ? "" : sd->unit);
+                       sd->name, deg ? "_deg" : "", v, deg ? "deg" : LV_UNIT_AFTER_NUMBER(sd->unit),
+                       r->m->rules[i], !LV_UNIT_ONE(sd->unit) && !deg ? " " : "",
+                       deg ? "" : LV_UNIT_AFTER_NUMBER(sd->unit));
     if (memcmp(&x, &r->vals[i], sizeof x) == 0)
         return LV_OK; /* unchanged: nothing to run again */
     r->vals[i] = x;

@@ -25,11 +25,11 @@ static const lv_var asc_params[P_ASC_N] = {
     {"h0", "m", "Initial altitude", 0.0, 0},
     {"v0", "m/s", "Initial velocity", 0.0, 0},
     {"m0", "kg", "Initial mass", 1000.0, 0},
-    {"stop_at_apogee", "", "1: end the run at apogee; 0: continue to impact", 0.0, 0},
+    {"stop_at_apogee", "1", "1: end the run at apogee; 0: continue to impact", 0.0, 0},
 };
 static const lv_var asc_outputs[] = {
     {"F", "N", "Thrust acting now", 0, 0},
-    {"engine_on", "", "1 while the engine burns", 0, 0},
+    {"engine_on", "1", "1 while the engine burns", 0, 0},
 };
 static const lv_event_def asc_events[LV_ASC_EV_N] = {
     {"burnout", "Propellant exhausted: m falls through m_final", LV_DIR_FALLING, 0},
@@ -294,7 +294,7 @@ static const lv_var kep_states[LV_KEP_N] = {
 static const lv_var kep_params[P_KEP_N] = {
     {"mu", "m3/s2", "Gravitational parameter", 3.986004418e14, 0},
     {"a", "m", "Semi-major axis of the start orbit", 7.0e6, 0},
-    {"e", "", "Eccentricity of the start orbit (start at periapsis, x-y plane)", 0.1, 0},
+    {"e", "1", "Eccentricity of the start orbit (start at periapsis, x-y plane)", 0.1, 0},
 };
 static const lv_var kep_outputs[] = {
     {"energy", "m2/s2", "Specific orbital energy v^2/2 - mu/r", 0, 0},

@@ -405,7 +405,7 @@ static const lv_var flat6_outputs[OF_N_AIR] = {
     {"mdot", "kg/s", "Propellant mass flow", 0, 0},
     {"speed", "m/s", "Speed |v|", 0, 0},
     {"accel", "m/s2", "Vertical acceleration dvz/dt", 0, 0},
-    {"burning", "", "1 while the bottom stage burns", 0, 0},
+    {"burning", "1", "1 while the bottom stage burns", 0, 0},
     {"propellant", "kg", "Propellant left in the bottom stage", 0, 0},
     /* with an atmosphere: */
     {"mach", "1", "Mach number of the air-relative velocity", 0, 0},

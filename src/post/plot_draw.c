@@ -663,7 +663,7 @@ static const quantity quantities[] = {
     {0, "speed", "Speed", "speed [m/s]", {"v_rel", "speed", NULL}, {"v_inertial", NULL},
      "relative", "inertial", 1.0, {NULL}, "", 0, 0},
     {0, "mass", "Mass", "mass [t]", {"m", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
-    {1, "mach", "Mach number", "Mach number [-]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, "", 0, 0},
+    {1, "mach", "Mach number", "Mach number [1]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, "", 0, 0},
     {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
      {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},

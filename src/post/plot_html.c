@@ -312,8 +312,8 @@ static void kv(FILE *f, const char *name, double v, double scale, int prec, cons
 {
     if (!isfinite(v))
         return;
-    fprintf(f, "%s%s %.*f%s%s", *first ? "" : ", ", name, prec, v * scale, unit[0] ? " " : "",
-            unit);
+    fprintf(f, "%s%s %.*f%s%s", *first ? "" : ", ", name, prec, v * scale,
+            LV_UNIT_ONE(unit) ? "" : " ", LV_UNIT_AFTER_NUMBER(unit));
     *first = 0;
 }
 

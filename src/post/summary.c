@@ -50,7 +50,7 @@ static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, l
     FILE *f = out.fp;
     fprintf(f, "time [s],phase");
     for (size_t c = 1; c < b->n_cols; c++)
-        fprintf(f, ",%s [%s]", b->names[c], b->units[c]);
+        fprintf(f, ",%s [%s]", b->names[c], b->units[c][0] ? b->units[c] : "1"); /* "1": lv_units.h */
     fputc('\n', f);
     /* numbers as the result CSVs write them: the shortest text that reads back exactly */
     char *line = malloc(b->n_cols * LV_NUMFMT_MAX + 1);

@@ -82,6 +82,8 @@ typedef struct sim_run {
     char **owned; /* strings made for der(x) names and units */
     size_t n_owned;
 
+    lv_var *rec_params;    /* the parameters the result files record (param_inactive left out), */
+    double *rec_values;    /* and their values; NULL: all of them (r->def->params, r->p) */
     lv_sink own_sinks[32]; /* one per registered result format (flags of an unsigned) */
     size_t n_own_sinks;
     lv_sink **sinks; /* own + borrowed */
@@ -225,10 +227,10 @@ static char *own_string(sim_run *r, const char *a, const char *b, const char *c)
     return s;
 }
 
-/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s". */
+/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "1" (or "") -> "1/s". */
 static char *derivative_unit(sim_run *r, const char *unit)
 {
-    if (unit[0] == '\0')
+    if (unit[0] == '\0' || strcmp(unit, "1") == 0)
         return own_string(r, "1/s", "", "");
     size_t len = strlen(unit);
     if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
@@ -527,9 +529,28 @@ static lv_status open_sinks(sim_run *r, const lv_sim_settings *s, lv_err *err)
     for (size_t k = 0; k < s->n_sinks; k++)
         r->sinks[r->n_sinks++] = &s->sinks[k];
 
+    /* the parameters that act: one a law or a table replaces is not recorded as a constant
+     * (lv_model_def.param_inactive) */
+    const lv_var *rec_params = r->def->params;
+    const double *rec_values = r->p;
+    size_t n_rec = r->np;
+    if (r->def->param_inactive != NULL && r->np > 0) {
+        r->rec_params = malloc(r->np * sizeof *r->rec_params);
+        r->rec_values = malloc(r->np * sizeof *r->rec_values);
+        if (r->rec_params == NULL || r->rec_values == NULL)
+            return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        n_rec = 0;
+        for (size_t j = 0; j < r->np; j++)
+            if (!r->def->param_inactive[j]) {
+                r->rec_params[n_rec] = r->def->params[j];
+                r->rec_values[n_rec++] = r->p[j];
+            }
+        rec_params = r->rec_params;
+        rec_values = r->rec_values;
+    }
     lv_result_info info = {r->def->name,  r->def->description ? r->def->description : "",
-                           r->np,         r->def->params,
-                           r->p,          r->n_signals,
+                           n_rec,         rec_params,
+                           rec_values,    r->n_signals,
                            r->signals,    r->kinds};
     for (size_t k = 0; k < r->n_sinks; k++) {
         lv_status st = r->sinks[k]->vt->open(r->sinks[k]->self, &info, err);
@@ -567,6 +588,8 @@ static void free_run(sim_run *r)
     for (size_t k = 0; k < r->n_own_sinks; k++)
         lv_sink_destroy(&r->own_sinks[k]);
     free(r->sinks);
+    free(r->rec_params);
+    free(r->rec_values);
     for (size_t i = 0; i < r->n_owned; i++)
         free(r->owned[i]);
     free(r->owned);

@@ -81,6 +81,39 @@ done
 grep -q '^"booster",impact,east_m,north_m,48,' "$work/j2/ellipses.csv" && ok || bad "booster impact ellipse"
 grep -q "<coordinates>" "$work/j2/footprint.kml" && ok || bad "KML coordinates"
 
+# Impacts are outcomes, not failures (issue 27): 300 runs of the README's campaign, in which a
+# few dispersed upper stages are too slow to reach orbit and fall back before burnout. The
+# same mission with the upper stage's `end: [burnout]` alone (as before issue 27) leaves the
+# model's domain in exactly those runs: an independent account of which runs fell. With
+# `end: [burnout, impact]` they are `impact` (state, status, outcomes.csv, stats.json, the
+# CLI's count), their final altitude is the ground's (the impact end's h = 0, within the
+# event location's 1 m), no run failed, and the orbit statistics cover the burnout runs only.
+cp -r "$src/examples/dof3-branch" "$work/fall"
+sed -i 's/^    end: \[burnout, impact\]$/    end: [burnout]/' "$work/fall/mission.yaml"
+grep -c '^    end: \[burnout\]$' "$work/fall/mission.yaml" | grep -qx 2 && ok || bad "the copy without the impact end"
+"$lvsim" mc "$work/fall/mission.yaml" -n 300 -j 2 -o "$work/fall_old" --no-plots >/dev/null 2>&1
+"$lvsim" mc "$mission" -n 300 -j 2 -o "$work/fall_new" --no-plots >"$work/fall_new.log" 2>&1 || bad "mc: impacts must not fail the campaign (exit $?)"
+q() { sqlite3 "$1" "$2" | tr '\n' ' '; }
+old=$(q "$work/fall_old/campaign.db" "SELECT run FROM \"phase_upper-burn\" WHERE state = 'failed' AND error LIKE '%left the model''s domain: h fell%' ORDER BY run")
+new=$(q "$work/fall_new/campaign.db" "SELECT run FROM \"phase_upper-burn\" WHERE state = 'impact' AND end_reason = 'impact' ORDER BY run")
+runs=$(q "$work/fall_new/campaign.db" "SELECT run FROM runs WHERE status = 'impact' ORDER BY run")
+nimp=$(wc -w <<<"$new")
+echo "impacts: $nimp runs ($new); without the impact end they failed: $old"
+[ "$nimp" -ge 1 ] && [ "$new" = "$old" ] && [ "$runs" = "$new" ] && ok || bad "impact runs '$new' (runs table '$runs') differ from the domain exits without the end '$old'"
+n=$(q "$work/fall_new/campaign.db" "SELECT count(*) FROM runs WHERE status NOT IN ('ok', 'impact')")
+[ "$n" = "0 " ] && ok || bad "$n runs failed"
+n=$(q "$work/fall_new/campaign.db" "SELECT count(*) FROM \"phase_upper-burn\" WHERE state = 'impact' AND abs(h) > 1")
+[ "$n" = "0 " ] && ok || bad "$n impact runs do not end on the ground"
+grep -q "0 with a failed phase or an input out of range, $nimp with a phase that fell to the ground" "$work/fall_new.log" && ok || { bad "mc's counts"; tail -3 "$work/fall_new.log"; }
+grep -qx "\"upper-burn\",impact,\"impact\",$nimp,.*" "$work/fall_new/outcomes.csv" && ! grep -q ',failed,' "$work/fall_new/outcomes.csv" && ok || { bad "outcomes.csv"; cat "$work/fall_new/outcomes.csv"; }
+python3 - "$work/fall_new/stats.json" "$nimp" <<'PY' && ok || bad "stats.json: impacts counted apart, orbit statistics over the burnout runs"
+import json, sys
+ph = {p["name"]: p for p in json.load(open(sys.argv[1]))["phases"]}["upper-burn"]
+n = int(sys.argv[2])
+assert ph["impact"] == n and ph["failed"] == 0 and ph["done"] == 300 - n, ph
+assert ph["finals"]["peri_alt"]["n"] == 300 - n and "impact" not in ph["ends"], ph["ends"]
+PY
+
 # an existing database: refused without --resume or --force, the folder left as it was (its
 # manifest too: issue 22's breaker saw a refused mc mark a finished campaign 'incomplete')
 man_before=$(sha256sum < "$work/j2/manifest.json")

@@ -32,11 +32,12 @@ def check(cond, what):
 
 
 NAMES = ["time", "h", "der(h)", "m", "C[1,2]", "mdot", "isp", "g0", "n_stages"]
+# dimensionless: "[1]", the unit one (docs/result-files.md, "Units"), also for a model's ""
 DESCRIPTIONS = ["Simulation time [s]", "Altitude [m]", "der(Altitude) [m/s]",
-                "Vehicle mass [kg]", "Attitude matrix element, body to ECI",
+                "Vehicle mass [kg]", "Attitude matrix element, body to ECI [1]",
                 "Mass flow [kg/s]", "Specific impulse [s]", "Standard gravity [m/s2]",
-                "Stage count"]
-UNITS = ["s", "m", "m/s", "kg", "", "kg/s", "s", "m/s2", ""]
+                "Stage count [1]"]
+UNITS = ["s", "m", "m/s", "kg", "1", "kg/s", "s", "m/s2", "1"]
 PARAMS = {"mdot": 12.5, "isp": 300.0, "g0": 9.80665, "n_stages": 2.0}
 DATAINFO = [[0, 1, 0, -1], [2, 2, 0, -1], [2, 3, 0, -1], [2, 4, 0, -1], [2, 5, 0, -1],
             [1, 2, 0, 0], [1, 3, 0, 0], [1, 4, 0, 0], [1, 5, 0, 0]]

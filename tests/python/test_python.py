@@ -80,7 +80,7 @@ def read_csv(path):
     with open(path, newline="") as fh:
         rows = [r for r in csv.reader(fh) if r and not r[0].startswith("#")]
     names, units = [], []
-    for h in rows[0]:  # "name [unit]", or "name" when dimensionless
+    for h in rows[0]:  # "name [unit]", "name [1]" when dimensionless
         n, _, u = h.partition(" [")
         names.append(n)
         units.append(u[:-1])

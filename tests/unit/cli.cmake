@@ -5,6 +5,14 @@ add_test(NAME test_laws_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_laws_d
 # docs/result-files.md's and docs/exports.md's format tables are `lvsim formats --markdown`.
 add_test(NAME test_formats_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_formats_doc.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# One convention for dimensionless units (issue 27): "1" / "[1]" in lvsim vars, params, laws,
+# the CSV headers and .mat descriptions of a run, and the Python package (test_units: the tables).
+add_test(NAME test_units_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_units.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/python)
+set_tests_properties(test_units_cli PROPERTIES ENVIRONMENT "LV_PYTHON=${LV_PYTHON}")
+# docs/cli.md's command table is `lvsim help --markdown`; each command has its section.
+add_test(NAME test_help_doc COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_help_doc.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols.sh
          $<TARGET_FILE:lvsim> $<TARGET_FILE:lvsim_post> $<TARGET_FILE:lvsim_plot>)
 # The libraries only some commands need are loaded by those commands alone (src/io/dl_lib.h).

@@ -17,6 +17,9 @@ lv_add_unit_test(test_run unit/test_run.c)
 # broken on purpose failing them): trajectory columns, mass state, from_types, hand-offs,
 # mission parameters; no type named by a string outside the types and models (src/, cli/).
 lv_add_unit_test(test_phase_types unit/test_phase_types.c)
+# One convention for units (issue 27): every model's variables, every law key, every example's
+# run parameters and phase models: SI strings, dimensionless "1".
+lv_add_unit_test(test_units unit/test_units.c)
 # A run is right or says why (issue 9): model domains, load-time checks, the propellant book,
 # the run order.
 lv_add_unit_test(test_checks unit/test_checks.c)

@@ -11,6 +11,7 @@
 #include "check.h"
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_dof3.h"
+#include "lvsim/lv_guidance.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_sim.h"
@@ -851,6 +852,168 @@ static void test_bad_config(void)
     lv_gravity_free(grav);
 }
 
+/* ---- (10) the result files' records: what the phase used -------------------------------- */
+/* A sink that keeps what lv_simulate gives every result file: the parameter records (the .mat
+ * file's data_1) and the rows. */
+typedef struct capture {
+    size_t np, ns, rows;
+    char pname[32][48]; /* copies: the names live as long as the simulation */
+    double pval[32];
+    char sname[128][48];
+    double v[64 * 128];
+} capture;
+
+static lv_status cap_open(void *self, const lv_result_info *in, lv_err *err)
+{
+    (void)err;
+    capture *c = self;
+    c->np = in->n_params < 32 ? in->n_params : 32;
+    c->ns = in->n_signals < 128 ? in->n_signals : 128;
+    for (size_t j = 0; j < c->np; j++) {
+        snprintf(c->pname[j], sizeof c->pname[j], "%s", in->params[j].name);
+        c->pval[j] = in->param_values[j];
+    }
+    for (size_t i = 0; i < c->ns; i++)
+        snprintf(c->sname[i], sizeof c->sname[i], "%s", in->signals[i].name);
+    return LV_OK;
+}
+
+static lv_status cap_row(void *self, const double *v, lv_err *err)
+{
+    (void)err;
+    capture *c = self;
+    if (c->rows < 64)
+        memcpy(c->v + c->rows++ * 128, v, c->ns * sizeof *v);
+    return LV_OK;
+}
+
+static lv_status cap_close(void *self, const char *failure, lv_err *err)
+{
+    (void)self, (void)failure, (void)err;
+    return LV_OK;
+}
+
+static void cap_destroy(void *self) { (void)self; }
+
+static const lv_sink_vtbl cap_vtbl = {"capture", cap_open, cap_row, cap_close, cap_destroy};
+
+/* The recorded parameter `name` (NULL: not recorded). */
+static const double *cap_param(const capture *c, const char *name)
+{
+    for (size_t j = 0; j < c->np; j++)
+        if (strcmp(c->pname[j], name) == 0)
+            return &c->pval[j];
+    return NULL;
+}
+
+static size_t cap_col(const capture *c, const char *name)
+{
+    for (size_t i = 0; i < c->ns; i++)
+        if (strcmp(c->sname[i], name) == 0)
+            return i;
+    return (size_t)-1;
+}
+
+/* Issue 27: a dof3 phase that a steering law and a throttle law fly must not record the
+ * constant inputs alpha, beta, mu = 0 and throttle = 1 as parameters (they did not act); the
+ * values in effect are the outputs alpha_in .. throttle_in and equal the laws' own values.
+ * Reference values: the `attitude` law in its aero frame gives its angles as they are written
+ * (docs/guidance.md); the `nominal` throttle law's axial load-factor limit in vacuum, without
+ * aerodynamic force and exit-pressure loss, is T / (m g0) = g_limit, so c = g_limit g0 m /
+ * T_vac (docs/guidance.md, "Throttle laws"), with m the row's own mass. A phase flown on its
+ * constant inputs records them, with their values. */
+static void test_records(void)
+{
+    lv_err err;
+    const double g = 9.81, R = 6.4e10;
+    lv_planet big = {"bigsphere", R, 0.0, g * R * R, 0.0, 0.0, R, 0.0, 0.0, 0.0};
+    lv_gravity_config gc = {"pointmass", 0, -1, NULL};
+    lv_gravity *grav = NULL;
+    CHECK_OK(lv_gravity_create(&big, &gc, &grav, &err), &err);
+    const double F = 30000.0, g_lim = 2.0;
+    lv_engine_config eng;
+    lv_engine_config_default(&eng);
+    eng.name = "main";
+    eng.thrust_vac = F;
+    eng.isp_vac = 300.0;
+    for (int guided = 1; guided >= 0; guided--) {
+        lv_dof3_config cfg;
+        lv_dof3_config_default(&cfg);
+        cfg.planet = big;
+        cfg.gravity = grav;
+        cfg.m0 = 1000.0;
+        cfg.propellant = 600.0;
+        cfg.n_engines = 1;
+        cfg.engines = &eng;
+        cfg.start_lat = 10.0 * DEG;
+        cfg.start_vel = 100.0;
+        cfg.start_fpa = 80.0 * DEG;
+        if (guided) {
+            CHECK_OK(lv_steering_init(&cfg.steering, "attitude", &err), &err);
+            CHECK_OK(lv_steering_set_choice(&cfg.steering, "frame", "aero", &err), &err);
+            CHECK_OK(lv_steering_set(&cfg.steering, "alpha_deg", 4.0, &err), &err);
+            CHECK_OK(lv_steering_set(&cfg.steering, "beta_deg", 1.0, &err), &err);
+            CHECK_OK(lv_steering_set(&cfg.steering, "mu_deg", 10.0, &err), &err);
+            CHECK_OK(lv_throttle_set(&cfg.throttle_law, "g_limit", g_lim, &err), &err);
+        } else {
+            cfg.alpha = 0.05;
+            cfg.beta = -0.01;
+            cfg.mu = 0.2;
+            cfg.throttle = 0.8;
+        }
+        lv_dof3 *m = NULL;
+        CHECK_OK(lv_dof3_create(&cfg, &m, &err), &err);
+        if (m == NULL)
+            continue;
+        capture *c = calloc(1, sizeof *c);
+        lv_sink sink = {&cap_vtbl, c};
+        CHECK_OK(run(m, 0.0, 20.0, "dopri5", 1e-9, 0, NULL, NULL, 0, NULL, NULL, NULL, &sink,
+                     1.0, &err),
+                 &err);
+        CHECK(c->rows >= 21);
+        const size_t ca = cap_col(c, "alpha_in"), cb = cap_col(c, "beta_in"),
+                     cm = cap_col(c, "mu_in"), ct = cap_col(c, "throttle_in"),
+                     cmass = cap_col(c, "m"), cn = cap_col(c, "n_axial");
+        CHECK(ca != (size_t)-1 && cb != (size_t)-1 && cm != (size_t)-1 && ct != (size_t)-1 &&
+              cmass != (size_t)-1 && cn != (size_t)-1);
+        /* the start values are recorded either way */
+        CHECK(cap_param(c, "start_fpa") != NULL && *cap_param(c, "start_fpa") == 80.0 * DEG);
+        double worst_a = 0.0, worst_t = 0.0;
+        for (size_t r = 0; r < c->rows && ca != (size_t)-1 && cmass != (size_t)-1; r++) {
+            const double *row = c->v + r * 128;
+            const double want[4] = {guided ? 4.0 * DEG : 0.05, guided ? 1.0 * DEG : -0.01,
+                                    guided ? 10.0 * DEG : 0.2,
+                                    guided ? g_lim * LV_G0 * row[cmass] / F : 0.8};
+            const double got[4] = {row[ca], row[cb], row[cm], row[ct]};
+            for (int k = 0; k < 3; k++)
+                worst_a = fmax(worst_a, fabs(got[k] - want[k]));
+            worst_t = fmax(worst_t, fabs(got[3] - want[3]));
+            if (guided)
+                CHECK_CLOSE(row[cn], g_lim, 1e-12);
+        }
+        CHECK(worst_a < 1e-12 && worst_t < 1e-12);
+        if (guided) { /* the laws acted: no constant claimed */
+            CHECK(cap_param(c, "alpha") == NULL && cap_param(c, "beta") == NULL &&
+                  cap_param(c, "mu") == NULL && cap_param(c, "throttle") == NULL);
+        } else { /* the constants acted: recorded with their values */
+            CHECK(cap_param(c, "alpha") != NULL && *cap_param(c, "alpha") == 0.05);
+            CHECK(cap_param(c, "beta") != NULL && *cap_param(c, "beta") == -0.01);
+            CHECK(cap_param(c, "mu") != NULL && *cap_param(c, "mu") == 0.2);
+            CHECK(cap_param(c, "throttle") != NULL && *cap_param(c, "throttle") == 0.8);
+        }
+        printf("records, %s: %zu parameters recorded, worst |angle - law| %.1e rad, |throttle - "
+               "law| %.1e\n", guided ? "guided" : "constant inputs", c->np, worst_a, worst_t);
+        /* the parameter itself stays a model parameter (initial values, lv_model_find) */
+        lv_var_kind kind;
+        size_t idx;
+        CHECK(lv_model_find(lv_dof3_def(m), "throttle", &kind, &idx, NULL) == LV_OK &&
+              kind == LV_VAR_PARAMETER);
+        free(c);
+        lv_dof3_free(m);
+    }
+    lv_gravity_free(grav);
+}
+
 int main(void)
 {
     test_kepler_rotating();
@@ -862,5 +1025,6 @@ int main(void)
     test_time_events();
     test_end_events();
     test_bad_config();
+    test_records();
     return check_report("test_dof3");
 }

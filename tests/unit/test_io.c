@@ -215,7 +215,8 @@ static void test_csv(void)
     CHECK(text != NULL);
     if (text == NULL)
         return;
-    const char *header = "time [s],h [m],der(h) [m/s],m [kg],\"C[1,2]\"\n";
+    /* "C[1,2]" has no unit: dimensionless, "[1]" (lv_units.h) */
+    const char *header = "time [s],h [m],der(h) [m/s],m [kg],\"C[1,2] [1]\"\n";
     CHECK(strncmp(text, header, strlen(header)) == 0);
     /* values read back exactly (%.17g round-trips) */
     const char *p = strchr(text, '\n') + 1;
