@@ -55,9 +55,9 @@ static lv_status run_count(const lv_pctx *c, const lv_ynode *v, const char *what
     if (st != LV_OK)
         return st;
     if (*out > s->engines[e].count)
-        return lv_pk_fail(c, v, "%s: %s: %d is more than the %d identical engine%s '%s' of "
-                          "stage '%s' has (its count)", what, key, *out, s->engines[e].count,
-                          s->engines[e].count == 1 ? "" : "s", s->engines[e].name, s->name);
+        return lv_pk_fail(c, v, "%s: %s: %d engines cannot run: stage '%s' has %d of engine "
+                          "'%s' (its count)", what, key, *out, s->name, s->engines[e].count,
+                          s->engines[e].name);
     return LV_OK;
 }
 

@@ -15,7 +15,7 @@
  *       logged and from there the engine gives T_min F_vac while the law asks for less;
  *   (c) engine-out at t: the rows just before and just after the time event hold the thrust
  *       and mass flow of 3 and of 2 engines; the final mass m0 - 3 mdot1 t_out - 2 mdot1
- *       (t_f - t_out); the time as a run parameter (a dispersion's slot);
+ *       (t_f - t_out); the time as a run parameter (a dispersion's slot); the same in dof6;
  *   (d) bad values: file, line and field named.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -245,6 +245,43 @@ static void test_engine_out(void)
     lv_mission_free(m);
 }
 
+/* The same in the 6-DoF model: 4 engines of 500 kN at the gimbal point on the body axis, the
+ * rigid body held vertical (no aerodynamics, no torque), two engines out 1.5 s after the start. */
+static void test_engine_out_dof6(void)
+{
+    const char *yaml =
+        "mission: {name: out6}\n" FLAT_WORLD
+        "parameters: {start_h: 0, start_vel: 0, start_fpa_deg: 90}\n"
+        "stages:\n"
+        "  - {name: s1, dry_mass: 20000, propellant_mass: 100000,\n"
+        "     engines: [{name: e, count: 4, thrust_vac: 5.0e5, isp_vac: 300}],\n"
+        "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+        "                  cg_full: {x: -15}, engine_position: {x: -30}}}\n"
+        "phases:\n"
+        "  - {name: P, model: dof6, stages: [s1], stop_time: 4, attitude: {theta_deg: 90},\n"
+        "     engine_out: {time: 1.5, count: 2}, integrator: {tolerance: 1.0e-10}}\n";
+    lv_mission *m;
+    lv_run *r = run_text("engines_out6.yaml", yaml, &m);
+    if (r == NULL)
+        return lv_mission_free(m);
+    const double mdot1 = 5.0e5 / (300.0 * G0);
+    const lv_result *res = lv_run_rows(r, 0);
+    size_t at = 0, n_at = 0;
+    for (size_t i = 0; res != NULL && i < lv_result_rows(res); i++)
+        if (lv_result_value(res, i, col(res, "time")) == 1.5 && n_at++ == 0)
+            at = i;
+    CHECK(n_at == 2);
+    if (n_at == 2) {
+        CHECK(lv_result_value(res, at, col(res, "thrust")) == 2.0e6);
+        CHECK(lv_result_value(res, at + 1, col(res, "thrust")) == 1.0e6);
+    }
+    printf("engine-out dof6: final mass %.6f kg (%.6f)\n", final(r, 0, "m"),
+           120000.0 - 4.0 * mdot1 * 1.5 - 2.0 * mdot1 * 2.5);
+    CHECK_REL(final(r, 0, "m"), 120000.0 - 4.0 * mdot1 * 1.5 - 2.0 * mdot1 * 2.5, 1e-10);
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
 /* ---- (d) bad values ---------------------------------------------------------------------- */
 
 /* A mission whose phase P carries `extra` (line 8 of the file) must fail naming `want`. */
@@ -281,7 +318,7 @@ static void load_fails(const char *extra, const char *want)
 static void test_refused(void)
 {
     load_fails("stages: [one], engines: 4",
-               "phase 'P': engines: 4 is more than the 3 identical engines 'o' of stage 'one'");
+               "phase 'P': engines: 4 engines cannot run: stage 'one' has 3 of engine 'o'");
     load_fails("stages: [one], engines: -1", "engines: an integer >= 0 expected, found -1");
     load_fails("stages: [one], engines: 1.5", "engines: an integer >= 0 expected, found 1.5");
     load_fails("stages: [one], engines: three", "engines");
@@ -292,7 +329,7 @@ static void test_refused(void)
     load_fails("stages: [s], engines: {a: 2}", "how many of 'v' run is not given");
     load_fails("stages: [s], engines: {a: 2, w: 1}", "stage 's' has no engine 'w'");
     load_fails("stages: [s], engines: {a: 2, v: 3}",
-               "engines.v: 3 is more than the 2 identical engines 'v'");
+               "engines.v: 3 engines cannot run: stage 's' has 2 of engine 'v'");
     load_fails("stages: [one], engines: 1, engine_out: {time: 3, count: 2}",
                "engine_out: 2 engines of 'o' stop, but only 1 runs in this phase");
     load_fails("stages: [one], engine_out: [{time: 3, count: 2}, {time: 4, count: 2}]",
@@ -309,6 +346,7 @@ int main(void)
     test_count();
     test_landing_min();
     test_engine_out();
+    test_engine_out_dof6();
     test_refused();
     return check_report("test_engines");
 }
