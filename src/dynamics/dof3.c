@@ -137,9 +137,9 @@ static const lv_var output_vars[O_N] = {
  * than n T_max) shows where the engines could not follow (docs/guidance.md, "Saturation"). */
 enum { SAT_MIN, SAT_MAX, SAT_N };
 static const lv_event_def sat_events[SAT_N] = {
-    {"throttle_min", "the throttle law asks for less than the engines' minimum throttle "
+    {"throttle_min", "The throttle law asks for less than the engines' minimum throttle "
      "(-1: from here the engines give n T_min; +1: back within range)", LV_DIR_BOTH},
-    {"throttle_max", "the throttle law asks for more than the engines' maximum throttle "
+    {"throttle_max", "The throttle law asks for more than the engines' maximum throttle "
      "(-1: from here the engines give n T_max; +1: back within range)", LV_DIR_BOTH},
 };
 /* below c_min (above c_max) by more than this: a law that holds the limit exactly (a constant

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "lvsim/lv_dispersion.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
 
@@ -208,7 +209,9 @@ static void test_engine_out(void)
         "          engines: [{name: k, count: 3, thrust_vac: 100000, isp_vac: 300}]}]\n"
         "phases:\n"
         "  - {name: P, model: dof3, stages: [s], start_time: 10, stop_time: 20,\n"
-        "     engine_out: {time: 2.5, count: 1}, integrator: {tolerance: 1.0e-10}}\n";
+        "     engine_out: {time: 2.5, count: 1}, integrator: {tolerance: 1.0e-10}}\n"
+        "dispersions:\n"
+        "  parameters: {P.engine_out.time: {dist: uniform, min: 1, max: 9}}\n";
     lv_mission *m;
     lv_run *r = run_text("engines_out.yaml", yaml, &m);
     if (r == NULL)
@@ -241,6 +244,14 @@ static void test_engine_out(void)
     printf("engine-out: final mass %.6f kg (%.6f) with the engine-out at 6 s\n",
            final(r, 0, "m"), 40000.0 - 3.0 * mdot1 * 6.0 - 2.0 * mdot1 * 4.0);
     CHECK_REL(final(r, 0, "m"), 40000.0 - 3.0 * mdot1 * 6.0 - 2.0 * mdot1 * 4.0, 1e-10);
+    /* a Monte Carlo draw of the engine-out time: uniform in [1, 9] s */
+    for (uint64_t run = 0; run < 3; run++) {
+        double v = NAN;
+        CHECK_OK(lv_run_disperse(r, 7, run, &v, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        CHECK(v >= 1.0 && v <= 9.0);
+        CHECK_REL(final(r, 0, "m"), 40000.0 - 3.0 * mdot1 * v - 2.0 * mdot1 * (10.0 - v), 1e-10);
+    }
     lv_run_free(r);
     lv_mission_free(m);
 }
