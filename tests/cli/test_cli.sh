@@ -274,6 +274,10 @@ YAML
 expect 0 "is valid: 1 phases" -- "$lvsim" check "$work/sat.yaml"
 expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 9.307 s" -- \
   "$lvsim" run "$work/sat.yaml" -o "$work/sat_out" --no-plots
+# slower at the start (150 m/s): saturated from the first row, where no crossing is logged
+sed 's/start_vel: 181/start_vel: 150/' "$work/sat.yaml" > "$work/sat0.yaml"
+expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 0.000 s \(the phase's start\)" -- \
+  "$lvsim" run "$work/sat0.yaml" -o "$work/sat0_out" --no-plots
 sed 's/engines: 1,/engines: 3,/' "$work/sat.yaml" > "$work/sat3.yaml"
 expect 2 "sat3.yaml:10:68: phase 'land': engines: 3 engines cannot run: stage 's' has 2 of engine 'm1'" -- \
   "$lvsim" check "$work/sat3.yaml"
