@@ -6,7 +6,8 @@
  *   (a) thrust and mass flow of n of N engines against the closed forms
  *       T = n (c F_vac - p_amb A_exit) (Sutton & Biblarz, Rocket Propulsion Elements, 9th ed.,
  *       eq. 2-14) and mdot = n c F_vac / (Isp g0), the sea-level pressure of US76 (101325 Pa,
- *       U.S. Standard Atmosphere 1976, table I), the mass after a burn m0 - mdot t;
+ *       U.S. Standard Atmosphere 1976, table I), the mass after a burn m0 - mdot t; the
+ *       same on a runway's take-off roll;
  *   (b) a landing on 1 engine whose minimum throttle is above the throttle the law comes to
  *       need: until then the law holds a constant deceleration a, so the mass follows the
  *       rocket equation under constant thrust acceleration, m(t) = m0 exp(-(a + g) t / (Isp
@@ -124,6 +125,41 @@ static void test_count(void)
         CHECK(lv_result_value(res, 0, col(res, "throttle_eff")) == 0.7);
         /* the mass after 10 s at a constant flow */
         CHECK_REL(final(r, k, "m"), 500000.0 - n[k] * 0.7 * mdot1 * 10.0, 1e-10);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
+/* A take-off roll on 2 of 4 engines (runway model): its thrust and mass flow at the start, at
+ * rest on the runway at 150 m (US76 pressure there, the phase's own output p_amb). */
+static void test_count_runway(void)
+{
+    const char *yaml =
+        "mission: {name: rw}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "stages:\n"
+        "  - {name: ms, dry_mass: 50000, propellant_mass: 100000,\n"
+        "     engines: [{name: e, count: 4, thrust_vac: 5.0e5, isp_vac: 350, exit_area: 0.4}]}\n"
+        "phases:\n"
+        "  - {name: P, model: runway, stages: [ms], stop_time: 20, engines: 2,\n"
+        "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
+        "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8}}\n";
+    lv_mission *m;
+    lv_run *r = run_text("engines_runway.yaml", yaml, &m);
+    if (r == NULL)
+        return lv_mission_free(m);
+    const lv_result *res = lv_run_rows(r, 0);
+    if (res != NULL && lv_result_rows(res) > 0) {
+        size_t cp = 0;
+        lv_err err;
+        const int has_p = lv_result_column(res, "p_amb", &cp, &err) == LV_OK;
+        const double p = has_p ? lv_result_value(res, 0, cp) : NAN;
+        const double thrust = lv_result_value(res, 0, col(res, "thrust"));
+        printf("runway: 2 of 4: thrust %.3f N (%.3f at p = %.3f Pa)\n", thrust,
+               2.0 * (5.0e5 - p * 0.4), p);
+        CHECK(has_p);
+        CHECK_REL(thrust, 2.0 * (5.0e5 - p * 0.4), 1e-12);
+        CHECK_REL(lv_result_value(res, 0, col(res, "mdot")), 2.0 * 5.0e5 / (350.0 * G0), 1e-12);
     }
     lv_run_free(r);
     lv_mission_free(m);
@@ -355,6 +391,7 @@ static void test_refused(void)
 int main(void)
 {
     test_count();
+    test_count_runway();
     test_landing_min();
     test_engine_out();
     test_engine_out_dof6();
