@@ -70,6 +70,54 @@ static void print_row(const lv_run *run, size_t k, int w)
            phase_state_name(r->state));
 }
 
+/* A throttle law that left the running engines' range (the model's state events
+ * `throttle_min` / `throttle_max`, direction -1 entering, +1 leaving: docs/guidance.md,
+ * "Saturation"; from the start, where no crossing is logged: the first row's throttle_in
+ * outside what the engines give, throttle_eff): one warning per kind on stderr, with the
+ * first interval. */
+static void warn_saturation(const lv_run *run, size_t k, const lv_phase_result *r)
+{
+    static const char *const ev[2] = {"throttle_min", "throttle_max"};
+    /* the first row (the phase's start), when the model has the columns */
+    const lv_result *rows = lv_run_rows(run, k);
+    size_t c_in, c_eff, c_n;
+    double in0 = NAN, eff0 = NAN;
+    if (rows != NULL && lv_result_rows(rows) > 0 &&
+        lv_result_column(rows, "throttle_in", &c_in, NULL) == LV_OK &&
+        lv_result_column(rows, "throttle_eff", &c_eff, NULL) == LV_OK &&
+        lv_result_column(rows, "engines_running", &c_n, NULL) == LV_OK &&
+        lv_result_value(rows, 0, c_n) > 0.0) {
+        in0 = lv_result_value(rows, 0, c_in);
+        eff0 = lv_result_value(rows, 0, c_eff);
+    }
+    for (int j = 0; j < 2; j++) {
+        const lv_sim_report *rep = &r->report;
+        const int at_start = j == 0 ? in0 < eff0 - 1e-9 : in0 > eff0 + 1e-9;
+        double t_in = at_start ? r->t_start : NAN, t_out = NAN;
+        size_t n = at_start;
+        for (size_t i = 0; i < rep->n_event_log; i++) {
+            const lv_event_record *e = &rep->event_log[i];
+            if (!e->is_state || strcmp(e->name, ev[j]) != 0)
+                continue;
+            if (e->direction < 0 && n++ == 0)
+                t_in = e->t;
+            else if (e->direction > 0 && !isnan(t_in) && isnan(t_out))
+                t_out = e->t;
+        }
+        if (n == 0)
+            continue;
+        char until[48] = "";
+        if (!isnan(t_out))
+            snprintf(until, sizeof until, " to %.3f s", t_out);
+        fprintf(stderr, "lvsim: warning: phase '%s': the throttle law asked for %s than the "
+                "running engines' %s throttle from t = %.3f s%s%s%s: they gave n x T(%s) "
+                "(events '%s' in summary.json; columns throttle_in, throttle_eff)\n", r->name,
+                j == 0 ? "less" : "more", j == 0 ? "minimum" : "maximum", t_in,
+                at_start ? " (the phase's start)" : "", until, n > 1 ? " and again later" : "",
+                ev[j], ev[j]);
+    }
+}
+
 /* on_phase: a phase ended (under the run's lock). Rows are printed in run order: this one
  * and every later one that has already ended; a failure's reason at once on stderr. */
 static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void *user)
@@ -81,6 +129,7 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     ui->ended[k] = 1;
     if (r->state == LV_PHASE_FAILED)
         fprintf(stderr, "lvsim: %s\n", r->error);
+    warn_saturation(run, k, r);
     while (ui->table && ui->next < n && ui->ended[ui->next])
         print_row(run, ui->next++, ui->wname);
     progress_print_end(ui->prog);

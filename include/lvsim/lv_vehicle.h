@@ -41,9 +41,12 @@ typedef struct lv_engine_config {
     double throttle_min;   /* -, lowest throttle, >= 0 (default 0) */
     double throttle_max;   /* -, highest throttle, >= throttle_min, > 0 (default 1) */
     const lv_table *table; /* borrowed; NULL: constant engine (see above) */
+    double out_after;      /* s, > 0: the engine stops (an engine-out) this long after the
+                              model's start time, a time event of the model at which its
+                              thrust and mass flow drop to 0; 0 (default): it never stops */
 } lv_engine_config;
 
-/* thrust_vac 0, isp_vac 0, mdot 0, exit_area 0, throttle [0, 1], no table. */
+/* thrust_vac 0, isp_vac 0, mdot 0, exit_area 0, throttle [0, 1], no table, never out. */
 LV_API void lv_engine_config_default(lv_engine_config *c);
 
 /* ------------------------------------------------------------- aerodynamics -- */

@@ -34,7 +34,8 @@ enum {
     O_THRUST, O_DRAG, O_LIFT, O_SIDE, O_MDOT, O_ENGINE_ON,
     O_ALPHA, O_BETA, O_MU, O_THR, O_DOWNRANGE,
     O_SMA, O_ECC, O_INC, O_RAAN, O_ARGP, O_APO, O_PERI,
-    O_THETA, O_PSI, O_PHI, O_PROP_LEFT, O_TGT_DIST, O_TGT_BEAR, O_TGT_OVER, O_N
+    O_THETA, O_PSI, O_PHI, O_PROP_LEFT, O_TGT_DIST, O_TGT_BEAR, O_TGT_OVER, O_THR_EFF,
+    O_ENG_RUN, O_N
 };
 
 /* Error control (docs/integration.md): the position is measured from the planet's centre, so
@@ -124,7 +125,26 @@ static const lv_var output_vars[O_N] = {
     {"target_bearing", "rad", "Bearing of the target, from north to east", 0, 0},
     {"target_overshoot", "m", "Vacuum ballistic range toward the target over flat ground minus "
      "its distance (> 0: beyond it)", 0, 0},
+    {"throttle_eff", "", "Throttle each running engine gives: throttle_in clamped into one "
+     "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
+    {"engines_running", "", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
+     0, 0},
 };
+
+/* The throttle law's saturation, as two state events after the flight model's (burnout, the
+ * named ends): the law's throttle leaves the engines' range [c_min, c_max] (direction -1) or
+ * comes back (+1). Logged, never an end: a landing that asks for less than n T_min (or more
+ * than n T_max) shows where the engines could not follow (docs/guidance.md, "Saturation"). */
+enum { SAT_MIN, SAT_MAX, SAT_N };
+static const lv_event_def sat_events[SAT_N] = {
+    {"throttle_min", "The throttle law asks for less than the engines' minimum throttle "
+     "(-1: from here the engines give n T_min; +1: back within range)", LV_DIR_BOTH},
+    {"throttle_max", "The throttle law asks for more than the engines' maximum throttle "
+     "(-1: from here the engines give n T_max; +1: back within range)", LV_DIR_BOTH},
+};
+/* below c_min (above c_max) by more than this: a law that holds the limit exactly (a constant
+ * throttle at throttle_min) is not saturated */
+#define SAT_EPS 1e-9
 
 static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
 
@@ -167,6 +187,7 @@ struct lv_dof3 {
     double c_min, c_max;         /* the throttle range every engine accepts */
     double p_ae;                 /* m^2: the engines' exit areas */
     int stop_at_burnout;
+    lv_event_def *events;        /* [1 + fe.n + SAT_N]: the flight model's, then sat_events */
 
     dof3_inst inst;
 };
@@ -333,6 +354,41 @@ static int check_params(dof3_inst *s, const double *p)
     return s->m->const_throttle ? lv_flight_check_throttle(&s->rt, p[P_THR]) : 0;
 }
 
+/* The flight model's events, then the throttle law's saturation (sat_events): constants (never
+ * crossed) without an active law, with the engines off or none running. */
+static int dof3_event_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    dof3_inst *s = inst;
+    lv_dof3 *m = s->m;
+    int rc = lv_flight_event_g(t, x, p, g, inst);
+    double *gs = g + 1 + m->fe.n;
+    gs[SAT_MIN] = gs[SAT_MAX] = 1.0;
+    if (rc != 0 || !m->throttles || !s->rt.engines_on)
+        return rc;
+    size_t running = 0;
+    for (size_t i = 0; i < m->n_eng; i++)
+        running += !m->eng[i].out;
+    dof3_point pt;
+    if (running == 0 || point_eval(m, s, t, x, p, 0, &pt, NULL) != 0)
+        return 0; /* the right-hand side reports its own failure */
+    const double c = pt.ctl.u[U_THR];
+    gs[SAT_MIN] = c - m->c_min + SAT_EPS;
+    gs[SAT_MAX] = m->c_max + SAT_EPS - c;
+    return 0;
+}
+
+static lv_event_action dof3_on_event(double t, double *x, const double *p, const int *fired,
+                                     void *inst)
+{
+    dof3_inst *s = inst;
+    lv_event_action act = lv_flight_on_event(t, x, p, fired, inst);
+    const int *fs = fired + 1 + s->m->fe.n;
+    /* the clamp is a kink of the thrust: a new initial value problem */
+    if ((fs[SAT_MIN] || fs[SAT_MAX]) && act < LV_EVENT_RESTART)
+        act = LV_EVENT_RESTART;
+    return act;
+}
+
 /* Position and velocity from the geodetic start values (the paper's userPar). */
 static int dof3_start(const double *p, double *x, void *inst)
 {
@@ -424,6 +480,16 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_SIDE] = lv_v3_dot(pt.f_aero, ax->yw);
     y[O_MDOT] = pt.mdot;
     y[O_ENGINE_ON] = s->rt.engines_on;
+    size_t running = 0;
+    for (size_t i = 0; s->rt.engines_on && i < m->n_eng; i++)
+        running += !m->eng[i].out;
+    y[O_ENG_RUN] = (double)running;
+    y[O_THR_EFF] = 0.0;
+    for (size_t i = 0; i < m->n_eng && running > 0; i++)
+        if (!m->eng[i].out) { /* identical limits: dof3 refuses ranges that do not overlap */
+            y[O_THR_EFF] = lv_engine_throttle(&m->eng[i], pt.ctl.u[U_THR]);
+            break;
+        }
     for (int i = 0; i < U_N; i++)
         y[O_ALPHA + i] = pt.ctl.u[i];
     if (!s->rt.engines_on) /* engines off (burnt out, a coast): no throttle */
@@ -673,6 +739,16 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     m->core.law = &m->guid;
     lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
+    if ((m->events = malloc((m->def.n_events + SAT_N) * sizeof *m->events)) == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    memcpy(m->events, m->def.events, m->def.n_events * sizeof *m->events);
+    memcpy(m->events + m->def.n_events, sat_events, sizeof sat_events);
+    m->def.events = m->events;
+    m->def.n_events += SAT_N;
+    m->def.event_g = dof3_event_g;
+    m->def.on_event = dof3_on_event;
     m->inst.m = m;
     for (int k = 0; k < 3; k++)
         m->inst.trig.ang[k] = NAN;
@@ -695,6 +771,7 @@ void lv_dof3_free(lv_dof3 *m)
     free(m->inputs.buf);
     free(m->grav_ws);
     lv_flight_ends_clear(&m->fe);
+    free(m->events);
     free(m);
 }
 

@@ -88,6 +88,7 @@ void lv_flight_def_callbacks(lv_model_def *def, const lv_flight_core *core, lv_f
     def->event_g = lv_flight_event_g;
     def->on_event = lv_flight_on_event;
     def->next_time_event = lv_flight_next_time_event_cb;
+    def->on_time_event = lv_flight_on_time_event_cb;
     def->time_event_name = lv_flight_time_event_name_cb;
     def->n_domain = core->n_dom;
     def->domain = domain;
@@ -190,6 +191,8 @@ int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin 
     char why[320];
     if (lv_flight_ends_start(k->fe, kin->h, why, sizeof why) != 0)
         return lv_flight_fail(rt, "%s", why);
+    for (size_t i = 0; i < k->n_eng; i++)
+        lv_engine_start(&k->eng[i], t0);
     return 0;
 }
 
@@ -308,6 +311,17 @@ double lv_flight_next_time_event_cb(double t, const double *p, void *inst)
     const lv_flight_rt *rt = inst;
     const lv_flight_core *k = rt->core;
     return lv_flight_next_time_event(k->inputs, k->eng, k->n_eng, k->guid, &rt->guid, t);
+}
+
+lv_event_action lv_flight_on_time_event_cb(double t, double *x, const double *p, void *inst)
+{
+    (void)x, (void)p;
+    const lv_flight_rt *rt = inst;
+    const lv_flight_core *k = rt->core;
+    for (size_t i = 0; i < k->n_eng; i++)
+        lv_engine_out_event(&k->eng[i], t);
+    /* a table breakpoint is a kink, an engine-out a jump: both a new initial value problem */
+    return LV_EVENT_RESTART;
 }
 
 /* The time events at t by their source: the inputs table's, the steering law's or an engine

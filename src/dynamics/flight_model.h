@@ -26,7 +26,7 @@ typedef struct lv_flight_core {
     lv_flight_ends *fe;           /* burnout (event 0) and the named ends */
     size_t i_r, i_v, i_m;         /* states: ECI position and velocity (3 each), mass */
     const lv_table *inputs;       /* the inputs' table over time, or NULL */
-    const lv_engine *eng;         /* [n_eng] */
+    lv_engine *eng;               /* [n_eng]; their engine-out modes change at time events */
     size_t n_eng;
     const lv_guid *guid;          /* the steering law whose time events count, or NULL */
     int stop_at_burnout;          /* 1: burnout ends the phase; 0: engines off, go on */
@@ -130,7 +130,8 @@ int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines);
 
 /* The instance's start at t0 from state x: a position away from the planet's centre (kin:
  * its kinematics with the geodetic position), the start point for the downrange, the named
- * ends' start (lv_flight_ends_start). 0, or -1 with the reason in rt->msg. */
+ * ends' start (lv_flight_ends_start), every engine running with its engine-out instant
+ * (lv_engine_start). 0, or -1 with the reason in rt->msg. */
 int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin);
 
 /* ---- the callbacks (lv_model_def; inst: an instance block beginning with lv_flight_rt) ---- */
@@ -147,6 +148,8 @@ void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 x
 void lv_flight_describe(double t, const double *x, const double *p, char *buf, size_t cap,
                         void *inst);
 double lv_flight_next_time_event_cb(double t, const double *p, void *inst);
+/* At a time event: the engines whose engine-out instant it is stop; a restart. */
+lv_event_action lv_flight_on_time_event_cb(double t, double *x, const double *p, void *inst);
 const char *lv_flight_time_event_name_cb(double t, const double *p, void *inst);
 const char *lv_flight_last_error_cb(const void *inst);
 

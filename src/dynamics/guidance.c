@@ -332,9 +332,12 @@ double lv_flight_next_time_event(const lv_table *inputs, const lv_engine *eng, s
                                  const lv_guid *g, const lv_guid_rt *rt, double t)
 {
     double tn = inputs != NULL ? lv_table_next_breakpoint(inputs, 0, t) : INFINITY;
-    for (size_t i = 0; i < n_eng; i++)
+    for (size_t i = 0; i < n_eng; i++) {
         if (eng[i].table != NULL)
             tn = fmin(tn, lv_table_next_breakpoint(eng[i].table, 0, t));
+        if (!eng[i].out && eng[i].t_out > t) /* an engine-out: the thrust drops there */
+            tn = fmin(tn, eng[i].t_out);
+    }
     return g != NULL ? fmin(tn, lv_guid_next_time_event(g, rt, t)) : tn;
 }
 
@@ -364,6 +367,17 @@ const char *lv_flight_time_event_label(const lv_table *inputs, const lv_engine *
         if (breakpoint_at(eng[i].table, t))
             len += (size_t)snprintf(buf + len, cap - len, "%sengine '%.24s' table breakpoint",
                                     len ? "; " : "", eng[i].name);
+    /* engine-outs at t: "engine-out 1 x 'merlin'" (identical engines share a name) */
+    for (size_t i = 0; i < n_eng && len < cap; i++) {
+        if (eng[i].t_out != t || (i > 0 && eng[i - 1].t_out == t &&
+                                  strcmp(eng[i - 1].name, eng[i].name) == 0))
+            continue;
+        size_t n = 1;
+        while (i + n < n_eng && eng[i + n].t_out == t && strcmp(eng[i + n].name, eng[i].name) == 0)
+            n++;
+        len += (size_t)snprintf(buf + len, cap - len, "%sengine-out %zu x '%.24s'",
+                                len ? "; " : "", n, eng[i].name);
+    }
     if (len > 0 && len < cap)
         snprintf(buf + len, cap - len, " t = %.9g s", t);
     return buf;

@@ -192,6 +192,15 @@ typedef struct lv_end_def {
 
 typedef struct lv_phase_type lv_phase_type; /* phase_type.h */
 
+/* An engine-out of a phase (`engine_out:`): `count` running engines of the bottom stage's
+ * engine kind `engine` (index into its engines) stop `time` s after the phase's start. */
+typedef struct lv_engine_out_def {
+    size_t engine;
+    int count;
+    lv_slot time;         /* s, > 0: "<phase>.engine_out.time" ("...engine_out.<i>.time") */
+    lv_src_loc loc;
+} lv_engine_out_def;
+
 typedef struct lv_phase_def {
     char *name;
     const lv_phase_type *type; /* the phase's model type (phase_type.h registry) */
@@ -220,6 +229,10 @@ typedef struct lv_phase_def {
     lv_slot *set_values;
     lv_src_loc *set_locs; /* [n_set] where each override was written, for later messages */
     unsigned char *set_deg; /* [n_set] 1: written NAME_deg (the variable must be an angle) */
+    /* the bottom stage's engines this phase runs (`engines:`, `engine_out:`; engine_run.c) */
+    int *engines_run;     /* [bottom stage's n_engines]: how many of each kind run; NULL: all */
+    size_t n_engine_out;  /* engine-outs: `count` engines of kind `engine` stop `time` s after */
+    lv_engine_out_def *engine_out; /*   the phase's start */
     lv_src_loc loc;
 } lv_phase_def;
 

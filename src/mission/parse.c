@@ -278,6 +278,8 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->set_values);
         free(ph->set_locs);
         free(ph->set_deg);
+        free(ph->engines_run);
+        free(ph->engine_out);
     }
     free(m->phases);
     lv_targeting_def_free(m->targeting);

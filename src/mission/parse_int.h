@@ -13,6 +13,8 @@ lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n);    /* environment: 
 lv_status lv_parse_stages(const lv_pctx *c, const lv_ynode *n); /* stages: */
 lv_status lv_parse_params(const lv_pctx *c, const lv_ynode *n); /* parameters: */
 lv_status lv_parse_phases(const lv_pctx *c, const lv_ynode *n); /* phases: (and the tree) */
+/* A phase's `engines:` and `engine_out:` (engine_run.c), once its stages are known. */
+lv_status lv_parse_engine_run(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph);
 
 /* The phase tree (parse_tree.c), once every phase is read. A `from` chain that comes back
  * ("P2 -> P3 -> P2", from the first member in file order); from[k]: phase k's `from` value

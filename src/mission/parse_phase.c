@@ -454,6 +454,8 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         return st;
     if (ph->type->parse != NULL && (st = ph->type->parse(c, n, ph)) != LV_OK)
         return st;
+    if ((st = lv_parse_engine_run(c, n, ph)) != LV_OK)
+        return st;
     if ((st = parse_set(c, lv_pk_get(n, "set"), ph->name, ph)) != LV_OK)
         return st;
     return ph->type->check != NULL ? ph->type->check(c, n, ph) : LV_OK;

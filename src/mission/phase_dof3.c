@@ -18,7 +18,7 @@
 #include "mission/phase_type.h"
 
 static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
-                                   NULL};
+                                   "engines", "engine_out", NULL};
 /* A runway phase's outputs r_eci_*, v_eci_* are this model's states: a climb-out starts where
  * the take-off roll lifted off (phase_runway.c). A dof6 phase's states r_eci_*, v_eci_*, m are
  * too: 6-DoF -> 3-DoF drops the attitude and rates (docs/models.md). */

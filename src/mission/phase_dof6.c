@@ -25,7 +25,7 @@
 
 static const char *const keys[] = {"attitude", "rates",    "inputs",     "aero",
                                    "moments",  "guidance", "controller", "transition",
-                                   NULL};
+                                   "engines",  "engine_out", NULL};
 /* The mission parameters only a root phase reads: a child starts with its parent's position,
  * velocity, attitude and rates (start_lat, start_lon: the steering laws' default target;
  * start_fpa, start_chi: the direction of the aerodynamic frame at zero air speed). */

@@ -68,10 +68,13 @@ lv_status lv_kit_begin(const lv_build_ctx *bc, lv_kit_model *k, int with_engines
     if ((with_engines && (k->engines = calloc(n_eng + 1, sizeof *k->engines)) == NULL) ||
         (k->ends = calloc(ph->n_ends + 1, end_size)) == NULL ||
         (k->end = calloc(ph->n_ends + 1, sizeof *k->end)) == NULL ||
-        (k->event_end = calloc(ph->n_ends + n_own, sizeof *k->event_end)) == NULL) {
+        (k->event_end = calloc(ph->n_ends + n_own + LV_KIT_MORE_EVENTS,
+                               sizeof *k->event_end)) == NULL) {
         lv_kit_clear(k);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
+    for (size_t i = 0; i < ph->n_ends + n_own + LV_KIT_MORE_EVENTS; i++)
+        k->event_end[i] = -1; /* a model's event that ends nothing (dof3's throttle_min) */
     lv_status st = lv_phase_env_get(bc, &k->env, err);
     if (st != LV_OK) {
         lv_kit_clear(k);
@@ -133,10 +136,17 @@ size_t lv_kit_engine_count(const lv_stage_def *st)
 
 size_t lv_kit_engines(const lv_build_ctx *bc, const lv_stage_def *st, lv_engine_config *out)
 {
+    /* the phase's bottom stage runs `engines:` of each kind (all without it); the last of a
+     * kind's running engines are the ones its `engine_out:` entries stop, in their order */
+    const lv_phase_def *ph = &bc->def->phases[bc->k];
+    const int bottom = st == &bc->def->stages[ph->stages[0]];
     size_t n = 0;
     for (size_t e = 0; e < st->n_engines; e++) {
         const lv_engine_def *ed = &st->engines[e];
-        for (int c = 0; c < (ed->count > 0 ? ed->count : 1); c++) {
+        const int count = ed->count > 0 ? ed->count : 1;
+        const int run = bottom && ph->engines_run != NULL ? ph->engines_run[e] : count;
+        const size_t first = n;
+        for (int c = 0; c < run; c++) {
             lv_engine_config *ec = &out[n++];
             lv_engine_config_default(ec);
             ec->name = ed->name;
@@ -147,6 +157,12 @@ size_t lv_kit_engines(const lv_build_ctx *bc, const lv_stage_def *st, lv_engine_
             ec->throttle_min = lv_kit_val(bc, ed->throttle_min, 0.0);
             ec->throttle_max = lv_kit_val(bc, ed->throttle_max, 1.0);
             ec->table = lv_build_table(bc, ed->table);
+        }
+        size_t last = n; /* engines [first, last) not yet given an engine-out */
+        for (size_t j = 0; bottom && j < ph->n_engine_out; j++) {
+            const lv_engine_out_def *o = &ph->engine_out[j];
+            for (int c = 0; o->engine == e && c < o->count && last > first; c++)
+                out[--last].out_after = lv_kit_val(bc, o->time, 0.0);
         }
     }
     return n;

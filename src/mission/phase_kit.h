@@ -77,6 +77,10 @@ typedef struct lv_kit_end {
     double value; /* the run's value (SI); 0 for an end without a value */
 } lv_kit_end;
 
+/* State events a model may have after its ends that end nothing (dof3: the throttle law's
+ * saturation, throttle_min and throttle_max). */
+#define LV_KIT_MORE_EVENTS 2
+
 typedef struct lv_kit_model {
     lv_phase_model pm;
     lv_phase_env env;         /* planet, gravity, atmosphere, wind of this run (borrowed by the
@@ -86,7 +90,8 @@ typedef struct lv_kit_model {
     lv_engine_config *engines; /* [lv_kit_engine_count(bottom) + 1] or NULL */
     void *ends;               /* [ph->n_ends + 1] of the model's end structure */
     lv_kit_end *end;          /* [ph->n_ends + 1] (lv_kit_ends) */
-    int *event_end;           /* [n_own + ph->n_ends]: lv_phase_model.event_end */
+    int *event_end;           /* [n_own + ph->n_ends + LV_KIT_MORE_EVENTS]:
+                                 lv_phase_model.event_end (-1 where an event ends nothing) */
     size_t n_own;             /* the model's own state events before the ends */
 } lv_kit_model;
 
@@ -119,7 +124,9 @@ void lv_kit_clear(lv_kit_model *k); /* the environment and the arrays; accepts a
 size_t lv_kit_engine_count(const lv_stage_def *st);
 
 /* Fills out[lv_kit_engine_count(st)] with the stage's engines at the run's values (thrust, Isp,
- * mass flow, exit area, throttle limits; the run's table); returns their number. */
+ * mass flow, exit area, throttle limits; the run's table); returns their number. For the
+ * phase's bottom stage only the engines its `engines:` runs (all without it), and the
+ * engine-outs of its `engine_out:` (lv_engine_config.out_after) on the last of each kind. */
 size_t lv_kit_engines(const lv_build_ctx *bc, const lv_stage_def *st, lv_engine_config *out);
 
 /* ---- ends --------------------------------------------------------------------------------- */

@@ -18,7 +18,7 @@
 #include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 
-static const char *const keys[] = {"runway", "takeoff", "landing", "aero", NULL};
+static const char *const keys[] = {"runway", "takeoff", "landing", "aero", "engines", NULL};
 static const char *const from_types[] = {"dof3", NULL};
 /* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
 static const char *const ends[] = {"burnout", "speed", NULL};

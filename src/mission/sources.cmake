@@ -9,6 +9,7 @@ list(APPEND LV_SOURCES
   src/mission/parse_phase.c
   src/mission/parse_tree.c
   src/mission/parse_vehicle.c
+  src/mission/engine_run.c
   src/mission/env.c
   src/mission/aero_def.c
   src/mission/guidance_def.c

@@ -45,6 +45,11 @@ lv_status lv_engine_init(lv_engine *e, const lv_engine_config *c, size_t index, 
     if (!isfinite(c->mdot) || c->mdot < 0.0)
         return lv_fail(err, LV_ERR_INPUT, "engine '%s': mdot = %g kg/s (must be >= 0)", n,
                        c->mdot);
+    if (isnan(c->out_after) || c->out_after < 0.0)
+        return lv_fail(err, LV_ERR_INPUT, "engine '%s': out_after = %g s (must be > 0, or 0: "
+                       "never out)", n, c->out_after);
+    e->out_after = c->out_after > 0.0 ? c->out_after : INFINITY;
+    e->t_out = INFINITY;
     e->exit_area = c->exit_area;
     e->thr_min = c->throttle_min;
     e->thr_max = c->throttle_max;
@@ -97,6 +102,20 @@ lv_status lv_engine_init(lv_engine *e, const lv_engine_config *c, size_t index, 
     return LV_OK;
 }
 
+void lv_engine_start(lv_engine *e, double t0)
+{
+    e->t_out = t0 + e->out_after;
+    e->out = 0;
+}
+
+int lv_engine_out_event(lv_engine *e, double t)
+{
+    if (e->out || !(e->t_out <= t))
+        return 0;
+    e->out = 1;
+    return 1;
+}
+
 double lv_engine_throttle(const lv_engine *e, double throttle)
 {
     return throttle < e->thr_min ? e->thr_min : throttle > e->thr_max ? e->thr_max : throttle;
@@ -105,6 +124,10 @@ double lv_engine_throttle(const lv_engine *e, double throttle)
 lv_status lv_engine_eval(lv_engine *e, double t, double throttle, double p_amb, double *buf,
                          double *thrust, double *mdot, lv_err *err)
 {
+    if (e->out) { /* an engine-out: this engine gives nothing from its instant on */
+        *thrust = *mdot = 0.0;
+        return LV_OK;
+    }
     const double c = lv_engine_throttle(e, throttle);
     double f_vac = e->thrust_vac, md = e->mdot_full;
     if (e->table != NULL) {

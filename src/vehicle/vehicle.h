@@ -28,16 +28,29 @@ typedef struct lv_engine {
     size_t k_thrust, k_mdot; /* output indices; k_mdot = (size_t)-1: from mdot_per_thrust */
     size_t n_out;
     lv_table_cursor cur;
+    double out_after;       /* s after the start (lv_engine_config.out_after); INFINITY: never */
+    double t_out;           /* s, mission time of the engine-out: start + out_after (set at
+                               the model's start, lv_engine_start) */
+    int out;                /* mode: 1 once the engine-out happened (no thrust, no flow) */
 } lv_engine;
 
 /* Checks configuration `c` (engine number `index`, for messages) and fills `e`.
  * LV_ERR_INPUT names the engine, the field and the value. */
 lv_status lv_engine_init(lv_engine *e, const lv_engine_config *c, size_t index, lv_err *err);
 
+/* The model's start at mission time t0 [s]: the engine runs, its engine-out instant is
+ * t0 + out_after (INFINITY: never). */
+void lv_engine_start(lv_engine *e, double t0);
+
+/* At a time event t: the engine stops if its engine-out instant is t (or passed). Returns 1
+ * when it stopped now. */
+int lv_engine_out_event(lv_engine *e, double t);
+
 /* Throttle c clamped into [thr_min, thr_max] (documented for tables and guidance). */
 double lv_engine_throttle(const lv_engine *e, double throttle);
 
-/* Thrust (N, along body x) and mass flow (kg/s, > 0 while burning) at time t [s],
+/* Thrust (N, along body x) and mass flow (kg/s, > 0 while burning; 0 and 0 once out) at time
+ * t [s],
  * commanded throttle (clamped) and ambient pressure p_amb [Pa]. `buf` holds at least
  * e->n_out doubles (table engines). Returns LV_OK or the table's LV_ERR_INPUT (time
  * outside the table under LV_EXTRAP_ERROR; the message is formatted only if err). */

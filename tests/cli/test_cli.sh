@@ -233,7 +233,7 @@ expect 2 "--max-rows needs a whole number from 1 to 1e15, got '1.5'" -- "$lvsim"
 # 137.9 s whatever its stop time), the table says the limit holds as it runs
 cp -R "$src/examples/dof3-branch" "$work/generous"
 sed -i 's/stop_time: 400/stop_time: 1.0e30/; s/stop_time: 2000/stop_time: 2.0e30/; s/stop_time: 3000/stop_time: 3.0e30/' "$work/generous/mission.yaml"
-expect 0 "^1 +ascent +1e\+30 +63 .*an end event: rows limited as it runs" -- "$lvsim" check "$work/generous/mission.yaml"
+expect 0 "^1 +ascent +1e\+30 +65 .*an end event: rows limited as it runs" -- "$lvsim" check "$work/generous/mission.yaml"
 expect 0 "^1 +ascent +- +0.000 +137.906 +burnout " -- "$lvsim" run "$work/generous/mission.yaml" -o "$work/generous_out" --no-plots
 # ... and a phase whose end never fires is stopped at the row limit as it runs: no gravity
 # to speak of, at rest, an altitude end 1e9 m up; a row every second: stopped at t = 1000 s
@@ -252,6 +252,37 @@ expect 3 "phase 'coast': stopped at t = 1000 s by the row limit: 1000 output row
   "$lvsim" run "$work/never.yaml" -o "$work/never_out" --max-rows 1000 --no-plots
 rows=$(($(grep -vc '^#' "$work/never_out/phase_1_coast.failed.csv") - 1))  # header, comments: no rows
 [ "$rows" -eq 1000 ] && pass=$((pass + 1)) || { echo "FAIL: the stopped phase's file has $rows rows (want 1000)"; fails=$((fails + 1)); }
+
+# A throttle law that cannot be followed (issue 27): one engine of two whose minimum throttle
+# 0.85 is more than the landing law comes to ask (tests/unit/test_engines.c: at 9.307 s): a
+# warning names the phase, the event and the time; `check` and `run` accept the same file and
+# refuse the same bad count (file:line:column)
+cat > "$work/sat.yaml" <<'YAML'
+mission: {name: landing-min}
+environment:
+  world: planet
+  planet: {name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}
+  atmosphere: none
+parameters: {start_h: 2000, start_vel: 181, start_fpa_deg: -90}
+stages: [{name: s, dry_mass: 20000, propellant_mass: 10000,
+          engines: [{name: m1, count: 2, thrust_vac: 600000, isp_vac: 300, throttle_min: 0.85}]}]
+phases:
+  - {name: land, model: dof3, stages: [s], stop_time: 40, engines: 1,
+     end: [impact, {speed: 1, direction: falling}],
+     guidance: {law: retrograde}, throttle: {landing: {altitude: 0, speed: 2}}}
+YAML
+expect 0 "is valid: 1 phases" -- "$lvsim" check "$work/sat.yaml"
+expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 9.307 s" -- \
+  "$lvsim" run "$work/sat.yaml" -o "$work/sat_out" --no-plots
+# slower at the start (150 m/s): saturated from the first row, where no crossing is logged
+sed 's/start_vel: 181/start_vel: 150/' "$work/sat.yaml" > "$work/sat0.yaml"
+expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 0.000 s \(the phase's start\)" -- \
+  "$lvsim" run "$work/sat0.yaml" -o "$work/sat0_out" --no-plots
+sed 's/engines: 1,/engines: 3,/' "$work/sat.yaml" > "$work/sat3.yaml"
+expect 2 "sat3.yaml:10:68: phase 'land': engines: 3 engines cannot run: stage 's' has 2 of engine 'm1'" -- \
+  "$lvsim" check "$work/sat3.yaml"
+expect 2 "sat3.yaml:10:68: phase 'land': engines: 3 engines cannot run" -- \
+  "$lvsim" run "$work/sat3.yaml" -o "$work/sat3_out" --no-plots
 
 # Progress: not on a terminal one line per post-processing step on stderr; --quiet: none; on
 # a terminal (script(1) gives one) a live line that is redrawn in place

@@ -54,3 +54,7 @@ target_link_libraries(test_campaign PRIVATE lvsim_post_static PkgConfig::SQLITE3
 # No silent wrong answer (issue 22, item 6): tolerances, angles, starts below the ground, name
 # lengths and targeting scales refused where they enter, with file:line:column or the rule.
 lv_add_unit_test(test_mission_valid unit/test_mission_valid.c)
+# Engines by count (issue 27, item 3): n of N engines against the thrust and mass-flow closed
+# forms, a landing whose one engine cannot throttle low enough (the saturation event against
+# the rocket equation), an engine-out at a time, bad `engines:` / `engine_out:` values.
+lv_add_unit_test(test_engines unit/test_engines.c)
