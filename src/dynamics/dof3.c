@@ -125,9 +125,9 @@ static const lv_var output_vars[O_N] = {
     {"target_bearing", "rad", "Bearing of the target, from north to east", 0, 0},
     {"target_overshoot", "m", "Vacuum ballistic range toward the target over flat ground minus "
      "its distance (> 0: beyond it)", 0, 0},
-    {"throttle_eff", "", "Throttle each running engine gives: throttle_in clamped into one "
+    {"throttle_eff", "1", "Throttle each running engine gives: throttle_in clamped into one "
      "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
-    {"engines_running", "", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
+    {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
 };
 
@@ -138,9 +138,9 @@ static const lv_var output_vars[O_N] = {
 enum { SAT_MIN, SAT_MAX, SAT_N };
 static const lv_event_def sat_events[SAT_N] = {
     {"throttle_min", "The throttle law asks for less than the engines' minimum throttle "
-     "(-1: from here the engines give n T_min; +1: back within range)", LV_DIR_BOTH},
+     "(-1: from here the engines give n T_min; +1: back within range)", LV_DIR_BOTH, 0},
     {"throttle_max", "The throttle law asks for more than the engines' maximum throttle "
-     "(-1: from here the engines give n T_max; +1: back within range)", LV_DIR_BOTH},
+     "(-1: from here the engines give n T_max; +1: back within range)", LV_DIR_BOTH, 0},
 };
 /* below c_min (above c_max) by more than this: a law that holds the limit exactly (a constant
  * throttle at throttle_min) is not saturated */
