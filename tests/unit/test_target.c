@@ -76,6 +76,15 @@ static void shot_yaml(char *buf, size_t cap, double v, double fpa_deg, const cha
              v, fpa_deg, targeting);
 }
 
+/* How many times `what` occurs in s. */
+static int count_of(const char *s, const char *what)
+{
+    int n = 0;
+    for (const char *p = strstr(s, what); p != NULL; p = strstr(p + 1, what))
+        n++;
+    return n;
+}
+
 typedef struct counts {
     int iterations, rejected, domain, accepted;
     size_t max_phases;
@@ -396,7 +405,17 @@ static void test_round_trip(void)
             CHECK(p != NULL && strtod(p + 24, NULL) == res->x[0]);
             snprintf(line, sizeof line, ", scale: 1}  # low shot\n");
             CHECK(strstr(out, line) != NULL);
-            CHECK(strlen(out) - strlen(yaml) < 40);
+            /* a header first: where it comes from, how the constrained phase ended (its one
+             * end, impact, at the flight time 2 v sin(gamma) / g = 9.018 s of the closed
+             * form); the file after it */
+            CHECK(strncmp(out, "# lvsim target: written from target_rt.yaml ", 44) == 0);
+            p = strstr(out, "# lvsim target: ended as the constraints assume: flight by impact "
+                            "at t = ");
+            CHECK(p != NULL && fabs(strtod(p + 72, NULL) - 2.0 * 100.0 * sin(res->x[0] * DEG) /
+                                                               G0) < 1e-6);
+            const char *body = strstr(out, "# a drag-free shot over flat ground\n");
+            CHECK(body != NULL && strlen(body) - strlen(yaml) < 40);
+            CHECK(count_of(out, "# lvsim target:") == 2);
             free(out);
         }
         /* the converged file, run on its own, reproduces the final; re-targeted, it is met at
@@ -422,6 +441,13 @@ static void test_round_trip(void)
             if (t2 != NULL)
                 CHECK_OK(lv_target_solve(t2, &s, &r2, &err), &err);
             CHECK(r2 != NULL && r2->converged && r2->iterations == 0 && r2->x[0] == res->x[0]);
+            /* written again: its header replaces the one it had */
+            if (r2 != NULL && r2->converged)
+                CHECK_OK(lv_target_write(t2, r2->x, "target_rt_conv2.yaml", NULL, &err), &err);
+            char *out2 = read_file("target_rt_conv2.yaml");
+            CHECK(out2 != NULL && count_of(out2, "# lvsim target:") == 2 &&
+                  strstr(out2, "written from target_rt_conv.yaml ") != NULL);
+            free(out2);
         }
         lv_target_free(t2);
         lv_mission_free(m2);
