@@ -620,6 +620,59 @@ def test_targeting_built_in_python():
         lvsim.Mission(PAPER).target()  # no targeting section
 
 
+HOP = """mission: {name: hop}
+stages:
+  - {name: s, dry_mass: 1000, propellant_mass: 2000,
+     engines: [{name: e, thrust_vac: 100000, isp_vac: 300}]}
+phases:
+  - {name: burn, model: flat6, stages: [s], stop_time: 100,
+     end: [{altitude: 2000, direction: rising}, burnout], integrator: {tolerance: 1.0e-10}}
+targeting:
+  variables: [{name: s.propellant_mass, min: 10, max: 3000, scale: 100}]
+  constraints: [{final: burn.time, equal: 5, tolerance: 0.001%s}]
+"""
+
+
+def test_targeting_says_what_end_it_converged_to(tmp_path):
+    # issue 27: a vertical hop over flat6's ground whose burn is meant to end at 2 km; a final
+    # time of 5 s is met only by a burnout at 5 s, m_p = 5 F / (Isp g0) (the rocket equation
+    # in closed form, tests/unit/test_target.c (i))
+    mp = 5 * 100000 / (300 * 9.80665)
+    src = tmp_path / "hop.yaml"
+    src.write_text(HOP % "")
+    with lvsim.Mission(src) as m:
+        t = m.target()
+        notes = []
+        res = t.solve(on_iteration=lambda it: notes.append(it["note"] or ""))
+        assert res.converged, res.reason
+        assert abs(res.x["s.propellant_mass"] - mp) <= 0.001 * mp / 5
+        assert len(res.end_mismatches) == 1
+        e = res.end_mismatches[0]
+        assert (e["phase"], e["expected"], e["actual"]) == ("burn", "altitude", "burnout")
+        assert abs(e["t_end"] - 5.0) <= 0.001
+        assert any("phase 'burn' ended by burnout" in n for n in notes)
+        out = tmp_path / "conv.yaml"
+        t.write(out)
+        assert "# lvsim target: WARNING: phase 'burn' ended by burnout" in out.read_text()
+        # named: nothing to report; an unknown end is refused with the phase's ends
+        t.set_end("burn", "burnout")
+        assert t.solve().end_mismatches == []
+        with pytest.raises(lvsim.LvsimError, match="its ends: altitude, burnout, stop_time"):
+            t.set_end("burn", "burnot")
+        t.close()
+    src.write_text(HOP % ", end: burnout")
+    with lvsim.Mission(src) as m, m.target() as t:
+        assert t.solve().end_mismatches == []
+    with lvsim.Mission(LEO_TARGETED) as m, m.target() as t:
+        res = t.solve()
+        assert res.converged and res.end_mismatches == []
+    with lvsim.Mission(src) as m, m.target(from_file=False) as t:
+        t.add_variable("s.propellant_mass", 10, 3000, scale=100)
+        t.add_constraint("burn.time", "equal", 5, 0.001, end="stop_time")
+        res = t.solve()
+        assert [e["expected"] for e in res.end_mismatches] == ["stop_time"]
+
+
 def test_monte_carlo_campaign(tmp_path):
     m = lvsim.Mission(BRANCH)
     assert m.dispersions and m.seed == 20260301
