@@ -35,7 +35,9 @@
  * simulated again, and only the phases the constraints and the cost read (and their
  * ancestors) are simulated at all. A trial point where a phase fails (the vehicle leaves its
  * model's domain, the integrator fails, a stop time is not after the start) is a rejected
- * step, never an error.
+ * step, never an error. Each phase a constraint or the cost reads is assumed to end by its
+ * first end written (or the one named: lv_target_set_end, a constraint's `end:`); the result
+ * lists those that ended otherwise at its point (end_mismatch): met on another trajectory.
  *
  * Not thread-safe on one lv_target; separate targets of one mission may run in parallel.
  */
