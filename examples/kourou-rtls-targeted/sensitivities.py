@@ -22,7 +22,7 @@ VARIABLES = [("boostback.end.target_overshoot", 100.0),        # m
              ("boostback.guidance.target_lat_deg", 0.001),     # deg
              ("boostback.guidance.target_lon_deg", 0.001),     # deg
              ("boostback.guidance.pitch_deg", 1.0),            # deg
-             ("boostback.throttle.value", 0.01)]               # 1
+             ("boostback.throttle.value", 0.01)]               # 1, where the file writes it
 
 
 def radii(lat):
@@ -55,7 +55,10 @@ def sensitivities(path=os.path.join(HERE, "mission.yaml")):
         mer, pv = radii(base["lat"])
         rows = []
         for name, step in VARIABLES:
-            v0 = x[name] if name in x else m.parameter(name).value
+            try:  # a boost-back with `engines: N` writes no throttle value: left out
+                v0 = x[name] if name in x else m.parameter(name).value
+            except lvsim.LvsimError:
+                continue
             up, dn = (_landing(m, {**x, name: v0 + s * step}) for s in (1.0, -1.0))
             d = {k: (up[k] - dn[k]) / 2.0 for k in up}
             rows.append(dict(name=name, step=step, start=v0,
