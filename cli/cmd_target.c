@@ -204,12 +204,28 @@ static void print_result(const lv_target *t, const lv_target_result *res)
     }
 }
 
+/* The phases that ended otherwise than the constraints assume (docs/targeting.md, "The end
+ * each constraint assumes"): a converged point on another trajectory than the one targeted. */
+static void print_end_mismatches(const lv_target_result *res)
+{
+    for (size_t i = 0; i < res->n_end_mismatch; i++) {
+        const lv_target_end_mismatch *e = &res->end_mismatch[i];
+        printf("warning: at the %s point phase '%s' ended by %s at t = %.10g s, not by %s, "
+               "the end its constraints assume: %s\n", res->converged ? "converged" : "best",
+               e->phase_name, e->actual, e->t_end, e->expected,
+               res->converged ? "the constraints are met on another trajectory than the one "
+                                "targeted (name the end on the constraint, `end:`, if this is "
+                                "the one meant)"
+                              : "the point is on another trajectory than the one targeted");
+    }
+}
+
 static int target_run(const cli_cmd *self, int argc, char **argv)
 {
     static const char *const methods[] = {"auto", "newton", "slsqp", "cobyla", NULL};
     static const char *const diffs[] = {"auto", "forward", "central", NULL};
     const char *path = NULL, *out = NULL;
-    int force = 0;
+    int force = 0, strict = 0;
     lv_target_settings set;
     lv_target_settings_default(&set);
     double max_rows = CLI_DEFAULT_MAX_ROWS;
@@ -266,6 +282,8 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             ui.quiet = 1;
         } else if (strcmp(a, "--force") == 0) {
             force = 1;
+        } else if (strcmp(a, "--strict") == 0) {
+            strict = 1;
         } else if (is_option(a)) {
             return usage_error(self, "unknown option", a);
         } else if (path != NULL) {
@@ -355,13 +373,21 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
         code = print_err("lvsim", &err, exit_code_for(st));
     } else {
         print_result(t, res);
+        print_end_mismatches(res);
         if (!res->converged)
             code = EXIT_SIM;
+        const int strict_fail = strict && res->converged && res->n_end_mismatch > 0;
+        if (strict_fail) {
+            fprintf(stderr, "lvsim: --strict: converged onto a point where %zu phase(s) ended "
+                    "otherwise than the constraints assume (above)%s\n", res->n_end_mismatch,
+                    out != NULL ? "; nothing written" : "");
+            code = EXIT_SIM;
+        }
         if (res->cancelled) {
             fprintf(stderr, "lvsim: interrupted: the best point so far above%s\n",
                     out != NULL ? "; nothing written" : "");
             code = 130;
-        } else if (out != NULL && res->converged) {
+        } else if (out != NULL && res->converged && !strict_fail) {
             double worst = NAN;
             st = lv_target_write(t, res->x, out, &worst, &err);
             if (st != LV_OK)
@@ -369,7 +395,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             else
                 printf("wrote %s: 'lvsim run %s' reproduces the targeted finals (largest "
                        "difference %.2g of a tolerance)\n", out, out, worst);
-        } else if (out != NULL) {
+        } else if (out != NULL && !strict_fail) {
             printf("%s not written: the target was not met\n", out);
         }
     }
@@ -382,7 +408,7 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
 const cli_cmd cli_cmd_target = {
     "target",
     "solve a mission's targeting section: meet constraints, optimise a cost",
-    "MISSION.yaml [-o CONVERGED.yaml [--force]] [--method M] [--differences D] "
+    "MISSION.yaml [-o CONVERGED.yaml [--force]] [--strict] [--method M] [--differences D] "
     "[--max-iter N] [--restarts N] [--threads N] [--max-rows N] [-q]",
     "Varies the run parameters listed under the mission's `targeting:` section within their\n"
     "bounds until the phases' final values meet the constraints (damped Newton /\n"
@@ -393,7 +419,10 @@ const cli_cmd cli_cmd_target = {
     "the variables, the constraints' finals with their residuals, the cost) and a progress\n"
     "line on a terminal; then the converged values, or the best point and the constraints\n"
     "that fail (NOT MET, exit 3; NOT CONVERGED when they are met but the optimiser did not\n"
-    "reach its stopping test, exit 3). Before it starts, the start point's output rows are\n"
+    "reach its stopping test, exit 3). Each phase a constraint reads is assumed to end by\n"
+    "its first end written (or the constraint's `end:`); a phase of the result that ended\n"
+    "otherwise (burnout before the orbit's end) is a warning, an error with --strict.\n"
+    "Before it starts, the start point's output rows are\n"
     "estimated as 'lvsim check' does (a phase only its stop time ends refused beyond\n"
     "--max-rows, exit 2); a trial point whose phase reaches the limit fails. Ctrl-C or\n"
     "SIGTERM stops it within a second, inside a long evaluation too, with the best point so\n"
@@ -407,6 +436,9 @@ const cli_cmd cli_cmd_target = {
     "                          mission or one of its data files; an existing file is\n"
     "                          refused unless --force\n"
     "  --force                 -o may replace an existing file (never an input)\n"
+    "  --strict                a converged point where a constrained phase ended otherwise\n"
+    "                          than its constraints assume is an error (exit 3, nothing\n"
+    "                          written), not a warning\n"
     "  --method M              auto, newton, slsqp or cobyla (default: the file's, else auto)\n"
     "  --differences D         auto, forward or central (default: the file's, else auto)\n"
     "  --max-iter N            iterations, 1 to 100000 (default: the file's, else 50 for newton,\n"

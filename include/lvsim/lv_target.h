@@ -35,7 +35,9 @@
  * simulated again, and only the phases the constraints and the cost read (and their
  * ancestors) are simulated at all. A trial point where a phase fails (the vehicle leaves its
  * model's domain, the integrator fails, a stop time is not after the start) is a rejected
- * step, never an error.
+ * step, never an error. Each phase a constraint or the cost reads is assumed to end by its
+ * first end written (or the one named: lv_target_set_end, a constraint's `end:`); the result
+ * lists those that ended otherwise at its point (end_mismatch): met on another trajectory.
  *
  * Not thread-safe on one lv_target; separate targets of one mission may run in parallel.
  */
@@ -90,6 +92,17 @@ LV_API lv_status lv_target_add_con(lv_target *t, const char *final, lv_con_kind 
  * of a significant change (NAN: |value at the start|, or 1 when that is 0). */
 LV_API lv_status lv_target_set_cost(lv_target *t, const char *final, int maximize, double scale,
                                     lv_err *err);
+
+/* The end the problem assumes phase `phase` ends by: one of its `end:` entries by its name in
+ * the results ("sma", "burnout", "altitude_2"), "stop_time" (its time limit) or "any" (not
+ * checked). By default every phase a constraint or the cost reads is assumed to end by its
+ * first end written (stop_time when it has none); a phase named here that nothing reads is
+ * simulated in every evaluation (with its ancestors) to be checked. At every evaluated point
+ * the end that fired is compared with it: the result lists the phases that ended otherwise
+ * (lv_target_result.end_mismatch), the iterations' notes name them. LV_ERR_INPUT for an
+ * unknown phase or end (the message lists the phase's ends). */
+LV_API lv_status lv_target_set_end(lv_target *t, const char *phase, const char *end,
+                                   lv_err *err);
 
 typedef struct lv_target_var_info {
     const char *name;  /* as given: "P1.guidance.kick_deg" */
@@ -186,6 +199,15 @@ typedef struct lv_target_settings {
 /* All zero: the file's settings (or the defaults) and no callbacks. */
 LV_API void lv_target_settings_default(lv_target_settings *s);
 
+/* A phase that ended otherwise than the problem assumes (lv_target_set_end). */
+typedef struct lv_target_end_mismatch {
+    size_t phase;          /* run order */
+    const char *phase_name;
+    const char *expected;  /* the end assumed: "sma", "stop_time" */
+    const char *actual;    /* the end that fired: "burnout", "stop_time" */
+    double t_end;          /* s, mission time the phase ended */
+} lv_target_end_mismatch;
+
 typedef struct lv_target_result {
     int converged;        /* 1: every constraint met (and the optimiser stopped on its
                              tolerances: a local optimum); 0: the best point found */
@@ -201,6 +223,12 @@ typedef struct lv_target_result {
     double worst;         /* max |residual| */
     size_t iterations, runs, phases;
     double wall;          /* s */
+    /* the phases that ended at x otherwise than the problem assumes (lv_target_set_end): a
+     * converged point on another trajectory than the one targeted (an upper stage cut off by
+     * burnout instead of its orbit's end). Converged or not; 0 when every checked phase ended
+     * as assumed. */
+    size_t n_end_mismatch;
+    const lv_target_end_mismatch *end_mismatch; /* [n_end_mismatch] */
 } lv_target_result;
 
 /* Solves: returns LV_OK with *out filled whether or not the target was met (out->converged

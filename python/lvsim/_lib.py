@@ -201,6 +201,11 @@ class lv_target_settings(Structure):
                 ("stop", POINTER(c_int)), ("max_rows", c_double)]
 
 
+class lv_target_end_mismatch(Structure):
+    _fields_ = [("phase", c_size_t), ("phase_name", c_char_p), ("expected", c_char_p),
+                ("actual", c_char_p), ("t_end", c_double)]
+
+
 class lv_target_result(Structure):
     _fields_ = [("converged", c_int), ("cancelled", c_int),
                 ("reason", c_char * LV_ERR_MSG_MAX), ("method", c_char_p),
@@ -208,7 +213,8 @@ class lv_target_result(Structure):
                 ("finals", POINTER(c_double)), ("residual", POINTER(c_double)),
                 ("met", POINTER(c_int)), ("cost", c_double), ("worst", c_double),
                 ("iterations", c_size_t), ("runs", c_size_t), ("phases", c_size_t),
-                ("wall", c_double)]
+                ("wall", c_double), ("n_end_mismatch", c_size_t),
+                ("end_mismatch", POINTER(lv_target_end_mismatch))]
 
 
 # ---- dispersions and campaigns (lv_dispersion.h, lv_campaign.h) ----------------------------
@@ -267,7 +273,7 @@ MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_par
             lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
             lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
             lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
-            lv_target_settings, lv_target_result, lv_disp_info, lv_campaign_progress,
+            lv_target_settings, lv_target_end_mismatch, lv_target_result, lv_disp_info, lv_campaign_progress,
             lv_campaign_options, lv_output_estimate, lv_outdir_record, lv_law_key, lv_law_info]
 # lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
 PARTIAL = [lv_model_def]
@@ -466,6 +472,7 @@ _proto(lib, "lv_target_add_var", c_int, P, c_char_p, c_double, c_double, c_doubl
        c_double, E)
 _proto(lib, "lv_target_add_con", c_int, P, c_char_p, c_int, c_double, c_double, E)
 _proto(lib, "lv_target_set_cost", c_int, P, c_char_p, c_int, c_double, E)
+_proto(lib, "lv_target_set_end", c_int, P, c_char_p, c_char_p, E)
 _proto(lib, "lv_target_var_count", c_size_t, P)
 _proto(lib, "lv_target_con_count", c_size_t, P)
 _proto(lib, "lv_target_var_info_get", None, P, c_size_t, POINTER(lv_target_var_info))

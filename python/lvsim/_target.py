@@ -20,7 +20,11 @@ class TargetResult:
     "newton+slsqp"...), `x` (dict variable -> value in the variable's unit: degrees for a
     *_deg name, else SI), `finals` (dict constraint -> value), `residual` (dict constraint ->
     residual in tolerances), `met` (dict constraint -> bool), `cost` (NaN without a cost),
-    `worst` (max |residual|), `iterations`, `runs`, `phases` (phase simulations), `wall` (s)."""
+    `worst` (max |residual|), `iterations`, `runs`, `phases` (phase simulations), `wall` (s),
+    `end_mismatches`: the phases that ended at `x` otherwise than the constraints assume (a
+    list of dicts with `phase`, `expected` and `actual` (end names: "sma", "burnout",
+    "stop_time") and `t_end` (s)), empty when every checked phase ended as assumed: a point
+    met on another trajectory than the one targeted (docs/targeting.md)."""
 
     def __repr__(self):
         return (f"TargetResult(converged={self.converged}, method={self.method!r}, "
@@ -112,27 +116,44 @@ class Target:
             check(lib.lv_target_add_var(self._handle(), b, lo, hi, start, scale, step,
                                         byref(err)), err)
 
-    def add_constraint(self, final, kind, value, tol):
+    def add_constraint(self, final, kind, value, tol, end=None):
         """A constraint on final value "PHASE.NAME" ("us-ascent.peri_alt"; "_deg" for an
-        angle in degrees): kind "equal", "min" or "max" `value`, met within `tol` > 0."""
+        angle in degrees): kind "equal", "min" or "max" `value`, met within `tol` > 0. `end`:
+        the end the phase is assumed to end by (set_end); None: its first end written."""
         b = name_arg(final, "constraint final")
         if kind not in KINDS:
             raise LvsimError(f"constraint kind '{kind}': equal, min or max", _lib.LV_ERR_INPUT)
         value, tol = real_arg(value, "value"), real_arg(tol, "tol")
+        e = None if end is None else name_arg(end, "end")
         with self._lock:
             err = _lib.lv_err()
             check(lib.lv_target_add_con(self._handle(), b, KINDS[kind], value, tol,
                                         byref(err)), err)
+        if e is not None:
+            self.set_end(final.split(".", 1)[0], end)
 
-    def set_cost(self, final, maximize=True, scale=float("nan")):
+    def set_end(self, phase, end):
+        """The end `phase` is assumed to end by (lv_target_set_end): one of its `end:` entries
+        by name ("sma", "burnout", "altitude_2"), "stop_time" or "any" (not checked). By
+        default each phase a constraint or the cost reads is assumed to end by its first end
+        written; the result's `end_mismatches` lists those that ended otherwise."""
+        p, e = name_arg(phase, "phase"), name_arg(end, "end")
+        with self._lock:
+            err = _lib.lv_err()
+            check(lib.lv_target_set_end(self._handle(), p, e, byref(err)), err)
+
+    def set_cost(self, final, maximize=True, scale=float("nan"), end=None):
         """The cost: final "PHASE.NAME" maximised (or minimised); scale: a significant
-        change (NaN: from the start point)."""
+        change (NaN: from the start point); end: as add_constraint's."""
         b = name_arg(final, "cost final")
         scale = real_arg(scale, "scale")
+        e = None if end is None else name_arg(end, "end")
         with self._lock:
             err = _lib.lv_err()
             check(lib.lv_target_set_cost(self._handle(), b, 1 if maximize else 0,
                                          scale, byref(err)), err)
+        if e is not None:
+            self.set_end(final.split(".", 1)[0], end)
 
     @property
     def variables(self):
@@ -236,6 +257,9 @@ class Target:
             res.met = {n: bool(r.met[j]) for j, n in enumerate(cons)}
             res.cost, res.worst = r.cost, r.worst
             res.iterations, res.runs, res.phases, res.wall = r.iterations, r.runs, r.phases, r.wall
+            res.end_mismatches = [dict(phase=text(e.phase_name), expected=text(e.expected),
+                                       actual=text(e.actual), t_end=e.t_end)
+                                  for e in (r.end_mismatch[i] for i in range(r.n_end_mismatch))]
             self._result = res
         return res
 

@@ -36,6 +36,7 @@ static const struct {
     T(lv_target_iter),
     T(lv_target_eval),
     T(lv_target_settings),
+    T(lv_target_end_mismatch),
     T(lv_target_result),
     T(lv_disp_info),
     T(lv_campaign_progress),

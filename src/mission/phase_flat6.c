@@ -169,6 +169,12 @@ static lv_status flat6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_er
         e0 += sd->n_engines;
     }
     const size_t n_ends = lv_kit_ends(bc, &s->kit, 0, NULL);
+    /* a `burnout` end fires with the model's own burnout event 0 (the same root, m - m_burnout):
+     * when the simulation names event 0 as the one that stopped it, the phase ended by that end
+     * (lv_phase_result.end_index; it read -1, "stop_time", before) */
+    for (size_t j = 0; j < ph->n_ends; j++)
+        if (ph->ends[j].kind == LV_END_BURNOUT)
+            s->kit.event_end[0] = (int)j;
     lv_flat_end *ends = s->kit.ends;
     for (size_t i = 0; i < n_ends; i++)
         ends[i] = (lv_flat_end){flat_end_of[s->kit.end[i].def->kind], s->kit.end[i].value,

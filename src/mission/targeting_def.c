@@ -90,7 +90,8 @@ static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tva
 
 static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tcon_def *con)
 {
-    static const char *const keys[] = {"final", "equal", "min", "max", "tolerance", NULL};
+    static const char *const keys[] = {"final", "equal", "min", "max", "tolerance", "end",
+                                       NULL};
     static const char *const kinds[] = {"equal", "min", "max"};
     char what[LV_WHAT_MAX];
     const lv_ynode *x, *kv = NULL;
@@ -105,6 +106,11 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
         return st;
     con->loc = loc_of(x);
     snprintf(what, sizeof what, "targeting: constraint on '%.60s'", con->name);
+    if ((x = lv_pk_get(n, "end")) != NULL) {
+        if ((st = dup_name(c, x, what, "end", &con->end)) != LV_OK)
+            return st;
+        con->end_loc = loc_of(x);
+    }
     for (int i = 0; i < 3; i++) {
         const lv_ynode *v = lv_pk_get(n, kinds[i]);
         if (v == NULL)
@@ -137,7 +143,7 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
 
 static lv_status parse_cost(const lv_pctx *c, const lv_ynode *n, lv_tcost_def *cost)
 {
-    static const char *const keys[] = {"maximize", "minimize", "scale", NULL};
+    static const char *const keys[] = {"maximize", "minimize", "scale", "end", NULL};
     const char *what = "targeting: cost";
     lv_status st;
     if (n->kind != LV_YNODE_MAP)
@@ -156,6 +162,12 @@ static lv_status parse_cost(const lv_pctx *c, const lv_ynode *n, lv_tcost_def *c
     if (lv_pk_get(n, "scale") != NULL && !(cost->scale > 0.0))
         return lv_pk_fail(c, lv_pk_get(n, "scale"), "%s: scale must be > 0, found %g", what,
                           cost->scale);
+    const lv_ynode *e = lv_pk_get(n, "end");
+    if (e != NULL) {
+        if ((st = dup_name(c, e, what, "end", &cost->end)) != LV_OK)
+            return st;
+        cost->end_loc = loc_of(e);
+    }
     cost->present = 1;
     cost->maximize = mx != NULL;
     cost->loc = loc_of(v);
@@ -275,10 +287,13 @@ void lv_targeting_def_free(lv_targeting_def *t)
     for (size_t k = 0; k < t->n_vars; k++)
         free(t->vars[k].name);
     free(t->vars);
-    for (size_t k = 0; k < t->n_cons; k++)
+    for (size_t k = 0; k < t->n_cons; k++) {
         free(t->cons[k].name);
+        free(t->cons[k].end);
+    }
     free(t->cons);
     free(t->cost.name);
+    free(t->cost.end);
     free(t);
 }
 
@@ -423,6 +438,76 @@ lv_status lv_targeting_resolve_final(const lv_mission *m, const char *name, lv_t
     return LV_OK;
 }
 
+lv_status lv_targeting_resolve_end(const lv_mission *m, size_t k, const char *end, int *out,
+                                   lv_err *err)
+{
+    const lv_phase_def *ph = &m->def->phases[k];
+    if (end == NULL) {
+        *out = ph->n_ends > 0 ? 0 : LV_TEND_STOP_TIME;
+        return LV_OK;
+    }
+    for (size_t j = 0; j < ph->n_ends; j++)
+        if (strcmp(ph->ends[j].name, end) == 0) {
+            *out = (int)j;
+            return LV_OK;
+        }
+    if (strcmp(end, "stop_time") == 0 || strcmp(end, "any") == 0) {
+        *out = end[0] == 's' ? LV_TEND_STOP_TIME : LV_TEND_ANY;
+        return LV_OK;
+    }
+    lv_suggest sg;
+    lv_suggest_init(&sg, end);
+    char ends[400] = "";
+    for (size_t j = 0; j < ph->n_ends; j++) {
+        lv_suggest_add(&sg, ph->ends[j].name);
+        const size_t n = strlen(ends);
+        snprintf(ends + n, sizeof ends - n, "%s%s", n ? ", " : "", ph->ends[j].name);
+    }
+    lv_suggest_add(&sg, "stop_time");
+    lv_suggest_add(&sg, "any");
+    char hint[200];
+    lv_suggest_text(&sg, hint, sizeof hint);
+    return lv_fail(err, LV_ERR_INPUT, "end '%s': phase '%s' has no such end%s (its ends: %s%s"
+                   "stop_time; or any)", end, ph->name, hint, ends, ends[0] ? ", " : "");
+}
+
+const char *lv_targeting_end_name(const lv_mission *m, size_t k, int index)
+{
+    const lv_phase_def *ph = &m->def->phases[k];
+    if (index >= 0 && (size_t)index < ph->n_ends)
+        return ph->ends[index].name;
+    return index == LV_TEND_STOP_TIME ? "stop_time" : index == LV_TEND_ANY ? "any" : "-";
+}
+
+/* The `end:` of a constraint or the cost (loc: where it is written), resolved against its
+ * phase; one named end per phase: a phase ends one way. `named` [n_phases] holds the index of
+ * the constraint (+1; n_cons + 1 for the cost) that named each phase's end first. */
+static lv_status check_end(lv_mission *m, const char *what, const char *final, size_t phase,
+                           const char *end, lv_src_loc loc, int *index, size_t *named,
+                           size_t self, lv_err *e)
+{
+    lv_targeting_def *t = m->def->targeting;
+    lv_status st = lv_targeting_resolve_end(m, phase, end, index, e);
+    if (st != LV_OK)
+        return lv_fail_prefix(e, st, "%s:%d:%d: targeting: %s on '%s'", m->def->path,
+                              loc.line, loc.column, what, final);
+    if (end == NULL)
+        return LV_OK;
+    if (named[phase] == 0) {
+        named[phase] = self + 1;
+        return LV_OK;
+    }
+    const size_t o = named[phase] - 1;
+    const int other = o < t->n_cons ? t->cons[o].end_index : t->cost.end_index;
+    if (other == *index)
+        return LV_OK;
+    const lv_src_loc ol = o < t->n_cons ? t->cons[o].end_loc : t->cost.end_loc;
+    return lv_fail(e, LV_ERR_INPUT, "%s:%d:%d: targeting: %s on '%s': end '%s', but line %d "
+                   "assumes phase '%s' ends by '%s': a phase ends one way (name its end once)",
+                   m->def->path, loc.line, loc.column, what, final, end, ol.line,
+                   m->def->phases[phase].name, lv_targeting_end_name(m, phase, other));
+}
+
 lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
 {
     lv_mission_def *d = m->def;
@@ -469,5 +554,19 @@ lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
         (st = lv_targeting_resolve_final(m, t->cost.name, &t->cost.res, &e)) != LV_OK)
         st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: cost", d->path, t->cost.loc.line,
                             t->cost.loc.column);
+    /* the end each read phase is assumed to end by */
+    size_t *named = st == LV_OK ? calloc(d->n_phases + 1, sizeof *named) : NULL;
+    if (st == LV_OK && named == NULL)
+        st = lv_fail(&e, LV_ERR_NOMEM, "out of memory");
+    for (size_t k = 0; k < t->n_cons && st == LV_OK; k++) {
+        lv_tcon_def *c = &t->cons[k];
+        st = check_end(m, "constraint", c->name, c->res.phase, c->end,
+                       c->end ? c->end_loc : c->loc, &c->end_index, named, k, &e);
+    }
+    if (st == LV_OK && t->cost.present)
+        st = check_end(m, "cost", t->cost.name, t->cost.res.phase, t->cost.end,
+                       t->cost.end ? t->cost.end_loc : t->cost.loc, &t->cost.end_index, named,
+                       t->n_cons, &e);
+    free(named);
     return st == LV_OK ? LV_OK : lv_fail(err, st, "%s", e.msg);
 }

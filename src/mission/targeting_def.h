@@ -49,6 +49,13 @@ typedef struct lv_tfinal {
     char unit[24];      /* "deg" for a _deg name, else the variable's unit */
 } lv_tfinal;
 
+/* The end a phase read by the constraints or the cost is assumed to end by (docs/targeting.md,
+ * "The end each constraint assumes"): an index into its `end:` list (file order), or one of
+ * these. By default the phase's first end written (stop_time for a phase without `end:`). */
+#define LV_TEND_STOP_TIME (-1) /* its stop time (`end: stop_time`) */
+#define LV_TEND_ANY (-2)       /* any end: not checked (`end: any`) */
+#define LV_TEND_NONE (-3)      /* no assumption: the phase is not checked */
+
 typedef struct lv_tvar_def {
     char *name;
     double lo, hi, start, scale, step; /* start, scale, step NAN when not written */
@@ -63,6 +70,9 @@ typedef struct lv_tcon_def {
     double value, tol;
     lv_src_loc loc;
     lv_tfinal res;
+    char *end;          /* the `end:` key (NULL: the phase's first end) */
+    lv_src_loc end_loc;
+    int end_index;      /* resolved: LV_TEND_* or an index into the phase's ends */
 } lv_tcon_def;
 
 typedef struct lv_tcost_def {
@@ -71,6 +81,9 @@ typedef struct lv_tcost_def {
     double scale;       /* NAN: from the start point */
     lv_src_loc loc;
     lv_tfinal res;
+    char *end;          /* as lv_tcon_def */
+    lv_src_loc end_loc;
+    int end_index;
 } lv_tcost_def;
 
 typedef struct lv_targeting_def {
@@ -102,5 +115,12 @@ lv_status lv_targeting_resolve_var(const lv_mission *m, const char *name, double
                                    lv_err *err);
 lv_status lv_targeting_resolve_final(const lv_mission *m, const char *name, lv_tfinal *out,
                                      lv_err *err);
+/* The end `end` of phase k (run order): one of its `end:` entries by its name in the results
+ * ("sma", "burnout", "altitude_2"), "stop_time" or "any"; LV_ERR_INPUT naming the phase's ends
+ * otherwise. end NULL: the default, its first end (LV_TEND_STOP_TIME without ends). */
+lv_status lv_targeting_resolve_end(const lv_mission *m, size_t k, const char *end, int *out,
+                                   lv_err *err);
+/* The name of end `index` of phase k (LV_TEND_*: "stop_time", "any", "-"). */
+const char *lv_targeting_end_name(const lv_mission *m, size_t k, int index);
 
 #endif

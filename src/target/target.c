@@ -35,6 +35,10 @@ void lv_target_free(lv_target *t)
     for (int k = 0; k < TG_MAX_WORKERS - 1; k++)
         lv_run_free(t->aux[k]);
     free(t->want);
+    free(t->expect);
+    free(t->expect_named);
+    free(t->chk);
+    free(t->res_mm);
     free(t->tmp_x);
     free(t->order);
     free(t->res_x);
@@ -54,9 +58,17 @@ lv_status lv_target_create_empty(const lv_mission *m, lv_target **out, lv_err *e
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     t->m = m;
     t->cost.scale = NAN;
-    t->want = calloc(m->def->n_phases + 1, 1);
-    lv_status st = t->want == NULL ? lv_fail(err, LV_ERR_NOMEM, "out of memory")
-                                   : lv_run_create(m, &t->run, err);
+    const size_t np = m->def->n_phases;
+    t->want = calloc(np + 1, 1);
+    t->expect = calloc(np + 1, sizeof *t->expect);
+    t->expect_named = calloc(np + 1, 1);
+    t->chk = calloc(np + 1, sizeof *t->chk);
+    for (size_t k = 0; t->expect != NULL && k < np; k++)
+        t->expect[k] = LV_TEND_NONE;
+    lv_status st = t->want == NULL || t->expect == NULL || t->expect_named == NULL ||
+                           t->chk == NULL
+                       ? lv_fail(err, LV_ERR_NOMEM, "out of memory")
+                       : lv_run_create(m, &t->run, err);
     if (st != LV_OK) {
         lv_target_free(t);
         return st;
@@ -113,8 +125,24 @@ lv_status lv_target_add_var(lv_target *t, const char *name, double lo, double hi
     return st != LV_OK ? st : push_var(t, name, &r, none, err);
 }
 
+/* Phase k is assumed to end by end `idx` (LV_TEND_*); `named`: said so (a constraint's `end:`,
+ * lv_target_set_end), else the default, which a named end overrides. */
+static void expect_end(lv_target *t, size_t k, int idx, int named)
+{
+    if (named) {
+        t->expect[k] = idx;
+        t->expect_named[k] = 1;
+    } else if (!t->expect_named[k]) {
+        t->expect[k] = idx;
+    }
+    t->n_chk = 0;
+    for (size_t j = 0; j < t->m->def->n_phases; j++)
+        if (t->expect[j] != LV_TEND_NONE && t->expect[j] != LV_TEND_ANY)
+            t->chk[t->n_chk++] = j;
+}
+
 static lv_status push_con(lv_target *t, const char *name, lv_con_kind kind, double value,
-                          double tol, const lv_tfinal *f, lv_err *err)
+                          double tol, const lv_tfinal *f, int end, int named, lv_err *err)
 {
     if (t->mc == t->cap_m) {
         const size_t cap = t->cap_m ? 2 * t->cap_m : 8;
@@ -132,6 +160,7 @@ static lv_status push_con(lv_target *t, const char *name, lv_con_kind kind, doub
     c->tol = tol;
     c->f = *f;
     t->want[f->phase] = 1;
+    expect_end(t, f->phase, end, named);
     t->mc++;
     return LV_OK;
 }
@@ -147,9 +176,12 @@ lv_status lv_target_add_con(lv_target *t, const char *final, lv_con_kind kind, d
         return lv_fail(err, LV_ERR_INPUT, "constraint '%s': value %g and tolerance %g: a finite "
                        "value and a tolerance > 0 expected", final, value, tol);
     lv_tfinal f;
+    int end = LV_TEND_NONE;
     lv_status st = lv_targeting_resolve_final(t->m, final, &f, err);
+    if (st == LV_OK)
+        st = lv_targeting_resolve_end(t->m, f.phase, NULL, &end, err);
     return st != LV_OK ? lv_fail_prefix(err, st, "constraint")
-                       : push_con(t, final, kind, value, tol, &f, err);
+                       : push_con(t, final, kind, value, tol, &f, end, 0, err);
 }
 
 lv_status lv_target_set_cost(lv_target *t, const char *final, int maximize, double scale,
@@ -161,7 +193,10 @@ lv_status lv_target_set_cost(lv_target *t, const char *final, int maximize, doub
         return lv_fail(err, LV_ERR_INPUT, "cost '%s': scale %g: > 0 expected (or NAN)", final,
                        scale);
     lv_tfinal f;
+    int end = LV_TEND_NONE;
     lv_status st = lv_targeting_resolve_final(t->m, final, &f, err);
+    if (st == LV_OK)
+        st = lv_targeting_resolve_end(t->m, f.phase, NULL, &end, err);
     if (st != LV_OK)
         return lv_fail_prefix(err, st, "cost");
     char *name = strdup(final);
@@ -169,10 +204,11 @@ lv_status lv_target_set_cost(lv_target *t, const char *final, int maximize, doub
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     free(t->cost.name);
     t->cost = (tg_cost){1, maximize != 0, name, scale, f};
-    memset(t->want, 0, t->m->def->n_phases);
+    memcpy(t->want, t->expect_named, t->m->def->n_phases); /* the phases checked by name */
     for (size_t i = 0; i < t->mc; i++)
         t->want[t->cons[i].f.phase] = 1;
     t->want[f.phase] = 1;
+    expect_end(t, f.phase, end, 0);
     return LV_OK;
 }
 
@@ -191,7 +227,7 @@ lv_status lv_target_create(const lv_mission *m, lv_target **out, lv_err *err)
         st = push_var(t, d->vars[i].name, &d->vars[i].res, d->vars[i].start_loc, err);
     for (size_t i = 0; i < d->n_cons && st == LV_OK; i++)
         st = push_con(t, d->cons[i].name, d->cons[i].kind, d->cons[i].value, d->cons[i].tol,
-                      &d->cons[i].res, err);
+                      &d->cons[i].res, d->cons[i].end_index, d->cons[i].end != NULL, err);
     if (st == LV_OK && d->cost.present) {
         char *name = strdup(d->cost.name);
         if (name == NULL)
@@ -199,6 +235,7 @@ lv_status lv_target_create(const lv_mission *m, lv_target **out, lv_err *err)
         else {
             t->cost = (tg_cost){1, d->cost.maximize, name, d->cost.scale, d->cost.res};
             t->want[d->cost.res.phase] = 1;
+            expect_end(t, d->cost.res.phase, d->cost.end_index, d->cost.end != NULL);
         }
     }
     if (st != LV_OK) {
@@ -212,6 +249,22 @@ lv_status lv_target_create(const lv_mission *m, lv_target **out, lv_err *err)
     t->ftol = d->ftol;
     t->restarts = d->restarts;
     *out = t;
+    return LV_OK;
+}
+
+lv_status lv_target_set_end(lv_target *t, const char *phase, const char *end, lv_err *err)
+{
+    if (t == NULL || phase == NULL || end == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_target_set_end: NULL argument");
+    size_t k;
+    int idx;
+    lv_status st = lv_mission_phase_find(t->m, phase, &k, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, LV_ERR_INPUT, "lv_target_set_end");
+    if ((st = lv_targeting_resolve_end(t->m, k, end, &idx, err)) != LV_OK)
+        return st;
+    expect_end(t, k, idx, 1);
+    t->want[k] = 1; /* simulated (with its ancestors) to be checked */
     return LV_OK;
 }
 
@@ -256,8 +309,12 @@ lv_status tg_point_init(const lv_target *t, tg_point *p)
     p->f = calloc(t->mc + 1, sizeof *p->f);
     p->g = calloc(t->mc + 1, sizeof *p->g);
     p->r = calloc(t->mc + 1, sizeof *p->r);
+    p->end_got = calloc(t->n_chk + 1, sizeof *p->end_got);
+    p->end_t = calloc(t->n_chk + 1, sizeof *p->end_t);
+    p->n_chk = t->n_chk;
     p->cost = NAN;
-    if (p->x == NULL || p->f == NULL || p->g == NULL || p->r == NULL) {
+    if (p->x == NULL || p->f == NULL || p->g == NULL || p->r == NULL || p->end_got == NULL ||
+        p->end_t == NULL) {
         tg_point_free(p);
         return LV_ERR_NOMEM;
     }
@@ -270,7 +327,11 @@ void tg_point_free(tg_point *p)
     free(p->f);
     free(p->g);
     free(p->r);
+    free(p->end_got);
+    free(p->end_t);
     p->x = p->f = p->g = p->r = NULL;
+    p->end_got = NULL;
+    p->end_t = NULL;
 }
 
 void tg_point_copy(const lv_target *t, tg_point *dst, const tg_point *src)
@@ -284,6 +345,9 @@ void tg_point_copy(const lv_target *t, tg_point *dst, const tg_point *src)
     dst->merit = src->merit;
     dst->ok = src->ok;
     memcpy(dst->why, src->why, sizeof dst->why);
+    memcpy(dst->end_got, src->end_got, t->n_chk * sizeof *dst->end_got);
+    memcpy(dst->end_t, src->end_t, t->n_chk * sizeof *dst->end_t);
+    dst->ends_off = src->ends_off;
 }
 
 int tg_met(const lv_target *t, const tg_point *p)
@@ -334,6 +398,41 @@ static int point_failed(const lv_target *t, const lv_run *r, char *why, size_t c
     return 0;
 }
 
+/* The end each checked phase reached in run r (LV_TEND_NONE where it is not done), and how
+ * many ended otherwise than assumed. */
+static void record_ends(const lv_target *t, const lv_run *r, tg_point *p)
+{
+    p->ends_off = 0;
+    for (size_t i = 0; i < t->n_chk && i < p->n_chk; i++) {
+        const lv_phase_result *res = lv_run_result(r, t->chk[i]);
+        const int done = res->state == LV_PHASE_DONE;
+        p->end_got[i] = !done ? LV_TEND_NONE
+                        : res->end_index >= 0 ? res->end_index
+                                              : LV_TEND_STOP_TIME;
+        p->end_t[i] = done ? res->t_end : NAN;
+        p->ends_off += done && p->end_got[i] != t->expect[t->chk[i]];
+    }
+}
+
+void tg_ends_text(const lv_target *t, const tg_point *p, char *buf, size_t cap)
+{
+    size_t n = 0;
+    if (cap > 0)
+        buf[0] = '\0';
+    for (size_t i = 0; i < t->n_chk && i < p->n_chk && n + 1 < cap; i++) {
+        const size_t k = t->chk[i];
+        if (p->end_got[i] == LV_TEND_NONE || p->end_got[i] == t->expect[k])
+            continue;
+        const int w = snprintf(buf + n, cap - n, "%sphase '%s' ended by %s at t = %.6g s, not "
+                               "by %s", n ? "; " : "", t->m->def->phases[k].name,
+                               lv_targeting_end_name(t->m, k, p->end_got[i]), p->end_t[i],
+                               lv_targeting_end_name(t->m, k, t->expect[k]));
+        if (w < 0)
+            break;
+        n += (size_t)w < cap - n ? (size_t)w : cap - n - 1;
+    }
+}
+
 /* x set on run r, executed with `threads` workers for its branches; p filled, *runs and
  * *phases counted. Only reads the target: several runs may evaluate at once. */
 static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const double *x,
@@ -366,6 +465,9 @@ static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const doub
             p->ok = 0;
         }
     }
+    p->ends_off = 0;
+    if (p->ok)
+        record_ends(t, r, p);
     p->worst = p->merit = p->ok ? 0.0 : INFINITY;
     for (size_t i = 0; i < t->mc; i++) {
         const tg_con *c = &t->cons[i];
@@ -653,10 +755,18 @@ void tg_report(lv_target *t, const char *event, const tg_point *p, double dampin
                const char *note)
 {
     if (t->set.on_iteration != NULL) {
+        /* the note, and the phases of an evaluated point that ended otherwise than assumed */
+        snprintf(t->note, sizeof t->note, "%s", note != NULL ? note : "");
+        if (p->ok && p->ends_off > 0) {
+            const size_t n = strlen(t->note);
+            snprintf(t->note + n, sizeof t->note - n, "%s", n ? "; " : "");
+            const size_t n2 = strlen(t->note);
+            tg_ends_text(t, p, t->note + n2, sizeof t->note - n2);
+        }
         const lv_target_iter it = {t->iteration,
                                    t->solver,
                                    event,
-                                   note != NULL && note[0] ? note : NULL,
+                                   t->note[0] ? t->note : NULL,
                                    p->x,
                                    p->f,
                                    p->r,
@@ -729,13 +839,16 @@ static lv_status prepare_solve(lv_target *t, const lv_target_settings *s, lv_err
     free(t->res_f);
     free(t->res_r);
     free(t->res_met);
+    free(t->res_mm);
+    t->res_mm = calloc(t->n_chk + 1, sizeof *t->res_mm);
     t->tmp_x = calloc(t->n + 1, sizeof *t->tmp_x);
     t->order = calloc(t->n + 1, sizeof *t->order);
     t->res_x = calloc(t->n + 1, sizeof *t->res_x);
     t->res_f = calloc(t->mc + 1, sizeof *t->res_f);
     t->res_r = calloc(t->mc + 1, sizeof *t->res_r);
     t->res_met = calloc(t->mc + 1, sizeof *t->res_met);
-    if (!t->tmp_x || !t->order || !t->res_x || !t->res_f || !t->res_r || !t->res_met)
+    if (!t->tmp_x || !t->order || !t->res_x || !t->res_f || !t->res_r || !t->res_met ||
+        !t->res_mm)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     make_order(t);
     t->runs = t->phases = t->rep_runs = t->rep_phases = 0;
@@ -895,6 +1008,10 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
         }
         t->solver = "result";
         st = tg_eval(t, p.x, "point", NULL, &q, err);
+        if (st == LV_OK && q.ok) { /* the ends as the run now holds them */
+            memcpy(p.end_got, q.end_got, t->n_chk * sizeof *p.end_got);
+            memcpy(p.end_t, q.end_t, t->n_chk * sizeof *p.end_t);
+        }
         tg_point_free(&q);
         if (st == LV_ERR_CANCELLED) { /* stopped now: the point is known all the same */
             cancelled = 1;
@@ -928,6 +1045,19 @@ lv_status lv_target_solve(lv_target *t, const lv_target_settings *s,
     t->res.runs = t->runs;
     t->res.phases = t->phases;
     t->res.wall = tg_wall(t);
+    /* the phases that ended otherwise than assumed at the result's point */
+    size_t nmm = 0;
+    for (size_t i = 0; p.ok && i < t->n_chk; i++) {
+        const size_t k = t->chk[i];
+        if (p.end_got[i] == LV_TEND_NONE || p.end_got[i] == t->expect[k])
+            continue;
+        t->res_mm[nmm++] = (lv_target_end_mismatch){k, t->m->def->phases[k].name,
+                                                    lv_targeting_end_name(t->m, k, t->expect[k]),
+                                                    lv_targeting_end_name(t->m, k, p.end_got[i]),
+                                                    p.end_t[i]};
+    }
+    t->res.n_end_mismatch = nmm;
+    t->res.end_mismatch = t->res_mm;
     *out = &t->res;
 done:
     tg_point_free(&p);

@@ -45,6 +45,10 @@ typedef struct tg_point {
     double merit;   /* sum r^2 / 2 */
     int ok;         /* 0: a phase failed (why) */
     char why[LV_ERR_MSG_MAX];
+    int *end_got;   /* [n_chk] the end each checked phase reached (LV_TEND_NONE: not done) */
+    double *end_t;  /* [n_chk] s, when it ended */
+    size_t n_chk;   /* the arrays' size */
+    size_t ends_off; /* how many of them ended otherwise than assumed */
 } tg_point;
 
 struct lv_target {
@@ -64,6 +68,12 @@ struct lv_target {
     lv_run *run;
     lv_run *aux[TG_MAX_WORKERS - 1];
     unsigned char *want;   /* [n_phases] the constraints' and the cost's phases */
+    /* the end each phase is assumed to end by (lv_target_set_end): LV_TEND_NONE (not
+     * checked), LV_TEND_ANY, LV_TEND_STOP_TIME or an index into its ends */
+    int *expect;           /* [n_phases] */
+    unsigned char *expect_named; /* [n_phases] 1: named (`end:`, lv_target_set_end) */
+    size_t n_chk;
+    size_t *chk;           /* [n_chk] the phases checked (expect an end or stop_time) */
     /* one solve */
     lv_target_settings set;
     struct timespec t0;
@@ -78,7 +88,9 @@ struct lv_target {
     lv_target_result res;
     double *res_x, *res_f, *res_r;
     int *res_met;
+    lv_target_end_mismatch *res_mm; /* [n_chk] */
     char method_used[48];
+    char note[2 * LV_ERR_MSG_MAX]; /* an iteration's note with the ends (tg_report) */
 };
 
 /* ---- points and evaluations (target.c) ------------------------------------------------------ */
@@ -105,6 +117,10 @@ lv_status tg_sensitivities(lv_target *t, const tg_point *base, int central, doub
 
 /* The forward (central: 1) difference step of variable j, in its unit. */
 double tg_step(const lv_target *t, size_t j, int central);
+
+/* "phase 'P2' ended by burnout at t = 512.3 s, not by sma; ..." for the checked phases of p
+ * that ended otherwise than assumed ("" when none). */
+void tg_ends_text(const lv_target *t, const tg_point *p, char *buf, size_t cap);
 
 /* 1 when every constraint is met (|r_i| <= 1). */
 int tg_met(const lv_target *t, const tg_point *p);

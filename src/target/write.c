@@ -308,6 +308,62 @@ done:
     return st;
 }
 
+/* The header of a written file: lines that begin with this (a previous one is replaced). */
+#define HEADER "# lvsim target:"
+
+/* The length of the header lines at the start of text (after a byte-order mark at `at`). */
+static size_t header_len(const char *text, size_t len, size_t at)
+{
+    size_t i = at;
+    const size_t hl = strlen(HEADER);
+    while (i + hl <= len && strncmp(text + i, HEADER, hl) == 0) {
+        while (i < len && text[i] != '\n')
+            i++;
+        if (i < len)
+            i++;
+    }
+    return i - at;
+}
+
+/* The header: where the file comes from and how each checked phase ended at the point
+ * written (run r), a WARNING line for each that ended otherwise than assumed. */
+static void write_header(FILE *fp, const lv_target *t, const lv_run *r)
+{
+    const lv_mission_def *d = t->m->def;
+    fprintf(fp, HEADER " written from %s with the targeting's variables at the point solved "
+            "for\n", d->path);
+    size_t ok = 0;
+    for (size_t i = 0; i < t->n_chk; i++) {
+        const size_t k = t->chk[i];
+        const lv_phase_result *res = lv_run_result(r, k);
+        if (res->state != LV_PHASE_DONE)
+            continue;
+        const int got = res->end_index >= 0 ? res->end_index : LV_TEND_STOP_TIME;
+        if (got == t->expect[k]) {
+            ok++;
+            continue;
+        }
+        fprintf(fp, HEADER " WARNING: phase '%s' ended by %s at t = %.10g s, not by %s, the "
+                "end its constraints assume: the constraints are met on another trajectory "
+                "than the one targeted\n", d->phases[k].name,
+                lv_targeting_end_name(t->m, k, got), res->t_end,
+                lv_targeting_end_name(t->m, k, t->expect[k]));
+    }
+    if (ok > 0) {
+        fprintf(fp, HEADER " ended as the constraints assume:");
+        for (size_t i = 0; i < t->n_chk; i++) {
+            const size_t k = t->chk[i];
+            const lv_phase_result *res = lv_run_result(r, k);
+            const int got = res->end_index >= 0 ? res->end_index : LV_TEND_STOP_TIME;
+            if (res->state == LV_PHASE_DONE && got == t->expect[k])
+                fprintf(fp, " %s by %s at t = %.10g s%s", d->phases[k].name,
+                        lv_targeting_end_name(t->m, k, got), res->t_end,
+                        --ok > 0 ? "," : "");
+        }
+        fprintf(fp, "\n");
+    }
+}
+
 /* The phases' finals of a run, for the constraints and the cost. */
 static lv_status finals_of(const lv_run *r, const lv_mission *m, const lv_target *t, double *f,
                            double *cost, lv_err *err)
@@ -410,20 +466,6 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
     free(pe);
     nedits = ne;
     qsort(edits, ne, sizeof *edits, edit_cmp);
-    if ((st = lv_atomic_open(&a, path, err)) != LV_OK)
-        goto done;
-    size_t at = 0;
-    for (size_t i = 0; i < ne; i++) {
-        fwrite(text + at, 1, edits[i].at - at, a.fp);
-        fputs(edits[i].long_text ? edits[i].long_text : edits[i].text, a.fp);
-        at = edits[i].at + edits[i].len;
-    }
-    fwrite(text + at, 1, len - at, a.fp);
-    if (fflush(a.fp) != 0) {
-        st = lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", a.tmp, LV_STRERROR(errno));
-        goto done;
-    }
-
     /* the point written, on this target's run: the reference */
     lv_err e;
     for (size_t j = 0; j < t->n; j++)
@@ -437,6 +479,27 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
         lv_fail_prefix(err, st, "the point written fails");
         goto done;
     }
+    /* the header (after a byte-order mark), instead of the one a converged file has */
+    size_t at = len >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB &&
+                        (unsigned char)text[2] == 0xBF
+                    ? 3
+                    : 0;
+    if ((st = lv_atomic_open(&a, path, err)) != LV_OK)
+        goto done;
+    fwrite(text, 1, at, a.fp);
+    write_header(a.fp, t, t->run);
+    at += header_len(text, len, at);
+    for (size_t i = 0; i < ne; i++) {
+        fwrite(text + at, 1, edits[i].at - at, a.fp);
+        fputs(edits[i].long_text ? edits[i].long_text : edits[i].text, a.fp);
+        at = edits[i].at + edits[i].len;
+    }
+    fwrite(text + at, 1, len - at, a.fp);
+    if (fflush(a.fp) != 0) {
+        st = lv_fail(err, LV_ERR_IO, "%s: cannot write: %s", a.tmp, LV_STRERROR(errno));
+        goto done;
+    }
+
     /* the written file (still under its temporary name: a file that fails here is not
      * left behind), loaded and run as `lvsim run` does: every phase */
     if ((st = lv_mission_load(a.tmp, &m2, err)) != LV_OK) {

@@ -582,6 +582,40 @@ YAML
 expect 2 "the converged values make a mission that does not load, not written" -- "$lvsim" target "$work/two.yaml" -o "$work/two_conv.yaml"
 [ ! -e "$work/two_conv.yaml" ] && [ ! -e "$work/two_conv.yaml.tmp" ] && pass=$((pass + 1)) || { echo "FAIL: an unloadable converged file was left"; fails=$((fails + 1)); }
 
+# Issue 27, item 2: a converged point where the constrained phase ended by another end than the
+# one its constraints assume (the first written, altitude) is reported. A vertical hop over
+# flat6's flat ground (g = 9.81, no air): a final time of 5 s is met only by a burnout at 5 s
+# (m_p = 5 F / (Isp g0) = 169.95 kg; the altitude end fires at 7.24 s or later, the closed form
+# of the rocket equation in tests/unit/test_target.c (i)).
+cat > "$work/hop.yaml" <<'YAML'
+mission: {name: hop}
+stages:
+  - {name: s, dry_mass: 1000, propellant_mass: 2000,
+     engines: [{name: e, thrust_vac: 100000, isp_vac: 300}]}
+phases:
+  - {name: burn, model: flat6, stages: [s], stop_time: 100,
+     end: [{altitude: 2000, direction: rising}, burnout], integrator: {tolerance: 1.0e-10}}
+targeting:
+  variables: [{name: s.propellant_mass, min: 10, max: 3000, scale: 100}]
+  constraints: [{final: burn.time, equal: 5, tolerance: 0.001}]
+YAML
+expect 0 "^warning: at the converged point phase 'burn' ended by burnout at t = 4\.99.* s, not by altitude, the end its constraints assume" -- "$lvsim" target "$work/hop.yaml" -o "$work/hop_conv.yaml"
+expect 0 "^# lvsim target: WARNING: phase 'burn' ended by burnout at t = 4\.99.* s, not by altitude" -- head -3 "$work/hop_conv.yaml"
+expect 0 "^ +s\.propellant_mass += 169\.95" -- "$lvsim" target "$work/hop.yaml" -q
+expect 0 "note: phase 'burn' ended by burnout at t = " -- "$lvsim" target "$work/hop.yaml"
+expect 3 "lvsim: --strict: converged onto a point where 1 phase\(s\) ended otherwise than the constraints assume \(above\); nothing written" -- "$lvsim" target "$work/hop.yaml" --strict -o "$work/hop_strict.yaml"
+[ ! -e "$work/hop_strict.yaml" ] && pass=$((pass + 1)) || { echo "FAIL: target --strict wrote a file"; fails=$((fails + 1)); }
+# the end named on the constraint: no warning, and --strict is content
+sed 's/tolerance: 0.001}/tolerance: 0.001, end: burnout}/' "$work/hop.yaml" > "$work/hop_named.yaml"
+out=$("$lvsim" target "$work/hop_named.yaml" --strict -q 2>&1); rc=$?
+[ "$rc" -eq 0 ] && ! grep -q "warning" <<<"$out" && pass=$((pass + 1)) || { echo "FAIL: target with end: burnout -> exit $rc: $out"; fails=$((fails + 1)); }
+expect 2 "hop_bad.yaml:10:69: targeting: constraint on 'burn.time': end 'burnot': phase 'burn' has no such end; did you mean 'burnout'\?" -- sh -c "sed 's/tolerance: 0.001}/tolerance: 0.001, end: burnot}/' '$work/hop.yaml' > '$work/hop_bad.yaml' && '$lvsim' check '$work/hop_bad.yaml'"
+# the examples converge with every constrained phase ended as assumed: no warning, --strict exit 0
+for ex in kourou-leo-targeted kourou-rtls-targeted; do
+  out=$("$lvsim" target "$src/examples/$ex/mission.yaml" --strict 2>&1); rc=$?
+  [ "$rc" -eq 0 ] && ! grep -q "warning" <<<"$out" && ! grep -q "ended by" <<<"$out" && pass=$((pass + 1)) || { echo "FAIL: target --strict $ex -> exit $rc"; fails=$((fails + 1)); }
+done
+
 # Issue 22, item 6: no silent wrong answer from the known classes. Each refusal names the
 # file:line:column (a mission file) or the option (the command line) and exits 2; check and
 # run refuse the same files.

@@ -116,12 +116,16 @@ int main(void)
     F(lv_target_settings, threads); F(lv_target_settings, on_iteration);
     F(lv_target_settings, on_evaluation); F(lv_target_settings, user);
     F(lv_target_settings, stop); F(lv_target_settings, max_rows);
+    S(lv_target_end_mismatch); F(lv_target_end_mismatch, phase);
+    F(lv_target_end_mismatch, phase_name); F(lv_target_end_mismatch, expected);
+    F(lv_target_end_mismatch, actual); F(lv_target_end_mismatch, t_end);
     S(lv_target_result); F(lv_target_result, converged); F(lv_target_result, cancelled);
     F(lv_target_result, reason); F(lv_target_result, method); F(lv_target_result, n_vars);
     F(lv_target_result, n_cons); F(lv_target_result, x); F(lv_target_result, finals);
     F(lv_target_result, residual); F(lv_target_result, met); F(lv_target_result, cost);
     F(lv_target_result, worst); F(lv_target_result, iterations); F(lv_target_result, runs);
     F(lv_target_result, phases); F(lv_target_result, wall);
+    F(lv_target_result, n_end_mismatch); F(lv_target_result, end_mismatch);
     S(lv_disp_info); F(lv_disp_info, name); F(lv_disp_info, unit); F(lv_disp_info, dist);
     F(lv_disp_info, kind); F(lv_disp_info, relative); F(lv_disp_info, nominal);
     F(lv_disp_info, mean); F(lv_disp_info, sigma); F(lv_disp_info, min); F(lv_disp_info, max);

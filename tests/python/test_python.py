@@ -620,6 +620,93 @@ def test_targeting_built_in_python():
         lvsim.Mission(PAPER).target()  # no targeting section
 
 
+HOP = """mission: {name: hop}
+stages:
+  - {name: s, dry_mass: 1000, propellant_mass: 2000,
+     engines: [{name: e, thrust_vac: 100000, isp_vac: 300}]}
+phases:
+  - {name: burn, model: flat6, stages: [s], stop_time: 100,
+     end: [{altitude: 2000, direction: rising}, burnout], integrator: {tolerance: 1.0e-10}}
+targeting:
+  variables: [{name: s.propellant_mass, min: 10, max: 3000, scale: 100}]
+  constraints: [{final: burn.time, equal: 5, tolerance: 0.001%s}]
+"""
+
+
+def test_targeting_says_what_end_it_converged_to(tmp_path):
+    # issue 27: a vertical hop over flat6's ground whose burn is meant to end at 2 km; a final
+    # time of 5 s is met only by a burnout at 5 s, m_p = 5 F / (Isp g0) (the rocket equation
+    # in closed form, tests/unit/test_target.c (i))
+    mp = 5 * 100000 / (300 * 9.80665)
+    src = tmp_path / "hop.yaml"
+    src.write_text(HOP % "")
+    with lvsim.Mission(src) as m:
+        t = m.target()
+        notes = []
+        res = t.solve(on_iteration=lambda it: notes.append(it["note"] or ""))
+        assert res.converged, res.reason
+        assert abs(res.x["s.propellant_mass"] - mp) <= 0.001 * mp / 5
+        assert len(res.end_mismatches) == 1
+        e = res.end_mismatches[0]
+        assert (e["phase"], e["expected"], e["actual"]) == ("burn", "altitude", "burnout")
+        assert abs(e["t_end"] - 5.0) <= 0.001
+        assert any("phase 'burn' ended by burnout" in n for n in notes)
+        out = tmp_path / "conv.yaml"
+        t.write(out)
+        assert "# lvsim target: WARNING: phase 'burn' ended by burnout" in out.read_text()
+        # named: nothing to report; an unknown end is refused with the phase's ends
+        t.set_end("burn", "burnout")
+        assert t.solve().end_mismatches == []
+        with pytest.raises(lvsim.LvsimError, match="its ends: altitude, burnout, stop_time"):
+            t.set_end("burn", "burnot")
+        t.close()
+    src.write_text(HOP % ", end: burnout")
+    with lvsim.Mission(src) as m, m.target() as t:
+        assert t.solve().end_mismatches == []
+    with lvsim.Mission(LEO_TARGETED) as m, m.target() as t:
+        res = t.solve()
+        assert res.converged and res.end_mismatches == []
+    with lvsim.Mission(src) as m, m.target(from_file=False) as t:
+        t.add_variable("s.propellant_mass", 10, 3000, scale=100)
+        t.add_constraint("burn.time", "equal", 5, 0.001, end="stop_time")
+        res = t.solve()
+        assert [e["expected"] for e in res.end_mismatches] == ["stop_time"]
+
+
+def test_rtls_worked_example_figures():
+    # docs/targeting.md, "A worked example: closing a booster's return (RTLS)": the claims of
+    # its table, from examples/kourou-rtls-targeted/sensitivities.py at the converged point
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "rtls_sens", os.path.join(ROOT, "examples", "kourou-rtls-targeted", "sensitivities.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    res, base, rows = mod.sensitivities()
+    assert res.converged and res.end_mismatches == [] and base["miss"] < 0.05
+    row = {r["name"].split(".", 2)[2]: r for r in rows}
+    os_, lat, lon, pitch = (row["target_overshoot"], row["target_lat_deg"],
+                            row["target_lon_deg"], row["pitch_deg"])
+    # the end fires when v_t t_fall - d = overshoot (docs/guidance.md): 100 m more is 100 m /
+    # t_fall more speed toward the pad, t_fall the vacuum fall time from the burn's end
+    # (h, v_up) in the local gravity GM / r^2 (an independent calculation)
+    g = 3.986004418e14 / (6378137.0 + base["h"]) ** 2
+    t_fall = (base["v_up"] + math.sqrt(base["v_up"] ** 2 + 2 * g * base["h"])) / g
+    assert os_["v_east"] == pytest.approx(-100.0 / t_fall, rel=0.03)
+    # the landing moves down-range by a little less than the 100 m (drag, the entry burn)
+    assert 0.85 < -os_["east"] / 100.0 < 1.0
+    # moving the aim east by d is lowering the overshoot by d: one variable, not two
+    d_east = mod.radii(math.radians(5.236))[1] * math.cos(math.radians(5.236)) * math.radians(0.001)
+    assert lon["east"] / d_east == pytest.approx(-os_["east"] / 100.0, rel=0.01)
+    # the aim's latitude acts across, the overshoot along: off-diagonal below 1 %
+    assert abs(os_["north"]) < 0.01 * abs(os_["east"]) and abs(lat["east"]) < 0.01 * abs(lat["north"])
+    d_north = mod.radii(math.radians(5.236))[0] * math.radians(0.001)
+    assert 3.0 < lat["north"] / d_north < 6.0 and lat["v_north"] > 0
+    # pitch: the burn's velocity change (vE 1 475 m/s at separation to the end's) tilted by 1 deg
+    dv_burn = 1474.9 - base["v_east"]
+    assert pitch["v_up"] == pytest.approx(dv_burn * math.sin(math.radians(1.0)), rel=0.1)
+    assert pitch["burn"] < 0 and pitch["mass"] < 0
+
+
 def test_monte_carlo_campaign(tmp_path):
     m = lvsim.Mission(BRANCH)
     assert m.dispersions and m.seed == 20260301

@@ -76,15 +76,34 @@ static lv_run *target_example(const char *rel, const char *out, lv_mission **m2,
     if (res != NULL) {
         *copy = *res;
         CHECK(res->converged);
+        /* every constrained phase ended by its first end (the orbit's sma, the landing's
+         * impact): no warning, and the converged file's header says how each ended */
+        CHECK(res->n_end_mismatch == 0);
         double worst = NAN;
         CHECK_OK(lv_target_write(t, res->x, out, &worst, &err), &err);
         CHECK(worst <= 1e-3);
+        FILE *f = fopen(out, "r");
+        char head[2][512] = {"", ""};
+        for (int i = 0; f != NULL && i < 2; i++)
+            if (fgets(head[i], sizeof head[i], f) == NULL)
+                head[i][0] = '\0';
+        if (f != NULL)
+            fclose(f);
+        CHECK(strncmp(head[0], "# lvsim target: written from ", 29) == 0);
+        CHECK(strncmp(head[1], "# lvsim target: ended as the constraints assume: ", 49) == 0);
         CHECK_OK(lv_mission_load(out, m2, &err), &err);
         if (*m2 != NULL) {
             CHECK_OK(lv_run_create(*m2, &r, &err), &err);
             const lv_run_options opt = {.threads = 2};
             if (r != NULL)
                 CHECK_OK(lv_run_execute(r, &opt, &err), &err);
+            /* the run of the written file, independently of the check: each constrained
+             * phase's end is its first one */
+            for (size_t i = 0; r != NULL && i < lv_target_con_count(t); i++) {
+                lv_target_con_info ci;
+                lv_target_con_info_get(t, i, &ci);
+                CHECK(lv_run_result(r, ci.phase)->end_index == 0);
+            }
         }
     }
     lv_target_free(t);
@@ -195,6 +214,7 @@ static double optimise(const char *rel)
         CHECK(res->converged);
         for (size_t i = 0; i < res->n_cons; i++)
             CHECK(res->met[i]);
+        CHECK(res->n_end_mismatch == 0); /* the last burn cut off by its orbit's end */
         mass = res->cost;
         printf("%s: %.3f kg (Betts 7529.712 kg) in %zu iterations, %.1f s\n", rel, mass,
                res->iterations, res->wall);

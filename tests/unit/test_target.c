@@ -12,6 +12,8 @@
  *   (g) a branch the constraints do not read is never simulated, and a variable of a child
  *       phase re-simulates only that phase;
  *   (h) the same problem built through the C API;
+ *   (i) a converged point where the constrained phase ended by another end than the one its
+ *       constraints assume (burnout before the altitude end of a vertical hop) is reported;
  * and bad `targeting:` sections refused with file:line:column.
  *
  * The flat world is a non-rotating sphere of radius R = 1e10 m with GM = g0 R^2 and no
@@ -74,6 +76,15 @@ static void shot_yaml(char *buf, size_t cap, double v, double fpa_deg, const cha
              "     integrator: {tolerance: 1.0e-10}}\n"
              "%s",
              v, fpa_deg, targeting);
+}
+
+/* How many times `what` occurs in s. */
+static int count_of(const char *s, const char *what)
+{
+    int n = 0;
+    for (const char *p = strstr(s, what); p != NULL; p = strstr(p + 1, what))
+        n++;
+    return n;
 }
 
 typedef struct counts {
@@ -396,7 +407,17 @@ static void test_round_trip(void)
             CHECK(p != NULL && strtod(p + 24, NULL) == res->x[0]);
             snprintf(line, sizeof line, ", scale: 1}  # low shot\n");
             CHECK(strstr(out, line) != NULL);
-            CHECK(strlen(out) - strlen(yaml) < 40);
+            /* a header first: where it comes from, how the constrained phase ended (its one
+             * end, impact, at the flight time 2 v sin(gamma) / g = 9.018 s of the closed
+             * form); the file after it */
+            CHECK(strncmp(out, "# lvsim target: written from target_rt.yaml ", 44) == 0);
+            p = strstr(out, "# lvsim target: ended as the constraints assume: flight by impact "
+                            "at t = ");
+            CHECK(p != NULL && fabs(strtod(p + 72, NULL) - 2.0 * 100.0 * sin(res->x[0] * DEG) /
+                                                               G0) < 1e-6);
+            const char *body = strstr(out, "# a drag-free shot over flat ground\n");
+            CHECK(body != NULL && strlen(body) - strlen(yaml) < 40);
+            CHECK(count_of(out, "# lvsim target:") == 2);
             free(out);
         }
         /* the converged file, run on its own, reproduces the final; re-targeted, it is met at
@@ -422,6 +443,13 @@ static void test_round_trip(void)
             if (t2 != NULL)
                 CHECK_OK(lv_target_solve(t2, &s, &r2, &err), &err);
             CHECK(r2 != NULL && r2->converged && r2->iterations == 0 && r2->x[0] == res->x[0]);
+            /* written again: its header replaces the one it had */
+            if (r2 != NULL && r2->converged)
+                CHECK_OK(lv_target_write(t2, r2->x, "target_rt_conv2.yaml", NULL, &err), &err);
+            char *out2 = read_file("target_rt_conv2.yaml");
+            CHECK(out2 != NULL && count_of(out2, "# lvsim target:") == 2 &&
+                  strstr(out2, "written from target_rt_conv.yaml ") != NULL);
+            free(out2);
         }
         lv_target_free(t2);
         lv_mission_free(m2);
@@ -698,8 +726,182 @@ static void test_refused(void)
     snprintf(buf, sizeof buf, V("%s") C("%s") "    - %s\n", ok_var, ok_con, ok_con);
     load_fails(buf, "target_bad.yaml:17:15: targeting: constraint on 'flight.downrange': the "
                     "final is already constrained the same way (line 16)");
+    /* the end a constraint assumes: one of the phase's ends (impact), stop_time or any */
+    snprintf(buf, sizeof buf, V("%s") C("{final: flight.downrange, equal: 800, tolerance: 1, "
+                                        "end: impakt}"), ok_var);
+    load_fails(buf, "target_bad.yaml:16:64: targeting: constraint on 'flight.downrange': end "
+                    "'impakt': phase 'flight' has no such end; did you mean 'impact'? (its ends: "
+                    "impact, stop_time; or any)");
+    snprintf(buf, sizeof buf, V("%s") C("{final: flight.downrange, equal: 800, tolerance: 1, "
+                                        "end: impact}") "    - {final: flight.h, max: 9, "
+                                        "tolerance: 1, end: stop_time}\n", ok_var);
+    load_fails(buf, "target_bad.yaml:17:52: targeting: constraint on 'flight.h': end "
+                    "'stop_time', but line 16 assumes phase 'flight' ends by 'impact': a phase "
+                    "ends one way");
+    snprintf(buf, sizeof buf, V("%s") C("%s") "  cost: {maximize: flight.m, end: burnout}\n",
+             ok_var, ok_con);
+    load_fails(buf, "target_bad.yaml:17:35: targeting: cost on 'flight.m': end 'burnout': phase "
+                    "'flight' has no such end");
 #undef V
 #undef C
+}
+
+/* ---- (i) converged onto another end -------------------------------------------------------- */
+
+/* A rocket rising vertically over the flat ground of flat6 (uniform g = 9.81 m/s^2, no air)
+ * whose burn is meant to end at 2 km (`end: [{altitude: 2000}, burnout]`), its propellant the
+ * variable, its final time the constraint. In vacuum under uniform gravity the rocket equation
+ * integrates in closed form (Tsiolkovsky; e.g. Sutton & Biblarz, Rocket Propulsion Elements,
+ * 9th ed., sec. 4.3): with c = Isp g0, mdot = F / c, m(t) = m0 - mdot t,
+ *     h(t) = c [t - (m / mdot) ln(m0 / m)] - g t^2 / 2.
+ * Burnout (t_b = m_p / mdot) comes before 2 km for m_p < 246.08 kg (h(t_b) = 2000 m, bisection
+ * of the closed form: t_b = 7.24 s); above, the altitude end fires, later than 7.24 s (15.6 s at
+ * 3000 kg). A final time of 5 s is therefore met only by a burnout at 5 s: m_p = 5 mdot =
+ * 169.9527 kg, a point on another trajectory than the one the end assumes. */
+#define HOP_F 100000.0
+#define HOP_ISP 300.0
+
+static void hop_yaml(char *buf, size_t cap, const char *con)
+{
+    snprintf(buf, cap,
+             "# a vertical hop: the burn is meant to end at 2 km\n"
+             "mission: {name: hop}\n"
+             "stages:\n"
+             "  - {name: s, dry_mass: 1000, propellant_mass: 2000,\n"
+             "     engines: [{name: e, thrust_vac: %g, isp_vac: %g}]}\n"
+             "phases:\n"
+             "  - {name: burn, model: flat6, stages: [s], stop_time: 100,\n"
+             "     end: [{altitude: 2000, direction: rising}, burnout],\n"
+             "     integrator: {tolerance: 1.0e-10}}\n"
+             "targeting:\n"
+             "  variables: [{name: s.propellant_mass, min: 10, max: 3000, scale: 100}]\n"
+             "  constraints:\n"
+             "    - %s\n",
+             HOP_F, HOP_ISP, con);
+}
+
+typedef struct end_notes {
+    int iterations, start_clean, burnout_noted;
+} end_notes;
+
+static void note_ends(const lv_target *t, const lv_target_iter *it, void *user)
+{
+    (void)t;
+    end_notes *e = user;
+    if (it->iteration == 0)
+        e->start_clean = it->note == NULL; /* 2000 kg: the altitude end, as assumed */
+    e->burnout_noted += it->note != NULL &&
+                        strstr(it->note, "phase 'burn' ended by burnout at t = ") != NULL &&
+                        strstr(it->note, "s, not by altitude") != NULL;
+    e->iterations++;
+}
+
+static void test_other_end(void)
+{
+    const double mdot = HOP_F / (HOP_ISP * G0), mp = 5.0 * mdot; /* 169.9527 kg */
+    char yaml[2048];
+    lv_err err;
+    /* (1) the default: the first end written, altitude; converged by burnout: reported */
+    hop_yaml(yaml, sizeof yaml, "{final: burn.time, equal: 5, tolerance: 0.001}");
+    write_file("target_hop.yaml", yaml);
+    lv_mission *m = NULL;
+    lv_target *t = NULL;
+    const lv_target_result *res = NULL;
+    end_notes en = {0};
+    CHECK_OK(lv_mission_load("target_hop.yaml", &m, &err), &err);
+    if (m != NULL)
+        CHECK_OK(lv_target_create(m, &t, &err), &err);
+    if (t != NULL) {
+        lv_target_settings s;
+        lv_target_settings_default(&s);
+        s.on_iteration = note_ends;
+        s.user = &en;
+        CHECK_OK(lv_target_solve(t, &s, &res, &err), &err);
+    }
+    if (res != NULL) {
+        printf("hop: %s, m_p = %.6f kg (closed form %.6f), %zu end mismatch(es)%s%s\n",
+               res->converged ? "converged" : "NOT MET", res->x[0], mp, res->n_end_mismatch,
+               res->n_end_mismatch ? ": " : "",
+               res->n_end_mismatch ? res->end_mismatch[0].actual : "");
+        CHECK(res->converged);
+        /* dt/dm_p = 1 / mdot = 0.0294 s/kg: the 1 ms tolerance is 0.034 kg */
+        CHECK_CLOSE(res->x[0], mp, 0.001 * mdot);
+        CHECK(res->n_end_mismatch == 1);
+        if (res->n_end_mismatch == 1) {
+            const lv_target_end_mismatch *e = &res->end_mismatch[0];
+            CHECK(e->phase == 0 && strcmp(e->phase_name, "burn") == 0);
+            CHECK(strcmp(e->expected, "altitude") == 0 && strcmp(e->actual, "burnout") == 0);
+            CHECK_CLOSE(e->t_end, 5.0, 0.001);
+        }
+        CHECK(en.start_clean && en.burnout_noted >= 1);
+        /* the converged file's header says so */
+        CHECK_OK(lv_target_write(t, res->x, "target_hop_conv.yaml", NULL, &err), &err);
+        char *out = read_file("target_hop_conv.yaml");
+        CHECK(out != NULL && strstr(out, "# lvsim target: WARNING: phase 'burn' ended by burnout "
+                                         "at t = 4.99") != NULL &&
+              strstr(out, "s, not by altitude, the end its constraints assume") != NULL);
+        free(out);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
+
+    /* (2) the constraint names burnout: the same point, nothing to report */
+    hop_yaml(yaml, sizeof yaml, "{final: burn.time, equal: 5, tolerance: 0.001, end: burnout}");
+    counts c = {0};
+    res = solve_text("target_hop2.yaml", yaml, &m, &t, &c);
+    CHECK(res != NULL && res->converged && res->n_end_mismatch == 0);
+    if (res != NULL && res->converged) {
+        CHECK_CLOSE(res->x[0], mp, 0.001 * mdot);
+        CHECK_OK(lv_target_write(t, res->x, "target_hop2_conv.yaml", NULL, &err), &err);
+        char *out = read_file("target_hop2_conv.yaml");
+        CHECK(out != NULL && strstr(out, "WARNING") == NULL &&
+              strstr(out, "# lvsim target: ended as the constraints assume: burn by burnout at "
+                          "t = 4.99") != NULL);
+        free(out);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
+
+    /* (3) not met (a final time of 30 s: at most 15.6 s by the altitude end within the bounds,
+     * 7.24 s by burnout), with the constraint naming burnout: the best point (3000 kg) ends by
+     * altitude, and that is said too */
+    hop_yaml(yaml, sizeof yaml, "{final: burn.time, equal: 30, tolerance: 0.001, end: burnout}");
+    res = solve_text("target_hop3.yaml", yaml, &m, &t, &c);
+    CHECK(res != NULL && !res->converged && res->n_end_mismatch == 1);
+    if (res != NULL && res->n_end_mismatch == 1) {
+        CHECK(strcmp(res->end_mismatch[0].expected, "burnout") == 0 &&
+              strcmp(res->end_mismatch[0].actual, "altitude") == 0);
+        CHECK(res->x[0] == 3000.0);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
+
+    /* (4) the C API: the default, then lv_target_set_end; bad names refused */
+    m = NULL;
+    t = NULL;
+    CHECK_OK(lv_mission_load("target_hop.yaml", &m, &err), &err);
+    if (m != NULL)
+        CHECK_OK(lv_target_create_empty(m, &t, &err), &err);
+    if (t != NULL) {
+        CHECK_OK(lv_target_add_var(t, "s.propellant_mass", 10, 3000, NAN, 100, NAN, &err), &err);
+        CHECK_OK(lv_target_add_con(t, "burn.time", LV_CON_EQUAL, 5, 0.001, &err), &err);
+        CHECK_OK(lv_target_solve(t, NULL, &res, &err), &err);
+        CHECK(res != NULL && res->converged && res->n_end_mismatch == 1);
+        CHECK_FAILS(lv_target_set_end(t, "burn", "burnot", &err), &err, LV_ERR_INPUT,
+                    "end 'burnot': phase 'burn' has no such end; did you mean 'burnout'? (its "
+                    "ends: altitude, burnout, stop_time; or any)");
+        CHECK_FAILS(lv_target_set_end(t, "brun", "burnout", &err), &err, LV_ERR_INPUT,
+                    "did you mean 'burn'");
+        CHECK_OK(lv_target_set_end(t, "burn", "any", &err), &err);
+        CHECK_OK(lv_target_solve(t, NULL, &res, &err), &err);
+        CHECK(res != NULL && res->converged && res->n_end_mismatch == 0);
+        CHECK_OK(lv_target_set_end(t, "burn", "stop_time", &err), &err);
+        CHECK_OK(lv_target_solve(t, NULL, &res, &err), &err);
+        CHECK(res != NULL && res->converged && res->n_end_mismatch == 1 &&
+              strcmp(res->end_mismatch[0].expected, "stop_time") == 0);
+    }
+    lv_target_free(t);
+    lv_mission_free(m);
 }
 
 int main(void)
@@ -716,5 +918,6 @@ int main(void)
     test_branches();
     test_api();
     test_refused();
+    test_other_end();
     return check_report("test_target");
 }
