@@ -25,7 +25,8 @@ typedef struct lv_mc_data {
     size_t n_in;
     char **in_name, **in_unit;
     double *in;                /* [n_runs * n_in] NaN when not stored */
-    unsigned char *run_status; /* [n_runs] 0 not stored, 1 ok, 2 failed, 3 input */
+    unsigned char *run_status; /* [n_runs] 0 not stored, 1 ok (or an impact), 2 failed,
+                                  3 input */
     size_t n_ph;
     lv_mc_phase *ph;
 } lv_mc_data;

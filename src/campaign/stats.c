@@ -183,7 +183,12 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         if (r < 0 || (size_t)r >= N)
             continue;
         const char *stt = (const char *)sqlite3_column_text(s, 1);
-        d->run_status[r] = stt == NULL ? 0 : strcmp(stt, "ok") == 0 ? 1 : strcmp(stt, "failed") == 0 ? 2 : 3;
+        /* "impact" (a phase that ended on the ground: an outcome, store.c) is a run done */
+        d->run_status[r] = stt == NULL                    ? 0
+                           : strcmp(stt, "ok") == 0 ||
+                                   strcmp(stt, "impact") == 0 ? 1
+                           : strcmp(stt, "failed") == 0     ? 2
+                                                            : 3;
         d->n_stored++;
         d->n_input_fail += d->run_status[r] == 3;
         for (size_t j = 0; j < d->n_in; j++)

@@ -335,7 +335,7 @@ static int dof3_rhs(double t, const double *x, const double *p, double *xdot, vo
         note(s, &e);
         return rc;
     }
-    lv_flight_note_forces(&s->rt, pt.thrust, pt.f_sum, pt.ax.xw);
+    lv_flight_note_forces(&s->rt, pt.thrust, pt.f_sum, pt.ax.xw, x[LV_X3_M]);
     xdot[LV_X3_RX] = x[LV_X3_VX];
     xdot[LV_X3_RY] = x[LV_X3_VY];
     xdot[LV_X3_RZ] = x[LV_X3_VZ];

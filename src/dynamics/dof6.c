@@ -701,7 +701,8 @@ static int dof6_rhs(double t, const double *x, const double *p, double *xdot, vo
     }
     const double va = lv_v3_norm(pt.v_air_b);
     lv_flight_note_forces(&s->rt, lv_v3_norm(pt.f_thrust_b), lv_v3_add(pt.f_thrust_b, pt.f_aero_b),
-                          va > 0.0 ? lv_v3_scale(pt.v_air_b, 1.0 / va) : lv_v3(1.0, 0.0, 0.0));
+                          va > 0.0 ? lv_v3_scale(pt.v_air_b, 1.0 / va) : lv_v3(1.0, 0.0, 0.0),
+                          x[LV_X6_M]);
     xdot[LV_X6_RX] = x[LV_X6_VX];
     xdot[LV_X6_RY] = x[LV_X6_VY];
     xdot[LV_X6_RZ] = x[LV_X6_VZ];

@@ -69,6 +69,11 @@ void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_a
                    "end ends the phase on the ground",
         0};
     core->dom[0] = LV_FGUARD_H;
+    core->ground_h = NAN;
+    for (size_t i = 0; core->fe != NULL && i < core->fe->n; i++)
+        if (core->fe->ends[i].kind == LV_DOF3_END_IMPACT &&
+            !(core->fe->ends[i].value <= core->ground_h))
+            core->ground_h = core->fe->ends[i].value;
     size_t n = 1;
     const unsigned refs = core->law != NULL ? lv_guid_refs(core->law, NULL, 0.0) : 0u;
     if (refs & LV_GREF_WIND) {
@@ -247,6 +252,11 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
     q[0] = kin.h;
     if (k->n_dom == 1)
         return 0;
+    if (kin.h < k->ground_h + LV_FLIGHT_GROUND_ZONE) { /* a landing: the impact's to end */
+        for (size_t i = 1; i < k->n_dom; i++)
+            q[i] = LV_DOMAIN_OFF;
+        return 0;
+    }
     const unsigned refs = lv_guid_refs(k->law, &rt->guid, t);
     const int thrusts = rt->thrust_last > 0.0;
     lv_vec3 v_air = kin.v_rel;
@@ -276,13 +286,13 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
     return 0;
 }
 
-void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw)
+void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw, double mass)
 {
     rt->thrust_last = thrust;
     const double fn = lv_v3_norm(f);
-    const lv_vec3 normal = lv_v3_sub(f, lv_v3_scale(xw, lv_v3_dot(f, xw)));
+    const double normal = lv_v3_norm(lv_v3_sub(f, lv_v3_scale(xw, lv_v3_dot(f, xw))));
     /* relative 1e-9: thrust along -x_w at alpha = 180 deg leaves sin(pi) = 1.2e-16 */
-    rt->normal_last = fn > 0.0 && lv_v3_norm(normal) > 1e-9 * fn;
+    rt->normal_last = normal > 1e-9 * fn && normal > LV_FLIGHT_NORMAL_MIN * mass;
 }
 
 void lv_flight_describe(double t, const double *x, const double *p, char *buf, size_t cap,

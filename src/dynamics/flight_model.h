@@ -36,6 +36,7 @@ typedef struct lv_flight_core {
                                      wind, its roll needs the vertical plane through it */
     size_t n_dom;
     int dom[3];                   /* lv_flight_guard of each bound */
+    double ground_h;              /* m: the highest `impact` end's level, or NAN */
 } lv_flight_core;
 
 /* The bounds of a flight model's domain: where its equations hold and where the attitude its
@@ -48,6 +49,12 @@ typedef enum lv_flight_guard {
 } lv_flight_guard;
 
 #define LV_FLIGHT_V_GUARD 0.01 /* m/s: the speed guards' floor */
+/* m: within this height above an `impact` end's level the guards are off: a touchdown at zero
+ * speed (the landing law's default) or vertical is the impact's to end, not a lost reference */
+#define LV_FLIGHT_GROUND_ZONE 1.0
+/* m/s^2: a normal force below this acceleration (1e-4 g0) flipping at the vertical is no
+ * chatter the guard needs to stop (a trace of lift as a landing stage settles) */
+#define LV_FLIGHT_NORMAL_MIN (1e-4 * 9.80665)
 
 /* The first member of a flight model's instance block. */
 typedef struct lv_flight_rt {
@@ -88,6 +95,7 @@ lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engi
  *     attitude follows the wind and a force normal to it acts (lift, thrust at an angle of
  *     attack) or a 6-DoF attitude is commanded about it: its bank's reference, the vertical
  *     plane through it, is undefined in vertical flight.
+ * Within LV_FLIGHT_GROUND_ZONE above an `impact` end's level the guards are off (a landing).
  * Without the guards such a phase chatters about the undefined reference until the step
  * limit (issue 27): the force that flips drives the state back to where it flips. A law that
  * steers by the bearing to a target (boostback, heading) is not guarded over the target: the
@@ -141,8 +149,9 @@ lv_event_action lv_flight_on_event(double t, double *x, const double *p, const i
                                    void *inst);
 int lv_flight_domain_q(double t, const double *x, const double *p, double *q, void *inst);
 /* The guards' record of a right-hand side: its thrust [N] and total force f [N, any axes]
- * against the unit wind axis xw (same axes), for the domain's relevance (lv_flight_domain_init). */
-void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw);
+ * against the unit wind axis xw (same axes) on the mass [kg], for the domain's relevance
+ * (lv_flight_domain_init): a normal force counts above LV_FLIGHT_NORMAL_MIN. */
+void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw, double mass);
 /* The state in words for failure messages (lv_model_def.describe): altitude, air-relative
  * speed and flight-path angle, heading, mass. */
 void lv_flight_describe(double t, const double *x, const double *p, char *buf, size_t cap,

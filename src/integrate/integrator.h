@@ -70,7 +70,7 @@ typedef struct lv_integ lv_integ;
  * seconds of CPU) chattering in place; it fails after a thousand steps with the time and the
  * pace. Sound dynamics stay far from it whatever their time scale: they cannot be followed
  * within the step limit at that pace either. */
-#define LV_INTEG_PACE_WINDOW 1000
+#define LV_INTEG_PACE_WINDOW 10000
 #define LV_INTEG_PACE_FACTOR 10.0
 
 typedef struct lv_integ_pace {

@@ -719,9 +719,9 @@ static lv_status passed_end(const lv_sim *S, const double *g0, const double *g1,
         describe_state(r, t0, state, sizeof state);
         return lv_fail(err, LV_ERR_INPUT,
                        "model '%s': the end '%s' is already passed at the start t = %.9g s: it "
-                       "fires %s; it could fire only after turning back, so the run would go "
-                       "on to its stop time. Check the end's value and direction against the "
-                       "state the phase starts from%s",
+                       "fires %s; it could fire only after turning back, so the run would end "
+                       "otherwise (by another end, or at its stop time). Check the end's value "
+                       "and direction against the state the phase starts from%s",
                        d->name, is_stop ? sp->name : d->events[k].name, t0, what, state);
     }
     return LV_OK;

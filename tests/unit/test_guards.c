@@ -233,11 +233,59 @@ static void test_passed_ends(void)
     done(m, r);
 }
 
+
+/* Landings are no lost reference (the breaker's regressions): a retrograde stage brought down
+ * by the landing law to its default touchdown speed 0 (speed and height reach 0 together),
+ * and one with a trace of lift (CL 0.001) settling vertically at 2 m/s, end by `impact` as
+ * before the guards: within 1 m of the impact level the guards are off, and a normal force
+ * below 1e-4 g0 does not arm the vertical one. */
+static const char *const landing_yaml[2] = {
+    "mission: {name: land}\n"
+    "environment: {world: planet, gravity: j2, atmosphere: us76}\n"
+    "parameters: {start_lat_deg: 28.5, start_lon_deg: -80.6, start_h: 3000, start_vel: 250,\n"
+    "             start_fpa_deg: -85, start_chi_deg: 270}\n"
+    "stages: [{name: b, dry_mass: 25000, propellant_mass: 20000,\n"
+    "          engines: [{thrust_vac: 2742000, isp_vac: 311}]}]\n"
+    "phases:\n"
+    "  - {name: landing, model: dof3, stages: [b], stop_time: 100, end: [impact],\n"
+    "     guidance: {law: retrograde}, throttle: {landing: {}},\n"
+    "     aero: {s_ref: 10.5, CD: 0.8}}\n",
+    "mission: {name: land}\n"
+    "environment: {world: planet, gravity: j2, atmosphere: us76}\n"
+    "parameters: {start_lat_deg: 28.5, start_lon_deg: -80.6, start_h: 3000, start_vel: 250,\n"
+    "             start_fpa_deg: -60, start_chi_deg: 270}\n"
+    "stages: [{name: b, dry_mass: 25000, propellant_mass: 20000,\n"
+    "          engines: [{name: be, count: 9, thrust_vac: 914000, isp_vac: 311,\n"
+    "                     exit_area: 0.68, throttle_min: 0.04}]}]\n"
+    "phases:\n"
+    "  - {name: landing, model: dof3, stages: [b], stop_time: 100, end: [impact],\n"
+    "     guidance: {law: retrograde}, engines: 3,\n"
+    "     throttle: {landing: {altitude: 0, speed: 2}},\n"
+    "     aero: {s_ref: 10.5, CD: 0.8, CL: 0.001}, integrator: {tolerance: 1.0e-8}}\n"};
+
+static void test_landings(void)
+{
+    static const char *const what[2] = {"landing at speed 0", "landing with CL 0.001"};
+    for (int k = 0; k < 2; k++) {
+        lv_mission *m;
+        lv_run *r;
+        const lv_phase_result *p = run1(landing_yaml[k], &m, &r);
+        CHECK(p != NULL && p->state == LV_PHASE_DONE);
+        if (p != NULL)
+            printf("%s: %s at %.6f s, %ld steps%s%s\n", what[k], p->report.stop_name,
+                   p->report.end_time, p->report.stats.steps, p->error[0] ? ": " : "",
+                   p->error);
+        CHECK(p != NULL && strcmp(p->report.stop_name, "impact") == 0);
+        done(m, r);
+    }
+}
+
 int main(void)
 {
     test_brake_to_zero();
     test_through_vertical();
     test_over_target();
     test_passed_ends();
+    test_landings();
     return check_report("test_guards");
 }

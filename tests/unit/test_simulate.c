@@ -709,7 +709,7 @@ static const lv_model_def nan_model = {.name = "nanrhs", .description = "RHS NaN
  * t = 1 and then has no classical solution - every step past it flips the derivative. An
  * adaptive integrator shrinks its steps toward the tolerance there (1e-10: steps of ~1e-10 s)
  * and, without the step-size collapse check, spends its whole step limit (1e6) chattering
- * about x = 0 before t = 1.0001; with it the run fails within a few windows of 1000 steps,
+ * about x = 0 before t = 1.0002; with it the run fails within a few windows of 10000 steps,
  * at t just after 1, naming the collapse (integrator.h, LV_INTEG_PACE_*). */
 static int relay_rhs(double t, const double *x, const double *p, double *xd, void *inst)
 {
@@ -739,7 +739,7 @@ static void test_step_collapse(void)
         /* the collapse check, or the solver's own failure (CVODE: its error test fails
          * repeatedly); never the step limit */
         CHECK(strstr(err.msg, "too much work") == NULL);
-        CHECK(rep.stats.steps < 20 * 1000);
+        CHECK(rep.stats.steps <= 3 * 10000);
         CHECK(rep.end_time >= 1.0 - 1e-6 && rep.end_time < 1.01);
         lv_sim_report_clear(&rep);
     }
