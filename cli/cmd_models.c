@@ -32,7 +32,7 @@ const cli_cmd cli_cmd_models = {
     "models",
     "list the mission model types and the built-in models",
     "",
-    "Lists the mission model types (what a phase's 'model:' names: dof3, flat6) and the\n"
+    "Lists the mission model types (every name a phase's 'model:' takes, first) and the\n"
     "built-in models of 'lvsim simulate', one a line: name and a one-line description.\n"
     "'lvsim vars NAME' lists either's variables; 'lvsim simulate MODEL' runs a built-in one.\n",
     models_run,
