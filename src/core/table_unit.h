@@ -1,4 +1,5 @@
-/* table_unit.h - a table column's unit against the one lvsim reads it in (not exported).
+/* table_unit.h - a table column's unit against the one lvsim reads it in, and a derivative's
+ * unit (not exported).
  * lvsim converts no units: a table column is read in SI ("rad", "m", "s", "N", "kg/s", "1");
  * a unit written in the file ("pitch [deg]") must be that one, or the table is refused,
  * naming the column, its unit and the one expected. No unit at all is accepted (SI read). */
@@ -6,6 +7,8 @@
 #define LV_CORE_TABLE_UNIT_H
 
 #include <stddef.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
@@ -19,5 +22,25 @@ int lv_unit_matches(const char *given, const char *si);
  * unit; no units are converted)". */
 lv_status lv_table_expect_unit(const lv_table *t, int is_axis, size_t k, const char *si,
                                const char *what, lv_err *err);
+
+/* The unit of a time derivative of a quantity in `unit`, as the result files name it
+ * (docs/result-files.md): "m" -> "m/s", "m/s" -> "m/s2", "m/s2" -> "m/s3", "1" or "" ->
+ * "1/s". Into buf[cap]; returns buf. The one rule of lv_simulate, missions and the FMU
+ * export (inline: the post-processing library, which has none of the core's symbols, uses
+ * it too). */
+static inline const char *lv_unit_per_second(const char *unit, char *buf, size_t cap)
+{
+    const size_t len = strlen(unit);
+    if (len == 0 || strcmp(unit, "1") == 0)
+        snprintf(buf, cap, "1/s");
+    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
+        snprintf(buf, cap, "%s2", unit);
+    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
+             unit[len - 1] < '9')
+        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
+    else
+        snprintf(buf, cap, "%s/s", unit);
+    return buf;
+}
 
 #endif

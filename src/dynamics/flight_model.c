@@ -289,6 +289,8 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
 void lv_flight_note_forces(lv_flight_rt *rt, double thrust, lv_vec3 f, lv_vec3 xw, double mass)
 {
     rt->thrust_last = thrust;
+    if (rt->core->n_dom == 1) /* no guard reads it: the right-hand side's hot path */
+        return;
     const double fn = lv_v3_norm(f);
     const double normal = lv_v3_norm(lv_v3_sub(f, lv_v3_scale(xw, lv_v3_dot(f, xw))));
     /* relative 1e-9: thrust along -x_w at alpha = 180 deg leaves sin(pi) = 1.2e-16 */

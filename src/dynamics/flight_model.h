@@ -15,6 +15,7 @@
 #include <stddef.h>
 
 #include "core/status.h"
+#include "core/units.h"
 #include "dynamics/flight.h"
 #include "dynamics/flight_ends.h"
 #include "dynamics/guidance.h"
@@ -54,7 +55,7 @@ typedef enum lv_flight_guard {
 #define LV_FLIGHT_GROUND_ZONE 1.0
 /* m/s^2: a normal force below this acceleration (1e-4 g0) flipping at the vertical is no
  * chatter the guard needs to stop (a trace of lift as a landing stage settles) */
-#define LV_FLIGHT_NORMAL_MIN (1e-4 * 9.80665)
+#define LV_FLIGHT_NORMAL_MIN (1e-4 * LV_G0)
 
 /* The first member of a flight model's instance block. */
 typedef struct lv_flight_rt {

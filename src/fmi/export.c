@@ -23,6 +23,7 @@
 
 #include "io/nettle_dl.h"
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "fmi/fmu_phase.h"
 #include "fmi/zip_dl.h"
 #include "lvsim/lv_fmu.h"
@@ -387,7 +388,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     lv_status st = LV_OK;
     for (size_t i = 0; i < nx && st == LV_OK; i++) {
-        lv_fmu_derivative_unit(d->states[i].unit, dunits[i], sizeof dunits[i]);
+        lv_unit_per_second(d->states[i].unit, dunits[i], sizeof dunits[i]);
         st = unit_note(us, d->states[i].unit, d->states[i].name, err);
         if (st == LV_OK)
             st = unit_note(us, dunits[i], d->states[i].name, err);

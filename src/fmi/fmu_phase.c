@@ -302,16 +302,3 @@ out:
     free(inst0);
 }
 
-void lv_fmu_derivative_unit(const char *unit, char *buf, size_t cap)
-{
-    const size_t len = strlen(unit);
-    if (len == 0)
-        snprintf(buf, cap, "1/s");
-    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
-        snprintf(buf, cap, "%s2", unit);
-    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
-             unit[len - 1] < '9')
-        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
-    else
-        snprintf(buf, cap, "%s/s", unit);
-}

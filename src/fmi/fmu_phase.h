@@ -70,8 +70,4 @@ lv_status lv_fmu_phase_run_params(lv_fmu_phase *fp, lv_err *err);
  * are invalid after. On failure fp keeps the old model (its ancestors may have run again). */
 lv_status lv_fmu_phase_reprepare(lv_fmu_phase *fp, lv_err *err);
 
-/* The time unit of a derivative: "m" -> "m/s", "m/s" -> "m/s2", "" -> "1/s" (as the result
- * files name them). Writes into buf[cap]. */
-void lv_fmu_derivative_unit(const char *unit, char *buf, size_t cap);
-
 #endif

@@ -626,9 +626,11 @@ static lv_status rk_step(lv_erk *e, lv_err *err)
             e->g_end_ok = 0;
             e->fsal = 1;
             e->h = hnew;
-            char why[LV_ERR_MSG_MAX - 16];
-            if (lv_integ_pace_collapsed(&e->pace, e->t, e->steps, why, sizeof why))
-                return lv_fail(err, LV_ERR_SOLVER, "%s [%s]", why, T->name);
+            if (e->steps - e->pace.n_mark >= LV_INTEG_PACE_WINDOW) { /* a window's end */
+                char why[LV_ERR_MSG_MAX - 16];
+                if (lv_integ_pace_collapsed(&e->pace, e->t, e->steps, why, sizeof why))
+                    return lv_fail(err, LV_ERR_SOLVER, "%s [%s]", why, T->name);
+            }
             return LV_OK;
         }
         e->fails++;

@@ -12,6 +12,7 @@
 
 #include "core/names.h"
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "mission/mission_rt.h"
 #include "mission/targeting_def.h"
 #include "lvsim/lv_units.h"
@@ -292,23 +293,6 @@ static lv_status narrow_slot(lv_mission *m, const lv_phase_def *ph, lv_slot s, l
 
 /* An end on a variable names a state, derivative or output of the phase's model (a parameter
  * never crosses); its slot takes the variable's unit and range; `_deg` only for an angle. */
-/* The unit of a state's time derivative, as lv_simulate names it (docs/result-files.md):
- * "1" -> "1/s", "m/s" -> "m/s2", "m/s2" -> "m/s3", "kg" -> "kg/s". */
-static const char *der_unit(const char *unit, char *buf, size_t cap)
-{
-    const size_t len = strlen(unit);
-    if (LV_UNIT_ONE(unit))
-        snprintf(buf, cap, "1/s");
-    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
-        snprintf(buf, cap, "%s2", unit);
-    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
-             unit[len - 1] < '9')
-        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
-    else
-        snprintf(buf, cap, "%s/s", unit);
-    return buf;
-}
-
 static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_end_def *e,
                                const lv_model_def *md, lv_err *err)
 {
@@ -328,7 +312,7 @@ static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_e
                : kind == LV_VAR_OUTPUT ? md->outputs[idx].unit
                                        : "";
         if (kind == LV_VAR_DERIVATIVE) /* the state's unit per second */
-            unit = der_unit(md->states[idx].unit, dunit, sizeof dunit);
+            unit = lv_unit_per_second(md->states[idx].unit, dunit, sizeof dunit);
         if (e->deg && strcmp(unit, "rad") != 0)
             st = lv_fail(err, LV_ERR_INPUT, "'%s' is not an angle (its unit is '%s'): write its "
                          "value without _deg", e->var, unit);

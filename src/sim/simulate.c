@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "integrate/integrator.h"
 #include "io/sink.h"
 #include "lvsim/lv_sim.h"
@@ -227,21 +228,11 @@ static char *own_string(sim_run *r, const char *a, const char *b, const char *c)
     return s;
 }
 
-/* Unit of a time derivative: "m" -> "m/s", "m/s" -> "m/s2", "1" (or "") -> "1/s". */
+/* Unit of a time derivative (lv_unit_per_second), owned by the run. */
 static char *derivative_unit(sim_run *r, const char *unit)
 {
-    if (unit[0] == '\0' || strcmp(unit, "1") == 0)
-        return own_string(r, "1/s", "", "");
-    size_t len = strlen(unit);
-    if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
-        return own_string(r, unit, "2", "");
-    if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
-        unit[len - 1] < '9') {
-        char buf[64];
-        snprintf(buf, sizeof buf, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
-        return own_string(r, buf, "", "");
-    }
-    return own_string(r, unit, "/s", "");
+    char buf[96];
+    return own_string(r, lv_unit_per_second(unit, buf, sizeof buf), "", "");
 }
 
 static lv_status build_layout(sim_run *r, lv_err *err)
@@ -689,27 +680,53 @@ struct lv_sim {
  * step crosses it (CVODE resolves no root closer to t0 than ~100 ulp of the step). */
 #define TINY_G 1e-100
 
-/* An end (an event with ends_run, or a crossing stop condition) with a direction whose
- * function lies beyond its crossing at the start (g0 dir > 0) and that the probe step takes
- * further away ((g1 - g0) dir > 0) is already passed: LV_ERR_INPUT naming it. */
+/* End k of the run (k < ng: the model's event k; then the stop conditions): 1 when it is
+ * one whose function can lie behind the start (an event with ends_run, or a crossing stop
+ * condition), with *i its event function and *dir its direction (0: both). */
+static int end_function(const lv_sim *S, size_t k, size_t *i, int *dir)
+{
+    const sim_run *r = &S->r;
+    if (k < r->ng) {
+        *i = k;
+        *dir = (int)r->def->events[k].direction;
+        return r->def->events[k].ends_run != 0;
+    }
+    const stop_ref *sr = &r->stops[k - r->ng];
+    *i = r->ng + r->nd + sr->root;
+    *dir = (int)S->s.stops[k - r->ng].direction;
+    return !sr->is_time;
+}
+
+/* 1 when an end's function lies beyond its crossing at the start (g0 dir > 0). */
+static int maybe_passed(const lv_sim *S, const double *g0)
+{
+    for (size_t k = 0; k < S->r.ng + S->r.ns; k++) {
+        size_t i;
+        int dir;
+        if (end_function(S, k, &i, &dir) && dir != 0 && g0[i] * dir > 0.0)
+            return 1;
+    }
+    return 0;
+}
+
+/* An end with a direction whose function lies beyond its crossing at the start (g0 dir > 0)
+ * and that the probe step takes further away ((g1 - g0) dir > 0) is already passed:
+ * LV_ERR_INPUT naming it. */
 static lv_status passed_end(const lv_sim *S, const double *g0, const double *g1, lv_err *err)
 {
     const sim_run *r = &S->r;
     const lv_model_def *d = r->def;
     const double t0 = S->t;
     for (size_t k = 0; k < r->ng + r->ns; k++) {
-        const int is_stop = k >= r->ng;
-        const lv_sim_stop *sp = is_stop ? &S->s.stops[k - r->ng] : NULL;
-        if (is_stop ? r->stops[k - r->ng].is_time : !d->events[k].ends_run)
+        size_t i;
+        int dir;
+        if (!end_function(S, k, &i, &dir) || dir == 0 || !(g0[i] * dir > 0.0) ||
+            fabs(g0[i]) < TINY_G || !((g1[i] - g0[i]) * dir > 0.0))
             continue;
-        const size_t i = is_stop ? r->ng + r->nd + r->stops[k - r->ng].root : k;
-        const int dir = is_stop ? (int)sp->direction : (int)d->events[k].direction;
-        if (dir == 0 || !(g0[i] * dir > 0.0) || fabs(g0[i]) < TINY_G ||
-            !((g1[i] - g0[i]) * dir > 0.0))
-            continue;
+        const lv_sim_stop *sp = k >= r->ng ? &S->s.stops[k - r->ng] : NULL;
         const char *way = dir < 0 ? "falls" : "rises", *now = dir < 0 ? "falling" : "rising";
         char what[200], state[256];
-        if (is_stop)
+        if (sp != NULL)
             snprintf(what, sizeof what, "when %s %s through %g, but there %s = %g and is still %s",
                      sp->variable, way, sp->value, sp->variable, sp->value + g0[i], now);
         else
@@ -722,26 +739,9 @@ static lv_status passed_end(const lv_sim *S, const double *g0, const double *g1,
                        "fires %s; it could fire only after turning back, so the run would end "
                        "otherwise (by another end, or at its stop time). Check the end's value "
                        "and direction against the state the phase starts from%s",
-                       d->name, is_stop ? sp->name : d->events[k].name, t0, what, state);
+                       d->name, sp != NULL ? sp->name : d->events[k].name, t0, what, state);
     }
     return LV_OK;
-}
-
-/* 1 when an end's function lies beyond its crossing at the start (passed_end probes it). */
-static int maybe_passed(const lv_sim *S, const double *g0)
-{
-    const sim_run *r = &S->r;
-    for (size_t k = 0; k < r->ng + r->ns; k++) {
-        const int is_stop = k >= r->ng;
-        if (is_stop ? r->stops[k - r->ng].is_time : !r->def->events[k].ends_run)
-            continue;
-        const size_t i = is_stop ? r->ng + r->nd + r->stops[k - r->ng].root : k;
-        const int dir = is_stop ? (int)S->s.stops[k - r->ng].direction
-                                : (int)r->def->events[k].direction;
-        if (dir != 0 && g0[i] * dir > 0.0)
-            return 1;
-    }
-    return 0;
 }
 
 /* The start's roots (above) and the ends already passed (passed_end). LV_OK also when the
