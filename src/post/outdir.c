@@ -675,7 +675,8 @@ static int rm_contents(int fd, const char *keep)
             continue;
         struct stat sb;
         if (fstatat(dirfd(d), e->d_name, &sb, AT_SYMLINK_NOFOLLOW) != 0) {
-            rc = -1;
+            if (errno != ENOENT) /* gone already: what removing it wanted */
+                rc = -1;
             continue;
         }
         if (S_ISDIR(sb.st_mode)) {
@@ -683,10 +684,11 @@ static int rm_contents(int fd, const char *keep)
             if (fchmodat(dirfd(d), e->d_name, 0700, 0) != 0) {
             }
             int sub = openat(dirfd(d), e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-            if (sub < 0 || rm_contents(sub, NULL) != 0 ||
-                unlinkat(dirfd(d), e->d_name, AT_REMOVEDIR) != 0)
+            if (sub < 0 ? errno != ENOENT
+                        : rm_contents(sub, NULL) != 0 ||
+                              (unlinkat(dirfd(d), e->d_name, AT_REMOVEDIR) != 0 && errno != ENOENT))
                 rc = -1;
-        } else if (unlinkat(dirfd(d), e->d_name, 0) != 0) {
+        } else if (unlinkat(dirfd(d), e->d_name, 0) != 0 && errno != ENOENT) {
             rc = -1;
         }
     }

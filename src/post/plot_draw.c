@@ -19,6 +19,10 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#ifdef __linux__
+#include <signal.h>
+#include <sys/prctl.h>
+#endif
 
 #include "core/status.h"
 #include "io/atomic.h"
@@ -580,7 +584,9 @@ static lv_status render_pair(const lv_plot_data *d, const figure *f, const char 
  * every other one, this process the rest (map figures here: they report whether the
  * coastlines were found), so two cores draw. The child starts from this process's state
  * before any drawing (pango starts threads of its own once it draws text: no fork after that),
- * touches nothing of the caller's and reports through a pipe, then _exit()s. */
+ * touches nothing of the caller's and reports through a pipe, then _exit()s. It dies with its
+ * parent (PR_SET_PDEATHSIG on Linux): a parent killed with SIGKILL leaves no drawer behind that
+ * goes on writing into a staging folder the next run removes. */
 enum { DRAW_ALL = 0, DRAW_EVEN = 1, DRAW_ODD = 2 };
 
 /* Draws the figure (or leaves it to the other process), and lists it. */
@@ -1083,8 +1089,16 @@ lv_status lv_plot_draw_figures(const lv_plot_data *d, const char *plotdir, lv_pl
     if (single_threaded() && pipe(fds) == 0) {
         /* nothing buffered for the child to write twice, should PLplot ever exit() in it */
         fflush(NULL);
+        const pid_t parent = getpid();
         pid = fork();
         if (pid == 0) { /* the child: the odd figures; its list is a copy, thrown away */
+#ifdef __linux__
+            /* the parent may have died before the request: then it would never come */
+            if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent)
+                _exit(1);
+#else
+            (void)parent;
+#endif
             close(fds[0]);
             child_msg msg;
             memset(&msg, 0, sizeof msg);

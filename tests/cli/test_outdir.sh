@@ -160,6 +160,41 @@ for i in 1 2 3 4 5 6; do
   rm -f "$work/.killed.lock" # flock dies with its holder; the file may stay
 done
 echo "kill -9: staging folders left behind in $left of 6 kills"
+
+# kill -9 while the figures are drawn: the drawing child process (src/post/plot_draw.c) dies
+# with its parent instead of writing on into the staging folder the next run removes
+# (a finer grid: the figures take seconds to draw)
+sed 's/output_interval: 0.05/output_interval: 0.002/; s/output_interval: 0.2/output_interval: 0.01/' \
+  "$slow/mission.yaml" > "$slow/slower.yaml"
+"$lvsim" run "$slow/slower.yaml" -o "$kill_dir" -q --max-rows 1e7 > /dev/null 2>&1 &
+victim=$!
+pids+=("$victim")
+drawer=
+for _ in $(seq 1 1200); do # until the drawing child runs (at most 60 s)
+  drawer=$(pgrep -P "$victim" | head -1)
+  [ -n "$drawer" ] && break
+  sleep 0.05
+done
+kill -9 "$victim" 2> /dev/null
+wait "$victim" 2> /dev/null
+if [ -z "$drawer" ]; then
+  fail "kill while drawing: no drawing process seen in 60 s"
+else
+  alive() { local s; s=$(awk '{ print $3 }' "/proc/$1/stat" 2> /dev/null); [ -n "$s" ] && [ "$s" != Z ]; }
+  # it has seconds of figures left: dead within 0.5 s is dead with its parent
+  for _ in $(seq 1 10); do alive "$drawer" || break; sleep 0.05; done
+  listing=$(ls -lR "$work"/.killed.staging-* 2> /dev/null)
+  if alive "$drawer"; then
+    fail "kill while drawing: the drawing process $drawer outlived its killed parent"
+  else
+    ok
+  fi
+  sleep 1
+  [ "$listing" = "$(ls -lR "$work"/.killed.staging-* 2> /dev/null)" ] && ok ||
+    fail "kill while drawing: the staging folder changed after its writer was killed"
+  kill -9 "$drawer" 2> /dev/null
+fi
+rm -f "$work/.killed.lock"
 # a later killed run may already have removed an earlier one's folder: what counts is the
 # folder that is there when the next run starts
 stale=0
@@ -179,8 +214,6 @@ verify "$kill_dir" --mission "$slow/mission.yaml" --status ok
 
 # ---- SIGTERM (Ctrl-C) during the simulation: exit 130, the phases that ended, marked failed
 # (a finer grid: the signal lands while the phases run, not in the post-processing)
-sed 's/output_interval: 0.05/output_interval: 0.002/; s/output_interval: 0.2/output_interval: 0.01/' \
-  "$slow/mission.yaml" > "$slow/slower.yaml"
 "$lvsim" run "$slow/slower.yaml" -o "$kill_dir" -q --max-rows 1e7 > "$work/term.log" 2>&1 &
 victim=$!
 pids+=("$victim")
