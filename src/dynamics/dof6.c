@@ -870,13 +870,9 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_BANK] = 0.0;
     if (pt.air.v_air_n > V_AIR_MIN) {
         const lv_vec3 xw = body_to_ecef(&pt.ax, xw_b), yw = body_to_ecef(&pt.ax, yw_b);
-        lv_vec3 z0 = lv_v3_sub(k->d_ax, lv_v3_scale(xw, lv_v3_dot(k->d_ax, xw)));
-        const double zn = lv_v3_norm(z0);
-        if (zn > 1e-9) {
-            z0 = lv_v3_scale(z0, 1.0 / zn);
-            const lv_vec3 y0 = lv_v3_cross(z0, xw);
-            y[O_BANK] = atan2(lv_v3_dot(yw, z0), lv_v3_dot(yw, y0));
-        }
+        const lv_vec3 z0 = lv_flight_down_normal(k, xw, pt.air.v_air_n, 0, p[P_CHI]);
+        const lv_vec3 y0 = lv_v3_cross(z0, xw);
+        y[O_BANK] = atan2(lv_v3_dot(yw, z0), lv_v3_dot(yw, y0));
     }
     y[O_LA] = pt.m_aero_b.x;
     y[O_MA] = pt.m_aero_b.y;

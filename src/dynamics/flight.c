@@ -9,7 +9,6 @@
 
 #include "core/status.h"
 
-#define V_AIR_MIN 1e-6    /* m/s: below, the wind frame takes the start direction */
 #define VERTICAL_TOL 1e-9 /* sin of the angle from the vertical below which chi is undefined */
 
 void lv_flight_world_init(lv_flight_world *w)
@@ -183,23 +182,36 @@ int lv_flight_controls_eval(const double *u0, const lv_flight_schedule *sch,
 
 /* ---- 4. vehicle forces -------------------------------------------------------------------- */
 
+lv_vec3 lv_flight_down_normal(const lv_flight_kin *k, lv_vec3 xw, double v_air_n, int from_start,
+                              double chi0)
+{
+    const double dx = lv_v3_dot(k->d_ax, xw);
+    const lv_vec3 z = lv_v3_sub(k->d_ax, lv_v3_scale(xw, dx));
+    const double zn = lv_v3_norm(z); /* sin of the angle from the vertical */
+    if (from_start ? zn > VERTICAL_TOL : v_air_n * zn >= LV_FLIGHT_V_GUARD)
+        return lv_v3_scale(z, 1.0 / zn);
+    /* the start heading, made normal to x_w: towards it going up, away from it going down */
+    const lv_vec3 h = lv_v3_scale(lv_flight_from_ned(k, cos(chi0), sin(chi0), 0.0),
+                                  dx <= 0.0 ? 1.0 : -1.0);
+    const lv_vec3 hz = lv_v3_sub(h, lv_v3_scale(xw, lv_v3_dot(h, xw)));
+    const double hn = lv_v3_norm(hz);
+    /* hn < 0.5 only for an x_w within 30 deg of the horizontal at barely the guard speed,
+     * where the vertical plane through x_w is well defined (zn > 0.5) */
+    return hn >= 0.5 || !(zn > 0.0) ? lv_v3_scale(hz, 1.0 / hn) : lv_v3_scale(z, 1.0 / zn);
+}
+
 void lv_flight_axes_eval(const lv_flight_kin *k, const lv_flight_air *a,
                          const lv_flight_controls *c, double fpa0, double chi0,
                          lv_flight_axes *ax)
 {
-    if (a->v_air_n > V_AIR_MIN) {
+    const int from_start = !(a->v_air_n >= LV_FLIGHT_V_GUARD);
+    if (!from_start) {
         ax->xw = lv_v3_scale(a->v_air, 1.0 / a->v_air_n);
     } else {
         const double cg = cos(fpa0), sg = sin(fpa0);
         ax->xw = lv_flight_from_ned(k, cg * cos(chi0), cg * sin(chi0), -sg);
     }
-    const double dx = lv_v3_dot(k->d_ax, ax->xw);
-    lv_vec3 z0 = lv_v3_sub(k->d_ax, lv_v3_scale(ax->xw, dx));
-    const double zn = lv_v3_norm(z0);
-    if (zn > VERTICAL_TOL)
-        z0 = lv_v3_scale(z0, 1.0 / zn);
-    else /* straight up or down: the heading of the start direction gives the vertical plane */
-        z0 = lv_v3_scale(lv_flight_from_ned(k, cos(chi0), sin(chi0), 0.0), -dx);
+    const lv_vec3 z0 = lv_flight_down_normal(k, ax->xw, a->v_air_n, from_start, chi0);
     const lv_vec3 y0 = lv_v3_cross(z0, ax->xw);
     const double cm = c->cs[LV_CTRL_MU][0], sm = c->cs[LV_CTRL_MU][1];
     ax->yw = lv_v3_add(lv_v3_scale(y0, cm), lv_v3_scale(z0, sm));

@@ -137,10 +137,25 @@ typedef struct lv_flight_axes {
     lv_vec3 xb, yb, zb; /* body axes, ECEF components */
 } lv_flight_axes;
 
+/* m/s: below this air-relative speed the wind axes hold the start direction, and below this
+ * horizontal air-relative speed (straight up or down) the start heading's vertical plane; the
+ * flight models' speed guards (flight_model.h) use the same floor. */
+#define LV_FLIGHT_V_GUARD 0.01
+
+/* The downward unit normal z0 to the unit vector xw [ECEF] in the vertical plane through it
+ * (the wind axes' z_w at mu = 0). The plane is undefined straight up or down; there it is the
+ * start heading chi0's [rad from north]: when xw is the start direction itself (from_start)
+ * within 1e-9 rad of the vertical, else when the horizontal part of the air-relative velocity,
+ * v_air_n |xw x d| [m/s], is below LV_FLIGHT_V_GUARD. So a vertical start banks in the plane
+ * the user gave, not in the plane of a Coriolis drift of nanometres per second. */
+lv_vec3 lv_flight_down_normal(const lv_flight_kin *k, lv_vec3 xw, double v_air_n, int from_start,
+                              double chi0);
+
 /* Wind axes: x_w along the air-relative velocity; z_w in the vertical plane through it,
  * downwards, for mu = 0 (C_wind_ned = R1(mu) R2(gamma_a) R3(chi_a)); then the bank mu about
- * x_w. Below 1e-6 m/s of air-relative speed x_w takes the direction (fpa0, chi0) [rad] in
- * NED; straight up or down, the heading chi0 gives the vertical plane. Body axes:
+ * x_w. Below LV_FLIGHT_V_GUARD of air-relative speed x_w takes the start direction (fpa0,
+ * chi0) [rad] in NED (a phase that starts at rest holds it until the air moves past it);
+ * straight up or down, the plane is lv_flight_down_normal's. Body axes:
  * C_body_wind = R2(alpha) R3(-beta). */
 void lv_flight_axes_eval(const lv_flight_kin *k, const lv_flight_air *a,
                          const lv_flight_controls *c, double fpa0, double chi0,

@@ -59,6 +59,13 @@ static const char *const why_vertical =
     "the vertical plane through it, is undefined in vertical flight: the force would flip from "
     "step to step. Fly through the vertical in the local frame (guidance: {law: attitude, "
     "frame: local}) or with alpha = beta = 0 and no lift";
+static const char *const why_vertical_6dof =
+    "the 6-DoF attitude is commanded about the air-relative velocity while the engines thrust, "
+    "and its roll reference, the vertical plane through that velocity, is undefined at rest and "
+    "in vertical flight: the commanded roll would follow the velocity's drift (the Earth's "
+    "rotation, the wind) and flip. Start the phase after the pitch-over (a dof3 lift-off phase "
+    "first, as examples/two-stage-6dof) or steer it in the local frame (guidance: {law: "
+    "attitude, frame: local})";
 void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_atmo)
 {
     dom[0] = (lv_domain_def){
@@ -79,7 +86,10 @@ void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_a
     if (refs & LV_GREF_WIND) {
         dom[n] = (lv_domain_def){"v_air", "m/s", LV_FLIGHT_V_GUARD, why_speed, 1};
         core->dom[n++] = LV_FGUARD_SPEED;
-        dom[n] = (lv_domain_def){"v_air_horizontal", "m/s", LV_FLIGHT_V_GUARD, why_vertical, 1};
+        /* a 6-DoF attitude about the wind has no roll reference in a start at rest or
+         * vertical: such a start is refused; a point mass may start there (a launch) */
+        dom[n] = (lv_domain_def){"v_air_horizontal", "m/s", LV_FLIGHT_V_GUARD,
+                                 core->rolls ? why_vertical_6dof : why_vertical, !core->rolls};
         core->dom[n++] = LV_FGUARD_VERTICAL;
     }
     core->n_dom = n;
@@ -273,7 +283,8 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
                 qi = lv_v3_norm(v_air);
             break;
         case LV_FGUARD_VERTICAL:
-            if ((refs & LV_GREF_WIND) && (rt->normal_last || (k->rolls && thrusts))) {
+            /* the engines' mode for a 6-DoF: at the start no right-hand side ran yet */
+            if ((refs & LV_GREF_WIND) && (rt->normal_last || (k->rolls && rt->engines_on))) {
                 const double vd = lv_v3_dot(v_air, kin.d_ax);
                 qi = lv_v3_norm(lv_v3_sub(v_air, lv_v3_scale(kin.d_ax, vd)));
             }

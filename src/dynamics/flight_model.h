@@ -49,7 +49,6 @@ typedef enum lv_flight_guard {
                            (or a 6-DoF attitude is held about it) */
 } lv_flight_guard;
 
-#define LV_FLIGHT_V_GUARD 0.01 /* m/s: the speed guards' floor */
 /* m: within this height above an `impact` end's level the guards are off: a touchdown at zero
  * speed (the landing law's default) or vertical is the impact's to end, not a lost reference */
 #define LV_FLIGHT_GROUND_ZONE 1.0
@@ -95,7 +94,9 @@ lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engi
  *   v_air_h >= LV_FLIGHT_V_GUARD, the horizontal part of the air-relative velocity, while the
  *     attitude follows the wind and a force normal to it acts (lift, thrust at an angle of
  *     attack) or a 6-DoF attitude is commanded about it: its bank's reference, the vertical
- *     plane through it, is undefined in vertical flight.
+ *     plane through it, is undefined in vertical flight. For a 6-DoF this guard holds from
+ *     the start too: a phase that starts at rest or vertical with its attitude commanded
+ *     about the wind (and its engines on) is refused at once.
  * Within LV_FLIGHT_GROUND_ZONE above an `impact` end's level the guards are off (a landing).
  * Without the guards such a phase chatters about the undefined reference until the step
  * limit (issue 27): the force that flips drives the state back to where it flips. A law that

@@ -95,13 +95,7 @@ static inline void lv_guid_wind_from_body(const lv_flight_kin *k, const lv_fligh
     }
     /* mu: y_w = y0 cos mu + z0 sin mu, with z0 the downward direction normal to x_w in the
      * vertical plane and y0 = z0 x x_w */
-    const double dx = lv_v3_dot(k->d_ax, ax->xw);
-    lv_vec3 z0 = lv_v3_sub(k->d_ax, lv_v3_scale(ax->xw, dx));
-    const double zn = lv_v3_norm(z0);
-    if (zn > 1e-9)
-        z0 = lv_v3_scale(z0, 1.0 / zn);
-    else
-        z0 = lv_v3_scale(lv_flight_from_ned(k, cos(chi0), sin(chi0), 0.0), -dx);
+    const lv_vec3 z0 = lv_flight_down_normal(k, ax->xw, V, 0, chi0);
     const lv_vec3 y0 = lv_v3_cross(z0, ax->xw);
     const double cm = lv_v3_dot(ax->yw, y0), sm = lv_v3_dot(ax->yw, z0);
     c->u[LV_CTRL_MU] = atan2(sm, cm);

@@ -9,7 +9,9 @@
  *     heading command jumps once there and the flight goes on (no guard, no failure);
  *   - an end already passed at the start ({speed: 900, direction: falling} below 900 m/s and
  *     braking) is refused; one behind the start that the flight comes back to is not;
- *   - the same flight in the local frame (no wind reference) runs through the vertical.
+ *   - the same flight in the local frame (no wind reference) runs through the vertical;
+ *   - a vertical start banks in the start heading's plane, not the Coriolis drift's; a 6-DoF
+ *     attitude about the wind is refused at a start at rest.
  * Each failing case is asserted to cost less than 10 ms of CPU (the run's own figure). */
 #define _POSIX_C_SOURCE 200809L
 
@@ -280,6 +282,89 @@ static void test_landings(void)
     }
 }
 
+/* A vertical start: straight up at 1 m/s (start_fpa 90 deg, start_chi 90 deg) with the
+ * inputs' alpha in the aero frame. The bank's reference, the vertical plane through the
+ * velocity, is the start heading's until the horizontal air-relative speed reaches 0.01 m/s
+ * (flight.h, lv_flight_down_normal). With alpha = -5 deg the body's nose leans toward
+ * start_chi: the thrust's normal part (T/m sin 5 deg = 1.4 m/s^2) tilts the velocity east, the
+ * vertical plane of the velocity is then the start heading's and the stage pitches over to the
+ * east: its heading stays 90 deg, against the Coriolis drift 2 Omega v cos(lat) toward the
+ * west. With alpha = +5 deg the nose leans away from east: the thrust tilts the velocity west,
+ * where the plane turns with it and the same alpha now pushes the velocity back east through
+ * the vertical: the guard fails it at once (before, with the plane switched at 1e-9 rad from
+ * the vertical, the guard never armed: 1,000,000 steps, 3.9 s of CPU, to the step limit). */
+static void test_vertical_start(void)
+{
+    lv_mission *m;
+    lv_run *r;
+#define VERTICAL_START(ALPHA)                                                                  \
+    "mission: {name: vertical}\n"                                                              \
+    "environment: {world: planet, gravity: j2, atmosphere: us76}\n"                             \
+    "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: 500, start_vel: 1,\n" \
+    "             start_fpa_deg: 90, start_chi_deg: 90}\n"                                      \
+    "stages: [{name: core, dry_mass: 12000, propellant_mass: 15000,\n"                         \
+    "          engines: [{thrust_vac: 4.2e5, mdot: 150}]}]\n"                                   \
+    "phases:\n"                                                                               \
+    "  - {name: ascent, model: dof3, stages: [core], stop_time: 5, end: [burnout, impact],\n"  \
+    "     inputs: {alpha_deg: " ALPHA "}}\n"
+    const lv_phase_result *p = run1(VERTICAL_START("-5"), &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    double chi = NAN;
+    lv_err err;
+    if (p != NULL && p->state == LV_PHASE_DONE)
+        CHECK_OK(lv_run_final(r, 0, "heading", &chi, &err), &err);
+    printf("vertical start, alpha -5 deg: heading %.4f deg after %.3f s\n", chi / (M_PI / 180.0),
+           p != NULL ? p->report.end_time : NAN);
+    CHECK(fabs(chi / (M_PI / 180.0) - 90.0) < 0.5);
+    done(m, r);
+    p = run1(VERTICAL_START("5"), &m, &r);
+    check_fast_failure(p, "v_air_horizontal fell to its lower bound 0.01 m/s",
+                       "vertical start, alpha +5 deg");
+    done(m, r);
+#undef VERTICAL_START
+}
+
+/* A 6-DoF attitude commanded about the wind (prograde) from rest straight up: its roll
+ * reference does not exist there, and the start is refused when the mission is read, with
+ * the reason (before: the commanded roll followed the velocity's drift, flipped by 180 deg,
+ * and the step size collapsed at 3.8 s). The same phase held in the local frame flies. */
+static void test_dof6_vertical_start(void)
+{
+#define DOF6_START(GUIDANCE)                                                                  \
+    "mission: {name: six}\n"                                                                 \
+    "environment: {world: planet, gravity: j2}\n"                                            \
+    "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: 0, start_vel: 0,\n" \
+    "             start_fpa_deg: 90, start_chi_deg: 90}\n"                                   \
+    "stages:\n"                                                                              \
+    "  - {name: s1, dry_mass: 20000, propellant_mass: 100000,\n"                            \
+    "     engines: [{name: e, count: 4, thrust_vac: 5.0e5, isp_vac: 300}],\n"                 \
+    "     rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"                    \
+    "                  cg_full: {x: -15}, engine_position: {x: -30}}}\n"                      \
+    "phases:\n"                                                                             \
+    "  - {name: P, model: dof6, stages: [s1], stop_time: 4, attitude: {theta_deg: 90,\n"      \
+    "     psi_deg: 90}, " GUIDANCE ",\n"                                                      \
+    "     controller: {pitch: {kp: 1.5, kd: 1.2}, yaw: {kp: 1.5, kd: 1.2}, limit_deg: 6,\n"        \
+    "                  rate_limit_deg: 20}}\n"
+    write_file("guards.yaml", DOF6_START("guidance: {law: prograde}"));
+    lv_mission *m = NULL;
+    lv_err err;
+    CHECK(lv_mission_load("guards.yaml", &m, &err) != LV_OK && m == NULL);
+    printf("dof6 prograde from rest: %s\n", err.msg);
+    CHECK(strstr(err.msg, "guards.yaml:") != NULL);
+    CHECK(strstr(err.msg, "v_air_horizontal = 0 m/s is below its lower bound 0.01 m/s") != NULL);
+    CHECK(strstr(err.msg, "roll reference") != NULL);
+    lv_mission_free(m);
+    lv_run *r;
+    const lv_phase_result *p =
+        run1(DOF6_START("guidance: {law: attitude, frame: local, pitch_deg: 90, heading_deg: 90}"),
+             &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    if (p != NULL && p->state != LV_PHASE_DONE)
+        printf("dof6 local frame from rest: %s\n", p->error);
+    done(m, r);
+#undef DOF6_START
+}
+
 int main(void)
 {
     test_brake_to_zero();
@@ -287,5 +372,7 @@ int main(void)
     test_over_target();
     test_passed_ends();
     test_landings();
+    test_vertical_start();
+    test_dof6_vertical_start();
     return check_report("test_guards");
 }
