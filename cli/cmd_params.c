@@ -38,7 +38,7 @@ static void print_params(const char *path, const lv_mission *m)
     int w = 10;  /* the allowed-values column: as wide as its widest rule */
     int wn = 32; /* the names' column likewise (a breaker: 40-character names shifted the
                   * value column out of line) */
-    int wu = 8;  /* and the units' (a table's unit may be longer: "kg.m^2/s^2") */
+    int wu = 8;  /* and the units' (a table's unit may be longer: "kg.m2/s2") */
     for (size_t i = 0; i < n; i++) {
         lv_param_info p;
         lv_mission_param_info(m, i, &p);

@@ -112,7 +112,8 @@ static const struct {
     {"W", {1, 2, -3, 0, 0, 0, 0, 0}},
 };
 
-/* A unit string of lvsim's models ("m/s2", "kg/m3", "N", "1/s", "m^3/s^2", "kg.m2") in SI
+/* A unit string of lvsim's models, in the Modelica unit grammar (MLS 3.6 sec. 19.1: "m/s2",
+ * "kg/m3", "N", "1/s", "m3/s2", "kg.m2"; a '^' before an exponent is read too), in SI
  * base-unit exponents. 0, or -1 when it has a symbol or a form not known here. */
 static int unit_parse(const char *u, int e[U_N])
 {
@@ -397,7 +398,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         st = unit_note(us, d->params[j].unit, d->params[j].name, err);
     for (size_t k = 0; k < ny && st == LV_OK; k++)
         st = unit_note(us, d->outputs[k].unit, d->outputs[k].name, err);
-    /* the run parameters' units as `lvsim params` writes them ("m^2", "1"): declared where the
+    /* the run parameters' units as `lvsim params` writes them ("m2", "1"): declared where the
      * exporter knows them in base units, left out otherwise (a unit is optional) */
     const size_t nr = fp->n_run;
     char(*runits)[64] = calloc(nr + 1, sizeof *runits);

@@ -159,7 +159,7 @@ lv_status lv_aero_def_parse(const lv_pctx *c, const lv_ynode *n, const char *pha
     a->present = 1;
     snprintf(slot, sizeof slot, "%s.aero.s_ref", phase);
     if ((st = lv_pk_need(c, n, what, "s_ref", &v)) != LV_OK ||
-        (st = lv_pk_slot(c, v, what, "s_ref", slot, "m^2", LV_RANGE_POS, 0, &a->s_ref)) != LV_OK)
+        (st = lv_pk_slot(c, v, what, "s_ref", slot, "m2", LV_RANGE_POS, 0, &a->s_ref)) != LV_OK)
         return st;
     if ((v = lv_pk_get(n, "axes")) != NULL &&
         (st = lv_pk_enum(c, v, what, "axes", axes, &i)) != LV_OK)

@@ -73,7 +73,7 @@ static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_de
     } num[] = {
         { "radius", "m", r_len, &pd->radius },
         { "flattening", "", r_f, &pd->flattening },
-        { "gm", "m^3/s^2", r_gm, &pd->gm },
+        { "gm", "m3/s2", r_gm, &pd->gm },
         { "rotation_rate", "rad/s", r_w, &pd->rotation_rate },
         { "r_ref", "m", r_len, &pd->r_ref },
     };
@@ -144,7 +144,7 @@ static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t de
     static const char *const keys[] = { "table", "var", "model", "rho0", "scale_height",
                                         "temperature", NULL };
     static const char *const pkeys[3] = { "rho0", "scale_height", "temperature" };
-    static const char *const punit[3] = { "kg/m^3", "m", "K" };
+    static const char *const punit[3] = { "kg/m3", "m", "K" };
     const char *what = "environment, atmosphere";
     size_t i = deflt;
     lv_status st;
@@ -305,10 +305,10 @@ lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
         if (!flat)
             return lv_pk_fail(c, lv_pk_key(n, "g"), "%s: 'g' applies to world: flat only (a planet "
                         "world takes its gravity from 'planet' and 'gravity')", what);
-        if ((st = lv_pk_slot(c, v, what, "g", "environment.g", "m/s^2", LV_RANGE_POS, 0,
+        if ((st = lv_pk_slot(c, v, what, "g", "environment.g", "m/s2", LV_RANGE_POS, 0,
                              &e->g)) != LV_OK)
             return st;
-    } else if (flat && (st = lv_pk_slot_default(c, "environment.g", "m/s^2", 9.81, LV_RANGE_POS,
+    } else if (flat && (st = lv_pk_slot_default(c, "environment.g", "m/s2", 9.81, LV_RANGE_POS,
                                                 &e->g)) != LV_OK) {
         return st;
     }

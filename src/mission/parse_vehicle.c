@@ -147,9 +147,9 @@ static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *s
     }
     snprintf(slot, sizeof slot, "%s.exit_area", e->name);
     if ((v = lv_pk_get(n, "exit_area")) != NULL)
-        st = lv_pk_slot(c, v, what, "exit_area", slot, "m^2", LV_RANGE_NONNEG, 0, &e->exit_area);
+        st = lv_pk_slot(c, v, what, "exit_area", slot, "m2", LV_RANGE_NONNEG, 0, &e->exit_area);
     else
-        st = lv_pk_slot_default(c, slot, "m^2", 0.0, LV_RANGE_NONNEG, &e->exit_area);
+        st = lv_pk_slot_default(c, slot, "m2", 0.0, LV_RANGE_NONNEG, &e->exit_area);
     if (st != LV_OK)
         return st;
     /* the throttle range c_s may take (guidance's throttle laws and tables are clamped into

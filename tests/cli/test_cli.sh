@@ -353,7 +353,7 @@ line_stop=$(grep -n "stop_time: 140 " "$mission" | head -1 | cut -d: -f1)
 expect 0 "^stage1\.propellant_mass +27000 +kg +>= 0 +$line_prop\$" -- "$lvsim" params "$mission"
 expect 0 "^P1\.stop_time +140 +s +[^ ].* $line_stop\$" -- "$lvsim" params "$mission"
 expect 0 "^start_fpa +1\.570796327 +rad " -- "$lvsim" params "$mission"
-expect 0 "^environment\.g +9\.81 +m/s\^2 +> 0 " -- "$lvsim" params "$mission"
+expect 0 "^environment\.g +9\.81 +m/s2 +> 0 " -- "$lvsim" params "$mission"
 expect 0 "^P[0-9]\.[a-z_.]+ +[-0-9.e+]+ +[^ ]+ +.* default\$" -- "$lvsim" params "$mission"
 expect 0 "^# mission 'paper-test-case' .*: [0-9]+ parameters" -- "$lvsim" params "$mission"
 expect 2 "bad_cycle.yaml:[0-9]+:[0-9]+: phase .*cycle" -- "$lvsim" params "$src/tests/missions/bad_cycle.yaml"

@@ -501,7 +501,7 @@ static void test_values(void)
     BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: -1}\n",
         "bad.yaml:5:55: phase 'P1': stop_time -1 s must be greater than the start time 0 s");
     BAD(HEAD STAGES PHASE "environment: {g: 0}\n",
-        "bad.yaml:6:18: environment: g must be > 0 m/s^2, found 0");
+        "bad.yaml:6:18: environment: g must be > 0 m/s2, found 0");
     BAD(HEAD STAGES PHASE "environment: {world: planet, g: 3.7}\n",
         "bad.yaml:6:30: environment: 'g' applies to world: flat only");
     BAD(HEAD STAGES PHASE "environment: {gravity: j2}\n",
@@ -581,7 +581,7 @@ static void test_engines(void)
     BAD(ENG("{thrust_vac: 1, isp_vac: 300, count: 0}"),
         "bad.yaml:7:46: stage 's1', engine #1: count: an integer >= 1 expected, found 0");
     BAD(ENG("{thrust_vac: 1, mdot: 1, exit_area: -1}"),
-        "bad.yaml:7:45: stage 's1', engine #1: exit_area must be >= 0 m^2, found -1");
+        "bad.yaml:7:45: stage 's1', engine #1: exit_area must be >= 0 m2, found -1");
     /* tables that do not load: the loader's message behind the mission's position */
     BAD(ENG("{name: e, table: data/bad_order.csv}"),
         "bad.yaml:7:19: stage 's1', engine 'e': table: " LV_MISSION_DIR "/data/bad_order.csv:5:");
@@ -787,7 +787,7 @@ static void test_environment(void)
     BAD(PW "  gravity: sh:0\n",
         "bad.yaml:8:12: environment: gravity: gravity model 'sh:0': degree must be 1..10000");
     BAD(PW "  atmosphere: {model: exp, rho0: 0}\n",
-        "bad.yaml:8:34: environment, atmosphere: rho0 must be > 0 kg/m^3, found 0");
+        "bad.yaml:8:34: environment, atmosphere: rho0 must be > 0 kg/m3, found 0");
     BAD(PW "  atmosphere: {model: us76, scale_height: 7000}\n",
         "bad.yaml:8:29: environment, atmosphere: 'scale_height' belongs to model: exp (this is "
         "us76)");

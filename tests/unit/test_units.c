@@ -24,14 +24,16 @@ static const char *const dimensionless[] = {
 
 static size_t n_vars, n_one;
 
-/* An SI unit string as lvsim writes them: "1", "m", "m/s2", "kg/m3", "rad.s", "1/rad", "m^2". */
+/* An SI unit string as lvsim writes them, in the Modelica unit grammar (MLS 3.6 sec. 19.1,
+ * which .mat readers and FMI importers parse): "1", "m", "m/s2", "kg/m3", "rad.s", "1/rad",
+ * "m2", "m3/s2" - an exponent follows its symbol directly, never after '^'. */
 static int unit_ok(const char *u)
 {
     if (u == NULL || u[0] == '\0' || strcmp(u, "-") == 0)
         return 0;
     for (const char *c = u; *c; c++)
         if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ||
-              *c == '/' || *c == '^' || *c == '.'))
+              *c == '/' || *c == '.' || *c == '-'))
             return 0;
     return 1;
 }
