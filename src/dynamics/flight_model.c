@@ -191,6 +191,7 @@ int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines)
 
 int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin)
 {
+    rt->thrust_last = -1.0; /* not known before the first right-hand side */
     const lv_flight_core *k = rt->core;
     lv_flight_to_ecef(k->world, t0, x + k->i_r, x + k->i_v, kin);
     const double rn = lv_v3_norm(kin->r_ecef);
@@ -268,7 +269,8 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
         return 0;
     }
     const unsigned refs = lv_guid_refs(k->law, &rt->guid, t);
-    const int thrusts = rt->thrust_last > 0.0;
+    /* before the first right-hand side (the start check) the engines' mode tells */
+    const int thrusts = rt->thrust_last > 0.0 || (rt->thrust_last < 0.0 && rt->engines_on);
     lv_vec3 v_air = kin.v_rel;
     if ((refs & LV_GREF_WIND) && w->wind != NULL) {
         double w_ned[3] = {0.0, 0.0, 0.0};
@@ -283,8 +285,7 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
                 qi = lv_v3_norm(v_air);
             break;
         case LV_FGUARD_VERTICAL:
-            /* the engines' mode for a 6-DoF: at the start no right-hand side ran yet */
-            if ((refs & LV_GREF_WIND) && (rt->normal_last || (k->rolls && rt->engines_on))) {
+            if ((refs & LV_GREF_WIND) && (rt->normal_last || (k->rolls && thrusts))) {
                 const double vd = lv_v3_dot(v_air, kin.d_ax);
                 qi = lv_v3_norm(lv_v3_sub(v_air, lv_v3_scale(kin.d_ax, vd)));
             }

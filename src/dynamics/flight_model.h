@@ -64,7 +64,8 @@ typedef struct lv_flight_rt {
     double m_burnout;           /* kg: the start mass minus the burning stage's propellant */
     double r0_unit[3];          /* ECEF unit vector of the start point (downrange) */
     lv_guid_rt guid;            /* the steering law's start frame, cursors, trigonometry */
-    double thrust_last;         /* N: the thrust of the latest right-hand side (the guards) */
+    double thrust_last;         /* N: the thrust of the latest right-hand side (the guards);
+                                   -1 before the first (then engines_on tells) */
     int normal_last;            /* 1: a force normal to the air-relative velocity acted there */
     char msg[LV_ERR_MSG_MAX];   /* why the last callback failed */
     char tev[LV_EVENT_NAME_MAX]; /* the name of the latest time event */

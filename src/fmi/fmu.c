@@ -1052,6 +1052,9 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
                     why[0] ? ": " : "", why);
     }
     if (f->nd > 0) {
+        /* with the forces of the start, as lv_simulate (simulate.c): a failure shows later */
+        if (f->d->rhs(f->t, f->x, f->p, f->xdot, f->inst) != 0) {
+        }
         if (f->d->domain_q(f->t, f->x, f->p, f->q, f->inst) != 0) {
             f->mode = M_ERROR;
             return FAIL(f, "model '%s': the start state cannot be evaluated at t = %g s: %s",

@@ -1204,6 +1204,11 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
         goto fail;
     }
     if (r->nd > 0) { /* the start state must lie in the model's domain */
+        /* with the forces of the start, which guards depend on (a flight model's guard of the
+         * wind's vertical plane applies while its engines thrust); a right-hand side that
+         * fails here fails again at the first step, where the integrator reports it */
+        if (d->rhs(s->start_time, r->x, r->p, r->xdot, inst) != 0) {
+        }
         if (d->domain_q(s->start_time, r->x, r->p, r->q, inst) != 0) {
             const char *why = d->last_error ? d->last_error(inst) : NULL;
             st = lv_fail(err, LV_ERR_INPUT, "model '%s': the start state cannot be evaluated "

@@ -362,6 +362,12 @@ static void test_dof6_vertical_start(void)
     if (p != NULL && p->state != LV_PHASE_DONE)
         printf("dof6 local frame from rest: %s\n", p->error);
     done(m, r);
+    /* without thrust (throttle 0) the roll reference steers nothing: accepted (it falls) */
+    p = run1(DOF6_START("guidance: {law: prograde}, inputs: {throttle: 0}"), &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    if (p != NULL && p->state != LV_PHASE_DONE)
+        printf("dof6 prograde coast from rest: %s\n", p->error);
+    done(m, r);
 #undef DOF6_START
 }
 
