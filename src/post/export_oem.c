@@ -1,6 +1,7 @@
 /* export_oem.c - <stage>.oem: CCSDS Orbit Ephemeris Message 2.0, KVN (CCSDS 502.0-B-2,
  * sections 5 and 7: header, META_START/META_STOP blocks, data lines "epoch x y z x_dot y_dot
- * z_dot" in km and km/s) for the parts of a body's flight above 100 km, Earth-fixed. Epochs are
+ * z_dot" in km and km/s) for the orbital arcs of a body's flight (above 100 km, periapsis above
+ * the surface), Earth-fixed. Epochs are
  * UTC with its leap seconds: CCSDS ASCII time code A (301.0-B-4, section 3.5) writes an instant
  * inside one as 23:59:60.ffffff. */
 #define _POSIX_C_SOURCE 200809L
@@ -18,7 +19,7 @@
 #include "lvsim/lv_planet.h"
 #include "lvsim/lvsim.h"
 
-#define OEM_H_MIN 100e3  /* m: a row is "orbital" at or above this geodetic altitude */
+#define OEM_H_MIN 100e3  /* m: an orbital row is at or above this geodetic altitude */
 #define EARTH_TOL_M 1e3  /* m: first row farther off the WGS-84 Earth: not an Earth mission */
 #define ROW_TOL_M 1.0    /* m: r_eci and lat/lon/h of one row must agree to this */
 
@@ -66,14 +67,40 @@ static size_t next_row(const lv_ex_run *r, const lv_ex_body *b, size_t i)
     return b->n_rows;
 }
 
-/* A portion: rows from `first` while at or above 100 km; its last row in *end_row, the row
- * after it (the next portion's search start) returned, and its number of rows in *n. */
+/* The osculating periapsis radius [m] of a row's inertial state about a body of
+ * gravitational parameter gm [m^3/s^2], for any conic: r_p = h^2 / (gm (1 + e)), with the
+ * specific angular momentum h = |r x v| and e = sqrt(1 + 2 E h^2 / gm^2) from the vis-viva
+ * energy E = v^2/2 - gm/r (Vallado, Fundamentals of Astrodynamics, 4th ed., eqs. 2-79, 2-80). */
+static double periapsis_radius(const lv_ex_row *row, double gm)
+{
+    const double *r = row->r_eci, *v = row->v_eci;
+    const double hx = r[1] * v[2] - r[2] * v[1], hy = r[2] * v[0] - r[0] * v[2],
+                 hz = r[0] * v[1] - r[1] * v[0];
+    const double h2 = hx * hx + hy * hy + hz * hz;
+    const double rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const double e_sp = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - gm / rn;
+    const double e2 = 1.0 + 2.0 * e_sp * h2 / (gm * gm);
+    const double e = e2 > 0.0 ? sqrt(e2) : 0.0;
+    return h2 / (gm * (1.0 + e));
+}
+
+/* A row of an orbital arc: at or above 100 km, on a conic whose periapsis lies above the
+ * Earth's surface (outside the WGS-84 equatorial radius, which no point of the surface
+ * exceeds): a suborbital arc above 100 km, which comes down again, is none. */
+static int orbital(const lv_planet *earth, const lv_ex_row *row)
+{
+    return row->h >= OEM_H_MIN && periapsis_radius(row, earth->gm) > earth->a;
+}
+
+/* A portion: rows from `first` while orbital; its last row in *end_row, the row after it (the
+ * next portion's search start) returned, and its number of rows in *n. */
 static size_t portion(const lv_ex_run *r, const lv_ex_body *b, size_t first, size_t *end_row,
                       size_t *n)
 {
+    const lv_planet earth = lv_planet_earth();
     size_t i = first, k = 0;
     *end_row = first;
-    while (i < b->n_rows && b->rows[i].h >= OEM_H_MIN) {
+    while (i < b->n_rows && orbital(&earth, &b->rows[i])) {
         *end_row = i;
         k++;
         i = next_row(r, b, i);
@@ -89,8 +116,9 @@ static void put_segment(FILE *f, const lv_ex_run *r, const lv_ex_body *b, size_t
     char t_a[48], t_b[48];
     lv_ex_iso(r, b->rows[first].t, "", t_a, sizeof t_a);
     lv_ex_iso(r, b->rows[end_row].t, "", t_b, sizeof t_b);
-    fprintf(f, "\nMETA_START\nCOMMENT portion %zu of %zu above 100 km, mission time %.6f .. "
-               "%.6f s\n", seg, n_seg, b->rows[first].t, b->rows[end_row].t);
+    fprintf(f, "\nMETA_START\nCOMMENT orbital portion %zu of %zu (above 100 km, periapsis above "
+               "the Earth's surface), mission time %.6f .. %.6f s\n", seg, n_seg,
+            b->rows[first].t, b->rows[end_row].t);
     fputs("OBJECT_NAME = ", f);
     put_value(f, b->name);
     fputs("\nOBJECT_ID = ", f);
@@ -110,13 +138,31 @@ static void put_segment(FILE *f, const lv_ex_run *r, const lv_ex_body *b, size_t
     }
 }
 
-/* Body b: its rows (next_row) checked, then its portions above 100 km of at least two rows
+/* A body without an OEM now: the <body>.oem an earlier export of the same results wrote
+ * (before this rule, or of data since rerun) would contradict this one; it is removed when
+ * its first lines prove it lvsim's (as this writer begins every file), kept otherwise. */
+static void drop_stale(const lv_ex_run *r, const lv_ex_body *b)
+{
+    char path[4400], head[128];
+    snprintf(path, sizeof path, "%s/%s.oem", r->outdir, b->name);
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return;
+    const size_t n = fread(head, 1, sizeof head - 1, f);
+    fclose(f);
+    head[n] = '\0';
+    static const char mine[] = "CCSDS_OEM_VERS = 2.0\nCOMMENT lvsim ";
+    if (strncmp(head, mine, sizeof mine - 1) == 0 && remove(path) == 0)
+        lv_ex_report(r, "oem", NULL, "%s: removed its earlier %s.oem", b->name, b->name);
+}
+
+/* Body b: its rows (next_row) checked, then its orbital portions of at least two rows
  * counted ("portion k of n"); OUTDIR/<body>.oem written when there is one, each row's state
  * computed again as it is written. */
 static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, lv_err *err)
 {
     const lv_planet earth = lv_planet_earth();
-    double h_max = -INFINITY;
+    double h_max = -INFINITY, rp_max = -INFINITY;
     for (size_t i = next_row(r, b, SIZE_MAX); i < b->n_rows;
          i = next_row(r, b, i)) {
         const lv_ex_row *row = &b->rows[i];
@@ -131,6 +177,7 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, lv_err *err
             return lv_fail(err, LV_ERR_INPUT, "%s:%zu: r_eci and lat/lon/h disagree by %.3g m",
                            b->path, row->line, off);
         h_max = fmax(h_max, row->h);
+        rp_max = fmax(rp_max, periapsis_radius(row, earth.gm));
     }
     size_t n_seg = 0;
     for (size_t i = next_row(r, b, SIZE_MAX); i < b->n_rows;) {
@@ -140,8 +187,14 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, lv_err *err
         i = n > 0 ? j : next_row(r, b, i);
     }
     if (n_seg == 0) {
-        lv_ex_report(r, "oem", NULL, "%s: not written: never above 100 km (highest %.1f km)",
-                     b->name, fabs(h_max) < 50.0 ? 0.0 : h_max / 1e3); /* no "-0.0" */
+        drop_stale(r, b);
+        if (!(h_max >= OEM_H_MIN))
+            lv_ex_report(r, "oem", NULL, "%s: not written: never above 100 km (highest %.1f "
+                         "km)", b->name, fabs(h_max) < 50.0 ? 0.0 : h_max / 1e3); /* no -0.0 */
+        else
+            lv_ex_report(r, "oem", NULL, "%s: not written: no orbital arc (suborbital: its "
+                         "highest periapsis %.1f km below the equatorial surface; highest "
+                         "altitude %.1f km)", b->name, (earth.a - rp_max) / 1e3, h_max / 1e3);
         return LV_OK;
     }
 
@@ -188,7 +241,7 @@ static lv_status write_body(const lv_ex_run *r, const lv_ex_body *b, lv_err *err
     }
     st = lv_atomic_commit(&out, err); /* checks that every write reached the file */
     if (st == LV_OK)
-        lv_ex_report(r, "oem", path, "%zu portion%s above 100 km", n_seg, n_seg == 1 ? "" : "s");
+        lv_ex_report(r, "oem", path, "%zu orbital portion%s", n_seg, n_seg == 1 ? "" : "s");
     return st;
 }
 
@@ -217,4 +270,4 @@ static lv_status write_oem(const lv_ex_run *r, lv_err *err)
 
 const lv_ex_format lv_ex_oem = {
     "oem", "<stage>.oem", "*.oem",
-    "CCSDS OEM 2.0 (KVN): each body's orbital portions above 100 km, Earth only", write_oem};
+    "CCSDS OEM 2.0 (KVN): each body's orbital arcs (above 100 km, periapsis above the surface), Earth only", write_oem};

@@ -382,7 +382,8 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         }
         fputs("</td></tr>\n", f);
         static const char *const nk[2] = {"max_n_axial", "max_n_normal"};
-        static const char *const nt[2] = {"max axial load factor", "max normal load factor"};
+        static const char *const nt[2] = {"max axial load factor in flight",
+                                          "max normal load factor in flight"};
         for (int i = 0; i < 2; i++) {
             const cJSON *n = cJSON_GetObjectItemCaseSensitive(b, nk[i]);
             key_row(f, nt[i]);
@@ -446,6 +447,8 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             kv(f, "y", jnum(gc, "y"), 1e-3, 3, "km", &first);
             kv(f, "distance from the launch site", jnum(gc, "distance"), 1e-3, 3, "km", &first);
             kv(f, "speed", jnum(gc, "speed"), 1.0, 1, "m/s", &first);
+            /* the contact row's load: not in the flight's maxima above */
+            kv(f, "axial load factor at contact", jnum(gc, "n_axial"), 1.0, 3, "g0", &first);
             fputs("</td></tr>\n", f);
         }
         fputs("</table>\n", f);

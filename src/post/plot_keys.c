@@ -2,7 +2,9 @@
  * summary.json, the phase CSVs, the body trajectories): final state, maximum dynamic
  * pressure with its time and altitude, maximum axial and normal load factor, the state at
  * each burnout and separation, the injection state and osculating orbit of a body that
- * reaches orbit (periapsis above 100 km, e < 1; e >= 1: escape), and the impact or landing point with its distance from the launch site.
+ * reaches orbit (periapsis above 100 km, e < 1; e >= 1: escape) or the end of a suborbital
+ * powered flight it coasts up from, and the impact or landing point with its distance from
+ * the launch site and its load (left out of the load maxima).
  * Written to OUTDIR/key_figures.json (SI units) and shown by the report (plot_html.c).
  * Definitions: docs/visualization.md ("Key figures"); tests/python/check_key_figures.py
  * recomputes every number from the CSV files. */
@@ -132,6 +134,7 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     const lv_results_table *pow_t = NULL;
     size_t pow_r = 0;
     const char *pow_phase = NULL;
+    size_t pow_k = 0;
     for (size_t i = 0; i < b->n; i++) {
         const size_t k = b->phase[i];
         const lv_results_phase *ph = &res->phases[k];
@@ -143,6 +146,9 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
         last_t = t;
         last_k = k;
         const cols c = find_cols(t);
+        /* a phase that ends on the ground: its last row is the touchdown or impact, whose load
+         * (a landing law's last braking, a crash) is the ground contact's, not the flight's */
+        const int grounded = ph->end_event != NULL && strcmp(ph->end_event, "impact") == 0;
         for (size_t r = 0; r < t->n_rows; r++) {
             /* q only where the atmosphere model is defined: rho > 0, h <= its top */
             const double q = at(t, r, c.q), rho = at(t, r, c.rho), h = at(t, r, c.h);
@@ -152,14 +158,15 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 q_h = h;
             }
             /* axial: the model's n_axial, or thrust / (m g0) where there is no aerodynamics */
+            const int contact = grounded && r + 1 == t->n_rows;
             double na = c.nax >= 0 ? at(t, r, c.nax)
                                    : at(t, r, c.thrust) / (at(t, r, c.m) * G0);
-            if (isfinite(na) && na > na_max) {
+            if (!contact && isfinite(na) && na > na_max) {
                 na_max = na;
                 na_t = at(t, r, c.t);
             }
             const double nn = fabs(at(t, r, c.nno));
-            if (isfinite(nn) && nn > nn_max) {
+            if (!contact && isfinite(nn) && nn > nn_max) {
                 nn_max = nn;
                 nn_t = at(t, r, c.t);
             }
@@ -167,6 +174,7 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 pow_t = t;
                 pow_r = r;
                 pow_phase = ph->name;
+                pow_k = k;
             }
         }
         /* separation: the phase starts with fewer stages than its parent */
@@ -238,20 +246,33 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     cJSON_AddItemToObject(o, "max_n_normal", nn ? nn : cJSON_CreateNull());
     cJSON_AddItemToObject(o, "burnouts", burn);
     cJSON_AddItemToObject(o, "separations", sep);
-    /* injection: the end of powered flight, an orbit if its periapsis stays above 100 km */
+    /* injection: the end of powered flight, an orbit if its periapsis stays above 100 km; a
+     * suborbital one only where the body coasts up from it (fpa_inertial > 0: its ballistic
+     * apoapsis is ahead), not a landing burn's touchdown or a burn on the way down */
     if (injection != NULL) {
         const cJSON *orb = cJSON_GetObjectItemCaseSensitive(injection, "orbit");
         const cJSON *peri = cJSON_GetObjectItemCaseSensitive(orb, "peri_alt");
         const cJSON *ecc = cJSON_GetObjectItemCaseSensitive(orb, "ecc");
+        const cJSON *fpa = cJSON_GetObjectItemCaseSensitive(injection, "fpa_inertial");
         const int above = cJSON_IsNumber(peri) && peri->valuedouble > ORBIT_PERI_MIN;
         const int bound = cJSON_IsNumber(ecc) && ecc->valuedouble < 1.0;
-        cJSON_AddBoolToObject(injection, "reaches_orbit", above && bound);
-        cJSON_AddStringToObject(injection, "trajectory", !above ? "suborbital"
-                                                         : bound ? "orbit" : "escape");
-        cJSON_AddItemToObject(o, "injection", injection);
-    } else {
-        cJSON_AddNullToObject(o, "injection");
+        const lv_results_phase *pp = &res->phases[pow_k];
+        const int lands = pow_k == last_k && pp->end_event != NULL &&
+                          strcmp(pp->end_event, "impact") == 0; /* burns to the ground */
+        const int climbs = cJSON_IsNumber(fpa) && fpa->valuedouble > 0.0 && !lands;
+        if (!above && !climbs) {
+            cJSON_Delete(injection);
+            injection = NULL;
+        } else {
+            cJSON_AddBoolToObject(injection, "reaches_orbit", above && bound);
+            cJSON_AddStringToObject(injection, "trajectory", !above ? "suborbital"
+                                                             : bound ? "orbit" : "escape");
+        }
     }
+    if (injection != NULL)
+        cJSON_AddItemToObject(o, "injection", injection);
+    else
+        cJSON_AddNullToObject(o, "injection");
     /* ground contact: its last phase ended by an impact event */
     cJSON *gc = NULL;
     const lv_results_phase *lp = last_t ? &res->phases[last_k] : NULL;
@@ -265,6 +286,11 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
         cJSON_AddStringToObject(gc, "phase", lp->name);
         num(gc, "t", at(last_t, r, c.t));
         num(gc, "speed", v);
+        /* the load of the contact row, left out of the flight's maxima */
+        num(gc, "n_axial", c.nax >= 0 ? at(last_t, r, c.nax)
+                                      : at(last_t, r, c.thrust) / (at(last_t, r, c.m) * G0));
+        if (c.nno >= 0)
+            num(gc, "n_normal", fabs(at(last_t, r, c.nno)));
         double dist = NAN;
         if (!flat && c.lat >= 0 && c0.lat >= 0) {
             const double la = at(last_t, r, c.lat), lo = at(last_t, r, c.lon);

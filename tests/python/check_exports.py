@@ -396,6 +396,25 @@ def ecef_velocity(r):
     return (c * vx + s * vy, -s * vx + c * vy, vz)
 
 
+WGS84_A = 6378137.0           # m, NIMA TR8350.2 table 3.1
+WGS84_GM = 3.986004418e14     # m^3/s^2, the same
+
+
+def periapsis_radius(r):
+    """The osculating periapsis radius from the row's ECI state, by the eccentricity vector
+    e = ((v^2 - GM/r) r - (r.v) v) / GM and the semi-latus rectum p = h^2/GM:
+    r_p = p / (1 + |e|) (Vallado, 4th ed., eqs. 2-78, 2-79; independent of lvsim's energy form)."""
+    rv = [r["r_eci_x"], r["r_eci_y"], r["r_eci_z"]]
+    vv = [r["v_eci_x"], r["v_eci_y"], r["v_eci_z"]]
+    rn = math.sqrt(sum(x * x for x in rv))
+    v2 = sum(x * x for x in vv)
+    rdv = sum(a * b for a, b in zip(rv, vv))
+    ev = [((v2 - WGS84_GM / rn) * a - rdv * b) / WGS84_GM for a, b in zip(rv, vv)]
+    h = [rv[1] * vv[2] - rv[2] * vv[1], rv[2] * vv[0] - rv[0] * vv[2], rv[0] * vv[1] - rv[1] * vv[0]]
+    p = sum(x * x for x in h) / WGS84_GM
+    return p / (1.0 + math.sqrt(sum(x * x for x in ev)))
+
+
 def check_oem(fo):
     files = sorted(glob.glob(os.path.join(fo.path, "*.oem")))
     if fo.summary["world"] == "flat":
@@ -403,7 +422,8 @@ def check_oem(fo):
         return
     for b, (_, recs) in fo.bodies.items():
         # The rule: the body's rows in time order, one per microsecond, in runs of at least
-        # two rows at or above 100 km geodetic altitude.
+        # two orbital rows: at or above 100 km geodetic altitude, and the periapsis of the
+        # osculating conic above the WGS-84 equatorial radius (docs/exports.md).
         rows, last = [], None
         for r in recs:
             if last is None or tick(r["time"]) > last:
@@ -411,7 +431,7 @@ def check_oem(fo):
                 last = tick(r["time"])
         runs, cur = [], []
         for r in rows + [None]:
-            if r is not None and r["h"] >= 100e3:
+            if r is not None and r["h"] >= 100e3 and periapsis_radius(r) > WGS84_A:
                 cur.append(r)
             else:
                 if len(cur) >= 2:
@@ -419,12 +439,12 @@ def check_oem(fo):
                 cur = []
         name = os.path.join(fo.path, b + ".oem")
         if not runs:
-            check(not os.path.exists(name), name + ": written, but no rows above 100 km")
+            check(not os.path.exists(name), name + ": written, but no orbital rows")
             continue
         if not check(os.path.exists(name), name + ": missing"):
             continue
         header, blocks = read_oem(name)
-        check(len(blocks) == len(runs), "%s: %d blocks, %d runs above 100 km"
+        check(len(blocks) == len(runs), "%s: %d blocks, %d orbital runs"
               % (name, len(blocks), len(runs)))
         for (meta, data), run in zip(blocks, runs):
             check(meta.get("OBJECT_NAME") == b, name + ": OBJECT_NAME")

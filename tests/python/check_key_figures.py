@@ -107,9 +107,13 @@ def key_figures(outdir):
         burn, sep, inj = [], [], None
         for pn in names:
             p, rs = by_name[pn], rows[pn]
-            for r in rs:
+            grounded = p["end"].get("event") == "impact"
+            for i, r in enumerate(rs):
                 if "q_dyn" in r and r["rho"] > 0 and r["h"] <= ATMO_TOP and (q is None or r["q_dyn"] > q[0]):
                     q = (r["q_dyn"], r["time"], r["h"])
+                # the ground contact's row (a phase ended by impact: its last) is no flight load
+                if grounded and i == len(rs) - 1:
+                    continue
                 n = r["n_axial"] if "n_axial" in r else r["thrust"] / (r["m"] * G0)
                 if na is None or n > na[0]:
                     na = (n, r["time"])
@@ -130,13 +134,23 @@ def key_figures(outdir):
                                                           ("peri_alt", "peri_alt"))}
                     above, bound = r["peri_alt"] > 100e3, r["ecc"] < 1
                     inj["trajectory"] = "suborbital" if not above else "orbit" if bound else "escape"
+                    inj_phase = pn
+        # a suborbital end of powered flight only where the body coasts up from it, and not a
+        # burn that ends on the ground (a landing)
+        if inj is not None and inj["trajectory"] == "suborbital":
+            lands = inj_phase == names[-1] and by_name[names[-1]]["end"].get("event") == "impact"
+            if not (inj["fpa_inertial"] > 0) or lands:
+                inj = None
         last = rows[names[-1]][-1]
         final = dict(state(last, names[-1]), stage_mass=traj[-1]["stage_mass"])
         lp = by_name[names[-1]]
         gc = None
         if lp["end"].get("event") == "impact":
             r0 = rows[names[0]][0]
-            gc = {"t": last["time"], "speed": first(last, "v_rel", "speed")}
+            gc = {"t": last["time"], "speed": first(last, "v_rel", "speed"),
+                  "n_axial": last["n_axial"] if "n_axial" in last else last["thrust"] / (last["m"] * G0)}
+            if "n_normal" in last:
+                gc["n_normal"] = abs(last["n_normal"])
             gc["kind"] = "landing" if gc["speed"] < 10 else "impact"
             if not flat:
                 s1 = math.sin(0.5 * (last["lat"] - r0["lat"]))
@@ -229,13 +243,17 @@ def main():
                 if inj is not None:
                     check(199e3 < inj["orbit"]["peri_alt"] < inj["orbit"]["apo_alt"] < 201e3,
                           "rlv us orbit: %r" % inj["orbit"])
-                check(bodies["ms"]["injection"]["trajectory"] == "suborbital", "rlv ms suborbital")
-                check("ballistic apoapsis altitude" in html, "rlv: suborbital end without its apoapsis")
+                # the main stage's last burn, the turn-around, ends on the way down (fpa_inertial
+                # -1.14 rad): no end of powered flight to report (issue 26: it showed one with a
+                # ballistic apoapsis below the ground)
+                check(bodies["ms"]["injection"] is None, "rlv ms: %r" % bodies["ms"]["injection"])
             else:
                 bodies = {b["name"]: b for b in got["bodies"]}
                 check(bodies["upper"]["injection"]["trajectory"] == "escape",
                       "dof3-branch upper: %r" % bodies["upper"]["injection"]["trajectory"])
-                check(bodies["core"]["injection"]["trajectory"] == "suborbital", "core suborbital")
+                check(bodies["core"]["injection"] is not None
+                      and bodies["core"]["injection"]["trajectory"] == "suborbital", "core suborbital")
+                check("ballistic apoapsis altitude" in html, "dof3-branch: suborbital end without its apoapsis")
                 check(bodies["core"]["ground_contact"]["kind"] == "impact", "core impact")
                 q = bodies["core"]["max_q"]
                 check(q is not None and q["h"] < 100e3, "core max q below 100 km: %r" % q)

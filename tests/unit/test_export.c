@@ -585,14 +585,15 @@ int main(void)
     }
 
     /* dof3 branch: rotating Earth; the upper stage and the core (apogee ~230 km) both fly
-     * above 100 km: one OEM each. The booster's impact at 663.9018142 s ends the mission. */
+     * above 100 km, but only the upper stage's conic clears the Earth (it escapes): one OEM;
+     * the core's ballistic arc (it impacts at 663.9018142 s, the mission's end) has none. */
     const char *dof3 = "export_out/dof3";
     if (run_mission("examples/dof3-branch/mission.yaml", dof3) == 0) {
         CHECK_OK(lv_export_run(dof3, LV_EXPORT_ALL, &err), &err);
         CHECK(exists(dof3, "mission.czml"));
         CHECK(exists(dof3, "mission.kml"));
         CHECK(exists(dof3, "upper.oem"));
-        CHECK(exists(dof3, "core.oem"));
+        CHECK(!exists(dof3, "core.oem"));
         check_registry(dof3);
         char iv[100];
         const double t1 = mission_end(dof3);
@@ -603,6 +604,23 @@ int main(void)
         /* One format alone, rewritten in place. */
         CHECK_OK(lv_export_run(dof3, LV_EXPORT_OEM, &err), &err);
         CHECK(!exists(dof3, "upper.oem.tmp"));
+        /* a core.oem of an earlier export (lvsim's first lines) contradicts the rule: removed;
+         * a file of the same name that is not lvsim's stays */
+        static const char *const heads[2] = {"CCSDS_OEM_VERS = 2.0\nCOMMENT lvsim 0.9 old\n",
+                                             "my own notes\n"};
+        for (int k = 0; k < 2; k++) {
+            char path[512];
+            snprintf(path, sizeof path, "%s/core.oem", dof3);
+            FILE *f = fopen(path, "w");
+            CHECK(f != NULL);
+            if (f != NULL) {
+                fputs(heads[k], f);
+                fclose(f);
+            }
+            CHECK_OK(lv_export_run(dof3, LV_EXPORT_OEM, &err), &err);
+            CHECK(exists(dof3, "core.oem") == (k == 1));
+        }
+        remove("export_out/dof3/core.oem");
     }
 
     test_leap_second();
