@@ -118,6 +118,51 @@ static void warn_saturation(const lv_run *run, size_t k, const lv_phase_result *
     }
 }
 
+/* A 6-DoF phase whose pointing error (the controller's pitch and yaw attitude errors, columns
+ * err_pitch, err_yaw: the rotation vector to the commanded attitude; roll, which the gimbal
+ * does not control, left out) grew past 90 deg after it had been within:
+ * the vehicle no longer followed its command, which the phase's model does not forbid (a
+ * tumbling body is a state like any other) but a reader of its results must know. From the
+ * written rows; an error above 90 deg from the start (a commanded flip being flown) counts
+ * only once it came within. */
+static void warn_attitude(const lv_run *run, size_t k, const lv_phase_result *r)
+{
+    const lv_result *rows = lv_run_rows(run, k);
+    size_t c[3], c_t;
+    static const char *const name[3] = {"err_roll", "err_pitch", "err_yaw"};
+    if (rows == NULL || lv_result_column(rows, "time", &c_t, NULL) != LV_OK)
+        return;
+    for (int j = 0; j < 3; j++)
+        if (lv_result_column(rows, name[j], &c[j], NULL) != LV_OK)
+            return;
+    const double lim = 0.5 * LV_PI;
+    int within = 0;
+    double t_lost = NAN, e_max = 0.0, t_max = NAN;
+    for (size_t i = 0; i < lv_result_rows(rows); i++) {
+        /* pitch and yaw: the pointing; roll is not controlled (one gimbal point) */
+        const double e = hypot(lv_result_value(rows, i, c[1]), lv_result_value(rows, i, c[2]));
+        if (!(e > lim)) {
+            within = 1;
+            continue;
+        }
+        if (!within)
+            continue;
+        if (isnan(t_lost))
+            t_lost = lv_result_value(rows, i, c_t);
+        if (e > e_max) {
+            e_max = e;
+            t_max = lv_result_value(rows, i, c_t);
+        }
+    }
+    if (isnan(t_lost))
+        return;
+    fprintf(stderr, "lvsim: warning: phase '%s': the pointing error passed 90 deg at t = %.3f s "
+            "(largest %.0f deg at t = %.3f s): the vehicle did not follow its commanded attitude; "
+            "a command that turns faster than the controller follows does that (one about the "
+            "air-relative velocity at low speed turns at about g/v) (columns err_pitch, "
+            "err_yaw)\n", r->name, t_lost, e_max / LV_DEG, t_max);
+}
+
 /* on_phase: a phase ended (under the run's lock). Rows are printed in run order: this one
  * and every later one that has already ended; a failure's reason at once on stderr. */
 static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void *user)
@@ -130,6 +175,7 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     if (r->state == LV_PHASE_FAILED)
         fprintf(stderr, "lvsim: %s\n", r->error);
     warn_saturation(run, k, r);
+    warn_attitude(run, k, r);
     while (ui->table && ui->next < n && ui->ended[ui->next])
         print_row(run, ui->next++, ui->wname);
     progress_print_end(ui->prog);

@@ -398,21 +398,46 @@ static lv_vec3 moment_transfer(lv_vec3 M_mrp, lv_vec3 r_mrp, lv_vec3 cg, lv_vec3
  * / 2) (the Euler axis and angle of a rotation matrix: Shuster, "A survey of attitude
  * representations", J. Astronaut. Sci. 41 (1993) 439-517); the rotation vector of the error
  * quaternion q_b^* q_c, twice its vector part for small angles. A positive component asks for a
- * positive rotation about that body axis. theta in [0, pi]: at theta = pi (commanded axes
- * upside down) the direction is undefined and e = 0 is returned along with the angle lost
- * (never met in a controlled flight). */
+ * positive rotation about that body axis. theta in [0, pi]. Near pi, where sin theta n
+ * vanishes and its direction is round-off, the axis comes from the symmetric part instead:
+ * (R + R^T)/2 = cos theta I + (1 - cos theta) n n^T, its largest diagonal's column
+ * normalised (Markley & Crassidis, Fundamentals of Spacecraft Attitude Determination and
+ * Control, 2014, sec. 2.9.3), signed along sin theta n; at theta = pi itself, where both
+ * signs are the same rotation, the sign that makes the axis's largest component positive: one
+ * answer, not one per step (a retrograde command from a prograde attitude chattered between
+ * the two until the step size collapsed, issue 27). */
 static lv_vec3 attitude_error(const lv_flight_axes *b, const lv_flight_axes *c)
 {
     const lv_vec3 bx = b->xb, by = b->yb, bz = b->zb, cx = c->xb, cy = c->yb, cz = c->zb;
-    const double tr = lv_v3_dot(bx, cx) + lv_v3_dot(by, cy) + lv_v3_dot(bz, cz);
-    const lv_vec3 sn = lv_v3(0.5 * (lv_v3_dot(bz, cy) - lv_v3_dot(by, cz)),
-                             0.5 * (lv_v3_dot(bx, cz) - lv_v3_dot(bz, cx)),
-                             0.5 * (lv_v3_dot(by, cx) - lv_v3_dot(bx, cy)));
+    const double r[3][3] = {{lv_v3_dot(bx, cx), lv_v3_dot(bx, cy), lv_v3_dot(bx, cz)},
+                            {lv_v3_dot(by, cx), lv_v3_dot(by, cy), lv_v3_dot(by, cz)},
+                            {lv_v3_dot(bz, cx), lv_v3_dot(bz, cy), lv_v3_dot(bz, cz)}};
+    const double tr = r[0][0] + r[1][1] + r[2][2];
+    const lv_vec3 sn = lv_v3(0.5 * (r[2][1] - r[1][2]), 0.5 * (r[0][2] - r[2][0]),
+                             0.5 * (r[1][0] - r[0][1]));
     const double s = lv_v3_norm(sn), ct = 0.5 * (tr - 1.0);
-    if (!(s > 0.0))
-        return lv_v3(0.0, 0.0, 0.0);
     const double theta = atan2(s, ct);
-    return lv_v3_scale(sn, theta / s);
+    if (ct > -0.5) /* theta < 120 deg: sin theta n is well conditioned */
+        return s > 0.0 ? lv_v3_scale(sn, theta / s) : lv_v3(0.0, 0.0, 0.0);
+    int k = 0;
+    for (int i = 1; i < 3; i++)
+        if (r[i][i] > r[k][k])
+            k = i;
+    double n[3];
+    for (int i = 0; i < 3; i++) /* column k of (R + R^T)/2 - cos theta I */
+        n[i] = 0.5 * (r[i][k] + r[k][i]) - (i == k ? ct : 0.0);
+    const double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(nn > 0.0))
+        return lv_v3(0.0, 0.0, 0.0);
+    lv_vec3 axis = lv_v3(n[0] / nn, n[1] / nn, n[2] / nn);
+    double d = lv_v3_dot(axis, sn);
+    if (fabs(d) <= 1e-12) { /* theta = pi: either sign; the one with its largest part > 0 */
+        const double m = fabs(axis.x) >= fabs(axis.y) && fabs(axis.x) >= fabs(axis.z) ? axis.x
+                         : fabs(axis.y) >= fabs(axis.z)                              ? axis.y
+                                                                                     : axis.z;
+        d = m;
+    }
+    return lv_v3_scale(axis, d < 0.0 ? -theta : theta);
 }
 
 /* PD/PID gimbal command of one axis before the deflection limit [rad]:

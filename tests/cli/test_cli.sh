@@ -493,6 +493,22 @@ expect 2 "'gimbal_pitch' is also a column of table 'gim': give it once" -- "$lvs
 dof6_yaml roll.csv > "$work/d6d.yaml"
 expect 2 "column 'gimbal_roll' is not an input \(gimbal_pitch, gimbal_yaw, throttle\)" -- "$lvsim" check "$work/d6d.yaml"
 
+# a 6-DoF retrograde burn braked to tens of m/s: the command turns faster than the gimbal
+# follows and the body tumbles (docs/models.md, "Lost pointing"): run says so, exit 0
+cat > "$work/d6tumble.yaml" <<YAML
+mission: {name: tumble}
+environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}
+parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 20000, start_vel: 300, start_fpa_deg: 0, start_chi_deg: 90}
+stages:
+  - {name: s1, dry_mass: 1000, propellant_mass: 9000, engines: [{thrust_vac: 200000, isp_vac: 300}],
+     rigid_body: {inertia_full: {xx: 1.0e3, yy: 5.0e4, zz: 5.0e4}, cg_full: {x: -5}, engine_position: {x: -10}}}
+phases:
+  - {name: p, model: dof6, stages: [s1], stop_time: 60, attitude: {psi_deg: 270},
+     guidance: {law: retrograde}, end: [impact],
+     controller: {pitch: {kp: 1.5, kd: 1.2}, yaw: {kp: 1.5, kd: 1.2}, limit_deg: 6, rate_limit_deg: 20}}
+YAML
+expect 0 "warning: phase 'p': the pointing error passed 90 deg at t = " -- "$lvsim" run "$work/d6tumble.yaml" -o "$work/d6tumble" --no-plots -q
+
 # lvsim target (issue 13): a drag-free shot over flat ground that must land 800 m away; the
 # closed form gives gamma = asin(800 g / v^2) / 2 = 25.8387 deg for 100 m/s
 shot() { # shot RANGE: the mission with its targeting section

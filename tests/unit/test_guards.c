@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
 
 static void write_file(const char *path, const char *text)
@@ -371,6 +372,57 @@ static void test_dof6_vertical_start(void)
 #undef DOF6_START
 }
 
+/* A 6-DoF retrograde burn (the breaker's case): the stage points against its velocity at the
+ * start, but its body is upright while the retrograde command (alpha = 180 deg) is upside
+ * down: an attitude error of exactly 180 deg about the roll axis, which the gimbal does not
+ * control. The error's axis there is undefined; computed from sin(theta) n it was round-off,
+ * its pitch and yaw parts flipped from step to step and the step size collapsed after
+ * 650,000 steps. With one axis for theta = pi the pitch and yaw errors stay ~0 while the
+ * burn brakes the stage (the first 15 s: 300 m/s at -30 deg down to ~50 m/s). */
+static void test_dof6_upside_down(void)
+{
+    lv_mission *m;
+    lv_run *r;
+    const lv_phase_result *p = run1(
+        "mission: {name: retro6}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 20000, start_vel: 300,\n"
+        "             start_fpa_deg: -30, start_chi_deg: 90}\n"
+        "stages:\n"
+        "  - {name: s1, dry_mass: 1000, propellant_mass: 9000,\n"
+        "     engines: [{thrust_vac: 200000, isp_vac: 300}],\n"
+        "     rigid_body: {inertia_full: {xx: 1.0e3, yy: 5.0e4, zz: 5.0e4}, cg_full: {x: -5},\n"
+        "                  engine_position: {x: -10}}}\n"
+        "phases:\n"
+        "  - {name: p, model: dof6, stages: [s1], stop_time: 15,\n"
+        "     attitude: {psi_deg: 270, theta_deg: 30}, guidance: {law: retrograde},\n"
+        "     controller: {pitch: {kp: 1.5, kd: 1.2}, yaw: {kp: 1.5, kd: 1.2}, limit_deg: 6,\n"
+        "                  rate_limit_deg: 20}, end: [impact]}\n",
+        &m, &r);
+    CHECK(p != NULL && p->state == LV_PHASE_DONE);
+    if (p != NULL)
+        printf("dof6 retrograde, upside-down command: %s, %ld steps, %.1f ms CPU\n",
+               p->state == LV_PHASE_DONE ? "done" : p->error, p->report.stats.steps,
+               1e3 * p->report.stats.cpu_time);
+    CHECK(p != NULL && p->report.stats.steps < 50000); /* was 630,000 to the collapse */
+    const lv_result *rows = r != NULL ? lv_run_rows(r, 0) : NULL;
+    size_t cp, cy, cr;
+    double worst = NAN, roll = NAN;
+    if (rows != NULL && lv_result_column(rows, "err_pitch", &cp, NULL) == LV_OK &&
+        lv_result_column(rows, "err_yaw", &cy, NULL) == LV_OK &&
+        lv_result_column(rows, "err_roll", &cr, NULL) == LV_OK) {
+        worst = 0.0;
+        for (size_t i = 0; i < lv_result_rows(rows); i++)
+            worst = fmax(worst, hypot(lv_result_value(rows, i, cp), lv_result_value(rows, i, cy)));
+        roll = fabs(lv_result_value(rows, 0, cr));
+    }
+    printf("  pointing error at most %.4f deg; roll error at the start %.4f deg\n",
+           worst / (M_PI / 180.0), roll / (M_PI / 180.0));
+    CHECK(worst < 5.0 * (M_PI / 180.0));
+    CHECK_CLOSE(roll, M_PI, 1e-6); /* the start's error: 180 deg about the roll axis */
+    done(m, r);
+}
+
 int main(void)
 {
     test_brake_to_zero();
@@ -380,5 +432,6 @@ int main(void)
     test_landings();
     test_vertical_start();
     test_dof6_vertical_start();
+    test_dof6_upside_down();
     return check_report("test_guards");
 }
