@@ -164,6 +164,19 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
     return LV_OK;
 }
 
+void lv_phase_stops(const lv_mission_def *d, const lv_phase_plan *pl, size_t k, const double *v,
+                    double start_time, lv_sim_stop *out)
+{
+    const lv_phase_def *ph = &d->phases[k];
+    for (size_t j = 0; j < pl->n_stops; j++) {
+        const lv_end_def *e = &ph->ends[pl->stop_end[j]];
+        const int is_time = e->kind == LV_END_TIME;
+        out[j] = (lv_sim_stop){pl->event_names[pl->n_model_events + j],
+                               is_time ? "time" : e->var,
+                               is_time ? start_time + v[e->value] : v[e->value], e->direction};
+    }
+}
+
 /* Phase k's start state lies in its model's domain: a root phase's whole start state (the
  * parameters and overrides as the file gives them: lv_sim_create evaluates start(), init() and
  * the domain), a child's overridden mass (its other states come from its parent at run time). */
@@ -192,8 +205,12 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     if (ph->parent >= 0)
         return LV_OK;
     double *values = calloc(pl->n_init + 1, sizeof *values);
-    if (values == NULL)
+    lv_sim_stop *stops = calloc(pl->n_stops + 1, sizeof *stops);
+    if (values == NULL || stops == NULL) {
+        free(values);
+        free(stops);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
     lv_sim_settings s;
     lv_sim_settings_default(&s);
     s.result_file = NULL;
@@ -210,10 +227,15 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     s.n_initial = pl->n_init;
     s.initial_names = pl->init_names;
     s.initial_values = values;
+    /* the ends on variables too, as the run gives them: one passed at the start is refused */
+    lv_phase_stops(d, pl, k, m->defaults, s.start_time, stops);
+    s.n_stops = pl->n_stops;
+    s.stops = stops;
     lv_sim *sim = NULL;
     lv_status st = lv_sim_create(pm->def, pm->inst, &s, &sim, err);
     lv_sim_free(sim);
     free(values);
+    free(stops);
     if (st != LV_OK && err != NULL)
         lv_drop_model_prefix(err, ph->name);
     if (st != LV_OK)

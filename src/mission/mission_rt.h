@@ -53,6 +53,12 @@ struct lv_mission {
  * phase's model built once with the file's values, the plans. lv_mission_load = parse + this. */
 lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err);
 
+/* Phase k's stop conditions (its ends on any variable or on time) as lv_simulate takes them,
+ * into out[pl->n_stops], with the slots' values v and the phase's start time (a time end is
+ * counted from it). The same for a run (run.c) and the load's start check (mission.c). */
+void lv_phase_stops(const lv_mission_def *d, const lv_phase_plan *pl, size_t k, const double *v,
+                    double start_time, lv_sim_stop *out);
+
 /* The phases (indices) whose models read slot s directly; returns the count written to out
  * (capacity: n_phases). */
 size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out);

@@ -354,14 +354,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     s->initial_values = c->values;
     s->n_final = pl->n_final;
     s->final_names = (const char *const *)pl->final_names;
-    for (size_t j = 0; j < pl->n_stops; j++) {
-        const lv_end_def *e = &ph->ends[pl->stop_end[j]];
-        const int is_time = e->kind == LV_END_TIME;
-        c->stops[j] = (lv_sim_stop){pl->event_names[pl->n_model_events + j],
-                                    is_time ? "time" : e->var,
-                                    is_time ? s->start_time + v[e->value] : v[e->value],
-                                    e->direction};
-    }
+    lv_phase_stops(d, pl, k, v, s->start_time, c->stops);
     s->n_stops = pl->n_stops;
     s->stops = c->stops;
     if (!(opt && opt->no_rows)) {

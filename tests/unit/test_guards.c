@@ -207,6 +207,24 @@ static void test_passed_ends(void)
     CHECK(strstr(err.msg, "guards.yaml:7:") != NULL);
     CHECK(strstr(err.msg, "the end 'speed' is already passed at the start t = 0 s") != NULL);
     CHECK(strstr(err.msg, "already 400 below it and still falling") != NULL);
+    /* an end on a variable (a stop condition) the same way: fpa 45 deg climbing in a pitch-45
+     * attitude, its fpa falls and will never rise through 60 deg from above (the breaker's) */
+    write_file("guards.yaml",
+               "mission: {name: fpa}\n"
+               "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+               "parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 1000, start_vel: 100,\n"
+               "             start_fpa_deg: 45, start_chi_deg: 90}\n"
+               "stages: [{name: s1, dry_mass: 1000, propellant_mass: 9000,\n"
+               "          engines: [{thrust_vac: 200000, isp_vac: 300}]}]\n"
+               "phases:\n"
+               "  - {name: p, model: dof3, stages: [s1], stop_time: 100,\n"
+               "     guidance: {law: attitude, frame: local, pitch_deg: 45, heading_deg: 90},\n"
+               "     end: [{fpa_deg: 60, direction: falling}]}\n");
+    m = NULL;
+    CHECK(lv_mission_load("guards.yaml", &m, &err) != LV_OK && m == NULL);
+    printf("passed end on a variable, root phase: %s\n", err.msg);
+    CHECK(strstr(err.msg, "guards.yaml:8:5: phase 'p': the end 'fpa' is already passed at the "
+                          "start t = 0 s") != NULL);
     /* after a coast: found when the phase starts, from its parent's end */
     const lv_phase_result *p =
         run1(PASSED_HEAD
