@@ -139,8 +139,8 @@ static int vars_run(const cli_cmd *self, int argc, char **argv)
     for (size_t i = 0; i < m->n_states; i++) {
         char der[128];
         snprintf(der, sizeof der, "der(%s)", m->states[i].name);
-        char unit[64]; /* as the result files write it: "<unit>/s" */
-        snprintf(unit, sizeof unit, "%s/s", m->states[i].unit[0] ? m->states[i].unit : "1");
+        char unit[64]; /* as the result files write it */
+        lv_unit_per_second(m->states[i].unit, unit, sizeof unit);
         printf("%-10s %-16s %-8s %12s  Time derivative of %s\n", "derivative", der, unit, "",
                m->states[i].name);
     }

@@ -5,6 +5,9 @@
 #ifndef LVSIM_LV_UNITS_H
 #define LVSIM_LV_UNITS_H
 
+#include <stdio.h>
+#include <string.h>
+
 #define LV_PI 3.14159265358979323846 /* pi */
 #define LV_DEG (LV_PI / 180.0)       /* rad per degree: x_rad = x_deg * LV_DEG */
 /* Standard acceleration of gravity, m/s^2 (3rd CGPM, 1901; exact): the g0 of the specific
@@ -20,5 +23,29 @@
 #define LV_UNIT_ONE(u) ((u) == 0 || (u)[0] == '\0' || ((u)[0] == '1' && (u)[1] == '\0'))
 /* The unit as written after a number in text ("3 m/s", "0.5"): nothing for "1". */
 #define LV_UNIT_AFTER_NUMBER(u) (LV_UNIT_ONE(u) ? "" : (u))
+
+/* The unit of a time derivative of a quantity in `unit`, as every file and command names it
+ * (docs/result-files.md, "Units"; the Modelica unit grammar): "m" -> "m/s", "m/s" -> "m/s2",
+ * "m/s2" -> "m/s3", "rad.s" -> "rad", "s" -> "1", "1" or "" -> "1/s". Into buf[cap]; returns
+ * buf. The one rule of lv_simulate, missions, the FMU export and `lvsim vars` (inline: the
+ * post-processing library, which has none of the core's symbols, uses it too). */
+static inline const char *lv_unit_per_second(const char *unit, char *buf, size_t cap)
+{
+    const size_t len = strlen(unit);
+    if (LV_UNIT_ONE(unit))
+        snprintf(buf, cap, "1/s");
+    else if (strcmp(unit, "s") == 0)
+        snprintf(buf, cap, "1");
+    else if (len >= 3 && strcmp(unit + len - 2, ".s") == 0)
+        snprintf(buf, cap, "%.*s", (int)(len - 2), unit);
+    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
+        snprintf(buf, cap, "%s2", unit);
+    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
+             unit[len - 1] < '9')
+        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
+    else
+        snprintf(buf, cap, "%s/s", unit);
+    return buf;
+}
 
 #endif

@@ -23,24 +23,7 @@ int lv_unit_matches(const char *given, const char *si);
 lv_status lv_table_expect_unit(const lv_table *t, int is_axis, size_t k, const char *si,
                                const char *what, lv_err *err);
 
-/* The unit of a time derivative of a quantity in `unit`, as the result files name it
- * (docs/result-files.md): "m" -> "m/s", "m/s" -> "m/s2", "m/s2" -> "m/s3", "1" or "" ->
- * "1/s". Into buf[cap]; returns buf. The one rule of lv_simulate, missions and the FMU
- * export (inline: the post-processing library, which has none of the core's symbols, uses
- * it too). */
-static inline const char *lv_unit_per_second(const char *unit, char *buf, size_t cap)
-{
-    const size_t len = strlen(unit);
-    if (len == 0 || strcmp(unit, "1") == 0)
-        snprintf(buf, cap, "1/s");
-    else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)
-        snprintf(buf, cap, "%s2", unit);
-    else if (len >= 3 && unit[len - 3] == '/' && unit[len - 2] == 's' && unit[len - 1] >= '2' &&
-             unit[len - 1] < '9')
-        snprintf(buf, cap, "%.*s%c", (int)(len - 1), unit, unit[len - 1] + 1);
-    else
-        snprintf(buf, cap, "%s/s", unit);
-    return buf;
-}
+/* lv_unit_per_second (a derivative's unit) is in lvsim/lv_units.h: the CLI uses it too. */
+#include "lvsim/lv_units.h"
 
 #endif

@@ -165,6 +165,22 @@ static int unit_parse(const char *u, int e[U_N])
     return 0;
 }
 
+/* 1 when a unit needs no attribute: "1", or a ratio of like units ("rad/rad", a gain), whose
+ * base exponents are all 0 and whose BaseUnit would say nothing (FMI 2.0.4 sec. 2.2.2 declares
+ * a unit by its exponents; the compliance checkers refuse an empty one). */
+static int unit_none(const char *u)
+{
+    if (LV_UNIT_ONE(u))
+        return 1;
+    int e[U_N];
+    if (unit_parse(u, e) != 0)
+        return 0;
+    for (int k = 0; k < U_N; k++)
+        if (e[k] != 0)
+            return 0;
+    return 1;
+}
+
 /* The distinct units of the variables, in first-use order. */
 typedef struct unit_set {
     size_t n;
@@ -173,7 +189,7 @@ typedef struct unit_set {
 
 static lv_status unit_note(unit_set *us, const char *unit, const char *var, lv_err *err)
 {
-    if (LV_UNIT_ONE(unit)) /* dimensionless ("1"): no unit attribute, nothing to declare */
+    if (unit_none(unit)) /* dimensionless: no unit attribute, nothing to declare */
         return LV_OK;
     for (size_t i = 0; i < us->n; i++)
         if (strcmp(us->names[i], unit) == 0)
@@ -360,7 +376,7 @@ static void real_elem(sbuf *b, const char *unit, const double *start, double nom
                       long derivative)
 {
     sb_add(b, "      <Real");
-    if (!LV_UNIT_ONE(unit)) {
+    if (!unit_none(unit)) {
         sb_add(b, " unit=\"");
         sb_xml(b, unit);
         sb_add(b, "\"");
@@ -408,7 +424,7 @@ static lv_status write_body(const lv_fmu_phase *fp, const char *id, size_t ni, s
         lv_param_info pi;
         lv_mission_param_info(fp->mission, fp->run_idx[r], &pi);
         int e[U_N];
-        if (!LV_UNIT_ONE(pi.unit) && strlen(pi.unit) < sizeof runits[r] &&
+        if (!unit_none(pi.unit) && strlen(pi.unit) < sizeof runits[r] &&
             unit_parse(pi.unit, e) == 0) {
             snprintf(runits[r], sizeof runits[r], "%s", pi.unit);
             st = unit_note(us, pi.unit, pi.name, err);

@@ -31,7 +31,7 @@ expect 0 "^mission +start_lat +rad " -- "$lvsim" vars dof3
 expect 0 "^# end conditions \('end:'\): burnout altitude speed apogee impact" -- "$lvsim" vars dof3
 expect 0 "^# phase keys of its own: inputs aero" -- "$lvsim" vars dof3
 expect 0 "^state +z +m " -- "$lvsim" vars flat6
-expect 0 "^derivative +der\(vz\) +m/s/s " -- "$lvsim" vars flat6
+expect 0 "^derivative +der\(vz\) +m/s2 " -- "$lvsim" vars flat6
 # the registered types as `lvsim models` lists them (no list of names kept by hand here)
 types=$("$lvsim" models | awk '/^# built-in/ { exit } !/^#/ { printf "%s%s", s, $1; s = " " }')
 expect 2 "unknown model 'dof4'; mission model types: $types; built-in models: vertical_ascent" -- "$lvsim" vars dof4

@@ -85,5 +85,16 @@ if "$LVSIM" fmu "$M" --phase upper-burn-1 -o "$T/ok.fmu" --force > "$T/out" 2>&1
 else
   echo "FAIL: replacing an existing .fmu with --force"; cat "$T/out"; fails=$((fails + 1))
 fi
+# a 6-DoF phase with a controller: its gains are rad/rad, a ratio of like units, which get no
+# unit attribute (an empty BaseUnit is refused by the compliance checkers; breaker, issue 27)
+S6="$SRC/examples/two-stage-6dof/mission.yaml"
+if "$LVSIM" fmu "$S6" --phase boost -o "$T/b6.fmu" > "$T/out" 2>&1 && mkdir -p "$T/b6" &&
+   unzip -q -o "$T/b6.fmu" -d "$T/b6" &&
+   /usr/bin/python3 "$SRC/tests/fmi/check_model_description.py" "$T/b6" > "$T/chk" 2>&1 &&
+   ! grep -q 'unit="rad/rad"' "$T/b6/modelDescription.xml"; then
+  echo "ok: the dof6 FMU's modelDescription.xml conforms"
+else
+  echo "FAIL: the dof6 FMU"; cat "$T/out" "$T/chk" 2> /dev/null | tail -5; fails=$((fails + 1))
+fi
 [ "$fails" -eq 0 ] && echo "test_fmu_cli: all passed" || echo "test_fmu_cli: $fails failed"
 exit $((fails > 0))
