@@ -403,6 +403,17 @@ static int dof3_start(const double *p, double *x, void *inst)
     return 0; /* the mass keeps the start value of state "m" */
 }
 
+/* The start parameters of the state the run started from (lv_model_def.start_params). */
+static int dof3_start_params(double t0, const double *x, double *p, void *inst)
+{
+    const dof3_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    lv_flight_start_geodetic(&s->m->world, t0, x + LV_X3_RX, x + LV_X3_VX, p + P_LAT);
+    p[P_T0] = t0;
+    return 0;
+}
+
 static int dof3_init(double t0, const double *x, const double *p, void *inst)
 {
     dof3_inst *s = inst;
@@ -730,6 +741,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
         .param_inactive = m->param_inactive,
+        .start_params = dof3_start_params,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
                                .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,

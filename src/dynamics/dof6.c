@@ -777,6 +777,32 @@ static int dof6_start(const double *p, double *x, void *inst)
     return 0;
 }
 
+/* The start parameters of the state the run started from (lv_model_def.start_params): the
+ * geodetic start as lv_dof3's, the attitude's Euler angles relative to NED and the rates as the
+ * outputs theta, psi, phi and the states p, q, r give them. */
+static int dof6_start_params(double t0, const double *x, double *p, void *inst)
+{
+    const dof6_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    const lv_flight_world *w = &s->m->world;
+    lv_flight_start_geodetic(w, t0, x + LV_X6_RX, x + LV_X6_VX, p + P_LAT);
+    p[P_T0] = t0;
+    lv_flight_kin k;
+    lv_flight_kinematics(w, t0, x + LV_X6_RX, x + LV_X6_VX, 1, &k);
+    const lv_mat3 C = quat_to_dcm(x + LV_X6_QW);
+    lv_vec3 col[3];
+    for (int j = 0; j < 3; j++) /* body axes in ECEF, as point_eval */
+        col[j] = lv_v3(k.c_th * C.m[0][j] + k.s_th * C.m[1][j],
+                       -k.s_th * C.m[0][j] + k.c_th * C.m[1][j], C.m[2][j]);
+    lv_flight_axes ax = {.xb = col[0], .yb = col[1], .zb = col[2]};
+    lv_guid_euler_local(&k, &ax, &p[P_THETA], &p[P_PSI], &p[P_PHI]);
+    p[P_RP] = x[LV_X6_P];
+    p[P_RQ] = x[LV_X6_Q];
+    p[P_RR] = x[LV_X6_R];
+    return 0;
+}
+
 static int dof6_init(double t0, const double *x, const double *p, void *inst)
 {
     dof6_inst *s = inst;
@@ -1382,6 +1408,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
          * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
         .param_inactive = m->param_inactive,
+        .start_params = dof6_start_params,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X6_RX,
                                .i_v = LV_X6_VX, .i_m = LV_X6_M, .inputs = m->inputs,

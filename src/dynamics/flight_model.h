@@ -132,6 +132,13 @@ int lv_flight_check_throttle(lv_flight_rt *rt, double c);
 void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h, double vel,
                            double fpa, double chi, double t0, double *r, double *v);
 
+/* Its inverse, for the result files' records of a start set by a hand-off
+ * (lv_model_def.start_params): g[6] = lat, lon [rad], h [m], vel [m/s], fpa, chi [rad] of the
+ * ECI state r, v at t0, computed as the models' outputs h, lat, lon, v_rel, fpa, heading are
+ * (exact geodetic), so the records equal the start row's outputs bit for bit. */
+void lv_flight_start_geodetic(const lv_flight_world *w, double t0, const double *r,
+                              const double *v, double g[6]);
+
 /* The propellant book at the start: a positive mass m above the propellant `prop` [kg];
  * burnout when the propellant is gone, whatever else the mass carries; the engines on when
  * `engines` and prop > 0. 0, or -1 with the reason in rt->msg. */
