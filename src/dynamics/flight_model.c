@@ -166,6 +166,21 @@ void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h
     lv_frames_ecef_to_eci(pl, t0, r_ecef, v_ecef, r, v);
 }
 
+const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N] = {
+    {"throttle_min", "The commanded throttle (a throttle law's, a table's) asks for less than "
+     "the engines' minimum throttle (-1: from here the engines give n T_min; +1: back within "
+     "range)", LV_DIR_BOTH, 0},
+    {"throttle_max", "The commanded throttle (a throttle law's, a table's) asks for more than "
+     "the engines' maximum throttle (-1: from here the engines give n T_max; +1: back within "
+     "range)", LV_DIR_BOTH, 0},
+};
+
+void lv_flight_sat_g(double c, double c_min, double c_max, double *g)
+{
+    g[LV_FLIGHT_SAT_MIN] = c - c_min + 1e-9;
+    g[LV_FLIGHT_SAT_MAX] = c_max + 1e-9 - c;
+}
+
 void lv_flight_start_geodetic(const lv_flight_world *w, double t0, const double *r,
                               const double *v, double g[6])
 {

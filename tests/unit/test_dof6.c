@@ -454,8 +454,25 @@ static void test_vs_dof3(void)
                           "v_rel", "v_inertial", "fpa", "heading", "fpa_inertial",
                           "heading_inertial", "accel", "accel_sensed", "sma", "ecc", "inc",
                           "raan", "argp", "apo_alt", "peri_alt", "downrange", "mach", "q_dyn",
-                          "thrust", "mdot", "engine_on"};
+                          "thrust", "mdot", "engine_on", "throttle_eff", "engines_running"};
     const size_t n_same = sizeof same / sizeof same[0];
+    /* issue 27 (L7): dof6 has dof3's engine columns, with dof3's unit and description */
+    const char *eng_cols[] = {"throttle_eff", "engines_running"};
+    for (int j = 0; j < 2; j++) {
+        const lv_model_def *d3 = lv_dof3_def(m3), *d6 = lv_dof6_def(m6);
+        const lv_var *v3 = NULL, *v6 = NULL;
+        for (size_t i = 0; i < d3->n_outputs; i++)
+            if (strcmp(d3->outputs[i].name, eng_cols[j]) == 0)
+                v3 = &d3->outputs[i];
+        for (size_t i = 0; i < d6->n_outputs; i++)
+            if (strcmp(d6->outputs[i].name, eng_cols[j]) == 0)
+                v6 = &d6->outputs[i];
+        CHECK(v3 != NULL && v6 != NULL);
+        if (v3 != NULL && v6 != NULL) {
+            CHECK(strcmp(v6->unit, "1") == 0 && strcmp(v3->unit, v6->unit) == 0);
+            CHECK(strcmp(v3->description, v6->description) == 0);
+        }
+    }
     double s6[32], s3[32];
     /* at several states along the fall (the radius once differed by an ulp on some: the norm
      * of lv_vec3 against dof3's hypot) */

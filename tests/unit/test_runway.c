@@ -441,6 +441,13 @@ static void test_mission_errors(void)
              "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
              "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n",
         "bad.yaml:12:36: phase 'Q', landing: 'start_speed': a phase with `from`");
+    /* issue 27 (M4): a constant take-off throttle outside the engines' range [0, 1], at the
+     * value */
+    BAD(HEAD "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"
+             "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8, throttle: 1.2}}\n",
+        "bad.yaml:9:65: phase 'P': takeoff: throttle = 1.2 is outside the throttle range [0, 1] "
+        "of engine 'e' (stage 'ms')");
 }
 
 /* A take-off roll, the climb-out (dof3) from it, and from a glide down to the runway's
