@@ -492,6 +492,101 @@ static void test_refused(void)
                "throttle range [0, 1] of engine 'a'");
 }
 
+/* Issue 27 (M5, L5): an engine-out that would never happen and an unbounded throttle range,
+ * refused where the file writes them (`path`:line:column); the same start known only at run
+ * time fails the phase when it starts. */
+static void load_fails_at(const char *yaml, const char *want)
+{
+    write_file("bad_engines2.yaml", yaml);
+    lv_mission *m = NULL;
+    lv_err err;
+    CHECK_FAILS(lv_mission_load("bad_engines2.yaml", &m, &err), &err, LV_ERR_INPUT, want);
+    lv_mission_free(m);
+}
+
+#define TWO_STAGES                                                                         \
+    "stages: [{name: s1, dry_mass: 20000, propellant_mass: 1000,\n"                         \
+    "          engines: [{name: k, count: 3, thrust_vac: 100000, isp_vac: 300}]},\n"        \
+    "         {name: s2, dry_mass: 5000, propellant_mass: 1000,\n"                          \
+    "          engines: [{name: u, count: 2, thrust_vac: 20000, isp_vac: 300}]}]\n"
+
+static void test_never(void)
+{
+    const char *head = "mission: {name: never}\n" FLAT_WORLD
+                       "parameters: {start_h: 0, start_vel: 0, start_fpa_deg: 90}\n" TWO_STAGES
+                       "phases:\n";
+    char yaml[2048];
+    /* a root phase from 0 s to 20 s: an engine-out at 20 s or later never happens (line 12,
+     * the time's column) */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     engine_out: {time: 20}}\n", head);
+    load_fails_at(yaml, "bad_engines2.yaml:13:25: phase 'A', engine_out: time 20 s after the "
+                        "phase's start (at t = 0 s) is at or after its stop_time 20 s");
+    /* from start_time 5 s: 15 s after it is the stop_time */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], start_time: 5,\n"
+             "     stop_time: 20, engine_out: {time: 15}}\n", head);
+    load_fails_at(yaml, "phase 'A', engine_out: time 15 s after the phase's start (at t = 5 s)");
+    /* a child of a parent without end events starts at the parent's stop_time 10 s */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 10}\n"
+             "  - {name: B, model: dof3, stages: [s1, s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 20.5}}\n", head);
+    load_fails_at(yaml, "phase 'B', engine_out: time 20.5 s after the phase's start (at t = 10 s)");
+    /* a child of a parent that ends at burnout starts after the parent's start, 0 s */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     end: [burnout]}\n"
+             "  - {name: B, model: dof3, stages: [s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 31}}\n", head);
+    load_fails_at(yaml, "phase 'B', engine_out: time 31 s after the phase's start (after t = 0 s)");
+    /* ... and at run time where the start is known: A burns s1's 1000 kg at 3 x 100 kN / (300
+     * g0) kg/s, burnout at 1000 300 g0 / 3e5 = g0 s = 9.80665 s; B's engine-out 25 s later
+     * would be at 34.8 s, after its stop_time 30 s: B fails naming the place; 15 s flies */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     end: [burnout]}\n"
+             "  - {name: B, model: dof3, stages: [s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 25}}\n", head);
+    lv_mission *m = NULL;
+    lv_run *r = NULL;
+    lv_err err;
+    write_file("engines_never.yaml", yaml);
+    CHECK_OK(lv_mission_load("engines_never.yaml", &m, &err), &err);
+    if (m != NULL)
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+    if (r != NULL) {
+        CHECK(lv_run_execute(r, NULL, &err) != LV_OK); /* a phase failed */
+        const lv_phase_result *b = lv_run_result(r, 1);
+        CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE);
+        CHECK_CLOSE(lv_run_result(r, 0)->t_end, G0, 1e-6);
+        CHECK(b->state == LV_PHASE_FAILED);
+        CHECK(strstr(b->error, "engines_never.yaml:15:25: phase 'B', engine_out: time 25 s after "
+                               "the phase's start (at t = 9.80665") != NULL);
+        if (strstr(b->error, "engines_never.yaml:15:25") == NULL)
+            fprintf(stderr, "  got: %s\n", b->error);
+        CHECK_OK(lv_run_set(r, "B.engine_out.time", 15.0, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        CHECK(lv_run_result(r, 1)->state == LV_PHASE_DONE);
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+    remove("engines_never.yaml");
+    /* throttle_max: finite, at most 2 (twice the rated thrust: lv_vehicle.h) */
+#define THR(keys)                                                                          \
+    snprintf(yaml, sizeof yaml, "mission: {name: t}\n" FLAT_WORLD                          \
+             "stages: [{name: s, dry_mass: 10, propellant_mass: 5,\n"                       \
+             "          engines: [{name: e, thrust_vac: 1000, isp_vac: 300, %s}]}]\n"       \
+             "phases:\n  - {name: A, model: dof3, stages: [s], stop_time: 10}\n", keys)
+    THR("throttle_max: 1e9");
+    load_fails_at(yaml, "bad_engines2.yaml:7:77: stage 's', engine 'e': throttle_max must be > 0 "
+                        "and <= 2, found 1e+09");
+    THR("throttle_max: .inf");
+    load_fails_at(yaml, "bad_engines2.yaml:7:77: stage 's', engine 'e': throttle_max: non-finite");
+    THR("throttle_min: 2.5, throttle_max: 2");
+    load_fails_at(yaml, "throttle_min must be >= 0 and <= 2, found 2.5");
+    THR("throttle_min: 0.9, throttle_max: 0.5");
+    load_fails_at(yaml, "throttle_min 0.9 is above throttle_max 0.5");
+#undef THR
+    remove("bad_engines2.yaml");
+}
+
 int main(void)
 {
     test_count();
@@ -501,5 +596,6 @@ int main(void)
     test_engine_out_dof6();
     test_table_saturation();
     test_refused();
+    test_never();
     return check_report("test_engines");
 }
