@@ -70,7 +70,8 @@ static void print_row(const lv_run *run, size_t k, int w)
            phase_state_name(r->state));
 }
 
-/* A throttle law that left the running engines' range (the model's state events
+/* A commanded throttle (a throttle law's, an inputs or attitude table's) that left the running
+ * engines' range (the model's state events
  * `throttle_min` / `throttle_max`, direction -1 entering, +1 leaving: docs/guidance.md,
  * "Saturation"; from the start, where no crossing is logged: the first row's throttle_in
  * outside what the engines give, throttle_eff): one warning per kind on stderr, with the
@@ -109,7 +110,7 @@ static void warn_saturation(const lv_run *run, size_t k, const lv_phase_result *
         char until[48] = "";
         if (!isnan(t_out))
             snprintf(until, sizeof until, " to %.3f s", t_out);
-        fprintf(stderr, "lvsim: warning: phase '%s': the throttle law asked for %s than the "
+        fprintf(stderr, "lvsim: warning: phase '%s': the commanded throttle asked for %s than the "
                 "running engines' %s throttle from t = %.3f s%s%s%s: they gave n x T(%s) "
                 "(events '%s' in summary.json; columns throttle_in, throttle_eff)\n", r->name,
                 j == 0 ? "less" : "more", j == 0 ? "minimum" : "maximum", t_in,

@@ -186,6 +186,18 @@ struct lv_model_def {
      * alpha_in, beta_in, mu_in, throttle_in; docs/result-files.md). It stays a parameter
      * (lv_model_find, initial values). NULL: every parameter acts. */
     const unsigned char *param_inactive;
+
+    /* Optional. The start parameters as the run actually started: when initial values set
+     * states (a phase's hand-off from its parent, a `set:` override), the parameters start()
+     * reads (start_lat, start_h, start_vel ... of the mission's root phase) describe a start
+     * the run did not fly. lv_simulate() then calls this once, after init(), with (t0, x) the
+     * start state and p a copy of the parameters, and the model overwrites in p those that
+     * describe the start (position, velocity, attitude, rates, start time) with the values of
+     * that state: the copy is what the result files record (the .mat file's data_1), so a
+     * child phase's records show its own start. The run itself keeps the parameters as they
+     * were. Returns 0; nonzero leaves the records as the parameters are. NULL: records are the
+     * parameters. */
+    int (*start_params)(double t0, const double *x, double *p, void *inst);
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -32,6 +32,13 @@ extern "C" {
  * [kg/s] if it has one, else F_vac(t) / (isp_vac g0). Its breakpoints become time
  * events of the model, so no integration step crosses a kink; outside its time range
  * the table's own extrapolation rule applies. */
+/* The largest throttle an engine's range may reach: 2, twice the thrust its thrust_vac and
+ * mdot describe. c multiplies them, so they are the engine's rated (100 %) point; flown
+ * engines throttle up to about 1.09 of it (the RS-25 at 109 %), and 2 leaves room for a rating
+ * below the maximum, while a range up to 1e9 is a typing error that would let a law ask for
+ * any thrust. lv_engine_init refuses a throttle_max above it, and a non-finite one. */
+#define LV_THROTTLE_MAX 2.0
+
 typedef struct lv_engine_config {
     const char *name;      /* for messages ("stage1.engine2"); copied; NULL: "engine<i>" */
     double thrust_vac;     /* N, vacuum thrust at full throttle (constant engines), > 0 */
@@ -39,7 +46,8 @@ typedef struct lv_engine_config {
     double mdot;           /* kg/s, mass flow at full throttle; 0: from isp_vac */
     double exit_area;      /* m^2, nozzle exit area A_exit, >= 0 */
     double throttle_min;   /* -, lowest throttle, >= 0 (default 0) */
-    double throttle_max;   /* -, highest throttle, >= throttle_min, > 0 (default 1) */
+    double throttle_max;   /* -, highest throttle, >= throttle_min, > 0, at most
+                              LV_THROTTLE_MAX (default 1) */
     const lv_table *table; /* borrowed; NULL: constant engine (see above) */
     double out_after;      /* s, > 0: the engine stops (an engine-out) this long after the
                               model's start time, a time event of the model at which its

@@ -131,20 +131,9 @@ static const lv_var output_vars[O_N] = {
      0, 0},
 };
 
-/* The throttle law's saturation, as two state events after the flight model's (burnout, the
- * named ends): the law's throttle leaves the engines' range [c_min, c_max] (direction -1) or
- * comes back (+1). Logged, never an end: a landing that asks for less than n T_min (or more
- * than n T_max) shows where the engines could not follow (docs/guidance.md, "Saturation"). */
-enum { SAT_MIN, SAT_MAX, SAT_N };
-static const lv_event_def sat_events[SAT_N] = {
-    {"throttle_min", "The throttle law asks for less than the engines' minimum throttle "
-     "(-1: from here the engines give n T_min; +1: back within range)", LV_DIR_BOTH, 0},
-    {"throttle_max", "The throttle law asks for more than the engines' maximum throttle "
-     "(-1: from here the engines give n T_max; +1: back within range)", LV_DIR_BOTH, 0},
-};
-/* below c_min (above c_max) by more than this: a law that holds the limit exactly (a constant
- * throttle at throttle_min) is not saturated */
-#define SAT_EPS 1e-9
+/* The commanded throttle's saturation: two state events after the flight model's (burnout,
+ * the named ends), lv_flight_sat_events (flight_model.h), watched where the throttle varies. */
+enum { SAT_MIN = LV_FLIGHT_SAT_MIN, SAT_MAX = LV_FLIGHT_SAT_MAX, SAT_N = LV_FLIGHT_SAT_N };
 
 static const char *const input_names[U_N] = {"alpha", "beta", "mu", "throttle"};
 
@@ -183,6 +172,7 @@ struct lv_dof3 {
     int steers;                  /* a steering law other than the inputs (lv_guidance.h) */
     lv_guid guid;
     int throttles;               /* a throttle law with an effect (limits, landing) */
+    int sat_watch;               /* the commanded throttle varies (a law, a table): sat_events */
     lv_thr thr;
     double c_min, c_max;         /* the throttle range every engine accepts */
     double p_ae;                 /* m^2: the engines' exit areas */
@@ -354,8 +344,8 @@ static int check_params(dof3_inst *s, const double *p)
     return s->m->const_throttle ? lv_flight_check_throttle(&s->rt, p[P_THR]) : 0;
 }
 
-/* The flight model's events, then the throttle law's saturation (sat_events): constants (never
- * crossed) without an active law, with the engines off or none running. */
+/* The flight model's events, then the commanded throttle's saturation (sat_events):
+ * constants (never crossed) for a constant throttle, with the engines off or none running. */
 static int dof3_event_g(double t, const double *x, const double *p, double *g, void *inst)
 {
     dof3_inst *s = inst;
@@ -363,7 +353,7 @@ static int dof3_event_g(double t, const double *x, const double *p, double *g, v
     int rc = lv_flight_event_g(t, x, p, g, inst);
     double *gs = g + 1 + m->fe.n;
     gs[SAT_MIN] = gs[SAT_MAX] = 1.0;
-    if (rc != 0 || !m->throttles || !s->rt.engines_on)
+    if (rc != 0 || !m->sat_watch || !s->rt.engines_on)
         return rc;
     size_t running = 0;
     for (size_t i = 0; i < m->n_eng; i++)
@@ -372,8 +362,7 @@ static int dof3_event_g(double t, const double *x, const double *p, double *g, v
     if (running == 0 || point_eval(m, s, t, x, p, 0, &pt, NULL) != 0)
         return 0; /* the right-hand side reports its own failure */
     const double c = pt.ctl.u[U_THR];
-    gs[SAT_MIN] = c - m->c_min + SAT_EPS;
-    gs[SAT_MAX] = m->c_max + SAT_EPS - c;
+    lv_flight_sat_g(c, m->c_min, m->c_max, gs);
     return 0;
 }
 
@@ -401,6 +390,17 @@ static int dof3_start(const double *p, double *x, void *inst)
     lv_flight_start_state(&s->m->world.planet, p[P_LAT], p[P_LON], p[P_H], p[P_VEL], p[P_FPA],
                           p[P_CHI], p[P_T0], x + LV_X3_RX, x + LV_X3_VX);
     return 0; /* the mass keeps the start value of state "m" */
+}
+
+/* The start parameters of the state the run started from (lv_model_def.start_params). */
+static int dof3_start_params(double t0, const double *x, double *p, void *inst)
+{
+    const dof3_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    lv_flight_start_geodetic(&s->m->world, t0, x + LV_X3_RX, x + LV_X3_VX, p + P_LAT);
+    p[P_T0] = t0;
+    return 0;
 }
 
 static int dof3_init(double t0, const double *x, const double *p, void *inst)
@@ -695,6 +695,9 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     m->stop_at_burnout = cfg->stop_at_burnout != 0;
     if ((st = setup_ends(m, cfg, err)) != LV_OK || (st = setup_guidance(m, cfg, err)) != LV_OK)
         goto fail;
+    /* a throttle that varies: a law's, the inputs table's, the attitude table's */
+    m->sat_watch = m->throttles || m->inputs.k[U_THR] >= 0 ||
+                   (m->steers && lv_guid_gives_throttle(&cfg->steering));
 
     /* variables with this configuration's defaults */
     memcpy(m->states, state_tpl, sizeof m->states);
@@ -730,6 +733,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .outputs_fn = dof3_outputs,
         .abs_error = abs_error,
         .param_inactive = m->param_inactive,
+        .start_params = dof3_start_params,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
                                .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,
@@ -744,7 +748,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         goto fail;
     }
     memcpy(m->events, m->def.events, m->def.n_events * sizeof *m->events);
-    memcpy(m->events + m->def.n_events, sat_events, sizeof sat_events);
+    memcpy(m->events + m->def.n_events, lv_flight_sat_events, sizeof lv_flight_sat_events);
     m->def.events = m->events;
     m->def.n_events += SAT_N;
     m->def.event_g = dof3_event_g;

@@ -46,7 +46,8 @@ enum {
     O_NAX, O_NNORM, O_NLAT, O_THETA, O_PSI, O_PHI, O_ALPHA, O_BETA, O_BANK,
     O_LA, O_MA, O_NA, O_LT, O_MT, O_NT, O_CGX, O_CGY, O_CGZ, O_IXX, O_IYY, O_IZZ,
     O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI,
-    O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_N
+    O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_THR_EFF,
+    O_ENG_RUN, O_N
 };
 /* outputs of a steering law (after O_N), then of a controller */
 enum { O_THC = O_N, O_PSC, O_PHC, O_ER, O_EP, O_EY, O_GPC, O_GYC, O_NMAX };
@@ -151,7 +152,8 @@ static const lv_var output_vars[O_N] = {
     {"quat_norm", "1", "Norm of the attitude quaternion state (1 up to the drift control)", 0, 0},
     {"gimbal_pitch_in", "rad", "Pitch gimbal angle in effect", 0, 0},
     {"gimbal_yaw_in", "rad", "Yaw gimbal angle in effect", 0, 0},
-    {"throttle_in", "1", "Throttle in effect (0 with the engines off)", 0, 0},
+    {"throttle_in", "1", "Throttle commanded: the constant, the inputs table's or the attitude "
+     "table's (before engine limits; 0 with the engines off)", 0, 0},
     {"propellant_left", "kg", "Propellant left in the burning stage", 0, 0},
     {"sma", "m", "Osculating semi-major axis", 0, 0},
     {"ecc", "1", "Osculating eccentricity", 0, 0},
@@ -166,6 +168,10 @@ static const lv_var output_vars[O_N] = {
     {"raan", "rad", "Osculating right ascension of the ascending node (ECI)", 0, 0},
     {"argp", "rad", "Osculating argument of periapsis", 0, 0},
     {"downrange", "m", "Great-circle distance from the phase's start point on the sphere of radius a",
+     0, 0},
+    {"throttle_eff", "1", "Throttle each running engine gives: throttle_in clamped into one "
+     "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
+    {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
 };
 
@@ -233,6 +239,9 @@ struct lv_dof6 {
     int in_k[U_N];               /* output index per input, -1: the parameter */
     double *in_buf;
     int const_throttle;
+    int sat_watch;               /* the commanded throttle varies (a table's): the saturation */
+    double c_min, c_max;         /* the throttle range every engine accepts */
+    lv_event_def *events;        /* [1 + fe.n + 2]: the flight model's, lv_flight_sat_events */
     int stop_at_burnout;
     int steers;                  /* a steering law gives the commanded attitude */
     lv_guid guid;
@@ -802,6 +811,66 @@ static int dof6_start(const double *p, double *x, void *inst)
     return 0;
 }
 
+/* The flight model's events, then the commanded throttle's saturation (lv_flight_sat_events,
+ * as lv_dof3): constants (never crossed) for a constant throttle, with the engines off or none
+ * running. */
+static int dof6_event_g(double t, const double *x, const double *p, double *g, void *inst)
+{
+    dof6_inst *s = inst;
+    lv_dof6 *m = s->m;
+    int rc = lv_flight_event_g(t, x, p, g, inst);
+    double *gs = g + 1 + m->fe.n;
+    gs[LV_FLIGHT_SAT_MIN] = gs[LV_FLIGHT_SAT_MAX] = 1.0;
+    if (rc != 0 || !m->sat_watch || !s->rt.engines_on)
+        return rc;
+    size_t running = 0;
+    for (size_t i = 0; i < m->n_eng; i++)
+        running += !m->eng[i].out;
+    dof6_point pt;
+    if (running == 0 || point_eval(m, s, t, x, p, 0, &pt, NULL) != 0)
+        return 0; /* the right-hand side reports its own failure */
+    lv_flight_sat_g(pt.u[U_THR], m->c_min, m->c_max, gs);
+    return 0;
+}
+
+static lv_event_action dof6_on_event(double t, double *x, const double *p, const int *fired,
+                                     void *inst)
+{
+    dof6_inst *s = inst;
+    lv_event_action act = lv_flight_on_event(t, x, p, fired, inst);
+    const int *fs = fired + 1 + s->m->fe.n;
+    /* the clamp is a kink of the thrust: a new initial value problem */
+    if ((fs[LV_FLIGHT_SAT_MIN] || fs[LV_FLIGHT_SAT_MAX]) && act < LV_EVENT_RESTART)
+        act = LV_EVENT_RESTART;
+    return act;
+}
+
+/* The start parameters of the state the run started from (lv_model_def.start_params): the
+ * geodetic start as lv_dof3's, the attitude's Euler angles relative to NED and the rates as the
+ * outputs theta, psi, phi and the states p, q, r give them. */
+static int dof6_start_params(double t0, const double *x, double *p, void *inst)
+{
+    const dof6_inst *s = inst;
+    if (s == NULL || s->m == NULL)
+        return -1;
+    const lv_flight_world *w = &s->m->world;
+    lv_flight_start_geodetic(w, t0, x + LV_X6_RX, x + LV_X6_VX, p + P_LAT);
+    p[P_T0] = t0;
+    lv_flight_kin k;
+    lv_flight_kinematics(w, t0, x + LV_X6_RX, x + LV_X6_VX, 1, &k);
+    const lv_mat3 C = quat_to_dcm(x + LV_X6_QW);
+    lv_vec3 col[3];
+    for (int j = 0; j < 3; j++) /* body axes in ECEF, as point_eval */
+        col[j] = lv_v3(k.c_th * C.m[0][j] + k.s_th * C.m[1][j],
+                       -k.s_th * C.m[0][j] + k.c_th * C.m[1][j], C.m[2][j]);
+    lv_flight_axes ax = {.xb = col[0], .yb = col[1], .zb = col[2]};
+    lv_guid_euler_local(&k, &ax, &p[P_THETA], &p[P_PSI], &p[P_PHI]);
+    p[P_RP] = x[LV_X6_P];
+    p[P_RQ] = x[LV_X6_Q];
+    p[P_RR] = x[LV_X6_R];
+    return 0;
+}
+
 static int dof6_init(double t0, const double *x, const double *p, void *inst)
 {
     dof6_inst *s = inst;
@@ -916,6 +985,16 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_GP] = pt.u[U_GP];
     y[O_GY] = pt.u[U_GY];
     y[O_THR] = s->rt.engines_on ? pt.u[U_THR] : 0.0;
+    size_t running = 0;
+    for (size_t i = 0; s->rt.engines_on && i < m->n_eng; i++)
+        running += !m->eng[i].out;
+    y[O_ENG_RUN] = (double)running;
+    y[O_THR_EFF] = 0.0;
+    for (size_t i = 0; i < m->n_eng && running > 0; i++)
+        if (!m->eng[i].out) { /* as lv_dof3: the first running engine's clamp */
+            y[O_THR_EFF] = lv_engine_throttle(&m->eng[i], pt.u[U_THR]);
+            break;
+        }
     y[O_PROP_LEFT] = s->rt.burned_out || mass < s->rt.m_burnout ? 0.0 : mass - s->rt.m_burnout;
     lv_orbit_elem el;
     const double rv[3] = {x[LV_X6_RX], x[LV_X6_RY], x[LV_X6_RZ]};
@@ -1083,9 +1162,9 @@ static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
                            "input (gimbal_pitch, gimbal_yaw, throttle)", lv_table_name(tab),
                            lv_table_out_name(tab, o));
     }
-    /* the values at the breakpoints within the ranges the constants are held to (linear and
-     * PCHIP interpolation do not overshoot them; the ends are clamped): gimbal angles within
-     * +-90 deg, the throttle within every engine's limits */
+    /* the gimbal angles at the breakpoints within +-90 deg, the range the constants are held to
+     * (linear and PCHIP interpolation do not overshoot them; the ends are clamped); a throttle
+     * outside the engines' limits is clamped and logged (lv_flight_sat_events) */
     size_t nb = 0;
     const double *tb = lv_table_breakpoints(tab, 0, &nb);
     double *row = malloc((lv_table_n_out(tab) + 1) * sizeof *row);
@@ -1103,12 +1182,6 @@ static lv_status setup_inputs(lv_dof6 *m, const lv_table *tab, lv_err *err)
                 st = lv_fail(err, LV_ERR_INPUT, "dof6: input table '%s': %s = %g rad at time "
                              "%g s is outside [-pi/2, pi/2]", lv_table_name(tab),
                              input_names[k], v, tb[i]);
-            for (size_t e = 0; k == U_THR && e < m->n_eng && st == LV_OK; e++)
-                if (!(v >= m->eng[e].thr_min && v <= m->eng[e].thr_max))
-                    st = lv_fail(err, LV_ERR_INPUT, "dof6: input table '%s': throttle = %g at "
-                                 "time %g s is outside the limits [%g, %g] of engine '%s'",
-                                 lv_table_name(tab), v, tb[i], m->eng[e].thr_min,
-                                 m->eng[e].thr_max, m->eng[e].name);
         }
     }
     free(row);
@@ -1353,6 +1426,16 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     m->terms = cfg->terms;
     if ((st = setup_ends(m, cfg, err)) != LV_OK || (st = setup_control(m, cfg, err)) != LV_OK)
         goto fail;
+    /* the range one throttle can give every engine, and whether the throttle varies (the
+     * inputs table's, the attitude table's): its saturation is then logged */
+    m->c_min = 0.0;
+    m->c_max = m->n_eng > 0 ? HUGE_VAL : 1.0;
+    for (size_t i = 0; i < m->n_eng; i++) {
+        m->c_min = fmax(m->c_min, m->eng[i].thr_min);
+        m->c_max = fmin(m->c_max, m->eng[i].thr_max);
+    }
+    m->sat_watch = m->n_eng > 0 && (m->in_k[U_THR] >= 0 ||
+                                    (m->steers && lv_guid_gives_throttle(&cfg->steering)));
 
     memcpy(m->states, state_tpl, sizeof state_tpl);
     m->states[LV_X6_M].start = cfg->m0;
@@ -1403,6 +1486,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
          * two-stage-6dof's boost at 1e-8: dop853 2476 steps, 33989 rhs; BDF 1740, 3379) */
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
         .param_inactive = m->param_inactive,
+        .start_params = dof6_start_params,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X6_RX,
                                .i_v = LV_X6_VX, .i_m = LV_X6_M, .inputs = m->inputs,
@@ -1413,6 +1497,16 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     m->core.rolls = 1;
     lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
+    if ((m->events = malloc((m->def.n_events + LV_FLIGHT_SAT_N) * sizeof *m->events)) == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    memcpy(m->events, m->def.events, m->def.n_events * sizeof *m->events);
+    memcpy(m->events + m->def.n_events, lv_flight_sat_events, sizeof lv_flight_sat_events);
+    m->def.events = m->events;
+    m->def.n_events += LV_FLIGHT_SAT_N;
+    m->def.event_g = dof6_event_g;
+    m->def.on_event = dof6_on_event;
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
         goto fail;
@@ -1435,6 +1529,7 @@ void lv_dof6_free(lv_dof6 *m)
     free(m->in_buf);
     free(m->grav_ws);
     lv_flight_ends_clear(&m->fe);
+    free(m->events);
     free(m);
 }
 

@@ -176,6 +176,35 @@ void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h
     lv_frames_ecef_to_eci(pl, t0, r_ecef, v_ecef, r, v);
 }
 
+const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N] = {
+    {"throttle_min", "The commanded throttle (a throttle law's, a table's) asks for less than "
+     "the engines' minimum throttle (-1: from here the engines give n T_min; +1: back within "
+     "range)", LV_DIR_BOTH, 0},
+    {"throttle_max", "The commanded throttle (a throttle law's, a table's) asks for more than "
+     "the engines' maximum throttle (-1: from here the engines give n T_max; +1: back within "
+     "range)", LV_DIR_BOTH, 0},
+};
+
+void lv_flight_sat_g(double c, double c_min, double c_max, double *g)
+{
+    g[LV_FLIGHT_SAT_MIN] = c - c_min + 1e-9;
+    g[LV_FLIGHT_SAT_MAX] = c_max + 1e-9 - c;
+}
+
+void lv_flight_start_geodetic(const lv_flight_world *w, double t0, const double *r,
+                              const double *v, double g[6])
+{
+    lv_flight_kin k;
+    lv_flight_kinematics(w, t0, r, v, 1, &k);
+    g[0] = k.lat;
+    g[1] = k.lon;
+    g[2] = k.h;
+    g[3] = lv_v3_norm(k.v_rel);
+    const double ned[3] = {lv_v3_dot(k.v_rel, k.n_ax), lv_v3_dot(k.v_rel, k.e_ax),
+                           lv_v3_dot(k.v_rel, k.d_ax)};
+    lv_frames_fpa_from_ned(ned, NULL, &g[4], &g[5]);
+}
+
 int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines)
 {
     if (!(m > 0.0))

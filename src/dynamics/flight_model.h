@@ -128,11 +128,32 @@ int lv_flight_check_start(lv_flight_rt *rt, double lat, double vel, double prop)
 /* A constant throttle c within every engine's limits; 0, or -1 with the reason. */
 int lv_flight_check_throttle(lv_flight_rt *rt, double c);
 
+/* The commanded throttle's saturation, two state events a flight model adds after its others
+ * (dof3, dof6): the throttle a law, the inputs table or the attitude table commands leaves the
+ * running engines' range [c_min, c_max] (direction -1) or comes back (+1). Logged, never an
+ * end: a landing that asks for less than n T_min (or a schedule for more than n T_max) shows
+ * where the engines could not follow (docs/guidance.md, "Saturation"); the model restarts the
+ * integrator there (the clamp is a kink of the thrust). A constant throttle outside the range
+ * is refused instead; where the throttle cannot vary the model keeps g constant (1). */
+enum { LV_FLIGHT_SAT_MIN, LV_FLIGHT_SAT_MAX, LV_FLIGHT_SAT_N };
+extern const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N];
+
+/* g[0], g[1] of the two at commanded throttle c: below c_min (above c_max) by more than 1e-9,
+ * so that a throttle held at the limit exactly (a schedule at throttle_min) is not saturated. */
+void lv_flight_sat_g(double c, double c_min, double c_max, double *g);
+
 /* ECI position r[3] [m] and velocity v[3] [m/s] at mission time t0 [s] of a vehicle at
  * geodetic lat, lon [rad], h [m] moving at `vel` [m/s] relative to the rotating planet with
  * flight-path angle fpa and heading chi [rad] (NED). */
 void lv_flight_start_state(const lv_planet *pl, double lat, double lon, double h, double vel,
                            double fpa, double chi, double t0, double *r, double *v);
+
+/* Its inverse, for the result files' records of a start set by a hand-off
+ * (lv_model_def.start_params): g[6] = lat, lon [rad], h [m], vel [m/s], fpa, chi [rad] of the
+ * ECI state r, v at t0, computed as the models' outputs h, lat, lon, v_rel, fpa, heading are
+ * (exact geodetic), so the records equal the start row's outputs bit for bit. */
+void lv_flight_start_geodetic(const lv_flight_world *w, double t0, const double *r,
+                              const double *v, double g[6]);
 
 /* The propellant book at the start: a positive mass m above the propellant `prop` [kg];
  * burnout when the propellant is gone, whatever else the mass carries; the engines on when

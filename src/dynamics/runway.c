@@ -321,6 +321,17 @@ static int rw_start(const double *p, double *x, void *inst)
     return 0; /* the mass keeps the start value of state "m" */
 }
 
+/* The start parameters of the state the run started from (lv_model_def.start_params): the
+ * distance and speed a hand-off gave (a roll-out projected from a dof3 touchdown). */
+static int rw_start_params(double t0, const double *x, double *p, void *inst)
+{
+    (void)inst;
+    p[P_S0] = x[LV_XRW_S];
+    p[P_V0] = x[LV_XRW_V];
+    p[P_T0] = t0;
+    return 0;
+}
+
 static int rw_init(double t0, const double *x, const double *p, void *inst)
 {
     rw_inst *s = inst;
@@ -688,6 +699,7 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
         .last_error = rw_last_error,
         .time_event_name = rw_time_event_name,
         .param_inactive = m->param_inactive,
+        .start_params = rw_start_params,
     };
     m->inst.m = m;
     runway_frame(&m->world.planet, cfg->runway_lat, cfg->runway_lon, cfg->runway_h,

@@ -195,3 +195,30 @@ lv_status lv_parse_engine_run(const lv_pctx *c, const lv_ynode *n, lv_phase_def 
     }
     return LV_OK;
 }
+
+lv_status lv_pk_check_throttle(const lv_pctx *c, const lv_phase_def *ph, lv_slot thr,
+                                  const char *key)
+{
+    if (thr == LV_NO_SLOT || c->m->slots[thr].loc.line == 0)
+        return LV_OK;
+    const lv_slot_def *sd = &c->m->slots[thr];
+    const double v = sd->value;
+    const lv_stage_def *s = &c->m->stages[ph->stages[0]];
+    for (size_t e = 0; e < s->n_engines; e++) {
+        const lv_engine_def *ed = &s->engines[e];
+        if (ph->engines_run != NULL && ph->engines_run[e] == 0)
+            continue; /* none of this kind runs */
+        const double lo = ed->throttle_min != LV_NO_SLOT ? c->m->slots[ed->throttle_min].value
+                                                         : 0.0;
+        const double hi = ed->throttle_max != LV_NO_SLOT ? c->m->slots[ed->throttle_max].value
+                                                         : 1.0;
+        if (!(v >= lo && v <= hi))
+            return lv_fail(c->err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': %s = %g is outside the "
+                           "throttle range [%g, %g] of engine '%s' (stage '%s'): a constant "
+                           "throttle must be one the engines can give (a throttle law's or a "
+                           "table's is clamped and logged as throttle_min / throttle_max events)",
+                           c->file, sd->loc.line, sd->loc.column, ph->name, key, v, lo, hi,
+                           ed->name, s->name);
+    }
+    return LV_OK;
+}

@@ -103,4 +103,11 @@ lv_status lv_pk_table_file(const lv_pctx *c, const lv_ynode *n, const char *what
 lv_status lv_pk_regular_file(const lv_pctx *c, const lv_ynode *at, const char *what,
                              const char *key, const char *path);
 
+/* A constant throttle the file writes (slot `thr`; `key` names it: "inputs: throttle") within the range of every engine kind the phase's bottom stage runs, with the
+ * file's values: refused at the value's file:line:column otherwise (a constant cannot follow a
+ * saturation: docs/guidance.md, "Saturation"). A slot not written (LV_NO_SLOT, or defaulted)
+ * passes. */
+lv_status lv_pk_check_throttle(const lv_pctx *c, const lv_phase_def *ph, lv_slot thr,
+                                  const char *key);
+
 #endif

@@ -213,6 +213,47 @@ lv_status lv_parse_check_tree(const lv_pctx *c)
                                m->path, at.line, at.column, ph->name, t0, pstop, par->name);
         }
     }
+    /* an engine-out within its phase: `time` after the phase's start, before its stop_time.
+     * The start is known when written (start_time), 0 for a root, its parent's stop_time for
+     * a child of a parent without end events; otherwise it lies after the latest of those
+     * up the tree, and an engine-out after the stop_time even from there never happens. (A
+     * start known only at run time is checked there too: run.c.) */
+    for (size_t k = 0; k < m->n_phases; k++) {
+        const lv_phase_def *ph = &m->phases[k];
+        if (ph->n_engine_out == 0)
+            continue;
+        int exact = 1;
+        double t0 = 0.0;
+        for (const lv_phase_def *q = ph; q != NULL;) {
+            if (q->t_start != LV_NO_SLOT) {
+                t0 = lv_mission_def_value(m, q->t_start);
+                break;
+            }
+            if (q->parent < 0)
+                break; /* a root starts at 0 */
+            const lv_phase_def *par = &m->phases[q->parent];
+            if (par->n_ends == 0) { /* the parent runs to its stop_time */
+                t0 = lv_mission_def_value(m, par->t_stop);
+                break;
+            }
+            exact = 0; /* after the parent's start, at least */
+            q = par;
+        }
+        const double stop = lv_mission_def_value(m, ph->t_stop);
+        for (size_t j = 0; j < ph->n_engine_out; j++) {
+            const lv_engine_out_def *o = &ph->engine_out[j];
+            const double dt = lv_mission_def_value(m, o->time);
+            if (t0 + dt < stop)
+                continue;
+            const lv_src_loc at = slot_loc(m, o->time, o->loc);
+            return lv_fail(c->err, LV_ERR_INPUT,
+                           "%s:%d:%d: phase '%s', engine_out: time %g s after the phase's start "
+                           "(%s t = %g s) is at or after its stop_time %g s: the engine-out "
+                           "would never happen",
+                           m->path, at.line, at.column, ph->name, dt,
+                           exact ? "at" : "after", t0, stop);
+        }
+    }
     /* a stage in two branches at once */
     for (size_t a = 0; a < m->n_phases; a++)
         for (size_t b = a + 1; b < m->n_phases; b++) {

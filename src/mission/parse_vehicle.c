@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/table_unit.h"
+#include "lvsim/lv_vehicle.h"
 #include "mission/parse_int.h"
 
 /* ---- engine tables -------------------------------------------------------------------- */
@@ -153,12 +154,12 @@ static lv_status parse_engine(const lv_pctx *c, const lv_ynode *n, const char *s
     if (st != LV_OK)
         return st;
     /* the throttle range c_s may take (guidance's throttle laws and tables are clamped into
-     * it): 0 <= min <= max */
+     * it): 0 <= min <= max <= LV_THROTTLE_MAX (twice the rated thrust: lv_vehicle.h) */
     static const char *const tk[2] = {"throttle_min", "throttle_max"};
     lv_slot *ts[2] = {&e->throttle_min, &e->throttle_max};
     for (int i = 0; i < 2; i++) {
         snprintf(slot, sizeof slot, "%s.%s", e->name, tk[i]);
-        const lv_range r = i == 0 ? LV_RANGE_NONNEG : LV_RANGE_POS;
+        const lv_range r = {0.0, LV_THROTTLE_MAX, i == 1, 0}; /* min >= 0, max > 0 */
         if ((v = lv_pk_get(n, tk[i])) != NULL)
             st = lv_pk_slot(c, v, what, tk[i], slot, "", r, 0, ts[i]);
         else

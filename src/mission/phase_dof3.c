@@ -200,6 +200,22 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     return LV_OK;
 }
 
+/* Once `engines:` is read: a written constant throttle (inputs.throttle, throttle.value) within
+ * the range of the engines that run, refused at its position (lv_pk_check_throttle); a table's
+ * is clamped and logged instead. */
+static lv_status dof3_check(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    (void)n;
+    const dof3_cfg *cfg = ph->type_cfg;
+    size_t k;
+    if (cfg->inputs != NULL && lv_table_out_index(cfg->inputs, "throttle", &k, NULL) == LV_OK)
+        return LV_OK; /* the table gives the throttle: the constant does not act */
+    const lv_slot v = lv_guidance_def_throttle_value(&cfg->guid);
+    if (v != LV_NO_SLOT)
+        return lv_pk_check_throttle(c, ph, v, "throttle: value");
+    return lv_pk_check_throttle(c, ph, cfg->u[3], "inputs: throttle");
+}
+
 /* ---- the model ---------------------------------------------------------------------------- */
 
 typedef struct dof3_self {
@@ -349,4 +365,5 @@ const lv_phase_type lv_phase_type_dof3 = {
     .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = dof3_handoff,
+    .check = dof3_check,
 };

@@ -522,14 +522,18 @@ static lv_status check_set_ranges(const lv_pctx *c, const lv_phase_def *ph)
     return LV_OK;
 }
 
-/* After `set:` (parse.c): the start values in the model's ranges (check_set_ranges); the
+/* After `set:` (parse.c): a written constant throttle within the engines' range
+ * (lv_pk_check_throttle); the start values in the model's ranges (check_set_ranges); the
  * quaternion states set all four together, as a unit quaternion (a partial set would leave
  * the attitude undefined: the model refuses a start quaternion whose norm is not 1). */
 static lv_status dof6_check_set(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
 {
     (void)n;
     static const char *const qn[4] = {"q_w", "q_x", "q_y", "q_z"};
+    const dof6_cfg *pc = ph->type_cfg;
     lv_status st = check_set_ranges(c, ph);
+    if (st == LV_OK) /* a constant throttle the engines can give (the table's is clamped) */
+        st = lv_pk_check_throttle(c, ph, pc->u[U_THR], "inputs: throttle");
     if (st != LV_OK)
         return st;
     int idx[4] = {-1, -1, -1, -1}, first = -1, given = 0;

@@ -196,6 +196,15 @@ static lv_status runway_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def 
     return st;
 }
 
+/* Once `engines:` is read: a take-off's written throttle within the range of the engines that
+ * run, refused at its position (lv_pk_check_throttle). */
+static lv_status runway_check(const lv_pctx *c, const lv_ynode *n, lv_phase_def *ph)
+{
+    (void)n;
+    const runway_cfg *cfg = ph->type_cfg;
+    return lv_pk_check_throttle(c, ph, cfg->roll[R_THR], "takeoff: throttle");
+}
+
 /* ---- the model ---------------------------------------------------------------------------- */
 
 typedef struct runway_self {
@@ -354,4 +363,5 @@ const lv_phase_type lv_phase_type_runway = {
     .traj = lv_kit_planet_traj,
     .traj_extra = NULL,
     .handoff = runway_handoff,
+    .check = runway_check,
 };

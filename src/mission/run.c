@@ -374,6 +374,22 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         lv_phase_call_free(c);
         return st;
     }
+    /* an engine-out the phase would never reach (its start known only now: a child's, a time
+     * a run sets; the file's values were checked at load, parse_tree.c) */
+    for (size_t j = 0; j < ph->n_engine_out; j++) {
+        const lv_engine_out_def *o = &ph->engine_out[j];
+        const double dt = v[o->time];
+        if (s->start_time + dt < s->stop_time)
+            continue;
+        const lv_src_loc at = d->slots[o->time].loc.line > 0 ? d->slots[o->time].loc : o->loc;
+        st = lv_fail(err, LV_ERR_INPUT,
+                     "%s:%d:%d: phase '%s', engine_out: time %g s after the phase's start (at "
+                     "t = %g s) is at or after its stop_time %g s: the engine-out would never "
+                     "happen",
+                     d->path, at.line, at.column, ph->name, dt, s->start_time, s->stop_time);
+        lv_phase_call_free(c);
+        return st;
+    }
     *out = c;
     return LV_OK;
 }

@@ -218,6 +218,25 @@ static void body_start(const double *p, double *x)
     x[LV_FLAT_R] = p[PF_R];
 }
 
+/* Its inverse: the start parameters of body state x (lv_model_def.start_params of flat6: the
+ * records of a phase that starts from its parent's end). */
+static void body_start_params(const double *x, double *p)
+{
+    const double vx = x[LV_FLAT_VX], vy = x[LV_FLAT_VY], vz = x[LV_FLAT_VZ];
+    p[PF_X] = x[LV_FLAT_X];
+    p[PF_Y] = x[LV_FLAT_Y];
+    p[PF_Z] = x[LV_FLAT_Z];
+    p[PF_VEL] = sqrt(vx * vx + vy * vy + vz * vz);
+    p[PF_FPA] = atan2(vz, hypot(vx, vy));
+    p[PF_CHI] = atan2(vx, vy);
+    p[PF_PSI] = x[LV_FLAT_PSI];
+    p[PF_THETA] = x[LV_FLAT_THETA];
+    p[PF_PHI] = x[LV_FLAT_PHI];
+    p[PF_P] = x[LV_FLAT_P];
+    p[PF_Q] = x[LV_FLAT_Q];
+    p[PF_R] = x[LV_FLAT_R];
+}
+
 static double stage_mass(const flat_stage_rt *s) { return s->dry_mass + s->prop_mass; }
 
 /* ---- air: atmosphere, wind and drag of lv_flat6 ---------------------------------------------- */
@@ -475,6 +494,13 @@ static int flat6_start(const double *p, double *x, void *inst)
     return 0;
 }
 
+static int flat6_start_params(double t0, const double *x, double *p, void *inst)
+{
+    (void)t0, (void)inst;
+    body_start_params(x, p);
+    return 0;
+}
+
 static int flat6_init(double t0, const double *x, const double *p, void *inst)
 {
     (void)t0;
@@ -699,6 +725,7 @@ lv_status lv_flat6_create(const lv_flat6_config *cfg, lv_flat6 **out, lv_err *er
         .outputs = flat6_outputs,
         .events = m->events,
         .start = flat6_start,
+        .start_params = flat6_start_params,
         .init = flat6_init,
         .rhs = flat6_rhs,
         .event_g = flat6_g,

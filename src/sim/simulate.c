@@ -85,6 +85,7 @@ typedef struct sim_run {
 
     lv_var *rec_params;    /* the parameters the result files record (param_inactive left out), */
     double *rec_values;    /* and their values; NULL: all of them (r->def->params, r->p) */
+    int x_set;             /* initial values set a state: the start_params records apply */
     lv_sink own_sinks[32]; /* one per registered result format (flags of an unsigned) */
     size_t n_own_sinks;
     lv_sink **sinks; /* own + borrowed */
@@ -385,8 +386,10 @@ static lv_status apply_initial(sim_run *r, const lv_sim_settings *s, lv_err *err
                                kind == LV_VAR_OUTPUT ? "an output" : "a derivative");
             if (pass == 0 && kind == LV_VAR_PARAMETER)
                 r->p[idx] = v;
-            if (pass == 1 && kind == LV_VAR_STATE)
+            if (pass == 1 && kind == LV_VAR_STATE) {
                 r->x[idx] = v;
+                r->x_set = 1;
+            }
         }
         if (pass == 0) {
             for (size_t i = 0; i < r->nx; i++)
@@ -521,20 +524,25 @@ static lv_status open_sinks(sim_run *r, const lv_sim_settings *s, lv_err *err)
         r->sinks[r->n_sinks++] = &s->sinks[k];
 
     /* the parameters that act: one a law or a table replaces is not recorded as a constant
-     * (lv_model_def.param_inactive) */
+     * (lv_model_def.param_inactive); the start parameters as the run started, where initial
+     * values set its states (lv_model_def.start_params: a child phase's own start) */
     const lv_var *rec_params = r->def->params;
     const double *rec_values = r->p;
     size_t n_rec = r->np;
-    if (r->def->param_inactive != NULL && r->np > 0) {
+    const int restart = r->x_set && r->def->start_params != NULL;
+    if ((r->def->param_inactive != NULL || restart) && r->np > 0) {
         r->rec_params = malloc(r->np * sizeof *r->rec_params);
         r->rec_values = malloc(r->np * sizeof *r->rec_values);
         if (r->rec_params == NULL || r->rec_values == NULL)
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        memcpy(r->rec_values, r->p, r->np * sizeof *r->rec_values);
+        if (restart && r->def->start_params(s->start_time, r->x, r->rec_values, r->inst) != 0)
+            memcpy(r->rec_values, r->p, r->np * sizeof *r->rec_values);
         n_rec = 0;
         for (size_t j = 0; j < r->np; j++)
-            if (!r->def->param_inactive[j]) {
+            if (r->def->param_inactive == NULL || !r->def->param_inactive[j]) {
                 r->rec_params[n_rec] = r->def->params[j];
-                r->rec_values[n_rec++] = r->p[j];
+                r->rec_values[n_rec++] = r->rec_values[j];
             }
         rec_params = r->rec_params;
         rec_values = r->rec_values;

@@ -31,11 +31,13 @@ lv_status lv_engine_init(lv_engine *e, const lv_engine_config *c, size_t index, 
     const char *n = e->name;
 
     if (!isfinite(c->throttle_min) || !isfinite(c->throttle_max) || c->throttle_min < 0.0 ||
-        !(c->throttle_max > 0.0) || c->throttle_max < c->throttle_min)
+        !(c->throttle_max > 0.0) || c->throttle_max < c->throttle_min ||
+        c->throttle_max > LV_THROTTLE_MAX)
         return lv_fail(err, LV_ERR_INPUT,
                        "engine '%s': throttle limits [%g, %g] invalid (need 0 <= min <= max, "
-                       "max > 0)",
-                       n, c->throttle_min, c->throttle_max);
+                       "0 < max <= %g: a throttle scales the rated thrust thrust_vac, at most "
+                       "twice)",
+                       n, c->throttle_min, c->throttle_max, LV_THROTTLE_MAX);
     if (!isfinite(c->exit_area) || c->exit_area < 0.0)
         return lv_fail(err, LV_ERR_INPUT, "engine '%s': exit_area = %g m^2 (must be >= 0)", n,
                        c->exit_area);

@@ -272,11 +272,11 @@ phases:
      guidance: {law: retrograde}, throttle: {landing: {altitude: 0, speed: 2}}}
 YAML
 expect 0 "is valid: 1 phases" -- "$lvsim" check "$work/sat.yaml"
-expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 9.307 s" -- \
+expect 0 "warning: phase 'land': the commanded throttle asked for less than the running engines' minimum throttle from t = 9.307 s" -- \
   "$lvsim" run "$work/sat.yaml" -o "$work/sat_out" --no-plots
 # slower at the start (150 m/s): saturated from the first row, where no crossing is logged
 sed 's/start_vel: 181/start_vel: 150/' "$work/sat.yaml" > "$work/sat0.yaml"
-expect 0 "warning: phase 'land': the throttle law asked for less than the running engines' minimum throttle from t = 0.000 s \(the phase's start\)" -- \
+expect 0 "warning: phase 'land': the commanded throttle asked for less than the running engines' minimum throttle from t = 0.000 s \(the phase's start\)" -- \
   "$lvsim" run "$work/sat0.yaml" -o "$work/sat0_out" --no-plots
 sed 's/engines: 1,/engines: 3,/' "$work/sat.yaml" > "$work/sat3.yaml"
 expect 2 "sat3.yaml:10:68: phase 'land': engines: 3 engines cannot run: stage 's' has 2 of engine 'm1'" -- \
@@ -487,7 +487,15 @@ printf 'time [s],gimbal_pitch [rad],gimbal_roll [rad]\n0,0,0\n10,0,0\n' > "$work
 printf 'time [s],gimbal_pitch [rad]\n0,0.01\n10,0.01\n' > "$work/gim.csv"
 dof6_yaml thr3.csv > "$work/d6a.yaml"; dof6_yaml gim3.csv > "$work/d6b.yaml"
 dof6_yaml gim.csv ", gimbal_pitch_deg: 5" > "$work/d6c.yaml"
-expect 2 "throttle = 3 at time 0 s is outside the limits \[0, 1\] of engine 'e'" -- "$lvsim" check "$work/d6a.yaml"
+# a table's throttle beyond the engines' range is clamped and logged, as dof3's (issue 27, M4):
+# `check` accepts it and `run` warns from the phase's start; a constant is refused at its value
+expect 0 "is valid: 1 phases" -- "$lvsim" check "$work/d6a.yaml"
+expect 0 "warning: phase 'P': the commanded throttle asked for more than the running engines' maximum throttle from t = 0.000 s \(the phase's start\)" -- \
+  "$lvsim" run "$work/d6a.yaml" -o "$work/d6a" --no-plots
+sed 's/inputs: {table: thr3.csv}/inputs: {throttle: 3}/' "$work/d6a.yaml" > "$work/d6k.yaml"
+expect 2 "d6k.yaml:8:[0-9]+: phase 'P': inputs: throttle = 3 is outside the throttle range \[0, 1\] of engine 'e'" -- "$lvsim" check "$work/d6k.yaml"
+expect 2 "d6k.yaml:8:[0-9]+: phase 'P': inputs: throttle = 3 is outside the throttle range \[0, 1\] of engine 'e'" -- \
+  "$lvsim" run "$work/d6k.yaml" -o "$work/d6k" --no-plots
 expect 2 "gimbal_pitch = 3 rad at time 0 s is outside \[-pi/2, pi/2\]" -- "$lvsim" run "$work/d6b.yaml" -o "$work/d6b" --no-plots
 expect 2 "'gimbal_pitch' is also a column of table 'gim': give it once" -- "$lvsim" check "$work/d6c.yaml"
 dof6_yaml roll.csv > "$work/d6d.yaml"

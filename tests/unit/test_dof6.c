@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "check.h"
+#include "mat_records.h"
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_dof6.h"
@@ -453,8 +454,25 @@ static void test_vs_dof3(void)
                           "v_rel", "v_inertial", "fpa", "heading", "fpa_inertial",
                           "heading_inertial", "accel", "accel_sensed", "sma", "ecc", "inc",
                           "raan", "argp", "apo_alt", "peri_alt", "downrange", "mach", "q_dyn",
-                          "thrust", "mdot", "engine_on"};
+                          "thrust", "mdot", "engine_on", "throttle_eff", "engines_running"};
     const size_t n_same = sizeof same / sizeof same[0];
+    /* issue 27 (L7): dof6 has dof3's engine columns, with dof3's unit and description */
+    const char *eng_cols[] = {"throttle_eff", "engines_running"};
+    for (int j = 0; j < 2; j++) {
+        const lv_model_def *d3 = lv_dof3_def(m3), *d6 = lv_dof6_def(m6);
+        const lv_var *v3 = NULL, *v6 = NULL;
+        for (size_t i = 0; i < d3->n_outputs; i++)
+            if (strcmp(d3->outputs[i].name, eng_cols[j]) == 0)
+                v3 = &d3->outputs[i];
+        for (size_t i = 0; i < d6->n_outputs; i++)
+            if (strcmp(d6->outputs[i].name, eng_cols[j]) == 0)
+                v6 = &d6->outputs[i];
+        CHECK(v3 != NULL && v6 != NULL);
+        if (v3 != NULL && v6 != NULL) {
+            CHECK(strcmp(v6->unit, "1") == 0 && strcmp(v3->unit, v6->unit) == 0);
+            CHECK(strcmp(v3->description, v6->description) == 0);
+        }
+    }
     double s6[32], s3[32];
     /* at several states along the fall (the radius once differed by an ulp on some: the norm
      * of lv_vec3 against dof3's hypot) */
@@ -746,7 +764,16 @@ static void test_mission_errors(void)
         "bad.yaml:11:57: phase 'P': 'rates': the mission's `parameters:` give start_q already");
 }
 
+static lv_run *run_text_to(const char *path, const char *yaml, const char *outdir,
+                           lv_mission **mp);
 static lv_run *run_text(const char *path, const char *yaml, lv_mission **mp)
+{
+    return run_text_to(path, yaml, NULL, mp);
+}
+
+/* As run_text, with the result files in outdir (NULL: none). */
+static lv_run *run_text_to(const char *path, const char *yaml, const char *outdir,
+                           lv_mission **mp)
 {
     lv_err err;
     FILE *f = fopen(path, "w");
@@ -761,8 +788,9 @@ static lv_run *run_text(const char *path, const char *yaml, lv_mission **mp)
         return NULL;
     lv_run *r = NULL;
     CHECK_OK(lv_run_create(*mp, &r, &err), &err);
+    lv_run_options opt = {.outdir = outdir, .threads = 2};
     if (r != NULL)
-        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        CHECK_OK(lv_run_execute(r, outdir != NULL ? &opt : NULL, &err), &err);
     remove(path);
     return r;
 }
@@ -840,14 +868,14 @@ static void test_mission_handoffs(void)
     }
     lv_mission_free(m);
 
-    r = run_text("test_dof6_handoff.yaml",
+    r = run_text_to("test_dof6_handoff.yaml",
                  HEAD0 STAGE_RB "phases:\n"
                  "  - {name: up, model: dof3, stages: [s1], stop_time: 40,\n"
                  "     guidance: {law: attitude, pitch_deg: 80, heading_deg: 90}}\n"
                  "  - {name: six, model: dof6, stages: [s1], from: up, stop_time: 60,\n"
                  "     aero: {s_ref: 10, CD: 0.3}, moments: {Cmq: -5, b_ref: 3.5, c_ref: 3.5}}\n"
                  "  - {name: three, model: dof3, stages: [s1], from: six, stop_time: 70}\n",
-                 &m);
+                 "dof6_handoff_out", &m);
     if (r != NULL) {
         const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", "m"};
         check_continuous(r, 1, st, 7, 0.0);
@@ -865,6 +893,34 @@ static void test_mission_handoffs(void)
         double th;
         CHECK_OK(lv_run_final(r, 0, "theta", &th, &err), &err);
         CHECK_CLOSE(th, 80.0 * DEG, 1e-9); /* the attitude law's pitch */
+        /* Issue 27 (M3): each child's .mat records its own start, its parent's final state:
+         * the dof6 phase's start_* are the dof3 parent's last row's lat .. heading and its
+         * attitude theta, psi, phi (the quaternion built from them, read back: to
+         * round-off, as above), its rates 0 (the hand-off's rule); the dof3 child's are the
+         * dof6 phase's last row. Not the mission's start (h = 0, v = 1 m/s). */
+        const char *par[] = {"start_lat", "start_lon", "start_h", "start_vel", "start_fpa",
+                             "start_chi", "start_theta", "start_psi", "start_phi"};
+        const char *out[] = {"lat", "lon", "h", "v_rel", "fpa", "heading", "theta", "psi", "phi"};
+        for (size_t k = 1; k <= 2; k++) {
+            char mat[512];
+            snprintf(mat, sizeof mat, "%s.mat", lv_run_result(r, k)->result_stem);
+            for (int i = 0; i < (k == 1 ? 9 : 6); i++) {
+                double rec = NAN, want = NAN;
+                CHECK(mat_param(mat, par[i], &rec) == 0);
+                CHECK_OK(lv_run_final(r, k - 1, out[i], &want, &err), &err);
+                CHECK_CLOSE(rec, want, 1e-9 * fmax(1.0, fabs(want)));
+            }
+            double t0 = NAN, h0 = NAN;
+            CHECK(mat_param(mat, "start_time", &t0) == 0 && t0 == lv_run_result(r, k - 1)->t_end);
+            CHECK(mat_param(mat, "start_h", &h0) == 0 && h0 > 1000.0);
+        }
+        char mat6[512];
+        snprintf(mat6, sizeof mat6, "%s.mat", lv_run_result(r, 1)->result_stem);
+        for (int i = 0; i < 3; i++) {
+            const char *rn[] = {"start_p", "start_q", "start_r"};
+            double rate = NAN;
+            CHECK(mat_param(mat6, rn[i], &rate) == 0 && rate == 0.0);
+        }
         /* summary.json names each change of model in the phase's handoff */
         mkdir("dof6_out", 0755);
         CHECK_OK(lv_run_write_summary(r, "dof6_out", &err), &err);

@@ -329,6 +329,99 @@ static void test_engine_out_dof6(void)
     lv_mission_free(m);
 }
 
+/* ---- (b') a throttle schedule the engines cannot follow (issue 27, M4) --------------------- */
+
+/* The first state event `name` of phase 0 at or after t_from: its time and direction (NAN, 0:
+ * none). */
+static double event_at(const lv_run *r, const char *name, double t_from, int *dir)
+{
+    const lv_phase_result *pr = lv_run_result(r, 0);
+    for (size_t i = 0; i < pr->report.n_event_log; i++) {
+        const lv_event_record *e = &pr->report.event_log[i];
+        if (e->is_state && e->index >= 0 && (size_t)e->index < pr->n_event_names &&
+            strcmp(pr->event_names[e->index], name) == 0 && e->t >= t_from) {
+            *dir = e->direction;
+            return e->t;
+        }
+    }
+    *dir = 0;
+    return NAN;
+}
+
+/* An inputs table's throttle, linear between (0 s, 1), (5 s, 0.2), (10 s, 0.2), (15 s, 1),
+ * (20 s, 1.4), on one engine of range [0.4, 1]: c(t) = 1 - 0.16 t falls through 0.4 at
+ * t = 0.6 / 0.16 = 3.75 s and c(t) = 0.2 + 0.16 (t - 10) comes back at 11.25 s; above 1 from
+ * 15 s on. The events sit 1e-9 beyond the limits (docs/guidance.md, "Saturation"): at 3.75 +
+ * 1e-9 / 0.16 s, 11.25 - 1e-9 / 0.16 s and 15 + 1e-9 / 0.08 s. Between them the engine gives
+ * T_min = 0.4 F_vac in vacuum while the table asks for less; the same in dof3 and dof6. */
+static void test_table_saturation(void)
+{
+    write_file("engines_thr.csv", "time [s],throttle [1]\n0,1\n5,0.2\n10,0.2\n15,1\n20,1.4\n");
+    const char *yaml[2] = {
+        "mission: {name: sat-table}\n" FLAT_WORLD
+        "parameters: {start_h: 1000, start_vel: 0, start_fpa_deg: 90}\n"
+        "stages: [{name: s, dry_mass: 20000, propellant_mass: 10000,\n"
+        "          engines: [{name: e, thrust_vac: 600000, isp_vac: 300, throttle_min: 0.4}]}]\n"
+        "phases:\n"
+        "  - {name: P, model: dof3, stages: [s], stop_time: 20, inputs: {table: engines_thr.csv},\n"
+        "     integrator: {tolerance: 1.0e-10, output_interval: 0.05}}\n",
+        "mission: {name: sat-table6}\n" FLAT_WORLD
+        "parameters: {start_h: 1000, start_vel: 0, start_fpa_deg: 90}\n"
+        "stages: [{name: s, dry_mass: 20000, propellant_mass: 10000,\n"
+        "          engines: [{name: e, thrust_vac: 600000, isp_vac: 300, throttle_min: 0.4}],\n"
+        "          rigid_body: {inertia_full: {xx: 2.0e5, yy: 8.0e6, zz: 8.0e6},\n"
+        "                       cg_full: {x: -15}, engine_position: {x: -30}}}]\n"
+        "phases:\n"
+        "  - {name: P, model: dof6, stages: [s], stop_time: 20, inputs: {table: engines_thr.csv},\n"
+        "     attitude: {theta_deg: 90}, integrator: {tolerance: 1.0e-10, output_interval: 0.05}}\n"};
+    const double t_want[3] = {3.75 + 1e-9 / 0.16, 11.25 - 1e-9 / 0.16, 15.0 + 1e-9 / 0.08};
+    for (int six = 0; six < 2; six++) {
+        lv_mission *m;
+        lv_run *r = run_text("engines_sat.yaml", yaml[six], &m);
+        if (r == NULL) {
+            lv_mission_free(m);
+            continue;
+        }
+        int d0, d1, d2;
+        const double t0 = event_at(r, "throttle_min", 0.0, &d0);
+        const double t1 = event_at(r, "throttle_min", t0 + 1e-3, &d1);
+        const double t2 = event_at(r, "throttle_max", 0.0, &d2);
+        printf("table saturation (%s): throttle_min at %.9f s (%d), back at %.9f s (%d), "
+               "throttle_max at %.9f s (%d)\n", six ? "dof6" : "dof3", t0, d0, t1, d1, t2, d2);
+        CHECK_CLOSE(t0, t_want[0], 1e-7);
+        CHECK(d0 == -1);
+        CHECK_CLOSE(t1, t_want[1], 1e-7);
+        CHECK(d1 == 1);
+        CHECK_CLOSE(t2, t_want[2], 1e-7);
+        CHECK(d2 == -1);
+        /* within: the table's throttle in throttle_in, the engine's minimum (maximum) given */
+        const lv_result *res = lv_run_rows(r, 0);
+        int n_lo = 0, n_hi = 0, bad = 0;
+        const size_t c_t = res ? col(res, "time") : 0, c_in = res ? col(res, "throttle_in") : 0;
+        const size_t c_eff = res ? col(res, "throttle_eff") : 0, c_f = res ? col(res, "thrust") : 0;
+        for (size_t i = 0; res != NULL && i < lv_result_rows(res); i++) {
+            const double t = lv_result_value(res, i, c_t), in = lv_result_value(res, i, c_in);
+            const double want_in = t <= 5.0 ? 1.0 - 0.16 * t : t <= 10.0 ? 0.2
+                                   : t <= 15.0 ? 0.2 + 0.16 * (t - 10.0) : 1.0 + 0.08 * (t - 15.0);
+            bad += fabs(in - want_in) > 1e-12;
+            if (t > 3.76 && t < 11.24) {
+                n_lo++;
+                bad += lv_result_value(res, i, c_eff) != 0.4;
+                bad += fabs(lv_result_value(res, i, c_f) - 0.4 * 600000.0) > 1e-6;
+            } else if (t > 15.01) {
+                n_hi++;
+                bad += lv_result_value(res, i, c_eff) != 1.0;
+                bad += fabs(lv_result_value(res, i, c_f) - 600000.0) > 1e-6;
+            }
+        }
+        CHECK(n_lo > 100 && n_hi > 50 && bad == 0);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove("engines_sat.yaml");
+    remove("engines_thr.csv");
+}
+
 /* ---- (d) bad values ---------------------------------------------------------------------- */
 
 /* A mission whose phase P carries `extra` (line 8 of the file) must fail naming `want`. */
@@ -387,6 +480,111 @@ static void test_refused(void)
     load_fails("stages: [s], engine_out: {time: 2}", "'engine' is missing");
     load_fails("stages: [s], engine_out: {time: 2, engine: x}", "stage 's' has no engine 'x'");
     load_fails("stages: [one], engine_out: {time: 2, when: 3}", "when");
+    /* issue 27 (M4): a constant throttle the engines cannot give, refused at the value (line
+     * 11, column 6 + the text before it); a kind that does not run does not limit it */
+    load_fails("stages: [one], inputs: {throttle: 1.5}",
+               "bad_engines.yaml:11:40: phase 'P': inputs: throttle = 1.5 is outside the "
+               "throttle range [0, 1] of engine 'o' (stage 'one')");
+    load_fails("stages: [one], throttle: {value: 1.5}",
+               "bad_engines.yaml:11:39: phase 'P': throttle: value = 1.5 is outside");
+    load_fails("stages: [s], engines: {a: 1, v: 0}, inputs: {throttle: 1.01}",
+               "bad_engines.yaml:11:61: phase 'P': inputs: throttle = 1.01 is outside the "
+               "throttle range [0, 1] of engine 'a'");
+}
+
+/* Issue 27 (M5, L5): an engine-out that would never happen and an unbounded throttle range,
+ * refused where the file writes them (`path`:line:column); the same start known only at run
+ * time fails the phase when it starts. */
+static void load_fails_at(const char *yaml, const char *want)
+{
+    write_file("bad_engines2.yaml", yaml);
+    lv_mission *m = NULL;
+    lv_err err;
+    CHECK_FAILS(lv_mission_load("bad_engines2.yaml", &m, &err), &err, LV_ERR_INPUT, want);
+    lv_mission_free(m);
+}
+
+#define TWO_STAGES                                                                         \
+    "stages: [{name: s1, dry_mass: 20000, propellant_mass: 1000,\n"                         \
+    "          engines: [{name: k, count: 3, thrust_vac: 100000, isp_vac: 300}]},\n"        \
+    "         {name: s2, dry_mass: 5000, propellant_mass: 1000,\n"                          \
+    "          engines: [{name: u, count: 2, thrust_vac: 20000, isp_vac: 300}]}]\n"
+
+static void test_never(void)
+{
+    const char *head = "mission: {name: never}\n" FLAT_WORLD
+                       "parameters: {start_h: 0, start_vel: 0, start_fpa_deg: 90}\n" TWO_STAGES
+                       "phases:\n";
+    char yaml[2048];
+    /* a root phase from 0 s to 20 s: an engine-out at 20 s or later never happens (line 12,
+     * the time's column) */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     engine_out: {time: 20}}\n", head);
+    load_fails_at(yaml, "bad_engines2.yaml:13:25: phase 'A', engine_out: time 20 s after the "
+                        "phase's start (at t = 0 s) is at or after its stop_time 20 s");
+    /* from start_time 5 s: 15 s after it is the stop_time */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], start_time: 5,\n"
+             "     stop_time: 20, engine_out: {time: 15}}\n", head);
+    load_fails_at(yaml, "phase 'A', engine_out: time 15 s after the phase's start (at t = 5 s)");
+    /* a child of a parent without end events starts at the parent's stop_time 10 s */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 10}\n"
+             "  - {name: B, model: dof3, stages: [s1, s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 20.5}}\n", head);
+    load_fails_at(yaml, "phase 'B', engine_out: time 20.5 s after the phase's start (at t = 10 s)");
+    /* a child of a parent that ends at burnout starts after the parent's start, 0 s */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     end: [burnout]}\n"
+             "  - {name: B, model: dof3, stages: [s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 31}}\n", head);
+    load_fails_at(yaml, "phase 'B', engine_out: time 31 s after the phase's start (after t = 0 s)");
+    /* ... and at run time where the start is known: A burns s1's 1000 kg at 3 x 100 kN / (300
+     * g0) kg/s, burnout at 1000 300 g0 / 3e5 = g0 s = 9.80665 s; B's engine-out 25 s later
+     * would be at 34.8 s, after its stop_time 30 s: B fails naming the place; 15 s flies */
+    snprintf(yaml, sizeof yaml, "%s  - {name: A, model: dof3, stages: [s1, s2], stop_time: 20,\n"
+             "     end: [burnout]}\n"
+             "  - {name: B, model: dof3, stages: [s2], from: A, stop_time: 30,\n"
+             "     engine_out: {time: 25}}\n", head);
+    lv_mission *m = NULL;
+    lv_run *r = NULL;
+    lv_err err;
+    write_file("engines_never.yaml", yaml);
+    CHECK_OK(lv_mission_load("engines_never.yaml", &m, &err), &err);
+    if (m != NULL)
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+    if (r != NULL) {
+        CHECK(lv_run_execute(r, NULL, &err) != LV_OK); /* a phase failed */
+        const lv_phase_result *b = lv_run_result(r, 1);
+        CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE);
+        CHECK_CLOSE(lv_run_result(r, 0)->t_end, G0, 1e-6);
+        CHECK(b->state == LV_PHASE_FAILED);
+        CHECK(strstr(b->error, "engines_never.yaml:15:25: phase 'B', engine_out: time 25 s after "
+                               "the phase's start (at t = 9.80665") != NULL);
+        if (strstr(b->error, "engines_never.yaml:15:25") == NULL)
+            fprintf(stderr, "  got: %s\n", b->error);
+        CHECK_OK(lv_run_set(r, "B.engine_out.time", 15.0, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        CHECK(lv_run_result(r, 1)->state == LV_PHASE_DONE);
+        lv_run_free(r);
+    }
+    lv_mission_free(m);
+    remove("engines_never.yaml");
+    /* throttle_max: finite, at most 2 (twice the rated thrust: lv_vehicle.h) */
+#define THR(keys)                                                                          \
+    snprintf(yaml, sizeof yaml, "mission: {name: t}\n" FLAT_WORLD                          \
+             "stages: [{name: s, dry_mass: 10, propellant_mass: 5,\n"                       \
+             "          engines: [{name: e, thrust_vac: 1000, isp_vac: 300, %s}]}]\n"       \
+             "phases:\n  - {name: A, model: dof3, stages: [s], stop_time: 10}\n", keys)
+    THR("throttle_max: 1e9");
+    load_fails_at(yaml, "bad_engines2.yaml:7:77: stage 's', engine 'e': throttle_max must be > 0 "
+                        "and <= 2, found 1e+09");
+    THR("throttle_max: .inf");
+    load_fails_at(yaml, "bad_engines2.yaml:7:77: stage 's', engine 'e': throttle_max: non-finite");
+    THR("throttle_min: 2.5, throttle_max: 2");
+    load_fails_at(yaml, "throttle_min must be >= 0 and <= 2, found 2.5");
+    THR("throttle_min: 0.9, throttle_max: 0.5");
+    load_fails_at(yaml, "throttle_min 0.9 is above throttle_max 0.5");
+#undef THR
+    remove("bad_engines2.yaml");
 }
 
 int main(void)
@@ -396,6 +594,8 @@ int main(void)
     test_landing_min();
     test_engine_out();
     test_engine_out_dof6();
+    test_table_saturation();
     test_refused();
+    test_never();
     return check_report("test_engines");
 }

@@ -295,11 +295,29 @@ static void test_throttle_limits(void)
 
 /* ---- (d) landing burn ------------------------------------------------------------------------ */
 
+/* The landing law's touchdown (thr_landing.c): a constant deceleration a = (v0^2 - vt^2) /
+ * (2 dh0) while the time to go on it, (v - vt) / a, is above tau = 0.001 s, i.e. until
+ * t_s = (v0 - vt) / a - tau, where v = vt + a tau and dh = tau (2 vt + a tau) / 2; from there
+ * dv/dt = -(v - vt) / tau, so v - vt = a tau e^-x after x tau more seconds, over the distance
+ * vt tau x + a tau^2 (1 - e^-x): it touches down when that is dh, vt x + a tau (1 - e^-x) =
+ * vt + a tau / 2 (Newton's method from x = 1; for vt = 0, x = ln 2). Returns the touchdown
+ * time, *v_td the speed. */
+static double landing_touchdown(double v0, double vt, double dh0, double *v_td)
+{
+    const double tau = 0.001, a = (v0 * v0 - vt * vt) / (2.0 * dh0), at = a * tau;
+    double x = 1.0;
+    for (int i = 0; i < 50; i++)
+        x -= (vt * x + at * (1.0 - exp(-x)) - vt - at / 2.0) / (vt + at * exp(-x));
+    *v_td = vt + at * exp(-x);
+    return (v0 - vt) / a - tau + x * tau;
+}
+
 static void test_landing(void)
 {
     /* 2 km up, falling at 150 m/s; the law holds a = (v^2 - v_td^2) / (2 dh) constant, so
      * the kinematics predict a = (150^2 - 2^2) / 4000 = 5.624 m/s^2 and touchdown at 2 m/s
-     * after (150 - 2) / a = 26.316 s; thrust needed m (a + g) = 463 kN of 600 kN: unsaturated */
+     * after (150 - 2) / a = 26.316 s, but for the last millisecond (landing_touchdown: 2.00207 m/s
+     * at 26.31579 s); thrust needed m (a + g) = 463 kN of 600 kN: unsaturated */
     const char *yaml =
         "mission: {name: landing}\n" FLAT_WORLD
         "parameters: {start_h: 2000, start_vel: 150, start_fpa_deg: -90}\n"
@@ -313,17 +331,96 @@ static void test_landing(void)
     lv_run *r = run_text("land.yaml", yaml, &m);
     if (r == NULL)
         return lv_mission_free(m);
-    const double a = (150.0 * 150.0 - 4.0) / 4000.0;
-    printf("landing: touchdown %.6f m/s (2), at %.6f s (%.6f)\n", final(r, 0, "v_rel"),
-           lv_run_result(r, 0)->t_end, (150.0 - 2.0) / a);
-    CHECK_CLOSE(final(r, 0, "v_rel"), 2.0, 1e-4);
-    CHECK_CLOSE(lv_run_result(r, 0)->t_end, (150.0 - 2.0) / a, 1e-4);
+    double v_td;
+    const double t_td = landing_touchdown(150.0, 2.0, 2000.0, &v_td);
+    printf("landing: touchdown %.6f m/s (%.6f), at %.6f s (%.6f)\n", final(r, 0, "v_rel"), v_td,
+           lv_run_result(r, 0)->t_end, t_td);
+    CHECK_CLOSE(final(r, 0, "v_rel"), v_td, 1e-4);
+    CHECK_CLOSE(lv_run_result(r, 0)->t_end, t_td, 1e-4);
+    CHECK(fabs(v_td - 2.0) < 0.003); /* the last millisecond: 0.1 % of the touchdown speed */
     double lo, hi;
     col_range_on(r, 0, "throttle_in", &lo, &hi);
     CHECK(lo > 0.2 && hi < 1.0); /* never saturated: the prediction holds */
     CHECK_CLOSE(final(r, 0, "alpha_in"), M_PI, 1e-12);
     lv_run_free(r);
     lv_mission_free(m);
+}
+
+/* Issue 27 (L2): no saturation event at the touchdown unless the engines truly saturate. The
+ * law was 0/0 there, (v^2 - vt^2) / (2 dh) with v -> vt and dh -> 0: the integrator's errors
+ * became spikes of the throttle in the last microseconds (a throttle_max event just before the
+ * impact, and -1/+1 at it), and its jump to 0 at dh = 0 logged a saturated landing's "back
+ * within range" at the impact. Each case, run before the fix: (150 m/s, 0.5 m/s, 900 kN, tol
+ * 1e-6) gave throttle_max -1 2 us before the impact; (181, 5, 600 kN, 1e-9) -1 and +1 at
+ * it; (220, 2, 600 kN) needs m (a + g) = 30 t (12.1 + 9.8) m/s^2 = 657 kN > 600 kN from the
+ * start (no crossing) and gave +1 at the impact. Now: none at all, the saturated one still at
+ * throttle_max on its last row (throttle_in > 1); and a landing at speed 0 (before: never
+ * reached) touches down as landing_touchdown predicts (x = ln 2: v = a tau / 2), on a
+ * non-rotating sphere of the Earth's radius (the flat world's 1e10 m radius leaves a position
+ * resolution of 2e-6 m, too coarse for the last millimetres). */
+static void test_landing_events(void)
+{
+    const struct {
+        double v0, vt, thrust, tol;
+        int saturated;
+    } cases[] = {{150.0, 0.5, 900000.0, 1e-6, 0}, {181.0, 5.0, 600000.0, 1e-9, 0},
+                 {220.0, 2.0, 600000.0, 1e-6, 1}, {150.0, 0.0, 600000.0, 1e-9, 0}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char yaml[1400];
+        snprintf(yaml, sizeof yaml,
+                 "mission: {name: landing-events}\n%s"
+                 "parameters: {start_h: 2000, start_vel: %g, start_fpa_deg: -90}\n"
+                 "stages: [{name: s, dry_mass: 20000, propellant_mass: 10000,\n"
+                 "          engines: [{thrust_vac: %g, isp_vac: 300}]}]\n"
+                 "phases:\n"
+                 "  - {name: land, model: dof3, stages: [s], stop_time: 60, end: [impact],\n"
+                 "     integrator: {tolerance: %g},\n"
+                 "     guidance: {law: retrograde}, throttle: {landing: {altitude: 0, speed: %g}}}\n",
+                 cases[i].vt > 0.0 ? FLAT_WORLD
+                                   : "environment:\n  world: planet\n  planet: {name: round, "
+                                     "radius: 6.4e6, gm: 4.0168e14, rotation_rate: 0}\n"
+                                     "  atmosphere: none\n",
+                 cases[i].v0, cases[i].thrust, cases[i].tol, cases[i].vt);
+        lv_mission *m;
+        lv_run *r = run_text("land_events.yaml", yaml, &m);
+        if (r == NULL) {
+            lv_mission_free(m);
+            continue;
+        }
+        const lv_phase_result *pr = lv_run_result(r, 0);
+        int n_sat = 0;
+        for (size_t e = 0; e < pr->report.n_event_log; e++) {
+            const lv_event_record *ev = &pr->report.event_log[e];
+            if (ev->is_state && ev->index >= 0 && (size_t)ev->index < pr->n_event_names &&
+                strncmp(pr->event_names[ev->index], "throttle_m", 10) == 0) {
+                n_sat++;
+                fprintf(stderr, "  case %zu: %s %+d at %.9f s (impact %.9f s)\n", i,
+                        pr->event_names[ev->index], ev->direction, ev->t, pr->t_end);
+            }
+        }
+        CHECK(n_sat == 0);
+        CHECK(pr->report.reason == LV_STOP_EVENT); /* the impact */
+        const lv_result *res = lv_run_rows(r, 0);
+        size_t c_in = 0;
+        lv_err err;
+        CHECK(res != NULL && lv_result_rows(res) > 1);
+        if (res != NULL && lv_result_column(res, "throttle_in", &c_in, &err) == LV_OK) {
+            const double last = lv_result_value(res, lv_result_rows(res) - 1, c_in);
+            CHECK(cases[i].saturated ? last > 1.0 : last > 0.0 && last < 1.0);
+        }
+        if (cases[i].vt == 0.0) {
+            double v_td;
+            const double t_td = landing_touchdown(cases[i].v0, 0.0, 2000.0, &v_td);
+            printf("landing at speed 0: touchdown %.6f m/s (%.6f) at %.6f s (%.6f)\n",
+                   final(r, 0, "v_rel"), v_td, pr->t_end, t_td);
+            CHECK_CLOSE(v_td, 150.0 * 150.0 / 4000.0 * 0.001 / 2.0, 1e-12); /* a tau / 2 */
+            CHECK_CLOSE(final(r, 0, "v_rel"), v_td, 1e-4);
+            CHECK_CLOSE(pr->t_end, t_td, 1e-4);
+        }
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+    remove("land_events.yaml");
 }
 
 /* ---- (e) heading law -------------------------------------------------------------------------- */
@@ -682,6 +779,7 @@ int main(void)
     test_linear_tangent();
     test_throttle_limits();
     test_landing();
+    test_landing_events();
     test_heading();
     test_heading_limits();
     test_frames();

@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "mat_records.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
 
@@ -228,6 +229,20 @@ static void test_paper_case(void)
         CHECK(access(path, F_OK) == 0);
     }
     CHECK(access("runner_out/body_stage1.csv", F_OK) == 0);
+    /* Issue 27 (M3): P2's records are its own start, P1's final state (the flat body's
+     * start_* are its position, speed |v| and the direction of v: fpa = atan2(vz, |v_h|) =
+     * 90 deg climbing straight up), not the root's parameters (z = 0, v = 0) */
+    {
+        snprintf(path, sizeof path, "runner_out/phase_%zu_P2.mat", k2 + 1);
+        const double vx = final(r, "P1", "vx"), vy = final(r, "P1", "vy"), vz = final(r, "P1", "vz");
+        double z0 = NAN, v0 = NAN, fpa0 = NAN;
+        CHECK(mat_param(path, "start_z", &z0) == 0 && z0 == final(r, "P1", "z"));
+        CHECK(mat_param(path, "start_vel", &v0) == 0);
+        CHECK_REL(v0, sqrt(vx * vx + vy * vy + vz * vz), 1e-15);
+        CHECK(mat_param(path, "start_fpa", &fpa0) == 0);
+        CHECK_CLOSE(fpa0, atan2(vz, hypot(vx, vy)), 1e-15);
+        CHECK(vz > 1000.0 && z0 > 10000.0);
+    }
     FILE *f = fopen("runner_out/summary.json", "r");
     CHECK(f != NULL);
     if (f != NULL) {
@@ -462,6 +477,38 @@ static void test_dof3_branch(void)
         for (int i = 0; i < 6; i++)
             CHECK(col[i] >= 0 && col[i] < c && v[col[i]] == final(r, "ascent", st[i]));
         fclose(f);
+    }
+    /* Issue 27 (M3): a child's records are its own start. Its .mat file's data_1 start_* are
+     * the state it started from, the parent's final state (the hand-off copies r_eci, v_eci):
+     * the parent's last row's outputs lat .. heading, which dof3 computes from that state
+     * as the records are (lv_flight_start_geodetic), so to round-off; start_time its start.
+     * The root's records stay the file's parameters (start_h: 100, start_vel: 100). */
+    {
+        const char *par[] = {"start_lat", "start_lon", "start_h", "start_vel", "start_fpa",
+                             "start_chi"};
+        const char *out[] = {"lat", "lon", "h", "v_rel", "fpa", "heading"};
+        const size_t kids[] = {ku, kb};
+        for (int c = 0; c < 2; c++) {
+            const lv_phase_result *pr = lv_run_result(r, kids[c]);
+            snprintf(path, sizeof path, "%s.mat", pr->result_stem ? pr->result_stem : "?");
+            for (int i = 0; i < 6; i++) {
+                double rec = NAN;
+                CHECK(mat_param(path, par[i], &rec) == 0);
+                const double want = final(r, "ascent", out[i]);
+                CHECK_CLOSE(rec, want, 1e-12 * fmax(1.0, fabs(want)));
+            }
+            double t0 = NAN;
+            CHECK(mat_param(path, "start_time", &t0) == 0);
+            CHECK(t0 == lv_run_result(r, ka)->t_end);
+        }
+        /* the parent left the ground: a root record would be 100 m, 100 m/s */
+        CHECK(final(r, "ascent", "h") > 10000.0 && final(r, "ascent", "v_rel") > 1000.0);
+        const lv_phase_result *pa = lv_run_result(r, ka);
+        snprintf(path, sizeof path, "%s.mat", pa->result_stem ? pa->result_stem : "?");
+        double h0 = NAN, v0 = NAN, t0 = NAN;
+        CHECK(mat_param(path, "start_h", &h0) == 0 && h0 == 100.0);
+        CHECK(mat_param(path, "start_vel", &v0) == 0 && v0 == 100.0);
+        CHECK(mat_param(path, "start_time", &t0) == 0 && t0 == 0.0);
     }
     lv_run_free(r);
     lv_mission_free(m);

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "mat_records.h"
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
@@ -440,6 +441,13 @@ static void test_mission_errors(void)
              "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
              "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n",
         "bad.yaml:12:36: phase 'Q', landing: 'start_speed': a phase with `from`");
+    /* issue 27 (M4): a constant take-off throttle outside the engines' range [0, 1], at the
+     * value */
+    BAD(HEAD "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"
+             "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8, throttle: 1.2}}\n",
+        "bad.yaml:9:65: phase 'P': takeoff: throttle = 1.2 is outside the throttle range [0, 1] "
+        "of engine 'e' (stage 'ms')");
 }
 
 /* A take-off roll, the climb-out (dof3) from it, and from a glide down to the runway's
@@ -476,7 +484,8 @@ static void test_mission_handoffs(void)
         return;
     lv_run *r = NULL;
     CHECK_OK(lv_run_create(m, &r, &err), &err);
-    CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+    lv_run_options opt = {.outdir = "rw_handoff_out", .threads = 2};
+    CHECK_OK(lv_run_execute(r, &opt, &err), &err);
     const char *st[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", "m"};
     /* roll -> climb: the climb's first row is the roll's last, exactly */
     const lv_result *climb = lv_run_rows(r, 1);
@@ -525,6 +534,39 @@ static void test_mission_handoffs(void)
     CHECK_OK(lv_run_final(r, 3, "speed", &t_end, &err), &err);
     CHECK_CLOSE(t_end, 2.0, 1e-6);
     CHECK(lv_run_result(r, 3)->report.reason == LV_STOP_EVENT);
+    /* Issue 27 (M3): each child's .mat records its own start. The climb (dof3 from the roll)
+     * starts from the roll's final state: its start_* are the roll's last row's h, lat, lon,
+     * v_rel, fpa, heading (the same geodetic of the same ECI state, to round-off), not the
+     * mission's parameters (it has none of start_h ...: 0); the roll-out (runway from the
+     * glide) starts at the touchdown's projection: start_distance, start_speed are its first
+     * row's states, start_time the glide's end. */
+    {
+        char mat[512];
+        snprintf(mat, sizeof mat, "%s.mat", lv_run_result(r, 1)->result_stem);
+        const char *par[] = {"start_lat", "start_lon", "start_h", "start_vel", "start_fpa",
+                             "start_chi"};
+        const char *out[] = {"lat", "lon", "h", "v_rel", "fpa", "heading"};
+        for (int i = 0; i < 6; i++) {
+            double rec = NAN, want = NAN;
+            CHECK(mat_param(mat, par[i], &rec) == 0);
+            CHECK_OK(lv_run_final(r, 0, out[i], &want, &err), &err);
+            CHECK_CLOSE(rec, want, 1e-9 * fmax(1.0, fabs(want)));
+        }
+        double h0 = NAN;
+        CHECK(mat_param(mat, "start_h", &h0) == 0 && h0 > 140.0); /* the runway's 150 m */
+        snprintf(mat, sizeof mat, "%s.mat", lv_run_result(r, 3)->result_stem);
+        const char *rs[] = {"distance", "speed"}, *rp[] = {"start_distance", "start_speed"};
+        for (int i = 0; ro != NULL && i < 2; i++) {
+            double rec = NAN;
+            size_t col = 0;
+            CHECK(mat_param(mat, rp[i], &rec) == 0);
+            CHECK_OK(lv_result_column(ro, rs[i], &col, &err), &err);
+            CHECK(rec == lv_result_value(ro, 0, col));
+        }
+        double s0 = NAN, t0 = NAN;
+        CHECK(mat_param(mat, "start_speed", &s0) == 0 && s0 > 10.0); /* not the default 0 */
+        CHECK(mat_param(mat, "start_time", &t0) == 0 && t0 == lv_run_result(r, 2)->t_end);
+    }
     lv_run_free(r);
     lv_mission_free(m);
     remove(path);

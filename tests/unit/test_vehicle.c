@@ -138,6 +138,18 @@ static void test_engine_errors(void)
     c.throttle_max = 0.6;
     CHECK_FAILS(lv_engine_init(&e, &c, 0, &err), &err, LV_ERR_INPUT,
                 "engine 'e1': throttle limits [0.8, 0.6] invalid");
+    /* issue 27 (L5): the range ends at LV_THROTTLE_MAX = 2 (twice the rated thrust), finite */
+    c.throttle_min = 0.0;
+    c.throttle_max = 1e9;
+    CHECK_FAILS(lv_engine_init(&e, &c, 0, &err), &err, LV_ERR_INPUT,
+                "engine 'e1': throttle limits [0, 1e+09] invalid (need 0 <= min <= max, 0 < max "
+                "<= 2");
+    c.throttle_max = INFINITY;
+    CHECK_FAILS(lv_engine_init(&e, &c, 0, &err), &err, LV_ERR_INPUT, "throttle limits [0, inf]");
+    c.throttle_max = nextafter(LV_THROTTLE_MAX, 3.0);
+    CHECK_FAILS(lv_engine_init(&e, &c, 0, &err), &err, LV_ERR_INPUT, "throttle limits");
+    c.throttle_max = LV_THROTTLE_MAX;
+    CHECK_OK(lv_engine_init(&e, &c, 0, &err), &err);
     c.throttle_max = 1.0;
     c.exit_area = -1.0;
     CHECK_FAILS(lv_engine_init(&e, &c, 0, &err), &err, LV_ERR_INPUT, "exit_area = -1");
