@@ -60,11 +60,12 @@ static const char *const why_vertical =
     "step to step. Fly through the vertical in the local frame (guidance: {law: attitude, "
     "frame: local}) or with alpha = beta = 0 and no lift";
 static const char *const why_vertical_6dof =
-    "the 6-DoF attitude is commanded about the air-relative velocity while the engines thrust, "
-    "and its roll reference, the vertical plane through that velocity, is undefined at rest and "
-    "in vertical flight: the commanded roll would follow the velocity's drift (the Earth's "
-    "rotation, the wind) and flip. Start the phase after the pitch-over (a dof3 lift-off phase "
-    "first, as examples/two-stage-6dof) or steer it in the local frame (guidance: {law: "
+    "the 6-DoF attitude is commanded about the air-relative velocity while the engines thrust "
+    "or a force normal to that velocity acts (lift, the aerodynamic force at an angle of "
+    "attack), and its roll reference, the vertical plane through that velocity, is undefined at "
+    "rest and in vertical flight: the commanded roll would follow the velocity's drift (the "
+    "Earth's rotation, the wind) and flip. Start the phase after the pitch-over (a dof3 lift-off "
+    "phase first, as examples/two-stage-6dof) or steer it in the local frame (guidance: {law: "
     "attitude, frame: local})";
 void lv_flight_domain_init(lv_domain_def dom[3], lv_flight_core *core, int has_atmo)
 {
@@ -292,7 +293,9 @@ int lv_flight_domain_q(double t, const double *x, const double *p, double *q, vo
     q[0] = kin.h;
     if (k->n_dom == 1)
         return 0;
-    if (kin.h < k->ground_h + LV_FLIGHT_GROUND_ZONE) { /* a landing: the impact's to end */
+    /* a landing (within the zone, not rising): the impact's to end; a launch from the
+     * ground climbs out of the zone and keeps its guards */
+    if (kin.h < k->ground_h + LV_FLIGHT_GROUND_ZONE && lv_v3_dot(kin.v_rel, kin.d_ax) >= 0.0) {
         for (size_t i = 1; i < k->n_dom; i++)
             q[i] = LV_DOMAIN_OFF;
         return 0;

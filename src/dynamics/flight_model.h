@@ -98,7 +98,8 @@ lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engi
  *     plane through it, is undefined in vertical flight. For a 6-DoF this guard holds from
  *     the start too: a phase that starts at rest or vertical with its attitude commanded
  *     about the wind (and its engines on) is refused at once.
- * Within LV_FLIGHT_GROUND_ZONE above an `impact` end's level the guards are off (a landing).
+ * Within LV_FLIGHT_GROUND_ZONE above an `impact` end's level, not rising, the guards are off
+ * (a landing; a launch from the ground keeps them).
  * Without the guards such a phase chatters about the undefined reference until the step
  * limit (issue 27): the force that flips drives the state back to where it flips. A law that
  * steers by the bearing to a target (boostback, heading) is not guarded over the target: the

@@ -274,14 +274,11 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.mu = lv_kit_val(bc, pc->u[2], 0.0);
     const lv_slot thr_value = lv_guidance_def_throttle_value(&pc->guid);
     cfg.throttle = lv_kit_val(bc, thr_value, lv_kit_val(bc, pc->u[3], 1.0));
-    /* a throttle nobody wrote is full throttle: the most every engine accepts (1 unless an
-     * engine's throttle_max is lower) */
+    /* a throttle nobody wrote is full throttle within every engine's range */
     const lv_slot_def *ts = pc->u[3] != LV_NO_SLOT ? &d->slots[pc->u[3]] : NULL;
     if (thr_value == LV_NO_SLOT &&
         (ts == NULL || (ts->loc.line == 0 && cfg.throttle == ts->value)))
-        for (size_t e = 0; e < ne; e++)
-            if (s->kit.engines[e].throttle_max < cfg.throttle)
-                cfg.throttle = s->kit.engines[e].throttle_max;
+        cfg.throttle = lv_kit_full_throttle(s->kit.engines, ne);
     cfg.inputs = pc->inputs;
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &cfg.throttle_law);
     /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an

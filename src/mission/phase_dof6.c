@@ -689,10 +689,8 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     cfg.gimbal_yaw = lv_kit_val(bc, pc->u[U_GY], 0.0);
     cfg.throttle = lv_kit_val(bc, pc->u[U_THR], 1.0);
     const lv_slot_def *ts = &d->slots[pc->u[U_THR]]; /* always a slot (default 1) */
-    if (ts->loc.line == 0) /* a throttle nobody wrote: the most every engine accepts */
-        for (size_t e = 0; e < ne; e++)
-            if (s->kit.engines[e].throttle_max < cfg.throttle)
-                cfg.throttle = s->kit.engines[e].throttle_max;
+    if (ts->loc.line == 0 && cfg.throttle == ts->value) /* nobody wrote it: full throttle */
+        cfg.throttle = lv_kit_full_throttle(s->kit.engines, ne);
     cfg.inputs = pc->inputs;
     lv_throttle_cfg thr_unused = {0};
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &thr_unused);

@@ -134,6 +134,18 @@ size_t lv_kit_engine_count(const lv_stage_def *st)
     return n;
 }
 
+double lv_kit_full_throttle(const lv_engine_config *eng, size_t n)
+{
+    double c = 1.0;
+    for (size_t e = 0; e < n; e++)
+        if (eng[e].throttle_max < c)
+            c = eng[e].throttle_max;
+    for (size_t e = 0; e < n; e++)
+        if (eng[e].throttle_min > c)
+            c = eng[e].throttle_min;
+    return c;
+}
+
 size_t lv_kit_engines(const lv_build_ctx *bc, const lv_stage_def *st, lv_engine_config *out)
 {
     /* the phase's bottom stage runs `engines:` of each kind (all without it); the last of a

@@ -129,6 +129,11 @@ size_t lv_kit_engine_count(const lv_stage_def *st);
  * engine-outs of its `engine_out:` (lv_engine_config.out_after) on the last of each kind. */
 size_t lv_kit_engines(const lv_build_ctx *bc, const lv_stage_def *st, lv_engine_config *out);
 
+/* Full throttle for a phase that writes none: 1 (rated thrust) held within what every engine
+ * accepts: at most the lowest throttle_max, at least the highest throttle_min (an engine that
+ * runs only above rated thrust). */
+double lv_kit_full_throttle(const lv_engine_config *eng, size_t n);
+
 /* ---- ends --------------------------------------------------------------------------------- */
 
 /* The phase's ends as the model's state events: the model's own events 0..n_own-1 come first

@@ -288,6 +288,12 @@ static void test_engine_out(void)
         CHECK(v >= 1.0 && v <= 9.0);
         CHECK_REL(final(r, 0, "m"), 40000.0 - 3.0 * mdot1 * v - 2.0 * mdot1 * (10.0 - v), 1e-10);
     }
+    /* a time a run sets beyond the phase's end (a dispersion's tail): a run without the
+     * failure, all three engines to the end (docs/monte-carlo.md), not an error */
+    CHECK_OK(lv_run_set(r, "P.engine_out.time", 15.0, &err), &err);
+    CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+    CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE);
+    CHECK_REL(final(r, 0, "m"), 40000.0 - 3.0 * mdot1 * 10.0, 1e-10);
     lv_run_free(r);
     lv_mission_free(m);
 }
@@ -587,8 +593,37 @@ static void test_never(void)
     remove("bad_engines2.yaml");
 }
 
+/* A throttle nobody wrote is full throttle held within the engines' range: an engine that runs
+ * only between 1.5 and 2 times its rated thrust flies at 1.5 F (it was refused: "throttle = 1
+ * is outside the limits [1.5, 2]", a value the file never wrote), one limited to 0.5 at 0.5 F. */
+static void test_default_throttle(void)
+{
+    static const char *const range[2] = {"throttle_min: 1.5, throttle_max: 2", "throttle_max: 0.5"};
+    static const double want[2] = {1.5, 0.5};
+    for (int k = 0; k < 2; k++) {
+        char yaml[1024];
+        snprintf(yaml, sizeof yaml,
+                 "mission: {name: thr}\n" FLAT_WORLD
+                 "parameters: {start_h: 0, start_vel: 0, start_fpa_deg: 90}\n"
+                 "stages: [{name: s, dry_mass: 20000, propellant_mass: 20000,\n"
+                 "          engines: [{thrust_vac: 1.0e6, isp_vac: 300, %s}]}]\n"
+                 "phases:\n"
+                 "  - {name: P, model: dof3, stages: [s], stop_time: 1}\n", range[k]);
+        lv_mission *m;
+        lv_run *r = run_text("engines_default.yaml", yaml, &m);
+        if (r == NULL) {
+            lv_mission_free(m);
+            continue;
+        }
+        CHECK(final(r, 0, "thrust") == want[k] * 1.0e6);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+}
+
 int main(void)
 {
+    test_default_throttle();
     test_count();
     test_count_runway();
     test_landing_min();

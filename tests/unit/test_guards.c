@@ -316,17 +316,17 @@ static void test_vertical_start(void)
 {
     lv_mission *m;
     lv_run *r;
-#define VERTICAL_START(ALPHA)                                                                  \
+#define VERTICAL_START(H, ALPHA)                                                               \
     "mission: {name: vertical}\n"                                                              \
     "environment: {world: planet, gravity: j2, atmosphere: us76}\n"                             \
-    "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: 500, start_vel: 1,\n" \
+    "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: " H ", start_vel: 1,\n" \
     "             start_fpa_deg: 90, start_chi_deg: 90}\n"                                      \
     "stages: [{name: core, dry_mass: 12000, propellant_mass: 15000,\n"                         \
     "          engines: [{thrust_vac: 4.2e5, mdot: 150}]}]\n"                                   \
     "phases:\n"                                                                               \
     "  - {name: ascent, model: dof3, stages: [core], stop_time: 5, end: [burnout, impact],\n"  \
     "     inputs: {alpha_deg: " ALPHA "}}\n"
-    const lv_phase_result *p = run1(VERTICAL_START("-5"), &m, &r);
+    const lv_phase_result *p = run1(VERTICAL_START("500", "-5"), &m, &r);
     CHECK(p != NULL && p->state == LV_PHASE_DONE);
     double chi = NAN;
     lv_err err;
@@ -336,9 +336,15 @@ static void test_vertical_start(void)
            p != NULL ? p->report.end_time : NAN);
     CHECK(fabs(chi / (M_PI / 180.0) - 90.0) < 0.5);
     done(m, r);
-    p = run1(VERTICAL_START("5"), &m, &r);
+    p = run1(VERTICAL_START("500", "5"), &m, &r);
     check_fast_failure(p, "v_air_horizontal fell to its lower bound 0.01 m/s",
                        "vertical start, alpha +5 deg");
+    done(m, r);
+    /* the same from the ground (h 0, the impact end's level): a launch climbs, so the ground
+     * zone that spares landings keeps its guards (it ran 241,004 steps into the step limit) */
+    p = run1(VERTICAL_START("0", "5"), &m, &r);
+    check_fast_failure(p, "v_air_horizontal fell to its lower bound 0.01 m/s",
+                       "vertical start from the ground, alpha +5 deg");
     done(m, r);
 #undef VERTICAL_START
 }
