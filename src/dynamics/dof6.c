@@ -818,16 +818,12 @@ static int dof6_event_g(double t, const double *x, const double *p, double *g, v
 {
     dof6_inst *s = inst;
     lv_dof6 *m = s->m;
-    int rc = lv_flight_event_g(t, x, p, g, inst);
+    const int rc = lv_flight_event_g(t, x, p, g, inst);
     double *gs = g + 1 + m->fe.n;
-    gs[LV_FLIGHT_SAT_MIN] = gs[LV_FLIGHT_SAT_MAX] = 1.0;
-    if (rc != 0 || !m->sat_watch || !s->rt.engines_on)
+    if (!lv_flight_sat_begin(rc, m->sat_watch, &s->rt, m->eng, m->n_eng, gs))
         return rc;
-    size_t running = 0;
-    for (size_t i = 0; i < m->n_eng; i++)
-        running += !m->eng[i].out;
     dof6_point pt;
-    if (running == 0 || point_eval(m, s, t, x, p, 0, &pt, NULL) != 0)
+    if (point_eval(m, s, t, x, p, 0, &pt, NULL) != 0)
         return 0; /* the right-hand side reports its own failure */
     lv_flight_sat_g(pt.u[U_THR], m->c_min, m->c_max, gs);
     return 0;

@@ -186,6 +186,18 @@ const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N] = {
      "range)", LV_DIR_BOTH, 0},
 };
 
+int lv_flight_sat_begin(int rc, int watch, const lv_flight_rt *rt, const lv_engine *eng, size_t n,
+                        double *g)
+{
+    g[LV_FLIGHT_SAT_MIN] = g[LV_FLIGHT_SAT_MAX] = 1.0;
+    if (rc != 0 || !watch || !rt->engines_on)
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if (!eng[i].out)
+            return 1;
+    return 0;
+}
+
 void lv_flight_sat_g(double c, double c_min, double c_max, double *g)
 {
     g[LV_FLIGHT_SAT_MIN] = c - c_min + 1e-9;

@@ -139,6 +139,13 @@ int lv_flight_check_throttle(lv_flight_rt *rt, double c);
 enum { LV_FLIGHT_SAT_MIN, LV_FLIGHT_SAT_MAX, LV_FLIGHT_SAT_N };
 extern const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N];
 
+/* Starts the two functions g[0], g[1] of a model's event function, after its other events
+ * (their status rc): both constant 1, and returns 1 when they are to be computed from the
+ * commanded throttle (rc 0, the throttle watched, the engines on, one of eng[n] running), 0
+ * when they stay so. */
+int lv_flight_sat_begin(int rc, int watch, const lv_flight_rt *rt, const lv_engine *eng, size_t n,
+                        double *g);
+
 /* g[0], g[1] of the two at commanded throttle c: below c_min (above c_max) by more than 1e-9,
  * so that a throttle held at the limit exactly (a schedule at throttle_min) is not saturated. */
 void lv_flight_sat_g(double c, double c_min, double c_max, double *g);
