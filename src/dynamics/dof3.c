@@ -362,18 +362,6 @@ static int dof3_event_g(double t, const double *x, const double *p, double *g, v
     return 0;
 }
 
-static lv_event_action dof3_on_event(double t, double *x, const double *p, const int *fired,
-                                     void *inst)
-{
-    dof3_inst *s = inst;
-    lv_event_action act = lv_flight_on_event(t, x, p, fired, inst);
-    const int *fs = fired + 1 + s->m->fe.n;
-    /* the clamp is a kink of the thrust: a new initial value problem */
-    if ((fs[SAT_MIN] || fs[SAT_MAX]) && act < LV_EVENT_RESTART)
-        act = LV_EVENT_RESTART;
-    return act;
-}
-
 /* Position and velocity from the geodetic start values (the paper's userPar). */
 static int dof3_start(const double *p, double *x, void *inst)
 {
@@ -739,16 +727,11 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     m->core.law = &m->guid;
     lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
-    if ((m->events = malloc((m->def.n_events + SAT_N) * sizeof *m->events)) == NULL) {
+    if ((m->events = lv_flight_add_sat_events(&m->def, &m->core)) == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
-    memcpy(m->events, m->def.events, m->def.n_events * sizeof *m->events);
-    memcpy(m->events + m->def.n_events, lv_flight_sat_events, sizeof lv_flight_sat_events);
-    m->def.events = m->events;
-    m->def.n_events += SAT_N;
     m->def.event_g = dof3_event_g;
-    m->def.on_event = dof3_on_event;
     m->inst.m = m;
     for (int k = 0; k < 3; k++)
         m->inst.trig.ang[k] = NAN;

@@ -829,18 +829,6 @@ static int dof6_event_g(double t, const double *x, const double *p, double *g, v
     return 0;
 }
 
-static lv_event_action dof6_on_event(double t, double *x, const double *p, const int *fired,
-                                     void *inst)
-{
-    dof6_inst *s = inst;
-    lv_event_action act = lv_flight_on_event(t, x, p, fired, inst);
-    const int *fs = fired + 1 + s->m->fe.n;
-    /* the clamp is a kink of the thrust: a new initial value problem */
-    if ((fs[LV_FLIGHT_SAT_MIN] || fs[LV_FLIGHT_SAT_MAX]) && act < LV_EVENT_RESTART)
-        act = LV_EVENT_RESTART;
-    return act;
-}
-
 /* The start parameters of the state the run started from (lv_model_def.start_params): the
  * geodetic start as lv_dof3's, the attitude's Euler angles relative to NED and the rates as the
  * outputs theta, psi, phi and the states p, q, r give them. */
@@ -1493,16 +1481,11 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     m->core.rolls = 1;
     lv_flight_domain_init(m->domain, &m->core, cfg->atmo != NULL);
     lv_flight_def_callbacks(&m->def, &m->core, &m->inst.rt, m->domain);
-    if ((m->events = malloc((m->def.n_events + LV_FLIGHT_SAT_N) * sizeof *m->events)) == NULL) {
+    if ((m->events = lv_flight_add_sat_events(&m->def, &m->core)) == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
-    memcpy(m->events, m->def.events, m->def.n_events * sizeof *m->events);
-    memcpy(m->events + m->def.n_events, lv_flight_sat_events, sizeof lv_flight_sat_events);
-    m->def.events = m->events;
-    m->def.n_events += LV_FLIGHT_SAT_N;
     m->def.event_g = dof6_event_g;
-    m->def.on_event = dof6_on_event;
     m->inst.m = m;
     if ((st = lv_model_validate(&m->def, err)) != LV_OK)
         goto fail;

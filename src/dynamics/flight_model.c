@@ -186,6 +186,19 @@ const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N] = {
      "range)", LV_DIR_BOTH, 0},
 };
 
+lv_event_def *lv_flight_add_sat_events(lv_model_def *def, lv_flight_core *core)
+{
+    lv_event_def *ev = malloc((def->n_events + LV_FLIGHT_SAT_N) * sizeof *ev);
+    if (ev == NULL)
+        return NULL;
+    memcpy(ev, def->events, def->n_events * sizeof *ev);
+    memcpy(ev + def->n_events, lv_flight_sat_events, sizeof lv_flight_sat_events);
+    def->events = ev;
+    def->n_events += LV_FLIGHT_SAT_N;
+    core->sat_events = 1;
+    return ev;
+}
+
 int lv_flight_sat_begin(int rc, int watch, const lv_flight_rt *rt, const lv_engine *eng, size_t n,
                         double *g)
 {
@@ -286,6 +299,11 @@ lv_event_action lv_flight_on_event(double t, double *x, const double *p, const i
     for (size_t i = 0; i < k->fe->n; i++)
         if (fired[1 + i] && k->fe->ends[i].stop)
             act = LV_EVENT_STOP;
+    /* the throttle's clamp is a kink of the thrust: a new initial value problem */
+    const int *fs = fired + 1 + k->fe->n;
+    if (k->sat_events && (fs[LV_FLIGHT_SAT_MIN] || fs[LV_FLIGHT_SAT_MAX]) &&
+        act < LV_EVENT_RESTART)
+        act = LV_EVENT_RESTART;
     return act;
 }
 

@@ -38,6 +38,8 @@ typedef struct lv_flight_core {
     size_t n_dom;
     int dom[3];                   /* lv_flight_guard of each bound */
     double ground_h;              /* m: the highest `impact` end's level, or NAN */
+    int sat_events;               /* 1: the throttle's saturation events follow the ends'
+                                     (lv_flight_add_sat_events) */
 } lv_flight_core;
 
 /* The bounds of a flight model's domain: where its equations hold and where the attitude its
@@ -138,6 +140,11 @@ int lv_flight_check_throttle(lv_flight_rt *rt, double c);
  * is refused instead; where the throttle cannot vary the model keeps g constant (1). */
 enum { LV_FLIGHT_SAT_MIN, LV_FLIGHT_SAT_MAX, LV_FLIGHT_SAT_N };
 extern const lv_event_def lv_flight_sat_events[LV_FLIGHT_SAT_N];
+
+/* Appends the two to def's events (after lv_flight_def_callbacks): a new array of them all,
+ * which def->events points to and the caller frees; core->sat_events set, so that
+ * lv_flight_on_event restarts the integrator where one fires. NULL when out of memory. */
+lv_event_def *lv_flight_add_sat_events(lv_model_def *def, lv_flight_core *core);
 
 /* Starts the two functions g[0], g[1] of a model's event function, after its other events
  * (their status rc): both constant 1, and returns 1 when they are to be computed from the
