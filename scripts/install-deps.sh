@@ -32,6 +32,7 @@ pkgs=(
   libsqlite3-dev sqlite3               # Monte Carlo campaign database (and its dumps in the tests)
   libopenmpi-dev openmpi-bin           # mpirun -np K lvsim mc (optional in the build; tested in CI)
   time bc                              # bench/bench_mc.sh: a whole process's wall and CPU time
+  procps                               # pgrep: test_outdir finds the drawing child process
 )
 # The viewer's npm packages (viewer/package.json, pinned for Debian 12's Node.js 18) need node
 # and npm: Debian's nodejs and npm, unless a node and an npm are already installed (another
