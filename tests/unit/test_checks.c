@@ -11,19 +11,10 @@
 #include <string.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "lvsim/lv_mission.h"
 
 #define G0 9.80665
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 static size_t phase(const lv_mission *m, const char *name)
 {

@@ -11,17 +11,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "lvsim/lv_mission.h"
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 static double final(const lv_run *r, size_t k, const char *name)
 {

@@ -21,18 +21,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "lvsim/lv_io.h"
 #include "lvsim/lv_mission.h"
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 /* Runs the one-phase mission `yaml`; returns its result (NULL when it did not load) and
  * keeps the run in *rp for the caller to free. */

@@ -26,21 +26,12 @@
 #include <string.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "dynamics/guidance.h"
 #include "lvsim/lv_mission.h"
 
 #define G0 9.80665
 #define DEG (M_PI / 180.0)
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 static double final(const lv_run *r, size_t k, const char *name)
 {
@@ -86,28 +77,6 @@ static void col_range_on(const lv_run *r, size_t k, const char *name, double *lo
         *hi = v > *hi ? v : *hi;
     }
 }
-
-/* Loads and runs `yaml` (written to `path`); NULL when it fails to load. */
-static lv_run *run_text(const char *path, const char *yaml, lv_mission **m)
-{
-    lv_err err;
-    lv_run *r = NULL;
-    write_file(path, yaml);
-    *m = NULL;
-    CHECK_OK(lv_mission_load(path, m, &err), &err);
-    if (*m == NULL)
-        return NULL;
-    CHECK_OK(lv_run_create(*m, &r, &err), &err);
-    if (r != NULL)
-        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
-    return r;
-}
-
-/* The flat world: a non-rotating sphere of radius 1e10 m with g = g0 at its surface. */
-#define FLAT_WORLD                                                                         \
-    "environment:\n  world: planet\n"                                                     \
-    "  planet: {name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}\n"      \
-    "  atmosphere: none\n"
 
 /* ---- (a) gravity turn ------------------------------------------------------------------- */
 

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_models.h"
 #include "lvsim/lv_sim.h"
@@ -21,16 +22,6 @@
 #include "lvsim/lv_units.h"
 
 #define OUT "valid_out"
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 /* Loads `yaml` (written to OUT/<name>.yaml): refused with LV_ERR_INPUT and a message that
  * starts with "OUT/<name>.yaml:" followed by `want` ("12:5: phase 'p' ..."). */

@@ -29,21 +29,12 @@
 #include <sys/stat.h>
 
 #include "check.h"
+#include "mission_kit.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_target.h"
 
 #define G0 9.80665
 #define DEG (M_PI / 180.0)
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (f != NULL) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 static char *read_file(const char *path)
 {
@@ -56,11 +47,6 @@ static char *read_file(const char *path)
     fclose(f);
     return s;
 }
-
-#define FLAT_WORLD                                                                         \
-    "environment:\n  world: planet\n"                                                     \
-    "  planet: {name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}\n"      \
-    "  atmosphere: none\n"
 
 /* A ball shot at start_vel and start_fpa_deg to its impact; `targeting` follows. */
 static void shot_yaml(char *buf, size_t cap, double v, double fpa_deg, const char *targeting)
