@@ -3,7 +3,8 @@ list(APPEND LV_SOURCES
   src/core/abi.c
   src/core/names.c
   src/core/data.c
-  src/core/utc.c)
+  src/core/utc.c
+  src/core/root.c)
 include(src/core/tables.cmake OPTIONAL)
 # data.c: the install prefix's datadir is the last place searched for data files; the
 # others are found at run time (lvsim/lv_data.h).

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/root.h"
 #include "core/status.h"
 #include "core/table_unit.h"
 #include "core/units.h"
@@ -201,6 +202,70 @@ static const double *v_of(const double *x) { return x + LV_X3_VX; }
 
 /* ---- the point model ----------------------------------------------------------------- */
 
+/* The acceleration a law commands (guidance.h, lv_guid_accel_cmd): f(alpha) = dir . a(alpha)
+ * - accel, with a = (T x_b + F_aero) / m + g + a_frame, the thrust's magnitude and the
+ * bank fixed (they do not depend on alpha). */
+typedef struct alpha_solve {
+    lv_dof3 *m;
+    dof3_point *pt;
+    const double *p;
+    lv_err *err;
+    double thrust, inv_m, base; /* N, 1/kg, dir . (g + a_frame) - accel */
+    lv_vec3 dir;
+} alpha_solve;
+
+static int accel_residual(double alpha, double *f, void *user)
+{
+    alpha_solve *as = user;
+    dof3_point *pt = as->pt;
+    pt->ctl.u[LV_CTRL_ALPHA] = alpha;
+    pt->ctl.cs[LV_CTRL_ALPHA][0] = cos(alpha);
+    pt->ctl.cs[LV_CTRL_ALPHA][1] = sin(alpha);
+    lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, as->p[P_FPA], as->p[P_CHI], &pt->ax);
+    if (lv_flight_aero(as->m->has_aero ? &as->m->aero : NULL, &pt->kin, &pt->air, &pt->ctl,
+                       &pt->ax, pt->coef, &pt->f_aero, as->err) != 0)
+        return -1;
+    const lv_vec3 f_sum = lv_v3_add(lv_v3_scale(pt->ax.xb, as->thrust), pt->f_aero);
+    *f = as->inv_m * lv_v3_dot(f_sum, as->dir) + as->base;
+    return 0;
+}
+
+/* The angle of attack of a law that commands an acceleration (g->commands_accel): the root of
+ * accel_residual in [alpha_lo, alpha_hi] by Brent's method (core/root.h) to 1e-13 rad, or the
+ * end of the range whose residual is the smaller in magnitude when the range holds none (the
+ * flare asks for more lift than alpha_hi gives: saturated). Leaves pt's controls, axes and
+ * aerodynamic force at that alpha. Returns 0, or 1 when a table fails (err). */
+static int solve_alpha(lv_dof3 *m, dof3_inst *s, double t, double mass, const double *p,
+                       dof3_point *pt, lv_err *err)
+{
+    lv_guid_accel_cmd cmd;
+    lv_guid_accel_command(&m->guid, &s->rt.guid, t, &pt->kin, &cmd);
+    alpha_solve as = {m, pt, p, err, 0.0, 1.0 / mass, 0.0, cmd.dir};
+    double mdot;
+    if (lv_flight_thrust(m->eng, m->n_eng, s->rt.engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
+                         &as.thrust, &mdot, err) != 0)
+        return 1;
+    const lv_vec3 g_app = lv_v3_add(lv_flight_gravity(&m->world, m->grav_ws, &pt->kin),
+                                    lv_flight_frame_accel(&m->world, &pt->kin));
+    as.base = lv_v3_dot(g_app, cmd.dir) - cmd.accel;
+    double f_lo, f_hi, alpha;
+    if (accel_residual(cmd.alpha_lo, &f_lo, &as) != 0 ||
+        accel_residual(cmd.alpha_hi, &f_hi, &as) != 0)
+        return 1;
+    const int rc = lv_root_brent(accel_residual, &as, cmd.alpha_lo, cmd.alpha_hi, f_lo, f_hi,
+                                 1e-13, 60, &alpha);
+    if (rc < 0)
+        return 1;
+    if (rc == 1) /* no root in the range: the nearer end */
+        alpha = fabs(f_lo) < fabs(f_hi) ? cmd.alpha_lo : cmd.alpha_hi;
+    if (pt->ctl.u[LV_CTRL_ALPHA] != alpha) { /* the last evaluation was elsewhere */
+        double f;
+        if (accel_residual(alpha, &f, &as) != 0)
+            return 1;
+    }
+    return 0;
+}
+
 /* Steps 3 to 5 with a steering law and a throttle law (guidance.h): the law's attitude and
  * the aerodynamic angles that result; the aerodynamic force (with the heading law's
  * load-factor limit); gravity; the throttle law from the forces without thrust; thrust. */
@@ -220,8 +285,11 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
             return 1;
         lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
     }
-    if (lv_flight_aero(aero, &pt->kin, &pt->air, &pt->ctl, &pt->ax, pt->coef, &pt->f_aero, err) !=
-        0)
+    if (m->guid.commands_accel) {
+        if (solve_alpha(m, s, t, mass, p, pt, err) != 0)
+            return 1;
+    } else if (lv_flight_aero(aero, &pt->kin, &pt->air, &pt->ctl, &pt->ax, pt->coef,
+                              &pt->f_aero, err) != 0)
         return 1;
     if (m->guid.limits_alpha) {
         const double alpha = pt->ctl.u[LV_CTRL_ALPHA];
@@ -404,7 +472,8 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     lv_flight_kin kin;
     if (lv_flight_start(&s->rt, t0, x, &kin) != 0)
         return -1;
-    lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin);
+    if (lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin, s->rt.msg, sizeof s->rt.msg) != 0)
+        return -1;
     return 0;
 }
 
@@ -536,6 +605,11 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
     if ((rc = lv_thr_init(&m->thr, &cfg->throttle_law, err)) != LV_OK)
         return lv_fail_prefix(err, rc, "dof3");
     m->throttles = m->thr.active;
+    if (m->guid.commands_accel && m->throttles)
+        return lv_fail(err, LV_ERR_INPUT, "dof3: guidance '%s' solves the angle of attack from "
+                       "the forces at the phase's throttle, and throttle '%s' would change the "
+                       "throttle from those forces: give a throttle value without limits or "
+                       "`throttle: off`", m->guid.law->name, m->thr.law->name);
     m->c_min = 0.0;
     m->c_max = HUGE_VAL;
     for (size_t i = 0; i < m->n_eng; i++) {

@@ -890,8 +890,9 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     lv_flight_kin kin;
     if (lv_flight_start(&s->rt, t0, x, &kin) != 0)
         return -1;
-    if (s->m->steers)
-        lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin);
+    if (s->m->steers &&
+        lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin, s->rt.msg, sizeof s->rt.msg) != 0)
+        return -1;
     return 0;
 }
 
@@ -1074,6 +1075,9 @@ static lv_status setup_control(lv_dof6 *m, const lv_dof6_config *cfg, lv_err *er
     if (c->kind != LV_DOF6_CTL_NONE && !m->steers)
         return lv_fail(err, LV_ERR_INPUT, "dof6: the attitude controller needs a steering law: "
                        "the attitude it holds (the steering law is 'inputs')");
+    if (m->steers && st.law->dof3_only != NULL)
+        return lv_fail(err, LV_ERR_INPUT, "dof6: guidance '%s' is for 3-DoF phases: %s",
+                       lv_steering_law(&st), st.law->dof3_only);
     if (m->steers) {
         const lv_law_key *k3 = lv_guid_dof3_key(&st);
         if (k3 != NULL)

@@ -22,7 +22,8 @@
     X(heading)          /* guid_heading.c */                                                   \
     X(retrograde)       /* guid_retrograde.c */                                                \
     X(prograde)         /* guid_prograde.c */                                                  \
-    X(boostback)        /* guid_boostback.c */
+    X(boostback)        /* guid_boostback.c */                                                 \
+    X(flare)            /* guid_flare.c */
 #define THROTTLE_LAWS(X)                                                                       \
     X(nominal)          /* thr_nominal.c */                                                    \
     X(landing)          /* thr_landing.c */                                                    \

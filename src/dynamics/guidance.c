@@ -208,6 +208,8 @@ lv_status lv_guid_init(lv_guid *g, const lv_steering *s, const lv_planet *planet
             return st;
     }
     g->need_alpha = g->need_beta = 1; /* lv_dof3 narrows them down */
+    g->planet = *planet;
+    g->commands_accel = g->law->accel_command != NULL;
     if (g->law->init != NULL && (st = g->law->init(g, err)) != LV_OK)
         return lv_fail_prefix(err, st, "guidance '%s'", g->law->name);
     g->reads_atm = g->law->reads_atmosphere != NULL && g->law->reads_atmosphere(g);
@@ -250,9 +252,9 @@ const lv_law_key *lv_guid_dof3_key(const lv_steering *s)
     return NULL;
 }
 
-void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_kin *k)
+int lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_kin *k,
+                  char *msg, size_t cap)
 {
-    (void)g;
     rt->t0 = t0;
     rt->cur = (lv_table_cursor)LV_TABLE_CURSOR_INIT;
     for (int i = 0; i < 3; i++)
@@ -262,6 +264,9 @@ void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_
     for (int i = 0; i < 3; i++)
         rt->f0[i] = lv_v3(k->c_th * ax[i].x - k->s_th * ax[i].y,
                           k->s_th * ax[i].x + k->c_th * ax[i].y, ax[i].z);
+    for (int i = 0; i < 4; i++)
+        rt->s0[i] = NAN;
+    return g->law->start != NULL ? g->law->start(g, rt, k, msg, cap) : 0;
 }
 
 unsigned lv_guid_refs(const lv_guid *g, const lv_guid_rt *rt, double t)

@@ -23,6 +23,16 @@ typedef struct lv_guid_rt lv_guid_rt;
 typedef struct lv_thr lv_thr;
 typedef struct lv_thr_in lv_thr_in;
 
+/* What a law with accel_command asks of the 3-DoF model: the angle of attack alpha in
+ * [alpha_lo, alpha_hi] at which the vehicle's acceleration relative to the planet,
+ * a = (T x_b + F_aero) / m + g - 2 w x v_rel - w x (w x r), has the component `accel` along
+ * the unit vector `dir` (ECEF); alpha_lo or alpha_hi when no alpha in the range gives it. */
+typedef struct lv_guid_accel_cmd {
+    lv_vec3 dir;             /* unit, ECEF */
+    double accel;            /* m/s^2 */
+    double alpha_lo, alpha_hi; /* rad */
+} lv_guid_accel_cmd;
+
 /* Where a law's check found the problem: the parser points its message at that node of the
  * law's mapping (key NULL: the mapping itself). */
 typedef enum lv_law_node { LV_AT_MAP, LV_AT_KEY, LV_AT_VALUE } lv_law_node;
@@ -49,9 +59,23 @@ struct lv_law {
     lv_status (*check)(const void *par, lv_law_at *at, lv_err *err);
 
     /* ---- steering laws ---- */
-    /* Resolves g->par for the hot path (table outputs, cosines; g->limits_alpha), after the
-     * check. NULL: nothing to resolve. */
+    /* Resolves g->par for the hot path (table outputs, cosines; g->limits_alpha; places on
+     * g->planet), after the check. NULL: nothing to resolve. */
     lv_status (*init)(lv_guid *g, lv_err *err);
+    /* At the phase's start (kinematics k): what the law takes from the start state into
+     * rt->s0 (the flare's time constant). Returns 0, or nonzero with the reason in msg[cap]
+     * (the phase cannot start). NULL: nothing. */
+    int (*start)(const lv_guid *g, lv_guid_rt *rt, const lv_flight_kin *k, char *msg,
+                 size_t cap);
+    /* A law that commands an acceleration instead of an angle of attack (g->commands_accel,
+     * 3-DoF only): at time t the acceleration relative to the planet it wants along a
+     * direction and the range of alpha the model may use for it (lv_guid_accel_cmd); the
+     * attitude has set beta and the bank. NULL: none. */
+    void (*accel_command)(const lv_guid *g, const lv_guid_rt *rt, double t,
+                          const lv_flight_kin *k, lv_guid_accel_cmd *cmd);
+    /* Why the law is for 3-DoF phases only (its angle of attack is solved by the point-mass
+     * model), or NULL. */
+    const char *dof3_only;
     /* The body axes at time t, as lv_guid_attitude (c->u[throttle] holds the throttle of the
      * controls; a law with a throttle table overwrites it). NULL: the model's inputs. */
     int (*attitude)(const lv_guid *g, lv_guid_rt *rt, double t, const lv_flight_kin *k,
@@ -125,6 +149,8 @@ struct lv_guid {
                                   side skips them: outputs only) */
     int reads_atm;        /* law->reads_atmosphere */
     int limits_alpha;     /* law->alpha_limited acts (3-DoF) */
+    int commands_accel;   /* law->accel_command gives alpha (3-DoF) */
+    lv_planet planet;     /* the planet the law's points are placed on */
 };
 
 /* Per simulation instance: the phase's start, the frozen inertial frame, cursors, scratch. */
@@ -134,6 +160,7 @@ struct lv_guid_rt {
     lv_table_cursor cur;    /* the law's table */
     double buf[16];         /* table outputs (tables with more outputs are refused) */
     double ang[3], cs[3][2]; /* trigonometry of the last attitude angles */
+    double s0[4];           /* what the law's start took from the start state */
 };
 
 /* Resolves `s` (law NULL: "inputs"; target NAN: refused, the model puts its start point
@@ -161,8 +188,16 @@ int lv_guid_gives_throttle(const lv_steering *s);
 const lv_law_key *lv_guid_dof3_key(const lv_steering *s);
 
 /* At the phase's start (time t0, kinematics k): freezes the inertial frame, resets the
- * cursors. */
-void lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_kin *k);
+ * cursors, then the law's start. Returns 0, or nonzero with the reason in msg[cap]. */
+int lv_guid_start(const lv_guid *g, lv_guid_rt *rt, double t0, const lv_flight_kin *k,
+                  char *msg, size_t cap);
+
+/* The acceleration g->law commands (g->commands_accel): law->accel_command. */
+static inline void lv_guid_accel_command(const lv_guid *g, const lv_guid_rt *rt, double t,
+                                         const lv_flight_kin *k, lv_guid_accel_cmd *cmd)
+{
+    g->law->accel_command(g, rt, t, k, cmd);
+}
 
 /* The next breakpoint of the law after t (gravity turn: end of the rise and of the kick;
  * an attitude table over time: its breakpoints), or INFINITY. */

@@ -12,6 +12,7 @@ list(APPEND LV_SOURCES
   src/dynamics/guid_retrograde.c
   src/dynamics/guid_prograde.c
   src/dynamics/guid_boostback.c
+  src/dynamics/guid_flare.c
   src/dynamics/thr_nominal.c
   src/dynamics/thr_landing.c
   src/dynamics/thr_off.c

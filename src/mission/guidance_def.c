@@ -124,6 +124,8 @@ static int frame_of(const lv_law_def *d)
 static lv_status refuse_dof3(const lv_pctx *c, const lv_ynode *n, const char *what,
                              const lv_law *law)
 {
+    if (law->dof3_only != NULL)
+        return lv_pk_fail(c, n, "%s is for 3-DoF phases: %s", what, law->dof3_only);
     for (size_t i = 0; i < law->n_keys; i++) {
         const char *text;
         const lv_ynode *key = written(n, &law->keys[i], &text);

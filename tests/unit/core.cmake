@@ -8,3 +8,4 @@ target_compile_definitions(test_data PRIVATE LV_BINARY_DIR="${PROJECT_BINARY_DIR
   LV_TEST_INSTALL_DATADIR="${CMAKE_INSTALL_FULL_DATADIR}/lvsim")
 # UTC with leap seconds (src/core/utc.c, ERFA) against the IERS list
 lv_add_unit_test(test_utc unit/test_utc.c)
+lv_add_unit_test(test_root unit/test_root.c)

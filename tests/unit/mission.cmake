@@ -58,3 +58,4 @@ lv_add_unit_test(test_mission_valid unit/test_mission_valid.c)
 # forms, a landing whose one engine cannot throttle low enough (the saturation event against
 # the rocket equation), an engine-out at a time, bad `engines:` / `engine_out:` values.
 lv_add_unit_test(test_engines unit/test_engines.c)
+lv_add_unit_test(test_flare unit/test_flare.c)
