@@ -15,17 +15,6 @@
 #include "common.h"
 #include "progress.h"
 
-/* One word per phase state: the spelling of summary.json, the report and the viewer. */
-static const char *phase_state_name(lv_phase_state st)
-{
-    switch (st) {
-    case LV_PHASE_DONE: return "done";
-    case LV_PHASE_FAILED: return "failed";
-    case LV_PHASE_SKIPPED: return "skipped";
-    default: return "pending";
-    }
-}
-
 /* Why a phase ended, as summary.json's end.event or end.reason say it. */
 static const char *end_word(const lv_phase_result *r)
 {
@@ -59,7 +48,7 @@ static void print_row(const lv_run *run, size_t k, int w)
     if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING || isnan(r->t_start)) {
         printf("%-3zu %-*s %-*s %9s %9s  %-*s %7s %8s %4s %4s %9s  %-11s %s\n", k + 1, w, r->name,
                w, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", "-", "-", END_W,
-               "-", "-", "-", "-", "-", "-", "-", phase_state_name(r->state));
+               "-", "-", "-", "-", "-", "-", "-", lv_phase_state_name(r->state));
         return;
     }
     /* the method that ran; for "auto" with why ("dop853: not stiff") */
@@ -67,7 +56,7 @@ static void print_row(const lv_run *run, size_t k, int w)
            r->name, w, parent >= 0 ? lv_mission_phase_name(m, (size_t)parent) : "-", r->t_start,
            r->t_end, END_W, end_word(r), rep->stats.steps, rep->stats.rhs_evals,
            rep->stats.state_events, rep->stats.time_events, 1e3 * rep->stats.cpu_time, r->method,
-           phase_state_name(r->state));
+           lv_phase_state_name(r->state));
 }
 
 /* A commanded throttle (a throttle law's, an inputs or attitude table's) that left the running
@@ -173,7 +162,7 @@ static void on_phase(const lv_run *run, size_t k, const lv_phase_result *r, void
     progress_print_begin(ui->prog);
     progress_phase_done(ui->prog, k);
     ui->ended[k] = 1;
-    if (r->state == LV_PHASE_FAILED)
+    if (r->state == LV_PHASE_FAILED || r->state == LV_PHASE_CRASHED)
         fprintf(stderr, "lvsim: %s\n", r->error);
     warn_saturation(run, k, r);
     warn_attitude(run, k, r);
@@ -610,6 +599,16 @@ static int finish_in_memory(run_job *j)
     return EXIT_OK;
 }
 
+/* 1 when a phase crashed (a touchdown beyond the landing gear's limits). */
+static int any_crashed(const lv_run *run)
+{
+    const size_t n = lv_mission_phase_count(lv_run_mission(run));
+    for (size_t k = 0; k < n; k++)
+        if (lv_run_result(run, k)->state == LV_PHASE_CRASHED)
+            return 1;
+    return 0;
+}
+
 static int run_run(const cli_cmd *self, int argc, char **argv)
 {
     run_job *j = calloc(1, sizeof *j);
@@ -639,6 +638,8 @@ static int run_run(const cli_cmd *self, int argc, char **argv)
             post_process(j);
             code = commit(j);
         }
+        if (code == EXIT_OK && any_crashed(j->run))
+            code = EXIT_CRASHED; /* complete results; a body's touchdown was a crash */
     }
     run_close(j);
     free(j);
@@ -663,7 +664,9 @@ const cli_cmd cli_cmd_run = {
     "since) is refused (exit 2) unless --force. A second run into an OUTDIR in use is\n"
     "refused (exit 2). Ctrl-C or SIGTERM stops the run: OUTDIR then holds the phases that\n"
     "ended and summary.json, marked 'failed' (exit 130; a second Ctrl-C leaves OUTDIR as it\n"
-    "was). A failing phase stops only its descendants; the exit code is then 3. Progress\n"
+    "was). A failing phase stops only its descendants; the exit code is then 3. A touchdown\n"
+    "beyond the landing gear's limits marks its roll-out 'crashed' (not flown; exit 4 when\n"
+    "nothing failed). Progress\n"
     "goes to stderr.\n"
     "\n"
     "options:\n"

@@ -10,7 +10,8 @@
 #include "cli.h"
 #include "lvsim/lvsim.h"
 
-enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3, EXIT_STOPPED = 130 };
+enum { EXIT_OK = 0, EXIT_INTERNAL = 1, EXIT_INPUT = 2, EXIT_SIM = 3, EXIT_CRASHED = 4,
+       EXIT_STOPPED = 130 };
 
 /* The exit code of a library status: LV_ERR_SOLVER 3, LV_ERR_NOMEM 1, any other error 2. */
 int exit_code_for(lv_status st);

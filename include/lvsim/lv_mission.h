@@ -148,15 +148,21 @@ typedef enum lv_phase_state {
     LV_PHASE_PENDING = 0,
     LV_PHASE_DONE,    /* simulated */
     LV_PHASE_FAILED,  /* its simulation failed (see error) */
-    LV_PHASE_SKIPPED  /* an ancestor failed */
+    LV_PHASE_SKIPPED, /* an ancestor failed or crashed */
+    LV_PHASE_CRASHED  /* not flown: its start is a crash (a touchdown beyond the landing gear's
+                         limits; see error). Not a simulation failure: lv_run_execute succeeds */
 } lv_phase_state;
+
+/* The word for a phase state in every output (summary.json, the CLI's table, the report,
+ * Python): "pending", "done", "failed", "skipped", "crashed". */
+LV_API const char *lv_phase_state_name(lv_phase_state st);
 
 /* What one phase did in a run. Owned by the run; valid until the phase runs again or
  * lv_run_free(). */
 typedef struct lv_phase_result {
     const char *name;
     lv_phase_state state;
-    char error[LV_ERR_MSG_MAX];  /* FAILED / SKIPPED: phase, time and reason */
+    char error[LV_ERR_MSG_MAX];  /* FAILED / SKIPPED / CRASHED: phase, time and reason */
     double t_start, t_end;       /* s */
     double t_stop;               /* s, its stop time (time limit) in this run */
     const char *method;          /* integration method and tolerance used */

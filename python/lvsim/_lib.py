@@ -434,6 +434,7 @@ _proto(lib, "lv_run_get", c_int, P, c_char_p, POINTER(c_double), E)
 _proto(lib, "lv_run_reset", None, P)
 _proto(lib, "lv_run_execute", c_int, P, POINTER(lv_run_options), E)
 _proto(lib, "lv_run_simulated", c_size_t, P)
+_proto(lib, "lv_phase_state_name", c_char_p, c_int)
 _proto(lib, "lv_run_invalidate", c_int, P, c_size_t, E)
 _proto(lib, "lv_run_stale", c_int, P, c_size_t)
 _proto(lib, "lv_run_estimate_output", c_int, P, c_size_t, c_double, POINTER(lv_output_estimate),

@@ -16,7 +16,7 @@ from .errors import LvsimError, check
 _check = check
 
 
-PHASE_STATES = {0: "pending", 1: "done", 2: "failed", 3: "skipped"}
+PHASE_STATES = {0: "pending", 1: "done", 2: "failed", 3: "skipped", 4: "crashed"}
 STOP_REASONS = {0: "stop_time", 1: "event", 2: "failed"}
 
 

@@ -306,6 +306,8 @@ static const char *end_of(const lv_phase_result *res)
         return "failed";
     case LV_PHASE_SKIPPED:
         return "skipped";
+    case LV_PHASE_CRASHED:
+        return "crashed";
     default:
         return "pending";
     }
@@ -393,6 +395,9 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
                                (unsigned long long)run, kerr.msg);
         }
     }
+    for (size_t k = 0; ran && status == LV_MC_OK && k < np; k++)
+        if (lv_run_result(w->run, k)->state == LV_PHASE_CRASHED)
+            status = LV_MC_RUN_CRASHED;
     for (size_t k = 0; ran && status == LV_MC_OK && k < np; k++)
         if (unintended_impact(lv_run_result(w->run, k)))
             status = LV_MC_RUN_IMPACT;

@@ -183,10 +183,11 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         if (r < 0 || (size_t)r >= N)
             continue;
         const char *stt = (const char *)sqlite3_column_text(s, 1);
-        /* "impact" (a phase that ended on the ground: an outcome, store.c) is a run done */
+        /* "impact" (a phase that ended on the ground) and "crashed" (a touchdown beyond the
+         * landing gear's limits): outcomes (store.c), runs done */
         d->run_status[r] = stt == NULL                    ? 0
-                           : strcmp(stt, "ok") == 0 ||
-                                   strcmp(stt, "impact") == 0 ? 1
+                           : strcmp(stt, "ok") == 0 || strcmp(stt, "impact") == 0 ||
+                                   strcmp(stt, "crashed") == 0 ? 1
                            : strcmp(stt, "failed") == 0     ? 2
                                                             : 3;
         d->n_stored++;
@@ -262,11 +263,12 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
             }
             const size_t i = p->n_rows++;
             const char *stt = (const char *)sqlite3_column_text(s, 1);
-            /* 1 done, 2 failed, 3 skipped, 4 impact (docs/monte-carlo.md) */
-            p->state[i] = stt && strcmp(stt, "done") == 0     ? 1
-                          : stt && strcmp(stt, "failed") == 0 ? 2
-                          : stt && strcmp(stt, "impact") == 0 ? 4
-                                                              : 3;
+            /* 1 done, 2 failed, 3 skipped, 4 impact, 5 crashed (docs/monte-carlo.md) */
+            p->state[i] = stt && strcmp(stt, "done") == 0      ? 1
+                          : stt && strcmp(stt, "failed") == 0  ? 2
+                          : stt && strcmp(stt, "impact") == 0  ? 4
+                          : stt && strcmp(stt, "crashed") == 0 ? 5
+                                                               : 3;
             p->end[i] = dup_s((const char *)sqlite3_column_text(s, 2));
             p->error[i] = dup_s((const char *)sqlite3_column_text(s, 6));
             p->run[i] = (size_t)r;
@@ -463,13 +465,14 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         cJSON_AddStringToObject(po, "name", p->name);
         cJSON_AddStringToObject(po, "from", p->parent >= 0 && (size_t)p->parent < d->n_ph
                                                 ? d->ph[p->parent].name : "");
-        size_t nd = 0, nf = 0, nsk = 0, nim = 0;
+        size_t nd = 0, nf = 0, nsk = 0, nim = 0, ncr = 0;
         for (size_t i = 0; i < p->n_rows; i++)
             nd += p->state[i] == 1, nf += p->state[i] == 2, nsk += p->state[i] == 3,
-                nim += p->state[i] == 4;
+                nim += p->state[i] == 4, ncr += p->state[i] == 5;
         cJSON_AddNumberToObject(po, "runs", (double)p->n_rows);
         cJSON_AddNumberToObject(po, "done", (double)nd);
         cJSON_AddNumberToObject(po, "impact", (double)nim);
+        cJSON_AddNumberToObject(po, "crashed", (double)ncr);
         cJSON_AddNumberToObject(po, "failed", (double)nf);
         cJSON_AddNumberToObject(po, "skipped", (double)nsk);
         cJSON_AddItemToObject(po, "failure_rate",
@@ -478,7 +481,8 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         cJSON *ends = cJSON_AddObjectToObject(po, "ends");
         cJSON *causes = cJSON_AddObjectToObject(po, "failures");
         for (size_t i = 0; i < p->n_rows; i++) {
-            if (p->state[i] == 4) /* an impact: counted above, neither an end meant nor a failure */
+            if (p->state[i] == 4 || p->state[i] == 5) /* an impact, a crash: counted above,
+                                                         neither an end meant nor a failure */
                 continue;
             const char *key = p->state[i] == 1 ? p->end[i] : lv_mc_cause(p->error[i]);
             cJSON *tgt = p->state[i] == 1 ? ends : causes;
@@ -491,6 +495,9 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         if (nim > 0)
             sb_printf(&out, "\"%s\",impact,\"impact\",%zu,%.6g\n", p->name, nim,
                       (double)nim / (double)p->n_rows);
+        if (ncr > 0)
+            sb_printf(&out, "\"%s\",crashed,\"crashed\",%zu,%.6g\n", p->name, ncr,
+                      (double)ncr / (double)p->n_rows);
         for (int t = 0; t < 2; t++) {
             cJSON *it;
             cJSON *grp = t == 0 ? ends : causes;

@@ -594,8 +594,10 @@ static void bind_real(sqlite3_stmt *s, int i, double v)
 
 lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err *err)
 {
-    static const char *const status_name[] = { "ok", "failed", "input", "impact" };
-    static const char *const state_name[] = { "pending", "done", "failed", "skipped", "impact" };
+    static const char *const status_name[] = { "ok", "failed", "input", "impact", "crashed" };
+    /* lv_phase_state's words (lv_phase_state_name), then LV_MC_IMPACT's */
+    static const char *const state_name[] = { "pending", "done", "failed", "skipped", "crashed",
+                                              "impact" };
     lv_rd rd = { rec, len, 0, 0 };
     lv_status st;
     if (!c->in_tx) {
@@ -607,7 +609,7 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
     size_t n;
     const char *msg = lv_rd_str(&rd, &n);
     const uint64_t nd = lv_rd_u64(&rd);
-    if (rd.bad || nd != c->n_disp || status > LV_MC_RUN_IMPACT || run >= c->o.n_runs)
+    if (rd.bad || nd != c->n_disp || status > LV_MC_RUN_CRASHED || run >= c->o.n_runs)
         return lv_fail(err, LV_ERR_INPUT, "campaign: a malformed record (run %llu)",
                        (unsigned long long)run);
     sqlite3_stmt *s = c->ins_run;

@@ -152,6 +152,28 @@ typedef struct lv_rigid_body_def {
     lv_src_loc loc;
 } lv_rigid_body_def;
 
+/* The landing gear's limits at touchdown (a stage's `landing_gear:`; docs/models.md,
+ * "Landing gear limits at touchdown"): what a touchdown on a runway may have. */
+typedef enum lv_gear_limit {
+    LV_GEAR_SINK_RATE = 0, /* m/s, sink rate (descending positive) at most */
+    LV_GEAR_LATERAL_SPEED, /* m/s, |speed across the centre line| at most */
+    LV_GEAR_GROUND_SPEED,  /* m/s, horizontal speed relative to the ground at most */
+    LV_GEAR_BANK,          /* rad, |roll attitude| at most */
+    LV_GEAR_PITCH_MIN,     /* rad, pitch attitude at least (main gear first) */
+    LV_GEAR_PITCH_MAX,     /* rad, pitch attitude at most (tail strike) */
+    LV_GEAR_N
+} lv_gear_limit;
+
+/* Each limit's key (`landing_gear: {sink_rate_max: ..}`; angles also NAME_deg), SI unit and
+ * the default a stage without `landing_gear:` (or a key not written) has. */
+typedef struct lv_gear_key {
+    const char *key;
+    const char *unit;
+    double dflt;
+    int angle;
+} lv_gear_key;
+extern const lv_gear_key lv_gear_keys[LV_GEAR_N];
+
 typedef struct lv_stage_def {
     char *name;
     lv_slot dry_mass;        /* kg */
@@ -159,6 +181,8 @@ typedef struct lv_stage_def {
     size_t n_engines;
     lv_engine_def *engines;
     lv_rigid_body_def rigid; /* 6-DoF data (rigid.present 0: none) */
+    lv_slot gear[LV_GEAR_N]; /* `landing_gear:` limits (slots "<stage>.landing_gear.<key>");
+                                LV_NO_SLOT each without `landing_gear:`: the defaults */
     lv_src_loc loc;
 } lv_stage_def;
 

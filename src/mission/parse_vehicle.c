@@ -3,11 +3,13 @@
  * "<stage>.<engine>.<key>". Format: docs/mission-format.md ("stages"). */
 #include "mission/mission.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/table_unit.h"
+#include "lvsim/lv_units.h"
 #include "lvsim/lv_vehicle.h"
 #include "mission/parse_int.h"
 
@@ -342,10 +344,70 @@ static lv_status parse_rigid_body(const lv_pctx *c, const lv_ynode *rb, const lv
     return LV_OK;
 }
 
+/* The landing gear's limits at touchdown (mission.h, lv_gear_limit). Defaults:
+ * docs/models.md, "Landing gear limits at touchdown". */
+const lv_gear_key lv_gear_keys[LV_GEAR_N] = {
+    [LV_GEAR_SINK_RATE] = {"sink_rate_max", "m/s", 3.048, 0},     /* 10 ft/s: 14 CFR 25.473 */
+    [LV_GEAR_LATERAL_SPEED] = {"lateral_speed_max", "m/s", 2.0, 0},
+    [LV_GEAR_GROUND_SPEED] = {"ground_speed_max", "m/s", 115.7, 0}, /* 225 kt */
+    [LV_GEAR_BANK] = {"bank_max", "rad", 10.0 * LV_DEG, 1},
+    [LV_GEAR_PITCH_MIN] = {"pitch_min", "rad", 0.0, 1},
+    [LV_GEAR_PITCH_MAX] = {"pitch_max", "rad", 15.0 * LV_DEG, 1},
+};
+
+/* `landing_gear: {sink_rate_max: 3, pitch_max_deg: 14, ...}`: every limit a slot (the
+ * defaults for the keys not written). */
+static lv_status parse_gear(const lv_pctx *c, const lv_ynode *n, const char *stage_what,
+                            lv_stage_def *s)
+{
+    char what[LV_WHAT_MAX + 16], buf[64], slot[LV_NAME_MAX + 48];
+    for (int i = 0; i < LV_GEAR_N; i++)
+        s->gear[i] = LV_NO_SLOT;
+    if (n == NULL)
+        return LV_OK;
+    snprintf(what, sizeof what, "%.140s, landing_gear", stage_what);
+    if (n->kind != LV_YNODE_MAP)
+        return lv_pk_fail(c, n, "%s: a mapping such as {sink_rate_max: 3} expected, found %s",
+                          what, lv_pk_describe(n, buf, sizeof buf));
+    static const char *const known[] = {"sink_rate_max", "lateral_speed_max",
+                                        "ground_speed_max", "bank_max", "bank_max_deg",
+                                        "pitch_min", "pitch_min_deg", "pitch_max",
+                                        "pitch_max_deg", NULL};
+    lv_status st = lv_pk_check_map(c, n, what, known);
+    if (st != LV_OK)
+        return st;
+    for (int i = 0; i < LV_GEAR_N; i++) {
+        const lv_gear_key *g = &lv_gear_keys[i];
+        char deg[40];
+        snprintf(deg, sizeof deg, "%s_deg", g->key);
+        const lv_ynode *v = lv_pk_get(n, g->key), *vd = g->angle ? lv_pk_get(n, deg) : NULL;
+        if (v != NULL && vd != NULL)
+            return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
+                              g->key, deg);
+        /* speeds > 0; bank in (0, 90] deg; pitch in [-90, 90] deg */
+        const lv_range r = i <= LV_GEAR_GROUND_SPEED ? (lv_range){0.0, HUGE_VAL, 1, 0}
+                           : i == LV_GEAR_BANK       ? (lv_range){0.0, 0.5 * LV_PI, 1, 0}
+                                                     : (lv_range){-0.5 * LV_PI, 0.5 * LV_PI, 0, 0};
+        snprintf(slot, sizeof slot, "%s.landing_gear.%s", s->name, g->key);
+        st = v != NULL || vd != NULL
+                 ? lv_pk_slot(c, v != NULL ? v : vd, what, v != NULL ? g->key : deg, slot,
+                              g->unit, r, vd != NULL, &s->gear[i])
+                 : lv_pk_slot_default(c, slot, g->unit, g->dflt, r, &s->gear[i]);
+        if (st != LV_OK)
+            return st;
+    }
+    const lv_slot_def *lo = &c->m->slots[s->gear[LV_GEAR_PITCH_MIN]];
+    const lv_slot_def *hi = &c->m->slots[s->gear[LV_GEAR_PITCH_MAX]];
+    if (!(hi->value > lo->value))
+        return lv_pk_fail(c, n, "%s: pitch_max %.6g deg must be above pitch_min %.6g deg", what,
+                          hi->value / LV_DEG, lo->value / LV_DEG);
+    return LV_OK;
+}
+
 static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)
 {
     static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines",
-                                        "rigid_body", NULL };
+                                        "rigid_body", "landing_gear", NULL };
     char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
     lv_status st;
@@ -371,7 +433,8 @@ static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         (st = lv_pk_slot(c, v, what, "propellant_mass", slot, "kg", LV_RANGE_NONNEG, 0,
                          &s->propellant_mass)) != LV_OK)
         return st;
-    if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), n, s)) != LV_OK)
+    if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), n, s)) != LV_OK ||
+        (st = parse_gear(c, lv_pk_get(n, "landing_gear"), what, s)) != LV_OK)
         return st;
 
     v = lv_pk_get(n, "engines");

@@ -281,6 +281,55 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     return LV_OK;
 }
 
+/* The landing gear's limits at a touchdown (mission.h, lv_gear_limit): the roll-out's bottom
+ * stage's `landing_gear:` in this run, or the defaults. The touchdown's ground speed, pitch and
+ * roll attitude (the parent's final `theta`, `phi`: relative to the local horizon, within
+ * 1e-3 rad of the runway plane's tilt over a few km) are recorded with the rest; every limit
+ * exceeded is named in the crash's reason (docs/models.md, "Landing gear limits at
+ * touchdown"). */
+static lv_status touchdown_gear(const lv_build_ctx *bc, const char *const *pnames,
+                                const double *pvalues, size_t np, const lv_runway_pos *td)
+{
+    const lv_phase_def *ph = &bc->def->phases[bc->k];
+    const lv_stage_def *st = &bc->def->stages[ph->stages[0]];
+    double lim[LV_GEAR_N];
+    for (int i = 0; i < LV_GEAR_N; i++)
+        lim[i] = st->gear[i] != LV_NO_SLOT ? bc->vals[st->gear[i]] : lv_gear_keys[i].dflt;
+    const size_t ith = lv_names_find(pnames, np, "theta"), iph = lv_names_find(pnames, np, "phi");
+    const double pitch = ith != (size_t)-1 ? pvalues[ith] : NAN;
+    const double bank = iph != (size_t)-1 ? pvalues[iph] : NAN;
+    const double ground = hypot(td->speed, td->lateral_speed);
+    lv_build_note(bc, "ground_speed", "m/s", ground);
+    lv_build_note(bc, "pitch", "rad", pitch);
+    lv_build_note(bc, "bank", "rad", bank);
+    char why[480] = "";
+    size_t used = 0;
+#define EXCEEDED(...)                                                                         \
+    do {                                                                                       \
+        if (used < sizeof why)                                                                 \
+            used += (size_t)snprintf(why + used, sizeof why - used, "%s", used ? "; " : "");   \
+        if (used < sizeof why)                                                                 \
+            used += (size_t)snprintf(why + used, sizeof why - used, __VA_ARGS__);               \
+    } while (0)
+    if (!(td->sink_rate <= lim[LV_GEAR_SINK_RATE]))
+        EXCEEDED("sink rate %.3g m/s > %.3g m/s", td->sink_rate, lim[LV_GEAR_SINK_RATE]);
+    if (!(fabs(td->lateral_speed) <= lim[LV_GEAR_LATERAL_SPEED]))
+        EXCEEDED("lateral speed %.3g m/s beyond +-%.3g m/s", td->lateral_speed,
+                 lim[LV_GEAR_LATERAL_SPEED]);
+    if (!(ground <= lim[LV_GEAR_GROUND_SPEED]))
+        EXCEEDED("ground speed %.4g m/s > %.4g m/s", ground, lim[LV_GEAR_GROUND_SPEED]);
+    if (!isnan(bank) && !(fabs(bank) <= lim[LV_GEAR_BANK]))
+        EXCEEDED("bank %.3g deg beyond +-%.3g deg", bank / LV_DEG, lim[LV_GEAR_BANK] / LV_DEG);
+    if (!isnan(pitch) && !(pitch >= lim[LV_GEAR_PITCH_MIN] && pitch <= lim[LV_GEAR_PITCH_MAX]))
+        EXCEEDED("pitch %.3g deg outside [%.3g, %.3g] deg", pitch / LV_DEG,
+                 lim[LV_GEAR_PITCH_MIN] / LV_DEG, lim[LV_GEAR_PITCH_MAX] / LV_DEG);
+#undef EXCEEDED
+    if (used > 0)
+        lv_build_crash(bc, "crashed at touchdown: %s (landing gear of stage '%s'%s)", why,
+                       st->name, st->gear[0] != LV_NO_SLOT ? "" : ": the default limits");
+    return LV_OK;
+}
+
 /* Touchdown: a landing roll that starts from a dof3 phase takes the parent's final ECI state,
  * turned into ECEF position and velocity relative to the planet at the parent's end time and
  * projected on the runway: distance = (r - r0) . u, speed = v_rel . u. What the projection
@@ -338,7 +387,8 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
     lv_build_note(bc, "sink_rate", "m/s", td.sink_rate);
     lv_build_note(bc, "lateral", "m", td.lateral);
     lv_build_note(bc, "lateral_speed", "m/s", td.lateral_speed);
-    return LV_OK;
+    return pc->mode == LV_RUNWAY_LANDING ? touchdown_gear(bc, pnames, pvalues, np, &td)
+                                         : LV_OK;
 }
 
 const lv_phase_type lv_phase_type_runway = {

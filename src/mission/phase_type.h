@@ -60,6 +60,10 @@ typedef struct lv_handoff_notes {
     const char *name[LV_HANDOFF_NOTES_MAX]; /* static strings */
     const char *unit[LV_HANDOFF_NOTES_MAX]; /* SI, "" dimensionless */
     double value[LV_HANDOFF_NOTES_MAX];
+    /* the hand-off is a crash (a touchdown beyond the landing gear's limits): the phase is
+     * not flown, its state LV_PHASE_CRASHED with `why` (phase name and time prefixed) */
+    int crashed;
+    char why[512];
 } lv_handoff_notes;
 lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err);
 void lv_phase_env_clear(lv_phase_env *pe); /* accepts a zeroed one */
@@ -77,6 +81,8 @@ struct lv_build_ctx {
 
 /* Records name = value [unit] in bc->notes (nothing when bc->notes is NULL or full). */
 void lv_build_note(const lv_build_ctx *bc, const char *name, const char *unit, double value);
+/* Marks the hand-off a crash with the reason (bc->notes NULL: nothing). */
+void lv_build_crash(const lv_build_ctx *bc, const char *fmt, ...) LV_PRINTF(2, 3);
 
 /* The table a phase flies for the definition's table `t`: the run's dispersed copy (a scale
  * factor or bias drawn for the run: dispersion.h), or `t` itself. Borrowed for the build. */

@@ -2,6 +2,9 @@
  * `model:` names one of them. */
 #include "mission/phase_type.h"
 
+#include <stdarg.h>
+#include <stdio.h>
+
 #include "core/status.h"
 
 /* The registered types in the order `lvsim models` lists them: one name a type, whose object
@@ -28,6 +31,18 @@ void lv_phase_model_free(lv_phase_model *pm)
 {
     if (pm != NULL)
         pm->type->free_self(pm->self);
+}
+
+void lv_build_crash(const lv_build_ctx *bc, const char *fmt, ...)
+{
+    lv_handoff_notes *n = bc->notes;
+    if (n == NULL)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(n->why, sizeof n->why, fmt, ap);
+    va_end(ap);
+    n->crashed = 1;
 }
 
 void lv_build_note(const lv_build_ctx *bc, const char *name, const char *unit, double value)

@@ -396,12 +396,30 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     return LV_OK;
 }
 
+const char *lv_phase_state_name(lv_phase_state st)
+{
+    switch (st) {
+    case LV_PHASE_DONE: return "done";
+    case LV_PHASE_FAILED: return "failed";
+    case LV_PHASE_SKIPPED: return "skipped";
+    case LV_PHASE_CRASHED: return "crashed";
+    default: return "pending";
+    }
+}
+
 lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
 {
     if (k >= r->m->def->n_phases)
         return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
     lv_status st = lv_run_tables_update(r->m->def, r->m->env.wind, r->vals, &r->tables, err);
-    return st != LV_OK ? st : prepare(r, k, NULL, out, err);
+    if (st == LV_OK && (st = prepare(r, k, NULL, out, err)) == LV_OK && (*out)->notes.crashed) {
+        /* a touchdown beyond the landing gear's limits: nothing to fly */
+        st = lv_fail(err, LV_ERR_INPUT, "phase '%s': %s at t = %.9g s", r->m->def->phases[k].name,
+                     (*out)->notes.why, (*out)->s.start_time);
+        lv_phase_call_free(*out);
+        *out = NULL;
+    }
+    return st;
 }
 
 /* The phase's result from a finished call (the run's lock is held when workers run). */
@@ -561,6 +579,18 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         pthread_mutex_unlock(&r->lock);
         return st;
     }
+    if (c->notes.crashed) { /* a touchdown beyond the landing gear's limits: not flown */
+        lv_err why;
+        snprintf(why.msg, sizeof why.msg, "%.900s at t = %.9g s", c->notes.why, c->s.start_time);
+        pthread_mutex_lock(&r->lock);
+        record(r, c, LV_ERR_INPUT, &why, NULL); /* the hand-off's notes, no finals */
+        run_phase *p = &r->ph[k];
+        p->res.state = LV_PHASE_CRASHED;
+        p->res.t_end = p->res.t_start;
+        pthread_mutex_unlock(&r->lock);
+        lv_phase_call_free(c);
+        return LV_OK;
+    }
     char stem[4096];
     const unsigned formats = opt ? opt->result_formats : 0u;
     if (opt && opt->outdir && !(formats & LV_RUN_NO_PHASE_FILES)) {
@@ -605,12 +635,14 @@ static long next_ready(lv_run *r, int *pending)
             continue;
         int par = d->phases[k].parent;
         lv_phase_state ps = par < 0 ? LV_PHASE_DONE : r->ph[par].res.state;
-        if (ps == LV_PHASE_FAILED || ps == LV_PHASE_SKIPPED) {
+        if (ps == LV_PHASE_FAILED || ps == LV_PHASE_SKIPPED || ps == LV_PHASE_CRASHED) {
             p->res.state = LV_PHASE_SKIPPED;
             p->dirty = 0;
             snprintf(p->res.error, sizeof p->res.error, "phase '%s' not run: its parent '%s' %s",
                      p->res.name, d->phases[par].name,
-                     ps == LV_PHASE_FAILED ? "failed" : "was not run");
+                     ps == LV_PHASE_FAILED    ? "failed"
+                     : ps == LV_PHASE_CRASHED ? "crashed"
+                                              : "was not run");
             k = (size_t)-1; /* a new skip can skip more: rescan */
             continue;
         }

@@ -18,16 +18,6 @@
 #include "lvsim/lv_summary.h"
 #include "lvsim/lvsim.h"
 
-static const char *state_name(lv_phase_state st)
-{
-    switch (st) {
-    case LV_PHASE_DONE: return "done";
-    case LV_PHASE_FAILED: return "failed";
-    case LV_PHASE_SKIPPED: return "skipped";
-    default: return "pending";
-    }
-}
-
 /* Name of state event `index` of a phase's model (recorded when the phase ran). */
 static const char *event_name(const lv_phase_result *r, int index)
 {
@@ -96,8 +86,9 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON_AddStringToObject(o, "from", lv_mission_phase_name(m, (size_t)ph.parent));
     else
         cJSON_AddNullToObject(o, "from");
-    cJSON_AddStringToObject(o, "state", state_name(r->state));
-    if (r->state == LV_PHASE_FAILED || r->state == LV_PHASE_SKIPPED)
+    cJSON_AddStringToObject(o, "state", lv_phase_state_name(r->state));
+    if (r->state == LV_PHASE_FAILED || r->state == LV_PHASE_SKIPPED ||
+        r->state == LV_PHASE_CRASHED)
         cJSON_AddStringToObject(o, "error", r->error);
     if (r->state == LV_PHASE_SKIPPED || r->state == LV_PHASE_PENDING)
         return o;
@@ -106,14 +97,15 @@ static cJSON *phase_json(const lv_run *run, size_t k)
 
     const lv_sim_report *rep = &r->report;
     cJSON *end = cJSON_AddObjectToObject(o, "end");
-    cJSON_AddStringToObject(end, "reason", rep->reason == LV_STOP_TIME    ? "stop_time"
+    cJSON_AddStringToObject(end, "reason", r->state == LV_PHASE_CRASHED   ? "crashed"
+                                           : rep->reason == LV_STOP_TIME  ? "stop_time"
                                            : rep->reason == LV_STOP_EVENT ? "event"
                                                                           : "failed");
     if (rep->reason == LV_STOP_EVENT && rep->stop_event >= 0) {
         cJSON_AddStringToObject(end, "event", event_name(r, rep->stop_event));
         if (!isnan(r->end_value))
             cJSON_AddNumberToObject(end, "value", r->end_value);
-    } else if (rep->reason == LV_STOP_TIME) {
+    } else if (rep->reason == LV_STOP_TIME && r->state != LV_PHASE_CRASHED) {
         cJSON_AddNumberToObject(end, "value", r->t_stop);
     }
     cJSON *ev = cJSON_AddArrayToObject(o, "events");
@@ -264,11 +256,16 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
     cJSON_AddStringToObject(root, "mission", mi.name);
     cJSON_AddStringToObject(root, "file", mi.path);
     cJSON_AddStringToObject(root, "lvsim", LVSIM_VERSION);
-    /* the run as a whole: "ok" when every phase is done, else "failed" (kept, marked) */
-    int all_done = 1;
-    for (size_t k = 0; k < mi.n_phases; k++)
-        all_done &= lv_run_result(run, k)->state == LV_PHASE_DONE;
-    cJSON_AddStringToObject(root, "status", all_done ? "ok" : "failed");
+    /* the run as a whole: "ok" when every phase is done; "crashed" when every phase not done
+     * crashed or follows one that did (a touchdown beyond the landing gear's limits: the
+     * simulation is complete); else "failed" (kept, marked) */
+    int all_done = 1, failed = 0;
+    for (size_t k = 0; k < mi.n_phases; k++) {
+        const lv_phase_state ps = lv_run_result(run, k)->state;
+        all_done &= ps == LV_PHASE_DONE;
+        failed |= ps == LV_PHASE_FAILED || ps == LV_PHASE_PENDING;
+    }
+    cJSON_AddStringToObject(root, "status", all_done ? "ok" : failed ? "failed" : "crashed");
     cJSON_AddStringToObject(root, "epoch", mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
     time_json(root, run, mi.n_phases, mi.epoch ? mi.epoch : "2000-01-01T12:00:00Z");
     cJSON_AddStringToObject(root, "world", mi.flat_world ? "flat" : "planet");

@@ -454,8 +454,18 @@ static void test_mission_errors(void)
  * elevation (dof3, impact at the elevation) a roll-out: every hand-off continuous. */
 static void test_mission_handoffs(void)
 {
+    /* the glide touches down at ~150 m/s sinking at ~38 m/s (a crash): the roll-out's
+     * mechanics are the subject here, so the stage's gear takes it (the limits:
+     * test_gear_limits) */
     const char *yaml =
-        HEAD
+        "mission: {name: rw}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "stages:\n"
+        "  - {name: ms, dry_mass: 50000, propellant_mass: 100000,\n"
+        "     landing_gear: {sink_rate_max: 50, lateral_speed_max: 20, ground_speed_max: 300,\n"
+        "                    bank_max_deg: 90, pitch_min_deg: -90, pitch_max_deg: 90},\n"
+        "     engines: [{name: e, thrust_vac: 2.0e6, isp_vac: 350, exit_area: 1.5}]}\n"
+        "phases:\n"
         "  - {name: roll, model: runway, stages: [ms], start_time: 0, stop_time: 60,\n"
         "     runway: {lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140},\n"
         "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 10, rotation_rate_deg: 3},\n"
@@ -518,7 +528,7 @@ static void test_mission_handoffs(void)
      * is the parent's final altitude (150 m, the runway's elevation) minus the plane's drop
      * d^2 / (2 R) below the ellipsoid over the distance d flown (< 5 m for d < 8 km) */
     const lv_phase_result *p3 = lv_run_result(r, 3);
-    CHECK(p3->n_absorbed == 4);
+    CHECK(p3->n_absorbed == 7); /* and ground_speed, pitch, bank for the gear */
     double ab[4] = {NAN, NAN, NAN, NAN};
     const char *abn[4] = {"height", "sink_rate", "lateral", "lateral_speed"};
     for (size_t i = 0; i < p3->n_absorbed && i < 4; i++)
@@ -662,6 +672,146 @@ static void test_mission_edges(void)
     remove("rw_edges.yaml");
 }
 
+/* ---- (6) the landing gear's limits at touchdown ------------------------------------------- */
+
+/* A glide that starts 1 cm above the runway's threshold (elevation 150 m, heading 140 deg) at
+ * speed v [m/s], flight-path angle fpa and heading 140 + dchi [deg], alpha and bank mu [deg]
+ * (inputs; no aerodynamics: no force from them, only the attitude), touches down at once
+ * (end at the elevation) and hands over to a roll-out. `gear`: the stage's landing_gear
+ * mapping or "". Over 1 cm the speeds change by g t ~ 0.1 m/s at most (t = 0.01 m / sink). */
+static lv_run *touchdown(const char *gear, double v, double fpa, double dchi, double alpha,
+                         double mu, lv_mission **m)
+{
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "mission: {name: gear}\n"
+             "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+             "parameters: {start_lat_deg: 43.6, start_lon_deg: 1.37, start_h: 150.01,\n"
+             "             start_vel: %g, start_fpa_deg: %g, start_chi_deg: %g}\n"
+             "stages:\n"
+             "  - {name: ms, dry_mass: 50000, propellant_mass: 0%s%s}\n"
+             "phases:\n"
+             "  - {name: down, model: dof3, stages: [ms], start_time: 0, stop_time: 30,\n"
+             "     end: [{altitude: 150, direction: falling}], throttle: off,\n"
+             "     inputs: {alpha_deg: %g, mu_deg: %g}}\n"
+             "  - {name: rollout, model: runway, stages: [ms], from: down, stop_time: 300,\n"
+             "     runway: {lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140},\n"
+             "     landing: {mu: 0.3, v_stop: 2}}\n",
+             v, fpa, 140.0 + dchi, gear[0] ? ", landing_gear: " : "", gear, alpha, mu);
+    lv_err err;
+    lv_run *r = NULL;
+    *m = NULL;
+    FILE *f = fopen("test_gear.yaml", "w");
+    CHECK(f != NULL);
+    if (f == NULL)
+        return NULL;
+    fputs(yaml, f);
+    fclose(f);
+    CHECK_OK(lv_mission_load("test_gear.yaml", m, &err), &err);
+    if (*m == NULL)
+        return NULL;
+    CHECK_OK(lv_run_create(*m, &r, &err), &err);
+    if (r != NULL)
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err); /* a crash is no failure of the run */
+    return r;
+}
+
+/* The roll-out's state and, for a crash, that its error names `want`. */
+static void expect_touchdown(const char *gear, double v, double fpa, double dchi, double alpha,
+                             double mu, lv_phase_state want_state, const char *want)
+{
+    lv_mission *m;
+    lv_run *r = touchdown(gear, v, fpa, dchi, alpha, mu, &m);
+    CHECK(r != NULL);
+    if (r == NULL)
+        return;
+    const lv_phase_result *ro = lv_run_result(r, 1);
+    CHECK(lv_run_result(r, 0)->state == LV_PHASE_DONE);
+    CHECK(ro->state == want_state);
+    if (want != NULL && strstr(ro->error, want) == NULL) {
+        fprintf(stderr, "expected '%s' in: %s\n", want, ro->error);
+        CHECK(0);
+    }
+    if (want_state == LV_PHASE_CRASHED) {
+        CHECK(strstr(ro->error, "phase 'rollout': crashed at touchdown: ") == ro->error);
+        CHECK(strstr(ro->error, " at t = ") != NULL);
+        CHECK(ro->n_absorbed == 7); /* what the touchdown was, recorded */
+        CHECK(strcmp(lv_phase_state_name(ro->state), "crashed") == 0);
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
+static void test_gear_limits(void)
+{
+    const lv_phase_state D = LV_PHASE_DONE, C = LV_PHASE_CRASHED;
+    /* inside every default limit: 80 m/s, sink 80 sin 1 deg = 1.40 m/s, on the centre line,
+     * pitch = fpa + alpha = 4 deg, wings level */
+    expect_touchdown("", 80, -1, 0, 5, 0, D, NULL);
+    /* beyond each default limit, one at a time (docs/models.md): sink 80 sin 3 deg = 4.19 >
+     * 3.05 m/s (10 ft/s; 4.21 after the 1 cm fall); lateral 80 cos 1 sin 2 deg = 2.79 > 2
+     * m/s; ground speed 120 cos 0.5 deg = 119.995 > 115.7 m/s (225 kt); bank 12 > 10 deg;
+     * pitch -1 + 17 = 16 > 15 deg and -1 - 1 = -2 < 0 deg (the nose wheel first; -2.05
+     * after the fall's steepening) */
+    expect_touchdown("", 80, -3, 0, 5, 0, C, "sink rate 4.2");
+    expect_touchdown("", 80, -3, 0, 5, 0, C, "> 3.05 m/s (landing gear of stage 'ms': the "
+                                             "default limits)");
+    expect_touchdown("", 80, -1, 2, 5, 0, C, "lateral speed 2.7");
+    expect_touchdown("", 80, -1, -2, 5, 0, C, "lateral speed -2.7");
+    expect_touchdown("", 120, -0.5, 0, 5, 0, C, "ground speed 120 m/s > 115.7 m/s");
+    expect_touchdown("", 80, -1, 0, 0, 12, C, "bank 12 deg beyond +-10 deg");
+    expect_touchdown("", 80, -1, 0, 17, 0, C, "pitch 16 deg outside [0, 15] deg");
+    expect_touchdown("", 80, -1, 0, -1, 0, C, "pitch -2.0");
+    expect_touchdown("", 80, -1, 0, -1, 0, C, "deg outside [0, 15] deg");
+    /* two at once, both named: sink 120 sin 3 deg = 6.28 m/s, ground speed 120 cos 3 deg =
+     * 119.8 m/s */
+    expect_touchdown("", 120, -3, 0, 5, 0, C, "sink rate 6.3 m/s > 3.05 m/s; ground speed "
+                                              "119.8 m/s > 115.7 m/s");
+    /* a stage's own gear: its limits, the others default */
+    expect_touchdown("{sink_rate_max: 5}", 80, -3, 0, 5, 0, D, NULL);
+    expect_touchdown("{sink_rate_max: 4}", 80, -3, 0, 5, 0, C,
+                     "> 4 m/s (landing gear of stage 'ms')");
+    expect_touchdown("{bank_max_deg: 15, pitch_max_deg: 20}", 80, -1, 0, 17, 12, D, NULL);
+    /* the limits are run parameters: a run may set them */
+    {
+        lv_mission *m;
+        lv_run *r = touchdown("{sink_rate_max: 5}", 80, -3, 0, 5, 0, &m);
+        lv_err err;
+        CHECK(r != NULL);
+        if (r != NULL) {
+            CHECK_OK(lv_run_set(r, "ms.landing_gear.sink_rate_max", 4.0, &err), &err);
+            CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+            CHECK(lv_run_result(r, 1)->state == LV_PHASE_CRASHED);
+            lv_run_free(r);
+        }
+        lv_mission_free(m);
+    }
+    /* bad gear values and keys: file:line:col */
+#define GEAR_HEAD(gear)                                                                    \
+    "mission: {name: rw}\n"                                                                 \
+    "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"          \
+    "stages:\n"                                                                             \
+    "  - {name: ms, dry_mass: 1000, propellant_mass: 0, landing_gear: " gear "}\n"          \
+    "phases:\n"                                                                             \
+    "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"                           \
+    "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"            \
+    "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n"
+    BAD(GEAR_HEAD("{sink_rate_max: 0}"),
+        "bad.yaml:4:82: stage 'ms', landing_gear: sink_rate_max must be > 0 m/s, found 0");
+    BAD(GEAR_HEAD("{sink_rate: 3}"), "bad.yaml:4:67: stage 'ms', landing_gear: unknown key "
+                                     "'sink_rate'; did you mean 'sink_rate_max'");
+    BAD(GEAR_HEAD("{bank_max_deg: 95}"), "bad.yaml:4:81: stage 'ms', landing_gear: "
+                                         "bank_max_deg must be > 0 and <= 90 deg, found 95");
+    BAD(GEAR_HEAD("{bank_max: 0.1, bank_max_deg: 5}"),
+        "bad.yaml:4:82: stage 'ms', landing_gear: 'bank_max' and 'bank_max_deg' given both");
+    BAD(GEAR_HEAD("{pitch_min_deg: 10, pitch_max_deg: 5}"),
+        "bad.yaml:4:66: stage 'ms', landing_gear: pitch_max 5 deg must be above pitch_min 10 "
+        "deg");
+    BAD(GEAR_HEAD("3"), "bad.yaml:4:66: stage 'ms', landing_gear: a mapping such as "
+                        "{sink_rate_max: 3} expected");
+#undef GEAR_HEAD
+}
+
 int main(void)
 {
     test_friction_no_air();
@@ -670,6 +820,7 @@ int main(void)
     test_landing_rollout();
     test_rotating_threshold();
     test_mission_edges();
+    test_gear_limits();
     test_bad_config();
     test_mission_errors();
     test_mission_handoffs();
