@@ -383,6 +383,7 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
                        height, lateral, speed, TOUCHDOWN_HEIGHT_MAX, TOUCHDOWN_LATERAL_MAX);
     values[is] = td.distance;
     values[iv] = speed;
+    lv_build_note(bc, "distance", "m", td.distance);
     lv_build_note(bc, "height", "m", td.height);
     lv_build_note(bc, "sink_rate", "m/s", td.sink_rate);
     lv_build_note(bc, "lateral", "m", td.lateral);

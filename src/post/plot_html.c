@@ -446,9 +446,34 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             kv(f, "x", jnum(gc, "x"), 1e-3, 3, "km", &first);
             kv(f, "y", jnum(gc, "y"), 1e-3, 3, "km", &first);
             kv(f, "distance from the launch site", jnum(gc, "distance"), 1e-3, 3, "km", &first);
+            kv(f, "from the guidance target", jnum(gc, "target_distance"), 1.0, 1, "m", &first);
             kv(f, "speed", jnum(gc, "speed"), 1.0, 1, "m/s", &first);
             /* the contact row's load: not in the flight's maxima above */
             kv(f, "axial load factor at contact", jnum(gc, "n_axial"), 1.0, 3, "g0", &first);
+            fputs("</td></tr>\n", f);
+        }
+        const cJSON *td = cJSON_GetObjectItemCaseSensitive(b, "touchdown");
+        if (cJSON_IsObject(td)) { /* a runway touchdown: landed or crashed, and the roll-out */
+            const char *status = jstr(td, "status");
+            const int crashed = status != NULL && strcmp(status, "crashed") == 0;
+            key_row(f, crashed ? "touchdown: CRASHED" : "touchdown");
+            int first = 1;
+            kv(f, "t", jnum(td, "t"), 1.0, 3, "s", &first);
+            kv(f, "from the threshold", jnum(td, "from_threshold"), 1.0, 0, "m", &first);
+            kv(f, "sink rate", jnum(td, "sink_rate"), 1.0, 2, "m/s", &first);
+            kv(f, "ground speed", jnum(td, "ground_speed"), 1.0, 1, "m/s", &first);
+            kv(f, "lateral offset", jnum(td, "lateral"), 1.0, 1, "m", &first);
+            kv(f, "lateral speed", jnum(td, "lateral_speed"), 1.0, 2, "m/s", &first);
+            kv(f, "pitch", jnum(td, "pitch"), 1.0 / LV_DEG, 1, "deg", &first);
+            kv(f, "bank", jnum(td, "bank"), 1.0 / LV_DEG, 1, "deg", &first);
+            kv(f, "roll-out", jnum(td, "rollout_distance"), 1.0, 0, "m", &first);
+            kv(f, "stopped from the threshold", jnum(td, "stop_from_threshold"), 1.0, 0, "m",
+               &first);
+            kv(f, "time on the runway", jnum(td, "time_on_runway"), 1.0, 1, "s", &first);
+            if (crashed && jstr(td, "reason") != NULL) {
+                fputs("<br>", f);
+                esc(f, jstr(td, "reason"));
+            }
             fputs("</td></tr>\n", f);
         }
         fputs("</table>\n", f);

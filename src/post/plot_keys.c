@@ -304,9 +304,73 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
             dist = hypot(x - at(first_t, 0, c0.x), y - at(first_t, 0, c0.y));
         }
         num(gc, "distance", dist);
+        /* the miss from the last phase's guidance target (its target_lat/lon; the phase's
+         * start point when it names none): the target_distance output of the contact row */
+        const long ctd = lv_results_table_col(last_t, "target_distance");
+        if (ctd >= 0)
+            num(gc, "target_distance", at(last_t, r, ctd));
     }
     cJSON_AddItemToObject(o, "ground_contact", gc ? gc : cJSON_CreateNull());
     return o;
+}
+
+/* summary.json's phases[k].handoff.absorbed, or NULL. */
+static const cJSON *absorbed_of(const lv_results *res, size_t k)
+{
+    const cJSON *phs = cJSON_GetObjectItemCaseSensitive(res->json, "phases");
+    const cJSON *pj = cJSON_GetArrayItem(phs, (int)k);
+    return cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(pj, "handoff"),
+                                            "absorbed");
+}
+
+/* A body's touchdown on a runway: the first phase with the body as its bottom stage that a
+ * touchdown started (its hand-off absorbed a sink rate: a runway roll-out from a flight phase;
+ * flown or crashed, so not only the body's flown phases). What the touchdown
+ * was (summary.json's handoff.absorbed: the point from the threshold along the centre line,
+ * sink rate, lateral offset and speed, ground speed, pitch, bank), whether it landed (the
+ * roll-out flown) or crashed (beyond the landing gear's limits: the reason), and the roll-out:
+ * its distance on the runway, the time from touchdown to the stop and where it stopped. NULL
+ * when the body has no touchdown. docs/visualization.md, "Key figures". */
+static cJSON *touchdown_json(const lv_plot_data *d, size_t bi)
+{
+    const lv_results *res = d->res;
+    const lv_plot_body *b = &d->bodies[bi];
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        if (ph->n_stages == 0 || ph->stages[0] == NULL || strcmp(ph->stages[0], b->name) != 0)
+            continue;
+        const cJSON *ab = absorbed_of(res, k);
+        const cJSON *sink = cJSON_GetObjectItemCaseSensitive(ab, "sink_rate");
+        if (!cJSON_IsNumber(sink))
+            continue;
+        cJSON *o = cJSON_CreateObject();
+        const int crashed = ph->state != NULL && strcmp(ph->state, "crashed") == 0;
+        cJSON_AddStringToObject(o, "status", ph->done ? "landed" : crashed ? "crashed"
+                                             : ph->state ? ph->state : "?");
+        if (!ph->done && ph->error != NULL)
+            cJSON_AddStringToObject(o, "reason", ph->error);
+        cJSON_AddStringToObject(o, "phase", ph->name);
+        num(o, "t", ph->t_start);
+        static const char *const keys[] = {"distance", "sink_rate", "lateral", "lateral_speed",
+                                           "ground_speed", "pitch", "bank"};
+        for (size_t j = 0; j < sizeof keys / sizeof keys[0]; j++) {
+            const cJSON *v = cJSON_GetObjectItemCaseSensitive(ab, keys[j]);
+            num(o, strcmp(keys[j], "distance") == 0 ? "from_threshold" : keys[j],
+                cJSON_IsNumber(v) ? v->valuedouble : NAN);
+        }
+        const lv_results_table *t = d->phases[k].csv;
+        const long cs = t ? lv_results_table_col(t, "distance") : -1;
+        const long cv = t ? lv_results_table_col(t, "speed") : -1;
+        if (ph->done && t != NULL && t->n_rows > 0 && cs >= 0) {
+            const size_t r = t->n_rows - 1;
+            num(o, "rollout_distance", at(t, r, cs) - at(t, 0, cs));
+            num(o, "stop_from_threshold", at(t, r, cs));
+            num(o, "stop_speed", cv >= 0 ? at(t, r, cv) : NAN);
+            num(o, "time_on_runway", ph->t_end - ph->t_start);
+        }
+        return o;
+    }
+    return NULL;
 }
 
 lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
@@ -319,7 +383,11 @@ lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
     cJSON_AddStringToObject(doc, "world", d->flat ? "flat" : "planet");
     cJSON *bodies = cJSON_AddArrayToObject(doc, "bodies");
     for (size_t i = 0; i < d->n_bodies; i++)
-        cJSON_AddItemToArray(bodies, body_keys(d, i, d->flat));
+    {
+        cJSON *bk = body_keys(d, i, d->flat), *td = touchdown_json(d, i);
+        cJSON_AddItemToObject(bk, "touchdown", td ? td : cJSON_CreateNull());
+        cJSON_AddItemToArray(bodies, bk);
+    }
     char *text = cJSON_Print(doc);
     if (text == NULL) {
         cJSON_Delete(doc);

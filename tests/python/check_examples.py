@@ -4,8 +4,9 @@ against a stored reference flown by an independent method at 1e-13 (issue 24).
 
   check_examples.py LVSIM WORKDIR              the check (ctest test_examples_defaults)
   check_examples.py LVSIM WORKDIR --table      the measurement, as docs/integration.md's table
-  check_examples.py LVSIM WORKDIR --reference OUT.json
-                                               makes the reference (below)
+  check_examples.py LVSIM WORKDIR --reference OUT.json [--only EXAMPLE]
+                                               makes the reference (below); --only: that
+                                               example's again, the others kept
   check_examples.py LVSIM WORKDIR --finals METHOD TOL[,TOL2] [OUT.json]
                                                every example with METHOD at TOL in every phase
                                                (at TOL2 where TOL fails): its finals
@@ -235,7 +236,7 @@ def compare(a_path, b_path, verbose=True):
     print("largest: " + "  ".join("%s %.2e (%s)" % (k, v, w) for k, (v, w) in worst.items()))
 
 
-def reference(lvsim, work, out):
+def reference(lvsim, work, out, only=None):
     tols = "1e-13,1e-12"
     data = {"command": "/usr/bin/python3 tests/python/check_examples.py build/lvsim WORKDIR "
                        "--reference tests/data/examples_reference.json",
@@ -243,7 +244,12 @@ def reference(lvsim, work, out):
                     "1e-13 in every phase, 1e-12 where 1e-13 fails; agreement: the differences "
                     "from cvode-adams at the same tolerance (check_examples.py)",
             "method": "dopri5", "check_method": "cvode-adams", "examples": {}}
+    if only is not None:  # one example made again, the others kept as they are in OUT
+        with open(out) as f:
+            data["examples"] = json.load(f)["examples"]
     for ex in examples():
+        if only is not None and ex != only:
+            continue
         for tol in tols.split(","):
             try:
                 main_ = fly(lvsim, work, ex, "dopri5", tol)
@@ -341,7 +347,7 @@ def main():
         compare(args[1], args[2], "--quiet" not in args)
         return 0
     if args and args[0] == "--reference":
-        reference(lvsim, work, args[1])
+        reference(lvsim, work, args[1], args[3] if args[2:3] == ["--only"] else None)
         return 0
     return 1 if check(lvsim, work, args == ["--table"]) else 0
 

@@ -247,6 +247,31 @@ def main():
                 # -1.14 rad): no end of powered flight to report (issue 26: it showed one with a
                 # ballistic apoapsis below the ground)
                 check(bodies["ms"]["injection"] is None, "rlv ms: %r" % bodies["ms"]["injection"])
+                # the main stage lands (issue 26): the touchdown from the roll-out's file and
+                # the flare's last row, the requirement-level facts of the example's README:
+                # inside the touchdown zone (the first 3000 ft, 914 m, of the runway: FAA AC
+                # 150/5340-1M), the sink rate under the gear's 3.05 m/s, stopped on the 4 km
+                # runway
+                td = bodies["ms"]["touchdown"]
+                ro = load_csv(os.path.join(out, "phase_10_rollout.csv"))
+                fl = load_csv(os.path.join(out, "phase_9_flare.csv"))
+                check(td is not None and td["status"] == "landed", "rlv ms touchdown: %r" % td)
+                if td is not None:
+                    close(td["from_threshold"], ro[0]["distance"], "rlv touchdown point", 1e-9)
+                    close(td["rollout_distance"], ro[-1]["distance"] - ro[0]["distance"],
+                          "rlv roll-out distance", 1e-9)
+                    close(td["time_on_runway"], ro[-1]["time"] - ro[0]["time"],
+                          "rlv time on the runway", 1e-9)
+                    close(td["stop_speed"], ro[-1]["speed"], "rlv stop speed", 1e-9)
+                    # the sink rate along the runway plane's normal; the flare's last row gives
+                    # it along the local vertical, tilted from it by the distance from the
+                    # threshold over the Earth's radius (~1e-4 rad: ~1e-2 m/s at 66 m/s)
+                    check(abs(td["sink_rate"] - fl[-1]["v_down"]) < 0.02,
+                          "rlv sink rate %r vs v_down %r" % (td["sink_rate"], fl[-1]["v_down"]))
+                    check(300.0 < td["from_threshold"] < 914.0, "rlv touchdown zone: %r" % td)
+                    check(0.0 < td["sink_rate"] < 3.048, "rlv sink rate: %r" % td)
+                    check(td["stop_from_threshold"] < 4000.0, "rlv stops on the runway: %r" % td)
+                    check('touchdown</td>' in html and "roll-out" in html, "rlv: no touchdown in the report")
             else:
                 bodies = {b["name"]: b for b in got["bodies"]}
                 check(bodies["upper"]["injection"]["trajectory"] == "escape",

@@ -191,7 +191,8 @@ def test_mission_description(demo_run):
     m = demo_run.mission
     assert m.name == "rlv-hthl" and m.planet == "earth" and not m.flat_world
     assert [p.name for p in m.phases] == ["liftoff", "ascent", "ballistic", "us-ascent",
-                                         "turn-around", "glide-back", "approach"]
+                                         "turn-around", "glide-back", "approach", "final",
+                                         "flare", "rollout"]
     assert m.phases[3].parent == "ballistic" and m.phases[0].parent is None
     assert m.phases[3].stages == ["us", "payload"]
     p = m.parameter("us.propellant_mass")
@@ -302,7 +303,7 @@ def test_parameter_sweep_reruns_only_what_changed():
     m = lvsim.Mission(DEMO)
     run = m.create_run()
     run.execute()
-    assert run.simulated == 7
+    assert run.simulated == 10
     base = run.finals("us-ascent")
     ascent0 = run.result("ascent").values.copy()
     masses, t_burn = [], []
@@ -317,12 +318,13 @@ def test_parameter_sweep_reruns_only_what_changed():
     # the same value as the file: the same bits as the first run
     assert bits(run.result("ascent").values) == bits(ascent0)
     assert run.finals("us-ascent") == base
-    # a change of the last phases' parameter re-simulates only them
+    # a change of a late phase's parameter re-simulates only it and its descendants (the
+    # approach, the final glide, the flare and the roll-out)
     names = [p.name for p in m.parameters]
     appr = [n for n in names if n.startswith("approach.")][0]
     run.set(appr, run.get(appr) * 1.001 if run.get(appr) else 1.0)
     run.execute()
-    assert run.simulated == 1
+    assert run.simulated == 4
     # Mission.run(params=...) equals a run set by hand
     r2 = m.run(params={"us.propellant_mass": 53000.0})
     run.reset()
@@ -339,12 +341,13 @@ def test_execute_one_phase_and_until():
     run.execute(phases="us-ascent")
     assert run.states == {"liftoff": "done", "ascent": "done", "ballistic": "done",
                           "us-ascent": "done", "turn-around": "pending",
-                          "glide-back": "pending", "approach": "pending"}
+                          "glide-back": "pending", "approach": "pending", "final": "pending",
+                          "flare": "pending", "rollout": "pending"}
     run.execute(until="turn-around")
     assert run.state("turn-around") == "done" and run.state("glide-back") == "pending"
     assert run.simulated == 1
     run.execute()
-    assert run.ok and run.simulated == 2
+    assert run.ok and run.simulated == 5
     run.close(); m.close()
 
 
@@ -366,7 +369,7 @@ def test_progress_callback_and_cancel():
     run = m.run(progress=lambda k, t: seen.append((k, t)) and False)
     assert run.ok and {k for k, _ in seen} == set(range(len(m.phases)))
     # at every row of the output grid: the last one within an interval of the end
-    t_end = run.result("approach").t_end
+    t_end = run.result("rollout").t_end
     assert t_end - 5.0 <= max(t for _, t in seen) <= t_end
     # returning True cancels: the phase running then fails with LV_ERR_CANCELLED
     r2 = m.create_run()

@@ -528,10 +528,10 @@ static void test_mission_handoffs(void)
      * is the parent's final altitude (150 m, the runway's elevation) minus the plane's drop
      * d^2 / (2 R) below the ellipsoid over the distance d flown (< 5 m for d < 8 km) */
     const lv_phase_result *p3 = lv_run_result(r, 3);
-    CHECK(p3->n_absorbed == 7); /* and ground_speed, pitch, bank for the gear */
+    CHECK(p3->n_absorbed == 8); /* and distance, ground_speed, pitch, bank */
     double ab[4] = {NAN, NAN, NAN, NAN};
     const char *abn[4] = {"height", "sink_rate", "lateral", "lateral_speed"};
-    for (size_t i = 0; i < p3->n_absorbed && i < 4; i++)
+    for (size_t i = 0; i < p3->n_absorbed; i++)
         for (int j = 0; j < 4; j++)
             if (strcmp(p3->absorbed_names[i], abn[j]) == 0)
                 ab[j] = p3->absorbed_values[i];
@@ -735,7 +735,7 @@ static void expect_touchdown(const char *gear, double v, double fpa, double dchi
     if (want_state == LV_PHASE_CRASHED) {
         CHECK(strstr(ro->error, "phase 'rollout': crashed at touchdown: ") == ro->error);
         CHECK(strstr(ro->error, " at t = ") != NULL);
-        CHECK(ro->n_absorbed == 7); /* what the touchdown was, recorded */
+        CHECK(ro->n_absorbed == 8); /* what the touchdown was, recorded */
         CHECK(strcmp(lv_phase_state_name(ro->state), "crashed") == 0);
     }
     lv_run_free(r);
