@@ -185,12 +185,6 @@ static void accel_command(const lv_guid *g, const lv_guid_rt *rt, double t,
     cmd->alpha_hi = p->alpha_max;
 }
 
-static int reads_atmosphere(const lv_guid *g)
-{
-    (void)g;
-    return 0;
-}
-
 /* alpha and the bank about the air-relative velocity */
 static unsigned refs(const lv_guid *g, const lv_guid_rt *rt, double t)
 {
@@ -215,6 +209,5 @@ const lv_law lv_law_flare = {
     .start = start,
     .attitude = attitude,
     .accel_command = accel_command,
-    .reads_atmosphere = reads_atmosphere,
     .refs = refs,
 };
