@@ -113,6 +113,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON_AddStringToObject(end, "event", event_name(r, rep->stop_event));
         if (!isnan(r->end_value))
             cJSON_AddNumberToObject(end, "value", r->end_value);
+        if (r->end_label != NULL) /* the user's name of that end: MECO */
+            cJSON_AddStringToObject(end, "label", r->end_label);
     } else if (rep->reason == LV_STOP_TIME) {
         cJSON_AddNumberToObject(end, "value", r->t_stop);
     }
@@ -128,6 +130,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
                                            : e->name[0] ? e->name : "time event");
         if (e->is_state)
             cJSON_AddNumberToObject(j, "direction", e->direction);
+        if (r->event_labels != NULL && r->event_labels[i] != NULL) /* `name:` in the file */
+            cJSON_AddStringToObject(j, "label", r->event_labels[i]);
         cJSON_AddItemToArray(ev, j);
     }
     cJSON *sj = cJSON_AddObjectToObject(o, "stats");
