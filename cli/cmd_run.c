@@ -446,21 +446,91 @@ static void print_header(const run_job *j)
     fflush(stdout);
 }
 
+/* Two bodies whose timelines list the same events at the same times (the stages of a stack
+ * until it separates, then flying on together): printed once. */
+static int same_timeline(const lv_timeline *a, const lv_timeline *b)
+{
+    if (a->n != b->n)
+        return 0;
+    for (size_t i = 0; i < a->n; i++)
+        if (strcmp(a->rows[i].label, b->rows[i].label) != 0 ||
+            strcmp(a->rows[i].phase, b->rows[i].phase) != 0 || a->rows[i].t != b->rows[i].t)
+            return 0;
+    return 1;
+}
+
+/* The bodies' timelines (lv_run_timeline: lift-off, max-q, each phase's end by its name,
+ * separations) after the phase table, one block per body, bodies with the same events in one
+ * block. Only when the run kept its rows. */
+static void print_timelines(const lv_run *run)
+{
+    const lv_mission *m = lv_run_mission(run);
+    const size_t ns = lv_mission_stage_count(m);
+    lv_timeline **tl = calloc(ns + 1, sizeof *tl);
+    if (tl == NULL)
+        return;
+    int any = 0;
+    for (size_t s = 0; s < ns; s++) {
+        lv_err err;
+        if (lv_run_timeline(run, s, &tl[s], &err) != LV_OK) {
+            tl[s] = NULL;
+        } else if (tl[s]->n == 0) {
+            lv_timeline_free(tl[s]);
+            tl[s] = NULL;
+        }
+        any |= tl[s] != NULL;
+    }
+    if (any)
+        printf("timeline   %-28s %10s %9s %8s %6s %8s  %s\n", "event", "t [s]", "h [km]",
+               "v [m/s]", "Mach", "q [kPa]", "phase");
+    for (size_t s = 0; s < ns; s++) {
+        if (tl[s] == NULL)
+            continue;
+        int dup = 0;
+        for (size_t p = 0; p < s && !dup; p++)
+            dup = tl[p] != NULL && same_timeline(tl[p], tl[s]);
+        if (dup)
+            continue;
+        char who[256];
+        size_t used = (size_t)snprintf(who, sizeof who, "%s", tl[s]->body);
+        for (size_t o = s + 1; o < ns && used < sizeof who; o++)
+            if (tl[o] != NULL && same_timeline(tl[s], tl[o]))
+                used += (size_t)snprintf(who + used, sizeof who - used, ", %s", tl[o]->body);
+        printf("%s\n", who);
+        for (size_t i = 0; i < tl[s]->n; i++) {
+            const lv_timeline_row *w = &tl[s]->rows[i];
+            char mach[16] = "-", q[16] = "-";
+            if (isfinite(w->mach))
+                snprintf(mach, sizeof mach, "%.2f", w->mach);
+            if (isfinite(w->q))
+                snprintf(q, sizeof q, "%.3f", w->q / 1e3);
+            printf("           %-28.60s %10.3f %9.3f %8.1f %6s %8s  %s\n", w->label, w->t,
+                   w->h / 1e3, w->speed, mach, q, w->phase);
+        }
+    }
+    for (size_t s = 0; s < ns; s++)
+        lv_timeline_free(tl[s]);
+    free(tl);
+}
+
 /* Runs every phase into the staging folder, printing the table as phases end; then the rows
  * on_phase could not print yet: phases never run (skipped, pending) and those after them. */
 static void run_phases(run_job *j)
 {
-    /* rows are kept in memory only for the body files, which are merged from them */
+    /* rows are kept in memory only for the body files, which are merged from them, and
+     * summary.json's timelines (lv_run_timeline), which read them */
     const unsigned phase_files = j->a.outputs & j->o.results; /* = LV_RESULT_* flags */
     lv_run_options opt = {.outdir = j->stage, .threads = j->a.threads, .on_phase = on_phase,
                           .user = &j->ui, .progress = on_progress,
-                          .no_rows = !(j->a.outputs & j->o.body), .max_rows = j->a.max_rows,
+                          .no_rows = !(j->a.outputs & (j->o.body | j->o.summary)), .max_rows = j->a.max_rows,
                           .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
                                                              : phase_files};
     j->run_st = lv_run_execute(j->run, &opt, &j->err);
     progress_print_begin(j->ui.prog);
     while (j->ui.table && j->ui.next < lv_mission_phase_count(j->m))
         print_row(j->run, j->ui.next++, j->ui.wname);
+    if (j->ui.table && !progress_interrupted())
+        print_timelines(j->run);
     progress_print_end(j->ui.prog);
     /* Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
      * folder marked failed; no exports or plots (a second signal ends the process at once and

@@ -207,6 +207,48 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     return o;
 }
 
+static void num_or_null(cJSON *o, const char *key, double v)
+{
+    if (isfinite(v))
+        cJSON_AddNumberToObject(o, key, v);
+    else
+        cJSON_AddNullToObject(o, key);
+}
+
+/* bodies[].timeline (lv_run_timeline): each event of the body's flight with its row's state.
+ * Left out when the run kept no rows (lv_run_options.no_rows). */
+static lv_status timeline_json(cJSON *body, const lv_run *run, size_t s, lv_err *err)
+{
+    lv_timeline *tl = NULL;
+    lv_err e;
+    const lv_status st = lv_run_timeline(run, s, &tl, &e);
+    if (st == LV_ERR_NOMEM)
+        return lv_fail(err, st, "%s", e.msg);
+    if (st != LV_OK)
+        return LV_OK; /* no rows: no timeline */
+    cJSON *a = cJSON_AddArrayToObject(body, "timeline");
+    for (size_t i = 0; i < tl->n; i++) {
+        const lv_timeline_row *w = &tl->rows[i];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "label", w->label);
+        cJSON_AddStringToObject(j, "kind", w->kind);
+        if (w->event != NULL)
+            cJSON_AddStringToObject(j, "event", w->event);
+        if (w->named)
+            cJSON_AddBoolToObject(j, "named", 1);
+        cJSON_AddStringToObject(j, "phase", w->phase);
+        cJSON_AddNumberToObject(j, "row", (double)w->row);
+        num_or_null(j, "t", w->t);
+        num_or_null(j, "h", w->h);
+        num_or_null(j, "speed", w->speed);
+        num_or_null(j, "mach", w->mach);
+        num_or_null(j, "q", w->q);
+        cJSON_AddItemToArray(a, j);
+    }
+    lv_timeline_free(tl);
+    return LV_OK;
+}
+
 /* "time": how t maps to UTC over the span of the phases that ran (docs/exports.md, "Times"):
  * TAI - UTC at the epoch, the UTC of the first start and last end, the leap seconds between
  * (UTC and t of their start), the note when ERFA's table cannot vouch for the span. */
@@ -307,6 +349,8 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
         snprintf(file, sizeof file, "body_%s.csv", stage);
         snprintf(path, sizeof path, "%s/%s", outdir, file);
         cJSON_AddItemToArray(bodies, b);
+        if ((what & LV_SUMMARY_JSON) && (st = timeline_json(b, run, s, err)) != LV_OK)
+            break;
         if (what & LV_SUMMARY_BODIES) {
             cJSON_AddStringToObject(b, "trajectory", file);
             st = write_body_csv(run, s, path, err);
