@@ -411,7 +411,7 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         }
         cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(b, "separations"))
         {
-            key_row(f, "separation");
+            key_row(f, jstr(e, "label") ? jstr(e, "label") : "separation");
             state_text(f, e, flat);
             fputs("</td></tr>\n", f);
         }

@@ -120,7 +120,7 @@ static void value_text(char *buf, size_t cap, double v, const char *unit)
 
 /* The label of an end without a user's name, from its condition: "burnout", "impact",
  * "lift-off", "altitude 110 km", "speed 400 m/s", "time 5400 s", "peri_alt 200 km",
- * "propellant_left 53000 kg"; "stop_time"; "failed". */
+ * "propellant_left 53000 kg"; "stop_time 140 s" (its time limit); "failed". */
 static void end_text(const lv_phase_result *pr, const lv_result *res, char *buf, size_t cap)
 {
     const lv_sim_report *rep = &pr->report;
@@ -129,7 +129,9 @@ static void end_text(const lv_phase_result *pr, const lv_result *res, char *buf,
         return;
     }
     if (rep->reason == LV_STOP_TIME) {
-        snprintf(buf, cap, "stop_time");
+        char num[64];
+        value_text(num, sizeof num, pr->t_stop, "s");
+        snprintf(buf, cap, "stop_time %s", num);
         return;
     }
     const char *name = rep->stop_name;
@@ -263,17 +265,13 @@ static int phase_events(tl_build *b, const lv_run *run, size_t k)
     const lv_phase_result *pr = lv_run_result(run, k);
     const lv_sim_report *rep = &pr->report;
     const lv_result *res = lv_run_rows(run, k);
-    size_t stop = (size_t)-1; /* the event that ended the phase: its end's row */
-    for (size_t i = rep->n_event_log; rep->reason == LV_STOP_EVENT && i-- > 0;)
-        if (rep->event_log[i].t == rep->end_time &&
-            strcmp(rep->event_log[i].name, rep->stop_name) == 0) {
-            stop = i;
-            break;
-        }
     for (size_t i = 0; i < rep->n_event_log; i++) {
         const lv_event_record *e = &rep->event_log[i];
         const char *named = pr->event_labels != NULL ? pr->event_labels[i] : NULL;
-        if (i == stop || (named == NULL && !(e->is_state && strcmp(e->name, "burnout") == 0)))
+        /* the event that ended the phase is its end's row (a model may log it twice) */
+        const int stop = rep->reason == LV_STOP_EVENT && e->t == rep->end_time &&
+                         strcmp(e->name, rep->stop_name) == 0;
+        if (stop || (named == NULL && !(e->is_state && strcmp(e->name, "burnout") == 0)))
             continue;
         lv_timeline_row *w = add(b, run, k, row_at(res, e->t), "event",
                                  named != NULL ? named : e->name);
