@@ -207,12 +207,18 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     return o;
 }
 
+/* A number as the result CSVs write it (the shortest text that reads back exactly: cJSON's
+ * own keeps 15 digits when they read back within DBL_EPSILON), so that a timeline's values
+ * equal the rows they come from; null when not finite. */
 static void num_or_null(cJSON *o, const char *key, double v)
 {
-    if (isfinite(v))
-        cJSON_AddNumberToObject(o, key, v);
-    else
+    char buf[LV_NUMFMT_MAX];
+    if (isfinite(v)) {
+        lv_numfmt_double(v, buf);
+        cJSON_AddRawToObject(o, key, buf);
+    } else {
         cJSON_AddNullToObject(o, key);
+    }
 }
 
 /* bodies[].timeline (lv_run_timeline): each event of the body's flight with its row's state.
