@@ -446,69 +446,79 @@ static void print_header(const run_job *j)
     fflush(stdout);
 }
 
-/* Two bodies whose timelines list the same events at the same times (the stages of a stack
- * until it separates, then flying on together): printed once. */
-static int same_timeline(const lv_timeline *a, const lv_timeline *b)
+/* One line of the console timeline: an event of one or more bodies (the same label, phase
+ * and row: the same instant of the same flight). */
+typedef struct tl_line {
+    const lv_timeline_row *w;
+    size_t first_body, pos; /* where it was met first: ties in time keep flight order */
+    char bodies[200];
+    size_t n_bodies;
+} tl_line;
+
+static int tl_line_cmp(const void *a, const void *b)
 {
-    if (a->n != b->n)
-        return 0;
-    for (size_t i = 0; i < a->n; i++)
-        if (strcmp(a->rows[i].label, b->rows[i].label) != 0 ||
-            strcmp(a->rows[i].phase, b->rows[i].phase) != 0 || a->rows[i].t != b->rows[i].t)
-            return 0;
-    return 1;
+    const tl_line *x = a, *y = b;
+    if (x->w->t != y->w->t)
+        return x->w->t < y->w->t ? -1 : 1;
+    if (x->first_body != y->first_body)
+        return x->first_body < y->first_body ? -1 : 1;
+    return x->pos < y->pos ? -1 : x->pos > y->pos;
 }
 
 /* The bodies' timelines (lv_run_timeline: lift-off, max-q, each phase's end by its name,
- * separations) after the phase table, one block per body, bodies with the same events in one
- * block. Only when the run kept its rows. */
+ * burnouts, separations) after the phase table, compact: one line per event, with the bodies
+ * it concerns ("all": every body with a timeline). Only when the run kept its rows;
+ * summary.json and the report give each body's own. */
 static void print_timelines(const lv_run *run)
 {
     const lv_mission *m = lv_run_mission(run);
     const size_t ns = lv_mission_stage_count(m);
     lv_timeline **tl = calloc(ns + 1, sizeof *tl);
-    if (tl == NULL)
-        return;
-    int any = 0;
-    for (size_t s = 0; s < ns; s++) {
+    size_t n_rows = 0, n_tl = 0;
+    for (size_t s = 0; tl != NULL && s < ns; s++) {
         lv_err err;
-        if (lv_run_timeline(run, s, &tl[s], &err) != LV_OK) {
+        if (lv_run_timeline(run, s, &tl[s], &err) != LV_OK)
             tl[s] = NULL;
-        } else if (tl[s]->n == 0) {
-            lv_timeline_free(tl[s]);
-            tl[s] = NULL;
-        }
-        any |= tl[s] != NULL;
+        n_rows += tl[s] != NULL ? tl[s]->n : 0;
+        n_tl += tl[s] != NULL && tl[s]->n > 0;
     }
-    if (any)
-        printf("timeline   %-28s %10s %9s %8s %6s %8s  %s\n", "event", "t [s]", "h [km]",
-               "v [m/s]", "Mach", "q [kPa]", "phase");
-    for (size_t s = 0; s < ns; s++) {
-        if (tl[s] == NULL)
-            continue;
-        int dup = 0;
-        for (size_t p = 0; p < s && !dup; p++)
-            dup = tl[p] != NULL && same_timeline(tl[p], tl[s]);
-        if (dup)
-            continue;
-        char who[256];
-        size_t used = (size_t)snprintf(who, sizeof who, "%s", tl[s]->body);
-        for (size_t o = s + 1; o < ns && used < sizeof who; o++)
-            if (tl[o] != NULL && same_timeline(tl[s], tl[o]))
-                used += (size_t)snprintf(who + used, sizeof who - used, ", %s", tl[o]->body);
-        printf("%s\n", who);
-        for (size_t i = 0; i < tl[s]->n; i++) {
+    tl_line *lines = tl != NULL && n_rows > 0 ? calloc(n_rows, sizeof *lines) : NULL;
+    size_t n = 0;
+    for (size_t s = 0; lines != NULL && s < ns; s++)
+        for (size_t i = 0; tl[s] != NULL && i < tl[s]->n; i++) {
             const lv_timeline_row *w = &tl[s]->rows[i];
+            size_t j = 0;
+            while (j < n && !(lines[j].w->t == w->t && lines[j].w->row == w->row &&
+                              strcmp(lines[j].w->phase, w->phase) == 0 &&
+                              strcmp(lines[j].w->label, w->label) == 0))
+                j++;
+            tl_line *l = &lines[j];
+            if (j == n)
+                *l = (tl_line){w, s, i, "", 0}, n++;
+            const size_t used = strlen(l->bodies);
+            snprintf(l->bodies + used, sizeof l->bodies - used, "%s%s", used ? ", " : "",
+                     tl[s]->body);
+            l->n_bodies++;
+        }
+    if (n > 0) {
+        qsort(lines, n, sizeof *lines, tl_line_cmp);
+        printf("timeline: %-26s %10s %9s %8s %6s %8s  %-12s %s\n", "event", "t [s]", "h [km]",
+               "v [m/s]", "Mach", "q [kPa]", "phase", "bodies");
+        for (size_t i = 0; i < n; i++) {
+            const lv_timeline_row *w = lines[i].w;
             char mach[16] = "-", q[16] = "-";
             if (isfinite(w->mach))
                 snprintf(mach, sizeof mach, "%.2f", w->mach);
             if (isfinite(w->q))
                 snprintf(q, sizeof q, "%.3f", w->q / 1e3);
-            printf("           %-28.60s %10.3f %9.3f %8.1f %6s %8s  %s\n", w->label, w->t,
-                   w->h / 1e3, w->speed, mach, q, w->phase);
+            const double h = fabs(w->h) < 0.5 ? 0.0 : w->h / 1e3; /* no "-0.000" */
+            printf("  %-34.60s %10.3f %9.3f %8.1f %6s %8s  %-12s %s\n", w->label, w->t, h,
+                   w->speed, mach, q, w->phase, lines[i].n_bodies == n_tl ? "all"
+                                                                          : lines[i].bodies);
         }
     }
-    for (size_t s = 0; s < ns; s++)
+    free(lines);
+    for (size_t s = 0; tl != NULL && s < ns; s++)
         lv_timeline_free(tl[s]);
     free(tl);
 }
@@ -723,7 +733,9 @@ const cli_cmd cli_cmd_run = {
     "Validates the mission (as 'lvsim check'), refuses a phase that only its stop time ends\n"
     "and that would write more than --max-rows rows (a phase with an end event that reaches\n"
     "the limit fails there as it runs), runs every phase in dependency order, independent\n"
-    "branches in parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
+    "branches in parallel, and prints the phase table in run order, then the bodies'\n"
+    "timeline (lift-off, max-q, each phase's end by its name - MECO - or condition,\n"
+    "separations; with t, h, speed, Mach, q). Writes OUTDIR/phase_<k>_<name>.mat\n"
     "and .csv, body_<stage>.csv, summary.json, the exports (mission.czml, mission.kml,\n"
     "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
     "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"

@@ -201,8 +201,13 @@ def main():
             asc = next(p for p in summ["phases"] if p["name"] == "ascent")
             check(asc["end"].get("label") == "MECO" and asc["end"]["event"] == "burnout" and
                   asc["events"][-1].get("label") == "MECO", "kourou-leo ascent end: %r" % asc["end"])
-            check("\ntimeline   event" in stdout and "MECO" in stdout and "upper, payload\n" in stdout,
-                  "kourou-leo: no timeline table in the run's output")
+            # the console's compact table: one line per event, with the bodies it concerns
+            lines = stdout.split("\ntimeline: event")[-1].split("\nexport")[0].splitlines()[1:]
+            meco = [l for l in lines if l.split()[:1] == ["MECO"]]
+            seps = [l for l in lines if l.startswith("  separation of fairing")]
+            check(len(meco) == 1 and meco[0].rstrip().endswith(" all") and len(seps) == 2 and
+                  seps[0].rstrip().endswith("upper, payload") and seps[1].rstrip().endswith("fairing"),
+                  "kourou-leo: the run's timeline table: %r" % lines)
             html = open(os.path.join(out, "index.html")).read()
             check('<h2 id="timeline">Timeline</h2>' in html and "separation of fairing" in html,
                   "kourou-leo: no timeline in index.html")
