@@ -106,6 +106,9 @@ typedef struct lv_phase_info {
                                  ("rates: zero"), or NULL */
 } lv_phase_info;
 LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out);
+/* The user's name of the separation phase k starts with (`separation: {name: ...}`), or NULL
+ * (none, or k out of range). */
+LV_API const char *lv_mission_phase_separation_name(const lv_mission *m, size_t k);
 
 /* ---- parameters: the numbers a run may vary -------------------------------------------- */
 

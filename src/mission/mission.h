@@ -221,6 +221,8 @@ typedef struct lv_phase_def {
     lv_slot t_stop;       /* s; the fixed stop time or the time limit of the phase */
     size_t n_ends;        /* events that end the phase before t_stop */
     lv_end_def *ends;
+    char *separation_label; /* the user's name of the separation this phase starts with
+                             (`separation: {name: ...}`, dof3), or NULL */
     char *end_name;       /* `end_name:`: the user's name of any of its ends that has none of
                              its own (a main engine cut-off by propellant_left or burnout), or
                              NULL */

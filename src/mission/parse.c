@@ -274,6 +274,7 @@ void lv_mission_def_free(lv_mission_def *m)
         }
         free(ph->ends);
         free(ph->end_name);
+        free(ph->separation_label);
         free(ph->method);
         for (size_t k = 0; k < ph->n_set; k++)
             free(ph->set_names[k]);

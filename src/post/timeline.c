@@ -187,10 +187,11 @@ static void stage_list(const lv_mission *m, const lv_phase_info *p, const unsign
 
 /* Phase k's separation, if its children carry fewer stages than it does: the row of body s
  * (the first row of its child that carries s, or k's last row when s flies no further) and
- * its label, "separation of X": X the part that holds k's bottom (burning) stage, or, when one
- * child carries that on, the stages no child carries (a jettisoned fairing). 0: none. */
+ * its label: the user's (`separation: {name: ...}` of the first child that has one), else
+ * "separation of X": X the part that holds k's bottom (burning) stage, or, when one child
+ * carries that on, the stages no child carries (a jettisoned fairing). 0: none. */
 static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char *label,
-                      size_t cap)
+                      size_t cap, int *named)
 {
     const lv_mission *m = lv_run_mission(run);
     const size_t n = lv_mission_phase_count(m);
@@ -201,6 +202,7 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
     unsigned char carried[64] = {0}, part[64] = {0};
     size_t n_groups = 0, child_of_s = (size_t)-1, child_of_bottom = (size_t)-1;
     int fewer = 0;
+    const char *user = NULL; /* the first child's `separation: {name: ...}` */
     for (size_t c = 0; c < n; c++) {
         if (lv_mission_phase_parent(m, c) != (int)k || lv_run_result(run, c)->state != LV_PHASE_DONE)
             continue;
@@ -210,6 +212,8 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
             continue;
         fewer = 1;
         n_groups++;
+        if (user == NULL)
+            user = lv_mission_phase_separation_name(m, c);
         for (size_t i = 0; i < p.n_stages; i++)
             carried[i] = (unsigned char)(carried[i] | in_phase(&cp, p.stages[i]));
         if (child_of_s == (size_t)-1 && in_phase(&cp, s) && lv_run_rows(run, c) != NULL &&
@@ -235,7 +239,11 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
     }
     char what[LV_TIMELINE_LABEL_MAX];
     stage_list(m, &p, part, what, sizeof what);
-    snprintf(label, cap, "separation of %s", what);
+    if (user != NULL)
+        snprintf(label, cap, "%s", user);
+    else
+        snprintf(label, cap, "separation of %s", what);
+    *named = user != NULL;
     *k_row = child_of_s;
     return 1;
 }
@@ -355,10 +363,13 @@ lv_status lv_run_timeline(const lv_run *run, size_t s, lv_timeline **out, lv_err
                    : pr->report.reason == LV_STOP_EVENT       ? pr->report.stop_name
                                                               : "failed";
         size_t kc;
-        if (separation(run, k, s, &kc, label, sizeof label)) {
+        int named = 0;
+        if (separation(run, k, s, &kc, label, sizeof label, &named)) {
             w = kc != (size_t)-1 ? add(&b, run, kc, 0, "separation", label)
                                  : add(&b, run, k, nr - 1, "separation", label);
             nomem |= w == NULL;
+            if (w != NULL)
+                w->named = named;
         }
     }
     if (st == LV_OK && !nomem && q_max > 0.0)

@@ -240,6 +240,30 @@ def main():
             check(s3 == ["lift-off", "burnout", "stop_time 140 s", "separation of stage1", "burnout",
                          "stop_time 280 s", "separation of stage2", "burnout", "stop_time 600 s"],
                   "paper-test-case stage3: %r" % s3)
+        # a separation named by the child's `separation: {name: ...}` (with an impulse, and
+        # alone: a name, no impulse; the flight is the same)
+        if "kourou-leo" in runs:
+            d = os.path.join(tmp, "named-sep")
+            os.mkdir(d)
+            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = text.replace("separation: {dv: 1} ", "separation: {dv: 1, name: stage separation} ", 1)
+            text = text.replace("    from: upper-burn-1\n", "    from: upper-burn-1\n    separation: {name: fairing jettison}\n", 1)
+            check("stage separation" in text and "fairing jettison" in text, "named-sep: mission not edited")
+            with open(os.path.join(d, "mission.yaml"), "w") as f:
+                f.write(text)
+            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
+            out = os.path.join(d, "out")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
+                               capture_output=True, text=True)
+            check(r.returncode == 0, "named-sep: %s" % r.stderr)
+            if r.returncode == 0:
+                summ = check_run(out, "named-sep")
+                b = next(b for b in summ["bodies"] if b["name"] == "payload")
+                seps = [(e["label"], e.get("named")) for e in b["timeline"] if e["kind"] == "separation"]
+                check(seps == [("stage separation", True), ("fairing jettison", True)], "named-sep: %r" % seps)
+                ref = runs["kourou-leo"][0]
+                check([p["final"] for p in summ["phases"]] == [p["final"] for p in ref["phases"]],
+                      "named-sep: a name changed the flight")
         # lvsim check = lvsim run: the same message for a bad name
         bad = os.path.join(tmp, "bad.yaml")
         with open(bad, "w") as f:

@@ -941,6 +941,19 @@ static void test_event_names(void)
     BAD(buf, "bad.yaml:12:33: phase 'P1': event name 'out' given twice (first at line 11)");
     snprintf(buf, sizeof buf, "%s    engine_out: {time: 1, name: ~}\n", planet);
     BAD(buf, "bad.yaml:12:33: phase 'P1', engine_out: name: a name or text expected");
+    /* a separation's name: the same rules; {name: ...} alone gives no impulse */
+    snprintf(buf, sizeof buf, "%s  - {name: P2, model: dof3, stages: [s1], from: P1, "
+             "stop_time: 200, separation: {dv: 1, name: \"\\nx\"}}\n", planet);
+    BAD(buf, "bad.yaml:12:95: phase 'P2', separation: name: a control character (0x0a)");
+    snprintf(buf, sizeof buf, "%s  - {name: P2, model: dof3, stages: [s1], from: P1, "
+             "stop_time: 200, separation: {name: stage separation}}\n", planet);
+    CHECK_OK(lv_mission_def_parse(buf, strlen(buf), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+    if (m != NULL) {
+        const lv_phase_def *p2 = phase(m, "P2");
+        CHECK(p2 != NULL && strcmp(p2->separation_label, "stage separation") == 0);
+        CHECK(lv_mission_def_slot(m, "P2.separation.dv") == LV_NO_SLOT);
+    }
+    lv_mission_def_free(m);
     snprintf(buf, sizeof buf, "%s    engine_out: [{time: 1, name: a}, {time: 2, name: a}]\n",
              planet);
     BAD(buf, "bad.yaml:12:54: phase 'P1': event name 'a' given twice (first at line 12)");
