@@ -113,11 +113,11 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON_AddStringToObject(end, "event", event_name(r, rep->stop_event));
         if (!isnan(r->end_value))
             cJSON_AddNumberToObject(end, "value", r->end_value);
-        if (r->end_label != NULL) /* the user's name of that end: MECO */
-            cJSON_AddStringToObject(end, "label", r->end_label);
     } else if (rep->reason == LV_STOP_TIME) {
         cJSON_AddNumberToObject(end, "value", r->t_stop);
     }
+    if (rep->reason == LV_STOP_EVENT && r->end_label != NULL) /* the user's name of it: MECO */
+        cJSON_AddStringToObject(end, "label", r->end_label);
     cJSON *ev = cJSON_AddArrayToObject(o, "events");
     for (size_t i = 0; i < rep->n_event_log; i++) {
         const lv_event_record *e = &rep->event_log[i];
