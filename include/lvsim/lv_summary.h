@@ -52,6 +52,8 @@ typedef struct lv_timeline_row {
                                     (rho = 0 or h > 1000 km) */
 } lv_timeline_row;
 
+/* Its strings are the mission's and the run's: valid while the run holds the phases' results
+ * (until a phase runs again, lv_run_free). The last end row of a body is its final state. */
 typedef struct lv_timeline {
     const char *body;      /* the stage's name */
     size_t n;
