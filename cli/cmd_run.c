@@ -435,21 +435,101 @@ static void print_header(const run_job *j)
     fflush(stdout);
 }
 
+/* One line of the console timeline: an event of one or more bodies (the same label, phase
+ * and row: the same instant of the same flight). */
+typedef struct tl_line {
+    const lv_timeline_row *w;
+    size_t first_body, pos; /* where it was met first: ties in time keep flight order */
+    char bodies[200];
+    size_t n_bodies;
+} tl_line;
+
+static int tl_line_cmp(const void *a, const void *b)
+{
+    const tl_line *x = a, *y = b;
+    if (x->w->t != y->w->t)
+        return x->w->t < y->w->t ? -1 : 1;
+    if (x->first_body != y->first_body)
+        return x->first_body < y->first_body ? -1 : 1;
+    return x->pos < y->pos ? -1 : x->pos > y->pos;
+}
+
+/* The bodies' timelines (lv_run_timeline: lift-off, max-q, each phase's end by its name,
+ * burnouts, separations) after the phase table, compact: one line per event, with the bodies
+ * it concerns ("all": every body with a timeline). Only when the run kept its rows;
+ * summary.json and the report give each body's own. */
+static void print_timelines(const lv_run *run)
+{
+    const lv_mission *m = lv_run_mission(run);
+    const size_t ns = lv_mission_stage_count(m);
+    lv_timeline **tl = calloc(ns + 1, sizeof *tl);
+    size_t n_rows = 0, n_tl = 0;
+    for (size_t s = 0; tl != NULL && s < ns; s++) {
+        lv_err err;
+        if (lv_run_timeline(run, s, &tl[s], &err) != LV_OK)
+            tl[s] = NULL;
+        n_rows += tl[s] != NULL ? tl[s]->n : 0;
+        n_tl += tl[s] != NULL && tl[s]->n > 0;
+    }
+    tl_line *lines = tl != NULL && n_rows > 0 ? calloc(n_rows, sizeof *lines) : NULL;
+    size_t n = 0;
+    for (size_t s = 0; lines != NULL && s < ns; s++)
+        for (size_t i = 0; tl[s] != NULL && i < tl[s]->n; i++) {
+            const lv_timeline_row *w = &tl[s]->rows[i];
+            size_t j = 0;
+            while (j < n && !(lines[j].w->t == w->t && lines[j].w->row == w->row &&
+                              strcmp(lines[j].w->phase, w->phase) == 0 &&
+                              strcmp(lines[j].w->label, w->label) == 0))
+                j++;
+            tl_line *l = &lines[j];
+            if (j == n)
+                *l = (tl_line){w, s, i, "", 0}, n++;
+            const size_t used = strlen(l->bodies);
+            snprintf(l->bodies + used, sizeof l->bodies - used, "%s%s", used ? ", " : "",
+                     tl[s]->body);
+            l->n_bodies++;
+        }
+    if (n > 0) {
+        qsort(lines, n, sizeof *lines, tl_line_cmp);
+        printf("timeline: %-26s %10s %9s %8s %6s %8s  %-12s %s\n", "event", "t [s]", "h [km]",
+               "v [m/s]", "Mach", "q [kPa]", "phase", "bodies");
+        for (size_t i = 0; i < n; i++) {
+            const lv_timeline_row *w = lines[i].w;
+            char mach[16] = "-", q[16] = "-";
+            if (isfinite(w->mach))
+                snprintf(mach, sizeof mach, "%.2f", w->mach);
+            if (isfinite(w->q))
+                snprintf(q, sizeof q, "%.3f", w->q / 1e3);
+            const double h = fabs(w->h) < 0.5 ? 0.0 : w->h / 1e3; /* no "-0.000" */
+            printf("  %-34.60s %10.3f %9.3f %8.1f %6s %8s  %-12s %s\n", w->label, w->t, h,
+                   w->speed, mach, q, w->phase, lines[i].n_bodies == n_tl ? "all"
+                                                                          : lines[i].bodies);
+        }
+    }
+    free(lines);
+    for (size_t s = 0; tl != NULL && s < ns; s++)
+        lv_timeline_free(tl[s]);
+    free(tl);
+}
+
 /* Runs every phase into the staging folder, printing the table as phases end; then the rows
  * on_phase could not print yet: phases never run (skipped, pending) and those after them. */
 static void run_phases(run_job *j)
 {
-    /* rows are kept in memory only for the body files, which are merged from them */
+    /* rows are kept in memory only for the body files, which are merged from them, and
+     * summary.json's timelines (lv_run_timeline), which read them */
     const unsigned phase_files = j->a.outputs & j->o.results; /* = LV_RESULT_* flags */
     lv_run_options opt = {.outdir = j->stage, .threads = j->a.threads, .on_phase = on_phase,
                           .user = &j->ui, .progress = on_progress,
-                          .no_rows = !(j->a.outputs & j->o.body), .max_rows = j->a.max_rows,
+                          .no_rows = !(j->a.outputs & (j->o.body | j->o.summary)), .max_rows = j->a.max_rows,
                           .result_formats = phase_files == 0 ? LV_RUN_NO_PHASE_FILES
                                                              : phase_files};
     j->run_st = lv_run_execute(j->run, &opt, &j->err);
     progress_print_begin(j->ui.prog);
     while (j->ui.table && j->ui.next < lv_mission_phase_count(j->m))
         print_row(j->run, j->ui.next++, j->ui.wname);
+    if (j->ui.table && !progress_interrupted())
+        print_timelines(j->run);
     progress_print_end(j->ui.prog);
     /* Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
      * folder marked failed; no exports or plots (a second signal ends the process at once and
@@ -654,7 +734,9 @@ const cli_cmd cli_cmd_run = {
     "Validates the mission (as 'lvsim check'), refuses a phase that only its stop time ends\n"
     "and that would write more than --max-rows rows (a phase with an end event that reaches\n"
     "the limit fails there as it runs), runs every phase in dependency order, independent\n"
-    "branches in parallel, and prints the phase table in run order. Writes OUTDIR/phase_<k>_<name>.mat\n"
+    "branches in parallel, and prints the phase table in run order, then the bodies'\n"
+    "timeline (lift-off, max-q, each phase's end by its name - MECO - or condition,\n"
+    "separations; with t, h, speed, Mach, q). Writes OUTDIR/phase_<k>_<name>.mat\n"
     "and .csv, body_<stage>.csv, summary.json, the exports (mission.czml, mission.kml,\n"
     "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
     "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"

@@ -106,6 +106,9 @@ typedef struct lv_phase_info {
                                  ("rates: zero"), or NULL */
 } lv_phase_info;
 LV_API void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out);
+/* The user's name of the separation phase k starts with (`separation: {name: ...}`), or NULL
+ * (none, or k out of range). */
+LV_API const char *lv_mission_phase_separation_name(const lv_mission *m, size_t k);
 
 /* ---- parameters: the numbers a run may vary -------------------------------------------- */
 
@@ -200,6 +203,13 @@ typedef struct lv_phase_result {
     const char *const *absorbed_names;
     const char *const *absorbed_units;
     const double *absorbed_values;
+    /* the user's names of its events (`name:` in the mission file; docs/mission-format.md,
+     * "Named events"): end_label names the end that ended it (its own `name:`, else the
+     * phase's `end_name:`), NULL when unnamed or not ended by an event; event_labels[i] names
+     * report.event_log[i] (the stopping event, an engine-out), NULL each unnamed one; the
+     * array itself is NULL when none is named */
+    const char *end_label;
+    const char *const *event_labels;
 } lv_phase_result;
 
 typedef struct lv_run_options {

@@ -109,7 +109,8 @@ class lv_phase_result(Structure):
                 ("dry_mass", POINTER(c_double)), ("payload", c_double),
                 ("result_formats", c_uint), ("n_absorbed", c_size_t),
                 ("absorbed_names", POINTER(c_char_p)), ("absorbed_units", POINTER(c_char_p)),
-                ("absorbed_values", POINTER(c_double))]
+                ("absorbed_values", POINTER(c_double)),
+                ("end_label", c_char_p), ("event_labels", POINTER(c_char_p))]
 
 
 ON_PHASE_FN = CFUNCTYPE(None, c_void_p, c_size_t, POINTER(lv_phase_result), c_void_p)

@@ -96,11 +96,13 @@ class Table:
 class Event:
     """One event a phase handled: `t` (s), `name` ("burnout", a table breakpoint...), `kind`
     ("state" or "time"), `direction` (+1 rising, -1 falling, 0 time event), `index` (state
-    event function index, -1 for time events)."""
+    event function index, -1 for time events), `label` (the user's name of the event,
+    `name: MECO` in the mission file, or None)."""
 
-    __slots__ = ("t", "name", "kind", "direction", "index")
+    __slots__ = ("t", "name", "kind", "direction", "index", "label")
 
-    def __init__(self, rec):
+    def __init__(self, rec, label=None):
+        self.label = label
         self.t = rec.t
         self.name = rec.name.decode("utf-8", "replace")
         self.kind = "state" if rec.is_state else "time"
@@ -119,7 +121,8 @@ class PhaseResult(Table):
     changed since - Run.set() without execute() - so the values are those of the earlier
     inputs; `stale` True then), `error` (phase, time and reason when failed or skipped, else None),
     `t_start`, `t_end`, `t_stop` (s), `method`, `tolerance`, `stop_reason` ("stop_time",
-    "event", "failed"), `stop_name` (the event that ended it), `end_index` (the `end:`
+    "event", "failed"), `stop_name` (the event that ended it), `end_label` (the user's name
+    of that end, `name:` or `end_name:`, or None), `end_index` (the `end:`
     condition that fired, 0-based in file order, or -1), `end_value`, `stats` (dict of the
     integrator's counters: steps, rhs_evals, state_events, ..., cpu_time in s), `events`
     (list of Event), `finals` (dict name -> value: time, every state and output; SI),
@@ -157,7 +160,9 @@ class PhaseResult(Table):
         self.stop_reason = STOP_REASONS.get(rep.reason, str(rep.reason))
         self.stop_name = rep.stop_name.decode("utf-8", "replace")
         self.stats = {f: getattr(rep.stats, f) for f, _ in _lib.lv_sim_stats._fields_}
-        self.events = [Event(rep.event_log[i]) for i in range(rep.n_event_log)]
+        self.events = [Event(rep.event_log[i], text(r.event_labels[i]) if r.event_labels
+                             and r.event_labels[i] else None) for i in range(rep.n_event_log)]
+        self.end_label = text(r.end_label) if r.end_label else None
         self.end_index = r.end_index
         self.end_value = r.end_value
         self.finals = {text(r.final_names[i]): r.final_values[i] for i in range(r.n_final)}

@@ -102,12 +102,12 @@ static lv_status parse_run(const lv_pctx *c, const lv_ynode *n, const char *what
     return LV_OK;
 }
 
-/* One engine-out {time, count, engine}; `index` 0 for a single mapping, else 1-based. */
+/* One engine-out {time, count, engine, name}; `index` 0 for a single mapping, else 1-based. */
 static lv_status parse_out(const lv_pctx *c, const lv_ynode *n, const char *what,
                            const lv_stage_def *s, const lv_phase_def *ph, size_t index,
                            lv_engine_out_def *o)
 {
-    static const char *const keys[] = {"time", "count", "engine", NULL};
+    static const char *const keys[] = {"time", "count", "engine", "name", NULL};
     char w[LV_WHAT_MAX + 40], slot[LV_NAME_MAX + 48], buf[64];
     if (index > 0)
         snprintf(w, sizeof w, "%.140s, engine_out %zu", what, index);
@@ -126,6 +126,9 @@ static lv_status parse_out(const lv_pctx *c, const lv_ynode *n, const char *what
     else
         snprintf(slot, sizeof slot, "%s.engine_out.time", ph->name);
     if ((st = lv_pk_slot(c, v, w, "time", slot, "s", LV_RANGE_POS, 0, &o->time)) != LV_OK)
+        return st;
+    if ((v = lv_pk_get(n, "name")) != NULL && /* the user's name of the event */
+        (st = lv_pk_event_label(c, v, w, &o->label)) != LV_OK)
         return st;
     o->count = 1;
     if ((v = lv_pk_get(n, "count")) != NULL && (st = lv_pk_int(c, v, w, "count", 1, &o->count)) !=

@@ -606,6 +606,11 @@ void lv_mission_phase_info(const lv_mission *m, size_t k, lv_phase_info *out)
         out->handoff_rule = ph->type->handoff_rule(ph);
 }
 
+const char *lv_mission_phase_separation_name(const lv_mission *m, size_t k)
+{
+    return k < m->def->n_phases ? m->def->phases[k].separation_label : NULL;
+}
+
 size_t lv_mission_param_count(const lv_mission *m) { return m->def->n_slots; }
 
 void lv_mission_param_info(const lv_mission *m, size_t i, lv_param_info *out)

@@ -211,6 +211,7 @@ typedef struct lv_end_def {
     char name[288];     /* the event's name in results and the value's slot after
                            "<phase>.end.": "altitude", "mach", "time"; the second end of a
                            kind (or of a variable) "altitude_2", the third "_3" */
+    char *label;        /* the user's name of the event (`name: MECO`), or NULL */
     lv_src_loc loc;
 } lv_end_def;
 
@@ -222,6 +223,7 @@ typedef struct lv_engine_out_def {
     size_t engine;
     int count;
     lv_slot time;         /* s, > 0: "<phase>.engine_out.time" ("...engine_out.<i>.time") */
+    char *label;          /* the user's name of the event (`name:`), or NULL */
     lv_src_loc loc;
 } lv_engine_out_def;
 
@@ -243,6 +245,11 @@ typedef struct lv_phase_def {
     lv_slot t_stop;       /* s; the fixed stop time or the time limit of the phase */
     size_t n_ends;        /* events that end the phase before t_stop */
     lv_end_def *ends;
+    char *separation_label; /* the user's name of the separation this phase starts with
+                             (`separation: {name: ...}`, dof3), or NULL */
+    char *end_name;       /* `end_name:`: the user's name of any of its ends that has none of
+                             its own (a main engine cut-off by propellant_left or burnout), or
+                             NULL */
     char *method;         /* integrator, default LV_PHASE_METHOD_DEFAULT */
     lv_slot tolerance;    /* default 1e-9 (docs/integration.md) */
     int intervals;        /* numberOfIntervals (0: use output_interval or 500) */

@@ -268,9 +268,13 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->params);
         free(ph->stages);
         free(ph->stage_locs);
-        for (size_t j = 0; j < ph->n_ends; j++)
+        for (size_t j = 0; j < ph->n_ends; j++) {
             free(ph->ends[j].var);
+            free(ph->ends[j].label);
+        }
         free(ph->ends);
+        free(ph->end_name);
+        free(ph->separation_label);
         free(ph->method);
         for (size_t k = 0; k < ph->n_set; k++)
             free(ph->set_names[k]);
@@ -279,6 +283,8 @@ void lv_mission_def_free(lv_mission_def *m)
         free(ph->set_locs);
         free(ph->set_deg);
         free(ph->engines_run);
+        for (size_t j = 0; j < ph->n_engine_out; j++)
+            free(ph->engine_out[j].label);
         free(ph->engine_out);
     }
     free(m->phases);

@@ -381,6 +381,29 @@ lv_status lv_pk_name(const lv_pctx *c, const lv_ynode *v, const char *what, int 
     return *out != NULL ? LV_OK : lv_pk_nomem(c);
 }
 
+/* An event's user name: printable, 1 to LV_EVENT_LABEL_MAX characters, no space at its ends. */
+lv_status lv_pk_event_label(const lv_pctx *c, const lv_ynode *v, const char *what, char **out)
+{
+    const char *s;
+    lv_status st = lv_pk_text(c, v, what, "name", &s);
+    if (st != LV_OK)
+        return st;
+    size_t chars = 0;
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p < 0x20 || *p == 0x7f)
+            return lv_pk_fail(c, v, "%s: name: a control character (0x%02x) at character %zu: "
+                              "a name is printable text", what, *p, chars + 1);
+        chars += (*p & 0xc0) != 0x80; /* UTF-8: count the first byte of each character */
+    }
+    if (chars > LV_EVENT_LABEL_MAX)
+        return lv_pk_fail(c, v, "%s: name: %zu characters, at most %d ('%.20s...')", what,
+                          chars, LV_EVENT_LABEL_MAX, s);
+    if (s[0] == ' ' || s[strlen(s) - 1] == ' ')
+        return lv_pk_fail(c, v, "%s: name '%s' starts or ends with a space", what, s);
+    *out = lv_pk_strdup(s);
+    return *out != NULL ? LV_OK : lv_pk_nomem(c);
+}
+
 /* "stage 'stage1'" when the item has a usable name, else "stage #2" (1-based). */
 void lv_pk_label(const lv_ynode *item, const char *kind, size_t k, char *buf, size_t cap)
 {

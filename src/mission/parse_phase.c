@@ -104,8 +104,8 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
     const lv_ynode *kind = NULL, *output = lv_pk_get(n, "output");
     for (size_t j = 0; j + 1 < n->n; j += 2) {
         const char *key = n->kids[j]->text;
-        if (strcmp(key, "direction") == 0 || (output != NULL && (strcmp(key, "output") == 0 ||
-                                                                 strcmp(key, "value") == 0)))
+        if (strcmp(key, "direction") == 0 || strcmp(key, "name") == 0 ||
+            (output != NULL && (strcmp(key, "output") == 0 || strcmp(key, "value") == 0)))
             continue;
         if (kind != NULL)
             return lv_pk_fail(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
@@ -113,8 +113,12 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
         kind = n->kids[j];
     }
     if (output != NULL && kind != NULL)
-        return lv_pk_fail(c, kind, "%s: an entry with 'output' takes 'value' and 'direction' "
-                          "only, not '%s'", what, kind->text);
+        return lv_pk_fail(c, kind, "%s: an entry with 'output' takes 'value', 'direction' "
+                          "and 'name' only, not '%s'", what, kind->text);
+    /* the user's name of the event: {propellant_left: 53000, name: MECO}, {burnout, name: ..} */
+    if ((v = lv_pk_get(n, "name")) != NULL &&
+        (st = lv_pk_event_label(c, v, what, &e->label)) != LV_OK)
+        return st;
     if (output != NULL) {
         const char *name;
         if ((st = lv_pk_text(c, output, what, "output", &name)) != LV_OK ||
@@ -135,12 +139,26 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
             return lv_pk_fail(c, n, "%s: which event? add altitude, speed, impact, time, or a "
                               "variable of the model such as {mach: 1}", what);
         v = lv_pk_get(n, kind->text);
-        if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0)
-            return lv_pk_fail(c, kind, "%s: '%s' takes no value: write it as a plain list entry",
-                              what, kind->text);
-        if (strcmp(kind->text, "impact") == 0)
+        /* a kind without a value in a mapping that names it: {burnout, name: MECO} (YAML
+         * reads the bare key as `burnout: null`) */
+        const int bare = lv_yaml_is_null(v);
+        if (strcmp(kind->text, "burnout") == 0 || strcmp(kind->text, "apogee") == 0) {
+            if (!bare)
+                return lv_pk_fail(c, kind, "%s: '%s' takes no value: write it as a plain list "
+                                  "entry, or {%s, name: NAME} to name it", what, kind->text,
+                                  kind->text);
+            if (lv_pk_get(n, "direction") != NULL)
+                return lv_pk_fail(c, lv_pk_key(n, "direction"), "%s: '%s' has a fixed "
+                                  "direction (falling)", what, kind->text);
+            e->kind = kind->text[0] == 'b' ? LV_END_BURNOUT : LV_END_APOGEE;
+            end_name(k, prev, e);
+            return LV_OK;
+        }
+        if (strcmp(kind->text, "impact") == 0) {
             e->kind = LV_END_IMPACT;
-        else if (strcmp(kind->text, "speed") == 0)
+            if (bare) /* {impact, name: touchdown}: the ground, 0 m */
+                v = NULL;
+        } else if (strcmp(kind->text, "speed") == 0)
             e->kind = LV_END_SPEED;
         else if (strcmp(kind->text, "altitude") == 0)
             e->kind = LV_END_ALTITUDE;
@@ -302,8 +320,36 @@ static lv_status find_stage(const lv_pctx *c, const lv_ynode *v, const char *wha
 
 /* The keys every phase has; a model type adds its own (phase_type.h). */
 static const char *const phase_keys[] = { "name", "model", "stages", "from", "start_time",
-                                          "stop_time", "end", "integrator", "set",
+                                          "stop_time", "end", "end_name", "integrator", "set",
                                           "alternative", NULL };
+
+/* The user's names of a phase's events are unique within it (`name:` of its ends and
+ * engine-outs; `end_name:` is the default of the unnamed ends, not counted). */
+static lv_status check_labels(const lv_pctx *c, const lv_ynode *n, const char *what)
+{
+    const lv_ynode *named[256];
+    size_t nn = 0;
+    const lv_ynode *lists[2] = {lv_pk_get(n, "end"), lv_pk_get(n, "engine_out")};
+    for (int l = 0; l < 2; l++) {
+        const lv_ynode *v = lists[l];
+        if (v == NULL)
+            continue;
+        const size_t ni = v->kind == LV_YNODE_SEQ ? v->n : 1;
+        for (size_t i = 0; i < ni && nn < 256; i++) {
+            const lv_ynode *it = v->kind == LV_YNODE_SEQ ? v->kids[i] : v;
+            const lv_ynode *nm = it->kind == LV_YNODE_MAP ? lv_pk_get(it, "name") : NULL;
+            if (nm == NULL)
+                continue;
+            for (size_t j = 0; j < nn; j++)
+                if (strcmp(named[j]->text, nm->text) == 0)
+                    return lv_pk_fail(c, nm, "%s: event name '%s' given twice (first at line "
+                                      "%d): the names of a phase's events are unique", what,
+                                      nm->text, named[j]->line);
+            named[nn++] = nm;
+        }
+    }
+    return LV_OK;
+}
 
 /* Checks the phase's keys: the common ones and its type's. A key that belongs to another
  * model type says which. */
@@ -450,13 +496,21 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
             }
         }
     }
+    if ((v = lv_pk_get(n, "end_name")) != NULL) { /* the name of whichever end fires */
+        if (ph->n_ends == 0)
+            return lv_pk_fail(c, lv_pk_key(n, "end_name"), "%s: end_name names the phase's "
+                              "end events, and it has none ('end:')", what);
+        if ((st = lv_pk_event_label(c, v, what, &ph->end_name)) != LV_OK)
+            return st;
+    }
     if ((st = parse_integrator(c, lv_pk_get(n, "integrator"), ph->name, ph)) != LV_OK)
         return st;
     if (ph->type->parse != NULL && (st = ph->type->parse(c, n, ph)) != LV_OK)
         return st;
     if ((st = lv_parse_engine_run(c, n, ph)) != LV_OK)
         return st;
-    if ((st = parse_set(c, lv_pk_get(n, "set"), ph->name, ph)) != LV_OK)
+    if ((st = parse_set(c, lv_pk_get(n, "set"), ph->name, ph)) != LV_OK ||
+        (st = check_labels(c, n, what)) != LV_OK)
         return st;
     return ph->type->check != NULL ? ph->type->check(c, n, ph) : LV_OK;
 }

@@ -107,12 +107,13 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     return LV_OK;
 }
 
-/* separation: {dv, dv_north, dv_east, dv_down}: the impulse this phase's body gets at the
- * hand-off, along the parent's final body x axis and in the local NED frame [m/s]. */
+/* separation: {dv, dv_north, dv_east, dv_down, name}: the impulse this phase's body gets at
+ * the hand-off, along the parent's final body x axis and in the local NED frame [m/s], and
+ * the user's name of the separation (`name:` alone: a name, no impulse). */
 static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_ynode *phase,
-                                  const char *name, dof3_cfg *cfg)
+                                  const char *name, dof3_cfg *cfg, lv_phase_def *ph)
 {
-    static const char *const skeys[] = {"dv", "dv_north", "dv_east", "dv_down", NULL};
+    static const char *const skeys[] = {"dv", "dv_north", "dv_east", "dv_down", "name", NULL};
     char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
     lv_status st;
     snprintf(what, sizeof what, "phase '%s', separation", name);
@@ -127,6 +128,11 @@ static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_
         return lv_pk_fail(c, n, "%s: a mapping such as {dv: -2} expected", what);
     if ((st = lv_pk_check_map(c, n, what, skeys)) != LV_OK)
         return st;
+    const lv_ynode *nm = lv_pk_get(n, "name");
+    if (nm != NULL && (st = lv_pk_event_label(c, nm, what, &ph->separation_label)) != LV_OK)
+        return st;
+    if (nm != NULL && n->n == 2) /* {name: ...} alone: no impulse */
+        return LV_OK;
     cfg->sep = 1;
     for (int k = 0; k < 4; k++) {
         snprintf(slot, sizeof slot, "%s.separation.%s", name, skeys[k]);
@@ -163,7 +169,7 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
                           thr_elsewhere,
                           cfg);
     if (st == LV_OK)
-        st = parse_separation(c, lv_pk_get(n, "separation"), n, ph->name, cfg);
+        st = parse_separation(c, lv_pk_get(n, "separation"), n, ph->name, cfg, ph);
     if (st != LV_OK)
         return st;
     /* one source for each input: a guidance law steers instead of the inputs' angles, a

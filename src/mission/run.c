@@ -42,6 +42,8 @@ typedef struct run_phase {
     char method[2 * LV_EVENT_NAME_MAX + 16]; /* the integration method it ran with; for "auto",
                                                what ran and why: "auto (dop853: not stiff)" */
     lv_handoff_notes notes; /* what its hand-off absorbed (res.absorbed_* point here) */
+    const char **labels;  /* [report.n_event_log]: the user's names of its events
+                             (res.event_labels; the strings are the mission's) */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
     int claimed;          /* in the current execute: taken by a worker */
@@ -71,6 +73,10 @@ static void phase_clear(run_phase *p)
     p->res.t_start = p->res.t_end = NAN;
     p->res.end_index = -1;
     p->res.end_value = NAN;
+    free(p->labels);
+    p->labels = NULL;
+    p->res.event_labels = NULL;
+    p->res.end_label = NULL;
     p->res.n_copied = 0;
     p->res.mass_from_stages = p->res.mass_start = NAN;
     p->notes.n = 0;
@@ -422,6 +428,42 @@ lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
     return st;
 }
 
+/* The user's names (`name:`) of phase k's logged events: the end that ended it (its own
+ * name, else the phase's `end_name`) on the event that stopped it, an engine-out's on the time
+ * event at its time (start + dt, the sum the engine model schedules). */
+static void label_events(const lv_run *r, size_t k, run_phase *p)
+{
+    const lv_phase_def *ph = &r->m->def->phases[k];
+    const lv_sim_report *rep = &p->res.report;
+    const int j = p->res.end_index;
+    const char *end = j >= 0 ? (ph->ends[j].label ? ph->ends[j].label : ph->end_name) : NULL;
+    int any = end != NULL;
+    for (size_t i = 0; i < ph->n_engine_out; i++)
+        any |= ph->engine_out[i].label != NULL;
+    if (!any || rep->n_event_log == 0 || (p->labels = calloc(rep->n_event_log,
+                                                             sizeof *p->labels)) == NULL) {
+        p->res.end_label = end; /* (out of memory: the end keeps its name, the log none) */
+        return;
+    }
+    p->res.end_label = end;
+    for (size_t i = 0; i < rep->n_event_log; i++) {
+        const lv_event_record *e = &rep->event_log[i];
+        for (size_t o = 0; !e->is_state && o < ph->n_engine_out; o++)
+            if (ph->engine_out[o].label != NULL && strstr(e->name, "engine-out") != NULL &&
+                e->t == p->res.t_start + r->vals[ph->engine_out[o].time])
+                p->labels[i] = ph->engine_out[o].label;
+    }
+    /* the stopping event: the last one logged at the end time under the end's name */
+    for (size_t i = rep->n_event_log; end != NULL && rep->reason == LV_STOP_EVENT && i-- > 0;) {
+        const lv_event_record *e = &rep->event_log[i];
+        if (e->t == rep->end_time && strcmp(e->name, rep->stop_name) == 0) {
+            p->labels[i] = end;
+            break;
+        }
+    }
+    p->res.event_labels = p->labels;
+}
+
 /* The phase's result from a finished call (the run's lock is held when workers run). */
 static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_err,
                    lv_sim_report *rep)
@@ -467,6 +509,7 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
         if (j >= 0 && ph->ends[j].value != LV_NO_SLOT)
             p->res.end_value = r->vals[ph->ends[j].value];
     }
+    label_events(r, c->k, p);
     memcpy(p->fvalues, c->finals, pl->n_final * sizeof *p->fvalues);
     p->rows = c->rows;
     c->rows = NULL;

@@ -111,6 +111,10 @@ static void phase_table(FILE *f, const lv_results *res)
             }
             if (isfinite(ph->end_value))
                 fprintf(f, " (%g)", ph->end_value);
+            if (ph->end_label != NULL) { /* the user's name of the end: "MECO" */
+                fputs(" &ndash; ", f);
+                esc(f, ph->end_label);
+            }
         } else {
             fputs("&ndash;", f);
         }
@@ -407,7 +411,7 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         }
         cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(b, "separations"))
         {
-            key_row(f, "separation");
+            key_row(f, jstr(e, "label") ? jstr(e, "label") : "separation");
             state_text(f, e, flat);
             fputs("</td></tr>\n", f);
         }
@@ -480,6 +484,80 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
     }
 }
 
+/* ---- the bodies' timelines (summary.json bodies[].timeline, lv_run_timeline) ------------- */
+
+/* Two bodies with the same events at the same times (a stack until it separates): one table. */
+static int same_timeline(const cJSON *a, const cJSON *b)
+{
+    if (cJSON_GetArraySize(a) != cJSON_GetArraySize(b))
+        return 0;
+    for (const cJSON *x = a ? a->child : NULL, *y = b ? b->child : NULL; x && y;
+         x = x->next, y = y->next) {
+        const char *lx = jstr(x, "label"), *ly = jstr(y, "label");
+        const char *px = jstr(x, "phase"), *py = jstr(y, "phase");
+        if (!lx || !ly || !px || !py || strcmp(lx, ly) != 0 || strcmp(px, py) != 0 ||
+            jnum(x, "t") != jnum(y, "t"))
+            return 0;
+    }
+    return 1;
+}
+
+static void timeline_section(FILE *f, const lv_results *res)
+{
+    const cJSON *bodies = cJSON_GetObjectItemCaseSensitive(res->json, "bodies");
+    const cJSON *b;
+    int any = 0;
+    cJSON_ArrayForEach(b, bodies) any |= cJSON_IsArray(cJSON_GetObjectItemCaseSensitive(b, "timeline"));
+    if (!any)
+        return;
+    fputs("<h2 id=\"timeline\">Timeline</h2>\n<p>Per body, from <code>summary.json</code> "
+          "(<code>bodies[].timeline</code>): lift-off, max-q, the end of every phase it flies in "
+          "(by the name the mission file gives it, else by its end condition), burnouts and named "
+          "events within a phase, and each separation it takes part in, once. Each value is that "
+          "of a row of the phase's results file (none interpolated): an end its phase's last row, "
+          "a separation the first row after it. Mach and q only where the atmosphere model is "
+          "defined. Bodies with the same events share a table.</p>\n",
+          f);
+    int idx = 0;
+    cJSON_ArrayForEach(b, bodies)
+    {
+        const cJSON *tl = cJSON_GetObjectItemCaseSensitive(b, "timeline");
+        int dup = 0, j = 0;
+        for (const cJSON *o = bodies->child; o != NULL && j < idx && !dup; o = o->next, j++)
+            dup = cJSON_IsArray(cJSON_GetObjectItemCaseSensitive(o, "timeline")) &&
+                  same_timeline(cJSON_GetObjectItemCaseSensitive(o, "timeline"), tl);
+        idx++;
+        if (!cJSON_IsArray(tl) || dup)
+            continue;
+        fputs("<h3>", f);
+        esc(f, jstr(b, "name"));
+        for (const cJSON *o = b->next; o != NULL; o = o->next)
+            if (same_timeline(tl, cJSON_GetObjectItemCaseSensitive(o, "timeline"))) {
+                fputs(", ", f);
+                esc(f, jstr(o, "name"));
+            }
+        fputs("</h3>\n<table>\n<tr><th class=\"l\">event</th><th>t [s]</th><th>h [km]</th>"
+              "<th>speed [m/s]</th><th>Mach</th><th>q [kPa]</th><th class=\"l\">phase</th>"
+              "<th class=\"l\">condition</th></tr>\n",
+              f);
+        const cJSON *e;
+        cJSON_ArrayForEach(e, tl)
+        {
+            fputs("<tr>", f);
+            td_text(f, jstr(e, "label"));
+            td_num(f, jnum(e, "t"), 3, 0);
+            td_num(f, jnum(e, "h") * 1e-3, 3, 0);
+            td_num(f, jnum(e, "speed"), 1, 0);
+            td_num(f, jnum(e, "mach"), 2, 0);
+            td_num(f, jnum(e, "q") * 1e-3, 3, 0);
+            td_text(f, jstr(e, "phase"));
+            td_text(f, jstr(e, "event"));
+            fputs("</tr>\n", f);
+        }
+        fputs("</table>\n", f);
+    }
+}
+
 lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const cJSON *keys,
                              lv_err *err)
 {
@@ -519,7 +597,8 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const
     fputs("; lvsim ", f);
     esc(f, s->lvsim ? s->lvsim : "?");
     fprintf(f, "; %zu phases, %zu bodies.</p>\n", d->n_phases, d->n_bodies);
-    fputs("<p><a href=\"#keys\">Key figures</a> &middot; <a href=\"#phases\">Phases</a> "
+    fputs("<p><a href=\"#keys\">Key figures</a> &middot; <a href=\"#timeline\">Timeline</a> "
+          "&middot; <a href=\"#phases\">Phases</a> "
           "&middot; <a href=\"#events\">Events</a> &middot; <a href=\"#bodies\">Bodies</a> "
           "&middot; <a href=\"#plots\">Plots</a> &middot; <a href=\"#files\">Result files</a> "
           "&middot; <a href=\"#view\">3D view</a></p>\n",
@@ -534,6 +613,7 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const
           f);
     if (keys != NULL)
         key_section(f, keys, d->flat);
+    timeline_section(f, s);
     phase_table(f, s);
     event_list(f, s);
     body_list(f, s);

@@ -117,6 +117,33 @@ static int burns_in(const lv_results *res, size_t k, const char *body)
     return p->n_stages > 0 && strcmp(p->stages[0], body) == 0;
 }
 
+/* The label summary.json's timeline gives the separation of `body` at the start of `phase`
+ * ("separation of booster", "separation of fairing": what separated, so that a payload's two
+ * separations read as two different ones), or NULL when the summary has no timeline. */
+static const char *separation_label(const lv_results *res, const char *body, const char *phase,
+                                    double t)
+{
+    const cJSON *b;
+    cJSON_ArrayForEach(b, cJSON_GetObjectItemCaseSensitive(res->json, "bodies"))
+    {
+        const cJSON *nm = cJSON_GetObjectItemCaseSensitive(b, "name"), *e;
+        if (!cJSON_IsString(nm) || strcmp(nm->valuestring, body) != 0)
+            continue;
+        cJSON_ArrayForEach(e, cJSON_GetObjectItemCaseSensitive(b, "timeline"))
+        {
+            const cJSON *k = cJSON_GetObjectItemCaseSensitive(e, "kind");
+            const cJSON *p = cJSON_GetObjectItemCaseSensitive(e, "phase");
+            const cJSON *et = cJSON_GetObjectItemCaseSensitive(e, "t");
+            const cJSON *l = cJSON_GetObjectItemCaseSensitive(e, "label");
+            if (cJSON_IsString(k) && strcmp(k->valuestring, "separation") == 0 &&
+                cJSON_IsString(p) && strcmp(p->valuestring, phase) == 0 && cJSON_IsNumber(et) &&
+                et->valuedouble == t && cJSON_IsString(l))
+                return l->valuestring;
+        }
+    }
+    return NULL;
+}
+
 static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
 {
     const lv_results *res = d->res;
@@ -180,6 +207,9 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
         /* separation: the phase starts with fewer stages than its parent */
         if (ph->parent >= 0 && ph->n_stages < res->phases[ph->parent].n_stages) {
             cJSON *s = state_json(t, &c, 0, ph->name);
+            const char *label = separation_label(res, b->name, ph->name, at(t, 0, c.t));
+            if (label != NULL)
+                cJSON_AddStringToObject(s, "label", label);
             cJSON_AddItemToArray(sep, s);
         }
         /* burnout of the stage it burns */

@@ -106,6 +106,7 @@ static lv_status read_phase(lv_results *r, const cJSON *pj, size_t i, lv_err *er
     const cJSON *end = cJSON_GetObjectItemCaseSensitive(pj, "end");
     p->end_reason = json_str(end, "reason");
     p->end_event = json_str(end, "event");
+    p->end_label = json_str(end, "label");
     p->end_value = json_num(end, "value");
 
     const cJSON *stats = cJSON_GetObjectItemCaseSensitive(pj, "stats");

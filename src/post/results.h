@@ -39,6 +39,7 @@ typedef struct lv_results_phase {
     const char *end_reason; /* end.reason, why it stopped: "event", "stop_time", "failed";
                              * NULL: the summary has no 'end' (a phase that did not run) */
     const char *end_event;  /* end.event: the end condition that fired; NULL */
+    const char *end_label;  /* end.label: the user's name of that end ("MECO"); NULL */
     double end_value;       /* end.value: that condition's value, or the stop time (s); NAN */
     lv_results_event *events; /* in summary order */
     size_t n_events;

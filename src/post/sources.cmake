@@ -4,7 +4,7 @@
 # The one reader of a results folder (summary.json, the CSV files), for all of them.
 list(APPEND LV_POST_SOURCES src/post/results.c)
 # What a run leaves besides the phases' files: summary.json and the merged body trajectories.
-list(APPEND LV_POST_SOURCES src/post/summary.c)
+list(APPEND LV_POST_SOURCES src/post/summary.c src/post/timeline.c)
 # Run-atomic results folders: lock, staging folder replaced as a whole, manifest with SHA-256.
 list(APPEND LV_POST_SOURCES src/post/outdir.c src/post/sha256.c)
 include(src/post/export.cmake)

@@ -108,6 +108,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     } else if (rep->reason == LV_STOP_TIME && r->state != LV_PHASE_CRASHED) {
         cJSON_AddNumberToObject(end, "value", r->t_stop);
     }
+    if (rep->reason == LV_STOP_EVENT && r->end_label != NULL) /* the user's name of it: MECO */
+        cJSON_AddStringToObject(end, "label", r->end_label);
     cJSON *ev = cJSON_AddArrayToObject(o, "events");
     for (size_t i = 0; i < rep->n_event_log; i++) {
         const lv_event_record *e = &rep->event_log[i];
@@ -120,6 +122,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
                                            : e->name[0] ? e->name : "time event");
         if (e->is_state)
             cJSON_AddNumberToObject(j, "direction", e->direction);
+        if (r->event_labels != NULL && r->event_labels[i] != NULL) /* `name:` in the file */
+            cJSON_AddStringToObject(j, "label", r->event_labels[i]);
         cJSON_AddItemToArray(ev, j);
     }
     cJSON *sj = cJSON_AddObjectToObject(o, "stats");
@@ -193,6 +197,54 @@ static cJSON *phase_json(const lv_run *run, size_t k)
             }
     }
     return o;
+}
+
+/* A number as the result CSVs write it (the shortest text that reads back exactly: cJSON's
+ * own keeps 15 digits when they read back within DBL_EPSILON), so that a timeline's values
+ * equal the rows they come from; null when not finite. */
+static void num_or_null(cJSON *o, const char *key, double v)
+{
+    char buf[LV_NUMFMT_MAX];
+    if (isfinite(v)) {
+        lv_numfmt_double(v, buf);
+        cJSON_AddRawToObject(o, key, buf);
+    } else {
+        cJSON_AddNullToObject(o, key);
+    }
+}
+
+/* bodies[].timeline (lv_run_timeline): each event of the body's flight with its row's state.
+ * Left out when the run kept no rows (lv_run_options.no_rows). */
+static lv_status timeline_json(cJSON *body, const lv_run *run, size_t s, lv_err *err)
+{
+    lv_timeline *tl = NULL;
+    lv_err e;
+    const lv_status st = lv_run_timeline(run, s, &tl, &e);
+    if (st == LV_ERR_NOMEM)
+        return lv_fail(err, st, "%s", e.msg);
+    if (st != LV_OK)
+        return LV_OK; /* no rows: no timeline */
+    cJSON *a = cJSON_AddArrayToObject(body, "timeline");
+    for (size_t i = 0; i < tl->n; i++) {
+        const lv_timeline_row *w = &tl->rows[i];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "label", w->label);
+        cJSON_AddStringToObject(j, "kind", w->kind);
+        if (w->event != NULL)
+            cJSON_AddStringToObject(j, "event", w->event);
+        if (w->named)
+            cJSON_AddBoolToObject(j, "named", 1);
+        cJSON_AddStringToObject(j, "phase", w->phase);
+        cJSON_AddNumberToObject(j, "row", (double)w->row);
+        num_or_null(j, "t", w->t);
+        num_or_null(j, "h", w->h);
+        num_or_null(j, "speed", w->speed);
+        num_or_null(j, "mach", w->mach);
+        num_or_null(j, "q", w->q);
+        cJSON_AddItemToArray(a, j);
+    }
+    lv_timeline_free(tl);
+    return LV_OK;
 }
 
 /* "time": how t maps to UTC over the span of the phases that ran (docs/exports.md, "Times"):
@@ -300,6 +352,8 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
         snprintf(file, sizeof file, "body_%s.csv", stage);
         snprintf(path, sizeof path, "%s/%s", outdir, file);
         cJSON_AddItemToArray(bodies, b);
+        if ((what & LV_SUMMARY_JSON) && (st = timeline_json(b, run, s, err)) != LV_OK)
+            break;
         if (what & LV_SUMMARY_BODIES) {
             cJSON_AddStringToObject(b, "trajectory", file);
             st = write_body_csv(run, s, path, err);

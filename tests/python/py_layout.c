@@ -69,6 +69,7 @@ int main(void)
     F(lv_phase_result, payload); F(lv_phase_result, result_formats);
     F(lv_phase_result, n_absorbed); F(lv_phase_result, absorbed_names);
     F(lv_phase_result, absorbed_units); F(lv_phase_result, absorbed_values);
+    F(lv_phase_result, end_label); F(lv_phase_result, event_labels);
     S(lv_run_options); F(lv_run_options, outdir); F(lv_run_options, threads);
     F(lv_run_options, on_phase); F(lv_run_options, user); F(lv_run_options, output_interval);
     F(lv_run_options, method); F(lv_run_options, tolerance); F(lv_run_options, progress);

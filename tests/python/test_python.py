@@ -168,9 +168,22 @@ def test_summary_matches(cli_demo, demo_run):
         for k, v in ph["final"].items():
             assert res.finals[k] == pytest.approx(v, rel=1e-13, abs=1e-300), (ph["name"], k)
         assert ph["handoff"].get("states_copied", 0) == res.n_copied
+        # the user's names of the events (`end_name: MECO`): the same in both
+        assert res.end_label == ph["end"].get("label"), ph["name"]
+        assert [e.label for e in res.events] == [e.get("label") for e in ph["events"]], ph["name"]
         for st, book in ph["propellant"].items():
             assert res.propellant_start[st] == pytest.approx(book["start"], rel=1e-14)
             assert res.propellant_end[st] == pytest.approx(book["end"], rel=1e-14)
+
+
+def test_named_ends(demo_run):
+    # examples/rlv-hthl: `end_name: MECO` on the ascent (ended by propellant_left), SECO on the
+    # upper stage's burn (ended by sma); the condition's name stays stop_name
+    asc, us = demo_run.result("ascent"), demo_run.result("us-ascent")
+    assert (asc.end_label, asc.stop_name) == ("MECO", "propellant_left")
+    assert (us.end_label, us.stop_name) == ("SECO", "sma")
+    assert asc.events[-1].label == "MECO" and all(e.label is None for e in asc.events[:-1])
+    assert demo_run.result("ballistic").end_label is None
 
 
 def test_dataframes_carry_units(demo_run):

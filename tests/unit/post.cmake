@@ -8,3 +8,10 @@ target_link_libraries(test_results PRIVATE lvsim_post_static)
 # Run-atomic results folders (src/post/outdir.c) and SHA-256 through their API.
 lv_add_unit_test(test_outdir_api unit/test_outdir_api.c)
 target_link_libraries(test_outdir_api PRIVATE lvsim_post_static)
+# The bodies' timelines (summary.json bodies[].timeline, lv_run_timeline) against the phase
+# CSVs with Python's csv and json only: each event once per body, the ends against the phases'
+# finals, max-q against the q_dyn column, separations, the run's table and the report
+# (six examples, about 5 s).
+add_test(NAME test_timeline
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_timeline.py
+          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})

@@ -849,8 +849,119 @@ static void test_environment(void)
 #undef AERO
 }
 
+/* Named events (docs/mission-format.md, "Named events"): `name:` on an end entry (also the
+ * bare kinds: {burnout, name: MECO}, {impact, name: touchdown}) and on an engine-out,
+ * `end_name:` for whichever end has none; bad names at their line and column. */
+static void test_event_names(void)
+{
+    static const char good[] =
+        "mission: {name: t}\n"
+        "environment: {world: planet}\n"
+        "stages:\n"
+        "  - {name: s1, dry_mass: 100, propellant_mass: 50,\n"
+        "     engines: [{name: e, count: 3, thrust_vac: 5000, isp_vac: 300}]}\n"
+        "phases:\n"
+        "  - name: P1\n"
+        "    model: dof3\n"
+        "    stages: [s1]\n"
+        "    stop_time: 100\n"
+        "    end: [{burnout, name: MECO}, {altitude: 1000, direction: rising, name: \"1 km \u00fc\"},\n"
+        "          {impact, name: touchdown}, apogee, {speed: 3}]\n"
+        "    end_name: cut-off\n"
+        "    engine_out: [{time: 1, name: engine 1 out}, {time: 2}]\n";
+    lv_err err = {LV_OK, ""};
+    lv_mission_def *m = NULL;
+    CHECK_OK(lv_mission_def_parse(good, strlen(good), "good.yaml", LV_MISSION_DIR, &m, &err), &err);
+    if (m != NULL) {
+        const lv_phase_def *ph = &m->phases[0];
+        CHECK(ph->n_ends == 5);
+        CHECK(ph->ends[0].kind == LV_END_BURNOUT && strcmp(ph->ends[0].label, "MECO") == 0 &&
+              strcmp(ph->ends[0].name, "burnout") == 0);
+        CHECK(ph->ends[1].kind == LV_END_ALTITUDE && V(ph->ends[1].value) == 1000.0 &&
+              ph->ends[1].direction == LV_DIR_RISING &&
+              strcmp(ph->ends[1].label, "1 km \xc3\xbc") == 0);
+        /* {impact, name: ..}: the ground, 0 m, its slot as for a plain `impact` */
+        CHECK(ph->ends[2].kind == LV_END_IMPACT && V(ph->ends[2].value) == 0.0 &&
+              ph->ends[2].value != LV_NO_SLOT && strcmp(ph->ends[2].label, "touchdown") == 0);
+        CHECK(ph->ends[3].kind == LV_END_APOGEE && ph->ends[3].label == NULL);
+        CHECK(ph->ends[4].kind == LV_END_SPEED && ph->ends[4].label == NULL);
+        CHECK(ph->end_name != NULL && strcmp(ph->end_name, "cut-off") == 0);
+        CHECK(ph->n_engine_out == 2 && strcmp(ph->engine_out[0].label, "engine 1 out") == 0 &&
+              ph->engine_out[1].label == NULL);
+    }
+    lv_mission_def_free(m);
+#define NPHASE "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, end: "
+    /* line 5, column 64: the first entry of `end` */
+    BAD(HEAD STAGES NPHASE "[{burnout, name: X}, {apogee, name: X}]}\n",
+        "bad.yaml:5:99: phase 'P1': event name 'X' given twice (first at line 5): the names "
+        "of a phase's events are unique");
+    BAD(HEAD STAGES NPHASE "[{burnout, name: \"\"}]}\n",
+        "bad.yaml:5:80: phase 'P1', end event #1: name: a name or text expected");
+    BAD(HEAD STAGES NPHASE "[{burnout, name: \"a\\tb\"}]}\n",
+        "bad.yaml:5:80: phase 'P1', end event #1: name: a control character (0x09) at "
+        "character 2: a name is printable text");
+    BAD(HEAD STAGES NPHASE "[{burnout, name: \" MECO\"}]}\n",
+        "bad.yaml:5:80: phase 'P1', end event #1: name ' MECO' starts or ends with a space");
+    BAD(HEAD STAGES NPHASE "[{burnout, name: "
+        "a234567890123456789012345678901234567890123456789012345678901234}]}\n",
+        "bad.yaml:5:80: phase 'P1', end event #1: name: 64 characters, at most 63");
+    BAD(HEAD STAGES NPHASE "[{burnout, name: [MECO]}]}\n",
+        "bad.yaml:5:80: phase 'P1', end event #1: name: a name or text expected, found a list");
+    BAD(HEAD STAGES NPHASE "[{burnout: 1, name: MECO}]}\n",
+        "bad.yaml:5:65: phase 'P1', end event #1: 'burnout' takes no value: write it as a plain "
+        "list entry, or {burnout, name: NAME} to name it");
+    BAD(HEAD STAGES NPHASE "[{name: MECO}]}\n",
+        "bad.yaml:5:64: phase 'P1', end event #1: which event?");
+    BAD(HEAD STAGES NPHASE "[{burnout, direction: rising, name: MECO}]}\n",
+        "bad.yaml:5:74: phase 'P1', end event #1: 'burnout' has a fixed direction (falling)");
+    BAD(HEAD STAGES "phases:\n  - {name: P1, model: flat6, stages: [s1], stop_time: 1, "
+        "end_name: MECO}\n",
+        "bad.yaml:5:58: phase 'P1': end_name names the phase's end events, and it has none");
+    /* 63 characters, two of them two bytes long in UTF-8: accepted */
+    static const char ok63[] = HEAD STAGES NPHASE "[{burnout, name: \"\u00fc\u00fc"
+        "3456789012345678901234567890123456789012345678901234567890123\"}]}\n";
+    CHECK_OK(lv_mission_def_parse(ok63, strlen(ok63), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+    lv_mission_def_free(m);
+#undef NPHASE
+    /* an engine-out's name: the same rules, unique among the phase's ends and engine-outs */
+    static const char planet[] =
+        "mission: {name: t}\n"
+        "environment: {world: planet}\n"
+        "stages:\n"
+        "  - {name: s1, dry_mass: 100, propellant_mass: 50,\n"
+        "     engines: [{name: e, count: 3, thrust_vac: 5000, isp_vac: 300}]}\n"
+        "phases:\n"
+        "  - name: P1\n"
+        "    model: dof3\n"
+        "    stages: [s1]\n"
+        "    stop_time: 100\n"
+        "    end: [{burnout, name: out}]\n";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s    engine_out: {time: 1, name: out}\n", planet);
+    BAD(buf, "bad.yaml:12:33: phase 'P1': event name 'out' given twice (first at line 11)");
+    snprintf(buf, sizeof buf, "%s    engine_out: {time: 1, name: ~}\n", planet);
+    BAD(buf, "bad.yaml:12:33: phase 'P1', engine_out: name: a name or text expected");
+    /* a separation's name: the same rules; {name: ...} alone gives no impulse */
+    snprintf(buf, sizeof buf, "%s  - {name: P2, model: dof3, stages: [s1], from: P1, "
+             "stop_time: 200, separation: {dv: 1, name: \"\\nx\"}}\n", planet);
+    BAD(buf, "bad.yaml:12:95: phase 'P2', separation: name: a control character (0x0a)");
+    snprintf(buf, sizeof buf, "%s  - {name: P2, model: dof3, stages: [s1], from: P1, "
+             "stop_time: 200, separation: {name: stage separation}}\n", planet);
+    CHECK_OK(lv_mission_def_parse(buf, strlen(buf), "ok.yaml", LV_MISSION_DIR, &m, &err), &err);
+    if (m != NULL) {
+        const lv_phase_def *p2 = phase(m, "P2");
+        CHECK(p2 != NULL && strcmp(p2->separation_label, "stage separation") == 0);
+        CHECK(lv_mission_def_slot(m, "P2.separation.dv") == LV_NO_SLOT);
+    }
+    lv_mission_def_free(m);
+    snprintf(buf, sizeof buf, "%s    engine_out: [{time: 1, name: a}, {time: 2, name: a}]\n",
+             planet);
+    BAD(buf, "bad.yaml:12:54: phase 'P1': event name 'a' given twice (first at line 12)");
+}
+
 int main(void)
 {
+    test_event_names();
     test_file_sizes();
     test_unflyable();
     test_paper_branch();
