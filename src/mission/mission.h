@@ -159,6 +159,9 @@ typedef struct lv_stage_def {
     size_t n_engines;
     lv_engine_def *engines;
     lv_rigid_body_def rigid; /* 6-DoF data (rigid.present 0: none) */
+    /* `geometry: {length, diameter, span}` (m): the shape of the CZML export's vehicle model
+     * only, no physics; length 0: not given (docs/mission-format.md, "Stages") */
+    double geom_length, geom_diameter, geom_span;
     lv_src_loc loc;
 } lv_stage_def;
 

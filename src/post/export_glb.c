@@ -62,10 +62,23 @@ static size_t vert(mesh *m, double x, double y, double z, double nx, double ny, 
     return m->nv++;
 }
 
+/* A triangle, wound counter-clockwise seen from the side its vertices' normal points to
+ * (glTF's front face, section 3.7.2.1: a double-sided material flips the normal of a back face,
+ * so a wrong winding would turn the lit side dark). */
 static void tri(mesh *m, size_t a, size_t b, size_t c)
 {
     if (m->oom)
         return;
+    const float *pa = m->v + 9 * a, *pb = m->v + 9 * b, *pc = m->v + 9 * c;
+    const double e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+    const double e2[3] = {pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]};
+    const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    if (g[0] * pa[3] + g[1] * pa[4] + g[2] * pa[5] < 0.0) { /* clockwise: swap b and c */
+        const size_t t = b;
+        b = c;
+        c = t;
+    }
     if (m->ni + 3 > m->cap_i) {
         const size_t cap = m->cap_i ? 2 * m->cap_i : 768;
         uint16_t *ni = realloc(m->ix, cap * sizeof *ni);
