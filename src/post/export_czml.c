@@ -720,4 +720,5 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
 
 const lv_ex_format lv_ex_czml = {
     "czml", "mission.czml", "mission.czml",
-    "CZML for CesiumJS: every body's track, phase colours, event markers", write_czml};
+    "CZML for CesiumJS: every body's track, phase colours, event markers, vehicle models with "
+    "their attitude", write_czml};

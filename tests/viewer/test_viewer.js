@@ -7,7 +7,12 @@
 // outside request, a track per body, the phase table, the event list, a moving clock and a
 // screenshot that is not blank. Exit 0 pass, 1 fail, 77 skip (only when chromium cannot start).
 // Env: LV_SOURCE_DIR, LVSIM, CHROMIUM (default /usr/bin/chromium), LV_VIEWER_OUT (default
-// ./viewer), LV_DOCS_IMG (also write the screenshot there, e.g. docs/img/viewer.png).
+// ./viewer), LV_DOCS_IMG (also write the screenshot there, e.g. docs/img/viewer.png),
+// LV_DOCS_MODEL_IMG (also run examples/rlv-hthl and write its vehicle models 31 s after staging
+// there: docs/img/viewer-models.png, the README's picture beside the paper's Figure 11).
+// Vehicle models (a two-stage-6dof run): every CZML model packet an entity with a glTF data
+// URI, the Model primitives ready, the 6-DoF phase's model turned (screenshot pixels differ
+// between its attitudes at one time and camera); labels only on the selected entity.
 'use strict';
 const fs = require('fs');
 const http = require('http');
@@ -182,7 +187,20 @@ function sites() {
   stage(run6);
   list.push({ name: 'two-stage-6dof', dir: run6, labels: ['burnout'],
               models: ['model/liftoff', 'model/boost', 'model/boost/spent', 'model/coast', 'model/upper-burn'],
-              turn: { model: 'model/boost', phase: 'boost' }, docsShot: true });
+              turn: { model: 'model/boost', phase: 'boost' } });
+  if (process.env.LV_DOCS_MODEL_IMG) {   // the README's picture: rlv-hthl 31 s after staging
+    const runR = path.join(OUT, 'site-rlv');
+    fs.rmSync(runR, { recursive: true, force: true });
+    const mR = path.join(SRC, 'examples', 'rlv-hthl', 'mission.yaml');
+    const r4 = spawnSync(lvsim, ['run', mR, '-o', runR], { encoding: 'utf8' });
+    check(r4.status === 0, `lvsim run ${mR}`, (r4.stderr || '').trim());
+    if (r4.status !== 0) return list;
+    stage(runR);
+    list.push({ name: 'rlv-hthl', dir: runR, labels: ['burnout'],
+                models: ['model/liftoff', 'model/turn-around', 'model/us-ascent'],
+                turn: { model: 'model/ascent', phase: 'ascent' },
+                docsShot: { t: 222, range: 32000, pitch: -1.0, heading: 0.3 } });
+  }
   return list;
 }
 
@@ -209,16 +227,23 @@ async function checkModels(page, site, czml, summary) {
   }), ids);
   for (const e of ents) check(e.model && e.data, `${site.name}: ${e.id} has a glTF model (data URI)`, JSON.stringify(e));
 
-  // The phase with a 6-DoF attitude: two instants whose attitudes differ by more than 10 deg.
+  // A phase's model at two instants whose attitudes differ by more than 10 deg.
   const ph = summary.phases.find((p) => p.name === site.turn.phase);
   const pick = await page.evaluate(({ id, t0, t1 }) => {
     const ep = Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch);
     const at = (t) => Cesium.JulianDate.addSeconds(ep, t, new Cesium.JulianDate());
     const e = window.lvsim.dataSource.entities.getById(id);
-    const qa = e.orientation.getValue(at(t0 + 0.1 * (t1 - t0)));
-    const qb = e.orientation.getValue(at(t0 + 0.9 * (t1 - t0)));
-    const dot = Math.abs(Cesium.Quaternion.dot(qa, qb));
-    return { ta: t0 + 0.1 * (t1 - t0), tb: t0 + 0.9 * (t1 - t0), deg: 2 * Math.acos(Math.min(1, dot)) * 180 / Math.PI };
+    // from 10 % of the phase, the instant among 20 %, 30 %, .. 90 % that turned it most
+    const ta = t0 + 0.1 * (t1 - t0);
+    const qa = e.orientation.getValue(at(ta));
+    let best = { ta, tb: ta, deg: 0 };
+    for (let k = 2; k <= 9; k++) {
+      const tb = t0 + 0.1 * k * (t1 - t0);
+      const dot = Math.abs(Cesium.Quaternion.dot(qa, e.orientation.getValue(at(tb))));
+      const deg = 2 * Math.acos(Math.min(1, dot)) * 180 / Math.PI;
+      if (deg > best.deg) best = { ta, tb, deg };
+    }
+    return best;
   }, { id: site.turn.model, t0: ph.t_start, t1: ph.t_end });
   check(pick.deg > 10, `${site.name}: ${site.turn.model} turns between ${pick.ta.toFixed(1)} and ${pick.tb.toFixed(1)} s`,
         `${pick.deg.toFixed(2)} deg`);
@@ -409,7 +434,29 @@ async function testSite(browser, site) {
     check(shown.length === 1, `${site.name}: one label with marker ${ev0.id} selected`, JSON.stringify(shown));
   }
 
-  if (site.models) await checkModels(page, site, czml, summary);
+  if (site.models) {
+    await checkModels(page, site, czml, summary);
+    await click('#home');            // back to the view of every track
+    await page.waitForTimeout(2500);
+  }
+  if (site.docsShot) {   // the models at one instant, the camera on the middle of them
+    await page.evaluate((d) => {
+      const v = window.viewer, ds = window.lvsim.dataSource;
+      const now = Cesium.JulianDate.addSeconds(Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch), d.t, new Cesium.JulianDate());
+      v.clock.currentTime = now;
+      const ps = window.lvsim.models.map((id) => ds.entities.getById(id)).filter((e) => e.isAvailable(now))
+        .map((e) => e.position.getValue(now)).filter(Boolean);
+      v.camera.lookAt(Cesium.BoundingSphere.fromPoints(ps).center, new Cesium.HeadingPitchRange(d.heading, d.pitch, d.range));
+      window.lvsim.settle(5000);
+    }, site.docsShot);
+    await page.waitForFunction(() => window.viewer.scene.globe.tilesLoaded, null, { timeout: 30000 }).catch(() => {});
+    await page.waitForTimeout(4000);
+    await page.screenshot({ path: process.env.LV_DOCS_MODEL_IMG, clip: { x: 0, y: 0, width: 840, height: 690 } });
+    log(`${site.name}: vehicle models at t = ${site.docsShot.t} s written to ${process.env.LV_DOCS_MODEL_IMG}`);
+    await page.evaluate(() => window.viewer.camera.lookAtTransform(Cesium.Matrix4.IDENTITY));
+    await click('#home');
+    await page.waitForTimeout(2500);
+  }
 
   // The picture at the mission's end: every track, marker and body where it ended.
   await page.evaluate(() => {
