@@ -93,6 +93,10 @@ LV_API lv_status lv_mission_phase_find(const lv_mission *m, const char *name, si
                                        lv_err *err);
 LV_API size_t lv_mission_stage_count(const lv_mission *m);
 LV_API const char *lv_mission_stage_name(const lv_mission *m, size_t s);
+/* Stage s's `geometry:` (m): 1 with length, diameter, span (0: no wing) when the mission gives
+ * it, else 0 (the exports then draw a default shape). Any out pointer may be NULL. */
+LV_API int lv_mission_stage_geometry(const lv_mission *m, size_t s, double *length,
+                                     double *diameter, double *span);
 
 typedef struct lv_phase_info {
     const char *name;

@@ -578,6 +578,21 @@ const char *lv_mission_stage_name(const lv_mission *m, size_t s)
     return s < m->def->n_stages ? m->def->stages[s].name : NULL;
 }
 
+int lv_mission_stage_geometry(const lv_mission *m, size_t s, double *length, double *diameter,
+                              double *span)
+{
+    if (s >= m->def->n_stages || !(m->def->stages[s].geom_length > 0.0))
+        return 0;
+    const lv_stage_def *d = &m->def->stages[s];
+    if (length != NULL)
+        *length = d->geom_length;
+    if (diameter != NULL)
+        *diameter = d->geom_diameter;
+    if (span != NULL)
+        *span = d->geom_span;
+    return 1;
+}
+
 lv_status lv_mission_phase_find(const lv_mission *m, const char *name, size_t *k, lv_err *err)
 {
     lv_suggest sg;

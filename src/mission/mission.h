@@ -183,6 +183,9 @@ typedef struct lv_stage_def {
     lv_rigid_body_def rigid; /* 6-DoF data (rigid.present 0: none) */
     lv_slot gear[LV_GEAR_N]; /* `landing_gear:` limits (slots "<stage>.landing_gear.<key>");
                                 LV_NO_SLOT each without `landing_gear:`: the defaults */
+    /* `geometry: {length, diameter, span}` (m): the shape of the CZML export's vehicle model
+     * only, no physics; length 0: not given (docs/mission-format.md, "Stages") */
+    double geom_length, geom_diameter, geom_span;
     lv_src_loc loc;
 } lv_stage_def;
 

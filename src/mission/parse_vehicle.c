@@ -404,10 +404,45 @@ static lv_status parse_gear(const lv_pctx *c, const lv_ynode *n, const char *sta
     return LV_OK;
 }
 
+/* geometry: {length, diameter, span} in m: the stage's shape in the CZML export's vehicle
+ * model (docs/exports.md, "Vehicle models"), no physics. length and diameter > 0 required,
+ * span >= 0 optional (a delta wing where > 0). */
+static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *g, lv_stage_def *s)
+{
+    static const char *const keys[] = {"length", "diameter", "span", NULL};
+    static const char *const need[] = {"length", "diameter"};
+    char what[LV_WHAT_MAX];
+    const lv_ynode *v;
+    lv_status st;
+    if (g == NULL)
+        return LV_OK;
+    snprintf(what, sizeof what, "stage '%s', geometry", s->name);
+    if ((st = lv_pk_check_map(c, g, what, keys)) != LV_OK)
+        return st;
+    double *dst[2] = {&s->geom_length, &s->geom_diameter};
+    for (int i = 0; i < 2; i++) {
+        if ((st = lv_pk_need(c, g, what, need[i], &v)) != LV_OK ||
+            (st = lv_pk_num(c, v, what, need[i], dst[i])) != LV_OK)
+            return st;
+        if (!(*dst[i] > 0.0))
+            return lv_pk_fail(c, v, "%s: %s: a length in m > 0 expected, found %.17g", what,
+                              need[i], *dst[i]);
+    }
+    s->geom_span = 0.0;
+    if ((v = lv_pk_get(g, "span")) != NULL) {
+        if ((st = lv_pk_num(c, v, what, "span", &s->geom_span)) != LV_OK)
+            return st;
+        if (!(s->geom_span >= 0.0))
+            return lv_pk_fail(c, v, "%s: span: a length in m >= 0 expected (0: no wing), found "
+                              "%.17g", what, s->geom_span);
+    }
+    return LV_OK;
+}
+
 static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)
 {
     static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines",
-                                        "rigid_body", "landing_gear", NULL };
+                                        "rigid_body", "landing_gear", "geometry", NULL };
     char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
     lv_status st;
@@ -435,6 +470,8 @@ static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         return st;
     if ((st = parse_rigid_body(c, lv_pk_get(n, "rigid_body"), n, s)) != LV_OK ||
         (st = parse_gear(c, lv_pk_get(n, "landing_gear"), what, s)) != LV_OK)
+        return st;
+    if ((st = parse_geometry(c, lv_pk_get(n, "geometry"), s)) != LV_OK)
         return st;
 
     v = lv_pk_get(n, "engines");

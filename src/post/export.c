@@ -421,6 +421,7 @@ LV_API lv_status lv_export_run_report(const char *outdir, unsigned formats, lv_e
     r.planet = res->planet;
     r.phases = res->phases;
     r.n_phases = res->n_phases;
+    r.res = res;
     st = check_summary(&r, res, err);
     if (st == LV_OK) {
         r.phase_body = malloc((res->n_phases + 1) * sizeof *r.phase_body);

@@ -2,5 +2,6 @@
 list(APPEND LV_POST_SOURCES
   src/post/export.c
   src/post/export_czml.c
+  src/post/export_glb.c
   src/post/export_kml.c
   src/post/export_oem.c)

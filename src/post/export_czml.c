@@ -15,10 +15,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <cjson/cJSON.h>
+
 #include "core/status.h"
 #include "core/units.h"
 #include "io/atomic.h"
 #include "io/numparse.h"
+#include "lvsim/lv_planet.h"
 #include "post/export_int.h"
 
 #define RAD2DEG (180.0 / LV_PI) /* deg per rad */
@@ -303,6 +306,369 @@ static void marker_packet(jw *w, const lv_ex_run *r, size_t p, size_t j, double 
     jw_close(w);
 }
 
+/* ------------------------------------------------------- vehicle models -- */
+
+/* A stage without `geometry`: a cylinder DEFAULT_LD times as long as wide whose volume at
+ * DEFAULT_RHO holds its full mass (dry + propellant at its first phase): a shape that scales
+ * with the stage, not the vehicle's (docs/exports.md, "Vehicle models"). */
+#define DEFAULT_LD 8.0    /* length / diameter */
+#define DEFAULT_RHO 300.0 /* kg/m^3, bulk density of a launcher stage, roughly */
+#define MODEL_MIN_PX 48   /* minimumPixelSize: the model is drawn at least this tall */
+#define MODEL_MAX_SCALE 5000 /* maximumScale: at most 5000 times its size */
+
+static double json_num(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+/* Stage `stage`'s shape: summary.json phases[].geometry.<stage> (the mission's `geometry:`),
+ * else the default from its mass (phases[].propellant.<stage>). */
+static lv_ex_shape stage_shape(const lv_ex_run *r, const char *stage)
+{
+    const cJSON *phases = cJSON_GetObjectItemCaseSensitive(r->res->json, "phases");
+    const cJSON *p;
+    double mass = 0.0;
+    cJSON_ArrayForEach(p, phases) {
+        const cJSON *g = cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(p, "geometry"), stage);
+        const double len = json_num(g, "length"), dia = json_num(g, "diameter");
+        if (len > 0.0 && dia > 0.0) {
+            const double span = json_num(g, "span");
+            return (lv_ex_shape){len, dia, span > 0.0 ? span : 0.0};
+        }
+        const cJSON *b = cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(p, "propellant"), stage);
+        const double m = json_num(b, "dry_mass") + json_num(b, "start");
+        if (m > mass)
+            mass = m;
+    }
+    if (!(mass >= 1.0))
+        mass = 1.0;
+    const double d = cbrt(4.0 * mass / (LV_PI * DEFAULT_LD * DEFAULT_RHO));
+    return (lv_ex_shape){DEFAULT_LD * d, d, 0.0};
+}
+
+/* The unit quaternion [x, y, z, w] of the rotation whose matrix has columns c[0], c[1], c[2]
+ * (Shepperd's method: the largest of 4w^2, 4x^2, 4y^2, 4z^2 first). */
+static void mat_to_quat(const double c[3][3], double q[4])
+{
+    /* m[i][j]: row i, column j */
+    const double m00 = c[0][0], m11 = c[1][1], m22 = c[2][2];
+    const double tr = m00 + m11 + m22;
+#define M(i, j) c[j][i]
+    if (tr >= m00 && tr >= m11 && tr >= m22) {
+        const double w4 = 2.0 * sqrt(1.0 + tr);
+        q[3] = 0.25 * w4;
+        q[0] = (M(2, 1) - M(1, 2)) / w4;
+        q[1] = (M(0, 2) - M(2, 0)) / w4;
+        q[2] = (M(1, 0) - M(0, 1)) / w4;
+    } else if (m00 >= m11 && m00 >= m22) {
+        const double x4 = 2.0 * sqrt(1.0 + m00 - m11 - m22);
+        q[0] = 0.25 * x4;
+        q[3] = (M(2, 1) - M(1, 2)) / x4;
+        q[1] = (M(0, 1) + M(1, 0)) / x4;
+        q[2] = (M(0, 2) + M(2, 0)) / x4;
+    } else if (m11 >= m22) {
+        const double y4 = 2.0 * sqrt(1.0 - m00 + m11 - m22);
+        q[1] = 0.25 * y4;
+        q[3] = (M(0, 2) - M(2, 0)) / y4;
+        q[0] = (M(0, 1) + M(1, 0)) / y4;
+        q[2] = (M(1, 2) + M(2, 1)) / y4;
+    } else {
+        const double z4 = 2.0 * sqrt(1.0 - m00 - m11 + m22);
+        q[2] = 0.25 * z4;
+        q[3] = (M(1, 0) - M(0, 1)) / z4;
+        q[0] = (M(0, 2) + M(2, 0)) / z4;
+        q[1] = (M(1, 2) + M(2, 1)) / z4;
+    }
+#undef M
+    const double nq = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (int i = 0; i < 4; i++)
+        q[i] /= nq;
+}
+
+/* Body axes (ECEF) from 3-2-1 Euler angles relative to the geodetic NED frame at lat, lon
+ * (docs/frames.md; the outputs theta, psi, phi of dof3, dof6, flat6). */
+static void euler_axes(double th, double ps, double ph, double lat, double lon, double ax[3][3])
+{
+    const double ct = cos(th), st = sin(th), cp = cos(ps), sp = sin(ps), cf = cos(ph),
+                 sf = sin(ph);
+    /* body axes in NED components: the columns of C_ned_body = R3(-psi) R2(-theta) R1(-phi) */
+    const double b[3][3] = {{ct * cp, ct * sp, -st},
+                            {sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct},
+                            {cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct}};
+    const double sl = sin(lat), cl = cos(lat), so = sin(lon), co = cos(lon);
+    const double n[3] = {-sl * co, -sl * so, cl}, e[3] = {-so, co, 0.0},
+                 d[3] = {-cl * co, -cl * so, -sl};
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            ax[i][k] = b[i][0] * n[k] + b[i][1] * e[k] + b[i][2] * d[k];
+}
+
+typedef struct att_row {
+    double t;
+    double q[4]; /* x, y, z, w: the model's axes -> ECEF (CZML unitQuaternion) */
+} att_row;
+
+/* The attitude of phase p at its result rows, as CZML orientation quaternions: the model's
+ * +x = body x (nose), +y = -body y, +z = -body z (docs/exports.md, "Vehicle models").
+ *   q_w, q_x, q_y, q_z (dof6: body -> ECI): the body axes turned to ECEF by C_ecef_eci(t);
+ *   else theta, psi, phi (dof3: the attitude alpha, beta, mu give about the air-relative
+ *   velocity; flat6): relative to NED at the row's lat, lon (its own columns, else the body
+ *   track's);
+ *   else heading (runway): pitch alpha_in + fpa along the heading, no roll.
+ * *n = 0 (and no error) when the phase has none of these or no CSV. Rows at one instant (an
+ * event): the last. */
+static lv_status phase_attitude(const lv_ex_run *r, size_t p, att_row **out, size_t *n,
+                                lv_err *err)
+{
+    *out = NULL;
+    *n = 0;
+    const lv_ex_phase *ph = &r->phases[p];
+    if (ph->csv == NULL || !lv_results_exists(r->res, ph->csv) || r->phase_body[p] < 0)
+        return LV_OK;
+    lv_results_table *tb = NULL;
+    lv_status st = lv_results_load(r->res, ph->csv, NULL, &tb, err);
+    if (st != LV_OK)
+        return st;
+    enum { T, QW, QX, QY, QZ, TH, PS, PH, LAT, LON, HD, AL, FPA, NC };
+    static const char *const names[NC] = {"time", "q_w",   "q_x", "q_y", "q_z",
+                                          "theta", "psi",  "phi", "lat", "lon",
+                                          "heading", "alpha_in", "fpa"};
+    long c[NC];
+    for (int i = 0; i < NC; i++)
+        c[i] = lv_results_table_col(tb, names[i]);
+    const int quat = !r->flat && c[QW] >= 0 && c[QX] >= 0 && c[QY] >= 0 && c[QZ] >= 0;
+    const int euler = c[TH] >= 0 && c[PS] >= 0 && c[PH] >= 0;
+    const int runway = c[HD] >= 0;
+    if (c[T] < 0 || tb->n_rows == 0 || !(quat || euler || runway)) {
+        lv_results_table_free(tb);
+        return LV_OK;
+    }
+    lv_planet planet = lv_planet_earth();
+    if (r->planet != NULL && lv_planet_by_name(r->planet, &planet, NULL) != LV_OK)
+        planet = lv_planet_earth();
+    const lv_ex_body *b = &r->bodies[r->phase_body[p]];
+    const lv_ex_track *k = lv_ex_track_of(b, p);
+    att_row *a = malloc(tb->n_rows * sizeof *a);
+    if (a == NULL) {
+        lv_results_table_free(tb);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < tb->n_rows; i++) {
+        const double *v = tb->v + i * tb->n_cols;
+        const double t = v[c[T]];
+        double ax[3][3]; /* body x, y, z in ECEF */
+        if (quat) {
+            const double w = v[c[QW]], x = v[c[QX]], y = v[c[QY]], z = v[c[QZ]];
+            const double s = 1.0 / (w * w + x * x + y * y + z * z);
+            /* columns of R(q), body -> ECI (Hamilton, active) */
+            const double e[3][3] = {
+                {1.0 - 2.0 * s * (y * y + z * z), 2.0 * s * (x * y + w * z),
+                 2.0 * s * (x * z - w * y)},
+                {2.0 * s * (x * y - w * z), 1.0 - 2.0 * s * (x * x + z * z),
+                 2.0 * s * (y * z + w * x)},
+                {2.0 * s * (x * z + w * y), 2.0 * s * (y * z - w * x),
+                 1.0 - 2.0 * s * (x * x + y * y)}};
+            double C[3][3];
+            lv_frames_C_ecef_eci(&planet, t, C);
+            for (int col = 0; col < 3; col++)
+                for (int row = 0; row < 3; row++)
+                    ax[col][row] = C[row][0] * e[col][0] + C[row][1] * e[col][1] +
+                                   C[row][2] * e[col][2];
+        } else {
+            double lat, lon, h;
+            if (c[LAT] >= 0 && c[LON] >= 0) {
+                lat = v[c[LAT]];
+                lon = v[c[LON]];
+            } else if (k != NULL) {
+                lv_ex_locate(b, k, t, &lat, &lon, &h);
+            } else {
+                continue;
+            }
+            if (euler) {
+                euler_axes(v[c[TH]], v[c[PS]], v[c[PH]], lat, lon, ax);
+            } else {
+                const double pitch = (c[AL] >= 0 ? v[c[AL]] : 0.0) + (c[FPA] >= 0 ? v[c[FPA]] : 0.0);
+                euler_axes(pitch, v[c[HD]], 0.0, lat, lon, ax);
+            }
+        }
+        int finite = isfinite(t);
+        for (int col = 0; col < 3; col++)
+            for (int row = 0; row < 3; row++)
+                finite &= isfinite(ax[col][row]) ? 1 : 0;
+        if (!finite)
+            continue;
+        /* the model's axes: +x = body x, +y = -body y, +z = -body z */
+        const double mc[3][3] = {{ax[0][0], ax[0][1], ax[0][2]},
+                                 {-ax[1][0], -ax[1][1], -ax[1][2]},
+                                 {-ax[2][0], -ax[2][1], -ax[2][2]}};
+        att_row row;
+        row.t = t;
+        mat_to_quat(mc, row.q);
+        if (m > 0 && !(t > a[m - 1].t)) {
+            if (t < a[m - 1].t)
+                continue; /* not in time order: left out */
+            m--;          /* the same instant: the later row */
+        }
+        /* q and -q are one rotation: keep neighbours on one side, so that the samples
+         * interpolate the short way */
+        const att_row *prev = m > 0 ? &a[m - 1] : NULL;
+        if (prev != NULL && prev->q[0] * row.q[0] + prev->q[1] * row.q[1] +
+                                    prev->q[2] * row.q[2] + prev->q[3] * row.q[3] < 0.0)
+            for (int i2 = 0; i2 < 4; i2++)
+                row.q[i2] = -row.q[i2];
+        a[m++] = row;
+    }
+    lv_results_table_free(tb);
+    if (m == 0) {
+        free(a);
+        a = NULL;
+    }
+    *out = a;
+    *n = m;
+    return LV_OK;
+}
+
+/* Is stage s among phase q's stages? */
+static int carries(const lv_ex_phase *q, const char *s)
+{
+    for (size_t i = 0; i < q->n_stages; i++)
+        if (strcmp(q->stages[i], s) == 0)
+            return 1;
+    return 0;
+}
+
+/* "model/<phase>": the stack of phase p's stages with its attitude, from the phase start to
+ * its end (a phase no other phase continues: to the mission's end); "model/<phase>/spent":
+ * the stages of p that no child phase carries on, held where and as p left them. */
+static lv_status model_packets(jw *w, const lv_ex_run *r, size_t p, lv_err *err)
+{
+    const lv_ex_phase *ph = &r->phases[p];
+    if (!ph->done || r->phase_body[p] < 0 || ph->n_stages == 0)
+        return LV_OK;
+    att_row *a = NULL;
+    size_t na = 0;
+    lv_status st = phase_attitude(r, p, &a, &na, err);
+    if (st != LV_OK)
+        return st;
+    if (na == 0) {
+        lv_ex_report(r, "czml", NULL, "phase '%s': no attitude in its results (no vehicle "
+                     "model)", ph->name);
+        return LV_OK;
+    }
+    const char **spent = malloc(ph->n_stages * sizeof *spent);
+    lv_ex_shape *sh = malloc(ph->n_stages * sizeof *sh);
+    if (spent == NULL || sh == NULL) {
+        free(spent);
+        free(sh);
+        free(a);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    int children = 0;
+    size_t n_spent = 0;
+    for (size_t q = 0; q < r->n_phases; q++)
+        if (r->phases[q].parent == (int)p && r->phases[q].done)
+            children = 1;
+    for (size_t i = 0; i < ph->n_stages && children; i++) {
+        int on = 0;
+        for (size_t q = 0; q < r->n_phases && !on; q++)
+            on = r->phases[q].parent == (int)p && r->phases[q].done &&
+                 carries(&r->phases[q], ph->stages[i]);
+        if (!on)
+            spent[n_spent++] = ph->stages[i];
+    }
+    const lv_ex_body *b = &r->bodies[r->phase_body[p]];
+    int rgb[3];
+    lv_ex_colour(r, p, rgb);
+    char id[400], ref[600], epoch[48];
+    lv_ex_iso(r, 0.0, "Z", epoch, sizeof epoch);
+    for (int part = 0; part < 1 + (n_spent > 0) && st == LV_OK; part++) {
+        const char *const *list = part == 0 ? ph->stages : spent;
+        const size_t nl = part == 0 ? ph->n_stages : n_spent;
+        char names[600] = "";
+        size_t used = 0;
+        for (size_t i = 0; i < nl; i++) {
+            sh[i] = stage_shape(r, list[i]);
+            const int k = snprintf(names + used, sizeof names - used, "%s%s", i ? " + " : "",
+                                   list[i]);
+            if (k > 0 && used + (size_t)k < sizeof names)
+                used += (size_t)k;
+        }
+        unsigned char *glb = NULL;
+        size_t glb_len = 0;
+        st = lv_ex_glb_stack(sh, nl, rgb, &glb, &glb_len, err);
+        if (st != LV_OK)
+            break;
+        char *b64 = lv_ex_base64(glb, glb_len);
+        free(glb);
+        const size_t uri_cap = b64 != NULL ? strlen(b64) + 64 : 0;
+        char *uri = b64 != NULL ? malloc(uri_cap) : NULL;
+        if (uri == NULL) {
+            free(b64);
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            break;
+        }
+        snprintf(uri, uri_cap, "data:model/gltf-binary;base64,%s", b64);
+        free(b64);
+        jw_open(w, NULL, '{');
+        snprintf(id, sizeof id, part == 0 ? "model/%s" : "model/%s/spent", ph->name);
+        jw_str(w, "id", id);
+        char text[800];
+        snprintf(text, sizeof text, part == 0 ? "%s (phase %s)" : "%s (spent after phase %s)",
+                 names, ph->name);
+        jw_str(w, "name", text);
+        double total = 0.0;
+        for (size_t i = 0; i < nl; i++)
+            total += sh[i].length;
+        snprintf(text, sizeof text, "%s in phase %s: a shape %.1f m long from the stages' "
+                 "geometry, turned by the body's attitude (model x = body x, the nose).",
+                 names, ph->name, total);
+        jw_str(w, "description", text);
+        if (part == 0)
+            interval(w, "availability", r, ph->t_start, children ? ph->t_end : r->t1);
+        else
+            interval(w, "availability", r, ph->t_end, r->t1);
+        jw_open(w, "position", '{');
+        snprintf(ref, sizeof ref, "track/%s/%s#position", b->name, ph->name);
+        jw_str(w, "reference", ref);
+        jw_close(w);
+        jw_open(w, "orientation", '{');
+        if (part == 0) {
+            jw_str(w, "epoch", epoch);
+            jw_str(w, "interpolationAlgorithm", "LINEAR");
+            jw_num(w, "interpolationDegree", 1);
+            jw_str(w, "forwardExtrapolationType", "HOLD");
+            jw_str(w, "backwardExtrapolationType", "HOLD");
+            jw_open(w, "unitQuaternion", '[');
+            for (size_t i = 0; i < na; i++) {
+                jw_num(w, NULL, a[i].t);
+                for (int c = 0; c < 4; c++)
+                    jw_num(w, NULL, a[i].q[c]);
+            }
+            jw_close(w);
+        } else {
+            snprintf(ref, sizeof ref, "model/%s#orientation", ph->name);
+            jw_str(w, "reference", ref);
+        }
+        jw_close(w);
+        jw_open(w, "model", '{');
+        jw_str(w, "gltf", uri);
+        jw_num(w, "minimumPixelSize", MODEL_MIN_PX);
+        jw_num(w, "maximumScale", MODEL_MAX_SCALE);
+        jw_str(w, "shadows", "DISABLED");
+        jw_close(w);
+        jw_close(w);
+        free(uri);
+    }
+    free(spent);
+    free(sh);
+    free(a);
+    return st;
+}
+
 static lv_status write_czml(const lv_ex_run *r, lv_err *err)
 {
     char path[LV_EX_PATH_CAP];
@@ -323,6 +689,13 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
         const lv_ex_body *b = &r->bodies[bi];
         for (size_t i = 0; i < b->n_tracks; i++)
             track_packet(&w, r, bi, &b->tracks[i], i + 1 == b->n_tracks);
+    }
+    /* A vehicle model per done phase with an attitude in its results */
+    for (size_t p = 0; p < r->n_phases && st == LV_OK; p++)
+        st = model_packets(&w, r, p, err);
+    if (st != LV_OK) {
+        lv_atomic_abort(&out);
+        return st;
     }
     /* Markers per done phase: 0 its start ("P2 start"), 1..n its events in summary order. */
     for (size_t p = 0; p < r->n_phases; p++) {
@@ -347,4 +720,5 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
 
 const lv_ex_format lv_ex_czml = {
     "czml", "mission.czml", "mission.czml",
-    "CZML for CesiumJS: every body's track, phase colours, event markers", write_czml};
+    "CZML for CesiumJS: every body's track, phase colours, event markers, vehicle models with "
+    "their attitude", write_czml};

@@ -53,6 +53,7 @@ typedef struct lv_ex_run {
     lv_ex_body *bodies;
     size_t n_bodies;
     double t0, t1;       /* s: first start and last end of the done phases */
+    const lv_results *res; /* the folder as read (phase CSVs, summary JSON for the models) */
     struct lv_export_report *rep; /* what was written or not, or NULL */
 } lv_ex_run;
 
@@ -135,6 +136,19 @@ extern const lv_ex_format lv_ex_czml; /* export_czml.c */
 extern const lv_ex_format lv_ex_kml;  /* export_kml.c */
 extern const lv_ex_format lv_ex_oem;  /* export_oem.c: OUTDIR/<body>.oem for the bodies with
                                          orbital portions (docs/exports.md) */
+
+/* A stage's shape for the vehicle models (docs/exports.md, "Vehicle models"): m. */
+typedef struct lv_ex_shape {
+    double length, diameter, span; /* span 0: no wing */
+} lv_ex_shape;
+/* A binary glTF 2.0 (.glb, malloc'ed into *glb, *len bytes) of the stages st[0] (aft) ..
+ * st[n-1] (nose) in a row along the body x axis, the origin at the middle of the stack:
+ * cylinders in two greys, a nose cone (and any wing and fin) in colour rgb (0..255). glTF
+ * axes: body x = +z, body y = -x, body z = -y (export_glb.c). Errors: LV_ERR_NOMEM. */
+lv_status lv_ex_glb_stack(const lv_ex_shape *st, size_t n, const int rgb[3], unsigned char **glb,
+                          size_t *len, lv_err *err);
+/* p[0..n) as RFC 4648 base64 with padding, NUL-terminated, malloc'ed; NULL: no memory. */
+char *lv_ex_base64(const unsigned char *p, size_t n);
 
 /* The registered exports, NULL-terminated (export.c), and their number. */
 extern const lv_ex_format *const lv_ex_formats[];

@@ -176,6 +176,19 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON_AddNumberToObject(sj2, "end", r->propellant_end[si]);
         cJSON_AddBoolToObject(sj2, "burns", i == 0);
     }
+    /* the stages' `geometry:` where the mission gives it (the CZML export's vehicle models) */
+    cJSON *geo = NULL;
+    for (size_t i = 0; i < ph.n_stages; i++) {
+        double len, dia, span;
+        if (!lv_mission_stage_geometry(m, ph.stages[i], &len, &dia, &span))
+            continue;
+        if (geo == NULL)
+            geo = cJSON_AddObjectToObject(o, "geometry");
+        cJSON *g = cJSON_AddObjectToObject(geo, lv_mission_stage_name(m, ph.stages[i]));
+        cJSON_AddNumberToObject(g, "length", len);
+        cJSON_AddNumberToObject(g, "diameter", dia);
+        cJSON_AddNumberToObject(g, "span", span);
+    }
     cJSON_AddNumberToObject(o, "payload", isfinite(r->payload) ? r->payload : 0.0);
     if (r->state == LV_PHASE_DONE) {
         cJSON *fin = cJSON_AddObjectToObject(o, "final");

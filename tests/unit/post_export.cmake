@@ -11,3 +11,7 @@ add_test(NAME test_export_formats
           ${CMAKE_CURRENT_BINARY_DIR}/export_out/dof3
           ${CMAKE_CURRENT_BINARY_DIR}/export_out/names)
 set_tests_properties(test_export_formats PROPERTIES FIXTURES_REQUIRED export_files)
+# The CZML vehicle models' orientation against the attitude in the result files
+# (examples/two-stage-6dof: its 6-DoF quaternion and a 3-DoF phase's alpha, beta, mu).
+lv_add_unit_test(test_czml_attitude ${PROJECT_SOURCE_DIR}/tests/unit/test_czml_attitude.c)
+target_link_libraries(test_czml_attitude PRIVATE lvsim_post_static)

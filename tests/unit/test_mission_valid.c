@@ -494,6 +494,45 @@ static void test_target_scale(void)
     }
 }
 
+/* ---- (6) a stage's geometry (the CZML export's vehicle model) -------------------------- */
+
+#define GEO_MISSION(geo)                                                                     \
+    "mission: {name: g}\n"                                                                   \
+    "stages:\n"                                                                              \
+    "  - name: s\n"                                                                          \
+    "    dry_mass: 1\n"                                                                      \
+    "    propellant_mass: 0\n"                                                               \
+    "    geometry: " geo "\n"                                                                \
+    "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n"
+
+/* geometry: {length, diameter, span} in m: length, diameter > 0, span >= 0 (0 or none: no
+ * wing); refused where it is wrong, with line and column; no geometry: none reported. */
+static void test_geometry(void)
+{
+    BAD("geo_d0", GEO_MISSION("{length: 2, diameter: 0}"),
+        "6:37: stage 's', geometry: diameter: a length in m > 0 expected, found 0");
+    BAD("geo_l_neg", GEO_MISSION("{length: -2, diameter: 1}"),
+        "6:24: stage 's', geometry: length: a length in m > 0 expected, found -2");
+    BAD("geo_span", GEO_MISSION("{length: 2, diameter: 1, span: -1}"),
+        "6:46: stage 's', geometry: span: a length in m >= 0 expected");
+    BAD("geo_nod", GEO_MISSION("{length: 2}"), "6:15: stage 's', geometry: ");
+    BAD("geo_key", GEO_MISSION("{length: 2, diameter: 1, chord: 3}"), "6:");
+    BAD("geo_text", GEO_MISSION("{length: 2, diameter: wide}"), "6:");
+    lv_mission *m = GOOD("geo_ok", GEO_MISSION("{length: 30, diameter: 3.7, span: 12}"));
+    double l = 0, d = 0, sp = -1;
+    CHECK(m != NULL && lv_mission_stage_geometry(m, 0, &l, &d, &sp) == 1);
+    CHECK(l == 30.0 && d == 3.7 && sp == 12.0);
+    lv_mission_free(m);
+    m = GOOD("geo_nospan", GEO_MISSION("{length: 30, diameter: 3.7}"));
+    CHECK(m != NULL && lv_mission_stage_geometry(m, 0, &l, &d, &sp) == 1 && sp == 0.0);
+    lv_mission_free(m);
+    m = GOOD("geo_none", "mission: {name: g}\n"
+                         "stages: [{name: s, dry_mass: 1, propellant_mass: 0}]\n"
+                         "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n");
+    CHECK(m != NULL && lv_mission_stage_geometry(m, 0, &l, NULL, NULL) == 0);
+    lv_mission_free(m);
+}
+
 int main(void)
 {
     mkdir(OUT, 0777);
@@ -503,5 +542,6 @@ int main(void)
     test_phases_below_ground();
     test_names();
     test_target_scale();
+    test_geometry();
     return check_report("test_mission_valid");
 }

@@ -7,7 +7,12 @@
 // outside request, a track per body, the phase table, the event list, a moving clock and a
 // screenshot that is not blank. Exit 0 pass, 1 fail, 77 skip (only when chromium cannot start).
 // Env: LV_SOURCE_DIR, LVSIM, CHROMIUM (default /usr/bin/chromium), LV_VIEWER_OUT (default
-// ./viewer), LV_DOCS_IMG (also write the screenshot there, e.g. docs/img/viewer.png).
+// ./viewer), LV_DOCS_IMG (also write the screenshot there, e.g. docs/img/viewer.png),
+// LV_DOCS_MODEL_IMG (also run examples/rlv-hthl and write its vehicle models 31 s after staging
+// there: docs/img/viewer-models.png, the README's picture beside the paper's Figure 11).
+// Vehicle models (a two-stage-6dof run): every CZML model packet an entity with a glTF data
+// URI, the Model primitives ready, the 6-DoF phase's model turned (screenshot pixels differ
+// between its attitudes at one time and camera); labels only on the selected entity.
 'use strict';
 const fs = require('fs');
 const http = require('http');
@@ -171,7 +176,150 @@ function sites() {
   if (!fs.existsSync(path.join(run, 'mission.czml'))) return list;
   stage(run);
   list.push({ name: 'dof3-branch', dir: run, labels: ['burnout', 'impact'] });
+  // The 6-DoF example: vehicle models turned by the rigid body's quaternion (and 3-DoF phases
+  // by alpha, beta, mu), the booster left behind at staging.
+  const run6 = path.join(OUT, 'site-6dof');
+  fs.rmSync(run6, { recursive: true, force: true });
+  const m6 = path.join(SRC, 'examples', 'two-stage-6dof', 'mission.yaml');
+  const r3 = spawnSync(lvsim, ['run', m6, '-o', run6], { encoding: 'utf8' });
+  check(r3.status === 0 && fs.existsSync(path.join(run6, 'mission.czml')), `lvsim run ${m6}`, (r3.stderr || '').trim());
+  if (r3.status !== 0) return list;
+  stage(run6);
+  list.push({ name: 'two-stage-6dof', dir: run6, labels: ['burnout'],
+              models: ['model/liftoff', 'model/boost', 'model/boost/spent', 'model/coast', 'model/upper-burn'],
+              turn: { model: 'model/boost', phase: 'boost' } });
+  if (process.env.LV_DOCS_MODEL_IMG) {   // the README's picture: rlv-hthl 31 s after staging
+    const runR = path.join(OUT, 'site-rlv');
+    fs.rmSync(runR, { recursive: true, force: true });
+    const mR = path.join(SRC, 'examples', 'rlv-hthl', 'mission.yaml');
+    const r4 = spawnSync(lvsim, ['run', mR, '-o', runR], { encoding: 'utf8' });
+    check(r4.status === 0, `lvsim run ${mR}`, (r4.stderr || '').trim());
+    if (r4.status !== 0) return list;
+    stage(runR);
+    list.push({ name: 'rlv-hthl', dir: runR, labels: ['burnout'],
+                models: ['model/liftoff', 'model/turn-around', 'model/us-ascent'],
+                turn: { model: 'model/ascent', phase: 'ascent' },
+                docsShot: { t: 222, range: 32000, pitch: -1.0, heading: 0.3 } });
+  }
   return list;
+}
+
+// ---- vehicle models: present, loaded, turned by the CZML orientation --------------------------
+// Pixels that differ (any channel by more than 24) between two screenshots of one size.
+function pixelDiff(a, b) {
+  let n = 0;
+  for (let i = 0; i < a.w * a.h; i++) {
+    const ia = i * a.bpp, ib = i * b.bpp;
+    if (Math.abs(a.px[ia] - b.px[ib]) > 24 || Math.abs(a.px[ia + 1] - b.px[ib + 1]) > 24 ||
+        Math.abs(a.px[ia + 2] - b.px[ib + 2]) > 24) n++;
+  }
+  return n;
+}
+
+async function checkModels(page, site, czml, summary) {
+  const ids = czml.filter((p) => String(p.id).startsWith('model/')).map((p) => p.id);
+  for (const id of site.models) check(ids.includes(id), `${site.name}: CZML model packet ${id}`, ids.join(' '));
+  // every model packet is an entity with a model graphics whose glTF is a data URI (offline)
+  const ents = await page.evaluate((list) => list.map((id) => {
+    const e = window.lvsim.dataSource.entities.getById(id);
+    const uri = e && e.model && e.model.uri && e.model.uri.getValue(window.viewer.clock.currentTime);
+    return { id, model: !!(e && e.model), data: String(uri && (uri.url || uri)).startsWith('data:model/gltf-binary') };
+  }), ids);
+  for (const e of ents) check(e.model && e.data, `${site.name}: ${e.id} has a glTF model (data URI)`, JSON.stringify(e));
+
+  // A phase's model at two instants whose attitudes differ by more than 10 deg.
+  const ph = summary.phases.find((p) => p.name === site.turn.phase);
+  const pick = await page.evaluate(({ id, t0, t1 }) => {
+    const ep = Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch);
+    const at = (t) => Cesium.JulianDate.addSeconds(ep, t, new Cesium.JulianDate());
+    const e = window.lvsim.dataSource.entities.getById(id);
+    // from 10 % of the phase, the instant among 20 %, 30 %, .. 90 % that turned it most
+    const ta = t0 + 0.1 * (t1 - t0);
+    const qa = e.orientation.getValue(at(ta));
+    let best = { ta, tb: ta, deg: 0 };
+    for (let k = 2; k <= 9; k++) {
+      const tb = t0 + 0.1 * k * (t1 - t0);
+      const dot = Math.abs(Cesium.Quaternion.dot(qa, e.orientation.getValue(at(tb))));
+      const deg = 2 * Math.acos(Math.min(1, dot)) * 180 / Math.PI;
+      if (deg > best.deg) best = { ta, tb, deg };
+    }
+    return best;
+  }, { id: site.turn.model, t0: ph.t_start, t1: ph.t_end });
+  check(pick.deg > 10, `${site.name}: ${site.turn.model} turns between ${pick.ta.toFixed(1)} and ${pick.tb.toFixed(1)} s`,
+        `${pick.deg.toFixed(2)} deg`);
+
+  // At ta, the camera 400 m from the model, looking at it from the side: a screenshot with the
+  // model's own attitude, then one with the attitude of tb (same time, camera, globe): the
+  // pictures differ only by the model's turn.
+  await page.evaluate(({ id, ta }) => {
+    const v = window.viewer;
+    const ep = Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch);
+    v.clock.currentTime = Cesium.JulianDate.addSeconds(ep, ta, new Cesium.JulianDate());
+    v.selectedEntity = undefined;
+    const e = window.lvsim.dataSource.entities.getById(id);
+    v.camera.lookAt(e.position.getValue(v.clock.currentTime), new Cesium.HeadingPitchRange(0.0, -0.2, 400.0));
+    window.lvsim.settle(3000);
+  }, { id: site.turn.model, ta: pick.ta });
+  // the models in the scene have loaded (Cesium Model primitives, ready)
+  const ready = () => page.evaluate(() => {
+    const found = [];
+    const walk = (c) => {
+      if (!c) return;
+      if (c instanceof Cesium.Model) { if (c.show) found.push(c.ready); return; }
+      if (typeof c.get === 'function' && typeof c.length === 'number') for (let i = 0; i < c.length; i++) walk(c.get(i));
+    };
+    walk(window.viewer.scene.primitives);
+    return { n: found.length, ready: found.filter(Boolean).length };
+  });
+  await page.waitForFunction(() => {
+    let ok = 0;
+    const walk = (c) => {
+      if (!c) return;
+      if (c instanceof Cesium.Model) { if (c.show && c.ready) ok++; return; }
+      if (typeof c.get === 'function' && typeof c.length === 'number') for (let i = 0; i < c.length; i++) walk(c.get(i));
+    };
+    walk(window.viewer.scene.primitives);
+    return ok > 0;
+  }, null, { timeout: 60000 }).catch(() => {});
+  const rd = await ready();
+  check(rd.n > 0 && rd.ready === rd.n, `${site.name}: vehicle models loaded (Cesium Model primitives ready)`, JSON.stringify(rd));
+  await page.waitForTimeout(3000);
+  const clip = { x: 0, y: 0, width: 1280 - 440, height: 720 - 60 };
+  const shotA = path.join(OUT, `model-${site.name}-a.png`);
+  await page.screenshot({ path: shotA, clip });
+  await page.evaluate(({ id, tb }) => {
+    const ep = Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch);
+    const e = window.lvsim.dataSource.entities.getById(id);
+    window.lvsim.savedOrientation = e.orientation;
+    e.orientation = new Cesium.ConstantProperty(e.orientation.getValue(Cesium.JulianDate.addSeconds(ep, tb, new Cesium.JulianDate())));
+    window.lvsim.settle(3000);
+  }, { id: site.turn.model, tb: pick.tb });
+  await page.waitForTimeout(3000);
+  const shotB = path.join(OUT, `model-${site.name}-b.png`);
+  await page.screenshot({ path: shotB, clip });
+  const a = decodePng(fs.readFileSync(shotA)), b = decodePng(fs.readFileSync(shotB));
+  const diff = pixelDiff(a, b);
+  log(`${site.name}: ${site.turn.model} turned by ${pick.deg.toFixed(1)} deg: ${diff} of ${a.w * a.h} pixels differ`);
+  check(diff > 0.002 * a.w * a.h, `${site.name}: the model's pixels change with its attitude`, `${diff} pixels`);
+  // the same attitude again: the same picture (the difference above is the turn, not noise)
+  await page.evaluate(({ id }) => {
+    const e = window.lvsim.dataSource.entities.getById(id);
+    e.orientation = window.lvsim.savedOrientation;
+    window.lvsim.settle(3000);
+  }, { id: site.turn.model });
+  await page.waitForTimeout(3000);
+  const shotC = path.join(OUT, `model-${site.name}-c.png`);
+  await page.screenshot({ path: shotC, clip });
+  const same = pixelDiff(a, decodePng(fs.readFileSync(shotC)));
+  check(same < 0.1 * diff, `${site.name}: the model's own attitude again gives the first picture`, `${same} pixels differ`);
+
+  // Labels: a selected model shows its own label, and only it.
+  const shown = await page.evaluate((id) => {
+    window.viewer.selectedEntity = window.lvsim.dataSource.entities.getById(id);
+    return window.lvsim.shownLabels();
+  }, site.turn.model);
+  check(shown.length === 1 && shown[0] === site.turn.model, `${site.name}: only the selected model's label`, JSON.stringify(shown));
+  await page.evaluate(() => { window.viewer.selectedEntity = undefined; window.viewer.camera.lookAtTransform(Cesium.Matrix4.IDENTITY); });
 }
 
 // ---- one site in the browser -----------------------------------------------------------------
@@ -269,6 +417,47 @@ async function testSite(browser, site) {
     check(Math.abs(epochOff - target.t) < 1e-3, `${site.name}: event click sets the clock`,
           `${epochOff} vs ${target.t}`);
   }
+  // Labels only on the selected entity: none with nothing selected, then only the chosen one's.
+  const labelsWith = (sel) => page.evaluate((id) => {
+    const ds = window.lvsim.dataSource;
+    window.viewer.selectedEntity = id ? (ds.entities.getById(id) || window.viewer.entities.getById(id)) : undefined;
+    return window.lvsim.shownLabels();
+  }, sel);
+  check((await labelsWith(undefined)).length === 0, `${site.name}: no label with nothing selected`,
+        JSON.stringify(await labelsWith(undefined)));
+  const ev0 = czml.find((p) => String(p.id).startsWith('event/') && p.label);
+  if (ev0) {
+    await page.evaluate((t) => { window.viewer.clock.currentTime = Cesium.JulianDate.addSeconds(
+      Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch), t, new Cesium.JulianDate()); },
+    0.5 * (Math.min(...summary.phases.map((p) => p.t_start)) + Math.max(...summary.phases.map((p) => p.t_end))));
+    const shown = await labelsWith(ev0.id);
+    check(shown.length === 1, `${site.name}: one label with marker ${ev0.id} selected`, JSON.stringify(shown));
+  }
+
+  if (site.models) {
+    await checkModels(page, site, czml, summary);
+    await click('#home');            // back to the view of every track
+    await page.waitForTimeout(2500);
+  }
+  if (site.docsShot) {   // the models at one instant, the camera on the middle of them
+    await page.evaluate((d) => {
+      const v = window.viewer, ds = window.lvsim.dataSource;
+      const now = Cesium.JulianDate.addSeconds(Cesium.JulianDate.fromIso8601(window.lvsim.summary.epoch), d.t, new Cesium.JulianDate());
+      v.clock.currentTime = now;
+      const ps = window.lvsim.models.map((id) => ds.entities.getById(id)).filter((e) => e.isAvailable(now))
+        .map((e) => e.position.getValue(now)).filter(Boolean);
+      v.camera.lookAt(Cesium.BoundingSphere.fromPoints(ps).center, new Cesium.HeadingPitchRange(d.heading, d.pitch, d.range));
+      window.lvsim.settle(5000);
+    }, site.docsShot);
+    await page.waitForFunction(() => window.viewer.scene.globe.tilesLoaded, null, { timeout: 30000 }).catch(() => {});
+    await page.waitForTimeout(4000);
+    await page.screenshot({ path: process.env.LV_DOCS_MODEL_IMG, clip: { x: 0, y: 0, width: 840, height: 690 } });
+    log(`${site.name}: vehicle models at t = ${site.docsShot.t} s written to ${process.env.LV_DOCS_MODEL_IMG}`);
+    await page.evaluate(() => window.viewer.camera.lookAtTransform(Cesium.Matrix4.IDENTITY));
+    await click('#home');
+    await page.waitForTimeout(2500);
+  }
+
   // The picture at the mission's end: every track, marker and body where it ended.
   await page.evaluate(() => {
     window.viewer.clock.currentTime = window.viewer.clock.stopTime.clone();

@@ -51,6 +51,13 @@
     requestRenderMode: true, maximumRenderTimeChange: 0.0,
   });
   window.viewer = viewer;
+  // The vehicle models lit from the camera (a head lamp): the sun may be below the horizon
+  // at the mission's time and place, and a model in the dark shows no attitude.
+  const headLamp = new Cesium.DirectionalLight({ direction: new Cesium.Cartesian3(0, 0, -1), intensity: 2.0 });
+  viewer.scene.light = headLamp;
+  viewer.scene.preRender.addEventListener((scene) => {
+    Cesium.Cartesian3.clone(scene.camera.directionWC, headLamp.direction);
+  });
 
   // requestRenderMode draws on changes, but Cesium fills label glyphs and images into its
   // texture atlas asynchronously without asking for a frame: keep drawing for a moment after
@@ -157,11 +164,23 @@
     }
     state.tracks = tracks.map((t) => t.entity.id);
 
+    // Vehicle models "model/<phase>" (and "model/<phase>/spent"): the stack of the phase's
+    // stages, a glTF lvsim export built, turned by the body's attitude (CZML orientation).
+    const models = entities.filter((e) => e.id.startsWith('model/') && e.model);
+    state.models = models.map((e) => e.id);
+    for (const e of models) {
+      e.label = new Cesium.LabelGraphics({
+        text: e.name, font: '12px sans-serif', pixelOffset: new Cesium.Cartesian2(12, -12),
+        horizontalOrigin: Cesium.HorizontalOrigin.LEFT, fillColor: Cesium.Color.WHITE,
+        showBackground: true, disableDepthTestDistance: Number.POSITIVE_INFINITY });
+    }
+
     // A moving marker per body over all its phases: its position is the track of the phase
     // it is in, then (after its last phase) wherever that track holds it. It replaces the
-    // marker lvsim export rides on a body's last track only.
+    // marker lvsim export rides on a body's last track only. With vehicle models the models
+    // are the bodies: no marker.
     const tEnd = missionSeconds(epoch, viewer.clock.stopTime);
-    for (const b of summary.bodies) {
+    for (const b of (models.length > 0 ? [] : summary.bodies)) {
       const mine = tracks.filter((t) => t.body === b.name).sort((x, y) => x.t0 - y.t0);
       if (mine.length === 0) continue;
       const pos = new Cesium.CompositePositionProperty();
@@ -251,6 +270,21 @@
         lab.backgroundColor = new Cesium.Color(0.1, 0.1, 0.12, 0.75);
       });
     }
+    // Labels only on the selected entity (a vehicle, a marker; a marker group's one label on
+    // any of its members): bodies that fly together and markers at one place never write over
+    // each other. The phase and event lists name everything; click one to see its label.
+    const labelOwner = new Map();      // entity -> the entities whose selection shows its label
+    for (const g of groups) {
+      g.members.forEach((ev, i) => { if (i === 0) labelOwner.set(ev.entity, g.members.map((x) => x.entity)); });
+    }
+    const labelled = [...entities, ...viewer.entities.values].filter((e) => e.label);
+    for (const e of labelled) {
+      const owners = labelOwner.get(e) || (e.id.startsWith('event/') ? [] : [e]);
+      e.label.show = new Cesium.CallbackProperty(() => owners.includes(viewer.selectedEntity), false);
+    }
+    viewer.selectedEntityChanged.addEventListener(() => settle());
+    state.shownLabels = () => labelled.filter((e) => e.isShowing && e.isAvailable(viewer.clock.currentTime) &&
+      e.label.show.getValue(viewer.clock.currentTime)).map((e) => e.id);
     if (events.length === 0) {   // no markers in the CZML: list the summary's events
       for (const p of summary.phases) {
         for (const x of p.events || []) if (x.name) events.push({ t: x.t, text: x.name, phase: p.name });
@@ -306,7 +340,7 @@
     $('home').addEventListener('click', () => { flyHome(bs, 1.5); });
     await flyHome(bs, 1.5);
     settle();
-    setStatus(`${tracks.length} tracks, ${events.length} events`);
+    setStatus(`${tracks.length} tracks, ${models.length} vehicle models, ${events.length} events`);
     state.summary = summary;
     state.dataSource = ds;
     state.ready = true;
