@@ -73,6 +73,10 @@ typedef struct lv_dof3_config {
     size_t n_engines;          /* 0: unpowered */
     const lv_engine_config *engines; /* [n_engines], copied (their tables borrowed) */
     const lv_aero_config *aero; /* copied (tables borrowed); NULL: no aerodynamic force */
+    double nose_radius;        /* m, > 0: the nose radius of the stagnation-point heat flux
+                                  (output heat_flux; default 1) */
+    double k_sutton_graves;    /* kg^0.5/m, >= 0: Sutton-Graves constant of the atmosphere's gas
+                                  (default LV_SUTTON_GRAVES_EARTH: air) */
 
     /* Default values of the parameters of the same name (the paper's userPar). */
     double start_lat, start_lon; /* rad, geodetic */

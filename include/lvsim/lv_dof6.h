@@ -163,6 +163,10 @@ typedef struct lv_dof6_config {
                                              exit centre, where the jet damping's exhaust
                                              leaves; NULL: at its position (engine_geom) */
     const lv_aero_config *aero;           /* copied; NULL: no aerodynamic force or moment */
+    double nose_radius;        /* m, > 0: the nose radius of the stagnation-point heat flux
+                                  (output heat_flux; default 1) */
+    double k_sutton_graves;    /* kg^0.5/m, >= 0: Sutton-Graves constant of the atmosphere's gas
+                                  (default LV_SUTTON_GRAVES_EARTH: air) */
     const lv_dof6_moments *moments;       /* copied; NULL: no aerodynamic moment (the force
                                              acts through the CG) */
 

@@ -13,6 +13,11 @@
 /* Standard acceleration of gravity, m/s^2 (3rd CGPM, 1901; exact): the g0 of the specific
  * impulse (mdot = F / (Isp g0)), of load factors, and of the US Standard Atmosphere 1976. */
 #define LV_G0 9.80665
+/* Sutton-Graves constants k of the stagnation-point heat flux q = k sqrt(rho / r_n) V^3, in
+ * kg^0.5/m (W/m^2 with rho in kg/m^3, r_n in m, V in m/s): Earth's air and Mars' CO2-N2
+ * atmosphere (Tauber, NASA TP-2914, 1989, after Sutton & Graves, NASA TR R-376, 1971). */
+#define LV_SUTTON_GRAVES_EARTH 1.7415e-4
+#define LV_SUTTON_GRAVES_MARS 1.9027e-4
 
 /* Units are SI strings; a dimensionless quantity's unit is "1" (as Modelica's unit="1" and
  * the SI Brochure, 9th ed., sec. 2.3.3, write it): the unit of every model variable, law key

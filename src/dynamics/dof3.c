@@ -36,7 +36,9 @@ enum {
     O_ALPHA, O_BETA, O_MU, O_THR, O_DOWNRANGE,
     O_SMA, O_ECC, O_INC, O_RAAN, O_ARGP, O_APO, O_PERI,
     O_THETA, O_PSI, O_PHI, O_PROP_LEFT, O_TGT_DIST, O_TGT_BEAR, O_TGT_OVER, O_THR_EFF,
-    O_ENG_RUN, O_N
+    O_ENG_RUN,
+    O_HEAT_SG, O_HEAT_FM, /* aerothermal heating */
+    O_N
 };
 
 /* Error control (docs/integration.md): the position is measured from the planet's centre, so
@@ -130,6 +132,9 @@ static const lv_var output_vars[O_N] = {
      "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
     {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
+    {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "
+     "(Sutton-Graves)", 0, 0},
+    {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},
 };
 
 /* The commanded throttle's saturation: two state events after the flight model's (burnout,
@@ -177,6 +182,7 @@ struct lv_dof3 {
     lv_thr thr;
     double c_min, c_max;         /* the throttle range every engine accepts */
     double p_ae;                 /* m^2: the engines' exit areas */
+    double nose_radius, k_sg;    /* m, kg^0.5/m: the heat flux output's (lv_dof3_config) */
     int stop_at_burnout;
     lv_event_def *events;        /* [1 + fe.n + SAT_N]: the flight model's, then sat_events */
 
@@ -537,6 +543,8 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     for (size_t i = 0; s->rt.engines_on && i < m->n_eng; i++)
         running += !m->eng[i].out;
     y[O_ENG_RUN] = (double)running;
+    y[O_HEAT_SG] = lv_flight_heat_flux_sg(m->k_sg, air->rho, m->nose_radius, air->v_air_n);
+    y[O_HEAT_FM] = lv_flight_heat_flux_fm(air->rho, air->v_air_n);
     y[O_THR_EFF] = 0.0;
     for (size_t i = 0; i < m->n_eng && running > 0; i++)
         if (!m->eng[i].out) { /* identical limits: dof3 refuses ranges that do not overlap */
@@ -578,6 +586,8 @@ void lv_dof3_config_default(lv_dof3_config *cfg)
     cfg->planet = lv_planet_earth();
     cfg->m0 = 1000.0;
     cfg->throttle = 1.0;
+    cfg->nose_radius = 1.0;
+    cfg->k_sutton_graves = LV_SUTTON_GRAVES_EARTH;
     lv_steering_init(&cfg->steering, "inputs", NULL); /* target: the start point */
     lv_throttle_init(&cfg->throttle_law, "nominal", NULL);
 }
@@ -683,6 +693,8 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
 
     /* masses and start values */
     if ((st = lv_flight_check_mass("dof3", cfg->m0, cfg->propellant, err)) != LV_OK ||
+        (st = lv_flight_check_heating("dof3", cfg->nose_radius, cfg->k_sutton_graves, err)) !=
+            LV_OK ||
         (st = check_finite("start_lon", cfg->start_lon, "rad", err)) != LV_OK ||
         (st = check_finite("start_h", cfg->start_h, "m", err)) != LV_OK ||
         (st = check_finite("start_fpa", cfg->start_fpa, "rad", err)) != LV_OK ||
@@ -702,6 +714,8 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
                      cfg->start_vel);
         goto fail;
     }
+    m->nose_radius = cfg->nose_radius;
+    m->k_sg = cfg->k_sutton_graves;
 
     /* environment */
     if ((st = lv_flight_world_setup(&m->world, "dof3", &cfg->planet, cfg->gravity, cfg->atmo,

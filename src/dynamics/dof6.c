@@ -47,7 +47,9 @@ enum {
     O_LA, O_MA, O_NA, O_LT, O_MT, O_NT, O_CGX, O_CGY, O_CGZ, O_IXX, O_IYY, O_IZZ,
     O_QNORM, O_GP, O_GY, O_THR, O_PROP_LEFT, O_SMA, O_ECC, O_INC, O_APO, O_PERI,
     O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_THR_EFF,
-    O_ENG_RUN, O_N
+    O_ENG_RUN,
+    O_HEAT_SG, O_HEAT_FM, /* aerothermal heating */
+    O_N
 };
 /* outputs of a steering law (after O_N), then of a controller */
 enum { O_THC = O_N, O_PSC, O_PHC, O_ER, O_EP, O_EY, O_GPC, O_GYC, O_NMAX };
@@ -173,6 +175,9 @@ static const lv_var output_vars[O_N] = {
      "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
     {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
+    {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "
+     "(Sutton-Graves)", 0, 0},
+    {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},
 };
 
 static const lv_var steer_output_vars[O_NMAX - O_N] = {
@@ -215,6 +220,7 @@ struct lv_dof6 {
     size_t n_states;             /* 14, + 2 actuator states (PD), + 2 integrals (PID) */
     lv_var outputs[O_NMAX];
     size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
+    double nose_radius, k_sg;    /* m, kg^0.5/m: the heat flux output's (lv_dof6_config) */
     lv_var params[P_N];
     unsigned char param_inactive[P_N]; /* lv_model_def.param_inactive: inputs given otherwise */
     lv_flight_ends fe;           /* burnout (event 0) and the named ends (flight_ends.h) */
@@ -974,6 +980,8 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     for (size_t i = 0; s->rt.engines_on && i < m->n_eng; i++)
         running += !m->eng[i].out;
     y[O_ENG_RUN] = (double)running;
+    y[O_HEAT_SG] = lv_flight_heat_flux_sg(m->k_sg, pt.air.rho, m->nose_radius, pt.air.v_air_n);
+    y[O_HEAT_FM] = lv_flight_heat_flux_fm(pt.air.rho, pt.air.v_air_n);
     y[O_THR_EFF] = 0.0;
     for (size_t i = 0; i < m->n_eng && running > 0; i++)
         if (!m->eng[i].out) { /* as lv_dof3: the first running engine's clamp */
@@ -1053,6 +1061,8 @@ void lv_dof6_config_default(lv_dof6_config *cfg)
     cfg->planet = lv_planet_earth();
     cfg->m0 = 1000.0;
     cfg->throttle = 1.0;
+    cfg->nose_radius = 1.0;
+    cfg->k_sutton_graves = LV_SUTTON_GRAVES_EARTH;
     for (int i = 0; i < 3; i++)
         cfg->mass.inertia_full[i] = cfg->mass.inertia_empty[i] = 1.0;
     cfg->terms = (lv_dof6_terms){1, 1, LV_DOF6_DAMPING_AIR};
@@ -1362,8 +1372,12 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
     if (m == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     snprintf(m->name, sizeof m->name, "%s", cfg->name != NULL ? cfg->name : "dof6");
-    if ((st = lv_flight_check_mass("dof6", cfg->m0, cfg->propellant, err)) != LV_OK)
+    if ((st = lv_flight_check_mass("dof6", cfg->m0, cfg->propellant, err)) != LV_OK ||
+        (st = lv_flight_check_heating("dof6", cfg->nose_radius, cfg->k_sutton_graves, err)) !=
+            LV_OK)
         goto fail;
+    m->nose_radius = cfg->nose_radius;
+    m->k_sg = cfg->k_sutton_graves;
     const double fin[] = {cfg->start_lon, cfg->start_h, cfg->start_fpa, cfg->start_chi,
                           cfg->start_time, cfg->start_psi, cfg->start_theta, cfg->start_phi,
                           cfg->start_p, cfg->start_q, cfg->start_r, cfg->gimbal_pitch,

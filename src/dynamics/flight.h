@@ -96,6 +96,18 @@ typedef struct lv_flight_air {
     double q;                   /* Pa, dynamic pressure rho V^2 / 2 */
 } lv_flight_air;
 
+/* Aerothermal heating at the flight condition (docs/models.md, "Aerothermal heating"), W/m^2:
+ * the stagnation point's convective heat flux of a sphere of nose radius r_n [m] by Sutton &
+ * Graves (NASA TR R-376, 1971; the form q = k sqrt(rho / r_n) V^3 of Tauber, NASA TP-2914,
+ * 1989, eq. 1, k in kg^0.5/m), and the free-molecular flux rho V^3 / 2 a surface normal to the
+ * flow takes at full accommodation (the fairing-jettison criterion of launch vehicles' user's
+ * manuals). V: the air-relative speed. */
+static inline double lv_flight_heat_flux_sg(double k, double rho, double r_n, double v)
+{
+    return k * sqrt(rho / r_n) * v * v * v;
+}
+static inline double lv_flight_heat_flux_fm(double rho, double v) { return 0.5 * rho * v * v * v; }
+
 /* Atmosphere at the geodetic altitude (above the model's top: vacuum with the top layer's
  * speed of sound; below its floor: the floor's values - the model's domain ends there), the
  * wind at the vehicle, Mach and q. Returns 0; 1 (state not acceptable: a NaN altitude, the

@@ -24,6 +24,17 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
     return LV_OK;
 }
 
+lv_status lv_flight_check_heating(const char *model, double nose_radius, double k_sg, lv_err *err)
+{
+    if (!isfinite(nose_radius) || !(nose_radius > 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "%s: nose_radius = %g m (must be > 0)", model,
+                       nose_radius);
+    if (!isfinite(k_sg) || !(k_sg >= 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "%s: k_sutton_graves = %g kg^0.5/m (must be >= 0)",
+                       model, k_sg);
+    return LV_OK;
+}
+
 lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
                                  lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err)
 {

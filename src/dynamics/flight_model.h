@@ -78,6 +78,9 @@ typedef struct lv_flight_rt {
 /* The start mass m0 > 0 [kg] and the burning stage's propellant 0 <= propellant < m0 [kg];
  * LV_ERR_INPUT naming the model ("dof3: start mass m0 = -1 kg (must be > 0)") otherwise. */
 lv_status lv_flight_check_mass(const char *model, double m0, double propellant, lv_err *err);
+/* The heat flux outputs' nose radius (> 0, m) and Sutton-Graves constant (>= 0, kg^0.5/m),
+ * both finite (lv_dof3_config). */
+lv_status lv_flight_check_heating(const char *model, double nose_radius, double k_sg, lv_err *err);
 
 /* The engines of a configuration: *eng = [n] initialised from engines[n] (lv_engine_init),
  * *n_eng the number initialised (also after an error, for the caller's free), *eng_buf

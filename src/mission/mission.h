@@ -77,6 +77,8 @@ typedef struct lv_planet_def {
     lv_slot rotation_rate;   /* rad/s about +z; LV_NO_SLOT: base's */
     lv_slot r_ref;           /* m, reference radius of the zonal coefficients; LV_NO_SLOT:
                                 base's with a base, else the radius */
+    double sutton_graves_k;  /* kg^0.5/m, the heat flux's gas constant; NaN: the base's
+                                (lv_kit_heating) */
     int zonal_given;         /* `zonal:` written (it replaces base's J2..J4, even when empty) */
     size_t n_zonal;          /* J2 .. J_(n_zonal + 1) */
     lv_slot *zonal;          /* [n_zonal] */
@@ -181,6 +183,8 @@ typedef struct lv_stage_def {
     size_t n_engines;
     lv_engine_def *engines;
     lv_rigid_body_def rigid; /* 6-DoF data (rigid.present 0: none) */
+    lv_slot nose_radius;     /* m: the nose's radius when this stage is the top of a stack (the
+                                heat flux output); LV_NO_SLOT: 1 m (lv_kit_heating) */
     lv_slot gear[LV_GEAR_N]; /* `landing_gear:` limits (slots "<stage>.landing_gear.<key>");
                                 LV_NO_SLOT each without `landing_gear:`: the defaults */
     /* `geometry: {length, diameter, span}` (m): the shape of the CZML export's vehicle model

@@ -4,6 +4,7 @@
 
 #include "mission/mission.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,19 +14,19 @@
 static const char *const planet_presets[] = { "earth", "moon", "mars", NULL };
 
 /* planet: {name, base, radius, flattening, gm, rotation_rate(_deg), r_ref, zonal,
- * coefficients}: a planet by its constants (docs/mission-format.md). Written numbers are
+ * coefficients, sutton_graves_k}: a planet by its constants (docs/mission-format.md). Written numbers are
  * slots "environment.planet.<key>" ("environment.planet.J2" ... for the zonal list). */
 static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_def *e,
                                   int *earth)
 {
     static const char *const keys[] = { "name", "base", "radius", "flattening", "gm",
                                         "rotation_rate", "rotation_rate_deg", "r_ref", "zonal",
-                                        "coefficients", NULL };
+                                        "coefficients", "sutton_graves_k", NULL };
     const char *what = "environment, planet";
     lv_planet_def *pd = &e->pdef;
     const lv_ynode *v;
     lv_status st;
-    size_t i;
+    size_t i, base = 0;
     if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
         return st;
     pd->custom = 1;
@@ -36,6 +37,7 @@ static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_de
             (st = lv_planet_by_name(planet_presets[i], &pd->base, NULL)) != LV_OK)
             return st;
         pd->has_base = 1;
+        base = i;
         *earth = i == 0;
     } else {
         const char *req[] = { "radius", "gm" };
@@ -92,6 +94,18 @@ static lv_status parse_planet_map(const lv_pctx *c, const lv_ynode *n, lv_env_de
         if ((st = lv_pk_slot(c, v ? v : vd, what, v ? num[k].key : "rotation_rate_deg", slot,
                              num[k].unit, num[k].range, vd != NULL, num[k].slot)) != LV_OK)
             return st;
+    }
+    /* the heat flux's constant, kg^0.5/m: not a run parameter (no unit of the Modelica
+     * grammar has the square root of a kilogram) */
+    pd->sutton_graves_k = NAN;
+    if ((v = lv_pk_get(n, "sutton_graves_k")) != NULL) {
+        if ((st = lv_pk_num(c, v, what, "sutton_graves_k", &pd->sutton_graves_k)) != LV_OK)
+            return st;
+        if (!(pd->sutton_graves_k >= 0.0 && pd->sutton_graves_k < 1.0))
+            return lv_pk_fail(c, v, "%s: sutton_graves_k: a constant in kg^0.5/m in [0, 1) "
+                              "expected (air: 1.7415e-4), found %.6g", what, pd->sutton_graves_k);
+    } else if (pd->has_base && strcmp(planet_presets[base], "mars") == 0) {
+        pd->sutton_graves_k = LV_SUTTON_GRAVES_MARS;
     }
     if ((v = lv_pk_get(n, "zonal")) != NULL) {
         if (v->kind != LV_YNODE_SEQ && !lv_yaml_is_null(v))
@@ -279,6 +293,7 @@ lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
     e->world = LV_WORLD_FLAT;
     e->pdef.radius = e->pdef.flattening = e->pdef.gm = LV_NO_SLOT;
     e->pdef.rotation_rate = e->pdef.r_ref = LV_NO_SLOT;
+    e->pdef.sutton_graves_k = NAN;
     for (size_t k = 0; k < 3; k++)
         e->atmo_par[k] = e->wind_ned[k] = LV_NO_SLOT;
     e->wind_interp = LV_INTERP_LINEAR;

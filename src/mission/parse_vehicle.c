@@ -442,7 +442,8 @@ static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *g, lv_stage_de
 static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_stage_def *s)
 {
     static const char *const keys[] = { "name", "dry_mass", "propellant_mass", "engines",
-                                        "rigid_body", "landing_gear", "geometry", NULL };
+                                        "rigid_body", "landing_gear", "geometry", "nose_radius",
+                                        NULL };
     char what[LV_WHAT_MAX], buf[64], slot[LV_NAME_MAX + 32];
     const lv_ynode *v;
     lv_status st;
@@ -473,6 +474,13 @@ static lv_status parse_stage(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         return st;
     if ((st = parse_geometry(c, lv_pk_get(n, "geometry"), s)) != LV_OK)
         return st;
+    s->nose_radius = LV_NO_SLOT;
+    if ((v = lv_pk_get(n, "nose_radius")) != NULL) {
+        snprintf(slot, sizeof slot, "%s.nose_radius", s->name);
+        if ((st = lv_pk_slot(c, v, what, "nose_radius", slot, "m", LV_RANGE_POS, 0,
+                             &s->nose_radius)) != LV_OK)
+            return st;
+    }
 
     v = lv_pk_get(n, "engines");
     if (v == NULL || lv_yaml_is_null(v))

@@ -261,6 +261,7 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     lv_kit_world(&s->kit, &cfg.planet, &cfg.gravity, &cfg.atmo, &cfg.wind, &cfg.wind_user);
     const double prop0 = bc->prop[ph->stages[0]];
     cfg.m0 = lv_kit_stack_mass(bc, 0);
+    lv_kit_heating(bc, &cfg.nose_radius, &cfg.k_sutton_graves);
     cfg.propellant = prop0;
     const size_t ne = prop0 > 0.0 ? lv_kit_engines(bc, bottom, s->kit.engines) : 0;
     cfg.n_engines = ne;

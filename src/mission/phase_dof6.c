@@ -645,6 +645,7 @@ static lv_status dof6_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
     const double m_upper = lv_kit_stack_mass(bc, 1);
     const double prop0 = bc->prop[ph->stages[0]];
     cfg.m0 = lv_kit_stack_mass(bc, 0);
+    lv_kit_heating(bc, &cfg.nose_radius, &cfg.k_sutton_graves);
     cfg.propellant = prop0;
     cfg.mass.m_full = lv_kit_val(bc, bottom->dry_mass, 0.0) +
                       lv_kit_val(bc, bottom->propellant_mass, 0.0) + m_upper;

@@ -2,6 +2,7 @@
  * parameters, the stack's mass, the environment, engines and ends of a built phase model. */
 #include "mission/phase_kit.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,6 +55,19 @@ double lv_kit_stack_mass(const lv_build_ctx *bc, size_t first)
         m += lv_kit_val(bc, d->stages[si].dry_mass, 0.0) + bc->prop[si];
     }
     return m;
+}
+
+void lv_kit_heating(const lv_build_ctx *bc, double *nose_radius, double *k_sutton_graves)
+{
+    const lv_mission_def *d = bc->def;
+    const lv_phase_def *ph = &d->phases[bc->k];
+    const lv_planet_def *pd = &d->env.pdef;
+    *nose_radius = lv_kit_val(bc, d->stages[ph->stages[ph->n_stages - 1]].nose_radius, 1.0);
+    /* (a planet by its constants has its base's constant from the parser) */
+    *k_sutton_graves = !isnan(pd->sutton_graves_k) ? pd->sutton_graves_k
+                       : !pd->custom && d->env.planet != NULL && strcmp(d->env.planet, "mars") == 0
+                           ? LV_SUTTON_GRAVES_MARS
+                           : LV_SUTTON_GRAVES_EARTH;
 }
 
 lv_status lv_kit_begin(const lv_build_ctx *bc, lv_kit_model *k, int with_engines,

@@ -69,6 +69,12 @@ lv_status lv_kit_resolve_params(const lv_mission_def *d, lv_phase_def *ph, lv_er
  * the propellant it has left at the phase's start (bc->prop). */
 double lv_kit_stack_mass(const lv_build_ctx *bc, size_t first);
 
+/* The heat flux outputs' data (docs/models.md, "Aerothermal heating"): the nose radius [m] of
+ * the phase's top stage (its `nose_radius`, else 1 m) and the Sutton-Graves constant
+ * [kg^0.5/m] of the planet's air (its `sutton_graves_k`, else its preset's or base's: Mars
+ * LV_SUTTON_GRAVES_MARS, any other LV_SUTTON_GRAVES_EARTH). */
+void lv_kit_heating(const lv_build_ctx *bc, double *nose_radius, double *k_sutton_graves);
+
 /* ---- the built model's common parts ------------------------------------------------------ */
 
 /* One of the phase's ends as a state event of the model (lv_kit_ends). */

@@ -672,6 +672,8 @@ static const quantity quantities[] = {
     {1, "mach", "Mach number", "Mach number [1]", {"mach", NULL}, {NULL}, "", "", 1.0, {NULL}, "", 0, 0},
     {1, "dynamic_pressure", "Dynamic pressure", "dynamic pressure [kPa]", {"q_dyn", NULL},
      {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
+    {1, "heat_flux", "Stagnation-point heat flux (Sutton-Graves)", "heat flux [kW/m\xc2\xb2]",
+     {"heat_flux", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
      {"n_normal", NULL}, "axial", "normal", 1.0, {NULL}, "", 0, 0},
     {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},

@@ -385,6 +385,25 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             fputs(flat ? "&ndash; (flat world: no atmosphere)" : "&ndash; (no atmosphere met)", f);
         }
         fputs("</td></tr>\n", f);
+        const cJSON *heat = cJSON_GetObjectItemCaseSensitive(b, "heating");
+        if (cJSON_IsObject(heat)) { /* a planet's flight models */
+            const cJSON *hs = cJSON_GetObjectItemCaseSensitive(heat, "max_heat_flux");
+            const cJSON *hf = cJSON_GetObjectItemCaseSensitive(heat, "fm_below_1135");
+            int first = 1;
+            key_row(f, "max stagnation-point heat flux (Sutton-Graves)");
+            kv(f, "q", jnum(hs, "value"), 1e-3, 3, "kW/m&sup2;", &first);
+            kv(f, "at t", jnum(hs, "t"), 1.0, 3, "s", &first);
+            kv(f, "h", jnum(hs, "h"), 1e-3, 3, "km", &first);
+            kv(f, "heat load", jnum(heat, "heat_load"), 1e-6, 3, "MJ/m&sup2;", &first);
+            fputs("</td></tr>\n", f);
+            if (cJSON_IsObject(hf)) {
+                first = 1;
+                key_row(f, "free-molecular heat flux below 1135 W/m&sup2;");
+                kv(f, "at t", jnum(hf, "t"), 1.0, 3, "s", &first);
+                kv(f, "h", jnum(hf, "h"), 1e-3, 3, "km", &first);
+                fputs("</td></tr>\n", f);
+            }
+        }
         static const char *const nk[2] = {"max_n_axial", "max_n_normal"};
         static const char *const nt[2] = {"max axial load factor in flight",
                                           "max normal load factor in flight"};

@@ -403,6 +403,73 @@ static cJSON *touchdown_json(const lv_plot_data *d, size_t bi)
     return NULL;
 }
 
+#define FM_JETTISON 1135.0 /* W/m^2: the free-molecular flux below which launchers jettison
+                              their fairing (Ariane 5 User's Manual, issue 5, sec. 2.3.6) */
+
+/* The aerothermal heating of body bi (docs/visualization.md, "Key figures"; docs/models.md,
+ * "Aerothermal heating"): the largest stagnation-point heat flux (`heat_flux`, Sutton-Graves)
+ * with its time, altitude and phase; the heat load, its time integral over the body's phases
+ * by the trapezoidal rule on the phase files' rows (an event instant's two rows add nothing);
+ * and the first time the free-molecular flux falls below FM_JETTISON (linear between the two
+ * rows around it). NULL: no phase has the columns. */
+static cJSON *heating_json(const lv_plot_data *d, size_t bi)
+{
+    const lv_plot_body *b = &d->bodies[bi];
+    double sg_max = -INFINITY, sg_t = NAN, sg_h = NAN, load = 0.0, fm_t = NAN, fm_h = NAN;
+    const char *sg_phase = NULL, *fm_phase = NULL;
+    int any = 0;
+    for (size_t i = 0; i < b->n; i++) {
+        const size_t k = b->phase[i];
+        const lv_results_table *t = d->phases[k].csv;
+        if (t == NULL || t->n_rows == 0)
+            continue;
+        const long ct = col(t, "time", NULL), ch = col(t, "h", NULL);
+        const long csg = col(t, "heat_flux", NULL), cfm = col(t, "heat_flux_fm", NULL);
+        if (csg < 0 || cfm < 0)
+            continue;
+        any = 1;
+        for (size_t r = 0; r < t->n_rows; r++) {
+            const double q = at(t, r, csg), tr = at(t, r, ct);
+            if (q > sg_max) {
+                sg_max = q;
+                sg_t = tr;
+                sg_h = at(t, r, ch);
+                sg_phase = d->res->phases[k].name;
+            }
+            if (r == 0)
+                continue;
+            const double t0 = at(t, r - 1, ct), q0 = at(t, r - 1, csg);
+            load += 0.5 * (tr - t0) * (q + q0);
+            const double f0 = at(t, r - 1, cfm), f1 = at(t, r, cfm);
+            if (isnan(fm_t) && f0 >= FM_JETTISON && f1 < FM_JETTISON) {
+                const double w = (f0 - FM_JETTISON) / (f0 - f1);
+                fm_t = t0 + w * (tr - t0);
+                fm_h = at(t, r - 1, ch) + w * (at(t, r, ch) - at(t, r - 1, ch));
+                fm_phase = d->res->phases[k].name;
+            }
+        }
+    }
+    if (!any)
+        return NULL;
+    cJSON *o = cJSON_CreateObject();
+    cJSON *m = cJSON_AddObjectToObject(o, "max_heat_flux");
+    num(m, "value", sg_max);
+    num(m, "t", sg_t);
+    num(m, "h", sg_h);
+    if (sg_phase != NULL)
+        cJSON_AddStringToObject(m, "phase", sg_phase);
+    num(o, "heat_load", load);
+    if (fm_phase != NULL) {
+        m = cJSON_AddObjectToObject(o, "fm_below_1135");
+        num(m, "t", fm_t);
+        num(m, "h", fm_h);
+        cJSON_AddStringToObject(m, "phase", fm_phase);
+    } else {
+        cJSON_AddNullToObject(o, "fm_below_1135");
+    }
+    return o;
+}
+
 lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
 {
     *out = NULL;
@@ -416,6 +483,8 @@ lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
     {
         cJSON *bk = body_keys(d, i, d->flat), *td = touchdown_json(d, i);
         cJSON_AddItemToObject(bk, "touchdown", td ? td : cJSON_CreateNull());
+        cJSON *heat = heating_json(d, i);
+        cJSON_AddItemToObject(bk, "heating", heat ? heat : cJSON_CreateNull());
         cJSON_AddItemToArray(bodies, bk);
     }
     char *text = cJSON_Print(doc);

@@ -92,6 +92,30 @@ def compare_state(got, want, what):
             close(got.get(k), v, "%s.%s" % (what, k))
 
 
+def heating(names, rows):
+    """The heating figures of docs/visualization.md: the largest heat_flux (its time, altitude,
+    phase), the heat load by the trapezoidal rule over the body's phase rows, and the first
+    downward crossing of 1135 W/m^2 by heat_flux_fm (linear between the rows around it)."""
+    hmax, load, fm = None, 0.0, None
+    any_cols = False
+    for pn in names:
+        rs = rows[pn]
+        if not rs or "heat_flux" not in rs[0]:
+            continue
+        any_cols = True
+        for i, r in enumerate(rs):
+            if hmax is None or r["heat_flux"] > hmax[0]:
+                hmax = (r["heat_flux"], r["time"], r["h"], pn)
+            if i == 0:
+                continue
+            p = rs[i - 1]
+            load += 0.5 * (r["time"] - p["time"]) * (r["heat_flux"] + p["heat_flux"])
+            if fm is None and p["heat_flux_fm"] >= 1135 and r["heat_flux_fm"] < 1135:
+                w = (p["heat_flux_fm"] - 1135) / (p["heat_flux_fm"] - r["heat_flux_fm"])
+                fm = (p["time"] + w * (r["time"] - p["time"]), p["h"] + w * (r["h"] - p["h"]), pn)
+    return {"max": hmax, "load": load, "fm": fm} if any_cols else None
+
+
 def key_figures(outdir):
     summ = json.load(open(os.path.join(outdir, "summary.json")))
     phases = summ["phases"]
@@ -160,7 +184,8 @@ def key_figures(outdir):
             else:
                 gc["distance"] = math.hypot(last["x"] - r0["x"], last["y"] - r0["y"])
         bodies.append({"name": name, "final": final, "max_q": q, "max_n_axial": na, "max_n_normal": nn,
-                       "burnouts": burn, "separations": sep, "injection": inj, "ground_contact": gc})
+                       "burnouts": burn, "separations": sep, "injection": inj, "ground_contact": gc,
+                       "heating": heating(names, rows)})
     return summ, bodies
 
 
@@ -192,6 +217,22 @@ def compare(outdir):
             for k, v in wi["orbit"].items():
                 close(gi["orbit"][k], v, "%s orbit %s" % (n, k))
             close(gi["fpa_inertial"], wi["fpa_inertial"], n + " injection fpa_inertial")
+        gh, wh = g.get("heating"), w["heating"]
+        if wh is None:
+            check(gh is None, n + ": heating where no phase has heat flux columns")
+        else:
+            check(gh is not None, n + ": heating missing")
+            gh = gh or {"max_heat_flux": {}, "fm_below_1135": None}
+            for i, k in enumerate(("value", "t", "h")):
+                close(gh["max_heat_flux"].get(k), wh["max"][i], "%s max_heat_flux %s" % (n, k))
+            check(gh["max_heat_flux"].get("phase") == wh["max"][3], n + " max_heat_flux phase")
+            close(gh.get("heat_load"), wh["load"], n + " heat_load", rel=1e-9)
+            if wh["fm"] is None:
+                check(gh["fm_below_1135"] is None, n + ": fm_below_1135 where none expected")
+            else:
+                for i, k in enumerate(("t", "h")):
+                    close((gh["fm_below_1135"] or {}).get(k), wh["fm"][i], "%s fm_below_1135 %s" % (n, k),
+                          rel=1e-9)
         if w["ground_contact"] is None:
             check(g["ground_contact"] is None, n + ": ground contact where none expected")
         else:

@@ -59,3 +59,4 @@ lv_add_unit_test(test_mission_valid unit/test_mission_valid.c)
 # the rocket equation), an engine-out at a time, bad `engines:` / `engine_out:` values.
 lv_add_unit_test(test_engines unit/test_engines.c)
 lv_add_unit_test(test_flare unit/test_flare.c)
+lv_add_unit_test(test_heating unit/test_heating.c)
