@@ -188,8 +188,10 @@ static void stage_list(const lv_mission *m, const lv_phase_info *p, const unsign
 /* Phase k's separation, if its children carry fewer stages than it does: the row of body s
  * (the first row of its child that carries s, or k's last row when s flies no further) and
  * its label: the user's (`separation: {name: ...}` of the first child that has one), else
- * "separation of X": X the part that holds k's bottom (burning) stage, or, when one child
- * carries that on, the stages no child carries (a jettisoned fairing). 0: none. */
+ * "separation of X": X the stages that the child carrying the most stages does not carry
+ * (the stack goes on, the booster or the fairing leaves, whether or not the part that leaves
+ * flies a phase of its own); when two children carry equally many, the part that holds k's
+ * bottom (burning) stage (a spent stage under two payloads). 0: none. */
 static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char *label,
                       size_t cap, int *named)
 {
@@ -200,7 +202,8 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
     if (p.n_stages > 64)
         return 0;
     unsigned char carried[64] = {0}, part[64] = {0};
-    size_t n_groups = 0, child_of_s = (size_t)-1, child_of_bottom = (size_t)-1;
+    size_t child_of_s = (size_t)-1, child_of_bottom = (size_t)-1;
+    size_t largest = (size_t)-1, largest_n = 0; /* the child carrying the most; -1 on a tie */
     int fewer = 0;
     const char *user = NULL; /* the first child's `separation: {name: ...}` */
     for (size_t c = 0; c < n; c++) {
@@ -211,7 +214,12 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
         if (cp.n_stages >= p.n_stages) /* carries on whole (an alternative with the stack) */
             continue;
         fewer = 1;
-        n_groups++;
+        if (cp.n_stages > largest_n) {
+            largest = c;
+            largest_n = cp.n_stages;
+        } else if (cp.n_stages == largest_n) {
+            largest = (size_t)-1;
+        }
         if (user == NULL)
             user = lv_mission_phase_separation_name(m, c);
         for (size_t i = 0; i < p.n_stages; i++)
@@ -224,11 +232,12 @@ static int separation(const lv_run *run, size_t k, size_t s, size_t *k_row, char
     }
     if (!fewer)
         return 0;
-    int dropped = 0;
-    for (size_t i = 0; i < p.n_stages; i++)
-        dropped |= !carried[i];
-    if (child_of_bottom == (size_t)-1 || (n_groups == 1 && dropped)) {
-        /* the bottom stage is dropped, or the one child carries it on: name what is left */
+    if (largest != (size_t)-1) { /* the stack goes on: name what leaves it */
+        lv_phase_info lp;
+        lv_mission_phase_info(m, largest, &lp);
+        for (size_t i = 0; i < p.n_stages; i++)
+            part[i] = (unsigned char)!in_phase(&lp, p.stages[i]);
+    } else if (child_of_bottom == (size_t)-1) { /* the bottom stage is dropped */
         for (size_t i = 0; i < p.n_stages; i++)
             part[i] = !carried[i];
     } else {

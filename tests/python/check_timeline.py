@@ -264,6 +264,27 @@ def main():
                 ref = runs["kourou-leo"][0]
                 check([p["final"] for p in summ["phases"]] == [p["final"] for p in ref["phases"]],
                       "named-sep: a name changed the flight")
+        # the fairing flies a phase of its own to its impact: both rows, the payload's and the
+        # fairing's, name what leaves the stack (the fairing), not the stack that goes on
+        if "kourou-leo" in runs:
+            d = os.path.join(tmp, "fairing-fall")
+            os.mkdir(d)
+            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text += ("\n  - {name: fairing-fall, model: dof3, stages: [fairing], from: upper-burn-1,"
+                     " stop_time: 3000, end: [impact], throttle: off, aero: {s_ref: 20, CD: 1.2}}\n")
+            with open(os.path.join(d, "mission.yaml"), "w") as f:
+                f.write(text)
+            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
+            out = os.path.join(d, "out")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
+                               capture_output=True, text=True)
+            check(r.returncode == 0, "fairing-fall: %s" % r.stderr)
+            if r.returncode == 0:
+                summ = check_run(out, "fairing-fall")
+                check(labels(summ, "payload", "separation") == ["separation of booster", "separation of fairing"],
+                      "fairing-fall payload: %r" % labels(summ, "payload", "separation"))
+                check(labels(summ, "fairing", "separation") == ["separation of booster", "separation of fairing"],
+                      "fairing-fall fairing: %r" % labels(summ, "fairing", "separation"))
         # lvsim check = lvsim run: the same message for a bad name
         bad = os.path.join(tmp, "bad.yaml")
         with open(bad, "w") as f:
