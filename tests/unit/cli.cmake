@@ -26,7 +26,7 @@ add_test(NAME test_symbols COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_symbols
 add_test(NAME test_lazy_libs COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/check_lazy_libs.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 # Run-atomic results folders: manifest checked by tests/python/check_manifest.py, path errors,
-# the lock, concurrent runs, kill -9 at random points, SIGTERM (about 20 s).
+# the lock, concurrent runs, kill -9 at random points, SIGTERM (about 35 s; a minute under ASan).
 add_test(NAME test_outdir COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_outdir.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 set_tests_properties(test_outdir PROPERTIES TIMEOUT 180)
