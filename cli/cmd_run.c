@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -501,9 +502,11 @@ static void print_timelines(const lv_run *run)
             if (isfinite(w->q))
                 snprintf(q, sizeof q, "%.3f", w->q / 1e3);
             const double h = fabs(w->h) < 0.5 ? 0.0 : w->h / 1e3; /* no "-0.000" */
-            printf("  %-34.60s %10.3f %9.3f %8.1f %6s %8s  %-12s %s\n", w->label, w->t, h,
-                   w->speed, mach, q, w->phase, lines[i].n_bodies == n_tl ? "all"
-                                                                          : lines[i].bodies);
+            fputs("  ", stdout);
+            print_padded(w->label, 34, 63); /* a name has at most 63 */
+            printf(" %10.3f %9.3f %8.1f %6s %8s  ", w->t, h, w->speed, mach, q);
+            print_padded(w->phase, 12, SIZE_MAX);
+            printf(" %s\n", lines[i].n_bodies == n_tl ? "all" : lines[i].bodies);
         }
     }
     free(lines);

@@ -414,3 +414,18 @@ void cli_catch_stop(void)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }
+
+void print_padded(const char *s, size_t width, size_t max)
+{
+    size_t bytes = 0, chars = 0;
+    while (s[bytes] != '\0' && chars < max) {
+        size_t len = 1; /* the character at `bytes`: its lead byte and continuations */
+        while (((unsigned char)s[bytes + len] & 0xC0u) == 0x80u)
+            len++;
+        bytes += len;
+        chars++;
+    }
+    fwrite(s, 1, bytes, stdout);
+    for (; chars < width; chars++)
+        putchar(' ');
+}

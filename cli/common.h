@@ -98,6 +98,12 @@ int check_output_bound_as(const lv_mission *m, double max_rows, double output_in
 /* "12.3 MB", "512 B": a byte count for people. */
 void human_bytes(double bytes, char *buf, size_t cap);
 
+/* Prints `s` to stdout cut to at most `max` characters and padded with spaces to `width`
+ * characters, counting UTF-8 characters, not bytes (a user's event name "été"), never cutting
+ * one in half. Each character counts one column (East Asian wide ones take two in a
+ * terminal: their rows are that much wider). */
+void print_padded(const char *s, size_t width, size_t max);
+
 /* Prints a document built with cJSON (cJSON_Print, indented with spaces) to stdout and
  * deletes it. Returns 0, or 1 when doc is NULL or printing runs out of memory. */
 int print_json(cJSON *doc);

@@ -73,6 +73,8 @@ typedef struct lv_runway_config {
     double runway_lat, runway_lon; /* rad, geodetic position of the threshold */
     double runway_h;           /* m, geodetic elevation of the threshold */
     double runway_heading;     /* rad, from north to east */
+    double runway_length;      /* m, > 0: the roll ends by the event "overrun" where the
+                                  distance rises through it; INFINITY (default): no end */
     double mu;                 /* -, rolling (take-off) or braking (landing) friction
                                   coefficient, >= 0 */
     double alpha_ground;       /* rad, angle of attack on all wheels */
@@ -96,7 +98,7 @@ typedef struct lv_runway_config {
 /* Earth, no gravity (must be set), no atmosphere, take-off, m0 = 1000 kg, no engines, no
  * aero, runway at (0, 0, 0 m) heading north, mu = 0.02, alpha_ground = alpha_rot = 0,
  * v_rot = 1e9 m/s (no rotation), rotation_rate 0, v_stop = 1 m/s, start at rest on the
- * threshold at t = 0, throttle 1, no ends. */
+ * threshold at t = 0, throttle 1, no ends, runway_length INFINITY (no end). */
 LV_API void lv_runway_config_default(lv_runway_config *cfg);
 
 typedef struct lv_runway lv_runway;

@@ -30,7 +30,7 @@ LV_API lv_status lv_run_write_summary_files(const lv_run *r, const char *outdir,
 
 /* ---- a body's timeline (docs/result-files.md, "timeline") ------------------------------- */
 
-#define LV_TIMELINE_LABEL_MAX 96
+#define LV_TIMELINE_LABEL_MAX 288 /* bytes: a 63-character name of 4-byte UTF-8 characters, a prefix */
 
 /* One event of a body's flight, with the state of the row that gives it: lift-off, max-q,
  * each end of a phase it flies in (by the user's name, `name: MECO`, or a label made from the

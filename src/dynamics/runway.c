@@ -22,7 +22,7 @@
 
 enum {
     P_LAT, P_LON, P_H, P_HDG, P_MU, P_AG, P_VROT, P_AROT, P_RATE, P_VSTOP,
-    P_S0, P_V0, P_T0, P_THR, P_PROP, P_N
+    P_S0, P_V0, P_T0, P_THR, P_PROP, P_LEN, P_N
 };
 
 enum {
@@ -33,8 +33,9 @@ enum {
 };
 
 /* Events: burnout, rotation, the mode's own end (liftoff or stop), at rest (a take-off that
- * slows to a standstill: an aborted take-off ends there), then the configured speed ends. */
-enum { E_BURNOUT, E_ROTATION, E_END, E_REST, E_N0 };
+ * slows to a standstill: an aborted take-off ends there), the runway's end (overrun: the
+ * distance rises through the runway's length), then the configured speed ends. */
+enum { E_BURNOUT, E_ROTATION, E_END, E_REST, E_OVERRUN, E_N0 };
 
 static const lv_var state_tpl[LV_XRW_N] = {
     {"distance", "m", "Distance along the runway from its threshold", 0.0, 1e3},
@@ -60,6 +61,8 @@ static const lv_var param_tpl[P_N] = {
     {"throttle", "1", "Throttle c_s (constant input, take-off)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
+    {"runway_length", "m", "Runway length from the threshold: the roll ends (overrun) where "
+     "the distance rises through it; infinite: no end", 0, 0},
 };
 
 static const lv_var output_vars[O_N] = {
@@ -278,7 +281,7 @@ static int check_params(rw_inst *s, const double *p)
 {
     const lv_runway *m = s->m;
     for (int i = 0; i < P_N; i++)
-        if (!isfinite(p[i]) && !(i == P_VROT && p[i] > 0.0))
+        if (!isfinite(p[i]) && !((i == P_VROT || i == P_LEN) && p[i] > 0.0))
             return fail_inst(s, "%s = %g %s is not finite", param_tpl[i].name, p[i],
                              param_tpl[i].unit);
     if (!(fabs(p[P_LAT]) <= 0.5 * LV_PI))
@@ -289,6 +292,8 @@ static int check_params(rw_inst *s, const double *p)
         return fail_inst(s, "start_speed = %g m/s is negative", p[P_V0]);
     if (!(p[P_PROP] >= 0.0))
         return fail_inst(s, "propellant = %g kg is negative", p[P_PROP]);
+    if (!(p[P_LEN] > 0.0))
+        return fail_inst(s, "runway_length = %g m must be > 0", p[P_LEN]);
     if (m->mode == LV_RUNWAY_TAKEOFF) {
         if (!(p[P_VROT] > 0.0))
             return fail_inst(s, "v_rot = %g m/s must be > 0", p[P_VROT]);
@@ -392,6 +397,7 @@ static int rw_g(double t, const double *x, const double *p, double *g, void *ins
     /* the speed falling to 0 while rolling: at rest, where the friction's sign flips (the
      * ground-roll equation switches to static friction: the phase ends there) */
     g[E_REST] = m->mode == LV_RUNWAY_TAKEOFF ? x[LV_XRW_V] : 1.0;
+    g[E_OVERRUN] = isfinite(p[P_LEN]) ? x[LV_XRW_S] - p[P_LEN] : -1.0;
     for (size_t i = 0; i < m->n_ends; i++)
         g[E_N0 + i] = x[LV_XRW_V] - m->ends[i].value;
     return 0;
@@ -420,7 +426,7 @@ static lv_event_action rw_on_event(double t, double *x, const double *p, const i
             pt.normal_raw <= 0.0)
             act = LV_EVENT_STOP;
     }
-    if (fired[E_END] || fired[E_REST])
+    if (fired[E_END] || fired[E_REST] || fired[E_OVERRUN])
         act = LV_EVENT_STOP;
     for (size_t i = 0; i < m->n_ends; i++)
         if (fired[E_N0 + i])
@@ -526,6 +532,7 @@ void lv_runway_config_default(lv_runway_config *cfg)
     cfg->v_rot = 1e9;
     cfg->v_stop = 1.0;
     cfg->throttle = 1.0;
+    cfg->runway_length = INFINITY;
 }
 
 static lv_status bad(lv_err *err, const char *what, double v, const char *unit, const char *rule)
@@ -566,6 +573,8 @@ static lv_status check_config(const lv_runway_config *c, lv_err *err)
     } else if (!isfinite(c->v_stop) || !(c->v_stop > 0.0)) {
         return bad(err, "v_stop", c->v_stop, "m/s", "must be > 0");
     }
+    if (!(c->runway_length > 0.0))
+        return bad(err, "runway_length", c->runway_length, "m", "must be > 0 (INFINITY: no end)");
     return LV_OK;
 }
 
@@ -597,6 +606,10 @@ static lv_status setup_events(lv_runway *m, const lv_runway_config *cfg, lv_err 
     m->events[E_REST] = (lv_event_def){m->event_names[E_REST],
                                        "Take-off: the speed falls to 0 (an aborted take-off "
                                        "stops on the runway)", LV_DIR_FALLING, 0};
+    snprintf(m->event_names[E_OVERRUN], EVENT_NAME_MAX, "overrun");
+    m->events[E_OVERRUN] = (lv_event_def){m->event_names[E_OVERRUN],
+                                          "The distance rises through the runway's length: "
+                                          "the vehicle runs off its end", LV_DIR_RISING, 1};
     for (size_t i = 0; i < n; i++) {
         const lv_runway_end *e = &cfg->ends[i];
         const char *nm = e->name != NULL ? e->name : "speed";
@@ -669,7 +682,7 @@ lv_status lv_runway_create(const lv_runway_config *cfg, lv_runway **out, lv_err 
                             cfg->runway_heading, cfg->mu, cfg->alpha_ground, cfg->v_rot,
                             cfg->alpha_rot, cfg->rotation_rate, cfg->v_stop,
                             cfg->start_distance, cfg->start_speed, cfg->start_time,
-                            cfg->throttle, cfg->propellant};
+                            cfg->throttle, cfg->propellant, cfg->runway_length};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
     /* no engine (a landing roll-out's are off): the throttle does not act and is not recorded

@@ -24,13 +24,17 @@ static const char *const from_types[] = {"dof3", NULL};
 static const char *const ends[] = {"burnout", "speed", NULL};
 
 
-/* Touchdown tolerances of the hand-off from a dof3 phase (runway_handoff). */
+/* Touchdown tolerance of the hand-off from a dof3 phase (runway_handoff): a parent that ends
+ * farther from the runway plane did not end at touchdown (an error in the mission). */
 #define TOUCHDOWN_HEIGHT_MAX 10.0 /* m above or below the runway plane */
-#define TOUCHDOWN_LATERAL_MAX 60.0 /* m from the centre line (a 45-60 m wide runway) */
+/* The runway's width when `runway:` gives none: 45 m, the ICAO minimum for aerodrome
+ * reference code letters D to F (ICAO Annex 14, vol. I, 3.1.9): the wide-body and large
+ * winged-vehicle runways lvsim's landings use. */
+#define RUNWAY_WIDTH_DEFAULT 45.0
 
 /* ---- the phase's own keys ---------------------------------------------------------------- */
 
-enum { G_LAT, G_LON, G_H, G_HDG, G_N };           /* runway: */
+enum { G_LAT, G_LON, G_H, G_HDG, G_LEN, G_WIDTH, G_N }; /* runway: (length, width optional) */
 enum { R_MU, R_AG, R_VROT, R_AROT, R_RATE, R_VSTOP, R_S0, R_V0, R_THR, R_N }; /* the roll */
 
 typedef struct runway_cfg {
@@ -49,18 +53,23 @@ static void runway_cfg_free(void *p)
     free(c);
 }
 
-/* runway: {lat_deg, lon_deg, elevation, heading_deg} (all required; lat/lon/heading also in
- * rad as lat, lon, heading). */
+/* runway: {lat_deg, lon_deg, elevation, heading_deg, length, width} (the first four required;
+ * lat/lon/heading also in rad as lat, lon, heading; length: LV_NO_SLOT when not given, no
+ * end; width default RUNWAY_WIDTH_DEFAULT). */
 static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *phase, const lv_ynode *n,
                                 const char *name, runway_cfg *cfg)
 {
     static const char *const gkeys[] = {"lat", "lat_deg", "lon", "lon_deg", "elevation",
-                                        "heading", "heading_deg", NULL};
-    static const char *const base[G_N] = {"lat", "lon", "elevation", "heading"};
-    static const char *const units[G_N] = {"rad", "rad", "m", "rad"};
+                                        "heading", "heading_deg", "length", "width", NULL};
+    static const char *const base[G_N] = {"lat", "lon", "elevation", "heading", "length",
+                                          "width"};
+    static const char *const units[G_N] = {"rad", "rad", "m", "rad", "m", "m"};
+    /* length and width: from a model runway (10 m) to beyond the longest built (5.5 km; the
+     * Space Shuttle's landing facility 4.6 km) and the widest (100 m) with room */
     const lv_range ranges[G_N] = {{-0.5 * LV_PI, 0.5 * LV_PI, 0, 0},
                                   {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0},
-                                  {-1e4, 1e4, 0, 0}, {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0}};
+                                  {-1e4, 1e4, 0, 0}, {-2.0 * LV_PI, 2.0 * LV_PI, 0, 0},
+                                  {10.0, 1e5, 0, 0}, {1.0, 1e3, 0, 0}};
     char what[LV_WHAT_MAX], slot[LV_NAME_MAX + 32];
     snprintf(what, sizeof what, "phase '%s', runway", name);
     if (n == NULL || lv_yaml_is_null(n))
@@ -75,13 +84,24 @@ static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *phase, const l
     for (int k = 0; k < G_N; k++) {
         char deg[24];
         snprintf(deg, sizeof deg, "%s_deg", base[k]);
-        const lv_ynode *v = lv_pk_get(n, base[k]), *vd = k != G_H ? lv_pk_get(n, deg) : NULL;
+        const int is_angle = k == G_LAT || k == G_LON || k == G_HDG;
+        const lv_ynode *v = lv_pk_get(n, base[k]), *vd = is_angle ? lv_pk_get(n, deg) : NULL;
         if (v != NULL && vd != NULL)
             return lv_pk_fail(c, lv_pk_key(n, deg), "%s: '%s' and '%s' given both", what,
                               base[k], deg);
-        if (v == NULL && vd == NULL)
-            return lv_pk_fail(c, n, "%s: '%s' is missing", what, k != G_H ? deg : base[k]);
         snprintf(slot, sizeof slot, "%s.runway.%s", name, base[k]);
+        if (v == NULL && k == G_LEN) { /* no length: the roll has no end */
+            cfg->geo[k] = LV_NO_SLOT;
+            continue;
+        }
+        if (v == NULL && k == G_WIDTH) {
+            if ((st = lv_pk_slot_default(c, slot, units[k], RUNWAY_WIDTH_DEFAULT, ranges[k],
+                                         &cfg->geo[k])) != LV_OK)
+                return st;
+            continue;
+        }
+        if (v == NULL && vd == NULL)
+            return lv_pk_fail(c, n, "%s: '%s' is missing", what, is_angle ? deg : base[k]);
         if ((st = lv_pk_slot(c, v ? v : vd, what, v ? base[k] : deg, slot, units[k], ranges[k],
                              vd != NULL, &cfg->geo[k])) != LV_OK)
             return st;
@@ -255,6 +275,7 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     cfg.runway_lon = bc->vals[pc->geo[G_LON]];
     cfg.runway_h = bc->vals[pc->geo[G_H]];
     cfg.runway_heading = bc->vals[pc->geo[G_HDG]];
+    cfg.runway_length = pc->geo[G_LEN] != LV_NO_SLOT ? bc->vals[pc->geo[G_LEN]] : INFINITY;
     cfg.mu = lv_kit_val(bc, pc->roll[R_MU], 0.0);
     cfg.alpha_ground = lv_kit_val(bc, pc->roll[R_AG], 0.0);
     cfg.v_rot = lv_kit_val(bc, pc->roll[R_VROT], cfg.v_rot);
@@ -291,6 +312,7 @@ static lv_status touchdown_gear(const lv_build_ctx *bc, const char *const *pname
                                 const double *pvalues, size_t np, const lv_runway_pos *td)
 {
     const lv_phase_def *ph = &bc->def->phases[bc->k];
+    const runway_cfg *pc = ph->type_cfg;
     const lv_stage_def *st = &bc->def->stages[ph->stages[0]];
     double lim[LV_GEAR_N];
     for (int i = 0; i < LV_GEAR_N; i++)
@@ -324,9 +346,32 @@ static lv_status touchdown_gear(const lv_build_ctx *bc, const char *const *pname
         EXCEEDED("pitch %.3g deg outside [%.3g, %.3g] deg", pitch / LV_DEG,
                  lim[LV_GEAR_PITCH_MIN] / LV_DEG, lim[LV_GEAR_PITCH_MAX] / LV_DEG);
 #undef EXCEEDED
-    if (used > 0)
-        lv_build_crash(bc, "crashed at touchdown: %s (landing gear of stage '%s'%s)", why,
-                       st->name, st->gear[0] != LV_NO_SLOT ? "" : ": the default limits");
+    /* on the runway: past its threshold, before its end, within its half-width */
+    const double length = pc->geo[G_LEN] != LV_NO_SLOT ? bc->vals[pc->geo[G_LEN]] : INFINITY;
+    const double half = 0.5 * bc->vals[pc->geo[G_WIDTH]];
+    char off[240] = "";
+    size_t n_off = 0;
+#define OFF(...)                                                                              \
+    do {                                                                                       \
+        if (n_off < sizeof off)                                                                \
+            n_off += (size_t)snprintf(off + n_off, sizeof off - n_off, "%s", n_off ? "; " : ""); \
+        if (n_off < sizeof off)                                                                \
+            n_off += (size_t)snprintf(off + n_off, sizeof off - n_off, __VA_ARGS__);            \
+    } while (0)
+    if (!(td->distance >= 0.0))
+        OFF("%.4g m before the runway's threshold (undershoot)", -td->distance);
+    if (!(td->distance <= length))
+        OFF("%.4g m past the runway's end (length %.4g m)", td->distance - length, length);
+    if (!(fabs(td->lateral) <= half))
+        OFF("%.3g m %s of the centre line, beyond the half-width %.3g m (runway excursion)",
+            fabs(td->lateral), td->lateral > 0.0 ? "right" : "left", half);
+#undef OFF
+    if (n_off > 0 || used > 0)
+        lv_build_crash(bc, "crashed at touchdown: %s%s%s%s%s%s", off, n_off && used ? "; " : "",
+                       why, used ? " (landing gear of stage '" : "", used ? st->name : "",
+                       !used                      ? ""
+                       : st->gear[0] != LV_NO_SLOT ? "')"
+                                                   : "': the default limits)");
     return LV_OK;
 }
 
@@ -335,9 +380,11 @@ static lv_status touchdown_gear(const lv_build_ctx *bc, const char *const *pname
  * projected on the runway: distance = (r - r0) . u, speed = v_rel . u. What the projection
  * drops (the height above the runway plane, the sink rate, the lateral offset and speed) is
  * what the touchdown absorbs, recorded in the phase's result (summary.json: handoff /
- * absorbed): a parent that ends more than 10 m above or below the runway plane, more than
- * 60 m beside its centre line or moving backwards is refused, naming the values (end the
- * approach at touchdown: `{altitude: <elevation>}` or `impact`). */
+ * absorbed): a parent that ends more than 10 m above or below the runway plane or moving
+ * backwards is refused, naming the values (end the approach at touchdown: `{altitude:
+ * <elevation>}` or `impact`); one that touches down off the runway (before its threshold,
+ * past its end, beyond its half-width) or beyond the landing gear's limits crashes
+ * (touchdown_gear). */
 static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
                                 const char *const *pnames, const double *pvalues, size_t np,
                                 const char *const *names, double *values, size_t n, lv_err *err)
@@ -373,14 +420,12 @@ static lv_status runway_handoff(const lv_build_ctx *bc, const lv_phase_model *pm
     lv_runway_pos td;
     lv_runway_project(s->model, r, v, &td);
     const double height = td.height, lateral = td.lateral, speed = td.speed;
-    if (!(fabs(height) <= TOUCHDOWN_HEIGHT_MAX) || !(fabs(lateral) <= TOUCHDOWN_LATERAL_MAX) ||
-        !(speed >= 0.0))
+    if (!(fabs(height) <= TOUCHDOWN_HEIGHT_MAX) || !(speed >= 0.0))
         return lv_fail(err, LV_ERR_INPUT, "touchdown: the parent ends %.3g m above the runway "
                        "plane, %.3g m right of its centre line (negative: left), at %.4g m/s "
-                       "along it: a "
-                       "roll-out starts on the runway (within %g m of its plane and %g m of its "
-                       "centre line, rolling forwards); end the parent at touchdown",
-                       height, lateral, speed, TOUCHDOWN_HEIGHT_MAX, TOUCHDOWN_LATERAL_MAX);
+                       "along it: a roll-out starts on the runway's plane (within %g m), rolling "
+                       "forwards; end the parent at touchdown", height, lateral, speed,
+                       TOUCHDOWN_HEIGHT_MAX);
     values[is] = td.distance;
     values[iv] = speed;
     lv_build_note(bc, "distance", "m", td.distance);

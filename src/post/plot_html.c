@@ -398,7 +398,7 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             fputs("</td></tr>\n", f);
             if (cJSON_IsObject(hf)) {
                 first = 1;
-                key_row(f, "free-molecular heat flux below 1135 W/m&sup2;");
+                key_row(f, "free-molecular heat flux below 1135 W/m\xc2\xb2"); /* key_row escapes: UTF-8 ² */
                 kv(f, "at t", jnum(hf, "t"), 1.0, 3, "s", &first);
                 kv(f, "h", jnum(hf, "h"), 1e-3, 3, "km", &first);
                 fputs("</td></tr>\n", f);
@@ -479,7 +479,10 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         if (cJSON_IsObject(td)) { /* a runway touchdown: landed or crashed, and the roll-out */
             const char *status = jstr(td, "status");
             const int crashed = status != NULL && strcmp(status, "crashed") == 0;
-            key_row(f, crashed ? "touchdown: CRASHED" : "touchdown");
+            const int overran = status != NULL && strcmp(status, "overran") == 0;
+            key_row(f, crashed   ? "touchdown: CRASHED"
+                       : overran ? "touchdown: ran off the runway's end"
+                                 : "touchdown");
             int first = 1;
             kv(f, "t", jnum(td, "t"), 1.0, 3, "s", &first);
             kv(f, "from the threshold", jnum(td, "from_threshold"), 1.0, 0, "m", &first);
@@ -490,8 +493,10 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             kv(f, "pitch", jnum(td, "pitch"), 1.0 / LV_DEG, 1, "deg", &first);
             kv(f, "bank", jnum(td, "bank"), 1.0 / LV_DEG, 1, "deg", &first);
             kv(f, "roll-out", jnum(td, "rollout_distance"), 1.0, 0, "m", &first);
-            kv(f, "stopped from the threshold", jnum(td, "stop_from_threshold"), 1.0, 0, "m",
-               &first);
+            kv(f, overran ? "off the runway's end at" : "stopped from the threshold",
+               jnum(td, "stop_from_threshold"), 1.0, 0, "m", &first);
+            if (overran)
+                kv(f, "at", jnum(td, "stop_speed"), 1.0, 1, "m/s", &first);
             kv(f, "time on the runway", jnum(td, "time_on_runway"), 1.0, 1, "s", &first);
             if (crashed && jstr(td, "reason") != NULL) {
                 fputs("<br>", f);

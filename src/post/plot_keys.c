@@ -375,7 +375,13 @@ static cJSON *touchdown_json(const lv_plot_data *d, size_t bi)
             continue;
         cJSON *o = cJSON_CreateObject();
         const int crashed = ph->state != NULL && strcmp(ph->state, "crashed") == 0;
-        cJSON_AddStringToObject(o, "status", ph->done ? "landed" : crashed ? "crashed"
+        /* a roll-out that ends by the runway's end ran off it (the runway model's end
+         * "overrun", where the distance rises through `runway: length`) */
+        const int overran = ph->done && ph->end_event != NULL &&
+                            strcmp(ph->end_event, "overrun") == 0;
+        cJSON_AddStringToObject(o, "status", overran    ? "overran"
+                                             : ph->done ? "landed"
+                                             : crashed  ? "crashed"
                                              : ph->state ? ph->state : "?");
         if (!ph->done && ph->error != NULL)
             cJSON_AddStringToObject(o, "reason", ph->error);

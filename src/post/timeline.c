@@ -54,6 +54,22 @@ typedef struct tl_build {
 } tl_build;
 
 /* A new row with the values of row r of phase k's rows. NULL: out of memory. */
+/* Drops a last UTF-8 sequence that a cut at the buffer's end left incomplete (a label longer
+ * than LV_TIMELINE_LABEL_MAX bytes: "separation of" many long stage names), so that the JSON,
+ * the report and the console get valid UTF-8. Every cut in this file is at the label's end. */
+static void utf8_fit(char *s)
+{
+    size_t n = strlen(s), i = n;
+    while (i > 0 && ((unsigned char)s[i - 1] & 0xC0u) == 0x80u) /* continuation bytes */
+        i--;
+    if (i == 0 || ((unsigned char)s[i - 1] & 0x80u) == 0)
+        return; /* ASCII last (or nothing but continuations: left as it is) */
+    const unsigned char lead = (unsigned char)s[i - 1];
+    const size_t len = lead >= 0xF0u ? 4 : lead >= 0xE0u ? 3 : lead >= 0xC0u ? 2 : 1;
+    if (n - (i - 1) < len)
+        s[i - 1] = '\0';
+}
+
 static lv_timeline_row *add(tl_build *b, const lv_run *run, size_t k, size_t r, const char *kind,
                             const char *label)
 {
@@ -74,6 +90,7 @@ static lv_timeline_row *add(tl_build *b, const lv_run *run, size_t k, size_t r, 
     lv_timeline_row *w = &b->rows[b->n];
     memset(w, 0, sizeof *w);
     snprintf(w->label, sizeof w->label, "%s", label);
+    utf8_fit(w->label);
     w->kind = kind;
     w->phase = lv_mission_phase_name(lv_run_mission(run), k);
     w->row = r;

@@ -285,6 +285,38 @@ def main():
                       "fairing-fall payload: %r" % labels(summ, "payload", "separation"))
                 check(labels(summ, "fairing", "separation") == ["separation of booster", "separation of fairing"],
                       "fairing-fall fairing: %r" % labels(summ, "fairing", "separation"))
+        # names of 63 characters (the most, docs/mission-format.md) of 2- and 3-byte UTF-8
+        # characters: whole in summary.json, the report and the console (valid UTF-8, strict
+        # decoding), the console's columns counted in characters
+        if "kourou-leo" in runs:
+            d = os.path.join(tmp, "utf8")
+            os.mkdir(d)
+            meco, seco = "\u00e9" * 63, "a" + "\u5317" * 62
+            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = text.replace("end: [{burnout, name: MECO}]", 'end: [{burnout, name: "%s"}]' % meco, 1)
+            text = text.replace("end_name: SECO", 'end_name: "%s"' % seco, 1)
+            check(meco in text and seco in text, "utf8: mission not edited")
+            with open(os.path.join(d, "mission.yaml"), "w", encoding="utf-8") as f:
+                f.write(text)
+            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
+            out = os.path.join(d, "out")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out],
+                               capture_output=True)
+            check(r.returncode == 0, "utf8: %r" % r.stderr)
+            if r.returncode == 0:
+                summ = json.loads(open(os.path.join(out, "summary.json"), "rb").read().decode("utf-8", "strict"))
+                pl = labels(summ, "payload")
+                check(meco in pl and seco in pl, "utf8: labels cut: %r" % pl)
+                html = open(os.path.join(out, "index.html"), "rb").read().decode("utf-8", "strict")
+                check(meco in html and seco in html, "utf8: names not whole in index.html")
+                lines = r.stdout.decode("utf-8", "strict").splitlines()
+                row = [l for l in lines if l.startswith("  " + meco)]
+                check(len(row) == 1 and row[0][2 + 63:].split()[0] == "153.231" if row else False,
+                      "utf8: console row %r" % row)
+                ref = [l for l in lines if l.startswith("  max-q")]
+                check(len(row) == 1 and len(ref) == 1 and
+                      row[0].index(" 153.231") - 63 == ref[0].index("  63.000") - 34,
+                      "utf8: console columns: %r / %r" % (row, ref))
         # lvsim check = lvsim run: the same message for a bad name
         bad = os.path.join(tmp, "bad.yaml")
         with open(bad, "w") as f:

@@ -679,9 +679,14 @@ static void test_mission_edges(void)
  * (inputs; no aerodynamics: no force from them, only the attitude), touches down at once
  * (end at the elevation) and hands over to a roll-out. `gear`: the stage's landing_gear
  * mapping or "". Over 1 cm the speeds change by g t ~ 0.1 m/s at most (t = 0.01 m / sink). */
+static const char *g_runway = NULL; /* the roll-out's `runway:`; NULL: the threshold below */
+
 static lv_run *touchdown(const char *gear, double v, double fpa, double dchi, double alpha,
                          double mu, lv_mission **m)
 {
+    const char *runway = g_runway != NULL
+                             ? g_runway
+                             : "{lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140}";
     char yaml[2048];
     snprintf(yaml, sizeof yaml,
              "mission: {name: gear}\n"
@@ -695,9 +700,9 @@ static lv_run *touchdown(const char *gear, double v, double fpa, double dchi, do
              "     end: [{altitude: 150, direction: falling}], throttle: off,\n"
              "     inputs: {alpha_deg: %g, mu_deg: %g}}\n"
              "  - {name: rollout, model: runway, stages: [ms], from: down, stop_time: 300,\n"
-             "     runway: {lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140},\n"
+             "     runway: %s,\n"
              "     landing: {mu: 0.3, v_stop: 2}}\n",
-             v, fpa, 140.0 + dchi, gear[0] ? ", landing_gear: " : "", gear, alpha, mu);
+             v, fpa, 140.0 + dchi, gear[0] ? ", landing_gear: " : "", gear, alpha, mu, runway);
     lv_err err;
     lv_run *r = NULL;
     *m = NULL;
@@ -772,6 +777,56 @@ static void test_gear_limits(void)
     expect_touchdown("{sink_rate_max: 4}", 80, -3, 0, 5, 0, C,
                      "> 4 m/s (landing gear of stage 'ms')");
     expect_touchdown("{bank_max_deg: 15, pitch_max_deg: 20}", 80, -1, 0, 17, 12, D, NULL);
+    /* on the runway or off it (the touchdown at 43.6 N, 1.37 E, heading 140 deg): a threshold
+     * 100 m further along the heading is an undershoot; one 100 m back with a length of 50 m
+     * a touchdown past the end; a centre line 30 m to the left (the threshold moved 30 m
+     * towards 50 deg: the vehicle 30 m right of it) an excursion beyond the 45 m runway's
+     * half-width, not beyond a 100 m one's. Offsets on WGS-84 at 43.6 deg: 1 deg of latitude
+     * 111.104 km (the meridian radius), of longitude 80.743 km (100 m at 140 deg: -0.000690
+     * deg lat, +0.000797 deg lon, 100.08 m along the heading as rounded; 30 m at 50 deg:
+     * +0.000174, +0.000285, 30.1 m). The glide covers 80 m/s x 0.007 s = 0.56 m to its
+     * touchdown: 100.08 - 0.56 = 99.52 m before the threshold. */
+    g_runway = "{lat_deg: 43.59931, lon_deg: 1.370797, elevation: 150, heading_deg: 140}";
+    expect_touchdown("", 80, -1, 0, 5, 0, C, "m before the runway's threshold (undershoot)");
+    expect_touchdown("", 80, -1, 0, 5, 0, C, "crashed at touchdown: 99.5");
+    g_runway = "{lat_deg: 43.60069, lon_deg: 1.369203, elevation: 150, heading_deg: 140, "
+               "length: 50}";
+    expect_touchdown("", 80, -1, 0, 5, 0, C, "m past the runway's end (length 50 m)");
+    g_runway = "{lat_deg: 43.600174, lon_deg: 1.370285, elevation: 150, heading_deg: 140}";
+    expect_touchdown("", 80, -1, 0, 5, 0, C, "30.1 m right of the centre line, beyond the half-width "
+                                             "22.5 m (runway excursion)");
+    g_runway = "{lat_deg: 43.600174, lon_deg: 1.370285, elevation: 150, heading_deg: 140, "
+               "width: 100}";
+    expect_touchdown("", 80, -1, 0, 5, 0, D, NULL);
+    /* two at once: off the runway and beyond the gear */
+    g_runway = "{lat_deg: 43.59931, lon_deg: 1.370797, elevation: 150, heading_deg: 140}";
+    expect_touchdown("", 80, -3, 0, 5, 0, C, "m before the runway's threshold (undershoot); sink rate 4.2");
+    /* a roll-out longer than the runway ends where the runway does (its end "overrun"): from
+     * 80 m/s with braking friction 0.3 and no air the roll takes v^2 / (2 mu g) = 1.09 km;
+     * over 100 m the speed falls to sqrt(80^2 - 2 x 0.3 x 9.80 x 100) = 76.3 m/s */
+    g_runway = "{lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140, length: 100}";
+    {
+        lv_mission *m;
+        lv_run *r = touchdown("", 80, -1, 0, 5, 0, &m);
+        CHECK(r != NULL);
+        if (r != NULL) {
+            const lv_phase_result *ro = lv_run_result(r, 1);
+            CHECK(ro->state == LV_PHASE_DONE);
+            CHECK(strcmp(ro->report.stop_name, "overrun") == 0);
+            double s_end = NAN, v_end = NAN;
+            for (size_t i = 0; i < ro->n_final; i++) {
+                if (strcmp(ro->final_names[i], "distance") == 0)
+                    s_end = ro->final_values[i];
+                if (strcmp(ro->final_names[i], "speed") == 0)
+                    v_end = ro->final_values[i];
+            }
+            CHECK_CLOSE(s_end, 100.0, 1e-6);
+            CHECK_CLOSE(v_end, 76.3, 0.3); /* 1.40 m/s of sink and 1 deg less: within 0.3 */
+            lv_run_free(r);
+        }
+        lv_mission_free(m);
+    }
+    g_runway = NULL;
     /* the limits are run parameters: a run may set them */
     {
         lv_mission *m;
