@@ -217,6 +217,12 @@ static lv_status resolve(const lv_pctx *c, const lv_ynode *key, lv_disp_def *dd,
     for (size_t s = 0; s < m->n_slots; s++)
         lv_suggest_add(&sg, m->slots[s].name);
     lv_suggest_text(&sg, hint, sizeof hint);
+    /* a landing gear's limits are parameters only where the stage writes `landing_gear:` */
+    const char *lg = strstr(name, ".landing_gear.");
+    if (lg != NULL && hint[0] == '\0')
+        return lv_pk_fail(c, key, "dispersions: no parameter '%.80s': stage '%.*s' writes no "
+                          "`landing_gear:` (its limits are the defaults, not parameters: write "
+                          "`landing_gear: {}` to vary them)", name, (int)(lg - name), name);
     return lv_pk_fail(c, key, "dispersions: no parameter '%.80s'%s (lvsim params lists them; "
                       "tables: <engine>.table.<output>.scale or .bias, environment.wind.scale)",
                       name, hint);

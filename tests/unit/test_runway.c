@@ -851,6 +851,30 @@ static void test_gear_limits(void)
     "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"                           \
     "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"            \
     "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n"
+    /* a dispersion of a limit the stage does not write: the defaults are no parameters */
+    BAD("mission: {name: rw}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "stages:\n"
+        "  - {name: ms, dry_mass: 1000, propellant_mass: 0}\n"
+        "phases:\n"
+        "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"
+        "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90},\n"
+        "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n"
+        "dispersions:\n"
+        "  seed: 1\n"
+        "  parameters: {ms.landing_gear.sink_rate_max: {dist: normal, sigma: 0.3}}\n",
+        "bad.yaml:11:16: dispersions: no parameter 'ms.landing_gear.sink_rate_max': stage 'ms' "
+        "writes no `landing_gear:`");
+    /* runway length and width out of range */
+    BAD("mission: {name: rw}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
+        "stages:\n"
+        "  - {name: ms, dry_mass: 1000, propellant_mass: 0}\n"
+        "phases:\n"
+        "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n"
+        "     runway: {lat_deg: 43, lon_deg: 1, elevation: 150, heading_deg: 90, length: 5},\n"
+        "     landing: {mu: 0.3, v_stop: 1, start_speed: 50}}\n",
+        "bad.yaml:7:81: phase 'P', runway: length must be >= 10");
     BAD(GEAR_HEAD("{sink_rate_max: 0}"),
         "bad.yaml:4:82: stage 'ms', landing_gear: sink_rate_max must be > 0 m/s, found 0");
     BAD(GEAR_HEAD("{sink_rate: 3}"), "bad.yaml:4:67: stage 'ms', landing_gear: unknown key "
