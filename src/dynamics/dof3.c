@@ -617,8 +617,9 @@ static lv_status setup_guidance(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *e
     m->throttles = m->thr.active;
     if (m->guid.commands_accel && m->throttles)
         return lv_fail(err, LV_ERR_INPUT, "dof3: guidance '%s' solves the angle of attack from "
-                       "the forces at the phase's throttle, and throttle '%s' would change the "
-                       "throttle from those forces: give a throttle value without limits or "
+                       "the forces at the phase's throttle, and the throttle law '%s' (a throttle "
+                       "with limits such as g_limit or q_max) would change the throttle from "
+                       "those forces: give a constant throttle {value: c} without limits or "
                        "`throttle: off`", m->guid.law->name, m->thr.law->name);
     m->c_min = 0.0;
     m->c_max = HUGE_VAL;

@@ -128,7 +128,7 @@ static lv_status parse_out(const lv_pctx *c, const lv_ynode *n, const char *what
     if ((st = lv_pk_slot(c, v, w, "time", slot, "s", LV_RANGE_POS, 0, &o->time)) != LV_OK)
         return st;
     if ((v = lv_pk_get(n, "name")) != NULL && /* the user's name of the event */
-        (st = lv_pk_event_label(c, v, w, &o->label)) != LV_OK)
+        (st = lv_pk_event_label(c, v, w, "name", &o->label)) != LV_OK)
         return st;
     o->count = 1;
     if ((v = lv_pk_get(n, "count")) != NULL && (st = lv_pk_int(c, v, w, "count", 1, &o->count)) !=

@@ -381,25 +381,27 @@ lv_status lv_pk_name(const lv_pctx *c, const lv_ynode *v, const char *what, int 
     return *out != NULL ? LV_OK : lv_pk_nomem(c);
 }
 
-/* An event's user name: printable, 1 to LV_EVENT_LABEL_MAX characters, no space at its ends. */
-lv_status lv_pk_event_label(const lv_pctx *c, const lv_ynode *v, const char *what, char **out)
+/* An event's user name: printable, 1 to LV_EVENT_LABEL_MAX characters, no space at its ends.
+ * `key`: the key that gives it, in messages ("name", "end_name"). */
+lv_status lv_pk_event_label(const lv_pctx *c, const lv_ynode *v, const char *what,
+                            const char *key, char **out)
 {
     const char *s;
-    lv_status st = lv_pk_text(c, v, what, "name", &s);
+    lv_status st = lv_pk_text(c, v, what, key, &s);
     if (st != LV_OK)
         return st;
     size_t chars = 0;
     for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
         if (*p < 0x20 || *p == 0x7f)
-            return lv_pk_fail(c, v, "%s: name: a control character (0x%02x) at character %zu: "
-                              "a name is printable text", what, *p, chars + 1);
+            return lv_pk_fail(c, v, "%s: %s: a control character (0x%02x) at character %zu: "
+                              "a name is printable text", what, key, *p, chars + 1);
         chars += (*p & 0xc0) != 0x80; /* UTF-8: count the first byte of each character */
     }
     if (chars > LV_EVENT_LABEL_MAX)
-        return lv_pk_fail(c, v, "%s: name: %zu characters, at most %d ('%.20s...')", what,
+        return lv_pk_fail(c, v, "%s: %s: %zu characters, at most %d ('%.20s...')", what, key,
                           chars, LV_EVENT_LABEL_MAX, s);
     if (s[0] == ' ' || s[strlen(s) - 1] == ' ')
-        return lv_pk_fail(c, v, "%s: name '%s' starts or ends with a space", what, s);
+        return lv_pk_fail(c, v, "%s: %s '%s' starts or ends with a space", what, key, s);
     *out = lv_pk_strdup(s);
     return *out != NULL ? LV_OK : lv_pk_nomem(c);
 }

@@ -90,7 +90,8 @@ lv_status lv_pk_name(const lv_pctx *c, const lv_ynode *v, const char *what, int 
  * events"): 1 to LV_EVENT_LABEL_MAX characters (UTF-8 counted as characters), printable (no
  * control characters), no leading or trailing space; copied into *out. */
 #define LV_EVENT_LABEL_MAX 63
-lv_status lv_pk_event_label(const lv_pctx *c, const lv_ynode *v, const char *what, char **out);
+lv_status lv_pk_event_label(const lv_pctx *c, const lv_ynode *v, const char *what,
+                            const char *key, char **out);
 /* "stage 'stage1'" when the list item has a usable name, else "stage #2" (1-based k + 1). */
 void lv_pk_label(const lv_ynode *item, const char *kind, size_t k, char *buf, size_t cap);
 lv_src_loc lv_pk_loc(const lv_ynode *n); /* the node's line and column */

@@ -109,7 +109,8 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
             continue;
         if (kind != NULL)
             return lv_pk_fail(c, n->kids[j], "%s: one event per entry ('%s' and '%s'); write them "
-                        "as two entries", what, kind->text, key);
+                        "as two entries (an entry's other keys: direction, name)", what,
+                        kind->text, key);
         kind = n->kids[j];
     }
     if (output != NULL && kind != NULL)
@@ -117,7 +118,7 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
                           "and 'name' only, not '%s'", what, kind->text);
     /* the user's name of the event: {propellant_left: 53000, name: MECO}, {burnout, name: ..} */
     if ((v = lv_pk_get(n, "name")) != NULL &&
-        (st = lv_pk_event_label(c, v, what, &e->label)) != LV_OK)
+        (st = lv_pk_event_label(c, v, what, "name", &e->label)) != LV_OK)
         return st;
     if (output != NULL) {
         const char *name;
@@ -497,10 +498,10 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
         }
     }
     if ((v = lv_pk_get(n, "end_name")) != NULL) { /* the name of whichever end fires */
-        if (ph->n_ends == 0)
+        if (ph->n_ends == 0 && ph->type->own_ends == NULL)
             return lv_pk_fail(c, lv_pk_key(n, "end_name"), "%s: end_name names the phase's "
                               "end events, and it has none ('end:')", what);
-        if ((st = lv_pk_event_label(c, v, what, &ph->end_name)) != LV_OK)
+        if ((st = lv_pk_event_label(c, v, what, "end_name", &ph->end_name)) != LV_OK)
             return st;
     }
     if ((st = parse_integrator(c, lv_pk_get(n, "integrator"), ph->name, ph)) != LV_OK)

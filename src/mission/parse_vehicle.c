@@ -405,8 +405,12 @@ static lv_status parse_gear(const lv_pctx *c, const lv_ynode *n, const char *sta
 }
 
 /* geometry: {length, diameter, span} in m: the stage's shape in the CZML export's vehicle
- * model (docs/exports.md, "Vehicle models"), no physics. length and diameter > 0 required,
- * span >= 0 optional (a delta wing where > 0). */
+ * model (docs/exports.md, "Vehicle models"), no physics. length and diameter in [0.01, 1000]
+ * m required, span 0 or in [0.01, 1000] m optional (a delta wing where > 0): from a model
+ * rocket to ten times the largest launch vehicle (Starship 121 m, 9 m), so that the glTF's
+ * sizes and normals stay finite (a 1e-300 m stage gave NaN normals). */
+#define GEOM_MIN 0.01
+#define GEOM_MAX 1000.0
 static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *g, lv_stage_def *s)
 {
     static const char *const keys[] = {"length", "diameter", "span", NULL};
@@ -424,17 +428,17 @@ static lv_status parse_geometry(const lv_pctx *c, const lv_ynode *g, lv_stage_de
         if ((st = lv_pk_need(c, g, what, need[i], &v)) != LV_OK ||
             (st = lv_pk_num(c, v, what, need[i], dst[i])) != LV_OK)
             return st;
-        if (!(*dst[i] > 0.0))
-            return lv_pk_fail(c, v, "%s: %s: a length in m > 0 expected, found %.17g", what,
-                              need[i], *dst[i]);
+        if (!(*dst[i] >= GEOM_MIN && *dst[i] <= GEOM_MAX))
+            return lv_pk_fail(c, v, "%s: %s: a length from %g to %g m expected, found %.17g",
+                              what, need[i], GEOM_MIN, GEOM_MAX, *dst[i]);
     }
     s->geom_span = 0.0;
     if ((v = lv_pk_get(g, "span")) != NULL) {
         if ((st = lv_pk_num(c, v, what, "span", &s->geom_span)) != LV_OK)
             return st;
-        if (!(s->geom_span >= 0.0))
-            return lv_pk_fail(c, v, "%s: span: a length in m >= 0 expected (0: no wing), found "
-                              "%.17g", what, s->geom_span);
+        if (!(s->geom_span == 0.0 || (s->geom_span >= GEOM_MIN && s->geom_span <= GEOM_MAX)))
+            return lv_pk_fail(c, v, "%s: span: 0 (no wing) or a length from %g to %g m "
+                              "expected, found %.17g", what, GEOM_MIN, GEOM_MAX, s->geom_span);
     }
     return LV_OK;
 }

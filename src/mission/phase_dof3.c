@@ -129,7 +129,7 @@ static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_
     if ((st = lv_pk_check_map(c, n, what, skeys)) != LV_OK)
         return st;
     const lv_ynode *nm = lv_pk_get(n, "name");
-    if (nm != NULL && (st = lv_pk_event_label(c, nm, what, &ph->separation_label)) != LV_OK)
+    if (nm != NULL && (st = lv_pk_event_label(c, nm, what, "name", &ph->separation_label)) != LV_OK)
         return st;
     if (nm != NULL && n->n == 2) /* {name: ...} alone: no impulse */
         return LV_OK;

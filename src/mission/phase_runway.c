@@ -22,6 +22,8 @@ static const char *const keys[] = {"runway", "takeoff", "landing", "aero", "engi
 static const char *const from_types[] = {"dof3", NULL};
 /* The named ends a roll takes (besides time and variable ends); it has no altitude of its own. */
 static const char *const ends[] = {"burnout", "speed", NULL};
+/* The runway model's own ends (src/dynamics/runway.c): `end_name:` names them */
+static const char *const own_ends[] = {"liftoff", "at_rest", "stop", "overrun", NULL};
 
 
 /* Touchdown tolerance of the hand-off from a dof3 phase (runway_handoff): a parent that ends
@@ -445,6 +447,7 @@ const lv_phase_type lv_phase_type_runway = {
     .keys = keys,
     .from_types = from_types,
     .ends = ends,
+    .own_ends = own_ends,
     .sample_keys = "runway: {lat_deg: 0, lon_deg: 0, elevation: 0, heading_deg: 90}, "
                    "takeoff: {mu: 0.02, v_rot: 80, alpha_rot_deg: 8}",
     .n_mission_params = 0,

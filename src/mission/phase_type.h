@@ -125,6 +125,10 @@ struct lv_phase_type {
     /* The named end conditions (lv_end_kind_name) its phases take, NULL-terminated; NULL: all.
      * The type's parse refuses the others at their position. */
     const char *const *ends;
+    /* The ends its model has of its own, whatever `end:` lists (a runway roll's "liftoff",
+     * "stop"), NULL-terminated; NULL: none. A phase's `end_name:` names them too, so it needs
+     * no `end:` list for them. */
+    const char *const *own_ends;
     /* The model parameters a root phase takes from the mission's shared parameter set
      * (name, SI unit, description; `start` unused). */
     size_t n_mission_params;

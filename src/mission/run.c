@@ -437,6 +437,11 @@ static void label_events(const lv_run *r, size_t k, run_phase *p)
     const lv_sim_report *rep = &p->res.report;
     const int j = p->res.end_index;
     const char *end = j >= 0 ? (ph->ends[j].label ? ph->ends[j].label : ph->end_name) : NULL;
+    /* the type's own ends (a roll's stop) take the phase's end_name too */
+    for (size_t i = 0; j < 0 && rep->reason == LV_STOP_EVENT && ph->type->own_ends != NULL &&
+                       ph->type->own_ends[i] != NULL; i++)
+        if (strcmp(ph->type->own_ends[i], rep->stop_name) == 0)
+            end = ph->end_name;
     int any = end != NULL;
     for (size_t i = 0; i < ph->n_engine_out; i++)
         any |= ph->engine_out[i].label != NULL;

@@ -223,6 +223,9 @@ def main():
             b = next(b for b in summ["bodies"] if b["name"] == "ms")
             check(b["timeline"][1]["t"] == lo["t_end"] and b["timeline"][1]["kind"] == "liftoff",
                   "rlv-hthl: lift-off at the runway's end")
+            # the roll-out's own end (the runway model's stop) named by its end_name
+            check(ms[-1] == "wheels stop" and b["timeline"][-1]["event"] == "stop" and
+                  b["timeline"][-1]["named"], "rlv-hthl: the roll-out's end: %r" % b["timeline"][-1])
             meco = [e for e in b["timeline"] if e["label"] == "MECO"]
             check(len(meco) == 1 and meco[0]["event"] == "propellant_left", "rlv-hthl MECO: %r" % meco)
         if "kourou-rtls" in runs:

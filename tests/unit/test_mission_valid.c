@@ -505,16 +505,21 @@ static void test_target_scale(void)
     "    geometry: " geo "\n"                                                                \
     "phases: [{name: p, model: flat6, stages: [s], stop_time: 1}]\n"
 
-/* geometry: {length, diameter, span} in m: length, diameter > 0, span >= 0 (0 or none: no
- * wing); refused where it is wrong, with line and column; no geometry: none reported. */
+/* geometry: {length, diameter, span} in m: length, diameter in [0.01, 1000], span 0 or in
+ * [0.01, 1000] (0 or none: no wing); refused where it is wrong, with line and column; no
+ * geometry: none reported. */
 static void test_geometry(void)
 {
     BAD("geo_d0", GEO_MISSION("{length: 2, diameter: 0}"),
-        "6:37: stage 's', geometry: diameter: a length in m > 0 expected, found 0");
+        "6:37: stage 's', geometry: diameter: a length from 0.01 to 1000 m expected, found 0");
     BAD("geo_l_neg", GEO_MISSION("{length: -2, diameter: 1}"),
-        "6:24: stage 's', geometry: length: a length in m > 0 expected, found -2");
+        "6:24: stage 's', geometry: length: a length from 0.01 to 1000 m expected, found -2");
+    BAD("geo_tiny", GEO_MISSION("{length: 1.0e-300, diameter: 1}"),
+        "6:24: stage 's', geometry: length: a length from 0.01 to 1000 m expected, found 1e-300");
+    BAD("geo_huge", GEO_MISSION("{length: 2, diameter: 7.0e6}"),
+        "6:37: stage 's', geometry: diameter: a length from 0.01 to 1000 m expected");
     BAD("geo_span", GEO_MISSION("{length: 2, diameter: 1, span: -1}"),
-        "6:46: stage 's', geometry: span: a length in m >= 0 expected");
+        "6:46: stage 's', geometry: span: 0 (no wing) or a length from 0.01 to 1000 m expected");
     BAD("geo_nod", GEO_MISSION("{length: 2}"), "6:15: stage 's', geometry: ");
     BAD("geo_key", GEO_MISSION("{length: 2, diameter: 1, chord: 3}"), "6:");
     BAD("geo_text", GEO_MISSION("{length: 2, diameter: wide}"), "6:");
