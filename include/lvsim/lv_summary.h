@@ -39,7 +39,8 @@ LV_API lv_status lv_run_write_summary_files(const lv_run *r, const char *outdir,
 typedef struct lv_timeline_row {
     char label[LV_TIMELINE_LABEL_MAX]; /* "lift-off", "max-q", "MECO", "separation of booster" */
     const char *kind;  /* "start" (a take-off roll's), "liftoff", "max_q", "event" (within a
-                          phase), "end" (of a phase), "separation"; static */
+                          phase), "end" (of a phase), "separation", "crash" (a hand-off
+                          that crashed: a touchdown; at its parent's last row); static */
     const char *phase; /* the phase whose row gives the values (the mission's string) */
     const char *event; /* the condition or event as the results name it ("propellant_left",
                           "burnout", "stop_time", "failed"); NULL for lift-off, max-q and a

@@ -397,6 +397,21 @@ lv_status lv_run_timeline(const lv_run *run, size_t s, lv_timeline **out, lv_err
             if (w != NULL)
                 w->named = named;
         }
+        /* a child of k that carries the body and crashed at its hand-off (a touchdown off
+         * the runway or beyond the landing gear) is not flown: the crash is k's last row */
+        for (size_t ch = 0; ch < n_ph && !nomem; ch++) {
+            lv_phase_info cp;
+            if (lv_mission_phase_parent(m, ch) != (int)k ||
+                lv_run_result(run, ch)->state != LV_PHASE_CRASHED)
+                continue;
+            lv_mission_phase_info(m, ch, &cp);
+            if (!in_phase(&cp, s))
+                continue;
+            w = add(&b, run, k, nr - 1, "crash", "crashed");
+            nomem |= w == NULL;
+            if (w != NULL)
+                w->event = "crashed";
+        }
     }
     if (st == LV_OK && !nomem && q_max > 0.0)
         nomem |= add(&b, run, q_k, q_r, "max_q", "max-q") == NULL;

@@ -320,6 +320,30 @@ def main():
                 check(len(row) == 1 and len(ref) == 1 and
                       row[0].index(" 153.231") - 63 == ref[0].index("  63.000") - 34,
                       "utf8: console columns: %r / %r" % (row, ref))
+        # a touchdown past the end of a 400 m runway crashes: the roll-out is not flown, the
+        # body's timeline ends with a "crashed" row at the flare's last row (its touchdown)
+        if "rlv-hthl" in runs:
+            d = os.path.join(tmp, "crash")
+            os.mkdir(d)
+            text = open(os.path.join(src, "examples", "rlv-hthl", "mission.yaml")).read()
+            i = text.index("heading_deg: 270, length: 4000")
+            text = text[:i] + text[i:].replace("length: 4000", "length: 400", 1)
+            with open(os.path.join(d, "mission.yaml"), "w") as f:
+                f.write(text)
+            for fn in os.listdir(os.path.join(src, "examples", "rlv-hthl")):
+                if fn.endswith(".csv"):
+                    os.symlink(os.path.join(src, "examples", "rlv-hthl", fn), os.path.join(d, fn))
+            out = os.path.join(d, "out")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
+                               capture_output=True, text=True)
+            check(r.returncode == 4, "crash: exit %d: %s" % (r.returncode, r.stderr[-300:]))
+            summ = json.load(open(os.path.join(out, "summary.json")))
+            b = next(b for b in summ["bodies"] if b["name"] == "ms")
+            last, td = b["timeline"][-1], b["timeline"][-2]
+            fl = next(p for p in summ["phases"] if p["name"] == "flare")
+            check(last["kind"] == "crash" and last["label"] == "crashed" and last["event"] == "crashed" and
+                  last["phase"] == "flare" and last["t"] == fl["t_end"] and td["label"] == "touchdown" and
+                  last["row"] == td["row"], "crash: %r / %r" % (td, last))
         # lvsim check = lvsim run: the same message for a bad name
         bad = os.path.join(tmp, "bad.yaml")
         with open(bad, "w") as f:
