@@ -163,9 +163,10 @@ void lv_ex_colour(const lv_ex_run *r, size_t p, int rgb[3])
 
 const char *lv_ex_event_label(const lv_ex_event *e)
 {
-    /* the event's own name, as summary.json, the report and the CLI give it: "burnout",
-     * "impact" (a ground contact, whatever its speed: never "landing"), a time event's source */
-    return e->name != NULL ? e->name : "time event";
+    /* the user's name of it ("MECO", `name:`), else the event's own name, as summary.json,
+     * the report and the CLI give it: "burnout", "impact" (a ground contact, whatever its
+     * speed: never "landing"), a time event's source */
+    return e->label != NULL ? e->label : e->name != NULL ? e->name : "time event";
 }
 
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap)

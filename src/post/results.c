@@ -144,6 +144,7 @@ static lv_status read_phase(lv_results *r, const cJSON *pj, size_t i, lv_err *er
         x->t = json_num(e, "t");
         x->name = json_str(e, "name");
         x->kind = json_str(e, "kind");
+        x->label = json_str(e, "label");
         x->direction = json_num(e, "direction");
     }
 

@@ -24,6 +24,7 @@ typedef struct lv_results_event {
                        * ("stage 'stage3' thrust table breakpoint t = 481 s"); NULL: none */
     const char *kind; /* "state" or "time"; NULL when missing */
     double direction; /* zero crossing: +1 rising, -1 falling; NAN when missing */
+    const char *label; /* the user's name of the event (`name: MECO`); NULL: none */
 } lv_results_event;
 
 typedef struct lv_results_phase {

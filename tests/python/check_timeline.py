@@ -208,6 +208,13 @@ def main():
             check(len(meco) == 1 and meco[0].rstrip().endswith(" all") and len(seps) == 2 and
                   seps[0].rstrip().endswith("upper, payload") and seps[1].rstrip().endswith("fairing"),
                   "kourou-leo: the run's timeline table: %r" % lines)
+            # the exports' event markers carry the user's names (docs/exports.md)
+            kml = open(os.path.join(out, "mission.kml")).read()
+            czml = json.load(open(os.path.join(out, "mission.czml")))
+            texts = [p.get("label", {}).get("text") for p in czml if isinstance(p, dict)]
+            check("<name>MECO</name>" in kml and "<name>SECO</name>" in kml and
+                  "MECO" in texts and "SECO" in texts, "kourou-leo: exports' markers: %r" %
+                  sorted(set(t for t in texts if t)))
             html = open(os.path.join(out, "index.html")).read()
             check('<h2 id="timeline">Timeline</h2>' in html and "separation of fairing" in html,
                   "kourou-leo: no timeline in index.html")
