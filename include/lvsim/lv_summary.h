@@ -40,7 +40,8 @@ typedef struct lv_timeline_row {
     char label[LV_TIMELINE_LABEL_MAX]; /* "lift-off", "max-q", "MECO", "separation of booster" */
     const char *kind;  /* "start" (a take-off roll's), "liftoff", "max_q", "event" (within a
                           phase), "end" (of a phase), "separation", "crash" (a hand-off
-                          that crashed: a touchdown; at its parent's last row); static */
+                          that crashed: a touchdown, at its parent's last row; a crash end,
+                          a roll off the runway, at the phase's last row); static */
     const char *phase; /* the phase whose row gives the values (the mission's string) */
     const char *event; /* the condition or event as the results name it ("propellant_left",
                           "burnout", "stop_time", "failed"); NULL for lift-off, max-q and a

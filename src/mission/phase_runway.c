@@ -24,6 +24,7 @@ static const char *const from_types[] = {"dof3", NULL};
 static const char *const ends[] = {"burnout", "speed", NULL};
 /* The runway model's own ends (src/dynamics/runway.c): `end_name:` names them */
 static const char *const own_ends[] = {"liftoff", "at_rest", "stop", "overrun", NULL};
+static const char *const crash_ends[] = {"overrun", NULL}; /* off the runway's end */
 
 
 /* Touchdown tolerance of the hand-off from a dof3 phase (runway_handoff): a parent that ends
@@ -448,6 +449,7 @@ const lv_phase_type lv_phase_type_runway = {
     .from_types = from_types,
     .ends = ends,
     .own_ends = own_ends,
+    .crash_ends = crash_ends,
     .sample_keys = "runway: {lat_deg: 0, lon_deg: 0, elevation: 0, heading_deg: 90}, "
                    "takeoff: {mu: 0.02, v_rot: 80, alpha_rot_deg: 8}",
     .n_mission_params = 0,

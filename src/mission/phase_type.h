@@ -129,6 +129,11 @@ struct lv_phase_type {
      * "stop"), NULL-terminated; NULL: none. A phase's `end_name:` names them too, so it needs
      * no `end:` list for them. */
     const char *const *own_ends;
+    /* Those of its own ends that are a crash (a roll that runs off the runway's end:
+     * "overrun"), NULL-terminated; NULL: none. A phase that ends by one is flown (its rows,
+     * files and finals complete) and then `crashed` (lv_phase_state), its error the end's
+     * description. */
+    const char *const *crash_ends;
     /* The model parameters a root phase takes from the mission's shared parameter set
      * (name, SI unit, description; `start` unused). */
     size_t n_mission_params;

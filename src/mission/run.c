@@ -469,6 +469,29 @@ static void label_events(const lv_run *r, size_t k, run_phase *p)
     p->res.event_labels = p->labels;
 }
 
+/* A flown phase that ended by one of its type's crash ends (a roll off the runway's end):
+ * crashed, with its rows, files and finals (the run's lock held). */
+static void crash_end(lv_run *r, const lv_phase_call *c)
+{
+    const lv_phase_def *ph = &r->m->def->phases[c->k];
+    run_phase *p = &r->ph[c->k];
+    const lv_sim_report *rep = &p->res.report;
+    if (p->res.state != LV_PHASE_DONE || rep->reason != LV_STOP_EVENT ||
+        ph->type->crash_ends == NULL)
+        return;
+    for (size_t i = 0; ph->type->crash_ends[i] != NULL; i++)
+        if (strcmp(ph->type->crash_ends[i], rep->stop_name) == 0) {
+            const lv_model_def *md = c->pm->def;
+            const char *why = rep->stop_event >= 0 && (size_t)rep->stop_event < md->n_events
+                                  ? md->events[rep->stop_event].description
+                                  : rep->stop_name;
+            p->res.state = LV_PHASE_CRASHED;
+            snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': crashed at t = %.9g s: "
+                     "%s: %.400s", ph->name, rep->end_time, rep->stop_name, why);
+            return;
+        }
+}
+
 /* The phase's result from a finished call (the run's lock is held when workers run). */
 static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_err,
                    lv_sim_report *rep)
@@ -658,6 +681,7 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         lv_drop_model_prefix(err, ph->name);
     pthread_mutex_lock(&r->lock);
     record(r, c, st, err, &rep);
+    crash_end(r, c);
     pthread_mutex_unlock(&r->lock);
     lv_phase_call_free(c);
     if (st != LV_OK)
@@ -894,7 +918,12 @@ size_t lv_run_body_phases(const lv_run *r, size_t s, size_t *out)
     size_t n = 0;
     for (size_t k = 0; k < d->n_phases; k++) {
         const lv_phase_result *res = &r->ph[k].res;
-        if (res->state != LV_PHASE_DONE || !lv_mission_phase_has_stage(d, k, s))
+        /* flown: done, or crashed by a crash end (its rows complete; a crash at the hand-off
+         * is not flown) */
+        const int flown = res->state == LV_PHASE_DONE ||
+                          (res->state == LV_PHASE_CRASHED && r->ph[k].rows != NULL &&
+                           lv_result_rows(r->ph[k].rows) > 0);
+        if (!flown || !lv_mission_phase_has_stage(d, k, s))
             continue;
         size_t pos = n++; /* insertion by start time: the path is short */
         while (pos > 0 && r->ph[out[pos - 1]].res.t_start > res->t_start) {

@@ -479,10 +479,9 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
         if (cJSON_IsObject(td)) { /* a runway touchdown: landed or crashed, and the roll-out */
             const char *status = jstr(td, "status");
             const int crashed = status != NULL && strcmp(status, "crashed") == 0;
-            const int overran = status != NULL && strcmp(status, "overran") == 0;
-            key_row(f, crashed   ? "touchdown: CRASHED"
-                       : overran ? "touchdown: ran off the runway's end"
-                                 : "touchdown");
+            key_row(f, crashed ? "touchdown: CRASHED" : "touchdown");
+            /* a roll-out flown to a crash end: it stopped nowhere, it left the runway */
+            const int overran = crashed && isfinite(jnum(td, "rollout_distance"));
             int first = 1;
             kv(f, "t", jnum(td, "t"), 1.0, 3, "s", &first);
             kv(f, "from the threshold", jnum(td, "from_threshold"), 1.0, 0, "m", &first);
@@ -493,7 +492,7 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             kv(f, "pitch", jnum(td, "pitch"), 1.0 / LV_DEG, 1, "deg", &first);
             kv(f, "bank", jnum(td, "bank"), 1.0 / LV_DEG, 1, "deg", &first);
             kv(f, "roll-out", jnum(td, "rollout_distance"), 1.0, 0, "m", &first);
-            kv(f, overran ? "off the runway's end at" : "stopped from the threshold",
+            kv(f, overran ? "ran off the runway's end at" : "stopped from the threshold",
                jnum(td, "stop_from_threshold"), 1.0, 0, "m", &first);
             if (overran)
                 kv(f, "at", jnum(td, "stop_speed"), 1.0, 1, "m/s", &first);

@@ -374,16 +374,13 @@ static cJSON *touchdown_json(const lv_plot_data *d, size_t bi)
         if (!cJSON_IsNumber(sink))
             continue;
         cJSON *o = cJSON_CreateObject();
+        /* crashed at the touchdown (not flown), or by a crash end of the roll-out (flown:
+         * off the runway's end) */
         const int crashed = ph->state != NULL && strcmp(ph->state, "crashed") == 0;
-        /* a roll-out that ends by the runway's end ran off it (the runway model's end
-         * "overrun", where the distance rises through `runway: length`) */
-        const int overran = ph->done && ph->end_event != NULL &&
-                            strcmp(ph->end_event, "overrun") == 0;
-        cJSON_AddStringToObject(o, "status", overran    ? "overran"
+        cJSON_AddStringToObject(o, "status", crashed    ? "crashed"
                                              : ph->done ? "landed"
-                                             : crashed  ? "crashed"
                                              : ph->state ? ph->state : "?");
-        if (!ph->done && ph->error != NULL)
+        if ((crashed || !ph->done) && ph->error != NULL)
             cJSON_AddStringToObject(o, "reason", ph->error);
         cJSON_AddStringToObject(o, "phase", ph->name);
         num(o, "t", ph->t_start);

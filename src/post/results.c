@@ -107,6 +107,9 @@ static lv_status read_phase(lv_results *r, const cJSON *pj, size_t i, lv_err *er
     p->end_reason = json_str(end, "reason");
     p->end_event = json_str(end, "event");
     p->end_label = json_str(end, "label");
+    /* a phase that ended by a crash end (a roll off the runway's end) was flown: its times,
+     * events and rows are complete (a crash at the hand-off has no end event) */
+    p->done |= p->state != NULL && strcmp(p->state, "crashed") == 0 && p->end_event != NULL;
     p->end_value = json_num(end, "value");
 
     const cJSON *stats = cJSON_GetObjectItemCaseSensitive(pj, "stats");

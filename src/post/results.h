@@ -33,7 +33,8 @@ typedef struct lv_results_phase {
     const char *from;       /* the parent phase's name; NULL: seeded from the parameters */
     int parent;             /* position of `from` in lv_results.phases; -1 */
     const char *state;      /* "done", "failed", "skipped", "pending"; NULL when missing */
-    int done;               /* state "done": its times, events and rows are complete */
+    int done;               /* state "done", or "crashed" by a crash end (end.event: a roll
+                             * off the runway): its times, events and rows are complete */
     const char *error;      /* why it failed or was skipped; NULL */
     const char *model;      /* model type ("dof3", "flat6"); NULL when missing */
     double t_start, t_end;  /* s; NAN when missing */

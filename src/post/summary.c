@@ -190,8 +190,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON_AddNumberToObject(g, "span", span);
     }
     cJSON_AddNumberToObject(o, "payload", isfinite(r->payload) ? r->payload : 0.0);
-    if (r->state == LV_PHASE_DONE) {
-        cJSON *fin = cJSON_AddObjectToObject(o, "final");
+    if (r->state == LV_PHASE_DONE || (r->state == LV_PHASE_CRASHED && r->n_final > 0)) {
+        cJSON *fin = cJSON_AddObjectToObject(o, "final"); /* a crash end's too: flown */
         for (size_t i = 0; i < r->n_final; i++)
             if (isfinite(r->final_values[i]))
                 cJSON_AddNumberToObject(fin, r->final_names[i], r->final_values[i]);
@@ -201,7 +201,8 @@ static cJSON *phase_json(const lv_run *run, size_t k)
         cJSON *files = cJSON_AddObjectToObject(o, "files");
         const char *base = strrchr(r->result_stem, '/');
         base = base ? base + 1 : r->result_stem;
-        const char *fail = r->state == LV_PHASE_DONE ? "" : ".failed";
+        /* the sinks name a failed simulation's files; a crash end's are complete */
+        const char *fail = r->state == LV_PHASE_FAILED ? ".failed" : "";
         const char *name, *ext;
         for (size_t i = 0; (name = lv_result_format_info(i, &ext, NULL)) != NULL; i++)
             if (r->result_formats & (1u << i)) { /* "mat": "phase_1_ascent.mat" */
@@ -277,7 +278,8 @@ static void time_json(cJSON *root, const lv_run *run, size_t n_phases, const cha
     double t0 = INFINITY, t1 = -INFINITY;
     for (size_t k = 0; k < n_phases; k++) {
         const lv_phase_result *r = lv_run_result(run, k);
-        if ((r->state == LV_PHASE_DONE || r->state == LV_PHASE_FAILED) &&
+        if ((r->state == LV_PHASE_DONE || r->state == LV_PHASE_FAILED ||
+             r->state == LV_PHASE_CRASHED) &&
             isfinite(r->t_start) && isfinite(r->t_end)) {
             t0 = fmin(t0, r->t_start);
             t1 = fmax(t1, fmax(r->t_start, r->t_end));

@@ -141,7 +141,7 @@ static void value_text(char *buf, size_t cap, double v, const char *unit)
 static void end_text(const lv_phase_result *pr, const lv_result *res, char *buf, size_t cap)
 {
     const lv_sim_report *rep = &pr->report;
-    if (pr->state != LV_PHASE_DONE || rep->reason == LV_STOP_FAILED) {
+    if (pr->state == LV_PHASE_FAILED || rep->reason == LV_STOP_FAILED) {
         snprintf(buf, cap, "failed");
         return;
     }
@@ -384,7 +384,16 @@ lv_status lv_run_timeline(const lv_run *run, size_t s, lv_timeline **out, lv_err
             break;
         }
         w->named = pr->end_label != NULL;
-        w->event = pr->state != LV_PHASE_DONE                 ? "failed"
+        if (pr->state == LV_PHASE_CRASHED) { /* flown to a crash end (a roll off the runway) */
+            lv_timeline_row *cw = add(&b, run, k, nr - 1, "crash", "crashed");
+            if (cw == NULL) {
+                nomem = 1;
+                break;
+            }
+            cw->event = "crashed";
+            w = &b.rows[b.n - 2]; /* add may have moved the rows */
+        }
+        w->event = pr->state == LV_PHASE_FAILED               ? "failed"
                    : pr->report.reason == LV_STOP_TIME        ? "stop_time"
                    : pr->report.reason == LV_STOP_EVENT       ? pr->report.stop_name
                                                               : "failed";
@@ -402,7 +411,8 @@ lv_status lv_run_timeline(const lv_run *run, size_t s, lv_timeline **out, lv_err
         for (size_t ch = 0; ch < n_ph && !nomem; ch++) {
             lv_phase_info cp;
             if (lv_mission_phase_parent(m, ch) != (int)k ||
-                lv_run_result(run, ch)->state != LV_PHASE_CRASHED)
+                lv_run_result(run, ch)->state != LV_PHASE_CRASHED ||
+                lv_result_rows(lv_run_rows(run, ch)) > 0) /* flown: its own row, below */
                 continue;
             lv_mission_phase_info(m, ch, &cp);
             if (!in_phase(&cp, s))

@@ -351,6 +351,26 @@ def main():
             check(last["kind"] == "crash" and last["label"] == "crashed" and last["event"] == "crashed" and
                   last["phase"] == "flare" and last["t"] == fl["t_end"] and td["label"] == "touchdown" and
                   last["row"] == td["row"], "crash: %r / %r" % (td, last))
+            # a 1000 m runway: touchdown 606 m past the threshold, off the end at 1000 m - the
+            # roll-out is flown to there (complete files, its rows in the timeline) and crashed
+            text = text.replace("length: 400,", "length: 1000,", 1)
+            with open(os.path.join(d, "mission.yaml"), "w") as f:
+                f.write(text)
+            out = os.path.join(d, "out2")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
+                               capture_output=True, text=True)
+            check(r.returncode == 4 and "crashed at t = " in r.stderr and ": overrun: " in r.stderr,
+                  "overrun: exit %d: %s" % (r.returncode, r.stderr[-300:]))
+            summ = json.load(open(os.path.join(out, "summary.json")))
+            ro = next(p for p in summ["phases"] if p["name"] == "rollout")
+            rows, _ = load_csv(os.path.join(out, ro["files"]["csv"]))
+            b = next(b for b in summ["bodies"] if b["name"] == "ms")
+            end, last = b["timeline"][-2], b["timeline"][-1]
+            check(ro["state"] == "crashed" and ro["end"]["event"] == "overrun" and
+                  ro["files"]["csv"] == "phase_10_rollout.csv" and abs(rows[-1]["distance"] - 1000) < 1e-6 and
+                  end["kind"] == "end" and end["event"] == "overrun" and end["t"] == rows[-1]["time"] and
+                  last["kind"] == "crash" and last["phase"] == "rollout" and last["t"] == rows[-1]["time"],
+                  "overrun: %r / %r / %r" % (ro.get("end"), end, last))
         # lvsim check = lvsim run: the same message for a bad name
         bad = os.path.join(tmp, "bad.yaml")
         with open(bad, "w") as f:

@@ -801,7 +801,8 @@ static void test_gear_limits(void)
     /* two at once: off the runway and beyond the gear */
     g_runway = "{lat_deg: 43.59931, lon_deg: 1.370797, elevation: 150, heading_deg: 140}";
     expect_touchdown("", 80, -3, 0, 5, 0, C, "m before the runway's threshold (undershoot); sink rate 4.2");
-    /* a roll-out longer than the runway ends where the runway does (its end "overrun"): from
+    /* a roll-out longer than the runway ends where the runway does (its end "overrun", a
+     * crash: flown to there, then crashed, its finals kept): from
      * 80 m/s with braking friction 0.3 and no air the roll takes v^2 / (2 mu g) = 1.09 km;
      * over 100 m the speed falls to sqrt(80^2 - 2 x 0.3 x 9.80 x 100) = 76.3 m/s */
     g_runway = "{lat_deg: 43.6, lon_deg: 1.37, elevation: 150, heading_deg: 140, length: 100}";
@@ -811,8 +812,10 @@ static void test_gear_limits(void)
         CHECK(r != NULL);
         if (r != NULL) {
             const lv_phase_result *ro = lv_run_result(r, 1);
-            CHECK(ro->state == LV_PHASE_DONE);
+            CHECK(ro->state == LV_PHASE_CRASHED);
             CHECK(strcmp(ro->report.stop_name, "overrun") == 0);
+            CHECK(strstr(ro->error, "phase 'rollout': crashed at t = ") == ro->error &&
+                  strstr(ro->error, ": overrun: ") != NULL);
             double s_end = NAN, v_end = NAN;
             for (size_t i = 0; i < ro->n_final; i++) {
                 if (strcmp(ro->final_names[i], "distance") == 0)
