@@ -333,10 +333,17 @@ static void draw_legend(const lv_plot_data *d, const panel *p, int phases)
 }
 
 /* The sites on a map: a runway as a thick line from its threshold along the part rolled on,
- * and a triangle at its threshold (or at the launch site), labelled. */
+ * and a triangle at its threshold (or at the launch site), labelled. A label that would cover
+ * one drawn before (two runways 4 km apart on a 20 km map) moves down a line until it is
+ * clear; the box of a label is estimated from its characters (0.009 of the map's width each
+ * at the labels' size, a line 0.045 of its height: a bound, PLplot measures no text). */
+#define SITE_LABELS_MAX 16
 static void draw_sites(const lv_plot_data *d, const figure *f, double ylo, double yhi)
 {
     const double xm = 0.5 * (f->xlo + f->xhi);
+    const double cw = 0.009 * (f->xhi - f->xlo), lh = 0.045 * (yhi - ylo);
+    double lx[SITE_LABELS_MAX], ly[SITE_LABELS_MAX], lw[SITE_LABELS_MAX];
+    size_t nl = 0;
     for (size_t i = 0; i < d->n_sites; i++) {
         const lv_plot_site *s = &d->sites[i];
         PLFLT x[2] = {s->lon * RAD2DEG, s->lon1 * RAD2DEG}, y[2] = {s->lat * RAD2DEG,
@@ -355,8 +362,23 @@ static void draw_sites(const lv_plot_data *d, const figure *f, double ylo, doubl
         plpoin(1, x, y, 7);
         char label[200];
         pl_text(label, sizeof label, s->label);
+        double tx = x[0] + 0.015 * (f->xhi - f->xlo), ty = y[0] - 0.035 * (yhi - ylo);
+        const double tw = cw * (double)strlen(label);
+        for (int moved = 1, tries = 0; moved && tries < SITE_LABELS_MAX; tries++) {
+            moved = 0;
+            for (size_t j = 0; j < nl; j++)
+                if (tx < lx[j] + lw[j] && lx[j] < tx + tw && fabs(ty - ly[j]) < lh) {
+                    ty = ly[j] - lh; /* below the one it covers */
+                    moved = 1;
+                }
+        }
+        if (nl < SITE_LABELS_MAX) {
+            lx[nl] = tx;
+            ly[nl] = ty;
+            lw[nl++] = tw;
+        }
         plschr(0.0, 0.75);
-        plptex(x[0] + 0.015 * (f->xhi - f->xlo), y[0] - 0.035 * (yhi - ylo), 1.0, 0.0, 0.0, label);
+        plptex(tx, ty, 1.0, 0.0, 0.0, label);
         plschr(0.0, 1.0);
     }
 }
