@@ -65,16 +65,18 @@ static void show_progress(const lv_campaign_progress *p, void *user)
         for (int i = 0; i < 40; i++)
             fill[i] = i < w ? '#' : '.';
         fill[40] = '\0';
-        fprintf(stderr, "\r[%s] %5.1f%% %llu/%llu  %.1f runs/s  ETA %s  impact %llu  failed %llu ",
-                fill, 100.0 * frac, (unsigned long long)p->done, (unsigned long long)p->total,
-                p->rate, eta, (unsigned long long)p->impacts, (unsigned long long)p->failed);
+        fprintf(stderr, "\r[%s] %5.1f%% %llu/%llu  %.1f runs/s  ETA %s  impact %llu  crashed %llu  "
+                "failed %llu ", fill, 100.0 * frac, (unsigned long long)p->done,
+                (unsigned long long)p->total, p->rate, eta, (unsigned long long)p->impacts,
+                (unsigned long long)p->crashed, (unsigned long long)p->failed);
         if (p->done == p->total)
             fputc('\n', stderr);
     } else if (p->elapsed - b->last_line >= 10.0 || p->done == p->total ||
                (p->done - b->last_done) * 10 >= p->total) {
         fprintf(stderr, "mc: %llu/%llu runs (%.1f%%), %.1f runs/s, elapsed %s, ETA %s, impact "
-                "%llu, failed %llu\n", (unsigned long long)p->done, (unsigned long long)p->total,
-                100.0 * frac, p->rate, el, eta, (unsigned long long)p->impacts,
+                "%llu, crashed %llu, failed %llu\n", (unsigned long long)p->done,
+                (unsigned long long)p->total, 100.0 * frac, p->rate, el, eta,
+                (unsigned long long)p->impacts, (unsigned long long)p->crashed,
                 (unsigned long long)p->failed);
         b->last_line = p->elapsed;
         b->last_done = p->done;
@@ -331,9 +333,11 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     }
     printf("mc: %llu runs in %s (%llu this session in %.2f s: %.1f runs/s), %llu with a failed "
            "phase or an input out of range, %llu with a phase that fell to the ground (an "
-           "impact end other than its first)\n", (unsigned long long)prog.done, db,
+           "impact end other than its first), %llu crashed (a touchdown beyond the landing "
+           "gear's limits)\n", (unsigned long long)prog.done, db,
            (unsigned long long)prog.this_session, prog.elapsed, prog.rate,
-           (unsigned long long)prog.failed, (unsigned long long)prog.impacts);
+           (unsigned long long)prog.failed, (unsigned long long)prog.impacts,
+           (unsigned long long)prog.crashed);
     lv_err serr;
     lv_status sst = stats ? lv_outdir_stage(od, &serr) : LV_OK;
     const char *stage = lv_outdir_path(od);

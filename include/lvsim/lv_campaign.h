@@ -43,6 +43,9 @@ typedef struct lv_campaign_progress {
     uint64_t impacts;    /* stored runs where no phase failed but one fell to the ground: it
                             ended by an `impact` end that is not its first written end (an
                             outcome of the flight, not a failure; docs/monte-carlo.md) */
+    uint64_t crashed;    /* stored runs where no phase failed but one crashed: a touchdown
+                            beyond the landing gear's limits (runs.status `crashed`; an
+                            outcome of the flight, neither a failure nor an impact) */
 } lv_campaign_progress;
 
 typedef struct lv_campaign_options {

@@ -18,11 +18,12 @@ class Campaign:
     `done` (stored runs), `this_session`, `failed` (runs with a failed phase or a drawn
     input out of range), `impacts` (runs where no phase failed but one fell to the ground: it
     ended by an `impact` end that is not its first written end; an outcome, not a failure),
+    `crashed` (runs where no phase failed but a touchdown was beyond the landing gear's limits),
     `elapsed` (s), `rate` (runs/s). Read it with runs(), phase() and stats()."""
 
     def __init__(self, db_path, progress=None):
         """An existing campaign database `db_path` (lvsim mc, Campaign.run): its counts are
-        read from it (`total` the runs asked for, `done` those stored, `failed`, `impacts`; the timing
+        read from it (`total` the runs asked for, `done` those stored, `failed`, `impacts`, `crashed`; the timing
         attributes `this_session`, `elapsed`, `rate`, `eta` are those of the call that ran it,
         0 when opened here)."""
         self.db_path = os.fspath(db_path)
@@ -34,11 +35,12 @@ class Campaign:
             raise LvsimError(f"{self.db_path}: no such campaign database", _lib.LV_ERR_NOTFOUND)
         try:
             _, meta = self._query("SELECT key, value FROM campaign WHERE key = 'n_runs'")
-            _, counts = self._query("SELECT COUNT(*), COALESCE(SUM(status NOT IN ('ok', 'impact')), 0),"
-                                    " COALESCE(SUM(status = 'impact'), 0) FROM runs")
+            _, counts = self._query("SELECT COUNT(*), COALESCE(SUM(status NOT IN ('ok', 'impact', 'crashed')), 0),"
+                                    " COALESCE(SUM(status = 'impact'), 0), COALESCE(SUM(status = 'crashed'), 0)"
+                                    " FROM runs")
         except sqlite3.DatabaseError as e:
             raise LvsimError(f"{self.db_path}: not a campaign database ({e})", _lib.LV_ERR_INPUT) from None
-        self.done, self.failed, self.impacts = (int(c) for c in counts[0])
+        self.done, self.failed, self.impacts, self.crashed = (int(c) for c in counts[0])
         self.total = int(meta[0][1]) if meta else self.done
         self.this_session, self.elapsed, self.rate, self.eta = 0, 0.0, 0.0, 0.0
 
@@ -55,7 +57,7 @@ class Campaign:
         number > 0: every phase's grid in s) - the same meanings as Run.execute's, so
         run.disperse(seed, i); run.execute(output_interval=..., method=..., tolerance=...)
         reproduces run i bit for bit. progress(dict) is called about every 0.25 s from the
-        calling thread (total, done, failed, impacts, rate, eta); returning True stops the campaign
+        calling thread (total, done, failed, impacts, crashed, rate, eta); returning True stops the campaign
         within an integrator step of every running run (CancelledError; the runs done are
         kept, a run cut short is not stored: resume=True runs it). max_rows (default 1e6, as
         `lvsim mc --max-rows`; None: no limit): the output rows a phase of a run may compute

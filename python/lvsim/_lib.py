@@ -231,7 +231,7 @@ class lv_disp_info(Structure):
 class lv_campaign_progress(Structure):
     _fields_ = [("total", c_uint64), ("done", c_uint64), ("this_session", c_uint64),
                 ("failed", c_uint64), ("elapsed", c_double), ("rate", c_double),
-                ("eta", c_double), ("impacts", c_uint64)]
+                ("eta", c_double), ("impacts", c_uint64), ("crashed", c_uint64)]
 
 
 CAMPAIGN_PROGRESS_FN = CFUNCTYPE(None, POINTER(lv_campaign_progress), c_void_p)

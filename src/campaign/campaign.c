@@ -295,13 +295,20 @@ static int unintended_impact(const lv_phase_result *res)
            strcmp(res->report.stop_name, "impact") == 0;
 }
 
-/* The end a done phase reached: the event's name, or "stop_time". */
+/* The end a done phase reached: the event's name, or "stop_time". Any event that stopped it,
+ * as summary.json's end.event: one of its written ends (end_index >= 0) or one the phase type
+ * ends by itself (a runway's `liftoff`, `stop`: end_index -1, yet no stop time). */
 static const char *end_of(const lv_phase_result *res)
 {
+    const lv_sim_report *rep = &res->report;
     switch (res->state) {
     case LV_PHASE_DONE:
-        return res->end_index >= 0 && res->report.stop_name[0] ? res->report.stop_name
-                                                               : "stop_time";
+        if (rep->reason != LV_STOP_EVENT)
+            return "stop_time";
+        if (rep->stop_event >= 0 && (size_t)rep->stop_event < res->n_event_names &&
+            res->event_names[rep->stop_event] != NULL)
+            return res->event_names[rep->stop_event];
+        return rep->stop_name[0] ? rep->stop_name : "event";
     case LV_PHASE_FAILED:
         return "failed";
     case LV_PHASE_SKIPPED:

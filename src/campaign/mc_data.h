@@ -22,6 +22,7 @@ typedef struct lv_mc_phase {
 typedef struct lv_mc_data {
     char mission[256], planet[64], seed[32];
     size_t n_runs, n_stored, n_input_fail;
+    size_t n_run_failed, n_run_impact, n_run_crashed; /* stored runs by runs.status */
     size_t n_in;
     char **in_name, **in_unit;
     double *in;                /* [n_runs * n_in] NaN when not stored */

@@ -72,12 +72,13 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
           "</style></head><body>\n<h1>", f);
     esc(f, d->mission);
     fprintf(f, ": Monte Carlo campaign</h1>\n<p>%zu of %zu runs stored, seed %s; %zu with an "
-            "input outside its range. Files: <a href=\"stats.json\">stats.json</a>, "
+            "input outside its range, %zu with a failed phase, %zu with a phase that fell to "
+            "the ground, %zu crashed (a touchdown beyond the landing gear's limits). Files: <a href=\"stats.json\">stats.json</a>, "
             "<a href=\"stats.csv\">stats.csv</a>, <a href=\"ellipses.csv\">ellipses.csv</a>, "
             "<a href=\"outcomes.csv\">outcomes.csv</a>, <a href=\"sensitivity.csv\">"
             "sensitivity.csv</a>, <a href=\"footprint.kml\">footprint.kml</a> (Google Earth), "
             "<a href=\"campaign.db\">campaign.db</a> (SQLite).</p>\n", d->n_stored, N, d->seed,
-            d->n_input_fail);
+            d->n_input_fail, d->n_run_failed, d->n_run_impact, d->n_run_crashed);
     fputs("<h2>Dispersed inputs (as drawn)</h2>\n<table><tr><th>parameter</th><th>unit</th>"
           "<th>n</th><th>mean</th><th>sd</th><th>p1</th><th>p50</th><th>p99</th></tr>\n", f);
     for (size_t j = 0; j < d->n_in; j++) {
@@ -95,14 +96,15 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
     fputs("</table>\n", f);
     for (size_t k = 0; k < d->n_ph; k++) {
         const lv_mc_phase *p = &d->ph[k];
-        size_t nd = 0, nf = 0, ns = 0, ni = 0;
+        size_t nd = 0, nf = 0, ns = 0, ni = 0, nc = 0;
         for (size_t i = 0; i < p->n_rows; i++)
             nd += p->state[i] == 1, nf += p->state[i] == 2, ns += p->state[i] == 3,
-                ni += p->state[i] == 4;
+                ni += p->state[i] == 4, nc += p->state[i] == 5;
         fputs("<h2>Phase ", f);
         esc(f, p->name);
         fprintf(f, "</h2>\n<p>%zu runs: %zu done, %zu fell to the ground (an impact end not "
-                "the first written), %zu failed (%.3g %%), %zu not run.", p->n_rows, nd, ni, nf,
+                "the first written), %zu crashed (a touchdown beyond the landing gear's "
+                "limits), %zu failed (%.3g %%), %zu not run.", p->n_rows, nd, ni, nc, nf,
                 p->n_rows ? 100.0 * (double)nf / (double)p->n_rows : 0.0, ns);
         /* end reasons and causes, counted in order of first appearance */
         const char *seen[32];
@@ -110,6 +112,7 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
         for (size_t i = 0; i < p->n_rows; i++) {
             const char *key = p->state[i] == 1   ? p->end[i]
                               : p->state[i] == 4 ? "impact (not the end meant)"
+                              : p->state[i] == 5 ? "crashed"
                                                  : lv_mc_cause(p->error[i]);
             size_t q = 0;
             while (q < n_seen && strcmp(seen[q], key) != 0)

@@ -192,6 +192,9 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
                                                             : 3;
         d->n_stored++;
         d->n_input_fail += d->run_status[r] == 3;
+        d->n_run_failed += d->run_status[r] == 2;
+        d->n_run_impact += stt != NULL && strcmp(stt, "impact") == 0;
+        d->n_run_crashed += stt != NULL && strcmp(stt, "crashed") == 0;
         for (size_t j = 0; j < d->n_in; j++)
             d->in[(size_t)r * d->n_in + j] = sqlite3_column_type(s, 3 + (int)j) == SQLITE_NULL
                                                  ? NAN
@@ -429,6 +432,10 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
     cJSON_AddNumberToObject(camp, "n_runs", (double)N);
     cJSON_AddNumberToObject(camp, "stored", (double)d->n_stored);
     cJSON_AddNumberToObject(camp, "input_out_of_range", (double)d->n_input_fail);
+    /* runs by their outcome (runs.status): a phase failed; fell to the ground; crashed */
+    cJSON_AddNumberToObject(camp, "failed", (double)d->n_run_failed);
+    cJSON_AddNumberToObject(camp, "impact", (double)d->n_run_impact);
+    cJSON_AddNumberToObject(camp, "crashed", (double)d->n_run_crashed);
     sb_printf(&csv, "phase,variable,n,mean,sd,p1,p50,p99,min,max\n");
     sb_printf(&ell, "phase,kind,x,y,n,mean_x,mean_y,sd_x,sd_y,rho,semi_major,semi_minor,"
               "angle_deg,centre_lat_deg,centre_lon_deg\n");

@@ -38,7 +38,7 @@ struct lv_campaign {
     size_t n_gaps, gap_at;    /* the range handed out next */
     uint64_t next_run;        /* its next run */
     uint64_t n_todo;          /* runs not stored and not handed out yet */
-    uint64_t done, this_session, failed, impacts;
+    uint64_t done, this_session, failed, impacts, crashed;
     int in_tx;
     double t0;
 };
@@ -549,8 +549,10 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
         from = (uint64_t)i + 1;
         c->done++;
         const char *stt = (const char *)sqlite3_column_text(s, 1);
-        c->failed += stt != NULL && strcmp(stt, "ok") != 0 && strcmp(stt, "impact") != 0;
+        c->failed += stt != NULL && strcmp(stt, "ok") != 0 && strcmp(stt, "impact") != 0 &&
+                     strcmp(stt, "crashed") != 0;
         c->impacts += stt != NULL && strcmp(stt, "impact") == 0;
+        c->crashed += stt != NULL && strcmp(stt, "crashed") == 0;
     }
     sqlite3_finalize(s);
     if (st == LV_OK && from < o->n_runs)
@@ -671,6 +673,7 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
     c->this_session++;
     c->failed += status == LV_MC_FAILED || status == LV_MC_INPUT;
     c->impacts += status == LV_MC_RUN_IMPACT;
+    c->crashed += status == LV_MC_RUN_CRASHED;
     return LV_OK;
 }
 
@@ -690,6 +693,7 @@ void lv_campaign_get_progress(const lv_campaign *c, lv_campaign_progress *p)
     p->this_session = c->this_session;
     p->failed = c->failed;
     p->impacts = c->impacts;
+    p->crashed = c->crashed;
     p->elapsed = now_s() - c->t0;
     p->rate = p->elapsed > 0.0 ? (double)c->this_session / p->elapsed : 0.0;
     p->eta = p->rate > 0.0 ? (double)(p->total - p->done) / p->rate : NAN;

@@ -415,8 +415,9 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
                 kv(f, "n", jnum(n, "value"), 1.0, 3, "g0", &first);
                 kv(f, "at t", jnum(n, "t"), 1.0, 3, "s", &first);
             } else {
-                fputs(i == 1 && flat ? "&ndash; (no aerodynamics: thrust along the axis)"
-                                     : "&ndash;",
+                fputs(i == 0      ? "not available"
+                      : flat        ? "&ndash; (flat world: no lift or side force)"
+                                    : "&ndash;",
                       f);
             }
             fputs("</td></tr>\n", f);
@@ -473,6 +474,8 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
             kv(f, "speed", jnum(gc, "speed"), 1.0, 1, "m/s", &first);
             /* the contact row's load: not in the flight's maxima above */
             kv(f, "axial load factor at contact", jnum(gc, "n_axial"), 1.0, 3, "g0", &first);
+            if (!isfinite(jnum(gc, "n_axial"))) /* null: the model gives no way to it */
+                fputs(", axial load factor at contact not available", f);
             fputs("</td></tr>\n", f);
         }
         const cJSON *td = cJSON_GetObjectItemCaseSensitive(b, "touchdown");

@@ -4,7 +4,8 @@
  * each burnout and separation, the injection state and osculating orbit of a body that
  * reaches orbit (periapsis above 100 km, e < 1; e >= 1: escape) or the end of a suborbital
  * powered flight it coasts up from, and the impact or landing point with its distance from
- * the launch site and its load (left out of the load maxima).
+ * the launch site and its load (left out of the load maxima). A payload that never burns and
+ * ends in orbit gets the injection of the last stage that carried it (carried_by).
  * Written to OUTDIR/key_figures.json (SI units) and shown by the report (plot_html.c).
  * Definitions: docs/visualization.md ("Key figures"); tests/python/check_key_figures.py
  * recomputes every number from the CSV files. */
@@ -29,7 +30,7 @@
 /* A phase CSV's columns the figures read; -1 when absent. */
 typedef struct cols {
     long t, h, speed, v_in, fpa, fpa_in, q, rho, nax, nno, m, lat, lon, x, y, thrust, sma, ecc,
-        inc, apo, peri;
+        inc, apo, peri, drag, dvx, dvy, vz;
 } cols;
 
 static long col(const lv_results_table *t, const char *a, const char *b)
@@ -46,7 +47,8 @@ static cols find_cols(const lv_results_table *t)
               col(t, "n_normal", NULL), col(t, "m", NULL), col(t, "lat", NULL),
               col(t, "lon", NULL), col(t, "x", NULL), col(t, "y", NULL), col(t, "thrust", NULL),
               col(t, "sma", NULL), col(t, "ecc", NULL), col(t, "inc", NULL),
-              col(t, "apo_alt", NULL), col(t, "peri_alt", NULL)};
+              col(t, "apo_alt", NULL), col(t, "peri_alt", NULL), col(t, "drag", NULL),
+              col(t, "der(vx)", NULL), col(t, "der(vy)", NULL), col(t, "vz", NULL)};
     return c;
 }
 
@@ -85,6 +87,30 @@ static cJSON *state_json(const lv_results_table *t, const cols *c, size_t r, con
         num(o, "y", at(t, r, c->y));
     }
     return o;
+}
+
+/* The axial load factor [g0] of row r: the sensed specific force (thrust + aerodynamic force,
+ * over the mass) along the body axis, as the planet models' `n_axial` (docs/models.md). The
+ * model's `n_axial` when it has one; otherwise the flat world's (flat6): its thrust acts
+ * along +z, so the axis is +z. Without air (no `rho` column) the only force beside gravity is
+ * the thrust: T / (m g0). With air the drag D acts along -v_air: its horizontal parts are the
+ * horizontal accelerations (m der(vx), m der(vy): thrust and gravity are vertical), so its
+ * vertical part is |D_z| = sqrt(drag^2 - (m der(vx))^2 - (m der(vy))^2), against the vertical
+ * speed vz (the air's vertical speed, a wind's w_down, taken as smaller than |vz|), and
+ * n = (T + D_z) / (m g0). NAN (not available, never 0) when a column is missing. */
+static double axial_load(const lv_results_table *t, const cols *c, size_t r)
+{
+    if (c->nax >= 0)
+        return at(t, r, c->nax);
+    const double thrust = at(t, r, c->thrust), m = at(t, r, c->m);
+    if (c->rho < 0)
+        return thrust / (m * G0);
+    if (c->drag < 0 || c->dvx < 0 || c->dvy < 0 || c->vz < 0)
+        return NAN;
+    const double d = at(t, r, c->drag), ax = m * at(t, r, c->dvx), ay = m * at(t, r, c->dvy);
+    const double vz = at(t, r, c->vz);
+    const double dz = sqrt(fmax(0.0, d * d - ax * ax - ay * ay));
+    return (thrust + (vz > 0.0 ? -dz : vz < 0.0 ? dz : 0.0)) / (m * G0);
 }
 
 /* First row of t at time `time` (an event instant has two: the one before it), or the last
@@ -162,6 +188,10 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     size_t pow_r = 0;
     const char *pow_phase = NULL;
     size_t pow_k = 0;
+    /* the last powered instant of any stage that carried it (a phase it flies in whose bottom
+     * stage burns, thrust > 0): a body that never burns (a payload) is injected there */
+    const lv_results_table *car_t = NULL;
+    size_t car_r = 0, car_k = 0;
     for (size_t i = 0; i < b->n; i++) {
         const size_t k = b->phase[i];
         const lv_results_phase *ph = &res->phases[k];
@@ -184,10 +214,9 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 q_t = at(t, r, c.t);
                 q_h = h;
             }
-            /* axial: the model's n_axial, or thrust / (m g0) where there is no aerodynamics */
+            /* axial: the sensed specific force along the body axis (axial_load) */
             const int contact = grounded && r + 1 == t->n_rows;
-            double na = c.nax >= 0 ? at(t, r, c.nax)
-                                   : at(t, r, c.thrust) / (at(t, r, c.m) * G0);
+            const double na = axial_load(t, &c, r);
             if (!contact && isfinite(na) && na > na_max) {
                 na_max = na;
                 na_t = at(t, r, c.t);
@@ -202,6 +231,11 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 pow_r = r;
                 pow_phase = ph->name;
                 pow_k = k;
+            }
+            if (c.thrust >= 0 && at(t, r, c.thrust) > 0.0) {
+                car_t = t;
+                car_r = r;
+                car_k = k;
             }
         }
         /* separation: the phase starts with fewer stages than its parent */
@@ -225,6 +259,24 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
             cJSON_AddItemToArray(burn, s);
         }
     }
+    /* a body that never burns gets the end of powered flight of the last stage that carried
+     * it (the same row: the same orbit), but only where that is an orbit or an escape and the
+     * body ends above ORBIT_PERI_MIN too (it ends in orbit; a fairing dropped on the way up
+     * does not) */
+    const char *carrier = NULL;
+    if (pow_t == NULL && car_t != NULL && last_t != NULL) {
+        const cols cl = find_cols(last_t), cc = find_cols(car_t);
+        const double peri_end = at(last_t, last_t->n_rows - 1, cl.peri);
+        const double peri_car = at(car_t, car_r, cc.peri);
+        const lv_results_phase *cp = &res->phases[car_k];
+        if (peri_end > ORBIT_PERI_MIN && peri_car > ORBIT_PERI_MIN && cp->n_stages > 0) {
+            pow_t = car_t;
+            pow_r = car_r;
+            pow_phase = cp->name;
+            pow_k = car_k;
+            carrier = cp->stages[0];
+        }
+    }
     if (pow_t != NULL) { /* over a planet (osculating elements): the injection candidate */
         const cols c = find_cols(pow_t);
         if (c.sma >= 0) {
@@ -236,6 +288,8 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
             num(orb, "inc", at(pow_t, pow_r, c.inc));
             num(orb, "apo_alt", at(pow_t, pow_r, c.apo));
             num(orb, "peri_alt", at(pow_t, pow_r, c.peri));
+            if (carrier != NULL) /* the stage whose burn injected it */
+                cJSON_AddStringToObject(injection, "carried_by", carrier);
         }
     }
     /* final state: the last row of its last phase, and the stage's own mass */
@@ -317,8 +371,7 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
         num(gc, "t", at(last_t, r, c.t));
         num(gc, "speed", v);
         /* the load of the contact row, left out of the flight's maxima */
-        num(gc, "n_axial", c.nax >= 0 ? at(last_t, r, c.nax)
-                                      : at(last_t, r, c.thrust) / (at(last_t, r, c.m) * G0));
+        num(gc, "n_axial", axial_load(last_t, &c, r)); /* null: not available */
         if (c.nno >= 0)
             num(gc, "n_normal", fabs(at(last_t, r, c.nno)));
         double dist = NAN;

@@ -114,6 +114,78 @@ assert ph["impact"] == n and ph["failed"] == 0 and ph["done"] == 300 - n, ph
 assert ph["finals"]["peri_alt"]["n"] == 300 - n and "impact" not in ph["ends"], ph["ends"]
 PY
 
+# Runway phases and crashes (issue 26's breaker): examples/rlv-hthl with landing-gear limits on
+# the main stage and its sink-rate limit dispersed around the demo's touchdown sink rate. The
+# runway phases end by their own events (the take-off roll by `liftoff`, the roll-out by `stop`:
+# summary.json's end.event of a plain run), never `stop_time`; a run crashes exactly when its
+# drawn limit is below the touchdown's sink rate (summary.json's handoff.absorbed of the plain
+# run: the flight before the touchdown is the same in every run), and the crashed runs are
+# counted in the CLI's progress and final lines, stats.json, outcomes.csv and index.html (the
+# campaign's line and the roll-out's phase line) - also after --resume.
+cp -r "$src/examples/rlv-hthl" "$work/rlv"
+python3 - "$work/rlv/mission.yaml" <<'PY'
+import sys
+p = sys.argv[1]
+s = open(p).read()
+geo = "    geometry: {length: 60, diameter: 7, span: 32}\n"
+assert s.count(geo) == 1
+s = s.replace(geo, geo + "    landing_gear: {}\n")
+s += ("\ndispersions:\n  seed: 7\n  parameters:\n"
+      "    ms.landing_gear.sink_rate_max: {dist: uniform, min: 0.3, max: 0.9}\n")
+open(p, "w").write(s)
+PY
+"$lvsim" run "$work/rlv/mission.yaml" -o "$work/rlv_run" -q >/dev/null 2>&1 || bad "rlv with landing gear: plain run"
+"$lvsim" mc "$work/rlv/mission.yaml" -n 10 -j 2 -o "$work/rlv_mc" >"$work/rlv_mc.log" 2>&1 || bad "rlv mc (exit $?)"
+"$lvsim" mc "$work/rlv/mission.yaml" -n 20 -j 2 -o "$work/rlv_mc" --resume >"$work/rlv_mc2.log" 2>&1 || bad "rlv mc --resume (exit $?)"
+python3 - "$work/rlv_run" "$work/rlv_mc" "$work/rlv_mc.log" "$work/rlv_mc2.log" <<'PY' && ok || bad "rlv mc: runway ends and crashes"
+import csv, json, os, sqlite3, sys
+run, mc, log1, log2 = sys.argv[1:5]
+summ = json.load(open(os.path.join(run, "summary.json")))
+ph = {p["name"]: p for p in summ["phases"]}
+sink = ph["rollout"]["handoff"]["absorbed"]["sink_rate"]
+db = sqlite3.connect(os.path.join(mc, "campaign.db"))
+draws = dict(db.execute('SELECT run, "ms.landing_gear.sink_rate_max" FROM runs'))
+assert len(draws) == 20, draws
+want = sorted(r for r, lim in draws.items() if lim < sink)
+first = sum(1 for r in want if r < 10)
+print("touchdown sink rate %.6f m/s; crashes expected in runs %s" % (sink, want))
+assert 0 < len(want) < 20, (sink, draws)
+got = sorted(r for (r,) in db.execute("SELECT run FROM runs WHERE status = 'crashed'"))
+assert got == want, (got, want)
+assert [r for (r,) in db.execute("SELECT run FROM runs WHERE status NOT IN ('ok', 'crashed')")] == []
+# the plain run's ends: liftoff and stop, events of the runway type itself
+assert ph["liftoff"]["end"] == {"reason": "event", "event": "liftoff"}, ph["liftoff"]["end"]
+assert ph["rollout"]["end"]["event"] == "stop", ph["rollout"]["end"]
+ends = db.execute("SELECT DISTINCT state, end_reason FROM phase_liftoff").fetchall()
+assert ends == [("done", "liftoff")], ends
+ends = sorted(db.execute("SELECT state, end_reason, count(*) FROM phase_rollout GROUP BY 1, 2"))
+assert ends == sorted([("crashed", "crashed", len(want)), ("done", "stop", 20 - len(want))]), ends
+# no phase of any run ends by stop_time (each ends by an event of its own)
+for (tbl,) in db.execute("SELECT tbl FROM phases"):
+    n = db.execute('SELECT count(*) FROM "%s" WHERE end_reason = \'stop_time\'' % tbl).fetchone()[0]
+    assert n == 0, (tbl, n)
+out = list(csv.reader(open(os.path.join(mc, "outcomes.csv"))))
+assert ["liftoff", "end", "liftoff", "20", "1"] in out, out
+assert ["rollout", "crashed", "crashed", str(len(want)), "%.6g" % (len(want) / 20)] in out, out
+assert ["rollout", "end", "stop", str(20 - len(want)), "%.6g" % ((20 - len(want)) / 20)] in out, out
+st = json.load(open(os.path.join(mc, "stats.json")))
+assert st["campaign"]["crashed"] == len(want) and st["campaign"]["failed"] == 0, st["campaign"]
+ro = {p["name"]: p for p in st["phases"]}["rollout"]
+assert ro["crashed"] == len(want) and ro["failed"] == 0 and ro["ends"] == {"stop": 20 - len(want)}, ro
+html = open(os.path.join(mc, "index.html")).read()
+assert "0 with a failed phase, 0 with a phase that fell to the ground, %d crashed" % len(want) in html
+i = html.index("<h2>Phase rollout</h2>")
+line = html[i:html.index("</p>", i)]
+assert "%d done" % (20 - len(want)) in line and "%d crashed (a touchdown" % len(want) in line, line
+assert "Ends and failures: " in line and "crashed %d" % len(want) in line and "other" not in line, line
+# the CLI: this session's final line, the resumed one counts the stored runs too
+for log, n, c in ((log1, 10, first), (log2, 20, len(want))):
+    text = open(log).read()
+    assert "0 with a failed phase or an input out of range, 0 with a phase that fell to the " \
+           "ground (an impact end other than its first), %d crashed" % c in text, text
+    assert "%d/%d runs" % (n, n) in text and "crashed %d, failed 0" % c in text, text
+PY
+
 # an existing database: refused without --resume or --force, the folder left as it was (its
 # manifest too: issue 22's breaker saw a refused mc mark a finished campaign 'incomplete')
 man_before=$(sha256sum < "$work/j2/manifest.json")

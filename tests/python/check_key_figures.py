@@ -15,9 +15,11 @@ Figure 10 as the first figure and no ground-track map for the vertical flat-worl
 Exit 0 when every check passes.
 """
 import csv
+import hashlib
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -116,12 +118,36 @@ def heating(names, rows):
     return {"max": hmax, "load": load, "fm": fm} if any_cols else None
 
 
+def flat_g(summ):
+    """The flat world's gravity: environment g of the mission file (the model's 9.81 without)."""
+    g = 9.81
+    for line in open(summ["file"]):
+        m = re.match(r"^\s+g:\s*([-+0-9.eE]+)", line)
+        if m:
+            g = float(m.group(1))
+    return g
+
+
+def axial(r, g):
+    """The axial load factor [g0]: the sensed specific force along the body axis. The model's
+    n_axial; in the flat world (thrust along +z) the specific force's z part: without air,
+    thrust / m; with air (thrust and drag the only forces besides gravity) der(vz) + g, the
+    vertical acceleration with gravity's removed: an account independent of lvsim's (which
+    splits the drag from its horizontal parts)."""
+    if "n_axial" in r:
+        return r["n_axial"]
+    if "rho" in r:
+        return (r["der(vz)"] + g) / G0
+    return r["thrust"] / (r["m"] * G0)
+
+
 def key_figures(outdir):
     summ = json.load(open(os.path.join(outdir, "summary.json")))
     phases = summ["phases"]
     by_name = {p["name"]: p for p in phases}
     rows = {p["name"]: load_csv(os.path.join(outdir, p["files"]["csv"])) for p in phases}
     flat = summ["world"] == "flat"
+    g = flat_g(summ) if flat else None
     bodies = []
     for b in summ["bodies"]:
         name = b["name"]
@@ -129,16 +155,18 @@ def key_figures(outdir):
         names = b["phases"]
         q = na = nn = None
         burn, sep, inj = [], [], None
+        carried = None  # the last row with thrust > 0 of any phase it flies in, its phase
         for pn in names:
             p, rs = by_name[pn], rows[pn]
             grounded = p["end"].get("event") == "impact"
             for i, r in enumerate(rs):
-                if "q_dyn" in r and r["rho"] > 0 and r["h"] <= ATMO_TOP and (q is None or r["q_dyn"] > q[0]):
-                    q = (r["q_dyn"], r["time"], r["h"])
+                h = first(r, "h", "z")
+                if "q_dyn" in r and r["rho"] > 0 and h <= ATMO_TOP and (q is None or r["q_dyn"] > q[0]):
+                    q = (r["q_dyn"], r["time"], h)
                 # the ground contact's row (a phase ended by impact: its last) is no flight load
                 if grounded and i == len(rs) - 1:
                     continue
-                n = r["n_axial"] if "n_axial" in r else r["thrust"] / (r["m"] * G0)
+                n = axial(r, g)
                 if na is None or n > na[0]:
                     na = (n, r["time"])
                 if "n_normal" in r and (nn is None or abs(r["n_normal"]) > nn[0]):
@@ -152,6 +180,8 @@ def key_figures(outdir):
             # the injection: the body's last row with thrust > 0 in a phase its stage burns in
             # (the end of powered flight, whatever event ended it)
             for r in rs:
+                if "thrust" in r and r["thrust"] > 0 and "sma" in r:
+                    carried = (r, pn)
                 if p["stages"][0] == name and r["thrust"] > 0 and "sma" in r:
                     inj = dict(state(r, pn), fpa_inertial=r["fpa_inertial"])
                     inj["orbit"] = {k: r[c] for k, c in (("sma", "sma"), ("ecc", "ecc"), ("inc", "inc"),
@@ -159,6 +189,17 @@ def key_figures(outdir):
                     above, bound = r["peri_alt"] > 100e3, r["ecc"] < 1
                     inj["trajectory"] = "suborbital" if not above else "orbit" if bound else "escape"
                     inj_phase = pn
+        # a body that never burns (a payload) and ends in orbit: the injection of the last
+        # stage that carried it, the same row; not one dropped before orbit (a fairing)
+        last_row = rows[names[-1]][-1]
+        if inj is None and carried is not None and last_row.get("peri_alt", 0) > 100e3 \
+                and carried[0]["peri_alt"] > 100e3:
+            r, pn = carried
+            inj = dict(state(r, pn), fpa_inertial=r["fpa_inertial"])
+            inj["orbit"] = {k: r[k] for k in ("sma", "ecc", "inc", "peri_alt")}
+            inj["trajectory"] = "orbit" if r["ecc"] < 1 else "escape"
+            inj["carried_by"] = by_name[pn]["stages"][0]
+            inj_phase = pn
         # a suborbital end of powered flight only where the body coasts up from it, and not a
         # burn that ends on the ground (a landing)
         if inj is not None and inj["trajectory"] == "suborbital":
@@ -172,7 +213,7 @@ def key_figures(outdir):
         if lp["end"].get("event") == "impact":
             r0 = rows[names[0]][0]
             gc = {"t": last["time"], "speed": first(last, "v_rel", "speed"),
-                  "n_axial": last["n_axial"] if "n_axial" in last else last["thrust"] / (last["m"] * G0)}
+                  "n_axial": axial(last, g)}
             if "n_normal" in last:
                 gc["n_normal"] = abs(last["n_normal"])
             gc["kind"] = "landing" if gc["speed"] < 10 else "impact"
@@ -200,7 +241,7 @@ def compare(outdir):
             if w[key] is None:
                 check(g[key] is None, "%s %s: %r, expected none" % (n, key, g[key]))
                 continue
-            close(g[key]["value"], w[key][0], "%s %s" % (n, key))
+            close(g[key]["value"], w[key][0], "%s %s" % (n, key), rel=1e-9 if key == "max_n_axial" else 1e-12)
             close(g[key]["t"], w[key][1], "%s %s time" % (n, key))
             if key == "max_q":
                 close(g[key]["h"], w[key][2], n + " max_q altitude")
@@ -217,6 +258,8 @@ def compare(outdir):
             for k, v in wi["orbit"].items():
                 close(gi["orbit"][k], v, "%s orbit %s" % (n, k))
             close(gi["fpa_inertial"], wi["fpa_inertial"], n + " injection fpa_inertial")
+            for k in ("t", "phase", "carried_by"):
+                check(gi.get(k) == wi.get(k), "%s injection %s: %r vs %r" % (n, k, gi.get(k), wi.get(k)))
         gh, wh = g.get("heating"), w["heating"]
         if wh is None:
             check(gh is None, n + ": heating where no phase has heat flux columns")
@@ -244,10 +287,74 @@ def compare(outdir):
     return summ, got
 
 
+def same_injection(bodies, payload, carrier, phase):
+    """A body that never burns gets its carrier's injection: the same time, phase and orbit."""
+    pi, ci = bodies[payload]["injection"], bodies[carrier]["injection"]
+    check(pi is not None and ci is not None, "%s injection %r, %s's %r" % (payload, pi, carrier, ci))
+    if pi is None or ci is None:
+        return
+    check(pi.get("carried_by") == carrier and pi["phase"] == ci["phase"] == phase
+          and pi["trajectory"] == ci["trajectory"] == "orbit", "%s injection: %r" % (payload, pi))
+    check(pi["t"] == ci["t"] and pi["orbit"] == ci["orbit"], "%s orbit %r vs %s's %r"
+          % (payload, pi["orbit"], carrier, ci["orbit"]))
+    print("%s: injected with %s at t = %.3f s in %s, periapsis %.1f km, apoapsis %.1f km"
+          % (payload, carrier, pi["t"], phase, pi["orbit"]["peri_alt"] / 1e3, pi["orbit"]["apo_alt"] / 1e3))
+
+
+def sounding_rocket(lvsim, out, got, html, tmp):
+    """Issue 26's breaker: the flat world in air. The axial load is the sensed specific force
+    along the thrust axis (+z), (T + D_z) / (m g0), the drag along the air velocity: here by
+    hand from the example's wind (8 m/s east, no vertical part: v_air = (vx - 8, vy, vz)),
+    not thrust / (m g0) (10.197 at burnout) and not 0 at the impact (5.8 g of drag)."""
+    b = got["bodies"][0]
+    def n_hand(r):
+        va = math.sqrt((r["vx"] - 8.0) ** 2 + r["vy"] ** 2 + r["vz"] ** 2)
+        return (r["thrust"] - r["drag"] * r["vz"] / va) / (r["m"] * G0)
+    boost = load_csv(os.path.join(out, "phase_1_boost.csv"))
+    tb = b["burnouts"][0]["t"]
+    rb = next(r for r in boost if r["time"] == tb)
+    want = n_hand(rb)
+    print("sounding-rocket: max axial %.6f g0 at burnout t = %.3f s (hand %.6f; T/(m g0) %.6f)"
+          % (b["max_n_axial"]["value"], b["max_n_axial"]["t"], want, rb["thrust"] / (rb["m"] * G0)))
+    close(b["max_n_axial"]["value"], want, "sounding-rocket max axial = (T + D_z)/(m g0) at burnout", 1e-9)
+    check(b["max_n_axial"]["t"] == tb, "sounding-rocket max axial at burnout: %r" % b["max_n_axial"])
+    last = load_csv(os.path.join(out, "phase_3_descent.csv"))[-1]
+    gc = b["ground_contact"]
+    want = n_hand(last)
+    print("sounding-rocket: axial load at impact %r g0 (hand %.6f)" % (gc["n_axial"], want))
+    close(gc["n_axial"], want, "sounding-rocket axial load at impact", 1e-9)
+    check(want > 5.0, "the impact's drag load %r" % want)
+    check("axial load factor at contact %.3f" % want in html, "sounding-rocket: contact load not in the report")
+    # a model that lacks a column the load needs: null and "not available", never 0
+    cut = os.path.join(tmp, "sr-no-drag")
+    subprocess.run(["cp", "-r", out, cut], check=True)
+    path = os.path.join(cut, "phase_3_descent.csv")
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    k = next(i for i, h in enumerate(rows[0]) if h.split(" [")[0] == "drag")
+    with open(path, "w", newline="") as f:
+        csv.writer(f).writerows([r[:k] + r[k + 1:] for r in rows])
+    # as a model without the column would have written it: the manifest says so
+    man_path = os.path.join(cut, "manifest.json")
+    man = json.load(open(man_path))
+    data = open(path, "rb").read()
+    for e in man["files"]:
+        if e["name"] == "phase_3_descent.csv":
+            e["bytes"], e["sha256"] = len(data), hashlib.sha256(data).hexdigest()
+            e.pop("stamp", None)
+    json.dump(man, open(man_path, "w"))
+    r = subprocess.run([lvsim, "plot", cut], capture_output=True, text=True)
+    check(r.returncode == 0, "lvsim plot without drag: %s" % r.stderr)
+    kf = json.load(open(os.path.join(cut, "key_figures.json")))["bodies"][0]
+    check(kf["ground_contact"]["n_axial"] is None, "no drag column: contact load %r" % kf["ground_contact"]["n_axial"])
+    check("axial load factor at contact not available" in open(os.path.join(cut, "index.html")).read(),
+          "no drag column: the report does not say 'not available'")
+
+
 def main():
     lvsim, src = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
-        for ex in ("dof3-branch", "paper-test-case", "rlv-hthl"):
+        for ex in ("dof3-branch", "paper-test-case", "rlv-hthl", "sounding-rocket", "kourou-leo"):
             out = os.path.join(tmp, ex)
             r = subprocess.run([lvsim, "run", os.path.join(src, "examples", ex, "mission.yaml"),
                                 "-o", out, "-q"], capture_output=True, text=True)
@@ -274,6 +381,15 @@ def main():
                 p1 = load_csv(os.path.join(out, "phase_1_P1.csv"))
                 r = next(r for r in p1 if r["time"] == bodies["stage1"]["burnouts"][0]["t"])
                 check(r["burning"] == 1.0 and r["thrust"] > 0, "P1 burns until its burnout row")
+            elif ex == "sounding-rocket":
+                sounding_rocket(lvsim, out, got, html, tmp)
+            elif ex == "kourou-leo":
+                # the payload never burns and ends in orbit: the upper stage's injection, the
+                # same row (issue 26's breaker: it had none); the fairing, dropped on the way
+                # up, none
+                bodies = {b["name"]: b for b in got["bodies"]}
+                same_injection(bodies, "payload", "upper", "upper-burn-2")
+                check(bodies["fairing"]["injection"] is None, "kourou-leo fairing: %r" % bodies["fairing"]["injection"])
             elif ex == "rlv-hthl":
                 # the upper stage's burn ends on its `sma` end, not a burnout: still its
                 # injection, into the 200 km orbit of the example's README; the main stage's
@@ -288,6 +404,7 @@ def main():
                 # -1.14 rad): no end of powered flight to report (issue 26: it showed one with a
                 # ballistic apoapsis below the ground)
                 check(bodies["ms"]["injection"] is None, "rlv ms: %r" % bodies["ms"]["injection"])
+                same_injection(bodies, "payload", "us", "us-ascent")
                 # the main stage lands (issue 26): the touchdown from the roll-out's file and
                 # the flare's last row, the requirement-level facts of the example's README:
                 # inside the touchdown zone (the first 3000 ft, 914 m, of the runway: FAA AC

@@ -136,6 +136,7 @@ int main(void)
     F(lv_campaign_progress, this_session); F(lv_campaign_progress, failed);
     F(lv_campaign_progress, elapsed); F(lv_campaign_progress, rate);
     F(lv_campaign_progress, eta); F(lv_campaign_progress, impacts);
+    F(lv_campaign_progress, crashed);
     S(lv_campaign_options); F(lv_campaign_options, n_runs); F(lv_campaign_options, seed);
     F(lv_campaign_options, threads); F(lv_campaign_options, db_path);
     F(lv_campaign_options, resume); F(lv_campaign_options, overwrite);
