@@ -92,7 +92,9 @@ LV_API lv_status lv_atmo_table_load(const char *path, const char *var, void **pa
  * linearly, p and rho log-linearly; a, mu from T; M = M0) and blended into US76 above its top
  * level z_top: over [z_top, z_top + blend] the differences T - T_US76, ln p - ln p_US76 and
  * ln rho - ln rho_US76 at z_top fall linearly in altitude to 0; US76 alone above (to 1000 km).
- * Below the lowest level: LV_ERR_INPUT (no data, no air invented). No settable parameters. */
+ * Below the lowest level z_lo, down to -5 km: T held at the lowest level's, p and rho
+ * isothermal-hydrostatic, x(z) = x(z_lo) exp(-g0 (H(z) - H(z_lo)) / (R T)) with the
+ * geopotential H of US76 eq. (18). No settable parameters. */
 LV_API extern const lv_atmo_model lv_atmo_profile;
 #define LV_ATMO_PROFILE_BLEND 10000.0 /* m, the default blend band */
 

@@ -1,9 +1,11 @@
 /* atmosphere_profile.c - the "profile" model: a measured or forecast profile (a sounding, a
  * forecast's levels; env/profile.c reads it) up to its top level, blended into US76 above:
  * over the band [z_top, z_top + blend] the differences in T, ln p and ln rho at the top decay
- * linearly in altitude to zero, US76 alone above. Below the lowest level: an error (the model
- * does not invent air under the data). Between levels as the "table" model: T linearly, p and
- * rho log-linearly; a and mu from T with US76 eqs. (50), (51). docs/atmosphere.md, "Profiles". */
+ * linearly in altitude to zero, US76 alone above. Below the lowest level (a sounding starts at
+ * its station, a booster may land lower) the lowest level's temperature is held and p, rho
+ * follow the isothermal hydrostatic law down to -5 km. Between levels as the "table" model: T
+ * linearly, p and rho log-linearly; a and mu from T with US76 eqs. (50), (51).
+ * docs/atmosphere.md, "Profiles". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +19,7 @@
 typedef struct profile_par {
     lv_table *tab;              /* over z [m]: T, ln p, ln rho at the file's levels */
     double z_lo, z_top, blend;  /* m: lowest and top level, blend band */
+    double T_lo, p_lo, rho_lo;  /* K, Pa, kg/m^3 at z_lo */
     double dT, dlnp, dlnrho;    /* profile - US76 at z_top: K, and of the logarithms */
     void *us76;                 /* the US76 parameters (owned) */
     char src[256];
@@ -59,14 +62,24 @@ static void from_T(double T, lv_atmo_state *out)
 static lv_status profile_eval(const void *par, double h, lv_atmo_state *out, lv_err *err)
 {
     const profile_par *p = par;
-    if (!(h >= p->z_lo && h <= LV_ATMO_ALT_MAX)) {
+    if (!(h >= LV_ATMO_ALT_MIN && h <= LV_ATMO_ALT_MAX)) {
         if (isnan(h))
             return lv_fail(err, LV_ERR_INPUT, "atmosphere model 'profile' (%s): altitude is NaN",
                            p->src);
         return lv_fail(err, LV_ERR_INPUT,
-                       "atmosphere model 'profile' (%s): altitude %.9g m is outside the range "
-                       "%.9g m (the profile's lowest level) to %.9g m",
-                       p->src, h, p->z_lo, LV_ATMO_ALT_MAX);
+                       "atmosphere model 'profile' (%s): altitude %.9g m is outside the valid "
+                       "range %.9g m to %.9g m",
+                       p->src, h, LV_ATMO_ALT_MIN, LV_ATMO_ALT_MAX);
+    }
+    if (h < p->z_lo) { /* isothermal below: dp/dH = -g0 p / (R T), H geopotential (eq. 18) */
+        const double r0 = LV_US76_R0;
+        const double dH = r0 * h / (r0 + h) - r0 * p->z_lo / (r0 + p->z_lo); /* < 0 */
+        const double f = exp(-LV_US76_G0 * LV_US76_M0 * dH / (LV_US76_RSTAR * p->T_lo));
+        out->T = p->T_lo;
+        out->p = p->p_lo * f;
+        out->rho = p->rho_lo * f;
+        from_T(out->T, out);
+        return LV_OK;
     }
     if (h <= p->z_top) {
         double y[3];
@@ -163,6 +176,9 @@ lv_status lv_atmo_profile_load(const char *path, double blend, void **par, lv_er
         goto fail;
     }
     p->z_lo = pr.z_t[0];
+    p->T_lo = pr.T[0];
+    p->p_lo = pr.p[0];
+    p->rho_lo = pr.rho[0];
     p->z_top = pr.z_t[n - 1];
     p->blend = blend;
     p->dT = pr.T[n - 1] - s76.T;

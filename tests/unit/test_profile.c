@@ -74,11 +74,17 @@ static void test_sounding_atmosphere(void)
     CHECK_CLOSE(s.T, 0.25 * 292.65 + 0.75 * 288.15, 1e-11);
     CHECK_REL(s.p, exp(0.25 * log(92500.0) + 0.75 * log(85000.0)), 1e-13);
     /* the lowest level is the surface row (998 hPa at the station's 60 m; the 1000 hPa row at
-     * 45 m carries its height only and is skipped): below it the model refuses */
+     * 45 m carries its height only and is skipped). Below it T is held (297.15 K) and p falls
+     * off isothermally: at 0 gpm (z = 0), p = 99800 exp(g0 * 60 / (R 297.15)) = 99800 *
+     * exp(588.399 / 85297.82) = 100490.8 Pa. Below -5 km: refused. */
     CHECK_OK(lv_atmo_eval(atm, z_of(60.0), &s, &err), &err);
     CHECK_REL(s.p, 99800.0, 1e-14);
-    CHECK(lv_atmo_eval(atm, z_of(60.0) - 1.0, &s, &err) == LV_ERR_INPUT);
-    CHECK(strstr(err.msg, "the profile's lowest level") != NULL);
+    CHECK_OK(lv_atmo_eval(atm, 0.0, &s, &err), &err);
+    CHECK_CLOSE(s.T, 297.15, 1e-12);
+    CHECK_REL(s.p, 100490.8, 1e-6);
+    CHECK_REL(s.rho, s.p / (R_AIR * s.T), 1e-13);
+    CHECK(lv_atmo_eval(atm, -5001.0, &s, &err) == LV_ERR_INPUT);
+    CHECK(strstr(err.msg, "outside the valid range -5000 m to 1000000 m") != NULL);
     /* blend: top 20 hPa, 26500 gpm, -48.0 C = 225.15 K; US76 there (H = 26500 m') is
      * 216.65 + 0.001 (26500 - 20000) = 223.15 K, so dT = 2 K. Halfway through the 10 km band,
      * at z = z_top + 5000 m, H = r0 z / (r0 + z) = 31454.518 m': T = 216.65 + 0.001 (H - 20000)
@@ -133,7 +139,7 @@ static void test_csv_atmosphere(void)
     CHECK_REL(s.p, 89350.72, 1e-7);
     /* a = (1.4 R* T / M0)^1/2 = (1.4 * 287.05307 * 293.65)^1/2 = 343.5264 m/s */
     CHECK_REL(s.a, 343.5264, 1e-6);
-    CHECK(lv_atmo_eval(a1, -0.5, &s, &err) == LV_ERR_INPUT);
+    CHECK(lv_atmo_eval(a1, NAN, &s, &err) == LV_ERR_INPUT);
 done:
     lv_atmo_free(a0);
     lv_atmo_free(a1);
