@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # test_profile_cli.sh LVSIM SRC - atmosphere and wind profiles in a mission (issue 28, item 1;
 # docs/atmosphere.md and docs/wind.md, "Profiles"): a sounding and two forecasts fly in `run`;
-# bad profile files are refused by `lvsim check` and `lvsim run` alike with the profile's
-# file:line:column and exit 2; `lvsim mc` disperses a profile wind (environment.wind.scale).
+# `lvsim atmosphere --profile` reads a level back; bad profile files are refused by `lvsim
+# check` and `lvsim run` alike with the profile's file:line:column and exit 2; `lvsim mc`
+# disperses a profile wind (environment.wind.scale, .north.bias).
 set -u
 lvsim="$1"; src="$2"
 work=$(mktemp -d)
@@ -55,6 +56,11 @@ printf 'h [m], T [K]\n0, 288\n1000, 281\n' > "$work/oneT.csv"
 printf 'h [m], T [F], p [Pa]\n0, 59, 101325\n1000, 48, 89900\n' > "$work/unit.csv"
 printf 'h [m], speed [knot]\n0, 3\n1000, 5\n' > "$work/nodir.csv"
 sed 's/^ 1000.0     45$/ 1000.0     45   24.5/' "$work/sounding.txt" > "$work/below.txt"
+# lvsim atmosphere --profile: the sounding's 850 hPa level (1440 gpm = 1440.32628 m, 15.0 C):
+# 288.15 K, 85000 Pa, rho = 85000 / (287.05307 * 288.15) = 1.0276331 kg/m^3
+expect 0 "^1440.3262[0-9]* 288.15 85000 1.027633" -- "$lvsim" atmosphere 1440.3262775 --profile "$work/sounding.txt"
+expect 2 "nan.csv:3:7: expected a finite number, found 'nan'" -- "$lvsim" atmosphere 0 --profile "$work/nan.csv"
+
 for c in "order.csv:4:1: breakpoint 900 is not greater" "nan.csv:3:7: expected a finite number, found 'nan'" \
          "gap.csv:3:7: expected a finite number, found ''" "oneT.csv:1:1: profile: one of T, p, rho is not enough" \
          "unit.csv:1:8: profile: column 'T' has unit 'F'" "below.txt:7:8: sounding: a level at 45 m, below the surface"; do
