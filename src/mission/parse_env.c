@@ -275,7 +275,7 @@ static lv_status parse_wind_profiles(const lv_pctx *c, const lv_ynode *v, lv_env
                 return st;
             if (uv != NULL) {
                 const char *utc;
-                lv_tai tai, epoch;
+                lv_tai tai = 0, epoch = 0;
                 if ((st = lv_pk_text(c, uv, item, "utc", &utc)) != LV_OK)
                     return st;
                 if (c->m->epoch == NULL)
