@@ -1,6 +1,7 @@
 /* fuzz_tables.c - libFuzzer target: the bytes of a table file through every reader of table
  * files: lv_table_load (CSV, MAT), the atmosphere table (lv_atmo_create_table), the wind
- * table (lv_wind_create_table_opts), an ICGEM gravity coefficient file (lv_gravity_create,
+ * table (lv_wind_create_table_opts), the profile readers (CSV or sounding text list:
+ * lv_atmo_create_profile, lv_wind_create_profiles, when a CSV's variant is odd), an ICGEM gravity coefficient file (lv_gravity_create,
  * "sh"), and a small mission that names the file as an engine table, an aerodynamic dataset,
  * the environment's atmosphere or wind, a control or moment table (parsed and loaded as
  * lv_mission_load does: the per-use checks of axes and outputs). A table that loads is then
@@ -264,7 +265,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     case R_ATMO: {
         lv_atmo *a = NULL;
-        st = lv_atmo_create_table(path, v, &a, &err);
+        if (!mat && (variant & 1)) /* a profile, blended over 100 m to 25.5 km */
+            st = lv_atmo_create_profile(path, 100.0 * (variant >> 1) + 100.0, &a, &err);
+        else
+            st = lv_atmo_create_table(path, v, &a, &err);
         lv_fuzz_check_status(st, &err);
         if (a != NULL) {
             lv_atmo_state s;
@@ -277,15 +281,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     case R_WIND: {
         lv_wind *w = NULL;
-        st = lv_wind_create_table_opts(path, v, &opts, &w, &err);
+        if (!mat && (variant & 1)) { /* the file as 1 or 2 profiles, 60 s apart */
+            const char *const paths[2] = {path, path};
+            const double t[2] = {0.0, 60.0};
+            st = lv_wind_create_profiles(paths, t, (variant & 2) ? 2 : 1,
+                                         100.0 * (variant >> 2) + 100.0, &w, &err);
+        } else {
+            st = lv_wind_create_table_opts(path, v, &opts, &w, &err);
+        }
         lv_fuzz_check_status(st, &err);
         if (w != NULL) {
             double lo, hi, vned[3];
             lv_wind_range(w, &lo, &hi);
             const double h[] = {lo, hi, 0.5 * (lo + hi), lo - 1.0, hi + 1.0, NAN};
             lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
-            for (size_t i = 0; i < sizeof h / sizeof h[0]; i++)
+            for (size_t i = 0; i < sizeof h / sizeof h[0]; i++) {
                 lv_fuzz_check_status(lv_wind_eval(w, &cur, h[i], vned, &err), &err);
+                lv_fuzz_check_status(lv_wind_eval_at(w, &cur, 30.0, h[i], vned, &err), &err);
+                lv_fuzz_check_status(lv_wind_eval_at(w, &cur, NAN, h[i], vned, &err), &err);
+            }
             const double bias[3] = {1.0, -1.0, 0.5};
             lv_wind *a = NULL;
             lv_fuzz_check_status(lv_wind_create_affine(w, 1.5, bias, &a, &err), &err);

@@ -43,6 +43,11 @@ seed atmo-columns $R_ATMO 0 "$work/atmo_cols.csv"
 seed wind-dof3-branch $((R_WIND | CLAMP)) 0 "$src/examples/dof3-branch/wind.csv"
 seed wind-6dof $((R_WIND | LINEAR)) 0 "$src/examples/two-stage-6dof/wind.csv"
 seed wind-one-row $((R_WIND | DEFAULT)) 0 "$src/tests/missions/data/wind_one_row.csv"
+# profiles (an odd variant): a sounding text list and the CSV forecasts of tests/data/profiles
+seed atmo-profile-sounding $R_ATMO 1 "$src/tests/data/profiles/sounding.txt"
+seed atmo-profile-csv $R_ATMO 3 "$src/tests/data/profiles/forecast_t1.csv"
+seed wind-profile-sounding $R_WIND 3 "$src/tests/data/profiles/sounding.txt"
+seed wind-profile-csv $R_WIND 1 "$src/tests/data/profiles/forecast_t0.csv"
 head -n 60 "$src/data/gravity/egm2008_n20.gfc" > "$work/egm.gfc" # the header and n <= 6
 seed gravity-egm2008-n6 $R_GRAVITY 6 "$work/egm.gfc"
 seed gravity-egm2008-n4x2 $R_GRAVITY $((4 | 2 << 5)) "$work/egm.gfc"

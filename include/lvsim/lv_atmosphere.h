@@ -2,7 +2,8 @@
  * and a table read from a file.
  *
  * Contract: the input is geometric altitude above the reference surface in m; the output
- * is an lv_atmo_state in SI units. Models are looked up by name ("us76", "exp", "table");
+ * is an lv_atmo_state in SI units. Models are looked up by name ("us76", "exp", "table",
+ * "profile");
  * each has its own parameter block, created and freed through the model (or through an
  * lv_atmo handle, which pairs a model with its parameters). Evaluation allocates nothing and is
  * safe to call from several threads on the same parameters.
@@ -86,6 +87,24 @@ LV_API extern const lv_atmo_model lv_atmo_table;
 LV_API lv_status lv_atmo_table_load(const char *path, const char *var, void **par,
                                     lv_err *err);
 
+/* A measured or forecast profile (docs/atmosphere.md, "Profiles"): the profile CSV or the
+ * University of Wyoming sounding text list, read at its levels as "table" reads its rows (T
+ * linearly, p and rho log-linearly; a, mu from T; M = M0) and blended into US76 above its top
+ * level z_top: over [z_top, z_top + blend] the differences T - T_US76, ln p - ln p_US76 and
+ * ln rho - ln rho_US76 at z_top fall linearly in altitude to 0; US76 alone above (to 1000 km).
+ * Below the lowest level z_lo, down to -5 km: T held at the lowest level's, p and rho
+ * isothermal-hydrostatic, x(z) = x(z_lo) exp(-g0 (H(z) - H(z_lo)) / (R T)) with the
+ * geopotential H of US76 eq. (18). No settable parameters. */
+LV_API extern const lv_atmo_model lv_atmo_profile;
+#define LV_ATMO_PROFILE_BLEND 10000.0 /* m, the default blend band */
+
+/* Loads the parameter block of lv_atmo_profile from `path` with blend band `blend` [m]
+ * (0 < blend; z_top + blend <= 1000 km). Errors: LV_ERR_IO (unreadable); LV_ERR_INPUT with
+ * path:line:column for what the file gets wrong (a missing or unknown column or unit, NaN or an
+ * empty cell, altitudes not increasing, a level below the surface, a non-positive value), or a
+ * file without two of T, p, rho. */
+LV_API lv_status lv_atmo_profile_load(const char *path, double blend, void **par, lv_err *err);
+
 /* Registry. Finds a model by name; LV_ERR_NOTFOUND with "did you mean" otherwise. */
 LV_API lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err *err);
 LV_API size_t lv_atmo_model_count(void);
@@ -98,6 +117,10 @@ LV_API lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err);
  * lv_atmo_table_load. The handle works like any other (lv_atmo_eval, lv_dof3_config.atmo). */
 LV_API lv_status lv_atmo_create_table(const char *path, const char *var, lv_atmo **out,
                                       lv_err *err);
+/* The "profile" model with the data of `path` and blend band `blend` [m]; see
+ * lv_atmo_profile_load. */
+LV_API lv_status lv_atmo_create_profile(const char *path, double blend, lv_atmo **out,
+                                        lv_err *err);
 LV_API void lv_atmo_free(lv_atmo *atm);
 LV_API lv_status lv_atmo_set(lv_atmo *atm, const char *key, double value, lv_err *err);
 LV_API const lv_atmo_model *lv_atmo_model_of(const lv_atmo *atm);

@@ -52,6 +52,20 @@ LV_API lv_status lv_wind_create_affine(const lv_wind *w, double scale, const dou
                                        lv_wind **out, lv_err *err);
 
 
+/* Winds from measured or forecast profiles (docs/wind.md, "Profiles"): n files (the profile
+ * CSV or the University of Wyoming sounding text list: docs/atmosphere.md, "Profiles"), each
+ * valid at mission time t[k] [s] (strictly increasing). At an altitude h each profile's wind
+ * is its levels' interpolated linearly, the lowest level's below them, and above its top level
+ * tapers linearly to zero over `blend` metres (zero above); then linearly in time between the
+ * two profiles around t (the first before t[0], the last after t[n-1]). Down is 0.
+ * 1 <= n <= LV_WIND_PROFILES_MAX. Errors: the profiles' (path:line:column), a file without a
+ * wind, times not increasing. lv_wind_free(*out) when done. */
+#define LV_WIND_PROFILES_MAX 24
+LV_API lv_status lv_wind_create_profiles(const char *const *paths, const double *t, size_t n,
+                                         double blend, lv_wind **out, lv_err *err);
+/* The number of profiles of a profile wind; 0 for any other wind. */
+LV_API size_t lv_wind_profile_count(const lv_wind *w);
+
 /* 1 for a constant wind (lv_wind_create_const, or a table of one row). */
 LV_API int lv_wind_is_constant(const lv_wind *w);
 /* Altitude range of the table [m]; -INFINITY, INFINITY for a constant wind. */
@@ -65,6 +79,12 @@ LV_API void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi);
 LV_API lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h,
                               double v_ned[3], lv_err *err);
 
+/* The same at mission time t [s]: the time matters only for a wind of several profiles
+ * (lv_wind_create_profiles; lv_wind_eval evaluates it at t = 0). LV_ERR_INPUT for a NaN t
+ * there. */
+LV_API lv_status lv_wind_eval_at(const lv_wind *w, lv_table_cursor *cur, double t, double h,
+                                 double v_ned[3], lv_err *err);
+
 /* The `user` block of lv_wind_fn_table: the (borrowed) wind and one cursor. One per
  * simulation; zero-initialise the cursor (LV_WIND_USER_INIT(w)). */
 typedef struct lv_wind_user {
@@ -76,7 +96,7 @@ typedef struct lv_wind_user {
 /* An lv_wind_fn (lv_vehicle.h) for the 3-DoF model:
  *     lv_wind_user wu = LV_WIND_USER_INIT(wind);
  *     cfg.wind = lv_wind_fn_table;  cfg.wind_user = &wu;
- * `user` is an lv_wind_user *. Ignores t, lat and lon. Returns 0; 1 (state not acceptable)
+ * `user` is an lv_wind_user *. Ignores lat and lon; t only for a wind of profiles. Returns 0; 1 (state not acceptable)
  * for a NaN altitude; -1 (stop the run) outside the table under LV_EXTRAP_ERROR, as an
  * engine table outside its range stops it. */
 LV_API int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_ned[3],

@@ -5,6 +5,8 @@ list(APPEND LV_SOURCES
   src/env/atmosphere_upper.c
   src/env/atmosphere_exp.c
   src/env/atmosphere_table.c
+  src/env/atmosphere_profile.c
+  src/env/profile.c
   src/env/atmosphere_registry.c
   src/env/wind.c)
 

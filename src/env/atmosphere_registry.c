@@ -7,7 +7,8 @@
 #include "core/status.h"
 #include "env/atmosphere.h"
 
-static const lv_atmo_model *const MODELS[] = { &lv_atmo_us76, &lv_atmo_exp, &lv_atmo_table };
+static const lv_atmo_model *const MODELS[] = { &lv_atmo_us76, &lv_atmo_exp, &lv_atmo_table,
+                                                &lv_atmo_profile };
 #define NMODELS (sizeof MODELS / sizeof MODELS[0])
 
 struct lv_atmo {
@@ -42,7 +43,7 @@ lv_status lv_atmo_model_find(const char *name, const lv_atmo_model **out, lv_err
         lv_suggest_add(&sg, MODELS[i]->name);
     lv_suggest_text(&sg, hint, sizeof hint);
     return lv_fail(err, LV_ERR_NOTFOUND,
-                   "unknown atmosphere model '%s'%s (models: us76, exp, table)", name, hint);
+                   "unknown atmosphere model '%s'%s (models: us76, exp, table, profile)", name, hint);
 }
 
 lv_status lv_atmo_create(const char *name, lv_atmo **out, lv_err *err)
@@ -75,6 +76,24 @@ lv_status lv_atmo_create_table(const char *path, const char *var, lv_atmo **out,
         return lv_fail(err, LV_ERR_NOMEM, "atmosphere model 'table': out of memory");
     atm->model = &lv_atmo_table;
     const lv_status st = lv_atmo_table_load(path, var, &atm->par, err);
+    if (st != LV_OK) {
+        free(atm);
+        return st;
+    }
+    *out = atm;
+    return LV_OK;
+}
+
+lv_status lv_atmo_create_profile(const char *path, double blend, lv_atmo **out, lv_err *err)
+{
+    if (out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_atmo_create_profile: NULL argument");
+    *out = NULL;
+    lv_atmo *atm = calloc(1, sizeof *atm);
+    if (atm == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "atmosphere model 'profile': out of memory");
+    atm->model = &lv_atmo_profile;
+    const lv_status st = lv_atmo_profile_load(path, blend, &atm->par, err);
     if (st != LV_OK) {
         free(atm);
         return st;

@@ -9,6 +9,7 @@
 
 #include "core/names.h"
 #include "core/status.h"
+#include "env/profile.h"
 #include "io/table_load.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_wind.h"
@@ -19,9 +20,12 @@ static const char *const COL_ALIAS[W_N] = { "v_north", "v_east", "v_down" };
 #define COL_ABSENT ((size_t)-1)
 
 struct lv_wind {
-    lv_table *tab;   /* over h [m]: north, east[, down] in m/s; NULL: constant */
+    lv_table *tab;   /* over h [m]: north, east[, down] in m/s; NULL: constant. Profiles:
+                      * north and east of each profile in turn (2 n_prof outputs) */
     int has_down;
     double c[W_N];   /* the constant wind, m/s (tab NULL) */
+    size_t n_prof;   /* 0: not a profile wind; else profiles at the times t_prof */
+    double t_prof[LV_WIND_PROFILES_MAX]; /* s, mission time, strictly increasing */
 };
 
 void lv_wind_free(lv_wind *w)
@@ -235,9 +239,45 @@ void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi)
     *h_hi = h[n - 1];
 }
 
+/* Profiles: each profile's north and east at h (one table row lookup), then linearly in time
+ * between the two profiles around t; before the first and after the last, that profile. */
+static lv_status profiles_eval(const lv_wind *w, lv_table_cursor *cur, double t, double h,
+                               double v_ned[3], lv_err *err)
+{
+    if (isnan(t))
+        return lv_fail(err, LV_ERR_INPUT, "wind: time is NaN");
+    double y[2 * LV_WIND_PROFILES_MAX];
+    const lv_status st = lv_table_eval1(w->tab, cur, h, y, err); /* NaN h */
+    if (st != LV_OK)
+        return err != NULL ? lv_fail_prefix(err, st, "wind") : st;
+    const size_t n = w->n_prof;
+    size_t k = 0;
+    double f = 0.0; /* weight of profile k + 1 */
+    if (t >= w->t_prof[n - 1]) {
+        k = n - 1;
+    } else if (t > w->t_prof[0]) {
+        while (k + 2 < n && t >= w->t_prof[k + 1])
+            k++;
+        f = (t - w->t_prof[k]) / (w->t_prof[k + 1] - w->t_prof[k]);
+    }
+    const size_t k1 = f > 0.0 ? k + 1 : k;
+    v_ned[0] = (1.0 - f) * y[2 * k] + f * y[2 * k1];
+    v_ned[1] = (1.0 - f) * y[2 * k + 1] + f * y[2 * k1 + 1];
+    v_ned[2] = 0.0;
+    return LV_OK;
+}
+
 lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h, double v_ned[3],
                        lv_err *err)
 {
+    return lv_wind_eval_at(w, cur, 0.0, h, v_ned, err);
+}
+
+lv_status lv_wind_eval_at(const lv_wind *w, lv_table_cursor *cur, double t, double h,
+                          double v_ned[3], lv_err *err)
+{
+    if (w->n_prof > 0)
+        return profiles_eval(w, cur, t, h, v_ned, err);
     if (w->tab == NULL) {
         if (isnan(h))
             return lv_fail(err, LV_ERR_INPUT, "wind: altitude is NaN");
@@ -259,11 +299,11 @@ lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h, double 
 int lv_wind_fn_table(double t, double h, double lat, double lon, double v_wind_ned[3],
                      void *user)
 {
-    (void)t, (void)lat, (void)lon;
+    (void)lat, (void)lon;
     lv_wind_user *u = user;
-    if (lv_wind_eval(u->w, &u->cur, h, v_wind_ned, NULL) == LV_OK)
+    if (lv_wind_eval_at(u->w, &u->cur, t, h, v_wind_ned, NULL) == LV_OK)
         return 0;
-    return isnan(h) ? 1 : -1; /* outside the table under extrap: error: stop */
+    return isnan(h) || isnan(t) ? 1 : -1; /* outside the table under extrap: error: stop */
 }
 
 lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bias[3],
@@ -279,13 +319,151 @@ lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bia
     lv_wind *c = calloc(1, sizeof *c);
     if (c == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
-    const double s[W_N] = { scale, scale, scale };
+    double s[2 * LV_WIND_PROFILES_MAX], bb[2 * LV_WIND_PROFILES_MAX];
+    const size_t n_out = w->n_prof > 0 ? 2 * w->n_prof : w->has_down ? 3 : 2;
+    for (size_t j = 0; j < n_out; j++) { /* profiles: north, east of each in turn */
+        s[j] = scale;
+        bb[j] = w->n_prof > 0 ? b[j % 2] : b[j];
+    }
     c->has_down = w->has_down;
-    lv_status st = lv_table_create_affine(w->tab, s, b, &c->tab, err);
+    c->n_prof = w->n_prof;
+    memcpy(c->t_prof, w->t_prof, sizeof c->t_prof);
+    lv_status st = lv_table_create_affine(w->tab, s, bb, &c->tab, err);
     if (st != LV_OK) {
         lv_wind_free(c);
         return lv_fail_prefix(err, st, "wind");
     }
     *out = c;
     return LV_OK;
+}
+
+/* ---- profile winds ------------------------------------------------------------------------ */
+
+/* The wind of profile pr at altitude x: its levels linearly, the lowest level's wind below
+ * them, tapering linearly to zero over [top, top + blend], zero above. */
+static void profile_at(const lv_profile *pr, double blend, double x, double *vn, double *ve)
+{
+    const size_t n = pr->n_w;
+    const double *z = pr->z_w;
+    if (x <= z[0]) {
+        *vn = pr->north[0];
+        *ve = pr->east[0];
+    } else if (x <= z[n - 1]) {
+        size_t i = 0;
+        while (i + 2 < n && x > z[i + 1])
+            i++;
+        const double f = (x - z[i]) / (z[i + 1] - z[i]);
+        *vn = (1.0 - f) * pr->north[i] + f * pr->north[i + 1];
+        *ve = (1.0 - f) * pr->east[i] + f * pr->east[i + 1];
+    } else if (x < z[n - 1] + blend) {
+        const double f = 1.0 - (x - z[n - 1]) / blend;
+        *vn = f * pr->north[n - 1];
+        *ve = f * pr->east[n - 1];
+    } else {
+        *vn = *ve = 0.0;
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+lv_status lv_wind_create_profiles(const char *const *paths, const double *t, size_t n,
+                                  double blend, lv_wind **out, lv_err *err)
+{
+    if (out == NULL || paths == NULL || t == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_profiles: NULL argument");
+    *out = NULL;
+    if (n < 1 || n > LV_WIND_PROFILES_MAX)
+        return lv_fail(err, LV_ERR_INPUT, "wind: %zu profiles; 1 to %d", n,
+                       LV_WIND_PROFILES_MAX);
+    if (!(blend > 0.0 && blend <= 1e6))
+        return lv_fail(err, LV_ERR_INPUT, "wind: blend band %.9g m must be in (0, 1e6] m", blend);
+    for (size_t k = 0; k < n; k++)
+        if (!isfinite(t[k]) || (k > 0 && !(t[k] > t[k - 1])))
+            return lv_fail(err, LV_ERR_INPUT, "wind: profile %zu ('%s') at t = %.9g s: the "
+                           "profiles' times must be finite and increasing", k + 1, paths[k],
+                           t[k]);
+    lv_profile pr[LV_WIND_PROFILES_MAX];
+    memset(pr, 0, sizeof pr);
+    lv_wind *w = NULL;
+    double *x = NULL, *y = NULL;
+    size_t nx = 0;
+    lv_status st = LV_OK;
+    for (size_t k = 0; k < n && st == LV_OK; k++) {
+        st = lv_profile_load(paths[k], &pr[k], err);
+        if (st == LV_OK && pr[k].n_w == 0)
+            st = lv_fail(err, LV_ERR_INPUT, "%s: the profile has no wind (speed and direction, or "
+                         "north and east, at two levels at least)", paths[k]);
+        nx += pr[k].n_w + 1;
+    }
+    if (st != LV_OK)
+        goto done;
+    /* One altitude grid for all profiles: every level of every profile and each top + blend.
+     * Each profile's wind is piecewise linear with breakpoints among these, so linear
+     * interpolation on the common grid reproduces it exactly. */
+    x = malloc(nx * sizeof *x);
+    y = malloc(nx * 2 * n * sizeof *y);
+    w = calloc(1, sizeof *w);
+    if (x == NULL || y == NULL || w == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
+        goto done;
+    }
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++) {
+        memcpy(x + m, pr[k].z_w, pr[k].n_w * sizeof *x);
+        m += pr[k].n_w;
+        x[m++] = pr[k].z_w[pr[k].n_w - 1] + blend;
+    }
+    qsort(x, m, sizeof *x, cmp_double);
+    size_t u = 0;
+    for (size_t i = 0; i < m; i++)
+        if (u == 0 || x[i] > x[u - 1])
+            x[u++] = x[i];
+    for (size_t i = 0; i < u; i++)
+        for (size_t k = 0; k < n; k++)
+            profile_at(&pr[k], blend, x[i], &y[(i * n + k) * 2], &y[(i * n + k) * 2 + 1]);
+    char names[2 * LV_WIND_PROFILES_MAX][16];
+    const char *np[2 * LV_WIND_PROFILES_MAX], *up[2 * LV_WIND_PROFILES_MAX];
+    for (size_t j = 0; j < 2 * n; j++) {
+        snprintf(names[j], sizeof names[j], "%s_%zu", j % 2 ? "east" : "north", j / 2 + 1);
+        np[j] = names[j];
+        up[j] = "m/s";
+    }
+    lv_table_spec spec = { 0 };
+    spec.n_dims = 1;
+    spec.n[0] = u;
+    spec.x[0] = x;
+    spec.n_out = 2 * n;
+    spec.y = y;
+    spec.interp = LV_INTERP_LINEAR;
+    spec.extrap = LV_EXTRAP_CLAMP; /* below: the lowest levels' winds; above: zero */
+    spec.name = "wind_profile";
+    spec.axis_name[0] = "h";
+    spec.axis_unit[0] = "m";
+    spec.out_name = np;
+    spec.out_unit = up;
+    st = lv_table_create(&spec, &w->tab, err);
+    if (st != LV_OK) {
+        lv_fail_prefix(err, st, "%s", paths[0]);
+        goto done;
+    }
+    w->n_prof = n;
+    memcpy(w->t_prof, t, n * sizeof *t);
+    *out = w;
+    w = NULL;
+done:
+    for (size_t k = 0; k < n; k++)
+        lv_profile_clear(&pr[k]);
+    free(x);
+    free(y);
+    lv_wind_free(w);
+    return st;
+}
+
+size_t lv_wind_profile_count(const lv_wind *w)
+{
+    return w->n_prof;
 }

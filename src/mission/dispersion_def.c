@@ -107,7 +107,7 @@ static lv_status table_xf(const lv_pctx *c, const lv_ynode *key, lv_disp_def *dd
     static const char *const wind_out[3] = { "north", "east", "down" };
     if (strncmp(prefix, "environment.wind", 16) == 0 &&
         (prefix[16] == '\0' || prefix[16] == '.')) {
-        if (m->env.wind_file == NULL)
+        if (m->env.wind_file == NULL && m->env.n_wind_prof == 0)
             return lv_pk_fail(c, key, "dispersions: '%s': the mission has no wind table%s", name,
                               m->env.wind_const ? " (a constant wind: disperse "
                               "environment.wind.north, .east, .down themselves)" : "");

@@ -113,15 +113,20 @@ lv_status lv_mission_env_make(const lv_mission_def *d, lv_mission_env *env, lv_e
         loc = &e->atmo_loc;
         if (strcmp(atm, "table") == 0)
             st = lv_atmo_create_table(e->atmo_file, e->atmo_var, &env->atmo, err);
+        else if (strcmp(atm, "profile") == 0)
+            st = lv_atmo_create_profile(e->atmo_file, e->atmo_blend, &env->atmo, err);
         else if (strcmp(atm, "exp") == 0)
             st = atmo_exp(e, vals, &env->atmo, err);
         else
             st = lv_atmo_create(atm, &env->atmo, err);
     }
-    if (st == LV_OK && (e->wind_file != NULL || e->wind_const)) {
+    if (st == LV_OK && (e->wind_file != NULL || e->wind_const || e->n_wind_prof > 0)) {
         loc = &e->wind_loc;
         const lv_table_opts wo = { e->wind_interp, e->wind_extrap };
-        st = e->wind_const ? wind_const(e, vals, &env->wind, err)
+        st = e->n_wind_prof > 0 ? lv_wind_create_profiles((const char *const *)e->wind_prof_file,
+                                                          e->wind_prof_t, e->n_wind_prof,
+                                                          e->wind_blend, &env->wind, err)
+           : e->wind_const ? wind_const(e, vals, &env->wind, err)
                            : lv_wind_create_table_opts(e->wind_file, e->wind_var, &wo, &env->wind,
                                                        err);
     }

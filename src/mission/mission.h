@@ -96,7 +96,7 @@ typedef struct lv_env_def {
                              "zonal" for a planet by its constants, "sh" with a coefficient
                              file); NULL on a flat world */
     lv_src_loc gravity_loc;
-    char *atmosphere;     /* "us76" (default on the Earth), "exp", "table", "none" */
+    char *atmosphere;     /* "us76" (default on the Earth), "exp", "table", "profile", "none" */
     lv_slot atmo_par[3];  /* "exp": rho0 [kg/m^3], scale height H [m], temperature T [K];
                              LV_NO_SLOT: the model's default */
     lv_src_loc atmo_loc;
@@ -109,6 +109,11 @@ typedef struct lv_env_def {
                              table); down not written: LV_NO_SLOT with north and east given */
     int wind_const;       /* 1: the constant wind of wind_ned */
     lv_src_loc wind_loc;
+    double atmo_blend;    /* m: atmosphere "profile" (atmo_file): the blend band into US76 */
+    size_t n_wind_prof;   /* wind from profiles: their number (0: none) */
+    char **wind_prof_file; /* [n_wind_prof] the files (resolved) */
+    double *wind_prof_t;  /* [n_wind_prof] s, the mission time each is valid at */
+    double wind_blend;    /* m: the winds' taper to zero above each profile's top */
     lv_src_loc loc;
 } lv_env_def;
 

@@ -229,6 +229,10 @@ void lv_mission_def_free(lv_mission_def *m)
     free(m->env.atmo_var);
     free(m->env.wind_file);
     free(m->env.wind_var);
+    for (size_t i = 0; i < m->env.n_wind_prof; i++)
+        free(m->env.wind_prof_file[i]);
+    free(m->env.wind_prof_file);
+    free(m->env.wind_prof_t);
     free(m->path);
     free(m->dir);
     for (size_t i = 0; i < m->n_files; i++)

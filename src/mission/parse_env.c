@@ -9,6 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/utc.h"
+#include "lvsim/lv_atmosphere.h"
+#include "lvsim/lv_wind.h"
 #include "mission/parse_int.h"
 
 static const char *const planet_presets[] = { "earth", "moon", "mars", NULL };
@@ -156,7 +159,7 @@ static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t de
 {
     static const char *const atmos[] = { "us76", "exp", "none", NULL };
     static const char *const keys[] = { "table", "var", "model", "rho0", "scale_height",
-                                        "temperature", NULL };
+                                        "temperature", "profile", "blend", NULL };
     static const char *const pkeys[3] = { "rho0", "scale_height", "temperature" };
     static const char *const punit[3] = { "kg/m3", "m", "K" };
     const char *what = "environment, atmosphere";
@@ -168,6 +171,35 @@ static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t de
         if ((st = lv_pk_check_map(c, v, what, keys)) != LV_OK)
             return st;
         const lv_ynode *mv = lv_pk_get(v, "model");
+        e->atmo_blend = LV_ATMO_PROFILE_BLEND;
+        if (lv_pk_get(v, "profile") != NULL) { /* {profile: path, blend: m}: measured data */
+            static const char *const other[] = { "table", "var", "model", "rho0",
+                                                 "scale_height", "temperature", NULL };
+            for (size_t k = 0; other[k] != NULL; k++)
+                if (lv_pk_get(v, other[k]) != NULL)
+                    return lv_pk_fail(c, lv_pk_key(v, other[k]), "%s: '%s' does not go with "
+                                      "'profile' (a profile file, blended into US76 above its "
+                                      "top)", what, other[k]);
+            const lv_ynode *pv = lv_pk_get(v, "profile"), *bv = lv_pk_get(v, "blend");
+            const char *rel;
+            if ((st = lv_pk_text(c, pv, what, "profile", &rel)) != LV_OK)
+                return st;
+            if ((e->atmo_file = lv_pk_resolve_file(c, rel)) == NULL)
+                return lv_pk_nomem(c);
+            if ((st = lv_pk_regular_file(c, pv, what, "profile", e->atmo_file)) != LV_OK)
+                return st;
+            if (bv != NULL) {
+                if ((st = lv_pk_num(c, bv, what, "blend", &e->atmo_blend)) != LV_OK)
+                    return st;
+                if (!(e->atmo_blend > 0.0 && e->atmo_blend <= 1e6))
+                    return lv_pk_fail(c, bv, "%s: blend = %g m is out of range (0, 1e6] m", what,
+                                      e->atmo_blend);
+            }
+            e->atmosphere = lv_pk_strdup("profile");
+            return e->atmosphere != NULL ? LV_OK : lv_pk_nomem(c);
+        }
+        if (lv_pk_get(v, "blend") != NULL)
+            return lv_pk_fail(c, lv_pk_key(v, "blend"), "%s: 'blend' goes with 'profile'", what);
         if (lv_pk_get(v, "table") != NULL) { /* {table: path, var: name}: from a file */
             if (mv != NULL)
                 return lv_pk_fail(c, lv_pk_key(v, "model"), "%s: give either 'table' (a file) "
@@ -209,12 +241,95 @@ static lv_status parse_atmosphere(const lv_pctx *c, const lv_ynode *v, size_t de
     return e->atmosphere != NULL ? LV_OK : lv_pk_nomem(c);
 }
 
-/* wind: path | {file: path, var, interp, extrap} | {north, east, down}: a table over
- * altitude or a constant (slots "environment.wind.north" ...), docs/wind.md. */
+/* wind: {profile: path | [{file: path, t: s | utc: ISO 8601}, ...], blend: m}: winds from
+ * profile files at mission times (docs/wind.md, "Profiles"). */
+static lv_status parse_wind_profiles(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
+{
+    const char *what = "environment, wind";
+    static const char *const other[] = { "file", "var", "interp", "extrap", "north", "east",
+                                         "down", NULL };
+    static const char *const ikeys[] = { "file", "t", "utc", NULL };
+    lv_status st;
+    for (size_t k = 0; other[k] != NULL; k++)
+        if (lv_pk_get(v, other[k]) != NULL)
+            return lv_pk_fail(c, lv_pk_key(v, other[k]), "%s: '%s' does not go with 'profile' "
+                              "(winds from profile files)", what, other[k]);
+    const lv_ynode *pv = lv_pk_get(v, "profile"), *bv = lv_pk_get(v, "blend");
+    e->wind_blend = LV_ATMO_PROFILE_BLEND;
+    if (bv != NULL) {
+        if ((st = lv_pk_num(c, bv, what, "blend", &e->wind_blend)) != LV_OK)
+            return st;
+        if (!(e->wind_blend > 0.0 && e->wind_blend <= 1e6))
+            return lv_pk_fail(c, bv, "%s: blend = %g m is out of range (0, 1e6] m", what,
+                              e->wind_blend);
+    }
+    const size_t n = pv->kind == LV_YNODE_SEQ ? pv->n : 1;
+    if (n < 1 || n > LV_WIND_PROFILES_MAX)
+        return lv_pk_fail(c, pv, "%s: profile: %zu profiles; 1 to %d", what, n,
+                          LV_WIND_PROFILES_MAX);
+    e->wind_prof_file = calloc(n, sizeof *e->wind_prof_file);
+    e->wind_prof_t = calloc(n, sizeof *e->wind_prof_t);
+    if (e->wind_prof_file == NULL || e->wind_prof_t == NULL)
+        return lv_pk_nomem(c);
+    for (size_t k = 0; k < n; k++) {
+        const lv_ynode *it = pv->kind == LV_YNODE_SEQ ? pv->kids[k] : pv, *fv = it, *tv;
+        const char *rel;
+        char item[48];
+        snprintf(item, sizeof item, "%s, profile #%zu", what, k + 1);
+        if (it->kind == LV_YNODE_MAP) {
+            if ((st = lv_pk_check_map(c, it, item, ikeys)) != LV_OK ||
+                (st = lv_pk_need(c, it, item, "file", &fv)) != LV_OK)
+                return st;
+            const lv_ynode *uv = lv_pk_get(it, "utc");
+            tv = lv_pk_get(it, "t");
+            if ((tv == NULL) == (uv == NULL))
+                return lv_pk_fail(c, it, "%s: give its time, either 't' (s, mission time) or "
+                                  "'utc' (ISO 8601)", item);
+            if (tv != NULL && (st = lv_pk_num(c, tv, item, "t", &e->wind_prof_t[k])) != LV_OK)
+                return st;
+            if (uv != NULL) {
+                const char *utc;
+                lv_tai tai = 0, epoch = 0;
+                if ((st = lv_pk_text(c, uv, item, "utc", &utc)) != LV_OK)
+                    return st;
+                if (c->m->epoch == NULL)
+                    return lv_pk_fail(c, uv, "%s: a profile at a UTC time needs the mission's "
+                                      "epoch (mission: epoch: ...), or give 't' in mission "
+                                      "time", item);
+                const int r = lv_utc_parse(utc, &tai);
+                if (r != LV_UTC_OK && r != LV_UTC_DUBIOUS)
+                    return lv_pk_fail(c, uv, "%s: utc: '%.40s' is not a UTC time "
+                                      "YYYY-MM-DDThh:mm:ss[.f]Z", item, utc);
+                (void)lv_utc_parse(c->m->epoch, &epoch); /* checked with the mission */
+                e->wind_prof_t[k] = (double)(tai - epoch) * 1e-6;
+            }
+            if (k > 0 && !(e->wind_prof_t[k] > e->wind_prof_t[k - 1]))
+                return lv_pk_fail(c, tv != NULL ? tv : lv_pk_get(it, "utc"), "%s: at t = %.9g s, "
+                                  "not after the profile before it (t = %.9g s): list the "
+                                  "profiles in time order", item, e->wind_prof_t[k],
+                                  e->wind_prof_t[k - 1]);
+        } else if (n > 1) {
+            return lv_pk_fail(c, it, "%s: {file: path, t: s} or {file: path, utc: time} "
+                              "expected", item);
+        }
+        if ((st = lv_pk_text(c, fv, item, "file", &rel)) != LV_OK)
+            return st;
+        if ((e->wind_prof_file[k] = lv_pk_resolve_file(c, rel)) == NULL)
+            return lv_pk_nomem(c);
+        e->n_wind_prof = k + 1;
+        if ((st = lv_pk_regular_file(c, fv, item, "file", e->wind_prof_file[k])) != LV_OK)
+            return st;
+    }
+    return LV_OK;
+}
+
+/* wind: path | {file: path, var, interp, extrap} | {north, east, down} | {profile, blend}: a
+ * table over altitude, a constant (slots "environment.wind.north" ...) or profiles,
+ * docs/wind.md. */
 static lv_status parse_wind(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
 {
     static const char *const keys[] = { "file", "var", "interp", "extrap", "north", "east",
-                                        "down", NULL };
+                                        "down", "profile", "blend", NULL };
     static const char *const comp[3] = { "north", "east", "down" };
     static const char *const interps[] = { "linear", "pchip", NULL };
     static const char *const extraps[] = { "clamp", "error", "linear", NULL };
@@ -236,6 +351,10 @@ static lv_status parse_wind(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
     }
     if ((st = lv_pk_check_map(c, v, what, keys)) != LV_OK)
         return st;
+    if (lv_pk_get(v, "profile") != NULL)
+        return parse_wind_profiles(c, v, e);
+    if (lv_pk_get(v, "blend") != NULL)
+        return lv_pk_fail(c, lv_pk_key(v, "blend"), "%s: 'blend' goes with 'profile'", what);
     const lv_ynode *f = lv_pk_get(v, "file"), *o;
     for (size_t k = 0; k < 3; k++) {
         const lv_ynode *cv = lv_pk_get(v, comp[k]);

@@ -375,8 +375,8 @@ static int flat_air_eval(flat_air *a, double t, const double *x, flat_air_state 
     o->v_air[2] = x[LV_FLAT_VZ];
     if (a->wind != NULL) {
         double w[3];
-        if (lv_wind_eval(a->wind, &a->wind_cur, h, w, NULL) != LV_OK) {
-            lv_wind_eval(a->wind, NULL, h, w, &err);
+        if (lv_wind_eval_at(a->wind, &a->wind_cur, t, h, w, NULL) != LV_OK) {
+            lv_wind_eval_at(a->wind, NULL, t, h, w, &err);
             snprintf(why, cap, "at t = %.9g s: %.900s", t, err.msg);
             return isnan(h) ? 1 : -1;
         }

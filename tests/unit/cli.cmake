@@ -43,3 +43,6 @@ if(MPI_C_FOUND)
            $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR} 1)
   set_tests_properties(test_mc_mpi PROPERTIES LABELS no-asan)
 endif()
+# Atmosphere and wind profiles in missions (issue 28, item 1): run, check/run errors, mc.
+add_test(NAME test_profile_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_profile_cli.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})

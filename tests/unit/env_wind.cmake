@@ -1,2 +1,4 @@
-# Table atmosphere and wind tables (src/env/atmosphere_table.c, src/env/wind.c).
+# Table atmosphere, wind tables and profiles (src/env/atmosphere_table.c, wind.c, profile.c,
+# atmosphere_profile.c).
 lv_add_unit_test(test_wind_atmo unit/test_wind_atmo.c)
+lv_add_unit_test(test_profile unit/test_profile.c)

@@ -347,8 +347,8 @@ static void test_errors(const lv_atmo *atm)
     const lv_atmo_model *m = NULL;
     CHECK_OK(lv_atmo_model_find("exp", &m, &err), &err);
     CHECK(m == &lv_atmo_exp);
-    CHECK(lv_atmo_model_count() == 3);
-    CHECK(lv_atmo_model_at(0) == &lv_atmo_us76 && lv_atmo_model_at(3) == NULL);
+    CHECK(lv_atmo_model_count() == 4);
+    CHECK(lv_atmo_model_at(0) == &lv_atmo_us76 && lv_atmo_model_at(4) == NULL);
     CHECK_FAILS(lv_atmo_set((lv_atmo *)atm, "rho0", 1.0, &err), &err, LV_ERR_NOTFOUND,
                 "'rho0'");
 

@@ -287,7 +287,7 @@ static void test_atmo_files(void)
                 LV_ERR_IO, "wind_atmo_missing.csv");
     CHECK_FAILS(lv_atmo_create_table(path, "atm", &a, &err), &err, LV_ERR_INPUT, "CSV");
     CHECK_FAILS(lv_atmo_create("table", &a, &err), &err, LV_ERR_INPUT, "lv_atmo_create_table");
-    CHECK(lv_atmo_model_count() == 3 && lv_atmo_model_at(2) == &lv_atmo_table);
+    CHECK(lv_atmo_model_count() == 4 && lv_atmo_model_at(2) == &lv_atmo_table);
     remove(path);
 
     /* MAT (Modelica CombiTable1D layout): columns h, T, p, rho by position; a from T */
