@@ -120,9 +120,14 @@ void lv_iip_conic(const lv_planet *p, double gm, double t, const double r_eci[3]
     set_impact(p, t, tof, ri, out);
 }
 
-/* Gravitational acceleration in ECI at mission time t. */
-static lv_vec3 accel(const lv_planet *p, const lv_gravity *g, double *ws, double t, lv_vec3 r)
+/* Gravitational acceleration in ECI at mission time t: a field symmetric about the rotation
+ * axis (point mass, zonal terms: `axisym`) is the same function in ECI as in ECEF, so it is
+ * evaluated at r_eci directly; any other in ECEF at t, turned back. */
+static lv_vec3 accel(const lv_planet *p, const lv_gravity *g, double *ws, int axisym, double t,
+                     lv_vec3 r)
 {
+    if (axisym)
+        return lv_gravity_accel_ecef_v(g, ws, r);
     return lv_gravity_accel_eci_v(g, p, t, ws, r);
 }
 
@@ -145,14 +150,19 @@ void lv_iip_propagate(const lv_planet *p, const lv_gravity *g, double *ws, doubl
     const lv_vec3 v_start = {v_eci[0], v_eci[1], v_eci[2]};
     const double b = p->a * (1.0 - p->f);
     const double ia2 = 1.0 / (p->a * p->a), ib2 = 1.0 / (b * b);
-    if (con.valid && con.tof == 0.0) { /* at or below the ellipsoid */
+    if (con.valid && con.tof < LV_IIP_TOF_CONIC) { /* at or below the ellipsoid, or about to
+                                                       hit it: the conic is exact enough */
         *out = con;
         return;
     }
     double tof_est, t_lim;
     if (con.valid) {
+        if (!(con.tof <= LV_IIP_HORIZON)) { /* comes down, but not within the horizon */
+            set_invalid(out);
+            return;
+        }
         tof_est = con.tof;
-        t_lim = 1.5 * con.tof + 300.0;
+        t_lim = 1.5 * con.tof + 60.0;
     } else {
         const conic c = conic_of(gm, r_start, v_start);
         if (!(c.alpha > 0.0) || !(c.r_peri < p->a + LV_IIP_MARGIN)) {
@@ -162,27 +172,39 @@ void lv_iip_propagate(const lv_planet *p, const lv_gravity *g, double *ws, doubl
         /* bound and grazing: the conic misses, the field may not; one period */
         tof_est = t_lim = TWO_PI / sqrt(gm * c.alpha * c.alpha * c.alpha);
     }
+    if (t_lim > LV_IIP_HORIZON) /* no search beyond the horizon */
+        t_lim = LV_IIP_HORIZON;
+    if (tof_est > t_lim)
+        tof_est = t_lim;
     set_invalid(out);
     double n_steps = ceil(tof_est / LV_IIP_STEP);
     if (n_steps < LV_IIP_MIN_STEPS)
         n_steps = LV_IIP_MIN_STEPS;
-    const double h = tof_est / n_steps;
-    if (!(h > 0.0) || !isfinite(h))
+    const double h_near = tof_est / n_steps; /* the step near the ellipsoid */
+    if (!(h_near > 0.0) || !isfinite(h_near))
         return;
 
-    lv_vec3 r0 = r_start, v0 = v_start, a0 = accel(p, g, ws, t, r0);
-    for (double tau = 0.0; tau < t_lim; tau += h) {
+    lv_gravity_info gi;
+    lv_gravity_info_get(g, &gi);
+    const int axisym = gi.kind != LV_GRAVITY_SH || gi.order == 0;
+    lv_vec3 r0 = r_start, v0 = v_start, a0 = accel(p, g, ws, axisym, t, r0);
+    /* the step grows as r^1.5 (the orbital period's scale) away from the planet: a high arc
+     * takes as many steps per radian of its path as a low one; at most LV_IIP_MAX_STEPS */
+    double tau = 0.0;
+    for (long k = 0; k < LV_IIP_MAX_STEPS && tau < t_lim; k++) {
+        const double rr = lv_v3_norm(r0) / p->a;
+        const double h = rr > 1.0 ? h_near * rr * sqrt(rr) : h_near;
         /* classical RK4 (Hairer, Norsett & Wanner, Solving ODEs I, sec. II.1, table 1.2) */
         const double tm = t + tau + 0.5 * h, te = t + tau + h;
         const lv_vec3 r2 = lv_v3_add(r0, lv_v3_scale(v0, 0.5 * h));
         const lv_vec3 v2 = lv_v3_add(v0, lv_v3_scale(a0, 0.5 * h));
-        const lv_vec3 a2 = accel(p, g, ws, tm, r2);
+        const lv_vec3 a2 = accel(p, g, ws, axisym, tm, r2);
         const lv_vec3 r3 = lv_v3_add(r0, lv_v3_scale(v2, 0.5 * h));
         const lv_vec3 v3 = lv_v3_add(v0, lv_v3_scale(a2, 0.5 * h));
-        const lv_vec3 a3 = accel(p, g, ws, tm, r3);
+        const lv_vec3 a3 = accel(p, g, ws, axisym, tm, r3);
         const lv_vec3 r4 = lv_v3_add(r0, lv_v3_scale(v3, h));
         const lv_vec3 v4 = lv_v3_add(v0, lv_v3_scale(a3, h));
-        const lv_vec3 a4 = accel(p, g, ws, te, r4);
+        const lv_vec3 a4 = accel(p, g, ws, axisym, te, r4);
         const double h6 = h / 6.0;
         const lv_vec3 r1 = lv_v3_add(
             r0, lv_v3_scale(lv_v3_add(lv_v3_add(v0, v4), lv_v3_scale(lv_v3_add(v2, v3), 2.0)), h6));
@@ -213,12 +235,14 @@ void lv_iip_propagate(const lv_planet *p, const lv_gravity *g, double *ws, doubl
                     side = 1;
                 }
             }
-            set_impact(p, t, tau + s * h, hermite(r0, v0, r1, v1, h, s), out);
+            if (tau + s * h <= LV_IIP_HORIZON)
+                set_impact(p, t, tau + s * h, hermite(r0, v0, r1, v1, h, s), out);
             return;
         }
         r0 = r1;
         v0 = v1;
-        a0 = accel(p, g, ws, te, r1);
+        a0 = accel(p, g, ws, axisym, te, r1);
+        tau += h;
     }
 }
 

@@ -14,14 +14,21 @@
  * arc, an inbound hyperbola; and cases with no impact (LEO, escape) and on the ground.
  * Asserted: lv_iip_propagate within 0.01 km of the reference (the bound docs/models.md states),
  * tof within 0.01 s; the Kepler conic alone (printed, for comparison) within 25 km where the
- * time of flight is below 700 s (it is 1100 km off on kourou-leo's grazing arc 2 s before SECO). */
+ * time of flight is below 700 s (it is 1100 km off on kourou-leo's grazing arc 2 s before SECO).
+ * End to end: the iip_* outputs of dof3 and dof6 coasting in vacuum to an `impact` end predict
+ * that end's point within 1 m and its time within 1 ms (measured: 1 mm, 0.2 us); an end on
+ * iip_range that the burn outruns into orbit (NaN) fails the phase with its reason. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "dynamics/iip.h"
+#include "lvsim/lv_io.h"
+#include "lvsim/lv_mission.h"
 #include "lvsim/lv_planet.h"
+#include "mission_kit.h"
 
 /* ---- the reference: its own J2 field, RK4, bisection ------------------------------------ */
 
@@ -176,8 +183,123 @@ static void state_geo(const lv_planet *p, double t, double lat_deg, double lon_d
     lv_frames_ecef_to_eci(p, t, r_ecef, v_ecef, r, v);
 }
 
+/* The value of column `name` in row `row` of phase k's rows ((size_t)-1: the last). */
+static double row_value(const lv_run *r, size_t k, const char *name, size_t row)
+{
+    lv_err err;
+    size_t c = 0;
+    const lv_result *res = lv_run_rows(r, k);
+    if (res == NULL || lv_result_column(res, name, &c, &err) != LV_OK)
+        return NAN;
+    if (row == (size_t)-1)
+        row = lv_result_rows(res) - 1;
+    return lv_result_value(res, row, c);
+}
+
+/* The outputs in the models, end to end: dof3 and dof6 coast without air or thrust from a
+ * booster-like state (70 km, 2 km/s, 30 deg up, east from Kourou) to an `impact` end (h = 0).
+ * Without drag the path is the IIP's, so the first row's iip_lat, iip_lon, iip_tof must be
+ * where and when the phase itself ends (to the run's integration error, tolerance 1e-10: within
+ * 1 m and 1 ms), and iip_range the central angle between the start's and the impact's
+ * geocentric directions times a (1 m); a row in the middle predicts the same point. */
+static void model_case(const char *model)
+{
+    char yaml[2048];
+    const int six = model[3] == '6';
+    snprintf(yaml, sizeof yaml,
+             "mission: {name: iip, epoch: 2026-03-01T12:00:00Z}\n"
+             "environment: {world: planet, planet: earth, gravity: j2, atmosphere: none}\n"
+             "parameters: {start_lat_deg: 5.236, start_lon_deg: -52.775, start_h: 70000,\n"
+             "             start_vel: 2000, start_fpa_deg: 30, start_chi_deg: 90}\n"
+             "stages:\n  - {name: booster, dry_mass: 5000, propellant_mass: 0%s}\n"
+             "phases:\n"
+             "  - {name: fall, model: %s, stages: [booster], start_time: 0, stop_time: 2000,\n"
+             "     end: [impact], integrator: {tolerance: 1.0e-10, output_interval: 10}%s}\n",
+             six ? ",\n     rigid_body: {inertia_full: {xx: 100, yy: 900, zz: 900},\n"
+                   "       inertia_empty: {xx: 100, yy: 900, zz: 900}, cg_full: {x: -1},\n"
+                   "       cg_empty: {x: -1}}" : "",
+             model, six ? "" : ", throttle: off");
+    lv_mission *m = NULL;
+    lv_run *r = run_text("test_iip_model.yaml", yaml, &m);
+    CHECK(r != NULL);
+    if (r != NULL) {
+        const double lat1 = row_value(r, 0, "lat", (size_t)-1);
+        const double lon1 = row_value(r, 0, "lon", (size_t)-1);
+        const double t1 = row_value(r, 0, "time", (size_t)-1);
+        const double h1 = row_value(r, 0, "h", (size_t)-1);
+        const double a = 6378137.0;
+        for (size_t row = 0; row < 30; row += 15) {
+            const double t = row_value(r, 0, "time", row);
+            const double la = row_value(r, 0, "iip_lat", row);
+            const double lo = row_value(r, 0, "iip_lon", row);
+            const double tof = row_value(r, 0, "iip_tof", row);
+            const double off = a * hypot(la - lat1, (lo - lon1) * cos(lat1));
+            printf("%s row %zu (t = %.0f s): IIP %.3f m from the impact (h %.1e m), tof %+.2e s "
+                   "off\n", model, row, t, off, h1, t + tof - t1);
+            CHECK(off < 1.0);
+            CHECK_CLOSE(t + tof, t1, 1e-3);
+            if (row == 0) { /* the range from the start: central angle (geocentric) x a */
+                const double s0 = row_value(r, 0, "lat_gc", 0), l0 = row_value(r, 0, "lon", 0);
+                const double s1 = row_value(r, 0, "lat_gc", (size_t)-1);
+                const double c = sin(s0) * sin(s1) + cos(s0) * cos(s1) * cos(lon1 - l0);
+                CHECK_CLOSE(row_value(r, 0, "iip_range", 0), a * acos(c), 1.0);
+            }
+        }
+    }
+    lv_run_free(r);
+    lv_mission_free(m);
+}
+
+/* An end on an IIP output that the burn outruns: from 200 km at 7 km/s east, a prograde burn
+ * takes the impact point out to 9900 km and then into orbit (iip_range NaN) before it reaches
+ * 80,000 km; the phase fails saying so instead of firing at the jump. An end it reaches
+ * (8000 km) fires there. */
+static void nan_end_case(void)
+{
+    static const char *const fmt =
+        "mission: {name: iip-end, epoch: 2026-03-01T12:00:00Z}\n"
+        "environment: {world: planet, planet: earth, gravity: j2, atmosphere: none}\n"
+        "parameters: {start_lat_deg: 0, start_lon_deg: 0, start_h: 200000, start_vel: 7000,\n"
+        "             start_fpa_deg: 0, start_chi_deg: 90}\n"
+        "stages:\n  - {name: s, dry_mass: 1000, propellant_mass: 2000,\n"
+        "     engines: [{name: e, thrust_vac: 20000, isp_vac: 300}]}\n"
+        "phases:\n"
+        "  - {name: burn, model: dof3, stages: [s], start_time: 0, stop_time: 300,\n"
+        "     end: [{iip_range: %s, direction: rising}], guidance: {law: prograde}}\n";
+    char yaml[2048];
+    lv_err err;
+    for (int reach = 0; reach < 2; reach++) {
+        snprintf(yaml, sizeof yaml, fmt, reach ? "8.0e6" : "8.0e7");
+        write_file("test_iip_end.yaml", yaml);
+        lv_mission *m = NULL;
+        lv_run *r = NULL;
+        CHECK_OK(lv_mission_load("test_iip_end.yaml", &m, &err), &err);
+        if (m != NULL)
+            CHECK_OK(lv_run_create(m, &r, &err), &err);
+        if (r != NULL) {
+            (void)lv_run_execute(r, NULL, &err);
+            const lv_phase_result *pr = lv_run_result(r, 0);
+            if (reach) {
+                CHECK(pr->state == LV_PHASE_DONE);
+                CHECK_REL(row_value(r, 0, "iip_range", (size_t)-1), 8.0e6, 1e-6);
+            } else {
+                printf("end beyond the orbit: %s\n", pr->error);
+                CHECK(pr->state == LV_PHASE_FAILED);
+                CHECK(strstr(pr->error, "the end 'iip_range' did not cross 8e+07: its variable "
+                                        "iip_range turns NaN at t = ") != NULL);
+            }
+        }
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
+}
+
 int main(void)
 {
+    nan_end_case();
+    model_case("dof3");
+    model_case("dof6");
+
     lv_err err;
     const lv_planet p = lv_planet_earth();
     const lv_gravity_config cfg = {"j2", 0, 0, NULL};
@@ -209,6 +331,10 @@ int main(void)
     /* a polar long-range arc over the pole */
     state_geo(&p, 0.0, 80.0, 10.0, 100e3, 5500.0, 15.0, 0.0, r, v);
     check_state("polar arc 5.5 km/s over the pole", &p, g, &w, 0.0, r, v);
+    /* a high arc (a GTO-like burn cut short): 200 km, 9.0 km/s, 15 deg up: far out and
+     * back in 3.7 h, with steps growing as r^1.5 */
+    state_geo(&p, 600.0, 5.0, -30.0, 200e3, 9000.0, 15.0, 95.0, r, v);
+    check_state("high arc 9 km/s 15 deg", &p, g, &w, 600.0, r, v);
     /* inbound faster than escape: a hyperbola (r_peri below the surface) */
     state_geo(&p, 0.0, 20.0, 0.0, 500e3, 11500.0, -20.0, 45.0, r, v);
     check_state("hyperbolic entry 11.5 km/s", &p, g, &w, 0.0, r, v);
@@ -234,6 +360,15 @@ int main(void)
     CHECK(!iip.valid && isnan(iip.lat));
     lv_iip_conic(&p, p.gm, 0.0, r_leo, v_esc, &iip);
     CHECK(!iip.valid && isnan(iip.tof));
+    /* beyond the horizon (6 h): straight up at 10.7 km/s from 200 km, apoapsis ~ 19 Earth
+     * radii, back after ~ 1.7 days: no impact looked for, NaN (and cheap) */
+    {
+        const double r_up[3] = {rc, 0, 0}, v_up[3] = {10700.0, 0, 0};
+        lv_iip_conic(&p, p.gm, 0.0, r_up, v_up, &iip);
+        CHECK(iip.valid && iip.tof > LV_IIP_HORIZON);
+        lv_iip_propagate(&p, g, NULL, p.gm, 0.0, r_up, v_up, &iip);
+        CHECK(!iip.valid && isnan(iip.tof) && isnan(iip.lat));
+    }
     /* a grazing orbit: perigee 10 km below the equator's radius at the pole's latitude... its
      * conic misses the ellipsoid (b < r_peri < a at a high inclination: the ellipsoid there is
      * 21 km lower) - propagated one period, no crossing */
@@ -258,6 +393,16 @@ int main(void)
     CHECK_CLOSE(iip.lat, 5.236 * M_PI / 180.0, 1e-8);
     CHECK_CLOSE(iip.lon, -52.775 * M_PI / 180.0, 1e-8);
 
+    /* just above the ground, falling at 155 m/s (an `impact` end's last row, 1 m and 1 nm up):
+     * the conic's answer, tof h / 155 m/s; no endless creep of tiny steps */
+    for (int k = 0; k < 2; k++) {
+        const double hh = k ? 1e-9 : 1.0;
+        state_geo(&p, 663.9, 4.08, -37.1, hh, 155.0, -80.0, 90.0, r, v);
+        lv_iip_propagate(&p, g, NULL, p.gm, 663.9, r, v, &iip);
+        CHECK(iip.valid);
+        CHECK_CLOSE(iip.tof, hh / (155.0 * sin(80.0 * M_PI / 180.0)), 1e-5); /* g: 2e-4 */
+        CHECK_CLOSE(iip.lat, 4.08 * M_PI / 180.0, 1e-8);
+    }
     /* the range: a quarter of the equator is a pi/2 a */
     const double e1[3] = {1, 0, 0}, e2[3] = {0, 5, 0};
     CHECK_CLOSE(lv_iip_range(p.a, e1, e2), 0.5 * M_PI * p.a, 1e-6);
