@@ -2,3 +2,7 @@
 add_executable(bench_gravity bench_gravity.c)
 target_link_libraries(bench_gravity PRIVATE lvsim_static)
 lv_set_warnings(bench_gravity)
+# The instantaneous impact point (issue 28): ns per output row, propagated and conic alone.
+add_executable(bench_iip bench_iip.c)
+target_link_libraries(bench_iip PRIVATE lvsim_static)
+lv_set_warnings(bench_iip)

@@ -38,6 +38,7 @@ enum {
     O_THETA, O_PSI, O_PHI, O_PROP_LEFT, O_TGT_DIST, O_TGT_BEAR, O_TGT_OVER, O_THR_EFF,
     O_ENG_RUN,
     O_HEAT_SG, O_HEAT_FM, /* aerothermal heating */
+    O_IIP_LAT, O_IIP_LON, O_IIP_TOF, O_IIP_RANGE, /* instantaneous impact point */
     O_N
 };
 
@@ -135,6 +136,13 @@ static const lv_var output_vars[O_N] = {
     {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "
      "(Sutton-Graves)", 0, 0},
     {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},
+    {"iip_lat", "rad", "Instantaneous impact point: geodetic latitude where the drag-free path "
+     "meets the ellipsoid (NaN: no impact)", 0, 0},
+    {"iip_lon", "rad", "Instantaneous impact point: longitude at the time of impact (NaN: no "
+     "impact)", 0, 0},
+    {"iip_tof", "s", "Instantaneous impact point: time of flight to it (NaN: no impact)", 0, 0},
+    {"iip_range", "m", "Instantaneous impact point: great-circle distance from the point below "
+     "the vehicle on the sphere of radius a (NaN: no impact)", 0, 0},
 };
 
 /* The commanded throttle's saturation: two state events after the flight model's (burnout,
@@ -571,6 +579,7 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ARGP] = el.argp;
     y[O_APO] = el.r_apo - m->world.planet.a;
     y[O_PERI] = el.r_peri - m->world.planet.a;
+    lv_flight_iip(&m->world, m->grav_ws, m->gm, t, rv, vv, r, &y[O_IIP_LAT]);
     lv_guid_euler_local(k, ax, &y[O_THETA], &y[O_PSI], &y[O_PHI]);
     y[O_PROP_LEFT] = s->rt.burned_out || mass < s->rt.m_burnout ? 0.0 : mass - s->rt.m_burnout;
     lv_guid_target(&m->guid, k, m->world.planet.a, lv_v3_dot(pt.g_ecef, k->d_ax),

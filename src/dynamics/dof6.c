@@ -49,6 +49,7 @@ enum {
     O_LAT_GC, O_FPA_I, O_CHI_I, O_ACC, O_ACC_SENSED, O_RAAN, O_ARGP, O_DOWNRANGE, O_THR_EFF,
     O_ENG_RUN,
     O_HEAT_SG, O_HEAT_FM, /* aerothermal heating */
+    O_IIP_LAT, O_IIP_LON, O_IIP_TOF, O_IIP_RANGE, /* instantaneous impact point */
     O_N
 };
 /* outputs of a steering law (after O_N), then of a controller */
@@ -178,6 +179,13 @@ static const lv_var output_vars[O_N] = {
     {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "
      "(Sutton-Graves)", 0, 0},
     {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},
+    {"iip_lat", "rad", "Instantaneous impact point: geodetic latitude where the drag-free path "
+     "meets the ellipsoid (NaN: no impact)", 0, 0},
+    {"iip_lon", "rad", "Instantaneous impact point: longitude at the time of impact (NaN: no "
+     "impact)", 0, 0},
+    {"iip_tof", "s", "Instantaneous impact point: time of flight to it (NaN: no impact)", 0, 0},
+    {"iip_range", "m", "Instantaneous impact point: great-circle distance from the point below "
+     "the vehicle on the sphere of radius a (NaN: no impact)", 0, 0},
 };
 
 static const lv_var steer_output_vars[O_NMAX - O_N] = {
@@ -1000,6 +1008,8 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_PERI] = el.r_peri - m->world.planet.a;
     y[O_RAAN] = el.raan;
     y[O_ARGP] = el.argp;
+    const double r_ecef[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
+    lv_flight_iip(&m->world, m->grav_ws, m->gm, t, rv, vv, r_ecef, &y[O_IIP_LAT]);
 
     /* inertial velocity in ECEF axes (no w x r): the inertial angles, as lv_dof3 */
     const lv_vec3 v_i = {k->c_th * v_eci.x + k->s_th * v_eci.y,

@@ -11,6 +11,7 @@
 
 #include "core/table_unit.h"
 #include "core/units.h"
+#include "dynamics/iip.h"
 
 /* ---- construction ------------------------------------------------------------------------ */
 
@@ -33,6 +34,18 @@ lv_status lv_flight_check_heating(const char *model, double nose_radius, double 
         return lv_fail(err, LV_ERR_INPUT, "%s: k_sutton_graves = %g kg^0.5/m (must be >= 0)",
                        model, k_sg);
     return LV_OK;
+}
+
+void lv_flight_iip(const lv_flight_world *w, double *grav_ws, double gm, double t,
+                   const double r_eci[3], const double v_eci[3], const double r_ecef[3],
+                   double y[4])
+{
+    lv_iip iip;
+    lv_iip_propagate(&w->planet, w->grav, grav_ws, gm, t, r_eci, v_eci, &iip);
+    y[0] = iip.lat;
+    y[1] = iip.lon;
+    y[2] = iip.tof;
+    y[3] = iip.valid ? lv_iip_range(w->planet.a, r_ecef, iip.r_ecef) : NAN;
 }
 
 lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,

@@ -82,6 +82,15 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
  * both finite (lv_dof3_config). */
 lv_status lv_flight_check_heating(const char *model, double nose_radius, double k_sg, lv_err *err);
 
+/* The instantaneous impact point outputs of the ECI state (r_eci [m], v_eci [m/s]) at time t
+ * [s] (dynamics/iip.h, lv_iip_propagate under the world's gravity model, workspace grav_ws, GM
+ * gm): y[0] iip_lat, y[1] iip_lon [rad, geodetic], y[2] iip_tof [s], y[3] iip_range [m, great
+ * circle on the sphere of radius a from the vehicle's ECEF direction r_ecef]; all four NAN
+ * when the drag-free path does not meet the ellipsoid (docs/models.md). */
+void lv_flight_iip(const lv_flight_world *w, double *grav_ws, double gm, double t,
+                   const double r_eci[3], const double v_eci[3], const double r_ecef[3],
+                   double y[4]);
+
 /* The engines of a configuration: *eng = [n] initialised from engines[n] (lv_engine_init),
  * *n_eng the number initialised (also after an error, for the caller's free), *eng_buf
  * scratch for their tables; nothing when n = 0. LV_ERR_INPUT naming the model ("dof3:

@@ -29,7 +29,9 @@ enum {
     O_H, O_LAT, O_LON, O_VREL, O_FPA, O_CHI, O_MACH, O_Q, O_RHO, O_PAMB,
     O_THRUST, O_MDOT, O_DRAG, O_LIFT, O_NORMAL, O_FRICTION, O_ACCEL, O_NAX,
     O_ALPHA, O_THR, O_ENGINE_ON, O_ROTATING, O_PROP_LEFT, O_LIFT_MARGIN,
-    O_RX, O_RY, O_RZ, O_VX, O_VY, O_VZ, O_N
+    O_RX, O_RY, O_RZ, O_VX, O_VY, O_VZ,
+    O_IIP_LAT, O_IIP_LON, O_IIP_TOF, O_IIP_RANGE, /* the impact point: here, on the ground */
+    O_N
 };
 
 /* Events: burnout, rotation, the mode's own end (liftoff or stop), at rest (a take-off that
@@ -96,6 +98,11 @@ static const lv_var output_vars[O_N] = {
     {"v_eci_x", "m/s", "Inertial velocity, ECI x (the 3-DoF model's state)", 0, 0},
     {"v_eci_y", "m/s", "Inertial velocity, ECI y", 0, 0},
     {"v_eci_z", "m/s", "Inertial velocity, ECI z", 0, 0},
+    {"iip_lat", "rad", "Instantaneous impact point, latitude: on the ground, the vehicle's own "
+     "(as lat)", 0, 0},
+    {"iip_lon", "rad", "Instantaneous impact point, longitude: the vehicle's own (as lon)", 0, 0},
+    {"iip_tof", "s", "Time of flight to the impact point: 0 on the ground", 0, 0},
+    {"iip_range", "m", "Distance to the impact point: 0 on the ground", 0, 0},
 };
 
 #define EVENT_NAME_MAX 48
@@ -512,6 +519,13 @@ static int rw_outputs(double t, const double *x, const double *p, double *y, voi
         y[O_RX + i] = r_eci[i];
         y[O_VX + i] = v_eci[i];
     }
+    /* held on the runway: it is where it would come down (the flight models' iip_* outputs,
+     * docs/models.md, "Instantaneous impact point"; here so a body's trajectory has them
+     * across a take-off or a landing) */
+    y[O_IIP_LAT] = k->lat;
+    y[O_IIP_LON] = k->lon;
+    y[O_IIP_TOF] = 0.0;
+    y[O_IIP_RANGE] = 0.0;
     return 0;
 }
 

@@ -19,4 +19,5 @@ list(APPEND LV_SOURCES
   src/dynamics/dof3.c
   src/dynamics/dof6.c
   src/dynamics/runway.c
-  src/dynamics/orbit.c)
+  src/dynamics/orbit.c
+  src/dynamics/iip.c)

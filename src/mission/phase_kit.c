@@ -14,6 +14,7 @@ const lv_traj_col lv_kit_planet_traj[LV_KIT_PLANET_TRAJ_N] = {
     {"body_mass", "kg", "m"},    {"lat", "rad", "lat"},       {"lon", "rad", "lon"},
     {"h", "m", "h"},             {"v_rel", "m/s", "v_rel"},   {"mach", "1", "mach"},
     {"q_dyn", "Pa", "q_dyn"},
+    {"iip_lat", "rad", "iip_lat"}, {"iip_lon", "rad", "iip_lon"}, {"iip_tof", "s", "iip_tof"},
 };
 
 double lv_kit_val(const lv_build_ctx *bc, lv_slot s, double fallback)

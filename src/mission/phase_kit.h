@@ -28,8 +28,9 @@
 
 /* The columns of a body's merged trajectory over the planet (body_<stage>.csv) from a model
  * with the flight models' states and outputs (r_eci_*, v_eci_*, m; lat, lon, h, v_rel, mach,
- * q_dyn): what the exports read (time, lat, lon, h, the ECI state) and more. */
-#define LV_KIT_PLANET_TRAJ_N 13
+ * q_dyn, iip_lat, iip_lon, iip_tof): what the exports read (time, lat, lon, h, the ECI state;
+ * the impact point's trace) and more. */
+#define LV_KIT_PLANET_TRAJ_N 16
 extern const lv_traj_col lv_kit_planet_traj[LV_KIT_PLANET_TRAJ_N];
 
 /* The mission parameters of a start over the planet, in this order (lv_kit_param's i), and

@@ -254,12 +254,14 @@ static lv_status check_summary(lv_ex_run *r, const lv_results *res, lv_err *err)
 
 /* ------------------------------------------------------------- body CSV -- */
 
-enum { C_TIME, C_PHASE, C_LAT, C_LON, C_H, C_RX, C_RY, C_RZ, C_VX, C_VY, C_VZ, C_N };
+enum { C_TIME, C_PHASE, C_LAT, C_LON, C_H, C_RX, C_RY, C_RZ, C_VX, C_VY, C_VZ, C_ILAT, C_ILON,
+       C_N };
 static const char *const col_names[C_N + 1] = {"time", "phase", "lat", "lon", "h", "r_eci_x",
                                                "r_eci_y", "r_eci_z", "v_eci_x", "v_eci_y",
-                                               "v_eci_z", NULL};
+                                               "v_eci_z", "iip_lat", "iip_lon", NULL};
 static const char *const text_cols[] = {"phase", NULL};
-/* Every column but `phase` must be a finite number where present. */
+/* Every column but `phase` must be a finite number where present; iip_lat, iip_lon may be NaN
+ * (no impact: docs/models.md). */
 static const char *const finite_cols[] = {"time", "lat", "lon", "h", "r_eci_x", "r_eci_y",
                                           "r_eci_z", "v_eci_x", "v_eci_y", "v_eci_z", NULL};
 
@@ -288,8 +290,9 @@ static lv_status read_body(lv_ex_run *r, const lv_results *res, size_t bi, lv_er
             goto fail;
         }
     b->has_eci = 1;
-    for (int c = C_RX; c < C_N; c++)
+    for (int c = C_RX; c <= C_VZ; c++)
         b->has_eci &= col[c] >= 0;
+    b->has_iip = col[C_ILAT] >= 0 && col[C_ILON] >= 0;
     if (t->n_rows == 0) {
         st = lv_fail(err, LV_ERR_INPUT, "%s:%zu: no rows", t->path, t->n_lines);
         goto fail;
@@ -304,9 +307,11 @@ static lv_status read_body(lv_ex_run *r, const lv_results *res, size_t bi, lv_er
         lv_ex_row row;
         memset(&row, 0, sizeof row);
         row.line = line;
+        row.iip_lat = row.iip_lon = NAN;
         double *dst[C_N] = {&row.t,        NULL,          &row.lat,      &row.lon,
                             &row.h,        &row.r_eci[0], &row.r_eci[1], &row.r_eci[2],
-                            &row.v_eci[0], &row.v_eci[1], &row.v_eci[2]};
+                            &row.v_eci[0], &row.v_eci[1], &row.v_eci[2], &row.iip_lat,
+                            &row.iip_lon};
         for (int c = 0; c < C_N; c++)
             if (dst[c] != NULL && col[c] >= 0)
                 *dst[c] = v[col[c]];

@@ -1,5 +1,6 @@
 /* export_czml.c - mission.czml for Cesium: a document packet with the clock, one track packet
- * per body and phase, event and phase-start markers. Packet and property names: the CZML Guide
+ * per body and phase, the instantaneous impact point's trace per body (polylines), event and
+ * phase-start markers. Packet and property names: the CZML Guide
  * and Packet reference (AnalyticalGraphicsInc/czml-writer wiki).
  * Written straight to the file as it goes (no document tree, nothing held per sample), laid
  * out byte for byte as cJSON_Print lays a document out (cJSON 1.7.15, print_object,
@@ -271,6 +272,55 @@ static void track_packet(jw *w, const lv_ex_run *r, size_t bi, const lv_ex_track
         label(w, b->name, rgb);
     }
     jw_close(w);
+}
+
+/* Body bi's instantaneous impact point trace: a polyline on the ground per finite run of at
+ * least two rows (a NAN row, no impact, ends one), id "iip/<body>/<run>", drawn all mission
+ * long (docs/exports.md, "CZML"). */
+static void iip_packets(jw *w, const lv_ex_run *r, size_t bi)
+{
+    const lv_ex_body *b = &r->bodies[bi];
+    size_t start = 0, len = 0, run = 0;
+    char buf[512];
+    for (size_t i = 0; b->has_iip && i <= b->n_rows; i++) {
+        if (i < b->n_rows && isfinite(b->rows[i].iip_lat) && isfinite(b->rows[i].iip_lon)) {
+            if (len++ == 0)
+                start = i;
+            continue;
+        }
+        if (len >= 2) {
+            jw_open(w, NULL, '{');
+            snprintf(buf, sizeof buf, "iip/%s/%zu", b->name, run++);
+            jw_str(w, "id", buf);
+            snprintf(buf, sizeof buf, "%s: IIP trace", b->name);
+            jw_str(w, "name", buf);
+            snprintf(buf, sizeof buf, "Instantaneous impact point of body %s (drag-free, "
+                     "thrust off) from t = %.3f to %.3f s after the mission epoch.", b->name,
+                     b->rows[start].t, b->rows[start + len - 1].t);
+            jw_str(w, "description", buf);
+            interval(w, "availability", r, r->t0, r->t1);
+            jw_open(w, "polyline", '{');
+            jw_open(w, "positions", '{');
+            jw_open(w, "cartographicDegrees", '[');
+            for (size_t j = start; j < start + len; j++) {
+                jw_num(w, NULL, b->rows[j].iip_lon * RAD2DEG);
+                jw_num(w, NULL, b->rows[j].iip_lat * RAD2DEG);
+                jw_num(w, NULL, 0);
+            }
+            jw_close(w);
+            jw_close(w);
+            jw_open(w, "material", '{');
+            jw_open(w, "solidColor", '{');
+            rgba(w, "color", 224, 32, 32, 255);
+            jw_close(w);
+            jw_close(w);
+            jw_num(w, "width", 1.5);
+            jw_str(w, "arcType", "GEODESIC");
+            jw_close(w);
+            jw_close(w);
+        }
+        len = 0;
+    }
 }
 
 /* A fixed marker: id, label, where body b of phase p was at t, visible from t to the end. */
@@ -690,6 +740,8 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
         for (size_t i = 0; i < b->n_tracks; i++)
             track_packet(&w, r, bi, &b->tracks[i], i + 1 == b->n_tracks);
     }
+    for (size_t bi = 0; bi < r->n_bodies; bi++)
+        iip_packets(&w, r, bi);
     /* A vehicle model per done phase with an attitude in its results */
     for (size_t p = 0; p < r->n_phases && st == LV_OK; p++)
         st = model_packets(&w, r, p, err);
@@ -721,4 +773,4 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
 const lv_ex_format lv_ex_czml = {
     "czml", "mission.czml", "mission.czml",
     "CZML for CesiumJS: every body's track, phase colours, event markers, vehicle models with "
-    "their attitude", write_czml};
+    "their attitude, the IIP trace", write_czml};

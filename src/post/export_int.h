@@ -17,6 +17,8 @@ typedef struct lv_ex_row {
     double t;                  /* s, mission time */
     double lat, lon, h;        /* rad, rad, m: WGS-84 geodetic */
     double r_eci[3], v_eci[3]; /* m, m/s: lvsim's ECI (docs/frames.md); planet world only */
+    double iip_lat, iip_lon;   /* rad: the instantaneous impact point (iip_lat, iip_lon of
+                                  docs/models.md); NAN: no impact, or no such column */
     size_t line;               /* line of the body CSV, for messages */
 } lv_ex_row;
 
@@ -38,6 +40,7 @@ typedef struct lv_ex_body {
     lv_ex_track *tracks; /* in the order of the CSV (phase start times) */
     size_t n_tracks;
     int has_eci;         /* r_eci_x .. v_eci_z columns present */
+    int has_iip;         /* iip_lat, iip_lon columns present (rows may still be NAN) */
 } lv_ex_body;
 
 typedef struct lv_ex_run {

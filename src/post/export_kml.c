@@ -1,6 +1,7 @@
 /* export_kml.c - mission.kml (OGC KML 2.2 with the Google gx: extension, for Google Earth): one
  * Folder per body, a gx:Track per phase (when/gx:coord, altitudeMode absolute), a Style per
- * phase colour, Placemarks for phase starts and events. Text from the mission is escaped. Times
+ * phase colour, Placemarks for phase starts and events, the instantaneous impact point's trace
+ * per body (LineStrings on the ground). Text from the mission is escaped. Times
  * are xsd:dateTime, which has no second 60: an instant inside a leap second is written as
  * 23:59:59.999999 (docs/exports.md, "Times"). */
 #define _POSIX_C_SOURCE 200809L
@@ -106,6 +107,51 @@ static void put_marker(FILE *f, const lv_ex_run *r, const lv_ex_body *b, const l
             ph->index, lon * RAD2DEG, lat * RAD2DEG, h);
 }
 
+/* The finite runs of at least two rows of a body's instantaneous impact point (a NAN row, no
+ * impact, ends a run): how many. */
+static size_t iip_runs(const lv_ex_body *b)
+{
+    size_t n = 0, len = 0;
+    for (size_t i = 0; b->has_iip && i <= b->n_rows; i++) {
+        if (i < b->n_rows && isfinite(b->rows[i].iip_lat) && isfinite(b->rows[i].iip_lon)) {
+            len++;
+            continue;
+        }
+        n += len >= 2;
+        len = 0;
+    }
+    return n;
+}
+
+/* The body's IIP trace: one Placemark, a LineString on the ground per finite run of rows
+ * (docs/exports.md, "KML"). */
+static void put_iip(FILE *f, const lv_ex_body *b)
+{
+    fputs("    <Placemark>\n      <name>", f);
+    put_text(f, b->name);
+    fputs(": IIP trace</name>\n      <description>instantaneous impact point (drag-free, "
+          "thrust off) over the body's rows; gaps: no impact</description>\n"
+          "      <styleUrl>#iip</styleUrl>\n      <MultiGeometry>\n", f);
+    size_t start = 0, len = 0;
+    for (size_t i = 0; i <= b->n_rows; i++) {
+        if (i < b->n_rows && isfinite(b->rows[i].iip_lat) && isfinite(b->rows[i].iip_lon)) {
+            if (len++ == 0)
+                start = i;
+            continue;
+        }
+        if (len >= 2) {
+            fputs("        <LineString><tessellate>1</tessellate><altitudeMode>clampToGround"
+                  "</altitudeMode><coordinates>\n", f);
+            for (size_t j = start; j < start + len; j++)
+                fprintf(f, "          %.10f,%.10f,0\n", b->rows[j].iip_lon * RAD2DEG,
+                        b->rows[j].iip_lat * RAD2DEG);
+            fputs("        </coordinates></LineString>\n", f);
+        }
+        len = 0;
+    }
+    fputs("      </MultiGeometry>\n    </Placemark>\n", f);
+}
+
 /* *n_no60: how many written instants fell inside a leap second (written 23:59:59.999999). */
 static lv_status write_file(const lv_ex_run *r, const char *path, size_t *n_no60, lv_err *err)
 {
@@ -139,6 +185,13 @@ static lv_status write_file(const lv_ex_run *r, const char *path, size_t *n_no60
     for (size_t p = 0; p < r->n_phases; p++)
         if (r->phases[p].done)
             put_style(f, r, p);
+    size_t n_iip = 0;
+    for (size_t bi = 0; bi < r->n_bodies; bi++)
+        n_iip += iip_runs(&r->bodies[bi]);
+    if (n_iip > 0) /* the IIP traces: thin, red */
+        fputs("  <Style id=\"iip\">\n"
+              "    <LineStyle><color>ff2020e0</color><width>1.5</width></LineStyle>\n"
+              "  </Style>\n", f);
     for (size_t bi = 0; bi < r->n_bodies; bi++) {
         const lv_ex_body *b = &r->bodies[bi];
         fputs("  <Folder>\n    <name>", f);
@@ -146,6 +199,8 @@ static lv_status write_file(const lv_ex_run *r, const char *path, size_t *n_no60
         fputs("</name>\n", f);
         for (size_t i = 0; i < b->n_tracks; i++)
             put_track(f, r, b, &b->tracks[i], n_no60);
+        if (iip_runs(b) > 0)
+            put_iip(f, b);
         /* The markers of this body's phases: start, then the events (as in the CZML). */
         for (size_t i = 0; i < b->n_tracks; i++) {
             const lv_ex_track *k = &b->tracks[i];
@@ -181,4 +236,5 @@ static lv_status write_kml(const lv_ex_run *r, lv_err *err)
 
 const lv_ex_format lv_ex_kml = {
     "kml", "mission.kml", "mission.kml",
-    "KML 2.2 for Google Earth: a folder per body, a track per phase, event markers", write_kml};
+    "KML 2.2 for Google Earth: a folder per body, a track per phase, event markers, the IIP "
+    "trace", write_kml};

@@ -421,10 +421,10 @@ static void draw_panel(const lv_plot_data *d, const figure *f, size_t ip, PLFLT 
         draw_curve(&p->c[j]);
     if (f->map)
         draw_sites(d, f, ylo, yhi);
-    if (f->map) /* start and end of each track */
+    if (f->map) /* start and end of each track (not of an IIP trace: set 1) */
         for (size_t j = 0; j < p->n_c; j++) {
             const curve *c = &p->c[j];
-            if (c->n == 0)
+            if (c->n == 0 || c->set == 1)
                 continue;
             plcol0(c->color);
             plschr(0.0, 1.3);
@@ -1014,6 +1014,65 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
         c->width = body_width(i);
         body_label(d, i, c->label, sizeof c->label);
     }
+    /* the instantaneous impact point's trace of each body (iip_lat, iip_lon of dof3 and
+     * dof6 in its phase files; NAN rows, no impact, break it), on the whole map: a thinner
+     * line of the body's colour in its second style, no start and end marks (set 1). Bodies
+     * flying together share the trace: a phase's is drawn once, with the first body that
+     * flies in it. */
+    unsigned char *drawn = calloc(d->n_phases + 1, 1);
+    if (drawn == NULL)
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; !site && st == LV_OK && i < d->n_bodies && p->n_c < MAX_CURVES; i++) {
+        const lv_plot_body *b = &d->bodies[i];
+        size_t n_ok = 0, n_rows = 0;
+        for (size_t j = 0; j < b->n; j++) {
+            const lv_results_table *t = d->phases[b->phase[j]].csv;
+            const long klat = lv_results_table_col(t, "iip_lat");
+            const long klon = lv_results_table_col(t, "iip_lon");
+            if (t == NULL || klat < 0 || klon < 0 || drawn[b->phase[j]])
+                continue;
+            n_rows += t->n_rows + 1;
+            for (size_t r = 0; r < t->n_rows; r++)
+                n_ok += isfinite(t->v[r * t->n_cols + (size_t)klat]) &&
+                        isfinite(t->v[r * t->n_cols + (size_t)klon]);
+        }
+        if (n_ok < 2)
+            continue;
+        curve *c = &p->c[p->n_c++];
+        c->x = malloc(n_rows * sizeof *c->x);
+        c->y = malloc(n_rows * sizeof *c->y);
+        if (c->x == NULL || c->y == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+            break;
+        }
+        double last = NAN; /* the last finite longitude: continuous across +-180 deg */
+        for (size_t j = 0; j < b->n; j++) {
+            const lv_results_table *t = d->phases[b->phase[j]].csv;
+            const long klat = lv_results_table_col(t, "iip_lat");
+            const long klon = lv_results_table_col(t, "iip_lon");
+            if (t == NULL || klat < 0 || klon < 0 || drawn[b->phase[j]])
+                continue;
+            drawn[b->phase[j]] = 1;
+            for (size_t r = 0; r < t->n_rows; r++) {
+                double lon = t->v[r * t->n_cols + (size_t)klon] * RAD2DEG;
+                if (isfinite(last) && isfinite(lon))
+                    lon += 360.0 * round((last - lon) / 360.0);
+                if (isfinite(lon))
+                    last = lon;
+                c->x[c->n] = lon;
+                c->y[c->n] = t->v[r * t->n_cols + (size_t)klat] * RAD2DEG;
+                c->n++;
+            }
+        }
+        c->color = COL_BODY0 + (PLINT)(i % (N_COLS - COL_BODY0));
+        c->style = body_style(i, 1);
+        c->width = 0.6 * body_width(i);
+        c->set = 1;
+        char body[112];
+        body_label(d, i, body, sizeof body);
+        snprintf(c->label, sizeof c->label, "IIP %s", body);
+    }
+    free(drawn);
     /* a track that never leaves the launch site (a vertical flight) makes an empty map */
     double extent = 0.0;
     for (size_t j = 0; st == LV_OK && j < p->n_c; j++)
@@ -1083,7 +1142,8 @@ static lv_status ground_track(const lv_plot_data *d, const char *plotdir, lv_plo
                            "package libplplot-data) not found: latitude/longitude grid only");
         else if (st == LV_OK)
             add_note(list, "ground_track: coastlines from PLplot's 'globe' shapefile; "
-                           "o marks the start, x the end of each body's track");
+                           "o marks the start, x the end of each body's track; the thin "
+                           "lines 'IIP' trace the instantaneous impact point");
     }
     figure_free(&f);
     return st;

@@ -404,6 +404,26 @@ static void key_section(FILE *f, const cJSON *doc, int flat)
                 fputs("</td></tr>\n", f);
             }
         }
+        const cJSON *iips = cJSON_GetObjectItemCaseSensitive(b, "iip_cutoff"), *ip;
+        cJSON_ArrayForEach(ip, iips) /* the planet's flight models: IIP at each cut-off */
+        {
+            char what[160];
+            snprintf(what, sizeof what, "IIP at the end of powered flight in %s",
+                     jstr(ip, "phase") ? jstr(ip, "phase") : "?");
+            key_row(f, what);
+            int first = 1;
+            kv(f, "at t", jnum(ip, "t"), 1.0, 3, "s", &first);
+            kv(f, "h", jnum(ip, "h"), 1e-3, 3, "km", &first);
+            if (cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(ip, "impact"))) {
+                kv(f, "impact lat", jnum(ip, "iip_lat"), 1.0 / LV_DEG, 4, "deg", &first);
+                kv(f, "lon", jnum(ip, "iip_lon"), 1.0 / LV_DEG, 4, "deg", &first);
+                kv(f, "time of flight", jnum(ip, "iip_tof"), 1.0, 1, "s", &first);
+                kv(f, "range", jnum(ip, "iip_range"), 1e-3, 1, "km", &first);
+            } else {
+                fputs(", no impact (the drag-free path stays in orbit)", f);
+            }
+            fputs("</td></tr>\n", f);
+        }
         static const char *const nk[2] = {"max_n_axial", "max_n_normal"};
         static const char *const nt[2] = {"max axial load factor in flight",
                                           "max normal load factor in flight"};

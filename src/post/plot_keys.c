@@ -4,8 +4,9 @@
  * each burnout and separation, the injection state and osculating orbit of a body that
  * reaches orbit (periapsis above 100 km, e < 1; e >= 1: escape) or the end of a suborbital
  * powered flight it coasts up from, and the impact or landing point with its distance from
- * the launch site and its load (left out of the load maxima). A payload that never burns and
- * ends in orbit gets the injection of the last stage that carried it (carried_by).
+ * the launch site and its load (left out of the load maxima), the heating, and the
+ * instantaneous impact point at the end of each powered phase. A payload that never burns
+ * and ends in orbit gets the injection of the last stage that carried it (carried_by).
  * Written to OUTDIR/key_figures.json (SI units) and shown by the report (plot_html.c).
  * Definitions: docs/visualization.md ("Key figures"); tests/python/check_key_figures.py
  * recomputes every number from the CSV files. */
@@ -526,6 +527,52 @@ static cJSON *heating_json(const lv_plot_data *d, size_t bi)
     return o;
 }
 
+/* The instantaneous impact point at the end of each powered phase of body bi (docs/
+ * visualization.md, "Key figures"; docs/models.md, "Instantaneous impact point"): in every
+ * phase whose bottom stage (the one that burns) is the body and whose file has the iip_*
+ * columns, the last row with thrust > 0 (the cut-off, whatever ended the burn: a burnout, an
+ * orbit end, the phase's end); its time, altitude, iip_lat, iip_lon, iip_tof, iip_range (null
+ * with `impact` false where the drag-free path does not come down: in orbit). NULL: no phase
+ * of the body has the columns. */
+static cJSON *iip_json(const lv_plot_data *d, size_t bi)
+{
+    const lv_plot_body *b = &d->bodies[bi];
+    static const char *const keys[4] = {"iip_lat", "iip_lon", "iip_tof", "iip_range"};
+    cJSON *arr = NULL;
+    for (size_t i = 0; i < b->n; i++) {
+        const size_t k = b->phase[i];
+        const lv_results_table *t = d->phases[k].csv;
+        if (t == NULL || t->n_rows == 0)
+            continue;
+        long ci[4];
+        int have = 1;
+        for (int j = 0; j < 4; j++)
+            have &= (ci[j] = col(t, keys[j], NULL)) >= 0;
+        if (!have)
+            continue;
+        if (arr == NULL && (arr = cJSON_CreateArray()) == NULL)
+            return NULL;
+        const long cth = col(t, "thrust", NULL), ct = col(t, "time", NULL), ch = col(t, "h", NULL);
+        if (cth < 0 || !burns_in(d->res, k, b->name))
+            continue;
+        size_t last = (size_t)-1;
+        for (size_t r = 0; r < t->n_rows; r++)
+            if (at(t, r, cth) > 0.0)
+                last = r;
+        if (last == (size_t)-1)
+            continue;
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "phase", d->res->phases[k].name);
+        num(o, "t", at(t, last, ct));
+        num(o, "h", at(t, last, ch));
+        cJSON_AddBoolToObject(o, "impact", isfinite(at(t, last, ci[0])));
+        for (int j = 0; j < 4; j++)
+            num(o, keys[j], at(t, last, ci[j]));
+        cJSON_AddItemToArray(arr, o);
+    }
+    return arr;
+}
+
 lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
 {
     *out = NULL;
@@ -541,6 +588,8 @@ lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
         cJSON_AddItemToObject(bk, "touchdown", td ? td : cJSON_CreateNull());
         cJSON *heat = heating_json(d, i);
         cJSON_AddItemToObject(bk, "heating", heat ? heat : cJSON_CreateNull());
+        cJSON *iip = iip_json(d, i);
+        cJSON_AddItemToObject(bk, "iip_cutoff", iip ? iip : cJSON_CreateNull());
         cJSON_AddItemToArray(bodies, bk);
     }
     char *text = cJSON_Print(doc);

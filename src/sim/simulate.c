@@ -916,8 +916,30 @@ static lv_status model_state_events(sim_run *r, double t, lv_event_action *actio
     return LV_OK;
 }
 
+/* A crossing the integrator located on an output that is NaN at t, or just after it (x moved
+ * on by 1e-6 s along its derivative): not a crossing but the edge of the output's domain (an
+ * impact point output where the path stops coming down, docs/models.md), which a root search
+ * takes for a sign change. 1 then, with *t_nan where it was NaN. */
+static int nan_edge(sim_run *r, double t, size_t index, double *t_nan)
+{
+    const lv_model_def *d = r->def;
+    *t_nan = t;
+    if (d->outputs_fn(t, r->x, r->p, r->ys, r->inst) != 0)
+        return 0;
+    if (isnan(r->ys[index]))
+        return 1;
+    const double dt = 1e-6;
+    if (d->rhs(t, r->x, r->p, r->xs, r->inst) != 0)
+        return 0;
+    for (size_t i = 0; i < r->nx; i++)
+        r->xdot[i] = r->x[i] + dt * r->xs[i];
+    *t_nan = t + dt;
+    return d->outputs_fn(t + dt, r->xdot, r->p, r->ys, r->inst) == 0 && isnan(r->ys[index]);
+}
+
 /* The run's stop conditions that hold at t: crossings located by the integrator, then times
- * reached; the first one names the stop. */
+ * reached; the first one names the stop. A crossing on an output that turns NaN there is a
+ * failure (nan_edge). */
 static lv_status stop_conditions(sim_run *r, const lv_sim_settings *s, double t, int state_event,
                                  int time_event, lv_event_action *action, lv_err *err)
 {
@@ -928,6 +950,13 @@ static lv_status stop_conditions(sim_run *r, const lv_sim_settings *s, double t,
                                     : (state_event && r->roots[r->ng + r->nd + sr->root] != 0);
         if (!hit)
             continue;
+        double t_nan;
+        if (!sr->is_time && sr->kind == LV_VAR_OUTPUT && nan_edge(r, t, sr->index, &t_nan))
+            return lv_fail(err, LV_ERR_SOLVER, "model '%s': the end '%s' did not cross %g: its "
+                           "variable %s turns NaN at t = %.9g s (undefined from there: an impact "
+                           "point output once the path no longer comes down, docs/models.md)",
+                           r->def->name, s->stops[j].name, s->stops[j].value,
+                           s->stops[j].variable, t_nan);
         const int dir = sr->is_time ? 0 : r->roots[r->ng + r->nd + sr->root];
         if (sr->is_time)
             rep->stats.time_events++;

@@ -11,10 +11,12 @@ Usage: check_exports.py OUTDIR...   (each written by lv_export_run with every fo
                 rows of that phase (exact duplicate times dropped) to 1e-9 s / 1e-9 deg /
                 1e-6 m (cJSON prints 15 digits when they read back within an ulp or two), each
                 child track starting where its parent's ended; "event/<phase>/<k>" markers for
-                every phase start and every event of the summary, labelled.
+                every phase start and every event of the summary, labelled; "iip/<body>/<k>"
+                polylines, one per run of finite IIP rows of the body CSV, equal to it.
   mission.kml   xml.etree: KML 2.2 namespace, one Folder per body, a gx:Track per phase with
                 when/gx:coord counts = the body CSV rows of the phase minus duplicates, times
-                ISO 8601 and increasing, coordinates equal to the CSV, styles resolvable.
+                ISO 8601 and increasing, coordinates equal to the CSV, styles resolvable; a
+                body's IIP trace, a LineString per run of finite IIP rows, equal to the CSV.
   <body>.oem    a small CCSDS 502.0-B-2 KVN reader: header and metadata keywords, times
                 increasing within START_TIME..STOP_TIME, 7 numbers per data line, |r| within
                 Earth radius + 100 km .. + 10000 km, positions and velocities recomputed
@@ -113,6 +115,25 @@ class Folder:
             else:
                 out.append(r)
         return out
+
+    def iip_runs(self, body):
+        """The body's instantaneous impact point trace as the exports draw it: over the rows
+        of its phases (of rows with the same time only the last), the runs of at least two
+        rows with a finite iip_lat and iip_lon, as [(lon, lat) in degrees]; [] without the
+        columns (docs/exports.md)."""
+        phs, recs = self.bodies[body]
+        if not recs or "iip_lat" not in recs[0]:
+            return []
+        rows = [r for ph in phs for r in self.phase_rows(body, ph)]
+        runs, cur = [], []
+        for r in rows + [None]:
+            if r is not None and math.isfinite(r["iip_lat"]) and math.isfinite(r["iip_lon"]):
+                cur.append((math.degrees(r["iip_lon"]), math.degrees(r["iip_lat"])))
+                continue
+            if len(cur) >= 2:
+                runs.append(cur)
+            cur = []
+        return runs
 
     def interval(self):
         return "%s/%s" % (iso(at(self.epoch, self.t0)), iso(at(self.epoch, self.t1)))
@@ -238,6 +259,23 @@ def check_czml(fo):
                     check(abs(c[0] - math.degrees(r["lon"])) < 1e-9
                           and abs(c[1] - math.degrees(r["lat"])) < 1e-9
                           and abs(c[2] - r["h"]) < 1e-6, pid + ": not at the body's position")
+    # The IIP traces: one polyline packet per finite run of each body's iip_lat, iip_lon.
+    for b in fo.bodies:
+        runs = fo.iip_runs(b)
+        have = sorted(i for i in ids if i and i.startswith("iip/%s/" % b))
+        check(have == sorted("iip/%s/%d" % (b, k) for k in range(len(runs))),
+              "%s: IIP packets of %s: %s, expected %d runs" % (name, b, have, len(runs)))
+        for k, run in enumerate(runs):
+            p = packets.get("iip/%s/%d" % (b, k), {})
+            c = p.get("polyline", {}).get("positions", {}).get("cartographicDegrees", [])
+            if not check(len(c) == 3 * len(run), "%s: iip/%s/%d: %d numbers for %d points"
+                         % (name, b, k, len(c), len(run))):
+                continue
+            bad = sum(not (abs(c[3 * j] - lo) < 1e-9 and abs(c[3 * j + 1] - la) < 1e-9
+                           and c[3 * j + 2] == 0) for j, (lo, la) in enumerate(run))
+            check(bad == 0, "%s: iip/%s/%d: %d points differ from the body CSV" % (name, b, k, bad))
+            check(p.get("availability") == fo.interval(),
+                  "%s: iip/%s/%d: availability is not the mission interval" % (name, b, k))
     n_events = sum(1 for i in ids if i and i.startswith("event/"))
     n_want = sum(1 + len(p.get("events", [])) for p in fo.summary["phases"]
                  if p["state"] == "done")
@@ -304,6 +342,28 @@ def check_kml(fo):
                             and abs(lat - math.degrees(r["lat"])) < 1e-9
                             and abs(h - r["h"]) < 1e-4)
             check(bad == 0, "%s: %d points differ from the body CSV" % (where, bad))
+        # the IIP trace: one Placemark with a LineString per finite run, on the ground
+        runs = fo.iip_runs(body)
+        iips = [pm for pm in f.findall(KML + "Placemark")
+                if pm.findtext(KML + "name") == "%s: IIP trace" % body]
+        check(len(iips) == (1 if runs else 0), "%s: folder %s: %d IIP placemarks, %d runs"
+              % (name, body, len(iips), len(runs)))
+        for pm in iips:
+            check((pm.findtext(KML + "styleUrl") or "#")[1:] in styles,
+                  name + ": unresolved IIP styleUrl")
+            lines = pm.findall(KML + "MultiGeometry/" + KML + "LineString")
+            if not check(len(lines) == len(runs), "%s: folder %s: %d IIP lines, %d runs"
+                         % (name, body, len(lines), len(runs))):
+                continue
+            for ls, run in zip(lines, runs):
+                check(ls.findtext(KML + "altitudeMode") == "clampToGround",
+                      name + ": IIP altitudeMode")
+                pts = [tuple(float(x) for x in p.split(",")) for p in
+                       (ls.findtext(KML + "coordinates") or "").split()]
+                bad = len(pts) != len(run) or any(
+                    not (abs(p[0] - lo) < 1e-9 and abs(p[1] - la) < 1e-9 and p[2] == 0)
+                    for p, (lo, la) in zip(pts, run))
+                check(not bad, "%s: folder %s: an IIP line differs from the body CSV" % (name, body))
         labels = {pm.findtext(KML + "name") for pm in f.findall(KML + "Placemark")
                   if pm.find(KML + "Point") is not None}
         for ph in phs:

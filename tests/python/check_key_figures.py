@@ -141,6 +141,29 @@ def axial(r, g):
     return r["thrust"] / (r["m"] * G0)
 
 
+def iip_cutoff(name, names, by_name, rows):
+    """The IIP at the end of each powered phase (docs/visualization.md): in each phase of the
+    body with the iip_* columns whose bottom stage is the body, the last row with thrust > 0;
+    NaN (no impact) as null. None when no phase of the body has the columns."""
+    out, any_cols = [], False
+    for pn in names:
+        rs = rows[pn]
+        if not rs or "iip_lat" not in rs[0]:
+            continue
+        any_cols = True
+        if by_name[pn]["stages"][0] != name or "thrust" not in rs[0]:
+            continue
+        pw = [r for r in rs if r["thrust"] > 0]
+        if not pw:
+            continue
+        r = pw[-1]
+        e = {"phase": pn, "t": r["time"], "h": r["h"], "impact": not math.isnan(r["iip_lat"])}
+        for k in ("iip_lat", "iip_lon", "iip_tof", "iip_range"):
+            e[k] = None if math.isnan(r[k]) else r[k]
+        out.append(e)
+    return out if any_cols else None
+
+
 def key_figures(outdir):
     summ = json.load(open(os.path.join(outdir, "summary.json")))
     phases = summ["phases"]
@@ -226,7 +249,8 @@ def key_figures(outdir):
                 gc["distance"] = math.hypot(last["x"] - r0["x"], last["y"] - r0["y"])
         bodies.append({"name": name, "final": final, "max_q": q, "max_n_axial": na, "max_n_normal": nn,
                        "burnouts": burn, "separations": sep, "injection": inj, "ground_contact": gc,
-                       "heating": heating(names, rows)})
+                       "heating": heating(names, rows),
+                       "iip_cutoff": iip_cutoff(name, names, by_name, rows)})
     return summ, bodies
 
 
@@ -276,6 +300,17 @@ def compare(outdir):
                 for i, k in enumerate(("t", "h")):
                     close((gh["fm_below_1135"] or {}).get(k), wh["fm"][i], "%s fm_below_1135 %s" % (n, k),
                           rel=1e-9)
+        gi, wi = g.get("iip_cutoff"), w["iip_cutoff"]
+        if wi is None:
+            check(gi is None, n + ": iip_cutoff where no phase has the iip columns")
+        else:
+            check(gi is not None and len(gi) == len(wi), "%s iip_cutoff: %r vs %r" % (n, gi, wi))
+            for i, (ge, we) in enumerate(zip(gi or [], wi)):
+                for k, v in we.items():
+                    if isinstance(v, (str, bool)):
+                        check(ge.get(k) == v, "%s iip_cutoff[%d].%s: %r vs %r" % (n, i, k, ge.get(k), v))
+                    else:
+                        close(ge.get(k), v, "%s iip_cutoff[%d].%s" % (n, i, k))
         if w["ground_contact"] is None:
             check(g["ground_contact"] is None, n + ": ground contact where none expected")
         else:
@@ -366,6 +401,9 @@ def main():
             check('<h2 id="keys">Key figures</h2>' in html, ex + ": no key figures in index.html")
             for b in got["bodies"]:
                 check("<h3>%s</h3>" % b["name"] in html, ex + ": body %s not in the report" % b["name"])
+                for e in b.get("iip_cutoff") or []:
+                    check("IIP at the end of powered flight in %s" % e["phase"] in html,
+                          ex + ": %s's IIP at the cut-off of %s not in the report" % (b["name"], e["phase"]))
             imgs = [l for l in html.split("\n") if l.startswith('<img src="plots/')]
             check(imgs and imgs[0].startswith('<img src="plots/fig10_normalised.png"'),
                   ex + ": Figure 10 is not the first figure: %s" % imgs[:1])

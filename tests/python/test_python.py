@@ -40,6 +40,12 @@ LEO_TARGETED = os.path.join(ROOT, "examples", "kourou-leo-targeted", "mission.ya
 SANITIZED = "libasan" in os.environ.get("LD_PRELOAD", "")
 
 
+def same_finals(a, b):
+    """Two finals dicts equal value for value, a NaN (an iip_* output in orbit) equal to a NaN."""
+    return a.keys() == b.keys() and all(
+        a[k] == b[k] or (math.isnan(a[k]) and math.isnan(b[k])) for k in a)
+
+
 def bits(a):
     """The bytes of a float64 array: equality of these is equality bit for bit (NaN too)."""
     return np.ascontiguousarray(a, dtype="<f8").tobytes()
@@ -164,7 +170,8 @@ def test_summary_matches(cli_demo, demo_run):
         assert ph["state"] == res.state == "done"
         # summary.json writes 15 significant digits
         assert res.t_end == pytest.approx(ph["t_end"], rel=1e-14)
-        assert set(ph["final"]) == set(res.finals)
+        # summary.json leaves a value out that is not finite (an iip_* output in orbit: NaN)
+        assert set(ph["final"]) == {k for k, v in res.finals.items() if math.isfinite(v)}
         for k, v in ph["final"].items():
             assert res.finals[k] == pytest.approx(v, rel=1e-13, abs=1e-300), (ph["name"], k)
         assert ph["handoff"].get("states_copied", 0) == res.n_copied
@@ -330,7 +337,7 @@ def test_parameter_sweep_reruns_only_what_changed():
         t_burn.append(fin["time"])
     # the same value as the file: the same bits as the first run
     assert bits(run.result("ascent").values) == bits(ascent0)
-    assert run.finals("us-ascent") == base
+    assert same_finals(run.finals("us-ascent"), base)
     # a change of a late phase's parameter re-simulates only it and its descendants (the
     # approach, the final glide, the flare and the roll-out)
     names = [p.name for p in m.parameters]
@@ -441,7 +448,7 @@ def test_phase_call_reproduces_the_runner():
         assert call.model.states and call.initial
         out = call.simulate()
         assert out.ok, out.error
-        assert out.finals == ref.finals(p.name)
+        assert same_finals(out.finals, ref.finals(p.name))
     for p in m.phases:
         assert bits(run.result(p.name).values) == bits(ref.result(p.name).values), p.name
     # simulateExtendedModel: other start values and extra finals, not recorded
@@ -912,6 +919,7 @@ def test_disperse_and_execute_reproduce_a_campaign_run_bit_for_bit(tmp_path):
             for name, v in r.finals(p.name).items():
                 if name in row.index:  # bit for bit (SQLite keeps no sign of a zero)
                     w = row[name]
+                    w = math.nan if w is None else w  # SQLite keeps a NaN as NULL
                     assert (w == v and (w != 0 or v == 0)) or (math.isnan(w) and math.isnan(v)) \
                         or bits(np.array([w])) == bits(np.array([v])), (i, p.name, name, w, v)
                     compared += 1

@@ -13,3 +13,8 @@ lv_add_unit_test(test_dof6_terms unit/test_dof6_terms.c)
 # The registered steering and throttle laws: each law's contract (and laws broken on purpose
 # failing it), the C API that sets a law's keys by name, and the models' refusals.
 lv_add_unit_test(test_laws unit/test_laws.c)
+# The instantaneous impact point against a drag-free J2 propagation written in the test (RK4,
+# halved steps, bisection): states along examples/kourou-leo's ascent, a booster arc, a
+# sounding rocket, a polar arc, a hyperbola; no impact in orbit or escaping (NaN); the dof3 and
+# dof6 outputs against their own vacuum fall to an `impact` end.
+lv_add_unit_test(test_iip unit/test_iip.c)
