@@ -19,8 +19,9 @@
 /* Why a phase ended, as summary.json's end.event or end.reason say it. */
 static const char *end_word(const lv_phase_result *r)
 {
-    if (r->state != LV_PHASE_DONE && !(r->state == LV_PHASE_CRASHED && r->n_final > 0))
-        return "-"; /* a crash end's phase was flown: its end */
+    if (r->state != LV_PHASE_DONE &&
+        !(r->state == LV_PHASE_CRASHED && r->report.reason == LV_STOP_EVENT))
+        return "-"; /* a crash end's phase was flown: its end; a crash at its hand-off not */
     switch (r->report.reason) {
     case LV_STOP_TIME: return "stop_time";
     case LV_STOP_EVENT: return r->report.stop_name;

@@ -47,6 +47,10 @@ typedef enum lv_runway_mode {
                               through v_stop */
 } lv_runway_mode;
 
+/* The model's own state events, before the configured ends (lv_runway_config.ends, whose
+ * events follow in order): burnout, rotation, lift-off or stop, at rest, overrun. */
+#define LV_RUNWAY_OWN_EVENTS 5
+
 /* A further end: the ground speed crosses `value` (m/s) in `direction`. */
 typedef struct lv_runway_end {
     const char *name;  /* copied; NULL: "speed" */

@@ -73,7 +73,7 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
     esc(f, d->mission);
     fprintf(f, ": Monte Carlo campaign</h1>\n<p>%zu of %zu runs stored, seed %s; %zu with an "
             "input outside its range, %zu with a failed phase, %zu with a phase that fell to "
-            "the ground, %zu crashed (a touchdown beyond the landing gear's limits). Files: <a href=\"stats.json\">stats.json</a>, "
+            "the ground, %zu crashed (a touchdown off the runway or beyond the landing gear's limits, or a roll off the runway's end). Files: <a href=\"stats.json\">stats.json</a>, "
             "<a href=\"stats.csv\">stats.csv</a>, <a href=\"ellipses.csv\">ellipses.csv</a>, "
             "<a href=\"outcomes.csv\">outcomes.csv</a>, <a href=\"sensitivity.csv\">"
             "sensitivity.csv</a>, <a href=\"footprint.kml\">footprint.kml</a> (Google Earth), "

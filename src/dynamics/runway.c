@@ -38,6 +38,7 @@ enum {
  * slows to a standstill: an aborted take-off ends there), the runway's end (overrun: the
  * distance rises through the runway's length), then the configured speed ends. */
 enum { E_BURNOUT, E_ROTATION, E_END, E_REST, E_OVERRUN, E_N0 };
+_Static_assert(E_N0 == LV_RUNWAY_OWN_EVENTS, "lv_runway.h: LV_RUNWAY_OWN_EVENTS");
 
 static const lv_var state_tpl[LV_XRW_N] = {
     {"distance", "m", "Distance along the runway from its threshold", 0.0, 1e3},

@@ -255,8 +255,9 @@ static lv_status runway_build(const lv_build_ctx *bc, lv_phase_model **out, lv_e
     runway_self *s = calloc(1, sizeof *s);
     if (s == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    /* its own events: burnout, rotation, lift-off or stop, at rest */
-    lv_status st = lv_kit_begin(bc, &s->kit, 1, sizeof(lv_runway_end), 4, err);
+    /* its own events: burnout, rotation, lift-off or stop, at rest, overrun */
+    lv_status st = lv_kit_begin(bc, &s->kit, 1, sizeof(lv_runway_end), LV_RUNWAY_OWN_EVENTS,
+                                err);
     if (st != LV_OK) {
         free(s);
         return st;

@@ -437,9 +437,13 @@ static void label_events(const lv_run *r, size_t k, run_phase *p)
     const lv_sim_report *rep = &p->res.report;
     const int j = p->res.end_index;
     const char *end = j >= 0 ? (ph->ends[j].label ? ph->ends[j].label : ph->end_name) : NULL;
-    /* the type's own ends (a roll's stop) take the phase's end_name too */
-    for (size_t i = 0; j < 0 && rep->reason == LV_STOP_EVENT && ph->type->own_ends != NULL &&
-                       ph->type->own_ends[i] != NULL; i++)
+    /* the type's own ends (a roll's stop) take the phase's end_name too, but a crash end (a
+     * roll off the runway's end) keeps its own name: a crash is no "wheels stop" */
+    int crash = 0;
+    for (size_t i = 0; ph->type->crash_ends != NULL && ph->type->crash_ends[i] != NULL; i++)
+        crash |= strcmp(ph->type->crash_ends[i], rep->stop_name) == 0;
+    for (size_t i = 0; j < 0 && !crash && rep->reason == LV_STOP_EVENT &&
+                       ph->type->own_ends != NULL && ph->type->own_ends[i] != NULL; i++)
         if (strcmp(ph->type->own_ends[i], rep->stop_name) == 0)
             end = ph->end_name;
     int any = end != NULL;
@@ -486,8 +490,21 @@ static void crash_end(lv_run *r, const lv_phase_call *c)
                                   ? md->events[rep->stop_event].description
                                   : rep->stop_name;
             p->res.state = LV_PHASE_CRASHED;
+            /* the state there in the model's words (a roll: its distance and speed; not the
+             * mass, which says nothing of the crash) */
+            char state[200] = "";
+            size_t used = 0;
+            for (size_t f = 0; f < p->res.n_final && used < sizeof state; f++)
+                for (size_t v = 0; v < md->n_states && used < sizeof state; v++)
+                    if (strcmp(p->res.final_names[f], md->states[v].name) == 0 &&
+                        strcmp(md->states[v].unit, "kg") != 0)
+                        used += (size_t)snprintf(state + used, sizeof state - used,
+                                                 "%s%s = %.6g %s", used ? ", " : "",
+                                                 md->states[v].name, p->res.final_values[f],
+                                                 md->states[v].unit);
             snprintf(p->res.error, sizeof p->res.error, "phase '%.60s': crashed at t = %.9g s: "
-                     "%s: %.400s", ph->name, rep->end_time, rep->stop_name, why);
+                     "%s: %.400s%s%.200s%s", ph->name, rep->end_time, rep->stop_name, why,
+                     state[0] ? " (" : "", state, state[0] ? ")" : "");
             return;
         }
 }

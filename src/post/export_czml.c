@@ -139,6 +139,26 @@ static void jw_str(jw *w, const char *key, const char *s)
     lv_ex_json_string(w->f, s);
 }
 
+/* A CZML `description` is HTML (Cesium's info box renders it): the text with &, <, >, " and '
+ * escaped, so that a user's event or stage name shows as written (a name with "</script>"). */
+static void jw_description(jw *w, const char *text)
+{
+    char buf[2048];
+    size_t n = 0;
+    for (const char *c = text; *c != '\0' && n + 7 < sizeof buf; c++) {
+        const char *e = *c == '&' ? "&amp;" : *c == '<' ? "&lt;" : *c == '>' ? "&gt;"
+                        : *c == '"' ? "&quot;" : *c == '\'' ? "&#39;" : NULL;
+        if (e != NULL) {
+            memcpy(buf + n, e, strlen(e));
+            n += strlen(e);
+        } else {
+            buf[n++] = *c;
+        }
+    }
+    buf[n] = '\0';
+    jw_str(w, "description", buf);
+}
+
 static void jw_num(jw *w, const char *key, double v)
 {
     char buf[LV_EX_JSON_NUM_CAP];
@@ -233,7 +253,7 @@ static void track_packet(jw *w, const lv_ex_run *r, size_t bi, const lv_ex_track
     snprintf(buf, sizeof buf, "Body %s in phase %s (%d), t = %.3f .. %.3f s after the "
              "mission epoch.", b->name, ph->name, ph->index, ph->t_start,
              ph->t_end);
-    jw_str(w, "description", buf);
+    jw_description(w, buf);
     /* The whole mission: a finished track stays drawn (a track available only during its own
      * phase disappears when the clock leaves that phase). */
     interval(w, "availability", r, r->t0, r->t1);
@@ -297,7 +317,7 @@ static void iip_packets(jw *w, const lv_ex_run *r, size_t bi)
             snprintf(buf, sizeof buf, "Instantaneous impact point of body %s (drag-free, "
                      "thrust off) from t = %.3f to %.3f s after the mission epoch.", b->name,
                      b->rows[start].t, b->rows[start + len - 1].t);
-            jw_str(w, "description", buf);
+            jw_description(w, buf);
             interval(w, "availability", r, r->t0, r->t1);
             jw_open(w, "polyline", '{');
             jw_open(w, "positions", '{');
@@ -342,7 +362,7 @@ static void marker_packet(jw *w, const lv_ex_run *r, size_t p, size_t j, double 
     jw_str(w, "name", buf);
     snprintf(buf, sizeof buf, "%s in phase %s at t = %.6f s, h = %.3f km",
              text, ph->name, t, h / 1000.0);
-    jw_str(w, "description", buf);
+    jw_description(w, buf);
     interval(w, "availability", r, t, r->t1);
     jw_open(w, "position", '{');
     jw_open(w, "cartographicDegrees", '[');
@@ -676,7 +696,7 @@ static lv_status model_packets(jw *w, const lv_ex_run *r, size_t p, lv_err *err)
         snprintf(text, sizeof text, "%s in phase %s: a shape %.1f m long from the stages' "
                  "geometry, turned by the body's attitude (model x = body x, the nose).",
                  names, ph->name, total);
-        jw_str(w, "description", text);
+        jw_description(w, text);
         if (part == 0)
             interval(w, "availability", r, ph->t_start, children ? ph->t_end : r->t1);
         else

@@ -370,10 +370,16 @@ lv_status lv_run_timeline(const lv_run *run, size_t s, lv_timeline **out, lv_err
         if (i == 0) { /* the body's start: a lift-off, or a take-off roll's start */
             const double v0 = val(res, 0, c.v);
             const int root = lv_mission_phase_parent(m, k) < 0;
+            /* a roll on the ground (a runway phase: its rows have the lift margin) starts on
+             * the ground whether it lifts off or not (an aborted take-off, an overrun) */
+            size_t col;
+            const int roll = lv_result_column(res, "lift_margin", &col, NULL) == LV_OK;
             const char *lbl = takeoff ? "start of take-off roll"
+                              : roll  ? "start of roll"
                               : root && !(fabs(v0) >= START_SPEED_MAX) ? "lift-off"
                                                                        : "start";
-            nomem |= add(&b, run, k, 0, takeoff ? "start" : root ? "liftoff" : "start", lbl) == NULL;
+            nomem |= add(&b, run, k, 0, takeoff || roll ? "start" : root ? "liftoff" : "start",
+                         lbl) == NULL;
         }
         nomem |= phase_events(&b, run, k) != 0;
         lv_timeline_row *w = nomem ? NULL

@@ -327,6 +327,25 @@ def main():
                 check(len(row) == 1 and len(ref) == 1 and
                       row[0].index(" 153.231") - 63 == ref[0].index("  63.000") - 34,
                       "utf8: console columns: %r / %r" % (row, ref))
+        # a name with HTML in it: CZML descriptions are HTML (Cesium renders them): escaped
+        if "kourou-leo" in runs:
+            d = os.path.join(tmp, "html-name")
+            os.mkdir(d)
+            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = text.replace("end_name: SECO", "end_name: 'SECO </script><b>&'", 1)
+            with open(os.path.join(d, "mission.yaml"), "w") as f:
+                f.write(text)
+            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
+            out = os.path.join(d, "out")
+            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
+                               capture_output=True, text=True)
+            check(r.returncode == 0, "html-name: %s" % r.stderr)
+            if r.returncode == 0:
+                czml = json.load(open(os.path.join(out, "mission.czml")))
+                desc = [p.get("description", "") for p in czml if isinstance(p, dict)]
+                hit = [x for x in desc if "SECO" in x]
+                check(hit and all("SECO &lt;/script&gt;&lt;b&gt;&amp;" in x and "</script>" not in x for x in hit),
+                      "html-name: CZML descriptions: %r" % hit)
         # a touchdown past the end of a 400 m runway crashes: the roll-out is not flown, the
         # body's timeline ends with a "crashed" row at the flare's last row (its touchdown)
         if "rlv-hthl" in runs:

@@ -621,6 +621,25 @@ static void test_mission_edges(void)
         lv_run_free(r);
         lv_mission_free(m);
     }
+    /* a roll-out's written end keeps its user name (the runway model's own events come first:
+     * the end's index maps past all of them): at 50 m/s, braking 0.3, no air, the speed falls
+     * through 30 m/s after (50 - 30) / (0.3 g) = 6.8 s */
+    m = load_text("rw_edges.yaml",
+        HEAD "  - {name: roll, model: runway, stages: [ms], stop_time: 60,\n" ROLL_RUNWAY
+             "     landing: {mu: 0.3, v_stop: 1, start_speed: 50},\n"
+             "     end: [{speed: 30, direction: falling, name: slow}]}\n", &err);
+    CHECK(m != NULL);
+    if (m != NULL) {
+        lv_run *r = NULL;
+        CHECK_OK(lv_run_create(m, &r, &err), &err);
+        CHECK_OK(lv_run_execute(r, NULL, &err), &err);
+        const lv_phase_result *pr = lv_run_result(r, 0);
+        CHECK(pr->state == LV_PHASE_DONE && strcmp(pr->report.stop_name, "speed") == 0);
+        CHECK(pr->end_index == 0 && pr->end_label != NULL && strcmp(pr->end_label, "slow") == 0);
+        CHECK_CLOSE(pr->t_end, 20.0 / (0.3 * 9.80), 0.05);
+        lv_run_free(r);
+        lv_mission_free(m);
+    }
     /* a root roll at 150 m/s with CL 2 on 300 m^2: lift (q S CL ~ 1.6e7 N) far above the
      * weight (1.5e6 N): refused when the mission is loaded, as `lvsim check` does */
     m = load_text("rw_edges.yaml",
