@@ -15,3 +15,8 @@ target_link_libraries(test_outdir_api PRIVATE lvsim_post_static)
 add_test(NAME test_timeline
   COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_timeline.py
           $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# A jettisoned fairing (a dof3 phase of its own stage, no engines, its drag) falls to its
+# impact where an independent RK4 propagation with J2, rotation and drag puts it (about 4 s).
+add_test(NAME test_fairing_impact
+  COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/check_fairing_impact.py
+          $<TARGET_FILE:lvsim_cli>)
