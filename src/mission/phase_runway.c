@@ -175,11 +175,11 @@ static lv_status parse_roll(const lv_pctx *c, const lv_ynode *phase, const char 
         if (v == NULL && vd == NULL && (to != NULL ? required_to[k] : required_la[k]))
             return lv_pk_fail(c, n, "%s: '%s' is missing", what, angle[k] ? deg : key);
         /* angles of attack on the wheels within +-90 deg (the thrust points forwards), the
-         * rotation rate >= 0 within 10 rev/s (LV_RANGE_RATE) */
+         * rotation rate >= 0 within 10 rev/s (LV_RANGE_RATE); the start distance, like every
+         * other, >= 0: before the threshold is off the runway */
         const lv_range r = k == R_VROT || k == R_VSTOP ? LV_RANGE_POS
                            : k == R_AG || k == R_AROT ? LV_RANGE_LAT
                            : k == R_RATE              ? (lv_range){0.0, 20.0 * LV_PI, 0, 0}
-                           : k == R_S0                ? LV_RANGE_ANY
                                                       : LV_RANGE_NONNEG;
         snprintf(slot, sizeof slot, "%s.%s.%s", name, mode, names[k]);
         st = v != NULL || vd != NULL

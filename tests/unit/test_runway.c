@@ -887,6 +887,10 @@ static void test_gear_limits(void)
         "  parameters: {ms.landing_gear.sink_rate_max: {dist: normal, sigma: 0.3}}\n",
         "bad.yaml:11:16: dispersions: no parameter 'ms.landing_gear.sink_rate_max': stage 'ms' "
         "writes no `landing_gear:`");
+    /* a start before the threshold is off the runway */
+    BAD(HEAD "  - {name: P, model: runway, stages: [ms], stop_time: 60,\n" ROLL_RUNWAY
+             "     takeoff: {mu: 0.02, v_rot: 90, alpha_rot_deg: 8, start_distance: -100}}\n",
+        "bad.yaml:9:71: phase 'P', takeoff: start_distance must be >= 0 m, found -100");
     /* runway length and width out of range */
     BAD("mission: {name: rw}\n"
         "environment: {world: planet, planet: earth, gravity: j2, atmosphere: us76}\n"
