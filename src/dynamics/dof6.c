@@ -176,16 +176,7 @@ static const lv_var output_vars[O_N] = {
      "engine's [throttle_min, throttle_max]; 0 with the engines off", 0, 0},
     {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
-    {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "
-     "(Sutton-Graves)", 0, 0},
-    {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},
-    {"iip_lat", "rad", "Instantaneous impact point: geodetic latitude where the drag-free path "
-     "meets the ellipsoid (NaN: no impact)", 0, 0},
-    {"iip_lon", "rad", "Instantaneous impact point: longitude at the time of impact (NaN: no "
-     "impact)", 0, 0},
-    {"iip_tof", "s", "Instantaneous impact point: time of flight to it (NaN: no impact)", 0, 0},
-    {"iip_range", "m", "Instantaneous impact point: great-circle distance from the point below "
-     "the vehicle on the sphere of radius a (NaN: no impact)", 0, 0},
+    LV_FLIGHT_SAFETY_OUTPUTS
 };
 
 static const lv_var steer_output_vars[O_NMAX - O_N] = {

@@ -82,6 +82,22 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
  * both finite (lv_dof3_config). */
 lv_status lv_flight_check_heating(const char *model, double nose_radius, double k_sg, lv_err *err);
 
+/* The outputs both planet flight models end their tables with, in this order (lv_var
+ * entries; their values: lv_flight_heat_flux_sg, lv_flight_heat_flux_fm of flight.h and
+ * lv_flight_iip below): the heating and the instantaneous impact point. */
+#define LV_FLIGHT_SAFETY_OUTPUTS                                                                \
+    {"heat_flux", "W/m2", "Stagnation-point convective heat flux k sqrt(rho / r_n) V_air^3 "     \
+     "(Sutton-Graves)", 0, 0},                                                                  \
+    {"heat_flux_fm", "W/m2", "Free-molecular heat flux rho V_air^3 / 2", 0, 0},                \
+    {"iip_lat", "rad", "Instantaneous impact point: geodetic latitude where the drag-free "     \
+     "path meets the ellipsoid (NaN: no impact)", 0, 0},                                        \
+    {"iip_lon", "rad", "Instantaneous impact point: longitude at the time of impact (NaN: no "  \
+     "impact)", 0, 0},                                                                          \
+    {"iip_tof", "s", "Instantaneous impact point: time of flight to it (NaN: no impact)", 0,   \
+     0},                                                                                        \
+    {"iip_range", "m", "Instantaneous impact point: great-circle distance from the point "     \
+     "below the vehicle on the sphere of radius a (NaN: no impact)", 0, 0},
+
 /* The instantaneous impact point outputs of the ECI state (r_eci [m], v_eci [m/s]) at time t
  * [s] (dynamics/iip.h, lv_iip_propagate under the world's gravity model, workspace grav_ws, GM
  * gm): y[0] iip_lat, y[1] iip_lon [rad, geodetic], y[2] iip_tof [s], y[3] iip_range [m, great

@@ -168,6 +168,26 @@ def check_run(out, ex):
     return summ
 
 
+def example_text(src, ex):
+    return open(os.path.join(src, "examples", ex, "mission.yaml"), encoding="utf-8").read()
+
+
+def fly_variant(lvsim, src, tmp, ex, name, text, args=("-q", "--no-plots"), out="out", text_mode=True):
+    """Runs `text`, an edited copy of examples/EX/mission.yaml, in TMP/NAME beside links to the
+    example's tables: (the results folder, the finished process)."""
+    d = os.path.join(tmp, name)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, "mission.yaml"), "w", encoding="utf-8") as f:
+        f.write(text)
+    for fn in os.listdir(os.path.join(src, "examples", ex)):
+        if fn.endswith(".csv") and not os.path.exists(os.path.join(d, fn)):
+            os.symlink(os.path.join(src, "examples", ex, fn), os.path.join(d, fn))
+    o = os.path.join(d, out)
+    r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", o] + list(args),
+                       capture_output=True, text=text_mode)
+    return o, r
+
+
 def labels(summ, body, kind=None):
     b = next(b for b in summ["bodies"] if b["name"] == body)
     return [e["label"] for e in b["timeline"] if kind is None or e["kind"] == kind]
@@ -253,18 +273,11 @@ def main():
         # a separation named by the child's `separation: {name: ...}` (with an impulse, and
         # alone: a name, no impulse; the flight is the same)
         if "kourou-leo" in runs:
-            d = os.path.join(tmp, "named-sep")
-            os.mkdir(d)
-            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = example_text(src, "kourou-leo")
             text = text.replace("separation: {dv: 1} ", "separation: {dv: 1, name: stage separation} ", 1)
             text = text.replace("    from: upper-burn-1\n", "    from: upper-burn-1\n    separation: {name: fairing jettison}\n", 1)
             check("stage separation" in text and "fairing jettison" in text, "named-sep: mission not edited")
-            with open(os.path.join(d, "mission.yaml"), "w") as f:
-                f.write(text)
-            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
-            out = os.path.join(d, "out")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
-                               capture_output=True, text=True)
+            out, r = fly_variant(lvsim, src, tmp, "kourou-leo", "named-sep", text)
             check(r.returncode == 0, "named-sep: %s" % r.stderr)
             if r.returncode == 0:
                 summ = check_run(out, "named-sep")
@@ -277,17 +290,10 @@ def main():
         # the fairing flies a phase of its own to its impact: both rows, the payload's and the
         # fairing's, name what leaves the stack (the fairing), not the stack that goes on
         if "kourou-leo" in runs:
-            d = os.path.join(tmp, "fairing-fall")
-            os.mkdir(d)
-            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = example_text(src, "kourou-leo")
             text += ("\n  - {name: fairing-fall, model: dof3, stages: [fairing], from: upper-burn-1,"
                      " stop_time: 3000, end: [impact], throttle: off, aero: {s_ref: 20, CD: 1.2}}\n")
-            with open(os.path.join(d, "mission.yaml"), "w") as f:
-                f.write(text)
-            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
-            out = os.path.join(d, "out")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
-                               capture_output=True, text=True)
+            out, r = fly_variant(lvsim, src, tmp, "kourou-leo", "fairing-fall", text)
             check(r.returncode == 0, "fairing-fall: %s" % r.stderr)
             if r.returncode == 0:
                 summ = check_run(out, "fairing-fall")
@@ -299,19 +305,12 @@ def main():
         # characters: whole in summary.json, the report and the console (valid UTF-8, strict
         # decoding), the console's columns counted in characters
         if "kourou-leo" in runs:
-            d = os.path.join(tmp, "utf8")
-            os.mkdir(d)
             meco, seco = "\u00e9" * 63, "a" + "\u5317" * 62
-            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
+            text = example_text(src, "kourou-leo")
             text = text.replace("end: [{burnout, name: MECO}]", 'end: [{burnout, name: "%s"}]' % meco, 1)
             text = text.replace("end_name: SECO", 'end_name: "%s"' % seco, 1)
             check(meco in text and seco in text, "utf8: mission not edited")
-            with open(os.path.join(d, "mission.yaml"), "w", encoding="utf-8") as f:
-                f.write(text)
-            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
-            out = os.path.join(d, "out")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out],
-                               capture_output=True)
+            out, r = fly_variant(lvsim, src, tmp, "kourou-leo", "utf8", text, args=(), text_mode=False)
             check(r.returncode == 0, "utf8: %r" % r.stderr)
             if r.returncode == 0:
                 summ = json.loads(open(os.path.join(out, "summary.json"), "rb").read().decode("utf-8", "strict"))
@@ -329,16 +328,8 @@ def main():
                       "utf8: console columns: %r / %r" % (row, ref))
         # a name with HTML in it: CZML descriptions are HTML (Cesium renders them): escaped
         if "kourou-leo" in runs:
-            d = os.path.join(tmp, "html-name")
-            os.mkdir(d)
-            text = open(os.path.join(src, "examples", "kourou-leo", "mission.yaml")).read()
-            text = text.replace("end_name: SECO", "end_name: 'SECO </script><b>&'", 1)
-            with open(os.path.join(d, "mission.yaml"), "w") as f:
-                f.write(text)
-            os.symlink(os.path.join(src, "examples", "kourou-leo", "aero_ascent.csv"), os.path.join(d, "aero_ascent.csv"))
-            out = os.path.join(d, "out")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
-                               capture_output=True, text=True)
+            text = example_text(src, "kourou-leo").replace("end_name: SECO", "end_name: 'SECO </script><b>&'", 1)
+            out, r = fly_variant(lvsim, src, tmp, "kourou-leo", "html-name", text)
             check(r.returncode == 0, "html-name: %s" % r.stderr)
             if r.returncode == 0:
                 czml = json.load(open(os.path.join(out, "mission.czml")))
@@ -349,19 +340,10 @@ def main():
         # a touchdown past the end of a 400 m runway crashes: the roll-out is not flown, the
         # body's timeline ends with a "crashed" row at the flare's last row (its touchdown)
         if "rlv-hthl" in runs:
-            d = os.path.join(tmp, "crash")
-            os.mkdir(d)
-            text = open(os.path.join(src, "examples", "rlv-hthl", "mission.yaml")).read()
+            text = example_text(src, "rlv-hthl")
             i = text.index("heading_deg: 270, length: 4000")
             text = text[:i] + text[i:].replace("length: 4000", "length: 400", 1)
-            with open(os.path.join(d, "mission.yaml"), "w") as f:
-                f.write(text)
-            for fn in os.listdir(os.path.join(src, "examples", "rlv-hthl")):
-                if fn.endswith(".csv"):
-                    os.symlink(os.path.join(src, "examples", "rlv-hthl", fn), os.path.join(d, fn))
-            out = os.path.join(d, "out")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
-                               capture_output=True, text=True)
+            out, r = fly_variant(lvsim, src, tmp, "rlv-hthl", "crash", text)
             check(r.returncode == 4, "crash: exit %d: %s" % (r.returncode, r.stderr[-300:]))
             summ = json.load(open(os.path.join(out, "summary.json")))
             b = next(b for b in summ["bodies"] if b["name"] == "ms")
@@ -373,11 +355,7 @@ def main():
             # a 1000 m runway: touchdown 606 m past the threshold, off the end at 1000 m - the
             # roll-out is flown to there (complete files, its rows in the timeline) and crashed
             text = text.replace("length: 400,", "length: 1000,", 1)
-            with open(os.path.join(d, "mission.yaml"), "w") as f:
-                f.write(text)
-            out = os.path.join(d, "out2")
-            r = subprocess.run([lvsim, "run", os.path.join(d, "mission.yaml"), "-o", out, "-q", "--no-plots"],
-                               capture_output=True, text=True)
+            out, r = fly_variant(lvsim, src, tmp, "rlv-hthl", "crash", text, out="out2")
             check(r.returncode == 4 and "crashed at t = " in r.stderr and ": overrun: " in r.stderr,
                   "overrun: exit %d: %s" % (r.returncode, r.stderr[-300:]))
             summ = json.load(open(os.path.join(out, "summary.json")))
