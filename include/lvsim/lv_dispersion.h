@@ -57,6 +57,10 @@ LV_API void lv_mission_disp_info(const lv_mission *m, size_t j, lv_disp_info *ou
 /* The correlation the file gives between dispersed parameters a and b (1 for a == b, 0 when
  * they are not in one group). */
 LV_API double lv_mission_disp_correlation(const lv_mission *m, size_t a, size_t b);
+/* 1 when the mission flies turbulence (`environment: turbulence:`, docs/wind.md): every run
+ * of a campaign flies its own realisation, drawn from (seed, run) like its dispersions, so a
+ * campaign varies even without a `dispersions:` section. */
+LV_API int lv_mission_turbulent(const lv_mission *m);
 /* The file's `seed:` (1), or 0 when it gives none (*seed untouched). */
 LV_API int lv_mission_disp_seed(const lv_mission *m, uint64_t *seed);
 

@@ -18,6 +18,8 @@
 #ifndef LVSIM_LV_WIND_H
 #define LVSIM_LV_WIND_H
 
+#include <stdint.h>
+
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 
@@ -65,6 +67,62 @@ LV_API lv_status lv_wind_create_profiles(const char *const *paths, const double 
                                          double blend, lv_wind **out, lv_err *err);
 /* The number of profiles of a profile wind; 0 for any other wind. */
 LV_API size_t lv_wind_profile_count(const lv_wind *w);
+
+/* ---- gusts and turbulence (docs/wind.md, "Gusts and turbulence") --------------------------
+ *
+ * A disturbance is a field over altitude h [m] added to a wind: discrete 1-cosine gusts and
+ * Dryden continuous turbulence, frozen over altitude (Taylor's hypothesis along the vertical
+ * path of a rising or falling vehicle: the air a vehicle meets at an altitude is the same on
+ * every pass). Components in local NED, m/s.
+ *
+ * 1-cosine gust (MIL-F-8785C sec. 3.7.4; MIL-HDBK-1797 sec. 4.9.1), peak v_max at `altitude`,
+ * zero beyond +-half_width d:  v(h) = v_max (1 + cos(pi (h - altitude) / d)) / 2, |h - altitude| <= d.
+ *
+ * Dryden turbulence (MIL-F-8785C sec. 3.7.2, spectra in the spatial frequency Omega [rad/m],
+ * one-sided, integral over (0, inf) = sigma^2): along the path, the vertical component (down),
+ *     Phi_long(Omega) = sigma^2 (2 L / pi) / (1 + (L Omega)^2),
+ * across it, north and east,
+ *     Phi_lat(Omega)  = sigma^2 (L / pi) (1 + 3 (L Omega)^2) / (1 + (L Omega)^2)^2.
+ * A realisation is drawn once, at spacing L / 20, by the exact discretisation of the
+ * spectra's first- and second-order shaping filters (samples of the continuous process, not an
+ * approximation of it), driven by the seeded stream (seed, run): the same (seed, run) gives the
+ * same bits on any thread or rank. Between samples a Catmull-Rom cubic (C1). Inside
+ * [h_from, h_to], faded in and out over one L at each end by (1 - cos)/2; zero outside. */
+typedef struct lv_gust_1cos {
+    double altitude;   /* m, where the gust peaks */
+    double half_width; /* m, d > 0: the gust builds up over d and decays over d */
+    double v_max[3];   /* m/s, the peak wind added: north, east, down */
+} lv_gust_1cos;
+
+typedef struct lv_dryden_spec {
+    double sigma_h;    /* m/s, >= 0: the north and east components' standard deviation */
+    double sigma_v;    /* m/s, >= 0: the vertical component's */
+    double length;     /* m, L > 0: the scale length (MIL-F-8785C above 2000 ft: 1750 ft = 533.4 m) */
+    double h_from, h_to; /* m, h_from < h_to: the layer (at most 2^22 samples: (h_to - h_from) / (L/20)) */
+} lv_dryden_spec;
+
+#define LV_GUSTS_MAX 16
+typedef struct lv_wind_disturbance lv_wind_disturbance; /* opaque, immutable once created */
+
+/* A disturbance: `turb` (NULL: no turbulence) and n_gusts <= LV_GUSTS_MAX gusts (NULL when 0),
+ * the turbulence realised from the stream (seed, run) (lv_dispersion.h's generator; stream
+ * "environment.turbulence"). LV_ERR_INPUT for a value out of its domain, naming it.
+ * lv_wind_disturbance_free(*out) when done. */
+LV_API lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
+                                            size_t n_gusts, uint64_t seed, uint64_t run,
+                                            lv_wind_disturbance **out, lv_err *err);
+LV_API void lv_wind_disturbance_free(lv_wind_disturbance *d); /* accepts NULL */
+/* v_ned = the disturbance at altitude h [m] (0 for a NaN h). No allocation: for right-hand
+ * sides. */
+LV_API void lv_wind_disturbance_eval(const lv_wind_disturbance *d, double h, double v_ned[3]);
+/* The turbulence's sample spacing [m] and first sample's altitude (0, 0 without turbulence):
+ * the realisation's value at h_from + k * spacing is its k-th sample (for spectral checks). */
+LV_API void lv_wind_disturbance_grid(const lv_wind_disturbance *d, double *h0, double *spacing);
+
+/* A wind plus a disturbance: base (NULL: still air) + d at every (t, h). Both borrowed: they
+ * must outlive *out. Evaluation errors are the base's. lv_wind_free(*out) when done. */
+LV_API lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbance *d,
+                                          lv_wind **out, lv_err *err);
 
 /* 1 for a constant wind (lv_wind_create_const, or a table of one row). */
 LV_API int lv_wind_is_constant(const lv_wind *w);

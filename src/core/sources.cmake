@@ -4,7 +4,8 @@ list(APPEND LV_SOURCES
   src/core/names.c
   src/core/data.c
   src/core/utc.c
-  src/core/root.c)
+  src/core/root.c
+  src/core/random.c)
 include(src/core/tables.cmake OPTIONAL)
 # data.c: the install prefix's datadir is the last place searched for data files; the
 # others are found at run time (lvsim/lv_data.h).

@@ -50,6 +50,7 @@ enum {
     O_ENG_RUN,
     O_HEAT_SG, O_HEAT_FM, /* aerothermal heating */
     O_IIP_LAT, O_IIP_LON, O_IIP_TOF, O_IIP_RANGE, /* instantaneous impact point */
+    O_WIND_N, O_WIND_E, O_WIND_D, /* the wind at the vehicle */
     O_N
 };
 /* outputs of a steering law (after O_N), then of a controller */
@@ -177,6 +178,7 @@ static const lv_var output_vars[O_N] = {
     {"engines_running", "1", "Engines burning (a phase's `engines:` less its engine-outs; 0 off)",
      0, 0},
     LV_FLIGHT_SAFETY_OUTPUTS
+    LV_FLIGHT_WIND_OUTPUTS
 };
 
 static const lv_var steer_output_vars[O_NMAX - O_N] = {
@@ -981,6 +983,8 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ENG_RUN] = (double)running;
     y[O_HEAT_SG] = lv_flight_heat_flux_sg(m->k_sg, pt.air.rho, m->nose_radius, pt.air.v_air_n);
     y[O_HEAT_FM] = lv_flight_heat_flux_fm(pt.air.rho, pt.air.v_air_n);
+    for (int c = 0; c < 3; c++)
+        y[O_WIND_N + c] = pt.air.w_ned[c];
     y[O_THR_EFF] = 0.0;
     for (size_t i = 0; i < m->n_eng && running > 0; i++)
         if (!m->eng[i].out) { /* as lv_dof3: the first running engine's clamp */

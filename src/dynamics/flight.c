@@ -111,6 +111,7 @@ int lv_flight_air_eval(const lv_flight_world *w, double t, const lv_flight_kin *
     /* atmosphere (above its range: vacuum with the top layer's speed of sound) */
     a->rho = a->p_amb = 0.0;
     a->a_sound = 1.0;
+    a->w_ned[0] = a->w_ned[1] = a->w_ned[2] = 0.0;
     if (w->atmo_model != NULL) {
         if (isnan(k->h)) {
             if (err)
@@ -135,7 +136,7 @@ int lv_flight_air_eval(const lv_flight_world *w, double t, const lv_flight_kin *
     /* air-relative velocity */
     a->v_air = k->v_rel;
     if (w->wind != NULL) {
-        double w_ned[3] = {0.0, 0.0, 0.0};
+        double *w_ned = a->w_ned;
         int rc = w->wind(t, k->h, k->lat, k->lon, w_ned, w->wind_user);
         if (rc != 0) {
             if (err)

@@ -90,6 +90,7 @@ lv_vec3 lv_flight_from_ned(const lv_flight_kin *k, double n, double e, double d)
 /* 2. Flight condition. */
 typedef struct lv_flight_air {
     double rho, p_amb, a_sound; /* kg/m^3, Pa, m/s (vacuum: 0, 0, 1) */
+    double w_ned[3];            /* m/s, the wind (gusts, turbulence included): north, east, down */
     lv_vec3 v_air;              /* m/s, air-relative velocity, ECEF axes */
     double v_air_n;             /* m/s, its magnitude */
     double mach;                /* - */

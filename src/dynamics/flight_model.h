@@ -98,6 +98,13 @@ lv_status lv_flight_check_heating(const char *model, double nose_radius, double 
     {"iip_range", "m", "Instantaneous impact point: great-circle distance from the point "     \
      "below the vehicle on the sphere of radius a (NaN: no impact)", 0, 0},
 
+/* The wind outputs both planet flight models end their tables with (after the safety
+ * outputs): lv_flight_air's w_ned. */
+#define LV_FLIGHT_WIND_OUTPUTS                                                                  \
+    {"wind_north", "m/s", "Wind at the vehicle (gusts and turbulence included): north", 0, 0}, \
+    {"wind_east", "m/s", "Wind at the vehicle (gusts and turbulence included): east", 0, 0},   \
+    {"wind_down", "m/s", "Wind at the vehicle (gusts and turbulence included): down", 0, 0},
+
 /* The instantaneous impact point outputs of the ECI state (r_eci [m], v_eci [m/s]) at time t
  * [s] (dynamics/iip.h, lv_iip_propagate under the world's gravity model, workspace grav_ws, GM
  * gm): y[0] iip_lat, y[1] iip_lon [rad, geodetic], y[2] iip_tof [s], y[3] iip_range [m, great

@@ -1,5 +1,5 @@
 # Atmosphere models (U.S. Standard Atmosphere 1976, exponential, table from a file) and their
-# registry; wind tables.
+# registry; wind tables, profiles, gusts and turbulence.
 list(APPEND LV_SOURCES
   src/env/atmosphere.c
   src/env/atmosphere_upper.c
@@ -8,7 +8,8 @@ list(APPEND LV_SOURCES
   src/env/atmosphere_profile.c
   src/env/profile.c
   src/env/atmosphere_registry.c
-  src/env/wind.c)
+  src/env/wind.c
+  src/env/turbulence.c)
 
 # The US76 upper-atmosphere table (86-1000 km) is integrated once, at build time, by a small
 # host program built from the same code (atmosphere_us76_gen.c + atmosphere_upper.c), and

@@ -1,7 +1,9 @@
 /* wind.c - wind as a 1-axis table over geodetic altitude: north, east and optionally down
  * components in the local NED frame, m/s (lv_table.h), interpolated linearly (or as the
  * caller chooses) and clamped at the ends of the table unless told otherwise; or a constant
- * (one value, or a table of one row). An lv_wind_fn adapter lets the 3-DoF model use it. */
+ * (one value, or a table of one row); measured or forecast profiles over altitude and time; or
+ * any of these plus a disturbance (gusts, turbulence: turbulence.c). An lv_wind_fn adapter
+ * lets the flight models use it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +28,9 @@ struct lv_wind {
     double c[W_N];   /* the constant wind, m/s (tab NULL) */
     size_t n_prof;   /* 0: not a profile wind; else profiles at the times t_prof */
     double t_prof[LV_WIND_PROFILES_MAX]; /* s, mission time, strictly increasing */
+    /* a disturbed wind (lv_wind_create_disturbed): base (NULL: still air) + dist; borrowed */
+    const lv_wind_disturbance *dist;
+    const lv_wind *base;
 };
 
 void lv_wind_free(lv_wind *w)
@@ -224,10 +229,14 @@ lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out,
     return lv_wind_create_table_opts(path, var, NULL, out, err);
 }
 
-int lv_wind_is_constant(const lv_wind *w) { return w->tab == NULL; }
+int lv_wind_is_constant(const lv_wind *w) { return w->dist == NULL && w->tab == NULL; }
 
 void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi)
 {
+    if (w->dist != NULL && w->base != NULL) {
+        lv_wind_range(w->base, h_lo, h_hi);
+        return;
+    }
     if (w->tab == NULL) {
         *h_lo = -INFINITY;
         *h_hi = INFINITY;
@@ -276,6 +285,22 @@ lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h, double 
 lv_status lv_wind_eval_at(const lv_wind *w, lv_table_cursor *cur, double t, double h,
                           double v_ned[3], lv_err *err)
 {
+    if (w->dist != NULL) {
+        double d[3];
+        if (w->base != NULL) {
+            const lv_status st = lv_wind_eval_at(w->base, cur, t, h, v_ned, err);
+            if (st != LV_OK)
+                return st;
+        } else if (isnan(h)) {
+            return lv_fail(err, LV_ERR_INPUT, "wind: altitude is NaN");
+        } else {
+            v_ned[0] = v_ned[1] = v_ned[2] = 0.0;
+        }
+        lv_wind_disturbance_eval(w->dist, h, d);
+        for (int c = 0; c < 3; c++)
+            v_ned[c] += d[c];
+        return LV_OK;
+    }
     if (w->n_prof > 0)
         return profiles_eval(w, cur, t, h, v_ned, err);
     if (w->tab == NULL) {
@@ -312,6 +337,9 @@ lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bia
     if (w == NULL || out == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: NULL argument");
     *out = NULL;
+    if (w->dist != NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: a disturbed wind: disperse "
+                       "its base, then disturb the copy");
     const double b[W_N] = { bias ? bias[0] : 0.0, bias ? bias[1] : 0.0, bias ? bias[2] : 0.0 };
     if (w->tab == NULL)
         return lv_wind_create_const(scale * w->c[W_NORTH] + b[0], scale * w->c[W_EAST] + b[1],
@@ -465,5 +493,21 @@ done:
 
 size_t lv_wind_profile_count(const lv_wind *w)
 {
-    return w->n_prof;
+    return w->dist != NULL ? (w->base != NULL ? lv_wind_profile_count(w->base) : 0) : w->n_prof;
+}
+
+lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbance *d,
+                                   lv_wind **out, lv_err *err)
+{
+    if (d == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_disturbed: NULL argument");
+    *out = NULL;
+    lv_wind *w = calloc(1, sizeof *w);
+    if (w == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
+    w->base = base;
+    w->dist = d;
+    w->has_down = 1;
+    *out = w;
+    return LV_OK;
 }

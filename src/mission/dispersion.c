@@ -7,87 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <Random123/philox.h>
-#include <Random123/u01fixedpt.h>
-
 #include "core/status.h"
 #include "core/units.h"
 #include "mission/dispersion.h"
 #include "mission/mission_rt.h"
-
-uint64_t lv_disp_stream(const char *name)
-{
-    uint64_t h = 14695981039346656037ULL; /* FNV-1a 64 offset basis */
-    for (const unsigned char *p = (const unsigned char *)name; *p; p++) {
-        h ^= *p;
-        h *= 1099511628211ULL; /* FNV prime */
-    }
-    return h;
-}
-
-double lv_disp_uniform(uint64_t seed, uint64_t stream, uint64_t run)
-{
-    const philox4x32_key_t k = { { (uint32_t)seed, (uint32_t)(seed >> 32) } };
-    const philox4x32_ctr_t c = { { (uint32_t)run, (uint32_t)(run >> 32), (uint32_t)stream,
-                                   (uint32_t)(stream >> 32) } };
-    const philox4x32_ctr_t r = philox4x32(c, k);
-    return u01fixedpt_open_open_64_double(((uint64_t)r.v[0] << 32) | r.v[1]);
-}
-
-/* AS 241 PPND16: the normal deviate z with Phi(z) = p, 0 < p < 1, relative accuracy about
- * 1e-16. Coefficients from Wichura, Appl. Statist. 37(3), 477-484 (1988). */
-static double poly(const double *c, int n, double x)
-{
-    double s = c[n - 1];
-    for (int i = n - 2; i >= 0; i--)
-        s = s * x + c[i];
-    return s;
-}
-
-double lv_disp_norm_inv(double p)
-{
-    static const double a[8] = { 3.3871328727963666080e0, 1.3314166789178437745e+2,
-                                 1.9715909503065514427e+3, 1.3731693765509461125e+4,
-                                 4.5921953931549871457e+4, 6.7265770927008700853e+4,
-                                 3.3430575583588128105e+4, 2.5090809287301226727e+3 };
-    static const double b[8] = { 1.0, 4.2313330701600911252e+1, 6.8718700749205790830e+2,
-                                 5.3941960214247511077e+3, 2.1213794301586595867e+4,
-                                 3.9307895800092710610e+4, 2.8729085735721942674e+4,
-                                 5.2264952788528545610e+3 };
-    static const double c[8] = { 1.42343711074968357734e0, 4.63033784615654529590e0,
-                                 5.76949722146069140550e0, 3.64784832476320460504e0,
-                                 1.27045825245236838258e0, 2.41780725177450611770e-1,
-                                 2.27238449892691845833e-2, 7.74545014278341407640e-4 };
-    static const double d[8] = { 1.0, 2.05319162663775882187e0, 1.67638483018380384940e0,
-                                 6.89767334985100004550e-1, 1.48103976427480074590e-1,
-                                 1.51986665636164571966e-2, 5.47593808499534494600e-4,
-                                 1.05075007164441684324e-9 };
-    static const double e[8] = { 6.65790464350110377720e0, 5.46378491116411436990e0,
-                                 1.78482653991729133580e0, 2.96560571828504891230e-1,
-                                 2.65321895265761230930e-2, 1.24266094738807843860e-3,
-                                 2.71155556874348757815e-5, 2.01033439929228813265e-7 };
-    static const double f[8] = { 1.0, 5.99832206555887937690e-1, 1.36929880922735805310e-1,
-                                 1.48753612908506148525e-2, 7.86869131145613259100e-4,
-                                 1.84631831751005468180e-5, 1.42151175831644588870e-7,
-                                 2.04426310338993978564e-15 };
-    if (!(p > 0.0 && p < 1.0))
-        return p == 0.0 ? -INFINITY : p == 1.0 ? INFINITY : NAN;
-    const double q = p - 0.5;
-    if (fabs(q) <= 0.425) {
-        const double r = 0.180625 - q * q;
-        return q * poly(a, 8, r) / poly(b, 8, r);
-    }
-    double r = sqrt(-log(q < 0.0 ? p : 1.0 - p));
-    double z;
-    if (r <= 5.0) {
-        r -= 1.6;
-        z = poly(c, 8, r) / poly(d, 8, r);
-    } else {
-        r -= 5.0;
-        z = poly(e, 8, r) / poly(f, 8, r);
-    }
-    return q < 0.0 ? -z : z;
-}
 
 static double norm_cdf(double x) { return 0.5 * erfc(-x / sqrt(2.0)); }
 
@@ -117,6 +40,11 @@ static double quantile(const lv_disp_param *p, double u)
 }
 
 static const lv_disp_def *disp_of(const lv_mission *m) { return m->def->disp; }
+
+int lv_mission_turbulent(const lv_mission *m)
+{
+    return m->def->env.turbulent;
+}
 
 size_t lv_mission_disp_count(const lv_mission *m)
 {
@@ -211,6 +139,10 @@ typedef struct rt_entry {
 struct lv_run_tables {
     size_t n;
     rt_entry *e;
+    /* gusts and turbulence: the values and realisation they were made with */
+    lv_wind_disturbance *dist;
+    double dist_vals[5 * LV_GUSTS_MAX + 5];
+    uint64_t dist_seed, dist_run;
 };
 
 void lv_run_tables_free(lv_run_tables *rt)
@@ -223,6 +155,7 @@ void lv_run_tables_free(lv_run_tables *rt)
         lv_table_free(rt->e[i].copy);
         lv_wind_free(rt->e[i].wind);
     }
+    lv_wind_disturbance_free(rt->dist);
     free(rt->e);
     free(rt);
 }
@@ -231,11 +164,12 @@ void lv_run_tables_free(lv_run_tables *rt)
 static lv_status rt_make(const lv_disp_def *dd, lv_run_tables **out, lv_err *err)
 {
     lv_run_tables *rt = calloc(1, sizeof *rt);
-    if (rt == NULL || (rt->e = calloc(dd->n_xf + 1, sizeof *rt->e)) == NULL) {
+    const size_t n_xf = dd != NULL ? dd->n_xf : 0;
+    if (rt == NULL || (rt->e = calloc(n_xf + 1, sizeof *rt->e)) == NULL) {
         free(rt);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
-    for (size_t i = 0; i < dd->n_xf; i++) {
+    for (size_t i = 0; i < n_xf; i++) {
         const lv_table_xf *x = &dd->xf[i];
         size_t j = 0;
         while (j < rt->n && !(rt->e[j].base == x->table && (x->table != NULL || x->wind)))
@@ -258,15 +192,60 @@ static lv_status rt_make(const lv_disp_def *dd, lv_run_tables **out, lv_err *err
     return LV_OK;
 }
 
+/* The values the run's gusts and turbulence are made from, in a fixed order (NAN: not used):
+ * each gust's altitude, half width, north, east, down; turbulence sigma, sigma_vertical,
+ * length, from, to. */
+static size_t dist_values(const lv_env_def *e, const double *vals, double *out)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < e->n_gusts; k++)
+        for (size_t i = 0; i < 5; i++)
+            out[n++] = vals[e->gust[k][i]];
+    for (size_t i = 0; i < 5; i++)
+        out[n++] = e->turbulent ? vals[e->turb[i == 1 && e->turb[1] == LV_NO_SLOT ? 0 : i]] : NAN;
+    return n;
+}
+
+static lv_status dist_update(const lv_mission_def *d, const double *vals, uint64_t seed,
+                             uint64_t run, lv_run_tables *rt, lv_err *err)
+{
+    const lv_env_def *e = &d->env;
+    double v[5 * LV_GUSTS_MAX + 5];
+    const size_t n = dist_values(e, vals, v);
+    if (rt->dist != NULL && memcmp(v, rt->dist_vals, n * sizeof *v) == 0 &&
+        (!e->turbulent || (seed == rt->dist_seed && run == rt->dist_run)))
+        return LV_OK; /* this run's already */
+    lv_wind_disturbance_free(rt->dist);
+    rt->dist = NULL;
+    lv_gust_1cos g[LV_GUSTS_MAX];
+    for (size_t k = 0; k < e->n_gusts; k++)
+        g[k] = (lv_gust_1cos){ v[5 * k], v[5 * k + 1], { v[5 * k + 2], v[5 * k + 3], v[5 * k + 4] } };
+    const double *t = v + 5 * e->n_gusts;
+    const lv_dryden_spec ts = { t[0], t[1], t[2], t[3], t[4] };
+    lv_status st = lv_wind_disturbance_create(e->turbulent ? &ts : NULL, g, e->n_gusts, seed, run,
+                                              &rt->dist, err);
+    if (st != LV_OK)
+        return lv_fail_prefix(err, st, "environment");
+    memcpy(rt->dist_vals, v, n * sizeof *v);
+    rt->dist_seed = seed;
+    rt->dist_run = run;
+    return LV_OK;
+}
+
 lv_status lv_run_tables_update(const lv_mission_def *d, const lv_wind *wind, const double *vals,
-                               lv_run_tables **prt, lv_err *err)
+                               uint64_t seed, uint64_t run, lv_run_tables **prt, lv_err *err)
 {
     const lv_disp_def *dd = d->disp;
-    if (dd == NULL || dd->n_xf == 0)
+    const int disturbed = d->env.n_gusts > 0 || d->env.turbulent;
+    if ((dd == NULL || dd->n_xf == 0) && !disturbed)
         return LV_OK;
     lv_status st;
     if (*prt == NULL && (st = rt_make(dd, prt, err)) != LV_OK)
         return st;
+    if (disturbed && (st = dist_update(d, vals, seed, run, *prt, err)) != LV_OK)
+        return st;
+    if (dd == NULL)
+        return LV_OK;
     lv_run_tables *rt = *prt;
     double s[64], b[64];
     for (size_t j = 0; j < rt->n; j++) {
@@ -318,6 +297,11 @@ const lv_table *lv_run_tables_get(const lv_run_tables *rt, const lv_table *t)
         if (rt->e[j].base == t)
             return rt->e[j].copy != NULL ? rt->e[j].copy : t;
     return t;
+}
+
+const lv_wind_disturbance *lv_run_tables_disturbance(const lv_run_tables *rt)
+{
+    return rt != NULL ? rt->dist : NULL;
 }
 
 const lv_wind *lv_run_tables_wind(const lv_run_tables *rt)

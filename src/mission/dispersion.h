@@ -73,12 +73,16 @@ void lv_disp_def_free(lv_disp_def *d); /* accepts NULL */
  * executes or prepares a phase) rebuilds the copies whose values changed; phase builds then
  * only read them through lv_build_table / lv_build_wind (phase_type.h). */
 typedef struct lv_run_tables lv_run_tables;
+/* Also the run's gusts and turbulence (the environment's `gust:`, `turbulence:`): made from
+ * its slot values and the realisation (seed, run), again when any of them changed. */
 lv_status lv_run_tables_update(const lv_mission_def *d, const lv_wind *wind, const double *vals,
-                               lv_run_tables **rt, lv_err *err);
+                               uint64_t seed, uint64_t run, lv_run_tables **rt, lv_err *err);
 void lv_run_tables_free(lv_run_tables *rt); /* accepts NULL */
 /* The run's copy of `t` (t itself when no dispersion applies or rt is NULL). */
 const lv_table *lv_run_tables_get(const lv_run_tables *rt, const lv_table *t);
 /* The run's wind when a wind dispersion applies, else NULL. */
 const lv_wind *lv_run_tables_wind(const lv_run_tables *rt);
+/* The run's gusts and turbulence, or NULL (none in the mission). */
+const lv_wind_disturbance *lv_run_tables_disturbance(const lv_run_tables *rt);
 
 #endif

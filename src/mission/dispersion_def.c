@@ -60,22 +60,6 @@ static lv_status get_bool(const lv_pctx *c, const lv_ynode *v, const char *what,
                       v->kind == LV_YNODE_SCALAR ? v->text : "a collection");
 }
 
-/* seed: an integer 0 .. 2^64 - 1, written plainly. */
-static lv_status parse_seed(const lv_pctx *c, const lv_ynode *v, uint64_t *out)
-{
-    const char *s = v->kind == LV_YNODE_SCALAR ? v->text : "";
-    int ok = v->kind == LV_YNODE_SCALAR && v->plain && s[0] >= '0' && s[0] <= '9';
-    for (const char *q = s; ok && *q; q++)
-        ok = *q >= '0' && *q <= '9';
-    errno = 0;
-    const unsigned long long x = ok ? strtoull(s, NULL, 10) : 0;
-    if (!ok || errno == ERANGE)
-        return lv_pk_fail(c, v, "dispersions: seed: an integer from 0 to 18446744073709551615 "
-                          "expected, found '%.40s'", v->kind == LV_YNODE_SCALAR ? s : "a collection");
-    *out = (uint64_t)x;
-    return LV_OK;
-}
-
 /* ---- table dispersions: "<engine>.table[.<output>].scale|bias", "environment.wind.scale",
  * "environment.wind.<north|east|down>.bias" ------------------------------------------------ */
 
@@ -470,7 +454,7 @@ lv_status lv_disp_def_parse(const lv_pctx *c, const lv_ynode *n)
     c->m->disp = dd;
     const lv_ynode *v = lv_pk_get(n, "seed");
     if (v != NULL) {
-        if ((st = parse_seed(c, v, &dd->seed)) != LV_OK)
+        if ((st = lv_pk_seed(c, v, "dispersions", &dd->seed)) != LV_OK)
             return st;
         dd->has_seed = 1;
     }

@@ -152,6 +152,7 @@ void lv_phase_env_clear(lv_phase_env *pe)
 {
     lv_gravity_free(pe->own_gravity);
     lv_atmo_free(pe->own_atmo);
+    lv_wind_free(pe->own_disturbed);
     lv_wind_free(pe->own_wind);
     memset(pe, 0, sizeof *pe);
 }
@@ -186,6 +187,10 @@ lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err
         pe->wind = pe->own_wind;
     if (st == LV_OK && lv_run_tables_wind(bc->tables) != NULL) /* a dispersed wind table */
         pe->wind = lv_run_tables_wind(bc->tables);
+    const lv_wind_disturbance *dist = lv_run_tables_disturbance(bc->tables);
+    if (st == LV_OK && dist != NULL &&
+        (st = lv_wind_create_disturbed(pe->wind, dist, &pe->own_disturbed, err)) == LV_OK)
+        pe->wind = pe->own_disturbed; /* plus the run's gusts and turbulence */
     if (st != LV_OK) {
         lv_phase_env_clear(pe);
         return lv_fail_prefix(err, st, "environment");

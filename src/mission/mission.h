@@ -15,6 +15,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "lvsim/lv_model.h"
 #include "lvsim/lv_planet.h"
@@ -22,6 +23,7 @@
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_units.h"
+#include "lvsim/lv_wind.h"
 
 /* Where a value came from in the mission file, for messages after parsing. */
 typedef struct lv_src_loc {
@@ -114,6 +116,16 @@ typedef struct lv_env_def {
     char **wind_prof_file; /* [n_wind_prof] the files (resolved) */
     double *wind_prof_t;  /* [n_wind_prof] s, the mission time each is valid at */
     double wind_blend;    /* m: the winds' taper to zero above each profile's top */
+    /* gusts and turbulence (docs/wind.md, "Gusts and turbulence"): slots
+     * "environment.gust<k>.altitude", ".half_width", ".north", ".east", ".down" (k from 1), and
+     * "environment.turbulence.sigma", ".sigma_vertical" (LV_NO_SLOT: sigma's), ".length",
+     * ".from", ".to" */
+    size_t n_gusts;
+    lv_slot gust[LV_GUSTS_MAX][5];
+    int turbulent;
+    lv_slot turb[5];
+    uint64_t turb_seed;   /* the realisation `lvsim run` flies (turbulence `seed:`, default 1) */
+    lv_src_loc gust_loc, turb_loc;
     lv_src_loc loc;
 } lv_env_def;
 

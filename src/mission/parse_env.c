@@ -398,10 +398,112 @@ static lv_status parse_wind(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
     return LV_OK;
 }
 
+/* gust: {altitude, half_width, north, east, down} or a list of them: 1-cosine gusts over
+ * altitude (slots "environment.gust<k>.<key>", k from 1), docs/wind.md "Gusts and turbulence". */
+static lv_status parse_gusts(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
+{
+    static const char *const keys[] = { "altitude", "half_width", "north", "east", "down", NULL };
+    static const char *const units[] = { "m", "m", "m/s", "m/s", "m/s" };
+    static const lv_range ranges[] = { { -1e5, 1e7, 0, 0 }, { 0.0, 1e6, 1, 0 },
+                                       { -500.0, 500.0, 0, 0 }, { -500.0, 500.0, 0, 0 },
+                                       { -500.0, 500.0, 0, 0 } };
+    const size_t n = v->kind == LV_YNODE_SEQ ? v->n : 1;
+    e->gust_loc = lv_pk_loc(v);
+    if (v->kind == LV_YNODE_SEQ && (n == 0 || n > LV_GUSTS_MAX))
+        return lv_pk_fail(c, v, "environment, gust: %zu gusts; 1 to %d", n, LV_GUSTS_MAX);
+    for (size_t k = 0; k < n; k++) {
+        const lv_ynode *g = v->kind == LV_YNODE_SEQ ? v->kids[k] : v;
+        char what[48];
+        snprintf(what, sizeof what, "environment, gust %zu", k + 1);
+        lv_status st = lv_pk_check_map(c, g, what, keys);
+        if (st != LV_OK)
+            return st;
+        const lv_ynode *o;
+        for (size_t i = 0; i < 2; i++)
+            if ((st = lv_pk_need(c, g, what, keys[i], &o)) != LV_OK)
+                return st;
+        if (lv_pk_get(g, "north") == NULL && lv_pk_get(g, "east") == NULL &&
+            lv_pk_get(g, "down") == NULL)
+            return lv_pk_fail(c, g, "%s: give the peak wind it adds: north, east and/or down "
+                              "[m/s]", what);
+        for (size_t i = 0; i < 5; i++) {
+            char slot[64];
+            snprintf(slot, sizeof slot, "environment.gust%zu.%s", k + 1, keys[i]);
+            st = (o = lv_pk_get(g, keys[i])) != NULL
+                     ? lv_pk_slot(c, o, what, keys[i], slot, units[i], ranges[i], 0, &e->gust[k][i])
+                     : lv_pk_slot_default(c, slot, units[i], 0.0, ranges[i], &e->gust[k][i]);
+            if (st != LV_OK)
+                return st;
+        }
+        e->n_gusts = k + 1;
+    }
+    return LV_OK;
+}
+
+/* turbulence: {sigma, sigma_vertical, length, from, to, seed}: Dryden turbulence over altitude
+ * (slots "environment.turbulence.<key>"), docs/wind.md "Gusts and turbulence". */
+static lv_status parse_turbulence(const lv_pctx *c, const lv_ynode *v, lv_env_def *e)
+{
+    static const char *const keys[] = { "model", "sigma", "sigma_vertical", "length", "from",
+                                        "to", "seed", NULL };
+    static const char *const models[] = { "dryden", NULL };
+    static const char *const sk[5] = { "sigma", "sigma_vertical", "length", "from", "to" };
+    static const char *const units[5] = { "m/s", "m/s", "m", "m", "m" };
+    static const double defaults[5] = { NAN, NAN, 533.4, 0.0, 20000.0 };
+    static const lv_range ranges[5] = { { 0.0, 100.0, 0, 0 }, { 0.0, 100.0, 0, 0 },
+                                        { 1.0, 1e5, 0, 0 }, { -1e5, 1e7, 0, 0 },
+                                        { -1e5, 1e7, 0, 0 } };
+    const char *what = "environment, turbulence";
+    lv_status st = lv_pk_check_map(c, v, what, keys);
+    if (st != LV_OK)
+        return st;
+    const lv_ynode *o;
+    size_t i;
+    if ((o = lv_pk_get(v, "model")) != NULL && (st = lv_pk_enum(c, o, what, "model", models, &i)) != LV_OK)
+        return st;
+    if ((st = lv_pk_need(c, v, what, "sigma", &o)) != LV_OK)
+        return st;
+    e->turb_loc = lv_pk_loc(v);
+    e->turb_seed = 1;
+    if ((o = lv_pk_get(v, "seed")) != NULL && (st = lv_pk_seed(c, o, what, &e->turb_seed)) != LV_OK)
+        return st;
+    for (size_t k = 0; k < 5; k++) {
+        char slot[64];
+        snprintf(slot, sizeof slot, "environment.turbulence.%s", sk[k]);
+        e->turb[k] = LV_NO_SLOT;
+        if ((o = lv_pk_get(v, sk[k])) != NULL)
+            st = lv_pk_slot(c, o, what, sk[k], slot, units[k], ranges[k], 0, &e->turb[k]);
+        else if (!isnan(defaults[k]))
+            st = lv_pk_slot_default(c, slot, units[k], defaults[k], ranges[k], &e->turb[k]);
+        if (st != LV_OK)
+            return st;
+    }
+    const lv_ynode *f = lv_pk_get(v, "from"), *t = lv_pk_get(v, "to");
+    double hf = 0.0, ht = 20000.0;
+    if ((f != NULL && lv_pk_num(c, f, what, "from", &hf) != LV_OK) ||
+        (t != NULL && lv_pk_num(c, t, what, "to", &ht) != LV_OK))
+        return LV_ERR_INPUT;
+    if (!(ht > hf))
+        return lv_pk_fail(c, t != NULL ? t : f, "%s: the layer from %.9g m to %.9g m: 'to' must "
+                          "be above 'from'", what, hf, ht);
+    /* the realisation's size (lv_wind_disturbance_create checks it again for a run's values) */
+    double len = 533.4;
+    const lv_ynode *lv = lv_pk_get(v, "length");
+    if (lv != NULL && lv_pk_num(c, lv, what, "length", &len) != LV_OK)
+        return LV_ERR_INPUT;
+    if ((ht - hf) / len * 20.0 > 4194300.0)
+        return lv_pk_fail(c, t != NULL ? t : v, "%s: the layer from %.9g m to %.9g m is %.3g "
+                          "scale lengths of %.9g m deep; at most 209715 (the realisation is "
+                          "drawn at L/20)", what, hf, ht, (ht - hf) / len, len);
+    e->turbulent = 1;
+    return LV_OK;
+}
+
 lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
 {
     static const char *const keys[] = { "world", "g", "planet", "gravity", "atmosphere",
-                                        "wind", "site_lat_deg", "site_lon_deg", NULL };
+                                        "wind", "gust", "turbulence", "site_lat_deg",
+                                        "site_lon_deg", NULL };
     static const char *const worlds[] = { "flat", "planet", NULL };
     const char *what = "environment";
     lv_env_def *e = &c->m->env;
@@ -521,6 +623,19 @@ lv_status lv_parse_env(const lv_pctx *c, const lv_ynode *n)
             return lv_pk_fail(c, lv_pk_key(n, "wind"), "%s: a wind moves air, and there is "
                               "none (atmosphere: none%s): give an atmosphere, or no wind", what,
                               lv_pk_get(n, "atmosphere") != NULL ? "" : ", the default here");
+    }
+    /* gusts and turbulence: added to the wind (or to still air) */
+    static const char *const dist_keys[] = { "gust", "turbulence" };
+    for (size_t k = 0; k < 2; k++) {
+        if ((v = lv_pk_get(n, dist_keys[k])) == NULL || lv_yaml_is_null(v))
+            continue;
+        if ((st = k == 0 ? parse_gusts(c, v, e) : parse_turbulence(c, v, e)) != LV_OK)
+            return st;
+        if (strcmp(e->atmosphere, "none") == 0)
+            return lv_pk_fail(c, lv_pk_key(n, dist_keys[k]), "%s: a %s moves air, and there is "
+                              "none (atmosphere: none%s): give an atmosphere, or no %s", what,
+                              dist_keys[k], lv_pk_get(n, "atmosphere") != NULL ? "" : ", the default here",
+                              dist_keys[k]);
     }
     return LV_OK;
 }

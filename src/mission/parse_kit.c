@@ -586,3 +586,19 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
                               c->file, key->line, key->col, what, key->text);
     return LV_OK;
 }
+
+lv_status lv_pk_seed(const lv_pctx *c, const lv_ynode *v, const char *what, uint64_t *out)
+{
+    const char *s = v->kind == LV_YNODE_SCALAR ? v->text : "";
+    int ok = v->kind == LV_YNODE_SCALAR && v->plain && s[0] >= '0' && s[0] <= '9';
+    for (const char *q = s; ok && *q; q++)
+        ok = *q >= '0' && *q <= '9';
+    errno = 0;
+    const unsigned long long x = ok ? strtoull(s, NULL, 10) : 0;
+    if (!ok || errno == ERANGE)
+        return lv_pk_fail(c, v, "%s: seed: an integer from 0 to 18446744073709551615 "
+                          "expected, found '%.40s'", what,
+                          v->kind == LV_YNODE_SCALAR ? s : "a collection");
+    *out = (uint64_t)x;
+    return LV_OK;
+}

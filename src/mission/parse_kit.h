@@ -75,6 +75,8 @@ lv_status lv_pk_slot_default(const lv_pctx *c, const char *name, const char *uni
 char *lv_pk_strdup(const char *s); /* a malloc'ed copy, NULL: out of memory */
 /* "a mapping", "a list", "nothing", "'text'" or "the string \"text\"" for messages (in buf). */
 const char *lv_pk_describe(const lv_ynode *n, char *buf, size_t cap);
+/* A random stream's seed: an integer 0 .. 2^64 - 1, written plainly. */
+lv_status lv_pk_seed(const lv_pctx *c, const lv_ynode *v, const char *what, uint64_t *out);
 /* A whole number >= min. */
 lv_status lv_pk_int(const lv_pctx *c, const lv_ynode *v, const char *what, const char *key,
                     int min, int *out);

@@ -47,6 +47,7 @@ typedef struct lv_phase_env {
     lv_gravity *own_gravity;
     lv_atmo *own_atmo;
     lv_wind *own_wind;
+    lv_wind *own_disturbed;    /* the wind plus the run's gusts and turbulence */
 } lv_phase_env;
 
 typedef struct lv_build_ctx lv_build_ctx;

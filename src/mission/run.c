@@ -55,6 +55,8 @@ struct lv_run {
     run_phase *ph;        /* [n_phases] */
     size_t simulated;     /* phases simulated by the last execute */
     lv_run_tables *tables; /* copies of the dispersed tables with this run's factors, or NULL */
+    uint64_t real_seed, real_run; /* the realisation of the turbulence it flies (seed, run):
+                                     the turbulence's `seed:` and 0, or a campaign's draw */
     pthread_mutex_t lock;
     pthread_cond_t cv;
 };
@@ -123,6 +125,8 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
     memcpy(r->vals, m->defaults, d->n_slots * sizeof *r->vals);
+    r->real_seed = d->env.turb_seed;
+    r->real_run = 0;
     for (size_t k = 0; k < d->n_phases; k++) {
         run_phase *p = &r->ph[k];
         const lv_phase_def *ph = &d->phases[k];
@@ -417,7 +421,8 @@ lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
 {
     if (k >= r->m->def->n_phases)
         return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
-    lv_status st = lv_run_tables_update(r->m->def, r->m->env.wind, r->vals, &r->tables, err);
+    lv_status st = lv_run_tables_update(r->m->def, r->m->env.wind, r->vals, r->real_seed, r->real_run,
+                                          &r->tables, err);
     if (st == LV_OK && (st = prepare(r, k, NULL, out, err)) == LV_OK && (*out)->notes.crashed) {
         /* a touchdown beyond the landing gear's limits: nothing to fly */
         st = lv_fail(err, LV_ERR_INPUT, "phase '%s': %s at t = %.9g s", r->m->def->phases[k].name,
@@ -816,7 +821,8 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
         return lv_fail(err, LV_ERR_IO, "cannot create output directory '%s': %s", opt->outdir,
                        LV_STRERROR(errno));
     /* the dispersed tables with this run's factors (phase builds only read them) */
-    lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, &r->tables, err);
+    lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, r->real_seed, r->real_run,
+                                           &r->tables, err);
     if (tst != LV_OK)
         return tst;
     /* what runs: changed, never run, failed, skipped, and every descendant of those */
@@ -1088,6 +1094,11 @@ lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values
 {
     const lv_mission *m = r->m;
     const lv_disp_def *dd = m->def->disp;
+    if (m->def->env.turbulent && (seed != r->real_seed || run != r->real_run)) {
+        r->real_seed = seed; /* the run's own realisation of the turbulence: every phase */
+        r->real_run = run;   /* may fly through it */
+        lv_run_invalidate(r, LV_RUN_ALL_PHASES, NULL);
+    }
     if (dd == NULL)
         return LV_OK;
     double buf[256], *v = values != NULL ? values : dd->n <= 256 ? buf : NULL;

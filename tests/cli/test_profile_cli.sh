@@ -3,7 +3,8 @@
 # docs/atmosphere.md and docs/wind.md, "Profiles"): a sounding and two forecasts fly in `run`;
 # `lvsim atmosphere --profile` reads a level back; bad profile files are refused by `lvsim
 # check` and `lvsim run` alike with the profile's file:line:column and exit 2; `lvsim mc`
-# disperses a profile wind (environment.wind.scale, .north.bias).
+# disperses a profile wind (environment.wind.scale, .north.bias); gusts and turbulence fly,
+# repeat per seed and vary per Monte Carlo run (item 2).
 set -u
 lvsim="$1"; src="$2"
 work=$(mktemp -d)
@@ -98,6 +99,41 @@ if command -v sqlite3 >/dev/null; then
   n=$(sqlite3 "$work/mc/campaign.db" "SELECT count(DISTINCT round(v_east, 6)) FROM phase_P" 2>&1)
   if [ "$n" = 4 ]; then pass=$((pass + 1)); else echo "FAIL: mc: $n distinct final v_east, want 4"; fails=$((fails + 1)); fi
 fi
+
+# Gusts and turbulence (docs/wind.md, "Gusts and turbulence"): `lvsim run` flies the same
+# realisation every time (the turbulence's seed), another seed another one; `lvsim mc` flies one
+# per run even without dispersions; bad values refused by check and run alike.
+turb() { # turb TURBULENCE_LINE [GUST]
+  local g="${2:-{altitude: 2000, half_width: 200, east: 8\}}"
+  sed "s|^  wind: .*|  wind: {profile: sounding.txt}\\n  gust: $g\\n$1|" "$work/same.yaml"
+}
+turb "  turbulence: {sigma: 2, length: 300, from: 100, to: 15000}" > "$work/turb.yaml"
+turb "  turbulence: {sigma: 2, length: 300, from: 100, to: 15000, seed: 2}" > "$work/turb2.yaml"
+expect 0 "P .* done" -- "$lvsim" run "$work/turb.yaml" -o "$work/turb_a" --no-plots
+expect 0 "P .* done" -- "$lvsim" run "$work/turb.yaml" -o "$work/turb_b" --no-plots
+expect 0 "P .* done" -- "$lvsim" run "$work/turb2.yaml" -o "$work/turb_c" --no-plots
+if cmp -s "$work/turb_a/phase_1_P.csv" "$work/turb_b/phase_1_P.csv" &&
+   ! cmp -s "$work/turb_a/phase_1_P.csv" "$work/turb_c/phase_1_P.csv"; then pass=$((pass + 1))
+else echo "FAIL: turbulence: a run must repeat its realisation and another seed change it"; fails=$((fails + 1)); fi
+# the wind columns show it: at some row the turbulence's north wind is not 0 (the profile's is)
+if awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^wind_down/) c = i } NR > 1 && $c + 0 != 0 { n++ } END { exit !(n > 10) }' \
+     "$work/turb_a/phase_1_P.csv"; then pass=$((pass + 1))
+else echo "FAIL: turbulence: no vertical wind in wind_down"; fails=$((fails + 1)); fi
+expect 0 "3 runs" -- "$lvsim" mc "$work/turb.yaml" -n 3 -o "$work/turb_mc" --no-stats
+if command -v sqlite3 >/dev/null; then
+  n=$(sqlite3 "$work/turb_mc/campaign.db" "SELECT count(DISTINCT round(v_east, 6)) FROM phase_P" 2>&1)
+  if [ "$n" = 3 ]; then pass=$((pass + 1)); else echo "FAIL: mc turbulence: $n distinct final v_east, want 3"; fails=$((fails + 1)); fi
+fi
+for c in "turbulence: {length: 300}|environment, turbulence: missing required key 'sigma'" \
+         "turbulence: {sigma: 2, from: 9000, to: 100}|'to' must be above 'from'" \
+         "turbulence: {sigma: 2, lenght: 300}|unknown key 'lenght'; did you mean 'length'" \
+         "turbulence: {sigma: 2}|{altitude: 2000, half_width: -5, east: 3}|gust 1: half_width must be > 0"; do
+  IFS='|' read -r tl gl msg <<<"$c"
+  [ -z "$msg" ] && { msg="$gl"; gl=""; }
+  turb "  $tl" ${gl:+"$gl"} > "$work/badturb.yaml"
+  expect 2 "badturb.yaml:[0-9]+:[0-9]+: .*$msg" -- "$lvsim" check "$work/badturb.yaml"
+  expect 2 "badturb.yaml:[0-9]+:[0-9]+: .*$msg" -- "$lvsim" run "$work/badturb.yaml" -o "$work/badturb" --no-plots
+done
 
 echo "test_profile_cli: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]
