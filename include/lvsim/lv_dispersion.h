@@ -61,6 +61,10 @@ LV_API double lv_mission_disp_correlation(const lv_mission *m, size_t a, size_t 
  * of a campaign flies its own realisation, drawn from (seed, run) like its dispersions, so a
  * campaign varies even without a `dispersions:` section. */
 LV_API int lv_mission_turbulent(const lv_mission *m);
+/* The number of dispersed profiles (`dispersions: profiles:`, docs/monte-carlo.md "Dispersed
+ * profiles"): each run of a campaign flies its own perturbation profiles, drawn from
+ * (seed, run), so a campaign varies even without dispersed parameters. */
+LV_API size_t lv_mission_disp_profile_count(const lv_mission *m);
 /* The file's `seed:` (1), or 0 when it gives none (*seed untouched). */
 LV_API int lv_mission_disp_seed(const lv_mission *m, uint64_t *seed);
 
