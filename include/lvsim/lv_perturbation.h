@@ -12,9 +12,9 @@
  * This is the form of Earth-GRAM's perturbation model along a path, a first-order Markov
  * (autoregressive) update new = A old + sqrt(1 - A^2) N(0, 1), A = exp(-displacement / L)
  * (Justus & Leslie, NASA/TM-2008-215581, The NASA MSFC Earth Global Reference Atmospheric
- * Model - 2007 Version, sec. 2's perturbation model), kept to the vertical displacement only
- * and with a sigma profile of the user's (no climatology, no large-scale wave model, no
- * cross-correlation between density, temperature and pressure).
+ * Model - 2007 Version, the perturbation model of its technical description), kept to the
+ * vertical displacement only and with a sigma profile of the user's (no climatology, no
+ * large-scale wave model, no cross-correlation between density, temperature and pressure).
  *
  * The realisation. x is sampled at spacing L/20 over [h_from - L/20, h_to + 2 L/20] exactly
  * (not by integrating an equation): x_0 = n_0, x_{k+1} = A x_k + sqrt(1 - A^2) n_{k+1},

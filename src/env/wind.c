@@ -502,8 +502,9 @@ done:
 
 size_t lv_wind_profile_count(const lv_wind *w)
 {
-    return w->dist != NULL || w->pert != NULL ? (w->base != NULL ? lv_wind_profile_count(w->base) : 0)
-                                              : w->n_prof;
+    if (w->dist != NULL || w->pert != NULL)
+        return w->base != NULL ? lv_wind_profile_count(w->base) : 0;
+    return w->n_prof;
 }
 
 lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbance *d,

@@ -195,6 +195,11 @@ static lv_status resolve(const lv_pctx *c, const lv_ynode *key, lv_disp_def *dd,
     lv_status st = table_xf(c, key, dd, slot, &found);
     if (st != LV_OK || found)
         return st;
+    if (strcmp(name, "environment.wind") == 0 ||
+        strcmp(name, "environment.atmosphere.density") == 0)
+        return lv_pk_fail(c, key, "dispersions: '%s' is a profile, not a parameter: write it "
+                          "under dispersions: profiles: with {sigma, correlation_length} "
+                          "(docs/monte-carlo.md, \"Dispersed profiles\")", name);
     lv_suggest sg;
     char hint[200];
     lv_suggest_init(&sg, name);

@@ -89,6 +89,11 @@ for c in "environment.wnd: {sigma: 4, correlation_length: 2000}|16:5|no profile 
   expect 2 "bad.yaml:$at: dispersions: .*$msg" -- "$lvsim" run "$work/bad.yaml" -o "$work/bad_run" --no-plots
   expect 2 "bad.yaml:$at: dispersions: .*$msg" -- "$lvsim" mc "$work/bad.yaml" -n 2 -o "$work/bad_mc" --no-stats
 done
+mission us76 "" "dispersions:
+  parameters:
+    environment.wind: {dist: normal, sigma: 4}" > "$work/asparam.yaml"
+expect 2 "asparam.yaml:16:5: dispersions: 'environment.wind' is a profile, not a parameter: write it under dispersions: profiles:" -- \
+  "$lvsim" check "$work/asparam.yaml"
 mission none "" "$prof" > "$work/noair.yaml"
 expect 2 "noair.yaml:17:5: dispersions: profiles: 'environment.wind': the mission has no atmosphere" -- \
   "$lvsim" check "$work/noair.yaml"
