@@ -75,7 +75,9 @@ LV_API void lv_mission_disp_draw(const lv_mission *m, uint64_t seed, uint64_t ru
                                  double *values);
 /* Draws run `run`'s values and sets them on `r` (values may be NULL; else they are returned
  * as by lv_mission_disp_draw). A drawn value outside its parameter's range (a negative mass
- * from a wide normal) is LV_ERR_INPUT naming it; the run keeps its earlier values then. */
+ * from a wide normal) is LV_ERR_INPUT naming it; the run keeps its earlier values then.
+ * From then on the run also flies the turbulence and the dispersed profiles of (seed, run);
+ * a run never dispersed flies the nominal profiles (no perturbation). */
 LV_API lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values,
                                  lv_err *err);
 
