@@ -238,7 +238,8 @@ static int run_mc(const cli_cmd *self, int argc, char **argv)
     lv_status st = lv_mission_load(path, &m, &err);
     if (st != LV_OK)
         return print_err(NULL, &err, exit_code_for_input(st));
-    if (lv_mission_disp_count(m) == 0 && !lv_mission_turbulent(m)) {
+    if (lv_mission_disp_count(m) == 0 && !lv_mission_turbulent(m) &&
+        lv_mission_disp_profile_count(m) == 0) {
         fprintf(stderr, "lvsim: %s has no 'dispersions:' section (and no turbulence): nothing "
                 "to disperse (docs/monte-carlo.md)\n", path);
         lv_mission_free(m);

@@ -21,6 +21,7 @@
 
 #include <stddef.h>
 
+#include "lvsim/lv_perturbation.h"
 #include "lvsim/lv_status.h"
 
 #ifdef __cplusplus
@@ -127,6 +128,18 @@ LV_API const lv_atmo_model *lv_atmo_model_of(const lv_atmo *atm);
 LV_API const void *lv_atmo_par(const lv_atmo *atm); /* for direct model->eval calls */
 LV_API lv_status lv_atmo_eval(const lv_atmo *atm, double alt_m, lv_atmo_state *out,
                               lv_err *err);
+
+/* An atmosphere dispersed by a one-component perturbation profile delta(h) (lv_perturbation.h;
+ * docs/atmosphere.md, "Dispersed profiles"): the density relative, the pressure kept,
+ *     f = max(1 + delta(h), LV_ATMO_PERTURBED_FLOOR),  rho' = f rho,  p' = p,
+ *     T' = T / f (the gas law p = rho R* T / M with M kept),  a' = a / sqrt(f) (a ~ sqrt(T/M)),
+ *     mu' = mu (T'/T)^1.5 (T + S) / (T' + S) (Sutherland's law's ratio, S = 110.4 K), M' = M,
+ * over any base model (us76, exp, table, profile, or another perturbed one). Both borrowed:
+ * they must outlive *out. Evaluation errors are the base's. The handle's model is
+ * "perturbed" (not in the registry: no par_create). LV_ERR_INPUT unless p has 1 component. */
+#define LV_ATMO_PERTURBED_FLOOR 0.05
+LV_API lv_status lv_atmo_create_perturbed(const lv_atmo *base, const lv_perturbation *p,
+                                          lv_atmo **out, lv_err *err);
 
 /* Convenience for the CLI: default parameters of model `name`, evaluated at n altitudes
  * alt_m[0..n-1] into out[0..n-1]. Stops at the first failing altitude. */

@@ -61,6 +61,10 @@ LV_API double lv_mission_disp_correlation(const lv_mission *m, size_t a, size_t 
  * of a campaign flies its own realisation, drawn from (seed, run) like its dispersions, so a
  * campaign varies even without a `dispersions:` section. */
 LV_API int lv_mission_turbulent(const lv_mission *m);
+/* The number of dispersed profiles (`dispersions: profiles:`, docs/monte-carlo.md "Dispersed
+ * profiles"): each run of a campaign flies its own perturbation profiles, drawn from
+ * (seed, run), so a campaign varies even without dispersed parameters. */
+LV_API size_t lv_mission_disp_profile_count(const lv_mission *m);
 /* The file's `seed:` (1), or 0 when it gives none (*seed untouched). */
 LV_API int lv_mission_disp_seed(const lv_mission *m, uint64_t *seed);
 
@@ -71,7 +75,9 @@ LV_API void lv_mission_disp_draw(const lv_mission *m, uint64_t seed, uint64_t ru
                                  double *values);
 /* Draws run `run`'s values and sets them on `r` (values may be NULL; else they are returned
  * as by lv_mission_disp_draw). A drawn value outside its parameter's range (a negative mass
- * from a wide normal) is LV_ERR_INPUT naming it; the run keeps its earlier values then. */
+ * from a wide normal) is LV_ERR_INPUT naming it; the run keeps its earlier values then.
+ * From then on the run also flies the turbulence and the dispersed profiles of (seed, run);
+ * a run never dispersed flies the nominal profiles (no perturbation). */
 LV_API lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values,
                                  lv_err *err);
 

@@ -20,6 +20,7 @@
 
 #include <stdint.h>
 
+#include "lvsim/lv_perturbation.h"
 #include "lvsim/lv_status.h"
 #include "lvsim/lv_table.h"
 
@@ -122,6 +123,14 @@ LV_API void lv_wind_disturbance_grid(const lv_wind_disturbance *d, double *h0, d
 /* A wind plus a disturbance: base (NULL: still air) + d at every (t, h). Both borrowed: they
  * must outlive *out. Evaluation errors are the base's. lv_wind_free(*out) when done. */
 LV_API lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbance *d,
+                                          lv_wind **out, lv_err *err);
+
+/* A wind dispersed by a perturbation profile (lv_perturbation.h; docs/wind.md, "Dispersed
+ * profiles"): base (NULL: still air) plus the perturbation's two components as north and
+ * east, m/s, at every (t, h): every profile of a multi-profile wind alike; down unchanged.
+ * Both borrowed: they must outlive *out. LV_ERR_INPUT unless p has 2 components. Evaluation
+ * errors are the base's. lv_wind_free(*out) when done. */
+LV_API lv_status lv_wind_create_perturbed(const lv_wind *base, const lv_perturbation *p,
                                           lv_wind **out, lv_err *err);
 
 /* 1 for a constant wind (lv_wind_create_const, or a table of one row). */

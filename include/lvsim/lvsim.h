@@ -15,6 +15,7 @@
 #include "lvsim/lv_planet.h"
 #include "lvsim/lv_atmosphere.h"
 #include "lvsim/lv_wind.h"
+#include "lvsim/lv_perturbation.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"

@@ -392,7 +392,8 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
     if (o == NULL || o->db_path == NULL || o->n_runs == 0)
         return lv_fail(err, LV_ERR_INPUT, "campaign: a database path and at least one run are "
                        "needed");
-    if (lv_mission_disp_count(m) == 0 && !lv_mission_turbulent(m))
+    if (lv_mission_disp_count(m) == 0 && !lv_mission_turbulent(m) &&
+        lv_mission_disp_profile_count(m) == 0)
         return lv_fail(err, LV_ERR_INPUT, "mission '%s' has no dispersions: add a "
                        "'dispersions:' section (docs/monte-carlo.md)", lv_mission_name(m));
     if (o->keep_runs > 0 && o->keep_dir == NULL)

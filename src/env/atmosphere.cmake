@@ -9,7 +9,8 @@ list(APPEND LV_SOURCES
   src/env/profile.c
   src/env/atmosphere_registry.c
   src/env/wind.c
-  src/env/turbulence.c)
+  src/env/turbulence.c
+  src/env/perturbation.c)
 
 # The US76 upper-atmosphere table (86-1000 km) is integrated once, at build time, by a small
 # host program built from the same code (atmosphere_us76_gen.c + atmosphere_upper.c), and

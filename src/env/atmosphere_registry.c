@@ -1,5 +1,6 @@
 /* atmosphere_registry.c - atmosphere models by name, and the lv_atmo handle that pairs a
  * model with its parameter block. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -141,4 +142,84 @@ lv_status lv_atmo_eval_by_name(const char *name, const double *alt_m, size_t n,
         st = lv_atmo_eval(atm, alt_m[i], &out[i], err);
     lv_atmo_free(atm);
     return st;
+}
+
+/* ---- a perturbed atmosphere (lv_atmo_create_perturbed) ----------------------------------- */
+
+typedef struct perturbed_par {
+    const lv_atmo_model *base_model; /* borrowed, with its parameters */
+    const void *base_par;
+    const lv_perturbation *p;        /* borrowed */
+} perturbed_par;
+
+static lv_status perturbed_par_create(void **par, lv_err *err)
+{
+    *par = NULL;
+    return lv_fail(err, LV_ERR_INPUT, "atmosphere model 'perturbed': made by "
+                   "lv_atmo_create_perturbed from a base atmosphere");
+}
+
+static void perturbed_par_free(void *par)
+{
+    free(par);
+}
+
+static lv_status perturbed_par_set(void *par, const char *key, double value, lv_err *err)
+{
+    (void)par;
+    (void)value;
+    return lv_fail(err, LV_ERR_NOTFOUND, "atmosphere model 'perturbed' has no parameter '%s' "
+                   "(set its base's)", key);
+}
+
+/* rho' = f rho, p kept, T' = T / f, a' = a / sqrt(f), mu by Sutherland's ratio (lv_atmosphere.h) */
+static lv_status perturbed_eval(const void *par, double z, lv_atmo_state *out, lv_err *err)
+{
+    const perturbed_par *pp = par;
+    const lv_status st = pp->base_model->eval(pp->base_par, z, out, err);
+    if (st != LV_OK)
+        return st;
+    double d;
+    lv_perturbation_eval(pp->p, z, &d);
+    const double f = 1.0 + d > LV_ATMO_PERTURBED_FLOOR ? 1.0 + d : LV_ATMO_PERTURBED_FLOOR;
+    const double T = out->T, T1 = T / f;
+    out->rho *= f;
+    out->T = T1;
+    out->a /= sqrt(f);
+    out->mu *= (T1 / T) * sqrt(T1 / T) * (T + LV_US76_S) / (T1 + LV_US76_S);
+    return LV_OK;
+}
+
+static const lv_atmo_model lv_atmo_perturbed = {
+    "perturbed",
+    "a base atmosphere with a density perturbation profile (lv_atmo_create_perturbed)",
+    perturbed_par_create,
+    perturbed_par_free,
+    perturbed_par_set,
+    perturbed_eval,
+};
+
+lv_status lv_atmo_create_perturbed(const lv_atmo *base, const lv_perturbation *p, lv_atmo **out,
+                                   lv_err *err)
+{
+    if (base == NULL || p == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_atmo_create_perturbed: NULL argument");
+    *out = NULL;
+    if (lv_perturbation_comp(p) != 1)
+        return lv_fail(err, LV_ERR_INPUT, "lv_atmo_create_perturbed: the perturbation has %zu "
+                       "components; a density's has 1", lv_perturbation_comp(p));
+    lv_atmo *atm = calloc(1, sizeof *atm);
+    perturbed_par *pp = calloc(1, sizeof *pp);
+    if (atm == NULL || pp == NULL) {
+        free(atm);
+        free(pp);
+        return lv_fail(err, LV_ERR_NOMEM, "atmosphere model 'perturbed': out of memory");
+    }
+    pp->base_model = base->model;
+    pp->base_par = base->par;
+    pp->p = p;
+    atm->model = &lv_atmo_perturbed;
+    atm->par = pp;
+    *out = atm;
+    return LV_OK;
 }

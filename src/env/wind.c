@@ -31,6 +31,9 @@ struct lv_wind {
     /* a disturbed wind (lv_wind_create_disturbed): base (NULL: still air) + dist; borrowed */
     const lv_wind_disturbance *dist;
     const lv_wind *base;
+    /* a perturbed wind (lv_wind_create_perturbed): base (NULL: still air) + pert's north and
+     * east; borrowed */
+    const lv_perturbation *pert;
 };
 
 void lv_wind_free(lv_wind *w)
@@ -229,11 +232,14 @@ lv_status lv_wind_create_table(const char *path, const char *var, lv_wind **out,
     return lv_wind_create_table_opts(path, var, NULL, out, err);
 }
 
-int lv_wind_is_constant(const lv_wind *w) { return w->dist == NULL && w->tab == NULL; }
+int lv_wind_is_constant(const lv_wind *w)
+{
+    return w->dist == NULL && w->pert == NULL && w->tab == NULL;
+}
 
 void lv_wind_range(const lv_wind *w, double *h_lo, double *h_hi)
 {
-    if (w->dist != NULL && w->base != NULL) {
+    if ((w->dist != NULL || w->pert != NULL) && w->base != NULL) {
         lv_wind_range(w->base, h_lo, h_hi);
         return;
     }
@@ -285,8 +291,8 @@ lv_status lv_wind_eval(const lv_wind *w, lv_table_cursor *cur, double h, double 
 lv_status lv_wind_eval_at(const lv_wind *w, lv_table_cursor *cur, double t, double h,
                           double v_ned[3], lv_err *err)
 {
-    if (w->dist != NULL) {
-        double d[3];
+    if (w->dist != NULL || w->pert != NULL) {
+        double d[3] = { 0.0, 0.0, 0.0 };
         if (w->base != NULL) {
             const lv_status st = lv_wind_eval_at(w->base, cur, t, h, v_ned, err);
             if (st != LV_OK)
@@ -296,7 +302,10 @@ lv_status lv_wind_eval_at(const lv_wind *w, lv_table_cursor *cur, double t, doub
         } else {
             v_ned[0] = v_ned[1] = v_ned[2] = 0.0;
         }
-        lv_wind_disturbance_eval(w->dist, h, d);
+        if (w->dist != NULL)
+            lv_wind_disturbance_eval(w->dist, h, d);
+        else
+            lv_perturbation_eval(w->pert, h, d); /* north, east */
         for (int c = 0; c < 3; c++)
             v_ned[c] += d[c];
         return LV_OK;
@@ -337,9 +346,9 @@ lv_status lv_wind_create_affine(const lv_wind *w, double scale, const double bia
     if (w == NULL || out == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: NULL argument");
     *out = NULL;
-    if (w->dist != NULL)
-        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: a disturbed wind: disperse "
-                       "its base, then disturb the copy");
+    if (w->dist != NULL || w->pert != NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_affine: a disturbed or perturbed "
+                       "wind: disperse its base, then disturb the copy");
     const double b[W_N] = { bias ? bias[0] : 0.0, bias ? bias[1] : 0.0, bias ? bias[2] : 0.0 };
     if (w->tab == NULL)
         return lv_wind_create_const(scale * w->c[W_NORTH] + b[0], scale * w->c[W_EAST] + b[1],
@@ -493,7 +502,9 @@ done:
 
 size_t lv_wind_profile_count(const lv_wind *w)
 {
-    return w->dist != NULL ? (w->base != NULL ? lv_wind_profile_count(w->base) : 0) : w->n_prof;
+    if (w->dist != NULL || w->pert != NULL)
+        return w->base != NULL ? lv_wind_profile_count(w->base) : 0;
+    return w->n_prof;
 }
 
 lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbance *d,
@@ -507,6 +518,25 @@ lv_status lv_wind_create_disturbed(const lv_wind *base, const lv_wind_disturbanc
         return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
     w->base = base;
     w->dist = d;
+    w->has_down = 1;
+    *out = w;
+    return LV_OK;
+}
+
+lv_status lv_wind_create_perturbed(const lv_wind *base, const lv_perturbation *p, lv_wind **out,
+                                   lv_err *err)
+{
+    if (p == NULL || out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_perturbed: NULL argument");
+    *out = NULL;
+    if (lv_perturbation_comp(p) != 2)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_perturbed: the perturbation has %zu "
+                       "component(s); a wind's has 2 (north, east)", lv_perturbation_comp(p));
+    lv_wind *w = calloc(1, sizeof *w);
+    if (w == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "wind: out of memory");
+    w->base = base;
+    w->pert = p;
     w->has_down = 1;
     *out = w;
     return LV_OK;

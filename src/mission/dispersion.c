@@ -46,6 +46,11 @@ int lv_mission_turbulent(const lv_mission *m)
     return m->def->env.turbulent;
 }
 
+size_t lv_mission_disp_profile_count(const lv_mission *m)
+{
+    return disp_of(m) ? disp_of(m)->n_prof : 0;
+}
+
 size_t lv_mission_disp_count(const lv_mission *m)
 {
     return disp_of(m) ? disp_of(m)->n : 0;
@@ -143,6 +148,10 @@ struct lv_run_tables {
     lv_wind_disturbance *dist;
     double dist_vals[5 * LV_GUSTS_MAX + 5];
     uint64_t dist_seed, dist_run;
+    /* dispersed profiles: the realisations, indexed by lv_prof_target, and the (seed, run)
+     * they were drawn for; NULL: none (a nominal run) */
+    lv_perturbation *prof[2];
+    uint64_t prof_seed, prof_run;
 };
 
 void lv_run_tables_free(lv_run_tables *rt)
@@ -156,6 +165,8 @@ void lv_run_tables_free(lv_run_tables *rt)
         lv_wind_free(rt->e[i].wind);
     }
     lv_wind_disturbance_free(rt->dist);
+    lv_perturbation_free(rt->prof[0]);
+    lv_perturbation_free(rt->prof[1]);
     free(rt->e);
     free(rt);
 }
@@ -232,17 +243,54 @@ static lv_status dist_update(const lv_mission_def *d, const double *vals, uint64
     return LV_OK;
 }
 
+/* The run's dispersed profiles: drawn for (seed, run) when `on`, none otherwise. */
+static lv_status prof_update(const lv_disp_def *dd, uint64_t seed, uint64_t run, int on,
+                             lv_run_tables *rt, lv_err *err)
+{
+    const int have = rt->prof[0] != NULL || rt->prof[1] != NULL;
+    if (have == on && (!on || (seed == rt->prof_seed && run == rt->prof_run)))
+        return LV_OK; /* this run's already */
+    for (size_t k = 0; k < 2; k++) {
+        lv_perturbation_free(rt->prof[k]);
+        rt->prof[k] = NULL;
+    }
+    if (!on)
+        return LV_OK;
+    for (size_t i = 0; i < dd->n_prof; i++) {
+        const lv_disp_profile *pr = &dd->prof[i];
+        const lv_perturbation_spec sp = { pr->n_sigma, pr->sigma_h, pr->sigma, pr->length,
+                                          pr->h_from, pr->h_to,
+                                          pr->target == LV_PROF_WIND ? 2u : 1u };
+        const lv_status st = lv_perturbation_create(&sp, pr->stream, seed, run,
+                                                    &rt->prof[pr->target], err);
+        if (st != LV_OK) {
+            for (size_t k = 0; k < 2; k++) {
+                lv_perturbation_free(rt->prof[k]);
+                rt->prof[k] = NULL;
+            }
+            return lv_fail_prefix(err, st, "dispersions: profiles: '%s'", pr->name);
+        }
+    }
+    rt->prof_seed = seed;
+    rt->prof_run = run;
+    return LV_OK;
+}
+
 lv_status lv_run_tables_update(const lv_mission_def *d, const lv_wind *wind, const double *vals,
-                               uint64_t seed, uint64_t run, lv_run_tables **prt, lv_err *err)
+                               uint64_t seed, uint64_t run, int profiles, lv_run_tables **prt,
+                               lv_err *err)
 {
     const lv_disp_def *dd = d->disp;
     const int disturbed = d->env.n_gusts > 0 || d->env.turbulent;
-    if ((dd == NULL || dd->n_xf == 0) && !disturbed)
+    const int prof = dd != NULL && dd->n_prof > 0;
+    if ((dd == NULL || dd->n_xf == 0) && !disturbed && !prof)
         return LV_OK;
     lv_status st;
     if (*prt == NULL && (st = rt_make(dd, prt, err)) != LV_OK)
         return st;
     if (disturbed && (st = dist_update(d, vals, seed, run, *prt, err)) != LV_OK)
+        return st;
+    if (prof && (st = prof_update(dd, seed, run, profiles, *prt, err)) != LV_OK)
         return st;
     if (dd == NULL)
         return LV_OK;
@@ -297,6 +345,11 @@ const lv_table *lv_run_tables_get(const lv_run_tables *rt, const lv_table *t)
         if (rt->e[j].base == t)
             return rt->e[j].copy != NULL ? rt->e[j].copy : t;
     return t;
+}
+
+const lv_perturbation *lv_run_tables_profile(const lv_run_tables *rt, lv_prof_target target)
+{
+    return rt != NULL ? rt->prof[target] : NULL;
 }
 
 const lv_wind_disturbance *lv_run_tables_disturbance(const lv_run_tables *rt)

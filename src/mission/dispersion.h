@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "lvsim/lv_dispersion.h"
+#include "lvsim/lv_perturbation.h"
 #include "lvsim/lv_table.h"
 #include "lvsim/lv_wind.h"
 #include "mission/mission.h"
@@ -51,7 +52,23 @@ typedef struct lv_table_xf {
     lv_slot slot;
 } lv_table_xf;
 
+/* A dispersed profile (`profiles:`): a perturbation profile drawn per Monte Carlo run
+ * (lv_perturbation.h) added to the wind (north, east; m/s) or multiplying the density
+ * (1 + delta). */
+typedef enum lv_prof_target { LV_PROF_WIND, LV_PROF_DENSITY } lv_prof_target;
+typedef struct lv_disp_profile {
+    lv_prof_target target;
+    const char *name;      /* "environment.wind", "environment.atmosphere.density" */
+    size_t n_sigma;
+    double sigma_h[LV_PERTURBATION_SIGMA_MAX], sigma[LV_PERTURBATION_SIGMA_MAX];
+    double length, h_from, h_to; /* m */
+    uint64_t stream[LV_PERTURBATION_COMP_MAX]; /* "profiles.<name>[.north|.east]" */
+    lv_src_loc loc;
+} lv_disp_profile;
+
 typedef struct lv_disp_def {
+    size_t n_prof;
+    lv_disp_profile prof[2];
     int has_seed;
     uint64_t seed;
     size_t n;
@@ -75,13 +92,18 @@ void lv_disp_def_free(lv_disp_def *d); /* accepts NULL */
 typedef struct lv_run_tables lv_run_tables;
 /* Also the run's gusts and turbulence (the environment's `gust:`, `turbulence:`): made from
  * its slot values and the realisation (seed, run), again when any of them changed. */
+/* And, when `profiles` is 1 (a Monte Carlo run: lv_run_disperse), the realisations of the
+ * dispersed profiles for (seed, run); 0: the nominal (none). */
 lv_status lv_run_tables_update(const lv_mission_def *d, const lv_wind *wind, const double *vals,
-                               uint64_t seed, uint64_t run, lv_run_tables **rt, lv_err *err);
+                               uint64_t seed, uint64_t run, int profiles, lv_run_tables **rt,
+                               lv_err *err);
 void lv_run_tables_free(lv_run_tables *rt); /* accepts NULL */
 /* The run's copy of `t` (t itself when no dispersion applies or rt is NULL). */
 const lv_table *lv_run_tables_get(const lv_run_tables *rt, const lv_table *t);
 /* The run's wind when a wind dispersion applies, else NULL. */
 const lv_wind *lv_run_tables_wind(const lv_run_tables *rt);
+/* The run's perturbation of `target`, or NULL (not dispersed, or a nominal run). */
+const lv_perturbation *lv_run_tables_profile(const lv_run_tables *rt, lv_prof_target target);
 /* The run's gusts and turbulence, or NULL (none in the mission). */
 const lv_wind_disturbance *lv_run_tables_disturbance(const lv_run_tables *rt);
 

@@ -195,6 +195,11 @@ static lv_status resolve(const lv_pctx *c, const lv_ynode *key, lv_disp_def *dd,
     lv_status st = table_xf(c, key, dd, slot, &found);
     if (st != LV_OK || found)
         return st;
+    if (strcmp(name, "environment.wind") == 0 ||
+        strcmp(name, "environment.atmosphere.density") == 0)
+        return lv_pk_fail(c, key, "dispersions: '%s' is a profile, not a parameter: write it "
+                          "under dispersions: profiles: with {sigma, correlation_length} "
+                          "(docs/monte-carlo.md, \"Dispersed profiles\")", name);
     lv_suggest sg;
     char hint[200];
     lv_suggest_init(&sg, name);
@@ -439,9 +444,126 @@ static lv_status parse_group(const lv_pctx *c, const lv_ynode *n, size_t gi, lv_
     return LV_OK;
 }
 
+/* ---- dispersed profiles: `profiles:` NAME: {sigma, correlation_length, from, to} ----------- */
+
+#define PROF_FROM 0.0        /* m, the default layer sampled */
+#define PROF_TO 120000.0
+#define PROF_SAMPLES_MAX (((size_t)1 << 22) - 4) /* lv_perturbation.h's limit: L/20 samples */
+
+/* sigma: a number (at every altitude) or a list of [h, sigma] pairs, h strictly increasing;
+ * every sigma in [0, cap]. */
+static lv_status prof_sigma(const lv_pctx *c, const lv_ynode *v, const char *what, double cap,
+                            const char *unit, lv_disp_profile *pr)
+{
+    lv_status st;
+    if (v->kind == LV_YNODE_SCALAR) {
+        pr->n_sigma = 1;
+        pr->sigma_h[0] = 0.0;
+        if ((st = lv_pk_num(c, v, what, "sigma", &pr->sigma[0])) != LV_OK)
+            return st;
+        if (!(pr->sigma[0] >= 0.0 && pr->sigma[0] <= cap))
+            return lv_pk_fail(c, v, "%s: sigma must be in [0, %g]%s, found %g", what, cap, unit,
+                              pr->sigma[0]);
+        return LV_OK;
+    }
+    if (v->kind != LV_YNODE_SEQ || v->n < 1 || v->n > LV_PERTURBATION_SIGMA_MAX)
+        return lv_pk_fail(c, v, "%s: sigma: a number, or a list of 1 to %d pairs [altitude m, "
+                          "sigma] expected", what, LV_PERTURBATION_SIGMA_MAX);
+    pr->n_sigma = v->n;
+    for (size_t k = 0; k < v->n; k++) {
+        const lv_ynode *row = v->kids[k];
+        if (row->kind != LV_YNODE_SEQ || row->n != 2)
+            return lv_pk_fail(c, row, "%s: sigma point %zu: a pair [altitude m, sigma] expected",
+                              what, k + 1);
+        if ((st = lv_pk_num(c, row->kids[0], what, "sigma", &pr->sigma_h[k])) != LV_OK ||
+            (st = lv_pk_num(c, row->kids[1], what, "sigma", &pr->sigma[k])) != LV_OK)
+            return st;
+        if (!isfinite(pr->sigma_h[k]))
+            return lv_pk_fail(c, row->kids[0], "%s: sigma point %zu: the altitude must be "
+                              "finite", what, k + 1);
+        if (k > 0 && !(pr->sigma_h[k] > pr->sigma_h[k - 1]))
+            return lv_pk_fail(c, row->kids[0], "%s: sigma point %zu: altitude %g m is not above "
+                              "the previous point's %g m (altitudes must increase)", what, k + 1,
+                              pr->sigma_h[k], pr->sigma_h[k - 1]);
+        if (!(pr->sigma[k] >= 0.0 && pr->sigma[k] <= cap))
+            return lv_pk_fail(c, row->kids[1], "%s: sigma point %zu: sigma must be in [0, %g]%s, "
+                              "found %g", what, k + 1, cap, unit, pr->sigma[k]);
+    }
+    return LV_OK;
+}
+
+static lv_status parse_profile(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                               lv_disp_profile *pr)
+{
+    static const char *const keys[] = { "sigma", "correlation_length", "from", "to", NULL };
+    static const char *const targets[] = { "environment.wind", "environment.atmosphere.density" };
+    const lv_env_def *e = &c->m->env;
+    char what[LV_WHAT_MAX];
+    snprintf(what, sizeof what, "dispersions: profiles: '%.80s'", key->text);
+    size_t t = 0;
+    while (t < 2 && strcmp(key->text, targets[t]) != 0)
+        t++;
+    if (t == 2) {
+        lv_suggest sg;
+        char hint[200];
+        lv_suggest_init(&sg, key->text);
+        for (size_t k = 0; k < 2; k++)
+            lv_suggest_add(&sg, targets[k]);
+        lv_suggest_text(&sg, hint, sizeof hint);
+        return lv_pk_fail(c, key, "dispersions: profiles: no profile '%.80s'%s (profiles: "
+                          "environment.wind, environment.atmosphere.density)", key->text, hint);
+    }
+    const int no_air = e->atmosphere == NULL || strcmp(e->atmosphere, "none") == 0;
+    if (no_air)
+        return lv_pk_fail(c, key, "%s: the mission has no atmosphere (atmosphere: none): "
+                          "nothing to perturb", what);
+    pr->target = t == 0 ? LV_PROF_WIND : LV_PROF_DENSITY;
+    pr->name = targets[t];
+    pr->loc = loc_of(key);
+    const lv_ynode *sv, *lv;
+    lv_status st;
+    if ((st = lv_pk_check_map(c, v, what, keys)) != LV_OK ||
+        (st = lv_pk_need(c, v, what, "sigma", &sv)) != LV_OK ||
+        (st = lv_pk_need(c, v, what, "correlation_length", &lv)) != LV_OK)
+        return st;
+    /* density: 1 + delta reaches the floor 0.05 at -0.95: 3.8 sigma at the largest sigma */
+    if ((st = t == 0 ? prof_sigma(c, sv, what, 100.0, " m/s", pr)
+                     : prof_sigma(c, sv, what, 0.25, " (relative)", pr)) != LV_OK)
+        return st;
+    if ((st = lv_pk_num(c, lv, what, "correlation_length", &pr->length)) != LV_OK)
+        return st;
+    if (!(pr->length >= 1.0 && pr->length <= 1e6))
+        return lv_pk_fail(c, lv, "%s: correlation_length must be in [1, 1e6] m, found %g", what,
+                          pr->length);
+    pr->h_from = PROF_FROM;
+    pr->h_to = PROF_TO;
+    const lv_ynode *fv = lv_pk_get(v, "from"), *tv = lv_pk_get(v, "to");
+    if ((fv != NULL && (st = lv_pk_num(c, fv, what, "from", &pr->h_from)) != LV_OK) ||
+        (tv != NULL && (st = lv_pk_num(c, tv, what, "to", &pr->h_to)) != LV_OK))
+        return st;
+    if (!isfinite(pr->h_from) || !isfinite(pr->h_to) || !(pr->h_to > pr->h_from))
+        return lv_pk_fail(c, tv != NULL ? tv : fv != NULL ? fv : key, "%s: 'to' (%g m) must be "
+                          "above 'from' (%g m), both finite", what, pr->h_to, pr->h_from);
+    const double cells = (pr->h_to - pr->h_from) / (pr->length / 20.0);
+    if (!(cells <= (double)PROF_SAMPLES_MAX))
+        return lv_pk_fail(c, lv, "%s: [from, to] = [%g, %g] m is %.3g correlation lengths deep; "
+                          "at most %.3g (samples at L/20): a longer correlation_length or a "
+                          "thinner layer", what, pr->h_from, pr->h_to,
+                          (pr->h_to - pr->h_from) / pr->length,
+                          (double)PROF_SAMPLES_MAX / 20.0);
+    char sname[96];
+    for (size_t k = 0; k < (t == 0 ? 2u : 1u); k++) {
+        snprintf(sname, sizeof sname, "profiles.%s%s", pr->name,
+                 t == 0 ? (k == 0 ? ".north" : ".east") : "");
+        pr->stream[k] = lv_disp_stream(sname);
+    }
+    return LV_OK;
+}
+
 lv_status lv_disp_def_parse(const lv_pctx *c, const lv_ynode *n)
 {
-    static const char *const keys[] = { "seed", "parameters", "correlations", NULL };
+    static const char *const keys[] = { "seed", "parameters", "correlations", "profiles",
+                                        NULL };
     const char *what = "dispersions";
     lv_status st;
     if (n == NULL || lv_yaml_is_null(n))
@@ -458,7 +580,27 @@ lv_status lv_disp_def_parse(const lv_pctx *c, const lv_ynode *n)
             return st;
         dd->has_seed = 1;
     }
+    const lv_ynode *fv = lv_pk_get(n, "profiles");
+    if (fv != NULL) {
+        if ((st = lv_pk_check_map(c, fv, "dispersions: profiles", NULL)) != LV_OK)
+            return st;
+        if (fv->n == 0)
+            return lv_pk_fail(c, fv, "dispersions: profiles: at least one profile expected");
+        for (size_t i = 0; i + 1 < fv->n; i += 2) {
+            lv_disp_profile *pr = &dd->prof[dd->n_prof];
+            if ((st = parse_profile(c, fv->kids[i], fv->kids[i + 1], pr)) != LV_OK)
+                return st;
+            dd->n_prof++; /* keys are unique: at most one of each */
+        }
+    }
     const lv_ynode *pv;
+    if (fv != NULL && lv_pk_get(n, "parameters") == NULL) { /* profiles alone */
+        const lv_ynode *cv = lv_pk_get(n, "correlations");
+        if (cv != NULL && !lv_yaml_is_null(cv))
+            return lv_pk_fail(c, lv_pk_key(n, "correlations"), "dispersions: correlations "
+                              "group dispersed parameters, and there is no 'parameters:'");
+        return LV_OK;
+    }
     if ((st = lv_pk_need(c, n, what, "parameters", &pv)) != LV_OK ||
         (st = lv_pk_check_map(c, pv, "dispersions: parameters", NULL)) != LV_OK)
         return st;

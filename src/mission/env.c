@@ -151,8 +151,10 @@ static int changed(const lv_build_ctx *bc, const lv_slot *s, size_t n)
 void lv_phase_env_clear(lv_phase_env *pe)
 {
     lv_gravity_free(pe->own_gravity);
+    lv_atmo_free(pe->own_perturbed_atmo);
     lv_atmo_free(pe->own_atmo);
     lv_wind_free(pe->own_disturbed);
+    lv_wind_free(pe->own_perturbed);
     lv_wind_free(pe->own_wind);
     memset(pe, 0, sizeof *pe);
 }
@@ -187,6 +189,15 @@ lv_status lv_phase_env_get(const lv_build_ctx *bc, lv_phase_env *pe, lv_err *err
         pe->wind = pe->own_wind;
     if (st == LV_OK && lv_run_tables_wind(bc->tables) != NULL) /* a dispersed wind table */
         pe->wind = lv_run_tables_wind(bc->tables);
+    /* a campaign run's dispersed profiles (docs/monte-carlo.md, "Dispersed profiles") */
+    const lv_perturbation *pd_rho = lv_run_tables_profile(bc->tables, LV_PROF_DENSITY);
+    if (st == LV_OK && pd_rho != NULL && pe->atmo != NULL &&
+        (st = lv_atmo_create_perturbed(pe->atmo, pd_rho, &pe->own_perturbed_atmo, err)) == LV_OK)
+        pe->atmo = pe->own_perturbed_atmo;
+    const lv_perturbation *pd_wind = lv_run_tables_profile(bc->tables, LV_PROF_WIND);
+    if (st == LV_OK && pd_wind != NULL &&
+        (st = lv_wind_create_perturbed(pe->wind, pd_wind, &pe->own_perturbed, err)) == LV_OK)
+        pe->wind = pe->own_perturbed;
     const lv_wind_disturbance *dist = lv_run_tables_disturbance(bc->tables);
     if (st == LV_OK && dist != NULL &&
         (st = lv_wind_create_disturbed(pe->wind, dist, &pe->own_disturbed, err)) == LV_OK)

@@ -47,6 +47,8 @@ typedef struct lv_phase_env {
     lv_gravity *own_gravity;
     lv_atmo *own_atmo;
     lv_wind *own_wind;
+    lv_atmo *own_perturbed_atmo; /* the atmosphere with the run's density profile */
+    lv_wind *own_perturbed;    /* the wind plus the run's wind perturbation profile */
     lv_wind *own_disturbed;    /* the wind plus the run's gusts and turbulence */
 } lv_phase_env;
 

@@ -57,6 +57,8 @@ struct lv_run {
     lv_run_tables *tables; /* copies of the dispersed tables with this run's factors, or NULL */
     uint64_t real_seed, real_run; /* the realisation of the turbulence it flies (seed, run):
                                      the turbulence's `seed:` and 0, or a campaign's draw */
+    int profiles;         /* 1: flies the dispersed profiles of (real_seed, real_run), a
+                             campaign's run (lv_run_disperse); 0: the nominal profiles */
     pthread_mutex_t lock;
     pthread_cond_t cv;
 };
@@ -422,7 +424,7 @@ lv_status lv_run_prepare(lv_run *r, size_t k, lv_phase_call **out, lv_err *err)
     if (k >= r->m->def->n_phases)
         return lv_fail(err, LV_ERR_INPUT, "phase index %zu out of range", k);
     lv_status st = lv_run_tables_update(r->m->def, r->m->env.wind, r->vals, r->real_seed, r->real_run,
-                                          &r->tables, err);
+                                          r->profiles, &r->tables, err);
     if (st == LV_OK && (st = prepare(r, k, NULL, out, err)) == LV_OK && (*out)->notes.crashed) {
         /* a touchdown beyond the landing gear's limits: nothing to fly */
         st = lv_fail(err, LV_ERR_INPUT, "phase '%s': %s at t = %.9g s", r->m->def->phases[k].name,
@@ -822,7 +824,7 @@ lv_status lv_run_execute(lv_run *r, const lv_run_options *opt, lv_err *err)
                        LV_STRERROR(errno));
     /* the dispersed tables with this run's factors (phase builds only read them) */
     lv_status tst = lv_run_tables_update(d, r->m->env.wind, r->vals, r->real_seed, r->real_run,
-                                           &r->tables, err);
+                                           r->profiles, &r->tables, err);
     if (tst != LV_OK)
         return tst;
     /* what runs: changed, never run, failed, skipped, and every descendant of those */
@@ -1094,9 +1096,12 @@ lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values
 {
     const lv_mission *m = r->m;
     const lv_disp_def *dd = m->def->disp;
-    if (m->def->env.turbulent && (seed != r->real_seed || run != r->real_run)) {
-        r->real_seed = seed; /* the run's own realisation of the turbulence: every phase */
-        r->real_run = run;   /* may fly through it */
+    const int prof = dd != NULL && dd->n_prof > 0;
+    if ((m->def->env.turbulent || prof) &&
+        (seed != r->real_seed || run != r->real_run || r->profiles != prof)) {
+        r->real_seed = seed; /* the run's own realisation of the turbulence and of the */
+        r->real_run = run;   /* dispersed profiles: every phase may fly through them */
+        r->profiles = prof;
         lv_run_invalidate(r, LV_RUN_ALL_PHASES, NULL);
     }
     if (dd == NULL)

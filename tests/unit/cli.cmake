@@ -46,3 +46,6 @@ endif()
 # Atmosphere and wind profiles in missions (issue 28, item 1): run, check/run errors, mc.
 add_test(NAME test_profile_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_profile_cli.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# Dispersed profiles (issue 28, item 3): run flies the nominal, mc a profile per run; bad entries.
+add_test(NAME test_dprof_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_dprof_cli.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
