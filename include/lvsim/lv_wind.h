@@ -113,6 +113,10 @@ LV_API lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv
                                             size_t n_gusts, uint64_t seed, uint64_t run,
                                             lv_wind_disturbance **out, lv_err *err);
 LV_API void lv_wind_disturbance_free(lv_wind_disturbance *d); /* accepts NULL */
+/* The checks of lv_wind_disturbance_create alone (nothing drawn): LV_OK, or LV_ERR_INPUT with
+ * the value out of its domain named. */
+LV_API lv_status lv_wind_disturbance_check(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
+                                           size_t n_gusts, lv_err *err);
 /* v_ned = the disturbance at altitude h [m] (0 for a NaN h). No allocation: for right-hand
  * sides. */
 LV_API void lv_wind_disturbance_eval(const lv_wind_disturbance *d, double h, double v_ned[3]);

@@ -102,13 +102,12 @@ static void realise(lv_wind_disturbance *d, uint64_t seed, uint64_t run)
     }
 }
 
-lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
-                                     size_t n_gusts, uint64_t seed, uint64_t run,
-                                     lv_wind_disturbance **out, lv_err *err)
+/* The samples a layer needs (0 without turbulence), or the reason it cannot be drawn. */
+static lv_status check_spec(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
+                            size_t n_gusts, size_t *n_samples, lv_err *err)
 {
-    if (out == NULL || (n_gusts > 0 && gusts == NULL))
-        return lv_fail(err, LV_ERR_INPUT, "lv_wind_disturbance_create: NULL argument");
-    *out = NULL;
+    if (n_gusts > 0 && gusts == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_disturbance: NULL gusts");
     if (n_gusts > LV_GUSTS_MAX)
         return lv_fail(err, LV_ERR_INPUT, "wind: %zu gusts; at most %d", n_gusts, LV_GUSTS_MAX);
     for (size_t i = 0; i < n_gusts; i++) {
@@ -137,12 +136,33 @@ lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1
         const double cells = (t->h_to - t->h_from) / (t->length / SAMPLES_PER_L);
         if (!(cells + 4.0 <= (double)SAMPLES_MAX))
             return lv_fail(err, LV_ERR_INPUT, "wind: turbulence: the layer [%.9g, %.9g] m is "
-                           "%.3g scale lengths deep; at most %.3g (%zu samples at L/%d)",
+                           "%.9g scale lengths deep; at most %zu (2^22 samples at L/%d)",
                            t->h_from, t->h_to, (t->h_to - t->h_from) / t->length,
-                           (double)(SAMPLES_MAX - 4) / SAMPLES_PER_L, SAMPLES_MAX,
-                           SAMPLES_PER_L);
+                           (SAMPLES_MAX - 4) / SAMPLES_PER_L, SAMPLES_PER_L);
         n = (size_t)ceil(cells) + 4; /* one sample below h_from, two above h_to */
     }
+    *n_samples = n;
+    return LV_OK;
+}
+
+lv_status lv_wind_disturbance_check(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
+                                    size_t n_gusts, lv_err *err)
+{
+    size_t n;
+    return check_spec(turb, gusts, n_gusts, &n, err);
+}
+
+lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1cos *gusts,
+                                     size_t n_gusts, uint64_t seed, uint64_t run,
+                                     lv_wind_disturbance **out, lv_err *err)
+{
+    if (out == NULL)
+        return lv_fail(err, LV_ERR_INPUT, "lv_wind_disturbance_create: NULL argument");
+    *out = NULL;
+    size_t n = 0;
+    const lv_status st = check_spec(turb, gusts, n_gusts, &n, err);
+    if (st != LV_OK)
+        return st;
     lv_wind_disturbance *d = calloc(1, sizeof *d);
     if (d == NULL || (n > 0 && (d->s = malloc(3 * n * sizeof *d->s)) == NULL)) {
         lv_wind_disturbance_free(d);

@@ -213,8 +213,30 @@ static size_t dist_values(const lv_env_def *e, const double *vals, double *out)
         for (size_t i = 0; i < 5; i++)
             out[n++] = vals[e->gust[k][i]];
     for (size_t i = 0; i < 5; i++)
-        out[n++] = e->turbulent ? vals[e->turb[i == 1 && e->turb[1] == LV_NO_SLOT ? 0 : i]] : NAN;
+        out[n++] = e->turbulent ? vals[e->turb[i]] : NAN;
     return n;
+}
+
+/* The gusts and turbulence spec of the values v (dist_values' order). */
+static void dist_spec(const lv_env_def *e, const double *v, lv_gust_1cos *g, lv_dryden_spec *ts)
+{
+    for (size_t k = 0; k < e->n_gusts; k++)
+        g[k] = (lv_gust_1cos){ v[5 * k], v[5 * k + 1], { v[5 * k + 2], v[5 * k + 3], v[5 * k + 4] } };
+    const double *t = v + 5 * e->n_gusts;
+    *ts = (lv_dryden_spec){ t[0], t[1], t[2], t[3], t[4] };
+}
+
+lv_status lv_run_disturbance_check(const lv_mission_def *d, const double *vals, lv_err *err)
+{
+    const lv_env_def *e = &d->env;
+    if (e->n_gusts == 0 && !e->turbulent)
+        return LV_OK;
+    double v[5 * LV_GUSTS_MAX + 5];
+    dist_values(e, vals, v);
+    lv_gust_1cos g[LV_GUSTS_MAX];
+    lv_dryden_spec ts;
+    dist_spec(e, v, g, &ts);
+    return lv_wind_disturbance_check(e->turbulent ? &ts : NULL, g, e->n_gusts, err);
 }
 
 static lv_status dist_update(const lv_mission_def *d, const double *vals, uint64_t seed,
@@ -229,10 +251,8 @@ static lv_status dist_update(const lv_mission_def *d, const double *vals, uint64
     lv_wind_disturbance_free(rt->dist);
     rt->dist = NULL;
     lv_gust_1cos g[LV_GUSTS_MAX];
-    for (size_t k = 0; k < e->n_gusts; k++)
-        g[k] = (lv_gust_1cos){ v[5 * k], v[5 * k + 1], { v[5 * k + 2], v[5 * k + 3], v[5 * k + 4] } };
-    const double *t = v + 5 * e->n_gusts;
-    const lv_dryden_spec ts = { t[0], t[1], t[2], t[3], t[4] };
+    lv_dryden_spec ts;
+    dist_spec(e, v, g, &ts);
     lv_status st = lv_wind_disturbance_create(e->turbulent ? &ts : NULL, g, e->n_gusts, seed, run,
                                               &rt->dist, err);
     if (st != LV_OK)

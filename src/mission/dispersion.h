@@ -104,6 +104,9 @@ const lv_table *lv_run_tables_get(const lv_run_tables *rt, const lv_table *t);
 const lv_wind *lv_run_tables_wind(const lv_run_tables *rt);
 /* The run's perturbation of `target`, or NULL (not dispersed, or a nominal run). */
 const lv_perturbation *lv_run_tables_profile(const lv_run_tables *rt, lv_prof_target target);
+/* Whether the run's values make gusts and turbulence that can be drawn (a dispersed layer
+ * turned upside down, too deep): LV_ERR_INPUT naming the value otherwise. */
+lv_status lv_run_disturbance_check(const lv_mission_def *d, const double *vals, lv_err *err);
 /* The run's gusts and turbulence, or NULL (none in the mission). */
 const lv_wind_disturbance *lv_run_tables_disturbance(const lv_run_tables *rt);
 

@@ -118,7 +118,7 @@ typedef struct lv_env_def {
     double wind_blend;    /* m: the winds' taper to zero above each profile's top */
     /* gusts and turbulence (docs/wind.md, "Gusts and turbulence"): slots
      * "environment.gust<k>.altitude", ".half_width", ".north", ".east", ".down" (k from 1), and
-     * "environment.turbulence.sigma", ".sigma_vertical" (LV_NO_SLOT: sigma's), ".length",
+     * "environment.turbulence.sigma", ".sigma_vertical" (default: the file's sigma), ".length",
      * ".from", ".to" */
     size_t n_gusts;
     lv_slot gust[LV_GUSTS_MAX][5];

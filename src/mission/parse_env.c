@@ -467,14 +467,18 @@ static lv_status parse_turbulence(const lv_pctx *c, const lv_ynode *v, lv_env_de
     e->turb_seed = 1;
     if ((o = lv_pk_get(v, "seed")) != NULL && (st = lv_pk_seed(c, o, what, &e->turb_seed)) != LV_OK)
         return st;
+    double sigma = NAN; /* sigma_vertical's default: the file's sigma */
+    if ((st = lv_pk_num(c, lv_pk_get(v, "sigma"), what, "sigma", &sigma)) != LV_OK)
+        return st;
     for (size_t k = 0; k < 5; k++) {
         char slot[64];
         snprintf(slot, sizeof slot, "environment.turbulence.%s", sk[k]);
         e->turb[k] = LV_NO_SLOT;
         if ((o = lv_pk_get(v, sk[k])) != NULL)
             st = lv_pk_slot(c, o, what, sk[k], slot, units[k], ranges[k], 0, &e->turb[k]);
-        else if (!isnan(defaults[k]))
-            st = lv_pk_slot_default(c, slot, units[k], defaults[k], ranges[k], &e->turb[k]);
+        else
+            st = lv_pk_slot_default(c, slot, units[k], k == 1 ? sigma : defaults[k], ranges[k],
+                                    &e->turb[k]);
         if (st != LV_OK)
             return st;
     }
@@ -492,9 +496,9 @@ static lv_status parse_turbulence(const lv_pctx *c, const lv_ynode *v, lv_env_de
     if (lv != NULL && lv_pk_num(c, lv, what, "length", &len) != LV_OK)
         return LV_ERR_INPUT;
     if ((ht - hf) / len * 20.0 > 4194300.0)
-        return lv_pk_fail(c, t != NULL ? t : v, "%s: the layer from %.9g m to %.9g m is %.3g "
-                          "scale lengths of %.9g m deep; at most 209715 (the realisation is "
-                          "drawn at L/20)", what, hf, ht, (ht - hf) / len, len);
+        return lv_pk_fail(c, t != NULL ? t : v, "%s: the layer from %.9g m to %.9g m is %.9g "
+                          "scale lengths of %.9g m deep; at most 209715 (2^22 samples at L/20)",
+                          what, hf, ht, (ht - hf) / len, len);
     e->turbulent = 1;
     return LV_OK;
 }

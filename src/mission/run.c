@@ -1113,6 +1113,9 @@ lv_status lv_run_disperse(lv_run *r, uint64_t seed, uint64_t run, double *values
     lv_status st = LV_OK;
     for (size_t j = 0; j < dd->n && st == LV_OK; j++)
         st = lv_run_set_index(r, dd->p[j].slot, dd->p[j].deg ? v[j] * LV_DEG : v[j], err);
+    /* values each within its range may still make a layer that cannot be drawn */
+    if (st == LV_OK)
+        st = lv_run_disturbance_check(m->def, r->vals, err);
     if (st != LV_OK)
         lv_fail_prefix(err, st, "run %llu: dispersion", (unsigned long long)run);
     if (v != values && v != buf)
