@@ -8,6 +8,7 @@
 
 typedef struct lv_mc_phase {
     char *name;
+    char *stages;         /* the bodies it carries, "upper, payload" ("" before schema 3) */
     int parent;
     char tbl[128];
     size_t n_rows, n_cols;

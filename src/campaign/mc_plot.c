@@ -202,8 +202,9 @@ lv_status lv_mc_draw_figures(const lv_mc_data *d, const char *outdir, lv_mc_figs
                                  180.0 / M_PI
                            : NAN;
             }
-            snprintf(title, sizeof title, "%s: %s points and 3-sigma ellipse (%zu runs)",
-                     p->name, lv_mc_is_impact(p) ? "impact" : "final ground", g.n);
+            snprintf(title, sizeof title, "%s%s%.60s%s: %s points and 3-sigma ellipse (%zu runs)",
+                     p->name, p->stages[0] ? " (" : "", p->stages, p->stages[0] ? ")" : "",
+                     lv_mc_is_impact(p) ? "impact" : "final ground", g.n);
             const fig f = { title, "longitude [deg]", "latitude [deg]", lo, la, p->n_rows, &g,
                             lon0 * 180.0 / M_PI, lat0 * 180.0 / M_PI,
                             180.0 / M_PI / (Nr * cos(lat0)), 180.0 / M_PI / M, 1, 0 };

@@ -71,6 +71,7 @@ void lv_mc_data_free(lv_mc_data *d)
     for (size_t k = 0; k < d->n_ph; k++) {
         lv_mc_phase *p = &d->ph[k];
         free(p->name);
+        free(p->stages);
         for (size_t r = 0; r < p->n_rows; r++) {
             free(p->end[r]);
             free(p->error[r]);
@@ -292,7 +293,10 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
     sqlite3_finalize(s);
     s = NULL;
     /* phases */
-    if (sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl FROM phases ORDER BY k", -1, &s,
+    /* phases.stages since schema 3 */
+    if (sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl, stages FROM phases ORDER BY k", -1,
+                           &s, NULL) != SQLITE_OK &&
+        sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl, '' FROM phases ORDER BY k", -1, &s,
                            NULL) != SQLITE_OK)
         goto sqlfail;
     while (sqlite3_step(s) == SQLITE_ROW) {
@@ -303,6 +307,9 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         lv_mc_phase *p = &d->ph[d->n_ph++];
         memset(p, 0, sizeof *p);
         p->name = dup_s((const char *)sqlite3_column_text(s, 1));
+        p->stages = dup_s((const char *)sqlite3_column_text(s, 4));
+        if (p->name == NULL || p->stages == NULL)
+            goto nomem;
         p->parent = sqlite3_column_int(s, 2);
         snprintf(p->tbl, sizeof p->tbl, "%s", (const char *)sqlite3_column_text(s, 3));
     }
@@ -615,6 +622,7 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         cJSON *po = cJSON_CreateObject();
         cJSON_AddItemToArray(phs, po);
         cJSON_AddStringToObject(po, "name", p->name);
+        cJSON_AddStringToObject(po, "stages", p->stages);
         cJSON_AddStringToObject(po, "from", p->parent >= 0 && (size_t)p->parent < d->n_ph
                                                 ? d->ph[p->parent].name : "");
         size_t nd = 0, nf = 0, nsk = 0, nim = 0, ncr = 0;
@@ -683,10 +691,13 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
                 y[i] = p->state[i] == 1 ? p->v[i * p->n_cols + cn] : NAN;
             }
             const int impact = lv_mc_is_impact(p);
+            char what[1200];
+            snprintf(what, sizeof what, "%s of %.1100s",
+                     impact ? "impact points" : "final ground points",
+                     p->stages[0] ? p->stages : "its bodies");
             ground_footprint(d, p->name, impact ? "impact" : "ground point",
-                             impact ? "impact" : "ground",
-                             impact ? "impact points" : "final ground points", p->n_rows, x,
-                             y, p->run, e, nn, &ell, &kml, els);
+                             impact ? "impact" : "ground", what, p->n_rows, x, y, p->run, e, nn,
+                             &ell, &kml, els);
         }
         for (size_t q = 0; lv_mc_orbit_pairs[q][0] != NULL; q++) {
             const size_t cx = lv_mc_col(p, lv_mc_orbit_pairs[q][0]);

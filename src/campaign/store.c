@@ -20,7 +20,8 @@
 #include "lvsim/lv_dispersion.h"
 
 /* 2: a phase's state and a run's status `impact` (a fall to the ground where another end was
- * meant) beside done/ok; 3: the table iip (a phase's impact point at its `iip_at:` times) */
+ * meant) beside done/ok; 3: the table iip (a phase's impact point at its `iip_at:` times)
+ * and phases.stages (the bodies a phase carries) */
 #define LV_MC_SCHEMA 3
 #define LV_MC_SCHEMA_TEXT "3"
 
@@ -177,7 +178,7 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
                  "CREATE TABLE correlations(a INTEGER, b INTEGER, rho REAL, PRIMARY KEY(a, b))"
                  " WITHOUT ROWID;"
                  "CREATE TABLE phases(k INTEGER PRIMARY KEY, name TEXT, parent INTEGER,"
-                 " model TEXT, tbl TEXT);"
+                 " model TEXT, tbl TEXT, stages TEXT);"
                  "CREATE TABLE events(run INTEGER, phase INTEGER, seq INTEGER, t REAL, name TEXT,"
                  " PRIMARY KEY(run, phase, seq)) WITHOUT ROWID;"
                  "CREATE TABLE iip(run INTEGER, phase INTEGER, t REAL, state TEXT, lat REAL,"
@@ -292,7 +293,7 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
             }
         }
     sqlite3_finalize(s);
-    if (sqlite3_prepare_v2(c->db, "INSERT INTO phases VALUES (?,?,?,?,?)", -1, &s, NULL) !=
+    if (sqlite3_prepare_v2(c->db, "INSERT INTO phases VALUES (?,?,?,?,?,?)", -1, &s, NULL) !=
         SQLITE_OK)
         return db_fail(c, err, "phases");
     for (size_t k = 0; k < c->n_phases; k++) {
@@ -306,6 +307,14 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
         sqlite3_bind_int(s, 3, pi.parent);
         sqlite3_bind_text(s, 4, pi.model, -1, SQLITE_TRANSIENT);
         sqlite3_bind_text(s, 5, tbl, -1, SQLITE_TRANSIENT);
+        /* the bodies it carries, bottom first: a jettisoned part's fall names its part */
+        char stages[1024];
+        size_t used = 0;
+        stages[0] = '\0';
+        for (size_t i = 0; i < pi.n_stages && used < sizeof stages; i++)
+            used += (size_t)snprintf(stages + used, sizeof stages - used, "%s%s", i ? ", " : "",
+                                     lv_mission_stage_name(m, pi.stages[i]));
+        sqlite3_bind_text(s, 6, stages, -1, SQLITE_TRANSIENT);
         if (sqlite3_step(s) != SQLITE_DONE) {
             sqlite3_finalize(s);
             return db_fail(c, err, "phases");

@@ -434,7 +434,8 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
             if (lv_model_find(md, lv_iip_out_names[j], &kind, &idx, NULL) != LV_OK ||
                 kind != LV_VAR_OUTPUT)
                 st = lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': iip_at: the %s model has "
-                             "no impact-point output '%s' (the dof3, dof6 and runway models have them)",
+                             "no impact-point output '%s' (the dof3, dof6 and runway models "
+                             "have them)",
                              d->path, ph->iip_at_loc.line, ph->iip_at_loc.column, ph->name,
                              ph->type->name, lv_iip_out_names[j]);
         }

@@ -15,6 +15,10 @@
 #    8 km/s) counted as such in the database, outcomes.csv and stats.json, with no ellipse;
 #  - the finals of every phase the same with and without `iip_at:` (the stops are the
 #    integrator's own interpolation: same steps), within 1e-9 relative;
+#  - a jettisoned part (tests/missions/mc/fairing.yaml): kourou-leo's fairing flown to the
+#    ground as a phase of its own stage; its impact footprint beside the stages', named by its
+#    part; every run on the ground with the dry mass it drew, short of the drag-free IIP at the
+#    jettison; the ascent's IIP at T+60 and T+120 s;
 #  - bad `iip_at:` refused by `lvsim check` and `lvsim run` alike, file:line:column, exit 2.
 set -u
 lvsim="$1"; src="$2"
@@ -139,6 +143,54 @@ for tbl in ("phase_fall", "phase_orbit", "phase_burn"):
                 worst = math.inf
     print(f"{tbl}: finals with and without iip_at, worst relative difference {worst:.2e}")
     check(len(a) == len(b) == 40 and worst <= 1e-9, f"{tbl}: finals differ ({worst})")
+for f in fails:
+    print("  ", f)
+sys.exit(1 if fails else 0)
+PY
+
+# a jettisoned part (tests/missions/mc/fairing.yaml: kourou-leo's fairing flown to the ground
+# as a phase of its own stage from upper-burn-1's end) beside the stages, and the ascent's IIP
+"$lvsim" mc "$src/tests/missions/mc/fairing.yaml" -n 30 -j 2 -o "$work/fairing" >"$work/f.log" 2>&1 \
+  || { bad "lvsim mc fairing"; cat "$work/f.log"; }
+python3 - "$work/fairing" <<'PY' && ok || bad "fairing footprint"
+import csv, json, math, sqlite3, sys
+d = sys.argv[1]
+db = sqlite3.connect(d + "/campaign.db")
+fails = []
+def check(c, msg):
+    if not c:
+        fails.append(msg)
+# every run: the fairing's phase is done on its impact end, on the ground (h = 0 within 1 m),
+# with its own mass: the dry mass this run drew (no propellant, no engines), after the
+# jettison (upper-burn-1's end), and short of the drag-free IIP at the jettison (its drag
+# takes energy: it lands up-range of the point it would reach in vacuum)
+rows = db.execute('SELECT f.run, f.state, f.end_reason, f.h, f.m, f.t_end, u.t_end, f.lon, '
+                  'u.iip_lon, r."fairing.dry_mass", u.iip_range, f.downrange, u.downrange '
+                  'FROM "phase_fairing-fall" f JOIN "phase_upper-burn-1" u USING (run) '
+                  'JOIN runs r USING (run)').fetchall()
+check(len(rows) == 30, f"{len(rows)} fairing rows")
+short = []
+for run, st, end, h, m, tf, tu, lon, iip_lon, dry, rng, dr, dr_u in rows:
+    check(st == "done" and end == "impact", f"run {run}: {st} {end}")
+    check(abs(h) < 1.0, f"run {run}: h {h}")
+    check(m == dry, f"run {run}: mass {m} vs drawn dry mass {dry}")
+    check(tf > tu, f"run {run}: impact before the jettison")
+    short.append((iip_lon - lon) * 6378137.0 * math.cos(0.09))
+    check(lon < iip_lon, f"run {run}: the fairing lands beyond its drag-free IIP")
+print(f"fairing: lands {min(short)/1e3:.1f}-{max(short)/1e3:.1f} km short of the drag-free IIP "
+      f"at the jettison")
+ell = {r["phase"]: r for r in csv.DictReader(open(d + "/ellipses.csv"))}
+check(ell.get("fairing-fall", {}).get("kind") == "impact" and ell["fairing-fall"]["n"] == "30",
+      "ellipses.csv: the fairing's impact footprint")
+for k in ("IIP at T+60 s (ascent)", "IIP at T+120 s (ascent)"):
+    check(ell.get(k, {}).get("n") == "30", "ellipses.csv: " + k)
+sj = json.load(open(d + "/stats.json"))
+ph = {p["name"]: p for p in sj["phases"]}
+check(ph["fairing-fall"]["stages"] == "fairing" and ph["fairing-fall"]["done"] == 30,
+      "stats.json: the fairing's phase names its part")
+kml = open(d + "/footprint.kml").read()
+check("fairing-fall (impact points of fairing, 30 runs)" in kml, "footprint.kml: the part")
+check("<h2>Phase fairing-fall (fairing)</h2>" in open(d + "/index.html").read(), "index.html")
 for f in fails:
     print("  ", f)
 sys.exit(1 if fails else 0)
