@@ -102,12 +102,13 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
                 ni += p->state[i] == 4, nc += p->state[i] == 5;
         fputs("<h2>Phase ", f);
         esc(f, p->name);
-        if (p->stages[0] != '\0') {
-            fputs(" (", f);
+        fputs("</h2>\n<p>", f);
+        if (p->stages[0] != '\0') { /* the bodies: a jettisoned part's fall names its part */
+            fputs("Carries ", f);
             esc(f, p->stages);
-            fputs(")", f);
+            fputs(". ", f);
         }
-        fprintf(f, "</h2>\n<p>%zu runs: %zu done, %zu fell to the ground (an impact end not "
+        fprintf(f, "%zu runs: %zu done, %zu fell to the ground (an impact end not "
                 "the first written), %zu crashed (a touchdown beyond the landing gear's "
                 "limits), %zu failed (%.3g %%), %zu not run.", p->n_rows, nd, ni, nc, nf,
                 p->n_rows ? 100.0 * (double)nf / (double)p->n_rows : 0.0, ns);

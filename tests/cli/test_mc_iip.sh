@@ -190,7 +190,8 @@ check(ph["fairing-fall"]["stages"] == "fairing" and ph["fairing-fall"]["done"] =
       "stats.json: the fairing's phase names its part")
 kml = open(d + "/footprint.kml").read()
 check("fairing-fall (impact points of fairing, 30 runs)" in kml, "footprint.kml: the part")
-check("<h2>Phase fairing-fall (fairing)</h2>" in open(d + "/index.html").read(), "index.html")
+check("<h2>Phase fairing-fall</h2>\n<p>Carries fairing. 30 runs" in open(d + "/index.html").read(),
+      "index.html")
 for f in fails:
     print("  ", f)
 sys.exit(1 if fails else 0)
