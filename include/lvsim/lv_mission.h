@@ -290,6 +290,35 @@ LV_API lv_status lv_run_final(const lv_run *r, size_t k, const char *name, doubl
 /* Phase k's rows in memory (every output row and event instant), or NULL. */
 LV_API const lv_result *lv_run_rows(const lv_run *r, size_t k);
 
+/* ---- the instantaneous impact point at given times (a phase's `iip_at:`) -------------------
+ *
+ * A phase that lists `iip_at: [t1, t2, ...]` (mission times, s) records, in every run, its
+ * iip_* outputs (docs/models.md, "Instantaneous impact point") at exactly those times: the
+ * integrator stops there on its own interpolation (lv_sim_advance: the same steps, rows and
+ * final values as without) and the outputs are evaluated at that state. Design and use in
+ * Monte Carlo campaigns: docs/monte-carlo.md, "The IIP at given times". */
+typedef enum lv_iip_state {
+    LV_IIP_IMPACT = 0,     /* flying at t with an impact point: lat, lon, tof, range hold it */
+    LV_IIP_IN_ORBIT = 1,   /* flying at t, its drag-free path meets no ground (NaN outputs) */
+    LV_IIP_NOT_FLYING = 2  /* the phase did not fly at t: it started later, ended earlier (an
+                              end, its stop time, a failure before t), or did not run */
+} lv_iip_state;
+
+typedef struct lv_iip_sample {
+    double t;           /* s, mission time (the phase's iip_at entry) */
+    lv_iip_state state;
+    double lat, lon;    /* rad, geodetic latitude and longitude of the impact point */
+    double tof;         /* s, time of flight from t to the impact */
+    double range;       /* m, great-circle range from the point under the vehicle at t */
+} lv_iip_sample;       /* lat, lon, tof, range are NaN unless state is LV_IIP_IMPACT */
+
+/* How many times phase k lists in `iip_at:` (0 when none, or k out of range). */
+LV_API size_t lv_mission_phase_iip_count(const lv_mission *m, size_t k);
+/* Phase k's i-th IIP sample of the run's last execute (LV_IIP_NOT_FLYING before any).
+ * LV_ERR_INPUT when k or i is out of range. */
+LV_API lv_status lv_run_iip(const lv_run *r, size_t k, size_t i, lv_iip_sample *out,
+                            lv_err *err);
+
 /* ---- output size, before running --------------------------------------------------------- */
 
 /* What phase k will write at most with the run's current values: its output grid over its

@@ -146,6 +146,11 @@ lv_status lv_campaign_estimate(const lv_mission *m, const lv_campaign_options *o
                   (e.bounded ? 0.0 : DB_EVENT_BYTES);
         /* in the statistics: the finals, the row index, run, state, end and error */
         mem_run += 8.0 * nf + 8.0 + 8.0 + 1.0 + 16.0 + 32.0;
+        /* its `iip_at:` times: a row each (run, phase, t, state, four values); in the
+         * statistics the run, state and four values */
+        const double ni = (double)lv_mission_phase_iip_count(m, k);
+        db_run += ni * (DB_ROW_BYTES + 12.0 + 5.0 * DB_VALUE_BYTES);
+        mem_run += ni * (8.0 + 1.0 + 4.0 * 8.0);
         /* the kept runs: only what is known now (a phase with ends may write less than its
          * stop time allows, and never more than max_rows rows) */
         if (ek.bounded) {
@@ -437,6 +442,22 @@ lv_status lv_mc_worker_run(lv_mc_worker *w, uint64_t run, const void **rec, size
                                     (size_t)ev->index < res->n_event_names
                                 ? res->event_names[ev->index]
                                 : "time event");
+        }
+        /* its impact point at its `iip_at:` times: none where it did not run */
+        const size_t ni = lv_mission_phase_iip_count(m, k);
+        lv_bytes_u64(b, ni);
+        for (size_t i = 0; i < ni; i++) {
+            lv_iip_sample sm;
+            if (lv_run_iip(w->run, k, i, &sm, NULL) != LV_OK)
+                sm = (lv_iip_sample){NAN, LV_IIP_NOT_FLYING, NAN, NAN, NAN, NAN};
+            if (!ran || ps == LV_PHASE_SKIPPED)
+                sm = (lv_iip_sample){sm.t, LV_IIP_NOT_FLYING, NAN, NAN, NAN, NAN};
+            lv_bytes_f64(b, sm.t);
+            lv_bytes_u64(b, (uint64_t)sm.state);
+            lv_bytes_f64(b, sm.lat);
+            lv_bytes_f64(b, sm.lon);
+            lv_bytes_f64(b, sm.tof);
+            lv_bytes_f64(b, sm.range);
         }
     }
     if (b->nomem)

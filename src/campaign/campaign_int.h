@@ -37,7 +37,9 @@ const char *lv_rd_str(lv_rd *r, size_t *len); /* points into the record; not NUL
  *   u64 n_phases, per phase: u64 state (lv_phase_state, or LV_MC_IMPACT: done by such an
  *     impact), str end, f64 t_end, u64 steps,
  *     u64 rhs_evals, str error, u64 n_final, f64 finals[n_final], u64 n_events,
- *     per event: f64 t, str name. */
+ *     per event: f64 t, str name, u64 n_iip (the phase's `iip_at:` times), per time:
+ *     f64 t, u64 state (lv_iip_state), f64 lat, lon, tof, range (rad, s, m; NaN unless
+ *     LV_IIP_IMPACT). */
 enum { LV_MC_OK = 0, LV_MC_FAILED = 1, LV_MC_INPUT = 2, LV_MC_RUN_IMPACT = 3,
        LV_MC_RUN_CRASHED = 4 };
 /* A phase's state in a record beside lv_phase_state's: done, but by an `impact` end where its

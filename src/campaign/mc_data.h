@@ -8,6 +8,7 @@
 
 typedef struct lv_mc_phase {
     char *name;
+    char *stages;         /* the bodies it carries, "upper, payload" ("" before schema 3) */
     int parent;
     char tbl[128];
     size_t n_rows, n_cols;
@@ -18,6 +19,19 @@ typedef struct lv_mc_phase {
     char **col;           /* [n_cols] the final values' names */
     double *v;            /* [n_rows * n_cols], NaN: none */
 } lv_mc_phase;
+
+/* A phase's impact point at one of its `iip_at:` times, over the runs (the table iip). */
+typedef struct lv_mc_iip {
+    char label[160];       /* "IIP at T+60 s (ascent)": the footprint's name in every output */
+    int phase;             /* its phase's index */
+    double t;              /* s, mission time */
+    size_t n;              /* runs with a row */
+    size_t n_impact, n_orbit, n_not_flying; /* by state */
+    size_t *run;           /* [n] ascending */
+    unsigned char *state;  /* [n] lv_iip_state: 0 impact, 1 in orbit, 2 not flying */
+    double *lat, *lon;     /* [n] rad (NaN unless an impact) */
+    double *tof, *range;   /* [n] s, m (NaN unless an impact) */
+} lv_mc_iip;
 
 typedef struct lv_mc_data {
     char mission[256], planet[64], seed[32];
@@ -30,6 +44,8 @@ typedef struct lv_mc_data {
                                   3 input */
     size_t n_ph;
     lv_mc_phase *ph;
+    size_t n_iip;              /* the IIP footprints: per phase, its `iip_at:` times */
+    lv_mc_iip *iip;
 } lv_mc_data;
 
 lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err);
@@ -58,6 +74,11 @@ void lv_mc_ground_inv(const lv_mc_data *d, double lat0, double lon0, double east
                       double *lat, double *lon);
 size_t lv_mc_ground_points(const lv_mc_data *d, const lv_mc_phase *p, double *east,
                            double *north, double *lat0, double *lon0);
+/* The same for points given as lat[i], lon[i] (rad; a non-finite one is left out: east and
+ * north NaN there); east, north may be lat, lon themselves (each point is read before it is
+ * written). Returns the count of points. */
+size_t lv_mc_ground_xy(const lv_mc_data *d, size_t n, const double *lat, const double *lon,
+                       double *east, double *north, double *lat0, double *lon0);
 int lv_mc_is_impact(const lv_mc_phase *p);
 const char *lv_mc_cause(const char *error);
 extern const char *const lv_mc_orbit_pairs[][2];

@@ -191,6 +191,40 @@ int lv_mc_is_impact(const lv_mc_phase *p)
     return n_done > 0 && 2 * n_imp >= n_done;
 }
 
+size_t lv_mc_ground_xy(const lv_mc_data *d, size_t n, const double *lat, const double *lon,
+                       double *east, double *north, double *lat0, double *lon0)
+{
+    /* the mean point, longitudes unwrapped about the first point */
+    double sl = 0, sn = 0, ref = NAN;
+    size_t m = 0;
+    *lat0 = *lon0 = NAN;
+    for (size_t i = 0; i < n; i++) {
+        const double la = lat[i], lo = lon[i];
+        if (!isfinite(la) || !isfinite(lo))
+            continue;
+        if (isnan(ref))
+            ref = lo;
+        sl += la;
+        sn += ref + remainder(lo - ref, 2.0 * M_PI);
+        m++;
+    }
+    if (m == 0) {
+        for (size_t i = 0; i < n; i++)
+            east[i] = north[i] = NAN;
+        return 0;
+    }
+    *lat0 = sl / (double)m;
+    *lon0 = sn / (double)m;
+    for (size_t i = 0; i < n; i++) {
+        const double la = lat[i], lo = lon[i];
+        if (!isfinite(la) || !isfinite(lo))
+            east[i] = north[i] = NAN;
+        else
+            lv_mc_ground(d, *lat0, *lon0, la, lo, &east[i], &north[i]);
+    }
+    return m;
+}
+
 /* Every run's ground point (E, N metres about the mean; lat, lon) of phase p; returns the
  * count of done runs with finite points. x/y: [n_rows] (NaN where not done). */
 size_t lv_mc_ground_points(const lv_mc_data *d, const lv_mc_phase *p, double *east,
@@ -200,31 +234,11 @@ size_t lv_mc_ground_points(const lv_mc_data *d, const lv_mc_phase *p, double *ea
     *lat0 = *lon0 = NAN;
     if (cl == (size_t)-1 || cn == (size_t)-1)
         return 0;
-    /* the mean point, longitudes unwrapped about the first point */
-    double sl = 0, sn = 0, ref = NAN;
-    size_t m = 0;
-    for (size_t i = 0; i < p->n_rows; i++) {
-        const double la = p->v[i * p->n_cols + cl], lo = p->v[i * p->n_cols + cn];
-        if (p->state[i] != 1 || !isfinite(la) || !isfinite(lo))
-            continue;
-        if (isnan(ref))
-            ref = lo;
-        sl += la;
-        sn += ref + remainder(lo - ref, 2.0 * M_PI);
-        m++;
+    for (size_t i = 0; i < p->n_rows; i++) { /* the done runs' points, in place */
+        east[i] = p->state[i] == 1 ? p->v[i * p->n_cols + cl] : NAN;
+        north[i] = p->state[i] == 1 ? p->v[i * p->n_cols + cn] : NAN;
     }
-    if (m == 0)
-        return 0;
-    *lat0 = sl / (double)m;
-    *lon0 = sn / (double)m;
-    for (size_t i = 0; i < p->n_rows; i++) {
-        const double la = p->v[i * p->n_cols + cl], lo = p->v[i * p->n_cols + cn];
-        if (p->state[i] != 1 || !isfinite(la) || !isfinite(lo))
-            east[i] = north[i] = NAN;
-        else
-            lv_mc_ground(d, *lat0, *lon0, la, lo, &east[i], &north[i]);
-    }
-    return m;
+    return lv_mc_ground_xy(d, p->n_rows, east, north, east, north, lat0, lon0);
 }
 
 /* The orbit-element pairs whose ellipses are reported. */

@@ -202,8 +202,9 @@ lv_status lv_mc_draw_figures(const lv_mc_data *d, const char *outdir, lv_mc_figs
                                  180.0 / M_PI
                            : NAN;
             }
-            snprintf(title, sizeof title, "%s: %s points and 3-sigma ellipse (%zu runs)",
-                     p->name, lv_mc_is_impact(p) ? "impact" : "final ground", g.n);
+            snprintf(title, sizeof title, "%s%s%.60s%s: %s points and 3-sigma ellipse (%zu runs)",
+                     p->name, p->stages[0] ? " (" : "", p->stages, p->stages[0] ? ")" : "",
+                     lv_mc_is_impact(p) ? "impact" : "final ground", g.n);
             const fig f = { title, "longitude [deg]", "latitude [deg]", lo, la, p->n_rows, &g,
                             lon0 * 180.0 / M_PI, lat0 * 180.0 / M_PI,
                             180.0 / M_PI / (Nr * cos(lat0)), 180.0 / M_PI / M, 1, 0 };
@@ -265,6 +266,36 @@ lv_status lv_mc_draw_figures(const lv_mc_data *d, const char *outdir, lv_mc_figs
                 figs->n++;
             break;
         }
+    }
+    /* the IIP at given times: the impact points over the map with their ellipse */
+    for (size_t q = 0; q < d->n_iip && st == LV_OK && figs->n < LV_MC_MAX_FIGS; q++) {
+        const lv_mc_iip *f = &d->iip[q];
+        double lat0, lon0;
+        if (lv_mc_ground_xy(d, f->n, f->lat, f->lon, x, y, &lat0, &lon0) < 3)
+            continue;
+        lv_mc_ell g;
+        lv_mc_ellipse(x, y, f->n, 3.0, &g);
+        double a, e2;
+        lv_mc_planet(d, &a, &e2);
+        const double s = sin(lat0), w = sqrt(1.0 - e2 * s * s);
+        const double M = a * (1.0 - e2) / (w * w * w), Nr = a / w;
+        for (size_t i = 0; i < f->n; i++) {
+            const int ok = isfinite(x[i]);
+            la[i] = ok ? f->lat[i] * 180.0 / M_PI : NAN;
+            lo[i] = ok ? (lon0 + remainder(f->lon[i] - lon0, 2.0 * M_PI)) * 180.0 / M_PI : NAN;
+        }
+        char title[256];
+        snprintf(title, sizeof title, "%s: impact points and 3-sigma ellipse (%zu runs)",
+                 f->label, g.n);
+        const fig fg = { title, "longitude [deg]", "latitude [deg]", lo, la, f->n, &g,
+                         lon0 * 180.0 / M_PI, lat0 * 180.0 / M_PI,
+                         180.0 / M_PI / (Nr * cos(lat0)), 180.0 / M_PI / M, 1, 0 };
+        snprintf(figs->stem[figs->n], sizeof figs->stem[0], "mc_iip_%zu_%.30s", q,
+                 f->phase >= 0 && (size_t)f->phase < d->n_ph ? d->ph[f->phase].name : "");
+        snprintf(figs->title[figs->n], sizeof figs->title[0], "%s", title);
+        snprintf(path, sizeof path, "%s/%s.png", dir, figs->stem[figs->n]);
+        if ((st = render(&fg, path, err)) == LV_OK)
+            figs->n++;
     }
 done:
     free(x);

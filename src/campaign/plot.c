@@ -102,7 +102,13 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
                 ni += p->state[i] == 4, nc += p->state[i] == 5;
         fputs("<h2>Phase ", f);
         esc(f, p->name);
-        fprintf(f, "</h2>\n<p>%zu runs: %zu done, %zu fell to the ground (an impact end not "
+        fputs("</h2>\n<p>", f);
+        if (p->stages[0] != '\0') { /* the bodies: a jettisoned part's fall names its part */
+            fputs("Carries ", f);
+            esc(f, p->stages);
+            fputs(". ", f);
+        }
+        fprintf(f, "%zu runs: %zu done, %zu fell to the ground (an impact end not "
                 "the first written), %zu crashed (a touchdown beyond the landing gear's "
                 "limits), %zu failed (%.3g %%), %zu not run.", p->n_rows, nd, ni, nc, nf,
                 p->n_rows ? 100.0 * (double)nf / (double)p->n_rows : 0.0, ns);
@@ -158,6 +164,37 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
         }
         fputs("</table>\n", f);
     }
+    if (d->n_iip > 0)
+        fputs("<h2>Instantaneous impact point at given times</h2>\n<p>Per phase and "
+              "<code>iip_at:</code> time, where the vehicle would fall if its thrust stopped "
+              "then (drag-free, docs/models.md): the runs flying with an impact point, in orbit "
+              "(no impact), not flying at that time; the impact points' 3-sigma ellipse.</p>\n"
+              "<table><tr><th>footprint</th><th>runs</th><th>impact point</th><th>in orbit"
+              "</th><th>not flying</th><th>centre</th><th>semi-axes [m]</th><th>azimuth"
+              "</th><th>time of flight [s]</th></tr>\n", f);
+    for (size_t q = 0; q < d->n_iip; q++) {
+        const lv_mc_iip *fp = &d->iip[q];
+        fputs("<tr><td>", f);
+        esc(f, fp->label);
+        fprintf(f, "</td><td>%zu</td><td>%zu</td><td>%zu</td><td>%zu</td>", fp->n, fp->n_impact,
+                fp->n_orbit, fp->n_not_flying);
+        double lat0, lon0;
+        if (lv_mc_ground_xy(d, fp->n, fp->lat, fp->lon, x, y, &lat0, &lon0) >= 3) {
+            lv_mc_ell g;
+            lv_mc_ellipse(x, y, fp->n, 3.0, &g);
+            lv_mc_stat s;
+            lv_mc_summary(fp->tof, fp->n, &s);
+            fprintf(f, "<td>%.5f&deg; N, %.5f&deg; E</td><td>%.4g, %.4g</td><td>%.1f&deg;</td>"
+                    "<td>%.6g &plusmn; %.3g</td>", lat0 * 180.0 / M_PI,
+                    remainder(lon0, 2.0 * M_PI) * 180.0 / M_PI, g.a, g.b,
+                    fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0), s.mean, s.sd);
+        } else {
+            fputs("<td>-</td><td>-</td><td>-</td><td>-</td>", f);
+        }
+        fputs("</tr>\n", f);
+    }
+    if (d->n_iip > 0)
+        fputs("</table>\n", f);
     if (figs.n > 0)
         fputs("<h2>Figures</h2>\n", f);
     for (size_t i = 0; i < figs.n; i++) {

@@ -71,6 +71,7 @@ void lv_mc_data_free(lv_mc_data *d)
     for (size_t k = 0; k < d->n_ph; k++) {
         lv_mc_phase *p = &d->ph[k];
         free(p->name);
+        free(p->stages);
         for (size_t r = 0; r < p->n_rows; r++) {
             free(p->end[r]);
             free(p->error[r]);
@@ -86,7 +87,96 @@ void lv_mc_data_free(lv_mc_data *d)
         free(p->v);
     }
     free(d->ph);
+    for (size_t i = 0; i < d->n_iip; i++) {
+        lv_mc_iip *q = &d->iip[i];
+        free(q->run);
+        free(q->state);
+        free(q->lat);
+        free(q->lon);
+        free(q->tof);
+        free(q->range);
+    }
+    free(d->iip);
     free(d);
+}
+
+/* The IIP footprints (table iip, schema 3; none in an older database): one per phase and
+ * `iip_at:` time, its runs in run order. */
+static lv_status load_iip(sqlite3 *db, lv_mc_data *d, const char *db_path, lv_err *err)
+{
+    sqlite3_stmt *s = NULL, *q = NULL;
+    if (sqlite3_prepare_v2(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND "
+                           "name = 'iip'", -1, &s, NULL) != SQLITE_OK)
+        goto sqlfail;
+    const int have = sqlite3_step(s) == SQLITE_ROW;
+    sqlite3_finalize(s);
+    s = NULL;
+    if (!have)
+        return LV_OK;
+    if (sqlite3_prepare_v2(db, "SELECT phase, t, count(*) FROM iip GROUP BY phase, t "
+                           "ORDER BY phase, t", -1, &s, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(db, "SELECT run, state, lat, lon, tof, range FROM iip WHERE "
+                           "phase = ? AND t = ? ORDER BY run", -1, &q, NULL) != SQLITE_OK)
+        goto sqlfail;
+    while (sqlite3_step(s) == SQLITE_ROW) {
+        lv_mc_iip *ni = realloc(d->iip, (d->n_iip + 1) * sizeof *ni);
+        if (ni == NULL)
+            goto nomem;
+        d->iip = ni;
+        lv_mc_iip *f = &d->iip[d->n_iip++];
+        memset(f, 0, sizeof *f);
+        f->phase = sqlite3_column_int(s, 0);
+        f->t = sqlite3_column_double(s, 1);
+        const size_t cap = (size_t)sqlite3_column_int64(s, 2) + 1;
+        const char *pn = f->phase >= 0 && (size_t)f->phase < d->n_ph ? d->ph[f->phase].name
+                                                                     : "?";
+        snprintf(f->label, sizeof f->label, "IIP at T%+.6g s (%.100s)", f->t, pn);
+        f->run = malloc(cap * sizeof *f->run);
+        f->state = malloc(cap);
+        f->lat = malloc(cap * sizeof *f->lat);
+        f->lon = malloc(cap * sizeof *f->lon);
+        f->tof = malloc(cap * sizeof *f->tof);
+        f->range = malloc(cap * sizeof *f->range);
+        if (!f->run || !f->state || !f->lat || !f->lon || !f->tof || !f->range)
+            goto nomem;
+        sqlite3_reset(q);
+        sqlite3_bind_int(q, 1, f->phase);
+        sqlite3_bind_double(q, 2, f->t);
+        while (sqlite3_step(q) == SQLITE_ROW && f->n < cap) {
+            const sqlite3_int64 r = sqlite3_column_int64(q, 0);
+            if (r < 0 || (size_t)r >= d->n_runs)
+                continue;
+            const char *stt = (const char *)sqlite3_column_text(q, 1);
+            const size_t i = f->n++;
+            f->run[i] = (size_t)r;
+            f->state[i] = stt && strcmp(stt, "impact") == 0     ? 0
+                          : stt && strcmp(stt, "in orbit") == 0 ? 1
+                                                                : 2;
+            double v4[4];
+            for (int j = 0; j < 4; j++)
+                v4[j] = f->state[i] == 0 && sqlite3_column_type(q, 2 + j) != SQLITE_NULL
+                            ? sqlite3_column_double(q, 2 + j)
+                            : NAN;
+            f->lat[i] = v4[0];
+            f->lon[i] = v4[1];
+            f->tof[i] = v4[2];
+            f->range[i] = v4[3];
+            f->n_impact += f->state[i] == 0;
+            f->n_orbit += f->state[i] == 1;
+            f->n_not_flying += f->state[i] == 2;
+        }
+    }
+    sqlite3_finalize(s);
+    sqlite3_finalize(q);
+    return LV_OK;
+sqlfail:
+    sqlite3_finalize(s);
+    sqlite3_finalize(q);
+    return lv_fail(err, LV_ERR_INPUT, "%s: %s", db_path, sqlite3_errmsg(db));
+nomem:
+    sqlite3_finalize(s);
+    sqlite3_finalize(q);
+    return lv_fail(err, LV_ERR_NOMEM, "out of memory");
 }
 
 /* What lv_mc_data_load and the statistics' work arrays hold for N runs of n_in inputs: per
@@ -203,7 +293,10 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
     sqlite3_finalize(s);
     s = NULL;
     /* phases */
-    if (sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl FROM phases ORDER BY k", -1, &s,
+    /* phases.stages since schema 3 */
+    if (sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl, stages FROM phases ORDER BY k", -1,
+                           &s, NULL) != SQLITE_OK &&
+        sqlite3_prepare_v2(db, "SELECT k, name, parent, tbl, '' FROM phases ORDER BY k", -1, &s,
                            NULL) != SQLITE_OK)
         goto sqlfail;
     while (sqlite3_step(s) == SQLITE_ROW) {
@@ -214,6 +307,9 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         lv_mc_phase *p = &d->ph[d->n_ph++];
         memset(p, 0, sizeof *p);
         p->name = dup_s((const char *)sqlite3_column_text(s, 1));
+        p->stages = dup_s((const char *)sqlite3_column_text(s, 4));
+        if (p->name == NULL || p->stages == NULL)
+            goto nomem;
         p->parent = sqlite3_column_int(s, 2);
         snprintf(p->tbl, sizeof p->tbl, "%s", (const char *)sqlite3_column_text(s, 3));
     }
@@ -284,6 +380,8 @@ lv_status lv_mc_data_load(const char *db_path, lv_mc_data **out, lv_err *err)
         sqlite3_finalize(s);
         s = NULL;
     }
+    if ((st = load_iip(db, d, db_path, err)) != LV_OK)
+        goto fail;
     sqlite3_close(db);
     *out = d;
     return LV_OK;
@@ -411,6 +509,60 @@ static void kml_ellipse(sbuf *k, const lv_mc_data *d, const char *name, double l
     sb_printf(k, "</coordinates></LineString></Placemark>\n");
 }
 
+/* A footprint on the ground: the points lat[i], lon[i] (rad; non-finite: left out) of the
+ * runs run[i], i < n. With 3 points or more: its 3-sigma ellipse as a row of ellipses.csv
+ * (kind `csv_kind`), an object of `els` (stats.json, "kind": `json_kind`), and a folder of
+ * footprint.kml (the ellipse, at most 5000 points). east, north: [n] work arrays. */
+static void ground_footprint(const lv_mc_data *d, const char *name, const char *json_kind,
+                             const char *csv_kind, const char *kml_what, size_t n,
+                             const double *lat, const double *lon, const size_t *run,
+                             double *east, double *north, sbuf *ell, sbuf *kml, cJSON *els)
+{
+    double lat0, lon0;
+    if (lv_mc_ground_xy(d, n, lat, lon, east, north, &lat0, &lon0) < 3)
+        return;
+    lv_mc_ell g;
+    lv_mc_ellipse(east, north, n, 3.0, &g);
+    double clat, clon;
+    lv_mc_ground_inv(d, lat0, lon0, g.mx, g.my, &clat, &clon);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "kind", json_kind);
+    cJSON_AddStringToObject(o, "frame", "local east (x), north (y) about the mean, m");
+    cJSON_AddNumberToObject(o, "n", (double)g.n);
+    cJSON_AddItemToObject(o, "centre_lat_deg", num(clat * 180.0 / M_PI));
+    cJSON_AddItemToObject(o, "centre_lon_deg", num(remainder(clon, 2.0 * M_PI) * 180.0 / M_PI));
+    cJSON_AddItemToObject(o, "sd_east_m", num(g.sx));
+    cJSON_AddItemToObject(o, "sd_north_m", num(g.sy));
+    cJSON_AddItemToObject(o, "rho", num(g.rho));
+    cJSON_AddItemToObject(o, "semi_major_m", num(g.a));
+    cJSON_AddItemToObject(o, "semi_minor_m", num(g.b));
+    /* azimuth of the major axis: clockwise from north */
+    cJSON_AddItemToObject(o, "azimuth_deg",
+                          num(fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0)));
+    double la1, lo1, la2, lo2;
+    lv_mc_ground_inv(d, lat0, lon0, g.mx, g.my + g.a, &la1, &lo1);
+    lv_mc_ground_inv(d, lat0, lon0, g.mx + g.a, g.my, &la2, &lo2);
+    cJSON_AddItemToObject(o, "semi_major_dlat_deg", num((la1 - clat) * 180.0 / M_PI));
+    cJSON_AddItemToObject(o, "semi_major_dlon_deg", num((lo2 - clon) * 180.0 / M_PI));
+    cJSON_AddItemToArray(els, o);
+    sb_printf(ell, "\"%s\",%s,east_m,north_m,%zu,%.10g,%.10g,%.10g,%.10g,%.6g,%.10g,"
+              "%.10g,%.6g,%.10g,%.10g\n", name, csv_kind, g.n, g.mx, g.my, g.sx, g.sy, g.rho,
+              g.a, g.b, fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0),
+              clat * 180.0 / M_PI, remainder(clon, 2.0 * M_PI) * 180.0 / M_PI);
+    sb_printf(kml, "<Folder><name>%s (%s, %zu runs)</name>\n", name, kml_what, g.n);
+    kml_ellipse(kml, d, name, lat0, lon0, &g);
+    size_t shown = 0;
+    for (size_t i = 0; i < n && shown < 5000; i++)
+        if (isfinite(east[i])) {
+            sb_printf(kml, "<Placemark><name>run %zu</name><styleUrl>#pt</styleUrl>"
+                      "<Point><coordinates>%.8f,%.8f,0</coordinates></Point>"
+                      "</Placemark>\n", run[i], remainder(lon[i], 2.0 * M_PI) * 180.0 / M_PI,
+                      lat[i] * 180.0 / M_PI);
+            shown++;
+        }
+    sb_printf(kml, "</Folder>\n");
+}
+
 lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err)
 {
     lv_mc_data *d = NULL;
@@ -470,6 +622,7 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         cJSON *po = cJSON_CreateObject();
         cJSON_AddItemToArray(phs, po);
         cJSON_AddStringToObject(po, "name", p->name);
+        cJSON_AddStringToObject(po, "stages", p->stages);
         cJSON_AddStringToObject(po, "from", p->parent >= 0 && (size_t)p->parent < d->n_ph
                                                 ? d->ph[p->parent].name : "");
         size_t nd = 0, nf = 0, nsk = 0, nim = 0, ncr = 0;
@@ -531,54 +684,20 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         }
         /* ellipses: the ground point, then orbit elements */
         cJSON *els = cJSON_AddArrayToObject(po, "ellipses");
-        double lat0, lon0;
-        if (lv_mc_ground_points(d, p, e, nn, &lat0, &lon0) >= 3) {
-            lv_mc_ell g;
-            lv_mc_ellipse(e, nn, p->n_rows, 3.0, &g);
-            double clat, clon;
-            lv_mc_ground_inv(d, lat0, lon0, g.mx, g.my, &clat, &clon);
+        const size_t cl = lv_mc_col(p, "lat"), cn = lv_mc_col(p, "lon");
+        if (cl != (size_t)-1 && cn != (size_t)-1) {
+            for (size_t i = 0; i < p->n_rows; i++) {
+                x[i] = p->state[i] == 1 ? p->v[i * p->n_cols + cl] : NAN;
+                y[i] = p->state[i] == 1 ? p->v[i * p->n_cols + cn] : NAN;
+            }
             const int impact = lv_mc_is_impact(p);
-            cJSON *o = cJSON_CreateObject();
-            cJSON_AddStringToObject(o, "kind", impact ? "impact" : "ground point");
-            cJSON_AddStringToObject(o, "frame", "local east (x), north (y) about the mean, m");
-            cJSON_AddNumberToObject(o, "n", (double)g.n);
-            cJSON_AddItemToObject(o, "centre_lat_deg", num(clat * 180.0 / M_PI));
-            cJSON_AddItemToObject(o, "centre_lon_deg",
-                                  num(remainder(clon, 2.0 * M_PI) * 180.0 / M_PI));
-            cJSON_AddItemToObject(o, "sd_east_m", num(g.sx));
-            cJSON_AddItemToObject(o, "sd_north_m", num(g.sy));
-            cJSON_AddItemToObject(o, "rho", num(g.rho));
-            cJSON_AddItemToObject(o, "semi_major_m", num(g.a));
-            cJSON_AddItemToObject(o, "semi_minor_m", num(g.b));
-            /* azimuth of the major axis: clockwise from north */
-            cJSON_AddItemToObject(o, "azimuth_deg",
-                                  num(fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0)));
-            double la1, lo1, la2, lo2;
-            lv_mc_ground_inv(d, lat0, lon0, g.mx, g.my + g.a, &la1, &lo1);
-            lv_mc_ground_inv(d, lat0, lon0, g.mx + g.a, g.my, &la2, &lo2);
-            cJSON_AddItemToObject(o, "semi_major_dlat_deg", num((la1 - clat) * 180.0 / M_PI));
-            cJSON_AddItemToObject(o, "semi_major_dlon_deg", num((lo2 - clon) * 180.0 / M_PI));
-            cJSON_AddItemToArray(els, o);
-            sb_printf(&ell, "\"%s\",%s,east_m,north_m,%zu,%.10g,%.10g,%.10g,%.10g,%.6g,%.10g,"
-                      "%.10g,%.6g,%.10g,%.10g\n", p->name, impact ? "impact" : "ground",
-                      g.n, g.mx, g.my, g.sx, g.sy, g.rho, g.a, g.b,
-                      fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0), clat * 180.0 / M_PI,
-                      remainder(clon, 2.0 * M_PI) * 180.0 / M_PI);
-            sb_printf(&kml, "<Folder><name>%s (%s, %zu runs)</name>\n", p->name,
-                      impact ? "impact points" : "final ground points", g.n);
-            kml_ellipse(&kml, d, p->name, lat0, lon0, &g);
-            const size_t cl = lv_mc_col(p, "lat"), cn = lv_mc_col(p, "lon");
-            size_t shown = 0;
-            for (size_t i = 0; i < p->n_rows && shown < 5000; i++)
-                if (p->state[i] == 1 && isfinite(e[i])) {
-                    sb_printf(&kml, "<Placemark><name>run %zu</name><styleUrl>#pt</styleUrl>"
-                              "<Point><coordinates>%.8f,%.8f,0</coordinates></Point>"
-                              "</Placemark>\n", p->run[i],
-                              remainder(p->v[i * p->n_cols + cn], 2.0 * M_PI) * 180.0 / M_PI,
-                              p->v[i * p->n_cols + cl] * 180.0 / M_PI);
-                    shown++;
-                }
-            sb_printf(&kml, "</Folder>\n");
+            char what[1200];
+            snprintf(what, sizeof what, "%s of %.1100s",
+                     impact ? "impact points" : "final ground points",
+                     p->stages[0] ? p->stages : "its bodies");
+            ground_footprint(d, p->name, impact ? "impact" : "ground point",
+                             impact ? "impact" : "ground", what, p->n_rows, x, y, p->run, e, nn,
+                             &ell, &kml, els);
         }
         for (size_t q = 0; lv_mc_orbit_pairs[q][0] != NULL; q++) {
             const size_t cx = lv_mc_col(p, lv_mc_orbit_pairs[q][0]);
@@ -630,6 +749,43 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
                 sb_printf(&sen, ",%.6g,%zu\n", r, used);
             }
         }
+    }
+    /* the IIP at given times: per phase and `iip_at:` time, the runs by state, the impact
+     * points' ellipse, the time of flight and range */
+    cJSON *iips = cJSON_AddArrayToObject(root, "iip");
+    for (size_t q = 0; q < d->n_iip; q++) {
+        const lv_mc_iip *f = &d->iip[q];
+        cJSON *io = cJSON_CreateObject();
+        cJSON_AddItemToArray(iips, io);
+        cJSON_AddStringToObject(io, "name", f->label);
+        cJSON_AddStringToObject(io, "phase", f->phase >= 0 && (size_t)f->phase < d->n_ph
+                                                 ? d->ph[f->phase].name : "");
+        cJSON_AddNumberToObject(io, "t", f->t);
+        cJSON_AddNumberToObject(io, "runs", (double)f->n);
+        cJSON_AddNumberToObject(io, "impact", (double)f->n_impact);
+        cJSON_AddNumberToObject(io, "in_orbit", (double)f->n_orbit);
+        cJSON_AddNumberToObject(io, "not_flying", (double)f->n_not_flying);
+        static const char *const st_name[] = { "impact", "in orbit", "not flying" };
+        const size_t cnt[3] = { f->n_impact, f->n_orbit, f->n_not_flying };
+        for (int j = 0; j < 3; j++)
+            if (cnt[j] > 0)
+                sb_printf(&out, "\"%s\",iip,\"%s\",%zu,%.6g\n", f->label, st_name[j], cnt[j],
+                          f->n ? (double)cnt[j] / (double)f->n : 0.0);
+        cJSON *fin = cJSON_AddObjectToObject(io, "values");
+        const double *vals[4] = { f->lat, f->lon, f->tof, f->range };
+        static const char *const vnames[4] = { "iip_lat", "iip_lon", "iip_tof", "iip_range" };
+        for (int j = 0; j < 4; j++) {
+            lv_mc_stat s;
+            lv_mc_summary(vals[j], f->n, &s);
+            cJSON *o = cJSON_CreateObject();
+            add_stat(o, &s);
+            cJSON_AddItemToObject(fin, vnames[j], o);
+            sb_printf(&csv, "\"%s\",%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+                      f->label, vnames[j], s.n, s.mean, s.sd, s.p1, s.p50, s.p99, s.min, s.max);
+        }
+        ground_footprint(d, f->label, "iip", "iip", "instantaneous impact points", f->n, f->lat,
+                         f->lon, f->run, e, nn, &ell, &kml,
+                         cJSON_AddArrayToObject(io, "ellipses"));
     }
     sb_printf(&kml, "</Document></kml>\n");
     if (csv.nomem || ell.nomem || out.nomem || sen.nomem || kml.nomem) {

@@ -20,15 +20,16 @@
 #include "lvsim/lv_dispersion.h"
 
 /* 2: a phase's state and a run's status `impact` (a fall to the ground where another end was
- * meant) beside done/ok */
-#define LV_MC_SCHEMA 2
-#define LV_MC_SCHEMA_TEXT "2"
+ * meant) beside done/ok; 3: the table iip (a phase's impact point at its `iip_at:` times)
+ * and phases.stages (the bodies a phase carries) */
+#define LV_MC_SCHEMA 3
+#define LV_MC_SCHEMA_TEXT "3"
 
 struct lv_campaign {
     const lv_mission *m;
     lv_campaign_options o;
     sqlite3 *db;
-    sqlite3_stmt *ins_run, *ins_event;
+    sqlite3_stmt *ins_run, *ins_event, *ins_iip;
     sqlite3_stmt **ins_phase; /* [n_phases] */
     size_t n_phases, n_disp;
     size_t *n_final;          /* [n_phases] */
@@ -177,9 +178,11 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
                  "CREATE TABLE correlations(a INTEGER, b INTEGER, rho REAL, PRIMARY KEY(a, b))"
                  " WITHOUT ROWID;"
                  "CREATE TABLE phases(k INTEGER PRIMARY KEY, name TEXT, parent INTEGER,"
-                 " model TEXT, tbl TEXT);"
+                 " model TEXT, tbl TEXT, stages TEXT);"
                  "CREATE TABLE events(run INTEGER, phase INTEGER, seq INTEGER, t REAL, name TEXT,"
-                 " PRIMARY KEY(run, phase, seq)) WITHOUT ROWID;",
+                 " PRIMARY KEY(run, phase, seq)) WITHOUT ROWID;"
+                 "CREATE TABLE iip(run INTEGER, phase INTEGER, t REAL, state TEXT, lat REAL,"
+                 " lon REAL, tof REAL, range REAL, PRIMARY KEY(run, phase, t)) WITHOUT ROWID;",
               err);
     /* runs: one row per run, the drawn inputs as columns (named as written) */
     at = 0;
@@ -290,7 +293,7 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
             }
         }
     sqlite3_finalize(s);
-    if (sqlite3_prepare_v2(c->db, "INSERT INTO phases VALUES (?,?,?,?,?)", -1, &s, NULL) !=
+    if (sqlite3_prepare_v2(c->db, "INSERT INTO phases VALUES (?,?,?,?,?,?)", -1, &s, NULL) !=
         SQLITE_OK)
         return db_fail(c, err, "phases");
     for (size_t k = 0; k < c->n_phases; k++) {
@@ -304,6 +307,14 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
         sqlite3_bind_int(s, 3, pi.parent);
         sqlite3_bind_text(s, 4, pi.model, -1, SQLITE_TRANSIENT);
         sqlite3_bind_text(s, 5, tbl, -1, SQLITE_TRANSIENT);
+        /* the bodies it carries, bottom first: a jettisoned part's fall names its part */
+        char stages[1024];
+        size_t used = 0;
+        stages[0] = '\0';
+        for (size_t i = 0; i < pi.n_stages && used < sizeof stages; i++)
+            used += (size_t)snprintf(stages + used, sizeof stages - used, "%s%s", i ? ", " : "",
+                                     lv_mission_stage_name(m, pi.stages[i]));
+        sqlite3_bind_text(s, 6, stages, -1, SQLITE_TRANSIENT);
         if (sqlite3_step(s) != SQLITE_DONE) {
             sqlite3_finalize(s);
             return db_fail(c, err, "phases");
@@ -323,7 +334,9 @@ static lv_status prepare_inserts(lv_campaign *c, const lv_run *r, lv_err *err)
     cat(sql, sizeof sql, &at, ")");
     if (sqlite3_prepare_v2(c->db, sql, -1, &c->ins_run, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(c->db, "INSERT OR REPLACE INTO events VALUES (?, ?, ?, ?, ?)", -1,
-                           &c->ins_event, NULL) != SQLITE_OK)
+                           &c->ins_event, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(c->db, "INSERT OR REPLACE INTO iip VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+                           -1, &c->ins_iip, NULL) != SQLITE_OK)
         return db_fail(c, err, "prepare");
     for (size_t k = 0; k < c->n_phases; k++) {
         const lv_phase_result *res = lv_run_result(r, k);
@@ -374,6 +387,7 @@ lv_status lv_campaign_close(lv_campaign *c, lv_err *err)
         sqlite3_exec(c->db, "PRAGMA journal_mode=DELETE", NULL, NULL, NULL);
     sqlite3_finalize(c->ins_run);
     sqlite3_finalize(c->ins_event);
+    sqlite3_finalize(c->ins_iip);
     for (size_t k = 0; c->ins_phase && k < c->n_phases; k++)
         sqlite3_finalize(c->ins_phase[k]);
     if (c->db != NULL && sqlite3_close(c->db) != SQLITE_OK && st == LV_OK)
@@ -665,6 +679,24 @@ lv_status lv_campaign_store(lv_campaign *c, const void *rec, size_t len, lv_err 
             sqlite3_bind_text(ev, 5, name, (int)n, SQLITE_TRANSIENT);
             if (sqlite3_step(ev) != SQLITE_DONE)
                 return db_fail(c, err, "events");
+        }
+        /* lv_iip_state's words */
+        static const char *const iip_state[] = { "impact", "in orbit", "not flying" };
+        const uint64_t ni = lv_rd_u64(&rd);
+        for (uint64_t i = 0; i < ni && !rd.bad; i++) {
+            const double t = lv_rd_f64(&rd);
+            const uint64_t is = lv_rd_u64(&rd);
+            sqlite3_stmt *q = c->ins_iip;
+            sqlite3_reset(q);
+            sqlite3_bind_int64(q, 1, (sqlite3_int64)run);
+            sqlite3_bind_int64(q, 2, (sqlite3_int64)k);
+            bind_real(q, 3, t);
+            sqlite3_bind_text(q, 4, iip_state[is <= LV_IIP_NOT_FLYING ? is : LV_IIP_NOT_FLYING],
+                              -1, SQLITE_STATIC);
+            for (int j = 0; j < 4; j++)
+                bind_real(q, 5 + j, lv_rd_f64(&rd));
+            if (!rd.bad && sqlite3_step(q) != SQLITE_DONE)
+                return db_fail(c, err, "iip");
         }
     }
     if (rd.bad)

@@ -164,6 +164,14 @@ static lv_status make_plan(const lv_mission *m, size_t k, const lv_model_def *md
     return LV_OK;
 }
 
+const char *const lv_iip_out_names[LV_IIP_N_OUT] = {"iip_lat", "iip_lon", "iip_tof",
+                                                     "iip_range"};
+
+size_t lv_mission_phase_iip_count(const lv_mission *m, size_t k)
+{
+    return m != NULL && k < m->def->n_phases ? m->def->phases[k].n_iip_at : 0;
+}
+
 void lv_phase_stops(const lv_mission_def *d, const lv_phase_plan *pl, size_t k, const double *v,
                     double start_time, lv_sim_stop *out)
 {
@@ -420,6 +428,17 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
         }
         for (size_t j = 0; j < ph->n_ends && st == LV_OK; j++)
             st = check_var_end(m, ph, &ph->ends[j], md, err);
+        for (size_t j = 0; ph->n_iip_at > 0 && st == LV_OK && j < LV_IIP_N_OUT; j++) {
+            lv_var_kind kind;
+            size_t idx;
+            if (lv_model_find(md, lv_iip_out_names[j], &kind, &idx, NULL) != LV_OK ||
+                kind != LV_VAR_OUTPUT)
+                st = lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': iip_at: the %s model has "
+                             "no impact-point output '%s' (the dof3, dof6 and runway models "
+                             "have them)",
+                             d->path, ph->iip_at_loc.line, ph->iip_at_loc.column, ph->name,
+                             ph->type->name, lv_iip_out_names[j]);
+        }
         for (size_t j = 0; j < d->n_params; j++) {
             lv_var_kind kind;
             size_t idx;

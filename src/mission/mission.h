@@ -288,6 +288,12 @@ typedef struct lv_phase_def {
     int *engines_run;     /* [bottom stage's n_engines]: how many of each kind run; NULL: all */
     size_t n_engine_out;  /* engine-outs: `count` engines of kind `engine` stop `time` s after */
     lv_engine_out_def *engine_out; /*   the phase's start */
+    /* `iip_at: [t1, t2, ...]`: mission times [s], strictly increasing, at which every run
+     * records the phase's instantaneous impact point (lv_run_iip; docs/monte-carlo.md,
+     * "The IIP at given times"); the phase's model must have the iip_* outputs */
+    size_t n_iip_at;
+    double *iip_at;
+    lv_src_loc iip_at_loc; /* the key */
     lv_src_loc loc;
 } lv_phase_def;
 
@@ -317,6 +323,11 @@ typedef struct lv_mission_def {
     lv_targeting_def *targeting; /* the `targeting:` section, or NULL */
     struct lv_disp_def *disp; /* `dispersions:` (mission/dispersion.h), or NULL */
 } lv_mission_def;
+
+/* The outputs a phase's `iip_at:` reads, in lv_iip_sample's order: iip_lat, iip_lon,
+ * iip_tof, iip_range (mission.c). */
+#define LV_IIP_N_OUT 4
+extern const char *const lv_iip_out_names[LV_IIP_N_OUT];
 
 /* Parse and validate a mission file. Errors are "file:line:column: message". */
 lv_status lv_mission_def_load(const char *path, lv_mission_def **out, lv_err *err);

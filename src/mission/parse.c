@@ -290,6 +290,7 @@ void lv_mission_def_free(lv_mission_def *m)
         for (size_t j = 0; j < ph->n_engine_out; j++)
             free(ph->engine_out[j].label);
         free(ph->engine_out);
+        free(ph->iip_at);
     }
     free(m->phases);
     lv_targeting_def_free(m->targeting);

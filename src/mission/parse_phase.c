@@ -322,7 +322,39 @@ static lv_status find_stage(const lv_pctx *c, const lv_ynode *v, const char *wha
 /* The keys every phase has; a model type adds its own (phase_type.h). */
 static const char *const phase_keys[] = { "name", "model", "stages", "from", "start_time",
                                           "stop_time", "end", "end_name", "integrator", "set",
-                                          "alternative", NULL };
+                                          "alternative", "iip_at", NULL };
+
+/* The most `iip_at:` times a phase may list. */
+#define IIP_AT_MAX 1000
+
+/* `iip_at: [60, 120]`: mission times [s] at which a run records the phase's instantaneous
+ * impact point; finite, strictly increasing, at most IIP_AT_MAX. Whether the model has the
+ * iip_* outputs is checked when the mission is loaded (mission.c). */
+static lv_status parse_iip_at(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                              const char *what, lv_phase_def *ph)
+{
+    char buf[64];
+    if (v->kind != LV_YNODE_SEQ || v->n == 0)
+        return lv_pk_fail(c, v, "%s: iip_at: a list of mission times in s expected, e.g. "
+                          "[60, 120], found %s", what,
+                          v->kind == LV_YNODE_SEQ ? "an empty list"
+                                                  : lv_pk_describe(v, buf, sizeof buf));
+    if (v->n > IIP_AT_MAX)
+        return lv_pk_fail(c, v, "%s: iip_at: %zu times, at most %d", what, v->n, IIP_AT_MAX);
+    if ((ph->iip_at = calloc(v->n, sizeof *ph->iip_at)) == NULL)
+        return lv_pk_nomem(c);
+    for (size_t j = 0; j < v->n; j++) {
+        lv_status st = lv_pk_num(c, v->kids[j], what, "iip_at", &ph->iip_at[j]);
+        if (st != LV_OK)
+            return st;
+        if (j > 0 && !(ph->iip_at[j] > ph->iip_at[j - 1]))
+            return lv_pk_fail(c, v->kids[j], "%s: iip_at: the times must increase: %g s after "
+                              "%g s", what, ph->iip_at[j], ph->iip_at[j - 1]);
+        ph->n_iip_at = j + 1;
+    }
+    ph->iip_at_loc = lv_pk_loc(key);
+    return LV_OK;
+}
 
 /* The user's names of a phase's events are unique within it (`name:` of its ends and
  * engine-outs; `end_name:` is the default of the unnamed ends, not counted). */
@@ -505,6 +537,9 @@ static lv_status parse_phase(const lv_pctx *pc, const lv_ynode *n, size_t k, lv_
             return st;
     }
     if ((st = parse_integrator(c, lv_pk_get(n, "integrator"), ph->name, ph)) != LV_OK)
+        return st;
+    if ((v = lv_pk_get(n, "iip_at")) != NULL &&
+        (st = parse_iip_at(c, lv_pk_key(n, "iip_at"), v, what, ph)) != LV_OK)
         return st;
     if (ph->type->parse != NULL && (st = ph->type->parse(c, n, ph)) != LV_OK)
         return st;

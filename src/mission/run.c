@@ -44,6 +44,9 @@ typedef struct run_phase {
     lv_handoff_notes notes; /* what its hand-off absorbed (res.absorbed_* point here) */
     const char **labels;  /* [report.n_event_log]: the user's names of its events
                              (res.event_labels; the strings are the mission's) */
+    size_t n_iip;         /* the phase's `iip_at:` times */
+    const double *iip_t;  /*   (the mission's) */
+    lv_iip_sample *iip;   /* [n_iip] its impact point at those times in the last execute */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
     int claimed;          /* in the current execute: taken by a worker */
@@ -62,6 +65,13 @@ struct lv_run {
     pthread_mutex_t lock;
     pthread_cond_t cv;
 };
+
+/* n samples at times t: not flying (none taken yet). */
+static void iip_none(lv_iip_sample *s, const double *t, size_t n)
+{
+    for (size_t i = 0; s != NULL && i < n; i++)
+        s[i] = (lv_iip_sample){t[i], LV_IIP_NOT_FLYING, NAN, NAN, NAN, NAN};
+}
 
 static void phase_clear(run_phase *p)
 {
@@ -85,6 +95,7 @@ static void phase_clear(run_phase *p)
     p->res.mass_from_stages = p->res.mass_start = NAN;
     p->notes.n = 0;
     p->res.n_absorbed = 0;
+    iip_none(p->iip, p->iip_t, p->n_iip);
 }
 
 void lv_run_free(lv_run *r)
@@ -99,6 +110,7 @@ void lv_run_free(lv_run *r)
         free(p->prop_start);
         free(p->dry);
         free(p->set_values);
+        free(p->iip);
     }
     free(r->ph);
     free(r->vals);
@@ -138,7 +150,11 @@ lv_status lv_run_create(const lv_mission *m, lv_run **out, lv_err *err)
         p->prop_start = calloc(d->n_stages + 1, sizeof *p->prop_start);
         p->dry = calloc(d->n_stages + 1, sizeof *p->dry);
         p->set_values = calloc(ph->n_set + 1, sizeof *p->set_values);
-        if (!p->fvalues || !p->prop_end || !p->prop_start || !p->dry || !p->set_values) {
+        p->n_iip = ph->n_iip_at;
+        p->iip_t = ph->iip_at;
+        p->iip = calloc(ph->n_iip_at + 1, sizeof *p->iip);
+        if (!p->fvalues || !p->prop_end || !p->prop_start || !p->dry || !p->set_values ||
+            !p->iip) {
             lv_run_free(r);
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
         }
@@ -250,6 +266,7 @@ struct lv_phase_call {
     lv_handoff_notes notes; /* what the hand-off absorbed */
     lv_result *rows;
     lv_sink mem;
+    lv_iip_sample *iip;  /* [phase's n_iip_at] the impact point at its `iip_at:` times */
 };
 
 void lv_phase_call_free(lv_phase_call *c)
@@ -262,6 +279,7 @@ void lv_phase_call_free(lv_phase_call *c)
     free(c->finals);
     free(c->prop);
     free(c->stops);
+    free(c->iip);
     lv_sink_destroy(&c->mem);
     lv_result_free(c->rows);
     free(c);
@@ -296,10 +314,12 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     c->finals = calloc(pl->n_final, sizeof *c->finals);
     c->prop = calloc(d->n_stages + 1, sizeof *c->prop);
     c->stops = calloc(pl->n_stops + 1, sizeof *c->stops);
-    if (!c->names || !c->values || !c->finals || !c->prop || !c->stops) {
+    c->iip = calloc(ph->n_iip_at + 1, sizeof *c->iip);
+    if (!c->names || !c->values || !c->finals || !c->prop || !c->stops || !c->iip) {
         lv_phase_call_free(c);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
+    iip_none(c->iip, ph->iip_at, ph->n_iip_at);
     /* the stage book: what the parent left, or the run's propellant loads */
     for (size_t s = 0; s < d->n_stages; s++)
         c->prop[s] = par ? par->prop_end[s] : v[d->stages[s].propellant_mass];
@@ -563,6 +583,7 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     }
     label_events(r, c->k, p);
     memcpy(p->fvalues, c->finals, pl->n_final * sizeof *p->fvalues);
+    memcpy(p->iip, c->iip, ph->n_iip_at * sizeof *p->iip);
     p->rows = c->rows;
     c->rows = NULL;
     p->stem = c->s.result_file ? strdup(c->s.result_file) : NULL;
@@ -646,6 +667,64 @@ static int progress_thunk(double t, void *user)
     return pc->opt->progress ? pc->opt->progress(pc->r, pc->k, t, pc->opt->user) : 0;
 }
 
+/* lv_simulate with stops at the phase's `iip_at:` times: the integrator is advanced to each
+ * time t inside the phase (lv_sim_advance: its own interpolation; the steps, rows and finals
+ * are those of lv_simulate) and the iip_* outputs are evaluated at the state there. A time
+ * before the start, after an end or the stop time, or after a failure is not flown. */
+static lv_status simulate_iip(lv_phase_call *c, const lv_phase_def *ph, lv_sim_report *rep,
+                              lv_err *err)
+{
+    const lv_model_def *md = c->pm->def;
+    lv_vref ref[LV_IIP_N_OUT];
+    for (size_t j = 0; j < LV_IIP_N_OUT; j++) {
+        lv_status st = lv_model_vref(md, lv_iip_out_names[j], &ref[j], err);
+        if (st != LV_OK) { /* refused when the mission was loaded (mission.c) */
+            memset(rep, 0, sizeof *rep);
+            rep->stop_event = -1;
+            rep->reason = LV_STOP_FAILED;
+            snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
+            rep->end_time = c->s.start_time;
+            return st;
+        }
+    }
+    lv_sim *sim = NULL;
+    lv_status st = lv_sim_create(md, c->pm->inst, &c->s, &sim, err);
+    if (st != LV_OK) { /* the report lv_simulate gives a run that did not start */
+        memset(rep, 0, sizeof *rep);
+        rep->stop_event = -1;
+        rep->reason = LV_STOP_FAILED;
+        snprintf(rep->stop_name, sizeof rep->stop_name, "failed");
+        rep->end_time = c->s.start_time;
+        return st;
+    }
+    for (size_t i = 0; i < ph->n_iip_at && st == LV_OK; i++) {
+        const double t = ph->iip_at[i];
+        if (t < c->s.start_time || t > c->s.stop_time)
+            continue;
+        if ((st = lv_sim_advance(sim, t, err)) != LV_OK)
+            break;
+        if (lv_sim_time(sim) != t) /* ended before t */
+            break;
+        double y[LV_IIP_N_OUT];
+        if ((st = lv_sim_get(sim, ref, LV_IIP_N_OUT, y, err)) != LV_OK)
+            break;
+        lv_iip_sample *o = &c->iip[i];
+        o->state = isnan(y[0]) || isnan(y[1]) ? LV_IIP_IN_ORBIT : LV_IIP_IMPACT;
+        if (o->state == LV_IIP_IMPACT) {
+            o->lat = y[0];
+            o->lon = y[1];
+            o->tof = y[2];
+            o->range = y[3];
+        }
+    }
+    if (st == LV_OK)
+        lv_sim_advance(sim, c->s.stop_time, err);
+    /* a failure: lv_sim_finish gives it back with the report */
+    st = lv_sim_finish(sim, c->finals, rep, err);
+    lv_sim_free(sim);
+    return st;
+}
+
 /* Runs phase k: prepare, simulate, then (under the lock) record. Called without the lock. */
 
 static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err *err)
@@ -700,7 +779,8 @@ static lv_status run_one(lv_run *r, size_t k, const lv_run_options *opt, lv_err 
         c->s.progress_user = &pc;
     }
     lv_sim_report rep;
-    st = lv_simulate(c->pm->def, c->pm->inst, &c->s, c->finals, &rep, err);
+    st = ph->n_iip_at > 0 ? simulate_iip(c, ph, &rep, err)
+                          : lv_simulate(c->pm->def, c->pm->inst, &c->s, c->finals, &rep, err);
     if (st != LV_OK && err != NULL)
         lv_drop_model_prefix(err, ph->name);
     pthread_mutex_lock(&r->lock);
@@ -911,6 +991,18 @@ const lv_phase_result *lv_run_result(const lv_run *r, size_t k)
 const lv_result *lv_run_rows(const lv_run *r, size_t k)
 {
     return k < r->m->def->n_phases ? r->ph[k].rows : NULL;
+}
+
+lv_status lv_run_iip(const lv_run *r, size_t k, size_t i, lv_iip_sample *out, lv_err *err)
+{
+    if (r == NULL || out == NULL || k >= r->m->def->n_phases)
+        return lv_fail(err, LV_ERR_INPUT, "lv_run_iip: phase index %zu out of range", k);
+    const run_phase *p = &r->ph[k];
+    if (i >= p->n_iip)
+        return lv_fail(err, LV_ERR_INPUT, "lv_run_iip: phase '%s' lists %zu iip_at time%s, "
+                       "index %zu asked", p->res.name, p->n_iip, p->n_iip == 1 ? "" : "s", i);
+    *out = p->iip[i];
+    return LV_OK;
 }
 
 lv_status lv_run_final(const lv_run *r, size_t k, const char *name, double *value, lv_err *err)

@@ -43,6 +43,10 @@ if(MPI_C_FOUND)
            $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR} 1)
   set_tests_properties(test_mc_mpi PROPERTIES LABELS no-asan)
 endif()
+# The IIP at given times in lvsim mc (issue 28, item 5): a phase's iip_at:, against the
+# coasting body's own impact and a kept run's rows; counts, files, bad input.
+add_test(NAME test_mc_iip COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_mc_iip.sh
+         $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
 # Atmosphere and wind profiles in missions (issue 28, item 1): run, check/run errors, mc.
 add_test(NAME test_profile_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_profile_cli.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
