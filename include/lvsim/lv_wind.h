@@ -87,7 +87,7 @@ LV_API size_t lv_wind_profile_count(const lv_wind *w);
  * A realisation is drawn once, at spacing L / 20, by the exact discretisation of the
  * spectra's first- and second-order shaping filters (samples of the continuous process, not an
  * approximation of it), driven by the seeded stream (seed, run): the same (seed, run) gives the
- * same bits on any thread or rank. Between samples a Catmull-Rom cubic (C1). Inside
+ * same bits on any thread or rank. Between samples the natural cubic spline through them (C2). Inside
  * [h_from, h_to], faded in and out over one L at each end by (1 - cos)/2; zero outside. */
 typedef struct lv_gust_1cos {
     double altitude;   /* m, where the gust peaks */

@@ -41,6 +41,7 @@ struct lv_wind_disturbance {
     double fade;            /* m: the fade length at each end of the layer */
     size_t n;               /* samples per component (sample k at h0 + k dh) */
     double *s;              /* [n][3] north, east, down: the realisation, m/s */
+    double *m2;             /* [n][3] the interpolating cubic spline's second differences */
 };
 
 void lv_wind_disturbance_free(lv_wind_disturbance *d)
@@ -48,6 +49,7 @@ void lv_wind_disturbance_free(lv_wind_disturbance *d)
     if (d == NULL)
         return;
     free(d->s);
+    free(d->m2);
     free(d);
 }
 
@@ -99,6 +101,33 @@ static void realise(lv_wind_disturbance *d, uint64_t seed, uint64_t run)
         for (int c = 0; c < 2; c++)
             s[c] = sig[c] * (c1 * x1[c] + c2 * x2[c]);
         s[2] = sig[2] * sqrt(2.0) * xv;
+    }
+}
+
+/* The natural cubic spline through the samples (unit spacing in the index): second
+ * differences M with M[k-1] + 4 M[k] + M[k+1] = 6 (s[k+1] - 2 s[k] + s[k-1]), M = 0 at both
+ * ends, by the Thomas algorithm (de Boor, *A practical guide to splines*, ch. IV). C2 between
+ * the samples: an integrator meets no jump of the wind's second derivative at every sample (a
+ * C1 Catmull-Rom cubic took 20-30 % more steps: 1059 against 842 in kourou-leo's ascent). */
+static void spline(lv_wind_disturbance *d)
+{
+    /* the constant tridiagonal's eliminated super-diagonal c_k = 1 / (4 - c_{k-1}), c_0 = 0:
+     * it reaches its limit 2 - sqrt(3) to the last bit well before k = 64 */
+    double cp[64];
+    cp[0] = 0.0;
+    for (int k = 1; k < 64; k++)
+        cp[k] = 1.0 / (4.0 - cp[k - 1]);
+    const size_t n = d->n;
+    double *m = d->m2;
+    const double *s = d->s;
+    for (int c = 0; c < 3; c++) {
+        m[c] = m[3 * (n - 1) + c] = 0.0;
+        for (size_t k = 1; k + 1 < n; k++) { /* forward: m holds d_k */
+            const double r = 6.0 * (s[3 * (k + 1) + c] - 2.0 * s[3 * k + c] + s[3 * (k - 1) + c]);
+            m[3 * k + c] = (r - m[3 * (k - 1) + c]) * (k < 64 ? cp[k] : cp[63]);
+        }
+        for (size_t k = n - 2; k >= 1; k--) /* back: M_k = d_k - c_k M_{k+1} */
+            m[3 * k + c] -= (k < 64 ? cp[k] : cp[63]) * m[3 * (k + 1) + c];
     }
 }
 
@@ -164,7 +193,8 @@ lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1
     if (st != LV_OK)
         return st;
     lv_wind_disturbance *d = calloc(1, sizeof *d);
-    if (d == NULL || (n > 0 && (d->s = malloc(3 * n * sizeof *d->s)) == NULL)) {
+    if (d == NULL || (n > 0 && ((d->s = malloc(3 * n * sizeof *d->s)) == NULL ||
+                                (d->m2 = malloc(3 * n * sizeof *d->m2)) == NULL))) {
         lv_wind_disturbance_free(d);
         return lv_fail(err, LV_ERR_NOMEM, "wind: turbulence: out of memory");
     }
@@ -181,6 +211,7 @@ lv_status lv_wind_disturbance_create(const lv_dryden_spec *turb, const lv_gust_1
         const double depth = turb->h_to - turb->h_from;
         d->fade = turb->length < 0.5 * depth ? turb->length : 0.5 * depth;
         realise(d, seed, run);
+        spline(d);
     }
     *out = d;
     return LV_OK;
@@ -215,13 +246,12 @@ void lv_wind_disturbance_eval(const lv_wind_disturbance *d, double h, double v_n
         w = ramp((h - d->spec.h_from) / d->fade);
     else if (h > d->spec.h_to - d->fade)
         w = ramp((d->spec.h_to - h) / d->fade);
-    const double *s = d->s + 3 * (i - 1);
-    const double t2 = t * t, t3 = t2 * t;
-    /* Catmull-Rom weights of samples i-1, i, i+1, i+2 */
-    const double a = -0.5 * t3 + t2 - 0.5 * t, b = 1.5 * t3 - 2.5 * t2 + 1.0,
-                 c = -1.5 * t3 + 2.0 * t2 + 0.5 * t, e = 0.5 * t3 - 0.5 * t2;
+    const double *s = d->s + 3 * i, *m = d->m2 + 3 * i;
+    const double u1 = 1.0 - t;
+    /* the cubic spline on [i, i+1]: linear part plus the second differences' cubic terms */
+    const double a = (u1 * u1 * u1 - u1) / 6.0, b = (t * t * t - t) / 6.0;
     for (int k = 0; k < 3; k++)
-        v_ned[k] += w * (a * s[k] + b * s[3 + k] + c * s[6 + k] + e * s[9 + k]);
+        v_ned[k] += w * (u1 * s[k] + t * s[3 + k] + a * m[k] + b * m[3 + k]);
 }
 
 void lv_wind_disturbance_grid(const lv_wind_disturbance *d, double *h0, double *spacing)
