@@ -291,7 +291,8 @@ def compare(outdir):
             for k, v in wi["orbit"].items():
                 close(gi["orbit"][k], v, "%s orbit %s" % (n, k))
             close(gi["fpa_inertial"], wi["fpa_inertial"], n + " injection fpa_inertial")
-            for k in ("t", "phase", "carried_by"):
+            close(gi.get("t"), wi.get("t"), n + " injection t")  # the rows' and the summary's
+            for k in ("phase", "carried_by"):
                 check(gi.get(k) == wi.get(k), "%s injection %s: %r vs %r" % (n, k, gi.get(k), wi.get(k)))
         gh, wh = g.get("heating"), w["heating"]
         if wh is None:
