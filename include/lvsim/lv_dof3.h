@@ -31,11 +31,15 @@
 extern "C" {
 #endif
 
-/* State indices: "r_eci_x" .. "v_eci_z", "m". */
+/* State indices: "r_eci_x" .. "v_eci_z", "m", "heat_load", "heat_load_fm". */
 enum lv_x3 {
     LV_X3_RX, LV_X3_RY, LV_X3_RZ, /* position, ECI, m   */
     LV_X3_VX, LV_X3_VY, LV_X3_VZ, /* velocity, ECI, m/s */
-    LV_X3_M, LV_X3_N              /* mass, kg; count    */
+    LV_X3_M,                      /* mass, kg           */
+    LV_X3_QSG, LV_X3_QFM,         /* heat loads, J/m^2: the time integrals of the heat flux
+                                     outputs heat_flux and heat_flux_fm (quadratures, out of
+                                     the error control: lv_model_def.quadrature) */
+    LV_X3_N                       /* count */
 };
 
 /* End conditions (state events) besides burnout. */

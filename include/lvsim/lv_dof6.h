@@ -47,7 +47,10 @@ enum lv_x6 {
     LV_X6_VX, LV_X6_VY, LV_X6_VZ,         /* inertial velocity, ECI, m/s */
     LV_X6_QW, LV_X6_QX, LV_X6_QY, LV_X6_QZ, /* attitude quaternion body -> ECI, - */
     LV_X6_P, LV_X6_Q, LV_X6_R,            /* body rates, rad/s */
-    LV_X6_M, LV_X6_N                      /* mass, kg; count */
+    LV_X6_M,                              /* mass, kg */
+    LV_X6_QSG, LV_X6_QFM,                 /* heat loads, J/m^2: the time integrals of
+                                             heat_flux and heat_flux_fm (quadratures) */
+    LV_X6_N                               /* count */
 };
 
 /* Mass properties at the full and empty ends of the burning stage: the inertia tensor about

@@ -198,6 +198,14 @@ struct lv_model_def {
      * were. Returns 0; nonzero leaves the records as the parameters are. NULL: records are the
      * parameters. */
     int (*start_params)(double t0, const double *x, double *p, void *inst);
+
+    /* Optional: [n_states], 1 where a state is a quadrature - the time integral of a quantity
+     * of the others (a heat load, the integral of the heat flux) that no right-hand side reads
+     * back (an event may: a phase end on it). It is integrated with the other states, by the same steps
+     * and to the method's order, but left out of the error control (as CVODES' quadratures with
+     * errconQ off: lv_integ_problem.quad), so that adding it changes neither the steps nor the
+     * other states. At least one state must not be one. NULL: none. */
+    const unsigned char *quadrature;
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

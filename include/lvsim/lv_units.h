@@ -31,7 +31,8 @@
 
 /* The unit of a time derivative of a quantity in `unit`, as every file and command names it
  * (docs/result-files.md, "Units"; the Modelica unit grammar): "m" -> "m/s", "m/s" -> "m/s2",
- * "m/s2" -> "m/s3", "rad.s" -> "rad", "s" -> "1", "1" or "" -> "1/s". Into buf[cap]; returns
+ * "m/s2" -> "m/s3", "rad.s" -> "rad", "s" -> "1", "1" or "" -> "1/s", "J" -> "W" and
+ * "J/..." -> "W/..." (a heat load's "J/m2" -> "W/m2", J/s = W). Into buf[cap]; returns
  * buf. The one rule of lv_simulate, missions, the FMU export and `lvsim vars` (inline: the
  * post-processing library, which has none of the core's symbols, uses it too). */
 static inline const char *lv_unit_per_second(const char *unit, char *buf, size_t cap)
@@ -41,6 +42,8 @@ static inline const char *lv_unit_per_second(const char *unit, char *buf, size_t
         snprintf(buf, cap, "1/s");
     else if (strcmp(unit, "s") == 0)
         snprintf(buf, cap, "1");
+    else if (unit[0] == 'J' && (unit[1] == '\0' || unit[1] == '/'))
+        snprintf(buf, cap, "W%s", unit + 1);
     else if (len >= 3 && strcmp(unit + len - 2, ".s") == 0)
         snprintf(buf, cap, "%.*s", (int)(len - 2), unit);
     else if (len >= 2 && strcmp(unit + len - 2, "/s") == 0)

@@ -56,10 +56,13 @@ static const lv_var state_tpl[LV_X3_N] = {
     {"v_eci_y", "m/s", "Inertial velocity, ECI y", 0.0, 1.0},
     {"v_eci_z", "m/s", "Inertial velocity, ECI z", 0.0, 1.0},
     {"m", "kg", "Vehicle mass", 1000.0, 1e3},
+    LV_FLIGHT_HEAT_LOAD_STATES
 };
 
 /* The position's error is controlled absolutely (lv_model_def.abs_error). */
-static const unsigned char abs_error[LV_X3_N] = {1, 1, 1, 0, 0, 0, 0};
+static const unsigned char abs_error[LV_X3_N] = {1, 1, 1, 0, 0, 0, 0, 0, 0};
+/* The heat loads are quadratures: out of the error control (lv_model_def.quadrature). */
+static const unsigned char quadrature[LV_X3_N] = {0, 0, 0, 0, 0, 0, 0, 1, 1};
 
 static const lv_var param_tpl[P_N] = {
     {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
@@ -408,6 +411,9 @@ static int dof3_rhs(double t, const double *x, const double *p, double *xdot, vo
     xdot[LV_X3_VY] = pt.a_eci.y;
     xdot[LV_X3_VZ] = pt.a_eci.z;
     xdot[LV_X3_M] = -pt.mdot; /* the paper's dm = mdot, mdot < 0 while burning */
+    xdot[LV_X3_QSG] = lv_flight_heat_flux_sg(s->m->k_sg, pt.air.rho, s->m->nose_radius,
+                                             pt.air.v_air_n);
+    xdot[LV_X3_QFM] = lv_flight_heat_flux_fm(pt.air.rho, pt.air.v_air_n);
     return 0;
 }
 
@@ -811,6 +817,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .abs_error = abs_error,
         .param_inactive = m->param_inactive,
         .start_params = dof3_start_params,
+        .quadrature = quadrature,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
                                .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,

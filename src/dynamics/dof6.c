@@ -55,7 +55,7 @@ enum {
 };
 /* outputs of a steering law (after O_N), then of a controller */
 enum { O_THC = O_N, O_PSC, O_PHC, O_ER, O_EP, O_EY, O_GPC, O_GYC, O_NMAX };
-/* controller states after the 14 of lv_x6: the actuators' gimbal angles, then (PID) the
+/* controller states after the 16 of lv_x6: the actuators' gimbal angles, then (PID) the
  * integrals of the pitch and yaw errors */
 enum { X_AP = LV_X6_N, X_AY, X_IP, X_IY, X_NMAX };
 
@@ -76,6 +76,7 @@ static const lv_var state_tpl[LV_X6_N] = {
     {"q", "rad/s", "Pitch rate: body rate relative to inertial space about body y", 0.0, 0.01},
     {"r", "rad/s", "Yaw rate: body rate relative to inertial space about body z", 0.0, 0.01},
     {"m", "kg", "Vehicle mass", 1000.0, 1e3},
+    LV_FLIGHT_HEAT_LOAD_STATES
 };
 
 static const lv_var ctl_state_tpl[X_NMAX - LV_X6_N] = {
@@ -86,7 +87,10 @@ static const lv_var ctl_state_tpl[X_NMAX - LV_X6_N] = {
 };
 
 static const unsigned char abs_error[X_NMAX] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-                                                0, 0, 0, 0};
+                                                0, 0, 0, 0, 0, 0};
+/* The heat loads are quadratures: out of the error control (lv_model_def.quadrature). */
+static const unsigned char quadrature[X_NMAX] = {
+    [LV_X6_QSG] = 1, [LV_X6_QFM] = 1};
 
 static const lv_var param_tpl[P_N] = {
     {"start_lat", "rad", "Initial geodetic latitude", 0, 0},
@@ -218,7 +222,7 @@ struct lv_dof6 {
     lv_model_def def;
     char name[64];
     lv_var states[X_NMAX];
-    size_t n_states;             /* 14, + 2 actuator states (PD), + 2 integrals (PID) */
+    size_t n_states;             /* 16, + 2 actuator states (PD), + 2 integrals (PID) */
     lv_var outputs[O_NMAX];
     size_t n_outputs;            /* O_N, + 6 with a steering law, + 2 with a controller */
     double nose_radius, k_sg;    /* m, kg^0.5/m: the heat flux output's (lv_dof6_config) */
@@ -755,6 +759,9 @@ static int dof6_rhs(double t, const double *x, const double *p, double *xdot, vo
     xdot[LV_X6_Q] = pt.w_dot.y;
     xdot[LV_X6_R] = pt.w_dot.z;
     xdot[LV_X6_M] = -pt.mdot;
+    xdot[LV_X6_QSG] = lv_flight_heat_flux_sg(s->m->k_sg, pt.air.rho, s->m->nose_radius,
+                                             pt.air.v_air_n);
+    xdot[LV_X6_QFM] = lv_flight_heat_flux_fm(pt.air.rho, pt.air.v_air_n);
     if (s->m->ctl.kind != LV_DOF6_CTL_NONE) {
         const lv_dof6_controller *c = &s->m->ctl;
         xdot[X_AP] = actuator_rate(pt.delta_c[0], x[X_AP], c->tau, c->rate_limit);
@@ -1494,6 +1501,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .stiff = m->ctl.kind != LV_DOF6_CTL_NONE,
         .param_inactive = m->param_inactive,
         .start_params = dof6_start_params,
+        .quadrature = quadrature,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X6_RX,
                                .i_v = LV_X6_VX, .i_m = LV_X6_M, .inputs = m->inputs,

@@ -82,6 +82,18 @@ lv_status lv_flight_check_mass(const char *model, double m0, double propellant, 
  * both finite (lv_dof3_config). */
 lv_status lv_flight_check_heating(const char *model, double nose_radius, double k_sg, lv_err *err);
 
+/* The states both planet flight models put after the mass (lv_var entries): the heat loads,
+ * the time integrals of the heat flux outputs below, J/m^2. Quadratures (their derivatives
+ * lv_flight_heat_flux_sg, _fm; lv_model_def.quadrature): out of the error control, so they
+ * never shrink a step; nominal 1 MJ/m^2 scales only the SUNDIALS methods' (negligible)
+ * weight. A child phase starts from its parent's final heat loads (handed over by name, as the
+ * mass): the loads accumulate over the body's flight; a root phase starts from 0. */
+#define LV_FLIGHT_HEAT_LOAD_STATES                                                              \
+    {"heat_load", "J/m2", "Stagnation-point heat load: the time integral of heat_flux", 0.0,    \
+     1e6},                                                                                      \
+    {"heat_load_fm", "J/m2", "Free-molecular heat load: the time integral of heat_flux_fm",    \
+     0.0, 1e6}
+
 /* The outputs both planet flight models end their tables with, in this order (lv_var
  * entries; their values: lv_flight_heat_flux_sg, lv_flight_heat_flux_fm of flight.h and
  * lv_flight_iip below): the heating and the instantaneous impact point. */

@@ -230,6 +230,7 @@ struct lv_erk {
     const rk_tab *tab;
     int dop853;
     size_t n, ng;
+    size_t n_ctl;    /* states under error control: n less the quadratures */
     double t;        /* t_n: end of the last accepted step */
     double h;        /* the next step to try (> 0) */
     double t_old, h_old; /* the last accepted step [t_old, t_old + h_old] */
@@ -263,6 +264,9 @@ struct lv_erk {
     double *x_b, *x_m;        /* [n] states there */
     double *mem;
 };
+
+/* 1 where a state is a quadrature, out of the error control (lv_integ_problem.quad). */
+static int is_quad(const lv_erk *e, size_t i) { return e->p.quad != NULL && e->p.quad[i]; }
 
 static double rtol_of(const lv_erk *e, size_t i)
 {
@@ -300,6 +304,11 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->tab = dop853 ? &tab_dop853 : &tab_dp5;
     e->n = p->n;
     e->ng = p->n_g;
+    e->n_ctl = 0;
+    for (size_t i = 0; i < p->n; i++)
+        e->n_ctl += !is_quad(e, i);
+    if (e->n_ctl == 0)
+        e->n_ctl = p->n; /* refused by lv_integ_create; never a division by zero */
     const size_t n = e->n, ng = e->ng;
     const size_t nk = (size_t)e->tab->s_dense, nrc = dop853 ? 8 : 5;
     const size_t total = n * (6 + nk + nrc + 2) + 4 * ng;
@@ -407,6 +416,8 @@ static int initial_step(lv_erk *e, double hmax, double *h_out)
     for (size_t i = 0; i < n; i++) {
         const double sk = e->p.atol[i] + rtol_of(e, i) * fabs(y[i]);
         e->sk[i] = sk;
+        if (is_quad(e, i))
+            continue;
         dnf += (f0[i] / sk) * (f0[i] / sk);
         dny += (y[i] / sk) * (y[i] / sk);
     }
@@ -421,6 +432,8 @@ static int initial_step(lv_erk *e, double hmax, double *h_out)
         return rc;
     double der2 = 0.0;
     for (size_t i = 0; i < n; i++) {
+        if (is_quad(e, i))
+            continue;
         const double d = (f1[i] - f0[i]) / e->sk[i];
         der2 += d * d;
     }
@@ -489,14 +502,18 @@ static double rk_error(lv_erk *e, double h)
         e->sk[i] = e->p.atol[i] + rtol_of(e, i) * fmax(fabs(e->y[i]), fabs(e->ynew[i]));
     if (!e->dop853) {
         for (size_t i = 0; i < n; i++) {
+            if (is_quad(e, i))
+                continue;
             double d = rk_sum_at(&e->e_sum, e->k, i);
             d = h * d / e->sk[i];
             err += d * d;
         }
-        return sqrt(err / (double)n);
+        return sqrt(err / (double)e->n_ctl);
     }
     double err2 = 0.0;
     for (size_t i = 0; i < n; i++) {
+        if (is_quad(e, i))
+            continue;
         double bk = 0.0, e5 = 0.0;
         for (int j = 0; j < 12; j++) {
             bk += dop853_b[j] * e->k[j][i];
@@ -510,7 +527,7 @@ static double rk_error(lv_erk *e, double h)
     double deno = err + 0.01 * err2;
     if (!(deno > 0.0))
         deno = 1.0;
-    return fabs(h) * err / sqrt(deno * (double)n);
+    return fabs(h) * err / sqrt(deno * (double)e->n_ctl);
 }
 
 /* Hairer's stiffness test after an accepted step (HNW IV.2): h lambda estimated from the two
@@ -521,6 +538,8 @@ static void stiffness_test(lv_erk *e, double h)
     const int s = e->tab->s;
     double num = 0.0, den = 0.0;
     for (size_t i = 0; i < n; i++) {
+        if (is_quad(e, i))
+            continue;
         const double df = e->k[s][i] - e->k[s - 1][i], dy = e->ynew[i] - e->ysti[i];
         num += df * df;
         den += dy * dy;

@@ -23,7 +23,7 @@ typedef struct lv_erk lv_erk;
 #define LV_ERK_STIFF 2
 
 /* p->method is LV_METHOD_DP5 or LV_METHOD_DOP853 (anything else: dop853's tableau is not
- * chosen, dp5 is). Borrows p->atol, p->rtol_v and p->g_dir: they must outlive the object. */
+ * chosen, dp5 is). Borrows p->atol, p->rtol_v, p->quad and p->g_dir: they must outlive the object. */
 lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const double *x0,
                         lv_erk **out, lv_err *err);
 void lv_erk_free(lv_erk *e);

@@ -29,6 +29,8 @@ struct lv_integ {
     lv_integ_problem p;
     double *atol;
     double *rtol_v;           /* [n] per-state relative tolerances, or NULL */
+    unsigned char *quad;      /* [n] quadrature states (lv_integ_problem.quad), or NULL */
+    double ewt_scale;         /* with quad: sqrt(n / n_controlled), the controlled weights' */
     int *g_dir;
     SUNContext ctx;
     N_Vector y;
@@ -163,7 +165,12 @@ void lv_integ_forget(lv_integ *ig)
 
 /* Error weights with a relative tolerance per state: w_i = 1 / (rtol_i |y_i| + atol_i), the
  * weights CVODE and ARKODE form from scalar tolerances, with rtol_i = 0 for a state whose
- * error is controlled absolutely (a coordinate measured from a distant origin). */
+ * error is controlled absolutely (a coordinate measured from a distant origin). With
+ * quadrature states (lv_integ_problem.quad): theirs times LV_QUAD_EWT - not 0, which CVODE's
+ * difference-quotient Jacobian divides by (its column of a quadrature, which no right-hand
+ * side reads, is zero whatever the increment) - and the others' times sqrt(n / n_controlled), so
+ * that the weighted RMS norm over n states is the norm over the controlled ones. */
+#define LV_QUAD_EWT 1e-30
 static int sun_ewt(N_Vector y, N_Vector w, void *user)
 {
     const lv_integ *ig = user;
@@ -174,6 +181,8 @@ static int sun_ewt(N_Vector y, N_Vector w, void *user)
         if (!(d > 0.0))
             return -1;
         wv[i] = 1.0 / d;
+        if (ig->quad != NULL)
+            wv[i] *= ig->quad[i] ? LV_QUAD_EWT : ig->ewt_scale;
     }
     return 0;
 }
@@ -287,12 +296,32 @@ lv_status lv_integ_create(const lv_integ_problem *p, double t0, const double *x0
         }
         ig->memo_f = ig->memo_x + p->n;
     }
-    if (p->rtol_v != NULL) {
+    size_t n_quad = 0;
+    if (p->quad != NULL) {
+        for (size_t i = 0; i < p->n; i++)
+            n_quad += p->quad[i] != 0;
+        if (n_quad == p->n) {
+            st = lv_fail(err, LV_ERR_INPUT, "integrator: every state is a quadrature: none "
+                         "left to control the error");
+            goto fail;
+        }
+    }
+    if (n_quad > 0) {
+        if ((ig->quad = malloc(p->n)) == NULL) {
+            st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
+            goto fail;
+        }
+        memcpy(ig->quad, p->quad, p->n);
+        ig->ewt_scale = sqrt((double)p->n / (double)(p->n - n_quad));
+    }
+    ig->p.quad = ig->quad;
+    if (p->rtol_v != NULL || n_quad > 0) { /* quadratures: the weight function sun_ewt */
         if ((ig->rtol_v = malloc(p->n * sizeof *ig->rtol_v)) == NULL) {
             st = lv_fail(err, LV_ERR_NOMEM, "integrator: out of memory");
             goto fail;
         }
-        memcpy(ig->rtol_v, p->rtol_v, p->n * sizeof *ig->rtol_v);
+        for (size_t i = 0; i < p->n; i++)
+            ig->rtol_v[i] = p->rtol_v != NULL ? p->rtol_v[i] : p->rtol;
         ig->p.rtol_v = ig->rtol_v;
     }
     if (p->g_dir != NULL)
@@ -494,6 +523,7 @@ void lv_integ_free(lv_integ *ig)
         SUNContext_Free(&ig->ctx);
     free(ig->atol);
     free(ig->rtol_v);
+    free(ig->quad);
     free(ig->g_dir);
     free(ig->memo_x);
     free(ig->x_pending);

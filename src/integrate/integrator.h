@@ -56,6 +56,15 @@ typedef struct lv_integ_problem {
     int stiff;             /* auto: the model declares itself stiff: BDF from the start */
     double init_step;      /* dp5, dop853: the first step after a start or restart; 0: the
                               heuristic of HNW I, II.4 */
+    const unsigned char *quad; /* [n] 1 where a state is a quadrature: integrated with the
+                              others, by the same steps, but left out of the error control (as
+                              CVODES' quadratures with errconQ off), so it never shrinks a step;
+                              no right-hand side may read it (event functions may). At least one state must not be.
+                              NULL: none. dp5, dop853: out of the error norm, the first step's
+                              estimate and the stiffness test, exactly; SUNDIALS methods: error
+                              weight 1e-8 of its tolerance's, the others' scaled by
+                              sqrt(n / n_controlled) so that the norm is theirs (its own part
+                              is below 1e-8 of the norm's). */
 } lv_integ_problem;
 
 typedef struct lv_integ lv_integ;

@@ -310,6 +310,14 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
 {
     const dof3_cfg *pc = bc->def->phases[bc->k].type_cfg;
     const dof3_self *s = pm->self;
+    /* heat loads a parent has none of (a runway roll: no heating model, at rolling speeds
+     * none to speak of) start from 0 (docs/models.md, "Aerothermal heating") */
+    static const char *const qn[2] = {"heat_load", "heat_load_fm"};
+    for (int i = 0; i < 2; i++) {
+        const size_t j = lv_names_find(names, n, qn[i]);
+        if (j != (size_t)-1 && isnan(values[j]))
+            values[j] = 0.0;
+    }
     /* a runway parent must have lifted off: lift and thrust carry the weight (margin 1 at the
      * located lift-off); a roll that ended otherwise leaves the vehicle on the runway */
     const size_t im = lv_names_find(pnames, np, "lift_margin"), in = lv_names_find(pnames, np, "normal_force");

@@ -90,8 +90,8 @@ static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tva
 
 static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tcon_def *con)
 {
-    static const char *const keys[] = {"final", "equal", "min", "max", "tolerance", "end",
-                                       NULL};
+    static const char *const keys[] = {"final", "path", "equal", "min", "max", "tolerance",
+                                       "end", NULL};
     static const char *const kinds[] = {"equal", "min", "max"};
     char what[LV_WHAT_MAX];
     const lv_ynode *x, *kv = NULL;
@@ -100,12 +100,22 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {final: P2.peri_alt, equal: 200000, "
                           "tolerance: 100} expected", what);
-    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK ||
-        (st = lv_pk_need(c, n, what, "final", &x)) != LV_OK ||
-        (st = dup_name(c, x, what, "final", &con->name)) != LV_OK)
+    if ((st = lv_pk_check_map(c, n, what, keys)) != LV_OK)
+        return st;
+    const lv_ynode *xp = lv_pk_get(n, "path");
+    if (xp != NULL && lv_pk_get(n, "final") != NULL)
+        return lv_pk_fail(c, lv_pk_key(n, "path"), "%s: give one of final and path (a final "
+                          "value, or the largest or smallest over the phase)", what);
+    con->path = xp != NULL;
+    if (xp != NULL)
+        x = xp;
+    else if ((st = lv_pk_need(c, n, what, "final", &x)) != LV_OK)
+        return st;
+    if ((st = dup_name(c, x, what, con->path ? "path" : "final", &con->name)) != LV_OK)
         return st;
     con->loc = loc_of(x);
-    snprintf(what, sizeof what, "targeting: constraint on '%.60s'", con->name);
+    snprintf(what, sizeof what, "targeting: %sconstraint on '%.60s'", con->path ? "path " : "",
+             con->name);
     if ((x = lv_pk_get(n, "end")) != NULL) {
         if ((st = dup_name(c, x, what, "end", &con->end)) != LV_OK)
             return st;
@@ -124,7 +134,13 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
             return st;
     }
     if (kv == NULL)
-        return lv_pk_fail(c, n, "%s: give one of equal, min and max", what);
+        return lv_pk_fail(c, n, con->path ? "%s: give one of min and max (the smallest value "
+                          "over the phase at least min, or the largest at most max)"
+                          : "%s: give one of equal, min and max", what);
+    if (con->path && con->kind == LV_CON_EQUAL)
+        return lv_pk_fail(c, lv_pk_key(n, "equal"), "%s: a path constraint bounds the largest "
+                          "(max) or the smallest (min) value over the phase: give min or max, "
+                          "not equal (an equal value is a final: constraint)", what);
     if ((st = lv_pk_need(c, n, what, "tolerance", &x)) != LV_OK ||
         (st = lv_pk_num(c, x, what, "tolerance", &con->tol)) != LV_OK)
         return st;
@@ -537,17 +553,23 @@ lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
     for (size_t k = 0; k < t->n_cons && st == LV_OK; k++) {
         lv_tcon_def *c = &t->cons[k];
         if ((st = lv_targeting_resolve_final(m, c->name, &c->res, &e)) != LV_OK)
-            st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: constraint", d->path,
-                                c->loc.line, c->loc.column);
+            st = lv_fail_prefix(&e, st, "%s:%d:%d: targeting: %sconstraint", d->path,
+                                c->loc.line, c->loc.column, c->path ? "path " : "");
+        if (st == LV_OK && c->path && c->res.index == 0)
+            st = lv_fail(&e, LV_ERR_INPUT, "%s:%d:%d: targeting: path constraint on '%s': the "
+                         "time only grows over a phase: its largest is the final time (a "
+                         "final: constraint), its smallest the start", d->path, c->loc.line,
+                         c->loc.column, c->name);
         /* the same final twice as `equal`, or twice as `min` (`max`): one is enough (two equal
          * rows make the sensitivities singular) */
         for (size_t j = 0; j < k && st == LV_OK; j++) {
             const lv_tcon_def *o = &t->cons[j];
             if (o->res.phase == c->res.phase && o->res.index == c->res.index &&
-                o->kind == c->kind)
+                o->kind == c->kind && o->path == c->path)
                 st = lv_fail(&e, LV_ERR_INPUT, "%s:%d:%d: targeting: constraint on '%s': the "
-                             "final is already constrained the same way (line %d): give it once",
-                             d->path, c->loc.line, c->loc.column, c->name, o->loc.line);
+                             "%s is already constrained the same way (line %d): give it once",
+                             d->path, c->loc.line, c->loc.column, c->name,
+                             c->path ? "path" : "final", o->loc.line);
         }
     }
     if (st == LV_OK && t->cost.present &&
@@ -569,4 +591,44 @@ lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
                        t->n_cons, &e);
     free(named);
     return st == LV_OK ? LV_OK : lv_fail(err, st, "%s", e.msg);
+}
+
+double lv_targeting_path_extremum(const double *t, const double *y, size_t n, int want_max,
+                                  double *t_out)
+{
+    const double sg = want_max ? 1.0 : -1.0;
+    size_t best = (size_t)-1;
+    for (size_t i = 0; i < n; i++)
+        if (!isnan(y[i]) && (best == (size_t)-1 || sg * y[i] > sg * y[best]))
+            best = i;
+    if (best == (size_t)-1) {
+        if (t_out != NULL)
+            *t_out = NAN;
+        return NAN;
+    }
+    double v = y[best], tv = t[best];
+    if (best > 0 && best + 1 < n && t[best - 1] < t[best] && t[best] < t[best + 1] &&
+        !isnan(y[best - 1]) && !isnan(y[best + 1])) {
+        /* the parabola through (a, fa), (b, fb), (c, fc), in sg-scaled values: its vertex
+         * (Brent's parabolic step; Press et al., Numerical Recipes, 3rd ed., eq. 10.3.1) */
+        const double a = t[best - 1], b = t[best], c = t[best + 1];
+        const double fa = sg * y[best - 1], fb = sg * y[best], fc = sg * y[best + 1];
+        const double p = (b - a) * (b - a) * (fb - fc) - (b - c) * (b - c) * (fb - fa);
+        const double q = (b - a) * (fb - fc) - (b - c) * (fb - fa);
+        if (q != 0.0) {
+            const double x = b - 0.5 * p / q;
+            if (x > a && x < c) {
+                const double fx = fa * (x - b) * (x - c) / ((a - b) * (a - c)) +
+                                  fb * (x - a) * (x - c) / ((b - a) * (b - c)) +
+                                  fc * (x - a) * (x - b) / ((c - a) * (c - b));
+                if (fx > fb) {
+                    v = sg * fx;
+                    tv = x;
+                }
+            }
+        }
+    }
+    if (t_out != NULL)
+        *t_out = tv;
+    return v;
 }

@@ -1,5 +1,6 @@
 /* targeting_def.h - a mission file's `targeting:` section: design variables (run parameters by
- * name, with bounds, start, scale), constraints on phases' final values, an optional cost and
+ * name, with bounds, start, scale), constraints on phases' final values or on their largest or
+ * smallest values over the phase (path constraints), an optional cost and
  * the solver's settings. Parsed with the mission (the section's own keys, types and values),
  * then checked against the loaded mission (names, units, bounds), so `lvsim check` refuses
  * what `lvsim target` would. The solver: src/target, include/lvsim/lv_target.h. Format:
@@ -66,6 +67,9 @@ typedef struct lv_tvar_def {
 
 typedef struct lv_tcon_def {
     char *name;
+    int path;           /* 1: `path:` - the phase's largest (max) or smallest (min) value of
+                           NAME over its rows (docs/targeting.md, "Path constraints"); 0:
+                           `final:` */
     lv_con_kind kind;
     double value, tol;
     lv_src_loc loc;
@@ -99,6 +103,15 @@ typedef struct lv_targeting_def {
     int restarts;       /* SLSQP restarts from its best point (0: none) */
     lv_src_loc loc;
 } lv_targeting_def;
+
+/* A path constraint's extremum (docs/targeting.md, "Path constraints"): the largest (want_max)
+ * or smallest value of the column `col` over the rows of `res`, refined by the parabola through
+ * the extreme row and its two neighbours when those lie at three distinct times on the
+ * output grid (not across an event instant, whose two rows share a time): the parabola's
+ * vertex where it lies between them and is beyond the row. NaN values are skipped; *t_out
+ * (may be NULL) receives its time. NAN when no row has a number. */
+double lv_targeting_path_extremum(const double *t, const double *y, size_t n, int want_max,
+                                  double *t_out);
 
 /* Parses the `targeting:` mapping `n` (NULL or empty: none) into c->m->targeting. */
 lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n);

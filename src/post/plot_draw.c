@@ -696,6 +696,8 @@ static const quantity quantities[] = {
      {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
     {1, "heat_flux", "Stagnation-point heat flux (Sutton-Graves)", "heat flux [kW/m\xc2\xb2]",
      {"heat_flux", NULL}, {NULL}, "", "", 1e-3, {NULL}, "", 0, 0},
+    {0, "heat_load", "Stagnation-point heat load (the heat flux's time integral)",
+     "heat load [MJ/m\xc2\xb2]", {"heat_load", NULL}, {NULL}, "", "", 1e-6, {NULL}, "", 0, 0},
     {0, "load_factor", "Load factor", "load factor [g\xe2\x82\x80]", {"n_axial", NULL},
      {"n_normal", NULL}, "axial", "normal", 1.0, {NULL}, "", 0, 0},
     {0, "flight_path_angle", "Flight-path angle", "flight-path angle [deg]", {"fpa", NULL},

@@ -465,8 +465,11 @@ static cJSON *touchdown_json(const lv_plot_data *d, size_t bi)
 
 /* The aerothermal heating of body bi (docs/visualization.md, "Key figures"; docs/models.md,
  * "Aerothermal heating"): the largest stagnation-point heat flux (`heat_flux`, Sutton-Graves)
- * with its time, altitude and phase; the heat load, its time integral over the body's phases
- * by the trapezoidal rule on the phase files' rows (an event instant's two rows add nothing);
+ * with its time, altitude and phase; the heat load, its time integral over the body's phases:
+ * in a phase with the model's `heat_load` state (integrated with the trajectory) its change
+ * over the phase (last row less first: a child starts from its parent's load, a phase after
+ * one without the state from 0), else the trapezoidal rule on the phase file's rows (an event
+ * instant's two rows add nothing);
  * and the first time the free-molecular flux falls below FM_JETTISON (linear between the two
  * rows around it). NULL: no phase has the columns. */
 static cJSON *heating_json(const lv_plot_data *d, size_t bi)
@@ -485,6 +488,9 @@ static cJSON *heating_json(const lv_plot_data *d, size_t bi)
         if (csg < 0 || cfm < 0)
             continue;
         any = 1;
+        const long cl = col(t, "heat_load", NULL);
+        if (cl >= 0)
+            load += at(t, t->n_rows - 1, cl) - at(t, 0, cl);
         for (size_t r = 0; r < t->n_rows; r++) {
             const double q = at(t, r, csg), tr = at(t, r, ct);
             if (q > sg_max) {
@@ -496,7 +502,8 @@ static cJSON *heating_json(const lv_plot_data *d, size_t bi)
             if (r == 0)
                 continue;
             const double t0 = at(t, r - 1, ct), q0 = at(t, r - 1, csg);
-            load += 0.5 * (tr - t0) * (q + q0);
+            if (cl < 0)
+                load += 0.5 * (tr - t0) * (q + q0);
             const double f0 = at(t, r - 1, cfm), f1 = at(t, r, cfm);
             if (isnan(fm_t) && f0 >= FM_JETTISON && f1 < FM_JETTISON) {
                 const double w = (f0 - FM_JETTISON) / (f0 - f1);

@@ -1303,6 +1303,7 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
             .max_step = s->max_step_size,
             .max_steps = s->max_steps > 0 ? s->max_steps : LV_DEFAULT_MAX_STEPS,
             .stiff = d->stiff,
+            .quad = d->quadrature,
         };
         if ((st = lv_integ_create(&prob, s->start_time, r->x, &S->ig, err)) != LV_OK) {
             lv_fail_prefix(err, st, "model '%s'", d->name);

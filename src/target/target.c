@@ -15,6 +15,7 @@
 #include <time.h>
 
 #include "core/status.h"
+#include "lvsim/lv_io.h"
 #include "lvsim/lv_units.h"
 #include "target/target_int.h"
 
@@ -141,8 +142,9 @@ static void expect_end(lv_target *t, size_t k, int idx, int named)
             t->chk[t->n_chk++] = j;
 }
 
-static lv_status push_con(lv_target *t, const char *name, lv_con_kind kind, double value,
-                          double tol, const lv_tfinal *f, int end, int named, lv_err *err)
+static lv_status push_con(lv_target *t, const char *name, int path, lv_con_kind kind,
+                          double value, double tol, const lv_tfinal *f, int end, int named,
+                          lv_err *err)
 {
     if (t->mc == t->cap_m) {
         const size_t cap = t->cap_m ? 2 * t->cap_m : 8;
@@ -155,6 +157,7 @@ static lv_status push_con(lv_target *t, const char *name, lv_con_kind kind, doub
     tg_con *c = &t->cons[t->mc];
     if ((c->name = strdup(name)) == NULL)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    c->path = path;
     c->kind = kind;
     c->value = value;
     c->tol = tol;
@@ -181,7 +184,7 @@ lv_status lv_target_add_con(lv_target *t, const char *final, lv_con_kind kind, d
     if (st == LV_OK)
         st = lv_targeting_resolve_end(t->m, f.phase, NULL, &end, err);
     return st != LV_OK ? lv_fail_prefix(err, st, "constraint")
-                       : push_con(t, final, kind, value, tol, &f, end, 0, err);
+                       : push_con(t, final, 0, kind, value, tol, &f, end, 0, err);
 }
 
 lv_status lv_target_set_cost(lv_target *t, const char *final, int maximize, double scale,
@@ -226,8 +229,9 @@ lv_status lv_target_create(const lv_mission *m, lv_target **out, lv_err *err)
     for (size_t i = 0; i < d->n_vars && st == LV_OK; i++)
         st = push_var(t, d->vars[i].name, &d->vars[i].res, d->vars[i].start_loc, err);
     for (size_t i = 0; i < d->n_cons && st == LV_OK; i++)
-        st = push_con(t, d->cons[i].name, d->cons[i].kind, d->cons[i].value, d->cons[i].tol,
-                      &d->cons[i].res, d->cons[i].end_index, d->cons[i].end != NULL, err);
+        st = push_con(t, d->cons[i].name, d->cons[i].path, d->cons[i].kind, d->cons[i].value,
+                      d->cons[i].tol, &d->cons[i].res, d->cons[i].end_index,
+                      d->cons[i].end != NULL, err);
     if (st == LV_OK && d->cost.present) {
         char *name = strdup(d->cost.name);
         if (name == NULL)
@@ -377,6 +381,36 @@ static double final_of(const lv_run *r, const lv_tfinal *f)
     return f->deg ? v / LV_DEG : v;
 }
 
+double tg_con_value(const lv_mission *m, const lv_run *r, const tg_con *c)
+{
+    if (!c->path)
+        return final_of(r, &c->f);
+    const lv_result *rows = lv_run_rows(r, c->f.phase);
+    size_t col = 0, ct = 0, n = rows != NULL ? lv_result_rows(rows) : 0;
+    if (n == 0 || lv_result_column(rows, "time", &ct, NULL) != LV_OK ||
+        lv_result_column(rows, m->plan[c->f.phase].final_names[c->f.index], &col, NULL) != LV_OK)
+        return NAN;
+    double *tv = malloc(2 * n * sizeof *tv);
+    if (tv == NULL)
+        return NAN;
+    double *yv = tv + n;
+    for (size_t i = 0; i < n; i++) {
+        tv[i] = lv_result_value(rows, i, ct);
+        yv[i] = lv_result_value(rows, i, col);
+    }
+    const double v = lv_targeting_path_extremum(tv, yv, n, c->kind == LV_CON_MAX, NULL);
+    free(tv);
+    return c->f.deg ? v / LV_DEG : v;
+}
+
+int tg_keep_rows(const lv_target *t)
+{
+    for (size_t i = 0; i < t->mc; i++)
+        if (t->cons[i].path)
+            return 1;
+    return 0;
+}
+
 /* The point failed: the first failed (else skipped) phase the constraints need says why. */
 static int point_failed(const lv_target *t, const lv_run *r, char *why, size_t cap)
 {
@@ -451,7 +485,8 @@ static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const doub
         }
     }
     if (p->ok) {
-        const lv_run_options opt = {.threads = threads, .no_rows = 1, .want = t->want,
+        const lv_run_options opt = {.threads = threads, .no_rows = !tg_keep_rows(t),
+                                    .want = t->want,
                                     .stop = t->set.stop, .max_rows = t->set.max_rows};
         lv_status st = lv_run_execute(r, &opt, &e);
         (*runs)++;
@@ -475,7 +510,7 @@ static lv_status eval_run(const lv_target *t, lv_run *r, int threads, const doub
             p->f[i] = p->g[i] = p->r[i] = NAN;
             continue;
         }
-        p->f[i] = final_of(r, &c->f);
+        p->f[i] = tg_con_value(t->m, r, c);
         p->g[i] = (p->f[i] - c->value) / c->tol;
         p->r[i] = c->kind == LV_CON_EQUAL ? p->g[i]
                   : c->kind == LV_CON_MIN ? fmin(0.0, p->g[i])

@@ -22,6 +22,8 @@ typedef struct tg_var {
 
 typedef struct tg_con {
     char *name;
+    int path;           /* 1: the phase's largest (max) or smallest (min) value of the final's
+                           column over its rows (lv_targeting_path_extremum); 0: its final */
     lv_con_kind kind;
     double value, tol;  /* in the final's unit as named */
     lv_tfinal f;
@@ -94,6 +96,13 @@ struct lv_target {
 };
 
 /* ---- points and evaluations (target.c) ------------------------------------------------------ */
+
+/* Constraint c's value in run r of mission m: its phase's final, or for a path constraint the
+ * extremum over the phase's rows (the run kept them: tg_keep_rows). NAN when the phase has no
+ * rows or no number in the column. */
+double tg_con_value(const lv_mission *m, const lv_run *r, const tg_con *c);
+/* 1 when a constraint reads a phase's rows (a path constraint): the runs keep them. */
+int tg_keep_rows(const lv_target *t);
 
 lv_status tg_point_init(const lv_target *t, tg_point *p);
 void tg_point_free(tg_point *p);

@@ -381,6 +381,12 @@ static lv_status finals_of(const lv_run *r, const lv_mission *m, const lv_target
         if (res == NULL || res->state != LV_PHASE_DONE)
             return lv_fail(err, LV_ERR_SOLVER, "'%s': %s", name,
                            res && res->error[0] ? res->error : "its phase did not run");
+        if (!is_cost && t->cons[i].path) { /* the extremum over the rows, in mission m */
+            tg_con c = t->cons[i];
+            c.f = tf;
+            f[i] = tg_con_value(m, r, &c);
+            continue;
+        }
         const double v = res->final_values[tf.index];
         *(is_cost ? cost : &f[i]) = tf.deg ? v / LV_DEG : v;
     }
@@ -472,7 +478,7 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
         if ((st = lv_run_set_index(t->run, t->vars[j].r.slot,
                                    t->vars[j].r.deg ? x[j] * LV_DEG : x[j], err)) != LV_OK)
             goto done;
-    const lv_run_options opt = {.threads = 2, .no_rows = 1, .want = t->want};
+    const lv_run_options opt = {.threads = 2, .no_rows = !tg_keep_rows(t), .want = t->want};
     lv_run_execute(t->run, &opt, &e);
     double cref = NAN, cnew = NAN;
     if ((st = finals_of(t->run, t->m, t, fref, &cref, err)) != LV_OK) {
@@ -515,7 +521,7 @@ lv_status lv_target_write(lv_target *t, const double *x, const char *path, doubl
     }
     if ((st = lv_run_create(m2, &r2, err)) != LV_OK)
         goto done;
-    const lv_run_options all = {.threads = 2, .no_rows = 1};
+    const lv_run_options all = {.threads = 2, .no_rows = !tg_keep_rows(t)};
     lv_run_execute(r2, &all, &e); /* a failure elsewhere does not concern the finals */
     if ((st = finals_of(r2, m2, t, fnew, &cnew, err)) != LV_OK) {
         lv_fail_prefix(err, st, "%s: the converged mission", path);

@@ -582,11 +582,13 @@ expect 2 "\-\-restarts needs an integer from 0 to 100, got '101'" -- "$lvsim" ta
 expect 0 "^converged" -- "$lvsim" target "$work/shot.yaml" --max-iter 1e3 -q
 expect 0 "^converged: slsqp" -- "$lvsim" target "$work/shot.yaml" --method slsqp -q
 # a variable the constraint does not depend on (the heading, over a non-rotating planet); with
-# dassl, whose round-off noise in the downrange (~1e-6 m on this 1e10 m planet) lets Newton's
-# step reach a scale: with auto's dop853 the noise keeps the trust region below one, and the
-# diagnosis needs a move of a scale or more (target.c)
+# cvode-adams, whose round-off noise in the downrange (~1e-6 m on this 1e10 m planet) lets
+# Newton's step reach a scale: with auto's dop853 the noise keeps the trust region below one,
+# and the diagnosis needs a move of a scale or more (target.c). Which method's noise walks far
+# enough is chance: dassl's did until the heat-load quadrature states (two more components in
+# the SUNDIALS error weights) changed its round-off; cvode-adams' does since
 sed -e 's/start_fpa_deg, min: 5, max: 60, scale: 1/start_chi_deg, min: 0, max: 180/' \
-    -e 's/integrator: {tolerance/integrator: {method: dassl, tolerance/' "$work/shot.yaml" > "$work/chi.yaml"
+    -e 's/integrator: {tolerance/integrator: {method: cvode-adams, tolerance/' "$work/shot.yaml" > "$work/chi.yaml""
 expect 3 "the constraints do not depend on the variables" -- "$lvsim" target "$work/chi.yaml" -q
 # a converged value that breaks a cross-phase load rule: the file is not written
 # (the parent ends at its apogee, ~3.5 s, long before its stop_time 50 s: the child's stop

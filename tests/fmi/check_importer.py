@@ -20,7 +20,7 @@ with the dynamics before the event - thrust still on past a burnout), then each 
 over the phase, max |x| over lvsim's rows plus its range (so that a mass, a position of 6e6 m
 and a quaternion component compare alike). Bounds (stated; the measured worst values are
 printed): CS 1e-6 (lvsim's integrator against itself, stopped at other points: the global error
-of its tolerance), ME RK4 1e-3 (4e-4 measured: kourou-rtls's ascent, 0.3 m/s at its burnout;
+of its tolerance; 2e-5 for the heat loads, quadratures out of the error control: QUAD below), ME RK4 1e-3 (4e-4 measured: kourou-rtls's ascent, 0.3 m/s at its burnout;
 the events of the throttle law's modes detected up to H late, as the pseudo-code detects them),
 ME Euler 2e-2 (first order: ~7 m/s and ~300 m at kourou-leo's
 burnout with H = 0.01 s); and the end time within max(1e-5 s, 10 rtol T) for CS (the end event
@@ -42,6 +42,13 @@ import tempfile
 LVSIM, IMPORTER, SRC = sys.argv[1], sys.argv[2], sys.argv[3]
 MAX_PHASES = int(sys.argv[4]) if len(sys.argv) > 4 else 1000
 BOUND = {"cs": 1e-6, "me-rk4": 1e-3, "me-euler": 2e-2}
+# The heat loads are quadratures, out of the error control (docs/models.md, "Heat load"): as
+# accurate as the steps the other states need, not the tolerance. Against a dop853 run at 1e-12,
+# dof3-branch's ascent (dassl at 1e-8) ends 5.4e-6 off in heat_load_fm with lvsim run's steps
+# and 1.3e-6 off with the CS communication points' (3.4e-6 of the scale apart); CS is held to
+# this for them
+QUAD = {"heat_load", "heat_load_fm"}
+QUAD_BOUND_CS = 2e-5
 
 failures = []
 worst = {k: (0.0, "") for k in BOUND}
@@ -127,12 +134,17 @@ try:
                     failures.append(f"{ex}/{phase} {mode}: ends at t = {res['t_end']:.9g} s, "
                                     f"lvsim run at {ref['time']:.9g} s (bound {t_bound:g} s)")
                 err, which = 0.0, ""
+                qerr, qwhich = 0.0, ""
                 for name, x in res["x"].items():
                     col = [row[head.index(name)] for row in rows]
                     scale = max(abs(v) for v in col) + (max(col) - min(col))
                     scale = scale if scale > 0 else 1.0
                     xe = x + res["xdot_step"][name] * dt
                     rel = abs(xe - ref[name]) / scale
+                    if mode == "cs" and name in QUAD:
+                        if rel > qerr:
+                            qerr, qwhich = rel, f"{name}: {xe:.12g} vs {ref[name]:.12g}"
+                        continue
                     if rel > err:
                         err, which = rel, f"{name}: {xe:.12g} vs {ref[name]:.12g}"
                 print(f"{ex}/{phase} {mode:8s} H = {h:g} s: {res['steps']} steps, "
@@ -140,6 +152,12 @@ try:
                       f"worst state {err:.2e} of its scale ({which})")
                 if err > worst[mode][0]:
                     worst[mode] = (err, f"{ex}/{phase}")
+                if qerr > 0.0:
+                    print(f"{'':{len(ex) + len(phase) + 10}s}heat loads (quadratures): {qerr:.2e} "
+                          f"of the scale ({qwhich}); bound {QUAD_BOUND_CS:g}")
+                if qerr > QUAD_BOUND_CS:
+                    failures.append(f"{ex}/{phase} cs: {qwhich}: {qerr:.3g} of the state's "
+                                    f"scale > {QUAD_BOUND_CS:g} (a quadrature)")
                 if err > BOUND[mode]:
                     failures.append(f"{ex}/{phase} {mode}: {which}: {err:.3g} of the state's "
                                     f"scale > {BOUND[mode]:g}")

@@ -47,6 +47,7 @@ target_compile_definitions(test_guidance PRIVATE
 # a failing trial point, no solution, the maximum range, the converged file, branches, the API,
 # bad targeting sections.
 lv_add_unit_test(test_target unit/test_target.c)
+lv_add_unit_test(test_target_path unit/test_target_path.c)
 # Monte Carlo dispersions and campaigns (issue 16): the generator, streams, correlations, the
 # analytic Isp scatter, table dispersions, bad inputs (tests/missions/mc).
 lv_add_unit_test(test_campaign unit/test_campaign.c)
@@ -60,3 +61,4 @@ lv_add_unit_test(test_mission_valid unit/test_mission_valid.c)
 lv_add_unit_test(test_engines unit/test_engines.c)
 lv_add_unit_test(test_flare unit/test_flare.c)
 lv_add_unit_test(test_heating unit/test_heating.c)
+lv_add_unit_test(test_heat_load unit/test_heat_load.c)

@@ -1162,8 +1162,9 @@ static void check_inputs(void)
         const double half = 0.5;
         CHECK(L.fmi2SetReal(c, &vr_in[3], 1, &half) == fmi2OK);
         CHECK(L.fmi2GetDerivatives(c, d1, nx) == fmi2OK);
-        printf("  ME: der(m) %g kg/s at throttle 1, %g at 0.5\n", d0[nx - 1], d1[nx - 1]);
-        CHECK(fabs(d1[nx - 1] - 0.5 * d0[nx - 1]) <= 1e-9 * fabs(d0[nx - 1]));
+        const size_t im = LV_X3_M; /* der(m): the mass is not the last state (the heat loads follow) */
+        printf("  ME: der(m) %g kg/s at throttle 1, %g at 0.5\n", d0[im], d1[im]);
+        CHECK(fabs(d1[im] - 0.5 * d0[im]) <= 1e-9 * fabs(d0[im]));
         CHECK(L.fmi2Terminate(c) == fmi2OK);
         L.fmi2FreeInstance(c);
     }
