@@ -19,6 +19,16 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* "5.15490&deg; N, 43.62727&deg; W" for a geodetic latitude and longitude [rad] (longitude
+ * wrapped to [-180, 180] deg), into buf. */
+static const char *latlon_html(double lat, double lon, char *buf, size_t cap)
+{
+    const double la = lat * 180.0 / M_PI, lo = remainder(lon, 2.0 * M_PI) * 180.0 / M_PI;
+    snprintf(buf, cap, "%.5f&deg; %s, %.5f&deg; %s", fabs(la), la < 0.0 ? "S" : "N", fabs(lo),
+             lo < 0.0 ? "W" : "E");
+    return buf;
+}
+
 static void esc(FILE *f, const char *s)
 {
     for (; *s; s++)
@@ -141,11 +151,12 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
         if (lv_mc_ground_points(d, p, x, y, &lat0, &lon0) >= 3) {
             lv_mc_ell g;
             lv_mc_ellipse(x, y, p->n_rows, 3.0, &g);
-            fprintf(f, "<p>%s 3-sigma ellipse (%zu points) about %.5f&deg; N, %.5f&deg; E: "
+            char ll[64];
+            fprintf(f, "<p>%s 3-sigma ellipse (%zu points) about %s: "
                     "semi-axes %.4g m and %.4g m, major axis at azimuth %.1f&deg;; sd east "
                     "%.4g m, north %.4g m, correlation %.3f.</p>\n",
                     lv_mc_is_impact(p) ? "Impact" : "Final ground point", g.n,
-                    lat0 * 180.0 / M_PI, remainder(lon0, 2.0 * M_PI) * 180.0 / M_PI, g.a, g.b,
+                    latlon_html(lat0, lon0, ll, sizeof ll), g.a, g.b,
                     fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0), g.sx, g.sy, g.rho);
         }
         fputs("<table><tr><th>final value</th><th>n</th><th>mean</th><th>sd</th><th>p1</th>"
@@ -184,9 +195,9 @@ lv_status lv_campaign_plot(const char *db_path, const char *outdir, lv_err *err)
             lv_mc_ellipse(x, y, fp->n, 3.0, &g);
             lv_mc_stat s;
             lv_mc_summary(fp->tof, fp->n, &s);
-            fprintf(f, "<td>%.5f&deg; N, %.5f&deg; E</td><td>%.4g, %.4g</td><td>%.1f&deg;</td>"
-                    "<td>%.6g &plusmn; %.3g</td>", lat0 * 180.0 / M_PI,
-                    remainder(lon0, 2.0 * M_PI) * 180.0 / M_PI, g.a, g.b,
+            char ll[64];
+            fprintf(f, "<td>%s</td><td>%.4g, %.4g</td><td>%.1f&deg;</td>"
+                    "<td>%.6g &plusmn; %.3g</td>", latlon_html(lat0, lon0, ll, sizeof ll), g.a, g.b,
                     fmod(90.0 - g.theta * 180.0 / M_PI + 360.0, 180.0), s.mean, s.sd);
         } else {
             fputs("<td>-</td><td>-</td><td>-</td><td>-</td>", f);

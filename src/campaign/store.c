@@ -95,23 +95,40 @@ static void cat(char *buf, size_t cap, size_t *at, const char *s)
     }
 }
 
-/* FNV-1a 64 of the mission file's bytes: a resumed database must belong to the same file. */
-static int file_hash(const char *path, char out[17])
+/* FNV-1a 64 over the bytes of a file, continuing from h; -1 when it cannot be read. */
+static int hash_file(const char *path, uint64_t *h)
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL)
         return -1;
-    uint64_t h = 14695981039346656037ULL;
     unsigned char buf[65536];
     size_t n;
     while ((n = fread(buf, 1, sizeof buf, f)) > 0)
         for (size_t i = 0; i < n; i++) {
-            h ^= buf[i];
-            h *= 1099511628211ULL;
+            *h ^= buf[i];
+            *h *= 1099511628211ULL;
         }
     fclose(f);
-    snprintf(out, 17, "%016llx", (unsigned long long)h);
     return 0;
+}
+
+/* FNV-1a 64 of the mission file's bytes and of every data file it reads (profiles, tables,
+ * gravity coefficients: lv_mission_file), each after its name: a resumed database must belong
+ * to the same file and the same data (a sounding replaced between two sessions would mix two
+ * days' weather in one campaign). */
+static void mission_hash(const lv_mission *m, const char *path, char out[17])
+{
+    uint64_t h = 14695981039346656037ULL;
+    hash_file(path, &h);
+    for (size_t i = 0; i < lv_mission_file_count(m); i++) {
+        const char *f = lv_mission_file(m, i);
+        for (const unsigned char *q = (const unsigned char *)f; *q; q++) {
+            h ^= *q;
+            h *= 1099511628211ULL;
+        }
+        hash_file(f, &h);
+    }
+    snprintf(out, 17, "%016llx", (unsigned long long)h);
 }
 
 static int meta_get(lv_campaign *c, const char *key, char *val, size_t cap)
@@ -224,7 +241,7 @@ static lv_status create_schema(lv_campaign *c, const lv_run *r, lv_err *err)
     lv_mission_info mi;
     lv_mission_get_info(m, &mi);
     char buf[64], hash[17] = "";
-    file_hash(mi.path, hash);
+    mission_hash(m, mi.path, hash);
     snprintf(buf, sizeof buf, "%llu", (unsigned long long)c->o.seed);
     if ((st = meta_put(c, "schema", LV_MC_SCHEMA_TEXT, err)) != LV_OK ||
         (st = meta_put(c, "mission", mi.name, err)) != LV_OK ||
@@ -498,7 +515,7 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
         char v[256], hash[17] = "", want[64];
         lv_mission_info mi;
         lv_mission_get_info(m, &mi);
-        file_hash(mi.path, hash);
+        mission_hash(m, mi.path, hash);
         snprintf(want, sizeof want, "%llu", (unsigned long long)o->seed);
         if (!meta_get(c, "schema", v, sizeof v) || strcmp(v, LV_MC_SCHEMA_TEXT) != 0) {
             st = lv_fail(err, LV_ERR_INPUT, "%s is not an lvsim campaign database (schema %d)",
@@ -506,8 +523,9 @@ lv_status lv_campaign_open(const lv_mission *m, const lv_campaign_options *o, lv
             goto fail;
         }
         if (!meta_get(c, "mission_hash", v, sizeof v) || strcmp(v, hash) != 0) {
-            st = lv_fail(err, LV_ERR_INPUT, "%s was made from another mission file (hash %s, "
-                         "this file's %s): resume with the same file, or start anew (--force)",
+            st = lv_fail(err, LV_ERR_INPUT, "%s was made from another mission file or other data "
+                         "files (hash %s, now %s: the mission and every file it reads): resume "
+                         "with the same files, or start anew (--force)",
                          o->db_path, v, hash);
             goto fail;
         }

@@ -124,6 +124,13 @@ if command -v sqlite3 >/dev/null; then
   n=$(sqlite3 "$work/turb_mc/campaign.db" "SELECT count(DISTINCT round(v_east, 6)) FROM phase_P" 2>&1)
   if [ "$n" = 3 ]; then pass=$((pass + 1)); else echo "FAIL: mc turbulence: $n distinct final v_east, want 3"; fails=$((fails + 1)); fi
 fi
+# a resumed campaign must fly the same data: the sounding replaced between two sessions is
+# refused (the database's hash covers every file the mission reads), not mixed in
+cp "$work/sounding.txt" "$work/sounding.orig"
+sed -i 's/^  850.0   1440   15.0   10.0     72   9.10    120     20/  850.0   1440   15.0   10.0     72   9.10    120     60/' "$work/sounding.txt"
+expect 2 "made from another mission file or other data files" -- "$lvsim" mc "$work/turb.yaml" -n 4 -o "$work/turb_mc" --resume --no-stats
+cp "$work/sounding.orig" "$work/sounding.txt"
+expect 0 "4 runs" -- "$lvsim" mc "$work/turb.yaml" -n 4 -o "$work/turb_mc" --resume --no-stats
 for c in "turbulence: {length: 300}|environment, turbulence: missing required key 'sigma'" \
          "turbulence: {sigma: 2, from: 9000, to: 100}|'to' must be above 'from'" \
          "turbulence: {sigma: 2, lenght: 300}|unknown key 'lenght'; did you mean 'length'" \
