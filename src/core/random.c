@@ -23,6 +23,14 @@ void lv_rand_u01x2(uint64_t seed, uint64_t run, uint64_t stream, double u[2])
     u[1] = u01fixedpt_open_open_64_double(((uint64_t)r.v[2] << 32) | r.v[3]);
 }
 
+void lv_rand_normal2(uint64_t seed, uint64_t run, uint64_t stream, double z[2])
+{
+    double u[2];
+    lv_rand_u01x2(seed, run, stream, u);
+    z[0] = lv_disp_norm_inv(u[0]);
+    z[1] = lv_disp_norm_inv(u[1]);
+}
+
 uint64_t lv_disp_stream(const char *name)
 {
     uint64_t h = 14695981039346656037ULL; /* FNV-1a 64 offset basis */

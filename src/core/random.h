@@ -9,5 +9,8 @@
  * counter (run mod 2^32, run / 2^32, stream mod 2^32, stream / 2^32); u[0] from the output's
  * high 64 bits (what lv_disp_uniform returns), u[1] from its low 64 bits. Pure. */
 void lv_rand_u01x2(uint64_t seed, uint64_t run, uint64_t stream, double u[2]);
+/* The two standard normals of that call: the inverse normal CDF (lv_disp_norm_inv) of u[0] and
+ * u[1]. The white noise of the turbulence and of the perturbation profiles. */
+void lv_rand_normal2(uint64_t seed, uint64_t run, uint64_t stream, double z[2]);
 
 #endif

@@ -37,13 +37,10 @@ void lv_perturbation_free(lv_perturbation *p)
 static void realise(lv_perturbation *p, size_t c, uint64_t stream, uint64_t seed, uint64_t run)
 {
     const double A = exp(-1.0 / SAMPLES_PER_L), B = sqrt(1.0 - A * A);
-    double u[2], z[2], x = 0.0;
+    double z[2], x = 0.0;
     for (size_t k = 0; k < p->n; k++) {
-        if (k % 2 == 0) {
-            lv_rand_u01x2(seed, run, stream + k / 2, u);
-            z[0] = lv_disp_norm_inv(u[0]);
-            z[1] = lv_disp_norm_inv(u[1]);
-        }
+        if (k % 2 == 0)
+            lv_rand_normal2(seed, run, stream + k / 2, z);
         x = k == 0 ? z[0] : A * x + B * z[k % 2];
         p->x[k * p->n_comp + c] = x;
     }

@@ -53,15 +53,6 @@ void lv_wind_disturbance_free(lv_wind_disturbance *d)
     free(d);
 }
 
-/* Two standard normals from the stream's call k (Philox counter (run, stream + k)). */
-static void normals(uint64_t seed, uint64_t run, uint64_t stream, uint64_t k, double z[2])
-{
-    double u[2];
-    lv_rand_u01x2(seed, run, stream + k, u);
-    z[0] = lv_disp_norm_inv(u[0]);
-    z[1] = lv_disp_norm_inv(u[1]);
-}
-
 /* The realisation, sample by sample: five normals per sample (two per lateral component, one
  * for the vertical), from three generator calls. */
 static void realise(lv_wind_disturbance *d, uint64_t seed, uint64_t run)
@@ -80,9 +71,8 @@ static void realise(lv_wind_disturbance *d, uint64_t seed, uint64_t run)
     const uint64_t stream = lv_disp_stream("environment.turbulence");
     double x1[2], x2[2], xv, z[6];
     for (size_t k = 0; k < d->n; k++) {
-        normals(seed, run, stream, 3 * (uint64_t)k, z);
-        normals(seed, run, stream, 3 * (uint64_t)k + 1, z + 2);
-        normals(seed, run, stream, 3 * (uint64_t)k + 2, z + 4);
+        for (int j = 0; j < 3; j++) /* counter (run, stream + 3k + j) */
+            lv_rand_normal2(seed, run, stream + 3 * (uint64_t)k + (uint64_t)j, z + 2 * j);
         if (k == 0) { /* from the stationary distribution: x ~ N(0, P) */
             for (int c = 0; c < 2; c++) {
                 x1[c] = 0.5 * z[2 * c];                                     /* sqrt(p11) */
