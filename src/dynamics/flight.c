@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "core/status.h"
+#include "lvsim/lv_wind.h"
 
 #define VERTICAL_TOL 1e-9 /* sin of the angle from the vertical below which chi is undefined */
 
@@ -44,6 +45,7 @@ lv_status lv_flight_world_setup(lv_flight_world *w, const char *model, const lv_
     }
     w->wind = wind;
     w->wind_user = wind_user;
+    w->wind_latlon = wind != NULL && wind != lv_wind_fn_table;
     return LV_OK;
 }
 
@@ -94,7 +96,7 @@ void lv_flight_kinematics(const lv_flight_world *w, double t, const double r_eci
                           const double v_eci[3], int exact, lv_flight_kin *k)
 {
     lv_flight_to_ecef(w, t, r_eci, v_eci, k);
-    lv_flight_geodetic(w, k, exact, w->wind != NULL); /* the wind needs lat, lon */
+    lv_flight_geodetic(w, k, exact, w->wind_latlon); /* a wind that reads lat, lon */
 }
 
 lv_vec3 lv_flight_from_ned(const lv_flight_kin *k, double n, double e, double d)
