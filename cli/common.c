@@ -13,6 +13,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include "post/json_print.h"
 
 int exit_code_for(lv_status st)
 {
@@ -109,7 +110,7 @@ const lv_model_def *find_model(const char *name)
 
 int print_json(cJSON *doc)
 {
-    char *text = doc != NULL ? cJSON_Print(doc) : NULL;
+    char *text = doc != NULL ? lv_json_print(doc) : NULL;
     cJSON_Delete(doc);
     if (text == NULL) {
         fprintf(stderr, "lvsim: out of memory writing JSON\n");

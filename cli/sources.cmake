@@ -19,11 +19,15 @@ add_executable(lvsim_cli
   cli/cmd_view.c
   cli/cmd_atmosphere.c
   cli/cmd_gravity.c
-  cli/progress.c)
+  cli/progress.c
+  src/post/json_print.c  # the --json documents with exact numbers (its own copy: hidden in
+  src/io/numfmt.cc)      # liblvsim_post)
 set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
 # The core library (run), the post-processing one (export, plot, report) and cJSON for the
 # --json documents of simulate, compare and params.
-target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m)
+target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m
+                                        dragonbox::dragonbox)
+target_include_directories(lvsim_cli PRIVATE ${PROJECT_SOURCE_DIR}/src) # post/json_print.h, io/numfmt.h
 lv_set_warnings(lvsim_cli)
 # `mpirun -np K lvsim mc`: only when MPI is found (cmake/lv_deps.cmake); the plain build needs
 # none. The MPI side (cli/mc_mpi.c) is the module lvsim_mpi.so, beside the figures' module,

@@ -23,6 +23,7 @@
 #include "io/atomic.h"
 #include "lvsim/lv_campaign.h"
 #include "lvsim/lv_planet.h"
+#include "post/json_print.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -793,7 +794,7 @@ lv_status lv_campaign_stats(const char *db_path, const char *outdir, lv_err *err
         goto done;
     }
     char path[4200];
-    char *json = cJSON_Print(root);
+    char *json = lv_json_print(root);
     if (json == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto done;

@@ -5,13 +5,12 @@
  * Written straight to the file as it goes (no document tree, nothing held per sample), laid
  * out byte for byte as cJSON_Print lays a document out (cJSON 1.7.15, print_object,
  * print_array, print_number, print_string_ptr): objects one item per line indented by tabs,
- * "key":<tab>value; arrays on one line, ", " between items; numbers as lv_ex_json_number says.
- * The file is the one the former cJSON writer gave (docs/exports.md, "CZML"). */
+ * "key":<tab>value; arrays on one line, ", " between items; numbers as lv_ex_json_number says:
+ * exact, as lv_json_print writes the other JSON files (post/json_print.h), where cJSON_Print
+ * itself would write 15 digits that read back to another double (docs/exports.md, "CZML"). */
 #define _POSIX_C_SOURCE 200809L
 
-#include <locale.h>
 #include <math.h>
-#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,7 +20,7 @@
 #include "core/status.h"
 #include "core/units.h"
 #include "io/atomic.h"
-#include "io/numparse.h"
+#include "io/numfmt.h"
 #include "lvsim/lv_planet.h"
 #include "post/export_int.h"
 
@@ -29,28 +28,13 @@
 
 /* ------------------------------------------------------- JSON as cJSON -- */
 
-size_t lv_ex_json_number(double d, char decimal_point, char *buf)
+size_t lv_ex_json_number(double d, char *buf)
 {
-    int n;
-    if (isnan(d) || isinf(d)) {
-        n = snprintf(buf, LV_EX_JSON_NUM_CAP, "null");
-    } else {
-        /* 15 significant digits unless they do not read back to d within cJSON's
-         * compare_double (|a - b| <= max(|a|, |b|) DBL_EPSILON), then 17. (An integer comes
-         * out as "%d" would write it; -0.0 as "-0", as Debian's cJSON 1.7.15 writes it.) */
-        n = snprintf(buf, LV_EX_JSON_NUM_CAP, "%1.15g", d);
-        char *end = NULL;
-        const double test = lv_numparse_double(buf, &end); /* strtod's value, faster */
-        const double m = fabs(test) > fabs(d) ? fabs(test) : fabs(d);
-        if (end == buf || !(fabs(test - d) <= m * DBL_EPSILON))
-            n = snprintf(buf, LV_EX_JSON_NUM_CAP, "%1.17g", d);
+    if (!isfinite(d)) {
+        memcpy(buf, "null", 5);
+        return 4;
     }
-    if (n < 0)
-        n = 0;
-    for (int i = 0; i < n; i++) /* cJSON writes the locale's decimal point as '.' */
-        if (buf[i] == decimal_point)
-            buf[i] = '.';
-    return (size_t)n;
+    return lv_numfmt_double(d, buf); /* shortest round-trip digits, '.' whatever the locale */
 }
 
 void lv_ex_json_string(FILE *f, const char *s)
@@ -79,7 +63,6 @@ void lv_ex_json_string(FILE *f, const char *s)
 enum { JW_DEPTH = 8 };
 typedef struct jw {
     FILE *f;
-    char point;             /* the locale's decimal point (lv_ex_json_number) */
     int depth;              /* open containers */
     char kind[JW_DEPTH];    /* '{' or '[' */
     int items[JW_DEPTH];    /* items written in it so far */
@@ -163,7 +146,7 @@ static void jw_num(jw *w, const char *key, double v)
 {
     char buf[LV_EX_JSON_NUM_CAP];
     jw_item(w, key);
-    fwrite(buf, 1, lv_ex_json_number(v, w->point, buf), w->f);
+    fwrite(buf, 1, lv_ex_json_number(v, buf), w->f);
 }
 
 /* ----------------------------------------------------------------- CZML -- */
@@ -747,12 +730,9 @@ static lv_status write_czml(const lv_ex_run *r, lv_err *err)
     lv_status st = lv_atomic_open(&out, path, err);
     if (st != LV_OK)
         return st;
-    const struct lconv *lc = localeconv();
     jw w;
     memset(&w, 0, sizeof w);
     w.f = out.fp;
-    w.point = lc != NULL && lc->decimal_point != NULL && lc->decimal_point[0] != '\0'
-                  ? lc->decimal_point[0] : '.';
     jw_open(&w, NULL, '[');
     document_packet(&w, r);
     for (size_t bi = 0; bi < r->n_bodies; bi++) {

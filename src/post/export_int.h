@@ -107,16 +107,15 @@ const char *lv_ex_event_label(const lv_ex_event *e);
  * else "P2 start"), k >= 1 its events by their names (lv_ex_event_label). */
 void lv_ex_marker_label(const lv_ex_run *r, size_t p, size_t k, char *buf, size_t cap);
 
-/* JSON as cJSON_Print writes it (export_czml.c, which streams its document with them).
- * lv_ex_json_number: d into buf (LV_EX_JSON_NUM_CAP bytes) as cJSON 1.7.15's print_number does:
- * "null" for NaN and infinities, else "%1.15g", or "%1.17g" when the 15 digits do not read
- * back within cJSON's compare_double (integers thus as "%d" writes them, -0.0 as "-0", as
- * Debian's cJSON 1.7.15 does: test_export checks against it); `decimal_point` (the
- * locale's, localeconv) written as '.'. Returns the length. lv_ex_json_string: s quoted and
- * escaped as print_string_ptr does: \" \\ \b \f \n \r \t, other bytes below 0x20 as
- * \u00XX, every other byte (UTF-8) as it is; NULL as "". */
+/* JSON in cJSON_Print's layout (export_czml.c, which streams its document with them).
+ * lv_ex_json_number: d into buf (LV_EX_JSON_NUM_CAP bytes) as lv_json_print writes numbers
+ * (post/json_print.h): "null" for NaN and infinities, else the shortest decimal text that
+ * reads back to d (io/numfmt.h: %.17g's layout, '.' whatever the locale; cJSON 1.7.15's own
+ * 15 digits read back to another double for 8.5 % of trajectory-like numbers). Returns the length.
+ * lv_ex_json_string: s quoted and escaped as print_string_ptr does: \" \\ \b \f \n \r \t,
+ * other bytes below 0x20 as \u00XX, every other byte (UTF-8) as it is; NULL as "". */
 #define LV_EX_JSON_NUM_CAP 32
-size_t lv_ex_json_number(double d, char decimal_point, char *buf);
+size_t lv_ex_json_number(double d, char *buf);
 void lv_ex_json_string(FILE *f, const char *s);
 
 /* An export: one file src/post/export_<name>.c defines its writer and this descriptor, one line

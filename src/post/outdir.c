@@ -32,6 +32,7 @@
 #include "lvsim/lv_outdir.h"
 #include "lvsim/lvsim.h"
 #include "post/export_int.h"
+#include "post/json_print.h"
 
 #define MANIFEST "manifest.json"
 #define STAGING_TAG ".staging-"
@@ -1624,7 +1625,7 @@ static lv_status write_manifest(lv_outdir *od, const char *dir, const lv_outdir_
         l.names[i] = NULL;
         od->n_files = i + 1;
     }
-    json = cJSON_Print(root);
+    json = lv_json_print(root);
     if (json == NULL) {
         st = nomem(err);
         goto fail;

@@ -22,6 +22,7 @@
 #include "io/atomic.h"
 #include "lvsim/lv_atmosphere.h"
 #include "post/plot.h"
+#include "post/json_print.h"
 
 #define G0 9.80665            /* m/s^2, standard gravity: load factors in g0 */
 #define R_MEAN 6371008.8      /* m, IUGG mean Earth radius: great-circle distances */
@@ -599,7 +600,7 @@ lv_status lv_plot_keys(const lv_plot_data *d, cJSON **out, lv_err *err)
         cJSON_AddItemToObject(bk, "iip_cutoff", iip ? iip : cJSON_CreateNull());
         cJSON_AddItemToArray(bodies, bk);
     }
-    char *text = cJSON_Print(doc);
+    char *text = lv_json_print(doc);
     if (text == NULL) {
         cJSON_Delete(doc);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");

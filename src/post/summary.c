@@ -17,6 +17,7 @@
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lvsim.h"
+#include "post/json_print.h"
 
 /* Name of state event `index` of a phase's model (recorded when the phase ran). */
 static const char *event_name(const lv_phase_result *r, int index)
@@ -375,7 +376,7 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
         }
     }
     free(ks);
-    char *text = st == LV_OK && (what & LV_SUMMARY_JSON) ? cJSON_Print(root) : NULL;
+    char *text = st == LV_OK && (what & LV_SUMMARY_JSON) ? lv_json_print(root) : NULL;
     cJSON_Delete(root);
     if (st != LV_OK || !(what & LV_SUMMARY_JSON))
         return st;
