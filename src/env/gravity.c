@@ -266,8 +266,32 @@ size_t lv_gravity_ws_size(const lv_gravity *g)
  *   a_z = mu/r^3 [-z + r sum J_n q^n (n + 1) P_{n+1}(u)]
  *   U   = mu/r  [1 - sum J_n q^n P_n(u)],  u = z/r, q = R/r.
  * Free of 1/cos(latitude), so exact at the poles. */
+/* The same for J2 alone, the sums written out (P_2 = (3u^2 - 1)/2, P_3 = (5u^3 - 3u)/2,
+ * P'_3 = (15u^2 - 3)/2): one square root and one division instead of the recursion's four
+ * divisions. The most common field (every `gravity: j2` mission's right-hand side, and the
+ * instantaneous impact point's propagation, lv_iip_propagate, at each output row). */
+static void j2_eval(const lv_gravity *g, const double r[3], double a[3], double *U)
+{
+    const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    const double rn = sqrt(r2), ir = 1.0 / rn, ir2 = ir * ir;
+    const double u = r[2] * ir, u2 = u * u;
+    const double mu_r3 = g->gm * ir2 * ir;
+    const double jq = g->jn[2] * (g->r_ref * g->r_ref) * ir2; /* J2 q^2 */
+    const double sxy = jq * (7.5 * u2 - 1.5);     /* J2 q^2 P'_3(u) */
+    const double sz = jq * u * (7.5 * u2 - 4.5);  /* J2 q^2 3 P_3(u) */
+    a[0] = mu_r3 * (r[0] * sxy - r[0]);
+    a[1] = mu_r3 * (r[1] * sxy - r[1]);
+    a[2] = mu_r3 * (rn * sz - r[2]);
+    if (U != NULL)
+        *U = g->gm * ir * (1.0 - jq * (1.5 * u2 - 0.5)); /* 1 - J2 q^2 P_2(u) */
+}
+
 static void zonal_eval(const lv_gravity *g, const double r[3], double a[3], double *U)
 {
+    if (g->nz == 2) {
+        j2_eval(g, r, a, U);
+        return;
+    }
     const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
     const double rn = sqrt(r2), u = r[2] / rn, q = g->r_ref / rn;
     const double mu_r3 = g->gm / (r2 * rn);
