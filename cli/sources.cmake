@@ -22,7 +22,8 @@ add_executable(lvsim_cli
   cli/progress.c
   src/post/json_print.c  # the --json documents with exact numbers (its own copy: hidden in
   src/io/numfmt.cc)      # liblvsim_post)
-set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
+set_target_properties(lvsim_cli PROPERTIES OUTPUT_NAME lvsim RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}
+                                           LINKER_LANGUAGE C) # numfmt.cc needs no libstdc++
 # The core library (run), the post-processing one (export, plot, report) and cJSON for the
 # --json documents of simulate, compare and params.
 target_link_libraries(lvsim_cli PRIVATE lvsim_post lvsim PkgConfig::CJSON Threads::Threads m
