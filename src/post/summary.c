@@ -163,6 +163,31 @@ static cJSON *phase_json(const lv_run *run, size_t k)
                 cJSON_AddNumberToObject(ab, r->absorbed_names[i], r->absorbed_values[i]);
         }
     }
+    if (lv_mission_phase_has_reference(m, k)) { /* the drift from the optimiser's trajectory */
+        cJSON *rj = cJSON_AddObjectToObject(o, "reference");
+        lv_ref_drift d;
+        if (lv_run_reference_drift(run, k, &d, NULL) == LV_OK) {
+            cJSON_AddStringToObject(rj, "over", d.over_tau ? "tau" : "time");
+            cJSON_AddStringToObject(rj, "start", d.start_from_reference ? "reference" : "parent");
+            cJSON_AddNumberToObject(rj, "rows", (double)d.n_rows);
+            if (d.n_rows > 0) {
+                cJSON_AddNumberToObject(rj, "t_first", d.t_first);
+                cJSON_AddNumberToObject(rj, "t_final", d.t_final);
+                const char *const qn[3] = {"position", "velocity", "mass"};
+                const double q[3][3] = {{d.pos_max, d.pos_max_t, d.pos_final},
+                                        {d.vel_max, d.vel_max_t, d.vel_final},
+                                        {d.mass_max, d.mass_max_t, d.mass_final}};
+                for (int i = 0; i < 3; i++) {
+                    cJSON *qj = cJSON_AddObjectToObject(rj, qn[i]);
+                    cJSON_AddNumberToObject(qj, "max", q[i][0]);
+                    cJSON_AddNumberToObject(qj, "t_max", q[i][1]);
+                    cJSON_AddNumberToObject(qj, "final", q[i][2]);
+                }
+            }
+        } else {
+            cJSON_AddNullToObject(rj, "rows"); /* not run, or no rows kept */
+        }
+    }
     cJSON *ov = cJSON_AddObjectToObject(h, "overrides");
     for (size_t i = 0; i < r->n_set; i++)
         cJSON_AddNumberToObject(ov, r->set_names[i], r->set_values[i]);
