@@ -338,6 +338,16 @@ typedef struct lv_ref_drift {
     double mass_max, mass_max_t, mass_final; /* kg, s, kg */
 } lv_ref_drift;
 
+/* One compared row of lv_run_reference_rows: the simulation's and the reference's geodetic
+ * altitude, speed relative to the planet and mass, and the differences of lv_ref_drift. */
+typedef struct lv_ref_row {
+    double t;                   /* s, mission time of the result row */
+    double h, h_ref;            /* m */
+    double v, v_ref;            /* m/s */
+    double m, m_ref;            /* kg */
+    double d_pos, d_vel, d_mass; /* m, m/s, kg */
+} lv_ref_row;
+
 /* 1 if phase k has a `reference:` (0 when not, or k out of range). */
 LV_API int lv_mission_phase_has_reference(const lv_mission *m, size_t k);
 /* Phase k's drift from its reference in the run's last execute. LV_ERR_NOTFOUND when the phase
@@ -345,6 +355,10 @@ LV_API int lv_mission_phase_has_reference(const lv_mission *m, size_t k);
  * LV_ERR_INPUT when k is out of range. */
 LV_API lv_status lv_run_reference_drift(const lv_run *r, size_t k, lv_ref_drift *out,
                                         lv_err *err);
+/* The rows behind it: *rows[0 .. *n - 1] (owned by the run, valid until its next execute or
+ * lv_run_free); the same errors. */
+LV_API lv_status lv_run_reference_rows(const lv_run *r, size_t k, const lv_ref_row **rows,
+                                       size_t *n, lv_err *err);
 
 /* ---- output size, before running --------------------------------------------------------- */
 

@@ -185,7 +185,8 @@ lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet,
 
 lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
                              const lv_result *rows, const char *mass_state, double t_start,
-                             double t_stop, lv_ref_drift *out, lv_err *err)
+                             double t_stop, lv_ref_drift *out, lv_ref_row **series,
+                             lv_err *err)
 {
     static const char *const need[] = {"time", "h", "lat", "lon", "v_north", "v_east", "v_down"};
     size_t col[8];
@@ -201,11 +202,16 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
     size_t nb = 0;
     const double *b = lv_table_breakpoints(r->table, 0, &nb);
     const double lo = b[0], hi = b[nb - 1], eps = 1e-9 * (1.0 + fmax(fabs(lo), fabs(hi)));
-    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
-    if (buf == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
-    lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
     const size_t nr = lv_result_rows(rows);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
+    lv_ref_row *ser = malloc((nr + 1) * sizeof *ser);
+    *series = NULL;
+    if (buf == NULL || ser == NULL) {
+        free(buf);
+        free(ser);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
     st = LV_OK;
     for (size_t i = 0; i < nr && st == LV_OK; i++) {
         double y[8];
@@ -225,6 +231,8 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
         const double dp = hypot(hypot(rs[0] - rr[0], rs[1] - rr[1]), rs[2] - rr[2]);
         const double dv = hypot(hypot(vs[0] - vr[0], vs[1] - vr[1]), vs[2] - vr[2]);
         const double dm = fabs(y[7] - s[LV_REF_M]);
+        ser[out->n_rows] = (lv_ref_row){t, y[1], s[LV_REF_H], sqrt(y[4] * y[4] + y[5] * y[5] + y[6] * y[6]),
+                                        s[LV_REF_V], y[7], s[LV_REF_M], dp, dv, dm};
         if (out->n_rows++ == 0)
             out->t_first = t;
         if (out->n_rows == 1 || dp > out->pos_max) {
@@ -247,5 +255,9 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
     free(buf);
     if (out->n_rows == 0)
         out->pos_max = out->vel_max = out->mass_max = NAN;
+    if (st == LV_OK && out->n_rows > 0)
+        *series = ser;
+    else
+        free(ser);
     return st;
 }

@@ -47,9 +47,12 @@ lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet,
                              double *values, size_t *n, size_t cap, lv_err *err);
 
 /* The drift of the rows `rows` (columns time, h, lat, lon, v_north, v_east, v_down and the
- * mass state) from the reference (lv_ref_drift); t_start, t_stop: the phase's (tau). */
+ * mass state) from the reference (lv_ref_drift); t_start, t_stop: the phase's (tau). *series
+ * receives the compared rows (out->n_rows of them; malloc'ed, the caller frees; NULL when
+ * none). */
 lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
                              const lv_result *rows, const char *mass_state, double t_start,
-                             double t_stop, lv_ref_drift *out, lv_err *err);
+                             double t_stop, lv_ref_drift *out, lv_ref_row **series,
+                             lv_err *err);
 
 #endif

@@ -50,6 +50,7 @@ typedef struct run_phase {
     lv_iip_sample *iip;   /* [n_iip] its impact point at those times in the last execute */
     lv_ref_drift drift;   /* its drift from its `reference:` in the last execute */
     int has_drift;        /*   computed (a reference, rows kept) */
+    lv_ref_row *drift_rows; /* [drift.n_rows] the rows compared, or NULL */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
     int claimed;          /* in the current execute: taken by a worker */
@@ -99,6 +100,9 @@ static void phase_clear(run_phase *p)
     p->notes.n = 0;
     p->res.n_absorbed = 0;
     iip_none(p->iip, p->iip_t, p->n_iip);
+    free(p->drift_rows);
+    p->drift_rows = NULL;
+    p->has_drift = 0;
 }
 
 void lv_run_free(lv_run *r)
@@ -605,7 +609,7 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
         lv_err e = {LV_OK, ""};
         p->has_drift = lv_reference_drift(ph->reference, &r->m->env.planet, p->rows,
                                           ph->type->mass_state, c->s.start_time, c->s.stop_time,
-                                          &p->drift, &e) == LV_OK;
+                                          &p->drift, &p->drift_rows, &e) == LV_OK;
     }
     p->stem = c->s.result_file ? strdup(c->s.result_file) : NULL;
     p->res.result_stem = p->stem;
@@ -1031,6 +1035,18 @@ lv_status lv_run_reference_drift(const lv_run *r, size_t k, lv_ref_drift *out, l
         return lv_fail(err, LV_ERR_NOTFOUND, "phase '%s': no drift from its reference (not run, "
                        "or run without rows)", ph->name);
     *out = r->ph[k].drift;
+    return LV_OK;
+}
+
+lv_status lv_run_reference_rows(const lv_run *r, size_t k, const lv_ref_row **rows, size_t *n,
+                                lv_err *err)
+{
+    lv_ref_drift d;
+    lv_status st = lv_run_reference_drift(r, k, &d, err);
+    if (st != LV_OK)
+        return st;
+    *rows = r->ph[k].drift_rows;
+    *n = d.n_rows;
     return LV_OK;
 }
 
