@@ -120,9 +120,9 @@ phases:
 """
 
 
-def run(lvsim, mission, out, expect=0):
-    p = subprocess.run([lvsim, "run", mission, "-o", out, "--no-plots"], capture_output=True,
-                       text=True)
+def run(lvsim, mission, out, expect=0, plots=False):
+    p = subprocess.run([lvsim, "run", mission, "-o", out] + ([] if plots else ["--no-plots"]),
+                       capture_output=True, text=True)
     check(p.returncode == expect, f"lvsim run {mission}: exit {p.returncode}, expected {expect}"
           f"\n{p.stdout}\n{p.stderr}")
     return p
@@ -172,8 +172,17 @@ def main():
     # 2. the same reference perturbed by +100 m in h at its last row: exactly that drift there
     with open("coast100.yaml", "w") as f:
         f.write(COAST % ("coast100", "{table: ref_100.csv, start: reference}"))
-    run(lvsim, "coast100.yaml", "o2")
+    run(lvsim, "coast100.yaml", "o2", plots=True)
     d = summary("o2")["phases"][0]["reference"]
+    # its rows, figure and report table
+    check(d.get("file") == "reference_1_coast.csv",
+          "reference.file: " + str(d.get("file")))
+    last = rows("o2/reference_1_coast.csv")[-1]
+    check(last["time"] == 1000.0 and abs(last["d_position"] - 100.0) < 1e-3 and
+          abs(last["h_ref"] - last["h"] - 100.0) < 1e-3, "reference CSV last row: %r" % last)
+    check(os.path.getsize("o2/plots/reference_1.png") > 1000, "plots/reference_1.png drawn")
+    with open("o2/index.html") as f:
+        check("Drift from the reference" in f.read(), "the report's drift table")
     print("perturbed by 100 m:", json.dumps(d))
     check(abs(d["position"]["final"] - 100.0) < 1e-3, "final drift %r m = 100 m" %
           d["position"]["final"])
