@@ -14,9 +14,12 @@ angle and heading of the velocity in the local north-east-up frame. Checked:
   difference, mass) far below the integration tolerance's scale (tolerance 1e-11: < 1e-4 m);
 - the first result row equals the reference's first state (root and child phases);
 - a reference perturbed by +100 m in h at its last row drifts by exactly 100 m there;
-- a reference over tau gives the same drift as over time;
+- a reference over tau gives the same drift as over time, one from a .mat file (MAT v5
+  struct, written here) the same as from CSV;
 - one control table over mission time, over tau and over mass (a constant mass flow: mass
   falls linearly, m = m0 - mdot t, so alpha(m) is alpha(t(m)) exactly) flies one trajectory;
+  a step of alpha at t = 50 s and the same step where the altitude, or the energy
+  v^2/2 + g0 h, had its value of t = 50 s fly one trajectory (within 1 mm after 100 s);
 - every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column.
 """
 import json
@@ -24,6 +27,7 @@ import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -101,6 +105,29 @@ def write_reference(path, states, axis="time [s]", axis_values=None, mass=1000.0
             f.write(",".join(repr(float(y)) for y in [x] + g + [mass]) + "\n")
 
 
+def mat_v5_struct(path, name, fields):
+    """A MAT v5 file holding one 1 x 1 struct `name` whose fields (name, values) are row
+    vectors of doubles (MathWorks, MAT-File Format, R2018a: the 128-byte header, miMATRIX
+    elements of array flags, dimensions, name, field-name length and names, then the fields),
+    the layout docs/tables.md reads as a 1-D table: the first field the axis."""
+    def el(typ, data):
+        return struct.pack("<II", typ, len(data)) + data + b"\0" * ((8 - len(data) % 8) % 8)
+
+    def matrix(nm, cls, dims, body):
+        content = (el(6, struct.pack("<II", cls, 0)) + el(5, struct.pack("<%di" % len(dims), *dims))
+                   + el(1, nm.encode()) + body)
+        return struct.pack("<II", 14, len(content)) + content
+    width = 32
+    body = (struct.pack("<Ii", (4 << 16) | 5, width)  # small element: field-name length
+            + el(1, b"".join(f.encode().ljust(width, b"\0") for f, _ in fields))
+            + b"".join(matrix("", 6, [1, len(v)], el(9, struct.pack("<%dd" % len(v), *v)))
+                       for _, v in fields))
+    head = (b"MATLAB 5.0 MAT-file, lvsim test_reference_cli".ljust(116, b" ") + b"\0" * 8
+            + struct.pack("<H", 0x0100) + b"IM")
+    with open(path, "wb") as f:
+        f.write(head + matrix(name, 2, [1, 1], body))
+
+
 HEAD = """mission: {name: %s}
 environment:
   world: planet
@@ -168,6 +195,18 @@ def main():
                           ("v_rel", g[3], 1e-9), ("fpa", g[4], 1e-12),
                           ("heading", g[5], 1e-12), ("m", 1000.0, 0.0)):
         check(abs(first[key] - ref) <= tol, f"first row {key} = {first[key]!r}, reference {ref!r}")
+
+    # 1b. the same reference from a .mat file (a MAT v5 struct): the same drift
+    pos_csv = d["position"]["max"]
+    table = [list(map(float, line.split(","))) for line in open("ref.csv").read().splitlines()[1:]]
+    mat_v5_struct("ref.mat", "opt", list(zip(["time", "h", "lat", "lon", "v", "fpa", "heading",
+                                              "m"], zip(*table))))
+    with open("coast_mat.yaml", "w") as f:
+        f.write(COAST % ("coast-mat", "{table: {file: ref.mat, var: opt}, start: reference}"))
+    run(lvsim, "coast_mat.yaml", "o1m")
+    d = summary("o1m")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["position"]["max"] == pos_csv,
+          "from .mat: %r m, from CSV %r m" % (d["position"]["max"], pos_csv))
 
     # 2. the same reference perturbed by +100 m in h at its last row: exactly that drift there
     with open("coast100.yaml", "w") as f:
@@ -266,6 +305,36 @@ phases:
         check(dr < 1e-3 and dv < 1e-5, f"over {over}: {dr} m, {dv} m/s from over time")
     dr = dist(finals["none"], finals["time"], "r_eci_")
     check(dr > 100.0, f"the inputs act: alpha = 0 ends {dr} m away")
+
+    # 5b. over altitude and over energy: alpha steps from 0 to 0.1 rad within 1 ms at t = 50 s
+    # (a time table) or where the altitude / the energy v^2/2 + g0 h had its value of t = 50 s
+    # (tables over those variables, their step as wide as the time table's): one trajectory
+    def powered(name, inputs):
+        with open(name + ".yaml", "w") as f:
+            f.write(open("pw_time.yaml").read().replace(
+                "{table: in_time.csv, over: time}", inputs).replace("powered-time", name))
+        run(lvsim, name + ".yaml", "o_" + name)
+        return rows(f"o_{name}/phase_1_burn.csv")
+    with open("step_time.csv", "w") as f:
+        f.write("time [s],alpha [rad]\n0,0\n50,0\n50.001,0.1\n100,0.1\n")
+    a = powered("step-time", "{table: step_time.csv}")
+    at50 = next(r for r in a if r["time"] == 50.0)
+    up = -at50["v_down"]                              # dh/dt, m/s
+    e50 = 0.5 * at50["v_rel"] ** 2 + 9.80665 * at50["h"]
+    # dE/dt = v . dv/dt + g0 dh/dt (a non-rotating planet: v_rel is the inertial velocity)
+    de = sum(at50["v_eci_" + c] * at50[f"der(v_eci_{c})"] for c in "xyz") + 9.80665 * up
+    with open("step_h.csv", "w") as f:
+        f.write("altitude [m],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e7,0.1\n"
+                % (at50["h"], at50["h"] + 1e-3 * up))
+    with open("step_e.csv", "w") as f:
+        f.write("energy [J/kg],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e9,0.1\n" % (e50, e50 + 1e-3 * de))
+    for name, table in (("step-h", "{table: step_h.csv, over: altitude}"),
+                        ("step-e", "{table: step_e.csv, over: energy}")):
+        b = powered(name, table)
+        dr = dist(b[-1], a[-1], "r_eci_")
+        print(f"inputs over {table}: {dr:.3g} m from the time table at t = 100 s")
+        check(dr < 1e-3, f"{name}: {dr} m from the time table")
+        check(dist(b[-1], finals["none"], "r_eci_") > 100.0, f"{name}: the step acts")
 
     # 6. bad inputs: check and run alike, exit 2, file:line:column
     with open("in_up_down.csv", "w") as f:
