@@ -211,6 +211,14 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
                            ph->set_locs[i].line, ph->set_locs[i].column, ph->name,
                            ph->set_names[i], v, dry);
     }
+    if (ph->reference != NULL && ph->reference->start) { /* the mass it will start with */
+        const double v = lv_reference_first(ph->reference, LV_REF_M);
+        if (!(v >= dry))
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': reference: its first mass "
+                           "m = %g kg is less than the dry mass %g kg of the stages it carries "
+                           "(start: reference starts the phase with it)", d->path,
+                           ph->reference->loc.line, ph->reference->loc.column, ph->name, v, dry);
+    }
     if (ph->parent >= 0)
         return LV_OK;
     double *values = calloc(pl->n_init + 8, sizeof *values);

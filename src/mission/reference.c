@@ -119,6 +119,17 @@ static lv_status ref_eval(const lv_reference_def *r, lv_table_cursor *cur, doubl
     return st;
 }
 
+double lv_reference_first(const lv_reference_def *r, size_t j)
+{
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf), v = NAN;
+    if (buf != NULL && lv_table_eval1(r->table, NULL, b[0], buf, NULL) == LV_OK)
+        v = buf[r->k[j]];
+    free(buf);
+    return v;
+}
+
 /* ECEF position and velocity relative to the planet of geodetic h, lat, lon and v, fpa,
  * heading. */
 static void ref_ecef(const lv_planet *p, const double s[LV_REF_N], double r[3], double v[3])

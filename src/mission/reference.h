@@ -37,6 +37,9 @@ lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_yno
                              lv_phase_def *ph);
 void lv_reference_free(lv_reference_def *r); /* accepts NULL */
 
+/* Column j (LV_REF_H ..) of the reference's first row. */
+double lv_reference_first(const lv_reference_def *r, size_t j);
+
 /* A start from the reference's first row (`start: reference`), placed at mission time t0: a
  * root phase (`root`) gets the parameters start_lat, start_lon, start_h, start_vel,
  * start_fpa, start_chi, a child its states r_eci_*, v_eci_* (ECI at t0 on `planet`); both the

@@ -364,6 +364,12 @@ phases:
                   "reference: ref.csv}\n",
                   r":5:\d+: phase 'c': 'reference' applies to the dof3, dof6 models only"),
         "axis": (coast.replace("ref.csv", "in_time.csv"), r":\d+:\d+: .*lacks the columns"),
+        "light": (coast.replace("dry_mass: 1000", "dry_mass: 1200"),
+                  r":\d+:\d+: phase 'coast': reference: its first mass m = 1000 kg is less than "
+                  r"the dry mass 1200 kg"),
+        "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
+                   r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
+                   r"\(`energy`, or `h` and `v`"),
     }
     for name, (text, pattern) in bad.items():
         path = f"bad_{name}.yaml"
