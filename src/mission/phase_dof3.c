@@ -209,7 +209,8 @@ static lv_status parse_over(const lv_pctx *c, const lv_ynode *at, const char *wh
         for (size_t i = 1; i < n; i++)
             if (rev ? !(x[i] < x[i - 1]) : !(x[i] > x[i - 1])) {
                 snprintf(why, sizeof why, "%s %.9g at %s = %.9g, then %.9g at %s = %.9g (rows "
-                         "%zu and %zu of the table, %s before)", kv >= 0 ? lv_table_out_name(t, (size_t)kv) : "energy",
+                         "%zu and %zu of the table, %s before)",
+                         kv >= 0 ? lv_table_out_name(t, (size_t)kv) : "energy",
                          x[i - 1], ax, b[i - 1], x[i], ax, b[i], i, i + 1,
                          rev ? "falling" : i > 1 ? "rising" : "the first rows");
                 st = lv_pk_fail(c, at, "%s: over: %s: the variable is not strictly monotone "

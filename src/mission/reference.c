@@ -99,8 +99,8 @@ lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_yno
     if (used > 0)
         return lv_pk_fail(c, tab, "%s: table '%s' lacks the column%s %s (a reference gives h "
                           "[m], lat, lon [rad], v [m/s], fpa, heading [rad] and m [kg]; its first "
-                          "output is '%s')", what, lv_table_name(t), strchr(missing, ',') ? "s" : "",
-                          missing, lv_table_out_name(t, 0));
+                          "output is '%s')", what, lv_table_name(t),
+                          strchr(missing, ',') ? "s" : "", missing, lv_table_out_name(t, 0));
     size_t n = 0;
     const double *b = lv_table_breakpoints(t, 0, &n);
     if (r->over_tau && (b[0] < 0.0 || b[n - 1] > 1.0))
@@ -242,8 +242,9 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
         const double dp = hypot(hypot(rs[0] - rr[0], rs[1] - rr[1]), rs[2] - rr[2]);
         const double dv = hypot(hypot(vs[0] - vr[0], vs[1] - vr[1]), vs[2] - vr[2]);
         const double dm = fabs(y[7] - s[LV_REF_M]);
-        ser[out->n_rows] = (lv_ref_row){t, y[1], s[LV_REF_H], sqrt(y[4] * y[4] + y[5] * y[5] + y[6] * y[6]),
-                                        s[LV_REF_V], y[7], s[LV_REF_M], dp, dv, dm};
+        const double v_sim = sqrt(y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+        ser[out->n_rows] = (lv_ref_row){t,         y[1],        s[LV_REF_H], v_sim, s[LV_REF_V],
+                                        y[7],      s[LV_REF_M], dp,          dv,    dm};
         if (out->n_rows++ == 0)
             out->t_first = t;
         if (out->n_rows == 1 || dp > out->pos_max) {
