@@ -516,6 +516,34 @@ static void print_timelines(const lv_run *run)
     free(tl);
 }
 
+/* Each phase's drift from its `reference:` (an optimiser's trajectory; lv_run_reference_drift)
+ * after the phase table: largest and final position, velocity and mass differences, the time
+ * of the largest. Only when the run kept its rows. */
+static void print_reference_drift(const lv_run *run)
+{
+    const lv_mission *m = lv_run_mission(run);
+    int head = 0;
+    for (size_t k = 0; k < lv_mission_phase_count(m); k++) {
+        lv_ref_drift d;
+        if (!lv_mission_phase_has_reference(m, k) ||
+            lv_run_reference_drift(run, k, &d, NULL) != LV_OK)
+            continue;
+        if (!head++)
+            printf("reference: %-12s %6s %11s %10s %11s %10s %10s %10s %9s %9s\n", "phase", "rows",
+                   "pos max [m]", "at t [s]", "final [m]", "vel [m/s]", "at t [s]",
+                   "final", "m [kg]", "final");
+        fputs("  ", stdout);
+        print_padded(lv_mission_phase_name(m, k), 21, SIZE_MAX);
+        if (d.n_rows == 0) {
+            printf(" %6s  (no result row within the reference's range)\n", "0");
+            continue;
+        }
+        printf(" %6zu %11.4g %10.3f %11.4g %10.4g %10.3f %10.4g %9.4g %9.4g\n", d.n_rows,
+               d.pos_max, d.pos_max_t, d.pos_final, d.vel_max, d.vel_max_t, d.vel_final,
+               d.mass_max, d.mass_final);
+    }
+}
+
 /* Runs every phase into the staging folder, printing the table as phases end; then the rows
  * on_phase could not print yet: phases never run (skipped, pending) and those after them. */
 static void run_phases(run_job *j)
@@ -532,8 +560,10 @@ static void run_phases(run_job *j)
     progress_print_begin(j->ui.prog);
     while (j->ui.table && j->ui.next < lv_mission_phase_count(j->m))
         print_row(j->run, j->ui.next++, j->ui.wname);
-    if (j->ui.table && !progress_interrupted())
+    if (j->ui.table && !progress_interrupted()) {
         print_timelines(j->run);
+        print_reference_drift(j->run);
+    }
     progress_print_end(j->ui.prog);
     /* Interrupted (Ctrl-C, SIGTERM): the phases that ended are kept, with summary.json, in a
      * folder marked failed; no exports or plots (a second signal ends the process at once and
@@ -740,9 +770,10 @@ const cli_cmd cli_cmd_run = {
     "the limit fails there as it runs), runs every phase in dependency order, independent\n"
     "branches in parallel, and prints the phase table in run order, then the bodies'\n"
     "timeline (lift-off, max-q, each phase's end by its name - MECO - or condition,\n"
-    "separations; with t, h, speed, Mach, q). Writes OUTDIR/phase_<k>_<name>.mat\n"
-    "and .csv, body_<stage>.csv, summary.json, the exports (mission.czml, mission.kml,\n"
-    "<stage>.oem), plots/, index.html and manifest.json (every file with its SHA-256);\n"
+    "separations; with t, h, speed, Mach, q) and each phase's drift from its reference.\n"
+    "Writes OUTDIR/phase_<k>_<name>.mat and .csv, body_<stage>.csv, summary.json, the\n"
+    "exports (mission.czml, mission.kml, <stage>.oem), plots/, index.html and\n"
+    "manifest.json (every file with its SHA-256);\n"
     "--outputs chooses fewer. Everything is written into a staging folder beside OUTDIR\n"
     "that replaces OUTDIR as a whole when the run ends, also when phases failed (then\n"
     "marked 'failed'): OUTDIR never mixes two runs. lvsim replaces only what it provably\n"

@@ -62,6 +62,12 @@ typedef struct lv_dof3_end {
     int stop;             /* 1: end the run (a phase end); 0: log the event and continue */
 } lv_dof3_end;
 
+/* What a dof3 inputs table is over (lv_dof3_config.inputs_over). */
+typedef enum lv_dof3_over {
+    LV_DOF3_OVER_TIME = 0, LV_DOF3_OVER_TAU, LV_DOF3_OVER_ALTITUDE, LV_DOF3_OVER_SPEED,
+    LV_DOF3_OVER_MASS, LV_DOF3_OVER_ENERGY
+} lv_dof3_over;
+
 typedef struct lv_dof3_config {
     const char *name;          /* model name in reports; copied; NULL: "dof3" */
     lv_planet planet;          /* copied: ellipsoid, rotation (default lv_planet_earth()) */
@@ -98,6 +104,16 @@ typedef struct lv_dof3_config {
      * same name (others stay parameters). Throttle values are clamped into each engine's
      * limits. Its breakpoints are time events. Borrowed. */
     const lv_table *inputs;
+    /* The variable the inputs table's axis holds (lv_dof3_over; default LV_DOF3_OVER_TIME):
+     * mission time t [s]; tau = (t - start) / inputs_duration, the phase time normalised to
+     * [0, 1] (start: the run's start time; inputs_duration NAN: inputs_stop_time - start);
+     * or the state's geodetic altitude [m], speed relative to the rotating planet [m/s],
+     * mass [kg] or specific energy v_rel^2 / 2 + LV_G0 h [J/kg]. The axis is then named
+     * "tau", "altitude", "speed", "mass" or "energy" (no unit check beyond SI). Only a time
+     * table's breakpoints are time events (the others' kinks are left to the step control). */
+    int inputs_over;
+    double inputs_duration;      /* s, > 0, or NAN (LV_DOF3_OVER_TAU only) */
+    double inputs_stop_time;     /* s, mission time: tau's end when inputs_duration is NAN */
 
     /* Steering and throttle laws (lv_guidance.h: lv_steering_init, lv_steering_set,
      * lv_throttle_init, lv_throttle_set). Steering "inputs" (default): the inputs above. Any

@@ -319,6 +319,47 @@ LV_API size_t lv_mission_phase_iip_count(const lv_mission *m, size_t k);
 LV_API lv_status lv_run_iip(const lv_run *r, size_t k, size_t i, lv_iip_sample *out,
                             lv_err *err);
 
+/* How far a phase's re-simulation drifts from its `reference:` (an optimiser's trajectory;
+ * docs/optimal-control.md, "Importing an optimiser's trajectory"), compared at the phase's
+ * result rows whose time (or tau) lies within the reference's range, the reference
+ * interpolated there. Position: the 3-D distance between the two ECEF positions (from the
+ * geodetic h, lat, lon of each), m; velocity: the magnitude of the difference of the two
+ * velocities relative to the rotating planet (ECEF; the reference's from v, fpa, heading), m/s;
+ * mass: |m_sim - m_ref|, kg. _max is the largest over the rows, at mission time _max_t;
+ * _final the value at the last row compared (time t_final). */
+typedef struct lv_ref_drift {
+    size_t n_rows;              /* result rows compared; 0: none lay in the reference's range */
+    int over_tau;               /* 1: the reference is over tau = (t - t_start) / (t_stop -
+                                   t_start), 0: over mission time */
+    int start_from_reference;   /* 1: `start: reference` (the phase started from its first row) */
+    double t_first, t_final;    /* s, mission time of the first and last row compared */
+    double pos_max, pos_max_t, pos_final;    /* m, s, m */
+    double vel_max, vel_max_t, vel_final;    /* m/s, s, m/s */
+    double mass_max, mass_max_t, mass_final; /* kg, s, kg */
+} lv_ref_drift;
+
+/* One compared row of lv_run_reference_rows: the simulation's and the reference's geodetic
+ * altitude, speed relative to the planet and mass, and the differences of lv_ref_drift. */
+typedef struct lv_ref_row {
+    double t;                   /* s, mission time of the result row */
+    double h, h_ref;            /* m */
+    double v, v_ref;            /* m/s */
+    double m, m_ref;            /* kg */
+    double d_pos, d_vel, d_mass; /* m, m/s, kg */
+} lv_ref_row;
+
+/* 1 if phase k has a `reference:` (0 when not, or k out of range). */
+LV_API int lv_mission_phase_has_reference(const lv_mission *m, size_t k);
+/* Phase k's drift from its reference in the run's last execute. LV_ERR_NOTFOUND when the phase
+ * has no reference, has not run, or ran without keeping its rows (lv_run_options.no_rows);
+ * LV_ERR_INPUT when k is out of range. */
+LV_API lv_status lv_run_reference_drift(const lv_run *r, size_t k, lv_ref_drift *out,
+                                        lv_err *err);
+/* The rows behind it: *rows[0 .. *n - 1] (owned by the run, valid until its next execute or
+ * lv_run_free); the same errors. */
+LV_API lv_status lv_run_reference_rows(const lv_run *r, size_t k, const lv_ref_row **rows,
+                                       size_t *n, lv_err *err);
+
 /* ---- output size, before running --------------------------------------------------------- */
 
 /* What phase k will write at most with the run's current values: its output grid over its

@@ -269,13 +269,22 @@ class lv_law_info(Structure):
                 ("needs_aero", c_char_p), ("n_keys", c_size_t), ("keys", POINTER(lv_law_key))]
 
 
+class lv_ref_drift(Structure):
+    _fields_ = [("n_rows", c_size_t), ("over_tau", c_int), ("start_from_reference", c_int),
+                ("t_first", c_double), ("t_final", c_double),
+                ("pos_max", c_double), ("pos_max_t", c_double), ("pos_final", c_double),
+                ("vel_max", c_double), ("vel_max_t", c_double), ("vel_final", c_double),
+                ("mass_max", c_double), ("mass_max_t", c_double), ("mass_final", c_double)]
+
+
 # The structures the layout test compares with the C compiler's view of the headers.
 MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_param_info,
             lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
             lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
             lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
             lv_target_settings, lv_target_end_mismatch, lv_target_result, lv_disp_info, lv_campaign_progress,
-            lv_campaign_options, lv_output_estimate, lv_outdir_record, lv_law_key, lv_law_info]
+            lv_campaign_options, lv_output_estimate, lv_outdir_record, lv_law_key, lv_law_info,
+            lv_ref_drift]
 # lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
 PARTIAL = [lv_model_def]
 
@@ -444,6 +453,8 @@ _proto(lib, "lv_run_check_output", c_int, P, POINTER(lv_run_options), E)
 _proto(lib, "lv_sim_methods", POINTER(c_char_p))
 _proto(lib, "lv_run_result", POINTER(lv_phase_result), P, c_size_t)
 _proto(lib, "lv_run_final", c_int, P, c_size_t, c_char_p, POINTER(c_double), E)
+_proto(lib, "lv_mission_phase_has_reference", c_int, P, c_size_t)
+_proto(lib, "lv_run_reference_drift", c_int, P, c_size_t, POINTER(lv_ref_drift), E)
 _proto(lib, "lv_run_rows", c_void_p, P, c_size_t)
 _proto(lib, "lv_run_body_phases", c_size_t, P, c_size_t, POINTER(c_size_t))
 _proto(lib, "lv_run_body_trajectory", c_int, P, c_size_t, POINTER(POINTER(lv_body_traj)), E)

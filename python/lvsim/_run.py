@@ -488,6 +488,26 @@ class Run:
             check(lib.lv_run_final(h, k, b, byref(v), byref(err)), err)
             return v.value
 
+    def reference_drift(self, phase):
+        """The drift of phase `phase` from its `reference:` (an optimiser's trajectory;
+        docs/optimal-control.md) in the last execute, as summary.json's `reference` block:
+        dict with over ("time" or "tau"), start ("reference" or "parent"), rows (result rows
+        compared), t_first, t_final [s], and position, velocity, mass: each a dict of max,
+        t_max, final (m, m/s, kg; s). LvsimError when the phase has no reference, is stale,
+        or ran without rows (execute(keep_rows=False))."""
+        k = self.mission.phase_index(phase)
+        with self._lock:
+            self._not_stale(k)
+            d = _lib.lv_ref_drift()
+            err = _err()
+            check(lib.lv_run_reference_drift(self._handle(), k, byref(d), byref(err)), err)
+        return {"over": "tau" if d.over_tau else "time",
+                "start": "reference" if d.start_from_reference else "parent",
+                "rows": d.n_rows, "t_first": d.t_first, "t_final": d.t_final,
+                "position": {"max": d.pos_max, "t_max": d.pos_max_t, "final": d.pos_final},
+                "velocity": {"max": d.vel_max, "t_max": d.vel_max_t, "final": d.vel_final},
+                "mass": {"max": d.mass_max, "t_max": d.mass_max_t, "final": d.mass_final}}
+
     def finals(self, phase):
         """dict name -> final value of phase `phase` (time, states, outputs; SI). LvsimError
         when the phase is stale (as final())."""

@@ -44,6 +44,7 @@ static const struct {
     T(lv_outdir_record),
     T(lv_law_key),
     T(lv_law_info),
+    T(lv_ref_drift),
 };
 #undef T
 

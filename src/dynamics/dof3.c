@@ -276,6 +276,28 @@ static int solve_alpha(lv_dof3 *m, dof3_inst *s, double t, double mass, const do
     return 0;
 }
 
+/* The value the inputs table is evaluated at (lv_dof3_config.inputs_over): mission time, the
+ * normalised phase time tau = (t - t0) / D, or a variable of the state (geodetic altitude,
+ * speed relative to the planet, mass, specific energy v_rel^2 / 2 + g0 h). */
+static double schedule_x(const lv_flight_schedule *sch, double t, const double *x,
+                         const double *p, const lv_flight_kin *k)
+{
+    switch (sch->over) {
+    case LV_DOF3_OVER_TAU: {
+        const double d = isnan(sch->duration) ? sch->stop_time - p[P_T0] : sch->duration;
+        return (t - p[P_T0]) / d;
+    }
+    case LV_DOF3_OVER_ALTITUDE: return k->h;
+    case LV_DOF3_OVER_SPEED: return lv_v3_norm(k->v_rel);
+    case LV_DOF3_OVER_MASS: return x[LV_X3_M];
+    case LV_DOF3_OVER_ENERGY: {
+        const double v = lv_v3_norm(k->v_rel);
+        return 0.5 * v * v + LV_G0 * k->h;
+    }
+    default: return t;
+    }
+}
+
 /* Steps 3 to 5 with a steering law and a throttle law (guidance.h): the law's attitude and
  * the aerodynamic angles that result; the aerodynamic force (with the heading law's
  * load-factor limit); gravity; the throttle law from the forces without thrust; thrust. */
@@ -290,7 +312,8 @@ static int point_eval_guided(lv_dof3 *m, dof3_inst *s, double t, const double *x
                              p[P_CHI], full, &pt->ctl, &pt->ax, err) != 0)
             return 1;
     } else {
-        if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
+        if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig,
+                                    schedule_x(&m->inputs, t, x, p, &pt->kin), &pt->ctl,
                                     err) != 0)
             return 1;
         lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
@@ -371,8 +394,8 @@ static int point_eval(lv_dof3 *m, dof3_inst *s, double t, const double *x, const
         return rc;
     if (m->steers || m->throttles)
         return point_eval_guided(m, s, t, x, p, full, pt, err);
-    if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig, t, &pt->ctl,
-                                err) != 0)
+    if (lv_flight_controls_eval(p + P_ALPHA, &m->inputs, &s->in_cur, &s->trig,
+                                schedule_x(&m->inputs, t, x, p, &pt->kin), &pt->ctl, err) != 0)
         return 1;
     lv_flight_axes_eval(&pt->kin, &pt->air, &pt->ctl, p[P_FPA], p[P_CHI], &pt->ax);
     if (lv_flight_thrust(m->eng, m->n_eng, s->rt.engines_on, t, &pt->ctl, &pt->air, m->eng_buf,
@@ -598,6 +621,8 @@ void lv_dof3_config_default(lv_dof3_config *cfg)
     cfg->throttle = 1.0;
     cfg->nose_radius = 1.0;
     cfg->k_sutton_graves = LV_SUTTON_GRAVES_EARTH;
+    cfg->inputs_duration = NAN;
+    cfg->inputs_stop_time = NAN;
     lv_steering_init(&cfg->steering, "inputs", NULL); /* target: the start point */
     lv_throttle_init(&cfg->throttle_law, "nominal", NULL);
 }
@@ -656,16 +681,39 @@ static lv_status check_finite(const char *what, double v, const char *unit, lv_e
     return LV_OK;
 }
 
-static lv_status setup_inputs(lv_dof3 *m, const lv_table *tab, lv_err *err)
+static lv_status setup_inputs(lv_dof3 *m, const lv_dof3_config *cfg, lv_err *err)
 {
+    const lv_table *tab = cfg->inputs;
     for (int k = 0; k < U_N; k++)
         m->inputs.k[k] = -1;
+    m->inputs.over = LV_DOF3_OVER_TIME;
     if (tab == NULL)
         return LV_OK;
     int any = 0;
-    lv_status st = lv_flight_check_inputs_table("dof3", tab, err);
+    lv_status st;
+    static const char *const over_axis[] = {"time", "tau", "altitude", "speed", "mass",
+                                            "energy"};
+    static const char *const over_unit[] = {"s", "1", "m", "m/s", "kg", "J/kg"};
+    const int over = cfg->inputs_over;
+    if (over < LV_DOF3_OVER_TIME || over > LV_DOF3_OVER_ENERGY)
+        return lv_fail(err, LV_ERR_INPUT, "dof3: inputs_over = %d is not an lv_dof3_over", over);
+    if (over == LV_DOF3_OVER_TIME)
+        st = lv_flight_check_inputs_table("dof3", tab, err);
+    else if (lv_table_n_dims(tab) != 1 || strcmp(lv_table_axis_name(tab, 0), over_axis[over]) != 0)
+        st = lv_fail(err, LV_ERR_INPUT, "dof3: input table '%s' must have exactly one axis "
+                     "named '%s' (has %zu, the first named '%s')", lv_table_name(tab),
+                     over_axis[over], lv_table_n_dims(tab), lv_table_axis_name(tab, 0));
+    else
+        st = lv_table_expect_unit(tab, 1, 0, over_unit[over], "dof3: inputs", err);
     if (st != LV_OK)
         return st;
+    if (over == LV_DOF3_OVER_TAU && !(cfg->inputs_duration > 0.0) &&
+        !(isnan(cfg->inputs_duration) && isfinite(cfg->inputs_stop_time)))
+        return lv_fail(err, LV_ERR_INPUT, "dof3: inputs over tau: inputs_duration = %g s must "
+                       "be > 0 (or NAN with a finite inputs_stop_time)", cfg->inputs_duration);
+    m->inputs.over = over;
+    m->inputs.duration = cfg->inputs_duration;
+    m->inputs.stop_time = cfg->inputs_stop_time;
     for (int k = 0; k < U_N; k++) {
         size_t idx;
         if (lv_table_out_index(tab, input_names[k], &idx, NULL) == LV_OK) {
@@ -744,7 +792,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         }
         m->has_aero = 1;
     }
-    if ((st = setup_inputs(m, cfg->inputs, err)) != LV_OK)
+    if ((st = setup_inputs(m, cfg, err)) != LV_OK)
         goto fail;
     /* one throttle drives every engine: their ranges must overlap */
     for (size_t i = 0; i < m->n_eng; i++)
@@ -820,7 +868,10 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .quadrature = quadrature,
     };
     m->core = (lv_flight_core){.world = &m->world, .fe = &m->fe, .i_r = LV_X3_RX,
-                               .i_v = LV_X3_VX, .i_m = LV_X3_M, .inputs = m->inputs.table,
+                               .i_v = LV_X3_VX, .i_m = LV_X3_M,
+                               /* only a time table's breakpoints are time events */
+                               .inputs = m->inputs.over == LV_DOF3_OVER_TIME ? m->inputs.table
+                                                                             : NULL,
                                .eng = m->eng, .n_eng = m->n_eng,
                                .guid = m->steers ? &m->guid : NULL,
                                .stop_at_burnout = m->stop_at_burnout};

@@ -133,6 +133,9 @@ typedef struct lv_flight_schedule {
     const lv_table *table;  /* NULL: constants only */
     int k[LV_CTRL_N];       /* output index for each control, -1: the constant */
     double *buf;            /* [n_out] scratch */
+    int over;               /* lv_dof3_over: what the axis holds (the caller computes it) */
+    double duration;        /* s: tau's, or NAN: stop_time - the start */
+    double stop_time;       /* s */
 } lv_flight_schedule;
 
 /* The trigonometry of the angles is cached per instance: they change only with a table. */

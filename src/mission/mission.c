@@ -14,6 +14,7 @@
 #include "core/status.h"
 #include "core/table_unit.h"
 #include "mission/mission_rt.h"
+#include "mission/reference.h"
 #include "mission/targeting_def.h"
 #include "lvsim/lv_units.h"
 
@@ -210,12 +211,22 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
                            ph->set_locs[i].line, ph->set_locs[i].column, ph->name,
                            ph->set_names[i], v, dry);
     }
+    if (ph->reference != NULL && ph->reference->start) { /* the mass it will start with */
+        const double v = lv_reference_first(ph->reference, LV_REF_M);
+        if (!(v >= dry))
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': reference: its first mass "
+                           "m = %g kg is less than the dry mass %g kg of the stages it carries "
+                           "(start: reference starts the phase with it)", d->path,
+                           ph->reference->loc.line, ph->reference->loc.column, ph->name, v, dry);
+    }
     if (ph->parent >= 0)
         return LV_OK;
-    double *values = calloc(pl->n_init + 1, sizeof *values);
+    double *values = calloc(pl->n_init + 8, sizeof *values);
+    const char **names = calloc(pl->n_init + 8, sizeof *names);
     lv_sim_stop *stops = calloc(pl->n_stops + 1, sizeof *stops);
-    if (values == NULL || stops == NULL) {
+    if (values == NULL || stops == NULL || names == NULL) {
         free(values);
+        free(names);
         free(stops);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
@@ -232,8 +243,24 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     for (size_t i = 0; i < pl->n_init; i++)
         values[i] = pl->init[i].kind == LV_INIT_START_TIME ? s.start_time
                                                             : m->defaults[pl->init[i].index];
-    s.n_initial = pl->n_init;
-    s.initial_names = pl->init_names;
+    size_t n_init = pl->n_init;
+    for (size_t i = 0; i < n_init; i++)
+        names[i] = pl->init_names[i];
+    /* a start from the reference's first row (reference.h), as a run makes it */
+    if (ph->reference != NULL && ph->reference->start) {
+        lv_status rs = lv_reference_start(ph->reference, &m->env.planet, s.start_time, 1,
+                                          ph->type->mass_state, names, values, &n_init,
+                                          pl->n_init + 8, err);
+        if (rs != LV_OK) {
+            free(values);
+            free(names);
+            free(stops);
+            return lv_fail_prefix(err, rs, "%s:%d:%d: phase '%s'", d->path,
+                                  ph->reference->loc.line, ph->reference->loc.column, ph->name);
+        }
+    }
+    s.n_initial = n_init;
+    s.initial_names = names;
     s.initial_values = values;
     /* the ends on variables too, as the run gives them: one passed at the start is refused */
     lv_phase_stops(d, pl, k, m->defaults, s.start_time, stops);
@@ -243,6 +270,7 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     lv_status st = lv_sim_create(pm->def, pm->inst, &s, &sim, err);
     lv_sim_free(sim);
     free(values);
+    free(names);
     free(stops);
     if (st != LV_OK && err != NULL)
         lv_drop_model_prefix(err, ph->name);

@@ -255,6 +255,7 @@ typedef struct lv_phase_def {
     char *name;
     const lv_phase_type *type; /* the phase's model type (phase_type.h registry) */
     void *type_cfg;       /* what the type parsed from the phase's own keys; owned by the type */
+    struct lv_reference_def *reference; /* `reference:` (reference.h), or NULL; owned */
     lv_slot *params;      /* [type->n_mission_params]: the slot of each of its type's mission
                              parameters in the file's `parameters:`, LV_NO_SLOT where not given
                              (phase_kit.h, lv_kit_param); NULL when the type has none */

@@ -19,6 +19,7 @@
 #include "mission/dispersion.h"
 #include "mission/parse_int.h"
 #include "mission/phase_type.h"
+#include "mission/reference.h"
 #include "mission/targeting_def.h"
 
 
@@ -291,6 +292,7 @@ void lv_mission_def_free(lv_mission_def *m)
             free(ph->engine_out[j].label);
         free(ph->engine_out);
         free(ph->iip_at);
+        lv_reference_free(ph->reference);
     }
     free(m->phases);
     lv_targeting_def_free(m->targeting);

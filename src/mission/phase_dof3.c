@@ -9,6 +9,7 @@
 
 #include "core/names.h"
 #include "core/status.h"
+#include "core/table_unit.h"
 #include "lvsim/lv_dof3.h"
 #include "lvsim/lv_units.h"
 #include "lvsim/lv_wind.h"
@@ -16,9 +17,10 @@
 #include "mission/guidance_def.h"
 #include "mission/phase_kit.h"
 #include "mission/phase_type.h"
+#include "mission/reference.h"
 
 static const char *const keys[] = {"inputs", "aero", "guidance", "throttle", "separation",
-                                   "engines", "engine_out", NULL};
+                                   "engines", "engine_out", "reference", NULL};
 /* A runway phase's outputs r_eci_*, v_eci_* are this model's states: a climb-out starts where
  * the take-off roll lifted off (phase_runway.c). A dof6 phase's states r_eci_*, v_eci_*, m are
  * too: 6-DoF -> 3-DoF drops the attitude and rates (docs/models.md). */
@@ -34,7 +36,10 @@ static const lv_range mission_param_ranges[] = {LV_KIT_START_RANGES};
 typedef struct dof3_cfg {
     lv_slot u[4];        /* alpha, beta, mu [rad], throttle [1]: constant inputs */
     char *inputs_file, *inputs_var;
-    lv_table *inputs;    /* control history over time (outputs alpha, beta, mu, throttle) */
+    lv_table *inputs;    /* control history (outputs alpha, beta, mu, throttle) over `over` */
+    int over;            /* lv_dof3_over: the variable its axis holds (`inputs: over:`) */
+    double duration;     /* s: tau's duration, the time table's own span; NAN: the phase's
+                            stop_time minus its start */
     lv_aero_def aero;    /* the phase's aerodynamic dataset (aero_def.h) */
     lv_guidance_def guid; /* steering and throttle laws (guidance_def.h) */
     int sep;             /* `separation:` given */
@@ -54,6 +59,179 @@ static void dof3_cfg_free(void *p)
     free(c);
 }
 
+/* ---- `inputs: over:` - the variable a control history is evaluated at ---------------------- */
+
+static const char *const over_words[] = {"time", "tau", "altitude", "speed", "mass", "energy",
+                                         NULL};
+static const char *const over_units[] = {"s", "1", "m", "m/s", "kg", "J/kg"};
+
+/* 1 if axis or column name `s` means over-variable `over` (its accepted spellings). */
+static int names_var(const char *s, int over)
+{
+    static const char *const alias[][3] = {{"time", "t", NULL},  {"tau", NULL, NULL},
+                                           {"altitude", "h", NULL}, {"speed", "v", "v_rel"},
+                                           {"mass", "m", NULL},     {"energy", NULL, NULL}};
+    for (int i = 0; i < 3 && alias[over][i] != NULL; i++)
+        if (strcmp(s, alias[over][i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* The output of `t` named as variable `over`, or -1. */
+static long column_of(const lv_table *t, int over)
+{
+    for (size_t k = 0; k < lv_table_n_out(t); k++)
+        if (names_var(lv_table_out_name(t, k), over))
+            return (long)k;
+    return -1;
+}
+
+/* A copy of 1-axis table `src` whose axis is `x` [n breakpoints of src, in src's order; read
+ * backwards when `rev`] named `axis` [unit]: the outputs at src's breakpoints, the same
+ * interpolation and extrapolation. */
+static lv_status retabulate(const lv_table *src, const double *x, int rev, const char *axis,
+                            const char *unit, lv_table **out, lv_err *err)
+{
+    size_t n = 0;
+    const double *b = lv_table_breakpoints(src, 0, &n);
+    const size_t no = lv_table_n_out(src);
+    double *xs = malloc(n * sizeof *xs), *y = malloc(n * no * sizeof *y);
+    const char **on = malloc(no * sizeof *on), **ou = malloc(no * sizeof *ou);
+    lv_status st = LV_OK;
+    if (xs == NULL || y == NULL || on == NULL || ou == NULL) {
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    for (size_t k = 0; k < no; k++) {
+        on[k] = lv_table_out_name(src, k);
+        ou[k] = lv_table_out_unit(src, k);
+    }
+    for (size_t j = 0; j < n && st == LV_OK; j++) {
+        const size_t i = rev ? n - 1 - j : j;
+        xs[j] = x[i];
+        st = lv_table_eval1(src, NULL, b[i], y + j * no, err); /* exact at a breakpoint */
+    }
+    if (st == LV_OK) {
+        const lv_table_spec spec = {.n_dims = 1, .n = {n}, .x = {xs}, .n_out = no, .y = y,
+                                    .interp = lv_table_interp(src),
+                                    .extrap = lv_table_extrap(src), .name = lv_table_name(src),
+                                    .axis_name = {axis}, .axis_unit = {unit}, .out_name = on,
+                                    .out_unit = ou};
+        st = lv_table_create(&spec, out, err);
+    }
+fail:
+    free(xs);
+    free(y);
+    free(on);
+    free(ou);
+    return st;
+}
+
+/* `over: tau | altitude | speed | mass | energy` (`at`: its value node): cfg->inputs made a
+ * table over that variable. tau: an axis `tau` as it is (the phase's stop_time ends it: the
+ * duration NAN), or a time axis rescaled by its own span, tau = (t - t_first) / (t_last -
+ * t_first) (the duration that span). A variable: an axis already named so, or a time (tau)
+ * axis re-tabulated over the table's own column of that variable (energy: v^2 / 2 + g0 h from
+ * the columns h and v), which must be strictly monotone along the rows - refused otherwise,
+ * naming the rows where it turns. */
+static lv_status parse_over(const lv_pctx *c, const lv_ynode *at, const char *what, int over,
+                            dof3_cfg *cfg)
+{
+    lv_table *t = cfg->inputs, *nt = NULL;
+    const char *ax = lv_table_axis_name(t, 0);
+    char why[LV_ERR_MSG_MAX];
+    lv_err e = {LV_OK, ""};
+    size_t n = 0;
+    const double *b = lv_table_breakpoints(t, 0, &n);
+    cfg->over = over;
+    cfg->duration = NAN;
+    if (lv_table_n_dims(t) != 1)
+        return lv_pk_fail(c, at, "%s: over: %s: the table must have one axis (it has %zu)", what,
+                          over_words[over], lv_table_n_dims(t));
+    const int time_axis = names_var(ax, LV_DOF3_OVER_TIME);
+    if (names_var(ax, over) && strcmp(ax, over_words[over]) == 0)
+        return LV_OK; /* already over it */
+    double *x = malloc(n * sizeof *x), *buf = malloc(lv_table_n_out(t) * sizeof *buf);
+    lv_status st = LV_OK;
+    int rev = 0;
+    if (x == NULL || buf == NULL) {
+        st = lv_pk_nomem(c);
+        goto fail;
+    }
+    if (names_var(ax, over)) { /* an alias ("h"): the same values, the canonical name */
+        memcpy(x, b, n * sizeof *x);
+    } else if (over == LV_DOF3_OVER_TAU) {
+        if (!time_axis) {
+            st = lv_pk_fail(c, at, "%s: over: tau: the table's axis must be `tau` (the phase's "
+                            "stop_time ends the phase time) or `time` (rescaled by its own span); "
+                            "it is '%s'", what, ax);
+            goto fail;
+        }
+        cfg->duration = b[n - 1] - b[0];
+        for (size_t i = 0; i < n; i++)
+            x[i] = (b[i] - b[0]) / cfg->duration;
+        x[n - 1] = 1.0;
+    } else {
+        if (!time_axis && strcmp(ax, "tau") != 0) {
+            st = lv_pk_fail(c, at, "%s: over: %s: the table's axis must be `%s` or, to read the "
+                            "variable from the table's own column, `time` or `tau`; it is '%s'",
+                            what, over_words[over], over_words[over], ax);
+            goto fail;
+        }
+        const long kv = column_of(t, over);
+        const long kh = column_of(t, LV_DOF3_OVER_ALTITUDE), ks = column_of(t, LV_DOF3_OVER_SPEED);
+        if (kv < 0 && !(over == LV_DOF3_OVER_ENERGY && kh >= 0 && ks >= 0)) {
+            st = lv_pk_fail(c, at, "%s: over: %s: the table '%s' has no column of it (%s%s)",
+                            what, over_words[over], lv_table_name(t),
+                            over == LV_DOF3_OVER_ENERGY ? "`energy`, or `h` and `v`"
+                            : over == LV_DOF3_OVER_ALTITUDE ? "`altitude` or `h`"
+                            : over == LV_DOF3_OVER_SPEED ? "`speed`, `v` or `v_rel`"
+                                                         : "`mass` or `m`",
+                            ", in SI");
+            goto fail;
+        }
+        const long ku = kv >= 0 ? kv : kh;
+        if ((st = lv_table_expect_unit(t, 0, (size_t)ku, kv >= 0 ? over_units[over] : "m", NULL,
+                                       &e)) != LV_OK ||
+            (kv < 0 && (st = lv_table_expect_unit(t, 0, (size_t)ks, "m/s", NULL, &e)) != LV_OK)) {
+            st = lv_pk_fail(c, at, "%s: over: %s: %s", what, over_words[over], e.msg);
+            goto fail;
+        }
+        for (size_t i = 0; i < n; i++) {
+            if ((st = lv_table_eval1(t, NULL, b[i], buf, &e)) != LV_OK) {
+                st = lv_pk_fail(c, at, "%s: over: %s: %s", what, over_words[over], e.msg);
+                goto fail;
+            }
+            x[i] = kv >= 0 ? buf[kv] : 0.5 * buf[ks] * buf[ks] + LV_G0 * buf[kh];
+        }
+        /* strictly monotone along the rows, else no function of the variable */
+        rev = n > 1 && x[1] < x[0];
+        for (size_t i = 1; i < n; i++)
+            if (rev ? !(x[i] < x[i - 1]) : !(x[i] > x[i - 1])) {
+                snprintf(why, sizeof why, "%s %.9g at %s = %.9g, then %.9g at %s = %.9g (rows "
+                         "%zu and %zu of the table, %s before)",
+                         kv >= 0 ? lv_table_out_name(t, (size_t)kv) : "energy",
+                         x[i - 1], ax, b[i - 1], x[i], ax, b[i], i, i + 1,
+                         rev ? "falling" : i > 1 ? "rising" : "the first rows");
+                st = lv_pk_fail(c, at, "%s: over: %s: the variable is not strictly monotone "
+                                "along the table: %s; the inputs are no function of it (choose "
+                                "a variable that only rises or only falls, e.g. mass while the "
+                                "engines burn)", what, over_words[over], why);
+                goto fail;
+            }
+    }
+    if ((st = retabulate(t, x, rev, over_words[over], over_units[over], &nt, &e)) != LV_OK) {
+        st = lv_pk_fail(c, at, "%s: over: %s: %s", what, over_words[over], e.msg);
+        goto fail;
+    }
+    lv_table_free(cfg->inputs);
+    cfg->inputs = nt;
+fail:
+    free(x);
+    free(buf);
+    return st;
+}
+
 /* inputs: {alpha_deg, beta_deg, mu_deg, throttle, table}: constant, or from a control history
  * over mission time (outputs alpha, beta, mu [rad], throttle). Slots "<phase>.inputs.alpha"
  * ... (defaults 0, 0, 0 rad and throttle 1) exist where they act: no angles in a phase that a
@@ -65,7 +243,7 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
                               int steered, int throttle_elsewhere, dof3_cfg *cfg)
 {
     static const char *const ikeys[] = {"alpha", "beta", "mu", "throttle", "alpha_deg",
-                                        "beta_deg", "mu_deg", "table", NULL};
+                                        "beta_deg", "mu_deg", "table", "over", NULL};
     static const char *const names[4] = {"alpha", "beta", "mu", "throttle"};
     static const char *const units[4] = {"rad", "rad", "rad", ""};
     static const double defaults[4] = {0.0, 0.0, 0.0, 1.0};
@@ -100,10 +278,18 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
         if (st != LV_OK)
             return st;
     }
-    const lv_ynode *v = lv_pk_get(n, "table");
-    if (v != NULL)
-        return lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP, &cfg->inputs_file,
-                           &cfg->inputs_var, &cfg->inputs);
+    const lv_ynode *v = lv_pk_get(n, "table"), *ov = lv_pk_get(n, "over");
+    size_t over = LV_DOF3_OVER_TIME;
+    if (ov != NULL && (st = lv_pk_enum(c, ov, what, "over", over_words, &over)) != LV_OK)
+        return st;
+    if (ov != NULL && v == NULL)
+        return lv_pk_fail(c, lv_pk_key(n, "over"), "%s: over: names the variable of a control "
+                          "table: give `table:` too", what);
+    if (v != NULL && (st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
+                                       &cfg->inputs_file, &cfg->inputs_var, &cfg->inputs)) != LV_OK)
+        return st;
+    if (v != NULL && over != LV_DOF3_OVER_TIME)
+        return parse_over(c, ov, what, (int)over, cfg);
     return LV_OK;
 }
 
@@ -154,7 +340,11 @@ static lv_status dof3_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     ph->type_cfg = cfg;
     for (int k = 0; k < 4; k++)
         cfg->u[k] = LV_NO_SLOT;
-    lv_status st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
+    cfg->duration = NAN;
+    lv_status st = lv_reference_parse(c, lv_pk_key(n, "reference"), lv_pk_get(n, "reference"), ph);
+    if (st != LV_OK)
+        return st;
+    st = lv_aero_def_parse(c, lv_pk_get(n, "aero"), ph->name, 0, &cfg->aero);
     if (st == LV_OK)
         st = lv_guidance_def_parse(c, lv_pk_get(n, "guidance"), lv_pk_get(n, "throttle"),
                                    ph->name, cfg->aero.present, 1, &cfg->guid);
@@ -287,6 +477,9 @@ static lv_status dof3_build(const lv_build_ctx *bc, lv_phase_model **out, lv_err
         (ts == NULL || (ts->loc.line == 0 && cfg.throttle == ts->value)))
         cfg.throttle = lv_kit_full_throttle(s->kit.engines, ne);
     cfg.inputs = pc->inputs;
+    cfg.inputs_over = pc->over;
+    cfg.inputs_duration = pc->duration;
+    cfg.inputs_stop_time = bc->vals[ph->t_stop];
     lv_guidance_def_make(&pc->guid, bc->vals, &cfg.steering, &cfg.throttle_law);
     /* the phase's aerodynamic dataset: each coefficient a constant, a table of its own, an
      * output of the dataset's table, or 0 */

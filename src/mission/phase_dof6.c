@@ -22,10 +22,11 @@
 #include "mission/guidance_def.h"
 #include "mission/phase_kit.h"
 #include "mission/phase_type.h"
+#include "mission/reference.h"
 
 static const char *const keys[] = {"attitude", "rates",    "inputs",     "aero",
                                    "moments",  "guidance", "controller", "transition",
-                                   "engines",  "engine_out", NULL};
+                                   "engines",  "engine_out", "reference", NULL};
 /* The mission parameters only a root phase reads: a child starts with its parent's position,
  * velocity, attitude and rates (start_lat, start_lon: the steering laws' default target;
  * start_fpa, start_chi: the direction of the aerodynamic frame at zero air speed). */
@@ -425,6 +426,10 @@ static lv_status dof6_parse(const lv_pctx *c, const lv_ynode *n, lv_phase_def *p
     ph->type_cfg = cfg;
     for (int k = 0; k < M_N; k++)
         cfg->mom[k] = LV_NO_SLOT;
+    lv_status rst = lv_reference_parse(c, lv_pk_key(n, "reference"), lv_pk_get(n, "reference"),
+                                       ph);
+    if (rst != LV_OK)
+        return rst;
     const lv_stage_def *bottom = &c->m->stages[ph->stages[0]];
     if (!bottom->rigid.present)
         return lv_pk_fail(c, n, "phase '%s': model dof6 needs the rigid-body data of its bottom "

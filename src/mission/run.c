@@ -27,6 +27,7 @@
 #include "lvsim/lv_io.h"
 #include "mission/dispersion.h"
 #include "mission/mission_rt.h"
+#include "mission/reference.h"
 
 /* ---- the run object ---------------------------------------------------------------------- */
 
@@ -47,6 +48,9 @@ typedef struct run_phase {
     size_t n_iip;         /* the phase's `iip_at:` times */
     const double *iip_t;  /*   (the mission's) */
     lv_iip_sample *iip;   /* [n_iip] its impact point at those times in the last execute */
+    lv_ref_drift drift;   /* its drift from its `reference:` in the last execute */
+    int has_drift;        /*   computed (a reference, rows kept) */
+    lv_ref_row *drift_rows; /* [drift.n_rows] the rows compared, or NULL */
     int dirty;            /* an input changed since the phase last ran */
     int todo;             /* in the current execute: to run */
     int claimed;          /* in the current execute: taken by a worker */
@@ -96,6 +100,9 @@ static void phase_clear(run_phase *p)
     p->notes.n = 0;
     p->res.n_absorbed = 0;
     iip_none(p->iip, p->iip_t, p->n_iip);
+    free(p->drift_rows);
+    p->drift_rows = NULL;
+    p->has_drift = 0;
 }
 
 void lv_run_free(lv_run *r)
@@ -309,8 +316,9 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     c->r = r;
     c->k = k;
-    c->names = calloc(pl->n_init + 1, sizeof *c->names);
-    c->values = calloc(pl->n_init + 1, sizeof *c->values);
+    /* room for a start from the reference (up to 7 start values and the mass appended) */
+    c->names = calloc(pl->n_init + 8, sizeof *c->names);
+    c->values = calloc(pl->n_init + 8, sizeof *c->values);
     c->finals = calloc(pl->n_final, sizeof *c->finals);
     c->prop = calloc(d->n_stages + 1, sizeof *c->prop);
     c->stops = calloc(pl->n_stops + 1, sizeof *c->stops);
@@ -373,6 +381,15 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
         return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
                               ph->loc.column, ph->name);
     }
+    size_t n_init = pl->n_init;
+    if (ph->reference != NULL && ph->reference->start &&
+        (st = lv_reference_start(ph->reference, &m->env.planet, s->start_time, par == NULL,
+                                 ph->type->mass_state, c->names, c->values, &n_init,
+                                 pl->n_init + 8, err)) != LV_OK) {
+        lv_phase_call_free(c);
+        return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->reference->loc.line,
+                              ph->reference->loc.column, ph->name);
+    }
     for (size_t i = 0; i < pl->n_init; i++)
         if (pl->init[i].kind == LV_INIT_CONVERT && isnan(c->values[i])) {
             lv_phase_call_free(c);
@@ -381,7 +398,7 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
                            ph->loc.column, ph->name, d->phases[ph->parent].name,
                            pl->init_names[i]);
         }
-    s->n_initial = pl->n_init;
+    s->n_initial = n_init;
     s->initial_names = c->names;
     s->initial_values = c->values;
     s->n_final = pl->n_final;
@@ -586,6 +603,14 @@ static void record(lv_run *r, lv_phase_call *c, lv_status st, const lv_err *sim_
     memcpy(p->iip, c->iip, ph->n_iip_at * sizeof *p->iip);
     p->rows = c->rows;
     c->rows = NULL;
+    /* the drift from the phase's reference, at the rows kept */
+    p->has_drift = 0;
+    if (ph->reference != NULL && p->rows != NULL && lv_result_rows(p->rows) > 0) {
+        lv_err e = {LV_OK, ""};
+        p->has_drift = lv_reference_drift(ph->reference, &r->m->env.planet, p->rows,
+                                          ph->type->mass_state, c->s.start_time, c->s.stop_time,
+                                          &p->drift, &p->drift_rows, &e) == LV_OK;
+    }
     p->stem = c->s.result_file ? strdup(c->s.result_file) : NULL;
     p->res.result_stem = p->stem;
     p->res.result_formats = p->stem ? c->s.result_formats : 0u;
@@ -991,6 +1016,38 @@ const lv_phase_result *lv_run_result(const lv_run *r, size_t k)
 const lv_result *lv_run_rows(const lv_run *r, size_t k)
 {
     return k < r->m->def->n_phases ? r->ph[k].rows : NULL;
+}
+
+int lv_mission_phase_has_reference(const lv_mission *m, size_t k)
+{
+    return m != NULL && k < m->def->n_phases && m->def->phases[k].reference != NULL;
+}
+
+lv_status lv_run_reference_drift(const lv_run *r, size_t k, lv_ref_drift *out, lv_err *err)
+{
+    if (r == NULL || out == NULL || k >= r->m->def->n_phases)
+        return lv_fail(err, LV_ERR_INPUT, "lv_run_reference_drift: phase index %zu out of range",
+                       k);
+    const lv_phase_def *ph = &r->m->def->phases[k];
+    if (ph->reference == NULL)
+        return lv_fail(err, LV_ERR_NOTFOUND, "phase '%s' has no reference", ph->name);
+    if (!r->ph[k].has_drift)
+        return lv_fail(err, LV_ERR_NOTFOUND, "phase '%s': no drift from its reference (not run, "
+                       "or run without rows)", ph->name);
+    *out = r->ph[k].drift;
+    return LV_OK;
+}
+
+lv_status lv_run_reference_rows(const lv_run *r, size_t k, const lv_ref_row **rows, size_t *n,
+                                lv_err *err)
+{
+    lv_ref_drift d;
+    lv_status st = lv_run_reference_drift(r, k, &d, err);
+    if (st != LV_OK)
+        return st;
+    *rows = r->ph[k].drift_rows;
+    *n = d.n_rows;
+    return LV_OK;
 }
 
 lv_status lv_run_iip(const lv_run *r, size_t k, size_t i, lv_iip_sample *out, lv_err *err)

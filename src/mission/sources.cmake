@@ -18,6 +18,7 @@ list(APPEND LV_SOURCES
   src/mission/dispersion.c
   src/mission/phase_types.c
   src/mission/phase_kit.c
+  src/mission/reference.c
   src/mission/phase_flat6.c
   src/mission/phase_dof3.c
   src/mission/phase_runway.c

@@ -17,8 +17,10 @@
 
 void lv_plot_data_free(lv_plot_data *d)
 {
-    for (size_t k = 0; d->phases != NULL && k < d->n_phases; k++)
+    for (size_t k = 0; d->phases != NULL && k < d->n_phases; k++) {
         lv_results_table_free(d->phases[k].csv);
+        lv_results_table_free(d->phases[k].ref);
+    }
     for (size_t b = 0; d->bodies != NULL && b < d->n_bodies; b++)
         lv_results_table_free(d->bodies[b].traj);
     free(d->phases);
@@ -42,6 +44,11 @@ lv_status lv_plot_data_load(lv_plot_data *d, lv_err *err)
         p->done = ph->done;
         p->t0 = ph->t_start;
         p->t1 = ph->t_end;
+        if (ph->ref.file != NULL && lv_results_exists(res, ph->ref.file)) {
+            lv_status st = lv_results_load(res, ph->ref.file, NULL, &p->ref, err);
+            if (st != LV_OK)
+                return st;
+        }
         if (ph->csv == NULL || (!p->done && !lv_results_exists(res, ph->csv)))
             continue;
         lv_status st = lv_results_load(res, ph->csv, NULL, &p->csv, err);

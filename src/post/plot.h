@@ -15,6 +15,8 @@ typedef struct lv_plot_phase {
     double t0, t1;          /* s; NAN when the phase did not run */
     int done;               /* state "done" */
     lv_results_table *csv;  /* its rows (first column "time"); NULL when it has no CSV file */
+    lv_results_table *ref;  /* its rows compared with its reference (reference_<k>_<name>.csv:
+                               time, h, h_ref, v_rel, v_ref, m, m_ref, d_*); or NULL */
 } lv_plot_phase;
 
 typedef struct lv_plot_body {

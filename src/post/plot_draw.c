@@ -934,6 +934,79 @@ static lv_status fig10(const lv_plot_data *d, const char *plotdir, lv_plot_list 
     return st;
 }
 
+/* A curve of column `col` (times `scale`) of table t over its first column (time). Returns
+ * its points, 0 when t has no such column, (size_t)-1 out of memory. */
+static size_t table_curve(const lv_results_table *t, const char *col, double scale, curve *c)
+{
+    const long k = lv_results_table_col(t, col);
+    if (k < 0 || t->n_rows == 0)
+        return 0;
+    c->x = malloc(t->n_rows * sizeof *c->x);
+    c->y = malloc(t->n_rows * sizeof *c->y);
+    if (c->x == NULL || c->y == NULL)
+        return (size_t)-1;
+    for (size_t r = 0; r < t->n_rows; r++) {
+        c->x[r] = t->v[r * t->n_cols];
+        c->y[r] = t->v[r * t->n_cols + (size_t)k] * scale;
+    }
+    return c->n = t->n_rows;
+}
+
+/* Each phase with a reference (an optimiser's trajectory): its altitude and speed against the
+ * reference's at the rows compared (reference_<k>_<name>.csv), as the paper's Figure 10 sets
+ * the simulated beside the optimised trajectory; the drift's figures in the subtitle. */
+static lv_status reference_figures(const lv_plot_data *d, const char *plotdir,
+                                   lv_plot_list *list, lv_err *err)
+{
+    lv_status st = LV_OK;
+    for (size_t k = 0; k < d->n_phases && st == LV_OK; k++) {
+        const lv_results_table *t = d->phases[k].ref;
+        const lv_results_phase *rp = &d->res->phases[k];
+        if (t == NULL || t->n_rows == 0)
+            continue;
+        char stem[48], name[96];
+        snprintf(stem, sizeof stem, "reference_%zu", k + 1);
+        pl_text(name, sizeof name, d->phases[k].name);
+        figure f;
+        memset(&f, 0, sizeof f);
+        snprintf(f.title, sizeof f.title, "Phase %s against its reference", name);
+        snprintf(f.subtitle, sizeof f.subtitle, "largest drift %.3g m (t = %.6g s), %.3g m/s, "
+                 "%.3g kg", rp->ref.pos_max, rp->ref.pos_max_t, rp->ref.vel_max,
+                 rp->ref.mass_max);
+        f.xlabel = "time [s]";
+        f.n_p = 2;
+        static const char *const cols[2][2] = {{"h", "h_ref"}, {"v_rel", "v_ref"}};
+        static const double scale[2] = {1e-3, 1.0};
+        snprintf(f.p[0].ylabel, sizeof f.p[0].ylabel, "altitude [km]");
+        snprintf(f.p[1].ylabel, sizeof f.p[1].ylabel, "speed [m/s]");
+        for (size_t ip = 0; ip < 2 && st == LV_OK; ip++) {
+            panel *p = &f.p[ip];
+            p->ylo = p->yhi = NAN;
+            for (int j = 0; j < 2 && st == LV_OK; j++) {
+                curve *c = &p->c[p->n_c++];
+                if (table_curve(t, cols[ip][j], scale[ip], c) == (size_t)-1)
+                    st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
+                c->color = j == 0 ? COL_BODY0 : COL_FG;
+                c->style = j == 0 ? 1 : 2;  /* the simulation solid, the reference dashed */
+                c->width = j == 0 ? 2.6 : 1.6;
+                snprintf(c->label, sizeof c->label, "%s", j == 0 ? "simulation" : "reference");
+            }
+        }
+        if (st == LV_OK) {
+            range_of(&f.p[0], 1, &f.xlo, &f.xhi);
+            if (!(f.xlo < f.xhi))
+                f.xhi = f.xlo + 1.0;
+            int map_ok = 1;
+            if (list->n_made >= LV_PLOT_MAX_FIGS)
+                add_skip(list, stem, "the report's list of figures is full");
+            else
+                st = render_both(d, &f, plotdir, stem, list, &map_ok, err);
+        }
+        figure_free(&f);
+    }
+    return st;
+}
+
 #define SITE_NEAR 1.0 /* deg: a track that ends this close to the first site came back to it */
 
 /* The window of the site figure: around the first site (a runway, else the launch site), wide
@@ -1162,6 +1235,8 @@ static lv_status draw_all(const lv_plot_data *d, const char *plotdir, lv_plot_li
         st = ground_track(d, plotdir, list, 0, err);
     if (st == LV_OK)
         st = ground_track(d, plotdir, list, 1, err);
+    if (st == LV_OK)
+        st = reference_figures(d, plotdir, list, err);
     return st;
 }
 

@@ -62,6 +62,15 @@ static void td_num(FILE *f, double v, int prec, int sign)
     fputs("</td>", f);
 }
 
+/* A number in 4 significant digits (a drift: 4.8e-08 m or 100 m). */
+static void td_g(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "<td>%.4g</td>", v);
+    else
+        fputs("<td>&ndash;</td>", f);
+}
+
 static void td_text(FILE *f, const char *s)
 {
     fputs("<td class=\"l\">", f);
@@ -131,6 +140,40 @@ static void phase_table(FILE *f, const lv_results *res)
             esc(f, ph->error);
         }
         fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n", f);
+}
+
+/* Each phase's drift from its reference (an optimiser's trajectory; summary.json's
+ * `reference` block: docs/result-files.md); nothing when no phase has one. */
+static void reference_table(FILE *f, const lv_results *res)
+{
+    int any = 0;
+    for (size_t k = 0; k < res->n_phases; k++)
+        any |= res->phases[k].ref.present;
+    if (!any)
+        return;
+    fputs("<h2 id=\"reference\">Drift from the reference</h2>\n<p>Each phase with a "
+          "<code>reference:</code> (an optimiser's trajectory) against it at the result rows "
+          "within its range: 3-D position, velocity relative to the planet, mass "
+          "(docs/optimal-control.md).</p>\n<table>\n<tr><th>phase</th><th>rows</th>"
+          "<th>position, largest [m]</th><th>at t [s]</th><th>final [m]</th>"
+          "<th>velocity, largest [m/s]</th><th>final [m/s]</th><th>mass, largest [kg]</th>"
+          "<th>final [kg]</th></tr>\n", f);
+    for (size_t k = 0; k < res->n_phases; k++) {
+        const lv_results_phase *ph = &res->phases[k];
+        if (!ph->ref.present)
+            continue;
+        const double v[5] = {ph->ref.pos_final, ph->ref.vel_max, ph->ref.vel_final,
+                             ph->ref.mass_max, ph->ref.mass_final};
+        fputs("<tr>", f);
+        td_text(f, ph->name);
+        td_num(f, ph->ref.rows, 0, 0);
+        td_g(f, ph->ref.pos_max);
+        td_num(f, ph->ref.pos_max_t, 3, 0);
+        for (int i = 0; i < 5; i++)
+            td_g(f, v[i]);
+        fputs("</tr>\n", f);
     }
     fputs("</table>\n", f);
 }
@@ -661,6 +704,7 @@ lv_status lv_plot_html_write(const lv_plot_data *d, const lv_plot_list *l, const
         key_section(f, keys, d->flat);
     timeline_section(f, s);
     phase_table(f, s);
+    reference_table(f, s);
     event_list(f, s);
     body_list(f, s);
     plot_section(f, l);

@@ -133,6 +133,26 @@ static lv_status read_phase(lv_results *r, const cJSON *pj, size_t i, lv_err *er
         if (strcmp(fmt, "csv") == 0)
             p->csv = p->files[k];
     }
+    /* the drift from its reference: the figures and the report read the block and its rows */
+    const cJSON *ref = cJSON_GetObjectItemCaseSensitive(pj, "reference");
+    if (cJSON_IsObject(ref)) {
+        const cJSON *pos = cJSON_GetObjectItemCaseSensitive(ref, "position");
+        const cJSON *vel = cJSON_GetObjectItemCaseSensitive(ref, "velocity");
+        const cJSON *mas = cJSON_GetObjectItemCaseSensitive(ref, "mass");
+        p->ref.present = 1;
+        p->ref.rows = json_num(ref, "rows");
+        p->ref.pos_max = json_num(pos, "max");
+        p->ref.pos_max_t = json_num(pos, "t_max");
+        p->ref.pos_final = json_num(pos, "final");
+        p->ref.vel_max = json_num(vel, "max");
+        p->ref.vel_final = json_num(vel, "final");
+        p->ref.mass_max = json_num(mas, "max");
+        p->ref.mass_final = json_num(mas, "final");
+        p->ref.file = json_str(ref, "file");
+        lv_status st = file_name(r, "phase", p->name, "reference.file", p->ref.file, err);
+        if (st != LV_OK)
+            return st;
+    }
 
     const cJSON *ev = cJSON_GetObjectItemCaseSensitive(pj, "events");
     if (!cJSON_IsArray(ev))

@@ -52,6 +52,14 @@ typedef struct lv_results_phase {
     const char *csv;        /* files.csv (its files[i]): the table the plots read; NULL */
     double steps, rhs_evals, state_events, time_events; /* stats: counts; NAN when missing */
     double cpu_time;        /* stats.cpu_time, s; NAN when missing */
+    struct {                /* its `reference` block (the drift from an optimiser's trajectory) */
+        int present;        /* the phase has one */
+        double rows;        /* rows compared; NAN when not computed */
+        double pos_max, pos_max_t, pos_final; /* m, s, m; NAN when missing */
+        double vel_max, vel_final;            /* m/s */
+        double mass_max, mass_final;          /* kg */
+        const char *file;   /* reference.file: "reference_<k>_<phase>.csv" in OUTDIR; NULL */
+    } ref;
 } lv_results_phase;
 
 typedef struct lv_results_body {

@@ -25,6 +25,46 @@ static const char *event_name(const lv_phase_result *r, int index)
     return index >= 0 && (size_t)index < r->n_event_names ? r->event_names[index] : "event";
 }
 
+/* reference_<k>_<phase>.csv: the rows of phase k compared with its reference
+ * (lv_run_reference_rows): the simulation's and the reference's h, v, m and the differences;
+ * named in the phase's summary block `pj` as reference.file. Nothing without such rows. */
+static lv_status write_reference_csv(const lv_run *run, size_t k, const char *outdir, cJSON *pj,
+                                     lv_err *err)
+{
+    const lv_ref_row *rows;
+    size_t n;
+    cJSON *rj = cJSON_GetObjectItemCaseSensitive(pj, "reference");
+    if (rj == NULL || lv_run_reference_rows(run, k, &rows, &n, NULL) != LV_OK || n == 0)
+        return LV_OK;
+    char file[512], path[4700];
+    snprintf(file, sizeof file, "reference_%zu_%s.csv", k + 1,
+             lv_mission_phase_name(lv_run_mission(run), k));
+    snprintf(path, sizeof path, "%s/%s", outdir, file);
+    lv_atomic out;
+    lv_status st = lv_atomic_open(&out, path, err);
+    if (st != LV_OK)
+        return st;
+    fputs("time [s],h [m],h_ref [m],v_rel [m/s],v_ref [m/s],m [kg],m_ref [kg],d_position [m],"
+          "d_velocity [m/s],d_mass [kg]\n", out.fp);
+    char line[10 * LV_NUMFMT_MAX + 16];
+    for (size_t i = 0; i < n; i++) {
+        const lv_ref_row *w = &rows[i];
+        const double v[10] = {w->t, w->h, w->h_ref, w->v, w->v_ref, w->m, w->m_ref, w->d_pos,
+                              w->d_vel, w->d_mass};
+        char *p = line;
+        for (int c = 0; c < 10; c++) {
+            if (c > 0)
+                *p++ = ',';
+            p += lv_numfmt_double(v[c], p);
+        }
+        *p++ = '\n';
+        fwrite(line, 1, (size_t)(p - line), out.fp);
+    }
+    if ((st = lv_atomic_commit(&out, err)) == LV_OK)
+        cJSON_AddStringToObject(rj, "file", file);
+    return st;
+}
+
 /* body_<stage>.csv: time, the phase, the merged trajectory's columns. */
 static lv_status write_body_csv(const lv_run *run, size_t s, const char *path, lv_err *err)
 {
@@ -162,6 +202,31 @@ static cJSON *phase_json(const lv_run *run, size_t k)
             cJSON *ab = cJSON_AddObjectToObject(h, "absorbed");
             for (size_t i = 0; i < r->n_absorbed; i++)
                 cJSON_AddNumberToObject(ab, r->absorbed_names[i], r->absorbed_values[i]);
+        }
+    }
+    if (lv_mission_phase_has_reference(m, k)) { /* the drift from the optimiser's trajectory */
+        cJSON *rj = cJSON_AddObjectToObject(o, "reference");
+        lv_ref_drift d;
+        if (lv_run_reference_drift(run, k, &d, NULL) == LV_OK) {
+            cJSON_AddStringToObject(rj, "over", d.over_tau ? "tau" : "time");
+            cJSON_AddStringToObject(rj, "start", d.start_from_reference ? "reference" : "parent");
+            cJSON_AddNumberToObject(rj, "rows", (double)d.n_rows);
+            if (d.n_rows > 0) {
+                cJSON_AddNumberToObject(rj, "t_first", d.t_first);
+                cJSON_AddNumberToObject(rj, "t_final", d.t_final);
+                const char *const qn[3] = {"position", "velocity", "mass"};
+                const double q[3][3] = {{d.pos_max, d.pos_max_t, d.pos_final},
+                                        {d.vel_max, d.vel_max_t, d.vel_final},
+                                        {d.mass_max, d.mass_max_t, d.mass_final}};
+                for (int i = 0; i < 3; i++) {
+                    cJSON *qj = cJSON_AddObjectToObject(rj, qn[i]);
+                    cJSON_AddNumberToObject(qj, "max", q[i][0]);
+                    cJSON_AddNumberToObject(qj, "t_max", q[i][1]);
+                    cJSON_AddNumberToObject(qj, "final", q[i][2]);
+                }
+            }
+        } else {
+            cJSON_AddNullToObject(rj, "rows"); /* not run, or no rows kept */
         }
     }
     cJSON *ov = cJSON_AddObjectToObject(h, "overrides");
@@ -349,11 +414,17 @@ lv_status lv_run_write_summary_files(const lv_run *run, const char *outdir, unsi
                             "together, file order (index: run order, file_index: position in "
                             "the file)");
     cJSON *phases = cJSON_AddArrayToObject(root, "phases");
-    for (size_t k = 0; k < mi.n_phases; k++)
-        cJSON_AddItemToArray(phases, phase_json(run, k));
+    lv_status st = LV_OK;
+    for (size_t k = 0; k < mi.n_phases; k++) {
+        cJSON *pj = phase_json(run, k);
+        cJSON_AddItemToArray(phases, pj);
+        if (st == LV_OK && (what & LV_SUMMARY_BODIES))
+            st = write_reference_csv(run, k, outdir, pj, err);
+    }
     cJSON *bodies = cJSON_AddArrayToObject(root, "bodies");
     size_t *ks = calloc(mi.n_phases + 1, sizeof *ks);
-    lv_status st = ks ? LV_OK : lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    if (st == LV_OK && ks == NULL)
+        st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
     for (size_t s = 0; s < mi.n_stages && st == LV_OK; s++) {
         size_t n = lv_run_body_phases(run, s, ks);
         if (n == 0)

@@ -55,6 +55,11 @@ int main(void)
     F(lv_sim_report, end_time); F(lv_sim_report, stop_event); F(lv_sim_report, stop_name);
     F(lv_sim_report, method_used); F(lv_sim_report, method_why);
     F(lv_sim_report, n_states); F(lv_sim_report, n_event_log); F(lv_sim_report, event_log);
+    S(lv_ref_drift); F(lv_ref_drift, n_rows); F(lv_ref_drift, over_tau);
+    F(lv_ref_drift, start_from_reference); F(lv_ref_drift, t_first); F(lv_ref_drift, t_final);
+    F(lv_ref_drift, pos_max); F(lv_ref_drift, pos_max_t); F(lv_ref_drift, pos_final);
+    F(lv_ref_drift, vel_max); F(lv_ref_drift, vel_max_t); F(lv_ref_drift, vel_final);
+    F(lv_ref_drift, mass_max); F(lv_ref_drift, mass_max_t); F(lv_ref_drift, mass_final);
     S(lv_phase_result); F(lv_phase_result, name); F(lv_phase_result, state);
     F(lv_phase_result, error); F(lv_phase_result, t_start); F(lv_phase_result, t_end);
     F(lv_phase_result, t_stop); F(lv_phase_result, method); F(lv_phase_result, tolerance);

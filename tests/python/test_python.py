@@ -239,6 +239,34 @@ def test_level_of_detail_transition_rule():
         assert m.phases[2].model == "dof3" and m.phases[2].handoff_rule is None
 
 
+def test_reference_drift_of_a_free_fall(tmp_path):
+    # a reference that stays where the phase starts, at rest 100 km over a non-rotating
+    # point-mass sphere: the phase falls from it, ~g t^2 / 2 away after t (g = GM / r^2; g
+    # grows by 2 dh / r ~ 1.5e-4 over the 490 m fallen in 10 s), at the speed g t
+    # (docs/optimal-control.md, "Importing an optimiser's trajectory")
+    gm, radius, h0, t1 = 3.986004418e14, 6371000.0, 100e3, 10.0
+    (tmp_path / "ref.csv").write_text(
+        "time [s],h [m],lat [rad],lon [rad],v [m/s],fpa [rad],heading [rad],m [kg]\n"
+        f"0,{h0},0,0,0,0,0,500\n{t1},{h0},0,0,0,0,0,500\n")
+    (tmp_path / "m.yaml").write_text(
+        "mission: {name: fall}\n"
+        "environment: {world: planet, planet: {name: sphere, radius: 6371000, "
+        "gm: 3.986004418e14, rotation_rate: 0}, gravity: pointmass, atmosphere: none}\n"
+        "stages: [{name: s, dry_mass: 500, propellant_mass: 0}]\n"
+        "phases:\n"
+        "  - {name: fall, model: dof3, stages: [s], stop_time: 10, "
+        "reference: {table: ref.csv, start: reference}, integrator: {output_interval: 1}}\n")
+    with lvsim.Mission(str(tmp_path / "m.yaml")) as m:
+        d = m.run().reference_drift("fall")
+        g = gm / (radius + h0) ** 2
+        assert d["over"] == "time" and d["start"] == "reference" and d["rows"] == 11
+        assert d["position"]["final"] == pytest.approx(0.5 * g * t1 ** 2, rel=1e-3)
+        assert d["position"]["t_max"] == t1 and d["velocity"]["final"] == pytest.approx(g * t1, rel=1e-3)
+        assert d["mass"]["max"] == 0.0
+        with pytest.raises(lvsim.LvsimError, match="no drift"):
+            m.run(keep_rows=False).reference_drift("fall")
+
+
 # ---- errors -----------------------------------------------------------------------------
 
 def test_bad_yaml_names_file_line_column(tmp_path):

@@ -53,3 +53,7 @@ add_test(NAME test_profile_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_prof
 # Dispersed profiles (issue 28, item 3): run flies the nominal, mc a profile per run; bad entries.
 add_test(NAME test_dprof_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_dprof_cli.sh
          $<TARGET_FILE:lvsim_cli> ${PROJECT_SOURCE_DIR})
+# An optimiser's trajectory as a phase's inputs (over time, tau, mass) and reference (issue 25,
+# item 3): drift against closed-form Kepler coasts, start from the reference, bad input.
+add_test(NAME test_reference_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/test_reference_cli.py
+         $<TARGET_FILE:lvsim_cli>)

@@ -1,0 +1,275 @@
+/* reference.c - a phase's `reference:`, an external optimiser's trajectory: parsing, the start
+ * from its first row, the drift of the re-simulation from it (reference.h; the paper's sec. 4.2:
+ * phases started "from the output vectors of previously simulated phases or the start values
+ * of the trajectory optimization results for each phase", and Figure 10). Frames: geodetic
+ * over the planet's ellipsoid, velocity relative to the rotating planet in NED
+ * (docs/frames.md). */
+#include "mission/reference.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/table_unit.h"
+
+const char *const lv_ref_columns[LV_REF_N] = {"h", "lat", "lon", "v", "fpa", "heading", "m"};
+static const char *const ref_alias[LV_REF_N][3] = {
+    {"h", "altitude", NULL}, {"lat", NULL, NULL},         {"lon", NULL, NULL},
+    {"v", "speed", "v_rel"}, {"fpa", NULL, NULL},         {"heading", "azimuth", "chi"},
+    {"m", "mass", NULL}};
+static const char *const ref_units[LV_REF_N] = {"m", "rad", "rad", "m/s", "rad", "rad", "kg"};
+
+void lv_reference_free(lv_reference_def *r)
+{
+    if (r == NULL)
+        return;
+    lv_table_free(r->table);
+    free(r->file);
+    free(r->var);
+    free(r);
+}
+
+/* The output of r->table that column j is, by any of its names: LV_OK, or LV_ERR_NOTFOUND. */
+static lv_status find_column(const lv_table *t, size_t j, size_t *k)
+{
+    for (int a = 0; a < 3 && ref_alias[j][a] != NULL; a++)
+        if (lv_table_out_index(t, ref_alias[j][a], k, NULL) == LV_OK)
+            return LV_OK;
+    return LV_ERR_NOTFOUND;
+}
+
+lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                             lv_phase_def *ph)
+{
+    static const char *const rkeys[] = {"table", "start", NULL};
+    static const char *const starts[] = {"parent", "reference", NULL};
+    char what[LV_WHAT_MAX];
+    lv_status st;
+    if (v == NULL || lv_yaml_is_null(v))
+        return LV_OK;
+    snprintf(what, sizeof what, "phase '%s', reference", ph->name);
+    lv_reference_def *r = calloc(1, sizeof *r);
+    if (r == NULL)
+        return lv_pk_nomem(c);
+    ph->reference = r; /* freed with the phase */
+    r->loc = lv_pk_loc(key);
+    const lv_ynode *tab = v, *tab_key = key;
+    if (v->kind == LV_YNODE_MAP) {
+        if ((st = lv_pk_check_map(c, v, what, rkeys)) != LV_OK ||
+            (st = lv_pk_need(c, v, what, "table", &tab)) != LV_OK)
+            return st;
+        tab_key = lv_pk_key(v, "table");
+        const lv_ynode *s = lv_pk_get(v, "start");
+        size_t i = 0;
+        if (s != NULL && (st = lv_pk_enum(c, s, what, "start", starts, &i)) != LV_OK)
+            return st;
+        r->start = i == 1;
+    }
+    if ((st = lv_pk_table(c, tab_key, tab, what, LV_EXTRAP_CLAMP, &r->file, &r->var,
+                          &r->table)) != LV_OK)
+        return st;
+    const lv_table *t = r->table;
+    const char *ax = lv_table_axis_name(t, 0);
+    if (lv_table_n_dims(t) != 1)
+        return lv_pk_fail(c, tab, "%s: table '%s' must have one axis, mission time (`time`, s) "
+                          "or the normalised phase time (`tau`); it has %zu", what,
+                          lv_table_name(t), lv_table_n_dims(t));
+    r->over_tau = strcmp(ax, "tau") == 0;
+    if (!r->over_tau && strcmp(ax, "time") != 0 && strcmp(ax, "t") != 0)
+        return lv_pk_fail(c, tab, "%s: table '%s': its axis '%s' must be mission time (`time` or "
+                          "`t`, s) or the normalised phase time (`tau`, from 0 at the phase's "
+                          "start to 1 at its stop_time)", what, lv_table_name(t), ax);
+    lv_err e = {LV_OK, ""};
+    if ((st = lv_table_expect_unit(t, 1, 0, r->over_tau ? "1" : "s", NULL, &e)) != LV_OK)
+        return lv_pk_fail(c, tab, "%s: %s", what, e.msg);
+    char missing[160] = "";
+    size_t used = 0;
+    for (size_t j = 0; j < LV_REF_N; j++) {
+        if (find_column(t, j, &r->k[j]) != LV_OK) {
+            used += (size_t)snprintf(missing + used, sizeof missing - used, "%s%s",
+                                     used ? ", " : "", lv_ref_columns[j]);
+            if (used >= sizeof missing)
+                used = sizeof missing - 1;
+            continue;
+        }
+        if ((st = lv_table_expect_unit(t, 0, r->k[j], ref_units[j], NULL, &e)) != LV_OK)
+            return lv_pk_fail(c, tab, "%s: %s", what, e.msg);
+    }
+    if (used > 0)
+        return lv_pk_fail(c, tab, "%s: table '%s' lacks the column%s %s (a reference gives h "
+                          "[m], lat, lon [rad], v [m/s], fpa, heading [rad] and m [kg]; its first "
+                          "output is '%s')", what, lv_table_name(t),
+                          strchr(missing, ',') ? "s" : "", missing, lv_table_out_name(t, 0));
+    size_t n = 0;
+    const double *b = lv_table_breakpoints(t, 0, &n);
+    if (r->over_tau && (b[0] < 0.0 || b[n - 1] > 1.0))
+        return lv_pk_fail(c, tab, "%s: table '%s': tau runs from %g to %g; it lies within [0, 1]",
+                          what, lv_table_name(t), b[0], b[n - 1]);
+    return LV_OK;
+}
+
+/* The reference's columns at axis value x (clamped into its range). */
+static lv_status ref_eval(const lv_reference_def *r, lv_table_cursor *cur, double x,
+                          double *buf, double s[LV_REF_N], lv_err *err)
+{
+    lv_status st = lv_table_eval1(r->table, cur, x, buf, err);
+    for (size_t j = 0; st == LV_OK && j < LV_REF_N; j++)
+        s[j] = buf[r->k[j]];
+    return st;
+}
+
+double lv_reference_first(const lv_reference_def *r, size_t j)
+{
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf), v = NAN;
+    if (buf != NULL && lv_table_eval1(r->table, NULL, b[0], buf, NULL) == LV_OK)
+        v = buf[r->k[j]];
+    free(buf);
+    return v;
+}
+
+/* ECEF position and velocity relative to the planet of geodetic h, lat, lon and v, fpa,
+ * heading. */
+static void ref_ecef(const lv_planet *p, const double s[LV_REF_N], double r[3], double v[3])
+{
+    double ned[3], C[3][3];
+    lv_frames_geodetic_to_ecef(p, s[LV_REF_LAT], s[LV_REF_LON], s[LV_REF_H], r);
+    lv_frames_ned_from_fpa(s[LV_REF_V], s[LV_REF_FPA], s[LV_REF_HEADING], ned);
+    lv_frames_C_ned_ecef(s[LV_REF_LAT], s[LV_REF_LON], C);
+    for (int i = 0; i < 3; i++)
+        v[i] = C[0][i] * ned[0] + C[1][i] * ned[1] + C[2][i] * ned[2];
+}
+
+/* Sets names[i] = value, appended when absent (cap: the room). */
+static lv_status put(const char *name, double value, const char **names, double *values,
+                     size_t *n, size_t cap, lv_err *err)
+{
+    for (size_t i = 0; i < *n; i++)
+        if (strcmp(names[i], name) == 0) {
+            values[i] = value;
+            return LV_OK;
+        }
+    if (*n >= cap)
+        return lv_fail(err, LV_ERR_INPUT, "reference start: no room for '%s'", name);
+    names[*n] = name;
+    values[(*n)++] = value;
+    return LV_OK;
+}
+
+lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet, double t0,
+                             int root, const char *mass_state, const char **names,
+                             double *values, size_t *n, size_t cap, lv_err *err)
+{
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf), s[LV_REF_N];
+    if (buf == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_status st = ref_eval(r, NULL, b[0], buf, s, err);
+    free(buf);
+    if (st != LV_OK)
+        return st;
+    if (!(s[LV_REF_M] > 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "reference: its first mass m = %g kg is not positive",
+                       s[LV_REF_M]);
+    if (root) {
+        static const char *const pn[6] = {"start_lat", "start_lon", "start_h",
+                                          "start_vel", "start_fpa", "start_chi"};
+        const double pv[6] = {s[LV_REF_LAT], s[LV_REF_LON], s[LV_REF_H],
+                              s[LV_REF_V],   s[LV_REF_FPA], s[LV_REF_HEADING]};
+        for (int i = 0; i < 6 && st == LV_OK; i++)
+            st = put(pn[i], pv[i], names, values, n, cap, err);
+    } else {
+        static const char *const rn[3] = {"r_eci_x", "r_eci_y", "r_eci_z"};
+        static const char *const vn[3] = {"v_eci_x", "v_eci_y", "v_eci_z"};
+        double r_ecef[3], v_ecef[3], r_eci[3], v_eci[3];
+        ref_ecef(planet, s, r_ecef, v_ecef);
+        lv_frames_ecef_to_eci(planet, t0, r_ecef, v_ecef, r_eci, v_eci);
+        for (int i = 0; i < 3 && st == LV_OK; i++)
+            if ((st = put(rn[i], r_eci[i], names, values, n, cap, err)) == LV_OK)
+                st = put(vn[i], v_eci[i], names, values, n, cap, err);
+    }
+    return st == LV_OK ? put(mass_state, s[LV_REF_M], names, values, n, cap, err) : st;
+}
+
+lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
+                             const lv_result *rows, const char *mass_state, double t_start,
+                             double t_stop, lv_ref_drift *out, lv_ref_row **series,
+                             lv_err *err)
+{
+    static const char *const need[] = {"time", "h", "lat", "lon", "v_north", "v_east", "v_down"};
+    size_t col[8];
+    lv_status st;
+    memset(out, 0, sizeof *out);
+    out->over_tau = r->over_tau;
+    out->start_from_reference = r->start;
+    out->t_first = out->t_final = out->pos_max_t = out->vel_max_t = out->mass_max_t = NAN;
+    out->pos_final = out->vel_final = out->mass_final = NAN;
+    for (size_t j = 0; j < 8; j++)
+        if ((st = lv_result_column(rows, j < 7 ? need[j] : mass_state, &col[j], err)) != LV_OK)
+            return lv_fail_prefix(err, st, "reference drift");
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    const double lo = b[0], hi = b[nb - 1], eps = 1e-9 * (1.0 + fmax(fabs(lo), fabs(hi)));
+    const size_t nr = lv_result_rows(rows);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
+    lv_ref_row *ser = malloc((nr + 1) * sizeof *ser);
+    *series = NULL;
+    if (buf == NULL || ser == NULL) {
+        free(buf);
+        free(ser);
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    }
+    lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
+    st = LV_OK;
+    for (size_t i = 0; i < nr && st == LV_OK; i++) {
+        double y[8];
+        for (size_t j = 0; j < 8; j++)
+            y[j] = lv_result_value(rows, i, col[j]);
+        const double t = y[0], x = r->over_tau ? (t - t_start) / (t_stop - t_start) : t;
+        if (!(x >= lo - eps && x <= hi + eps))
+            continue;
+        double s[LV_REF_N], rr[3], vr[3], rs[3], vs[3], C[3][3];
+        if ((st = ref_eval(r, &cur, fmin(fmax(x, lo), hi), buf, s, err)) != LV_OK)
+            break;
+        ref_ecef(planet, s, rr, vr);
+        lv_frames_geodetic_to_ecef(planet, y[2], y[3], y[1], rs);
+        lv_frames_C_ned_ecef(y[2], y[3], C);
+        for (int a = 0; a < 3; a++)
+            vs[a] = C[0][a] * y[4] + C[1][a] * y[5] + C[2][a] * y[6];
+        const double dp = hypot(hypot(rs[0] - rr[0], rs[1] - rr[1]), rs[2] - rr[2]);
+        const double dv = hypot(hypot(vs[0] - vr[0], vs[1] - vr[1]), vs[2] - vr[2]);
+        const double dm = fabs(y[7] - s[LV_REF_M]);
+        const double v_sim = sqrt(y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+        ser[out->n_rows] = (lv_ref_row){t,         y[1],        s[LV_REF_H], v_sim, s[LV_REF_V],
+                                        y[7],      s[LV_REF_M], dp,          dv,    dm};
+        if (out->n_rows++ == 0)
+            out->t_first = t;
+        if (out->n_rows == 1 || dp > out->pos_max) {
+            out->pos_max = dp;
+            out->pos_max_t = t;
+        }
+        if (out->n_rows == 1 || dv > out->vel_max) {
+            out->vel_max = dv;
+            out->vel_max_t = t;
+        }
+        if (out->n_rows == 1 || dm > out->mass_max) {
+            out->mass_max = dm;
+            out->mass_max_t = t;
+        }
+        out->t_final = t;
+        out->pos_final = dp;
+        out->vel_final = dv;
+        out->mass_final = dm;
+    }
+    free(buf);
+    if (out->n_rows == 0)
+        out->pos_max = out->vel_max = out->mass_max = NAN;
+    if (st == LV_OK && out->n_rows > 0)
+        *series = ser;
+    else
+        free(ser);
+    return st;
+}

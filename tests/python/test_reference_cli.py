@@ -1,0 +1,392 @@
+#!/usr/bin/python3
+"""test_reference_cli.py - an optimiser's trajectory imported as a phase's inputs and reference
+(issue 25, item 3; docs/optimal-control.md, "Importing an optimiser's trajectory").
+
+Usage: test_reference_cli.py LVSIM
+
+The references are written here, independently of lvsim: a drag-free coast around a
+non-rotating point-mass sphere is a Kepler ellipse, propagated in closed form (Curtis, Orbital
+Mechanics for Engineering Students, 3rd ed., sec. 3.4: Kepler's equation M = E - e sin E solved
+by Newton's method; position and velocity in the perifocal frame, eq. 2.119-2.121) and turned
+into geodetic h, lat, lon (on a sphere: h = r - R, lat = asin(z / r)) and the speed, flight-path
+angle and heading of the velocity in the local north-east-up frame. Checked:
+- the coast started from the reference's first row flies it: drift (3-D position, velocity
+  difference, mass) far below the integration tolerance's scale (tolerance 1e-11: < 1e-4 m);
+- the first result row equals the reference's first state (root and child phases);
+- a reference perturbed by +100 m in h at its last row drifts by exactly 100 m there;
+- a reference over tau gives the same drift as over time, one from a .mat file (MAT v5
+  struct, written here) the same as from CSV;
+- one control table over mission time, over tau and over mass (a constant mass flow: mass
+  falls linearly, m = m0 - mdot t, so alpha(m) is alpha(t(m)) exactly) flies one trajectory;
+  a step of alpha at t = 50 s and the same step where the altitude, or the energy
+  v^2/2 + g0 h, had its value of t = 50 s fly one trajectory (within 1 mm after 100 s);
+- every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column.
+"""
+import json
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+GM = 3.986004418e14  # m^3/s^2
+R = 6371000.0        # m, the sphere's radius
+FAILS = []
+
+
+def check(cond, what):
+    if not cond:
+        FAILS.append(what)
+        print("FAIL:", what)
+
+
+def kepler(r0, v0, ts):
+    """(t, r, v) on the ellipse through (r0, v0) at times ts (closed form, see the docstring)."""
+    rn = math.sqrt(sum(x * x for x in r0))
+    vn2 = sum(x * x for x in v0)
+    h = [r0[1] * v0[2] - r0[2] * v0[1], r0[2] * v0[0] - r0[0] * v0[2],
+         r0[0] * v0[1] - r0[1] * v0[0]]
+    rv = sum(a * b for a, b in zip(r0, v0))
+    e_vec = [((vn2 - GM / rn) * r0[i] - rv * v0[i]) / GM for i in range(3)]
+    e = math.sqrt(sum(x * x for x in e_vec))
+    a = 1.0 / (2.0 / rn - vn2 / GM)
+    n = math.sqrt(GM / a ** 3)
+    hn = math.sqrt(sum(x * x for x in h))
+    P = [x / e for x in e_vec]
+    W = [x / hn for x in h]
+    Q = [W[1] * P[2] - W[2] * P[1], W[2] * P[0] - W[0] * P[2], W[0] * P[1] - W[1] * P[0]]
+    nu0 = math.atan2(sum(x * y for x, y in zip(Q, r0)) / rn, sum(x * y for x, y in zip(P, r0)) / rn)
+    E0 = 2.0 * math.atan(math.sqrt((1 - e) / (1 + e)) * math.tan(nu0 / 2))
+    M0 = E0 - e * math.sin(E0)
+    out = []
+    for t in ts:
+        M = M0 + n * t
+        E = M
+        for _ in range(50):
+            E -= (E - e * math.sin(E) - M) / (1 - e * math.cos(E))
+        x, y = a * (math.cos(E) - e), a * math.sqrt(1 - e * e) * math.sin(E)
+        edot = n / (1 - e * math.cos(E))
+        vx, vy = -a * math.sin(E) * edot, a * math.sqrt(1 - e * e) * math.cos(E) * edot
+        out.append((t, [x * P[i] + y * Q[i] for i in range(3)],
+                    [vx * P[i] + vy * Q[i] for i in range(3)]))
+    return out
+
+
+def geodetic(r, v):
+    """h, lat, lon, v, fpa, heading on the sphere (non-rotating: ECI = ECEF)."""
+    rn = math.sqrt(sum(x * x for x in r))
+    lat, lon = math.asin(r[2] / rn), math.atan2(r[1], r[0])
+    up = [x / rn for x in r]
+    north = [-math.sin(lat) * math.cos(lon), -math.sin(lat) * math.sin(lon), math.cos(lat)]
+    east = [-math.sin(lon), math.cos(lon), 0.0]
+    vn, ve, vu = (sum(a * b for a, b in zip(v, d)) for d in (north, east, up))
+    sp = math.sqrt(vn * vn + ve * ve + vu * vu)
+    return [rn - R, lat, lon, sp, math.asin(vu / sp), math.atan2(ve, vn) % (2 * math.pi)]
+
+
+def start_state(h0, v0, fpa_deg, chi_deg):
+    """ECI r, v at lat = lon = 0 for altitude h0, speed v0, flight-path angle, heading."""
+    g, c = math.radians(fpa_deg), math.radians(chi_deg)
+    return [R + h0, 0.0, 0.0], [v0 * math.sin(g), v0 * math.cos(g) * math.sin(c),
+                                v0 * math.cos(g) * math.cos(c)]
+
+
+def write_reference(path, states, axis="time [s]", axis_values=None, mass=1000.0, dh_last=0.0):
+    with open(path, "w") as f:
+        f.write(axis + ",h [m],lat [rad],lon [rad],v [m/s],fpa [rad],heading [rad],m [kg]\n")
+        for i, (t, r, v) in enumerate(states):
+            g = geodetic(r, v)
+            if i == len(states) - 1:
+                g[0] += dh_last
+            x = t if axis_values is None else axis_values[i]
+            f.write(",".join(repr(float(y)) for y in [x] + g + [mass]) + "\n")
+
+
+def mat_v5_struct(path, name, fields):
+    """A MAT v5 file holding one 1 x 1 struct `name` whose fields (name, values) are row
+    vectors of doubles (MathWorks, MAT-File Format, R2018a: the 128-byte header, miMATRIX
+    elements of array flags, dimensions, name, field-name length and names, then the fields),
+    the layout docs/tables.md reads as a 1-D table: the first field the axis."""
+    def el(typ, data):
+        return struct.pack("<II", typ, len(data)) + data + b"\0" * ((8 - len(data) % 8) % 8)
+
+    def matrix(nm, cls, dims, body):
+        content = (el(6, struct.pack("<II", cls, 0)) + el(5, struct.pack("<%di" % len(dims), *dims))
+                   + el(1, nm.encode()) + body)
+        return struct.pack("<II", 14, len(content)) + content
+    width = 32
+    body = (struct.pack("<Ii", (4 << 16) | 5, width)  # small element: field-name length
+            + el(1, b"".join(f.encode().ljust(width, b"\0") for f, _ in fields))
+            + b"".join(matrix("", 6, [1, len(v)], el(9, struct.pack("<%dd" % len(v), *v)))
+                       for _, v in fields))
+    head = (b"MATLAB 5.0 MAT-file, lvsim test_reference_cli".ljust(116, b" ") + b"\0" * 8
+            + struct.pack("<H", 0x0100) + b"IM")
+    with open(path, "wb") as f:
+        f.write(head + matrix(name, 2, [1, 1], body))
+
+
+HEAD = """mission: {name: %s}
+environment:
+  world: planet
+  planet: {name: sphere, radius: 6371000, gm: 3.986004418e14, rotation_rate: 0}
+  gravity: pointmass
+  atmosphere: none
+"""
+COAST = HEAD + """stages:
+  - {name: cap, dry_mass: 1000, propellant_mass: 0}
+phases:
+  - name: coast
+    model: dof3
+    stages: [cap]
+    stop_time: 1000
+    reference: %s
+    integrator: {method: dop853, tolerance: 1e-11, output_interval: 10}
+"""
+
+
+def run(lvsim, mission, out, expect=0, plots=False):
+    p = subprocess.run([lvsim, "run", mission, "-o", out] + ([] if plots else ["--no-plots"]),
+                       capture_output=True, text=True)
+    check(p.returncode == expect, f"lvsim run {mission}: exit {p.returncode}, expected {expect}"
+          f"\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def rows(path):
+    with open(path) as f:
+        lines = f.read().splitlines()
+    names = [re.sub(r" \[.*\]$", "", c) for c in lines[0].split(",")]
+    return [dict(zip(names, map(float, line.split(",")))) for line in lines[1:]]
+
+
+def main():
+    lvsim = os.path.abspath(sys.argv[1])
+    tmp = tempfile.mkdtemp(prefix="lvsim-ref-")
+    os.chdir(tmp)
+    ts = [10.0 * i for i in range(101)]
+    r0, v0 = start_state(200e3, 7800.0, 2.0, 60.0)
+    states = kepler(r0, v0, ts)
+    write_reference("ref.csv", states)
+    write_reference("ref_tau.csv", states, "tau [1]", [t / 1000.0 for t in ts])
+    write_reference("ref_100.csv", states, dh_last=100.0)
+
+    # 1. start from the reference, fly it: drift far below the tolerance's scale
+    with open("coast.yaml", "w") as f:
+        f.write(COAST % ("coast", "{table: ref.csv, start: reference}"))
+    p = run(lvsim, "coast.yaml", "o1")
+    check("reference: phase" in p.stdout, "run prints the drift table:\n" + p.stdout)
+    d = summary("o1")["phases"][0]["reference"]
+    print("coast from its reference:", json.dumps(d))
+    check(d["rows"] == 101 and d["start"] == "reference" and d["over"] == "time", "rows, start")
+    check(d["position"]["max"] < 1e-4, "position drift %g m < 1e-4 m" % d["position"]["max"])
+    check(d["velocity"]["max"] < 1e-7, "velocity drift %g m/s < 1e-7" % d["velocity"]["max"])
+    check(d["mass"]["max"] == 0.0, "mass drift 0")
+    first = rows("o1/phase_1_coast.csv")[0]
+    g = geodetic(r0, v0)
+    for key, ref, tol in (("h", g[0], 1e-6), ("lat", g[1], 1e-12), ("lon", g[2], 1e-12),
+                          ("v_rel", g[3], 1e-9), ("fpa", g[4], 1e-12),
+                          ("heading", g[5], 1e-12), ("m", 1000.0, 0.0)):
+        check(abs(first[key] - ref) <= tol, f"first row {key} = {first[key]!r}, reference {ref!r}")
+
+    # 1b. the same reference from a .mat file (a MAT v5 struct): the same drift
+    pos_csv = d["position"]["max"]
+    table = [list(map(float, line.split(","))) for line in open("ref.csv").read().splitlines()[1:]]
+    mat_v5_struct("ref.mat", "opt", list(zip(["time", "h", "lat", "lon", "v", "fpa", "heading",
+                                              "m"], zip(*table))))
+    with open("coast_mat.yaml", "w") as f:
+        f.write(COAST % ("coast-mat", "{table: {file: ref.mat, var: opt}, start: reference}"))
+    run(lvsim, "coast_mat.yaml", "o1m")
+    d = summary("o1m")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["position"]["max"] == pos_csv,
+          "from .mat: %r m, from CSV %r m" % (d["position"]["max"], pos_csv))
+
+    # 2. the same reference perturbed by +100 m in h at its last row: exactly that drift there
+    with open("coast100.yaml", "w") as f:
+        f.write(COAST % ("coast100", "{table: ref_100.csv, start: reference}"))
+    run(lvsim, "coast100.yaml", "o2", plots=True)
+    d = summary("o2")["phases"][0]["reference"]
+    # its rows, figure and report table
+    check(d.get("file") == "reference_1_coast.csv",
+          "reference.file: " + str(d.get("file")))
+    last = rows("o2/reference_1_coast.csv")[-1]
+    check(last["time"] == 1000.0 and abs(last["d_position"] - 100.0) < 1e-3 and
+          abs(last["h_ref"] - last["h"] - 100.0) < 1e-3, "reference CSV last row: %r" % last)
+    check(os.path.getsize("o2/plots/reference_1.png") > 1000, "plots/reference_1.png drawn")
+    with open("o2/index.html") as f:
+        check("Drift from the reference" in f.read(), "the report's drift table")
+    print("perturbed by 100 m:", json.dumps(d))
+    check(abs(d["position"]["final"] - 100.0) < 1e-3, "final drift %r m = 100 m" %
+          d["position"]["final"])
+    check(abs(d["position"]["max"] - 100.0) < 1e-3 and d["position"]["t_max"] == 1000.0,
+          "largest drift 100 m at t = 1000 s")
+    check(d["velocity"]["max"] < 1e-7, "velocity unaffected")
+
+    # 3. over tau = t / 1000 s: the same drift
+    with open("coast_tau.yaml", "w") as f:
+        f.write(COAST % ("coast-tau", "{table: ref_tau.csv, start: reference}"))
+    run(lvsim, "coast_tau.yaml", "o3")
+    d = summary("o3")["phases"][0]["reference"]
+    check(d["over"] == "tau" and d["rows"] == 101 and d["position"]["max"] < 1e-4,
+          "over tau: " + json.dumps(d))
+
+    # 4. a child started from its reference (another ellipse, from t = 300 s), not its parent
+    r1, v1 = start_state(250e3, 7700.0, -1.0, 45.0)
+    ts1 = [300.0 + 10.0 * i for i in range(71)]
+    states1 = [(t, r, v) for (t, r, v) in kepler(r1, v1, [t - 300.0 for t in ts1])]
+    states1 = [(ts1[i], s[1], s[2]) for i, s in enumerate(states1)]
+    write_reference("ref_child.csv", states1, mass=900.0)
+    with open("child.yaml", "w") as f:
+        f.write((HEAD % "child") + """parameters: {start_h: 200000, start_vel: 7800, start_fpa_deg: 2, start_chi_deg: 60}
+stages:
+  - {name: cap, dry_mass: 800, propellant_mass: 0}
+phases:
+  - {name: a, model: dof3, stages: [cap], stop_time: 300}
+  - name: b
+    model: dof3
+    stages: [cap]
+    from: a
+    stop_time: 1000
+    reference: {table: ref_child.csv, start: reference}
+    integrator: {method: dop853, tolerance: 1e-11, output_interval: 10}
+""")
+    run(lvsim, "child.yaml", "o4")
+    first = rows("o4/phase_2_b.csv")[0]
+    g = geodetic(r1, v1)
+    for key, ref, tol in (("time", 300.0, 0.0), ("h", g[0], 1e-6), ("lat", g[1], 1e-12),
+                          ("lon", g[2], 1e-12), ("v_rel", g[3], 1e-9), ("fpa", g[4], 1e-12),
+                          ("heading", g[5], 1e-12), ("m", 900.0, 0.0)):
+        check(abs(first[key] - ref) <= tol, f"child first row {key} = {first[key]!r}, "
+              f"reference {ref!r}")
+    d = summary("o4")["phases"][1]["reference"]
+    check(d["rows"] == 71 and d["position"]["max"] < 1e-4, "child drift " + json.dumps(d))
+
+    # 5. one control table over time, tau and mass: one trajectory
+    m0, mdot = 10000.0, 70.0
+    with open("in_time.csv", "w") as f:
+        f.write("time [s],alpha [rad],m [kg]\n")
+        for t, a in ((0, 0.0), (25, 0.05), (50, 0.1), (75, 0.025), (100, -0.05)):
+            f.write("%r,%r,%r\n" % (float(t), a, m0 - mdot * t))
+    finals = {}
+    for over in ("time", "tau", "mass", "none"):
+        inputs = ("{alpha: 0}" if over == "none" else
+                  "{table: in_time.csv, over: %s}" % over)
+        with open(f"pw_{over}.yaml", "w") as f:
+            f.write((HEAD % ("powered-" + over)) + """parameters: {start_h: 10000, start_vel: 300, start_fpa_deg: 60, start_chi_deg: 90}
+stages:
+  - name: s1
+    dry_mass: 2000
+    propellant_mass: 8000
+    engines: [{thrust_vac: 2.0e5, mdot: 70}]
+phases:
+  - name: burn
+    model: dof3
+    stages: [s1]
+    stop_time: 100
+    inputs: %s
+    integrator: {method: dop853, tolerance: 1e-11, output_interval: 10}
+""" % inputs)
+        run(lvsim, f"pw_{over}.yaml", "o5" + over)
+        finals[over] = rows(f"o5{over}/phase_1_burn.csv")[-1]
+
+    def dist(a, b, pre):
+        return math.sqrt(sum((a[pre + c] - b[pre + c]) ** 2 for c in "xyz"))
+    for over in ("tau", "mass"):
+        dr = dist(finals[over], finals["time"], "r_eci_")
+        dv = dist(finals[over], finals["time"], "v_eci_")
+        print(f"inputs over {over} vs over time: {dr:.3g} m, {dv:.3g} m/s at t = 100 s")
+        check(dr < 1e-3 and dv < 1e-5, f"over {over}: {dr} m, {dv} m/s from over time")
+    dr = dist(finals["none"], finals["time"], "r_eci_")
+    check(dr > 100.0, f"the inputs act: alpha = 0 ends {dr} m away")
+
+    # 5b. over altitude and over energy: alpha steps from 0 to 0.1 rad within 1 ms at t = 50 s
+    # (a time table) or where the altitude / the energy v^2/2 + g0 h had its value of t = 50 s
+    # (tables over those variables, their step as wide as the time table's): one trajectory
+    def powered(name, inputs):
+        with open(name + ".yaml", "w") as f:
+            f.write(open("pw_time.yaml").read().replace(
+                "{table: in_time.csv, over: time}", inputs).replace("powered-time", name))
+        run(lvsim, name + ".yaml", "o_" + name)
+        return rows(f"o_{name}/phase_1_burn.csv")
+    with open("step_time.csv", "w") as f:
+        f.write("time [s],alpha [rad]\n0,0\n50,0\n50.001,0.1\n100,0.1\n")
+    a = powered("step-time", "{table: step_time.csv}")
+    at50 = next(r for r in a if r["time"] == 50.0)
+    up = -at50["v_down"]                              # dh/dt, m/s
+    e50 = 0.5 * at50["v_rel"] ** 2 + 9.80665 * at50["h"]
+    # dE/dt = v . dv/dt + g0 dh/dt (a non-rotating planet: v_rel is the inertial velocity)
+    de = sum(at50["v_eci_" + c] * at50[f"der(v_eci_{c})"] for c in "xyz") + 9.80665 * up
+    with open("step_h.csv", "w") as f:
+        f.write("altitude [m],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e7,0.1\n"
+                % (at50["h"], at50["h"] + 1e-3 * up))
+    with open("step_e.csv", "w") as f:
+        f.write("energy [J/kg],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e9,0.1\n" % (e50, e50 + 1e-3 * de))
+    for name, table in (("step-h", "{table: step_h.csv, over: altitude}"),
+                        ("step-e", "{table: step_e.csv, over: energy}")):
+        b = powered(name, table)
+        dr = dist(b[-1], a[-1], "r_eci_")
+        print(f"inputs over {table}: {dr:.3g} m from the time table at t = 100 s")
+        check(dr < 1e-3, f"{name}: {dr} m from the time table")
+        check(dist(b[-1], finals["none"], "r_eci_") > 100.0, f"{name}: the step acts")
+
+    # 6. bad inputs: check and run alike, exit 2, file:line:column
+    with open("in_up_down.csv", "w") as f:
+        f.write("time [s],alpha [rad],h [m]\n0,0,100\n10,0.1,200\n20,0.2,150\n")
+    with open("ref_deg.csv", "w") as f:
+        f.write(open("ref.csv").read().replace("lat [rad]", "lat [deg]"))
+    with open("ref_missing.csv", "w") as f:
+        f.write("\n".join(",".join(l.split(",")[:5]) for l in
+                          open("ref.csv").read().splitlines()) + "\n")
+    pw = open("pw_time.yaml").read()
+    coast = open("coast.yaml").read()
+    bad = {
+        "nonmonotone": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: altitude"),
+                        r"bad_nonmonotone.yaml:\d+:\d+: phase 'burn', inputs: over: altitude: "
+                        r"the variable is not strictly monotone"),
+        "nocolumn": (pw.replace("over: time", "over: speed"),
+                     r":\d+:\d+: .*over: speed: the table 'in_time' has no column of it"),
+        "overword": (pw.replace("over: time", "over: apogee"),
+                     r":\d+:\d+: .*over: unknown value 'apogee'"),
+        "deg": (coast.replace("ref.csv", "ref_deg.csv"), r":\d+:\d+: .*column 'lat' is in \[deg\]"),
+        "missing": (coast.replace("ref.csv", "ref_missing.csv"),
+                    r":\d+:\d+: .*lacks the columns fpa, heading, m"),
+        "start": (coast.replace("start: reference", "start: launch"),
+                  r":\d+:\d+: .*start: unknown value 'launch'"),
+        "flat6": ("mission: {name: f}\nstages:\n  - {name: s, dry_mass: 100, propellant_mass: 0}\n"
+                  "phases:\n  - {name: c, model: flat6, stages: [s], stop_time: 10, "
+                  "reference: ref.csv}\n",
+                  r":5:\d+: phase 'c': 'reference' applies to the dof3, dof6 models only"),
+        "axis": (coast.replace("ref.csv", "in_time.csv"), r":\d+:\d+: .*lacks the columns"),
+        "light": (coast.replace("dry_mass: 1000", "dry_mass: 1200"),
+                  r":\d+:\d+: phase 'coast': reference: its first mass m = 1000 kg is less than "
+                  r"the dry mass 1200 kg"),
+        "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
+                   r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
+                   r"\(`energy`, or `h` and `v`"),
+    }
+    for name, (text, pattern) in bad.items():
+        path = f"bad_{name}.yaml"
+        with open(path, "w") as f:
+            f.write(text)
+        c = subprocess.run([lvsim, "check", path], capture_output=True, text=True)
+        r = subprocess.run([lvsim, "run", path, "-o", "obad", "--outputs", "none"],
+                           capture_output=True, text=True)
+        check(c.returncode == 2 and r.returncode == 2,
+              f"{name}: check exit {c.returncode}, run exit {r.returncode}: {c.stderr}{r.stderr}")
+        check(re.search(pattern, c.stderr) is not None, f"{name}: check says {c.stderr!r}, "
+              f"expected /{pattern}/")
+        check(c.stderr.strip() in r.stderr, f"{name}: run says {r.stderr!r}, check {c.stderr!r}")
+    shutil.rmtree(tmp)
+    print("%d failure(s)" % len(FAILS))
+    return 1 if FAILS else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
