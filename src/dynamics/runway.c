@@ -239,7 +239,7 @@ static int point_eval(lv_runway *m, rw_inst *s, double t, const double *x, const
     if (rc != 0)
         return rc;
     const double u0[LV_CTRL_N] = {alpha_of(s, t, p), 0.0, 0.0, p[P_THR]};
-    if (lv_flight_controls_eval(u0, &(lv_flight_schedule){NULL, {-1, -1, -1, -1}, NULL}, NULL,
+    if (lv_flight_controls_eval(u0, &(lv_flight_schedule){.table = NULL, .k = {-1, -1, -1, -1}}, NULL,
                                 &s->trig, t, &pt->ctl, err) != 0)
         return 1;
     /* at rest in still air the wind axes take the runway's direction */
