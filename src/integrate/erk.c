@@ -258,6 +258,8 @@ struct lv_erk {
     double *g_lo, *g_b, *g_m; /* [ng] at t_lo (in a clear step: at its start), at the
                                * bracket's right end, at an iterate */
     double *g_end;            /* [ng] at the step's end t (g_end_ok) */
+    double *g_s;              /* [ng] at the step's start t_s */
+    double t_s;               /* the start of the step being returned (= t_old once taken) */
     /* the tableau's sums without their zero terms (rk_sum): stage arguments (rows of a), the
      * solution (b), dp5's error estimate (e), the dense output's coefficients (d) */
     rk_sum a_sum[ERK_MAX_STAGES], b_sum, e_sum, d_sum[4];
@@ -311,7 +313,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
         e->n_ctl = p->n; /* refused by lv_integ_create; never a division by zero */
     const size_t n = e->n, ng = e->ng;
     const size_t nk = (size_t)e->tab->s_dense, nrc = dop853 ? 8 : 5;
-    const size_t total = n * (6 + nk + nrc + 2) + 4 * ng;
+    const size_t total = n * (6 + nk + nrc + 2) + 5 * ng;
     e->mem = calloc(total ? total : 1, sizeof *e->mem);
     if (e->mem == NULL) {
         free(e);
@@ -334,6 +336,7 @@ lv_status lv_erk_create(const lv_integ_problem *p, int dop853, double t0, const 
     e->g_b = m, m += ng;
     e->g_m = m, m += ng;
     e->g_end = m, m += ng;
+    e->g_s = m, m += ng;
     for (size_t i = 1; i < nk; i++)
         rk_sum_init(&e->a_sum[i], e->tab->a + i * ERK_MAX_STAGES, (int)i);
     rk_sum_init(&e->b_sum, e->tab->b, e->tab->s);
@@ -740,21 +743,22 @@ static int crosses(const lv_erk *e, size_t i, double glo, double g)
     return want == 0 || want == dir;
 }
 
-/* The earliest root in (t_lo, thi] of the functions that cross there, g_b holding g(thi) and
- * x_b the state at thi: each crossing function's root bracketed by the Illinois variant of
- * regula falsi (Dowell & Jarratt 1971) on the dense output, down to CVODE's time tolerance
- * 100 eps (|t| + |h|); the bracket's right end (where the function has crossed) becomes the
- * new thi for the functions after it. On return *tb is that time and g_b, x_b the values
- * there. Returns 0, or the status of a failed evaluation (< 0: g, > 0: the dense output). */
-static int locate_root(lv_erk *e, double *tb_io)
+/* The earliest root in (ta0, thi] of the functions that cross there, g_a0 holding g(ta0), g_b
+ * g(thi) and x_b the state at thi: each crossing function's root bracketed by the Illinois
+ * variant of regula falsi (Dowell & Jarratt 1971) on the dense output, down to CVODE's time
+ * tolerance 100 eps (|t| + |h|); the bracket's right end (where the function has crossed)
+ * becomes the new thi for the functions after it. On return *tb is that time and g_b, x_b the
+ * values there. Returns 0, or the status of a failed evaluation (< 0: g, > 0: the dense
+ * output). */
+static int locate_root(lv_erk *e, double ta0, const double *g_a0, double *tb_io)
 {
     const size_t ng = e->ng;
     const double ttol = 100.0 * DBL_EPSILON * (fabs(e->t) + fabs(e->h_old));
     double tb = *tb_io;
     for (size_t i = 0; i < ng; i++) {
-        if (!crosses(e, i, e->g_lo[i], e->g_b[i]))
+        if (!crosses(e, i, g_a0[i], e->g_b[i]))
             continue;
-        double ta = e->t_lo, fa = e->g_lo[i], fb = e->g_b[i];
+        double ta = ta0, fa = g_a0[i], fb = e->g_b[i];
         int side = 0;
         for (int it = 0; it < 200 && tb - ta > ttol && fb != 0.0; it++) {
             double tm = tb - fb * (tb - ta) / (fb - fa);
@@ -788,6 +792,44 @@ static int locate_root(lv_erk *e, double *tb_io)
     }
     *tb_io = tb;
     return 0;
+}
+
+/* The earliest root in (t_lo, thi] (a crossing is there: g_b holds g(thi), x_b the state),
+ * located so that it does not depend on the returns inside the step: where every function
+ * that crosses in (t_lo, thi] also crosses between the step's two ends, the brackets start
+ * from the whole step [t_s, t] (g_s, g_end), whatever output times were returned inside it,
+ * and the root found is kept if it lies in (t_lo, thi]. Otherwise (a function that crosses
+ * back and forth inside the step, or a root before the last return) from (t_lo, thi]. So a
+ * run that writes no rows and skips its output times (sim/simulate.c, grid_skipped), a
+ * stop at lv_sim_advance's time or an FMU's communication point locate the same event time
+ * bit for bit as a run that returns at every output time. Returns as locate_root. */
+static int locate_in_step(lv_erk *e, double thi, double *tb_io)
+{
+    int whole = 1;
+    for (size_t i = 0; i < e->ng && whole; i++)
+        if (crosses(e, i, e->g_lo[i], e->g_b[i]))
+            whole = crosses(e, i, e->g_s[i], e->g_end[i]);
+    if (whole) {
+        double tb = e->t;
+        memcpy(e->g_b, e->g_end, e->ng * sizeof *e->g_b);
+        memcpy(e->x_b, e->y, e->n * sizeof *e->x_b);
+        const int rc = locate_root(e, e->t_s, e->g_s, &tb);
+        if (rc != 0)
+            return rc;
+        if (tb > e->t_lo && tb <= thi) {
+            *tb_io = tb;
+            return 0;
+        }
+        /* back to (t_lo, thi]: g_b and x_b at thi again */
+        if (dense_eval(e, thi, e->x_b) != 0)
+            return 1;
+        if (thi == e->t)
+            memcpy(e->g_b, e->g_end, e->ng * sizeof *e->g_b);
+        else if (call_g(e, thi, e->x_b, e->g_b) != 0)
+            return -1;
+    }
+    *tb_io = thi;
+    return locate_root(e, e->t_lo, e->g_lo, tb_io);
 }
 
 /* ---- advance ---------------------------------------------------------------------- */
@@ -836,7 +878,7 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
                     any = crosses(e, i, e->g_lo[i], e->g_b[i]);
                 if (any) {
                     double tb = thi;
-                    const int rc = locate_root(e, &tb);
+                    const int rc = locate_in_step(e, thi, &tb);
                     if (rc != 0)
                         return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: %s failed while "
                                        "locating an event [%s]", e->t_lo,
@@ -871,6 +913,9 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
             *res = LV_ERK_STIFF;
             return LV_OK;
         }
+        e->t_s = e->t; /* the whole step was returned: g_lo is at its end, the next's start */
+        if (e->ng > 0)
+            memcpy(e->g_s, e->g_lo, e->ng * sizeof *e->g_s);
         lv_status st = rk_step(e, err);
         if (st != LV_OK) {
             memcpy(x, e->y, e->n * sizeof *x);

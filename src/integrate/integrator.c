@@ -735,6 +735,11 @@ static lv_status switch_to_bdf(lv_integ *ig, double t, const double *x, lv_err *
     return LV_OK;
 }
 
+int lv_integ_outputs_free(const lv_integ *ig)
+{
+    return ig != NULL && ig->erk != NULL && ig->bdf == NULL;
+}
+
 static lv_status own_advance(lv_integ *ig, double tout, double *t, double *x,
                              lv_integ_result *res, int *roots, lv_err *err)
 {

@@ -128,6 +128,14 @@ void lv_integ_forget(lv_integ *ig);
 /* Restart at (t, x) after a discontinuity: history discarded, order 1. */
 lv_status lv_integ_restart(lv_integ *ig, double t, const double *x, lv_err *err);
 
+/* 1 when the integrator's steps and the roots it locates do not depend on the output times it
+ * is advanced to, so that a caller that writes no rows may leave them out and get the same
+ * results bit for bit: lvsim's own explicit methods (dp5, dop853, auto until it turns to BDF),
+ * whose roots are searched on each step's end and located on the step's dense output, the
+ * output interpolated. 0 for the SUNDIALS methods: CVODE and ARKODE split a root search at an
+ * intermediate output time (a located root moves by round-off). */
+int lv_integ_outputs_free(const lv_integ *ig);
+
 /* Cumulative over restarts. */
 void lv_integ_get_stats(const lv_integ *ig, lv_integ_stats *st);
 

@@ -15,6 +15,7 @@
  */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "check.h"
@@ -403,6 +404,66 @@ static void test_event_sampling(void)
     }
 }
 
+/* The oscillator's roots over 10 s (cos t = 0, three of them) located with output times every
+ * 0.01 s, every 0.37 s and none (straight to the stop time): the same times and states, bit for
+ * bit (memcmp), with the same steps - the property that lets a run without rows skip its
+ * output times (sim/simulate.c, grid_skipped). Each run restarts at a root, as lv_sim does. */
+static void test_events_output_free(void)
+{
+    const lv_method ms[3] = {LV_METHOD_DP5, LV_METHOD_DOP853, LV_METHOD_AUTO};
+    const double dts[3] = {0.01, 0.37, 0.0};
+    for (int k = 0; k < 3; k++) {
+        double t_root[3][3], x_root[3][3][2];
+        long steps[3];
+        for (int g = 0; g < 3; g++) {
+            double atol[2] = {1e-9, 1e-9}, x0[2] = {1.0, 0.0}, x[2], t = 0.0;
+            lv_integ_problem p = {.n = 2, .n_g = 1, .rhs = osc, .g = osc_g, .method = ms[k],
+                                  .rtol = 1e-9, .atol = atol, .max_steps = 100000};
+            lv_integ *ig = NULL;
+            lv_err err;
+            lv_integ_result res;
+            int roots[1], n = 0;
+            CHECK_OK(lv_integ_create(&p, 0.0, x0, &ig, &err), &err);
+            CHECK(lv_integ_outputs_free(ig) == 1);
+            CHECK_OK(lv_integ_set_stop_time(ig, 10.0, &err), &err);
+            double to = dts[g] > 0.0 ? dts[g] : 10.0;
+            while (t < 10.0) {
+                CHECK_OK(lv_integ_advance(ig, to, &t, x, &res, roots, &err), &err);
+                if (res == LV_INTEG_ROOT) {
+                    if (n < 3) {
+                        t_root[g][n] = t;
+                        memcpy(x_root[g][n], x, sizeof x);
+                    }
+                    n++;
+                    CHECK_OK(lv_integ_restart(ig, t, x, &err), &err);
+                } else if (t == to && dts[g] > 0.0) {
+                    to = fmin(10.0, to + dts[g]);
+                }
+            }
+            CHECK(n == 3);
+            lv_integ_stats st;
+            lv_integ_get_stats(ig, &st);
+            steps[g] = st.steps;
+            lv_integ_free(ig);
+        }
+        for (int g = 1; g < 3; g++) {
+            CHECK(memcmp(t_root[g], t_root[0], sizeof t_root[0]) == 0);
+            CHECK(memcmp(x_root[g], x_root[0], sizeof x_root[0]) == 0);
+            CHECK(steps[g] == steps[0]);
+        }
+        CHECK_CLOSE(t_root[0][1], 1.5 * M_PI, 1e-8);
+    }
+    /* the SUNDIALS methods do not promise it */
+    double atol[2] = {1e-9, 1e-9}, x0[2] = {1.0, 0.0};
+    lv_integ_problem p = {.n = 2, .n_g = 1, .rhs = osc, .g = osc_g, .method = LV_METHOD_BDF,
+                          .rtol = 1e-9, .atol = atol, .max_steps = 100000};
+    lv_integ *ig = NULL;
+    lv_err err;
+    CHECK_OK(lv_integ_create(&p, 0.0, x0, &ig, &err), &err);
+    CHECK(lv_integ_outputs_free(ig) == 0);
+    lv_integ_free(ig);
+}
+
 /* A run that continues after an event (no restart): the function is not reported again, and
  * a restart at the root with the function exactly 0 is no new event either. */
 static void test_event_continue(void)
@@ -559,6 +620,7 @@ int main(void)
     test_dense_order();
     test_events();
     test_event_sampling();
+    test_events_output_free();
     test_event_continue();
     test_stop_and_limits();
     test_stiffness();
