@@ -206,6 +206,16 @@ struct lv_model_def {
      * errconQ off: lv_integ_problem.quad), so that adding it changes neither the steps nor the
      * other states. At least one state must not be one. NULL: none. */
     const unsigned char *quadrature;
+
+    /* Optional. The outputs y[i] with need[i] != 0 at (t, x) (need: [n_outputs]); the others
+     * may be left as they are. lv_simulate() calls it, when given, for the stop conditions
+     * that read outputs (at every step's end and in a root search), with only their outputs
+     * needed: an end on `sma` then does not pay for the model's expensive outputs (the
+     * instantaneous impact point's propagation of dof3 and dof6: a fifth of Delta III
+     * targeting's instructions). Must give outputs_fn's values for those needed, bit for bit.
+     * NULL: outputs_fn, all of them. */
+    int (*outputs_some)(double t, const double *x, const double *p, double *y,
+                        const unsigned char *need, void *inst);
 };
 
 /* Look a variable up by name. Returns LV_OK and sets *kind and *index, or

@@ -520,7 +520,9 @@ static void fpa_chi(const lv_flight_kin *k, lv_vec3 v, double *gamma, double *ch
     lv_frames_fpa_from_ned(ned, NULL, gamma, chi);
 }
 
-static int dof3_outputs(double t, const double *x, const double *p, double *y, void *inst)
+/* The outputs; need (NULL: all) as lv_model_def.outputs_some: the IIP only when asked for. */
+static int dof3_outputs_some(double t, const double *x, const double *p, double *y,
+                             const unsigned char *need, void *inst)
 {
     dof3_inst *s = inst;
     lv_dof3 *m = s->m;
@@ -603,12 +605,17 @@ static int dof3_outputs(double t, const double *x, const double *p, double *y, v
     y[O_ARGP] = el.argp;
     y[O_APO] = el.r_apo - m->world.planet.a;
     y[O_PERI] = el.r_peri - m->world.planet.a;
-    lv_flight_iip(&m->world, m->grav_ws, m->gm, t, rv, vv, r, &y[O_IIP_LAT]);
+    lv_flight_iip_if(need, O_IIP_LAT, &m->world, m->grav_ws, m->gm, t, rv, vv, r, &y[O_IIP_LAT]);
     lv_guid_euler_local(k, ax, &y[O_THETA], &y[O_PSI], &y[O_PHI]);
     y[O_PROP_LEFT] = s->rt.burned_out || mass < s->rt.m_burnout ? 0.0 : mass - s->rt.m_burnout;
     lv_guid_target(&m->guid, k, m->world.planet.a, lv_v3_dot(pt.g_ecef, k->d_ax),
                    &y[O_TGT_DIST], &y[O_TGT_BEAR], &y[O_TGT_OVER]);
     return 0;
+}
+
+static int dof3_outputs(double t, const double *x, const double *p, double *y, void *inst)
+{
+    return dof3_outputs_some(t, x, p, y, NULL, inst);
 }
 
 /* ---- construction ---------------------------------------------------------------------- */
@@ -862,6 +869,7 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
         .init = dof3_init,
         .rhs = dof3_rhs,
         .outputs_fn = dof3_outputs,
+        .outputs_some = dof3_outputs_some,
         .abs_error = abs_error,
         .param_inactive = m->param_inactive,
         .start_params = dof3_start_params,

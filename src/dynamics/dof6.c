@@ -910,7 +910,9 @@ static int dof6_init(double t0, const double *x, const double *p, void *inst)
     return 0;
 }
 
-static int dof6_outputs(double t, const double *x, const double *p, double *y, void *inst)
+/* The outputs; need (NULL: all) as lv_model_def.outputs_some: the IIP only when asked for. */
+static int dof6_outputs_some(double t, const double *x, const double *p, double *y,
+                             const unsigned char *need, void *inst)
 {
     dof6_inst *s = inst;
     lv_dof6 *m = s->m;
@@ -1011,7 +1013,8 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
     y[O_RAAN] = el.raan;
     y[O_ARGP] = el.argp;
     const double r_ecef[3] = {k->r_ecef.x, k->r_ecef.y, k->r_ecef.z};
-    lv_flight_iip(&m->world, m->grav_ws, m->gm, t, rv, vv, r_ecef, &y[O_IIP_LAT]);
+    lv_flight_iip_if(need, O_IIP_LAT, &m->world, m->grav_ws, m->gm, t, rv, vv, r_ecef,
+                     &y[O_IIP_LAT]);
 
     /* inertial velocity in ECEF axes (no w x r): the inertial angles, as lv_dof3 */
     const lv_vec3 v_i = {k->c_th * v_eci.x + k->s_th * v_eci.y,
@@ -1036,6 +1039,11 @@ static int dof6_outputs(double t, const double *x, const double *p, double *y, v
         y[O_GYC] = pt.delta_c[1];
     }
     return 0;
+}
+
+static int dof6_outputs(double t, const double *x, const double *p, double *y, void *inst)
+{
+    return dof6_outputs_some(t, x, p, y, NULL, inst);
 }
 
 void lv_dof6_rates_from_trajectory(lv_dof6 *m, double t, const double *x, const double f_eci[3],
@@ -1494,6 +1502,7 @@ lv_status lv_dof6_create(const lv_dof6_config *cfg, lv_dof6 **out, lv_err *err)
         .init = dof6_init,
         .rhs = dof6_rhs,
         .outputs_fn = dof6_outputs,
+        .outputs_some = dof6_outputs_some,
         .abs_error = abs_error,
         /* an attitude controller drives first-order actuator lags (tau: 0.05 s in the
          * examples): stiff for an explicit method, so "auto" integrates with BDF (measured on

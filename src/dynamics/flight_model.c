@@ -48,6 +48,18 @@ void lv_flight_iip(const lv_flight_world *w, double *grav_ws, double gm, double 
     y[3] = iip.valid ? lv_iip_range(w->planet.a, r_ecef, iip.r_ecef) : NAN;
 }
 
+void lv_flight_iip_if(const unsigned char *need, size_t i0, const lv_flight_world *w,
+                      double *grav_ws, double gm, double t, const double r_eci[3],
+                      const double v_eci[3], const double r_ecef[3], double y[4])
+{
+    if (need == NULL || need[i0] || need[i0 + 1] || need[i0 + 2] || need[i0 + 3]) {
+        lv_flight_iip(w, grav_ws, gm, t, r_eci, v_eci, r_ecef, y);
+        return;
+    }
+    for (int c = 0; c < 4; c++)
+        y[c] = NAN;
+}
+
 lv_status lv_flight_engines_init(const char *model, const lv_engine_config *engines, size_t n,
                                  lv_engine **eng, size_t *n_eng, double **eng_buf, lv_err *err)
 {

@@ -125,6 +125,12 @@ lv_status lv_flight_check_heating(const char *model, double nose_radius, double 
 void lv_flight_iip(const lv_flight_world *w, double *grav_ws, double gm, double t,
                    const double r_eci[3], const double v_eci[3], const double r_ecef[3],
                    double y[4]);
+/* The four IIP outputs y[0..3] when need (the model's outputs_some mask, NULL: all) asks for
+ * one of them at need[i0..i0+3] (lv_flight_iip), else NaN: the propagation is the costliest
+ * output of dof3 and dof6. */
+void lv_flight_iip_if(const unsigned char *need, size_t i0, const lv_flight_world *w,
+                      double *grav_ws, double gm, double t, const double r_eci[3],
+                      const double v_eci[3], const double r_ecef[3], double y[4]);
 
 /* The engines of a configuration: *eng = [n] initialised from engines[n] (lv_engine_init),
  * *n_eng the number initialised (also after an error, for the caller's free), *eng_buf

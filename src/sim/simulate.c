@@ -58,6 +58,7 @@ typedef struct sim_run {
     struct stop_ref *stops; /* [ns] */
     size_t ns_root; /* of them crossings: event functions ng + nd .. ng + nd + ns_root - 1 */
     double *xs, *ys; /* [nx], [ny] scratch for the stops' derivatives and outputs */
+    unsigned char *stop_need; /* [ny] 1 for an output a stop condition reads (outputs_some) */
     double t_model_te; /* the model's own next time event (the stops' are merged in t_te) */
     double *p;    /* [np] parameter values */
     double *x;    /* [nx] state */
@@ -139,6 +140,8 @@ typedef struct stop_ref {
 
 /* The model's event functions, then one per bound of its domain (q - lower), then one per
  * crossing stop condition (variable - value). */
+static int stop_outputs(sim_run *r, double t, const double *x);
+
 static int sim_g(double t, const double *x, double *g, void *user)
 {
     sim_run *r = user;
@@ -167,7 +170,7 @@ static int sim_g(double t, const double *x, double *g, void *user)
             v = r->xs[sr->index];
             break;
         case LV_VAR_OUTPUT:
-            if (!have_y && (rc = r->def->outputs_fn(t, x, r->p, r->ys, r->inst)) != 0)
+            if (!have_y && (rc = stop_outputs(r, t, x)) != 0)
                 return rc;
             have_y = 1;
             v = r->ys[sr->index];
@@ -490,9 +493,20 @@ static lv_status resolve_stops(sim_run *r, const lv_sim_settings *s, lv_err *err
             return lv_fail(err, LV_ERR_INPUT, "model '%s': stop condition '%s': '%s' is a "
                            "parameter: constant during a run, it never crosses %g", d->name,
                            sp->name, sp->variable, sp->value);
+        if (sr->kind == LV_VAR_OUTPUT)
+            r->stop_need[sr->index] = 1;
         sr->root = r->ns_root++;
     }
     return LV_OK;
+}
+
+/* The outputs the stop conditions read, at (t, x), into r->ys: only those where the model can
+ * compute a part of them (outputs_some). */
+static int stop_outputs(sim_run *r, double t, const double *x)
+{
+    if (r->def->outputs_some != NULL)
+        return r->def->outputs_some(t, x, r->p, r->ys, r->stop_need, r->inst);
+    return r->def->outputs_fn(t, x, r->p, r->ys, r->inst);
 }
 
 /* ---- sinks ------------------------------------------------------------------------ */
@@ -605,6 +619,7 @@ static void free_run(sim_run *r)
     free(r->stops);
     free(r->xs);
     free(r->ys);
+    free(r->stop_need);
     free(r->atol);
     free(r->rtol_v);
 }
@@ -955,7 +970,7 @@ static int nan_edge(sim_run *r, double t, size_t index, double *t_nan)
 {
     const lv_model_def *d = r->def;
     *t_nan = t;
-    if (d->outputs_fn(t, r->x, r->p, r->ys, r->inst) != 0)
+    if (stop_outputs(r, t, r->x) != 0)
         return 0;
     if (isnan(r->ys[index]))
         return 1;
@@ -965,7 +980,7 @@ static int nan_edge(sim_run *r, double t, size_t index, double *t_nan)
     for (size_t i = 0; i < r->nx; i++)
         r->xdot[i] = r->x[i] + dt * r->xs[i];
     *t_nan = t + dt;
-    return d->outputs_fn(t + dt, r->xdot, r->p, r->ys, r->inst) == 0 && isnan(r->ys[index]);
+    return stop_outputs(r, t + dt, r->xdot) == 0 && isnan(r->ys[index]);
 }
 
 /* The run's stop conditions that hold at t: crossings located by the integrator, then times
@@ -1257,10 +1272,11 @@ lv_status lv_sim_create(const lv_model_def *d, void *inst, const lv_sim_settings
     r->stops = calloc(r->ns + 1, sizeof *r->stops);
     r->xs = calloc(r->nx + 1, sizeof *r->xs);
     r->ys = calloc(r->ny + 1, sizeof *r->ys);
+    r->stop_need = calloc(r->ny + 1, sizeof *r->stop_need);
     r->atol = calloc(r->nx, sizeof *r->atol);
     S->refs = calloc(s->n_final + 1, sizeof *S->refs);
     if (!r->p || !r->x || !r->xdot || !r->y || !r->roots || !r->g_dir || !r->q || !r->atol ||
-        !S->refs || !r->stops || !r->xs || !r->ys) {
+        !S->refs || !r->stops || !r->xs || !r->ys || !r->stop_need) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
