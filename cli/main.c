@@ -1,8 +1,9 @@
 /* main.c - the lvsim command line: looks the command up in the table (cli.h) and runs it;
  * `help`, `--help` and `version`. Every usage and help text comes from the table entries,
  * each command's in its own cli/cmd_<name>.c. Exit codes: 0 ok, 1 internal error, 2 bad
- * input, 3 simulation failure, 130 stopped by Ctrl-C or SIGTERM (docs/cli.md). main() is cli_main(), which returns the exit
- * code and never exits, so a program (fuzz/fuzz_cli.c) can call it.
+ * input, 3 simulation failure, 4 a body crashed, 130 stopped by Ctrl-C or SIGTERM
+ * (docs/cli.md). main() is cli_main(), which returns the exit code and never exits, so a
+ * program (fuzz/fuzz_cli.c) can call it.
  */
 #include <stdio.h>
 #include <string.h>
@@ -107,7 +108,8 @@ static void print_overview(FILE *f)
         fprintf(f, "  %-12s %s\n", (*c)->name, (*c)->summary);
     fprintf(f, "\n'lvsim help COMMAND' or 'lvsim COMMAND --help' shows a command's usage and "
                "options.\n"
-               "exit codes: 0 ok, 1 internal error, 2 bad input, 3 simulation failure, 130 stopped\n"
+               "exit codes: 0 ok, 1 internal error, 2 bad input, 3 simulation failure, 4 a body\n"
+               "crashed (run: a touchdown beyond the landing gear's limits), 130 stopped\n"
                "by Ctrl-C or SIGTERM (a second one ends the process at once)\n"
                "data files (gravity coefficients, the viewer): $LVSIM_DATA, else share/lvsim\n"
                "next to the library, else the install prefix\n");

@@ -180,7 +180,8 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
     cJSON_AddStringToObject(o, "name", b->name);
     cJSON *burn = cJSON_CreateArray(), *sep = cJSON_CreateArray();
     double q_max = -INFINITY, q_t = NAN, q_h = NAN;
-    double na_max = -INFINITY, na_t = NAN, nn_max = -INFINITY, nn_t = NAN;
+    double na_max = NAN, na_t = NAN, /* NAN: none yet */
+           nn_max = -INFINITY, nn_t = NAN;
     const lv_results_table *first_t = NULL, *last_t = NULL;
     size_t last_k = 0;
     cJSON *injection = NULL;
@@ -216,10 +217,12 @@ static cJSON *body_keys(const lv_plot_data *d, size_t bi, int flat)
                 q_t = at(t, r, c.t);
                 q_h = h;
             }
-            /* axial: the sensed specific force along the body axis (axial_load) */
+            /* axial: the sensed specific force along the body axis (axial_load), the largest
+             * in magnitude with its sign (+ thrust along the axis, - drag on re-entry: a
+             * booster's -13 g entry is the load, not its +4 g at burnout) */
             const int contact = grounded && r + 1 == t->n_rows;
             const double na = axial_load(t, &c, r);
-            if (!contact && isfinite(na) && na > na_max) {
+            if (!contact && isfinite(na) && !(fabs(na) <= fabs(na_max))) {
                 na_max = na;
                 na_t = at(t, r, c.t);
             }

@@ -199,7 +199,7 @@ def key_figures(outdir):
                 if grounded and i == len(rs) - 1:
                     continue
                 n = axial(r, g)
-                if na is None or n > na[0]:
+                if na is None or abs(n) > abs(na[0]):  # the largest in magnitude, signed
                     na = (n, r["time"])
                 if "n_normal" in r and (nn is None or abs(r["n_normal"]) > nn[0]):
                     nn = (abs(r["n_normal"]), r["time"])
