@@ -59,6 +59,8 @@ typedef struct sim_run {
     size_t ns_root; /* of them crossings: event functions ng + nd .. ng + nd + ns_root - 1 */
     double *xs, *ys; /* [nx], [ny] scratch for the stops' derivatives and outputs */
     unsigned char *stop_need; /* [ny] 1 for an output a stop condition reads (outputs_some) */
+    int g_rc;       /* the last event-function evaluation's outcome (sim_g) */
+    double g_rc_t;  /* and its time, when it failed */
     double t_model_te; /* the model's own next time event (the stops' are merged in t_te) */
     double *p;    /* [np] parameter values */
     double *x;    /* [nx] state */
@@ -142,9 +144,23 @@ typedef struct stop_ref {
  * crossing stop condition (variable - value). */
 static int stop_outputs(sim_run *r, double t, const double *x);
 
+static int sim_g_eval(sim_run *r, double t, const double *x, double *g);
+
+/* The event functions (sim_g_eval), their last outcome remembered as the right-hand side's
+ * is: a failure message names the model's reason (an end on q_dyn above a table
+ * atmosphere's top: "altitude 10012 m above the table's 10000 m"). */
 static int sim_g(double t, const double *x, double *g, void *user)
 {
     sim_run *r = user;
+    const int rc = sim_g_eval(r, t, x, g);
+    r->g_rc = rc;
+    if (rc != 0)
+        r->g_rc_t = t;
+    return rc;
+}
+
+static int sim_g_eval(sim_run *r, double t, const double *x, double *g)
+{
     int rc = r->ng > 0 ? r->def->event_g(t, x, r->p, g, r->inst) : 0;
     if (rc != 0)
         return rc;
@@ -923,6 +939,13 @@ static lv_status integration_failed(sim_run *r, double t, lv_status st, lv_err *
                               "model '%s': the right-hand side cannot be evaluated at "
                               "t = %.9g s: %s",
                               d->name, r->rhs_rc_t, why);
+    /* an event function (the model's events, its domain, the stop conditions' outputs)
+     * the model could not evaluate: its reason */
+    if (r->g_rc != 0 && why != NULL && why[0] != '\0')
+        return lv_fail_prefix(err, st,
+                              "model '%s': the event functions (its events and the run's ends) "
+                              "cannot be evaluated at t = %.9g s: %s",
+                              d->name, r->g_rc_t, why);
     /* the integrator's own failure (the step size collapsed, the step limit): where the
      * model was, in its terms (r->x holds the last accepted state) */
     char state[256];

@@ -768,5 +768,20 @@ else
   cat "$work/tlong.out" "$work/tlong.err"; fails=$((fails + 1))
 fi
 
+# An end on an output the model cannot evaluate (q_dyn above a table atmosphere's top, 10 km):
+# the phase fails with the model's reason, not only "event function failed" (exit 3)
+mkdir -p "$work/evf"
+printf 'h [m], T [K], p [Pa], rho [kg/m3]\n0, 288.15, 101325, 1.225\n5000, 255.65, 54019.9, 0.736116\n10000, 223.252, 26436.3, 0.412707\n' > "$work/evf/atm.csv"
+cat > "$work/evf/m.yaml" <<'EOF2'
+mission: {name: evf}
+environment: {world: planet, planet: earth, gravity: j2, atmosphere: {table: atm.csv}}
+parameters: {start_lat_deg: 5, start_lon_deg: -52, start_h: 100, start_vel: 100, start_fpa_deg: 89, start_chi_deg: 90}
+stages: [{name: s, dry_mass: 1000, propellant_mass: 4000, engines: [{name: e, thrust_vac: 120000, isp_vac: 250}]}]
+phases:
+  - {name: up, model: dof3, stages: [s], stop_time: 60, end: [{q_dyn: 1.0e9}], aero: {s_ref: 1, CD: 0.3}}
+EOF2
+expect 3 "event functions .* cannot be evaluated at t = 30\.3.*atmosphere model 'table' .*outside the table's range" -- \
+  "$lvsim" run "$work/evf/m.yaml" -o "$work/evf/out" --no-plots -q
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
