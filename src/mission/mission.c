@@ -388,6 +388,22 @@ static lv_status check_var_end(lv_mission *m, const lv_phase_def *ph, const lv_e
         return narrow_slot(m, ph, e->value, strcmp(unit, "rad") == 0 ? LV_RANGE_ANGLE
                                                                      : LV_RANGE_RATE,
                            "end", e->var, e->deg, err);
+    /* the heat loads of dof3 and dof6 (quadrature states: the time integrals of heat fluxes,
+     * never negative; docs/models.md "Heat load") only grow from their start (0, or the
+     * parent's load): an end below or at 0, or one asked to fire falling, never fires */
+    static const char *const rising[] = {"heat_load", "heat_load_fm"};
+    for (size_t i = 0; kind == LV_VAR_STATE && md->quadrature != NULL && md->quadrature[idx] &&
+                       i < sizeof rising / sizeof rising[0]; i++) {
+        if (strcmp(e->var, rising[i]) != 0)
+            continue;
+        if (e->direction == LV_DIR_FALLING)
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': end: %s never decreases "
+                           "(the time integral of a heat flux, which is never negative): an end "
+                           "with direction: falling never fires; leave the direction out or "
+                           "write rising", d->path, e->loc.line, e->loc.column, ph->name,
+                           e->var);
+        return narrow_slot(m, ph, e->value, LV_RANGE_POS, "end", e->var, 0, err);
+    }
     return LV_OK;
 }
 

@@ -783,5 +783,17 @@ EOF2
 expect 3 "event functions .* cannot be evaluated at t = 30\.3.*atmosphere model 'table' .*outside the table's range" -- \
   "$lvsim" run "$work/evf/m.yaml" -o "$work/evf/out" --no-plots -q
 
+# An end on a heat load that can never fire: refused by check and run alike (exit 2)
+for end in "{heat_load: -1}|heat_load must be > 0 J/m2, found -1" \
+           "{heat_load_fm: 0}|heat_load_fm must be > 0 J/m2, found 0" \
+           "{heat_load: 3.0e7, direction: falling}|heat_load never decreases"; do
+  sed -e "s/end: \[{q_dyn: 1.0e9}\]/end: [${end%%|*}]/" -e 's/{table: atm.csv}/us76/' \
+    "$work/evf/m.yaml" > "$work/evf/h.yaml"
+  for cmd in check run; do
+    expect 2 "h.yaml:6:[0-9]+: phase 'up'.*${end#*|}" -- "$lvsim" $cmd "$work/evf/h.yaml" \
+      $([ $cmd = run ] && echo "-o $work/evf/hout --no-plots")
+  done
+done
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
