@@ -130,6 +130,46 @@ double lv_reference_first(const lv_reference_def *r, size_t j)
     return v;
 }
 
+double lv_reference_start_time(const lv_reference_def *r)
+{
+    size_t nb = 0;
+    if (r == NULL || !r->start || r->over_tau)
+        return NAN;
+    return lv_table_breakpoints(r->table, 0, &nb)[0];
+}
+
+lv_status lv_reference_check_span(const lv_reference_def *r, double t_start, double t_stop,
+                                  lv_err *err)
+{
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    const double lo = b[0], hi = b[nb - 1];
+    const char *tn = lv_table_name(r->table);
+    if (r->over_tau) {
+        if (r->start && lo > 1e-9)
+            return lv_fail(err, LV_ERR_INPUT, "reference: table '%s' starts at tau = %.17g, "
+                           "but start: reference starts the phase from its first row at tau = 0 "
+                           "(the phase's start)", tn, lo);
+        return LV_OK;
+    }
+    const double tol = 1e-9 * fmax(1.0, fabs(isnan(t_start) ? lo : t_start));
+    if (isnan(t_start) && lo > t_stop + tol)
+        return lv_fail(err, LV_ERR_INPUT, "reference: table '%s' covers t = %.9g .. %.9g s, no "
+                       "part of the phase, which stops at t = %.9g s (its axis is mission time; "
+                       "a reference over the phase's own time is `tau`)", tn, lo, hi, t_stop);
+    if (!isnan(t_start) && (lo > t_stop + tol || hi < t_start - tol))
+        return lv_fail(err, LV_ERR_INPUT, "reference: table '%s' covers t = %.9g .. %.9g s, no "
+                       "part of the phase's t = %.9g .. %.9g s (its axis is mission time; a "
+                       "reference over the phase's own time is `tau`)", tn, lo, hi, t_start,
+                       t_stop);
+    if (r->start && !isnan(t_start) && fabs(lo - t_start) > tol)
+        return lv_fail(err, LV_ERR_INPUT, "reference: table '%s' starts at t = %.17g s, but the "
+                       "phase starts at t = %.17g s: start: reference takes the state of its "
+                       "first row at the phase's start (make start_time %.17g, or the table "
+                       "start there)", tn, lo, t_start, lo);
+    return LV_OK;
+}
+
 /* ECEF position and velocity relative to the planet of geodetic h, lat, lon and v, fpa,
  * heading. */
 static void ref_ecef(const lv_planet *p, const double s[LV_REF_N], double r[3], double v[3])
@@ -194,6 +234,61 @@ lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet,
     return st == LV_OK ? put(mass_state, s[LV_REF_M], names, values, n, cap, err) : st;
 }
 
+/* The reference in ECEF at its breakpoints b[nb]: positions R and their derivatives along the
+ * axis D = v_rel * dt/dx [nb][3] (the velocity relative to the rotating planet is the time
+ * derivative of the ECEF position), and a table of the ECEF velocity over the same axis and
+ * with the table's own interpolation (*vt). Cartesian: a longitude through +-pi, a heading
+ * through north and a pass over a pole interpolate as smoothly as anything else. */
+static lv_status ref_cartesian(const lv_reference_def *r, const lv_planet *planet, double dtdx,
+                               double *R, double *D, lv_table **vt, lv_err *err)
+{
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf), *V = malloc(nb * 3 * sizeof *V);
+    lv_status st = buf == NULL || V == NULL ? lv_fail(err, LV_ERR_NOMEM, "out of memory") : LV_OK;
+    for (size_t i = 0; i < nb && st == LV_OK; i++) {
+        double s[LV_REF_N];
+        if ((st = ref_eval(r, NULL, b[i], buf, s, err)) != LV_OK) /* exact at a breakpoint */
+            break;
+        ref_ecef(planet, s, R + 3 * i, V + 3 * i);
+        for (int a = 0; a < 3; a++)
+            D[3 * i + a] = V[3 * i + a] * dtdx;
+    }
+    if (st == LV_OK) {
+        static const char *const names[3] = {"v_x", "v_y", "v_z"};
+        static const char *const units[3] = {"m/s", "m/s", "m/s"};
+        const lv_table_spec spec = {.n_dims = 1, .n = {nb}, .x = {b}, .n_out = 3, .y = V,
+                                    .interp = lv_table_interp(r->table),
+                                    .extrap = LV_EXTRAP_CLAMP, .name = lv_table_name(r->table),
+                                    .axis_name = {lv_table_axis_name(r->table, 0)},
+                                    .out_name = names, .out_unit = units};
+        st = lv_table_create(&spec, vt, err);
+    }
+    free(buf);
+    free(V);
+    return st;
+}
+
+/* The cubic Hermite interpolant of the positions R with derivatives D at the breakpoints
+ * b[nb] (ref_cartesian), at x within [b[0], b[nb-1]]: exact for a trajectory whose position
+ * is a cubic in x between two rows; *i a hint of the interval (rows in order: no search). */
+static void hermite(const double *b, size_t nb, const double *R, const double *D, double x,
+                    size_t *i, double out[3])
+{
+    while (*i + 2 < nb && x > b[*i + 1])
+        ++*i;
+    while (*i > 0 && x < b[*i])
+        --*i;
+    const size_t j = *i;
+    const double h = b[j + 1] - b[j], u = fmin(fmax((x - b[j]) / h, 0.0), 1.0);
+    const double u2 = u * u, u3 = u2 * u;
+    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3,
+                 h11 = u3 - u2;
+    for (int a = 0; a < 3; a++)
+        out[a] = h00 * R[3 * j + a] + h10 * h * D[3 * j + a] + h01 * R[3 * (j + 1) + a] +
+                 h11 * h * D[3 * (j + 1) + a];
+}
+
 lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
                              const lv_result *rows, const char *mass_state, double t_start,
                              double t_stop, lv_ref_drift *out, lv_ref_row **series,
@@ -207,6 +302,7 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
     out->start_from_reference = r->start;
     out->t_first = out->t_final = out->pos_max_t = out->vel_max_t = out->mass_max_t = NAN;
     out->pos_final = out->vel_final = out->mass_final = NAN;
+    *series = NULL;
     for (size_t j = 0; j < 8; j++)
         if ((st = lv_result_column(rows, j < 7 ? need[j] : mass_state, &col[j], err)) != LV_OK)
             return lv_fail_prefix(err, st, "reference drift");
@@ -215,15 +311,18 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
     const double lo = b[0], hi = b[nb - 1], eps = 1e-9 * (1.0 + fmax(fabs(lo), fabs(hi)));
     const size_t nr = lv_result_rows(rows);
     double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
+    double *R = malloc(nb * 6 * sizeof *R), *D = R != NULL ? R + 3 * nb : NULL;
     lv_ref_row *ser = malloc((nr + 1) * sizeof *ser);
-    *series = NULL;
-    if (buf == NULL || ser == NULL) {
+    lv_table *vt = NULL;
+    if (buf == NULL || ser == NULL || R == NULL) {
         free(buf);
         free(ser);
+        free(R);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
-    lv_table_cursor cur = LV_TABLE_CURSOR_INIT;
-    st = LV_OK;
+    st = ref_cartesian(r, planet, r->over_tau ? t_stop - t_start : 1.0, R, D, &vt, err);
+    lv_table_cursor cur = LV_TABLE_CURSOR_INIT, vcur = LV_TABLE_CURSOR_INIT;
+    size_t hint = 0;
     for (size_t i = 0; i < nr && st == LV_OK; i++) {
         double y[8];
         for (size_t j = 0; j < 8; j++)
@@ -231,10 +330,12 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
         const double t = y[0], x = r->over_tau ? (t - t_start) / (t_stop - t_start) : t;
         if (!(x >= lo - eps && x <= hi + eps))
             continue;
+        const double xc = fmin(fmax(x, lo), hi);
         double s[LV_REF_N], rr[3], vr[3], rs[3], vs[3], C[3][3];
-        if ((st = ref_eval(r, &cur, fmin(fmax(x, lo), hi), buf, s, err)) != LV_OK)
+        if ((st = ref_eval(r, &cur, xc, buf, s, err)) != LV_OK ||
+            (st = lv_table_eval1(vt, &vcur, xc, vr, err)) != LV_OK)
             break;
-        ref_ecef(planet, s, rr, vr);
+        hermite(b, nb, R, D, xc, &hint, rr);
         lv_frames_geodetic_to_ecef(planet, y[2], y[3], y[1], rs);
         lv_frames_C_ned_ecef(y[2], y[3], C);
         for (int a = 0; a < 3; a++)
@@ -265,6 +366,8 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
         out->mass_final = dm;
     }
     free(buf);
+    free(R);
+    lv_table_free(vt);
     if (out->n_rows == 0)
         out->pos_max = out->vel_max = out->mass_max = NAN;
     if (st == LV_OK && out->n_rows > 0)

@@ -40,6 +40,20 @@ void lv_reference_free(lv_reference_def *r); /* accepts NULL */
 /* Column j (LV_REF_H ..) of the reference's first row. */
 double lv_reference_first(const lv_reference_def *r, size_t j);
 
+/* The reference against the phase's time span, at load: t_start [s] the phase's start (NAN:
+ * not known before the run, a child's without `start_time:`), t_stop its stop_time [s]. A time
+ * axis must reach into [t_start, t_stop] (else it covers no part of the phase); with `start:
+ * reference` its first time must be the phase's start within 1e-9 s relative (a child without
+ * `start_time:` starts at it instead: lv_reference_start_time), a tau axis must start at tau
+ * = 0. LV_ERR_INPUT naming the reference's table and both times (no file position: the caller
+ * adds it). */
+lv_status lv_reference_check_span(const lv_reference_def *r, double t_start, double t_stop,
+                                  lv_err *err);
+
+/* The mission time a phase started from a time-axis reference starts at: its first time;
+ * NAN for a tau axis or without `start: reference`. */
+double lv_reference_start_time(const lv_reference_def *r);
+
 /* A start from the reference's first row (`start: reference`), placed at mission time t0: a
  * root phase (`root`) gets the parameters start_lat, start_lon, start_h, start_vel,
  * start_fpa, start_chi, a child its states r_eci_*, v_eci_* (ECI at t0 on `planet`); both the

@@ -87,11 +87,18 @@ def geodetic(r, v):
     return [rn - R, lat, lon, sp, math.asin(vu / sp), math.atan2(ve, vn) % (2 * math.pi)]
 
 
-def start_state(h0, v0, fpa_deg, chi_deg):
-    """ECI r, v at lat = lon = 0 for altitude h0, speed v0, flight-path angle, heading."""
+def start_state(h0, v0, fpa_deg, chi_deg, lat_deg=0.0, lon_deg=0.0):
+    """ECI r, v at (lat, lon) for altitude h0, speed v0, flight-path angle, heading (the
+    north-east-up frame's axes: up (cos lat cos lon, cos lat sin lon, sin lat), north
+    (-sin lat cos lon, -sin lat sin lon, cos lat), east (-sin lon, cos lon, 0))."""
     g, c = math.radians(fpa_deg), math.radians(chi_deg)
-    return [R + h0, 0.0, 0.0], [v0 * math.sin(g), v0 * math.cos(g) * math.sin(c),
-                                v0 * math.cos(g) * math.cos(c)]
+    la, lo = math.radians(lat_deg), math.radians(lon_deg)
+    up = [math.cos(la) * math.cos(lo), math.cos(la) * math.sin(lo), math.sin(la)]
+    north = [-math.sin(la) * math.cos(lo), -math.sin(la) * math.sin(lo), math.cos(la)]
+    east = [-math.sin(lo), math.cos(lo), 0.0]
+    vu, vn, ve = v0 * math.sin(g), v0 * math.cos(g) * math.cos(c), v0 * math.cos(g) * math.sin(c)
+    return ([(R + h0) * u for u in up],
+            [vu * up[i] + vn * north[i] + ve * east[i] for i in range(3)])
 
 
 def write_reference(path, states, axis="time [s]", axis_values=None, mass=1000.0, dh_last=0.0):
@@ -246,9 +253,9 @@ def main():
     with open("child.yaml", "w") as f:
         f.write((HEAD % "child") + """parameters: {start_h: 200000, start_vel: 7800, start_fpa_deg: 2, start_chi_deg: 60}
 stages:
-  - {name: cap, dry_mass: 800, propellant_mass: 0}
+  - {name: cap, dry_mass: 900, propellant_mass: 0}
 phases:
-  - {name: a, model: dof3, stages: [cap], stop_time: 300}
+  - {name: a, model: dof3, stages: [cap], stop_time: 290}
   - name: b
     model: dof3
     stages: [cap]
@@ -267,6 +274,66 @@ phases:
               f"reference {ref!r}")
     d = summary("o4")["phases"][1]["reference"]
     check(d["rows"] == 71 and d["position"]["max"] < 1e-4, "child drift " + json.dumps(d))
+    # (its parent ended at 290 s: the child starts at the reference's first time, 300 s)
+
+    # 4b. a mid-burn start (finding 1 of the breaker's report): a stage of 2000 kg dry and 8000
+    # kg propellant burning 70 kg/s started from a reference (or a set: of m) of 6000 kg holds
+    # 4000 kg: burnout at m0 - mdot t = 2000 kg, t = 4000 / 70 = 57.142857 s, not 8000 / 70
+    write_reference("ref_6000.csv", states, mass=6000.0)
+    for name, extra in (("ref", "reference: {table: ref_6000.csv, start: reference}"),
+                        ("set", "set: {m: 6000}")):
+        with open(f"mid_{name}.yaml", "w") as f:
+            f.write((HEAD % ("mid-" + name)) + """parameters: {start_h: 200000, start_vel: 7800, start_fpa_deg: 2, start_chi_deg: 60}
+stages:
+  - {name: s1, dry_mass: 2000, propellant_mass: 8000, engines: [{thrust_vac: 2.0e5, mdot: 70}]}
+phases:
+  - name: burn
+    model: dof3
+    stages: [s1]
+    stop_time: 100
+    end: [burnout]
+    %s
+    integrator: {method: dop853, tolerance: 1e-11, output_interval: 10}
+""" % extra)
+        run(lvsim, f"mid_{name}.yaml", "o_mid_" + name)
+        last = rows(f"o_mid_{name}/phase_1_burn.csv")[-1]
+        ph = summary("o_mid_" + name)["phases"][0]
+        print(f"mid-burn start ({name}): burnout at {last['time']!r} s, m = {last['m']!r} kg")
+        check(abs(last["time"] - 4000.0 / 70.0) < 1e-6 and abs(last["m"] - 2000.0) < 1e-6,
+              f"mid-burn {name}: burnout at {last['time']} s (4000/70), m {last['m']} (2000)")
+        check(abs(ph["payload"]) < 1e-9, f"mid-burn {name}: payload {ph['payload']} kg, not 0")
+
+    # 4c. angles that wrap (finding 2): coasts over the dateline and over the north pole,
+    # re-flown from their own reference written every 10 s and compared every 1 s, drift as
+    # little as one along the equator that crosses nothing. The reference is interpolated in
+    # ECEF, the position by cubic Hermite with the reference's own velocity: its error on a
+    # circle of radius r stepped by the angle th = w h is r th^4 / 384 (the Hermite remainder
+    # f(xi) h^4 / 384 with |f| = r w^4), the velocity's (linear) v th^2 / 8.
+    drift = {}
+    for name, lat0, lon0, chi in (("zero", 0.0, 0.0, 90.0), ("east", 0.0, 170.0, 90.0),
+                                  ("pole", 70.0, 0.0, 0.0)):
+        ts_w = [10.0 * i for i in range(61)]
+        rr, vv = start_state(200e3, 7790.0, 0.0, chi, lat0, lon0)
+        write_reference(f"wrap_{name}.csv", kepler(rr, vv, ts_w))
+        with open(f"wrap_{name}.yaml", "w") as f:
+            f.write((COAST % ("wrap-" + name, "{table: wrap_%s.csv, start: reference}" % name))
+                    .replace("stop_time: 1000", "stop_time: 600")
+                    .replace("output_interval: 10", "output_interval: 1"))
+        run(lvsim, f"wrap_{name}.yaml", "o_wrap_" + name)
+        drift[name] = summary("o_wrap_" + name)["phases"][0]["reference"]
+    rc = R + 200e3
+    th = 7790.0 / rc * 10.0
+    pos_bound, vel_bound = rc * th ** 4 / 384.0, 7790.0 * th ** 2 / 8.0
+    for name, d in drift.items():
+        print(f"wrap {name}: position {d['position']['max']:.4g} m (r th^4/384 = "
+              f"{pos_bound:.4g}), velocity {d['velocity']['max']:.4g} m/s (v th^2/8 = "
+              f"{vel_bound:.4g})")
+        check(d["rows"] == 601 and d["position"]["max"] < 1.1 * pos_bound and
+              d["velocity"]["max"] < 1.1 * vel_bound,
+              f"wrap {name}: drift {d['position']['max']} m, {d['velocity']['max']} m/s")
+        check(abs(d["position"]["max"] - drift["zero"]["position"]["max"]) < 1e-5,
+              f"wrap {name}: {d['position']['max']} m as the equator's "
+              f"{drift['zero']['position']['max']} m")
 
     # 5. one control table over time, tau and mass: one trajectory
     m0, mdot = 10000.0, 70.0
@@ -328,8 +395,18 @@ phases:
                 % (at50["h"], at50["h"] + 1e-3 * up))
     with open("step_e.csv", "w") as f:
         f.write("energy [J/kg],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e9,0.1\n" % (e50, e50 + 1e-3 * de))
+    # the same steps from time tables carrying the variable in a column named as the over:
+    # word (finding 3: `altitude`, `energy`; re-tabulated over it when loaded)
+    with open("step_h_col.csv", "w") as f:
+        f.write("time [s],altitude [m],alpha [rad]\n0,0,0\n50,%r,0\n50.001,%r,0.1\n100,1e7,0.1\n"
+                % (at50["h"], at50["h"] + 1e-3 * up))
+    with open("step_e_col.csv", "w") as f:
+        f.write("time [s],energy [J/kg],alpha [rad]\n0,0,0\n50,%r,0\n50.001,%r,0.1\n100,1e9,0.1\n"
+                % (e50, e50 + 1e-3 * de))
     for name, table in (("step-h", "{table: step_h.csv, over: altitude}"),
-                        ("step-e", "{table: step_e.csv, over: energy}")):
+                        ("step-e", "{table: step_e.csv, over: energy}"),
+                        ("step-h-col", "{table: step_h_col.csv, over: altitude}"),
+                        ("step-e-col", "{table: step_e_col.csv, over: energy}")):
         b = powered(name, table)
         dr = dist(b[-1], a[-1], "r_eci_")
         print(f"inputs over {table}: {dr:.3g} m from the time table at t = 100 s")
@@ -344,6 +421,11 @@ phases:
     with open("ref_missing.csv", "w") as f:
         f.write("\n".join(",".join(l.split(",")[:5]) for l in
                           open("ref.csv").read().splitlines()) + "\n")
+    write_reference("ref_late.csv", [(t + 10.0, r, v) for t, r, v in states])
+    write_reference("ref_after.csv", [(t + 2000.0, r, v) for t, r, v in states[:11]] +
+                    [(3000.0, states[11][1], states[11][2])])
+    write_reference("ref_tau_late.csv", states[:11], "tau [1]", [0.1 + 0.09 * i for i in range(11)])
+    write_reference("ref_heavy.csv", states, mass=1000.5)
     pw = open("pw_time.yaml").read()
     coast = open("coast.yaml").read()
     bad = {
@@ -367,6 +449,18 @@ phases:
         "light": (coast.replace("dry_mass: 1000", "dry_mass: 1200"),
                   r":\d+:\d+: phase 'coast': reference: its first mass m = 1000 kg is less than "
                   r"the dry mass 1200 kg"),
+        "ref_late": (coast.replace("ref.csv", "ref_late.csv"),
+                     r":\d+:\d+: phase 'coast': reference: table 'ref_late' starts at t = 10 s, "
+                     r"but the phase starts at t = 0 s"),
+        "ref_outside": (coast.replace("{table: ref.csv, start: reference}", "ref_after.csv"),
+                        r":\d+:\d+: phase 'coast': reference: table 'ref_after' covers t = 2000 "
+                        r"\.\. 3000 s, no part of the phase's t = 0 \.\. 1000 s"),
+        "tau_late": (coast.replace("ref.csv", "ref_tau_late.csv"),
+                     r":\d+:\d+: phase 'coast': reference: table 'ref_tau_late' starts at "
+                     r"tau = 0.10000000000000001"),
+        "heavy": (coast.replace("ref.csv", "ref_heavy.csv"),
+                  r":\d+:\d+: phase 'coast': reference: its first mass m = 1000.5 kg is more "
+                  r"than the 1000 kg of the stages it carries full"),
         "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
                    r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
                    r"\(`energy`, or `h` and `v`"),
