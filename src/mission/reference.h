@@ -64,7 +64,9 @@ lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet,
                              double *values, size_t *n, size_t cap, lv_err *err);
 
 /* The drift of the rows `rows` (columns time, h, lat, lon, v_north, v_east, v_down and the
- * mass state) from the reference (lv_ref_drift); t_start, t_stop: the phase's (tau). *series
+ * mass state) from the reference (lv_ref_drift), compared in ECEF: the reference's position
+ * interpolated by cubic Hermite with its own velocity, its velocity components with the
+ * table's interpolation (no wrap of longitude or heading, no pole singularity); t_start, t_stop: the phase's (tau). *series
  * receives the compared rows (out->n_rows of them; malloc'ed, the caller frees; NULL when
  * none). */
 lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,

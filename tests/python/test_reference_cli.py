@@ -20,7 +20,14 @@ angle and heading of the velocity in the local north-east-up frame. Checked:
   falls linearly, m = m0 - mdot t, so alpha(m) is alpha(t(m)) exactly) flies one trajectory;
   a step of alpha at t = 50 s and the same step where the altitude, or the energy
   v^2/2 + g0 h, had its value of t = 50 s fly one trajectory (within 1 mm after 100 s);
-- every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column.
+- a mid-burn start (reference or set: of m): the burning stage holds the mass beyond the rest,
+  burnout where m0 - mdot t reaches the dry mass;
+- coasts over the dateline and the pole drift as one along the equator (ECEF comparison; the
+  Hermite and linear interpolation errors r th^4/384 and v th^2/8 of a circle);
+- time tables with a column named `altitude` / `energy` flown over that variable;
+- every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column
+  (also a reference starting after the phase's start, one covering none of it, a tau one
+  starting after 0, a first mass above the full stack).
 """
 import json
 import math
