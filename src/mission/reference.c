@@ -270,8 +270,9 @@ static lv_status ref_cartesian(const lv_reference_def *r, const lv_planet *plane
 }
 
 /* The cubic Hermite interpolant of the positions R with derivatives D at the breakpoints
- * b[nb] (ref_cartesian), at x within [b[0], b[nb-1]]: exact for a trajectory whose position
- * is a cubic in x between two rows; *i a hint of the interval (rows in order: no search). */
+ * b[nb] (ref_cartesian), at x within [b[0], b[nb-1]] (a little beyond: the end interval's
+ * cubic): exact for a trajectory whose position is a cubic in x between two rows; *i a hint of
+ * the interval (rows in order: no search). */
 static void hermite(const double *b, size_t nb, const double *R, const double *D, double x,
                     size_t *i, double out[3])
 {
@@ -280,7 +281,7 @@ static void hermite(const double *b, size_t nb, const double *R, const double *D
     while (*i > 0 && x < b[*i])
         --*i;
     const size_t j = *i;
-    const double h = b[j + 1] - b[j], u = fmin(fmax((x - b[j]) / h, 0.0), 1.0);
+    const double h = b[j + 1] - b[j], u = (x - b[j]) / h; /* (just) beyond an end: extrapolated */
     const double u2 = u * u, u3 = u2 * u;
     const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3,
                  h11 = u3 - u2;
@@ -302,14 +303,24 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
     out->start_from_reference = r->start;
     out->t_first = out->t_final = out->pos_max_t = out->vel_max_t = out->mass_max_t = NAN;
     out->pos_final = out->vel_final = out->mass_final = NAN;
+    out->ref_end = out->phase_end = NAN;
     *series = NULL;
     for (size_t j = 0; j < 8; j++)
         if ((st = lv_result_column(rows, j < 7 ? need[j] : mass_state, &col[j], err)) != LV_OK)
             return lv_fail_prefix(err, st, "reference drift");
     size_t nb = 0;
     const double *b = lv_table_breakpoints(r->table, 0, &nb);
-    const double lo = b[0], hi = b[nb - 1], eps = 1e-9 * (1.0 + fmax(fabs(lo), fabs(hi)));
+    /* a row just beyond either end is compared: an event-located phase end next to the
+     * optimiser's final time (1e-6 of the span) */
+    const double lo = b[0], hi = b[nb - 1];
+    const double eps = 1e-9 * (1.0 + fmax(fabs(lo), fabs(hi))) + 1e-6 * (hi - lo);
     const size_t nr = lv_result_rows(rows);
+    out->ref_end = hi;
+    out->phase_end = NAN;
+    if (nr > 0) {
+        const double te = lv_result_value(rows, nr - 1, col[0]);
+        out->phase_end = r->over_tau ? (te - t_start) / (t_stop - t_start) : te;
+    }
     double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
     double *R = malloc(nb * 6 * sizeof *R), *D = R != NULL ? R + 3 * nb : NULL;
     lv_ref_row *ser = malloc((nr + 1) * sizeof *ser);
@@ -335,7 +346,7 @@ lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,
         if ((st = ref_eval(r, &cur, xc, buf, s, err)) != LV_OK ||
             (st = lv_table_eval1(vt, &vcur, xc, vr, err)) != LV_OK)
             break;
-        hermite(b, nb, R, D, xc, &hint, rr);
+        hermite(b, nb, R, D, x, &hint, rr);
         lv_frames_geodetic_to_ecef(planet, y[2], y[3], y[1], rs);
         lv_frames_C_ned_ecef(y[2], y[3], C);
         for (int a = 0; a < 3; a++)

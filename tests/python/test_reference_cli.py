@@ -251,6 +251,29 @@ def main():
     check(d["over"] == "tau" and d["rows"] == 101 and d["position"]["max"] < 1e-4,
           "over tau: " + json.dumps(d))
 
+    # 3b. the phase's end next to the reference's (finding 6): a reference written up to t =
+    # 999.9999 s (the ellipse's state then) still compares the phase's last row at 1000 s, the
+    # position carried on by the end row's velocity (the step left: a dt^2 / 2 = 9 m/s^2 *
+    # 1e-8 s^2 / 2 ~ 4e-8 m)
+    ts_e = ts[:-1] + [999.9999]
+    write_reference("ref_end.csv", kepler(r0, v0, ts_e))
+    with open("coast_end.yaml", "w") as f:
+        f.write(COAST % ("coast-end", "{table: ref_end.csv, start: reference}"))
+    run(lvsim, "coast_end.yaml", "o3e")
+    d = summary("o3e")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["t_final"] == 1000.0 and d["position"]["final"] < 1e-4 and
+          d["end"] == {"reference": 999.9999, "phase": 1000.0},
+          "reference ending 1e-4 s before the phase: " + json.dumps(d))
+
+    # 3c. a tau reference on a phase that ends before its stop_time (finding 7): said
+    with open("coast_tau_early.yaml", "w") as f:
+        f.write((COAST % ("coast-tau-early", "{table: ref_tau.csv, start: reference}")).replace(
+            "stop_time: 1000", "stop_time: 1000\n    end: [{time: 400}]"))
+    p = run(lvsim, "coast_tau_early.yaml", "o3t")
+    d = summary("o3t")["phases"][0]["reference"]
+    check(abs(d["end"]["phase"] - 0.4) < 1e-12 and "ended at tau = 0.4, before its stop_time"
+          in p.stdout, "tau reference, phase ended at 400 s of 1000: " + json.dumps(d) + p.stdout)
+
     # 4. a child started from its reference (another ellipse, from t = 300 s), not its parent
     r1, v1 = start_state(250e3, 7700.0, -1.0, 45.0)
     ts1 = [300.0 + 10.0 * i for i in range(71)]
