@@ -66,8 +66,8 @@ lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_yno
             return st;
         r->start = i == 1;
     }
-    if ((st = lv_pk_table(c, tab_key, tab, what, LV_EXTRAP_CLAMP, &r->file, &r->var,
-                          &r->table)) != LV_OK)
+    if ((st = lv_pk_table_traj(c, tab_key, tab, what, LV_EXTRAP_CLAMP, &r->file, &r->var,
+                               &r->table)) != LV_OK)
         return st;
     const lv_table *t = r->table;
     const char *ax = lv_table_axis_name(t, 0);
