@@ -301,6 +301,21 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     if (v != NULL && (st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
                                        &cfg->inputs_file, &cfg->inputs_var, &cfg->inputs)) != LV_OK)
         return st;
+    /* an input written in other units under another name is not read: refused, not flown 0 */
+    for (int k = 0; v != NULL && k < 4; k++) {
+        static const char *const other[4][2] = {{"alpha_deg", NULL}, {"beta_deg", NULL},
+                                                {"mu_deg", NULL}, {"throttle_pct", "throttle_percent"}};
+        size_t i;
+        if (lv_table_out_index(cfg->inputs, names[k], &i, NULL) == LV_OK)
+            continue;
+        for (int a = 0; a < 2 && other[k][a] != NULL; a++)
+            if (lv_table_out_index(cfg->inputs, other[k][a], &i, NULL) == LV_OK)
+                return lv_pk_fail(c, lv_pk_key(n, "table"), "%s: table '%s' has a column '%s' "
+                                  "but none '%s': the inputs are read from the columns alpha, "
+                                  "beta, mu [rad] and throttle [1] (no unit is converted): "
+                                  "write '%s [%s]'", what, lv_table_name(cfg->inputs),
+                                  other[k][a], names[k], names[k], k < 3 ? "rad" : "1");
+    }
     if (v != NULL && over != LV_DOF3_OVER_TIME)
         return parse_over(c, ov, what, (int)over, cfg);
     return LV_OK;

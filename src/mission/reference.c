@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/table_unit.h"
+#include "lvsim/lv_units.h"
 
 const char *const lv_ref_columns[LV_REF_N] = {"h", "lat", "lon", "v", "fpa", "heading", "m"};
 static const char *const ref_alias[LV_REF_N][3] = {
@@ -30,13 +31,63 @@ void lv_reference_free(lv_reference_def *r)
     free(r);
 }
 
-/* The output of r->table that column j is, by any of its names: LV_OK, or LV_ERR_NOTFOUND. */
-static lv_status find_column(const lv_table *t, size_t j, size_t *k)
+/* The output of r->table that column j is, by any of its names: LV_OK, or LV_ERR_NOTFOUND;
+ * *second: a second of its names also present (the first found in *k), else NULL. */
+static lv_status find_column(const lv_table *t, size_t j, size_t *k, const char **first,
+                             const char **second)
 {
-    for (int a = 0; a < 3 && ref_alias[j][a] != NULL; a++)
-        if (lv_table_out_index(t, ref_alias[j][a], k, NULL) == LV_OK)
-            return LV_OK;
-    return LV_ERR_NOTFOUND;
+    size_t k2;
+    lv_status st = LV_ERR_NOTFOUND;
+    *second = NULL;
+    for (int a = 0; a < 3 && ref_alias[j][a] != NULL; a++) {
+        if (lv_table_out_index(t, ref_alias[j][a], st == LV_OK ? &k2 : k, NULL) != LV_OK)
+            continue;
+        if (st == LV_OK) {
+            *second = ref_alias[j][a];
+            break;
+        }
+        *first = ref_alias[j][a];
+        st = LV_OK;
+    }
+    return st;
+}
+
+/* Each row's values possible (|lat|, |fpa| <= pi/2; lon, heading within [-2 pi, 2 pi]; v >= 0;
+ * m > 0): LV_OK, or a message naming the row, its axis value and the column. */
+static lv_status check_rows(const lv_reference_def *r, lv_err *err)
+{
+    static const double lim[LV_REF_N][2] = {
+        {-HUGE_VAL, HUGE_VAL}, {-LV_PI / 2, LV_PI / 2}, {-2 * LV_PI, 2 * LV_PI}, {0.0, HUGE_VAL},
+        {-LV_PI / 2, LV_PI / 2}, {-2 * LV_PI, 2 * LV_PI}, {0.0, HUGE_VAL}};
+    static const char *const rule[LV_REF_N] = {
+        "", "a latitude within [-pi/2, pi/2] rad (is it in degrees?)",
+        "a longitude within a turn either way, [-2 pi, 2 pi] rad (is it in degrees?)",
+        "a speed >= 0", "a flight-path angle within [-pi/2, pi/2] rad (is it in degrees?)",
+        "a heading within a turn either way, [-2 pi, 2 pi] rad (is it in degrees?)", "a mass > 0"};
+    size_t nb = 0;
+    const double *b = lv_table_breakpoints(r->table, 0, &nb);
+    double *buf = malloc(lv_table_n_out(r->table) * sizeof *buf);
+    if (buf == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    lv_status st = LV_OK;
+    for (size_t i = 0; i < nb && st == LV_OK; i++) {
+        if ((st = lv_table_eval1(r->table, NULL, b[i], buf, err)) != LV_OK)
+            break;
+        for (size_t j = 1; j < LV_REF_N; j++) {
+            const double x = buf[r->k[j]], tol = 1e-12 * (j == LV_REF_V ? 1.0 : 1.0 + lim[j][1]);
+            const int bad = j == LV_REF_M ? !(x > 0.0)
+                                          : !(x >= lim[j][0] - tol && x <= lim[j][1] + tol);
+            if (bad) {
+                st = lv_fail(err, LV_ERR_INPUT, "table '%s', data row %zu (%s = %.17g), column "
+                             "'%s': %.17g is not %s", lv_table_name(r->table), i + 1,
+                             lv_table_axis_name(r->table, 0), b[i],
+                             lv_table_out_name(r->table, r->k[j]), x, rule[j]);
+                break;
+            }
+        }
+    }
+    free(buf);
+    return st;
 }
 
 lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
@@ -86,7 +137,12 @@ lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_yno
     char missing[160] = "";
     size_t used = 0;
     for (size_t j = 0; j < LV_REF_N; j++) {
-        if (find_column(t, j, &r->k[j]) != LV_OK) {
+        const char *first = NULL, *second = NULL;
+        if (find_column(t, j, &r->k[j], &first, &second) == LV_OK && second != NULL)
+            return lv_pk_fail(c, tab, "%s: table '%s' has both '%s' and '%s', two names of the "
+                              "column %s: give it once", what, lv_table_name(t), first, second,
+                              lv_ref_columns[j]);
+        if (first == NULL) {
             used += (size_t)snprintf(missing + used, sizeof missing - used, "%s%s",
                                      used ? ", " : "", lv_ref_columns[j]);
             if (used >= sizeof missing)
@@ -103,9 +159,12 @@ lv_status lv_reference_parse(const lv_pctx *c, const lv_ynode *key, const lv_yno
                           strchr(missing, ',') ? "s" : "", missing, lv_table_out_name(t, 0));
     size_t n = 0;
     const double *b = lv_table_breakpoints(t, 0, &n);
-    if (r->over_tau && (b[0] < 0.0 || b[n - 1] > 1.0))
-        return lv_pk_fail(c, tab, "%s: table '%s': tau runs from %g to %g; it lies within [0, 1]",
-                          what, lv_table_name(t), b[0], b[n - 1]);
+    /* tau within [0, 1], to round-off (an optimiser's 1 + 1e-15 is its 1) */
+    if (r->over_tau && (b[0] < -1e-12 || b[n - 1] > 1.0 + 1e-12))
+        return lv_pk_fail(c, tab, "%s: table '%s': tau runs from %.17g to %.17g; it must lie "
+                          "within [0, 1] (to 1e-12)", what, lv_table_name(t), b[0], b[n - 1]);
+    if ((st = check_rows(r, &e)) != LV_OK)
+        return lv_pk_fail(c, tab, "%s: %s", what, e.msg);
     return LV_OK;
 }
 

@@ -478,6 +478,33 @@ phases:
                     [(3000.0, states[11][1], states[11][2])])
     write_reference("ref_tau_late.csv", states[:11], "tau [1]", [0.1 + 0.09 * i for i in range(11)])
     write_reference("ref_heavy.csv", states, mass=1000.5)
+
+    def edit_ref(src, dst, row, col, value):
+        """`src` with data row `row` column `col` (0: the axis) set to `value`."""
+        lines = open(src).read().splitlines()
+        cells = lines[row].split(",")
+        cells[col] = value
+        lines[row] = ",".join(cells)
+        with open(dst, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    edit_ref("ref.csv", "ref_lat_deg.csv", 1, 2, "52.5")
+    edit_ref("ref.csv", "ref_fpa_big.csv", 3, 5, "2.5")
+    edit_ref("ref.csv", "ref_lon_deg.csv", 1, 3, "300")
+    edit_ref("ref.csv", "ref_neg_v.csv", 2, 4, "-1")
+    with open("ref_dup.csv", "w") as f:  # h twice: as h and as altitude
+        for i, line in enumerate(open("ref.csv").read().splitlines()):
+            c = line.split(",")
+            f.write(",".join(c[:2] + (["altitude [m]"] if i == 0 else [c[1]]) + c[2:]) + "\n")
+    with open("in_alpha_deg.csv", "w") as f:
+        f.write(open("in_time.csv").read().replace("alpha [rad]", "alpha_deg [deg]"))
+    # finding 13: a last tau of 1 + 1e-15 (an optimiser's round-off) is its 1: accepted
+    write_reference("ref_tau_noisy.csv", states, "tau [1]", [t / 1000.0 for t in ts[:-1]] +
+                    [1.0 + 1e-15])
+    with open("coast_tau_noisy.yaml", "w") as f:
+        f.write(COAST % ("coast-tau-noisy", "{table: ref_tau_noisy.csv, start: reference}"))
+    run(lvsim, "coast_tau_noisy.yaml", "o_tau_noisy")
+    d = summary("o_tau_noisy")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["position"]["max"] < 1e-4, "tau 1 + 1e-15: " + json.dumps(d))
     pw = open("pw_time.yaml").read()
     coast = open("coast.yaml").read()
     bad = {
@@ -513,6 +540,24 @@ phases:
         "heavy": (coast.replace("ref.csv", "ref_heavy.csv"),
                   r":\d+:\d+: phase 'coast': reference: its first mass m = 1000.5 kg is more "
                   r"than the 1000 kg of the stages it carries full"),
+        # finding 9: impossible values refused with start: parent too, naming row and column
+        "lat_big": (coast.replace("{table: ref.csv, start: reference}", "ref_lat_deg.csv"),
+                    r":\d+:\d+: phase 'coast', reference: table 'ref_lat_deg', data row 1 "
+                    r"\(time = 0\), column 'lat': 52.5 is not a latitude within \[-pi/2, pi/2\]"),
+        "fpa_big": (coast.replace("ref.csv", "ref_fpa_big.csv"),
+                    r"data row 3 \(time = 20\), column 'fpa': 2.5 is not a flight-path angle"),
+        "lon_deg": (coast.replace("ref.csv", "ref_lon_deg.csv"),
+                    r"data row 1 \(time = 0\), column 'lon': 300 is not a longitude within a "
+                    r"turn either way"),
+        "neg_v": (coast.replace("ref.csv", "ref_neg_v.csv"),
+                  r"data row 2 \(time = 10\), column 'v': -1 is not a speed >= 0"),
+        # finding 10: two names of one column; an input column in other units under another name
+        "dup_alias": (coast.replace("ref.csv", "ref_dup.csv"),
+                      r":\d+:\d+: .*table 'ref_dup' has both 'h' and 'altitude', two names of the "
+                      r"column h"),
+        "alpha_deg": (pw.replace("in_time.csv", "in_alpha_deg.csv"),
+                      r":\d+:\d+: phase 'burn', inputs: table 'in_alpha_deg' has a column "
+                      r"'alpha_deg' but none 'alpha'"),
         "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
                    r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
                    r"\(`energy`, or `h` and `v`"),
