@@ -767,6 +767,52 @@ lv_status lv_mission_param_find(const lv_mission *m, const char *name, size_t *i
                    d->name, name, hint);
 }
 
+int lv_mission_def_slot_overridden(const lv_mission_def *d, lv_slot s, const char **phase)
+{
+    static const char *const root_set[] = {"start_lat", "start_lon", "start_h", "start_vel",
+                                           "start_fpa", "start_chi", NULL};
+    static const char *const child_set[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x",
+                                            "v_eci_y", "v_eci_z", NULL};
+    const lv_slot_def *sd = &d->slots[s];
+    int any = 0;
+    if (sd->owner != LV_OWN_PARAM && sd->owner != LV_OWN_PHASE)
+        return 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        const lv_phase_def *ph = &d->phases[k];
+        const int from_ref = ph->reference != NULL && ph->reference->start;
+        const char *name = NULL; /* the value the slot gives the phase */
+        if (sd->owner == LV_OWN_PARAM) {
+            int reads = 0, root_only = 0;
+            for (size_t i = 0; i < ph->type->n_mission_params && !reads; i++)
+                reads = strcmp(ph->type->mission_params[i].name, sd->name) == 0;
+            for (const char *const *r = ph->type->root_only_params; r != NULL && *r != NULL; r++)
+                root_only |= strcmp(*r, sd->name) == 0;
+            for (const char *const *r = root_set; *r != NULL; r++) /* a child's come from */
+                root_only |= strcmp(*r, sd->name) == 0;             /* its parent */
+            if (!reads || (ph->parent >= 0 && root_only))
+                continue; /* not read here */
+            name = sd->name;
+        } else {
+            if (sd->owner_index != k)
+                continue;
+            for (size_t i = 0; i < ph->n_set; i++)
+                if (ph->set_values[i] == s)
+                    name = ph->set_names[i];
+            if (name == NULL)
+                return 0; /* another key of the phase: not a start value */
+        }
+        int replaced = from_ref && ph->type->mass_state != NULL &&
+                       strcmp(name, ph->type->mass_state) == 0;
+        for (const char *const *r = ph->parent >= 0 ? child_set : root_set; from_ref && *r; r++)
+            replaced |= strcmp(*r, name) == 0;
+        if (!replaced)
+            return 0;
+        if (!any++ && phase != NULL)
+            *phase = ph->name;
+    }
+    return any > 0;
+}
+
 size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out)
 {
     const lv_mission_def *d = m->def;

@@ -558,6 +558,12 @@ phases:
         "alpha_deg": (pw.replace("in_time.csv", "in_alpha_deg.csv"),
                       r":\d+:\d+: phase 'burn', inputs: table 'in_alpha_deg' has a column "
                       r"'alpha_deg' but none 'alpha'"),
+        # finding 12: a dispersion or targeting variable of a start value the reference replaces
+        "disp_override": (coast.replace("stages:", "parameters: {start_fpa_deg: 2}\nstages:", 1) +
+                          "dispersions:\n  parameters:\n    start_fpa_deg: {dist: normal, "
+                          "sigma: 0.05}\n",
+                          r":\d+:\d+: dispersions: 'start_fpa_deg' has no effect: phase 'coast' "
+                          r"starts from its reference \(start: reference\)"),
         "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
                    r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
                    r"\(`energy`, or `h` and `v`"),
