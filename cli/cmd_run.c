@@ -541,6 +541,17 @@ static void print_reference_drift(const lv_run *run)
         printf(" %6zu %11.4g %10.3f %11.4g %10.4g %10.3f %10.4g %9.4g %9.4g\n", d.n_rows,
                d.pos_max, d.pos_max_t, d.pos_final, d.vel_max, d.vel_max_t, d.vel_final,
                d.mass_max, d.mass_final);
+        /* where the phase and the reference end apart, say so: a tau reference laid over a
+         * span the phase did not fly, or a final drift short of one of the two ends */
+        if (d.over_tau && d.phase_end < 1.0 - 1e-6)
+            printf("  note: '%s' ended at tau = %.4g, before its stop_time: its tau reference "
+                   "was laid over the span to stop_time, not over the phase flown\n",
+                   lv_mission_phase_name(m, k), d.phase_end);
+        else if (!d.over_tau && fabs(d.ref_end - d.phase_end) >
+                                    1e-6 * fmax(1.0, fabs(d.ref_end - d.t_first)))
+            printf("  note: '%s' ended at t = %.9g s, its reference at t = %.9g s: the final "
+                   "drift is at t = %.9g s\n", lv_mission_phase_name(m, k), d.phase_end,
+                   d.ref_end, d.t_final);
     }
 }
 

@@ -247,7 +247,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fp == NULL || fwrite(data, 1, size, fp) != size || fclose(fp) != 0)
         abort();
     const lv_table_opts opts = {pchip ? LV_INTERP_PCHIP : LV_INTERP_LINEAR,
-                                extrap < 3 ? (lv_extrap)extrap : LV_EXTRAP_ERROR};
+                                extrap < 3 ? (lv_extrap)extrap : LV_EXTRAP_ERROR, 0};
     const char *v = mat ? var : NULL;
     lv_err err;
     lv_status st;

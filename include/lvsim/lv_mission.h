@@ -326,7 +326,9 @@ LV_API lv_status lv_run_iip(const lv_run *r, size_t k, size_t i, lv_iip_sample *
  * geodetic h, lat, lon of each), m; velocity: the magnitude of the difference of the two
  * velocities relative to the rotating planet (ECEF; the reference's from v, fpa, heading), m/s;
  * mass: |m_sim - m_ref|, kg. _max is the largest over the rows, at mission time _max_t;
- * _final the value at the last row compared (time t_final). */
+ * _final the value at the last row compared (time t_final). A row up to 1e-6 of the
+ * reference's span beyond either end of it is compared too (the position extrapolated with the
+ * end row's velocity): a phase end located by an event next to the optimiser's final time. */
 typedef struct lv_ref_drift {
     size_t n_rows;              /* result rows compared; 0: none lay in the reference's range */
     int over_tau;               /* 1: the reference is over tau = (t - t_start) / (t_stop -
@@ -336,6 +338,10 @@ typedef struct lv_ref_drift {
     double pos_max, pos_max_t, pos_final;    /* m, s, m */
     double vel_max, vel_max_t, vel_final;    /* m/s, s, m/s */
     double mass_max, mass_max_t, mass_final; /* kg, s, kg */
+    double ref_end;             /* the reference's last axis value: s, or tau [1] */
+    double phase_end;           /* the phase's end on that axis: its last row's time [s], or
+                                   tau there (< 1: it ended before its stop_time, and the tau
+                                   reference was laid over a span it did not fly) */
 } lv_ref_drift;
 
 /* One compared row of lv_run_reference_rows: the simulation's and the reference's geodetic

@@ -115,10 +115,13 @@ LV_API const char *lv_table_out_unit(const lv_table *tab, size_t k);
 LV_API lv_status lv_table_out_index(const lv_table *tab, const char *name, size_t *k,
                                    lv_err *err);
 
-/* Interpolation and extrapolation for the loaders (zero: LINEAR, ERROR). */
+/* Interpolation and extrapolation for the loaders (zero: LINEAR, ERROR, repeats refused). */
 typedef struct lv_table_opts {
     lv_interp interp;
     lv_extrap extrap;
+    int repeats_last;   /* CSV: 1: a row whose breakpoint equals the previous row's replaces
+                           it (the last of the pair wins: lvsim's own result rows write an
+                           event instant twice, before and after); 0: refused */
 } lv_table_opts;
 
 /* CSV, format detected from the first line that is not blank or a '#' comment:

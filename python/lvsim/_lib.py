@@ -274,7 +274,8 @@ class lv_ref_drift(Structure):
                 ("t_first", c_double), ("t_final", c_double),
                 ("pos_max", c_double), ("pos_max_t", c_double), ("pos_final", c_double),
                 ("vel_max", c_double), ("vel_max_t", c_double), ("vel_final", c_double),
-                ("mass_max", c_double), ("mass_max_t", c_double), ("mass_final", c_double)]
+                ("mass_max", c_double), ("mass_max_t", c_double), ("mass_final", c_double),
+                ("ref_end", c_double), ("phase_end", c_double)]
 
 
 # The structures the layout test compares with the C compiler's view of the headers.

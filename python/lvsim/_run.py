@@ -492,8 +492,10 @@ class Run:
         """The drift of phase `phase` from its `reference:` (an optimiser's trajectory;
         docs/optimal-control.md) in the last execute, as summary.json's `reference` block:
         dict with over ("time" or "tau"), start ("reference" or "parent"), rows (result rows
-        compared), t_first, t_final [s], and position, velocity, mass: each a dict of max,
-        t_max, final (m, m/s, kg; s). LvsimError when the phase has no reference, is stale,
+        compared), t_first, t_final [s], position, velocity, mass: each a dict of max,
+        t_max, final (m, m/s, kg; s), and end: the reference's last axis value and the
+        phase's end on that axis (s, or tau: below 1 when the phase ended before its
+        stop_time). LvsimError when the phase has no reference, is stale,
         or ran without rows (execute(keep_rows=False))."""
         k = self.mission.phase_index(phase)
         with self._lock:
@@ -506,7 +508,8 @@ class Run:
                 "rows": d.n_rows, "t_first": d.t_first, "t_final": d.t_final,
                 "position": {"max": d.pos_max, "t_max": d.pos_max_t, "final": d.pos_final},
                 "velocity": {"max": d.vel_max, "t_max": d.vel_max_t, "final": d.vel_final},
-                "mass": {"max": d.mass_max, "t_max": d.mass_max_t, "final": d.mass_final}}
+                "mass": {"max": d.mass_max, "t_max": d.mass_max_t, "final": d.mass_final},
+                "end": {"reference": d.ref_end, "phase": d.phase_end}}
 
     def finals(self, phase):
         """dict name -> final value of phase `phase` (time, states, outputs; SI). LvsimError

@@ -216,7 +216,7 @@ lv_status lv_wind_create_table_opts(const char *path, const char *var,
     if (out == NULL || path == NULL)
         return lv_fail(err, LV_ERR_INPUT, "lv_wind_create_table: NULL argument");
     *out = NULL;
-    static const lv_table_opts deflt = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP };
+    static const lv_table_opts deflt = { LV_INTERP_LINEAR, LV_EXTRAP_CLAMP, 0 };
     wind_load wl = { path, opts != NULL ? opts : &deflt, NULL };
     const lv_status st = lv_table_load_spec(path, var, wl.opts, wind_from_spec, &wl, err);
     if (st != LV_OK) {

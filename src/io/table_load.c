@@ -47,7 +47,7 @@ static int dvec_push(dvec *a, double x)
 
 static const lv_table_opts *opts_or_default(const lv_table_opts *opts)
 {
-    static const lv_table_opts deflt = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR }; /* const */
+    static const lv_table_opts deflt = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR, 0 }; /* const */
     return opts != NULL ? opts : &deflt;
 }
 
@@ -80,6 +80,7 @@ typedef struct csv_field {
 typedef struct csv_ctx {
     const char *path;
     size_t line;
+    int repeats_last; /* lv_table_opts.repeats_last */
 } csv_ctx;
 
 static int is_blank(char c)
@@ -218,7 +219,9 @@ static lv_status read_rows(csv_ctx *c, const char **pos, const char *end, csv_fi
             double v;
             if (parse_number(&f[j], &v) != 0)
                 return csv_fail_field(c, &f[j], "expected a finite number", err);
-            if (j == 0)
+            if (j == 0 && c->repeats_last && x0->n > 0 && v == x0->v[x0->n - 1])
+                y->n -= ncol - 1; /* the row replaces the previous one: its values go */
+            else if (j == 0)
                 st = push_breakpoint(c, &f[j], x0, v, err);
             else if (dvec_push(y, v) != 0)
                 st = lv_fail(err, LV_ERR_NOMEM, "%s: out of memory", c->path);
@@ -237,11 +240,12 @@ static lv_status csv_load(const char *path, const lv_table_opts *opts, lv_table_
     dvec x0 = { 0 }, x1 = { 0 }, y = { 0 };
     char (*names)[CSV_TEXT_MAX] = NULL, (*units)[CSV_TEXT_MAX] = NULL;
     const char **np = NULL, **up = NULL;
-    csv_ctx c = { path, 0 };
+    csv_ctx c = { path, 0, 0 };
     char stem[CSV_TEXT_MAX];
     lv_status st;
 
     opts = opts_or_default(opts);
+    c.repeats_last = opts->repeats_last;
     file_stem(path, stem, sizeof stem);
     st = lv_read_file(path, LV_TABLE_FILE_MAX, "a table file", &text, &len, err);
     if (st != LV_OK)

@@ -236,6 +236,11 @@ static lv_status parse_param(const lv_pctx *c, const lv_ynode *key, const lv_yno
         (st = lv_pk_need(c, v, what, "dist", &dv)) != LV_OK ||
         (st = lv_pk_enum(c, dv, what, "dist", dist_names, &kind)) != LV_OK)
         return st;
+    const char *by = NULL;
+    if (lv_mission_def_slot_overridden(m, p->slot, &by))
+        return lv_pk_fail(c, key, "%s has no effect: phase '%s' starts from its reference "
+                          "(start: reference), whose first row replaces it (disperse the "
+                          "reference, or start: parent)", what, by);
     if ((p->name = dup_str(key->text)) == NULL)
         return lv_pk_nomem(c);
     p->dist = (lv_disp_dist)kind;

@@ -122,7 +122,7 @@ lv_status lv_mission_env_make(const lv_mission_def *d, lv_mission_env *env, lv_e
     }
     if (st == LV_OK && (e->wind_file != NULL || e->wind_const || e->n_wind_prof > 0)) {
         loc = &e->wind_loc;
-        const lv_table_opts wo = { e->wind_interp, e->wind_extrap };
+        const lv_table_opts wo = { e->wind_interp, e->wind_extrap, 0 };
         st = e->n_wind_prof > 0 ? lv_wind_create_profiles((const char *const *)e->wind_prof_file,
                                                           e->wind_prof_t, e->n_wind_prof,
                                                           e->wind_blend, &env->wind, err)

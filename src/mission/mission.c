@@ -186,6 +186,66 @@ void lv_phase_stops(const lv_mission_def *d, const lv_phase_plan *pl, size_t k, 
     }
 }
 
+lv_status lv_phase_start_book(const lv_mission_def *d, size_t k, const double *v, double *prop,
+                              lv_err *err)
+{
+    const lv_phase_def *ph = &d->phases[k];
+    if (ph->n_stages == 0 || ph->type->mass_state == NULL)
+        return LV_OK;
+    const int from_ref = ph->reference != NULL && ph->reference->start;
+    double m = NAN;
+    lv_src_loc loc = ph->loc;
+    const char *what = "set: ";
+    if (from_ref) {
+        m = lv_reference_first(ph->reference, LV_REF_M);
+        loc = ph->reference->loc;
+        what = "reference: its first mass ";
+    } else {
+        int found = 0;
+        for (size_t i = 0; i < ph->n_set; i++)
+            if (strcmp(ph->set_names[i], ph->type->mass_state) == 0) {
+                m = v[ph->set_values[i]];
+                loc = ph->set_locs != NULL ? ph->set_locs[i] : ph->loc;
+                found = 1;
+            }
+        if (!found)
+            return LV_OK; /* no mass of its own: the stages' */
+    }
+    const size_t bottom = ph->stages[0];
+    double dry = 0.0, above = 0.0; /* the dry masses; the propellant that does not burn */
+    for (size_t i = 0; i < ph->n_stages; i++) {
+        dry += v[d->stages[ph->stages[i]].dry_mass];
+        if (i > 0)
+            above += prop[ph->stages[i]];
+    }
+    const double rest = dry + above, load = v[d->stages[bottom].propellant_mass];
+    const double tol = 1e-9 * (rest + load);
+    char plus[128] = "";
+    if (above > 0.0)
+        snprintf(plus, sizeof plus, " plus the %g kg of propellant of the stages above the "
+                 "burning one", above);
+    if (!(m > 0.0))
+        return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': %s%s = %g kg: a mass must be > 0",
+                       d->path, loc.line, loc.column, ph->name, what, ph->type->mass_state, m);
+    if (m < rest - tol)
+        return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': %s%s = %g kg is less than the "
+                       "dry mass %g kg of the stages it carries%s (%s starts the phase with it; "
+                       "the burning stage '%s' holds the mass beyond that as propellant)",
+                       d->path, loc.line, loc.column, ph->name, what, ph->type->mass_state, m,
+                       dry, plus, from_ref ? "start: reference" : "the set:",
+                       d->stages[bottom].name);
+    if (from_ref && m > rest + load + tol)
+        return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': %s%s = %g kg is more than the "
+                       "%g kg of the stages it carries full (dry mass %g kg%s, the burning stage "
+                       "'%s' with its whole load %g kg): a reference's start mass is the stack's "
+                       "(start: reference)", d->path, loc.line, loc.column, ph->name, what,
+                       ph->type->mass_state, m, rest + load, dry, plus, d->stages[bottom].name,
+                       load);
+    if (from_ref || m < rest + prop[bottom])
+        prop[bottom] = fmin(fmax(m - rest, 0.0), from_ref ? load : prop[bottom]);
+    return LV_OK;
+}
+
 /* Phase k's start state lies in its model's domain: a root phase's whole start state (the
  * parameters and overrides as the file gives them: lv_sim_create evaluates start(), init() and
  * the domain), a child's overridden mass (its other states come from its parent at run time). */
@@ -194,30 +254,14 @@ static lv_status check_start(const lv_mission *m, size_t k, lv_phase_model *pm, 
     const lv_mission_def *d = m->def;
     const lv_phase_def *ph = &d->phases[k];
     const lv_phase_plan *pl = &m->plan[k];
-    double dry = 0.0; /* the carried stages' dry mass: no mass can be less */
-    for (size_t i = 0; i < ph->n_stages; i++)
-        dry += m->defaults[d->stages[ph->stages[i]].dry_mass];
-    for (size_t i = 0; i < ph->n_set; i++) {
-        const double v = m->defaults[ph->set_values[i]];
-        if (strcmp(ph->set_names[i], ph->type->mass_state) != 0)
-            continue;
-        if (!(v > 0.0))
-            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: %s = %g kg: a mass "
-                           "must be > 0", d->path, ph->set_locs[i].line, ph->set_locs[i].column,
-                           ph->name, ph->set_names[i], v);
-        if (v < dry)
-            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': set: %s = %g kg is less than "
-                           "the dry mass %g kg of the stages it carries", d->path,
-                           ph->set_locs[i].line, ph->set_locs[i].column, ph->name,
-                           ph->set_names[i], v, dry);
-    }
-    if (ph->reference != NULL && ph->reference->start) { /* the mass it will start with */
-        const double v = lv_reference_first(ph->reference, LV_REF_M);
-        if (!(v >= dry))
-            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': reference: its first mass "
-                           "m = %g kg is less than the dry mass %g kg of the stages it carries "
-                           "(start: reference starts the phase with it)", d->path,
-                           ph->reference->loc.line, ph->reference->loc.column, ph->name, v, dry);
+    if (ph->reference != NULL) { /* the reference against the phase's span */
+        const double t0 = ph->t_start != LV_NO_SLOT ? m->defaults[ph->t_start]
+                          : ph->parent >= 0          ? NAN
+                                                     : 0.0;
+        lv_status rs = lv_reference_check_span(ph->reference, t0, m->defaults[ph->t_stop], err);
+        if (rs != LV_OK)
+            return lv_fail_prefix(err, rs, "%s:%d:%d: phase '%s'", d->path,
+                                  ph->reference->loc.line, ph->reference->loc.column, ph->name);
     }
     if (ph->parent >= 0)
         return LV_OK;
@@ -428,6 +472,12 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
     for (size_t k = 0; k < d->n_phases && st == LV_OK; k++) {
         const lv_phase_def *ph = &d->phases[k];
         lv_phase_model *pm = NULL;
+        /* the stage book as the phase starts: the loads, less what its own start mass leaves
+         * out of the burning stage (a child's parent burns at run time: the loads here) */
+        for (size_t s = 0; s < d->n_stages; s++)
+            prop[s] = m->defaults[d->stages[s].propellant_mass];
+        if ((st = lv_phase_start_book(d, k, m->defaults, prop, err)) != LV_OK)
+            break;
         const lv_build_ctx bc = {d, &m->env, k, m->defaults, prop, NULL, NULL};
         if ((st = lv_phase_model_build(&bc, &pm, err)) != LV_OK) {
             st = lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
@@ -731,6 +781,52 @@ lv_status lv_mission_param_find(const lv_mission *m, const char *name, size_t *i
                    "mission '%s' has no parameter '%s'%s (lvsim params MISSION.yaml lists "
                    "them)",
                    d->name, name, hint);
+}
+
+int lv_mission_def_slot_overridden(const lv_mission_def *d, lv_slot s, const char **phase)
+{
+    static const char *const root_set[] = {"start_lat", "start_lon", "start_h", "start_vel",
+                                           "start_fpa", "start_chi", NULL};
+    static const char *const child_set[] = {"r_eci_x", "r_eci_y", "r_eci_z", "v_eci_x",
+                                            "v_eci_y", "v_eci_z", NULL};
+    const lv_slot_def *sd = &d->slots[s];
+    int any = 0;
+    if (sd->owner != LV_OWN_PARAM && sd->owner != LV_OWN_PHASE)
+        return 0;
+    for (size_t k = 0; k < d->n_phases; k++) {
+        const lv_phase_def *ph = &d->phases[k];
+        const int from_ref = ph->reference != NULL && ph->reference->start;
+        const char *name = NULL; /* the value the slot gives the phase */
+        if (sd->owner == LV_OWN_PARAM) {
+            int reads = 0, root_only = 0;
+            for (size_t i = 0; i < ph->type->n_mission_params && !reads; i++)
+                reads = strcmp(ph->type->mission_params[i].name, sd->name) == 0;
+            for (const char *const *r = ph->type->root_only_params; r != NULL && *r != NULL; r++)
+                root_only |= strcmp(*r, sd->name) == 0;
+            for (const char *const *r = root_set; *r != NULL; r++) /* a child's come from */
+                root_only |= strcmp(*r, sd->name) == 0;             /* its parent */
+            if (!reads || (ph->parent >= 0 && root_only))
+                continue; /* not read here */
+            name = sd->name;
+        } else {
+            if (sd->owner_index != k)
+                continue;
+            for (size_t i = 0; i < ph->n_set; i++)
+                if (ph->set_values[i] == s)
+                    name = ph->set_names[i];
+            if (name == NULL)
+                return 0; /* another key of the phase: not a start value */
+        }
+        int replaced = from_ref && ph->type->mass_state != NULL &&
+                       strcmp(name, ph->type->mass_state) == 0;
+        for (const char *const *r = ph->parent >= 0 ? child_set : root_set; from_ref && *r; r++)
+            replaced |= strcmp(*r, name) == 0;
+        if (!replaced)
+            return 0;
+        if (!any++ && phase != NULL)
+            *phase = ph->name;
+    }
+    return any > 0;
 }
 
 size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out)

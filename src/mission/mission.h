@@ -343,6 +343,13 @@ double lv_mission_def_value(const lv_mission_def *m, lv_slot s);
 double lv_mission_def_param(const lv_mission_def *m, const char *name, double fallback);
 /* Slot by exact name, or LV_NO_SLOT. */
 lv_slot lv_mission_def_slot(const lv_mission_def *m, const char *name);
+/* 1 if slot s acts on no phase because a `start: reference` replaces it: every phase that
+ * reads it either starts from its reference, which sets that value (a root's start_lat,
+ * start_lon, start_h, start_vel, start_fpa, start_chi; a `set:` of the mass or, in a child, of
+ * r_eci_*, v_eci_*), or does not read it at all (a child and a root's start value: its
+ * position and velocity come from its parent), and at
+ * least one does the first; *phase then names one such phase. 0 otherwise. */
+int lv_mission_def_slot_overridden(const lv_mission_def *m, lv_slot s, const char **phase);
 
 /* Adds a slot (used by the parser and the model types). Names must be unique: a duplicate
  * is LV_ERR_INPUT naming both. */

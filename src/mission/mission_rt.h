@@ -59,6 +59,18 @@ lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err);
 void lv_phase_stops(const lv_mission_def *d, const lv_phase_plan *pl, size_t k, const double *v,
                     double start_time, lv_sim_stop *out);
 
+/* The stage book of phase k as it starts with a mass of its own (docs/mission-format.md, "One
+ * propellant book"): the reference's first mass (`start: reference`) or else a `set:` of its
+ * mass state (v: the slots' values; neither: nothing to do). prop[n_stages] [kg] is the book the
+ * phase would start with (the parent's, or the loads) and is changed in place. The mass m is
+ * the carried stages' dry masses and the propellant of the stages above the burning (bottom)
+ * one first - m less than that is refused -, then the burning stage's propellant: m below the
+ * full stack leaves it m minus the rest (burnout earlier); a set: mass above the full stack is
+ * payload, a reference's mass more than the bottom stage's load `v[propellant_mass]` can hold
+ * is refused. LV_ERR_INPUT with file:line:column of the set value or the reference. */
+lv_status lv_phase_start_book(const lv_mission_def *d, size_t k, const double *v, double *prop,
+                              lv_err *err);
+
 /* The phases (indices) whose models read slot s directly; returns the count written to out
  * (capacity: n_phases). */
 size_t lv_mission_slot_phases(const lv_mission *m, lv_slot s, size_t *out);

@@ -511,16 +511,36 @@ static char *file_stem(const char *path)
 
 /* A table given as `path` or {file, var, interp, extrap}: loaded into *tab; the resolved
  * path and .mat variable go to *file and *var. `extrap_default` applies when not given. */
+static lv_status table_any(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                           const char *what, lv_extrap extrap_default, int repeats_last,
+                           char **file_out, char **var_out, const lv_ynode **output,
+                           lv_table **tab);
+
 lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                       const char *what, lv_extrap extrap_default, char **file_out,
                       char **var_out, lv_table **tab)
 {
-    return lv_pk_table_out(c, key, v, what, extrap_default, file_out, var_out, NULL, tab);
+    return table_any(c, key, v, what, extrap_default, 0, file_out, var_out, NULL, tab);
+}
+
+lv_status lv_pk_table_traj(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                           const char *what, lv_extrap extrap_default, char **file_out,
+                           char **var_out, lv_table **tab)
+{
+    return table_any(c, key, v, what, extrap_default, 1, file_out, var_out, NULL, tab);
 }
 
 lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                           const char *what, lv_extrap extrap_default, char **file_out,
                           char **var_out, const lv_ynode **output, lv_table **tab)
+{
+    return table_any(c, key, v, what, extrap_default, 0, file_out, var_out, output, tab);
+}
+
+static lv_status table_any(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                           const char *what, lv_extrap extrap_default, int repeats_last,
+                           char **file_out, char **var_out, const lv_ynode **output,
+                           lv_table **tab)
 {
     static const char *const keys_out[] = { "file", "var", "interp", "extrap", "output", NULL };
     static const char *const keys_plain[] = { "file", "var", "interp", "extrap", NULL };
@@ -528,7 +548,7 @@ lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode 
     static const char *const extraps[] = { "clamp", "error", "linear", NULL };
     static const lv_extrap extrap_of[] = { LV_EXTRAP_CLAMP, LV_EXTRAP_ERROR, LV_EXTRAP_LINEAR };
     const char *const *keys = output != NULL ? keys_out : keys_plain;
-    lv_table_opts opts = { LV_INTERP_LINEAR, extrap_default };
+    lv_table_opts opts = { LV_INTERP_LINEAR, extrap_default, repeats_last };
     const lv_ynode *file = v, *at = v;
     const char *rel = NULL;
     lv_status st;

@@ -59,6 +59,12 @@ lv_status lv_pk_table(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
 lv_status lv_pk_table_out(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
                           const char *what, lv_extrap extrap_default, char **file, char **var,
                           const lv_ynode **output, lv_table **tab);
+/* lv_pk_table for a trajectory (a reference): a CSV row repeating the previous row's time
+ * replaces it (lv_table_opts.repeats_last: lvsim's own result rows, an event written before
+ * and after). */
+lv_status lv_pk_table_traj(const lv_pctx *c, const lv_ynode *key, const lv_ynode *v,
+                           const char *what, lv_extrap extrap_default, char **file, char **var,
+                           lv_table **tab);
 
 /* The number at `v` (key `key` of `what`) registered as slot `name` with its unit and range,
  * owned by c->owner; out of range is an error at v naming the rule. `deg`: the value is in

@@ -87,29 +87,39 @@ static long column_of(const lv_table *t, int over)
 }
 
 /* A copy of 1-axis table `src` whose axis is `x` [n breakpoints of src, in src's order; read
- * backwards when `rev`] named `axis` [unit]: the outputs at src's breakpoints, the same
- * interpolation and extrapolation. */
-static lv_status retabulate(const lv_table *src, const double *x, int rev, const char *axis,
-                            const char *unit, lv_table **out, lv_err *err)
+ * backwards when `rev`] named `axis` [unit]: the outputs at src's breakpoints but output `skip`
+ * (the column that became the axis; -1: none), the same interpolation and extrapolation. */
+static lv_status retabulate(const lv_table *src, const double *x, int rev, long skip,
+                            const char *axis, const char *unit, lv_table **out, lv_err *err)
 {
     size_t n = 0;
     const double *b = lv_table_breakpoints(src, 0, &n);
-    const size_t no = lv_table_n_out(src);
-    double *xs = malloc(n * sizeof *xs), *y = malloc(n * no * sizeof *y);
-    const char **on = malloc(no * sizeof *on), **ou = malloc(no * sizeof *ou);
+    const size_t ns = lv_table_n_out(src), no = ns - (skip >= 0 ? 1 : 0);
+    double *xs = malloc(n * sizeof *xs), *y = malloc((n * no + 1) * sizeof *y);
+    double *row = malloc(ns * sizeof *row);
+    const char **on = malloc((no + 1) * sizeof *on), **ou = malloc((no + 1) * sizeof *ou);
     lv_status st = LV_OK;
-    if (xs == NULL || y == NULL || on == NULL || ou == NULL) {
+    if (xs == NULL || y == NULL || row == NULL || on == NULL || ou == NULL) {
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
     }
-    for (size_t k = 0; k < no; k++) {
-        on[k] = lv_table_out_name(src, k);
-        ou[k] = lv_table_out_unit(src, k);
+    if (no == 0) {
+        st = lv_fail(err, LV_ERR_INPUT, "the table has no column besides '%s' (alpha, beta, mu "
+                     "or throttle)", lv_table_out_name(src, (size_t)skip));
+        goto fail;
     }
+    for (size_t k = 0, o = 0; k < ns; k++)
+        if ((long)k != skip) {
+            on[o] = lv_table_out_name(src, k);
+            ou[o++] = lv_table_out_unit(src, k);
+        }
     for (size_t j = 0; j < n && st == LV_OK; j++) {
         const size_t i = rev ? n - 1 - j : j;
         xs[j] = x[i];
-        st = lv_table_eval1(src, NULL, b[i], y + j * no, err); /* exact at a breakpoint */
+        st = lv_table_eval1(src, NULL, b[i], row, err); /* exact at a breakpoint */
+        for (size_t k = 0, o = 0; k < ns; k++)
+            if ((long)k != skip)
+                y[j * no + o++] = row[k];
     }
     if (st == LV_OK) {
         const lv_table_spec spec = {.n_dims = 1, .n = {n}, .x = {xs}, .n_out = no, .y = y,
@@ -122,6 +132,7 @@ static lv_status retabulate(const lv_table *src, const double *x, int rev, const
 fail:
     free(xs);
     free(y);
+    free(row);
     free(on);
     free(ou);
     return st;
@@ -154,6 +165,7 @@ static lv_status parse_over(const lv_pctx *c, const lv_ynode *at, const char *wh
     double *x = malloc(n * sizeof *x), *buf = malloc(lv_table_n_out(t) * sizeof *buf);
     lv_status st = LV_OK;
     int rev = 0;
+    long skip = -1; /* the column that becomes the axis */
     if (x == NULL || buf == NULL) {
         st = lv_pk_nomem(c);
         goto fail;
@@ -191,6 +203,7 @@ static lv_status parse_over(const lv_pctx *c, const lv_ynode *at, const char *wh
             goto fail;
         }
         const long ku = kv >= 0 ? kv : kh;
+        skip = kv;
         if ((st = lv_table_expect_unit(t, 0, (size_t)ku, kv >= 0 ? over_units[over] : "m", NULL,
                                        &e)) != LV_OK ||
             (kv < 0 && (st = lv_table_expect_unit(t, 0, (size_t)ks, "m/s", NULL, &e)) != LV_OK)) {
@@ -220,7 +233,7 @@ static lv_status parse_over(const lv_pctx *c, const lv_ynode *at, const char *wh
                 goto fail;
             }
     }
-    if ((st = retabulate(t, x, rev, over_words[over], over_units[over], &nt, &e)) != LV_OK) {
+    if ((st = retabulate(t, x, rev, skip, over_words[over], over_units[over], &nt, &e)) != LV_OK) {
         st = lv_pk_fail(c, at, "%s: over: %s: %s", what, over_words[over], e.msg);
         goto fail;
     }
@@ -288,6 +301,21 @@ static lv_status parse_inputs(const lv_pctx *c, const lv_ynode *n, const char *p
     if (v != NULL && (st = lv_pk_table(c, lv_pk_key(n, "table"), v, what, LV_EXTRAP_CLAMP,
                                        &cfg->inputs_file, &cfg->inputs_var, &cfg->inputs)) != LV_OK)
         return st;
+    /* an input written in other units under another name is not read: refused, not flown 0 */
+    for (int k = 0; v != NULL && k < 4; k++) {
+        static const char *const other[4][2] = {{"alpha_deg", NULL}, {"beta_deg", NULL},
+                                                {"mu_deg", NULL}, {"throttle_pct", "throttle_percent"}};
+        size_t i;
+        if (lv_table_out_index(cfg->inputs, names[k], &i, NULL) == LV_OK)
+            continue;
+        for (int a = 0; a < 2 && other[k][a] != NULL; a++)
+            if (lv_table_out_index(cfg->inputs, other[k][a], &i, NULL) == LV_OK)
+                return lv_pk_fail(c, lv_pk_key(n, "table"), "%s: table '%s' has a column '%s' "
+                                  "but none '%s': the inputs are read from the columns alpha, "
+                                  "beta, mu [rad] and throttle [1] (no unit is converted): "
+                                  "write '%s [%s]'", what, lv_table_name(cfg->inputs),
+                                  other[k][a], names[k], names[k], k < 3 ? "rad" : "1");
+    }
     if (v != NULL && over != LV_DOF3_OVER_TIME)
         return parse_over(c, ov, what, (int)over, cfg);
     return LV_OK;

@@ -40,6 +40,20 @@ void lv_reference_free(lv_reference_def *r); /* accepts NULL */
 /* Column j (LV_REF_H ..) of the reference's first row. */
 double lv_reference_first(const lv_reference_def *r, size_t j);
 
+/* The reference against the phase's time span, at load: t_start [s] the phase's start (NAN:
+ * not known before the run, a child's without `start_time:`), t_stop its stop_time [s]. A time
+ * axis must reach into [t_start, t_stop] (else it covers no part of the phase); with `start:
+ * reference` its first time must be the phase's start within 1e-9 s relative (a child without
+ * `start_time:` starts at it instead: lv_reference_start_time), a tau axis must start at tau
+ * = 0. LV_ERR_INPUT naming the reference's table and both times (no file position: the caller
+ * adds it). */
+lv_status lv_reference_check_span(const lv_reference_def *r, double t_start, double t_stop,
+                                  lv_err *err);
+
+/* The mission time a phase started from a time-axis reference starts at: its first time;
+ * NAN for a tau axis or without `start: reference`. */
+double lv_reference_start_time(const lv_reference_def *r);
+
 /* A start from the reference's first row (`start: reference`), placed at mission time t0: a
  * root phase (`root`) gets the parameters start_lat, start_lon, start_h, start_vel,
  * start_fpa, start_chi, a child its states r_eci_*, v_eci_* (ECI at t0 on `planet`); both the
@@ -50,7 +64,9 @@ lv_status lv_reference_start(const lv_reference_def *r, const lv_planet *planet,
                              double *values, size_t *n, size_t cap, lv_err *err);
 
 /* The drift of the rows `rows` (columns time, h, lat, lon, v_north, v_east, v_down and the
- * mass state) from the reference (lv_ref_drift); t_start, t_stop: the phase's (tau). *series
+ * mass state) from the reference (lv_ref_drift), compared in ECEF: the reference's position
+ * interpolated by cubic Hermite with its own velocity, its velocity components with the
+ * table's interpolation (no wrap of longitude or heading, no pole singularity); t_start, t_stop: the phase's (tau). *series
  * receives the compared rows (out->n_rows of them; malloc'ed, the caller frees; NULL when
  * none). */
 lv_status lv_reference_drift(const lv_reference_def *r, const lv_planet *planet,

@@ -331,8 +331,14 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     /* the stage book: what the parent left, or the run's propellant loads */
     for (size_t s = 0; s < d->n_stages; s++)
         c->prop[s] = par ? par->prop_end[s] : v[d->stages[s].propellant_mass];
+    /* a start mass of its own (the reference's, a set:) sets the burning stage's propellant */
+    lv_status st = lv_phase_start_book(d, k, v, c->prop, err);
+    if (st != LV_OK) {
+        lv_phase_call_free(c);
+        return st;
+    }
     const lv_build_ctx bc = {d, &m->env, k, v, c->prop, r->tables, &c->notes};
-    lv_status st = lv_phase_model_build(&bc, &c->pm, err);
+    st = lv_phase_model_build(&bc, &c->pm, err);
     if (st != LV_OK) {
         lv_phase_call_free(c);
         return lv_fail_prefix(err, st, "%s:%d:%d: phase '%s'", d->path, ph->loc.line,
@@ -342,6 +348,10 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     lv_sim_settings *s = &c->s;
     lv_sim_settings_default(s);
     s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
+    /* a child started from a time-axis reference starts at the reference's first time */
+    if (par != NULL && ph->t_start == LV_NO_SLOT && ph->reference != NULL &&
+        !isnan(lv_reference_start_time(ph->reference)))
+        s->start_time = lv_reference_start_time(ph->reference);
     s->stop_time = v[ph->t_stop];
     s->method = opt && opt->method ? opt->method
                                    : (ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);

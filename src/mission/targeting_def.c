@@ -537,6 +537,11 @@ lv_status lv_targeting_def_check(lv_mission *m, lv_err *err)
         lv_src_loc l = v->loc;
         st = lv_targeting_resolve_var(m, v->name, v->lo, v->hi, v->start, v->scale, v->step,
                                       &v->res, &e);
+        const char *by = NULL;
+        if (st == LV_OK && lv_mission_def_slot_overridden(d, v->res.slot, &by))
+            st = lv_fail(&e, LV_ERR_INPUT, "variable '%s' has no effect: phase '%s' starts from "
+                         "its reference (start: reference), whose first row replaces it "
+                         "(vary the reference, or start: parent)", v->name, by);
         if (st == LV_OK && d->slots[v->res.slot].loc.line <= 0)
             st = lv_fail(&e, LV_ERR_INPUT, "variable '%s': the mission file does not write "
                          "this parameter (its value is a default): write it in the file so "

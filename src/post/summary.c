@@ -225,6 +225,11 @@ static cJSON *phase_json(const lv_run *run, size_t k)
                     cJSON_AddNumberToObject(qj, "final", q[i][2]);
                 }
             }
+            if (isfinite(d.ref_end) && isfinite(d.phase_end)) {
+                cJSON *ej = cJSON_AddObjectToObject(rj, "end");
+                cJSON_AddNumberToObject(ej, "reference", d.ref_end);
+                cJSON_AddNumberToObject(ej, "phase", d.phase_end);
+            }
         } else {
             cJSON_AddNullToObject(rj, "rows"); /* not run, or no rows kept */
         }

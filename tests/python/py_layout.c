@@ -60,6 +60,7 @@ int main(void)
     F(lv_ref_drift, pos_max); F(lv_ref_drift, pos_max_t); F(lv_ref_drift, pos_final);
     F(lv_ref_drift, vel_max); F(lv_ref_drift, vel_max_t); F(lv_ref_drift, vel_final);
     F(lv_ref_drift, mass_max); F(lv_ref_drift, mass_max_t); F(lv_ref_drift, mass_final);
+    F(lv_ref_drift, ref_end); F(lv_ref_drift, phase_end);
     S(lv_phase_result); F(lv_phase_result, name); F(lv_phase_result, state);
     F(lv_phase_result, error); F(lv_phase_result, t_start); F(lv_phase_result, t_end);
     F(lv_phase_result, t_stop); F(lv_phase_result, method); F(lv_phase_result, tolerance);

@@ -20,7 +20,14 @@ angle and heading of the velocity in the local north-east-up frame. Checked:
   falls linearly, m = m0 - mdot t, so alpha(m) is alpha(t(m)) exactly) flies one trajectory;
   a step of alpha at t = 50 s and the same step where the altitude, or the energy
   v^2/2 + g0 h, had its value of t = 50 s fly one trajectory (within 1 mm after 100 s);
-- every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column.
+- a mid-burn start (reference or set: of m): the burning stage holds the mass beyond the rest,
+  burnout where m0 - mdot t reaches the dry mass;
+- coasts over the dateline and the pole drift as one along the equator (ECEF comparison; the
+  Hermite and linear interpolation errors r th^4/384 and v th^2/8 of a circle);
+- time tables with a column named `altitude` / `energy` flown over that variable;
+- every bad input is refused by `lvsim check` and `lvsim run` alike, exit 2, file:line:column
+  (also a reference starting after the phase's start, one covering none of it, a tau one
+  starting after 0, a first mass above the full stack).
 """
 import json
 import math
@@ -87,11 +94,18 @@ def geodetic(r, v):
     return [rn - R, lat, lon, sp, math.asin(vu / sp), math.atan2(ve, vn) % (2 * math.pi)]
 
 
-def start_state(h0, v0, fpa_deg, chi_deg):
-    """ECI r, v at lat = lon = 0 for altitude h0, speed v0, flight-path angle, heading."""
+def start_state(h0, v0, fpa_deg, chi_deg, lat_deg=0.0, lon_deg=0.0):
+    """ECI r, v at (lat, lon) for altitude h0, speed v0, flight-path angle, heading (the
+    north-east-up frame's axes: up (cos lat cos lon, cos lat sin lon, sin lat), north
+    (-sin lat cos lon, -sin lat sin lon, cos lat), east (-sin lon, cos lon, 0))."""
     g, c = math.radians(fpa_deg), math.radians(chi_deg)
-    return [R + h0, 0.0, 0.0], [v0 * math.sin(g), v0 * math.cos(g) * math.sin(c),
-                                v0 * math.cos(g) * math.cos(c)]
+    la, lo = math.radians(lat_deg), math.radians(lon_deg)
+    up = [math.cos(la) * math.cos(lo), math.cos(la) * math.sin(lo), math.sin(la)]
+    north = [-math.sin(la) * math.cos(lo), -math.sin(la) * math.sin(lo), math.cos(la)]
+    east = [-math.sin(lo), math.cos(lo), 0.0]
+    vu, vn, ve = v0 * math.sin(g), v0 * math.cos(g) * math.cos(c), v0 * math.cos(g) * math.sin(c)
+    return ([(R + h0) * u for u in up],
+            [vu * up[i] + vn * north[i] + ve * east[i] for i in range(3)])
 
 
 def write_reference(path, states, axis="time [s]", axis_values=None, mass=1000.0, dh_last=0.0):
@@ -237,6 +251,29 @@ def main():
     check(d["over"] == "tau" and d["rows"] == 101 and d["position"]["max"] < 1e-4,
           "over tau: " + json.dumps(d))
 
+    # 3b. the phase's end next to the reference's (finding 6): a reference written up to t =
+    # 999.9999 s (the ellipse's state then) still compares the phase's last row at 1000 s, the
+    # position carried on by the end row's velocity (the step left: a dt^2 / 2 = 9 m/s^2 *
+    # 1e-8 s^2 / 2 ~ 4e-8 m)
+    ts_e = ts[:-1] + [999.9999]
+    write_reference("ref_end.csv", kepler(r0, v0, ts_e))
+    with open("coast_end.yaml", "w") as f:
+        f.write(COAST % ("coast-end", "{table: ref_end.csv, start: reference}"))
+    run(lvsim, "coast_end.yaml", "o3e")
+    d = summary("o3e")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["t_final"] == 1000.0 and d["position"]["final"] < 1e-4 and
+          d["end"] == {"reference": 999.9999, "phase": 1000.0},
+          "reference ending 1e-4 s before the phase: " + json.dumps(d))
+
+    # 3c. a tau reference on a phase that ends before its stop_time (finding 7): said
+    with open("coast_tau_early.yaml", "w") as f:
+        f.write((COAST % ("coast-tau-early", "{table: ref_tau.csv, start: reference}")).replace(
+            "stop_time: 1000", "stop_time: 1000\n    end: [{time: 400}]"))
+    p = run(lvsim, "coast_tau_early.yaml", "o3t")
+    d = summary("o3t")["phases"][0]["reference"]
+    check(abs(d["end"]["phase"] - 0.4) < 1e-12 and "ended at tau = 0.4, before its stop_time"
+          in p.stdout, "tau reference, phase ended at 400 s of 1000: " + json.dumps(d) + p.stdout)
+
     # 4. a child started from its reference (another ellipse, from t = 300 s), not its parent
     r1, v1 = start_state(250e3, 7700.0, -1.0, 45.0)
     ts1 = [300.0 + 10.0 * i for i in range(71)]
@@ -246,9 +283,9 @@ def main():
     with open("child.yaml", "w") as f:
         f.write((HEAD % "child") + """parameters: {start_h: 200000, start_vel: 7800, start_fpa_deg: 2, start_chi_deg: 60}
 stages:
-  - {name: cap, dry_mass: 800, propellant_mass: 0}
+  - {name: cap, dry_mass: 900, propellant_mass: 0}
 phases:
-  - {name: a, model: dof3, stages: [cap], stop_time: 300}
+  - {name: a, model: dof3, stages: [cap], stop_time: 290}
   - name: b
     model: dof3
     stages: [cap]
@@ -267,6 +304,88 @@ phases:
               f"reference {ref!r}")
     d = summary("o4")["phases"][1]["reference"]
     check(d["rows"] == 71 and d["position"]["max"] < 1e-4, "child drift " + json.dumps(d))
+    # (its parent ended at 290 s: the child starts at the reference's first time, 300 s)
+
+    # 4b. a mid-burn start (finding 1 of the breaker's report): a stage of 2000 kg dry and 8000
+    # kg propellant burning 70 kg/s started from a reference (or a set: of m) of 6000 kg holds
+    # 4000 kg: burnout at m0 - mdot t = 2000 kg, t = 4000 / 70 = 57.142857 s, not 8000 / 70
+    write_reference("ref_6000.csv", states, mass=6000.0)
+    for name, extra in (("ref", "reference: {table: ref_6000.csv, start: reference}"),
+                        ("set", "set: {m: 6000}")):
+        with open(f"mid_{name}.yaml", "w") as f:
+            f.write((HEAD % ("mid-" + name)) + """parameters: {start_h: 200000, start_vel: 7800, start_fpa_deg: 2, start_chi_deg: 60}
+stages:
+  - {name: s1, dry_mass: 2000, propellant_mass: 8000, engines: [{thrust_vac: 2.0e5, mdot: 70}]}
+phases:
+  - name: burn
+    model: dof3
+    stages: [s1]
+    stop_time: 100
+    end: [burnout]
+    %s
+    integrator: {method: dop853, tolerance: 1e-11, output_interval: 10}
+""" % extra)
+        run(lvsim, f"mid_{name}.yaml", "o_mid_" + name)
+        last = rows(f"o_mid_{name}/phase_1_burn.csv")[-1]
+        ph = summary("o_mid_" + name)["phases"][0]
+        print(f"mid-burn start ({name}): burnout at {last['time']!r} s, m = {last['m']!r} kg")
+        check(abs(last["time"] - 4000.0 / 70.0) < 1e-6 and abs(last["m"] - 2000.0) < 1e-6,
+              f"mid-burn {name}: burnout at {last['time']} s (4000/70), m {last['m']} (2000)")
+        check(abs(ph["payload"]) < 1e-9, f"mid-burn {name}: payload {ph['payload']} kg, not 0")
+
+    # 4b'. lvsim's own result CSV as a reference (finding 8): the burnout instant is written
+    # twice (before and after the event, one time); the later row is taken. Its columns cut
+    # to the reference's (the whole file holds nan where an output is undefined, e.g. the Mach
+    # number in vacuum, which no table takes). Re-flown from it: the same trajectory, so the
+    # drift is the integration's (< 1e-3 m)
+    own = open("o_mid_ref/phase_1_burn.csv").read().splitlines()
+    names = [re.sub(r" \[.*\]$", "", c) for c in own[0].split(",")]
+    keep = [names.index(c) for c in ("time", "h", "lat", "lon", "v_rel", "fpa", "heading", "m")]
+    with open("own.csv", "w") as f:
+        for line in own:
+            f.write(",".join(line.split(",")[i] for i in keep) + "\n")
+    t_rows = [r["time"] for r in rows("own.csv")]
+    check(any(a == b for a, b in zip(t_rows, t_rows[1:])), "an event row written twice")
+    with open("own.yaml", "w") as f:
+        f.write(open("mid_ref.yaml").read().replace("ref_6000.csv", "own.csv")
+                .replace("mid-ref", "own"))
+    run(lvsim, "own.yaml", "o_own")
+    d = summary("o_own")["phases"][0]["reference"]
+    print("re-flown from its own result CSV:", json.dumps(d))
+    check(d["rows"] >= len(t_rows) - 1 and d["position"]["max"] < 1e-3 and
+          d["mass"]["max"] < 1e-6, "re-flown from its own CSV: " + json.dumps(d))
+
+    # 4c. angles that wrap (finding 2): coasts over the dateline and over the north pole,
+    # re-flown from their own reference written every 10 s and compared every 1 s, drift as
+    # little as one along the equator that crosses nothing. The reference is interpolated in
+    # ECEF, the position by cubic Hermite with the reference's own velocity: its error on a
+    # circle of radius r stepped by the angle th = w h is r th^4 / 384 (the Hermite remainder
+    # f(xi) h^4 / 384 with |f| = r w^4), the velocity's (linear) v th^2 / 8.
+    drift = {}
+    for name, lat0, lon0, chi in (("zero", 0.0, 0.0, 90.0), ("east", 0.0, 170.0, 90.0),
+                                  ("pole", 70.0, 0.0, 0.0)):
+        ts_w = [10.0 * i for i in range(61)]
+        rr, vv = start_state(200e3, 7790.0, 0.0, chi, lat0, lon0)
+        write_reference(f"wrap_{name}.csv", kepler(rr, vv, ts_w))
+        with open(f"wrap_{name}.yaml", "w") as f:
+            f.write((COAST % ("wrap-" + name, "{table: wrap_%s.csv, start: reference}" % name))
+                    .replace("stop_time: 1000", "stop_time: 600")
+                    .replace("output_interval: 10", "output_interval: 1"))
+        run(lvsim, f"wrap_{name}.yaml", "o_wrap_" + name)
+        drift[name] = summary("o_wrap_" + name)["phases"][0]["reference"]
+    rc = R + 200e3
+    th = 7790.0 / rc * 10.0
+    pos_bound, vel_bound = rc * th ** 4 / 384.0, 7790.0 * th ** 2 / 8.0
+    for name, d in drift.items():
+        print(f"wrap {name}: position {d['position']['max']:.4g} m (r th^4/384 = "
+              f"{pos_bound:.4g}), velocity {d['velocity']['max']:.4g} m/s (v th^2/8 = "
+              f"{vel_bound:.4g})")
+        check(d["rows"] == 601 and d["position"]["max"] < 1.1 * pos_bound and
+              d["velocity"]["max"] < 1.1 * vel_bound,
+              f"wrap {name}: drift {d['position']['max']} m, {d['velocity']['max']} m/s")
+        check(abs(d["position"]["max"] - drift["zero"]["position"]["max"]) < 1e-5,
+              f"wrap {name}: {d['position']['max']} m as the equator's "
+              f"{drift['zero']['position']['max']} m")
 
     # 5. one control table over time, tau and mass: one trajectory
     m0, mdot = 10000.0, 70.0
@@ -328,8 +447,18 @@ phases:
                 % (at50["h"], at50["h"] + 1e-3 * up))
     with open("step_e.csv", "w") as f:
         f.write("energy [J/kg],alpha [rad]\n0,0\n%r,0\n%r,0.1\n1e9,0.1\n" % (e50, e50 + 1e-3 * de))
+    # the same steps from time tables carrying the variable in a column named as the over:
+    # word (finding 3: `altitude`, `energy`; re-tabulated over it when loaded)
+    with open("step_h_col.csv", "w") as f:
+        f.write("time [s],altitude [m],alpha [rad]\n0,0,0\n50,%r,0\n50.001,%r,0.1\n100,1e7,0.1\n"
+                % (at50["h"], at50["h"] + 1e-3 * up))
+    with open("step_e_col.csv", "w") as f:
+        f.write("time [s],energy [J/kg],alpha [rad]\n0,0,0\n50,%r,0\n50.001,%r,0.1\n100,1e9,0.1\n"
+                % (e50, e50 + 1e-3 * de))
     for name, table in (("step-h", "{table: step_h.csv, over: altitude}"),
-                        ("step-e", "{table: step_e.csv, over: energy}")):
+                        ("step-e", "{table: step_e.csv, over: energy}"),
+                        ("step-h-col", "{table: step_h_col.csv, over: altitude}"),
+                        ("step-e-col", "{table: step_e_col.csv, over: energy}")):
         b = powered(name, table)
         dr = dist(b[-1], a[-1], "r_eci_")
         print(f"inputs over {table}: {dr:.3g} m from the time table at t = 100 s")
@@ -344,6 +473,38 @@ phases:
     with open("ref_missing.csv", "w") as f:
         f.write("\n".join(",".join(l.split(",")[:5]) for l in
                           open("ref.csv").read().splitlines()) + "\n")
+    write_reference("ref_late.csv", [(t + 10.0, r, v) for t, r, v in states])
+    write_reference("ref_after.csv", [(t + 2000.0, r, v) for t, r, v in states[:11]] +
+                    [(3000.0, states[11][1], states[11][2])])
+    write_reference("ref_tau_late.csv", states[:11], "tau [1]", [0.1 + 0.09 * i for i in range(11)])
+    write_reference("ref_heavy.csv", states, mass=1000.5)
+
+    def edit_ref(src, dst, row, col, value):
+        """`src` with data row `row` column `col` (0: the axis) set to `value`."""
+        lines = open(src).read().splitlines()
+        cells = lines[row].split(",")
+        cells[col] = value
+        lines[row] = ",".join(cells)
+        with open(dst, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    edit_ref("ref.csv", "ref_lat_deg.csv", 1, 2, "52.5")
+    edit_ref("ref.csv", "ref_fpa_big.csv", 3, 5, "2.5")
+    edit_ref("ref.csv", "ref_lon_deg.csv", 1, 3, "300")
+    edit_ref("ref.csv", "ref_neg_v.csv", 2, 4, "-1")
+    with open("ref_dup.csv", "w") as f:  # h twice: as h and as altitude
+        for i, line in enumerate(open("ref.csv").read().splitlines()):
+            c = line.split(",")
+            f.write(",".join(c[:2] + (["altitude [m]"] if i == 0 else [c[1]]) + c[2:]) + "\n")
+    with open("in_alpha_deg.csv", "w") as f:
+        f.write(open("in_time.csv").read().replace("alpha [rad]", "alpha_deg [deg]"))
+    # finding 13: a last tau of 1 + 1e-15 (an optimiser's round-off) is its 1: accepted
+    write_reference("ref_tau_noisy.csv", states, "tau [1]", [t / 1000.0 for t in ts[:-1]] +
+                    [1.0 + 1e-15])
+    with open("coast_tau_noisy.yaml", "w") as f:
+        f.write(COAST % ("coast-tau-noisy", "{table: ref_tau_noisy.csv, start: reference}"))
+    run(lvsim, "coast_tau_noisy.yaml", "o_tau_noisy")
+    d = summary("o_tau_noisy")["phases"][0]["reference"]
+    check(d["rows"] == 101 and d["position"]["max"] < 1e-4, "tau 1 + 1e-15: " + json.dumps(d))
     pw = open("pw_time.yaml").read()
     coast = open("coast.yaml").read()
     bad = {
@@ -367,6 +528,42 @@ phases:
         "light": (coast.replace("dry_mass: 1000", "dry_mass: 1200"),
                   r":\d+:\d+: phase 'coast': reference: its first mass m = 1000 kg is less than "
                   r"the dry mass 1200 kg"),
+        "ref_late": (coast.replace("ref.csv", "ref_late.csv"),
+                     r":\d+:\d+: phase 'coast': reference: table 'ref_late' starts at t = 10 s, "
+                     r"but the phase starts at t = 0 s"),
+        "ref_outside": (coast.replace("{table: ref.csv, start: reference}", "ref_after.csv"),
+                        r":\d+:\d+: phase 'coast': reference: table 'ref_after' covers t = 2000 "
+                        r"\.\. 3000 s, no part of the phase's t = 0 \.\. 1000 s"),
+        "tau_late": (coast.replace("ref.csv", "ref_tau_late.csv"),
+                     r":\d+:\d+: phase 'coast': reference: table 'ref_tau_late' starts at "
+                     r"tau = 0.10000000000000001"),
+        "heavy": (coast.replace("ref.csv", "ref_heavy.csv"),
+                  r":\d+:\d+: phase 'coast': reference: its first mass m = 1000.5 kg is more "
+                  r"than the 1000 kg of the stages it carries full"),
+        # finding 9: impossible values refused with start: parent too, naming row and column
+        "lat_big": (coast.replace("{table: ref.csv, start: reference}", "ref_lat_deg.csv"),
+                    r":\d+:\d+: phase 'coast', reference: table 'ref_lat_deg', data row 1 "
+                    r"\(time = 0\), column 'lat': 52.5 is not a latitude within \[-pi/2, pi/2\]"),
+        "fpa_big": (coast.replace("ref.csv", "ref_fpa_big.csv"),
+                    r"data row 3 \(time = 20\), column 'fpa': 2.5 is not a flight-path angle"),
+        "lon_deg": (coast.replace("ref.csv", "ref_lon_deg.csv"),
+                    r"data row 1 \(time = 0\), column 'lon': 300 is not a longitude within a "
+                    r"turn either way"),
+        "neg_v": (coast.replace("ref.csv", "ref_neg_v.csv"),
+                  r"data row 2 \(time = 10\), column 'v': -1 is not a speed >= 0"),
+        # finding 10: two names of one column; an input column in other units under another name
+        "dup_alias": (coast.replace("ref.csv", "ref_dup.csv"),
+                      r":\d+:\d+: .*table 'ref_dup' has both 'h' and 'altitude', two names of the "
+                      r"column h"),
+        "alpha_deg": (pw.replace("in_time.csv", "in_alpha_deg.csv"),
+                      r":\d+:\d+: phase 'burn', inputs: table 'in_alpha_deg' has a column "
+                      r"'alpha_deg' but none 'alpha'"),
+        # finding 12: a dispersion or targeting variable of a start value the reference replaces
+        "disp_override": (coast.replace("stages:", "parameters: {start_fpa_deg: 2}\nstages:", 1) +
+                          "dispersions:\n  parameters:\n    start_fpa_deg: {dist: normal, "
+                          "sigma: 0.05}\n",
+                          r":\d+:\d+: dispersions: 'start_fpa_deg' has no effect: phase 'coast' "
+                          r"starts from its reference \(start: reference\)"),
         "energy": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: energy"),
                    r":\d+:\d+: .*over: energy: the table 'in_up_down' has no column of it "
                    r"\(`energy`, or `h` and `v`"),

@@ -172,12 +172,15 @@ static void test_start_checks(void)
 
 /* A stage of 1000 kg dry and 2000 kg propellant, engine 1e5 N at Isp 300 s: burnout when the
  * 2000 kg are gone, t_b = 2000 / (1e5 / (300 g0)) = 58.8399 s, in both models, also when the
- * phase's mass is set 1500 kg higher (payload: it stays on board, burnout at m = 2500 kg). */
+ * phase's mass is set 1500 kg higher (payload: it stays on board, burnout at m = 2500 kg); set
+ * 500 kg lower (2500 kg: a mid-burn start) the stage holds 1500 kg, burnout at 1500 / mdot =
+ * 44.1299 s at the dry mass 1000 kg. */
 static void test_propellant_book(void)
 {
     const double mdot = 1e5 / (300.0 * G0), tb = 2000.0 / mdot;
     for (int planet = 0; planet < 2; planet++) {
-        for (int payload = 0; payload < 2; payload++) {
+        for (int payload = 0; payload < 3; payload++) { /* 2: mid-burn */
+            const double prop = payload == 2 ? 1500.0 : 2000.0;
             char yaml[2048];
             snprintf(yaml, sizeof yaml,
                      "mission: {name: book}\n%s"
@@ -189,7 +192,8 @@ static void test_propellant_book(void)
                      planet ? "environment: {world: planet, atmosphere: none}\n"
                               "parameters: {start_h: 100000, start_vel: 7000, start_fpa: 0}\n"
                             : "parameters: {start_fpa_deg: 90}\n",
-                     planet ? "dof3" : "flat6", payload ? ", set: {m: 4500}" : "");
+                     planet ? "dof3" : "flat6",
+                     payload == 1 ? ", set: {m: 4500}" : payload == 2 ? ", set: {m: 2500}" : "");
             write_file("book.yaml", yaml);
             lv_mission *m = NULL;
             lv_run *r = NULL;
@@ -203,13 +207,14 @@ static void test_propellant_book(void)
             double t, mass;
             CHECK_OK(lv_run_final(r, 0, "time", &t, &err), &err);
             CHECK_OK(lv_run_final(r, 0, "m", &mass, &err), &err);
-            CHECK_CLOSE(t, tb, 1e-8);
-            CHECK_CLOSE(mass, payload ? 2500.0 : 1000.0, 1e-8);
-            CHECK_CLOSE(res->payload, payload ? 1500.0 : 0.0, 1e-9);
-            CHECK(res->propellant_start[0] == 2000.0);
+            CHECK_CLOSE(t, tb * prop / 2000.0, 1e-8);
+            CHECK_CLOSE(mass, payload == 1 ? 2500.0 : 1000.0, 1e-8);
+            CHECK_CLOSE(res->payload, payload == 1 ? 1500.0 : 0.0, 1e-9);
+            CHECK(res->propellant_start[0] == prop);
             CHECK_CLOSE(res->propellant_end[0], 0.0, 1e-8);
             printf("book %s%s: burnout at %.9f s (%.9f), m = %.6f kg\n", planet ? "dof3" : "flat6",
-                   payload ? " + 1500 kg payload" : "", t, tb, mass);
+                   payload == 1 ? " + 1500 kg payload" : payload == 2 ? " from 2500 kg" : "", t,
+                   tb * prop / 2000.0, mass);
             lv_run_free(r);
             lv_mission_free(m);
         }

@@ -621,7 +621,7 @@ static void test_csv(void)
     }
     lv_table_free(t);
 
-    const lv_table_opts pchip = { LV_INTERP_PCHIP, LV_EXTRAP_CLAMP };
+    const lv_table_opts pchip = { LV_INTERP_PCHIP, LV_EXTRAP_CLAMP, 0 };
     CHECK_OK(lv_table_load_csv(data_path("cd_grid.csv", path, sizeof path), &pchip, &t, &err),
              &err);
     if (t != NULL) {
@@ -758,7 +758,7 @@ static void test_mat(void)
         }
         Mat_Close(mat);
 
-        const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+        const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR, 0 };
         double v[2];
         CHECK_OK(lv_table_load_mat(fmt[f].file, "thrust", &lin, &t, &err), &err);
         if (t != NULL) {
@@ -891,7 +891,7 @@ static void test_mat_struct(void)
         mat_put_struct(mat, "swapped", 3, fb, db, datab, fmt[f].z);
         Mat_Close(mat);
 
-        const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+        const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR, 0 };
         double v[2];
         CHECK_OK(lv_table_load_mat(fmt[f].file, "cn", &lin, &tab, &err), &err);
         if (tab != NULL) {
@@ -1030,7 +1030,7 @@ static void test_mat73_foreign(void)
      * stderr below) */
     H5Eset_auto2(H5E_DEFAULT, (H5E_auto2_t)H5Eprint2, stderr);
 
-    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR, 0 };
     lv_err err = { 0 };
     double v[1];
     const char *const ok[] = { "pad", "vlen", "noclass", "int" };

@@ -452,7 +452,7 @@ static void test_wind_forms(void)
     CHECK_FAILS(lv_wind_create_table(path, NULL, &w, &err), &err, LV_ERR_INPUT, "no rows");
 
     write_text(path, "h [m], north [m/s], east [m/s]\n0, 1, 10\n1000, 3, 20\n");
-    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_LINEAR };
+    const lv_table_opts lin = { LV_INTERP_LINEAR, LV_EXTRAP_LINEAR, 0 };
     CHECK_OK(lv_wind_create_table_opts(path, NULL, &lin, &w, &err), &err);
     if (w != NULL) { /* the line through (0, 1) and (1000, 3): north = 1 + h / 500 */
         CHECK(!lv_wind_is_constant(w));
@@ -465,7 +465,7 @@ static void test_wind_forms(void)
         lv_wind_free(w);
         w = NULL;
     }
-    const lv_table_opts strict = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR };
+    const lv_table_opts strict = { LV_INTERP_LINEAR, LV_EXTRAP_ERROR, 0 };
     CHECK_OK(lv_wind_create_table_opts(path, NULL, &strict, &w, &err), &err);
     if (w != NULL) {
         CHECK_OK(lv_wind_eval(w, NULL, 1000.0, v, &err), &err); /* the ends are inside */
