@@ -802,7 +802,11 @@ static int locate_root(lv_erk *e, double ta0, const double *g_a0, double *tb_io)
  * back and forth inside the step, or a root before the last return) from (t_lo, thi]. So a
  * run that writes no rows and skips its output times (sim/simulate.c, grid_skipped), a
  * stop at lv_sim_advance's time or an FMU's communication point locate the same event time
- * bit for bit as a run that returns at every output time. Returns as locate_root. */
+ * bit for bit as a run that returns at every output time. Returns as locate_root, or
+ * LOC_AFTER: the whole step's root lies after thi by less than the time tolerance (the
+ * crossing thi shows is that root, on an output time): no root up to thi. */
+#define LOC_AFTER 2 /* locate_in_step: the root lies just after thi */
+
 static int locate_in_step(lv_erk *e, double thi, double *tb_io)
 {
     int whole = 1;
@@ -820,6 +824,15 @@ static int locate_in_step(lv_erk *e, double thi, double *tb_io)
             *tb_io = tb;
             return 0;
         }
+        /* the root the crossing at thi shows, located from the whole step, lies just after
+         * thi (a root on an output time: an end whose value is a row's value is 0 at thi and
+         * within round-off of 0 for some 1e-12 s around it, so the window is 100 times the
+         * time tolerance): thi is returned as it is, and the root is found again after it,
+         * as a run without that output time finds it (the caller keeps g_lo from before the
+         * crossing) */
+        const double ttol = 100.0 * DBL_EPSILON * (fabs(e->t) + fabs(e->h_old));
+        if (tb > thi && tb - thi <= 100.0 * ttol)
+            return LOC_AFTER;
         /* back to (t_lo, thi]: g_b and x_b at thi again */
         if (dense_eval(e, thi, e->x_b) != 0)
             return 1;
@@ -879,6 +892,19 @@ lv_status lv_erk_advance(lv_erk *e, double tout, int stop_on_stiff, double *t, d
                 if (any) {
                     double tb = thi;
                     const int rc = locate_in_step(e, thi, &tb);
+                    if (rc == LOC_AFTER) {
+                        /* no root up to thi: thi is returned, g_lo keeps its values from
+                         * before the crossing, so that the next return finds the root just
+                         * after thi */
+                        if (dense_eval(e, thi, e->x_b) != 0)
+                            return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: right-hand side "
+                                           "failed in the dense output [%s]", e->t_lo, name);
+                        e->t_lo = thi;
+                        memcpy(x, e->x_b, e->n * sizeof *x);
+                        *t = thi;
+                        *res = LV_INTEG_REACHED;
+                        return LV_OK;
+                    }
                     if (rc != 0)
                         return lv_fail(err, LV_ERR_SOLVER, "at t = %.9g s: %s failed while "
                                        "locating an event [%s]", e->t_lo,

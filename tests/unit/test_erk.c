@@ -464,6 +464,62 @@ static void test_events_output_free(void)
     lv_integ_free(ig);
 }
 
+/* The oscillator's x0 crossing the value it has at an output time T exactly (as when a user
+ * takes an end's value from a result row): g = x0 - c is 0 at an output time and within
+ * round-off of 0 around it. Found at the same time bit for bit with outputs every 0.25 s (T is
+ * one of them) and with none, for T = 0.25, 0.5, ..., 3 (paper-test-case's burnout at 481 s
+ * on its output grid differed before). */
+static double osc_c;
+static int osc_gc(double t, const double *x, double *g, void *u)
+{
+    (void)t;
+    (void)u;
+    g[0] = x[0] - osc_c;
+    return 0;
+}
+static void test_event_on_output_time(void)
+{
+    const lv_method ms[3] = {LV_METHOD_DP5, LV_METHOD_DOP853, LV_METHOD_AUTO};
+    for (int k = 0; k < 3 * 12; k++) {
+        const double T = 0.25 * (k / 3 + 1);
+        double atol[2] = {1e-9, 1e-9}, x0[2] = {1.0, 0.0}, x[2], t = 0.0;
+        lv_err err;
+        lv_integ_result res;
+        int roots[1];
+        /* c: x0 at the output time T */
+        lv_integ_problem p0 = {.n = 2, .rhs = osc, .method = ms[k % 3], .rtol = 1e-9,
+                               .atol = atol, .max_steps = 100000};
+        lv_integ *ig = NULL;
+        CHECK_OK(lv_integ_create(&p0, 0.0, x0, &ig, &err), &err);
+        CHECK_OK(lv_integ_set_stop_time(ig, 10.0, &err), &err);
+        for (double to = 0.25; to <= T; to += 0.25) /* the output grid up to T */
+            CHECK_OK(lv_integ_advance(ig, to, &t, x, &res, roots, &err), &err);
+        osc_c = x[0];
+        lv_integ_free(ig);
+        double t_root[2] = {NAN, NAN};
+        for (int g = 0; g < 2; g++) {
+            lv_integ_problem p = p0;
+            p.n_g = 1;
+            p.g = osc_gc;
+            ig = NULL;
+            t = 0.0;
+            CHECK_OK(lv_integ_create(&p, 0.0, x0, &ig, &err), &err);
+            CHECK_OK(lv_integ_set_stop_time(ig, 10.0, &err), &err);
+            double to = g == 0 ? 0.25 : 10.0;
+            while (t < 10.0 && isnan(t_root[g])) {
+                CHECK_OK(lv_integ_advance(ig, to, &t, x, &res, roots, &err), &err);
+                if (res == LV_INTEG_ROOT)
+                    t_root[g] = t;
+                else if (g == 0)
+                    to += 0.25;
+            }
+            lv_integ_free(ig);
+        }
+        CHECK(memcmp(&t_root[0], &t_root[1], sizeof t_root[0]) == 0);
+        CHECK(fabs(t_root[0] - T) < 1e-9 || fabs(t_root[0] - (2.0 * M_PI - T)) < 1e-9);
+    }
+}
+
 /* A run that continues after an event (no restart): the function is not reported again, and
  * a restart at the root with the function exactly 0 is no new event either. */
 static void test_event_continue(void)
@@ -621,6 +677,7 @@ int main(void)
     test_events();
     test_event_sampling();
     test_events_output_free();
+    test_event_on_output_time();
     test_event_continue();
     test_stop_and_limits();
     test_stiffness();
