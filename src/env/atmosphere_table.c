@@ -67,10 +67,13 @@ static lv_status table_eval(const void *par, double h, lv_atmo_state *out, lv_er
                            "atmosphere model 'table' (%s): altitude is NaN; the table covers "
                            "%.9g m to %.9g m",
                            p->src, p->h_lo, p->h_hi);
+        /* the excess in its own digits: an altitude a hair above the top would print as
+         * the top itself with %.9g ("10000 m is outside ... to 10000 m") */
         return lv_fail(err, LV_ERR_INPUT,
-                       "atmosphere model 'table' (%s): altitude %.9g m is outside the table's "
-                       "range %.9g m to %.9g m",
-                       p->src, h, p->h_lo, p->h_hi);
+                       "atmosphere model 'table' (%s): altitude %.17g m is %s the table's "
+                       "range %.9g m to %.9g m (by %.3g m)",
+                       p->src, h, h > p->h_hi ? "above" : "below", p->h_lo, p->h_hi,
+                       h > p->h_hi ? h - p->h_hi : p->h_lo - h);
     }
     double y[COL_N];
     const lv_status st = lv_table_eval1(p->tab, NULL, h, y, err);

@@ -148,7 +148,7 @@ static int sim_g_eval(sim_run *r, double t, const double *x, double *g);
 
 /* The event functions (sim_g_eval), their last outcome remembered as the right-hand side's
  * is: a failure message names the model's reason (an end on q_dyn above a table
- * atmosphere's top: "altitude 10012 m above the table's 10000 m"). */
+ * atmosphere's top: "altitude 10000.0000000018 m is above the table's range 0 m to 10000 m"). */
 static int sim_g(double t, const double *x, double *g, void *user)
 {
     sim_run *r = user;

@@ -780,7 +780,7 @@ stages: [{name: s, dry_mass: 1000, propellant_mass: 4000, engines: [{name: e, th
 phases:
   - {name: up, model: dof3, stages: [s], stop_time: 60, end: [{q_dyn: 1.0e9}], aero: {s_ref: 1, CD: 0.3}}
 EOF2
-expect 3 "event functions .* cannot be evaluated at t = 30\.3.*atmosphere model 'table' .*outside the table's range" -- \
+expect 3 "event functions .* cannot be evaluated at t = 30\.3.*atmosphere model 'table' .*altitude 10000\.[0-9]+ m is above the table's range 0 m to 10000 m \(by [0-9.e-]+ m\)" -- \
   "$lvsim" run "$work/evf/m.yaml" -o "$work/evf/out" --no-plots -q
 
 # An end on a heat load that can never fire: refused by check and run alike (exit 2)
