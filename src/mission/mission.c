@@ -492,6 +492,15 @@ static lv_status check_and_plan(lv_mission *m, lv_err *err)
             if (st == LV_OK && kind != LV_VAR_STATE && kind != LV_VAR_PARAMETER)
                 st = lv_fail(err, LV_ERR_INPUT, "'%s' is not a state or parameter",
                              ph->set_names[i]);
+            /* start: reference gives the start state and mass (a child's states, a root's
+             * start_* parameters): a set: of them would override it on a child and be
+             * overridden on a root (and a mass below the reference's broke the stage book) */
+            if (st == LV_OK && ph->reference != NULL && ph->reference->start &&
+                (kind == LV_VAR_STATE || strncmp(ph->set_names[i], "start_", 6) == 0))
+                st = lv_fail(err, LV_ERR_INPUT, "'%s': the phase starts from its reference's "
+                             "first row (start: reference), which gives its start state and "
+                             "mass; leave '%s' out of set:, or start from the parent (start: "
+                             "parent)", ph->set_names[i], ph->set_names[i]);
             if (st == LV_OK && ph->set_deg != NULL && ph->set_deg[i]) {
                 const char *u = kind == LV_VAR_STATE ? md->states[idx].unit
                                                      : md->params[idx].unit;

@@ -338,6 +338,11 @@ static lv_status parse_separation(const lv_pctx *c, const lv_ynode *n, const lv_
     if (lv_pk_get(phase, "from") == NULL)
         return lv_pk_fail(c, lv_pk_key(phase, "separation"), "%s: a separation is a hand-off "
                           "rule: only a phase with `from` has one", what);
+    if (ph->reference != NULL && ph->reference->start) /* parsed before (phase_dof3_parse) */
+        return lv_pk_fail(c, lv_pk_key(phase, "separation"), "%s: the phase starts from its "
+                          "reference's first row (start: reference), which gives its velocity: "
+                          "a separation impulse would be ignored; leave it out, or start from the "
+                          "parent (start: parent)", what);
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {dv: -2} expected", what);
     if ((st = lv_pk_check_map(c, n, what, skeys)) != LV_OK)

@@ -507,7 +507,25 @@ phases:
     check(d["rows"] == 101 and d["position"]["max"] < 1e-4, "tau 1 + 1e-15: " + json.dumps(d))
     pw = open("pw_time.yaml").read()
     coast = open("coast.yaml").read()
+    child = open("child.yaml").read()
     bad = {
+        # the second breaker's finding 1: a set: of a state (or a separation) with start:
+        # reference overrode the reference on a child (a 500 kg drift, payload -500 kg) and
+        # was ignored on a root
+        "set_child": (child.replace("    reference: {table: ref_child.csv, start: reference}",
+                                    "    reference: {table: ref_child.csv, start: reference}\n"
+                                    "    set: {m: 850}"),
+                      r":\d+:\d+: phase 'b': set: 'm': the phase starts from its reference's "
+                      r"first row \(start: reference\)"),
+        "set_root_v": (coast.replace("{table: ref.csv, start: reference}\n",
+                                     "{table: ref.csv, start: reference}\n    set: {start_vel: 10}\n"),
+                       r":\d+:\d+: phase 'coast': set: 'start_vel': the phase starts from its "
+                       r"reference's first row"),
+        "separation": (child.replace("    reference: {table: ref_child.csv, start: reference}",
+                                     "    reference: {table: ref_child.csv, start: reference}\n"
+                                     "    separation: {dv: 5}"),
+                       r":\d+:\d+: phase 'b', separation: the phase starts from its reference's "
+                       r"first row"),
         "nonmonotone": (pw.replace("in_time.csv, over: time", "in_up_down.csv, over: altitude"),
                         r"bad_nonmonotone.yaml:\d+:\d+: phase 'burn', inputs: over: altitude: "
                         r"the variable is not strictly monotone"),
