@@ -191,6 +191,12 @@ static lv_status parse_end(const lv_pctx *c, const lv_ynode *n, const char *phas
             return lv_pk_fail(c, v, "%s: impact is always falling (altitude decreasing through "
                               "%g m)", what, lv_mission_def_value(c->m, e->value));
         e->direction = dir_of[i];
+    } else if (e->kind == LV_END_VAR &&
+               (strcmp(e->var, "heat_load") == 0 || strcmp(e->var, "heat_load_fm") == 0)) {
+        /* the heat loads of dof3 and dof6 only grow: rising, so that a child whose parent's
+         * load is already past the value fails as "already passed" instead of never firing
+         * (mission.c refuses falling) */
+        e->direction = LV_DIR_RISING;
     } else if (e->kind != LV_END_IMPACT) {
         e->direction = LV_DIR_BOTH;
     }

@@ -795,5 +795,13 @@ for end in "{heat_load: -1}|heat_load must be > 0 J/m2, found -1" \
   done
 done
 
+# A heat-load end on a child whose parent's load is already past it: rising by default, so the
+# phase fails as "already passed" (exit 3) instead of never firing and ending otherwise
+sed -e 's/{table: atm.csv}/us76/' -e 's/, end: \[{q_dyn: 1.0e9}\]//' -e 's/stop_time: 60/stop_time: 20/' \
+  "$work/evf/m.yaml" > "$work/evf/h2.yaml"
+echo "  - {name: up2, model: dof3, stages: [s], from: up, stop_time: 60, end: [{heat_load: 1}], aero: {s_ref: 1, CD: 0.3}}" >> "$work/evf/h2.yaml"
+expect 3 "phase 'up2': the end 'heat_load' is already passed at the start t = 20 s: it fires when heat_load rises through 1" -- \
+  "$lvsim" run "$work/evf/h2.yaml" -o "$work/evf/h2out" --no-plots
+
 echo "$pass passed, $fails failed"
 [ "$fails" -eq 0 ]
