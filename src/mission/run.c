@@ -348,10 +348,23 @@ static lv_status prepare(lv_run *r, size_t k, const lv_run_options *opt, lv_phas
     lv_sim_settings *s = &c->s;
     lv_sim_settings_default(s);
     s->start_time = ph->t_start != LV_NO_SLOT ? v[ph->t_start] : (par ? par->res.t_end : 0.0);
-    /* a child started from a time-axis reference starts at the reference's first time */
+    /* a child started from a time-axis reference starts at the reference's first time: not
+     * before its parent's end (its bodies would fly back in time: their trajectories and
+     * timelines run backwards), at the end when the two differ by round-off */
     if (par != NULL && ph->t_start == LV_NO_SLOT && ph->reference != NULL &&
-        !isnan(lv_reference_start_time(ph->reference)))
-        s->start_time = lv_reference_start_time(ph->reference);
+        !isnan(lv_reference_start_time(ph->reference))) {
+        const double t_ref = lv_reference_start_time(ph->reference), te = par->res.t_end;
+        if (t_ref < te - 1e-9 * fmax(1.0, fabs(te))) {
+            lv_phase_call_free(c);
+            return lv_fail(err, LV_ERR_INPUT, "%s:%d:%d: phase '%s': reference: it starts at "
+                           "t = %.17g s, before its parent '%s' ended (t = %.17g s): the "
+                           "bodies would fly back in time; start the reference at the "
+                           "hand-off, or the phase from its parent (start: parent)", d->path,
+                           ph->reference->loc.line, ph->reference->loc.column, ph->name,
+                           t_ref, d->phases[ph->parent].name, te);
+        }
+        s->start_time = t_ref > te ? t_ref : te;
+    }
     s->stop_time = v[ph->t_stop];
     s->method = opt && opt->method ? opt->method
                                    : (ph->method ? ph->method : LV_PHASE_METHOD_DEFAULT);

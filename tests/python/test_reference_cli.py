@@ -305,6 +305,14 @@ phases:
     d = summary("o4")["phases"][1]["reference"]
     check(d["rows"] == 71 and d["position"]["max"] < 1e-4, "child drift " + json.dumps(d))
     # (its parent ended at 290 s: the child starts at the reference's first time, 300 s)
+    # a reference that starts before the parent's end (310 s) would fly the bodies back in
+    # time: the child fails at run time, naming both times (second breaker pass, finding 4)
+    with open("child_back.yaml", "w") as f:
+        f.write(open("child.yaml").read().replace("stop_time: 290}", "stop_time: 310}"))
+    p = run(lvsim, "child_back.yaml", "o4b", expect=3)
+    check(re.search(r"child_back.yaml:\d+:\d+: phase 'b': reference: it starts at t = 300 s, "
+                    r"before its parent 'a' ended \(t = 310 s\)", p.stderr + p.stdout) is not None,
+          "child before its parent's end: " + p.stderr[-400:])
 
     # 4b. a mid-burn start (finding 1 of the breaker's report): a stage of 2000 kg dry and 8000
     # kg propellant burning 70 kg/s started from a reference (or a set: of m) of 6000 kg holds
