@@ -234,7 +234,7 @@ static int point_eval(lv_runway *m, rw_inst *s, double t, const double *x, const
     k->c_th = cos(th);
     k->s_th = sin(th);
     on_runway(s, x, &k->r_ecef, &k->v_rel);
-    lv_flight_geodetic(w, k, full, w->wind != NULL);
+    lv_flight_geodetic(w, k, full, w->wind_latlon); /* a wind that reads lat, lon */
     int rc = lv_flight_air_eval(w, t, k, &pt->air, err);
     if (rc != 0)
         return rc;

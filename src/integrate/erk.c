@@ -743,6 +743,12 @@ static int crosses(const lv_erk *e, size_t i, double glo, double g)
     return want == 0 || want == dir;
 }
 
+/* A root's time tolerance: CVODE's 100 eps (|t| + |h|). */
+static double root_ttol(const lv_erk *e)
+{
+    return 100.0 * DBL_EPSILON * (fabs(e->t) + fabs(e->h_old));
+}
+
 /* The earliest root in (ta0, thi] of the functions that cross there, g_a0 holding g(ta0), g_b
  * g(thi) and x_b the state at thi: each crossing function's root bracketed by the Illinois
  * variant of regula falsi (Dowell & Jarratt 1971) on the dense output, down to CVODE's time
@@ -753,7 +759,7 @@ static int crosses(const lv_erk *e, size_t i, double glo, double g)
 static int locate_root(lv_erk *e, double ta0, const double *g_a0, double *tb_io)
 {
     const size_t ng = e->ng;
-    const double ttol = 100.0 * DBL_EPSILON * (fabs(e->t) + fabs(e->h_old));
+    const double ttol = root_ttol(e);
     double tb = *tb_io;
     for (size_t i = 0; i < ng; i++) {
         if (!crosses(e, i, g_a0[i], e->g_b[i]))
@@ -830,7 +836,7 @@ static int locate_in_step(lv_erk *e, double thi, double *tb_io)
          * time tolerance): thi is returned as it is, and the root is found again after it,
          * as a run without that output time finds it (the caller keeps g_lo from before the
          * crossing) */
-        const double ttol = 100.0 * DBL_EPSILON * (fabs(e->t) + fabs(e->h_old));
+        const double ttol = root_ttol(e);
         if (tb > thi && tb - thi <= 100.0 * ttol)
             return LOC_AFTER;
         /* back to (t_lo, thi]: g_b and x_b at thi again */

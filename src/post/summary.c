@@ -284,18 +284,14 @@ static cJSON *phase_json(const lv_run *run, size_t k)
     return o;
 }
 
-/* A number as the result CSVs write it (the shortest text that reads back exactly: cJSON's
- * own keeps 15 digits when they read back within DBL_EPSILON), so that a timeline's values
- * equal the rows they come from; null when not finite. */
+/* A number, null when not finite. lv_json_print writes it as the result CSVs do (the shortest
+ * text that reads back exactly), so a timeline's values equal the rows they come from. */
 static void num_or_null(cJSON *o, const char *key, double v)
 {
-    char buf[LV_NUMFMT_MAX];
-    if (isfinite(v)) {
-        lv_numfmt_double(v, buf);
-        cJSON_AddRawToObject(o, key, buf);
-    } else {
+    if (isfinite(v))
+        cJSON_AddNumberToObject(o, key, v);
+    else
         cJSON_AddNullToObject(o, key);
-    }
 }
 
 /* bodies[].timeline (lv_run_timeline): each event of the body's flight with its row's state.
