@@ -32,6 +32,7 @@ extern const cli_cmd cli_cmd_run;
 extern const cli_cmd cli_cmd_mc;
 extern const cli_cmd cli_cmd_check;
 extern const cli_cmd cli_cmd_target;
+extern const cli_cmd cli_cmd_optimize;
 extern const cli_cmd cli_cmd_params;
 extern const cli_cmd cli_cmd_compare;
 extern const cli_cmd cli_cmd_export;

@@ -40,7 +40,7 @@ static const cli_cmd cmd_version = {
 /* The commands in the order `lvsim help` lists them. */
 static const cli_cmd *const commands[] = {
     &cli_cmd_models,  &cli_cmd_vars,       &cli_cmd_laws,     &cli_cmd_simulate, &cli_cmd_run,
-    &cli_cmd_mc,      &cli_cmd_check,      &cli_cmd_target,   &cli_cmd_params,   &cli_cmd_compare,
+    &cli_cmd_mc,      &cli_cmd_check,      &cli_cmd_target,   &cli_cmd_optimize,   &cli_cmd_params,   &cli_cmd_compare,
     &cli_cmd_export,  &cli_cmd_formats,    &cli_cmd_fmu,      &cli_cmd_plot,     &cli_cmd_view,
     &cli_cmd_atmosphere, &cli_cmd_gravity, &cmd_help,         &cmd_version,      NULL,
 };

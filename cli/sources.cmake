@@ -10,6 +10,7 @@ add_executable(lvsim_cli
   cli/cmd_mc.c
   cli/cmd_check.c
   cli/cmd_target.c
+  cli/cmd_optimize.c
   cli/cmd_params.c
   cli/cmd_compare.c
   cli/cmd_export.c

@@ -13,6 +13,8 @@ pkg_search_module(HDF5 REQUIRED IMPORTED_TARGET hdf5-serial hdf5)
 pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)
 # NLopt (Debian: libnlopt-dev): the optimisers of src/target (SLSQP, COBYLA).
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
+# IPOPT (Debian: coinor-libipopt-dev): the NLP solver of lvsim optimize (src/optimal).
+pkg_check_modules(IPOPT REQUIRED ipopt)
 pkg_check_modules(CJSON REQUIRED IMPORTED_TARGET libcjson)
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)  # src/post only: PNG/SVG figures
 pkg_check_modules(NETTLE REQUIRED IMPORTED_TARGET nettle)  # SHA-256: src/io/atomic.c (every file
@@ -67,6 +69,7 @@ target_compile_definitions(lv_matio_headers INTERFACE LV_HDF5_SONAME="${LV_HDF5_
 # an optimiser), SQLite (src/campaign/sqlite_dl.c, a campaign), libzip (src/fmi/zip_dl.c, an
 # FMU archive; it brings OpenSSL's libcrypto). Their headers are used, never their libraries.
 lv_soname(LV_NLOPT_SONAME nlopt "${NLOPT_LIBRARY_DIRS}")
+lv_soname(LV_IPOPT_SONAME ipopt "${IPOPT_LIBRARY_DIRS}")
 lv_soname(LV_SQLITE3_SONAME sqlite3 "${SQLITE3_LIBRARY_DIRS}")
 lv_soname(LV_ZIP_SONAME zip "${LIBZIP_LIBRARY_DIRS}")
 # SUNDIALS the same way (src/integrate/cvode_dl.c, arkode_dl.c): a phase integrates with lvsim's
@@ -89,8 +92,10 @@ target_include_directories(lv_nettle_headers INTERFACE ${NETTLE_INCLUDE_DIRS})
 target_compile_definitions(lv_nettle_headers INTERFACE LV_NETTLE_SONAME="${LV_NETTLE_SONAME}")
 add_library(lv_dl_headers INTERFACE)
 target_include_directories(lv_dl_headers INTERFACE ${NLOPT_INCLUDE_DIRS} ${SQLITE3_INCLUDE_DIRS}
+  ${IPOPT_INCLUDE_DIRS}
   ${LIBZIP_INCLUDE_DIRS})
 target_compile_definitions(lv_dl_headers INTERFACE LV_NLOPT_SONAME="${LV_NLOPT_SONAME}"
+  LV_IPOPT_SONAME="${LV_IPOPT_SONAME}"
   LV_SQLITE3_SONAME="${LV_SQLITE3_SONAME}" LV_ZIP_SONAME="${LV_ZIP_SONAME}")
 
 # Random123 (Debian: librandom123-dev, header-only): the Philox4x32-10 counter-based generator

@@ -15,6 +15,7 @@ pkgs=(
   libcjson-dev                         # summary.json, exports
   liberfa-dev                          # UTC with leap seconds: the mission epoch, written times
   libnlopt-dev                         # lvsim target: SLSQP and COBYLA (src/target/optimize.c)
+  coinor-libipopt-dev                  # lvsim optimize: IPOPT, the NLP solver (src/optimal/ocp.c)
   nettle-dev                           # SHA-256 in the results folder's manifest
   libzip-dev unzip                     # lvsim fmu: the FMU archive; its test unpacks it
   python3-scipy python3-numpy          # independent .mat reader in the tests; NumPy: the Python package

@@ -15,6 +15,7 @@
 #include "core/table_unit.h"
 #include "mission/mission_rt.h"
 #include "mission/reference.h"
+#include "mission/ocp_def.h"
 #include "mission/targeting_def.h"
 #include "lvsim/lv_units.h"
 
@@ -639,7 +640,8 @@ lv_status lv_mission_from_def(lv_mission_def *d, lv_mission **out, lv_err *err)
     lv_status st;
     if ((st = lv_mission_env_make(d, &m->env, err)) != LV_OK ||
         (st = check_and_plan(m, err)) != LV_OK ||
-        (st = lv_targeting_def_check(m, err)) != LV_OK) {
+        (st = lv_targeting_def_check(m, err)) != LV_OK ||
+        (st = lv_ocp_def_check(m, err)) != LV_OK) {
         lv_mission_free(m);
         return st;
     }

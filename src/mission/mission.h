@@ -322,6 +322,7 @@ typedef struct lv_mission_def {
     lv_slot_def *slots;
     size_t cap_slots;
     lv_targeting_def *targeting; /* the `targeting:` section, or NULL */
+    struct lv_ocp_def *ocp;      /* the `optimal_control:` section (ocp_def.h), or NULL */
     struct lv_disp_def *disp; /* `dispersions:` (mission/dispersion.h), or NULL */
 } lv_mission_def;
 

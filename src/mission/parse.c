@@ -20,6 +20,7 @@
 #include "mission/parse_int.h"
 #include "mission/phase_type.h"
 #include "mission/reference.h"
+#include "mission/ocp_def.h"
 #include "mission/targeting_def.h"
 
 
@@ -111,7 +112,8 @@ static lv_status text_bounded(const lv_pctx *c, const lv_ynode *v, const char *k
 static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
 {
     static const char *const keys[] = { "mission", "environment", "parameters", "stages",
-                                        "phases", "dispersions", "targeting", NULL };
+                                        "phases", "dispersions", "targeting",
+                                        "optimal_control", NULL };
     static const char *const mkeys[] = { "name", "description", "epoch", NULL };
     lv_mission_def *m = c->m;
     const lv_ynode *v, *info;
@@ -153,7 +155,8 @@ static lv_status parse_root(const lv_pctx *c, const lv_ynode *root)
         return st;
     if ((st = lv_pk_need(c, root, "top level", "phases", &v)) != LV_OK ||
         (st = lv_parse_phases(c, v)) != LV_OK ||
-        (st = lv_targeting_def_parse(c, lv_pk_get(root, "targeting"))) != LV_OK)
+        (st = lv_targeting_def_parse(c, lv_pk_get(root, "targeting"))) != LV_OK ||
+        (st = lv_ocp_def_parse(c, lv_pk_get(root, "optimal_control"))) != LV_OK)
         return st;
     /* after everything else: it names the parameters the other sections register */
     if ((st = lv_disp_def_parse(c, lv_pk_get(root, "dispersions"))) != LV_OK)
@@ -296,6 +299,7 @@ void lv_mission_def_free(lv_mission_def *m)
     }
     free(m->phases);
     lv_targeting_def_free(m->targeting);
+    lv_ocp_def_free(m->ocp);
     lv_disp_def_free(m->disp);
     free(m);
 }

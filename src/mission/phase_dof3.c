@@ -15,6 +15,7 @@
 #include "lvsim/lv_wind.h"
 #include "mission/aero_def.h"
 #include "mission/guidance_def.h"
+#include "dynamics/guidance.h"
 #include "mission/phase_kit.h"
 #include "mission/phase_type.h"
 #include "mission/reference.h"
@@ -584,6 +585,40 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
     return LV_OK;
 }
 
+/* ---- controls from an optimiser (optimal_control:, docs/optimal-control.md) ------------------ */
+
+static const char *const dof3_controls[] = {"alpha", "beta", "mu", "throttle", NULL};
+
+static int dof3_control_conflict(const lv_phase_def *ph, size_t input, char *why, size_t cap)
+{
+    const dof3_cfg *cfg = ph->type_cfg;
+    if (input < 3 && cfg->guid.steer.law != NULL) {
+        snprintf(why, cap, "the phase steers with the guidance law '%s', which gives the "
+                 "angles: remove `guidance:` to optimise them", cfg->guid.steer.law->name);
+        return 1;
+    }
+    if (input == 3 && cfg->guid.thr.law != NULL) {
+        snprintf(why, cap, "the phase's `throttle:` (law '%s') gives the throttle: remove it to "
+                 "optimise the throttle", cfg->guid.thr.law->name);
+        return 1;
+    }
+    if (input == 3 && lv_guidance_def_gives_throttle(&cfg->guid)) {
+        snprintf(why, cap, "the attitude table gives the throttle: remove its 'throttle' "
+                 "output to optimise it");
+        return 1;
+    }
+    return 0;
+}
+
+static void dof3_set_controls(lv_phase_def *ph, lv_table *t)
+{
+    dof3_cfg *cfg = ph->type_cfg;
+    lv_table_free(cfg->inputs);
+    cfg->inputs = t;
+    cfg->over = LV_DOF3_OVER_TIME;
+    cfg->duration = NAN;
+}
+
 const lv_phase_type lv_phase_type_dof3 = {
     .name = "dof3",
     .description = "3-DoF variable-mass point over the rotating planet: engines, aerodynamics, "
@@ -604,4 +639,7 @@ const lv_phase_type lv_phase_type_dof3 = {
     .traj_extra = NULL,
     .handoff = dof3_handoff,
     .check = dof3_check,
+    .controls = dof3_controls,
+    .control_conflict = dof3_control_conflict,
+    .set_controls = dof3_set_controls,
 };

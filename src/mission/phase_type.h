@@ -182,6 +182,18 @@ struct lv_phase_type {
      * NULL-terminated; NULL: a child reads them all. A parameter that only children read is
      * refused where the file writes it. */
     const char *const *root_only_params;
+
+    /* The model inputs an optimiser may give a phase of this type as controls
+     * (`optimal_control:`, docs/optimal-control.md), SI names ("alpha", "throttle"; an angle's
+     * unit is rad), NULL-terminated; NULL: none. */
+    const char *const *controls;
+    /* Nonzero, with the reason in why, when phase ph cannot take control `input` (an index
+     * into controls) from the optimiser: something else gives it (a steering law the angles, a
+     * throttle law the throttle). NULL: no conflicts. */
+    int (*control_conflict)(const lv_phase_def *ph, size_t input, char *why, size_t cap);
+    /* Makes phase ph fly the 1-D table t over mission time (outputs named as controls,
+     * linear) as its controls, in place of its own inputs table; ph takes t over (frees it). */
+    void (*set_controls)(lv_phase_def *ph, lv_table *t);
 };
 
 /* The type whose model compare.c flies end to end (the paper's flat-world test case): a study

@@ -14,6 +14,7 @@ list(APPEND LV_SOURCES
   src/mission/aero_def.c
   src/mission/guidance_def.c
   src/mission/targeting_def.c
+  src/mission/ocp_def.c
   src/mission/dispersion_def.c
   src/mission/dispersion.c
   src/mission/phase_types.c

@@ -88,7 +88,8 @@ static lv_status parse_var(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tva
     return LV_OK;
 }
 
-static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tcon_def *con)
+lv_status lv_tcon_parse(const lv_pctx *c, const lv_ynode *n, const char *sec, size_t k,
+                        lv_tcon_def *con)
 {
     static const char *const keys[] = {"final", "path", "equal", "min", "max", "tolerance",
                                        "end", NULL};
@@ -96,7 +97,7 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
     char what[LV_WHAT_MAX];
     const lv_ynode *x, *kv = NULL;
     lv_status st;
-    snprintf(what, sizeof what, "targeting: constraint #%zu", k + 1);
+    snprintf(what, sizeof what, "%s: constraint #%zu", sec, k + 1);
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {final: P2.peri_alt, equal: 200000, "
                           "tolerance: 100} expected", what);
@@ -114,7 +115,7 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
     if ((st = dup_name(c, x, what, con->path ? "path" : "final", &con->name)) != LV_OK)
         return st;
     con->loc = loc_of(x);
-    snprintf(what, sizeof what, "targeting: %sconstraint on '%.60s'", con->path ? "path " : "",
+    snprintf(what, sizeof what, "%s: %sconstraint on '%.60s'", sec, con->path ? "path " : "",
              con->name);
     if ((x = lv_pk_get(n, "end")) != NULL) {
         if ((st = dup_name(c, x, what, "end", &con->end)) != LV_OK)
@@ -157,10 +158,11 @@ static lv_status parse_con(const lv_pctx *c, const lv_ynode *n, size_t k, lv_tco
     return LV_OK;
 }
 
-static lv_status parse_cost(const lv_pctx *c, const lv_ynode *n, lv_tcost_def *cost)
+lv_status lv_tcost_parse(const lv_pctx *c, const lv_ynode *n, const char *sec, lv_tcost_def *cost)
 {
     static const char *const keys[] = {"maximize", "minimize", "scale", "end", NULL};
-    const char *what = "targeting: cost";
+    char what[LV_WHAT_MAX];
+    snprintf(what, sizeof what, "%s: cost", sec);
     lv_status st;
     if (n->kind != LV_YNODE_MAP)
         return lv_pk_fail(c, n, "%s: a mapping such as {maximize: P4.m} expected", what);
@@ -279,10 +281,10 @@ lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n)
         if ((st = parse_var(c, vars->kids[k], k, &t->vars[k])) != LV_OK)
             return st;
     for (size_t k = 0; k < t->n_cons; k++)
-        if ((st = parse_con(c, cons->kids[k], k, &t->cons[k])) != LV_OK)
+        if ((st = lv_tcon_parse(c, cons->kids[k], "targeting", k, &t->cons[k])) != LV_OK)
             return st;
     if ((v = lv_pk_get(n, "cost")) != NULL && !lv_yaml_is_null(v) &&
-        (st = parse_cost(c, v, &t->cost)) != LV_OK)
+        (st = lv_tcost_parse(c, v, "targeting", &t->cost)) != LV_OK)
         return st;
     if (t->n_cons == 0 && !t->cost.present)
         return lv_pk_fail(c, n, "%s: nothing to achieve: give 'constraints', a 'cost' or both",

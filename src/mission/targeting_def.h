@@ -113,6 +113,13 @@ typedef struct lv_targeting_def {
 double lv_targeting_path_extremum(const double *t, const double *y, size_t n, int want_max,
                                   double *t_out);
 
+/* One constraint (item k of a `constraints:` list) and the cost, parsed for section `sec`
+ * ("targeting", "optimal_control": the same words in both, docs/optimal-control.md). */
+lv_status lv_tcon_parse(const lv_pctx *c, const lv_ynode *n, const char *sec, size_t k,
+                        lv_tcon_def *con);
+lv_status lv_tcost_parse(const lv_pctx *c, const lv_ynode *n, const char *sec,
+                         lv_tcost_def *cost);
+
 /* Parses the `targeting:` mapping `n` (NULL or empty: none) into c->m->targeting. */
 lv_status lv_targeting_def_parse(const lv_pctx *c, const lv_ynode *n);
 /* Resolves and checks the section against the loaded mission m (its plans made): every

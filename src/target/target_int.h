@@ -159,4 +159,14 @@ typedef enum tg_opt_end {
 lv_status tg_optimize(lv_target *t, lv_target_method alg, tg_point *p, int max_iter,
                       tg_opt_end *end, char *reason, size_t reason_cap, lv_err *err);
 
+/* ---- paths in a written mission (write.c) ---------------------------------------------------- */
+
+/* 1 when key k's string values name files the mission reads (docs/mission-format.md). */
+int lv_tw_path_key(const char *k);
+/* The folder of `path` (which need not exist yet), absolute and resolved; NULL. Free it. */
+char *lv_tw_dir_real(const char *path);
+/* `target` (absolute, resolved) relative to folder `from` (absolute, resolved); absolute when
+ * they share no folder but the root. Free it; NULL: out of memory. */
+char *lv_tw_relative_to(const char *target, const char *from);
+
 #endif

@@ -141,7 +141,7 @@ static int edit_cmp(const void *a, const void *b)
 /* ---- relative paths, when the file moves ---------------------------------------------------- */
 
 /* The keys whose string values name files the mission reads (docs/mission-format.md). */
-static int path_key(const char *k)
+int lv_tw_path_key(const char *k)
 {
     static const char *const keys[] = {"table", "file", "coefficients", "wind", "alpha_table",
                                        "CD", "CL", "CY", "CA", "CN", NULL};
@@ -152,7 +152,7 @@ static int path_key(const char *k)
 }
 
 /* The folder of `path` (which need not exist yet) as an absolute, resolved path; NULL. */
-static char *dir_real(const char *path)
+char *lv_tw_dir_real(const char *path)
 {
     const char *slash = strrchr(path, '/');
     char dir[LV_ATOMIC_PATH_MAX];
@@ -167,7 +167,7 @@ static char *dir_real(const char *path)
 
 /* `target` (absolute, resolved) relative to folder `from` (absolute, resolved); absolute when
  * they share no folder but the root. */
-static char *relative_to(const char *target, const char *from)
+char *lv_tw_relative_to(const char *target, const char *from)
 {
     size_t common = 0, i = 0;
     for (; target[i] != '\0' && from[i] != '\0' && target[i] == from[i]; i++)
@@ -219,7 +219,7 @@ static void walk_paths(path_walk *w, const lv_ynode *n, const char *key)
             walk_paths(w, n->kids[i], key);
         return;
     }
-    if (key == NULL || !path_key(key) || n->len == 0 || n->text[0] == '/' ||
+    if (key == NULL || !lv_tw_path_key(key) || n->len == 0 || n->text[0] == '/' ||
         strlen(n->text) != n->len)
         return;
     char joined[2 * LV_ATOMIC_PATH_MAX];
@@ -230,7 +230,7 @@ static void walk_paths(path_walk *w, const lv_ynode *n, const char *key)
         free(abs);
         return; /* not a file: a model's name, a number */
     }
-    char *rel = relative_to(abs, w->odir);
+    char *rel = lv_tw_relative_to(abs, w->odir);
     free(abs);
     if (rel == NULL) {
         w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
@@ -285,7 +285,7 @@ static lv_status path_edits(const char *text, size_t len, const lv_mission_def *
 {
     *edits = NULL;
     *n = 0;
-    char *mdir = realpath(d->dir, NULL), *odir = dir_real(out);
+    char *mdir = realpath(d->dir, NULL), *odir = lv_tw_dir_real(out);
     lv_ynode *root = NULL;
     lv_status st = LV_OK;
     if (mdir == NULL || odir == NULL) {

@@ -57,3 +57,7 @@ add_test(NAME test_dprof_cli COMMAND ${PROJECT_SOURCE_DIR}/tests/cli/test_dprof_
 # item 3): drift against closed-form Kepler coasts, start from the reference, bad input.
 add_test(NAME test_reference_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/test_reference_cli.py
          $<TARGET_FILE:lvsim_cli>)
+# Optimal control by direct multiple shooting with IPOPT (issue 25, items 1-2): the linear
+# tangent law's closed form, its least-time dual, zero defects, infeasible, bad sections.
+add_test(NAME test_optimize_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/test_optimize_cli.py
+         $<TARGET_FILE:lvsim_cli>)

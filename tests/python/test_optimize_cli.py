@@ -1,0 +1,300 @@
+#!/usr/bin/python3
+"""test_optimize_cli.py - `lvsim optimize`: direct multiple shooting with IPOPT over a mission's
+phase tree (issue 25, items 1 and 2; docs/optimal-control.md).
+
+Usage: test_optimize_cli.py LVSIM
+
+The reference answers are computed here, independently of lvsim:
+- the linear tangent law (Bryson & Ho, Applied Optimal Control, 1975, sec. 2.7; Betts,
+  Practical Methods..., 2nd ed., 2010, sec. 6.? "linear tangent steering"): over a flat world
+  with uniform gravity g and a constant thrust acceleration a, the steering that maximises the
+  horizontal speed at a fixed time tf, with the altitude H and zero vertical speed there, is
+  tan(theta) = tan(theta0) - c t; the states follow in closed form (the integrals of cos and
+  sin of theta under that law, as tests/unit/test_guidance.c writes them), and theta0, c solve
+  y(tf) = H, vy(tf) = 0 (scipy's fsolve). Its dual - the least time to reach H, vy = 0 and that
+  horizontal speed - has the same law and tf. The flat world is lvsim's dof3 over a
+  non-rotating sphere of radius 1e10 m (centrifugal v^2/R = 1e-4 m/s^2, gravity change
+  2h/R = 2e-6: a horizontal speed within 5e-3 m/s of the flat answer over 60 s);
+- a problem whose start point meets its constraints and has no cost converges at once;
+- an unreachable altitude is reported INFEASIBLE or NOT CONVERGED (exit 3) naming the final;
+- the written optimal mission re-flown by `lvsim run` drifts from the optimiser's trajectory
+  by far less than the integration tolerance's scale;
+- every bad optimal_control section is refused by `lvsim check` and `lvsim optimize` alike,
+  exit 2, with file:line:column.
+"""
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from scipy.optimize import fsolve
+
+FAILS = []
+
+
+def check(cond, what):
+    if not cond:
+        FAILS.append(what)
+        print("FAIL:", what)
+
+
+G0 = 9.80665
+M0 = 1100.0
+THRUST = 2.0 * G0 * M0          # a = 2 g0, constant mass (isp 1e9 s)
+TF, H0, DH = 60.0, 1000.0, 10000.0
+V0, FPA0 = 100.0, math.radians(80.0)
+
+
+def lt_state(xi0, c, t):
+    """(y - y0, vx, vy) under tan(theta) = xi0 - c t from (vx0, vy0) (closed form)."""
+    a = THRUST / M0
+    vx0, vy0 = V0 * math.cos(FPA0), V0 * math.sin(FPA0)
+    xi = xi0 - c * t
+    s0, s1 = math.sqrt(1 + xi0 ** 2), math.sqrt(1 + xi ** 2)
+    g0v, g1 = 0.5 * (xi0 * s0 + math.asinh(xi0)), 0.5 * (xi * s1 + math.asinh(xi))
+    vx = vx0 + a / c * (math.asinh(xi0) - math.asinh(xi))
+    vy = vy0 + a / c * (s0 - s1) - G0 * t
+    y = vy0 * t + a / c * (s0 * t - (g0v - g1) / c) - 0.5 * G0 * t * t
+    return y, vx, vy
+
+
+def lt_reference():
+    f = lambda p: [lt_state(p[0], p[1], TF)[0] - DH, lt_state(p[0], p[1], TF)[2]]
+    xi0, c = fsolve(f, [1.0, 0.05], xtol=1e-13)
+    return xi0, c, lt_state(xi0, c, TF)[1]
+
+
+MISSION = """mission: {{name: lt-ocp}}
+environment:
+  world: planet
+  planet: {{name: flatland, radius: 1.0e10, gm: 9.80665e20, rotation_rate: 0}}
+  atmosphere: none
+parameters: {{start_h: {h0}, start_vel: {v0}, start_fpa_deg: 80, start_chi_deg: 90}}
+stages: [{{name: s, dry_mass: 1000, propellant_mass: 100,
+          engines: [{{thrust_vac: {thrust!r}, isp_vac: 1.0e9}}]}}]
+phases:
+  - {{name: climb, model: dof3, stages: [s], stop_time: {tf}, inputs: {{alpha_deg: 0}}}}
+optimal_control:
+{oc}"""
+
+OC_MAX_VX = """  phases:
+    - name: climb
+      controls: [{name: alpha_deg, min: -60, max: 60}]
+      nodes: 21
+  constraints:
+    - {final: climb.h, equal: 11000, tolerance: 0.01}
+    - {final: climb.v_down, equal: 0, tolerance: 1.0e-4}
+  cost: {maximize: climb.v_east}
+"""
+
+
+def write(d, name, oc, tf=TF):
+    p = os.path.join(d, name)
+    with open(p, "w") as f:
+        f.write(MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=tf, oc=oc))
+    return p
+
+
+def run(lv, *args):
+    return subprocess.run([lv] + list(args), capture_output=True, text=True, timeout=600)
+
+
+def cost_of(out):
+    m = re.search(r"cost: (\S+) \(start", out)
+    return float(m.group(1)) if m else float("nan")
+
+
+def iterations_of(out):
+    m = re.search(r"after (\d+) iterations", out)
+    return int(m.group(1)) if m else -1
+
+
+def main():
+    lv = sys.argv[1]
+    d = tempfile.mkdtemp(prefix="lv_optimize_")
+    try:
+        xi0, c, vx_ref = lt_reference()
+        print("linear tangent closed form: tan(theta0) %.9f, c %.9f 1/s, vx(tf) %.6f m/s"
+              % (xi0, c, vx_ref))
+
+        # 1. maximum horizontal speed at tf: the closed form's
+        p = write(d, "lt.yaml", OC_MAX_VX)
+        out = os.path.join(d, "lt_opt.yaml")
+        r = run(lv, "optimize", p, "-o", out)
+        print(r.stdout[-1500:], r.stderr[-800:])
+        check(r.returncode == 0, "linear tangent: exit 0 (got %d)" % r.returncode)
+        vx = cost_of(r.stdout)
+        print("linear tangent: vx(tf) %.6f m/s, closed form %.6f, difference %.2e"
+              % (vx, vx_ref, vx - vx_ref))
+        check(abs(vx - vx_ref) < 2e-3, "linear tangent: vx %.6f vs %.6f" % (vx, vx_ref))
+        check("OPTIMAL" in r.stdout, "linear tangent: OPTIMAL")
+        # the optimal pitch follows the linear tangent law: theta = fpa + alpha at the nodes
+        ctl = np.genfromtxt(os.path.join(d, "lt_opt_climb_controls.csv"), delimiter=",",
+                            skip_header=1)
+        ref = np.genfromtxt(os.path.join(d, "lt_opt_climb_reference.csv"), delimiter=",",
+                            skip_header=1)
+        fpa = np.interp(ctl[:, 0], ref[:, 0], ref[:, 5])
+        theta = fpa + ctl[:, 1]
+        law = np.arctan(xi0 - c * ctl[:, 0])
+        err = np.degrees(np.abs(theta - law))
+        print("linear tangent: pitch minus the law at the nodes [deg]:",
+              " ".join("%.3f" % e for e in err))
+        worst = np.max(err[1:])  # node 0: the control's discretisation, 0.5 deg
+        # 21 nodes: 0.37 deg at 3 s, below 0.05 deg from 18 s (41 nodes: vx within 3e-5 m/s)
+        check(worst < 0.4 and np.max(err[6:]) < 0.05, "pitch off the law by %g deg" % worst)
+
+        # 2. the written mission re-flown by `lvsim run`: its drift from the optimum
+        rd = os.path.join(d, "run")
+        r2 = run(lv, "run", out, "-o", rd, "--no-plots")
+        check(r2.returncode == 0, "lvsim run of the optimal mission: exit 0: " + r2.stderr[-400:])
+        if r2.returncode == 0:
+            s = json.load(open(os.path.join(rd, "summary.json")))
+            dr = s["phases"][0]["reference"]
+            print("re-flown drift: position max %.3g m, velocity final %.3g m/s, mass %.3g kg"
+                  % (dr["position"]["max"], dr["velocity"]["final"], dr["mass"]["max"]))
+            # 30 km flown at the phase's default tolerance 1e-6: its scale is centimetres
+            check(dr["position"]["max"] < 0.01, "re-flown position drift %g m"
+                  % dr["position"]["max"])
+            check(dr["velocity"]["final"] < 1e-3, "re-flown final velocity drift %g m/s"
+                  % dr["velocity"]["final"])
+            h = s["phases"][0]["final"]["h"]
+            check(abs(h - 11000.0) < 0.05, "re-flown final altitude %.6f m" % h)
+        # the written file is optimize's own: -o onto it again is allowed, another file not
+        r3 = run(lv, "optimize", p, "-o", out, "-q")
+        check(r3.returncode == 0, "optimize onto its own output: exit 0: " + r3.stderr[-300:])
+        other = os.path.join(d, "users.yaml")
+        open(other, "w").write("# mine\n")
+        r4 = run(lv, "optimize", p, "-o", other, "-q")
+        check(r4.returncode == 2 and "cannot prove it wrote" in r4.stderr,
+              "optimize onto a user's file: exit 2 (got %d: %s)" % (r4.returncode, r4.stderr))
+        check(open(other).read() == "# mine\n", "the user's file is untouched")
+
+        # 3. the dual: the least time to reach H, vy = 0 and the closed form's vx: tf
+        oc = OC_MAX_VX.replace("      nodes: 21\n",
+                               "      nodes: 21\n      duration: {min: 40, max: 80, start: 55}\n")
+        oc = oc.replace("  cost: {maximize: climb.v_east}\n",
+                        "    - {final: climb.v_east, equal: %.9f, tolerance: 1.0e-4}\n"
+                        "  cost: {minimize: climb.time}\n" % vx_ref)
+        p = write(d, "lt_time.yaml", oc, tf=55)
+        r = run(lv, "optimize", p)
+        tf = cost_of(r.stdout)
+        print("least time: tf %.6f s (closed form %.1f s)" % (tf, TF))
+        check(r.returncode == 0, "least time: exit 0 (got %d): %s" % (r.returncode,
+                                                                       r.stdout[-600:]))
+        check(abs(tf - TF) < 2e-3, "least time: tf %.6f s vs %.1f s" % (tf, TF))
+
+        # 4. a start point with zero defects that meets its constraints, no cost: solved as
+        # it is (the final altitude of the mission flown as written, by `lvsim run`)
+        p = write(d, "asis.yaml", OC_MAX_VX)
+        rd = os.path.join(d, "asis")
+        r = run(lv, "run", p, "-o", rd, "--no-plots")
+        h_as_is = json.load(open(os.path.join(rd, "summary.json")))["phases"][0]["final"]["h"]
+        oc = """  phases:
+    - name: climb
+      controls: [{name: alpha_deg, min: -60, max: 60, start: 0}]
+      nodes: 5
+  constraints:
+    - {final: climb.h, equal: %.17g, tolerance: 1.0e-3}
+""" % h_as_is
+        p = write(d, "zero.yaml", oc)
+        r = run(lv, "optimize", p)
+        it = iterations_of(r.stdout)
+        print("a start point with zero defects that meets its constraints: %d iterations"
+              " (h %.6f m)" % (it, h_as_is))
+        check(r.returncode == 0 and it == 0, "zero defects: %d iterations, exit %d: %s"
+              % (it, r.returncode, r.stdout[-500:]))
+        # the same with the altitude 1 m higher: IPOPT finds it
+        p = write(d, "one.yaml", oc.replace("%.17g" % h_as_is, "%.17g" % (h_as_is + 1.0)))
+        r = run(lv, "optimize", p)
+        it = iterations_of(r.stdout)
+        print("1 m higher: %d iterations" % it)
+        check(r.returncode == 0 and it >= 1, "1 m higher: exit %d, %d iterations"
+              % (r.returncode, it))
+
+        # 5. unreachable: infeasible, named, exit 3, nothing written
+        oc = OC_MAX_VX.replace("equal: 11000", "equal: 200000")
+        p = write(d, "far.yaml", oc)
+        bad_out = os.path.join(d, "far_opt.yaml")
+        r = run(lv, "optimize", p, "-o", bad_out, "-q")
+        print(r.stdout[-800:])
+        check(r.returncode == 3, "unreachable: exit 3 (got %d)" % r.returncode)
+        check(re.search(r"INFEASIBLE|NOT CONVERGED", r.stdout) is not None,
+              "unreachable: INFEASIBLE or NOT CONVERGED")
+        check("VIOLATED  final 'climb.h'" in r.stdout, "unreachable: the final named")
+        check(not os.path.exists(bad_out), "unreachable: nothing written")
+
+        # 6. bad sections: check and optimize alike, exit 2, file:line:column
+        bad = [
+            ("controls: [{name: gamma_deg, min: -1, max: 1}]", "takes the controls"),
+            ("controls: [{name: alpha_deg, min: 10, max: -10}]", "must be greater than min"),
+            ("controls: [{name: alpha, min: -1, max: 1}]", "in degrees"),
+            ("controls: [{name: throttle_deg, min: 0, max: 1}]", "not an angle"),
+            ("controls: [{name: alpha_deg, min: -200, max: 1}]", "within [-180, 180]"),
+            ("controls: []", "at least one control"),
+            ("controls: [{name: alpha_deg, min: -1, max: 1, start: 5}]", "outside [min, max]"),
+            ("controls: [{name: alpha_deg, min: -1, max: 1}, {name: alpha_deg, min: -1, "
+             "max: 1}]", "given twice"),
+        ]
+        for i, (ctl_line, msg) in enumerate(bad):
+            oc = OC_MAX_VX.replace("controls: [{name: alpha_deg, min: -60, max: 60}]", ctl_line)
+            bad_cases_one(lv, d, "bad%d.yaml" % i, oc, msg)
+        bad_cases_one(lv, d, "nodes.yaml", OC_MAX_VX.replace("nodes: 21", "nodes: 1"),
+                      "integer >= 2")
+        bad_cases_one(lv, d, "phase.yaml", OC_MAX_VX.replace("- name: climb", "- name: clim"),
+                      "clim")
+        bad_cases_one(lv, d, "path.yaml", OC_MAX_VX.replace(
+            "  cost:", "    - {path: climb.q_dynn, max: 1, tolerance: 1}\n  cost:"), "q_dynn")
+        bad_cases_one(lv, d, "dur.yaml", OC_MAX_VX.replace(
+            "nodes: 21", "nodes: 21\n      duration: {min: 80, max: 40}"), "greater than min")
+        bad_cases_one(lv, d, "end.yaml", OC_MAX_VX.replace(
+            "tolerance: 0.01}", "tolerance: 0.01, end: stop_time}"), "no end to assume")
+        bad_cases_one(lv, d, "empty.yaml", "  {}\n", "'phases' needs")
+        bad_cases_one(lv, d, "nothing.yaml", OC_MAX_VX.split("  constraints:")[0],
+                      "nothing to achieve")
+        bad_cases_one(lv, d, "nocost.yaml", OC_MAX_VX.replace("  cost:", "  cost: null\n#"),
+                      None)
+        # a control the phase takes from elsewhere: a steering law gives the angles
+        oc = OC_MAX_VX
+        p = os.path.join(d, "law.yaml")
+        text = MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=TF, oc=oc).replace(
+            "inputs: {alpha_deg: 0}",
+            "guidance: {law: linear_tangent, a: 1, b: -0.01, heading_deg: 90}")
+        open(p, "w").write(text)
+        both_refuse(lv, p, "guidance law 'linear_tangent'")
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
+    if FAILS:
+        print("%d failure(s)" % len(FAILS))
+        return 1
+    print("all optimize checks passed")
+    return 0
+
+
+def both_refuse(lv, p, msg):
+    for cmd in ("check", "optimize"):
+        r = run(lv, cmd, p)
+        ok = r.returncode == 2 and re.search(re.escape(os.path.basename(p)) + r":\d+:\d+: ",
+                                            r.stderr) is not None
+        if msg is not None:
+            ok = ok and msg in r.stderr
+        check(ok, "%s %s: exit 2 with file:line:column%s (got %d: %s)"
+              % (cmd, os.path.basename(p), " and '%s'" % msg if msg else "", r.returncode,
+                 r.stderr.strip()[:300]))
+
+
+def bad_cases_one(lv, d, name, oc, msg):
+    p = write(d, name, oc)
+    if msg is None:  # a section without a cost but with constraints is valid
+        r = run(lv, "check", p)
+        check(r.returncode == 0, "%s: valid (got %d: %s)" % (name, r.returncode, r.stderr))
+        return
+    both_refuse(lv, p, msg)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
