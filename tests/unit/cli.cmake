@@ -61,3 +61,13 @@ add_test(NAME test_reference_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/test
 # tangent law's closed form, its least-time dual, zero defects, infeasible, bad sections.
 add_test(NAME test_optimize_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/test_optimize_cli.py
          $<TARGET_FILE:lvsim_cli>)
+# examples/goddard flies Bryson's normalised Goddard rocket (COPS 3.0, sec. 10) exactly: its SI
+# numbers are the mapping's, and lvsim's h, v, m agree with SciPy's DOP853 (rtol 1e-12)
+# integration of the normalised ODE under the same throttle table to 1e-9 (pytest).
+add_test(NAME test_goddard_dynamics
+         COMMAND ${LV_PYTHON} -m pytest -q -p no:cacheprovider -rs
+                 ${PROJECT_SOURCE_DIR}/tests/python/test_goddard_dynamics.py
+         WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(test_goddard_dynamics PROPERTIES
+                     ENVIRONMENT "LVSIM=$<TARGET_FILE:lvsim_cli>;PYTHONDONTWRITEBYTECODE=1"
+                     TIMEOUT 120)

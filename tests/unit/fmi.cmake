@@ -19,7 +19,7 @@ lv_set_warnings(fmi2_importer)
 add_test(NAME test_fmi2_importer
          COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/fmi/check_importer.py
                  $<TARGET_FILE:lvsim_cli> $<TARGET_FILE:fmi2_importer> ${PROJECT_SOURCE_DIR})
-# every phase of every example (52 phases, ~60 s); not under the sanitizers, for CI's time
+# every phase of every example (53 phases, ~60 s); not under the sanitizers, for CI's time
 # (test_fmu runs the FMU's fmi2 calls there)
 set_tests_properties(test_fmi2_importer PROPERTIES TIMEOUT 600 LABELS no-asan)
 # (not under the sanitizers: their runtime is then among the binary's NEEDED libraries)
