@@ -206,6 +206,8 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
     if (!isnan(res.cost))
         printf("  cost: %.12g (start %.12g)\n", res.cost, res.cost_start);
     printf("  largest violation: %.3g (of each row's scale or tolerance)\n", res.max_violation);
+    if (res.last_failure[0] != '\0' && res.outcome != LV_OCP_OPTIMAL)
+        printf("  the last point that did not fly: %s\n", res.last_failure);
     for (size_t i = 0; i < res.n_violated && i < 12; i++) {
         char text[512];
         double v;

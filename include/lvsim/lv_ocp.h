@@ -86,6 +86,8 @@ typedef struct lv_ocp_result {
     double wall, cpu;      /* s; cpu: the process's */
     double wall_jac;       /* s of wall time spent in the Jacobians */
     double wall_eval;      /* s of wall time spent in the base evaluations */
+    char last_failure[512]; /* why the last evaluation that failed did ("" none): a phase that
+                               did not fly at a trial point IPOPT then stepped back from */
 } lv_ocp_result;
 
 /* Loads the mission at `path` (its `optimal_control:` section: LV_ERR_INPUT without one) and
@@ -117,7 +119,7 @@ LV_API lv_status lv_ocp_phase_times(const lv_ocp *o, size_t k, double *t0, doubl
  * refused): the mission with each optimised phase flying its control nodes as an inputs table
  * over mission time (PATH-stem_<phase>_controls.csv beside it), its stop_time the optimal end
  * and no other ends, and the NLP's trajectory as its `reference:` (PATH-stem_<phase>_reference.csv:
- * time, h, lat, lon, v, fpa, heading, m at every node and 10 points per segment), so that
+ * time, h, lat, lon, v, fpa, heading, m: 50 rows per segment and its events), so that
  * `lvsim run` re-flies it and reports its drift from the optimum. `flags`: lv_output_check's
  * (LV_OUTPUT_REPLACE: existing files may be replaced; never an input of the mission). */
 LV_API lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err);

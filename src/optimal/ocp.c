@@ -119,22 +119,32 @@ static lv_status set_controls(const lv_ocp *o, oc_worker *w, const oc_ph *p, con
 /* Settings of one segment [ta, tb] of a prepared phase from state x (the hand-off's other
  * values kept): names/values hold room for the call's initial values and the states. */
 void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph *p,
-                             const double *x, double ta, double tb, const char **names,
-                             double *values, lv_sim_settings *s)
+                         const double *x, double m_burnout, double ta, double tb,
+                         const char **names, double *values, lv_sim_settings *s)
 {
     size_t n = 0;
     for (size_t i = 0; i < cs->n_initial; i++) {
         size_t j = 0;
         while (j < p->nx && strcmp(cs->initial_names[i], p->xname[j]) != 0)
             j++;
-        if (j < p->nx)
-            continue; /* a state: the segment's own */
+        if (j < p->nx || strcmp(cs->initial_names[i], "propellant") == 0)
+            continue; /* a state, the propellant: the segment's own */
         names[n] = cs->initial_names[i];
         values[n++] = cs->initial_values[i];
     }
     for (size_t j = 0; j < p->nx; j++) {
         names[n] = p->xname[j];
         values[n++] = x[j];
+    }
+    /* the burning stage's propellant: none burns out within a segment. The book is a row of
+     * the NLP instead (the phase's final mass at least its burnout mass: r_mass), so the
+     * throttle is what stops the burn: no event that a difference step moves across a
+     * segment, no mass of the model's own below which the controls stop acting (the rows went
+     * degenerate: Goddard's burn failed 2 of 3 node counts with the burnout inside). The
+     * models' book wants the propellant less than the mass: all but 1e-9 of it. */
+    if (!isnan(m_burnout) && p->im != (size_t)-1 && p->r_mass != (size_t)-1) {
+        names[n] = "propellant";
+        values[n++] = x[p->im] * (1.0 - 1e-9);
     }
     *s = *cs;
     s->start_time = ta;
@@ -186,6 +196,29 @@ static void final_rows(const lv_ocp *o, size_t k, const double *f, double *g)
     }
 }
 
+/* The mass at which phase p's burning stage burns out: its start mass less its propellant at
+ * the start (the models' "propellant" parameter), from the prepared model; NAN without them. */
+lv_status oc_burnout_mass(const oc_ph *p, const lv_model_def *def, void *inst,
+                          const lv_sim_settings *cs, double *m_burnout, lv_err *err)
+{
+    *m_burnout = NAN;
+    lv_vref rp, rm;
+    if (p->im == (size_t)-1 || lv_model_vref(def, "propellant", &rp, NULL) != LV_OK ||
+        lv_model_vref(def, p->xname[p->im], &rm, NULL) != LV_OK)
+        return LV_OK;
+    lv_sim_settings s = *cs;
+    s.n_sinks = 0, s.sinks = NULL, s.n_stops = 0, s.stops = NULL, s.n_final = 0;
+    s.final_names = NULL, s.result_file = NULL, s.max_rows = 0.0;
+    lv_sim *sim;
+    double v[2];
+    lv_status st = lv_sim_create(def, inst, &s, &sim, err);
+    if (st == LV_OK && (st = lv_sim_get(sim, &rm, 1, &v[0], err)) == LV_OK &&
+        (st = lv_sim_get(sim, &rp, 1, &v[1], err)) == LV_OK)
+        *m_burnout = v[0] - v[1];
+    lv_sim_free(sim);
+    return st;
+}
+
 /* Flies optimised phase p from its segments' start states in z. */
 static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, double *g,
                          int propagate)
@@ -207,10 +240,10 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
     const lv_sim_settings *cs = lv_phase_call_settings(c);
     const size_t nx = p->nx;
     const char *names[96 + 2 * 16];
-    double values[96 + 2 * 16], xa[32], xb[32], yp[LV_OCP_MAX_CONTROLS * 4 + 8];
+    double values[96 + 2 * 16], xa[32], xb[32], yp[LV_OCP_MAX_CONTROLS * 4 + 8], m_bo;
     lv_vref rx[32], rp[32];
     int ok = 1;
-    if (cs->n_initial + nx > sizeof names / sizeof names[0] || nx > 32 || p->n_path > 32) {
+    if (cs->n_initial + nx + 1 > sizeof names / sizeof names[0] || nx > 32 || p->n_path > 32) {
         lv_phase_call_free(c);
         return fail_why(w, ph->name, "",
                         &(lv_err){LV_ERR_INPUT, "too many start values or states"});
@@ -219,6 +252,8 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         ok = lv_model_vref(def, p->xname[i], &rx[i], &e) == LV_OK;
     for (size_t q = 0; q < p->n_path && ok; q++)
         ok = lv_model_vref(def, p->path_out[q], &rp[q], &e) == LV_OK;
+    if (ok)
+        ok = oc_burnout_mass(p, def, inst, cs, &m_bo, &e) == LV_OK;
     if (!ok) {
         lv_phase_call_free(c);
         return fail_why(w, ph->name, "", &e);
@@ -253,7 +288,7 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         for (size_t i = 0; i < nx; i++)
             xa[i] = z[p->ix + j * nx + i] * o->sx[p->ix + j * nx + i];
         lv_sim_settings s;
-        oc_segment_settings(o, cs, p, xa, ta, tb, names, values, &s);
+        oc_segment_settings(o, cs, p, xa, m_bo, ta, tb, names, values, &s);
         const int last = j + 1 == p->ns;
         if (last) {
             s.n_final = cs->n_final;
@@ -303,6 +338,8 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         g[p->r_path + q * (p->ns + 1) + p->ns] = con_row(cd, finals[cd->res.index]);
     }
     final_rows(o, p->k, finals, g);
+    if (p->r_mass != (size_t)-1)
+        g[p->r_mass] = (xb[p->im] - m_bo) / p->xs[p->im];
     rep.end_time = t0 + D;
     lv_run_complete(w->r, c, LV_OK, NULL, &rep, &e);
     lv_sim_report_clear(&rep);
@@ -386,6 +423,8 @@ static void mark_subtree(const lv_ocp *o, const lv_mission_def *d, size_t k, int
             else
                 on[p->r_path + q * (p->ns + 1) + p->ns] = 1;
         }
+        if (p->r_mass != (size_t)-1)
+            on[p->r_mass] = 1;
     }
     for (size_t c = 0; c < o->def->n_cons; c++)
         if (!o->def->cons[c].path && o->def->cons[c].res.phase == k)
@@ -653,7 +692,14 @@ static lv_status phase_states(oc_ph *p, lv_run *r, lv_err *err)
         lv_phase_call_free(c);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
+    p->im = (size_t)-1;
+    p->r_mass = (size_t)-1;
+    for (size_t i = 0; i < def->n_params; i++)
+        if (strcmp(def->params[i].name, "propellant") == 0)
+            p->burns = def->params[i].start > 0.0;
     for (size_t i = 0; i < p->nx; i++) {
+        if (strcmp(def->states[i].name, lv_run_mission(r)->def->phases[p->k].type->mass_state) == 0)
+            p->im = i;
         p->xname[i] = strdup(def->states[i].name);
         p->xs[i] = def->states[i].nominal > 0.0 ? def->states[i].nominal : 1.0;
         if (p->xname[i] == NULL) {
@@ -768,6 +814,7 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
             }
         ph->r_path = m;
         m += ph->n_path * (ph->ns + 1);
+        ph->r_mass = ph->burns ? m++ : (size_t)-1;
     }
     o->r_fin = m;
     m += od->n_cons;
@@ -845,6 +892,9 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
                     o->gu[ph->r_path + q * (ph->ns + 1) + j] = hi;
                 }
     }
+    for (size_t p = 0; p < o->np; p++)
+        if (o->ph[p].r_mass != (size_t)-1)
+            o->gl[o->ph[p].r_mass] = 0.0, o->gu[o->ph[p].r_mass] = OC_INF;
     /* the start point's states: each segment from where the one before ended */
     o->cost_sign = od->cost.present && od->cost.maximize ? -1.0 : 1.0;
     o->cost_scale = 1.0;
@@ -995,6 +1045,8 @@ static int ensure_base(lv_ocp *o, const double *z)
     const double t = wall_now();
     memcpy(o->z_base, z, o->n * sizeof *z);
     o->base_ok = oc_evaluate(o, &o->w[0], o->z_base, o->g_base, 0);
+    if (!o->base_ok)
+        snprintf(o->res.last_failure, sizeof o->res.last_failure, "%.500s", o->w[0].why);
     o->evaluations++;
     o->res.wall_eval += wall_now() - t;
     o->jac_ok = 0;
@@ -1027,12 +1079,36 @@ static int ensure_jac(lv_ocp *o, const double *z)
     o->evaluations += 2 * (long)o->n_groups;
     o->res.wall_jac += wall_now() - t;
     if (jj.failed) {
-        memcpy(o->w[0].why, jj.why, sizeof jj.why);
+        snprintf(o->res.last_failure, sizeof o->res.last_failure, "%.500s", jj.why);
         return 0;
     }
     memcpy(o->z_jac, z, o->n * sizeof *z);
     o->jac_ok = 1;
     return 1;
+}
+
+/* 1 when row r is a path row (of some phase). */
+static int is_path_row(const lv_ocp *o, size_t r)
+{
+    for (size_t p = 0; p < o->np; p++) {
+        const oc_ph *ph = &o->ph[p];
+        if (r >= ph->r_path && r < ph->r_path + ph->n_path * (ph->ns + 1))
+            return 1;
+    }
+    return 0;
+}
+
+/* A row's violation in units of its scale (0 when met). */
+static double row_violation(const lv_ocp *o, size_t r, double g)
+{
+    return fmax(0.0, fmax(o->gl[r] - g, g - o->gu[r]));
+}
+
+/* 1 when row r is violated: a final or path row beyond its tolerance (1), a defect or link
+ * beyond OC_DEFECT_VIOLATED of its state's scale. */
+static int row_is_violated(const lv_ocp *o, size_t r, double viol)
+{
+    return viol > (r >= o->r_fin || is_path_row(o, r) ? 1.0 : OC_DEFECT_VIOLATED);
 }
 
 /* ---- IPOPT's callbacks --------------------------------------------------------------------------- */
@@ -1112,9 +1188,27 @@ static Bool cb_iter(Index mode, Index iter, Number obj, Number inf_pr, Number in
     (void)d_norm, (void)reg, (void)alpha_du, (void)ls;
     lv_ocp *o = u;
     o->iter_last = iter;
-    /* the best point: the last regular iterate (IPOPT returns it too) */
-    if (mode == 0 && o->base_ok)
-        memcpy(o->z_best, o->z_base, o->n * sizeof *o->z_best);
+    /* the point to return if IPOPT does not converge: the feasible iterate (every row within
+     * its threshold, row_is_violated) with the best cost, else the least violating one. The
+     * iterate is the point last evaluated (IPOPT's accepted trial point). */
+    if (mode == 0 && o->base_ok) {
+        double worst = 0.0;
+        int feasible = 1;
+        for (size_t r = 0; r < o->m; r++) {
+            const double v = row_violation(o, r, o->g_base[r]);
+            feasible &= !row_is_violated(o, r, v);
+            worst = fmax(worst, v);
+        }
+        const double cost = o->def->cost.present ? o->g_base[o->m] : 0.0;
+        const int better = feasible ? !o->best_feasible || cost <= o->best_cost
+                                    : !o->best_feasible && worst <= o->best_worst;
+        if (better) {
+            memcpy(o->z_best, o->z_base, o->n * sizeof *o->z_best);
+            o->best_feasible = feasible;
+            o->best_cost = cost;
+            o->best_worst = worst;
+        }
+    }
     if (o->set->on_iteration != NULL) {
         long segs = 0;
         for (int i = 0; i <= o->n_workers; i++)
@@ -1154,30 +1248,6 @@ static const char *ipopt_name(int s)
     }
 }
 
-/* 1 when row r is a path row (of some phase). */
-static int is_path_row(const lv_ocp *o, size_t r)
-{
-    for (size_t p = 0; p < o->np; p++) {
-        const oc_ph *ph = &o->ph[p];
-        if (r >= ph->r_path && r < ph->r_path + ph->n_path * (ph->ns + 1))
-            return 1;
-    }
-    return 0;
-}
-
-/* A row's violation in units of its scale (0 when met). */
-static double row_violation(const lv_ocp *o, size_t r, double g)
-{
-    return fmax(0.0, fmax(o->gl[r] - g, g - o->gu[r]));
-}
-
-/* 1 when row r is violated: a final or path row beyond its tolerance (1), a defect or link
- * beyond OC_DEFECT_VIOLATED of its state's scale. */
-static int row_is_violated(const lv_ocp *o, size_t r, double viol)
-{
-    return viol > (r >= o->r_fin || is_path_row(o, r) ? 1.0 : OC_DEFECT_VIOLATED);
-}
-
 /* What row r is, with its value at g (messages). */
 static void row_name(const lv_ocp *o, size_t r, const double *g, char *buf, size_t cap)
 {
@@ -1195,6 +1265,12 @@ static void row_name(const lv_ocp *o, size_t r, const double *g, char *buf, size
             snprintf(buf, cap, "defect of phase '%s' at the end of segment %zu of %zu, state "
                      "'%s': %.6g x its scale %.6g", pn, j + 1, ph->ns, ph->xname[i], g[r],
                      ph->xs[i]);
+            return;
+        }
+        if (r == ph->r_mass) {
+            snprintf(buf, cap, "propellant of phase '%s': its final mass is %.6g kg below its "
+                     "burning stage's burnout mass (more propellant burnt than it holds)", pn,
+                     -g[r] * ph->xs[ph->im]);
             return;
         }
         if (r >= ph->r_path && r < ph->r_path + ph->n_path * (ph->ns + 1)) {
@@ -1223,6 +1299,9 @@ lv_status lv_ocp_solve(lv_ocp *o, const lv_ocp_settings *s, lv_ocp_result *res, 
     o->stopped = 0;
     o->evaluations = 0;
     o->iter_last = 0;
+    o->best_feasible = 0;
+    o->best_worst = INFINITY;
+    o->best_cost = INFINITY;
     o->t0_wall = wall_now();
     const double cpu0 = cpu_now();
     const char *why = lv_ipopt_error();
@@ -1287,11 +1366,8 @@ lv_status lv_ocp_solve(lv_ocp *o, const lv_ocp_settings *s, lv_ocp_result *res, 
     lv_ocp_result *rr = &o->res;
     rr->ipopt_status = (int)rs;
     snprintf(rr->ipopt_text, sizeof rr->ipopt_text, "%s", ipopt_name((int)rs));
-    /* IPOPT's final point where it returned one, else the last regular iterate */
-    if (rs == Solve_Succeeded || rs == Solved_To_Acceptable_Level ||
-        rs == Infeasible_Problem_Detected || rs == Maximum_Iterations_Exceeded ||
-        rs == Search_Direction_Becomes_Too_Small || rs == Feasible_Point_Found ||
-        rs == Restoration_Failed)
+    /* IPOPT's solution when it converged, else the best iterate (cb_iter) */
+    if (rs == Solve_Succeeded || rs == Solved_To_Acceptable_Level)
         memcpy(o->z_best, z, o->n * sizeof *z);
     free(z);
     rr->outcome = o->stopped                      ? LV_OCP_STOPPED

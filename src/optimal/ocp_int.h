@@ -19,6 +19,7 @@ typedef struct oc_ph {
     const lv_ocp_phase_def *def;
     size_t nx, nu, nn, ns;      /* states, controls, control nodes, segments */
     char **xname;               /* [nx] the model's states */
+    size_t im;                  /* the mass state's index, or (size_t)-1 */
     double *xs;                 /* [nx] their scales (variables and defect rows) */
     size_t ix;                  /* segment j's start state: variables ix + j nx .. */
     size_t iu;                  /* node i's controls: variables iu + i nu .. */
@@ -30,6 +31,8 @@ typedef struct oc_ph {
     size_t *path_con;           /* [n_path] their indices in the section's constraints */
     size_t r_path;              /* n_path (ns + 1) rows: con q at node j: r_path + q (ns+1) + j */
     char (*path_out)[64];       /* [n_path] the output's name (no _deg) */
+    int burns;                  /* the phase starts with propellant in its burning stage */
+    size_t r_mass;              /* the row: final mass - burnout mass >= 0, or (size_t)-1 */
 } oc_ph;
 
 /* A worker: a mission and run of its own (its control tables are its own). */
@@ -81,6 +84,8 @@ struct lv_ocp {
     long evaluations;
     int stopped;
     int iter_last;
+    int best_feasible;          /* z_best meets every row */
+    double best_cost, best_worst; /* its scaled cost and largest violation */
     double cost_start;
 };
 
@@ -95,8 +100,13 @@ int oc_evaluate(lv_ocp *o, oc_worker *w, double *z, double *g, int propagate);
  * state x (the hand-off's other start values kept, no ends, no rows, the segments' tolerance);
  * names/values: room for cs->n_initial + p->nx entries. */
 void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph *p,
-                         const double *x, double ta, double tb, const char **names,
-                         double *values, lv_sim_settings *s);
+                         const double *x, double m_burnout, double ta, double tb,
+                         const char **names, double *values, lv_sim_settings *s);
+/* The mass at which phase p's burning stage burns out (its start mass less its propellant
+ * then; NAN for a model without both), from its prepared model, def, inst and settings cs:
+ * a segment starts with the propellant its mass holds above it. */
+lv_status oc_burnout_mass(const oc_ph *p, const lv_model_def *def, void *inst,
+                          const lv_sim_settings *cs, double *m_burnout, lv_err *err);
 
 /* The run of worker 0 at the point z flown by oc_evaluate (its phases' results). */
 double oc_phase_t0(const lv_ocp *o, const oc_worker *w, size_t k);

@@ -21,7 +21,8 @@
 #include "optimal/ocp_int.h"
 #include "target/target_int.h"
 
-#define REF_PER_SEGMENT 10 /* reference rows per segment */
+#define REF_PER_SEGMENT 50 /* reference rows per segment: the drift interpolates v and m
+                            * linearly between them (m'' h^2 / 8: 0.04 kg at 10 in Goddard's burn) */
 
 /* ---- the tree --------------------------------------------------------------------------- */
 
@@ -129,9 +130,11 @@ static int plain_ok(const char *s)
     return 1;
 }
 
+/* A scalar: as it is when it cannot be taken for anything else (numbers, names, paths), else
+ * double-quoted (a text with blanks, commas or colons reads the same; numbers stay plain). */
 static void emit_scalar(FILE *fp, const lv_ynode *n)
 {
-    if (n->plain || plain_ok(n->text)) {
+    if (plain_ok(n->text) || (n->plain && strcmp(n->text, "~") == 0)) {
         fputs(n->text, fp);
         return;
     }
@@ -332,11 +335,9 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
     if (st != LV_OK)
         return st;
     const lv_model_def *def = lv_phase_call_model(c);
-    lv_vref ref[7], rx[32];
-    for (int i = 0; i < 7 && st == LV_OK; i++)
-        st = lv_model_vref(def, cols[i], &ref[i], err);
-    for (size_t i = 0; i < p->nx && st == LV_OK; i++)
-        st = lv_model_vref(def, p->xname[i], &rx[i], err);
+    double m_bo = NAN;
+    if (st == LV_OK)
+        st = oc_burnout_mass(p, def, lv_phase_call_inst(c), lv_phase_call_settings(c), &m_bo, err);
     lv_atomic a = {0};
     if (st == LV_OK)
         st = lv_atomic_open(&a, path, err);
@@ -346,7 +347,7 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
     }
     fputs(head, a.fp);
     const char *names[160];
-    double values[160], xa[32], y[7];
+    double values[160], xa[32];
     char buf[LV_NUMFMT_MAX];
     const double h = D / (double)p->ns;
     for (size_t j = 0; j < p->ns && st == LV_OK; j++) {
@@ -354,28 +355,32 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
         for (size_t i = 0; i < p->nx; i++)
             xa[i] = z[p->ix + j * p->nx + i] * o->sx[p->ix + j * p->nx + i];
         lv_sim_settings s;
-        /* the segment as the NLP flies it (ocp.c) */
-        oc_segment_settings(o, lv_phase_call_settings(c), p, xa, ta, tb, names, values, &s);
-        lv_sim *sim = NULL;
-        st = lv_sim_create(def, lv_phase_call_inst(c), &s, &sim, err);
-        const int n_rows = REF_PER_SEGMENT + (j + 1 == p->ns);
-        for (int r = 0; r < n_rows && st == LV_OK; r++) {
-            const double t = r == REF_PER_SEGMENT ? tb : ta + (tb - ta) * r / REF_PER_SEGMENT;
-            if (r > 0)
-                st = lv_sim_advance(sim, t, err);
-            if (st == LV_OK)
-                st = lv_sim_get(sim, ref, 7, y, err);
-            if (st != LV_OK)
-                break;
-            lv_numfmt_double(t, buf);
-            fputs(buf, a.fp);
-            for (int i = 0; i < 7; i++) {
-                lv_numfmt_double(y[i], buf);
-                fprintf(a.fp, ",%s", buf);
+        /* the segment as the NLP flies it (ocp.c), its rows in memory: REF_PER_SEGMENT
+         * intervals and the two rows of each event (a kink: the burnout) */
+        oc_segment_settings(o, lv_phase_call_settings(c), p, xa, m_bo, ta, tb, names, values,
+                            &s);
+        lv_result *rows = NULL;
+        lv_sink mem;
+        if ((st = lv_sink_memory_create(&rows, &mem, err)) != LV_OK)
+            break;
+        s.n_sinks = 1;
+        s.sinks = &mem;
+        s.number_of_intervals = REF_PER_SEGMENT;
+        st = lv_simulate(def, lv_phase_call_inst(c), &s, NULL, NULL, err);
+        size_t col[8];
+        for (int i = 0; i < 8 && st == LV_OK; i++)
+            st = lv_result_column(rows, i == 0 ? "time" : cols[i - 1], &col[i], err);
+        /* the segment's last row is the next one's first (its node): written once */
+        const size_t nr = lv_result_rows(rows), last = j + 1 == p->ns ? nr : nr - 1;
+        for (size_t r = 0; r < last && st == LV_OK; r++) {
+            for (int i = 0; i < 8; i++) {
+                lv_numfmt_double(lv_result_value(rows, r, col[i]), buf);
+                fprintf(a.fp, i ? ",%s" : "%s", buf);
             }
             fputc('\n', a.fp);
         }
-        lv_sim_free(sim);
+        lv_sink_destroy(&mem);
+        lv_result_free(rows);
     }
     lv_phase_call_free(c);
     if (st != LV_OK) {
