@@ -20,6 +20,7 @@
 #include "lvsim/lv_flat.h"
 #include "lvsim/lv_mission.h"
 #include "lvsim/lv_target.h"
+#include "lvsim/lv_ocp.h"
 #include "lvsim/lv_summary.h"
 #include "lvsim/lv_export.h"
 #include "lvsim/lv_plot.h"

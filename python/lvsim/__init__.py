@@ -14,7 +14,7 @@ column's unit travels with it. Documentation: docs/python.md.
     run.set("us.propellant_mass", 50000); run.execute()   # only the affected phases rerun
 
 Classes: Mission, Run, PhaseResult, Trajectory, Table, PhaseCall, Outcome, Model, Target,
-Campaign, Law, Format. Functions: simulate (a built-in model, the paper's Code 1), models, laws
+Optimization, Campaign, Law, Format. Functions: simulate (a built-in model, the paper's Code 1), models, laws
 (the steering and throttle laws with their keys, as the library registers them), formats (the
 result formats and exports, likewise). Exceptions:
 LvsimError, MissionError, ParameterError, SimulationError, CancelledError.
@@ -27,6 +27,7 @@ from ._simulate import METHODS, Model, Outcome, PhaseCall, Variable, models, sim
 from ._run import Run
 from ._mission import Mission
 from ._target import Target, TargetResult
+from ._optimize import Optimization, OptimizationResult
 from ._campaign import Campaign
 from ._laws import Law, LawKey, common_keys, laws
 from ._formats import Format, formats

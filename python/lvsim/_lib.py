@@ -218,6 +218,32 @@ class lv_target_result(Structure):
                 ("end_mismatch", POINTER(lv_target_end_mismatch))]
 
 
+# ---- optimal control (lv_ocp.h) -------------------------------------------------------------
+
+class lv_ocp_iteration(Structure):
+    _fields_ = [("iteration", c_int), ("cost", c_double), ("inf_pr", c_double),
+                ("inf_du", c_double), ("mu", c_double), ("step", c_double), ("wall", c_double),
+                ("segments", c_long), ("restoration", c_int)]
+
+
+OCP_ITER_FN = CFUNCTYPE(c_int, POINTER(lv_ocp_iteration), c_void_p)
+
+
+class lv_ocp_settings(Structure):
+    _fields_ = [("threads", c_int), ("max_iterations", c_int), ("print_level", c_int),
+                ("on_iteration", OCP_ITER_FN), ("user", c_void_p), ("stop", POINTER(c_int))]
+
+
+class lv_ocp_result(Structure):
+    _fields_ = [("outcome", c_int), ("ipopt_status", c_int), ("ipopt_text", c_char * 80),
+                ("iterations", c_int), ("cost", c_double), ("cost_start", c_double),
+                ("max_violation", c_double), ("n_violated", c_size_t), ("n_vars", c_size_t),
+                ("n_cons", c_size_t), ("nnz_jac", c_size_t), ("n_groups", c_size_t),
+                ("segments", c_long), ("evaluations", c_long), ("wall", c_double),
+                ("cpu", c_double), ("wall_jac", c_double), ("wall_eval", c_double),
+                ("last_failure", c_char * 512)]
+
+
 # ---- dispersions and campaigns (lv_dispersion.h, lv_campaign.h) ----------------------------
 
 class lv_disp_info(Structure):
@@ -283,7 +309,8 @@ MIRRORED = [lv_err, lv_var, lv_event_def, lv_mission_info, lv_phase_info, lv_par
             lv_sim_stats, lv_event_record, lv_sim_report, lv_phase_result, lv_run_options,
             lv_body_traj, lv_sink, lv_sim_stop, lv_sim_settings, lv_target_var_info,
             lv_target_con_info, lv_target_cost_info, lv_target_iter, lv_target_eval,
-            lv_target_settings, lv_target_end_mismatch, lv_target_result, lv_disp_info, lv_campaign_progress,
+            lv_target_settings, lv_target_end_mismatch, lv_target_result, lv_ocp_iteration,
+            lv_ocp_settings, lv_ocp_result, lv_disp_info, lv_campaign_progress,
             lv_campaign_options, lv_output_estimate, lv_outdir_record, lv_law_key, lv_law_info,
             lv_ref_drift]
 # lv_model_def is mirrored only up to inst_size: its leading offsets are checked, not its size.
@@ -497,6 +524,12 @@ _proto(lib, "lv_target_solve", c_int, P, POINTER(lv_target_settings),
        POINTER(POINTER(lv_target_result)), E)
 _proto(lib, "lv_target_run", c_void_p, P)
 _proto(lib, "lv_target_write", c_int, P, POINTER(c_double), c_char_p, POINTER(c_double), E)
+_proto(lib, "lv_ocp_create", c_int, c_char_p, POINTER(c_void_p), E)
+_proto(lib, "lv_ocp_free", None, P)
+_proto(lib, "lv_ocp_solve", c_int, P, POINTER(lv_ocp_settings), POINTER(lv_ocp_result), E)
+_proto(lib, "lv_ocp_violation", c_int, P, c_size_t, c_char_p, c_size_t, POINTER(c_double), E)
+_proto(lib, "lv_ocp_phase_times", c_int, P, c_size_t, POINTER(c_double), POINTER(c_double), E)
+_proto(lib, "lv_ocp_write", c_int, P, c_char_p, c_uint, E)
 _proto(lib, "lv_mission_disp_count", c_size_t, P)
 _proto(lib, "lv_mission_disp_info", None, P, c_size_t, POINTER(lv_disp_info))
 _proto(lib, "lv_mission_disp_seed", c_int, P, POINTER(c_uint64))

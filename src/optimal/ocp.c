@@ -983,10 +983,44 @@ typedef struct jac_job {
     lv_ocp *o;
     const double *z;
     size_t next;          /* the next group to take */
+    size_t n_fallback;    /* groups taken column by column (a moved point did not fly) */
     pthread_mutex_t lock;
     int failed;
     char why[LV_ERR_MSG_MAX];
 } jac_job;
+
+/* Column v's entries from the rows at z + a h (ga) and z + b h (gb) about the base: the
+ * parabola f0 + d s + c s^2 through s = a h and b h has d = (fa b^2 - fb a^2) / (a b (b - a)
+ * h); (1, -1) is the central difference (fa - fb) / 2h. gb NULL: the first-order fa / (a h). */
+static void column_from(lv_ocp *o, size_t v, const double *ga, const double *gb, double a,
+                        double b, double h)
+{
+    for (size_t q = o->jc[v]; q < o->jc[v + 1]; q++) {
+        const double f0 = o->g_base[o->jr[q]], fa = ga[o->jr[q]] - f0;
+        if (gb == NULL) {
+            o->jv[q] = fa / (a * h);
+            continue;
+        }
+        const double fb = gb[o->jr[q]] - f0;
+        o->jv[q] = a == 1.0 && b == -1.0 ? (fa - fb) / (2.0 * h)
+                                         : (fa * b * b - fb * a * a) / (a * b * (b - a) * h);
+    }
+}
+
+/* The rows at z moved by `side` (0: a h, 1: b h) in the given columns (NULL: group g's). */
+static int eval_moved(lv_ocp *o, oc_worker *w, const double *z, size_t g, const size_t *one,
+                      int side, double h, double *out)
+{
+    memcpy(w->x, z, o->n * sizeof *w->x);
+    const size_t e0 = one ? 0 : o->grp_start[g], e1 = one ? 1 : o->grp_start[g + 1];
+    for (size_t e = e0; e < e1; e++) {
+        const size_t v = one ? *one : o->grp_col[e];
+        double a, b;
+        fd_pair(o, v, z, h, &a, &b);
+        w->x[v] += (side == 0 ? a : b) * h;
+    }
+    return oc_evaluate(o, w, w->x, out, 0);
+}
 
 static void *jac_worker(void *arg)
 {
@@ -1001,38 +1035,35 @@ static void *jac_worker(void *arg)
         if (g >= o->n_groups || stop)
             break;
         const double h = fd_step(o);
-        int ok = 1;
-        for (int side = 0; side < 2 && ok; side++) {
-            memcpy(w->x, jj->z, o->n * sizeof *w->x);
+        if (eval_moved(o, w, jj->z, g, NULL, 0, h, w->g) &&
+            eval_moved(o, w, jj->z, g, NULL, 1, h, w->g2)) {
             for (size_t e = o->grp_start[g]; e < o->grp_start[g + 1]; e++) {
-                const size_t v = o->grp_col[e];
                 double a, b;
-                fd_pair(o, v, jj->z, h, &a, &b);
-                w->x[v] += (side == 0 ? a : b) * h;
+                fd_pair(o, o->grp_col[e], jj->z, h, &a, &b);
+                column_from(o, o->grp_col[e], w->g, w->g2, a, b, h);
             }
-            ok = oc_evaluate(o, w, w->x, side == 0 ? w->g : w->g2, 0);
+            continue;
         }
-        if (!ok) {
-            pthread_mutex_lock(&jj->lock);
-            if (!jj->failed)
-                snprintf(jj->why, sizeof jj->why, "a difference step failed: %.900s", w->why);
-            jj->failed = 1;
-            pthread_mutex_unlock(&jj->lock);
-            break;
-        }
+        /* a moved point did not fly (a domain guard, an event ending a segment early): the
+         * group's columns one by one, the pair, else the side that flies (first order), else
+         * a zero column (its variable then moves on the cost and the other rows' say) */
+        pthread_mutex_lock(&jj->lock);
+        if (jj->n_fallback++ == 0)
+            snprintf(jj->why, sizeof jj->why, "a difference step did not fly: %.900s", w->why);
+        pthread_mutex_unlock(&jj->lock);
         for (size_t e = o->grp_start[g]; e < o->grp_start[g + 1]; e++) {
             const size_t v = o->grp_col[e];
             double a, b;
             fd_pair(o, v, jj->z, h, &a, &b);
-            /* f(s) = f0 + d s + c s^2 through s = a h and b h: d = (fa b^2 - fb a^2) /
-             * (a b (b - a) h); (1, -1): the central difference (fa - fb) / 2h */
-            for (size_t q = o->jc[v]; q < o->jc[v + 1]; q++) {
-                const double f0 = o->g_base[o->jr[q]];
-                const double fa = w->g[o->jr[q]] - f0, fb = w->g2[o->jr[q]] - f0;
-                o->jv[q] = a == 1.0 && b == -1.0
-                               ? (fa - fb) / (2.0 * h)
-                               : (fa * b * b - fb * a * a) / (a * b * (b - a) * h);
-            }
+            const int ok_a = eval_moved(o, w, jj->z, g, &v, 0, h, w->g);
+            const int ok_b = eval_moved(o, w, jj->z, g, &v, 1, h, w->g2);
+            if (ok_a && ok_b)
+                column_from(o, v, w->g, w->g2, a, b, h);
+            else if (ok_a || ok_b)
+                column_from(o, v, ok_a ? w->g : w->g2, NULL, ok_a ? a : b, 0.0, h);
+            else
+                for (size_t q = o->jc[v]; q < o->jc[v + 1]; q++)
+                    o->jv[q] = 0.0;
         }
     }
     return NULL;
@@ -1078,10 +1109,10 @@ static int ensure_jac(lv_ocp *o, const double *z)
     pthread_mutex_destroy(&jj.lock);
     o->evaluations += 2 * (long)o->n_groups;
     o->res.wall_jac += wall_now() - t;
-    if (jj.failed) {
+    if (jj.n_fallback > 0)
         snprintf(o->res.last_failure, sizeof o->res.last_failure, "%.500s", jj.why);
+    if (jj.failed)
         return 0;
-    }
     memcpy(o->z_jac, z, o->n * sizeof *z);
     o->jac_ok = 1;
     return 1;

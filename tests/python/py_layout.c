@@ -8,6 +8,7 @@
 #include "lvsim/lvsim.h"
 #include "lvsim/lv_campaign.h"
 #include "lvsim/lv_dispersion.h"
+#include "lvsim/lv_ocp.h"
 #include "lvsim/lv_target.h"
 
 #define S(T) printf(#T " size %zu\n", sizeof(T))
@@ -126,6 +127,20 @@ int main(void)
     S(lv_target_end_mismatch); F(lv_target_end_mismatch, phase);
     F(lv_target_end_mismatch, phase_name); F(lv_target_end_mismatch, expected);
     F(lv_target_end_mismatch, actual); F(lv_target_end_mismatch, t_end);
+    S(lv_ocp_iteration); F(lv_ocp_iteration, iteration); F(lv_ocp_iteration, cost);
+    F(lv_ocp_iteration, inf_pr); F(lv_ocp_iteration, inf_du); F(lv_ocp_iteration, mu);
+    F(lv_ocp_iteration, step); F(lv_ocp_iteration, wall); F(lv_ocp_iteration, segments);
+    F(lv_ocp_iteration, restoration);
+    S(lv_ocp_settings); F(lv_ocp_settings, threads); F(lv_ocp_settings, max_iterations);
+    F(lv_ocp_settings, print_level); F(lv_ocp_settings, on_iteration);
+    F(lv_ocp_settings, user); F(lv_ocp_settings, stop);
+    S(lv_ocp_result); F(lv_ocp_result, outcome); F(lv_ocp_result, ipopt_status);
+    F(lv_ocp_result, ipopt_text); F(lv_ocp_result, iterations); F(lv_ocp_result, cost);
+    F(lv_ocp_result, cost_start); F(lv_ocp_result, max_violation);
+    F(lv_ocp_result, n_violated); F(lv_ocp_result, n_vars); F(lv_ocp_result, n_cons);
+    F(lv_ocp_result, nnz_jac); F(lv_ocp_result, n_groups); F(lv_ocp_result, segments);
+    F(lv_ocp_result, evaluations); F(lv_ocp_result, wall); F(lv_ocp_result, cpu);
+    F(lv_ocp_result, wall_jac); F(lv_ocp_result, wall_eval); F(lv_ocp_result, last_failure);
     S(lv_target_result); F(lv_target_result, converged); F(lv_target_result, cancelled);
     F(lv_target_result, reason); F(lv_target_result, method); F(lv_target_result, n_vars);
     F(lv_target_result, n_cons); F(lv_target_result, x); F(lv_target_result, finals);

@@ -188,6 +188,27 @@ def main():
                                                                        r.stdout[-600:]))
         check(abs(tf - TF) < 2e-3, "least time: tf %.6f s vs %.1f s" % (tf, TF))
 
+        # 3b. a path constraint: the speed at most 900 m/s at every node (held at the segments'
+        # starts and the end). It binds: the free optimum ends at 985 m/s. Then the horizontal
+        # speed at tf is at most 900 (zero vertical speed there), and the largest speed at the
+        # nodes is 900 within the constraint's tolerance
+        oc = OC_MAX_VX.replace("  cost:", "    - {path: climb.v_rel, max: 900, tolerance: 0.01}\n"
+                               "  cost:")
+        p = write(d, "lt_path.yaml", oc)
+        out_p = os.path.join(d, "lt_path_opt.yaml")
+        r = run(lv, "optimize", p, "-q", "-o", out_p)
+        vx = cost_of(r.stdout)
+        check(r.returncode == 0, "path: exit 0 (got %d): %s" % (r.returncode, r.stdout[-500:]))
+        if r.returncode == 0:
+            ref = np.genfromtxt(os.path.join(d, "lt_path_opt_climb_reference.csv"),
+                                delimiter=",", skip_header=1)
+            nodes = [np.argmin(np.abs(ref[:, 0] - t)) for t in np.linspace(0.0, TF, 21)]
+            vmax = ref[nodes, 4].max()
+            print("path v_rel <= 900: vx(tf) %.6f m/s; largest speed at the nodes %.6f m/s, "
+                  "between them %.6f" % (vx, vmax, ref[:, 4].max()))
+            check(vx <= 900.0 + 1e-4, "path: vx %.6f above the bound" % vx)
+            check(abs(vmax - 900.0) < 0.01, "path: largest node speed %.6f" % vmax)
+
         # 4. a start point with zero defects that meets its constraints, no cost: solved as
         # it is (the final altitude of the mission flown as written, by `lvsim run`)
         p = write(d, "asis.yaml", OC_MAX_VX)

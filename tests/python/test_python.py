@@ -671,6 +671,38 @@ def test_targeting_built_in_python():
         lvsim.Mission(PAPER).target()  # no targeting section
 
 
+def test_optimize_same_as_the_cli(tmp_path):
+    """lvsim.Optimization (lv_ocp.h) solves examples/goddard's optimal_control section to the
+    same point as `lvsim optimize` (the same C code, the Jacobian's groups written to distinct
+    columns whatever the thread: bit for bit), writes the optimal mission, and reports the
+    problem's outcome and size (docs/optimal-control.md)."""
+    src = os.path.join(ROOT, "examples", "goddard")
+    shutil.copytree(src, tmp_path / "goddard")
+    path = str(tmp_path / "goddard" / "mission.yaml")
+    with lvsim.Optimization(path) as opt:
+        res = opt.solve(threads=2)
+        assert res.optimal and res.outcome == "optimal", res
+        assert res.violated == [] and res.max_violation < 1e-6
+        assert res.n_vars == 152 and res.n_groups > 0 and res.segments > 0
+        # the published optimum h/R = 1.01283 (COPS 3.0; tests/python/test_optimize_cli.py)
+        assert abs(1.0 + res.cost / 6378137.0 - 1.01283634) < 1e-6
+        t0, t1 = opt.phase_times(0)
+        assert t0 == 0.0 and 20.0 <= t1 <= 150.0
+        out = tmp_path / "opt.yaml"
+        opt.write(str(out))
+        assert out.exists() and (tmp_path / "opt_burn_controls.csv").exists()
+        with pytest.raises(lvsim.LvsimError):
+            opt.phase_times(1)  # the coast is flown whole, not optimised
+    p = subprocess.run([LVSIM, "optimize", path, "-q"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    cli = float(p.stdout.split("cost: ")[1].split()[0])
+    assert cli == float("%.12g" % res.cost), (cli, res.cost)
+    m = lvsim.Mission(str(out))  # the written mission loads and flies
+    assert m.run().final("coast", "h") > 81800.0
+    with pytest.raises(lvsim.LvsimError):
+        lvsim.Optimization(PAPER)  # no optimal_control section
+
+
 HOP = """mission: {name: hop}
 stages:
   - {name: s, dry_mass: 1000, propellant_mass: 2000,
