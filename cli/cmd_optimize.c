@@ -203,6 +203,12 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
            "%ld segment simulations, %ld evaluations (Jacobians %.2f s, points %.2f s)\n",
            res.n_vars, res.n_cons, res.nnz_jac, res.n_groups, res.segments, res.evaluations,
            res.wall_jac, res.wall_eval);
+    if (res.iterations > 0 && res.segments > 0)
+        printf("  per iteration: %.1f ms wall (Jacobian %.1f, points %.1f, IPOPT and the rest "
+               "%.1f); %.1f us CPU per segment simulation\n", 1e3 * res.wall / res.iterations,
+               1e3 * res.wall_jac / res.iterations, 1e3 * res.wall_eval / res.iterations,
+               1e3 * (res.wall - res.wall_jac - res.wall_eval) / res.iterations,
+               1e6 * res.cpu / (double)res.segments);
     if (!isnan(res.cost))
         printf("  cost: %.12g (start %.12g)\n", res.cost, res.cost_start);
     printf("  largest violation: %.3g (of each row's scale or tolerance)\n", res.max_violation);
