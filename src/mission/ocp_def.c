@@ -316,6 +316,21 @@ static lv_status check_phase(lv_mission *m, lv_ocp_phase_def *p, size_t idx, lv_
         if (ty->control_conflict != NULL && ty->control_conflict(ph, j, why, sizeof why))
             return FAIL_AT(u->loc, "phase '%s': control '%s': %s", p->name, u->name, why);
     }
+    /* the phase's own inputs table is replaced by the controls' (the start samples it): a
+     * column of it that is no control would be dropped without a word */
+    const lv_table *own = ty->own_inputs != NULL ? ty->own_inputs(ph) : NULL;
+    for (size_t c = 0; own != NULL && c < lv_table_n_out(own); c++) {
+        const char *col = lv_table_out_name(own, c);
+        size_t i = 0;
+        while (i < p->n_ctrl && strcmp(ty->controls[p->ctrl[i].input], col) != 0)
+            i++;
+        if (i == p->n_ctrl)
+            return FAIL_AT(p->loc, "phase '%s': its inputs table '%s' gives '%s', which is no "
+                           "control: the optimiser flies the controls' table instead, so make "
+                           "'%s' a control too, or give it as a constant (inputs: {%s%s: ...})",
+                           p->name, lv_table_name(own), col, col, col,
+                           strcmp(col, "throttle") != 0 ? "_deg" : "");
+    }
     return LV_OK;
 }
 

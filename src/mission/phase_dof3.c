@@ -610,6 +610,11 @@ static int dof3_control_conflict(const lv_phase_def *ph, size_t input, char *why
     return 0;
 }
 
+static const lv_table *dof3_own_inputs(const lv_phase_def *ph)
+{
+    return ((const dof3_cfg *)ph->type_cfg)->inputs;
+}
+
 static void dof3_set_controls(lv_phase_def *ph, lv_table *t)
 {
     dof3_cfg *cfg = ph->type_cfg;
@@ -642,4 +647,5 @@ const lv_phase_type lv_phase_type_dof3 = {
     .controls = dof3_controls,
     .control_conflict = dof3_control_conflict,
     .set_controls = dof3_set_controls,
+    .own_inputs = dof3_own_inputs,
 };

@@ -194,6 +194,9 @@ struct lv_phase_type {
     /* Makes phase ph fly the 1-D table t over mission time (outputs named as controls,
      * linear) as its controls, in place of its own inputs table; ph takes t over (frees it). */
     void (*set_controls)(lv_phase_def *ph, lv_table *t);
+    /* The phase's own inputs table as the file gives it (which set_controls replaces), or
+     * NULL. */
+    const lv_table *(*own_inputs)(const lv_phase_def *ph);
 };
 
 /* The type whose model compare.c flies end to end (the paper's flat-world test case): a study

@@ -307,6 +307,13 @@ def main():
             "guidance: {law: linear_tangent, a: 1, b: -0.01, heading_deg: 90}")
         open(p, "w").write(text)
         both_refuse(lv, p, "guidance law 'linear_tangent'")
+        # the phase's own inputs table gives a column that is no control: it would be dropped
+        open(os.path.join(d, "tab.csv"), "w").write("time [s],alpha [rad],throttle [1]\n"
+                                                     "0,0,1\n60,0,1\n")
+        p = os.path.join(d, "tab.yaml")
+        open(p, "w").write(MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=TF, oc=OC_MAX_VX)
+                           .replace("inputs: {alpha_deg: 0}", "inputs: {table: tab.csv}"))
+        both_refuse(lv, p, "gives 'throttle', which is no control")
     finally:
         shutil.rmtree(d, ignore_errors=True)
     if FAILS:
