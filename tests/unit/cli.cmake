@@ -59,8 +59,11 @@ add_test(NAME test_reference_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/test
          $<TARGET_FILE:lvsim_cli>)
 # Optimal control by direct multiple shooting with IPOPT (issue 25, items 1-2): the linear
 # tangent law's closed form, its least-time dual, zero defects, infeasible, bad sections.
+# Not under the sanitizers (about 1,000 IPOPT iterations; the C paths run there in test_ocp and
+# test_python).
 add_test(NAME test_optimize_cli COMMAND ${LV_PYTHON} ${PROJECT_SOURCE_DIR}/tests/python/test_optimize_cli.py
          $<TARGET_FILE:lvsim_cli>)
+set_tests_properties(test_optimize_cli PROPERTIES LABELS no-asan TIMEOUT 300)
 # examples/goddard flies Bryson's normalised Goddard rocket (COPS 3.0, sec. 10) exactly: its SI
 # numbers are the mapping's, and lvsim's h, v, m agree with SciPy's DOP853 (rtol 1e-12)
 # integration of the normalised ODE under the same throttle table to 1e-9 (pytest).
