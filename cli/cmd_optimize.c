@@ -37,34 +37,6 @@ static int on_iteration(const lv_ocp_iteration *it, void *user)
     return 0;
 }
 
-/* -o's folder exists and is writable; -o is no folder */
-static int check_out(const cli_cmd *self, const char *out)
-{
-    struct stat sb;
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", out);
-    char *slash = strrchr(dir, '/');
-    if (slash == dir)
-        dir[1] = '\0';
-    else if (slash != NULL)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
-    if (out[0] == '\0' || out[strlen(out) - 1] == '/' ||
-        (stat(out, &sb) == 0 && S_ISDIR(sb.st_mode)))
-        return usage_error(self, "-o names the file to write (OPTIMAL.yaml), not a folder:", out);
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        fprintf(stderr, "lvsim: -o %s: '%s' %s\n", out, dir,
-                stat(dir, &sb) == 0 ? "is a file, not a folder" : "does not exist");
-        return EXIT_INPUT;
-    }
-    if (access(dir, W_OK) != 0) {
-        fprintf(stderr, "lvsim: -o %s: cannot write into '%s': %s\n", out, dir, strerror(errno));
-        return EXIT_INPUT;
-    }
-    return EXIT_OK;
-}
-
 /* The written mission flown by `lvsim run`'s runner: each optimised phase's drift from the
  * optimiser's trajectory (its reference). */
 static int resimulate(const char *out, const lv_ocp *o, const lv_mission *m0)
@@ -153,7 +125,7 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
     if (path == NULL)
         return usage_error(self, "optimize needs a mission file", NULL);
     int code;
-    if (out != NULL && (code = check_out(self, out)) != EXIT_OK)
+    if (out != NULL && (code = check_out_file(self, out, "OPTIMAL.yaml")) != EXIT_OK)
         return code;
     lv_mission *m;
     const int lcode = load_mission(path, &m); /* as `lvsim check` and `run` load it */

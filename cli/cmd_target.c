@@ -294,32 +294,9 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
     }
     if (path == NULL)
         return usage_error(self, "target needs a mission file", NULL);
-    if (out != NULL) { /* before the solve, not after it */
-        struct stat sb;
-        char dir[4096];
-        snprintf(dir, sizeof dir, "%s", out);
-        char *slash = strrchr(dir, '/');
-        if (slash == dir)
-            dir[1] = '\0';
-        else if (slash != NULL)
-            *slash = '\0';
-        else
-            snprintf(dir, sizeof dir, ".");
-        if (out[0] == '\0' || out[strlen(out) - 1] == '/' ||
-            (stat(out, &sb) == 0 && S_ISDIR(sb.st_mode)))
-            return usage_error(self, "-o names the file to write (CONVERGED.yaml), not a folder:",
-                               out);
-        if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-            fprintf(stderr, "lvsim: -o %s: '%s' %s\n", out, dir,
-                    stat(dir, &sb) == 0 ? "is a file, not a folder" : "does not exist");
-            return EXIT_INPUT;
-        }
-        if (access(dir, W_OK) != 0) {
-            fprintf(stderr, "lvsim: -o %s: cannot write into '%s': %s\n", out, dir,
-                    strerror(errno));
-            return EXIT_INPUT;
-        }
-    }
+    int ocode;
+    if (out != NULL && (ocode = check_out_file(self, out, "CONVERGED.yaml")) != EXIT_OK)
+        return ocode; /* before the solve, not after it */
     if (ui.quiet)
         ui.tty = 0;
     lv_mission *m;

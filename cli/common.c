@@ -430,3 +430,33 @@ void print_padded(const char *s, size_t width, size_t max)
     for (; chars < width; chars++)
         putchar(' ');
 }
+
+int check_out_file(const cli_cmd *cmd, const char *out, const char *what)
+{
+    struct stat sb;
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", out);
+    char *slash = strrchr(dir, '/');
+    if (slash == dir)
+        dir[1] = '\0';
+    else if (slash != NULL)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    if (out[0] == '\0' || out[strlen(out) - 1] == '/' ||
+        (stat(out, &sb) == 0 && S_ISDIR(sb.st_mode))) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "-o names the file to write (%s), not a folder:", what);
+        return usage_error(cmd, msg, out);
+    }
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "lvsim: -o %s: '%s' %s\n", out, dir,
+                stat(dir, &sb) == 0 ? "is a file, not a folder" : "does not exist");
+        return EXIT_INPUT;
+    }
+    if (access(dir, W_OK) != 0) {
+        fprintf(stderr, "lvsim: -o %s: cannot write into '%s': %s\n", out, dir, strerror(errno));
+        return EXIT_INPUT;
+    }
+    return EXIT_OK;
+}

@@ -89,6 +89,9 @@ int parse_interval_option(const cli_cmd *cmd, const char *opt, const char *v, do
  * A phase with end events is not refused here: the run stops it at max_rows. list: also
  * prints each phase's estimate to stdout. Returns 0, 2, or 1 out of memory. */
 int check_output_bound(const lv_mission *m, double max_rows, double output_interval, int list);
+/* `-o FILE` names a file (not a folder, `what` in the message: "CONVERGED.yaml") in a folder
+ * that exists and is writable: EXIT_OK, else the usage error's or EXIT_INPUT with a message. */
+int check_out_file(const cli_cmd *cmd, const char *out, const char *what);
 /* The same, the message prefixed "lvsim: CONTEXT: " (context NULL: "lvsim: "); strict: a
  * phase with end events is refused too when its stop time allows more than max_rows rows
  * (where nothing holds the limit as it runs: an FMU's importer). */
