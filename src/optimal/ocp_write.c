@@ -242,19 +242,12 @@ static void walk_paths(repath *w, lv_ynode *n, const char *key)
     if (key == NULL || !lv_tw_path_key(key) || n->len == 0 || n->text[0] == '/' ||
         strlen(n->text) != n->len)
         return;
-    char joined[2 * LV_ATOMIC_PATH_MAX];
-    snprintf(joined, sizeof joined, "%s/%s", w->mdir, n->text);
-    char *abs = realpath(joined, NULL);
-    struct stat sb;
-    if (abs == NULL || stat(abs, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        free(abs);
-        return; /* not a file: a model's name, a number */
-    }
-    char *rel = lv_tw_relative_to(abs, w->odir);
-    free(abs);
+    int nomem = 0;
+    char *rel = lv_tw_rebase(w->mdir, w->odir, n->text, &nomem);
     if (rel == NULL) {
-        w->st = LV_ERR_NOMEM;
-        return;
+        if (nomem)
+            w->st = LV_ERR_NOMEM;
+        return; /* not a file: a model's name, a number */
     }
     free(n->text);
     n->text = rel;

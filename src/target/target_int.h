@@ -168,5 +168,9 @@ char *lv_tw_dir_real(const char *path);
 /* `target` (absolute, resolved) relative to folder `from` (absolute, resolved); absolute when
  * they share no folder but the root. Free it; NULL: out of memory. */
 char *lv_tw_relative_to(const char *target, const char *from);
+/* A mission's relative path `path` (from folder mdir) as seen from folder odir (both
+ * resolved): a new string, or NULL when it names no regular file (*nomem 0: a model's name, a
+ * number) or memory ran out (*nomem 1). */
+char *lv_tw_rebase(const char *mdir, const char *odir, const char *path, int *nomem);
 
 #endif

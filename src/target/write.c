@@ -194,6 +194,23 @@ char *lv_tw_relative_to(const char *target, const char *from)
     return out;
 }
 
+char *lv_tw_rebase(const char *mdir, const char *odir, const char *path, int *nomem)
+{
+    char joined[2 * LV_ATOMIC_PATH_MAX];
+    snprintf(joined, sizeof joined, "%s/%s", mdir, path);
+    char *abs = realpath(joined, NULL);
+    struct stat sb;
+    *nomem = 0;
+    if (abs == NULL || stat(abs, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        free(abs);
+        return NULL;
+    }
+    char *rel = lv_tw_relative_to(abs, odir);
+    free(abs);
+    *nomem = rel == NULL;
+    return rel;
+}
+
 typedef struct path_walk {
     const char *text;
     size_t len;
@@ -222,19 +239,12 @@ static void walk_paths(path_walk *w, const lv_ynode *n, const char *key)
     if (key == NULL || !lv_tw_path_key(key) || n->len == 0 || n->text[0] == '/' ||
         strlen(n->text) != n->len)
         return;
-    char joined[2 * LV_ATOMIC_PATH_MAX];
-    snprintf(joined, sizeof joined, "%s/%s", w->mdir, n->text);
-    char *abs = realpath(joined, NULL);
-    struct stat sb;
-    if (abs == NULL || stat(abs, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        free(abs);
-        return; /* not a file: a model's name, a number */
-    }
-    char *rel = lv_tw_relative_to(abs, w->odir);
-    free(abs);
+    int nomem = 0;
+    char *rel = lv_tw_rebase(w->mdir, w->odir, n->text, &nomem);
     if (rel == NULL) {
-        w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
-        return;
+        if (nomem)
+            w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
+        return; /* not a file: a model's name, a number */
     }
     size_t at = offset_of(w->text, w->len, n->line, n->col);
     const int quoted = !n->plain;
