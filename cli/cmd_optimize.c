@@ -30,9 +30,12 @@ static int on_iteration(const lv_ocp_iteration *it, void *user)
                "lg(mu)", "step", "segments", "wall [s]");
         ui->header = 1;
     }
-    printf("%5d%c %16.9g  %9.2e  %9.2e  %7.1f  %8.2e  %9ld  %8.2f\n", it->iteration,
-           it->restoration ? 'r' : ' ', it->cost, it->inf_pr, it->inf_du, log10(it->mu),
-           it->step, it->segments, it->wall);
+    char cost[32] = "-"; /* a problem without a cost */
+    if (!isnan(it->cost))
+        snprintf(cost, sizeof cost, "%.9g", it->cost);
+    printf("%5d%c %16s  %9.2e  %9.2e  %7.1f  %8.2e  %9ld  %8.2f\n", it->iteration,
+           it->restoration ? 'r' : ' ', cost, it->inf_pr, it->inf_du, log10(it->mu), it->step,
+           it->segments, it->wall);
     fflush(stdout);
     return 0;
 }
@@ -133,23 +136,17 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
         return lcode;
     lv_err err;
     lv_status st;
-    if (out != NULL && (st = lv_output_check(out, m, force ? LV_OUTPUT_REPLACE : 0u, &err)) != LV_OK) {
-        /* an optimal mission this command wrote before may be replaced: lv_ocp_write decides */
-        FILE *fp = fopen(out, "r");
-        char line[32] = "";
-        const int ours = fp != NULL && fgets(line, sizeof line, fp) != NULL &&
-                         strncmp(line, "# lvsim optimize:", 17) == 0;
-        if (fp != NULL)
-            fclose(fp);
-        if (!ours || lv_output_check(out, m, LV_OUTPUT_REPLACE, &err) != LV_OK) {
-            lv_mission_free(m);
-            return print_err("lvsim optimize", &err, EXIT_INPUT);
-        }
-    }
     lv_ocp *o = NULL;
     if ((st = lv_ocp_create(path, &o, &err)) != LV_OK) {
         lv_mission_free(m);
         return print_err("lvsim", &err, exit_code_for_input(st));
+    }
+    /* every file -o would write, before the solve: never an input, never a user's file */
+    if (out != NULL &&
+        (st = lv_ocp_check_write(o, out, force ? LV_OUTPUT_REPLACE : 0u, &err)) != LV_OK) {
+        lv_ocp_free(o);
+        lv_mission_free(m);
+        return print_err("lvsim optimize", &err, EXIT_INPUT);
     }
     lv_ocp_result res;
     cli_catch_stop();
@@ -194,6 +191,9 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
     }
     if (res.n_violated > 12)
         printf("  ... and %zu more violated rows\n", res.n_violated - 12);
+    if (res.outcome != LV_OCP_OPTIMAL && res.n_violated == 0 && isfinite(res.max_violation))
+        printf("  the point returned meets every row: IPOPT stopped on trial points that did "
+               "not fly (below), not on the constraints\n");
     code = res.outcome == LV_OCP_OPTIMAL ? EXIT_OK
            : res.outcome == LV_OCP_STOPPED ? EXIT_STOPPED
                                            : EXIT_SIM;

@@ -123,6 +123,12 @@ LV_API lv_status lv_ocp_phase_times(const lv_ocp *o, size_t k, double *t0, doubl
  * `lvsim run` re-flies it and reports its drift from the optimum. `flags`: lv_output_check's
  * (LV_OUTPUT_REPLACE: existing files may be replaced; never an input of the mission). */
 LV_API lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err);
+/* The checks of lv_ocp_write's names alone (the mission and its tables beside it: a .yaml
+ * name, never an input, an existing file only as flags allow), for a caller that wants the
+ * refusal before a long solve. lv_ocp_write refuses too without an optimal last solve
+ * (LV_ERR_INPUT "no optimum to write"). */
+LV_API lv_status lv_ocp_check_write(const lv_ocp *o, const char *path, unsigned flags,
+                                    lv_err *err);
 
 #ifdef __cplusplus
 }

@@ -530,6 +530,7 @@ _proto(lib, "lv_ocp_solve", c_int, P, POINTER(lv_ocp_settings), POINTER(lv_ocp_r
 _proto(lib, "lv_ocp_violation", c_int, P, c_size_t, c_char_p, c_size_t, POINTER(c_double), E)
 _proto(lib, "lv_ocp_phase_times", c_int, P, c_size_t, POINTER(c_double), POINTER(c_double), E)
 _proto(lib, "lv_ocp_write", c_int, P, c_char_p, c_uint, E)
+_proto(lib, "lv_ocp_check_write", c_int, P, c_char_p, c_uint, E)
 _proto(lib, "lv_mission_disp_count", c_size_t, P)
 _proto(lib, "lv_mission_disp_info", None, P, c_size_t, POINTER(lv_disp_info))
 _proto(lib, "lv_mission_disp_seed", c_int, P, POINTER(c_uint64))

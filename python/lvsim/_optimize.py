@@ -99,6 +99,8 @@ class Optimization:
 
     def phase_times(self, k):
         """(t0, t1) [s] of optimised phase k (its index in run order) at the point returned."""
+        if not isinstance(k, int) or k < 0:
+            raise ValueError("k: a phase index >= 0")
         t0, t1 = c_double(), c_double()
         err = _lib.lv_err()
         with self._lock:
@@ -109,7 +111,7 @@ class Optimization:
     def write(self, path, *, force=False):
         """Writes the optimal mission at `path` (.yaml) with its controls and reference tables
         beside it (lv_ocp_write); an existing file lvsim optimize did not write is refused
-        unless force."""
+        unless force, and so is a problem whose last solve did not end optimal."""
         err = _lib.lv_err()
         with self._lock:
             check(lib.lv_ocp_write(self._handle(), path_arg(path), 1 if force else 0,

@@ -315,6 +315,23 @@ static lv_status check_phase(lv_mission *m, lv_ocp_phase_def *p, size_t idx, lv_
         char why[256];
         if (ty->control_conflict != NULL && ty->control_conflict(ph, j, why, sizeof why))
             return FAIL_AT(u->loc, "phase '%s': control '%s': %s", p->name, u->name, why);
+        /* the throttle's bounds within every running engine's range, as a constant's
+         * (engine_run.c): beyond, the engines clamp what the optimiser thinks it flies */
+        const lv_stage_def *st = &d->stages[ph->stages[0]];
+        for (size_t ei = 0; !is_angle && ei < st->n_engines; ei++) {
+            const lv_engine_def *ed = &st->engines[ei];
+            if (ph->engines_run != NULL && ph->engines_run[ei] == 0)
+                continue;
+            const double lo = ed->throttle_min != LV_NO_SLOT ? d->slots[ed->throttle_min].value
+                                                             : 0.0;
+            const double hi = ed->throttle_max != LV_NO_SLOT ? d->slots[ed->throttle_max].value
+                                                             : 1.0;
+            if (u->lo < lo || u->hi > hi)
+                return FAIL_AT(u->loc, "phase '%s': control 'throttle': [%g, %g] is not within "
+                               "the throttle range [%g, %g] of engine '%s' (stage '%s'): the "
+                               "engine would clamp what the optimiser flies", p->name, u->lo,
+                               u->hi, lo, hi, ed->name, st->name);
+        }
     }
     /* the phase's own inputs table is replaced by the controls' (the start samples it): a
      * column of it that is no control would be dropped without a word */

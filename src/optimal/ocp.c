@@ -310,10 +310,8 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         }
         if (st == LV_OK)
             st = lv_sim_get(sim, rx, nx, xb, &e);
-        if (st == LV_OK && last) {
-            st = lv_sim_finish(sim, finals, &rep, &e);
-            sim = NULL;
-        }
+        if (st == LV_OK && last)
+            st = lv_sim_finish(sim, finals, &rep, &e); /* then freed, as every other */
         lv_sim_free(sim);
         if (st != LV_OK) {
             ok = fail_why(w, ph->name, "", &e);
@@ -1432,6 +1430,7 @@ lv_status lv_ocp_solve(lv_ocp *o, const lv_ocp_settings *s, lv_ocp_result *res, 
     rr->evaluations = o->evaluations;
     rr->wall = wall_now() - o->t0_wall;
     rr->cpu = cpu_now() - cpu0;
+    o->solved = 1;
     if (res != NULL)
         *res = *rr;
     if (o->stopped)

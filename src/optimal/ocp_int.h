@@ -84,6 +84,7 @@ struct lv_ocp {
     long evaluations;
     int stopped;
     int iter_last;
+    int solved;                 /* lv_ocp_solve has run (res holds its outcome) */
     int best_feasible;          /* z_best meets every row */
     double best_cost, best_worst; /* its scaled cost and largest violation */
     double cost_start;

@@ -21,8 +21,13 @@
 #include "optimal/ocp_int.h"
 #include "target/target_int.h"
 
-#define REF_PER_SEGMENT 50 /* reference rows per segment: the drift interpolates v and m
-                            * linearly between them (m'' h^2 / 8: 0.04 kg at 10 in Goddard's burn) */
+/* The reference's rows: every REF_DT seconds of a segment, at least REF_MIN and at most REF_MAX
+ * per segment, and its events. The drift interpolates v and m linearly between them (v'' h^2 /
+ * 8): at 10 rows per segment Goddard's burn read 0.04 kg, and at 50 rows a 88 s segment of
+ * dof3-branch's upper stage 1.7 m/s near its burnout, where the re-flight was 1e-5 m/s off. */
+#define REF_DT 0.1
+#define REF_MIN 50
+#define REF_MAX 5000
 
 /* ---- the tree --------------------------------------------------------------------------- */
 
@@ -315,7 +320,7 @@ static lv_status write_controls(lv_ocp *o, const oc_ph *p, const double *z, doub
 }
 
 /* The NLP's trajectory of phase p (the run of worker 0 is at z): each segment flown again from
- * its start state, REF_PER_SEGMENT rows per segment and the end. */
+ * its start state: rows every REF_DT (REF_MIN to REF_MAX per segment), its events, the end. */
 static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, double t0,
                                  double D, const char *path, lv_err *err)
 {
@@ -348,7 +353,7 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
         for (size_t i = 0; i < p->nx; i++)
             xa[i] = z[p->ix + j * p->nx + i] * o->sx[p->ix + j * p->nx + i];
         lv_sim_settings s;
-        /* the segment as the NLP flies it (ocp.c), its rows in memory: REF_PER_SEGMENT
+        /* the segment as the NLP flies it (ocp.c), its rows in memory: REF_DT apart
          * intervals and the two rows of each event (a kink: the burnout) */
         oc_segment_settings(o, lv_phase_call_settings(c), p, xa, m_bo, ta, tb, names, values,
                             &s);
@@ -358,7 +363,7 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
             break;
         s.n_sinks = 1;
         s.sinks = &mem;
-        s.number_of_intervals = REF_PER_SEGMENT;
+        s.number_of_intervals = (int)fmin(REF_MAX, fmax(REF_MIN, ceil((tb - ta) / REF_DT)));
         st = lv_simulate(def, lv_phase_call_inst(c), &s, NULL, NULL, err);
         size_t col[8];
         for (int i = 0; i < 8 && st == LV_OK; i++)
@@ -389,32 +394,23 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
-lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
+/* The names lv_ocp_write writes: path's stem and csv[2 p], csv[2 p + 1] per optimised phase
+ * (room for 2 np); each checked as lv_ocp_check_write says. */
+static lv_status output_names(const lv_ocp *o, const char *path, unsigned flags,
+                              char (*csv)[LV_ATOMIC_PATH_MAX + 80], lv_err *err)
 {
-    oc_worker *w = &o->w[0];
+    const oc_worker *w = &o->w[0];
     const lv_mission_def *d = w->m->def;
-    char *text = NULL, *mdir = NULL, *odir = NULL;
-    size_t len = 0;
-    lv_ynode *root = NULL;
-    lv_atomic a = {0};
-    char stem[LV_ATOMIC_PATH_MAX];
-    lv_status st = LV_OK;
-    /* the point returned, flown on worker 0 (the files below read its run) */
-    if (memcmp(o->z_base, o->z_best, o->n * sizeof *o->z_base) != 0 || !o->base_ok) {
-        memcpy(o->z_base, o->z_best, o->n * sizeof *o->z_base);
-        o->base_ok = oc_evaluate(o, w, o->z_base, o->g_base, 0);
-    }
-    if (!o->base_ok)
-        return lv_fail(err, LV_ERR_SOLVER, "the point to write does not fly: %s", w->why);
     const size_t pl = strlen(path);
-    if (pl < 6 || (strcmp(path + pl - 5, ".yaml") != 0 && strcmp(path + pl - 4, ".yml") != 0))
-        return lv_fail(err, LV_ERR_INPUT, "%s: the optimal mission is a .yaml file", path);
-    snprintf(stem, sizeof stem, "%.*s", (int)(pl - (path[pl - 4] == '.' ? 4 : 5)), path);
-    if ((st = may_write(w->m, path, flags, err)) != LV_OK)
-        return st;
-    char (*csv)[LV_ATOMIC_PATH_MAX + 80] = calloc(2 * o->np + 1, sizeof *csv);
-    if (csv == NULL)
-        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    const int yml = pl > 4 && strcmp(path + pl - 4, ".yml") == 0;
+    if (!yml && !(pl > 5 && strcmp(path + pl - 5, ".yaml") == 0))
+        return lv_fail(err, LV_ERR_INPUT, "%s: the optimal mission is a .yaml (or .yml) file",
+                       path);
+    if (pl >= LV_ATOMIC_PATH_MAX)
+        return lv_fail(err, LV_ERR_INPUT, "%.80s...: the path is too long", path);
+    char stem[LV_ATOMIC_PATH_MAX];
+    snprintf(stem, sizeof stem, "%.*s", (int)(pl - (yml ? 4 : 5)), path);
+    lv_status st = may_write(w->m, path, flags, err);
     for (size_t p = 0; p < o->np && st == LV_OK; p++) {
         const char *pn = d->phases[o->ph[p].k].name;
         snprintf(csv[2 * p], sizeof csv[0], "%s_%s_controls.csv", stem, pn);
@@ -431,7 +427,43 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
                              "--force", csv[2 * p + i], path);
         }
     }
-    if (st != LV_OK)
+    return st;
+}
+
+lv_status lv_ocp_check_write(const lv_ocp *o, const char *path, unsigned flags, lv_err *err)
+{
+    char (*csv)[LV_ATOMIC_PATH_MAX + 80] = calloc(2 * o->np + 1, sizeof *csv);
+    if (csv == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    const lv_status st = output_names(o, path, flags, csv, err);
+    free(csv);
+    return st;
+}
+
+lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
+{
+    oc_worker *w = &o->w[0];
+    const lv_mission_def *d = w->m->def;
+    char *text = NULL, *mdir = NULL, *odir = NULL;
+    size_t len = 0;
+    lv_ynode *root = NULL;
+    lv_atomic a = {0};
+    lv_status st = LV_OK;
+    if (!o->solved || o->res.outcome != LV_OCP_OPTIMAL)
+        return lv_fail(err, LV_ERR_INPUT, "no optimum to write: %s", !o->solved
+                       ? "the problem has not been solved (lv_ocp_solve)"
+                       : "the last solve did not end optimal");
+    /* the point returned, flown on worker 0 (the files below read its run) */
+    if (memcmp(o->z_base, o->z_best, o->n * sizeof *o->z_base) != 0 || !o->base_ok) {
+        memcpy(o->z_base, o->z_best, o->n * sizeof *o->z_base);
+        o->base_ok = oc_evaluate(o, w, o->z_base, o->g_base, 0);
+    }
+    if (!o->base_ok)
+        return lv_fail(err, LV_ERR_SOLVER, "the point to write does not fly: %s", w->why);
+    char (*csv)[LV_ATOMIC_PATH_MAX + 80] = calloc(2 * o->np + 1, sizeof *csv);
+    if (csv == NULL)
+        return lv_fail(err, LV_ERR_NOMEM, "out of memory");
+    if ((st = output_names(o, path, flags, csv, err)) != LV_OK)
         goto done;
     if ((st = lv_read_file(d->path, LV_MISSION_FILE_MAX, "the mission file", &text, &len, err)) !=
             LV_OK ||

@@ -170,9 +170,20 @@ def main():
         other = os.path.join(d, "users.yaml")
         open(other, "w").write("# mine\n")
         r4 = run(lv, "optimize", p, "-o", other, "-q")
-        check(r4.returncode == 2 and "cannot prove it wrote" in r4.stderr,
+        check(r4.returncode == 2 and "did not write it" in r4.stderr,
               "optimize onto a user's file: exit 2 (got %d: %s)" % (r4.returncode, r4.stderr))
         check(open(other).read() == "# mine\n", "the user's file is untouched")
+        # a table of the output's name that is a user's: refused before the solve
+        open(os.path.join(d, "clash_climb_controls.csv"), "w").write("mine\n")
+        r5 = run(lv, "optimize", p, "-o", os.path.join(d, "clash.yaml"))
+        check(r5.returncode == 2 and "did not write it" in r5.stderr and "iter" not in r5.stdout,
+              "optimize onto a user's table: exit 2 before the solve (got %d: %s)"
+              % (r5.returncode, r5.stderr))
+        # a throttle control beyond the engines' range [0, 1] is refused
+        p_thr = write(d, "thr.yaml", OC_MAX_VX.replace(
+            "controls: [{name: alpha_deg, min: -60, max: 60}]",
+            "controls: [{name: alpha_deg, min: -60, max: 60}, {name: throttle, min: 0, max: 2}]"))
+        both_refuse(lv, p_thr, "not within the throttle range [0, 1]")
 
         # 3. the dual: the least time to reach H, vy = 0 and the closed form's vx: tf
         oc = OC_MAX_VX.replace("      nodes: 21\n",

@@ -131,6 +131,8 @@ static void test_unreachable(void)
     CHECK_OK(lv_ocp_create("ocp_far.yaml", &o, &err), &err);
     if (o == NULL)
         return;
+    CHECK_FAILS(lv_ocp_write(o, "ocp_far_opt.yaml", 0, &err), &err, LV_ERR_INPUT,
+                "not been solved");
     lv_ocp_settings s = {.threads = 2, .max_iterations = 30};
     lv_ocp_result res;
     CHECK_OK(lv_ocp_solve(o, &s, &res, &err), &err);
@@ -148,6 +150,10 @@ static void test_unreachable(void)
     CHECK(named);
     CHECK_FAILS(lv_ocp_violation(o, res.n_violated, (char[8]){0}, 8, NULL, &err), &err,
                 LV_ERR_INPUT, "violated");
+    CHECK_FAILS(lv_ocp_write(o, "ocp_far_opt.yaml", 0, &err), &err, LV_ERR_INPUT,
+                "did not end optimal");
+    CHECK_FAILS(lv_ocp_check_write(o, "ocp_far.yaml", LV_OUTPUT_REPLACE, &err), &err,
+                LV_ERR_INPUT, "");
     lv_ocp_free(o);
 }
 
