@@ -136,15 +136,20 @@ void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph
         names[n] = p->xname[j];
         values[n++] = x[j];
     }
-    /* the burning stage's propellant: none burns out within a segment. The book is a row of
-     * the NLP instead (the phase's final mass at least its burnout mass: r_mass), so the
-     * throttle is what stops the burn: no event that a difference step moves across a
-     * segment, no mass of the model's own below which the controls stop acting (the rows went
-     * degenerate: Goddard's burn failed 2 of 3 node counts with the burnout inside). The
-     * models' book wants the propellant less than the mass: all but 1e-9 of it. */
-    if (!isnan(m_burnout) && p->im != (size_t)-1 && p->r_mass != (size_t)-1) {
+    /* the burning stage's propellant. Where the optimiser decides how much burns (a throttle
+     * control, a free duration) none burns out within a segment: the book is a row of the NLP
+     * instead (the final mass at least the burnout mass: r_mass), so the throttle stops the
+     * burn - no event that a difference step moves across a segment, no mass below which the
+     * controls stop acting (Goddard's burn failed 2 of 3 node counts with the burnout inside).
+     * The models' book wants the propellant less than the mass: all but 1e-9 of it. Where the
+     * burn is fixed (throttle and duration), the row would be constant - 0 at a phase that
+     * ends at its burnout, with no gradient (Delta III's fixed phases: dual infeasibility
+     * 1e8) - and the segment burns out where the phase's book says: its mass above the
+     * burnout mass. */
+    if (!isnan(m_burnout) && p->im != (size_t)-1) {
         names[n] = "propellant";
-        values[n++] = x[p->im] * (1.0 - 1e-9);
+        values[n++] = p->r_mass != (size_t)-1 ? x[p->im] * (1.0 - 1e-9)
+                                              : fmax(0.0, x[p->im] - m_burnout);
     }
     *s = *cs;
     s->start_time = ta;
@@ -812,7 +817,11 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
             }
         ph->r_path = m;
         m += ph->n_path * (ph->ns + 1);
-        ph->r_mass = ph->burns ? m++ : (size_t)-1;
+        int thr_ctl = 0;
+        for (size_t c = 0; c < ph->nu; c++)
+            thr_ctl |= strcmp(d->phases[ph->k].type->controls[ph->def->ctrl[c].input],
+                              "throttle") == 0;
+        ph->r_mass = ph->burns && (thr_ctl || ph->iD >= 0) ? m++ : (size_t)-1;
     }
     o->r_fin = m;
     m += od->n_cons;

@@ -348,8 +348,10 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
     double values[160], xa[32];
     char buf[LV_NUMFMT_MAX];
     const double h = D / (double)p->ns;
+    double t_last = -INFINITY;
     for (size_t j = 0; j < p->ns && st == LV_OK; j++) {
-        const double ta = t0 + h * (double)j, tb = j + 1 == p->ns ? t0 + D : ta + h;
+        const double ta = t0 + h * (double)j;
+        const double tb = j + 1 == p->ns ? t0 + D : t0 + h * (double)(j + 1);
         for (size_t i = 0; i < p->nx; i++)
             xa[i] = z[p->ix + j * p->nx + i] * o->sx[p->ix + j * p->nx + i];
         lv_sim_settings s;
@@ -368,9 +370,15 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
         size_t col[8];
         for (int i = 0; i < 8 && st == LV_OK; i++)
             st = lv_result_column(rows, i == 0 ? "time" : cols[i - 1], &col[i], err);
-        /* the segment's last row is the next one's first (its node): written once */
-        const size_t nr = lv_result_rows(rows), last = j + 1 == p->ns ? nr : nr - 1;
-        for (size_t r = 0; r < last && st == LV_OK; r++) {
+        /* the segment's end is the next one's first row (its node): written once; a grid row
+         * that rounds onto or past the end goes with it, so the times only rise */
+        const size_t nr = lv_result_rows(rows);
+        const double t_cut = j + 1 == p->ns ? INFINITY : tb - 1e-12 * fmax(1.0, fabs(tb));
+        for (size_t r = 0; r < nr && st == LV_OK; r++) {
+            const double tr = lv_result_value(rows, r, col[0]);
+            if (tr >= t_cut || tr < t_last)
+                continue;
+            t_last = tr;
             for (int i = 0; i < 8; i++) {
                 lv_numfmt_double(lv_result_value(rows, r, col[i]), buf);
                 fprintf(a.fp, i ? ",%s" : "%s", buf);
@@ -528,6 +536,7 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
             break;
         }
         map_drop(pm, "end");
+        map_drop(pm, "end_name"); /* it names the ends: none left */
         map_drop(pm, "inputs");
         map_drop(pm, "reference");
         ok = add_pair(pm, "inputs", in) &&
