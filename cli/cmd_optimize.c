@@ -191,7 +191,7 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
     }
     if (res.n_violated > 12)
         printf("  ... and %zu more violated rows\n", res.n_violated - 12);
-    if (res.outcome != LV_OCP_OPTIMAL && res.n_violated == 0 && isfinite(res.max_violation))
+    if (res.outcome == LV_OCP_INFEASIBLE && res.n_violated == 0 && isfinite(res.max_violation))
         printf("  the point returned meets every row: IPOPT stopped on trial points that did "
                "not fly (below), not on the constraints\n");
     code = res.outcome == LV_OCP_OPTIMAL ? EXIT_OK
