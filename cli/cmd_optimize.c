@@ -100,19 +100,12 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
                 continue;
             }
             const int mi = strcmp(a, "--max-iter") == 0, pl = strcmp(a, "--print-level") == 0;
-            const double lo = pl ? 0.0 : 1.0, hi = mi ? 100000.0 : pl ? 12.0 : 15.0;
-            double x;
-            if (!parse_double(v, &x) || x != floor(x) || x < lo || x > hi) {
-                char msg[96];
-                snprintf(msg, sizeof msg, "%s needs an integer from %g to %g, got", a, lo, hi);
-                return usage_error(self, msg, v);
-            }
-            if (mi)
-                set.max_iterations = (int)x;
-            else if (pl)
-                set.print_level = (int)x;
-            else
-                set.threads = (int)x;
+            const int rc = parse_int_option(self, a, v, pl ? 0.0 : 1.0,
+                                            mi ? 100000.0 : pl ? 12.0 : 15.0,
+                                            mi ? &set.max_iterations
+                                               : pl ? &set.print_level : &set.threads);
+            if (rc != EXIT_OK)
+                return rc;
         } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
             ui.quiet = 1;
         } else if (strcmp(a, "--force") == 0) {

@@ -264,19 +264,12 @@ static int target_run(const cli_cmd *self, int argc, char **argv)
             } else {
                 /* counts as the file's keys take them: an integer, also written 1e3 */
                 const int r = strcmp(a, "--restarts") == 0, mi = strcmp(a, "--max-iter") == 0;
-                const double lo = r ? 0.0 : 1.0, hi = r ? 100.0 : mi ? 100000.0 : 1024.0;
-                double x;
-                if (!parse_double(v, &x) || x != floor(x) || x < lo || x > hi) {
-                    char msg[96];
-                    snprintf(msg, sizeof msg, "%s needs an integer from %g to %g, got", a, lo, hi);
-                    return usage_error(self, msg, v);
-                }
-                if (r)
-                    set.restarts = (int)x;
-                else if (mi)
-                    set.max_iterations = (int)x;
-                else
-                    set.threads = (int)x;
+                const int rc = parse_int_option(self, a, v, r ? 0.0 : 1.0,
+                                                r ? 100.0 : mi ? 100000.0 : 1024.0,
+                                                r ? &set.restarts
+                                                  : mi ? &set.max_iterations : &set.threads);
+                if (rc != EXIT_OK)
+                    return rc;
             }
         } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
             ui.quiet = 1;

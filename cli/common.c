@@ -460,3 +460,16 @@ int check_out_file(const cli_cmd *cmd, const char *out, const char *what)
     }
     return EXIT_OK;
 }
+
+int parse_int_option(const cli_cmd *cmd, const char *opt, const char *v, double lo, double hi,
+                     int *out)
+{
+    double x;
+    if (!parse_double(v, &x) || x != floor(x) || x < lo || x > hi) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s needs an integer from %g to %g, got", opt, lo, hi);
+        return usage_error(cmd, msg, v);
+    }
+    *out = (int)x;
+    return EXIT_OK;
+}

@@ -92,6 +92,10 @@ int check_output_bound(const lv_mission *m, double max_rows, double output_inter
 /* `-o FILE` names a file (not a folder, `what` in the message: "CONVERGED.yaml") in a folder
  * that exists and is writable: EXIT_OK, else the usage error's or EXIT_INPUT with a message. */
 int check_out_file(const cli_cmd *cmd, const char *out, const char *what);
+/* Option `opt`'s value v as an integer from lo to hi (also written 1e3, as the files' counts):
+ * EXIT_OK with *out, else the usage error's exit code ("OPT needs an integer from lo to hi"). */
+int parse_int_option(const cli_cmd *cmd, const char *opt, const char *v, double lo, double hi,
+                     int *out);
 /* The same, the message prefixed "lvsim: CONTEXT: " (context NULL: "lvsim: "); strict: a
  * phase with end events is refused too when its stop time allows more than max_rows rows
  * (where nothing holds the limit as it runs: an FMU's importer). */
