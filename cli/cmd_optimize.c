@@ -42,7 +42,7 @@ static int on_iteration(const lv_ocp_iteration *it, void *user)
 
 /* The written mission flown by `lvsim run`'s runner: each optimised phase's drift from the
  * optimiser's trajectory (its reference). */
-static int resimulate(const char *out, const lv_ocp *o, const lv_mission *m0)
+static int resimulate(const char *out, const lv_ocp *o)
 {
     lv_mission *m = NULL;
     lv_run *r = NULL;
@@ -74,7 +74,6 @@ static int resimulate(const char *out, const lv_ocp *o, const lv_mission *m0)
         printf("  %-20s %14.4g %14.4g %14.4g %14.4g\n", pr->name, dr.pos_max, dr.pos_final,
                dr.vel_max, dr.mass_max);
     }
-    (void)m0;
     lv_run_free(r);
     lv_mission_free(m);
     return EXIT_OK;
@@ -197,7 +196,7 @@ static int optimize_run(const cli_cmd *self, int argc, char **argv)
         } else {
             printf("wrote %s (and its controls and reference tables beside it)\n", out);
             fflush(stdout);
-            code = resimulate(out, o, m);
+            code = resimulate(out, o);
         }
     } else if (out != NULL) {
         printf("%s not written: no optimum\n", out);

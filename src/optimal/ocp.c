@@ -201,25 +201,31 @@ static void final_rows(const lv_ocp *o, size_t k, const double *f, double *g)
     }
 }
 
-/* The mass at which phase p's burning stage burns out: its start mass less its propellant at
- * the start (the models' "propellant" parameter), from the prepared model; NAN without them. */
-lv_status oc_burnout_mass(const oc_ph *p, const lv_model_def *def, void *inst,
-                          const lv_sim_settings *cs, double *m_burnout, lv_err *err)
+/* Phase p's start as its prepared model sets it (the hand-off's values, the model's start):
+ * the states x[nx] and the mass at which its burning stage burns out, the start mass less the
+ * models' "propellant" parameter there (NAN for a model without both). One simulation made
+ * and freed: the links' right-hand side and the segments' propellant book. */
+lv_status oc_phase_start(const oc_ph *p, const lv_model_def *def, void *inst,
+                         const lv_sim_settings *cs, double *x, double *m_burnout, lv_err *err)
 {
     *m_burnout = NAN;
-    lv_vref rp, rm;
-    if (p->im == (size_t)-1 || lv_model_vref(def, "propellant", &rp, NULL) != LV_OK ||
-        lv_model_vref(def, p->xname[p->im], &rm, NULL) != LV_OK)
-        return LV_OK;
+    lv_vref rx[32], rp;
+    if (p->nx > 32)
+        return lv_fail(err, LV_ERR_INPUT, "%zu states: at most 32", p->nx);
+    for (size_t i = 0; i < p->nx; i++)
+        if (lv_model_vref(def, p->xname[i], &rx[i], err) != LV_OK)
+            return err->code;
+    const int has_prop = p->im != (size_t)-1 && lv_model_vref(def, "propellant", &rp, NULL) == LV_OK;
     lv_sim_settings s = *cs;
     s.n_sinks = 0, s.sinks = NULL, s.n_stops = 0, s.stops = NULL, s.n_final = 0;
     s.final_names = NULL, s.result_file = NULL, s.max_rows = 0.0;
-    lv_sim *sim;
-    double v[2];
+    lv_sim *sim = NULL;
+    double prop = NAN;
     lv_status st = lv_sim_create(def, inst, &s, &sim, err);
-    if (st == LV_OK && (st = lv_sim_get(sim, &rm, 1, &v[0], err)) == LV_OK &&
-        (st = lv_sim_get(sim, &rp, 1, &v[1], err)) == LV_OK)
-        *m_burnout = v[0] - v[1];
+    if (st == LV_OK)
+        st = lv_sim_get(sim, rx, p->nx, x, err);
+    if (st == LV_OK && has_prop && (st = lv_sim_get(sim, &rp, 1, &prop, err)) == LV_OK)
+        *m_burnout = x[p->im] - prop;
     lv_sim_free(sim);
     return st;
 }
@@ -257,31 +263,20 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         ok = lv_model_vref(def, p->xname[i], &rx[i], &e) == LV_OK;
     for (size_t q = 0; q < p->n_path && ok; q++)
         ok = lv_model_vref(def, p->path_out[q], &rp[q], &e) == LV_OK;
-    if (ok)
-        ok = oc_burnout_mass(p, def, inst, cs, &m_bo, &e) == LV_OK;
     if (!ok) {
         lv_phase_call_free(c);
         return fail_why(w, ph->name, "", &e);
     }
     /* the hand-off's start: the link rows */
-    {
-        lv_sim_settings s = *cs;
-        s.n_sinks = 0, s.sinks = NULL, s.n_stops = 0, s.stops = NULL, s.n_final = 0;
-        s.final_names = NULL, s.result_file = NULL, s.max_rows = 0.0;
-        lv_sim *sim;
-        if (lv_sim_create(def, inst, &s, &sim, &e) != LV_OK ||
-            lv_sim_get(sim, rx, nx, xa, &e) != LV_OK) {
-            lv_sim_free(sim);
-            lv_phase_call_free(c);
-            return fail_why(w, ph->name, "its start: ", &e);
-        }
-        lv_sim_free(sim);
-        for (size_t i = 0; i < nx; i++) {
-            const size_t v = p->ix + i;
-            if (propagate)
-                z[v] = xa[i] / o->sx[v];
-            g[p->r_link + i] = (z[v] * o->sx[v] - xa[i]) / p->xs[i];
-        }
+    if (oc_phase_start(p, def, inst, cs, xa, &m_bo, &e) != LV_OK) {
+        lv_phase_call_free(c);
+        return fail_why(w, ph->name, "its start: ", &e);
+    }
+    for (size_t i = 0; i < nx; i++) {
+        const size_t v = p->ix + i;
+        if (propagate)
+            z[v] = xa[i] / o->sx[v];
+        g[p->r_link + i] = (z[v] * o->sx[v] - xa[i]) / p->xs[i];
     }
     const double h = D / (double)p->ns;
     double *finals = lv_phase_call_finals(c);
@@ -621,28 +616,11 @@ static double rows_at(const lv_result *res, size_t tcol, size_t col, double t)
     return lv_result_value(res, n - 1, col);
 }
 
-/* The start point: the mission flown as written (the start controls from its own inputs),
- * the durations and the control nodes from that flight. */
-static lv_status start_point(lv_ocp *o, double *x, lv_err *err)
+/* The start point from run r of mission m, flown as written with its rows: the durations and
+ * the control nodes (a control's `start:`, else its own input along that flight). */
+static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double *x)
 {
-    lv_mission *m = NULL;
-    lv_run *r = NULL;
-    lv_status st = lv_mission_load(o->path, &m, err);
-    if (st == LV_OK)
-        st = lv_run_create(m, &r, err);
-    if (st == LV_OK) {
-        st = lv_run_execute(r, NULL, err);
-        for (size_t k = 0; k < o->n_phases && st == LV_OK; k++) {
-            const lv_phase_result *res = lv_run_result(r, k);
-            if (o->needed[k] && res->state != LV_PHASE_DONE)
-                st = lv_fail(err, LV_ERR_INPUT, "%s: the start point: phase '%s' did not fly "
-                             "as written: %s", o->path, res->name, res->error);
-        }
-        if (st != LV_OK && err->msg[0] != '\0' && strstr(err->msg, "the start point") == NULL)
-            st = lv_fail_prefix(err, st, "%s: the start point (the mission flown as written)",
-                                o->path);
-    }
-    for (size_t p = 0; p < o->np && st == LV_OK; p++) {
+    for (size_t p = 0; p < o->np; p++) {
         oc_ph *ph = &o->ph[p];
         const lv_phase_result *res = lv_run_result(r, ph->k);
         const lv_ocp_phase_def *pd = ph->def;
@@ -674,9 +652,6 @@ static lv_status start_point(lv_ocp *o, double *x, lv_err *err)
             }
         }
     }
-    lv_run_free(r);
-    lv_mission_free(m);
-    return st;
 }
 
 /* Phase p's states: names and nominal magnitudes from its model (prepared on run r, whose
@@ -723,6 +698,7 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
     lv_mission *m0 = NULL; /* the setup's copy; the workers load their own */
+    lv_run *r0 = NULL;     /* m0 flown as written */
     lv_status st = lv_mission_load(path, &m0, err);
     if (st != LV_OK) {
         lv_ocp_free(o);
@@ -767,25 +743,27 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
         if (o->needed[k] && d->phases[k].parent >= 0)
             o->needed[d->phases[k].parent] = 1;
 
-    /* the states of each optimised phase: from its model on a run flown as written */
-    {
-        lv_run *r = NULL;
-        st = lv_run_create(m0, &r, err);
-        if (st == LV_OK)
-            st = lv_run_execute(r, &(lv_run_options){.no_rows = 1}, err);
-        for (size_t p = 0; p < o->np && st == LV_OK; p++) {
-            const lv_phase_def *pd = &d->phases[o->ph[p].k];
-            if (pd->parent >= 0 && lv_run_result(r, (size_t)pd->parent)->state != LV_PHASE_DONE)
-                st = lv_fail(err, LV_ERR_INPUT, "%s: the start point: phase '%s' did not fly as "
-                             "written: %s", path, d->phases[pd->parent].name,
-                             lv_run_result(r, (size_t)pd->parent)->error);
-            else
-                st = phase_states(&o->ph[p], r, err);
-        }
-        lv_run_free(r);
-        if (st != LV_OK)
-            goto fail;
+    /* the mission flown once as written, with its rows: every phase flown here must fly, the
+     * optimised phases' states come from their models, the start point from the flight */
+    if ((st = lv_run_create(m0, &r0, err)) != LV_OK)
+        goto fail;
+    if ((st = lv_run_execute(r0, NULL, err)) != LV_OK) {
+        if (strstr(err->msg, "the start point") == NULL)
+            st = lv_fail_prefix(err, st, "%s: the start point (the mission flown as written)",
+                                path);
+        goto fail;
     }
+    for (size_t k = 0; k < o->n_phases; k++) {
+        const lv_phase_result *res = lv_run_result(r0, k);
+        if (o->needed[k] && res->state != LV_PHASE_DONE) {
+            st = lv_fail(err, LV_ERR_INPUT, "%s: the start point: phase '%s' did not fly as "
+                         "written: %s", path, res->name, res->error);
+            goto fail;
+        }
+    }
+    for (size_t p = 0; p < o->np; p++)
+        if ((st = phase_states(&o->ph[p], r0, err)) != LV_OK)
+            goto fail;
     /* variables and rows */
     size_t n = 0, m = 0;
     for (size_t p = 0; p < o->np; p++) {
@@ -846,10 +824,7 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
     }
     for (size_t i = 0; i < n; i++)
         o->sx[i] = 1.0;
-    if ((st = start_point(o, x, err)) != LV_OK) {
-        free(x);
-        goto fail;
-    }
+    start_point(o, m0, r0, x);
     /* bounds, names; states unbounded */
     for (size_t p = 0; p < o->np; p++) {
         oc_ph *ph = &o->ph[p];
@@ -953,12 +928,14 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
     if ((st = build_pattern(o, d, err)) != LV_OK)
         goto fail;
     o->n_workers = 1;
+    lv_run_free(r0);
     lv_mission_free(m0);
     *out = o;
     return LV_OK;
 fail:
     o->def = NULL;
     lv_ocp_free(o);
+    lv_run_free(r0);
     lv_mission_free(m0);
     return st;
 }

@@ -103,11 +103,12 @@ int oc_evaluate(lv_ocp *o, oc_worker *w, double *z, double *g, int propagate);
 void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph *p,
                          const double *x, double m_burnout, double ta, double tb,
                          const char **names, double *values, lv_sim_settings *s);
-/* The mass at which phase p's burning stage burns out (its start mass less its propellant
- * then; NAN for a model without both), from its prepared model, def, inst and settings cs:
- * a segment starts with the propellant its mass holds above it. */
-lv_status oc_burnout_mass(const oc_ph *p, const lv_model_def *def, void *inst,
-                          const lv_sim_settings *cs, double *m_burnout, lv_err *err);
+/* Phase p's start from its prepared model, def, inst and settings cs: its states x[nx] and
+ * the mass at which its burning stage burns out (its start mass less its propellant then;
+ * NAN for a model without both: a segment starts with the propellant its mass holds above
+ * it). */
+lv_status oc_phase_start(const oc_ph *p, const lv_model_def *def, void *inst,
+                         const lv_sim_settings *cs, double *x, double *m_burnout, lv_err *err);
 
 /* The run of worker 0 at the point z flown by oc_evaluate (its phases' results). */
 double oc_phase_t0(const lv_ocp *o, const oc_worker *w, size_t k);

@@ -244,11 +244,8 @@ static void walk_paths(repath *w, lv_ynode *n, const char *key)
             walk_paths(w, n->kids[i], map ? n->kids[i - 1]->text : key);
         return;
     }
-    if (key == NULL || !lv_tw_path_key(key) || n->len == 0 || n->text[0] == '/' ||
-        strlen(n->text) != n->len)
-        return;
     int nomem = 0;
-    char *rel = lv_tw_rebase(w->mdir, w->odir, n->text, &nomem);
+    char *rel = lv_tw_rebase(w->mdir, w->odir, key, n->text, n->len, &nomem);
     if (rel == NULL) {
         if (nomem)
             w->st = LV_ERR_NOMEM;
@@ -333,9 +330,10 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
     if (st != LV_OK)
         return st;
     const lv_model_def *def = lv_phase_call_model(c);
-    double m_bo = NAN;
+    double m_bo = NAN, x0[32];
     if (st == LV_OK)
-        st = oc_burnout_mass(p, def, lv_phase_call_inst(c), lv_phase_call_settings(c), &m_bo, err);
+        st = oc_phase_start(p, def, lv_phase_call_inst(c), lv_phase_call_settings(c), x0, &m_bo,
+                            err);
     lv_atomic a = {0};
     if (st == LV_OK)
         st = lv_atomic_open(&a, path, err);

@@ -168,9 +168,11 @@ char *lv_tw_dir_real(const char *path);
 /* `target` (absolute, resolved) relative to folder `from` (absolute, resolved); absolute when
  * they share no folder but the root. Free it; NULL: out of memory. */
 char *lv_tw_relative_to(const char *target, const char *from);
-/* A mission's relative path `path` (from folder mdir) as seen from folder odir (both
- * resolved): a new string, or NULL when it names no regular file (*nomem 0: a model's name, a
- * number) or memory ran out (*nomem 1). */
-char *lv_tw_rebase(const char *mdir, const char *odir, const char *path, int *nomem);
+/* The value `path` (len bytes) of key `key` in a mission (folder mdir) as seen from folder odir
+ * (both resolved): a new string when key names files (lv_tw_path_key) and path is a relative
+ * path to a regular file, else NULL (*nomem 0: an absolute path, a model's name, a number) or
+ * NULL when memory ran out (*nomem 1). */
+char *lv_tw_rebase(const char *mdir, const char *odir, const char *key, const char *path,
+                   size_t len, int *nomem);
 
 #endif

@@ -194,13 +194,16 @@ char *lv_tw_relative_to(const char *target, const char *from)
     return out;
 }
 
-char *lv_tw_rebase(const char *mdir, const char *odir, const char *path, int *nomem)
+char *lv_tw_rebase(const char *mdir, const char *odir, const char *key, const char *path,
+                   size_t len, int *nomem)
 {
+    *nomem = 0;
+    if (key == NULL || !lv_tw_path_key(key) || len == 0 || path[0] == '/' || strlen(path) != len)
+        return NULL;
     char joined[2 * LV_ATOMIC_PATH_MAX];
     snprintf(joined, sizeof joined, "%s/%s", mdir, path);
     char *abs = realpath(joined, NULL);
     struct stat sb;
-    *nomem = 0;
     if (abs == NULL || stat(abs, &sb) != 0 || !S_ISREG(sb.st_mode)) {
         free(abs);
         return NULL;
@@ -236,11 +239,8 @@ static void walk_paths(path_walk *w, const lv_ynode *n, const char *key)
             walk_paths(w, n->kids[i], key);
         return;
     }
-    if (key == NULL || !lv_tw_path_key(key) || n->len == 0 || n->text[0] == '/' ||
-        strlen(n->text) != n->len)
-        return;
     int nomem = 0;
-    char *rel = lv_tw_rebase(w->mdir, w->odir, n->text, &nomem);
+    char *rel = lv_tw_rebase(w->mdir, w->odir, key, n->text, n->len, &nomem);
     if (rel == NULL) {
         if (nomem)
             w->st = lv_fail(w->err, LV_ERR_NOMEM, "out of memory");
