@@ -2,7 +2,8 @@
 # bench_optimize.sh - `lvsim optimize` as a user runs it: the whole process's wall and CPU time,
 # IPOPT's iterations, the NLP's size and each iteration's cost broken down (the Jacobian's
 # column groups, the points IPOPT asks for, IPOPT's own work), for the examples with known
-# answers: the linear tangent law (21 nodes) and the Goddard rocket (16 nodes).
+# answers: the linear tangent law (21 nodes), the Goddard rocket (16 nodes) and Betts' Delta III
+# with free pitch and heading (examples/delta3-gto/optimal.yaml).
 # Usage: bench/bench_optimize.sh [BUILD_DIR] [THREADS]   (default build, 2)
 set -eu
 B=${1:-build}
@@ -28,7 +29,8 @@ optimal_control:
   cost: {maximize: climb.v_east}
 YAML
 cp -r "$(dirname "$0")/../examples/goddard" "$D/goddard"
-for m in "$D/lt.yaml" "$D/goddard/mission.yaml"; do
+cp -r "$(dirname "$0")/../examples/delta3-gto" "$D/delta3-gto"
+for m in "$D/lt.yaml" "$D/goddard/mission.yaml" "$D/delta3-gto/optimal.yaml"; do
   echo "== $(basename "$(dirname "$m")")/$(basename "$m") (--threads $J)"
   /usr/bin/time -f "process: %e s wall, %U s user + %S s system" \
     "$B/lvsim" optimize "$m" -q --threads "$J" 2>&1 | grep -v "^  VIOLATED"

@@ -212,8 +212,9 @@ const cli_cmd cli_cmd_optimize = {
     "solve a mission's optimal_control section: control histories by multiple shooting",
     "MISSION.yaml [-o OPTIMAL.yaml [--force]] [--max-iter N] [--threads N] [--print-level N] "
     "[-q]",
-    "Optimises the control histories (dof3: alpha, beta, mu, throttle; piecewise linear\n"
-    "between equally spaced nodes) and the free durations of the phases listed under the\n"
+    "Optimises the control histories (dof3: alpha, beta, mu, throttle, or an attitude\n"
+    "law's pitch, heading, roll; piecewise linear between equally spaced nodes) and the\n"
+    "free durations of the phases listed under the\n"
     "mission's `optimal_control:` section, subject to its constraints on finals and its path\n"
     "constraints (held at every segment start and the end), optimising its cost: direct\n"
     "multiple shooting over the phase tree with each phase's own model and integrator, the\n"

@@ -1,29 +1,25 @@
 #!/usr/bin/python3
-"""Sample alpha_in, mu_in of a run of the targeted Delta III (bilinear tangent) into one start
-table per phase: time [s], alpha [rad], mu [rad]. Usage: optimal_start.py RUN_DIR OUT_DIR [DT]"""
-import sys, os
-import numpy as np
-run, outd = sys.argv[1], sys.argv[2]
-dt = float(sys.argv[3]) if len(sys.argv) > 3 else 2.0
-phases = [(1, 'six-srb'), (2, 'three-srb'), (3, 'core-alone'), (4, 'second-stage')]
-for k, n in phases:
-    f = os.path.join(run, 'phase_%d_%s.csv' % (k, n))
-    hdr = open(f).readline().strip().split(',')
-    col = {h.split(' ')[0]: i for i, h in enumerate(hdr)}
-    d = np.genfromtxt(f, delimiter=',', skip_header=1)
-    t, a, mu = d[:, col['time']], d[:, col['alpha_in']], d[:, col['mu_in']]
-    if k == 1:          # at rest (t = 0) alpha is 0: the first moving row's instead
-        a[0], mu[0] = a[1], mu[1]
-    # the later of two rows at one time (an event), then rows every dt and the last
-    keep = np.r_[np.diff(t) > 0, True]
-    t, a, mu = t[keep], a[keep], mu[keep]
-    tt = np.r_[np.arange(t[0], t[-1], dt), t[-1]]
-    if tt[-1] - tt[-2] < 0.5 * dt:
-        tt = np.delete(tt, -2)
-    tt[0] = np.floor(t[0] * 1e3) / 1e3                  # a little before the phase's start
-    tt[-1] = (np.floor(t[-1]) + 1.0) if k < 4 else 1000.0   # and beyond its end: held
-    with open(os.path.join(outd, 'optimal_start_%s.csv' % n), 'w') as o:
-        o.write('time [s],alpha [rad],mu [rad]\n')
-        for ti in tt:
-            o.write('%.6f,%.9f,%.9f\n' % (ti, np.interp(ti, t, a), np.interp(ti, t, mu)))
-    print(n, len(tt), 'rows', tt[0], tt[-1])
+"""Start tables for optimal.yaml: pitch and heading [rad] over mission time, every DT s
+(default 5; the shipped tables: 2), of the targeted bilinear tangent laws (lvsim target
+mission.yaml -o opt.yaml), in the same inertial frame (frozen at each phase's start):
+tan(pitch) = (a + b tau) / (c + d tau), tau = t - t_start (docs/guidance.md).
+Usage: optimal_start.py OPT.yaml OUT_DIR [DT]"""
+import math, re, sys, os
+src, outd = sys.argv[1], sys.argv[2]
+dt = float(sys.argv[3]) if len(sys.argv) > 3 else 5.0
+# each phase's start and the end of the table (beyond the phase's end: held)
+spans = {'six-srb': (0.0, 76.0), 'three-srb': (75.2, 151.0), 'core-alone': (150.4, 262.0),
+         'second-stage': (261.0, 1000.0)}
+text = open(src).read()
+for name, (t0, t1) in spans.items():
+    blk = text[text.index('- name: %s\n' % name):]
+    g = re.search(r'guidance: \{law: bilinear_tangent, (.*?)\}', blk).group(1)
+    k = {kv.split(':')[0].strip(): float(kv.split(':')[1]) for kv in g.split(',')}
+    n = int(math.ceil((t1 - t0) / dt))
+    with open(os.path.join(outd, 'optimal_start_%s.csv' % name), 'w') as o:
+        o.write('time [s],pitch [rad],heading [rad]\n')
+        for i in range(n + 1):
+            t = min(t0 + i * dt, t1)
+            tau = t - t0
+            th = math.atan2(k['a'] + k['b'] * tau, k['c'] + k['d'] * tau)
+            o.write('%.6f,%.12f,%.12f\n' % (t, th, math.radians(k['heading_deg'])))

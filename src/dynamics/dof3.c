@@ -23,7 +23,10 @@
 
 /* ---- variables ------------------------------------------------------------------- */
 
-enum { P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_PROP, P_N };
+enum {
+    P_LAT, P_LON, P_H, P_VEL, P_FPA, P_CHI, P_T0, P_ALPHA, P_BETA, P_MU, P_THR, P_PROP,
+    P_PH_EL, P_PH_RX, P_PH_VX = P_PH_RX + 3, P_N = P_PH_VX + 3
+};
 /* inputs: the controls lv_flight_controls knows, in the order of P_ALPHA.. */
 enum { U_ALPHA = LV_CTRL_ALPHA, U_BETA = LV_CTRL_BETA, U_MU = LV_CTRL_MU,
        U_THR = LV_CTRL_THROTTLE, U_N = LV_CTRL_N };
@@ -78,6 +81,19 @@ static const lv_var param_tpl[P_N] = {
     {"throttle", "1", "Throttle c_s (constant input)", 1, 0},
     {"propellant", "kg", "Propellant of the burning stage at the start: burnout when it is gone",
      0, 0},
+    /* A run that flies a piece of a phase (a multiple-shooting segment of an optimiser,
+     * src/optimal/) starts from the piece's state, but what the phase keeps from its own start
+     * is the phase's: the steering law's start (its time, its frozen inertial frame, a law's
+     * start values) and the downrange origin. 0: the run is the phase (the others unread). */
+    {"phase_elapsed", "s", "Time since the phase's start at the run's start, when the run "
+     "flies a piece of the phase (0: the run starts the phase)", 0, 0},
+    {"phase_start_r_eci_x", "m", "ECI position x at the phase's start (read when "
+     "phase_elapsed > 0)", 0, 0},
+    {"phase_start_r_eci_y", "m", "ECI position y at the phase's start", 0, 0},
+    {"phase_start_r_eci_z", "m", "ECI position z at the phase's start", 0, 0},
+    {"phase_start_v_eci_x", "m/s", "ECI velocity x at the phase's start", 0, 0},
+    {"phase_start_v_eci_y", "m/s", "ECI velocity y at the phase's start", 0, 0},
+    {"phase_start_v_eci_z", "m/s", "ECI velocity z at the phase's start", 0, 0},
 };
 
 static const lv_var output_vars[O_N] = {
@@ -445,6 +461,9 @@ static int check_params(dof3_inst *s, const double *p)
 {
     if (lv_flight_check_start(&s->rt, p[P_LAT], p[P_VEL], p[P_PROP]) != 0)
         return -1;
+    if (!(p[P_PH_EL] >= 0.0) || !isfinite(p[P_PH_EL]))
+        return lv_flight_fail(&s->rt, "phase_elapsed = %g s: the time since the phase's start "
+                              "must be finite and >= 0", p[P_PH_EL]);
     return s->m->const_throttle ? lv_flight_check_throttle(&s->rt, p[P_THR]) : 0;
 }
 
@@ -508,7 +527,18 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     lv_flight_kin kin;
     if (lv_flight_start(&s->rt, t0, x, &kin) != 0)
         return -1;
-    if (lv_guid_start(&s->m->guid, &s->rt.guid, t0, &kin, s->rt.msg, sizeof s->rt.msg) != 0)
+    double tg = t0;
+    if (p[P_PH_EL] > 0.0) { /* a piece of the phase: the phase's start (param_tpl) */
+        tg = t0 - p[P_PH_EL];
+        lv_flight_kinematics(&s->m->world, tg, p + P_PH_RX, p + P_PH_VX, 0, &kin);
+        const double rn = lv_v3_norm(kin.r_ecef);
+        if (!(rn > 0.0))
+            return lv_flight_fail(&s->rt, "phase_start_r_eci is the planet's centre");
+        s->rt.r0_unit[0] = kin.r_ecef.x / rn;
+        s->rt.r0_unit[1] = kin.r_ecef.y / rn;
+        s->rt.r0_unit[2] = kin.r_ecef.z / rn;
+    }
+    if (lv_guid_start(&s->m->guid, &s->rt.guid, tg, &kin, s->rt.msg, sizeof s->rt.msg) != 0)
         return -1;
     return 0;
 }
@@ -844,9 +874,13 @@ lv_status lv_dof3_create(const lv_dof3_config *cfg, lv_dof3 **out, lv_err *err)
     memcpy(m->params, param_tpl, sizeof m->params);
     const double pv[P_N] = {cfg->start_lat, cfg->start_lon, cfg->start_h, cfg->start_vel,
                             cfg->start_fpa, cfg->start_chi, cfg->start_time, cfg->alpha,
-                            cfg->beta,      cfg->mu,        cfg->throttle, cfg->propellant};
+                            cfg->beta,      cfg->mu,        cfg->throttle, cfg->propellant,
+                            0.0,            0.0,            0.0,           0.0,
+                            0.0,            0.0,            0.0};
     for (int i = 0; i < P_N; i++)
         m->params[i].start = pv[i];
+    for (int i = P_PH_EL; i < P_N; i++) /* an optimiser's, not the run's: not recorded */
+        m->param_inactive[i] = 1;
     /* the constant inputs that do not act, left out of the result files' parameter records:
      * an angle a steering law or the inputs table gives, a throttle that a table, a steering
      * law's table or an active throttle law gives, or that no engine burns with (the values in

@@ -411,6 +411,17 @@ int lv_guidance_def_gives_throttle(const lv_guidance_def *g)
     return g->steer.law->gives_throttle(&par);
 }
 
+lv_table **lv_guidance_def_attitude_table(lv_guidance_def *g)
+{
+    if (g->steer.law == NULL || strcmp(g->steer.law->name, "attitude") != 0 ||
+        frame_of(&g->steer) == LV_FRAME_AERO)
+        return NULL;
+    for (size_t i = 0; i < g->steer.law->n_keys; i++)
+        if (g->steer.law->keys[i].type == LV_KEY_TABLE)
+            return &g->steer.table[i];
+    return NULL;
+}
+
 lv_slot lv_guidance_def_throttle_value(const lv_guidance_def *g)
 {
     for (size_t i = 0; g->thr.law != NULL && i < g->thr.law->n_keys; i++)

@@ -43,6 +43,11 @@ void lv_guidance_def_make(const lv_guidance_def *g, const double *vals, lv_steer
 /* The steering law's table gives the throttle (an attitude table's output "throttle"). */
 int lv_guidance_def_gives_throttle(const lv_guidance_def *g);
 
+/* The steering law `attitude` in a local or inertial frame: its table (pitch, heading, roll,
+ * throttle over time, ...; owned by g, NULL when not given), which an optimiser's controls
+ * replace (phase_dof3.c). NULL for any other law or the aero frame. */
+lv_table **lv_guidance_def_attitude_table(lv_guidance_def *g);
+
 /* The slot of `throttle: {value: c}`, the phase's nominal throttle, or LV_NO_SLOT. */
 lv_slot lv_guidance_def_throttle_value(const lv_guidance_def *g);
 

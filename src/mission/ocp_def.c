@@ -154,7 +154,8 @@ static lv_status parse_phase(const lv_pctx *c, const lv_ynode *n, size_t k, lv_o
 lv_status lv_ocp_def_parse(const lv_pctx *c, const lv_ynode *n)
 {
     static const char *const keys[] = {"phases", "constraints", "cost", "max_iterations",
-                                       "tolerance", "integrator_tolerance", NULL};
+                                       "tolerance", "acceptable_iterations",
+                                       "integrator_tolerance", NULL};
     const char *what = SEC;
     lv_status st;
     if (n == NULL)
@@ -171,6 +172,7 @@ lv_status lv_ocp_def_parse(const lv_pctx *c, const lv_ynode *n)
     o->loc = loc_of(n);
     o->max_iterations = 500;
     o->tolerance = 1e-8;
+    o->acceptable_iterations = 15; /* IPOPT's acceptable_iter */
     o->integrator_tolerance = 1e-10;
     const lv_ynode *v;
     if ((v = lv_pk_get(n, "max_iterations")) != NULL) {
@@ -186,6 +188,14 @@ lv_status lv_ocp_def_parse(const lv_pctx *c, const lv_ynode *n)
         if (!(o->tolerance >= 1e-14 && o->tolerance <= 1e-2))
             return lv_pk_fail(c, v, "%s: tolerance (IPOPT's, on the scaled problem) must lie in "
                               "[1e-14, 1e-2], found %g", what, o->tolerance);
+    }
+    if ((v = lv_pk_get(n, "acceptable_iterations")) != NULL) {
+        if ((st = lv_pk_int(c, v, what, "acceptable_iterations", 1,
+                            &o->acceptable_iterations)) != LV_OK)
+            return st;
+        if (o->acceptable_iterations > 1000)
+            return lv_pk_fail(c, v, "%s: acceptable_iterations: at most 1000, found %d", what,
+                              o->acceptable_iterations);
     }
     if ((v = lv_pk_get(n, "integrator_tolerance")) != NULL) {
         if ((st = lv_pk_num(c, v, what, "integrator_tolerance", &o->integrator_tolerance)) !=
@@ -280,7 +290,8 @@ static lv_status check_phase(lv_mission *m, lv_ocp_phase_def *p, size_t idx, lv_
     const lv_phase_type *ty = ph->type;
     if (ty->controls == NULL || ty->set_controls == NULL)
         return FAIL_AT(p->loc, "phase '%s': its model %s takes no controls from an optimiser "
-                       "(dof3 phases do: alpha, beta, mu, throttle)", p->name, ty->name);
+                       "(dof3 phases do: alpha, beta, mu, throttle; pitch, heading, roll of "
+                       "an attitude law)", p->name, ty->name);
     if (ph->reference != NULL && ph->reference->start)
         return FAIL_AT(p->loc, "phase '%s' starts from its reference (start: reference): an "
                        "optimised phase starts from its parent or the mission's start values",
@@ -341,12 +352,16 @@ static lv_status check_phase(lv_mission *m, lv_ocp_phase_def *p, size_t idx, lv_
         size_t i = 0;
         while (i < p->n_ctrl && strcmp(ty->controls[p->ctrl[i].input], col) != 0)
             i++;
-        if (i == p->n_ctrl)
-            return FAIL_AT(p->loc, "phase '%s': its inputs table '%s' gives '%s', which is no "
+        if (i == p->n_ctrl) {
+            const int law = ty->controls_key != NULL &&
+                            strcmp(ty->controls_key(ph), "guidance") == 0;
+            return FAIL_AT(p->loc, "phase '%s': its %s table '%s' gives '%s', which is no "
                            "control: the optimiser flies the controls' table instead, so make "
-                           "'%s' a control too, or give it as a constant (inputs: {%s%s: ...})",
-                           p->name, lv_table_name(own), col, col, col,
+                           "'%s' a control too, or give it as a constant (%s: {%s%s: ...})",
+                           p->name, law ? "steering law's" : "inputs", lv_table_name(own),
+                           col, col, law ? "guidance" : "inputs", col,
                            strcmp(col, "throttle") != 0 ? "_deg" : "");
+        }
     }
     return LV_OK;
 }

@@ -1,5 +1,6 @@
 /* ocp_def.h - a mission file's `optimal_control:` section: the phases whose control histories
- * (a phase type's controls: dof3's alpha, beta, mu, throttle) and durations are optimised, with
+ * (a phase type's controls: dof3's alpha, beta, mu, throttle, or its attitude law's pitch,
+ * heading, roll) and durations are optimised, with
  * bounds and node counts, and the boundary constraints, path constraints and cost in the words
  * of `targeting:` (targeting_def.h). Parsed with the mission, then checked against the loaded
  * mission, so `lvsim check` refuses what `lvsim optimize` would. The transcription and the
@@ -48,6 +49,9 @@ typedef struct lv_ocp_def {
     lv_tcost_def cost;
     int max_iterations; /* default 500 */
     double tolerance;   /* IPOPT's tol on the scaled problem (default 1e-8) */
+    /* IPOPT's acceptable_iter: consecutive iterations at its acceptable level (acceptable_tol
+     * = max(100 tol, 1e-6)) that end the solve there (default 15, IPOPT's) */
+    int acceptable_iterations;
     double integrator_tolerance; /* the segments' relative tolerance (default 1e-10) */
     lv_src_loc loc;
 } lv_ocp_def;

@@ -587,22 +587,42 @@ static lv_status dof3_handoff(const lv_build_ctx *bc, const lv_phase_model *pm,
 
 /* ---- controls from an optimiser (optimal_control:, docs/optimal-control.md) ------------------ */
 
-static const char *const dof3_controls[] = {"alpha", "beta", "mu", "throttle", NULL};
+/* The model's inputs alpha, beta, mu, throttle (its inputs table), or the angles of the
+ * steering law `attitude` in a local or inertial frame (its table: pitch, heading, roll, and
+ * the throttle with them): the thrust's direction in a frame that does not turn with the
+ * air-relative velocity, which a start at rest needs. */
+enum { C_ALPHA, C_BETA, C_MU, C_THROTTLE, C_PITCH };
+static const char *const dof3_controls[] = {"alpha", "beta",    "mu",   "throttle",
+                                            "pitch", "heading", "roll", NULL};
+
+/* The attitude law's table slot that the controls replace, or NULL (the inputs table). */
+static lv_table **attitude_slot(const lv_phase_def *ph)
+{
+    return lv_guidance_def_attitude_table(&((dof3_cfg *)ph->type_cfg)->guid);
+}
 
 static int dof3_control_conflict(const lv_phase_def *ph, size_t input, char *why, size_t cap)
 {
     const dof3_cfg *cfg = ph->type_cfg;
-    if (input < 3 && cfg->guid.steer.law != NULL) {
-        snprintf(why, cap, "the phase steers with the guidance law '%s', which gives the "
-                 "angles: remove `guidance:` to optimise them", cfg->guid.steer.law->name);
+    const int att = attitude_slot(ph) != NULL;
+    if (input >= C_PITCH && !att) {
+        snprintf(why, cap, "'%s' is an angle of the steering law 'attitude' in a local or "
+                 "inertial frame: give the phase `guidance: {law: attitude, frame: inertial}` "
+                 "(or local); the optimiser then flies its table", dof3_controls[input]);
         return 1;
     }
-    if (input == 3 && cfg->guid.thr.law != NULL) {
+    if (input < C_THROTTLE && cfg->guid.steer.law != NULL) {
+        snprintf(why, cap, "the phase steers with the guidance law '%s', which gives the "
+                 "angles: remove `guidance:` to optimise them%s", cfg->guid.steer.law->name,
+                 att ? ", or optimise the law's pitch, heading, roll" : "");
+        return 1;
+    }
+    if (input == C_THROTTLE && cfg->guid.thr.law != NULL) {
         snprintf(why, cap, "the phase's `throttle:` (law '%s') gives the throttle: remove it to "
                  "optimise the throttle", cfg->guid.thr.law->name);
         return 1;
     }
-    if (input == 3 && lv_guidance_def_gives_throttle(&cfg->guid)) {
+    if (input == C_THROTTLE && !att && lv_guidance_def_gives_throttle(&cfg->guid)) {
         snprintf(why, cap, "the attitude table gives the throttle: remove its 'throttle' "
                  "output to optimise it");
         return 1;
@@ -612,12 +632,24 @@ static int dof3_control_conflict(const lv_phase_def *ph, size_t input, char *why
 
 static const lv_table *dof3_own_inputs(const lv_phase_def *ph)
 {
-    return ((const dof3_cfg *)ph->type_cfg)->inputs;
+    lv_table **slot = attitude_slot(ph);
+    return slot != NULL ? *slot : ((const dof3_cfg *)ph->type_cfg)->inputs;
+}
+
+static const char *dof3_controls_key(const lv_phase_def *ph)
+{
+    return attitude_slot(ph) != NULL ? "guidance" : "inputs";
 }
 
 static void dof3_set_controls(lv_phase_def *ph, lv_table *t)
 {
     dof3_cfg *cfg = ph->type_cfg;
+    lv_table **slot = attitude_slot(ph);
+    if (slot != NULL) {
+        lv_table_free(*slot);
+        *slot = t;
+        return;
+    }
     lv_table_free(cfg->inputs);
     cfg->inputs = t;
     cfg->over = LV_DOF3_OVER_TIME;
@@ -648,4 +680,5 @@ const lv_phase_type lv_phase_type_dof3 = {
     .control_conflict = dof3_control_conflict,
     .set_controls = dof3_set_controls,
     .own_inputs = dof3_own_inputs,
+    .controls_key = dof3_controls_key,
 };

@@ -192,11 +192,16 @@ struct lv_phase_type {
      * throttle law the throttle). NULL: no conflicts. */
     int (*control_conflict)(const lv_phase_def *ph, size_t input, char *why, size_t cap);
     /* Makes phase ph fly the 1-D table t over mission time (outputs named as controls,
-     * linear) as its controls, in place of its own inputs table; ph takes t over (frees it). */
+     * linear) as its controls, in place of its own table of them (its inputs table, or its
+     * steering law's: controls_key); ph takes t over (frees it). */
     void (*set_controls)(lv_phase_def *ph, lv_table *t);
-    /* The phase's own inputs table as the file gives it (which set_controls replaces), or
-     * NULL. */
+    /* The phase's own table of controls as the file gives it (which set_controls replaces),
+     * or NULL. */
     const lv_table *(*own_inputs)(const lv_phase_def *ph);
+    /* The phase's key in the mission file whose `table:` the controls replace: "inputs"
+     * (written with `over: time`) or "guidance" (the attitude law's table over time). NULL:
+     * "inputs". */
+    const char *(*controls_key)(const lv_phase_def *ph);
 };
 
 /* The type whose model compare.c flies end to end (the paper's flat-world test case): a study

@@ -118,11 +118,47 @@ static lv_status set_controls(const lv_ocp *o, oc_worker *w, const oc_ph *p, con
 
 /* Settings of one segment [ta, tb] of a prepared phase from state x (the hand-off's other
  * values kept): names/values hold room for the call's initial values and the states. */
+double oc_segment_propellant(const lv_ocp *o, const oc_worker *w, const oc_ph *p, size_t j,
+                             const double *x, double m_burnout)
+{
+    if (isnan(m_burnout) || p->im == (size_t)-1)
+        return NAN;
+    /* Where the optimiser decides how much burns none burns out within a segment: the book is
+     * a row of the NLP instead (the final mass at least the burnout mass: r_mass), so the
+     * throttle stops the burn - no event that a difference step moves across a segment, no
+     * mass below which the controls stop acting (Goddard's burn failed 2 of 3 node counts
+     * with the burnout inside). The models' book wants the propellant less than the mass. Where
+     * the burn is fixed (throttle and duration), the row would be constant - 0 at a phase that
+     * ends at its burnout, with no gradient (Delta III's fixed phases: dual infeasibility
+     * 1e8) - and the segment burns out where the phase's book says. */
+    if (p->r_mass != (size_t)-1)
+        return x[p->im] * (1.0 - 1e-9);
+    double *book = &o->prop_book[p->iseg + j];
+    if (w->book == OC_BOOK_USE)
+        return *book;
+    const double prop = fmax(0.0, x[p->im] - m_burnout);
+    if (w->book == OC_BOOK_SET)
+        *book = prop;
+    return prop;
+}
+
 void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph *p,
-                         const double *x, double m_burnout, double ta, double tb,
-                         const char **names, double *values, lv_sim_settings *s)
+                         const double *x0, double t0, const double *x, double prop, double ta,
+                         double tb, const char **names, double *values, lv_sim_settings *s)
 {
     size_t n = 0;
+    /* what the phase keeps from its start (a steering law's frame and time, the downrange
+     * origin): the phase's start, for a model that takes it (dof3: phase_elapsed and
+     * phase_start_*); segment 0 starts the phase */
+    if (p->ph_el >= 0 && ta > t0) {
+        names[n] = "phase_elapsed";
+        values[n++] = ta - t0;
+        for (size_t j = 0; j < p->nx; j++)
+            if (p->ph_x0[j]) {
+                names[n] = p->ph_x0_name[j];
+                values[n++] = x0[j];
+            }
+    }
     for (size_t i = 0; i < cs->n_initial; i++) {
         size_t j = 0;
         while (j < p->nx && strcmp(cs->initial_names[i], p->xname[j]) != 0)
@@ -136,20 +172,9 @@ void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph
         names[n] = p->xname[j];
         values[n++] = x[j];
     }
-    /* the burning stage's propellant. Where the optimiser decides how much burns (a throttle
-     * control, a free duration) none burns out within a segment: the book is a row of the NLP
-     * instead (the final mass at least the burnout mass: r_mass), so the throttle stops the
-     * burn - no event that a difference step moves across a segment, no mass below which the
-     * controls stop acting (Goddard's burn failed 2 of 3 node counts with the burnout inside).
-     * The models' book wants the propellant less than the mass: all but 1e-9 of it. Where the
-     * burn is fixed (throttle and duration), the row would be constant - 0 at a phase that
-     * ends at its burnout, with no gradient (Delta III's fixed phases: dual infeasibility
-     * 1e8) - and the segment burns out where the phase's book says: its mass above the
-     * burnout mass. */
-    if (!isnan(m_burnout) && p->im != (size_t)-1) {
+    if (!isnan(prop)) {
         names[n] = "propellant";
-        values[n++] = p->r_mass != (size_t)-1 ? x[p->im] * (1.0 - 1e-9)
-                                              : fmax(0.0, x[p->im] - m_burnout);
+        values[n++] = prop;
     }
     *s = *cs;
     s->start_time = ta;
@@ -250,11 +275,12 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
     void *inst = lv_phase_call_inst(c);
     const lv_sim_settings *cs = lv_phase_call_settings(c);
     const size_t nx = p->nx;
-    const char *names[96 + 2 * 16];
-    double values[96 + 2 * 16], xa[32], xb[32], yp[LV_OCP_MAX_CONTROLS * 4 + 8], m_bo;
+    const char *names[96 + 3 * 32];
+    double values[96 + 3 * 32], xa[32], xb[32], yp[LV_OCP_MAX_CONTROLS * 4 + 8], m_bo;
     lv_vref rx[32], rp[32];
     int ok = 1;
-    if (cs->n_initial + nx + 1 > sizeof names / sizeof names[0] || nx > 32 || p->n_path > 32) {
+    if (cs->n_initial + 2 * nx + 2 > sizeof names / sizeof names[0] || nx > 32 ||
+        p->n_path > 32) {
         lv_phase_call_free(c);
         return fail_why(w, ph->name, "",
                         &(lv_err){LV_ERR_INPUT, "too many start values or states"});
@@ -272,11 +298,13 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         lv_phase_call_free(c);
         return fail_why(w, ph->name, "its start: ", &e);
     }
+    double x0[32];
     for (size_t i = 0; i < nx; i++) {
         const size_t v = p->ix + i;
         if (propagate)
             z[v] = xa[i] / o->sx[v];
         g[p->r_link + i] = (z[v] * o->sx[v] - xa[i]) / p->xs[i];
+        x0[i] = xa[i];
     }
     const double h = D / (double)p->ns;
     double *finals = lv_phase_call_finals(c);
@@ -288,7 +316,8 @@ static int fly_optimised(lv_ocp *o, oc_worker *w, const oc_ph *p, double *z, dou
         for (size_t i = 0; i < nx; i++)
             xa[i] = z[p->ix + j * nx + i] * o->sx[p->ix + j * nx + i];
         lv_sim_settings s;
-        oc_segment_settings(o, cs, p, xa, m_bo, ta, tb, names, values, &s);
+        oc_segment_settings(o, cs, p, x0, t0, xa, oc_segment_propellant(o, w, p, j, xa, m_bo),
+                            ta, tb, names, values, &s);
         const int last = j + 1 == p->ns;
         if (last) {
             s.n_final = cs->n_final;
@@ -367,6 +396,14 @@ static int fly_whole(lv_ocp *o, oc_worker *w, size_t k, double *g)
     if (st != LV_OK)
         return fail_why(w, ph->name, "", &se);
     return 1;
+}
+
+int oc_evaluate_base(lv_ocp *o)
+{
+    o->w[0].book = OC_BOOK_SET; /* the differences at z_base take its propellants */
+    const int ok = oc_evaluate(o, &o->w[0], o->z_base, o->g_base, 0);
+    o->w[0].book = OC_BOOK_OWN;
+    return ok;
 }
 
 int oc_evaluate(lv_ocp *o, oc_worker *w, double *z, double *g, int propagate)
@@ -582,6 +619,8 @@ void lv_ocp_free(lv_ocp *o)
             free(o->ph[p].xname[i]);
         free(o->ph[p].xname);
         free(o->ph[p].xs);
+        free(o->ph[p].ph_x0);
+        free(o->ph[p].ph_x0_name);
         free(o->ph[p].path_con);
         free(o->ph[p].path_out);
     }
@@ -593,6 +632,7 @@ void lv_ocp_free(lv_ocp *o)
     free(o->sx), free(o->zl), free(o->zu), free(o->gl), free(o->gu), free(o->vname);
     free(o->jc), free(o->jr), free(o->grp_start), free(o->grp_col), free(o->jv);
     free(o->z_base), free(o->g_base), free(o->z_jac), free(o->z_best);
+    free(o->prop_book);
     free(o->path);
     free(o);
 }
@@ -617,7 +657,8 @@ static double rows_at(const lv_result *res, size_t tcol, size_t col, double t)
 }
 
 /* The start point from run r of mission m, flown as written with its rows: the durations and
- * the control nodes (a control's `start:`, else its own input along that flight). */
+ * the control nodes (a control's `start:`, else its own input along that flight, else the
+ * phase's own table of it over time, else the middle of its bounds). */
 static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double *x)
 {
     for (size_t p = 0; p < o->np; p++) {
@@ -639,17 +680,31 @@ static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double 
             char col_name[80];
             snprintf(col_name, sizeof col_name, "%s_in",
                      m->def->phases[ph->k].type->controls[u->input]);
-            size_t col;
+            size_t col, tk;
             const int have = have_rows && lv_result_column(rows, col_name, &col, NULL) == LV_OK;
+            /* an input the model does not output (the attitude law's pitch in its frame):
+             * the phase's own table of it over time */
+            const lv_phase_def *pd_m = &m->def->phases[ph->k];
+            const lv_table *own = pd_m->type->own_inputs ? pd_m->type->own_inputs(pd_m) : NULL;
+            const int have_own = !have && own != NULL && lv_table_n_dims(own) == 1 &&
+                                 (strcmp(lv_table_axis_name(own, 0), "time") == 0 ||
+                                  strcmp(lv_table_axis_name(own, 0), "t") == 0) &&
+                                 lv_table_out_index(own, pd_m->type->controls[u->input], &tk,
+                                                    NULL) == LV_OK;
+            double *buf = have_own ? calloc(lv_table_n_out(own) + 1, sizeof *buf) : NULL;
+            lv_table_cursor cur = {0};
             for (size_t i = 0; i < ph->nn; i++) {
                 const double t = res->t_start + D * (double)i / (double)(ph->nn - 1);
                 double y = !isnan(u->start) ? u->start
                            : have            ? rows_at(rows, tcol, col, t)
-                                             : 0.5 * (u->lo + u->hi);
+                           : buf != NULL && lv_table_eval1(own, &cur, t, buf, NULL) == LV_OK
+                               ? buf[tk]
+                               : 0.5 * (u->lo + u->hi);
                 if (isnan(y))
                     y = 0.5 * (u->lo + u->hi);
                 x[ph->iu + i * ph->nu + c] = fmin(fmax(y, u->lo), u->hi);
             }
+            free(buf);
         }
     }
 }
@@ -666,20 +721,31 @@ static lv_status phase_states(oc_ph *p, lv_run *r, lv_err *err)
     p->nx = def->n_states;
     p->xname = calloc(p->nx + 1, sizeof *p->xname);
     p->xs = calloc(p->nx + 1, sizeof *p->xs);
-    if (p->xname == NULL || p->xs == NULL) {
+    p->ph_x0 = calloc(p->nx + 1, sizeof *p->ph_x0);
+    p->ph_x0_name = calloc(p->nx + 1, sizeof *p->ph_x0_name);
+    if (p->xname == NULL || p->xs == NULL || p->ph_x0 == NULL || p->ph_x0_name == NULL) {
         lv_phase_call_free(c);
         return lv_fail(err, LV_ERR_NOMEM, "out of memory");
     }
     p->im = (size_t)-1;
     p->r_mass = (size_t)-1;
-    for (size_t i = 0; i < def->n_params; i++)
+    p->ph_el = -1;
+    for (size_t i = 0; i < def->n_params; i++) {
         if (strcmp(def->params[i].name, "propellant") == 0)
             p->burns = def->params[i].start > 0.0;
+        if (strcmp(def->params[i].name, "phase_elapsed") == 0)
+            p->ph_el = (long)i;
+    }
     for (size_t i = 0; i < p->nx; i++) {
         if (strcmp(def->states[i].name, lv_run_mission(r)->def->phases[p->k].type->mass_state) == 0)
             p->im = i;
         p->xname[i] = strdup(def->states[i].name);
         p->xs[i] = def->states[i].nominal > 0.0 ? def->states[i].nominal : 1.0;
+        if (p->xname[i] != NULL && strlen(p->xname[i]) < sizeof p->ph_x0_name[0] - 13) {
+            snprintf(p->ph_x0_name[i], sizeof p->ph_x0_name[0], "phase_start_%s", p->xname[i]);
+            for (size_t q = 0; q < def->n_params; q++)
+                p->ph_x0[i] |= strcmp(def->params[q].name, p->ph_x0_name[i]) == 0;
+        }
         if (p->xname[i] == NULL) {
             lv_phase_call_free(c);
             return lv_fail(err, LV_ERR_NOMEM, "out of memory");
@@ -765,12 +831,14 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
         if ((st = phase_states(&o->ph[p], r0, err)) != LV_OK)
             goto fail;
     /* variables and rows */
-    size_t n = 0, m = 0;
+    size_t n = 0, m = 0, n_seg = 0;
     for (size_t p = 0; p < o->np; p++) {
         oc_ph *ph = &o->ph[p];
         ph->nu = ph->def->n_ctrl;
         ph->nn = (size_t)ph->def->nodes;
         ph->ns = (size_t)ph->def->segments;
+        ph->iseg = n_seg;
+        n_seg += ph->ns;
         ph->ix = n;
         n += ph->ns * ph->nx;
         ph->iu = n;
@@ -815,9 +883,10 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
     o->g_base = calloc(m + 2, sizeof *o->g_base);
     o->z_jac = calloc(n + 1, sizeof *o->z_jac);
     o->z_best = calloc(n + 1, sizeof *o->z_best);
+    o->prop_book = calloc(n_seg + 1, sizeof *o->prop_book);
     double *x = calloc(n + 1, sizeof *x);
     if (!o->sx || !o->zl || !o->zu || !o->gl || !o->gu || !o->vname || !o->z_base ||
-        !o->g_base || !o->z_jac || !o->z_best || !x) {
+        !o->g_base || !o->z_jac || !o->z_best || !o->prop_book || !x) {
         free(x);
         st = lv_fail(err, LV_ERR_NOMEM, "out of memory");
         goto fail;
@@ -919,7 +988,7 @@ lv_status lv_ocp_create(const char *path, lv_ocp **out, lv_err *err)
     } else {
         o->cost_start = NAN;
     }
-    if (!oc_evaluate(o, &o->w[0], o->z_base, o->g_base, 0)) {
+    if (!oc_evaluate_base(o)) {
         st = lv_fail(err, LV_ERR_INPUT, "%s: the start point: %s", path, o->w[0].why);
         goto fail;
     }
@@ -1011,6 +1080,7 @@ static void *jac_worker(void *arg)
     jac_job *jj = ((void **)arg)[0];
     oc_worker *w = ((void **)arg)[1];
     lv_ocp *o = jj->o;
+    w->book = OC_BOOK_USE;
     for (;;) {
         pthread_mutex_lock(&jj->lock);
         const size_t g = jj->next++;
@@ -1050,6 +1120,7 @@ static void *jac_worker(void *arg)
                     o->jv[q] = 0.0;
         }
     }
+    w->book = OC_BOOK_OWN;
     return NULL;
 }
 
@@ -1059,7 +1130,7 @@ static int ensure_base(lv_ocp *o, const double *z)
         return 1;
     const double t = wall_now();
     memcpy(o->z_base, z, o->n * sizeof *z);
-    o->base_ok = oc_evaluate(o, &o->w[0], o->z_base, o->g_base, 0);
+    o->base_ok = oc_evaluate_base(o);
     if (!o->base_ok)
         snprintf(o->res.last_failure, sizeof o->res.last_failure, "%.500s", o->w[0].why);
     o->evaluations++;
@@ -1355,6 +1426,7 @@ lv_status lv_ocp_solve(lv_ocp *o, const lv_ocp_settings *s, lv_ocp_result *res, 
     AddIpoptNumOption(nlp, "tol", o->def->tolerance);
     AddIpoptNumOption(nlp, "constr_viol_tol", fmin(1e-8, o->def->tolerance));
     AddIpoptNumOption(nlp, "acceptable_tol", fmax(1e2 * o->def->tolerance, 1e-6));
+    AddIpoptIntOption(nlp, "acceptable_iter", o->def->acceptable_iterations);
     AddIpoptNumOption(nlp, "bound_relax_factor", 0.0);
     SetIntermediateCallback(nlp, cb_iter);
     double *z = malloc(o->n * sizeof *z);

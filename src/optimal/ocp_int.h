@@ -32,11 +32,23 @@ typedef struct oc_ph {
     size_t r_path;              /* n_path (ns + 1) rows: con q at node j: r_path + q (ns+1) + j */
     char (*path_out)[64];       /* [n_path] the output's name (no _deg) */
     int burns;                  /* the phase starts with propellant in its burning stage */
+    size_t iseg;                /* its segments' propellant in lv_ocp.prop_book: iseg + j */
+    long ph_el;                 /* the model's parameter phase_elapsed, or -1 */
+    unsigned char *ph_x0;       /* [nx] the model takes phase_start_<state> */
+    char (*ph_x0_name)[48];     /* [nx] "phase_start_<state>" */
     size_t r_mass;              /* the row: final mass - burnout mass >= 0, or (size_t)-1 */
 } oc_ph;
 
+/* Where a fixed burn's segments take their propellant (oc_segment_propellant). */
+typedef enum oc_book {
+    OC_BOOK_OWN, /* the segment's start mass less the burnout mass */
+    OC_BOOK_SET, /* the same, recorded in lv_ocp.prop_book: the base point's */
+    OC_BOOK_USE  /* the base point's, recorded: a difference step's */
+} oc_book;
+
 /* A worker: a mission and run of its own (its control tables are its own). */
 typedef struct oc_worker {
+    oc_book book;
     lv_mission *m;
     lv_run *r;
     double *x, *g, *g2;         /* [n], [m + 1] x2: a point and its rows (g[m]: the cost) */
@@ -74,6 +86,7 @@ struct lv_ocp {
     double *z_jac;              /* [n] the point jv belongs to */
     int jac_ok;
     double itol;                /* the segments' relative tolerance */
+    double *prop_book;          /* [segments] a fixed burn's segment's propellant at z_base */
     int n_workers;
     oc_worker w[OC_MAX_WORKERS];
     double *z_best;             /* [n] the point to return */
@@ -96,13 +109,31 @@ struct lv_ocp {
  * its hand-off's start): the defects and links are then 0. 1 when every phase flew; 0 with
  * w->why otherwise. */
 int oc_evaluate(lv_ocp *o, oc_worker *w, double *z, double *g, int propagate);
+/* oc_evaluate of z_base into g_base on worker 0, recording the fixed burns' propellant that
+ * the differences at z_base take (OC_BOOK_SET). */
+int oc_evaluate_base(lv_ocp *o);
 
+/* The propellant that segment j of optimised phase p starts with, from its start state x and
+ * the phase's burnout mass (NAN: none given, the model's own). Where the optimiser decides the
+ * burn (a throttle control, a free duration: the row r_mass) all but 1e-9 of the mass; where
+ * the burn is fixed, the mass above the burnout mass - and on a worker taking differences
+ * (OC_BOOK_USE) the base point's value, so that a step in a mass (its own, or a parent's that
+ * moves the burnout mass) does not move a burnout into a segment that ends before it: Delta
+ * III's fixed burns end 1.7 kg of propellant before their burnout, and a step of 4.6e-4 of a
+ * 200 t mass scale is 92 kg. Frozen like an integrator's step sequence in internal numerical
+ * differentiation (Bock, 1981; Albersmeyer & Diehl, SIAM J. Optim. 2010), the difference is
+ * the derivative of the branch the base point flies. */
+double oc_segment_propellant(const lv_ocp *o, const oc_worker *w, const oc_ph *p, size_t j,
+                             const double *x, double m_burnout);
 /* The settings of segment [ta, tb] of optimised phase p, prepared with settings cs, from its
- * state x (the hand-off's other start values kept, no ends, no rows, the segments' tolerance);
- * names/values: room for cs->n_initial + p->nx entries. */
+ * state x and propellant prop (oc_segment_propellant; NAN: the model's own) (the hand-off's
+ * other start values kept, no ends, no rows, the segments' tolerance), and the phase's start
+ * x0 at mission time t0 for a model that keeps something from it (phase_elapsed,
+ * phase_start_*: a steering law's frame and time, the downrange origin); names/values: room for cs->n_initial + 2 p->nx + 2
+ * entries. */
 void oc_segment_settings(const lv_ocp *o, const lv_sim_settings *cs, const oc_ph *p,
-                         const double *x, double m_burnout, double ta, double tb,
-                         const char **names, double *values, lv_sim_settings *s);
+                         const double *x0, double t0, const double *x, double prop, double ta,
+                         double tb, const char **names, double *values, lv_sim_settings *s);
 /* Phase p's start from its prepared model, def, inst and settings cs: its states x[nx] and
  * the mass at which its burning stage burns out (its start mass less its propellant then;
  * NAN for a model without both: a segment starts with the propellant its mass holds above

@@ -355,7 +355,8 @@ static lv_status write_reference(lv_ocp *o, const oc_ph *p, const double *z, dou
         lv_sim_settings s;
         /* the segment as the NLP flies it (ocp.c), its rows in memory: REF_DT apart
          * intervals and the two rows of each event (a kink: the burnout) */
-        oc_segment_settings(o, lv_phase_call_settings(c), p, xa, m_bo, ta, tb, names, values,
+        oc_segment_settings(o, lv_phase_call_settings(c), p, x0, t0, xa,
+                            oc_segment_propellant(o, w, p, j, xa, m_bo), ta, tb, names, values,
                             &s);
         lv_result *rows = NULL;
         lv_sink mem;
@@ -462,7 +463,7 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
     /* the point returned, flown on worker 0 (the files below read its run) */
     if (memcmp(o->z_base, o->z_best, o->n * sizeof *o->z_base) != 0 || !o->base_ok) {
         memcpy(o->z_base, o->z_best, o->n * sizeof *o->z_base);
-        o->base_ok = oc_evaluate(o, w, o->z_base, o->g_base, 0);
+        o->base_ok = oc_evaluate_base(o);
     }
     if (!o->base_ok)
         return lv_fail(err, LV_ERR_SOLVER, "the point to write does not fly: %s", w->why);
@@ -510,6 +511,33 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
         ok = pm != NULL && stop != NULL && set_number(stop, t0 + D);
         if (!ok)
             break;
+        map_drop(pm, "end");
+        map_drop(pm, "end_name"); /* it names the ends: none left */
+        map_drop(pm, "reference");
+        ok = add_pair(pm, "reference", scalar(base_name(csv[2 * p + 1]), 0));
+        const char *key = ph->type->controls_key ? ph->type->controls_key(ph) : "inputs";
+        if (ok && strcmp(key, "guidance") == 0) {
+            /* the steering law's table, its other keys kept (`guidance: attitude`, a word:
+             * written as {law: attitude, table: ..}) */
+            lv_ynode *gd = map_get(pm, "guidance");
+            if (gd != NULL && gd->kind != LV_YNODE_MAP) {
+                lv_ynode *gm = container(LV_YNODE_MAP);
+                ok = gm != NULL && add_pair(gm, "law", scalar(gd->text, gd->plain));
+                if (!ok) {
+                    lv_yaml_free(gm);
+                } else {
+                    map_drop(pm, "guidance");
+                    ok = add_pair(pm, "guidance", gm); /* frees gm when it fails */
+                }
+                gd = ok ? gm : NULL;
+            }
+            ok = ok && gd != NULL;
+            if (ok) {
+                map_drop(gd, "table");
+                ok = add_pair(gd, "table", scalar(base_name(csv[2 * p]), 0));
+            }
+            continue;
+        }
         /* the inputs: the table, and the constants of the inputs not optimised */
         lv_ynode *in = container(LV_YNODE_MAP), *old = map_get(pm, "inputs");
         ok = in != NULL && add_pair(in, "table", scalar(base_name(csv[2 * p]), 0)) &&
@@ -533,12 +561,8 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
             lv_yaml_free(in);
             break;
         }
-        map_drop(pm, "end");
-        map_drop(pm, "end_name"); /* it names the ends: none left */
         map_drop(pm, "inputs");
-        map_drop(pm, "reference");
-        ok = add_pair(pm, "inputs", in) &&
-             add_pair(pm, "reference", scalar(base_name(csv[2 * p + 1]), 0));
+        ok = add_pair(pm, "inputs", in);
     }
     /* the section: a warm start from here (each control's start is the phase's table; the
      * duration starts at the optimum) */
