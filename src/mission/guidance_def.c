@@ -422,6 +422,17 @@ lv_table **lv_guidance_def_attitude_table(lv_guidance_def *g)
     return NULL;
 }
 
+double lv_guidance_def_steer_number(const lv_guidance_def *g, const char *key,
+                                    const lv_mission_def *m)
+{
+    for (size_t i = 0; g->steer.law != NULL && i < g->steer.law->n_keys; i++) {
+        const lv_law_key *k = &g->steer.law->keys[i];
+        if (k->type == LV_KEY_NUMBER && strcmp(k->name, key) == 0)
+            return g->steer.slot[i] != LV_NO_SLOT ? m->slots[g->steer.slot[i]].value : k->dflt;
+    }
+    return NAN;
+}
+
 lv_slot lv_guidance_def_throttle_value(const lv_guidance_def *g)
 {
     for (size_t i = 0; g->thr.law != NULL && i < g->thr.law->n_keys; i++)

@@ -48,6 +48,11 @@ int lv_guidance_def_gives_throttle(const lv_guidance_def *g);
  * replace (phase_dof3.c). NULL for any other law or the aero frame. */
 lv_table **lv_guidance_def_attitude_table(lv_guidance_def *g);
 
+/* The steering law's number `key` as the file gives it (m's slots), its default when not
+ * written, NAN when the law has no such number (or no law steers). SI (an angle in rad). */
+double lv_guidance_def_steer_number(const lv_guidance_def *g, const char *key,
+                                    const lv_mission_def *m);
+
 /* The slot of `throttle: {value: c}`, the phase's nominal throttle, or LV_NO_SLOT. */
 lv_slot lv_guidance_def_throttle_value(const lv_guidance_def *g);
 

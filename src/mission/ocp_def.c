@@ -359,8 +359,8 @@ static lv_status check_phase(lv_mission *m, lv_ocp_phase_def *p, size_t idx, lv_
                            "control: the optimiser flies the controls' table instead, so make "
                            "'%s' a control too, or give it as a constant (%s: {%s%s: ...})",
                            p->name, law ? "steering law's" : "inputs", lv_table_name(own),
-                           col, col, law ? "guidance" : "inputs", col,
-                           strcmp(col, "throttle") != 0 ? "_deg" : "");
+                           col, col, law && strcmp(col, "throttle") != 0 ? "guidance" : "inputs",
+                           col, strcmp(col, "throttle") != 0 ? "_deg" : "");
         }
     }
     return LV_OK;

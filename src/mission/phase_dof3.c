@@ -617,14 +617,16 @@ static int dof3_control_conflict(const lv_phase_def *ph, size_t input, char *why
                  att ? ", or optimise the law's pitch, heading, roll" : "");
         return 1;
     }
+    if (input == C_THROTTLE && cfg->guid.steer.law != NULL && !att) {
+        snprintf(why, cap, "the phase steers with the guidance law '%s', which flies the "
+                 "throttle as a constant: a throttle history is the inputs table's (no "
+                 "`guidance:`) or an attitude law's table (`guidance: {law: attitude, frame: "
+                 "inertial}` or local)", cfg->guid.steer.law->name);
+        return 1;
+    }
     if (input == C_THROTTLE && cfg->guid.thr.law != NULL) {
         snprintf(why, cap, "the phase's `throttle:` (law '%s') gives the throttle: remove it to "
                  "optimise the throttle", cfg->guid.thr.law->name);
-        return 1;
-    }
-    if (input == C_THROTTLE && !att && lv_guidance_def_gives_throttle(&cfg->guid)) {
-        snprintf(why, cap, "the attitude table gives the throttle: remove its 'throttle' "
-                 "output to optimise it");
         return 1;
     }
     return 0;
@@ -634,6 +636,15 @@ static const lv_table *dof3_own_inputs(const lv_phase_def *ph)
 {
     lv_table **slot = attitude_slot(ph);
     return slot != NULL ? *slot : ((const dof3_cfg *)ph->type_cfg)->inputs;
+}
+
+static double dof3_control_constant(const lv_phase_def *ph, const lv_mission_def *d,
+                                    size_t input)
+{
+    if (input < C_PITCH || attitude_slot(ph) == NULL)
+        return NAN; /* alpha .. throttle: the flight's own alpha_in .. throttle_in */
+    return lv_guidance_def_steer_number(&((dof3_cfg *)ph->type_cfg)->guid,
+                                        dof3_controls[input], d);
 }
 
 static const char *dof3_controls_key(const lv_phase_def *ph)
@@ -680,5 +691,6 @@ const lv_phase_type lv_phase_type_dof3 = {
     .control_conflict = dof3_control_conflict,
     .set_controls = dof3_set_controls,
     .own_inputs = dof3_own_inputs,
+    .control_constant = dof3_control_constant,
     .controls_key = dof3_controls_key,
 };

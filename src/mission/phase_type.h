@@ -198,6 +198,10 @@ struct lv_phase_type {
     /* The phase's own table of controls as the file gives it (which set_controls replaces),
      * or NULL. */
     const lv_table *(*own_inputs)(const lv_phase_def *ph);
+    /* The constant phase ph flies for control `input` when no table gives it (the attitude
+     * law's pitch, heading, roll keys), from mission d's file values; NAN: none or unknown
+     * (the optimiser's start point then takes the controls' bounds). NULL: none. */
+    double (*control_constant)(const lv_phase_def *ph, const lv_mission_def *d, size_t input);
     /* The phase's key in the mission file whose `table:` the controls replace: "inputs"
      * (written with `over: time`) or "guidance" (the attitude law's table over time). NULL:
      * "inputs". */

@@ -658,7 +658,7 @@ static double rows_at(const lv_result *res, size_t tcol, size_t col, double t)
 
 /* The start point from run r of mission m, flown as written with its rows: the durations and
  * the control nodes (a control's `start:`, else its own input along that flight, else the
- * phase's own table of it over time, else the middle of its bounds). */
+ * phase's own table of it over time, else its constant, else the middle of its bounds). */
 static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double *x)
 {
     for (size_t p = 0; p < o->np; p++) {
@@ -692,6 +692,9 @@ static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double 
                                  lv_table_out_index(own, pd_m->type->controls[u->input], &tk,
                                                     NULL) == LV_OK;
             double *buf = have_own ? calloc(lv_table_n_out(own) + 1, sizeof *buf) : NULL;
+            const double cst = !have && !have_own && pd_m->type->control_constant != NULL
+                                   ? pd_m->type->control_constant(pd_m, m->def, u->input)
+                                   : NAN;
             lv_table_cursor cur = {0};
             for (size_t i = 0; i < ph->nn; i++) {
                 const double t = res->t_start + D * (double)i / (double)(ph->nn - 1);
@@ -699,7 +702,8 @@ static void start_point(lv_ocp *o, const lv_mission *m, const lv_run *r, double 
                            : have            ? rows_at(rows, tcol, col, t)
                            : buf != NULL && lv_table_eval1(own, &cur, t, buf, NULL) == LV_OK
                                ? buf[tk]
-                               : 0.5 * (u->lo + u->hi);
+                           : !isnan(cst) ? cst
+                                         : 0.5 * (u->lo + u->hi);
                 if (isnan(y))
                     y = 0.5 * (u->lo + u->hi);
                 x[ph->iu + i * ph->nu + c] = fmin(fmax(y, u->lo), u->hi);

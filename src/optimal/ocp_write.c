@@ -1,6 +1,6 @@
 /* ocp_write.c - the optimal mission (lv_ocp_write): the mission file's YAML tree re-emitted in
- * block style with each optimised phase flying its control nodes (an inputs table over mission
- * time), its stop_time the optimal end, no other ends, and the NLP's trajectory as its
+ * block style with each optimised phase flying its control nodes (a table over mission time:
+ * its inputs table, or its attitude law's), its stop_time the optimal end, no other ends, and the NLP's trajectory as its
  * reference, so that `lvsim run` re-flies it and reports the drift. Comments of the original
  * are not kept (the tree holds none): the file says where it came from in its header. Relative
  * file paths are rewritten when the file goes to another folder. */
@@ -536,6 +536,15 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
                 map_drop(gd, "table");
                 ok = add_pair(gd, "table", scalar(base_name(csv[2 * p]), 0));
             }
+            /* a throttle control: the law's table gives it, so not the inputs' constant too */
+            lv_ynode *in = map_get(pm, "inputs");
+            for (size_t c = 0; ok && in != NULL && in->kind == LV_YNODE_MAP && c < op->nu; c++)
+                if (strcmp(ph->type->controls[op->def->ctrl[c].input], "throttle") == 0) {
+                    map_drop(in, "throttle");
+                    if (in->n == 0)
+                        map_drop(pm, "inputs");
+                    break; /* in may be freed */
+                }
             continue;
         }
         /* the inputs: the table, and the constants of the inputs not optimised */
@@ -592,10 +601,10 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
         goto done;
     fprintf(a.fp, HEADER " the optimal mission of %s (IPOPT: %s after %d iterations)\n",
             base_name(d->path), o->res.ipopt_text, o->res.iterations);
-    fprintf(a.fp, "# Each optimised phase flies its control nodes (inputs table, over mission "
-                  "time)\n# to its optimal stop_time; its reference is the optimiser's "
-                  "trajectory: `lvsim run`\n# reports the drift. Comments of the original are "
-                  "not kept.\n");
+    fprintf(a.fp, "# Each optimised phase flies its control nodes (a table over mission time: "
+                  "its inputs\n# table or its attitude law's) to its optimal stop_time; its "
+                  "reference is the\n# optimiser's trajectory: `lvsim run` reports the drift. "
+                  "Comments of the original\n# are not kept.\n");
     emit_block(a.fp, root, 0, 0);
     st = lv_atomic_commit(&a, err);
 done:

@@ -211,6 +211,18 @@ def main():
         check(r.returncode == 0 and "OPTIMAL" in r.stdout, "attitude pitch: OPTIMAL, exit 0 "
               "(got %d): %s" % (r.returncode, r.stdout[-500:]))
         check(abs(vx - vx_ref) < 2e-3, "attitude pitch: vx %.6f vs %.6f" % (vx, vx_ref))
+        # the start point flies the law's constant pitch (45 deg), as `lvsim run` does
+        m_start = re.search(r"\(start (\S+)\)", r.stdout)
+        rd = os.path.join(d, "run_att_start")
+        r0 = run(lv, "run", p, "-o", rd, "--no-plots")
+        if m_start and r0.returncode == 0:
+            vx0 = json.load(open(os.path.join(rd, "summary.json")))["phases"][0]["final"][
+                "v_east"]
+            print("attitude pitch: start %s m/s, lvsim run %.6f" % (m_start.group(1), vx0))
+            check(abs(float(m_start.group(1)) - vx0) < 0.05, "attitude start %s vs run %.6f"
+                  % (m_start.group(1), vx0))
+        else:
+            check(False, "attitude start: no start cost or run failed: " + r0.stderr[-300:])
         if r.returncode == 0:
             ctl = np.genfromtxt(os.path.join(d, "lt_att_opt_climb_controls.csv"),
                                 delimiter=",", skip_header=1)
@@ -293,21 +305,23 @@ def main():
         check(r.returncode == 0 and it >= 1, "1 m higher: exit %d, %d iterations"
               % (r.returncode, it))
 
-        # 4b. what a phase keeps from its start is the phase's in every segment: a linear
-        # tangent law in the inertial frame frozen at the phase's start over the rotating
-        # Earth (its time since the start, its frame) and the downrange's origin. The final
-        # altitude and downrange of the mission flown whole by `lvsim run` are met at the
-        # start point (the throttle, the only control, at its written 1): 0 iterations. With
-        # each segment starting the law anew the problem was INFEASIBLE (0.1 m and 0.3 m off)
+        # 4b. what a phase keeps from its start is the phase's in every segment: an attitude
+        # law in the inertial frame frozen at the phase's start, over the rotating Earth, and
+        # the downrange's origin. Its pitch table has its breakpoints at the 5 control nodes,
+        # so the start point flies it exactly; the final altitude and downrange of the
+        # mission flown whole by `lvsim run` are met there: 0 iterations. With each segment
+        # freezing its own frame the same problem (a linear tangent law then) was INFEASIBLE
+        open(os.path.join(d, "ps_pitch.csv"), "w").write(
+            "time [s],pitch [rad]\n0,1.2\n15,0.9\n30,0.6\n45,0.35\n60,0.1\n")
         ps = """mission: {name: phase-start}
 environment: {world: planet, atmosphere: none}
 parameters: {start_h: 1000, start_vel: 100, start_fpa_deg: 80, start_chi_deg: 90,
              start_lat_deg: 5}
 stages: [{name: s, dry_mass: 1000, propellant_mass: 100,
-          engines: [{thrust_vac: 21574.63, isp_vac: 1.0e9, throttle_max: 1.2}]}]
+          engines: [{thrust_vac: 21574.63, isp_vac: 1.0e9}]}]
 phases:
   - {name: climb, model: dof3, stages: [s], stop_time: 60,
-     guidance: {law: linear_tangent, a: 3, b: -0.04, heading_deg: 90}}
+     guidance: {law: attitude, frame: inertial, heading_deg: 90, table: ps_pitch.csv}}
 """
         p = os.path.join(d, "ps.yaml")
         open(p, "w").write(ps)
@@ -317,7 +331,7 @@ phases:
         open(p, "a").write("""optimal_control:
   phases:
     - name: climb
-      controls: [{name: throttle, min: 0.5, max: 1.2, start: 1}]
+      controls: [{name: pitch_deg, min: -89, max: 89}]
       nodes: 5
       segments: 6
   constraints:
@@ -326,7 +340,8 @@ phases:
 """ % (f["h"], f["downrange"]))
         r = run(lv, "optimize", p)
         it = iterations_of(r.stdout)
-        print("a steered phase in 6 segments against its whole flight: %d iterations" % it)
+        print("an inertial attitude table in 6 segments against its whole flight: %d iterations"
+              % it)
         check(r.returncode == 0 and it == 0, "phase start in segments: %d iterations, exit %d:"
               " %s" % (it, r.returncode, r.stdout[-500:]))
 
@@ -462,6 +477,30 @@ phases:
         open(p, "w").write(MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=TF, oc=oc).replace(
             "inputs: {alpha_deg: 0}", "guidance: {law: attitude, frame: inertial, table: att.csv}"))
         both_refuse(lv, p, "steering law's table 'att' gives 'roll', which is no control")
+        # a throttle control under another steering law: that law flies a constant throttle
+        p = os.path.join(d, "thr_law.yaml")
+        open(p, "w").write(MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=TF, oc=OC_MAX_VX.replace(
+            "{name: alpha_deg, min: -60, max: 60}", "{name: throttle, min: 0.5, max: 1}"))
+            .replace("inputs: {alpha_deg: 0}",
+                     "guidance: {law: linear_tangent, a: 1, b: -0.01, heading_deg: 90}"))
+        both_refuse(lv, p, "flies the throttle as a constant")
+        # an attitude law's throttle control beside an inputs throttle constant: the written
+        # mission gives it once (the law's table), and `lvsim run` flies it
+        p = os.path.join(d, "att_thr.yaml")
+        open(p, "w").write(MISSION.format(h0=H0, v0=V0, thrust=THRUST, tf=TF, oc=OC_MAX_VX.replace(
+            "{name: alpha_deg, min: -60, max: 60}",
+            "{name: pitch_deg, min: -89, max: 89}, {name: throttle, min: 0.5, max: 1}"))
+            .replace("inputs: {alpha_deg: 0}",
+                     "guidance: {law: attitude, frame: inertial, pitch_deg: 45}, "
+                     "inputs: {throttle: 0.9}"))
+        out = os.path.join(d, "att_thr_opt.yaml")
+        r = run(lv, "optimize", p, "-q", "-o", out)
+        check(r.returncode == 0 and "OPTIMAL" in r.stdout, "attitude + throttle: exit %d: %s"
+              % (r.returncode, (r.stdout + r.stderr)[-400:]))
+        if os.path.exists(out):
+            r2 = run(lv, "check", out)
+            check(r2.returncode == 0, "attitude + throttle: the written mission is valid: "
+                  + r2.stderr[-300:])
         # the phase's own inputs table gives a column that is no control: it would be dropped
         open(os.path.join(d, "tab.csv"), "w").write("time [s],alpha [rad],throttle [1]\n"
                                                      "0,0,1\n60,0,1\n")
