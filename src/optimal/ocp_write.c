@@ -517,21 +517,9 @@ lv_status lv_ocp_write(lv_ocp *o, const char *path, unsigned flags, lv_err *err)
         ok = add_pair(pm, "reference", scalar(base_name(csv[2 * p + 1]), 0));
         const char *key = ph->type->controls_key ? ph->type->controls_key(ph) : "inputs";
         if (ok && strcmp(key, "guidance") == 0) {
-            /* the steering law's table, its other keys kept (`guidance: attitude`, a word:
-             * written as {law: attitude, table: ..}) */
+            /* the steering law's table, its other keys kept (a mapping: parse_phase.c) */
             lv_ynode *gd = map_get(pm, "guidance");
-            if (gd != NULL && gd->kind != LV_YNODE_MAP) {
-                lv_ynode *gm = container(LV_YNODE_MAP);
-                ok = gm != NULL && add_pair(gm, "law", scalar(gd->text, gd->plain));
-                if (!ok) {
-                    lv_yaml_free(gm);
-                } else {
-                    map_drop(pm, "guidance");
-                    ok = add_pair(pm, "guidance", gm); /* frees gm when it fails */
-                }
-                gd = ok ? gm : NULL;
-            }
-            ok = ok && gd != NULL;
+            ok = gd != NULL && gd->kind == LV_YNODE_MAP;
             if (ok) {
                 map_drop(gd, "table");
                 ok = add_pair(gd, "table", scalar(base_name(csv[2 * p]), 0));
