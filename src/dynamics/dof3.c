@@ -530,13 +530,9 @@ static int dof3_init(double t0, const double *x, const double *p, void *inst)
     double tg = t0;
     if (p[P_PH_EL] > 0.0) { /* a piece of the phase: the phase's start (param_tpl) */
         tg = t0 - p[P_PH_EL];
-        lv_flight_kinematics(&s->m->world, tg, p + P_PH_RX, p + P_PH_VX, 0, &kin);
-        const double rn = lv_v3_norm(kin.r_ecef);
-        if (!(rn > 0.0))
-            return lv_flight_fail(&s->rt, "phase_start_r_eci is the planet's centre");
-        s->rt.r0_unit[0] = kin.r_ecef.x / rn;
-        s->rt.r0_unit[1] = kin.r_ecef.y / rn;
-        s->rt.r0_unit[2] = kin.r_ecef.z / rn;
+        if (lv_flight_origin(&s->rt, tg, p + P_PH_RX, p + P_PH_VX, "phase_start_r_eci",
+                             &kin) != 0)
+            return -1;
     }
     if (lv_guid_start(&s->m->guid, &s->rt.guid, tg, &kin, s->rt.msg, sizeof s->rt.msg) != 0)
         return -1;

@@ -280,18 +280,27 @@ int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines)
     return 0;
 }
 
-int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin)
+int lv_flight_origin(lv_flight_rt *rt, double t, const double r_eci[3], const double v_eci[3],
+                     const char *what, lv_flight_kin *kin)
 {
-    rt->thrust_last = -1.0; /* not known before the first right-hand side */
     const lv_flight_core *k = rt->core;
-    lv_flight_to_ecef(k->world, t0, x + k->i_r, x + k->i_v, kin);
+    lv_flight_to_ecef(k->world, t, r_eci, v_eci, kin);
     const double rn = lv_v3_norm(kin->r_ecef);
     if (!(rn > 0.0))
-        return lv_flight_fail(rt, "start position is the planet's centre (|r| = %g m)", rn);
+        return lv_flight_fail(rt, "%s is the planet's centre (|r| = %g m)", what, rn);
     lv_flight_geodetic(k->world, kin, 0, 0);
     rt->r0_unit[0] = kin->r_ecef.x / rn;
     rt->r0_unit[1] = kin->r_ecef.y / rn;
     rt->r0_unit[2] = kin->r_ecef.z / rn;
+    return 0;
+}
+
+int lv_flight_start(lv_flight_rt *rt, double t0, const double *x, lv_flight_kin *kin)
+{
+    rt->thrust_last = -1.0; /* not known before the first right-hand side */
+    const lv_flight_core *k = rt->core;
+    if (lv_flight_origin(rt, t0, x + k->i_r, x + k->i_v, "start position", kin) != 0)
+        return -1;
     /* A vehicle that starts on its impact level (a launch from the ground) and sinks (thrust
      * below its weight) has no crossing from above to find: its impact is 1 micrometre below
      * where it starts; one that starts below it is refused. */

@@ -228,6 +228,12 @@ void lv_flight_start_geodetic(const lv_flight_world *w, double t0, const double 
  * `engines` and prop > 0. 0, or -1 with the reason in rt->msg. */
 int lv_flight_book(lv_flight_rt *rt, double m, double prop, int engines);
 
+/* The downrange's origin (rt->r0_unit) at the ECI position r_eci at mission time t, and kin
+ * its kinematics with the geodetic position. 0, or -1 with "<what> is the planet's centre"
+ * in rt->msg. */
+int lv_flight_origin(lv_flight_rt *rt, double t, const double r_eci[3], const double v_eci[3],
+                     const char *what, lv_flight_kin *kin);
+
 /* The instance's start at t0 from state x: a position away from the planet's centre (kin:
  * its kinematics with the geodetic position), the start point for the downrange, the named
  * ends' start (lv_flight_ends_start), every engine running with its engine-out instant
